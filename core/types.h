@@ -1,0 +1,46 @@
+// Basic geometric types shared by every core algorithm (double precision, Eigen).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace cdlab {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Quat = Eigen::Quaterniond;
+
+/// Line segment from a to b (a == b is a point and is allowed).
+struct Segment {
+    Vec3 a, b;
+};
+
+/// Triangle with vertices a, b, c in this order (zero area is allowed).
+struct Triangle {
+    Vec3 a, b, c;
+};
+
+/// Tetrahedron with vertices a, b, c, d (zero volume is allowed).
+struct Tetrahedron {
+    Vec3 a, b, c, d;
+};
+
+/// Plane: the points x with normal · x = offset. normal need not be unit.
+struct Plane {
+    Vec3 normal;
+    double offset = 0.0;
+};
+
+/// Rigid transform: x_world = rotation * x_body + position. rotation is a unit quaternion.
+struct Transform {
+    Vec3 position = Vec3::Zero();
+    Quat rotation = Quat::Identity();
+
+    Vec3 apply(const Vec3& body) const { return rotation * body + position; }
+    Vec3 applyInverse(const Vec3& world) const { return rotation.conjugate() * (world - position); }
+    Vec3 rotate(const Vec3& v) const { return rotation * v; }
+    Vec3 rotateInverse(const Vec3& v) const { return rotation.conjugate() * v; }
+};
+
+}  // namespace cdlab

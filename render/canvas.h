@@ -1,0 +1,89 @@
+// A figure being drawn: an off-screen multisampled framebuffer plus a list of draw commands.
+// Draw calls only record; readPixels() renders everything in a fixed order (opaque meshes,
+// translucent meshes back-to-front, lines / points / arrows, then text on top) and returns the
+// picture. Pixel sizes (line widths, point radii, text size) are in output pixels at scale 1
+// and are multiplied by the supersampling factor internally.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "render/camera.h"
+#include "render/color.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+
+namespace cdlab::render {
+
+struct CanvasOptions {
+    int width = 1024;       // output size in pixels
+    int height = 1024;
+    int supersample = 1;    // render at width*s x height*s, box-filter down (--scale)
+    int msaaSamples = 4;    // 4x MSAA (llvmpipe supports 4, not 8); clamped to GL_MAX_SAMPLES
+};
+
+struct LineStyle {
+    float widthPx = 2.0f;
+    Color color;
+    float dashPx = 0.0f;     // > 0: dashed with this dash length (gap = dash)
+    bool onTop = false;      // ignore depth (annotations); otherwise depth-tested in 3D
+};
+
+enum class Anchor { Center, Left, Right, Top, Bottom, TopLeft, TopRight, BottomLeft, BottomRight };
+
+struct TextStyle {
+    float sizePx = 18.0f;
+    Color color;
+    Anchor anchor = Anchor::Center;  // which point of the text box sits at the position
+    bool halo = true;                // background-coloured outline for legibility over shapes
+    bool bold = false;
+};
+
+class Canvas {
+public:
+    Canvas(GlContext& context, const CanvasOptions& options);
+    ~Canvas();
+    Canvas(const Canvas&) = delete;
+    Canvas& operator=(const Canvas&) = delete;
+
+    void setCamera(const Camera& camera);
+    const Camera& camera() const;
+    void setBackground(const Color& color);
+    int width() const;
+    int height() const;
+
+    /// Triangle mesh, flat shaded per triangle (+ simple directional light when `lit`).
+    /// color.a < 1 draws it translucent (sorted back to front, no depth write).
+    void drawMesh(const std::vector<Eigen::Vector3d>& vertices,
+                  const std::vector<Eigen::Vector3i>& triangles, const Color& color, bool lit = true);
+    /// Convex planar polygon (fan-triangulated), e.g. a face, a region or a translucent plane patch.
+    void drawPolygon(const std::vector<Eigen::Vector3d>& corners, const Color& color, bool lit = false);
+    /// Thick anti-aliased line as a screen-space quad (any width; dashed optional).
+    void drawLine(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const LineStyle& style);
+    void drawPolyline(const std::vector<Eigen::Vector3d>& points, bool closed, const LineStyle& style);
+    /// Filled disc of `radiusPx` pixels, with an optional outline in `outline` colour.
+    void drawPoint(const Eigen::Vector3d& p, float radiusPx, const Color& color, bool onTop = true,
+                   float outlinePx = 1.0f, const Color& outline = Color{0, 0, 0, 1});
+    /// Shaft from p to q with a triangular head at q (head size scales with width).
+    void drawArrow(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const LineStyle& style);
+    /// Text at a 3D point (projected) ...
+    void drawText(const Eigen::Vector3d& at, const std::string& text, const TextStyle& style);
+    /// ... or at pixel coordinates (x right, y down, output pixels at scale 1).
+    void drawTextPx(double x, double y, const std::string& text, const TextStyle& style);
+    /// Width and height in output pixels that drawTextPx would use.
+    Eigen::Vector2d measureText(const std::string& text, const TextStyle& style) const;
+
+    /// Renders every recorded command, resolves MSAA and supersampling, reads back RGBA8.
+    /// The command list is kept; calling again re-renders identically.
+    Image readPixels();
+    /// Forgets recorded commands (camera and background stay).
+    void clearCommands();
+
+    struct Impl;
+private:
+    Impl* impl_;
+};
+
+}  // namespace cdlab::render

@@ -1,0 +1,51 @@
+// Golden-image comparison on decoded pixels, and the HTML failure report.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/image.h"
+
+namespace cdlab::render {
+
+/// How far an image may differ from its golden and still pass. Default: exact.
+struct CompareTolerance {
+    int maxChannelDelta = 0;         // a pixel "differs" if any channel differs by more than this
+    std::int64_t maxDiffPixels = 0;  // pass if differing pixels <= this ...
+    double maxDiffFraction = 0.0;    // ... or differing pixels / total <= this
+};
+
+struct CompareResult {
+    bool sizeMismatch = false;
+    bool exact = false;   // pixel hashes equal
+    bool passed = false;  // exact, or within tolerance
+    std::int64_t diffPixels = 0;  // pixels with some channel delta > maxChannelDelta
+    std::int64_t anyDiffPixels = 0;  // pixels with any delta at all
+    int maxDelta = 0;             // largest channel delta ...
+    int maxDeltaX = -1, maxDeltaY = -1;  // ... and where
+    double rms = 0.0;             // over all channels, 0..255 scale
+    double psnr = 0.0;            // dB; +inf when identical
+    CompareTolerance applied;
+    /// One line: what was applied and what was measured.
+    std::string summary() const;
+};
+
+CompareResult compareImages(const Image& actual, const Image& expected, const CompareTolerance& tol);
+
+/// Per-pixel |a - b| amplified by `gain` (clamped), over a dimmed copy of `expected`, so small
+/// differences are visible. Sizes may differ: the union canvas is used, outside areas red.
+Image diffImage(const Image& actual, const Image& expected, int gain = 16);
+
+struct ReportEntry {
+    std::string name;          // e.g. "voronoi_triangle/regions"
+    std::string actualPng;     // paths relative to the report's folder
+    std::string expectedPng;   // may be empty when the golden is missing
+    std::string diffPng;       // may be empty
+    std::string summary;       // CompareResult::summary() or the reason
+};
+
+/// Writes one static HTML page (no scripts, works offline) with every failure side by side.
+void writeHtmlReport(const std::string& path, const std::vector<ReportEntry>& entries);
+
+}  // namespace cdlab::render
