@@ -50,7 +50,7 @@ public:
 
     void setCamera(const Camera& camera);
     const Camera& camera() const;
-    void setBackground(const Color& color);
+    void setBackground(const Color& color);  // default roleColor(Role::Background)
     int width() const;
     int height() const;
 
@@ -80,6 +80,12 @@ public:
     Image readPixels();
     /// Forgets recorded commands (camera and background stay).
     void clearCommands();
+    /// MSAA samples actually used: msaaSamples clamped to GL_MAX_SAMPLES, halved further if the
+    /// driver left the framebuffer incomplete (exact after the first readPixels()); 1 = none.
+    int samples() const;
+    /// Projects a world point to output pixels (x right, y down, scale 1); false when it is
+    /// behind the camera. Lets demos place pixel-space annotations next to 3D things.
+    bool project(const Eigen::Vector3d& p, Eigen::Vector2d& pixel) const;
 
     struct Impl;
 private:

@@ -27,11 +27,15 @@ struct CompareResult {
     double rms = 0.0;             // over all channels, 0..255 scale
     double psnr = 0.0;            // dB; +inf when identical
     CompareTolerance applied;
+    std::int64_t totalPixels = 0;        // of expected (0 on size mismatch)
+    int actualWidth = 0, actualHeight = 0, expectedWidth = 0, expectedHeight = 0;
     /// One line: what was applied and what was measured.
     std::string summary() const;
 };
 
-CompareResult compareImages(const Image& actual, const Image& expected, const CompareTolerance& tol);
+/// Exact pixel-hash match first; otherwise measures every channel delta and applies `tol`.
+/// Different sizes never pass (sizeMismatch = true, no pixel statistics).
+CompareResult compareImages(const Image& actual, const Image& expected, const CompareTolerance& tol = {});
 
 /// Per-pixel |a - b| amplified by `gain` (clamped), over a dimmed copy of `expected`, so small
 /// differences are visible. Sizes may differ: the union canvas is used, outside areas red.
@@ -44,6 +48,9 @@ struct ReportEntry {
     std::string diffPng;       // may be empty
     std::string summary;       // CompareResult::summary() or the reason
 };
+
+/// Escapes & < > " ' for HTML text and attribute values.
+std::string htmlEscape(const std::string& text);
 
 /// Writes one static HTML page (no scripts, works offline) with every failure side by side.
 void writeHtmlReport(const std::string& path, const std::vector<ReportEntry>& entries);
