@@ -209,7 +209,7 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
     if (!(right.norm() > 1e-12)) right = back.unitOrthogonal();
     right.normalize();
     const Vector3d upCam = back.cross(right);
-    const Vector3d light = (back + 0.55 * upCam - 0.35 * right).normalized();
+    const Vector3d light = (0.6 * back + 0.65 * upCam - 0.45 * right).normalized();
     const Vector3d eye = is3D() ? camera.eye : Vector3d(camera.target.x(), camera.target.y(), 0);
 
     struct Sorted {
