@@ -366,6 +366,7 @@ void Canvas::Impl::buildText(std::vector<Vertex>& out, std::vector<std::pair<GLu
         } else {
             at = t.px * ss;
         }
+        at += t.style.offsetPx * ss;
         if (!at.allFinite() || !(t.style.sizePx > 0)) continue;
         const int pixelSize = std::max(1, int(std::lround(t.style.sizePx * ss)));
         GlyphAtlas& atlas = gl.atlas(t.style.bold, pixelSize);
@@ -511,8 +512,7 @@ void Canvas::drawTextPx(double x, double y, const std::string& text, const TextS
 
 Eigen::Vector2d Canvas::measureText(const std::string& text, const TextStyle& style) const {
     if (!(style.sizePx > 0)) return {0, 0};
-    impl_->context.makeCurrent();
-    const FontFace& face = impl_->context.impl().font(style.bold);
+    const FontFace& face = impl_->context.impl().font(style.bold);  // metrics only: no GL
     const TextLayout L = layoutText(face, text, style.sizePx);
     return {L.width, L.height};
 }

@@ -39,8 +39,11 @@ struct TextStyle {
     Anchor anchor = Anchor::Center;  // which point of the text box sits at the position
     bool halo = true;                // background-coloured outline for legibility over shapes
     bool bold = false;
+    Eigen::Vector2d offsetPx{0, 0};  // moves the text by output pixels (x right, y down), e.g. off a point
 };
 
+/// Not thread-safe; a Canvas must not outlive its GlContext. Cheap to create: GL objects
+/// (program, buffers, glyph atlases, framebuffers by size) are cached in the GlContext.
 class Canvas {
 public:
     Canvas(GlContext& context, const CanvasOptions& options);
@@ -68,7 +71,7 @@ public:
                    float outlinePx = 1.0f, const Color& outline = Color{0, 0, 0, 1});
     /// Shaft from p to q with a triangular head at q (head size scales with width).
     void drawArrow(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const LineStyle& style);
-    /// Text at a 3D point (projected) ...
+    /// Text at a 3D point (projected; skipped when behind the camera), always on top of everything ...
     void drawText(const Eigen::Vector3d& at, const std::string& text, const TextStyle& style);
     /// ... or at pixel coordinates (x right, y down, output pixels at scale 1).
     void drawTextPx(double x, double y, const std::string& text, const TextStyle& style);

@@ -7,7 +7,6 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
-#include <mutex>
 
 #include "render/gl_internal.h"
 
@@ -54,38 +53,22 @@ bool hasExtension(const char* list, const char* name) {
     return false;
 }
 
-// EGL displays are per-process singletons per (platform, device): eglTerminate on one would
-// kill every other GlContext on it, so terminate only when the last one goes.
-std::mutex gDisplayMutex;
-std::map<EGLDisplay, int> gDisplayUsers;
-
-void releaseDisplay(EGLDisplay display) {
-    std::lock_guard lock(gDisplayMutex);
-    if (--gDisplayUsers[display] == 0) {
-        gDisplayUsers.erase(display);
-        eglTerminate(display);
-    }
-}
+// EGL displays are per-process singletons per (platform, device), and eglInitialize on an
+// initialized display only returns it again. We never call eglTerminate: it would kill every
+// other GlContext on the same display, and on Mesa it unloads the llvmpipe driver, which leaks
+// LLVM state that LeakSanitizer reports. Contexts and surfaces are destroyed; the display stays.
 
 /// Initializes `display` and creates a current 3.3 core context on it. Returns "" on success,
-/// otherwise why not (the display is then released again).
+/// otherwise why not, in a few words.
 std::string createOn(EGLDisplay display, GlContext::Impl& out) {
     if (display == EGL_NO_DISPLAY) return eglFailure("eglGetPlatformDisplay");
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display, &major, &minor)) return eglFailure("eglInitialize");
-    {
-        std::lock_guard lock(gDisplayMutex);
-        ++gDisplayUsers[display];
-    }
-    auto fail = [&](std::string why) {
-        releaseDisplay(display);
-        return why;
-    };
     const char* ext = eglQueryString(display, EGL_EXTENSIONS);
     if (!(major > 1 || (major == 1 && minor >= 5)) && !hasExtension(ext, "EGL_KHR_create_context"))
-        return fail("EGL " + std::to_string(major) + "." + std::to_string(minor) +
-                    " without EGL_KHR_create_context cannot request a core profile");
-    if (!eglBindAPI(EGL_OPENGL_API)) return fail(eglFailure("eglBindAPI(EGL_OPENGL_API)"));
+        return "EGL " + std::to_string(major) + "." + std::to_string(minor) +
+               " without EGL_KHR_create_context cannot request a core profile";
+    if (!eglBindAPI(EGL_OPENGL_API)) return eglFailure("eglBindAPI(EGL_OPENGL_API)");
 
     const bool surfaceless = hasExtension(ext, "EGL_KHR_surfaceless_context");
     EGLConfig config = nullptr;
@@ -96,12 +79,12 @@ std::string createOn(EGLDisplay display, GlContext::Impl& out) {
         const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, surfaceType, EGL_NONE};
         if (eglChooseConfig(display, attribs, &config, 1, &count) && count > 0) break;
     }
-    if (count < 1) return fail("eglChooseConfig found no OpenGL-renderable config (" + eglErrorName(eglGetError()) + ")");
+    if (count < 1) return "eglChooseConfig found no OpenGL-renderable config (" + eglErrorName(eglGetError()) + ")";
 
     const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
-    if (context == EGL_NO_CONTEXT) return fail(eglFailure("eglCreateContext(OpenGL 3.3 core)"));
+    if (context == EGL_NO_CONTEXT) return eglFailure("eglCreateContext(OpenGL 3.3 core)");
     EGLSurface surface = EGL_NO_SURFACE;
     if (!surfaceless) {
         const EGLint pbufferAttribs[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
@@ -109,14 +92,14 @@ std::string createOn(EGLDisplay display, GlContext::Impl& out) {
         if (surface == EGL_NO_SURFACE) {
             std::string why = eglFailure("eglCreatePbufferSurface(1x1) (no EGL_KHR_surfaceless_context)");
             eglDestroyContext(display, context);
-            return fail(why);
+            return why;
         }
     }
     if (!eglMakeCurrent(display, surface, surface, context)) {
         std::string why = eglFailure("eglMakeCurrent");
         if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
         eglDestroyContext(display, context);
-        return fail(why);
+        return why;
     }
     out.display = display;
     out.context = context;
@@ -225,7 +208,6 @@ GlContext::~GlContext() {
     eglMakeCurrent(m.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (m.surface != EGL_NO_SURFACE) eglDestroySurface(m.display, m.surface);
     eglDestroyContext(m.display, m.context);
-    releaseDisplay(m.display);
 }
 
 std::string GlContext::glRenderer() const { return impl_->renderer; }
