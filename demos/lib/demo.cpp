@@ -1,0 +1,31 @@
+#include "demos/lib/demo.h"
+
+#include "demos/lib/voronoi_demo.h"
+
+namespace cdlab::demos {
+
+const std::vector<const Demo*>& allDemos() {
+    static const std::vector<const Demo*> demos = {&voronoiDemo()};
+    return demos;
+}
+
+const Demo* findDemo(const std::string& name) {
+    for (const Demo* d : allDemos())
+        if (d->name() == name) return d;
+    return nullptr;
+}
+
+std::unique_ptr<PreparedScene> loadScene(const std::string& file) {
+    Json json = readJsonFile(file);
+    JsonNode root(json, "$", file);
+    if (!root.isObject()) root.fail("a scene must be a JSON object, got " + JsonNode::describe(json));
+    auto it = json.find("demo");
+    if (it == json.end()) root.fail("missing required key 'demo'");
+    JsonNode demoNode(*it, "$.demo", file);
+    std::vector<std::string> names;
+    for (const Demo* d : allDemos()) names.push_back(d->name());
+    const Demo* demo = findDemo(demoNode.asEnum(names));
+    return demo->prepare(json, file);
+}
+
+}  // namespace cdlab::demos

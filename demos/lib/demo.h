@@ -1,0 +1,61 @@
+// The interface every demo implements. A demo reads its scene keys (prepare: validation only,
+// errors before any output), then runs its core algorithm once and draws only what the scene's
+// layers ask for (run). Numeric-only runs pass no GL context: nothing is drawn.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "demos/lib/json_reader.h"
+#include "demos/lib/scene.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+
+namespace cdlab::demos {
+
+struct Frame {
+    std::string name;     // file stem: "plane", "step_03", "contact_sheet"
+    std::string caption;  // one line for galleries and contact sheets
+    render::Image image;
+};
+
+struct DemoOutput {
+    std::vector<Frame> frames;
+    Json trace = Json::object();  // the algorithm's results per step (numbers compared with a tolerance)
+};
+
+struct RunContext {
+    render::GlContext* gl = nullptr;  // null: numeric only, draw nothing
+    int scaleOverride = 0;            // > 0 replaces the scene's supersampling factor
+    bool stepsOverride = false;       // force per-step frames
+};
+
+class PreparedScene {
+public:
+    virtual ~PreparedScene() = default;
+    virtual DemoOutput run(const RunContext& context) const = 0;
+    const SceneCommon& common() const { return common_; }
+
+protected:
+    explicit PreparedScene(SceneCommon common) : common_(std::move(common)) {}
+    SceneCommon common_;
+};
+
+class Demo {
+public:
+    virtual ~Demo() = default;
+    virtual std::string name() const = 0;          // "voronoi_triangle" (= golden/ folder, = demo_<name> executable)
+    virtual std::string description() const = 0;   // one line
+    /// Reads the scene (common keys + this demo's keys), validates everything, computes nothing heavy.
+    virtual std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const = 0;
+};
+
+/// Every demo, in a fixed order.
+const std::vector<const Demo*>& allDemos();
+const Demo* findDemo(const std::string& name);
+
+/// Loads a scene file and hands it to its demo (named by the "demo" key). Throws InputError.
+std::unique_ptr<PreparedScene> loadScene(const std::string& file);
+
+}  // namespace cdlab::demos

@@ -1,0 +1,25 @@
+// Shared look of every figure: title and caption bars, label and line styles by role.
+#pragma once
+
+#include <string>
+
+#include "core/types.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+/// Title (bold, top left) and caption (bottom left) of a figure, in pixels, on top of everything.
+void drawTitleAndCaption(render::Canvas& canvas, const std::string& title, const std::string& caption);
+
+render::LineStyle lineStyle(render::Role role, float widthPx, bool dashed = false, bool onTop = false);
+render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold = true);
+
+/// "(0.5, -1, 2)" with up to 4 significant digits, for captions.
+std::string formatPoint(const Vec3& p);
+std::string formatNumber(double x);
+
+/// Look-at camera that frames a bounding sphere (center, radius) from `viewDirection`.
+render::Camera framingCamera(const Vec3& center, double radius, const Vec3& viewDirection, const Vec3& up,
+                             bool perspective = true);
+
+}  // namespace cdlab::demos

@@ -1,0 +1,90 @@
+// Strict JSON reading for scene files and queries: every error names the file, the JSON path
+// ($.queries[3][1]) or byte position, and what is wrong; unknown keys are errors (no silent typos).
+#pragma once
+
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/types.h"
+
+namespace cdlab::demos {
+
+using Json = nlohmann::json;
+
+/// One-line input error: "<source>: <where>: <what>". Exit status 2 where it reaches main().
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Parses text; a syntax error becomes "<source>: byte N: <what>".
+Json parseJson(const std::string& text, const std::string& source);
+/// Reads and parses a file; a missing file is "<path>: cannot open: <reason>".
+Json readJsonFile(const std::string& path);
+
+/// A view of one JSON value with its path, for typed, checked access.
+class JsonNode {
+public:
+    JsonNode(const Json& value, std::string path, std::string source)
+        : value_(&value), path_(std::move(path)), source_(std::move(source)) {}
+
+    const Json& raw() const { return *value_; }
+    const std::string& path() const { return path_; }
+    const std::string& source() const { return source_; }
+
+    [[noreturn]] void fail(const std::string& what) const;
+
+    bool isNull() const { return value_->is_null(); }
+    bool isObject() const { return value_->is_object(); }
+    bool isArray() const { return value_->is_array(); }
+    bool isString() const { return value_->is_string(); }
+    bool isNumber() const { return value_->is_number(); }
+
+    double asNumber() const;        // finite number
+    double asPositive() const;      // finite, > 0
+    double asNonNegative() const;   // finite, >= 0
+    int asInt(int lo, int hi) const;
+    bool asBool() const;
+    std::string asString() const;
+    std::string asEnum(const std::vector<std::string>& allowed) const;
+    Vec3 asVec3() const;            // [x, y, z]
+    Quat asQuat() const;            // [w, x, y, z], non-zero; normalised
+    std::vector<Vec3> asVec3List(std::size_t minCount = 0) const;
+    std::size_t size() const;       // array length (fails on non-arrays)
+    JsonNode at(std::size_t index) const;
+    std::vector<JsonNode> items() const;  // array elements (fails on non-arrays)
+
+    static std::string describe(const Json& value);  // "a string \"x\"", "an array", ...
+
+private:
+    const Json* value_;
+    std::string path_;
+    std::string source_;
+};
+
+/// Reads an object's members by name; finish() rejects members nobody asked for.
+class ObjectReader {
+public:
+    explicit ObjectReader(const JsonNode& node);
+    bool has(const std::string& key) const;
+    JsonNode get(const std::string& key);                   // required
+    std::optional<JsonNode> find(const std::string& key);   // optional (null counts as absent)
+    double number(const std::string& key) { return get(key).asNumber(); }
+    double numberOr(const std::string& key, double fallback);
+    bool boolOr(const std::string& key, bool fallback);
+    std::string stringOr(const std::string& key, const std::string& fallback);
+    /// Marks keys as known without reading them (e.g. comments like "_note").
+    void ignore(const std::string& key) { seen_.insert(key); }
+    const JsonNode& node() const { return node_; }
+    /// Fails on the first member not read ("unknown key 'colour'"), listing the known ones.
+    void finish() const;
+
+private:
+    JsonNode node_;
+    std::set<std::string> seen_;
+};
+
+}  // namespace cdlab::demos

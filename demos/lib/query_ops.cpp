@@ -1,0 +1,392 @@
+// Shape-pair queries. Every bounded query shape is conv(core points) ⊕ ball(radius) (sphere: a
+// point core, capsule: a segment core), so GJK and EPA run on the polytope cores — where they
+// terminate exactly — and the radii are added in closed form:
+//   distance(A, B)    = distance(coreA, coreB) - rA - rB            (when positive)
+//   depth(A, B)       = rA + rB - distance(coreA, coreB)            (cores apart, shapes overlapping)
+//                     = depth(coreA, coreB) + rA + rB               (cores overlapping)
+// with the normal of the core query in both cases (van den Bergen 2003, §4.3.7 "margins").
+// Rays are clipped to the segment that provably holds the answer; planes are handled in closed
+// form by their support values.
+#include "demos/lib/query_ops.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/epa.h"
+#include "core/gjk.h"
+#include "core/primitives.h"
+#include "core/sat_tests.h"
+#include "demos/lib/query_shapes.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using Kind = QueryShape::Kind;
+
+Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+/// Support mapping of conv(points) by a linear scan (query shapes have at most a few hundred
+/// vertices; ties go to the first maximal vertex, deterministically).
+struct PointCloudSupport {
+    const std::vector<Vec3>* points;
+    Vec3 support(const Vec3& d) const {
+        const std::vector<Vec3>& p = *points;
+        std::size_t best = 0;
+        double bestDot = p[0].dot(d);
+        for (std::size_t i = 1; i < p.size(); ++i) {
+            double x = p[i].dot(d);
+            if (x > bestDot) {
+                bestDot = x;
+                best = i;
+            }
+        }
+        return p[best];
+    }
+};
+
+// Touching counts as intersecting (closed sets). Distances below this fraction of the shapes'
+// coordinate scale are rounding noise of the core distance (GJK computes it to ~1e-15 relative
+// of the support point magnitudes), so such shapes are reported as touching.
+constexpr double kTouchRelative = 1e-13;
+
+double coordinateScale(const QueryShape& a, const QueryShape& b) {
+    double s = 0;
+    for (const Vec3& v : a.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
+    for (const Vec3& v : b.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
+    return std::max({s, a.radius, b.radius});
+}
+
+struct PairAnswer {
+    bool intersect = false;
+    double distance = 0;  // separated: > 0
+    double depth = 0;     // intersecting: >= 0
+    Vec3 normal = Vec3::UnitX();
+    Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
+    bool hasWitness = false;  // separated: closest points / overlapping: deepest points
+    Json trace;
+};
+
+Json gjkTraceJson(const GjkTrace& t) {
+    Json steps = Json::array();
+    for (const GjkTraceStep& s : t.steps) {
+        Json simplex = Json::array();
+        for (int i = 0; i < s.simplexCount; ++i) simplex.push_back(vecJson(s.simplex[i].w));
+        steps.push_back({{"iteration", s.iteration}, {"simplex", simplex}, {"direction", vecJson(s.direction)},
+                         {"support", vecJson(s.support.w)}, {"region", s.region}, {"v", vecJson(s.v)},
+                         {"lower_bound", s.lowerBound}, {"upper_bound", s.upperBound}, {"terminated", s.terminated}});
+    }
+    return {{"algorithm", "gjk"}, {"termination", terminationName(t.termination)}, {"steps", steps}};
+}
+
+Json epaTraceJson(const EpaTrace& t) {
+    Json steps = Json::array();
+    for (const EpaTraceStep& s : t.steps)
+        steps.push_back({{"iteration", s.iteration}, {"vertices", s.vertices.size()}, {"faces", s.faces.size()},
+                         {"closest_normal", vecJson(s.closestNormal)}, {"closest_distance", s.closestDistance},
+                         {"support", vecJson(s.support)}, {"removed_faces", s.removedFaces.size()},
+                         {"horizon_edges", s.horizon.size()}, {"lower_bound", s.lowerBound},
+                         {"upper_bound", s.upperBound}});
+    return {{"algorithm", "epa"}, {"start", t.start}, {"termination", terminationName(t.termination)}, {"steps", steps}};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bounded pairs: GJK / EPA on the cores, radii in closed form.
+
+PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
+    PointCloudSupport ca{&a.vertices}, cb{&b.vertices};
+    const double radii = a.radius + b.radius;
+    const double touch = kTouchRelative * coordinateScale(a, b);
+    PairAnswer ans;
+    GjkTrace gtrace;
+    GjkResult g = gjkDistance(ca, cb, GjkOptions{}, wantTrace ? &gtrace : nullptr);
+    if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
+    if (wantTrace) ans.trace = Json::array({gjkTraceJson(gtrace)});
+
+    if (!g.intersect && g.distance > radii + touch) {  // separated
+        ans.distance = g.distance - radii;
+        ans.normal = g.separatingAxis;  // unit, from A toward B
+        ans.pointA = g.pointA + a.radius * ans.normal;
+        ans.pointB = g.pointB - b.radius * ans.normal;
+        ans.hasWitness = true;
+        return ans;
+    }
+    ans.intersect = true;
+    if (!wantDepth) return ans;
+    if (!g.intersect && g.distance > touch) {
+        // Cores apart, rounded shapes overlapping (or touching): the core axis is the normal.
+        ans.depth = std::max(radii - g.distance, 0.0);
+        ans.normal = g.separatingAxis;
+    } else {
+        EpaTrace etrace;
+        EpaResult e = epaPenetration(ca, cb, g.simplex, EpaOptions{}, wantTrace ? &etrace : nullptr);
+        if (e.status == EpaStatus::InvalidInput) throw InputError("query: penetration failed: invalid support points");
+        if (wantTrace) ans.trace.push_back(epaTraceJson(etrace));
+        ans.depth = e.depth + radii;
+        ans.normal = e.normal;
+        // Deepest points of the cores, pushed out by the radii along the normal.
+        ans.pointA = e.pointA + a.radius * ans.normal;
+        ans.pointB = e.pointB - b.radius * ans.normal;
+        ans.hasWitness = true;
+        return ans;
+    }
+    ans.pointA = g.pointA + a.radius * ans.normal;
+    ans.pointB = g.pointB - b.radius * ans.normal;
+    ans.hasWitness = true;
+    return ans;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Planes: the signed distances of a bounded shape to the plane span [lo, hi] (closed form).
+
+struct PlaneSpan {
+    double lo, hi;       // min / max of (n·x - d)/|n| over the shape
+    Vec3 lowPoint, highPoint;  // shape points attaining them
+};
+
+PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
+    const double m = plane.normal.norm();
+    const Vec3 n = plane.normal / m;
+    const double d = plane.offset / m;
+    PlaneSpan span{INFINITY, -INFINITY, Vec3::Zero(), Vec3::Zero()};
+    for (const Vec3& v : s.vertices) {
+        double x = n.dot(v) - d;
+        if (x < span.lo) span.lo = x, span.lowPoint = v;
+        if (x > span.hi) span.hi = x, span.highPoint = v;
+    }
+    span.lo -= s.radius;
+    span.hi += s.radius;
+    span.lowPoint -= s.radius * n;
+    span.highPoint += s.radius * n;
+    return span;
+}
+
+// a = plane, b = bounded shape. Normal convention: translating b by depth * normal separates.
+PairAnswer planeBounded(const QueryShape& plane, const QueryShape& s) {
+    const Vec3 n = plane.normal.normalized();
+    PlaneSpan span = planeSpan(plane, s);
+    PairAnswer ans;
+    ans.hasWitness = true;
+    if (span.lo > 0 || span.hi < 0) {
+        const bool above = span.lo > 0;
+        ans.distance = above ? span.lo : -span.hi;
+        ans.pointB = above ? span.lowPoint : span.highPoint;
+        ans.normal = above ? n : Vec3(-n);
+        ans.pointA = ans.pointB - ans.distance * ans.normal;
+        return ans;
+    }
+    ans.intersect = true;
+    // Push b off the plane to whichever side is nearer (the plane is a surface, not a half-space).
+    if (-span.lo <= span.hi) {
+        ans.depth = -span.lo;
+        ans.normal = n;
+        ans.pointB = span.lowPoint;
+    } else {
+        ans.depth = span.hi;
+        ans.normal = -n;
+        ans.pointB = span.highPoint;
+    }
+    ans.pointA = ans.pointB + ans.depth * ans.normal;
+    return ans;
+}
+
+PairAnswer planePlane(const QueryShape& a, const QueryShape& b, bool wantDepth) {
+    const Vec3 na = a.normal.normalized(), nb = b.normal.normalized();
+    const double da = a.offset / a.normal.norm(), db = b.offset / b.normal.norm();
+    PairAnswer ans;
+    // Parallel to rounding: |na x nb| below ~10 ulps.
+    if (na.cross(nb).norm() > 1e-15) {
+        ans.intersect = true;
+        if (wantDepth) throw InputError("query: penetration of two non-parallel planes is unbounded (no translation separates them)");
+        return ans;
+    }
+    const double sign = na.dot(nb) > 0 ? 1.0 : -1.0;
+    const double gap = sign * db - da;  // b's offset along na minus a's
+    ans.hasWitness = true;
+    ans.pointA = da * na;
+    if (std::abs(gap) > kTouchRelative * std::max({1.0, std::abs(da), std::abs(db)})) {
+        ans.distance = std::abs(gap);
+        ans.normal = gap > 0 ? na : Vec3(-na);
+        ans.pointB = ans.pointA + ans.distance * ans.normal;
+        return ans;
+    }
+    ans.intersect = true;
+    ans.depth = 0;
+    ans.normal = na;
+    ans.pointB = ans.pointA;
+    return ans;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rays.
+
+// The part of the ray that can hold the answer against a bounded shape s: t in [0, tEnd].
+// Closest point: beyond tFar (the largest projection of s on the ray) moving back brings the ray
+// point nearer to every point of s, so t* <= tFar. Penetration: the clipped segment must not
+// escape backwards more cheaply than the ray can; a lateral escape costs at most the diameter of
+// s, so extending the segment by twice that diameter past tFar keeps the depth the ray's.
+QueryShape clipRay(const QueryShape& ray, const QueryShape& s) {
+    const double dd = ray.direction.squaredNorm();
+    double tFar = 0;
+    Vec3 center = Vec3::Zero();
+    for (const Vec3& v : s.vertices) {
+        tFar = std::max(tFar, ray.direction.dot(v - ray.origin) / dd);
+        center += v;
+    }
+    center /= double(s.vertices.size());
+    double diameter = 0;
+    for (const Vec3& v : s.vertices) diameter = std::max(diameter, 2 * (v - center).norm());
+    diameter += 2 * s.radius;
+    tFar += s.radius / std::sqrt(dd);
+    const double tEnd = tFar + 2 * (diameter + 1e-9 * (1 + tFar * std::sqrt(dd))) / std::sqrt(dd);
+    QueryShape seg;
+    seg.kind = Kind::Segment;
+    seg.vertices = {ray.origin, ray.origin + tEnd * ray.direction};
+    return seg;
+}
+
+PairAnswer rayPlane(const QueryShape& ray, const QueryShape& plane) {
+    const Vec3 n = plane.normal.normalized();
+    const double s0 = n.dot(ray.origin) - plane.offset / plane.normal.norm();
+    const double slope = n.dot(ray.direction);
+    PairAnswer ans;
+    ans.hasWitness = true;
+    const bool reaches = s0 == 0 || (s0 > 0 ? slope < 0 : slope > 0);
+    ans.pointA = ray.origin;
+    if (!reaches) {
+        ans.distance = std::abs(s0);
+        ans.normal = s0 > 0 ? Vec3(-n) : n;  // from the ray toward the plane
+        ans.pointB = ray.origin + ans.distance * ans.normal;
+        return ans;
+    }
+    ans.intersect = true;
+    // The ray reaches the plane: translating the plane (B) onto the ray's origin leaves them
+    // touching, and no shorter translation does.
+    ans.depth = std::abs(s0);
+    ans.normal = s0 >= 0 ? n : Vec3(-n);
+    ans.pointB = ray.origin - s0 * n;
+    return ans;
+}
+
+PairAnswer rayRay(const QueryShape& a, const QueryShape& b) {
+    // Minimise |oa + s da - ob - t db| over s, t >= 0: the unconstrained optimum if feasible,
+    // else the best of the boundary cases s = 0 or t = 0 (each a point-ray problem).
+    auto pointRay = [](const Vec3& p, const Vec3& o, const Vec3& d) {
+        double t = std::max(0.0, d.dot(p - o) / d.squaredNorm());
+        return Vec3(o + t * d);
+    };
+    struct Cand { Vec3 pa, pb; };
+    std::vector<Cand> cands;
+    const Vec3 r = a.origin - b.origin;
+    const double A = a.direction.squaredNorm(), B = a.direction.dot(b.direction), C = b.direction.squaredNorm();
+    const double D = a.direction.dot(r), E = b.direction.dot(r);
+    const double det = A * C - B * B;
+    if (det > 1e-14 * A * C) {
+        double s = (B * E - C * D) / det, t = (A * E - B * D) / det;
+        if (s >= 0 && t >= 0) cands.push_back({a.origin + s * a.direction, b.origin + t * b.direction});
+    }
+    cands.push_back({a.origin, pointRay(a.origin, b.origin, b.direction)});
+    cands.push_back({pointRay(b.origin, a.origin, a.direction), b.origin});
+    const Cand* best = &cands[0];
+    for (const Cand& c : cands)
+        if ((c.pa - c.pb).squaredNorm() < (best->pa - best->pb).squaredNorm()) best = &c;
+    PairAnswer ans;
+    ans.hasWitness = true;
+    ans.pointA = best->pa;
+    ans.pointB = best->pb;
+    double dist = (best->pa - best->pb).norm();
+    double scale = std::max({1.0, a.origin.cwiseAbs().maxCoeff(), b.origin.cwiseAbs().maxCoeff()});
+    if (dist > kTouchRelative * scale) {
+        ans.distance = dist;
+        ans.normal = (best->pb - best->pa) / dist;
+        return ans;
+    }
+    // Crossing or overlapping rays: a sideways nudge separates them, depth 0.
+    ans.intersect = true;
+    ans.depth = 0;
+    Vec3 n = a.direction.cross(b.direction);
+    ans.normal = n.squaredNorm() > 0 ? Vec3(n.normalized()) : a.direction.unitOrthogonal();
+    return ans;
+}
+
+PairAnswer swapped(PairAnswer x) {
+    std::swap(x.pointA, x.pointB);
+    x.normal = -x.normal;
+    return x;
+}
+
+PairAnswer solvePair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
+    if (a.bounded() && b.bounded()) return boundedPair(a, b, wantDepth, wantTrace);
+    if (a.kind == Kind::Plane && b.kind == Kind::Plane) return planePlane(a, b, wantDepth);
+    if (a.kind == Kind::Plane && b.bounded()) return planeBounded(a, b);
+    if (b.kind == Kind::Plane && a.bounded()) return swapped(planeBounded(b, a));
+    if (a.kind == Kind::Ray && b.kind == Kind::Ray) return rayRay(a, b);
+    if (a.kind == Kind::Ray && b.kind == Kind::Plane) return rayPlane(a, b);
+    if (b.kind == Kind::Ray && a.kind == Kind::Plane) return swapped(rayPlane(b, a));
+    if (a.kind == Kind::Ray) return boundedPair(clipRay(a, b), b, wantDepth, wantTrace);
+    return boundedPair(a, clipRay(b, a), wantDepth, wantTrace);
+}
+
+bool isBox(const QueryShape& s) { return s.kind == Kind::Aabb || s.kind == Kind::Obb; }
+
+Obb toObb(const QueryShape& s) {
+    // Box corners are stored with bit i of the index choosing +/- along axis i.
+    const Vec3 c = (s.vertices[0] + s.vertices[7]) * 0.5;
+    Mat3 axes;
+    Vec3 half;
+    for (int i = 0; i < 3; ++i) {
+        Vec3 e = (s.vertices[1 << i] - s.vertices[0]) * 0.5;
+        half[i] = e.norm();
+        axes.col(i) = half[i] > 0 ? Vec3(e / half[i]) : Vec3::Unit(i);
+    }
+    return Obb{c, half, axes};
+}
+
+}  // namespace
+
+Json answerShapeQuery(const std::string& op, ObjectReader& r) {
+    JsonNode an = r.get("a"), bn = r.get("b");
+    QueryShape a = parseQueryShape(an), b = parseQueryShape(bn);
+    std::string method = "gjk";
+    if (auto m = r.find("method")) {
+        method = op == "intersect" ? m->asEnum({"gjk", "sat"}) : m->asEnum({"gjk"});
+        if (method == "sat" && !(isBox(a) && isBox(b))) m->fail("method 'sat' needs two boxes (aabb or obb)");
+    }
+    const bool wantTrace = r.boolOr("trace", false);
+    r.finish();
+
+    if (method == "sat") {
+        SatTrace trace;
+        SatResult s = testObbObb(toObb(a), toObb(b), wantTrace ? &trace : nullptr);
+        Json out = {{"intersect", s.hit}};
+        if (wantTrace) {
+            Json axes = Json::array();
+            for (const SatAxisStep& st : trace.steps)
+                axes.push_back({{"axis", vecJson(st.axis)}, {"a", {st.minA, st.maxA}}, {"b", {st.minB, st.maxB}},
+                                {"separating", st.separating}});
+            out["trace"] = {{"algorithm", "sat"}, {"axes", axes}};
+        }
+        return out;
+    }
+
+    const bool wantDepth = op == "penetration";
+    PairAnswer ans = solvePair(a, b, wantDepth, wantTrace);
+    Json out;
+    if (op == "intersect") {
+        out = {{"intersect", ans.intersect}};
+    } else if (op == "distance") {
+        if (ans.intersect) out = {{"intersect", true}, {"distance", 0.0}};
+        else out = {{"intersect", false}, {"distance", ans.distance}, {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+    } else {  // penetration
+        if (ans.intersect)
+            out = {{"intersect", true}, {"depth", ans.depth}, {"normal", vecJson(ans.normal)},
+                   {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+        else
+            out = {{"intersect", false}, {"distance", ans.distance}, {"normal", vecJson(ans.normal)},
+                   {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+    }
+    if (wantTrace && !ans.trace.is_null()) out["trace"] = ans.trace;
+    return out;
+}
+
+}  // namespace cdlab::demos
