@@ -58,8 +58,12 @@ int runQueries(std::istream& in, std::ostream& out) {
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         Json a = answerQuery(line);
         if (a.contains("error")) failed = true;
-        // Invalid UTF-8 in echoed strings is replaced rather than aborting the dump.
-        out << a.dump(-1, ' ', false, Json::error_handler_t::replace) << '\n';
+        // "id" first, then the answer's keys; invalid UTF-8 in echoed strings is replaced.
+        const auto dump = [](const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); };
+        Json id = a["id"];
+        a.erase("id");
+        std::string body = dump(a);
+        out << "{\"id\":" << dump(id) << (body.size() > 2 ? "," + body.substr(1) : std::string("}")) << '\n';
     }
     out.flush();
     return failed ? 1 : 0;

@@ -24,7 +24,9 @@ namespace {
 
 using Kind = QueryShape::Kind;
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+// -0 prints as "-0.0"; answers print +0 instead.
+double clean(double x) { return x == 0 ? 0.0 : x; }
+Json vecJson(const Vec3& v) { return Json::array({clean(v.x()), clean(v.y()), clean(v.z())}); }
 
 /// Support mapping of conv(points) by a linear scan (query shapes have at most a few hundred
 /// vertices; ties go to the first maximal vertex, deterministically).
