@@ -50,6 +50,7 @@ public:
     HullBuilder(const std::vector<Vec3>& local, std::span<const Vec3> original, double eps, HullTrace* trace)
         : P_(local), original_(original), eps_(eps), trace_(trace) {
         pointFaces_.resize(P_.size());
+        tris_.reserve(8 + 4 * P_.size());  // ~2 live + ~2 dead faces per inserted point on average
         done_.assign(P_.size(), 0);
         pointMark_.assign(P_.size(), -1);
         vertexStamp_.assign(P_.size(), -1);
@@ -264,7 +265,11 @@ public:
             // With forced (coplanar, not strictly visible) faces the lemma's premise fails, so then
             // every point that saw any deleted face is a candidate.
             const int id = base + i;
-            for (const std::vector<int>* src : {forcedAny ? &pooled_ : &tris_[f1].conflicts, &tris_[g].conflicts}) {
+            // g survives: drop its points that were inserted or discarded meanwhile (lazy deletion),
+            // or its list would be rescanned for every cone built against it.
+            std::vector<int>& keep = tris_[g].conflicts;
+            keep.erase(std::remove_if(keep.begin(), keep.end(), [&](int q) { return done_[q] != 0; }), keep.end());
+            for (const std::vector<int>* src : {forcedAny ? &pooled_ : &tris_[f1].conflicts, &keep}) {
                 for (int q : *src) {
                     if (done_[q] || pointMark_[q] == id) continue;
                     pointMark_[q] = id;
