@@ -5,6 +5,7 @@
 #include <iostream>
 #include <vector>
 
+#include "demos/lib/bench.h"
 #include "demos/lib/demo.h"
 #include "demos/lib/query.h"
 #include "demos/lib/scene_runner.h"
@@ -23,6 +24,7 @@ constexpr const char* kUsage =
     "            [--scene PATTERN] [--report DIR] [--update failing|all] [--verbose]\n"
     "            (CDLAB_UPDATE_GOLDEN=1 or =all also updates)\n"
     "  query     JSON Lines queries on stdin, one JSON answer per line on stdout (see README)\n"
+    "  bench     time per query against error, per method and setting [--quick] (see README)\n"
     "  demos     list the demos\n"
     "exit status: 0 ok, 1 test/comparison failure or failed queries, 2 usage or input error\n";
 
@@ -106,6 +108,7 @@ int cdlabMain(int argc, char** argv) {
             if (argc > 2) throw UsageError("query takes no arguments: it reads JSON Lines on stdin");
             return runQueries(std::cin, std::cout);
         }
+        if (cmd == "bench") return runBench(argc - 1, argv + 1);
         if (cmd == "demos") {
             for (const Demo* d : allDemos()) std::cout << d->name() << "\t" << d->description() << "\n";
             return 0;

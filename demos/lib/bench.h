@@ -1,0 +1,9 @@
+// `cdlab bench`: run time against error for the core queries (see README, "cdlab bench").
+#pragma once
+
+namespace cdlab::demos {
+
+/// argv[0] is "bench"; returns the exit status.
+int runBench(int argc, char** argv);
+
+}  // namespace cdlab::demos
