@@ -109,26 +109,35 @@ constexpr const char* kQuantityFormula[kQuantityCount] = {
 
 class TriangleSigns {
 public:
+    // The coordinate differences are shared by all quantities: computed once, as Bounded values
+    // (each carries its own rounding error), and the quantities on demand, in Ericson's order.
     TriangleSigns(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) : p_(p), a_(a), b_(b), c_(c) {
-        const Bounded d1 = dot<Bounded>(D1), d2 = dot<Bounded>(D2), d3 = dot<Bounded>(D3);
-        const Bounded d4 = dot<Bounded>(D4), d5 = dot<Bounded>(D5), d6 = dot<Bounded>(D6);
-        approx_[D1] = d1, approx_[D2] = d2, approx_[D3] = d3;
-        approx_[D4] = d4, approx_[D5] = d5, approx_[D6] = d6;
-        // d4 - d3 = (c-b)·(p-b) and d5 - d6 = (b-c)·(p-c) exactly; filtering the direct dot
-        // product is tighter than filtering the difference.
-        approx_[D43] = dot<Bounded>(D43);
-        approx_[D56] = dot<Bounded>(D56);
-        approx_[VA] = d3 * d6 - d5 * d4;
-        approx_[VB] = d5 * d2 - d1 * d6;
-        approx_[VC] = d1 * d4 - d3 * d2;
+        for (int i = 0; i < 3; ++i) {
+            ab_[i] = Bounded(b[i]) - Bounded(a[i]);
+            ac_[i] = Bounded(c[i]) - Bounded(a[i]);
+            bc_[i] = Bounded(c[i]) - Bounded(b[i]);
+            ap_[i] = Bounded(p[i]) - Bounded(a[i]);
+            bp_[i] = Bounded(p[i]) - Bounded(b[i]);
+            cp_[i] = Bounded(p[i]) - Bounded(c[i]);
+        }
+    }
+
+    /// Cheap pre-test: true when the filter already certifies (b-a)×(c-a) != 0.
+    bool certainlyNotCollinear() const {
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3, k = (i + 2) % 3;
+            if (exact::certainSign(ab_[j] * ac_[k] - ab_[k] * ac_[j]) != 0) return true;
+        }
+        return false;
     }
 
     PredicateSign evaluate(Quantity q) {
+        const Bounded& approx = approximate(q);
         PredicateSign out;
         out.name = kQuantityName[q];
         out.formula = kQuantityFormula[q];
-        out.value = approx_[q].value;
-        out.sign = exact::certainSign(approx_[q]);
+        out.value = approx.value;
+        out.sign = exact::certainSign(approx);
         if (out.sign == 0) {
             out.exactFallback = true;
             out.sign = exactValue(q).sign();
@@ -137,6 +146,34 @@ public:
     }
 
 private:
+    static Bounded dot3(const Bounded* x, const Bounded* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+
+    const Bounded& approximate(Quantity q) {
+        if (have_[q]) return approx_[q];
+        switch (q) {
+            case D1: approx_[q] = dot3(ab_, ap_); break;
+            case D2: approx_[q] = dot3(ac_, ap_); break;
+            case D3: approx_[q] = dot3(ab_, bp_); break;
+            case D4: approx_[q] = dot3(ac_, bp_); break;
+            case D5: approx_[q] = dot3(ab_, cp_); break;
+            case D6: approx_[q] = dot3(ac_, cp_); break;
+            // d4 - d3 = (c-b)·(p-b) and d5 - d6 = (b-c)·(p-c) exactly; filtering the direct dot
+            // product is tighter than filtering the difference.
+            case D43: approx_[q] = dot3(bc_, bp_); break;
+            case D56: {
+                const Bounded cb[3] = {Bounded() - bc_[0], Bounded() - bc_[1], Bounded() - bc_[2]};  // exact negation
+                approx_[q] = dot3(cb, cp_);
+                break;
+            }
+            case VA: approx_[q] = approximate(D3) * approximate(D6) - approximate(D5) * approximate(D4); break;
+            case VB: approx_[q] = approximate(D5) * approximate(D2) - approximate(D1) * approximate(D6); break;
+            case VC: approx_[q] = approximate(D1) * approximate(D4) - approximate(D3) * approximate(D2); break;
+            default: break;
+        }
+        have_[q] = true;
+        return approx_[q];
+    }
+
     template <class T>
     T dot(Quantity q) const {
         switch (q) {
@@ -163,7 +200,9 @@ private:
     }
 
     Vec3 p_, a_, b_, c_;
+    Bounded ab_[3], ac_[3], bc_[3], ap_[3], bp_[3], cp_[3];
     Bounded approx_[kQuantityCount];
+    bool have_[kQuantityCount] = {};
     std::optional<Expansion> exact_[kQuantityCount];
 };
 
@@ -349,9 +388,8 @@ ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangl
         return r;
     };
     if (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c)) return done(nonFiniteTriangle());
-    if (exact::collinear(t.a, t.b, t.c)) return done(degenerateTriangle(p, t));
-
     TriangleSigns signs(p, t.a, t.b, t.c);
+    if (!signs.certainlyNotCollinear() && exact::collinear(t.a, t.b, t.c)) return done(degenerateTriangle(p, t));
     ClosestPointOnTriangleResult r;
     r.region = TriangleRegion::ABC;
     for (const TriangleTestSpec& spec : kTriangleTests) {
