@@ -16,6 +16,7 @@
 #include "core/gjk.h"
 #include "core/primitives.h"
 #include "core/sat_tests.h"
+#include "core/shapes.h"
 #include "demos/lib/query_shapes.h"
 
 namespace cdlab::demos {
@@ -27,25 +28,6 @@ using Kind = QueryShape::Kind;
 // -0 prints as "-0.0"; answers print +0 instead.
 double clean(double x) { return x == 0 ? 0.0 : x; }
 Json vecJson(const Vec3& v) { return Json::array({clean(v.x()), clean(v.y()), clean(v.z())}); }
-
-/// Support mapping of conv(points) by a linear scan (query shapes have at most a few hundred
-/// vertices; ties go to the first maximal vertex, deterministically).
-struct PointCloudSupport {
-    const std::vector<Vec3>* points;
-    Vec3 support(const Vec3& d) const {
-        const std::vector<Vec3>& p = *points;
-        std::size_t best = 0;
-        double bestDot = p[0].dot(d);
-        for (std::size_t i = 1; i < p.size(); ++i) {
-            double x = p[i].dot(d);
-            if (x > bestDot) {
-                bestDot = x;
-                best = i;
-            }
-        }
-        return p[best];
-    }
-};
 
 // Touching counts as intersecting (closed sets). Distances below this fraction of the shapes'
 // coordinate scale are rounding noise of the core distance (GJK computes it to ~1e-15 relative
@@ -96,7 +78,8 @@ Json epaTraceJson(const EpaTrace& t) {
 // Bounded pairs: GJK / EPA on the cores, radii in closed form.
 
 PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
-    PointCloudSupport ca{&a.vertices}, cb{&b.vertices};
+    // Vertex loop support (first maximal vertex: deterministic ties); non-extreme points are harmless.
+    const PolytopeShape ca(a.vertices), cb(b.vertices);
     const double radii = a.radius + b.radius;
     const double touch = kTouchRelative * coordinateScale(a, b);
     PairAnswer ans;
