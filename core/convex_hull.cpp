@@ -45,6 +45,10 @@ struct DfsFrame {
     int k;          // next offset to examine (root starts at 0, others at 1: skip the entry edge)
 };
 
+// Cone triangles whose apex is closer than kThin * eps to their base edge are not built (see insert).
+// 4: at 1 the tilt error of such slivers reaches 1 rad and noise of 2-3 eps broke convexity.
+constexpr double kThin = 4.0;
+
 class HullBuilder {
 public:
     HullBuilder(const std::vector<Vec3>& local, std::span<const Vec3> original, double eps, HullTrace* trace)
@@ -94,6 +98,7 @@ public:
             }
         }
         for (int i : ids) done_[i] = 1;
+        interior_ = (P_[ids[0]] + P_[ids[1]] + P_[ids[2]] + P_[ids[3]]) / 4.0;
         for (int q = 0; q < static_cast<int>(P_.size()); ++q) {
             if (done_[q]) continue;
             for (int f = 0; f < 4; ++f) {
@@ -187,12 +192,17 @@ public:
                 const double len = n.norm();
                 // Flat fold: r within eps of g's plane and on g's side of the line ab (the cone
                 // triangle would overlap g, flipped). Steep fold: c in front of the cone triangle.
-                // A degenerate cone triangle (r within eps of the line ab, so also of g's plane)
-                // would have a meaningless plane: force g too.
+                // A thin cone triangle (r within kThin * eps of the line ab, so also of g's plane)
+                // has a plane whose tilt is only known to ~eps / (distance of r from ab): a hull
+                // that is eps-accurate would show up as vertices far in front of it. Force g.
                 const Vec3 intoG = g.n.cross(P_[ia] - P_[ib]);  // in g's plane, from edge b -> a into g
                 const bool flatFold = g.n.dot(P_[r]) - g.d >= -eps_ && intoG.dot(P_[r] - P_[ib]) > 0.0;
-                const bool degenerate = !(len > eps_ * (P_[ib] - P_[ia]).norm());
-                if (degenerate || flatFold || n.dot(P_[c] - P_[ia]) / len > eps_) {
+                const bool degenerate = !(len > kThin * eps_ * (P_[ib] - P_[ia]).norm());
+                // Inside-out: the centroid of the initial tetrahedron is interior to every hull
+                // (by at least the tetrahedron's inradius), so it must be behind every face. This
+                // catches flat folds where r is more than eps behind g (input noise a few eps).
+                const bool insideOut = !(n.dot(interior_ - P_[ia]) < 0.0);
+                if (degenerate || flatFold || insideOut || n.dot(P_[c] - P_[ia]) / len > eps_) {
                     forceMark_[t.adj[e]] = forceStamp_;
                     retry = true;
                 }
@@ -315,6 +325,7 @@ private:
     std::vector<std::pair<int, int>> horizon_;  // (visible face, edge index)
     std::vector<DfsFrame> stack_;
     std::vector<int> pooled_;  // conflicts of all deleted faces, when some were forced
+    Vec3 interior_ = Vec3::Zero();  // centroid of the initial tetrahedron: inside every later hull
 };
 
 HullResult failure(HullStatus status, std::string message, int badIndex = -1) {

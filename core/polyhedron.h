@@ -180,10 +180,9 @@ public:
     /// Componentwise minimum / maximum of the vertex positions.
     Vec3 boundsMin() const;
     Vec3 boundsMax() const;
-    /// Default geometric tolerance for this mesh: 1024 * DBL_EPSILON * (max |coordinate| + bounds
-    /// diagonal). Rounding in plane fits and hull construction stays far below it (the hull uses
-    /// 64 * DBL_EPSILON * the same scale for visibility and 4x that for merging), while it stays
-    /// far below any feature a user would model (2.3e-13 relative).
+    /// Default geometric tolerance for this mesh: 65536 * DBL_EPSILON * (max |coordinate| + bounds
+    /// diagonal), ~1.5e-11 of the scale. Well above what convexHull() leaves (faces planar within
+    /// ~2 x its merge tolerance of 16384 * DBL_EPSILON * scale) and far below any modelled feature.
     double scaleTolerance() const;
 
     /// Full check: links (twin/next/prev/face/edge), closed 2-manifold with single vertex fans,

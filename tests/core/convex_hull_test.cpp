@@ -301,17 +301,41 @@ TEST_CASE("nearly coplanar points (1e-12 relative perturbation) give a valid hul
     CHECK(c6.polyhedron.validate(1e-9).ok());
 }
 
-TEST_CASE("points nearly coplanar with a large face: a flat slab of 1e-9 thickness") {
-    SplitMix64 rng(5);
-    std::vector<Vec3> pts;
-    for (int i = 0; i < 2000; ++i) pts.emplace_back(rng.uniform(-1, 1), rng.uniform(-1e-9, 1e-9), rng.uniform(-1, 1));
-    const HullResult r = convexHull(pts);
-    REQUIRE(r.ok());
-    const PolyhedronCheck c = r.polyhedron.validate();
-    INFO(c.message);
-    CHECK(c.ok());
-    for (const Vec3& p : pts)
-        for (int f = 0; f < r.polyhedron.faceCount(); ++f) CHECK(r.polyhedron.planeDistance(f, p) <= 8 * r.mergeTolerance);
+TEST_CASE("noise just above eps: thin slabs and noisy cubes stay valid (no folds, no slivers)") {
+    // Regression: with noise a few eps above the tolerance, cone triangles used to fold under a
+    // coplanar neighbour (flipped normal) or span three nearly collinear points (plane meaningless),
+    // leaving faces with input points up to 0.4 in front of them.
+    // Known limitation (documented in convex_hull.h): for noise of 2-10 eps the result is only
+    // accurate to ~100 x the noise (still ~1e-9 of the scale), so the bound is max(8 mergeTol, 100 noise).
+    auto checkValid = [](const std::vector<Vec3>& pts, double noise) {
+        const HullResult r = convexHull(pts);
+        REQUIRE(r.ok());
+        CHECK(r.droppedPoints == 0);
+        const double tol = std::max(8 * r.mergeTolerance, 100 * noise);
+        const PolyhedronCheck c = r.polyhedron.validate(std::max(r.polyhedron.scaleTolerance(), tol));
+        INFO(c.message);
+        CHECK(c.ok());
+        double worst = 0;
+        for (const Vec3& p : pts)
+            for (int f = 0; f < r.polyhedron.faceCount(); ++f) worst = std::max(worst, r.polyhedron.planeDistance(f, p));
+        CHECK(worst <= tol);
+        return r;
+    };
+    for (double thickness : {1e-9, 1e-7, 1e-5}) {
+        CAPTURE(thickness);
+        SplitMix64 rng(5);
+        std::vector<Vec3> pts;
+        for (int i = 0; i < 2000; ++i) pts.emplace_back(rng.uniform(-1, 1), rng.uniform(-thickness, thickness), rng.uniform(-1, 1));
+        checkValid(pts, 0.0);  // a slab is not noise: its faces are exact
+    }
+    for (double noise : {1e-11, 3e-11, 1e-10, 1e-8}) {
+        CAPTURE(noise);
+        auto pts = cubeWithFacePoints(300, 5);
+        SplitMix64 rng(77);
+        for (size_t i = 8; i < pts.size(); ++i) pts[i] += noise * Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+        const HullResult r = checkValid(pts, noise);
+        CHECK(r.polyhedron.volume() == doctest::Approx(8.0).epsilon(1e-6));
+    }
 }
 
 TEST_CASE("degenerate input gives a status, never a crash") {
