@@ -183,9 +183,10 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
 
     EpaResult r;
     detail::EpaPolytope poly;
+    detail::SupportHints hints;  // hill-climbing starts for large polytopes (core/shapes.h)
     auto support = [&](const Vec3& d, detail::EpaVertex& out) {
-        out.a = shapeA.support(d);
-        out.b = shapeB.support(-d);
+        out.a = detail::hintedSupport(shapeA, d, hints.a);
+        out.b = detail::hintedSupport(shapeB, Vec3(-d), hints.b);
         out.w = out.a - out.b;
     };
     auto stop = [&](EpaTermination why) {

@@ -123,13 +123,49 @@ void gjkReduce(const GjkVertex* in, const SimplexClosest& c, GjkSimplex& out);
 /// Fill the trace-side fields of a step from a reduced simplex.
 void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced);
 
+/// Support of `shape` along d, through the shape's hinted overload support(d, hint) when it has
+/// one (PolytopeShape: hill climbing restarts at the previous answer, see core/shapes.h).
+template <class S>
+inline Vec3 hintedSupport(const S& shape, const Vec3& d, int& hint)
+{
+    if constexpr (requires { shape.support(d, hint); }) {
+        return shape.support(d, hint);
+    } else {
+        return shape.support(d);
+    }
+}
+
+/// Support hints of both shapes for one query (-1: cold start).
+struct SupportHints {
+    int a = -1;
+    int b = -1;
+};
+
+template <class A, class B>
+inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out,
+                       SupportHints& hints)
+{
+    out.direction = d;
+    out.a = hintedSupport(shapeA, d, hints.a);
+    out.b = hintedSupport(shapeB, Vec3(-d), hints.b);
+    out.w = out.a - out.b;  // exact (Sterbenz) when a and b are within a factor 2 per coordinate
+}
+
 template <class A, class B>
 inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out)
 {
-    out.direction = d;
-    out.a = shapeA.support(d);
-    out.b = shapeB.support(-d);
-    out.w = out.a - out.b;  // exact (Sterbenz) when a and b are within a factor 2 per coordinate
+    SupportHints cold;
+    gjkSupport(shapeA, shapeB, d, out, cold);
+}
+
+/// Keep the sub-simplex `c` of s (indices ascending, so compaction in place is safe).
+inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c)
+{
+    for (int k = 0; k < c.count; ++k) {
+        if (c.index[k] != k) s.vertex[k] = s.vertex[c.index[k]];
+        s.lambda[k] = c.lambda[k];
+    }
+    s.count = c.count;
 }
 
 template <class A, class B>
@@ -140,15 +176,14 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
     // leaves an error of a few ulps of |w|; below 1e-14 |w| the origin is on the simplex.
     constexpr double kTouch2 = 1e-14 * 1e-14;
     GjkResult r;
-    GjkSimplex buffer[2];
-    int cur = 0;
+    // The simplex lives in r.simplex: W + {w} is built in slot s.count and reduced in place, so
+    // no vertex is copied unless the solver drops one before it.
+    GjkSimplex& s = r.simplex;
+    SupportHints hints;
     Vec3 wv[4];
-    GjkVertex work[4];
     SimplexClosest c;
     const double eps = options.relativeTolerance;
     auto finish = [&](GjkTermination why) {
-        GjkSimplex& s = buffer[cur];
-        r.simplex = s;
         r.termination = why;
         if (trace) trace->termination = why;
         if (why == GjkTermination::InvalidInput) {
@@ -186,49 +221,51 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
     };
 
     // Initial simplex: warm start (re-evaluated supports) or one support point along +x.
-    GjkSimplex& s0 = buffer[cur];
     if (options.warmStart && options.warmStart->count > 0) {
         int n = 0;
         for (int i = 0; i < options.warmStart->count && i < 4; ++i) {
-            gjkSupport(shapeA, shapeB, options.warmStart->vertex[i].direction, work[n]);
+            gjkSupport(shapeA, shapeB, options.warmStart->vertex[i].direction, s.vertex[n], hints);
             bool dup = false;
-            for (int j = 0; j < n; ++j) dup = dup || (work[j].w == work[n].w);
+            for (int j = 0; j < n; ++j) dup = dup || (s.vertex[j].w == s.vertex[n].w);
             if (!dup) ++n;
         }
+        s.count = n;
         for (int i = 0; i < n; ++i) {
-            if (!work[i].w.allFinite()) {
+            if (!s.vertex[i].w.allFinite()) {
+                s.count = 0;
                 finish(GjkTermination::InvalidInput);
                 return r;
             }
-            wv[i] = work[i].w;
+            wv[i] = s.vertex[i].w;
         }
         c = closestOnSimplex(wv, n, options.solver);
-        gjkReduce(work, c, s0);
+        gjkCompact(s, c);
     } else {
-        gjkSupport(shapeA, shapeB, Vec3::UnitX(), s0.vertex[0]);
-        s0.lambda[0] = 1.0;
-        s0.count = 1;
-        if (!s0.vertex[0].w.allFinite()) {
+        gjkSupport(shapeA, shapeB, Vec3::UnitX(), s.vertex[0], hints);
+        s.lambda[0] = 1.0;
+        s.count = 1;
+        if (!s.vertex[0].w.allFinite()) {
             finish(GjkTermination::InvalidInput);
             return r;
         }
         c.count = 1;
-        c.v = s0.vertex[0].w;
+        c.v = s.vertex[0].w;
     }
     Vec3 v = c.v;
     double vv = v.squaredNorm();
     double maxW2 = 0.0;
-    for (int i = 0; i < s0.count; ++i) maxW2 = std::max(maxW2, s0.vertex[i].w.squaredNorm());
-    if (s0.count == 4 || vv <= kTouch2 * maxW2) {
+    for (int i = 0; i < s.count; ++i) maxW2 = std::max(maxW2, s.vertex[i].w.squaredNorm());
+    if (s.count == 4 || vv <= kTouch2 * maxW2) {
         finish(GjkTermination::OriginInSimplex);
         return r;
     }
 
     for (int iter = 1;; ++iter) {
         r.iterations = iter;
-        const GjkSimplex& s = buffer[cur];
-        GjkVertex sup;
-        gjkSupport(shapeA, shapeB, -v, sup);
+        // The new support point goes into the free slot s.count (the simplex has at most 3
+        // vertices here: a full tetrahedron ended the loop).
+        GjkVertex& sup = s.vertex[s.count];
+        gjkSupport(shapeA, shapeB, Vec3(-v), sup, hints);
         if (!sup.w.allFinite()) {
             finish(GjkTermination::InvalidInput);
             return r;
@@ -280,35 +317,37 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
         }
         // W + {w}, then its closest sub-simplex.
         const int n = s.count + 1;
-        for (int i = 0; i < s.count; ++i) {
-            work[i] = s.vertex[i];
-            wv[i] = s.vertex[i].w;
-        }
-        work[s.count] = sup;
-        wv[s.count] = sup.w;
+        for (int i = 0; i < n; ++i) wv[i] = s.vertex[i].w;
         c = closestOnSimplex(wv, n, options.solver);
-        GjkSimplex& next = buffer[1 - cur];
-        gjkReduce(work, c, next);
         const double vvNew = c.v.squaredNorm();
         if (step) {
             step->simplexCount = n;
-            for (int i = 0; i < n; ++i) step->simplex[i] = work[i];
-            gjkTraceReduction(*step, c, next);
+            for (int i = 0; i < n; ++i) step->simplex[i] = s.vertex[i];
         }
         maxW2 = std::max(maxW2, sup.w.squaredNorm());
         if (c.count == 4 || vvNew <= kTouch2 * maxW2) {
-            cur = 1 - cur;
-            if (step) step->terminated = true;
+            gjkCompact(s, c);
+            if (step) {
+                gjkTraceReduction(*step, c, s);
+                step->terminated = true;
+            }
             finish(GjkTermination::OriginInSimplex);
             return r;
         }
-        // |v| must strictly decrease; if rounding stalls it, keep the previous (better) simplex.
+        // |v| must strictly decrease; if rounding stalls it, keep the previous (better) simplex
+        // (still slots 0..count-1 with their weights: the new point in slot count is dropped).
         if (!(vvNew < vv)) {
-            if (step) step->terminated = true;
+            if (step) {
+                GjkSimplex reduced = s;
+                gjkCompact(reduced, c);
+                gjkTraceReduction(*step, c, reduced);
+                step->terminated = true;
+            }
             finish(GjkTermination::NoProgress);
             return r;
         }
-        cur = 1 - cur;
+        gjkCompact(s, c);
+        if (step) gjkTraceReduction(*step, c, s);
         v = c.v;
         vv = vvNew;
         if (iter >= options.maxIterations) {

@@ -232,6 +232,14 @@ public:
         const int i = supportIndex(d);
         return i >= 0 ? vertices_[i] : Vec3::Zero();
     }
+    /// Same point as support(d) up to ties, with a caller-held hint for frame / iteration coherence
+    /// (GJK and EPA keep one per shape): hill climbing starts at `hint` (-1: cold seeds) and the
+    /// answer's index is written back. Small polytopes (or no adjacency) ignore it and loop.
+    Vec3 support(const Vec3& d, int& hint) const {
+        const int i = supportIndex(d, hint);
+        hint = i;
+        return i >= 0 ? vertices_[i] : Vec3::Zero();
+    }
     Vec3 supportCore(const Vec3& d) const { return support(d); }
     double margin() const { return 0.0; }
     double boundingRadius() const { return boundingRadius_; }
@@ -257,6 +265,9 @@ private:
     int seedVertex(const Vec3& d) const;
 
     std::vector<Vec3> vertices_;
+    // Structure-of-arrays copy of vertices_ for the loop: x[0..n), y[0..n), z[0..n) at offsets
+    // 0, n, 2n, so two (or four) vertices are dotted with d per SIMD instruction.
+    std::vector<double> soa_;
     std::vector<int> adjacencyStart_;  // CSR: neighbours of i are adjacency_[start[i] .. start[i+1])
     std::vector<int> adjacency_;
     std::array<int, 6> axisExtremes_{};  // argmax/argmin of x, y, z: cold-start seeds
@@ -269,6 +280,12 @@ struct Transformed {
     S shape;
     Transform transform;
     Vec3 support(const Vec3& d) const { return transform.apply(Vec3(shape.support(transform.rotateInverse(d)))); }
+    /// Hinted support (see PolytopeShape::support(d, hint)), forwarded when S has one.
+    Vec3 support(const Vec3& d, int& hint) const
+        requires requires(const S& s, const Vec3& v, int& h) { s.support(v, h); }
+    {
+        return transform.apply(Vec3(shape.support(transform.rotateInverse(d), hint)));
+    }
     Vec3 supportCore(const Vec3& d) const { return transform.apply(coreSupport(shape, transform.rotateInverse(d))); }
     double margin() const { return marginOf(shape); }
     /// About the parent-frame origin: |position| + the body's radius.
