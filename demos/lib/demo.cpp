@@ -1,11 +1,13 @@
 #include "demos/lib/demo.h"
 
+#include "demos/lib/epa_demo.h"
+#include "demos/lib/gjk_demo.h"
 #include "demos/lib/voronoi_demo.h"
 
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo()};
     return demos;
 }
 

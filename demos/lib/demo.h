@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "demos/lib/json_reader.h"
@@ -23,6 +24,7 @@ struct Frame {
 struct DemoOutput {
     std::vector<Frame> frames;
     Json trace = Json::object();  // the algorithm's results per step (numbers compared with a tolerance)
+    std::vector<std::pair<std::string, std::string>> files;  // name -> bytes (e.g. "animation.gif"); not golden-compared
 };
 
 struct RunContext {

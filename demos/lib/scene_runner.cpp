@@ -84,6 +84,7 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
             render::writePngAtomic((dir / (fr.name + ".png")).string(), fr.image);
             ++frames;
         }
+        for (const auto& [name, bytes] : out.files) render::writeFileAtomic((dir / name).string(), bytes);
         render::writeFileAtomic((dir / "trace.json").string(), traceText(out.trace));
         if (o.verbose)
             std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << int(secondsSince(ts) * 1000) << " ms\n";

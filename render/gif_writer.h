@@ -1,0 +1,33 @@
+// Animated GIF encoding with giflib (GIF89a, Netscape looping extension). Each frame is
+// quantised to its own 256-colour local palette with giflib's GifQuantizeBuffer (median cut on
+// 5-bit-per-channel colours, Heckbert 1982), which is deterministic: the same pixels give the same
+// bytes. Knows nothing about what the frames show.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/image.h"
+
+namespace cdlab::render {
+
+struct GifOptions {
+    int delayCentiseconds = 120;   ///< display time of each frame (1/100 s)
+    int lastDelayCentiseconds = 300;  ///< display time of the last frame (a pause before looping)
+    int loopCount = 0;             ///< Netscape loop count, 0 = forever
+};
+
+/// Thrown for empty input, frames of different sizes or a giflib error; what() is one line.
+struct GifError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Encodes RGBA8 frames (alpha ignored; all frames the same size) into GIF file bytes.
+std::string encodeGif(const std::vector<Image>& frames, const GifOptions& options = {});
+
+/// encodeGif() written atomically (temp file + rename, like writePngAtomic). Throws GifError or
+/// std::runtime_error on write errors.
+void writeGifAtomic(const std::string& path, const std::vector<Image>& frames, const GifOptions& options = {});
+
+}  // namespace cdlab::render
