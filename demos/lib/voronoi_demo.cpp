@@ -147,7 +147,7 @@ private:
         return out;
     }
 
-    Camera triangleCamera(const Triangle& tri, const std::string& view) const {
+    Camera triangleCamera(const Triangle& tri, const TriangleVoronoiDiagram& diagram, const std::string& view) const {
         Vec3 n = (tri.b - tri.a).cross(tri.c - tri.a);
         if (n.squaredNorm() == 0) n = Vec3::UnitZ();  // collinear: any view direction works
         n.normalize();
@@ -157,8 +157,16 @@ private:
         double radius = size() + margin();
         if (common_.camera && view == "3d") return *common_.camera;
         if (view == "plane") {
-            Camera cam = framingCamera(center(), radius, n, up, false);
-            cam.viewHeight = 2.25 * radius;
+            // Frame the regions' clip rectangle (when drawn), with room for the title and caption.
+            Vec3 middle = center();
+            double extent = 2 * radius;
+            if (diagram.valid) {
+                middle = (diagram.rectangle[0] + diagram.rectangle[2]) * 0.5;
+                extent = std::max((diagram.rectangle[1] - diagram.rectangle[0]).norm(),
+                                  (diagram.rectangle[3] - diagram.rectangle[0]).norm());
+            }
+            Camera cam = framingCamera(middle, radius, n, up, false);
+            cam.viewHeight = 1.2 * extent;
             return cam;
         }
         // 3D: look from above the plane, off to the side, so the slabs read as planes.
@@ -169,7 +177,7 @@ private:
                             const std::vector<TriangleQuery>& results, const std::string& view, int focus) const {
         Canvas canvas(gl, canvasOptions(ctx));
         canvas.setBackground(roleColor(Role::Background));
-        canvas.setCamera(triangleCamera(tri, view));
+        canvas.setCamera(triangleCamera(tri, diagram, view));
         const bool is3d = view == "3d";
 
         if (diagram.valid && common_.hasLayer("regions"))
