@@ -1,12 +1,589 @@
+// `cdlab bench`: run time against error for the core queries, on fixed-seed inputs, each answer
+// checked against an independent oracle (demos/lib/bench_oracle.h).
+//
+// Timing: every configuration runs over its whole input set `reps` times; one repetition gives
+// one time per query (total / count); the table shows the median and the min / max over the
+// repetitions. Error: relative, |x - x*| / |x*| on the distance or depth (for touching sets, whose
+// oracle answer is 0, |x| / size); for boolean queries the fraction of wrong answers.
 #include "demos/lib/bench.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
 #include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/closest_point.h"
+#include "core/convex_hull.h"
+#include "core/epa.h"
+#include "core/gjk.h"
+#include "core/primitives.h"
+#include "core/sat_tests.h"
+#include "core/shapes.h"
+#include "demos/lib/bench_oracle.h"
+#include "render/image.h"
 
 namespace cdlab::demos {
 
-int runBench(int, char**) {
-    std::cerr << "cdlab bench: not built yet\n";
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct ErrorStats {
+    double median = 0, p99 = 0, max = 0, above1e6 = 0, above1e2 = 0;
+};
+
+ErrorStats errorStats(std::vector<double> e)
+{
+    ErrorStats s;
+    if (e.empty()) return s;
+    std::sort(e.begin(), e.end());
+    auto at = [&](double q) { return e[std::min(e.size() - 1, static_cast<size_t>(q * (e.size() - 1) + 0.5))]; };
+    s.median = at(0.5);
+    s.p99 = at(0.99);
+    s.max = e.back();
+    for (double x : e) {
+        s.above1e6 += x > 1e-6;
+        s.above1e2 += x > 1e-2;
+    }
+    s.above1e6 /= e.size();
+    s.above1e2 /= e.size();
+    return s;
+}
+
+struct Row {
+    std::string query, input, method;
+    int queries = 0;    // inputs in the set
+    int reps = 0;
+    double nsMedian = 0, nsMin = 0, nsMax = 0;
+    ErrorStats error;
+    double iterations = 0;  // mean per query (0 where meaningless)
+    bool boolean = false;   // error = wrong answers
+};
+
+/// What one query returns: the value compared with the oracle, and its iteration count.
+struct Answer {
+    double value = 0;
+    int iterations = 0;
+};
+
+struct Settings {
+    bool quick = false;
+    int targetQueries = 100000;  // per row: reps * count >= this (at least 3 reps)
+};
+
+/// Runs query(i) over i in [0, count) `reps` times; the answers of the last repetition are scored.
+Row measure(const Settings& settings, std::string query, std::string input, std::string method, int count,
+            const std::function<Answer(int)>& run, const std::function<double(int, const Answer&)>& error,
+            bool boolean = false)
+{
+    Row row;
+    row.query = std::move(query);
+    row.input = std::move(input);
+    row.method = std::move(method);
+    row.queries = count;
+    row.boolean = boolean;
+    row.reps = std::max(3, (settings.targetQueries + count - 1) / std::max(count, 1));
+    std::vector<Answer> answers(count);
+    std::vector<double> ns;
+    for (int r = 0; r < row.reps; ++r) {
+        const auto t0 = Clock::now();
+        for (int i = 0; i < count; ++i) answers[i] = run(i);
+        const auto t1 = Clock::now();
+        ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / count);
+    }
+    std::sort(ns.begin(), ns.end());
+    row.nsMedian = ns[ns.size() / 2];
+    row.nsMin = ns.front();
+    row.nsMax = ns.back();
+    std::vector<double> errors;
+    double iters = 0;
+    for (int i = 0; i < count; ++i) {
+        errors.push_back(error(i, answers[i]));
+        iters += answers[i].iterations;
+    }
+    row.error = errorStats(errors);
+    row.iterations = iters / count;
+    std::fprintf(stderr, "  %-14s %-22s %-22s %9.1f ns  max err %.2e\n", row.query.c_str(), row.input.c_str(),
+                 row.method.c_str(), row.nsMedian, row.error.max);
+    return row;
+}
+
+double relativeError(double x, double exact, double size)
+{
+    const double denom = exact > 0 ? exact : size;
+    return std::abs(x - exact) / denom;
+}
+
+// ---- Inputs --------------------------------------------------------------------------------------
+
+Quat randomRotation(std::mt19937_64& rng)
+{
+    std::normal_distribution<double> g(0.0, 1.0);
+    Quat q(g(rng), g(rng), g(rng), g(rng));
+    return q.normalized();
+}
+
+Vec3 randomUnit(std::mt19937_64& rng)
+{
+    std::normal_distribution<double> g(0.0, 1.0);
+    return Vec3(g(rng), g(rng), g(rng)).normalized();
+}
+
+/// n points on a randomly rotated ellipsoid with radii in [0.3, 1] (all in convex position).
+std::vector<Vec3> ellipsoidPoints(std::mt19937_64& rng, int n)
+{
+    std::uniform_real_distribution<double> radius(0.3, 1.0);
+    const Vec3 radii(radius(rng), radius(rng), radius(rng));
+    const Quat q = randomRotation(rng);
+    std::vector<Vec3> v;
+    for (int i = 0; i < n; ++i) v.push_back(q * radii.cwiseProduct(randomUnit(rng)));
+    return v;
+}
+
+/// A pair of convex vertex sets in world frame with their support mappings and oracle.
+struct PolyPair {
+    std::vector<Vec3> va, vb;
+    PolytopeShape a, b;
+    MinkowskiOracle oracle;
+};
+
+PolytopeShape polytopeOf(const std::vector<Vec3>& v)
+{
+    const HullResult h = convexHull(v);
+    return h.ok() ? PolytopeShape(h.polyhedron) : PolytopeShape(v);
+}
+
+/// `count` pairs of n-vertex polytopes, B's centre at `offset` (in units of the size, ~1) along a
+/// random direction. offset 2.2 > 1 + 1: always separated; 0.4: nearly always overlapping.
+std::vector<PolyPair> polyPairs(int n, int count, double offset, std::uint64_t seed, double moveBy = 0.0)
+{
+    std::mt19937_64 rng(seed);
+    std::vector<PolyPair> pairs;
+    for (int i = 0; i < count; ++i) {
+        PolyPair p;
+        p.va = ellipsoidPoints(rng, n);
+        p.vb = ellipsoidPoints(rng, n);
+        const Vec3 shift = offset * randomUnit(rng);
+        for (Vec3& x : p.vb) x += shift;
+        pairs.push_back(std::move(p));
+    }
+    if (moveBy > 0.0) {  // warm-start set: the same pairs moved slightly (next frame)
+        std::mt19937_64 move(seed ^ 0x5DEECE66Dull);
+        for (PolyPair& p : pairs) {
+            const Vec3 d = moveBy * randomUnit(move);
+            for (Vec3& x : p.vb) x += d;
+        }
+    }
+    for (PolyPair& p : pairs) {
+        p.a = polytopeOf(p.va);
+        p.b = polytopeOf(p.vb);
+        p.oracle = minkowskiOracle(p.va, p.vb);
+    }
+    return pairs;
+}
+
+/// Oriented boxes: half extents in [0.2, 1], random rotation, centre offset along a random
+/// direction; `touching` puts two axis-aligned boxes face to face (distance exactly 0).
+struct BoxPair {
+    Transformed<BoxShape> a, b;
+    std::vector<Vec3> va, vb;
+    MinkowskiOracle oracle;
+    Obb obbA, obbB;
+};
+
+std::vector<Vec3> corners(const Transformed<BoxShape>& box)
+{
+    std::vector<Vec3> c;
+    const Vec3& h = box.shape.halfExtents;
+    for (int i = 0; i < 8; ++i)
+        c.push_back(box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
+    return c;
+}
+
+std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> half(0.2, 1.0), lateral(-0.3, 0.3);
+    std::vector<BoxPair> pairs;
+    for (int i = 0; i < count; ++i) {
+        BoxPair p;
+        p.a.shape.halfExtents = Vec3(half(rng), half(rng), half(rng));
+        p.b.shape.halfExtents = Vec3(half(rng), half(rng), half(rng));
+        if (touching) {
+            // Face x = +h_a of A against face x = -h_b of B, lateral shift inside both faces:
+            // exact in binary (sums of doubles of similar size, then compared by the oracle).
+            p.b.transform.position = Vec3(p.a.shape.halfExtents.x() + p.b.shape.halfExtents.x(),
+                                          lateral(rng) * p.a.shape.halfExtents.y(), lateral(rng) * p.a.shape.halfExtents.z());
+        } else {
+            p.a.transform.rotation = randomRotation(rng);
+            p.b.transform.rotation = randomRotation(rng);
+            p.b.transform.position = offset * randomUnit(rng);
+        }
+        p.va = corners(p.a);
+        p.vb = corners(p.b);
+        p.oracle = minkowskiOracle(p.va, p.vb);
+        p.obbA = Obb{p.a.transform.position, p.a.shape.halfExtents, p.a.transform.rotation.toRotationMatrix()};
+        p.obbB = Obb{p.b.transform.position, p.b.shape.halfExtents, p.b.transform.rotation.toRotationMatrix()};
+        pairs.push_back(std::move(p));
+    }
+    return pairs;
+}
+
+struct SpherePair {
+    Transformed<SphereShape> a, b;
+    double distance = 0;  // analytic: |c_b - c_a| - r_a - r_b (negative: depth)
+};
+
+std::vector<SpherePair> spherePairs(int count, double offset, std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> radius(0.3, 1.0);
+    std::vector<SpherePair> pairs;
+    for (int i = 0; i < count; ++i) {
+        SpherePair p;
+        p.a.shape.radius = radius(rng);
+        p.b.shape.radius = radius(rng);
+        p.b.transform.position = offset * randomUnit(rng);
+        p.distance = p.b.transform.position.norm() - p.a.shape.radius - p.b.shape.radius;
+        pairs.push_back(p);
+    }
+    return pairs;
+}
+
+// ---- Output -------------------------------------------------------------------------------------
+
+std::string fmt(const char* f, double x)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, x);
+    return buf;
+}
+
+std::string machineDescription()
+{
+    std::string model = "unknown CPU";
+    if (FILE* f = std::fopen("/proc/cpuinfo", "r")) {
+        char line[512];
+        while (std::fgets(line, sizeof line, f)) {
+            if (std::strncmp(line, "model name", 10) == 0) {
+                const char* colon = std::strchr(line, ':');
+                if (colon) model = colon + 2;
+                model.erase(model.find_last_not_of("\n ") + 1);
+                break;
+            }
+        }
+        std::fclose(f);
+    }
+    std::string load = "?";
+    if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+        char buf[128] = {};
+        if (std::fgets(buf, sizeof buf, f)) load = std::string(buf, std::strcspn(buf, " "));
+        std::fclose(f);
+    }
+    return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, load average " + load;
+}
+
+void printTable(const std::vector<Row>& rows, std::ostream& out, bool markdown)
+{
+    char line[512];
+    if (markdown) {
+        out << "| query | input | method | ns median | ns min | ns max | err median | err p99 | err max | >1e-6 | >1e-2 | iters |\n"
+               "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    } else {
+        std::snprintf(line, sizeof line, "%-14s %-24s %-22s %9s %9s %9s %9s %9s %9s %7s %7s %6s\n", "query", "input",
+                      "method", "ns med", "ns min", "ns max", "err med", "err p99", "err max", ">1e-6", ">1e-2", "iters");
+        out << line;
+    }
+    for (const Row& r : rows) {
+        const char* f = markdown ? "| %s | %s | %s | %.1f | %.1f | %.1f | %.2g | %.2g | %.2g | %.3g | %.3g | %.2f |\n"
+                                 : "%-14s %-24s %-22s %9.1f %9.1f %9.1f %9.2g %9.2g %9.2g %7.3g %7.3g %6.2f\n";
+        std::snprintf(line, sizeof line, f, r.query.c_str(), r.input.c_str(), r.method.c_str(), r.nsMedian, r.nsMin,
+                      r.nsMax, r.error.median, r.error.p99, r.error.max, r.error.above1e6, r.error.above1e2, r.iterations);
+        out << line;
+    }
+}
+
+nlohmann::json toJson(const std::vector<Row>& rows, const std::string& machine, bool quick)
+{
+    nlohmann::json j;
+    j["machine"] = machine;
+    j["mode"] = quick ? "quick" : "full";
+    j["error_definition"] = "relative |x - x*| / |x*| (touching: |x| / size); boolean queries: 1 per wrong answer";
+    for (const Row& r : rows) {
+        j["rows"].push_back({{"query", r.query},
+                             {"input", r.input},
+                             {"method", r.method},
+                             {"queries", r.queries},
+                             {"reps", r.reps},
+                             {"ns_median", r.nsMedian},
+                             {"ns_min", r.nsMin},
+                             {"ns_max", r.nsMax},
+                             {"error_median", r.error.median},
+                             {"error_p99", r.error.p99},
+                             {"error_max", r.error.max},
+                             {"fraction_above_1e-6", r.error.above1e6},
+                             {"fraction_above_1e-2", r.error.above1e2},
+                             {"iterations_mean", r.iterations},
+                             {"boolean", r.boolean}});
+    }
+    return j;
+}
+
+int usage()
+{
+    std::cerr << "usage: cdlab bench [--quick] [--out DIR]\n"
+                 "  time per query (median / min / max over repetitions) and error against independent\n"
+                 "  oracles for closest point, GJK intersect / distance, GJK+EPA, SAT OBB-OBB.\n"
+                 "  Writes DIR/bench.json and DIR/bench.md (default DIR: out/bench).\n";
     return 2;
+}
+
+}  // namespace
+
+int runBench(int argc, char** argv)
+{
+    Settings settings;
+    std::string outDir = "out/bench";
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--quick") {
+            settings.quick = true;
+        } else if (arg == "--out" && i + 1 < argc) {
+            outDir = argv[++i];
+        } else if (arg == "-h" || arg == "--help") {
+            usage();
+            return 0;
+        } else {
+            std::cerr << "cdlab bench: unknown argument " << arg << "\n";
+            return usage();
+        }
+    }
+    const bool quick = settings.quick;
+    settings.targetQueries = quick ? 20000 : 100000;
+    const int nPairs = quick ? 200 : 1000;
+    const int nLarge = quick ? 60 : 300;  // 64 / 100 vertices: the oracle hull has n^2 points
+    std::vector<Row> rows;
+    const auto start = Clock::now();
+
+    // ---- closest point on triangle / tetrahedron -------------------------------------------------
+    {
+        std::cerr << "cdlab bench: closest point\n";
+        std::mt19937_64 rng(1);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        auto rp = [&] { return Vec3(u(rng), u(rng), u(rng)); };
+        const int n = quick ? 2000 : 10000;
+        std::vector<Vec3> points;
+        std::vector<Triangle> tris;
+        std::vector<Tetrahedron> tets;
+        std::vector<double> triOracle, tetOracle;
+        for (int i = 0; i < n; ++i) {
+            points.push_back(2.0 * rp());
+            tris.push_back({rp(), rp(), rp()});
+            tets.push_back({rp(), rp(), rp(), rp()});
+            triOracle.push_back(oracleDistanceToTriangle(points[i], tris[i]));
+            tetOracle.push_back(oracleDistanceToTetrahedron(points[i], tets[i]));
+        }
+        rows.push_back(measure(
+            settings, "closest_point", "triangle, random", "Ericson 5.1.5", n,
+            [&](int i) { return Answer{std::sqrt(closestPointOnTriangle(points[i], tris[i]).distanceSquared), 0}; },
+            [&](int i, const Answer& a) { return relativeError(a.value, triOracle[i], 1.0); }));
+        rows.push_back(measure(
+            settings, "closest_point", "tetrahedron, random", "regions", n,
+            [&](int i) { return Answer{std::sqrt(closestPointOnTetrahedron(points[i], tets[i]).distanceSquared), 0}; },
+            [&](int i, const Answer& a) { return relativeError(a.value, tetOracle[i], 1.0); }));
+    }
+
+    // ---- GJK distance / intersect, EPA on random polytopes -----------------------------------------
+    const int sizes[] = {8, 16, 64, 100};
+    for (int nv : sizes) {
+        const int count = nv >= 64 ? nLarge : nPairs;
+        std::cerr << "cdlab bench: polytopes with " << nv << " vertices (" << count << " pairs per set)\n";
+        const std::string tag = "poly" + std::to_string(nv);
+        const auto sep = polyPairs(nv, count, 2.2, 1000 + nv);
+        const auto pen = polyPairs(nv, count, 0.4, 2000 + nv);
+        auto distanceRow = [&](const std::vector<PolyPair>& set, const std::string& input, const std::string& method,
+                               GjkOptions options) {
+            return measure(
+                settings, "gjk_distance", input, method, static_cast<int>(set.size()),
+                [&, options](int i) {
+                    const GjkResult r = gjkDistance(set[i].a, set[i].b, options);
+                    return Answer{r.distance, r.iterations};
+                },
+                [&](int i, const Answer& a) { return relativeError(a.value, set[i].oracle.distance, 1.0); });
+        };
+        GjkOptions sv;
+        GjkOptions johnson;
+        johnson.solver = SimplexSolver::Johnson;
+        rows.push_back(distanceRow(sep, tag + " separated", "SV tol 1e-13", sv));
+        rows.push_back(distanceRow(sep, tag + " separated", "Johnson tol 1e-13", johnson));
+        if (nv == 16 || nv == 64) {
+            for (double tol : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14}) {
+                GjkOptions o;
+                o.relativeTolerance = tol;
+                rows.push_back(distanceRow(sep, tag + " separated", "SV tol " + fmt("%.0e", tol), o));
+            }
+            // Warm start: the same pairs moved by 1e-3 of their size, seeded with the simplex of
+            // the previous position (as a frame-coherent caller would).
+            const auto moved = polyPairs(nv, count, 2.2, 1000 + nv, 1e-3);
+            std::vector<GjkSimplex> previous;
+            for (const PolyPair& p : sep) previous.push_back(gjkDistance(p.a, p.b).simplex);
+            rows.push_back(distanceRow(moved, tag + " moved 1e-3", "SV cold", sv));
+            rows.push_back(measure(
+                settings, "gjk_distance", tag + " moved 1e-3", "SV warm", count,
+                [&](int i) {
+                    GjkOptions o;
+                    o.warmStart = &previous[i];
+                    const GjkResult r = gjkDistance(moved[i].a, moved[i].b, o);
+                    return Answer{r.distance, r.iterations};
+                },
+                [&](int i, const Answer& a) { return relativeError(a.value, moved[i].oracle.distance, 1.0); }));
+        }
+        // Boolean intersection over both sets (separated and overlapping).
+        std::vector<const PolyPair*> both;
+        for (const auto& p : sep) both.push_back(&p);
+        for (const auto& p : pen) both.push_back(&p);
+        rows.push_back(measure(
+            settings, "gjk_intersect", tag + " sep+pen", "SV", static_cast<int>(both.size()),
+            [&](int i) {
+                GjkResult r;
+                const bool hit = gjkIntersect(both[i]->a, both[i]->b, {}, nullptr, &r);
+                return Answer{hit ? 1.0 : 0.0, r.iterations};
+            },
+            [&](int i, const Answer& a) { return (a.value != 0.0) != both[i]->oracle.inside ? 1.0 : 0.0; }, true));
+        // Penetration depth (GJK + EPA) on the overlapping pairs.
+        std::vector<const PolyPair*> inside;
+        for (const auto& p : pen)
+            if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
+        for (double tol : {1e-13, 1e-6, 1e-3}) {
+            EpaOptions o;
+            o.relativeTolerance = tol;
+            rows.push_back(measure(
+                settings, "epa_depth", tag + " penetrating", "GJK+EPA tol " + fmt("%.0e", tol),
+                static_cast<int>(inside.size()),
+                [&, o](int i) {
+                    const EpaResult r = penetration(inside[i]->a, inside[i]->b, o);
+                    return Answer{r.depth, r.iterations};
+                },
+                [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); }));
+        }
+    }
+
+    // ---- boxes ------------------------------------------------------------------------------------
+    {
+        std::cerr << "cdlab bench: boxes\n";
+        const auto sep = boxPairs(nPairs, 3.0, false, 31);
+        const auto pen = boxPairs(nPairs, 0.5, false, 32);
+        const auto touch = boxPairs(nPairs, 0.0, true, 33);
+        for (const auto* set : {&sep, &touch}) {
+            const bool touching = set == &touch;
+            rows.push_back(measure(
+                settings, "gjk_distance", touching ? "AABB face touching" : "OBB separated", "SV tol 1e-13", nPairs,
+                [&](int i) {
+                    const GjkResult r = gjkDistance((*set)[i].a, (*set)[i].b);
+                    return Answer{r.distance, r.iterations};
+                },
+                [&, touching](int i, const Answer& a) {
+                    // Touching: the exact distance is 0 (the oracle gives 0 up to its rounding);
+                    // the error is relative to the size (~1), not to 0.
+                    return touching ? std::abs(a.value) : relativeError(a.value, (*set)[i].oracle.distance, 1.0);
+                }));
+        }
+        std::vector<const BoxPair*> inside, all;
+        for (const auto& p : pen)
+            if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
+        for (const auto& p : sep) all.push_back(&p);
+        for (const auto& p : pen) all.push_back(&p);
+        rows.push_back(measure(
+            settings, "epa_depth", "OBB penetrating", "GJK+EPA tol 1e-13", static_cast<int>(inside.size()),
+            [&](int i) {
+                const EpaResult r = penetration(inside[i]->a, inside[i]->b);
+                return Answer{r.depth, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); }));
+        rows.push_back(measure(
+            settings, "epa_depth", "AABB face touching", "GJK+EPA tol 1e-13", nPairs,
+            [&](int i) {
+                const EpaResult r = penetration(touch[i].a, touch[i].b);
+                return Answer{r.depth, r.iterations};
+            },
+            [&](int, const Answer& a) { return std::abs(a.value); }));  // exact answer 0; size ~1
+        rows.push_back(measure(
+            settings, "gjk_intersect", "OBB sep+pen", "SV", static_cast<int>(all.size()),
+            [&](int i) {
+                GjkResult r;
+                const bool hit = gjkIntersect(all[i]->a, all[i]->b, {}, nullptr, &r);
+                return Answer{hit ? 1.0 : 0.0, r.iterations};
+            },
+            [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
+        rows.push_back(measure(
+            settings, "sat_obb_obb", "OBB sep+pen", "15 axes", static_cast<int>(all.size()),
+            [&](int i) { return Answer{testObbObb(all[i]->obbA, all[i]->obbB).hit ? 1.0 : 0.0, 0}; },
+            [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
+    }
+
+    // ---- spheres (analytic oracle) -------------------------------------------------------------------
+    {
+        std::cerr << "cdlab bench: spheres\n";
+        const auto sep = spherePairs(nPairs, 2.5, 41);
+        const auto pen = spherePairs(nPairs, 0.5, 42);
+        rows.push_back(measure(
+            settings, "gjk_distance", "spheres separated", "SV tol 1e-13", nPairs,
+            [&](int i) {
+                const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
+                return Answer{r.distance, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+        for (double tol : {1e-4, 1e-8}) {
+            EpaOptions o;
+            o.relativeTolerance = tol;
+            rows.push_back(measure(
+                settings, "epa_depth", "spheres penetrating", "GJK+EPA tol " + fmt("%.0e", tol), nPairs,
+                [&, o](int i) {
+                    const EpaResult r = penetration(pen[i].a, pen[i].b, o);
+                    return Answer{r.depth, r.iterations};
+                },
+                [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
+        }
+    }
+
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const std::string machine = machineDescription();
+    printTable(rows, std::cout, false);
+    std::cout << "machine: " << machine << "; " << fmt("%.1f", seconds) << " s\n";
+
+    std::ostringstream md;
+    md << "# cdlab bench" << (quick ? " (--quick)" : "") << "\n\n"
+       << "Machine: " << machine << ". Release build (-O3, -ffp-contract=off), one thread.\n\n"
+       << "Time per query: median (min, max) over repetitions of the whole input set, each repetition\n"
+       << ">= " << settings.targetQueries / 1000 << "k queries in total per row. Error: relative, |x - x*| / |x*| against an\n"
+       << "independent oracle (hull of the Minkowski difference {a_i - b_j} by core/convex_hull.h, distances to its\n"
+       << "faces by brute force in long double; spheres analytic; closest points by long double brute force);\n"
+       << "touching sets: |x| / size; boolean queries (intersect, SAT): fraction of wrong answers.\n"
+       << "Inputs: fixed seeds; random polytopes = n points on random ellipsoids (radii 0.3..1), separated\n"
+       << "(centres 2.2 apart), penetrating (0.4 apart), moved (same pairs moved by 1e-3: warm start).\n\n";
+    printTable(rows, md, true);
+    md << "\nRun time " << fmt("%.1f", seconds) << " s.\n";
+    try {
+        std::filesystem::create_directories(outDir);
+        render::writeFileAtomic(outDir + "/bench.json", toJson(rows, machine, quick).dump(2) + "\n");
+        render::writeFileAtomic(outDir + "/bench.md", md.str());
+    } catch (const std::exception& e) {
+        std::cerr << "cdlab bench: " << e.what() << "\n";
+        return 1;
+    }
+    std::cerr << "cdlab bench: wrote " << outDir << "/bench.json and bench.md\n";
+    return 0;
 }
 
 }  // namespace cdlab::demos
