@@ -183,10 +183,11 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
 
     EpaResult r;
     detail::EpaPolytope poly;
-    detail::SupportHints hints;  // hill-climbing starts for large polytopes (core/shapes.h)
+    // Plain (cold) supports: successive EPA directions are face normals far apart, so starting a
+    // hill climb at the previous answer costs more than the shape's own seeds (measured).
     auto support = [&](const Vec3& d, detail::EpaVertex& out) {
-        out.a = detail::hintedSupport(shapeA, d, hints.a);
-        out.b = detail::hintedSupport(shapeB, Vec3(-d), hints.b);
+        out.a = shapeA.support(d);
+        out.b = shapeB.support(-d);
         out.w = out.a - out.b;
     };
     auto stop = [&](EpaTermination why) {
