@@ -104,7 +104,7 @@ public:
         if (common_.steps || ctx.stepsOverride) {
             ContactSheetOptions o;
             o.title = common_.title + ": EPA, one iteration per frame";
-            o.cellWidth = 420;
+            o.cellWidth = 320;
             o.columns = std::min<int>(3, int(all.size()));
             Frame sheet;
             sheet.name = "contact_sheet";

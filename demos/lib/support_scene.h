@@ -105,7 +105,7 @@ struct PairScene {
     int dimension = 3;
     SceneShape a, b;
     Vec3 view = Vec3(1.0, 0.8, 1.7);
-    int maxStepFrames = 10;
+    int maxStepFrames = 6;
     bool gif = true;
 };
 PairScene readPairScene(ObjectReader& reader);
