@@ -5,6 +5,7 @@
 #include "render/canvas.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <variant>
@@ -523,8 +524,21 @@ void Canvas::clearCommands() {
     impl_->texts.clear();
 }
 
+RenderStats& renderStats() {
+    static RenderStats stats;
+    return stats;
+}
+
+namespace {
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
 Image Canvas::readPixels() {
     Impl& m = *impl_;
+    RenderStats& stats = renderStats();
+    auto t0 = std::chrono::steady_clock::now();
     GlContext::Impl& gl = m.context.impl();
     gl.makeCurrent();
     gl.ensureDrawResources();
@@ -552,6 +566,8 @@ Image Canvas::readPixels() {
     all.reserve(std::size_t(textBase) + text.size());
     for (auto* part : {&opaque, &translucent, &overlay, &text}) all.insert(all.end(), part->begin(), part->end());
 
+    stats.buildSeconds += secondsSince(t0);
+    t0 = std::chrono::steady_clock::now();
     const GLuint drawFbo = m.target.samples > 1 ? m.target.msaaFbo : m.target.resolveFbo;
     glBindFramebuffer(GL_FRAMEBUFFER, drawFbo);
     glViewport(0, 0, m.rw, m.rh);
@@ -608,6 +624,9 @@ Image Canvas::readPixels() {
     glBindTexture(GL_TEXTURE_2D, gl.whiteTexture);
     glDepthMask(GL_TRUE);
 
+    if (stats.profiling) glFinish();
+    stats.drawSeconds += secondsSince(t0);
+    t0 = std::chrono::steady_clock::now();
     // Resolve MSAA, read back bottom-up, flip to top-first.
     if (m.target.samples > 1) {
         glBindFramebuffer(GL_READ_FRAMEBUFFER, m.target.msaaFbo);
@@ -625,7 +644,10 @@ Image Canvas::readPixels() {
     const std::size_t stride = std::size_t(m.rw) * 4;
     for (int y = 0; y < m.rh; ++y)
         std::copy_n(rows.data() + std::size_t(m.rh - 1 - y) * stride, stride, raw.rgba.data() + std::size_t(y) * stride);
-    return m.ss > 1 ? downsample(raw, m.ss) : raw;
+    Image out = m.ss > 1 ? downsample(raw, m.ss) : raw;
+    stats.readbackSeconds += secondsSince(t0);
+    ++stats.frames;
+    return out;
 }
 
 }  // namespace cdlab::render

@@ -44,6 +44,18 @@ struct TextStyle {
 
 /// Not thread-safe; a Canvas must not outlive its GlContext. Cheap to create: GL objects
 /// (program, buffers, glyph atlases, framebuffers by size) are cached in the GlContext.
+/// Where readPixels() spends its time, summed over the process (for `cdlab figures --profile`).
+/// With `profiling` on, readPixels() waits for the GPU (glFinish) before reading back, so the
+/// draw / read-back split is real; off (default), nothing waits and only totals are meaningful.
+struct RenderStats {
+    bool profiling = false;
+    int frames = 0;
+    double buildSeconds = 0;     // CPU: vertices for every recorded command
+    double drawSeconds = 0;      // GL draw calls until the GPU is done (profiling only)
+    double readbackSeconds = 0;  // MSAA resolve, glReadPixels, flip, supersample resolve
+};
+RenderStats& renderStats();
+
 class Canvas {
 public:
     Canvas(GlContext& context, const CanvasOptions& options);

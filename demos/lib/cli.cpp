@@ -20,6 +20,7 @@ constexpr const char* kUsage =
     "usage: cdlab <command> [options]\n"
     "  figures   render every demo scene into out/figures/<demo>/<scene>/\n"
     "            [--scene PATTERN] [--list] [--scale N] [--steps] [--out DIR] [--no-render] [--verbose]\n"
+    "            [--force] (re-render unchanged scenes) [--profile] (time per scene and stage)\n"
     "  golden    compare every scene with its goldens (what ctest runs)\n"
     "            [--scene PATTERN] [--report DIR] [--update failing|all] [--verbose]\n"
     "            (CDLAB_UPDATE_GOLDEN=1 or =all also updates)\n"
@@ -49,6 +50,8 @@ RunnerOptions parseRunnerOptions(int argc, char** argv, int first, std::vector<s
         else if (a == "--steps") o.steps = true;
         else if (a == "--verbose" || a == "-v") o.verbose = true;
         else if (a == "--no-render") o.noRender = true;
+        else if (a == "--force") o.force = true;
+        else if (a == "--profile") o.profile = true;
         else if (a == "--update") {
             o.update = value(i);
             if (o.update != "failing" && o.update != "all") throw UsageError("--update takes 'failing' or 'all'");

@@ -24,6 +24,7 @@ struct Frame {
 struct DemoOutput {
     std::vector<Frame> frames;
     Json trace = Json::object();  // the algorithm's results per step (numbers compared with a tolerance)
+    std::vector<std::string> skipped;  // what the scene did not need and was not computed (for --profile)
     std::vector<std::pair<std::string, std::string>> files;  // name -> bytes (e.g. "animation.gif"); not golden-compared
 };
 

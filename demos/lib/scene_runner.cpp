@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
 
 std::unique_ptr<render::GlContext> createContext(bool verbose) {
     auto t0 = Clock::now();
@@ -30,8 +30,6 @@ std::unique_ptr<render::GlContext> createContext(bool verbose) {
 }
 
 std::string traceText(const Json& trace) { return trace.dump(1) + "\n"; }
-
-}  // namespace
 
 std::vector<std::string> selectScenes(const RunnerOptions& o) {
     std::string golden = o.goldenDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/golden" : o.goldenDir;
@@ -47,54 +45,6 @@ std::vector<std::string> selectScenes(const RunnerOptions& o) {
         out.push_back(file);
     }
     return out;
-}
-
-int runFigures(const RunnerOptions& o) { return renderSceneFiles(selectScenes(o), o); }
-
-int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions& o) {
-    if (o.list) {
-        for (const auto& f : files) std::cout << fs::path(f).parent_path().filename().string() << "/" << fs::path(f).stem().string() << "\n";
-        return 0;
-    }
-    if (files.empty()) {
-        std::cerr << "cdlab figures: no scene matches\n";
-        return 2;
-    }
-    // Validate every scene before rendering anything: a bad file produces no output at all.
-    std::vector<std::unique_ptr<PreparedScene>> scenes;
-    for (const auto& f : files) {
-        scenes.push_back(loadScene(f));
-        const std::string& demo = scenes.back()->common().demo;
-        if (!o.demo.empty() && demo != o.demo)
-            throw InputError(f + ": $.demo: this scene is for demo '" + demo + "', not '" + o.demo + "'");
-    }
-
-    std::unique_ptr<render::GlContext> gl;
-    if (!o.noRender) gl = createContext(o.verbose);
-    RunContext ctx{gl.get(), o.scale, o.steps};
-    auto t0 = Clock::now();
-    int frames = 0;
-    bool tty = isatty(fileno(stderr)) && !std::getenv("CI");
-    for (std::size_t i = 0; i < scenes.size(); ++i) {
-        const SceneCommon& sc = scenes[i]->common();
-        auto ts = Clock::now();
-        DemoOutput out = scenes[i]->run(ctx);
-        fs::path dir = fs::path(o.outDir) / sc.demo / sc.name;
-        for (const Frame& fr : out.frames) {
-            render::writePngAtomic((dir / (fr.name + ".png")).string(), fr.image);
-            ++frames;
-        }
-        for (const auto& [name, bytes] : out.files) render::writeFileAtomic((dir / name).string(), bytes);
-        render::writeFileAtomic((dir / "trace.json").string(), traceText(out.trace));
-        if (o.verbose)
-            std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << int(secondsSince(ts) * 1000) << " ms\n";
-        else if (tty)
-            std::cerr << "\r[" << i + 1 << "/" << scenes.size() << "] " << sceneId(sc) << " (" << int(secondsSince(t0)) << " s)\x1b[K" << std::flush;
-    }
-    if (tty && !o.verbose) std::cerr << "\n";
-    std::cerr << "cdlab figures: " << scenes.size() << " scenes, " << frames << " frames into " << o.outDir << " in "
-              << secondsSince(t0) << " s\n";
-    return 0;
 }
 
 int runGolden(const RunnerOptions& o) {

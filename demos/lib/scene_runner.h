@@ -2,8 +2,12 @@
 // `cdlab golden` (compare with golden/, write a failure report, optionally update goldens).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "demos/lib/json_reader.h"
+#include "render/gl_context.h"
 
 namespace cdlab::demos {
 
@@ -19,12 +23,19 @@ struct RunnerOptions {
     bool verbose = false;              // print GL_RENDERER / GL_VERSION and per-scene timings
     bool list = false;                 // list scenes and exit
     bool noRender = false;             // numeric only: no GL context, traces only
+    bool force = false;                // figures: re-render scenes whose cache key matches
+    bool profile = false;              // figures: per-scene time in algorithm, drawing, read-back, PNG
 };
 
 int runFigures(const RunnerOptions& options);
 /// Renders the given scene files (all validated first; with options.demo set, each must belong to it).
 int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions& options);
 int runGolden(const RunnerOptions& options);
+
+/// The one GL context of a run (prints GL_RENDERER / GL_VERSION when verbose). Throws render::GlError.
+std::unique_ptr<render::GlContext> createContext(bool verbose);
+/// A trace as written to trace.json (stable formatting, so goldens diff well).
+std::string traceText(const Json& trace);
 
 /// Scene files selected by goldenDir / demo / pattern (also used by tests and the demo executables).
 std::vector<std::string> selectScenes(const RunnerOptions& options);

@@ -133,17 +133,22 @@ private:
                           {"tests", testsJson(r.trace.tests)}});
         }
         out.trace["queries"] = qs;
-        if (!ctx.gl) return out;  // numeric only
-
+        if (!ctx.gl) {  // numeric only
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
         // Region geometry only when something draws it.
         TriangleVoronoiDiagram diagram;
         if (common_.hasLayer("regions") || common_.hasLayer("boundaries"))
             diagram = triangleVoronoiRegions({tri, margin(), margin() * 0.6});
+        else
+            out.skipped.push_back("region geometry (no 'regions' or 'boundaries' layer)");
         for (const std::string& view : views_)
             out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1));
         if (common_.steps || ctx.stepsOverride) addSteps(out, ctx, [&](int i) {
             return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i);
         });
+        else out.skipped.push_back("per-step frames and contact sheet (steps off)");
         return out;
     }
 
@@ -278,11 +283,16 @@ private:
                           {"tests", testsJson(r.trace.tests)}});
         }
         out.trace["queries"] = qs;
-        if (!ctx.gl) return out;
-
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        // The 15 region geometries are drawn only in step frames (one region each).
         TetrahedronVoronoiDiagram diagram;
-        if (common_.hasLayer("regions") || common_.hasLayer("boundaries"))
+        if ((common_.steps || ctx.stepsOverride) && (common_.hasLayer("regions") || common_.hasLayer("boundaries")))
             diagram = tetrahedronVoronoiRegions({tet, margin_ > 0 ? margin_ : 0.5 * size()});
+        else
+            out.skipped.push_back("region geometry (not drawn without steps and a 'regions'/'boundaries' layer)");
         out.frames.push_back(drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, -1));
         if (common_.steps || ctx.stepsOverride)
             addSteps(out, ctx, [&](int i) { return drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, i); });
