@@ -99,19 +99,20 @@ bool EpaPolytope::buildTetrahedron()
         if (!plane(F.v[0], F.v[1], F.v[2], F.normal, F.distance)) return false;
     }
     // Adjacency: edge e of face i (v[e] -> v[e+1]) meets the reversed edge of another face.
+    // Every directed edge a -> b of the closed tetrahedron occurs once: index them in a 4x4 table.
+    int edgeFace[4][4], edgeIndex[4][4];
+    for (int i = 0; i < 4; ++i) {
+        for (int e = 0; e < 3; ++e) {
+            edgeFace[face[i].v[e]][face[i].v[(e + 1) % 3]] = i;
+            edgeIndex[face[i].v[e]][face[i].v[(e + 1) % 3]] = e;
+        }
+    }
     for (int i = 0; i < 4; ++i) {
         for (int e = 0; e < 3; ++e) {
             const int a = face[i].v[e];
             const int b = face[i].v[(e + 1) % 3];
-            for (int j = 0; j < 4; ++j) {
-                if (j == i) continue;
-                for (int k = 0; k < 3; ++k) {
-                    if (face[j].v[k] == b && face[j].v[(k + 1) % 3] == a) {
-                        face[i].adj[e] = j;
-                        face[i].adjEdge[e] = k;
-                    }
-                }
-            }
+            face[i].adj[e] = edgeFace[b][a];
+            face[i].adjEdge[e] = edgeIndex[b][a];
         }
     }
     return true;

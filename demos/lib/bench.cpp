@@ -31,6 +31,7 @@
 #include "core/sat_tests.h"
 #include "core/shapes.h"
 #include "demos/lib/bench_oracle.h"
+#include "demos/lib/bench_peers.h"
 #include "render/image.h"
 
 namespace cdlab::demos {
@@ -69,6 +70,7 @@ struct Row {
     ErrorStats error;
     double iterations = 0;  // mean per query (0 where meaningless)
     bool boolean = false;   // error = wrong answers
+    double ratio = 0;       // peers: median time / cdlab's median time on the same input (0: not a peer)
 };
 
 /// What one query returns: the value compared with the oracle, and its iteration count.
@@ -298,18 +300,21 @@ void printTable(const std::vector<Row>& rows, std::ostream& out, bool markdown)
 {
     char line[512];
     if (markdown) {
-        out << "| query | input | method | ns median | ns min | ns max | err median | err p99 | err max | >1e-6 | >1e-2 | iters |\n"
-               "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        out << "| query | input | method | ns median | ns min | ns max | err median | err p99 | err max | >1e-6 | >1e-2 | iters | time / cdlab |\n"
+               "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     } else {
-        std::snprintf(line, sizeof line, "%-14s %-24s %-22s %9s %9s %9s %9s %9s %9s %7s %7s %6s\n", "query", "input",
-                      "method", "ns med", "ns min", "ns max", "err med", "err p99", "err max", ">1e-6", ">1e-2", "iters");
+        std::snprintf(line, sizeof line, "%-14s %-22s %-24s %9s %9s %9s %9s %9s %9s %7s %7s %6s %7s\n", "query", "input",
+                      "method", "ns med", "ns min", "ns max", "err med", "err p99", "err max", ">1e-6", ">1e-2", "iters",
+                      "/cdlab");
         out << line;
     }
     for (const Row& r : rows) {
-        const char* f = markdown ? "| %s | %s | %s | %.1f | %.1f | %.1f | %.2g | %.2g | %.2g | %.3g | %.3g | %.2f |\n"
-                                 : "%-14s %-24s %-22s %9.1f %9.1f %9.1f %9.2g %9.2g %9.2g %7.3g %7.3g %6.2f\n";
+        const char* f = markdown ? "| %s | %s | %s | %.1f | %.1f | %.1f | %.2g | %.2g | %.2g | %.3g | %.3g | %.2f | %s |\n"
+                                 : "%-14s %-22s %-24s %9.1f %9.1f %9.1f %9.2g %9.2g %9.2g %7.3g %7.3g %6.2f %7s\n";
+        const std::string ratio = r.ratio > 0 ? fmt("%.2f", r.ratio) : "";
         std::snprintf(line, sizeof line, f, r.query.c_str(), r.input.c_str(), r.method.c_str(), r.nsMedian, r.nsMin,
-                      r.nsMax, r.error.median, r.error.p99, r.error.max, r.error.above1e6, r.error.above1e2, r.iterations);
+                      r.nsMax, r.error.median, r.error.p99, r.error.max, r.error.above1e6, r.error.above1e2, r.iterations,
+                      ratio.c_str());
         out << line;
     }
 }
@@ -335,7 +340,8 @@ nlohmann::json toJson(const std::vector<Row>& rows, const std::string& machine, 
                              {"fraction_above_1e-6", r.error.above1e6},
                              {"fraction_above_1e-2", r.error.above1e2},
                              {"iterations_mean", r.iterations},
-                             {"boolean", r.boolean}});
+                             {"boolean", r.boolean},
+                             {"time_ratio_to_cdlab", r.ratio}});
     }
     return j;
 }
@@ -422,11 +428,37 @@ int runBench(int argc, char** argv)
                 },
                 [&](int i, const Answer& a) { return relativeError(a.value, set[i].oracle.distance, 1.0); });
         };
+        // Peers (libccd, Bullet) on the same pairs, each row's time relative to cdlab's row `reference`.
+        auto peerRows = [&](const std::string& query, const std::string& input, const std::vector<const PolyPair*>& set,
+                            size_t reference, const std::function<double(int, const Answer&)>& error, bool boolean) {
+#ifdef CDLAB_BENCH_PEERS
+            std::vector<PeerPair> peerPairs;
+            for (const PolyPair* p : set) peerPairs.push_back({&p->va, &p->vb, &p->a, &p->b});
+            for (const PeerRunner& peer : makePeerRunners(peerPairs, query)) {
+                Row row = measure(
+                    settings, query, input, peer.method, static_cast<int>(set.size()),
+                    [&](int i) {
+                        const PeerAnswer a = peer.run(i);
+                        return Answer{a.value, a.iterations};
+                    },
+                    error, boolean);
+                row.ratio = row.nsMedian / rows[reference].nsMedian;
+                rows.push_back(row);
+            }
+#else
+            (void)query, (void)input, (void)set, (void)reference, (void)error, (void)boolean;
+#endif
+        };
+        std::vector<const PolyPair*> sepPointers;
+        for (const auto& p : sep) sepPointers.push_back(&p);
         GjkOptions sv;
         GjkOptions johnson;
         johnson.solver = SimplexSolver::Johnson;
+        const size_t distanceReference = rows.size();
         rows.push_back(distanceRow(sep, tag + " separated", "SV tol 1e-13", sv));
         rows.push_back(distanceRow(sep, tag + " separated", "Johnson tol 1e-13", johnson));
+        peerRows("gjk_distance", tag + " separated", sepPointers, distanceReference,
+                 [&](int i, const Answer& a) { return relativeError(a.value, sepPointers[i]->oracle.distance, 1.0); }, false);
         if (nv == 16 || nv == 64) {
             for (double tol : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14}) {
                 GjkOptions o;
@@ -453,6 +485,8 @@ int runBench(int argc, char** argv)
         std::vector<const PolyPair*> both;
         for (const auto& p : sep) both.push_back(&p);
         for (const auto& p : pen) both.push_back(&p);
+        auto wrongBoolean = [&](int i, const Answer& a) { return (a.value != 0.0) != both[i]->oracle.inside ? 1.0 : 0.0; };
+        const size_t intersectReference = rows.size();
         rows.push_back(measure(
             settings, "gjk_intersect", tag + " sep+pen", "SV", static_cast<int>(both.size()),
             [&](int i) {
@@ -460,11 +494,14 @@ int runBench(int argc, char** argv)
                 const bool hit = gjkIntersect(both[i]->a, both[i]->b, {}, nullptr, &r);
                 return Answer{hit ? 1.0 : 0.0, r.iterations};
             },
-            [&](int i, const Answer& a) { return (a.value != 0.0) != both[i]->oracle.inside ? 1.0 : 0.0; }, true));
+            wrongBoolean, true));
+        peerRows("gjk_intersect", tag + " sep+pen", both, intersectReference, wrongBoolean, true);
         // Penetration depth (GJK + EPA) on the overlapping pairs.
         std::vector<const PolyPair*> inside;
         for (const auto& p : pen)
             if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
+        auto depthError = [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); };
+        const size_t depthReference = rows.size();
         for (double tol : {1e-13, 1e-6, 1e-3}) {
             EpaOptions o;
             o.relativeTolerance = tol;
@@ -475,8 +512,9 @@ int runBench(int argc, char** argv)
                     const EpaResult r = penetration(inside[i]->a, inside[i]->b, o);
                     return Answer{r.depth, r.iterations};
                 },
-                [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); }));
+                depthError));
         }
+        peerRows("epa_depth", tag + " penetrating", inside, depthReference, depthError, false);
     }
 
     // ---- boxes ------------------------------------------------------------------------------------
