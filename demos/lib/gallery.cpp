@@ -39,7 +39,7 @@ void writeGallery(const std::string& outDir) {
         if (j.is_discarded()) continue;
         std::string id = m.parent_path().parent_path().filename().string() + "/" + m.parent_path().filename().string();
         scenes.emplace_back(id, j);
-        h << "<a href=\"#" << htmlEscape(id) << "\">" << htmlEscape(id) << "</a>";
+        h << "<a href=\"#" << htmlEscape(id) << "\">" << htmlEscape(id) << "</a>\n";
     }
     h << "</nav>\n";
     for (const auto& [id, j] : scenes) {
