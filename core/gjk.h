@@ -272,8 +272,9 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
         }
         const double vw = v.dot(sup.w);
         const double gapTest = vv - vw;  // = |v| (upper - lower) when vw > 0
-        if (vw > 0.0) r.lowerBound = std::max(r.lowerBound, vw / std::sqrt(vv));
-        r.upperBound = std::sqrt(vv);
+        const double vNorm = std::sqrt(vv);
+        if (vw > 0.0) r.lowerBound = std::max(r.lowerBound, vw / vNorm);
+        r.upperBound = vNorm;
         GjkTraceStep* step = nullptr;
         if (trace) {
             trace->steps.emplace_back();

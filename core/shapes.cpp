@@ -194,14 +194,4 @@ int PolytopeShape::supportIndexClimb(const Vec3& d, int start) const {
     }
 }
 
-int PolytopeShape::supportIndex(const Vec3& d) const {
-    if (!hasAdjacency() || vertexCount() <= kLoopMaxVertices) return supportIndexLoop(d);
-    return supportIndexClimb(d, -1);
-}
-
-int PolytopeShape::supportIndex(const Vec3& d, int startVertex) const {
-    if (!hasAdjacency() || vertexCount() <= kLoopMaxVertices) return supportIndexLoop(d);
-    return supportIndexClimb(d, startVertex);
-}
-
 }  // namespace cdlab

@@ -245,10 +245,14 @@ public:
     double boundingRadius() const { return boundingRadius_; }
 
     /// Index of a maximal vertex for d (loop or climb as described above); -1 if empty.
-    int supportIndex(const Vec3& d) const;
+    int supportIndex(const Vec3& d) const { return supportIndex(d, -1); }
     /// Same, hill climbing from startVertex (e.g. the previous answer: warm start) when there is
     /// adjacency and more than kLoopMaxVertices vertices; an invalid start falls back to the seeds.
-    int supportIndex(const Vec3& d, int startVertex) const;
+    int supportIndex(const Vec3& d, int startVertex) const {
+        // Inline dispatch: GJK's inner loop pays one call, not two.
+        if (adjacencyStart_.empty() || soa_.size() <= 3 * static_cast<size_t>(kLoopMaxVertices)) return supportIndexLoop(d);
+        return supportIndexClimb(d, startVertex);
+    }
     /// Brute-force loop over all vertices: first maximal vertex; -1 if empty.
     int supportIndexLoop(const Vec3& d) const;
     /// Hill climbing from startVertex (requires adjacency); the loop if there is none.
