@@ -27,9 +27,12 @@ using namespace render;
 
 const std::vector<std::string> kLayers = {"minkowski", "simplex", "direction", "support", "witness", "labels"};
 
-const char* regionKind(std::size_t letters) {
-    static const char* kKind[5] = {"", "vertex", "edge", "face", "tetrahedron: origin inside"};
-    return kKind[std::min<std::size_t>(letters, 4)];
+// What a kept sub-simplex of `letters` vertices is; a full simplex (dimension + 1 vertices) only
+// survives the reduction when it holds the origin.
+std::string regionKind(std::size_t letters, int dimension) {
+    if (int(letters) == dimension + 1) return dimension == 2 ? "triangle: origin inside" : "tetrahedron: origin inside";
+    static const char* kKind[4] = {"", "vertex", "edge", "face"};
+    return kKind[std::min<std::size_t>(letters, 3)];
 }
 
 Json vertexJson(const GjkVertex& v) { return {{"w", vec3Json(v.w)}, {"a", vec3Json(v.a)}, {"b", vec3Json(v.b)}}; }
@@ -255,8 +258,10 @@ private:
         }
         std::string sub;
         if (s) {
-            sub = "kept: region " + s->region + " (" + regionKind(s->region.size()) + ")";
-            if (s->terminated && int(s->region.size()) == s->simplexCount && s->region.size() < 4) sub = "loop ends here";
+            sub = "kept: region " + s->region + " (" + regionKind(s->region.size(), pair_.dimension) + ")";
+            // Converged / duplicate support: the loop stopped before reducing W ∪ {w}.
+            if (s->terminated && trace.termination != GjkTermination::OriginInSimplex)
+                sub = std::string("loop ends here (") + terminationName(trace.termination) + "): simplex not reduced";
         } else {
             sub = touching ? "origin inside the simplex: intersecting" : "final simplex";
         }
