@@ -398,7 +398,8 @@ private:
                 cs.drawArrow(Vec3::Zero(), run.normal * 0.3 * d.cRadius, lineStyle(Role::Direction, 3.0f, false, true));
             }
             sub = run.status == EpaStatus::Separated ? "GJK: the origin is outside A − B (no penetration)"
-                                                     : "penetration vector: origin to the nearest boundary point";
+                  : run.depth > 0 ? "penetration vector: origin to the nearest boundary point"
+                                  : "origin on the boundary: depth 0, contact normal n";
         }
         drawPanelHeading(cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""), sub);
 
