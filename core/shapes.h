@@ -250,7 +250,7 @@ public:
     /// adjacency and more than kLoopMaxVertices vertices; an invalid start falls back to the seeds.
     int supportIndex(const Vec3& d, int startVertex) const {
         // Inline dispatch: GJK's inner loop pays one call, not two.
-        if (adjacencyStart_.empty() || soa_.size() <= 3 * static_cast<size_t>(kLoopMaxVertices)) return supportIndexLoop(d);
+        if (adjacencyStart_.empty() || vertices_.size() <= static_cast<size_t>(kLoopMaxVertices)) return supportIndexLoop(d);
         return supportIndexClimb(d, startVertex);
     }
     /// Brute-force loop over all vertices: first maximal vertex; -1 if empty.
@@ -269,9 +269,6 @@ private:
     int seedVertex(const Vec3& d) const;
 
     std::vector<Vec3> vertices_;
-    // Structure-of-arrays copy of vertices_ for the loop: x[0..n), y[0..n), z[0..n) at offsets
-    // 0, n, 2n, so two (or four) vertices are dotted with d per SIMD instruction.
-    std::vector<double> soa_;
     std::vector<int> adjacencyStart_;  // CSR: neighbours of i are adjacency_[start[i] .. start[i+1])
     std::vector<int> adjacency_;
     std::array<int, 6> axisExtremes_{};  // argmax/argmin of x, y, z: cold-start seeds
