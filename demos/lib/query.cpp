@@ -1,5 +1,7 @@
 #include "demos/lib/query.h"
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -21,8 +23,16 @@ Json closestPointTriangle(ObjectReader& r) {
     if (t.size() != 3) t.fail("expected [a, b, c]");
     std::vector<Vec3> v = t.asVec3List();
     r.finish();
-    ClosestPointOnTriangleResult res = closestPointOnTriangle(p, Triangle{v[0], v[1], v[2]});
-    return {{"point", vecJson(res.point)}, {"region", toString(res.region)}};
+    // Scale by a power of two (exact) so the largest coordinate is in [0.5, 1): the exact region
+    // predicates hold for magnitudes in [2^-200, 2^240], and this brings 1e-300 or 1e300 inputs there.
+    double m = std::max({p.cwiseAbs().maxCoeff(), v[0].cwiseAbs().maxCoeff(), v[1].cwiseAbs().maxCoeff(),
+                         v[2].cwiseAbs().maxCoeff()});
+    int e = 0;
+    if (m > 0) std::frexp(m, &e);
+    const auto scale = [](const Vec3& x, int k) { return Vec3(x.unaryExpr([k](double c) { return std::ldexp(c, k); })); };
+    ClosestPointOnTriangleResult res =
+        closestPointOnTriangle(scale(p, -e), Triangle{scale(v[0], -e), scale(v[1], -e), scale(v[2], -e)});
+    return {{"point", vecJson(scale(res.point, e))}, {"region", toString(res.region)}};
 }
 
 }  // namespace

@@ -312,6 +312,29 @@ PairAnswer solvePair(const QueryShape& a, const QueryShape& b, bool wantDepth, b
     return boundedPair(a, clipRay(b, a), wantDepth, wantTrace);
 }
 
+// Exact rescaling by a power of two so that the largest coordinate or radius is in [0.5, 1):
+// tiny inputs (1e-300) would underflow squared norms, huge ones (1e308) overflow differences.
+// Multiplying by 2^k changes no bit of the mantissas, so the answer scaled back is the answer.
+int normalisingExponent(const QueryShape& a, const QueryShape& b) {
+    double m = 0;
+    for (const QueryShape* s : {&a, &b}) {
+        for (const Vec3& v : s->vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
+        m = std::max({m, s->radius, s->origin.cwiseAbs().maxCoeff()});
+        if (s->kind == Kind::Plane) m = std::max(m, std::abs(s->offset) / s->normal.norm());
+    }
+    if (m == 0) return 0;
+    int e;
+    std::frexp(m, &e);  // m = f 2^e, f in [0.5, 1)
+    return -e;
+}
+
+void scaleShape(QueryShape& s, int k) {
+    for (Vec3& v : s.vertices) v = v.unaryExpr([k](double x) { return std::ldexp(x, k); });
+    s.radius = std::ldexp(s.radius, k);
+    s.origin = s.origin.unaryExpr([k](double x) { return std::ldexp(x, k); });
+    s.offset = std::ldexp(s.offset, k);  // n·(2^k x) = 2^k d
+}
+
 bool isBox(const QueryShape& s) { return s.kind == Kind::Aabb || s.kind == Kind::Obb; }
 
 Obb toObb(const QueryShape& s) {
@@ -355,7 +378,17 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
     }
 
     const bool wantDepth = op == "penetration";
+    const int k = normalisingExponent(a, b);
+    scaleShape(a, k);
+    scaleShape(b, k);
     PairAnswer ans = solvePair(a, b, wantDepth, wantTrace);
+    const auto unscale = [k](double x) { return std::ldexp(x, -k); };
+    ans.distance = unscale(ans.distance);
+    ans.depth = unscale(ans.depth);
+    ans.pointA = ans.pointA.unaryExpr(unscale);
+    ans.pointB = ans.pointB.unaryExpr(unscale);
+    if (!std::isfinite(ans.distance) || !std::isfinite(ans.depth) || !ans.pointA.allFinite() || !ans.pointB.allFinite())
+        throw InputError("query: the answer overflows double precision (coordinates too large)");
     Json out;
     if (op == "intersect") {
         out = {{"intersect", ans.intersect}};
@@ -370,7 +403,8 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
             out = {{"intersect", false}, {"distance", ans.distance}, {"normal", vecJson(ans.normal)},
                    {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
     }
-    if (wantTrace && !ans.trace.is_null()) out["trace"] = ans.trace;
+    // Trace coordinates are those of the normalised problem: world = unit * trace value.
+    if (wantTrace && !ans.trace.is_null()) out["trace"] = {{"unit", std::ldexp(1.0, -k)}, {"algorithms", ans.trace}};
     return out;
 }
 

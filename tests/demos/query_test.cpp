@@ -218,6 +218,24 @@ TEST_CASE("planes and rays") {
     CHECK(rr["distance"].get<double>() == doctest::Approx(std::sqrt(3.0)));  // t = s = 0: both origins;
 }
 
+TEST_CASE("tiny and huge scales: answers scale exactly, no underflow or overflow") {
+    // The same configuration at 1, 2^-990 and 2^1000: distances scale by the same power of two.
+    for (int k : {0, -990, 1000}) {
+        CAPTURE(k);
+        const double s = std::ldexp(1.0, k);
+        Json q = {{"op", "distance"}, {"a", {{"segment", {{0.0, 0.0, 0.0}, {s, 0.0, 0.0}}}}}, {"b", {{"point", {0.5 * s, 0.75 * s, 0.0}}}}};
+        Json d = ask(q);
+        REQUIRE_MESSAGE(!d.contains("error"), d.dump());
+        CHECK(d["distance"].get<double>() == 0.75 * s);
+        Json t = ask({{"op", "closest_point_triangle"}, {"point", {2 * s, -s, 0.5 * s}},
+                      {"triangle", {{0.0, 0.0, 0.0}, {4 * s, 0.0, 0.0}, {s, 3 * s, 0.0}}}});
+        CHECK(t["region"] == "AB");
+        CHECK(t["point"][0].get<double>() == 2 * s);
+    }
+    Json over = ask(Json::parse(R"({"op":"distance","a":{"point":[1e308,0,0]},"b":{"point":[-1e308,0,0]}})"));
+    CHECK(over["error"].get<std::string>().find("overflows") != std::string::npos);
+}
+
 TEST_CASE("closest_point_triangle answers point and region") {
     Json a = ask(Json::parse(R"({"id":"x","op":"closest_point_triangle","point":[2,-1,0.5],"triangle":[[0,0,0],[4,0,0],[1,3,0]]})"));
     CHECK(a["id"] == "x");
