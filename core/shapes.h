@@ -233,10 +233,19 @@ public:
         return i >= 0 ? vertices_[i] : Vec3::Zero();
     }
     /// Same point as support(d) up to ties, with a caller-held hint for frame / iteration coherence
-    /// (GJK and EPA keep one per shape): hill climbing starts at `hint` (-1: cold seeds) and the
-    /// answer's index is written back. Small polytopes (or no adjacency) ignore it and loop.
+    /// (GJK keeps one per shape): hill climbing starts at `hint` or at the best axis-extreme seed,
+    /// whichever is higher along d (a hint from a very different direction, as in GJK's first
+    /// iterations, would cost a long climb), and the answer's index is written back (-1: no hint).
+    /// Small polytopes (or no adjacency) ignore it and loop.
     Vec3 support(const Vec3& d, int& hint) const {
-        const int i = supportIndex(d, hint);
+        int i;
+        if (adjacencyStart_.empty() || vertices_.size() <= static_cast<size_t>(kLoopMaxVertices)) {
+            i = supportIndexLoop(d);
+        } else {
+            int start = seedVertex(d);
+            if (hint >= 0 && hint < vertexCount() && d.dot(vertices_[hint]) > d.dot(vertices_[start])) start = hint;
+            i = supportIndexClimb(d, start);
+        }
         hint = i;
         return i >= 0 ? vertices_[i] : Vec3::Zero();
     }
