@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <string_view>
 
 #include "core/closest_point.h"
 #include "demos/lib/query_ops.h"
@@ -73,7 +74,9 @@ int runQueries(std::istream& in, std::ostream& out) {
         Json id = a["id"];
         a.erase("id");
         std::string body = dump(a);
-        out << "{\"id\":" << dump(id) << (body.size() > 2 ? "," + body.substr(1) : std::string("}")) << '\n';
+        out << "{\"id\":" << dump(id);
+        if (body.size() > 2) out << ',' << std::string_view(body).substr(1) << '\n';
+        else out << "}\n";
     }
     out.flush();
     return failed ? 1 : 0;
