@@ -1,5 +1,5 @@
 // EPA step-through. Numbers come from core (gjkDistance + epaPenetration with their traces) or, for
-// planar scenes, from epaPenetration2d (demos/lib/epa_2d.h: core's 3D EPA reports flat input as
+// planar scenes, from epaPenetration2d (core/epa_2d.h: core's 3D EPA reports flat input as
 // touching). This file converts both traces into one drawable form and draws them.
 //
 // Scene keys (besides the common ones and the pair keys of support_scene.h):
@@ -15,7 +15,7 @@
 #include "core/epa.h"
 #include "core/gjk.h"
 #include "demos/lib/contact_sheet.h"
-#include "demos/lib/epa_2d.h"
+#include "core/epa_2d.h"
 #include "demos/lib/figure_style.h"
 #include "demos/lib/support_scene.h"
 #include "render/canvas.h"

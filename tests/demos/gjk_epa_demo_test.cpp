@@ -15,7 +15,7 @@
 #include <set>
 
 #include "demos/lib/demo.h"
-#include "demos/lib/epa_2d.h"
+#include "core/epa_2d.h"
 #include "demos/lib/support_scene.h"
 #include "render/gif_writer.h"
 

@@ -20,7 +20,7 @@
 #include "core/epa.h"
 #include "core/gjk.h"
 
-namespace cdlab::demos {
+namespace cdlab {
 
 /// One iteration: the polygon before expansion (CCW, z = 0) and what the iteration did.
 struct Epa2dStep {
@@ -222,4 +222,4 @@ Epa2dResult epaPenetration2d(const A& shapeA, const B& shapeB, const GjkSimplex&
     return stop(why);
 }
 
-}  // namespace cdlab::demos
+}  // namespace cdlab
