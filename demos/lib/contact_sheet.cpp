@@ -51,4 +51,13 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     return sheet;
 }
 
+Frame contactSheetFrame(render::GlContext& gl, const std::vector<const Frame*>& frames, const std::string& sceneTitle,
+                        const ContactSheetOptions& options) {
+    Frame sheet;
+    sheet.name = "contact_sheet";
+    sheet.caption = sceneTitle + " — contact sheet";
+    sheet.image = makeContactSheet(gl, frames, options);
+    return sheet;
+}
+
 }  // namespace cdlab::demos

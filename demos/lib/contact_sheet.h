@@ -19,4 +19,8 @@ struct ContactSheetOptions {
 render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Frame*>& frames,
                                const ContactSheetOptions& options);
 
+/// The scene's "contact_sheet" frame: makeContactSheet of `frames`, captioned "<sceneTitle> — contact sheet".
+Frame contactSheetFrame(render::GlContext& gl, const std::vector<const Frame*>& frames, const std::string& sceneTitle,
+                        const ContactSheetOptions& options);
+
 }  // namespace cdlab::demos

@@ -106,11 +106,7 @@ public:
             o.title = common_.title + ": EPA, one iteration per frame";
             o.cellWidth = 320;
             o.columns = std::min<int>(3, int(all.size()));
-            Frame sheet;
-            sheet.name = "contact_sheet";
-            sheet.caption = common_.title + " — contact sheet";
-            sheet.image = makeContactSheet(*ctx.gl, all, o);
-            out.frames.push_back(std::move(sheet));
+            out.frames.push_back(contactSheetFrame(*ctx.gl, all, common_.title, o));
         }
         return out;
     }

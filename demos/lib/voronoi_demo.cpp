@@ -55,6 +55,24 @@ Json testsJson(const std::vector<Test>& tests) {
     return out;
 }
 
+// One query of the trace: the same fields for triangle and tetrahedron results.
+template <class Result, class Tests>
+Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
+    Json weights = Json::array();
+    for (int i = 0; i < r.barycentric.size(); ++i) weights.push_back(r.barycentric[i]);
+    return {{"point", vecJson(point)},         {"region", toString(r.region)},
+            {"closest", vecJson(r.point)},     {"barycentric", weights},
+            {"distance", std::sqrt(r.distanceSquared)}, {"degenerate", r.status != SimplexStatus::Regular},
+            {"tests", testsJson(tests)}};
+}
+
+// Caption of the step frame of query i.
+template <class Result>
+std::string focusCaption(int i, const Vec3& point, const Result& r) {
+    return "q" + std::to_string(i + 1) + " " + formatPoint(point) + ": region " + toString(r.region) + ", closest " +
+           formatPoint(r.point) + ", distance " + formatNumber(std::sqrt(r.distanceSquared));
+}
+
 Color regionColor(int regionIndex) { return categorical(regionIndex); }
 
 // Tetrahedron regions are coloured by the dimension of their feature (vertex, edge, face, inside).
@@ -122,16 +140,7 @@ private:
         out.trace["simplex"] = "triangle";
         out.trace["vertices"] = {vecJson(tri.a), vecJson(tri.b), vecJson(tri.c)};
         Json qs = Json::array();
-        for (const auto& r : results) {
-            const auto& res = r.trace.result;
-            qs.push_back({{"point", vecJson(r.point)},
-                          {"region", toString(res.region)},
-                          {"closest", vecJson(res.point)},
-                          {"barycentric", vecJson(res.barycentric)},
-                          {"distance", std::sqrt(res.distanceSquared)},
-                          {"degenerate", res.status != SimplexStatus::Regular},
-                          {"tests", testsJson(r.trace.tests)}});
-        }
+        for (const auto& r : results) qs.push_back(queryJson(r.point, r.trace.result, r.trace.tests));
         out.trace["queries"] = qs;
         if (!ctx.gl) {  // numeric only
             out.skipped.push_back("all drawing (no GL context)");
@@ -243,12 +252,7 @@ private:
             }
         }
         std::string caption = common_.caption;
-        if (focus >= 0) {
-            const auto& r = results[focus].trace.result;
-            caption = "q" + std::to_string(focus + 1) + " " + formatPoint(results[focus].point) + ": region " +
-                      toString(r.region) + ", closest " + formatPoint(r.point) + ", distance " +
-                      formatNumber(std::sqrt(r.distanceSquared));
-        }
+        if (focus >= 0) caption = focusCaption(focus, results[focus].point, results[focus].trace.result);
         drawTitleAndCaption(canvas, common_.title + (is3d ? " (3D)" : ""), caption);
         Frame f;
         f.name = focus >= 0 ? stepName(focus) : view;
@@ -272,16 +276,7 @@ private:
         out.trace["simplex"] = "tetrahedron";
         out.trace["vertices"] = {vecJson(tet.a), vecJson(tet.b), vecJson(tet.c), vecJson(tet.d)};
         Json qs = Json::array();
-        for (const auto& r : results) {
-            const auto& res = r.trace.result;
-            qs.push_back({{"point", vecJson(r.point)},
-                          {"region", toString(res.region)},
-                          {"closest", vecJson(res.point)},
-                          {"barycentric", {res.barycentric[0], res.barycentric[1], res.barycentric[2], res.barycentric[3]}},
-                          {"distance", std::sqrt(res.distanceSquared)},
-                          {"degenerate", res.status != SimplexStatus::Regular},
-                          {"tests", testsJson(r.trace.tests)}});
-        }
+        for (const auto& r : results) qs.push_back(queryJson(r.point, r.trace.result, r.trace.tests));
         out.trace["queries"] = qs;
         if (!ctx.gl) {
             out.skipped.push_back("all drawing (no GL context)");
@@ -364,12 +359,7 @@ private:
             canvas.drawTextPx(22, y, kinds[k], ts);
         }
         std::string caption = common_.caption;
-        if (focus >= 0) {
-            const auto& r = results[focus].trace.result;
-            caption = "q" + std::to_string(focus + 1) + " " + formatPoint(results[focus].point) + ": region " +
-                      toString(r.region) + ", closest " + formatPoint(r.point) + ", distance " +
-                      formatNumber(std::sqrt(r.distanceSquared));
-        }
+        if (focus >= 0) caption = focusCaption(focus, results[focus].point, results[focus].trace.result);
         drawTitleAndCaption(canvas, common_.title, caption);
         Frame f;
         f.name = focus >= 0 ? stepName(focus) : "3d";
@@ -395,11 +385,7 @@ private:
         for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
         ContactSheetOptions o;
         o.title = common_.title + ": one query point per frame";
-        Frame sheet;
-        sheet.name = "contact_sheet";
-        sheet.caption = common_.title + " — contact sheet";
-        sheet.image = makeContactSheet(*ctx.gl, steps, o);
-        out.frames.push_back(std::move(sheet));
+        out.frames.push_back(contactSheetFrame(*ctx.gl, steps, common_.title, o));
     }
 };
 
