@@ -74,13 +74,17 @@ public:
         const EpaRun run = compute();
         DemoOutput out;
         out.trace = traceJson(run);
-        if (!ctx.gl) return out;
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
 
         Drawing d;
         d.planar = pair_.dimension == 2;
         d.a = shapeDrawable(pair_.a);
         d.b = shapeDrawable(pair_.b);
         if (common_.hasLayer("minkowski")) d.c = minkowskiDrawable(pair_.a, pair_.b, &d.exact);
+        else out.skipped.push_back("Minkowski difference hull (no 'minkowski' layer)");
         std::vector<Vec3> cpts = d.c.valid ? d.c.vertices : std::vector<Vec3>{};
         for (const PolyStep& s : run.steps) {
             cpts.insert(cpts.end(), s.vertices.begin(), s.vertices.end());

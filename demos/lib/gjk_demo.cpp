@@ -55,13 +55,17 @@ public:
         const GjkResult r = gjkDistance(pair_.a, pair_.b, options_, &trace);
         DemoOutput out;
         out.trace = traceJson(r, trace);
-        if (!ctx.gl) return out;
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
 
         Drawing d;
         d.planar = pair_.dimension == 2;
         d.a = shapeDrawable(pair_.a);
         d.b = shapeDrawable(pair_.b);
         if (common_.hasLayer("minkowski")) d.c = minkowskiDrawable(pair_.a, pair_.b, &d.exact);
+        else out.skipped.push_back("Minkowski difference hull (no 'minkowski' layer)");
         // Configuration-space framing: A − B (or the simplices, without it) and the origin.
         std::vector<Vec3> cpts = d.c.valid ? d.c.vertices : std::vector<Vec3>{};
         for (const GjkTraceStep& s : trace.steps) {

@@ -3,6 +3,8 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -16,7 +18,7 @@ TEST_CASE("gallery index.html renders in headless chromium with its images") {
     const char* chromium = "/usr/bin/chromium";
     REQUIRE_MESSAGE(fs::exists(chromium), "Debian chromium is needed (./cdlab test installs it)");
 
-    fs::path root = fs::temp_directory_path() / "cdlab_gallery_test";
+    fs::path root = fs::temp_directory_path() / ("cdlab_gallery_test_" + std::to_string(getpid()));
     fs::remove_all(root);
     fs::create_directories(root / "golden" / "voronoi_triangle");
     std::ofstream(root / "golden" / "voronoi_triangle" / "gallery.json") << R"({

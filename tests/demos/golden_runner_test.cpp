@@ -2,6 +2,8 @@
 // golden image is perturbed, is not a PNG, or is missing, and when a trace number moves.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -15,7 +17,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path makeGoldenDir() {
-    fs::path root = fs::temp_directory_path() / "cdlab_golden_runner_test";
+    fs::path root = fs::temp_directory_path() / ("cdlab_golden_runner_test_" + std::to_string(getpid()));
     fs::remove_all(root);
     fs::create_directories(root / "voronoi_triangle");
     std::ofstream(root / "voronoi_triangle" / "small.json") << R"({

@@ -1,6 +1,8 @@
 // Scene loading, bad input (one clear line, exit 2, no output) and trace comparison.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -14,7 +16,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string writeTemp(const std::string& name, const std::string& text) {
-    fs::path dir = fs::temp_directory_path() / "cdlab_scene_test";
+    fs::path dir = fs::temp_directory_path() / ("cdlab_scene_test_" + std::to_string(getpid()));
     fs::create_directories(dir);
     fs::path p = dir / name;
     std::ofstream(p) << text;
@@ -74,7 +76,7 @@ TEST_CASE("errors name the file and the JSON path or byte position") {
 }
 
 TEST_CASE("a bad scene exits with status 2 and writes no output") {
-    fs::path out = fs::temp_directory_path() / "cdlab_scene_test_out";
+    fs::path out = fs::temp_directory_path() / ("cdlab_scene_test_out_" + std::to_string(getpid()));
     fs::remove_all(out);
     std::string bad = writeTemp("bad.json", R"({"demo":"voronoi_triangle","triangle":[[0,0,0]],"queries":[[1,1,1]]})");
     std::string outArg = out.string();
