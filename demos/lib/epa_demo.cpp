@@ -79,23 +79,13 @@ public:
             return out;
         }
 
-        Drawing d;
-        d.planar = pair_.dimension == 2;
-        d.a = shapeDrawable(pair_.a);
-        d.b = shapeDrawable(pair_.b);
-        if (common_.hasLayer("minkowski")) d.c = minkowskiDrawable(pair_.a, pair_.b, &d.exact);
-        else out.skipped.push_back("Minkowski difference hull (no 'minkowski' layer)");
-        std::vector<Vec3> cpts = d.c.valid ? d.c.vertices : std::vector<Vec3>{};
+        std::vector<Vec3> cpts;
         for (const PolyStep& s : run.steps) {
             cpts.insert(cpts.end(), s.vertices.begin(), s.vertices.end());
             cpts.push_back(s.support);
         }
         for (int i = 0; i < run.gjk.simplex.count; ++i) cpts.push_back(run.gjk.simplex.vertex[i].w);
-        cpts.push_back(Vec3::Zero());
-        boundingSphere(cpts, d.cCenter, d.cRadius);
-        std::vector<Vec3> wpts = d.a.vertices;
-        wpts.insert(wpts.end(), d.b.vertices.begin(), d.b.vertices.end());
-        boundingSphere(wpts, d.wCenter, d.wRadius);
+        const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
         const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
@@ -119,12 +109,7 @@ private:
     PairScene pair_;
     EpaOptions options_;
 
-    struct Drawing {
-        bool planar = false, exact = false;
-        ConvexDrawable a, b, c;
-        Vec3 cCenter, wCenter;
-        double cRadius = 1, wRadius = 1;
-    };
+    using Drawing = PairDrawing;
 
     EpaRun compute() const {
         EpaRun run;

@@ -60,23 +60,13 @@ public:
             return out;
         }
 
-        Drawing d;
-        d.planar = pair_.dimension == 2;
-        d.a = shapeDrawable(pair_.a);
-        d.b = shapeDrawable(pair_.b);
-        if (common_.hasLayer("minkowski")) d.c = minkowskiDrawable(pair_.a, pair_.b, &d.exact);
-        else out.skipped.push_back("Minkowski difference hull (no 'minkowski' layer)");
         // Configuration-space framing: A − B (or the simplices, without it) and the origin.
-        std::vector<Vec3> cpts = d.c.valid ? d.c.vertices : std::vector<Vec3>{};
+        std::vector<Vec3> cpts;
         for (const GjkTraceStep& s : trace.steps) {
             for (int i = 0; i < s.simplexCount; ++i) cpts.push_back(s.simplex[i].w);
             cpts.push_back(s.support.w);
         }
-        cpts.push_back(Vec3::Zero());
-        boundingSphere(cpts, d.cCenter, d.cRadius);
-        std::vector<Vec3> wpts = d.a.vertices;
-        wpts.insert(wpts.end(), d.b.vertices.begin(), d.b.vertices.end());
-        boundingSphere(wpts, d.wCenter, d.wRadius);
+        const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
         const int supersample = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
         for (int i : framedSteps(int(trace.steps.size()), pair_.maxStepFrames))
@@ -99,13 +89,7 @@ private:
     PairScene pair_;
     GjkOptions options_;
 
-    struct Drawing {
-        bool planar = false;
-        bool exact = false;
-        ConvexDrawable a, b, c;
-        Vec3 cCenter, wCenter;
-        double cRadius = 1, wRadius = 1;
-    };
+    using Drawing = PairDrawing;
 
     Json traceJson(const GjkResult& r, const GjkTrace& trace) const {
         Json t;

@@ -374,4 +374,21 @@ void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downsc
     out.files.emplace_back("animation.gif", encodeGif(images));
 }
 
+PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vector<Vec3> csPoints,
+                            std::vector<std::string>& skipped) {
+    PairDrawing d;
+    d.planar = pair.dimension == 2;
+    d.a = shapeDrawable(pair.a);
+    d.b = shapeDrawable(pair.b);
+    if (drawMinkowski) d.c = minkowskiDrawable(pair.a, pair.b, &d.exact);
+    else skipped.push_back("Minkowski difference hull (no 'minkowski' layer)");
+    if (d.c.valid) csPoints.insert(csPoints.end(), d.c.vertices.begin(), d.c.vertices.end());
+    csPoints.push_back(Vec3::Zero());
+    boundingSphere(csPoints, d.cCenter, d.cRadius);
+    std::vector<Vec3> wpts = d.a.vertices;
+    wpts.insert(wpts.end(), d.b.vertices.begin(), d.b.vertices.end());
+    boundingSphere(wpts, d.wCenter, d.wRadius);
+    return d;
+}
+
 }  // namespace cdlab::demos

@@ -110,6 +110,20 @@ struct PairScene {
 };
 PairScene readPairScene(ObjectReader& reader);
 
+/// What every GJK and EPA frame draws from: both bodies, A − B (only when `drawMinkowski`), and
+/// the framing spheres of the world panel and of the configuration-space panel.
+struct PairDrawing {
+    bool planar = false, exact = false;  // exact: A − B is the exact hull (polytopes), not sampled
+    ConvexDrawable a, b, c;
+    Vec3 cCenter = Vec3::Zero(), wCenter = Vec3::Zero();
+    double cRadius = 1, wRadius = 1;
+};
+/// Builds the drawing; `csPoints` are the algorithm's configuration-space points (simplices,
+/// support points, polytopes) framed together with A − B and the origin. Records in `skipped`
+/// what was not computed.
+PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vector<Vec3> csPoints,
+                            std::vector<std::string>& skipped);
+
 /// The animated GIF of the step frames (render/gif_writer.h), appended to out.files as
 /// "animation.gif"; frames are box-downsampled by `downscale`.
 void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downscale);
