@@ -123,19 +123,23 @@ private:
             run.pointB = run.gjk.pointB;
             return run;
         }
+        // The 3D and the 2D EPA report the same outcome fields.
+        const auto copyOutcome = [](EpaRun& out, const auto& r, const std::string& start) {
+            out.status = r.status;
+            out.termination = r.termination;
+            out.depth = r.depth;
+            out.lower = r.lowerBound;
+            out.upper = r.upperBound;
+            out.normal = r.normal;
+            out.pointA = r.pointA;
+            out.pointB = r.pointB;
+            out.iterations = r.iterations;
+            out.start = start;
+        };
         if (pair_.dimension == 3) {
             EpaTrace t;
             const EpaResult r = epaPenetration(pair_.a, pair_.b, run.gjk.simplex, options_, &t);
-            run.status = r.status;
-            run.termination = r.termination;
-            run.depth = r.depth;
-            run.lower = r.lowerBound;
-            run.upper = r.upperBound;
-            run.normal = r.normal;
-            run.pointA = r.pointA;
-            run.pointB = r.pointB;
-            run.iterations = r.iterations;
-            run.start = t.start;
+            copyOutcome(run, r, t.start);
             for (const EpaTraceStep& s : t.steps) {
                 PolyStep p;
                 p.iteration = s.iteration;
@@ -161,16 +165,7 @@ private:
         } else {
             Epa2dTrace t;
             const Epa2dResult r = epaPenetration2d(pair_.a, pair_.b, run.gjk.simplex, options_, &t);
-            run.status = r.status;
-            run.termination = r.termination;
-            run.depth = r.depth;
-            run.lower = r.lowerBound;
-            run.upper = r.upperBound;
-            run.normal = r.normal;
-            run.pointA = r.pointA;
-            run.pointB = r.pointB;
-            run.iterations = r.iterations;
-            run.start = t.start;
+            copyOutcome(run, r, t.start);
             for (const Epa2dStep& s : t.steps) {
                 PolyStep p;
                 p.iteration = s.iteration;
