@@ -9,6 +9,7 @@
 #include "demos/lib/demo.h"
 #include "demos/lib/query.h"
 #include "demos/lib/scene_runner.h"
+#include "demos/lib/stress.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 
@@ -26,6 +27,7 @@ constexpr const char* kUsage =
     "            (CDLAB_UPDATE_GOLDEN=1 or =all also updates)\n"
     "  query     JSON Lines queries on stdin, one JSON answer per line on stdout (see README)\n"
     "  bench     time per query against error, per method and setting [--quick] (see README)\n"
+    "  stress    numerical-stability families against independent oracles [--seconds N] (see README)\n"
     "  demos     list the demos\n"
     "exit status: 0 ok, 1 test/comparison failure or failed queries, 2 usage or input error\n";
 
@@ -112,6 +114,7 @@ int cdlabMain(int argc, char** argv) {
             return runQueries(std::cin, std::cout);
         }
         if (cmd == "bench") return runBench(argc - 1, argv + 1);
+        if (cmd == "stress") return runStress(argc - 1, argv + 1);
         if (cmd == "demos") {
             for (const Demo* d : allDemos()) std::cout << d->name() << "\t" << d->description() << "\n";
             return 0;

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "core/closest_point.h"
+#include "demos/lib/query_contact.h"
 #include "demos/lib/query_ops.h"
 #include "demos/lib/query_shapes.h"
 
@@ -48,9 +49,10 @@ Json answerQuery(const std::string& line) {
         ObjectReader r(root);
         r.ignore("id");
         std::string op = r.get("op").asEnum(
-            {"closest_point_triangle", "intersect", "distance", "penetration"});
+            {"closest_point_triangle", "intersect", "distance", "penetration", "contact", "mass_properties"});
         Json result;
         if (op == "closest_point_triangle") result = closestPointTriangle(r);
+        else if (op == "contact" || op == "mass_properties") result = answerContactQuery(op, r);
         else result = answerShapeQuery(op, r);
         answer["id"] = id;
         for (auto it = result.begin(); it != result.end(); ++it) answer[it.key()] = it.value();

@@ -18,6 +18,7 @@
 #include "core/sat_tests.h"
 #include "core/shapes.h"
 #include "demos/lib/query_shapes.h"
+#include "demos/lib/query_vclip.h"
 
 namespace cdlab::demos {
 
@@ -357,11 +358,13 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
     QueryShape a = parseQueryShape(an), b = parseQueryShape(bn);
     std::string method = "gjk";
     if (auto m = r.find("method")) {
-        method = op == "intersect" ? m->asEnum({"gjk", "sat"}) : m->asEnum({"gjk"});
+        method = op == "intersect" ? m->asEnum({"gjk", "sat"}) : m->asEnum({"gjk", "vclip", "lin_canny"});
         if (method == "sat" && !(isBox(a) && isBox(b))) m->fail("method 'sat' needs two boxes (aabb or obb)");
     }
     const bool wantTrace = r.boolOr("trace", false);
     r.finish();
+
+    if (method == "vclip" || method == "lin_canny") return answerFeatureWalkQuery(op, method, a, b, an, bn, wantTrace);
 
     if (method == "sat") {
         SatTrace trace;
