@@ -11,8 +11,8 @@
 namespace cdlab::demos {
 
 /// Reads "a" (a polytope) and the optional "density" from the query object and answers the
-/// mass_properties op. Does not call finish() on the reader's other keys ("op", "id" are the
-/// caller's). Throws InputError for a shape other than a polytope and for a flat / degenerate hull.
+/// mass_properties op; calls r.finish() (the caller has read "op" and ignored "id"). Throws
+/// InputError for a shape other than a polytope, a non-positive density and a flat / degenerate hull.
 Json answerMassPropertiesQuery(ObjectReader& r);
 
 }  // namespace cdlab::demos
