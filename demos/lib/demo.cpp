@@ -17,8 +17,13 @@ const Demo* findDemo(const std::string& name) {
     return nullptr;
 }
 
-std::unique_ptr<PreparedScene> loadScene(const std::string& file) {
-    Json json = readJsonFile(file);
+std::unique_ptr<PreparedScene> loadScene(const std::string& file) { return prepareScene(readJsonFile(file), file); }
+
+std::unique_ptr<PreparedScene> loadSceneText(const std::string& text, const std::string& source) {
+    return prepareScene(parseJson(text, source), source);
+}
+
+std::unique_ptr<PreparedScene> prepareScene(const Json& json, const std::string& file) {
     JsonNode root(json, "$", file);
     if (!root.isObject()) root.fail("a scene must be a JSON object, got " + JsonNode::describe(json));
     auto it = json.find("demo");

@@ -60,5 +60,9 @@ const Demo* findDemo(const std::string& name);
 
 /// Loads a scene file and hands it to its demo (named by the "demo" key). Throws InputError.
 std::unique_ptr<PreparedScene> loadScene(const std::string& file);
+/// The same for scene text already in memory; `source` names it in error messages.
+std::unique_ptr<PreparedScene> loadSceneText(const std::string& text, const std::string& source);
+/// The same for parsed JSON.
+std::unique_ptr<PreparedScene> prepareScene(const Json& json, const std::string& file);
 
 }  // namespace cdlab::demos

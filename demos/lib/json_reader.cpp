@@ -1,20 +1,82 @@
 #include "demos/lib/json_reader.h"
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <vector>
 
 namespace cdlab::demos {
 
+namespace {
+
+// Nesting deeper than this is refused: no scene or query needs more than ~8 levels, and a bound
+// keeps hostile input ("[[[[..." a million deep) from costing memory and time downstream.
+constexpr int kMaxJsonDepth = 64;
+
+// Scans text that already parsed as JSON for what the DOM parser silently accepts: duplicate keys
+// in one object (nlohmann keeps the last one — a typo'd duplicate would hide the first value) and
+// nesting deeper than kMaxJsonDepth. Reports the byte position like a syntax error.
+void checkJsonStructure(const std::string& text, const std::string& source) {
+    struct Level {
+        bool object;
+        bool expectKey;
+        std::set<std::string> keys;
+    };
+    std::vector<Level> stack;
+    const auto error = [&](std::size_t byte, const std::string& what) {
+        throw InputError(source + ": byte " + std::to_string(byte + 1) + ": " + what);
+    };
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '"') {
+            const std::size_t start = i;
+            bool escaped = false;
+            for (++i; i < text.size(); ++i) {
+                if (text[i] == '\\') escaped = true, ++i;
+                else if (text[i] == '"') break;
+            }
+            if (!stack.empty() && stack.back().object && stack.back().expectKey) {
+                std::string raw = text.substr(start, i - start + 1);
+                // Keys with escapes are compared decoded ("a" and "\u0061" are the same key).
+                std::string key = escaped ? Json::parse(raw).get<std::string>() : raw.substr(1, raw.size() - 2);
+                if (!stack.back().keys.insert(key).second)
+                    error(start, "duplicate key " + Json(key).dump(-1, ' ', false, Json::error_handler_t::replace) +
+                                     " in one object");
+                stack.back().expectKey = false;
+            }
+        } else if (c == '{' || c == '[') {
+            if (int(stack.size()) >= kMaxJsonDepth)
+                error(i, "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+            stack.push_back({c == '{', c == '{', {}});
+        } else if (c == '}' || c == ']') {
+            if (!stack.empty()) stack.pop_back();
+        } else if (c == ',' && !stack.empty() && stack.back().object) {
+            stack.back().expectKey = true;
+        }
+    }
+}
+
+}  // namespace
+
 Json parseJson(const std::string& text, const std::string& source) {
     try {
-        return Json::parse(text);
+        Json json = Json::parse(text);
+        checkJsonStructure(text, source);
+        return json;
     } catch (const Json::parse_error& e) {
         // e.what() is "[json.exception.parse_error.101] parse error at line 1, column 5: ..."
         std::string what = e.what();
         auto colon = what.find("] ");
         if (colon != std::string::npos) what = what.substr(colon + 2);
         throw InputError(source + ": byte " + std::to_string(e.byte) + ": " + what);
+    } catch (const Json::exception& e) {
+        // e.g. out_of_range.406 "number overflow parsing '1e400'": a number no double holds.
+        std::string what = e.what();
+        auto colon = what.find("] ");
+        if (colon != std::string::npos) what = what.substr(colon + 2);
+        throw InputError(source + ": " + what);
     }
 }
 
