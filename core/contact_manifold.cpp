@@ -28,8 +28,13 @@ std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, 
                                       std::vector<ManifoldReductionStep>* steps) {
     const int n = static_cast<int>(polygon.size());
     std::vector<int> keep;
-    if (maxPoints <= 0 || maxPoints >= n) {
-        for (int i = 0; i < n; ++i) keep.push_back(i);
+    if (maxPoints <= 0 || maxPoints >= n) {  // keep all, the deepest first
+        int deepest = 0;
+        for (int i = 1; i < n; ++i)
+            if (polygon[i].depth > polygon[deepest].depth) deepest = i;
+        if (n > 0) keep.push_back(deepest);
+        for (int i = 0; i < n; ++i)
+            if (i != deepest) keep.push_back(i);
         return keep;
     }
     // Positions projected onto the plane ⟂ normal (pointB lies on B's surface: use it, then drop
