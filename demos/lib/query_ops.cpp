@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "core/epa.h"
 #include "core/gjk.h"
@@ -50,6 +52,7 @@ struct PairAnswer {
     Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
     bool hasWitness = false;  // separated: closest points / overlapping: deepest points
     Json trace;
+    int traceExponent = 0;  // trace coordinates are 2^traceExponent times those of the query
 };
 
 Json gjkTraceJson(const GjkTrace& t) {
@@ -78,46 +81,90 @@ Json epaTraceJson(const EpaTrace& t) {
 // ---------------------------------------------------------------------------------------------
 // Bounded pairs: GJK / EPA on the cores, radii in closed form.
 
+// Largest |coordinate| of the polytope cores (radii excluded).
+double coreScale(const QueryShape& a, const QueryShape& b) {
+    double s = 0;
+    for (const Vec3& v : a.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
+    for (const Vec3& v : b.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
+    return s;
+}
+
+std::vector<Vec3> scaledPoints(const std::vector<Vec3>& points, int k) {
+    std::vector<Vec3> out;
+    out.reserve(points.size());
+    for (const Vec3& v : points) out.push_back(v.unaryExpr([k](double x) { return std::ldexp(x, k); }));
+    return out;
+}
+
 PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
+    // The cores get their own exact power-of-two scaling: the query as a whole is normalised by
+    // its largest coordinate or radius, and a radius 1e300 times the core size would leave the
+    // cores at 1e-300, where GJK's squared norms underflow (found by fuzzing). Core results are
+    // scaled back before the radii are added, so the radii never see the core exponent.
+    const double cs = coreScale(a, b);
+    int kc = 0;
+    if (cs > 0) std::frexp(cs, &kc), kc = -kc;
+    const auto unscale = [kc](double x) { return std::ldexp(x, -kc); };
+    const auto unscaleVec = [&](const Vec3& v) { return Vec3(v.unaryExpr(unscale)); };
     // Vertex loop support (first maximal vertex: deterministic ties); non-extreme points are harmless.
-    const PolytopeShape ca(a.vertices), cb(b.vertices);
+    const PolytopeShape ca(scaledPoints(a.vertices, kc)), cb(scaledPoints(b.vertices, kc));
     const double radii = a.radius + b.radius;
     const double touch = kTouchRelative * coordinateScale(a, b);
+    const double coreTouch = kTouchRelative * cs;  // rounding noise of the core distance
     PairAnswer ans;
+    ans.traceExponent = kc;
     GjkTrace gtrace;
     GjkResult g = gjkDistance(ca, cb, GjkOptions{}, wantTrace ? &gtrace : nullptr);
     if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
     if (wantTrace) ans.trace = Json::array({gjkTraceJson(gtrace)});
+    const double coreDistance = unscale(g.distance);
+    const Vec3 coreA = unscaleVec(g.pointA), coreB = unscaleVec(g.pointB);
 
-    if (!g.intersect && g.distance > radii + touch) {  // separated
-        ans.distance = g.distance - radii;
+    if (!g.intersect && coreDistance > radii + touch) {  // separated
+        ans.distance = coreDistance - radii;
         ans.normal = g.separatingAxis;  // unit, from A toward B
-        ans.pointA = g.pointA + a.radius * ans.normal;
-        ans.pointB = g.pointB - b.radius * ans.normal;
+        ans.pointA = coreA + a.radius * ans.normal;
+        ans.pointB = coreB - b.radius * ans.normal;
         ans.hasWitness = true;
         return ans;
     }
     ans.intersect = true;
     if (!wantDepth) return ans;
-    if (!g.intersect && g.distance > touch) {
+    if (!g.intersect && coreDistance > coreTouch) {
         // Cores apart, rounded shapes overlapping (or touching): the core axis is the normal.
-        ans.depth = std::max(radii - g.distance, 0.0);
+        ans.depth = std::max(radii - coreDistance, 0.0);
         ans.normal = g.separatingAxis;
     } else {
         EpaTrace etrace;
         EpaResult e = epaPenetration(ca, cb, g.simplex, EpaOptions{}, wantTrace ? &etrace : nullptr);
         if (e.status == EpaStatus::InvalidInput) throw InputError("query: penetration failed: invalid support points");
         if (wantTrace) ans.trace.push_back(epaTraceJson(etrace));
-        ans.depth = e.depth + radii;
-        ans.normal = e.normal;
-        // Deepest points of the cores, pushed out by the radii along the normal.
-        ans.pointA = e.pointA + a.radius * ans.normal;
-        ans.pointB = e.pointB - b.radius * ans.normal;
+        if (std::abs(e.normal.squaredNorm() - 1) < 1e-9) {
+            ans.depth = unscale(e.depth) + radii;
+            ans.normal = e.normal;
+            // Deepest points of the cores, pushed out by the radii along the normal.
+            ans.pointA = unscaleVec(e.pointA) + a.radius * ans.normal;
+            ans.pointB = unscaleVec(e.pointB) - b.radius * ans.normal;
+        } else {
+            // EPA found no valid normal: the cores span ~1e300 in one direction and ~1 in
+            // another, so after normalisation their small features are subnormal (found by
+            // fuzzing). Defined fallback: the coordinate axis of least overlap, with its exact
+            // support-function overlap h_A(n) + h_B(-n) — a valid normal and a depth that separates.
+            double best = std::numeric_limits<double>::infinity();
+            for (int i = 0; i < 6; ++i) {
+                const Vec3 n = (i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2);
+                const double overlap = n.dot(ca.support(n)) - n.dot(cb.support(-n));
+                if (overlap < best) best = overlap, ans.normal = n, ans.pointB = unscaleVec(cb.support(-n));
+            }
+            ans.depth = std::max(unscale(best), 0.0) + radii;
+            ans.pointB -= b.radius * ans.normal;
+            ans.pointA = ans.pointB + ans.depth * ans.normal;
+        }
         ans.hasWitness = true;
         return ans;
     }
-    ans.pointA = g.pointA + a.radius * ans.normal;
-    ans.pointB = g.pointB - b.radius * ans.normal;
+    ans.pointA = coreA + a.radius * ans.normal;
+    ans.pointB = coreB - b.radius * ans.normal;
     ans.hasWitness = true;
     return ans;
 }
@@ -407,7 +454,7 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
                    {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
     }
     // Trace coordinates are those of the normalised problem: world = unit * trace value.
-    if (wantTrace && !ans.trace.is_null()) out["trace"] = {{"unit", std::ldexp(1.0, -k)}, {"algorithms", ans.trace}};
+    if (wantTrace && !ans.trace.is_null()) out["trace"] = {{"unit", std::ldexp(1.0, -k - ans.traceExponent)}, {"algorithms", ans.trace}};
     return out;
 }
 

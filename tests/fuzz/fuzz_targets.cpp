@@ -1,0 +1,114 @@
+#include "tests/fuzz/fuzz_targets.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string_view>
+
+#include "demos/lib/demo.h"
+#include "demos/lib/query.h"
+
+namespace cdlab::fuzz {
+
+using demos::Json;
+
+void contractViolation(const std::string& what, const std::string& input) {
+    std::fprintf(stderr, "fuzz contract violated: %s\ninput (%zu bytes): %.2000s\n", what.c_str(), input.size(),
+                 input.c_str());
+    std::abort();
+}
+
+namespace {
+
+bool isBlank(std::string_view line) { return line.find_first_not_of(" \t\r") == std::string_view::npos; }
+
+}  // namespace
+
+std::string queryAnswerViolation(const std::string& line) {
+    if (line.rfind("{\"id\":", 0) != 0) return "answer does not start with {\"id\": " + line;
+    Json a;
+    try {
+        a = Json::parse(line);
+    } catch (const Json::exception& e) {
+        return std::string("answer is not JSON: ") + e.what() + ": " + line;
+    }
+    if (!a.is_object()) return "answer is not an object: " + line;
+    if (a.contains("error")) {
+        const std::string error = a["error"].is_string() ? a["error"].get<std::string>() : "";
+        if (error.empty() || error.rfind("internal error", 0) == 0) return "not an input error: " + line;
+        return "";
+    }
+    // NaN and Inf print as null: a success answer must hold finite numbers only.
+    const auto finite = [](const Json& v) {
+        if (v.is_null()) return false;
+        if (v.is_array())
+            for (const Json& x : v)
+                if (x.is_null() || (x.is_array() && std::any_of(x.begin(), x.end(), [](const Json& y) { return y.is_null(); })))
+                    return false;
+        return true;
+    };
+    for (auto it = a.begin(); it != a.end(); ++it)
+        if (it.key() != "id" && it.key() != "trace" && !finite(it.value()))
+            return "non-finite value in '" + it.key() + "': " + line;
+    for (const char* key : {"distance", "depth"})
+        if (a.contains(key) && !(a[key].is_number() && a[key].get<double>() >= 0)) return std::string(key) + " < 0: " + line;
+    if (a.contains("normal") && a["normal"].is_array() && a["normal"].size() == 3) {
+        double n2 = 0;
+        for (const Json& c : a["normal"]) n2 += c.get<double>() * c.get<double>();
+        if (std::abs(n2 - 1) > 1e-9) return "normal is not unit: " + line;
+    }
+    return "";
+}
+
+void fuzzQuery(const std::uint8_t* data, std::size_t size) {
+    const std::string input(reinterpret_cast<const char*>(data), size);
+    std::istringstream in(input);
+    std::ostringstream out;
+    try {
+        demos::runQueries(in, out);
+    } catch (const std::exception& e) {
+        contractViolation(std::string("runQueries threw: ") + e.what(), input);
+    }
+    // One answer line per non-blank input line, in order.
+    std::size_t expected = 0;
+    {
+        std::istringstream lines(input);
+        std::string line;
+        while (std::getline(lines, line))
+            if (!isBlank(line)) ++expected;
+    }
+    std::istringstream answers(out.str());
+    std::string line;
+    std::size_t count = 0;
+    while (std::getline(answers, line)) {
+        ++count;
+        if (std::string v = queryAnswerViolation(line); !v.empty()) contractViolation(v, input);
+    }
+    if (count != expected)
+        contractViolation(std::to_string(count) + " answers for " + std::to_string(expected) + " lines", input);
+}
+
+void fuzzScene(const std::uint8_t* data, std::size_t size) {
+    const std::string input(reinterpret_cast<const char*>(data), size);
+    std::unique_ptr<demos::PreparedScene> scene;
+    try {
+        scene = demos::loadSceneText(input, "fuzz.json");
+    } catch (const demos::InputError& e) {
+        if (std::string_view(e.what()).rfind("fuzz.json: ", 0) != 0)
+            contractViolation(std::string("input error does not name the source: ") + e.what(), input);
+        return;
+    } catch (const std::exception& e) {
+        contractViolation(std::string("scene loading threw a non-input error: ") + e.what(), input);
+    }
+    try {
+        scene->run(demos::RunContext{});  // numeric only: no GL context, nothing drawn
+    } catch (const demos::InputError&) {
+        // Some checks need the computation (e.g. a degenerate hull); they are input errors too.
+    } catch (const std::exception& e) {
+        contractViolation(std::string("numeric scene run threw: ") + e.what(), input);
+    }
+}
+
+}  // namespace cdlab::fuzz

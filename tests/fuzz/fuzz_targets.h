@@ -1,0 +1,29 @@
+// Fuzz targets for cdlab's two text entry points, shared by the libFuzzer executables
+// (tests/fuzz/libfuzzer_*.cpp, built by `./cdlab fuzz` with clang) and the bounded mutation run
+// that ctest does (tests/fuzz/fuzz_smoke_test.cpp). A target returns normally when the input was
+// handled as the contract says (an answer, or one clear input error) and calls std::abort() with
+// a message on stderr when it was not, which both drivers report as a crash.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace cdlab::fuzz {
+
+/// `cdlab query`: the bytes are JSON Lines. Every non-blank line gets exactly one answer line that
+/// is valid JSON starting with "id"; an error answer is an input error (never "internal error");
+/// a success answer holds no NaN/Inf (null) values, distances and depths are >= 0, normals unit.
+void fuzzQuery(const std::uint8_t* data, std::size_t size);
+
+/// Scene loading: the bytes are a scene file. It loads, or fails with an InputError naming
+/// the source; a loaded scene then runs numerically (no GL) without any other exception.
+void fuzzScene(const std::uint8_t* data, std::size_t size);
+
+/// What is wrong with one answer line of `cdlab query` ("" when it keeps the contract above).
+std::string queryAnswerViolation(const std::string& line);
+
+/// Reports a broken contract and aborts.
+[[noreturn]] void contractViolation(const std::string& what, const std::string& input);
+
+}  // namespace cdlab::fuzz

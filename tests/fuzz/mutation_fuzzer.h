@@ -1,0 +1,41 @@
+// A small deterministic mutation fuzzer for the bounded fuzz run inside ctest, where libFuzzer
+// (clang only) is not available. It mutates a seed corpus with libFuzzer's cheap byte mutations
+// (flip, insert, erase, duplicate, splice; Serebryany, "Continuous fuzzing with libFuzzer and
+// AddressSanitizer", SecDev 2016) plus JSON-aware ones: numbers replaced by boundary values and
+// grammar tokens inserted. Deterministic for a given seed, so a failing run replays exactly.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace cdlab::fuzz {
+
+class MutationFuzzer {
+public:
+    MutationFuzzer(std::vector<std::string> seeds, std::uint64_t rngSeed, std::size_t maxLength = 4096);
+
+    /// The next input: a seed with 1..4 mutations applied.
+    std::string next();
+
+    /// Runs `target` on every seed verbatim, then on mutated inputs until `seconds` pass or
+    /// `maxExecutions` inputs ran. Returns the number of executions.
+    std::size_t run(const std::function<void(const std::string&)>& target, double seconds, std::size_t maxExecutions);
+
+private:
+    void mutate(std::string& s);
+    std::size_t position(const std::string& s);  // in [0, s.size()]
+
+    std::vector<std::string> seeds_;
+    std::mt19937_64 rng_;
+    std::size_t maxLength_;
+};
+
+/// Every scene file golden/<demo>/<scene>.json, read whole (the scene seed corpus).
+std::vector<std::string> readSceneSeeds(const std::string& goldenFolder);
+/// Non-blank lines of a file (a JSON Lines seed corpus).
+std::vector<std::string> readSeedLines(const std::string& file);
+
+}  // namespace cdlab::fuzz
