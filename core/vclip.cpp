@@ -182,14 +182,4 @@ std::vector<Vec3> featureGeometry(const VClipPolyhedron& p, const Transform& pos
     return pts;
 }
 
-VClipResult vclip(const VClipPolyhedron&, const Transform&, const VClipPolyhedron&, const Transform&, VClipCache*,
-                  const VClipOptions&, VClipTrace* trace) {
-    // Placeholder while the walk is written: no answer yet.
-    VClipResult r;
-    r.status = VClipStatus::InvalidInput;
-    r.message = "vclip: not implemented yet";
-    if (trace) trace->status = r.status;
-    return r;
-}
-
 }  // namespace cdlab
