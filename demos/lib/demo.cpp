@@ -2,12 +2,13 @@
 
 #include "demos/lib/epa_demo.h"
 #include "demos/lib/gjk_demo.h"
+#include "demos/lib/vclip_demo.h"
 #include "demos/lib/voronoi_demo.h"
 
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo()};
     return demos;
 }
 
