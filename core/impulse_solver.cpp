@@ -64,8 +64,8 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal, const std
         c.normalVelocityBefore = body.velocityAt(c.point).dot(normal);
         const double vn = c.normalVelocityBefore, s = c.separation;
         if (vn < -options.restitutionThreshold && s + vn * dt <= 0) {
-            c.bounce = true;
-            c.targetVelocity = -e * vn;
+            c.bounce = true;  // compression phase: stop the approach; restitution comes after the loop
+            c.targetVelocity = 0.0;
         } else if (s > 0) {
             c.targetVelocity = -s / dt;
         } else {
@@ -82,7 +82,16 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal, const std
         for (std::size_t i = 0; i < points.size(); ++i) {
             ContactImpulse& c = result.points[i];
             Row& row = rows[i];
-            // Friction first: per-direction Δλ, then the accumulated 2D impulse clamped to the disc μ λ_n.
+            // Normal: accumulated clamping λ >= 0.
+            const double vn = (body.linearVelocity + body.angularVelocity.cross(c.r)).dot(normal);
+            const double lambda = std::max(0.0, c.normalImpulse + row.kn * (c.targetVelocity - vn));
+            const double d = lambda - c.normalImpulse;
+            c.normalImpulse = lambda;
+            apply(d * normal, c);
+            change = std::max(change, std::abs(d));
+            // Friction after the normal, against this iteration's λ_n, so the cone |λ_t| <= μ λ_n holds
+            // exactly when the loop ends. Per-direction Δλ, then the accumulated 2D impulse clamped
+            // to the disc μ λ_n.
             if (mu > 0) {
                 const Vec3 v = body.linearVelocity + body.angularVelocity.cross(c.r);
                 double n1 = row.lambdaT1 - row.kt1 * v.dot(t1);
@@ -100,15 +109,25 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal, const std
                 apply(d1 * t1 + d2 * t2, c);
                 change = std::max({change, std::abs(d1), std::abs(d2)});
             }
-            // Normal: accumulated clamping λ >= 0.
-            const double vn = (body.linearVelocity + body.angularVelocity.cross(c.r)).dot(normal);
-            const double lambda = std::max(0.0, c.normalImpulse + row.kn * (c.targetVelocity - vn));
-            const double d = lambda - c.normalImpulse;
-            c.normalImpulse = lambda;
-            apply(d * normal, c);
-            change = std::max(change, std::abs(d));
         }
         result.lastIterationChange = change;
+    }
+    // Restitution phase (Newton's law per bouncing point, normal impulses only, after compression and
+    // friction; after Box2D v3's b2ApplyRestitution): v_target = −e v_n⁻, accumulated clamping on the
+    // restitution impulse (>= 0: restitution only pushes; Box2D clamps the total), the same number of sweeps.
+    if (e > 0) {
+        bool any = false;
+        for (const ContactImpulse& c : result.points) any = any || (c.bounce && c.normalImpulse > 0);
+        for (int it = 0; any && it < options.iterations; ++it)
+            for (ContactImpulse& c : result.points) {
+                if (!c.bounce || c.normalImpulse - c.restitutionImpulse <= 0) continue;
+                const double vn = (body.linearVelocity + body.angularVelocity.cross(c.r)).dot(normal);
+                const double lambda = std::max(0.0, c.restitutionImpulse + c.normalMass * (-e * c.normalVelocityBefore - vn));
+                const double d = lambda - c.restitutionImpulse;
+                c.restitutionImpulse = lambda;
+                c.normalImpulse += d;
+                apply(d * normal, c);
+            }
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
         ContactImpulse& c = result.points[i];

@@ -11,18 +11,26 @@
 //
 // Several contacts (Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005; Box2D's
 // b2SolveContact): each point keeps its accumulated impulse λ; one iteration visits the points in
-// order, first friction, then the normal (so the normal constraints hold best at the end):
+// order, first the normal, then friction (so the friction cone holds exactly at the end):
 //     Δλ = k (v_target − v_n),  λ_new = max(0, λ + Δλ),  apply (λ_new − λ) n at p.
 // Clamping the ACCUMULATED impulse (not Δλ) lets an iteration take back impulse an earlier one put
 // in too much, so the iteration converges to the projected Gauss-Seidel solution of the contact
 // LCP. Target velocity per point, from v_n⁻ (before any impulse) and the separation s (> 0: gap):
 //     bounce       v_n⁻ < −restitutionThreshold and s + v_n⁻ dt <= 0 (reaches the surface this step):
-//                  v_target = −e v_n⁻
+//                  v_target = 0 during the iterations (compression), then the restitution pass
 //     speculative  s > 0: v_target = −s / dt (may approach, but only to touching; no bounce)
 //     resting      s <= 0: v_target = 0 (penetration is removed by the position correction of
 //                  core/simulation.h, not by a velocity bias: no energy is added)
+// Restitution (a second pass after the compression iterations, normal impulses only, after Box2D v3's
+// b2ApplyRestitution): Newton's law v_target = −e v_n⁻ at the bouncing points, sequential impulses
+// with accumulated clamping of the restitution impulse (>= 0), the same number of sweeps. At one
+// frictionless contact this is exactly v_n⁺ = −e v_n⁻, j = (1 + e) λ_c. Putting −e v_n⁻ into the
+// compression iterations instead (with friction active) let friction inflate the normal impulse:
+// measured energy gains up to 0.8 J per bounce at e = 1; Poisson's e λ_c after the loop was worse.
 // Friction (Coulomb, coefficient μ): tangent impulses along two directions t1, t2 ⟂ n, each with
-// its own effective mass, the 2D accumulated tangent impulse clamped to the disc |λ_t| <= μ λ_n.
+// its own effective mass, the 2D accumulated tangent impulse clamped to the disc |λ_t| <= μ λ_n
+// during the compression iterations; the restitution pass adds normal impulse only (so the cone
+// |λ_t| <= μ λ_n still holds, with λ_n the total).
 #pragma once
 
 #include <vector>
@@ -54,11 +62,12 @@ struct ContactImpulse {
     double separation = 0.0;
     Vec3 r = Vec3::Zero();               ///< point − centre of mass
     double normalMass = 0.0;             ///< k = 1 / (1/m + n·((I⁻¹(r×n))×r))
-    double targetVelocity = 0.0;         ///< v_target (see file comment)
+    double targetVelocity = 0.0;         ///< v_target of the iterations (see file comment)
     bool bounce = false;                 ///< the restitution rule applied
+    double restitutionImpulse = 0.0;     ///< added by the restitution pass (part of normalImpulse)
     double normalVelocityBefore = 0.0;   ///< v_n⁻
     double normalVelocityAfter = 0.0;    ///< v_n⁺ after the last iteration
-    double normalImpulse = 0.0;          ///< λ_n >= 0 (N·s)
+    double normalImpulse = 0.0;          ///< λ_n >= 0 (N·s), compression + restitution
     Vec3 tangentImpulse = Vec3::Zero();  ///< λ_t1 t1 + λ_t2 t2, |·| <= μ λ_n
 };
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 namespace cdlab {
 
@@ -94,21 +95,40 @@ RigidBody makeStaticBody(const Transform& pose) {
     return body;
 }
 
+namespace {
+
+Mat3 skew(const Vec3& v) {
+    Mat3 m;
+    m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return m;
+}
+
+}  // namespace
+
 void integrateVelocity(RigidBody& body, const Vec3& gravity, double dt) {
     if (body.isStatic()) return;
     body.linearVelocity += gravity * dt;
+    // Gyroscopic term, implicit Euler in body axes with one Newton step (Catto, "Numerical Methods",
+    // GDC 2015): solve f(ω') = I (ω' − ω) + dt ω' × I ω' = 0 from ω' = ω:
+    //   f = dt ω × I ω,  J = I + dt (skew(ω) I − skew(I ω)),  ω' = ω − J⁻¹ f.
+    // Exact (f = 0) for spin about a principal axis and for spherical tops; otherwise slightly
+    // dissipative (implicit Euler), so free rotation never gains energy.
+    const Vec3 w = body.orientation.conjugate() * body.angularVelocity;
+    const Vec3 Iw = body.inertiaBody * w;
+    const Vec3 f = dt * w.cross(Iw);
+    if (f.squaredNorm() == 0.0) return;
+    const Mat3 J = body.inertiaBody + dt * (skew(w) * body.inertiaBody - skew(Iw));
+    body.angularVelocity = body.orientation * (w - J.partialPivLu().solve(f));
 }
 
 void integratePosition(RigidBody& body, double dt) {
     if (body.isStatic()) return;
     body.position += body.linearVelocity * dt;
-    const Vec3 L = body.inertiaWorld() * body.angularVelocity;
     const double angle = body.angularVelocity.norm() * dt;
     if (angle > 0) {
         const Quat dq(Eigen::AngleAxisd(angle, body.angularVelocity.normalized()));
         body.orientation = (dq * body.orientation).normalized();  // renormalise: rounding only
     }
-    body.angularVelocity = body.inverseInertiaWorld() * L;
 }
 
 }  // namespace cdlab

@@ -9,10 +9,12 @@
 // Integrator, one step of length dt (semi-implicit Euler: velocities first, then positions with
 // the NEW velocities; Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005):
 //   v ← v + g dt                                  (integrateVelocity; contact impulses come after)
+//   ω ← ω − dt I⁻¹ (ω × I ω), implicit            (gyroscopic term, body axes, one Newton step:
+//                                                  Catto, "Numerical Methods", GDC 2015; zero for
+//                                                  spherical tops and principal-axis spin; dissipative
+//                                                  otherwise, so free rotation never gains energy)
 //   x ← x + v dt
 //   q ← exp(ω dt / 2) q                           (rotation by |ω| dt about ω: unit by construction)
-//   ω ← I_world(q_new)⁻¹ I_world(q_old) ω         (world angular momentum L is kept: torque-free
-//                                                  precession; exact for spherical tops, where ω is kept)
 #pragma once
 
 #include <string>
@@ -74,10 +76,11 @@ RigidBodyBuild makeDynamicBody(double mass, const Mat3& inertiaBody, const Trans
 /// A static (infinite mass) body at `pose`: never moved by impulses or the integrator.
 RigidBody makeStaticBody(const Transform& pose = {});
 
-/// v ← v + g dt (no-op for static bodies). gravity in world units / s², dt in s.
+/// v ← v + g dt and the implicit gyroscopic update of ω (no-op for static bodies). gravity in
+/// world units / s², dt in s.
 void integrateVelocity(RigidBody& body, const Vec3& gravity, double dt);
 
-/// x ← x + v dt, q ← exp(ω dt/2) q, ω ← I_world⁻¹ L (see the file comment). No-op for static.
+/// x ← x + v dt, q ← exp(ω dt/2) q (see the file comment). No-op for static.
 void integratePosition(RigidBody& body, double dt);
 
 }  // namespace cdlab

@@ -4,13 +4,13 @@
 // recording every step as plain data.
 //
 // One step of length dt (fixed), in this order:
-//   1. v ← v + g dt                                           (semi-implicit Euler, velocities first)
+//   1. v ← v + g dt, implicit gyroscopic ω update               (semi-implicit Euler, velocities first)
 //   2. manifold at the current pose: contactPolyhedronPlane with tolerance = margin,
 //        margin = slop + dt (|v| + |ω| ρ)    (ρ = farthest vertex from the centre of mass)
 //      so every vertex that can reach the plane during the step is a (speculative) contact point;
 //      separation s = n̂ · p − d̂ per point; at most maxContactPoints points (area-keeping reduction)
 //   3. solveContacts: sequential impulses, restitution, friction (rules in core/impulse_solver.h)
-//   4. x ← x + v dt, q ← exp(ω dt/2) q, ω ← I⁻¹ L
+//   4. x ← x + v dt, q ← exp(ω dt/2) q
 //   5. position correction (minimum translation): if the deepest vertex is below the plane by more
 //      than slop, translate the body along n̂ so it is exactly slop deep. A plane's distance changes
 //      by the same amount at every vertex under a translation along n̂, so after the step no vertex
