@@ -205,8 +205,8 @@ private:
                   {"gjk_distance", c.gjk.distance},
                   {"gjk_intersect", c.gjk.intersect}};
         if (c.result.status == VClipStatus::Separated) {
-            j["theorem1_a_in_region_b"] = checkInRegion(s_.b, c.result.featureB, c.result.pointA).minDistance;
-            j["theorem1_b_in_region_a"] = checkInRegion(s_.a, c.result.featureA, c.result.pointB).minDistance;
+            j["theorem1_a_in_region_b"] = checkInRegion(s_.b, c.poseB, c.result.featureB, c.result.pointA).minDistance;
+            j["theorem1_b_in_region_a"] = checkInRegion(s_.a, s_.a.pose, c.result.featureA, c.result.pointB).minDistance;
         }
         return j;
     }
@@ -254,7 +254,7 @@ private:
 
     void setupMain(Canvas& c) const {
         c.setBackground(roleColor(Role::Background));
-        c.setCamera(common_.camera ? *common_.camera : framingCamera(center_, radius_ * 1.02, s_.view, Vec3::UnitY(), true));
+        c.setCamera(common_.camera ? *common_.camera : framingCamera(center_, radius_ * 0.9, s_.view, Vec3::UnitY(), true));
     }
 
     const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
@@ -263,10 +263,14 @@ private:
         drawPolyhedron(c, s_.a, roleColor(Role::ShapeA), 0.18f);
         drawWithPose(c, poseB);
         if (common_.hasLayer("labels")) {
+            // Each body's name on its far side from the other body, where the features are not.
             const Vec3 ca = s_.a.pose.apply(s_.a.regions.mesh().centroid());
             const Vec3 cb = poseB.apply(s_.b.regions.mesh().centroid());
-            c.drawText(ca, "A", labelStyle(Role::ShapeA, 26.0f));
-            c.drawText(cb, "B", labelStyle(Role::ShapeB, 26.0f));
+            const Vec3 away = (cb - ca).norm() > 0 ? Vec3((cb - ca).normalized()) : Vec3::UnitX();
+            const double ra = (s_.a.regions.mesh().boundsMax() - s_.a.regions.mesh().boundsMin()).norm() * 0.3;
+            const double rb = (s_.b.regions.mesh().boundsMax() - s_.b.regions.mesh().boundsMin()).norm() * 0.3;
+            c.drawText(ca - away * ra, "A", labelStyle(Role::ShapeA, 26.0f));
+            c.drawText(cb + away * rb, "B", labelStyle(Role::ShapeB, 26.0f));
         }
     }
 
@@ -289,6 +293,9 @@ private:
         }
     }
 
+    Vec3 centroidA() const { return s_.a.pose.apply(s_.a.regions.mesh().centroid()); }
+    Vec3 centroidB(const Transform& poseB) const { return poseB.apply(s_.b.regions.mesh().centroid()); }
+
     Color featureColor(int bodyIndex) const { return roleColor(bodyIndex == 0 ? Role::ShapeA : Role::ShapeB).scaled(0.8f); }
 
     void drawClosest(Canvas& c, const Vec3& pa, const Vec3& pb, bool named) const {
@@ -298,20 +305,35 @@ private:
         c.drawPoint(pa, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
         c.drawPoint(pb, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
         if (labels && named) {
+            // Sideways on screen (p_A left, p_B right): the feature labels sit above / below.
+            const Camera& cam = c.camera();
+            const Vec3 right = (cam.target - cam.eye).cross(cam.up).normalized() * (0.3 * radius_);
             TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
-            drawLabelAway(c, pa, apart ? pb : center_, "p_A", ts);
-            if (apart) drawLabelAway(c, pb, pa, "p_B", ts);
+            drawLabelAway(c, pa, pa + right, "p_A", ts, 10.0);
+            drawLabelAway(c, pb, pb - right, apart ? "p_B" : "p_A = p_B", ts, 10.0);
         }
     }
 
     // A Voronoi-plane patch and the tested point's offset from it.
-    void drawPlaneTest(Canvas& c, const Body& regionBody, int plane, const Vec3& tested, double signedDistance, const Vec3& normalIntoOwner,
-                       bool violated, bool maximal) const {
-        const std::vector<Vec3> patch = planePatch(regionBody, plane, tested, 0.32 * radius_);
+    void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& poseB, int plane, const VClipFeature& owner, const Vec3& tested,
+                       double signedDistance, const Vec3& normalIntoOwner, bool violated, bool maximal) const {
+        // plane < 0: the trace's face-plane test of handleLocalMin (owner = the face the vertex is
+        // farthest above): drawn as that face, enlarged a little about its centre.
+        const Transform& pose = &regionBody == &s_.a ? s_.a.pose : poseB;
+        std::vector<Vec3> patch;
+        if (plane >= 0) {
+            patch = planePatch(regionBody, pose, plane, tested, 0.25 * radius_);
+        } else if (owner.type == VClipFeatureType::Face) {
+            patch = featureGeometry(regionBody.regions, pose, owner);
+            const Vec3 mid = featureCenter(patch);
+            for (Vec3& q : patch) q = mid + 1.2 * (q - mid);
+        } else {
+            return;
+        }
         const Color col = violated ? violatedColor() : satisfiedColor();
-        c.drawPolygon(patch, col.withAlpha(violated ? 0.38f : 0.20f));
-        LineStyle ls = lineStyle(Role::Ink, maximal ? 3.0f : 1.2f, !violated, false);
-        ls.color = col.scaled(0.8f);
+        c.drawPolygon(patch, col.withAlpha(violated ? 0.40f : 0.12f));
+        LineStyle ls = lineStyle(Role::Ink, maximal ? 3.0f : violated ? 1.5f : 1.0f, false, false);
+        ls.color = violated ? col.scaled(0.8f) : col.withAlpha(0.6f);
         c.drawPolyline(patch, true, ls);
         const Vec3 foot = tested - signedDistance * normalIntoOwner;
         LineStyle d = lineStyle(Role::Ink, 1.5f, true, true);
@@ -348,7 +370,7 @@ private:
                     const Vec3 tip = p - double(sign) * dir * 0.22 * radius_;
                     c.drawArrow(p, tip, lineStyle(Role::Support, 3.0f, false, true));
                     if (labels)
-                        drawLabelAway(c, tip, p, std::string("D′") + (end == 0 ? "min" : "max") + (sign > 0 ? " > 0" : " < 0"),
+                        drawLabelAway(c, tip, p, std::string("D′") + (sign > 0 ? " > 0" : " < 0"),
                                       TextStyle{14.0f, roleColor(Role::Support).scaled(0.75f), Anchor::Center, true, true}, 6.0);
                 } else {
                     c.drawPoint(p, 7.0f, roleColor(Role::Support), true, 1.2f, roleColor(Role::Ink));
@@ -375,16 +397,15 @@ private:
         Frame f;
         if (st) {
             const std::vector<Vec3> ga = st->featureAWorld, gb = st->featureBWorld;
-            const Vec3 ca = featureCenter(ga), cb = featureCenter(gb);
-            drawFeature(c, ga, featureColor(0), featureLabel(st->featureA, 0), cb, labels);
-            drawFeature(c, gb, featureColor(1), featureLabel(st->featureB, 1), ca, labels);
+            drawFeature(c, ga, featureColor(0), featureLabel(st->featureA, 0), centroidB(call.poseB), labels);
+            drawFeature(c, gb, featureColor(1), featureLabel(st->featureB, 1), centroidA(), labels);
             // With many planes (a 60-gon face) only the violated ones and the maximal one are drawn.
             int shown = 0, violatedCount = 0;
             for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
             if (common_.hasLayer("planes"))
                 for (const VClipPlaneTest& p : st->planes) {
                     if (st->planes.size() > 8 && !p.violated && !p.maximal) continue;
-                    drawPlaneTest(c, body(p.regionBody), p.plane, p.testedPoint, p.signedDistance, p.planeNormal, p.violated, p.maximal);
+                    drawPlaneTest(c, body(p.regionBody), call.poseB, p.plane, p.owner, p.testedPoint, p.signedDistance, p.planeNormal, p.violated, p.maximal);
                     ++shown;
                 }
             if (common_.hasLayer("clip"))
@@ -403,7 +424,9 @@ private:
                                   TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
             }
             heading = "Step " + std::to_string(st->step) + ": state " + toString(st->state);
+            const bool faceSearch = std::any_of(st->planes.begin(), st->planes.end(), [](const VClipPlaneTest& p) { return p.plane < 0; });
             sub = std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated (red)";
+            if (faceSearch) sub = "local minimum: red = the face plane V is farthest above";
             if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
             if (!st->clips.empty()) sub += "; " + std::to_string(st->clips.size()) + " clip(s)";
 
@@ -420,16 +443,23 @@ private:
                           toString(cl.neighborMax) + ", D′ signs " + signName(cl.derivativeMin) + " " + signName(cl.derivativeMax);
             }
             if (l2.empty()) {
-                double worst = INFINITY;
-                for (const VClipPlaneTest& p : st->planes) worst = std::min(worst, p.signedDistance);
-                l2 = st->planes.empty() ? "no plane test" : "smallest signed distance to a region plane: " + formatNumber(worst);
+                const VClipPlaneTest* worst = nullptr;
+                for (const VClipPlaneTest& p : st->planes)
+                    if (!worst || (p.maximal && !worst->maximal) || (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance)) worst = &p;
+                if (!worst) l2 = "no plane test";
+                else if (worst->plane < 0)
+                    l2 = "handleLocalMin: V lies on or behind " + toString(st->featureB.type == VClipFeatureType::Face ? st->featureB : st->featureA) +
+                         "'s plane; the face it is farthest above is " + toString(worst->owner) + " (height " + formatNumber(worst->signedDistance) + ")";
+                else
+                    l2 = std::string(worst->maximal ? "maximally violated" : worst->violated ? "most violated" : "closest") + " plane: VR(" +
+                         toString(worst->owner) + ") | " + toString(worst->neighbor) + " at signed distance " + formatNumber(worst->signedDistance);
             }
             lines.push_back(l2);
             std::string l3;
             if (st->kind == VClipStepKind::Update) {
                 l3 = "update " + updateText(*st) + ";  distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
-                     (st->distanceChange < 0 ? " (decreased: dimension up)" : st->distanceChange == 0 ? " (equal: dimension down)" : " (increased)") +
-                     (st->localMinimum ? ", handleLocalMin" : "");
+                     (st->localMinimum ? " (handleLocalMin: the face the vertex is farthest above)"
+                      : st->distanceChange < 0 ? " (decreased: dimension up)" : st->distanceChange == 0 ? " (equal: dimension down)" : " (increased)");
             } else if (st->kind == VClipStepKind::Done) {
                 l3 = "DONE: each closest point lies in the other feature's Voronoi region; distance " + formatNumber(st->distanceBefore);
             } else if (st->kind == VClipStepKind::Penetration) {
@@ -444,22 +474,22 @@ private:
         } else {
             const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
             const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
-            drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), featureCenter(gb), labels);
-            drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), featureCenter(ga), labels);
+            drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroidB(call.poseB), labels);
+            drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
             const bool separated = r.status == VClipStatus::Separated;
             std::string l2;
             if (separated) {
-                const RegionCheck inB = checkInRegion(s_.b, r.featureB, r.pointA);
-                const RegionCheck inA = checkInRegion(s_.a, r.featureA, r.pointB);
+                const RegionCheck inB = checkInRegion(s_.b, call.poseB, r.featureB, r.pointA);
+                const RegionCheck inA = checkInRegion(s_.a, s_.a.pose, r.featureA, r.pointB);
                 if (common_.hasLayer("planes")) {
                     for (const auto& t : inB.tests)
                         if (t.plane >= 0 && inB.tests.size() <= 9)
-                            drawPlaneTest(c, s_.b, t.plane, r.pointA, t.distance,
+                            drawPlaneTest(c, s_.b, call.poseB, t.plane, r.featureB, r.pointA, t.distance,
                                           call.poseB.rotate(s_.b.regions.plane(t.plane).normal * (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
                                           t.distance < 0, false);
                     for (const auto& t : inA.tests)
                         if (t.plane >= 0 && inA.tests.size() <= 9)
-                            drawPlaneTest(c, s_.a, t.plane, r.pointB, t.distance,
+                            drawPlaneTest(c, s_.a, call.poseB, t.plane, r.featureA, r.pointB, t.distance,
                                           s_.a.pose.rotate(s_.a.regions.plane(t.plane).normal * (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
                                           t.distance < 0, false);
                 }
@@ -472,7 +502,7 @@ private:
             }
             if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
             heading = std::string("Result: ") + statusName(r.status) + " after " + std::to_string(r.steps) + " update(s)";
-            sub = separated ? "closest features and points; the planes of the Theorem-1 check (green: satisfied)"
+            sub = separated ? "closest points; green: region planes they satisfy"
                             : std::string("penetration: ") + toString(r.penetration);
             lines.push_back(std::string("Result: ") + statusName(r.status) + ", closest features " + featureLabel(r.featureA, 0) + " and " +
                             featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
@@ -497,7 +527,7 @@ private:
         }
         if (st) din.terminal = st->kind == VClipStepKind::Update ? "update → " + std::string(index + 1 < int(tr.steps.size()) ? toString(tr.steps[index + 1].state) : "?")
                                : st->kind == VClipStepKind::Done ? "DONE" : toString(st->kind);
-        else din.terminal = std::string(statusName(r.status)) + " after " + std::to_string(tr.steps.size()) + " step(s)";
+        else din.terminal = std::string(statusName(r.status)) + ": " + std::to_string(tr.steps.size()) + " states, " + std::to_string(r.steps) + " update(s)";
         const Image diagram = common_.hasLayer("diagram") ? drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din) : blank(L.columnWidth, L.diagramHeight());
 
         Image plot = blank(L.columnWidth, L.plotHeight());
@@ -548,8 +578,8 @@ private:
         if (k > 0) c.drawPolyline(std::vector<Vec3>(path.begin(), path.begin() + k + 1), false, lineStyle(Role::ShapeB, 2.0f, false, false));
         const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
         const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
-        drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), featureCenter(gb), labels);
-        drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), featureCenter(ga), labels);
+        drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroidB(call.poseB), labels);
+        drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
         if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
         drawPanelHeading(c, "Call " + std::to_string(k) + " of " + std::to_string(calls.size()) + ": " + std::to_string(r.steps) + " update(s)",
                          "warm start from " + toString(call.seed.a) + ", " + toString(call.seed.b));
@@ -591,7 +621,7 @@ private:
             pd.marker = k;
             pd.legend = {{roleColor(Role::ShapeB), "V-Clip distance (= GJK)"}};
             ps.series = {s};
-            ps.marker = -1;
+            ps.marker = k;
             const int h1 = L.plotHeight() / 2;
             plot = stackImages(drawPlot(gl, L.columnWidth, h1, ss, pd), drawPlot(gl, L.columnWidth, L.plotHeight() - h1, ss, ps));
         }
@@ -604,7 +634,8 @@ private:
         lines.push_back("started from the previous call's pair " + toString(call.seed.a) + ", " + toString(call.seed.b) + "; states: " + states);
         int total = 0;
         for (const Call& cc : calls) total += cc.result.steps;
-        lines.push_back("coherence: " + formatNumber(double(total) / calls.size()) + " updates per call on average over " +
+        lines.push_back("B orbits " + formatNumber(s_.motion->orbitDegrees) + "° and spins " + formatNumber(s_.motion->spinDegrees) +
+                        "° per call; coherence: " + formatNumber(double(total) / calls.size()) + " updates per call on average over " +
                         std::to_string(calls.size()) + " calls");
         Frame f;
         char name[32];

@@ -132,20 +132,20 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const Color& color,
 
 std::string featureLabel(const VClipFeature& f, int body) { return toString(f) + (body == 0 ? " (A)" : " (B)"); }
 
-std::vector<Vec3> planePatch(const Body& body, int planeIndex, const Vec3& toward, double size) {
+std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int planeIndex, const Vec3& toward, double size) {
     const VClipPolyhedron& p = body.regions;
     const VClipPlane& pl = p.plane(planeIndex);
     const int e = pl.edge.index;
-    const Vec3 tail = body.pose.apply(p.mesh().position(p.edgeTail(e)));
-    const Vec3 head = body.pose.apply(p.mesh().position(p.edgeHead(e)));
+    const Vec3 tail = pose.apply(p.mesh().position(p.edgeTail(e)));
+    const Vec3 head = pose.apply(p.mesh().position(p.edgeHead(e)));
     if (pl.other.type == VClipFeatureType::Face) {
         // FE plane: contains the edge and the face normal; the region boundary rises from the edge.
-        const Vec3 n = body.pose.rotate(p.mesh().face(pl.other.index).normal);
+        const Vec3 n = pose.rotate(p.mesh().face(pl.other.index).normal);
         return {tail, head, head + size * n, tail + size * n};
     }
     // VE plane: through the vertex, normal along the edge. A square about the vertex, one side
     // turned towards the tested point's projection so that its foot lands on the patch.
-    const Vec3 v = body.pose.apply(p.mesh().position(pl.other.index));
+    const Vec3 v = pose.apply(p.mesh().position(pl.other.index));
     const Vec3 n = (head - tail).normalized();
     Vec3 u = (toward - v) - (toward - v).dot(n) * n;
     if (u.norm() < 1e-9 * size) u = n.unitOrthogonal();
@@ -155,10 +155,10 @@ std::vector<Vec3> planePatch(const Body& body, int planeIndex, const Vec3& towar
     return {v - h * u - h * w, v + 2 * h * u - h * w, v + 2 * h * u + h * w, v - h * u + h * w};
 }
 
-RegionCheck checkInRegion(const Body& body, const VClipFeature& f, const Vec3& xWorld) {
+RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFeature& f, const Vec3& xWorld) {
     RegionCheck out;
     const VClipPolyhedron& p = body.regions;
-    const Vec3 x = body.pose.applyInverse(xWorld);
+    const Vec3 x = pose.applyInverse(xWorld);
     auto add = [&](int i) { out.tests.push_back({i, p.regionDistance(i, f, x)}); };
     if (f.type == VClipFeatureType::Vertex) {
         for (int i : p.vertexPlanes(f.index)) add(i);

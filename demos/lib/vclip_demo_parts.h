@@ -53,15 +53,15 @@ void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, cons
                  const std::string& label, const Vec3& awayFrom, bool labels);
 /// Mean of a feature's points.
 Vec3 featureCenter(const std::vector<Vec3>& geometry);
-/// A square patch of a Voronoi plane, world frame: FE planes are drawn as the edge extruded along
+/// A patch of a Voronoi plane of `body` placed at `pose`, world frame: FE planes are drawn as the edge extruded along
 /// the face's outward normal, VE planes as a square about the vertex turned towards `toward`.
-std::vector<Vec3> planePatch(const Body& body, int plane, const Vec3& toward, double size);
+std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int plane, const Vec3& toward, double size);
 /// "V3 (A)".
 std::string featureLabel(const VClipFeature& f, int body);
 /// The scene's world bounding sphere.
 void sceneSphere(const std::vector<const Body*>& bodies, Vec3& center, double& radius);
 
-/// Theorem 1 (Mirtich 1998): the point x (world) lies in VR(feature) of `body`. Returns the planes
+/// Theorem 1 (Mirtich 1998): the point x (world) lies in VR(feature) of `body` placed at `pose`. Returns the planes
 /// tested (index, signed distance, positive inside); the face plane itself is reported as index -1.
 struct RegionCheck {
     struct Test {
@@ -71,7 +71,7 @@ struct RegionCheck {
     std::vector<Test> tests;
     double minDistance = 0;  // smallest signed distance (the margin of the check)
 };
-RegionCheck checkInRegion(const Body& body, const VClipFeature& feature, const Vec3& x);
+RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFeature& feature, const Vec3& x);
 
 // ---- state diagram and plots (vclip_state_diagram.cpp)
 

@@ -82,10 +82,10 @@ Image drawStateDiagram(GlContext& gl, int W, int H, int ss, const DiagramInput& 
         const bool cur = s == in.current;
         const Color fill = cur ? lit : in.visits[s] > 0 ? lit.mixed(roleColor(Role::Background), 0.78f) : roleColor(Role::Background);
         c.drawPoint(node(s), float(kNodeRadius), fill, true, cur ? 3.0f : 1.8f, ink);
-        c.drawText(node(s), kStateName[s], TextStyle{17.0f, cur ? roleColor(Role::Background) : ink, Anchor::Center, false, true});
-        if (in.visits[s] > 0)
-            c.drawText(node(s) + Vec3(kNodeRadius - 4, -kNodeRadius + 2, 0), "×" + std::to_string(in.visits[s]),
-                       TextStyle{14.0f, ink, Anchor::TopLeft, true, false});
+        const Color text = cur ? roleColor(Role::Background) : ink;
+        const bool counted = in.visits[s] > 0;
+        c.drawText(node(s) + Vec3(0, counted ? 5 : 0, 0), kStateName[s], TextStyle{16.0f, text, Anchor::Center, false, true});
+        if (counted) c.drawText(node(s) + Vec3(0, -10, 0), "×" + std::to_string(in.visits[s]), TextStyle{12.0f, text, Anchor::Center, false, false});
     }
     c.drawTextPx(12, 8, in.heading, TextStyle{18.0f, ink, Anchor::TopLeft, true, true});
     if (!in.terminal.empty())
@@ -132,11 +132,13 @@ Image drawPlot(GlContext& gl, int W, int H, int ss, const PlotInput& in) {
         c.drawText(P(X(i), yBot + 6), std::to_string(i), tick);
     }
     TextStyle ytick{13.0f, ink, Anchor::Right, false, false};
-    const int ny = 4;
-    for (int k = 0; k <= ny; ++k) {
-        double v = ymin + (ymax - ymin) * k / ny;
-        if (in.integerY) v = std::round(v);
-        if (k > 0) c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 0.8f, true));
+    // Round tick values: 1, 2 or 5 times a power of ten, about four intervals.
+    const double raw = (ymax - ymin) / 4.0;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    const double step = std::max(in.integerY ? 1.0 : 0.0, raw / mag <= 1.0 ? mag : raw / mag <= 2.0 ? 2 * mag : raw / mag <= 5.0 ? 5 * mag : 10 * mag);
+    for (double v = std::ceil(ymin / step) * step; v <= ymax + 1e-9 * step; v += step) {
+        if (std::abs(v) < 1e-9 * step) v = 0;
+        if (v > ymin) c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 0.8f, true));
         c.drawText(P(x0 - 6, Y(v)), formatNumber(v), ytick);
     }
     if (in.marker >= 0) c.drawLine(P(X(in.marker), yBot), P(X(in.marker), yTop), lineStyle(Role::Highlight, 1.5f, true));
