@@ -27,6 +27,12 @@ struct MinkowskiOracle {
 /// Oracle for two convex polytopes given by their world-frame vertices.
 MinkowskiOracle minkowskiOracle(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
 
+/// Distance between the convex hulls of two small vertex sets that do not overlap, by brute force
+/// in long double with no hull at all: the minimum over every vertex triple of A and of B of the
+/// triangle-triangle distance (6 vertex-triangle and 9 segment-segment distances). Meaningless
+/// (too large) when the hulls overlap. O(n^3 m^3): for sets of up to ~6 vertices.
+double oracleDistanceBruteForce(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
+
 /// Distance from p to the solid triangle t, long double brute force.
 double oracleDistanceToTriangle(const Vec3& p, const Triangle& t);
 

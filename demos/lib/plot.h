@@ -1,0 +1,45 @@
+// Small 2D plots drawn with cdlab's own renderer (render/canvas.h): log-log scatter / line plots
+// with decade ticks (Pareto fronts, error vs parameter) and decade histograms of errors.
+// Pixel layout: title on top, plot area with axes and labels, legend in the upper right corner
+// of the plot area, subtitle (caption) at the bottom.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/gl_context.h"
+#include "render/image.h"
+
+namespace cdlab::demos {
+
+struct PlotOptions {
+    std::string title, subtitle, xLabel, yLabel;
+    int width = 1024, height = 768;  ///< output pixels
+    /// Values <= floor (and 0) are drawn at the floor on a log axis (errors of exactly 0).
+    double xFloor = 1e-18, yFloor = 1e-18;
+    bool logX = true, logY = true;
+    /// Horizontal reference lines (value, label), dashed.
+    std::vector<std::pair<double, std::string>> hLines;
+};
+
+struct PlotSeries {
+    std::string label;
+    int style = 0;      ///< colour and marker: categorical colour `style`, marker shape style % 4
+    bool line = false;  ///< connect the points in the given order
+    bool markers = true;
+    std::vector<std::pair<double, double>> points;  ///< (x, y) in data units
+    /// Optional per-point labels drawn beside the markers (same size as points, or empty).
+    std::vector<std::string> pointLabels;
+};
+
+/// Scatter / line plot on log (or linear) axes with decade ticks, labels and a legend.
+render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& options, const std::vector<PlotSeries>& series);
+
+/// Histograms of positive values (errors) in decade bins from options.xFloor to the largest value,
+/// y = fraction of the values per bin (linear axis); values <= xFloor (and 0) go into the first
+/// bin. One step outline per series (label, values).
+render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& options,
+                                  const std::vector<std::pair<std::string, std::vector<double>>>& series);
+
+}  // namespace cdlab::demos
