@@ -2,13 +2,14 @@
 
 #include "demos/lib/epa_demo.h"
 #include "demos/lib/gjk_demo.h"
+#include "demos/lib/polyhedron_plane_demo.h"
 #include "demos/lib/vclip_demo.h"
 #include "demos/lib/voronoi_demo.h"
 
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &polyhedronPlaneDemo()};
     return demos;
 }
 
