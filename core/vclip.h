@@ -23,10 +23,11 @@
 //     it is a local minimum (handleLocalMin): the face is replaced by the face whose plane the
 //     vertex is farthest above, or, if it is on or below every face plane, the bodies penetrate.
 //     An edge that crosses a face plane inside the face's region pierces it: penetration.
-//   - Inter-feature distance never increases; it strictly decreases when an update raises a
-//     feature's dimension and stays equal when it lowers it (Mirtich, Thm. 2/3; see vclip.cpp for
-//     the three places where cdlab picks the boundary feature of a face by an O(|F|) search so that
-//     this holds exactly). Hence no feature pair repeats and the walk ends.
+//   - Inter-feature distance never increases: an update that lowers a feature's dimension keeps
+//     it, one that raises it decreases it (strictly, except E-E edge -> face when the edge's
+//     closest point is its endpoint: then equal; found by the tests, see vclip_walk.cpp). The walk
+//     stops on a repeated pair and after (VA+EA+FA)(VB+EB+FB) updates; neither ever fires in the
+//     test suite. handleLocalMin is the one jump outside this ordering (Mirtich §5.4).
 //   - Work happens in body frames as in the paper: a feature of B is mapped into A's frame (and
 //     vice versa) with the relative transform, so large world offsets cost no precision.
 //

@@ -16,9 +16,13 @@
 //
 // Where cdlab departs from the paper's text (to keep "distance never increases" exact):
 //   - V-F with V outside a side plane, E-F with E excluded from VR(F), and E-F with the distance
-//     increasing at a clipped end inside VR(F): the face is replaced by its boundary edge nearest
-//     to V (resp. E), found by an O(|F|) scan (the paper picks the most violated plane / Nmin,
-//     which can be an edge farther than the nearest one: the distance would rise).
+//     increasing at a clipped end inside VR(F): the face is replaced by its boundary feature
+//     nearest to V (resp. E), an edge or, when the nearest point is a corner, a vertex, found by
+//     an O(|F|) scan. The paper picks the most violated plane / Nmin, which can be an edge
+//     farther than the nearest one (the distance would rise). Taking the corner vertex rather than
+//     one of its two edges matters: E-E may raise an edge E' to a face F whose closest point to E
+//     is E''s endpoint (distance equal, not smaller), and going back to E' from F repeats the pair
+//     (642-vertex sphere test, before this rule).
 //   - E-E compound exclusion: decided from the closest pair of the two segments (the endpoint
 //     vertex if the closest point of E' is an endpoint, else the face whose FE plane the closest
 //     point of E violates); the paper's implementation compares face-plane distances there.
