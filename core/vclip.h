@@ -178,8 +178,8 @@ struct VClipCache {
 struct VClipOptions {
     /// Update cap; <= 0 means the bound (VA+EA+FA)(VB+EB+FB): the number of feature pairs.
     int maxSteps = 0;
-    /// Keep a hash set of visited pairs and stop with CycleDetected on a repeat. Costs a little per
-    /// step; the walk provably never repeats in exact arithmetic, so this only guards rounding.
+    /// Stop with CycleDetected when a feature pair repeats (Brent's cycle detection: O(1) per step,
+    /// found within ~2x the steps of the first repeat). Guards rounding; never fires in the tests.
     bool detectCycles = true;
 };
 

@@ -30,7 +30,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_set>
 
 #include "core/closest_point.h"
 #include "core/vclip.h"
@@ -114,12 +113,13 @@ struct Walk {
     Transform pose[2];
     Mat3 R[2];  // R[i], T[i]: body i frame -> frame of body 1 - i
     Vec3 T[2];
+    Mat3 Rw[2];  // rotation of pose[i] as a matrix (world mapping without quaternion products)
     VClipFeature X[2];
     VClipTraceStep* ts = nullptr;
 
     Vec3 toFrame(int from, const Vec3& x) const { return R[from] * x + T[from]; }
     const Vec3& pos(int i, int v) const { return M[i]->position(v); }
-    Vec3 world(int i, const Vec3& x) const { return pose[i].apply(x); }
+    Vec3 world(int i, const Vec3& x) const { return Rw[i] * x + pose[i].position; }
     VClipFeature neighborOf(int r, int plane, const VClipFeature& owner) const {
         const VClipPlane& pl = P[r]->plane(plane);
         return owner.type == FT::Edge ? pl.other : pl.edge;
@@ -560,7 +560,7 @@ struct Walk {
                 out[1] = map(pos(i, P[i]->edgeHead(f[i].index)));
                 return 2;
             }
-            out[0] = map(pos(i, M[i]->faceVertices(f[i].index)[0]));
+            out[0] = map(pos(i, M[i]->halfEdge(M[i]->face(f[i].index).halfEdge).origin));
             return 1;
         };
         PairClosest pc;
@@ -620,11 +620,6 @@ struct Walk {
     }
 };
 
-std::uint64_t pairKey(const VClipFeature& a, const VClipFeature& b) {
-    return (static_cast<std::uint64_t>(a.type) << 62) ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a.index)) << 32) ^
-           (static_cast<std::uint64_t>(b.type) << 30) ^ static_cast<std::uint64_t>(static_cast<std::uint32_t>(b.index) & 0x3fffffffu);
-}
-
 bool validFeature(const VClipPolyhedron& p, const VClipFeature& f) {
     switch (f.type) {
         case FT::Vertex: return f.index >= 0 && f.index < p.mesh().vertexCount();
@@ -663,7 +658,10 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
     w.pose[1] = poseB;
     w.pose[0].rotation.normalize();
     w.pose[1].rotation.normalize();
-    const Mat3 ra = w.pose[0].rotation.toRotationMatrix(), rb = w.pose[1].rotation.toRotationMatrix();
+    w.Rw[0] = w.pose[0].rotation.toRotationMatrix();
+    w.Rw[1] = w.pose[1].rotation.toRotationMatrix();
+    const Mat3& ra = w.Rw[0];
+    const Mat3& rb = w.Rw[1];
     // B -> A: x_A = RA^T (RB x_B + pB - pA); A -> B is its inverse.
     w.R[1] = ra.transpose() * rb;
     w.T[1] = ra.transpose() * (w.pose[1].position - w.pose[0].position);
@@ -683,10 +681,13 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
 
     const long long bound = static_cast<long long>(a.featureCount()) * b.featureCount();
     const long long maxSteps = options.maxSteps > 0 ? options.maxSteps : bound;
-    // Visited pairs: a small inline buffer, then a hash set (cold walks on big meshes).
-    std::array<std::uint64_t, 48> recent{};
-    int recentCount = 0;
-    std::unordered_set<std::uint64_t> visited;
+    // Repeated-pair detector: Brent's cycle finding (R. P. Brent, "An improved Monte Carlo
+    // factorization algorithm", BIT 20, 1980). A step is a pure function of the feature pair (the
+    // poses are fixed), so one repeated pair means an endless cycle. Comparing each pair with one
+    // saved pair, re-saved at steps 0, 1, 3, 7, 15, ..., finds any cycle within about twice
+    // (steps before it + its length): O(1) time and memory per step.
+    VClipFeature savedA, savedB;
+    long long nextSave = 1;
 
     double extent = 0.0;  // trace only: scale for "equal" distances
     if (trace)
@@ -697,19 +698,15 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
         res.featureA = w.X[0];
         res.featureB = w.X[1];
         if (options.detectCycles) {
-            const std::uint64_t key = pairKey(w.X[0], w.X[1]);
-            bool seen;
-            if (recentCount < static_cast<int>(recent.size())) {
-                seen = std::find(recent.begin(), recent.begin() + recentCount, key) != recent.begin() + recentCount;
-                if (!seen) recent[recentCount++] = key;
-            } else {
-                if (visited.empty()) visited.insert(recent.begin(), recent.end());
-                seen = !visited.insert(key).second;
-            }
-            if (seen) {
+            if (steps > 0 && w.X[0] == savedA && w.X[1] == savedB) {
                 if (cache) *cache = VClipCache{w.X[0], w.X[1]};
                 if (trace && !trace->steps.empty()) trace->steps.back().kind = VClipStepKind::Aborted;
                 return fail(VClipStatus::CycleDetected, "vclip: feature pair " + toString(w.X[0]) + "/" + toString(w.X[1]) + " repeated");
+            }
+            if (steps == nextSave - 1) {
+                savedA = w.X[0];
+                savedB = w.X[1];
+                nextSave *= 2;
             }
         }
         if (steps >= maxSteps) {
@@ -785,7 +782,7 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
                 res.distance = pc.distance;
                 res.pointA = w.world(frame, pc.p[0]);
                 res.pointB = w.world(frame, pc.p[1]);
-                res.normal = w.pose[frame].rotate((pc.p[1] - pc.p[0]) / pc.distance);
+                res.normal = w.Rw[frame] * ((pc.p[1] - pc.p[0]) / pc.distance);
             }
         }
         if (trace) trace->status = res.status;
