@@ -126,10 +126,12 @@ public:
         if (s_.gif && animated.size() > 1) addGif(out, animated, 2);
         else if (s_.gif) out.skipped.push_back("animation.gif (a single frame)");
         if ((common_.steps || ctx.stepsOverride) && animated.size() > 1) {
+            // At most 1024 x 768: 3 columns of quarter-size frames, or 4 of fifth-size beyond six frames.
             ContactSheetOptions o;
-            o.title = common_.title + (s_.motion ? ": one warm-started V-Clip call per frame" : ": V-Clip, one update per frame");
-            o.cellWidth = 320;
-            o.columns = 3;
+            o.title = s_.motion ? "One warm-started V-Clip call per frame" : "V-Clip, one update per frame";
+            const bool many = animated.size() > 6;
+            o.cellWidth = common_.image.width / (many ? 5 : 4) + 1;
+            o.columns = many ? 4 : 3;
             Frame sheet = contactSheetFrame(*ctx.gl, animated, common_.title, o);
             out.frames.push_back(std::move(sheet));
         }
@@ -254,7 +256,17 @@ private:
 
     void setupMain(Canvas& c) const {
         c.setBackground(roleColor(Role::Background));
-        c.setCamera(common_.camera ? *common_.camera : framingCamera(center_, radius_ * 0.9, s_.view, Vec3::UnitY(), true));
+        if (common_.camera) {
+            c.setCamera(*common_.camera);
+            return;
+        }
+        // Framed a little low so that the panel heading stays clear of the bodies.
+        Camera cam = framingCamera(center_, radius_ * 0.92, s_.view, Vec3::UnitY(), true);
+        const Vec3 forward = (cam.target - cam.eye).normalized();
+        const Vec3 screenUp = (Vec3::UnitY() - Vec3::UnitY().dot(forward) * forward).normalized();
+        cam.eye += screenUp * 0.12 * radius_;
+        cam.target += screenUp * 0.12 * radius_;
+        c.setCamera(cam);
     }
 
     const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
@@ -309,7 +321,7 @@ private:
             const Camera& cam = c.camera();
             const Vec3 right = (cam.target - cam.eye).cross(cam.up).normalized() * (0.3 * radius_);
             TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
-            drawLabelAway(c, pa, pa + right, "p_A", ts, 10.0);
+            if (apart) drawLabelAway(c, pa, pa + right, "p_A", ts, 10.0);
             drawLabelAway(c, pb, pb - right, apart ? "p_B" : "p_A = p_B", ts, 10.0);
         }
     }
@@ -498,19 +510,21 @@ private:
                      formatNumber(inB.minDistance) + verdict(inB) + ";  p_B ∈ VR(" + featureLabel(r.featureA, 0) + "): " +
                      std::to_string(inA.tests.size()) + " planes, min " + formatNumber(inA.minDistance) + verdict(inA);
             } else {
-                l2 = std::string("V-Clip gives a verdict, no depth: ") + toString(r.penetration) + " at " + formatPoint(r.pointA);
+                l2 = std::string("verdict: ") + toString(r.penetration) + ", common point " + formatPoint(r.pointA) + " (distance 0)";
             }
             if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
             heading = std::string("Result: ") + statusName(r.status) + " after " + std::to_string(r.steps) + " update(s)";
             sub = separated ? "closest points; green: region planes they satisfy"
                             : std::string("penetration: ") + toString(r.penetration);
-            lines.push_back(std::string("Result: ") + statusName(r.status) + ", closest features " + featureLabel(r.featureA, 0) + " and " +
+            lines.push_back(std::string("Result: ") + statusName(r.status) + (separated ? ", closest features " : ", found at features ") +
+                            featureLabel(r.featureA, 0) + " and " +
                             featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
                             (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
             lines.push_back(l2);
             lines.push_back(separated ? "so no other feature pair is closer (Mirtich 1998, Thm. 1): p_A = " + formatPoint(r.pointA) +
                                             ", p_B = " + formatPoint(r.pointB)
-                                      : "seed " + toString(call.seed.a) + ", " + toString(call.seed.b) + "; " + r.message);
+                                      : "the bodies intersect: V-Clip stops with this feature pair (a depth needs EPA or another method)" +
+                                            (r.message.empty() ? std::string() : "; " + r.message));
             f.name = "result";
             f.caption = std::string("result: ") + statusName(r.status) + ", distance " + formatNumber(r.distance);
         }
@@ -546,14 +560,17 @@ private:
                 if (s.kind != VClipStepKind::Update) continue;
                 sd.x.push_back(s.step + 1);
                 sd.y.push_back(s.distanceAfter);
-                sd.pointColors.push_back(s.distanceChange < 0 ? satisfiedColor() : s.distanceChange == 0 ? roleColor(Role::Muted) : violatedColor());
+                sd.pointColors.push_back(s.localMinimum ? clipColor()
+                                         : s.distanceChange < 0 ? satisfiedColor() : s.distanceChange == 0 ? roleColor(Role::Muted) : violatedColor());
             }
             pin.series.push_back(sd);
             pin.marker = st ? index : -1;
             pin.legend = {{satisfiedColor(), "decrease (dim. up)"}, {roleColor(Role::Muted), "equal (dim. down)"}};
+            if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const VClipTraceStep& s) { return s.localMinimum; }))
+                pin.legend.push_back({clipColor(), "handleLocalMin (face → face)"});
             plot = drawPlot(gl, L.columnWidth, L.plotHeight(), ss, pin);
         }
-        f.image = composeFrame(gl, L, ss, common_.title, main, diagram, plot, lines);
+        f.image = composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, lines);
         return f;
     }
 
@@ -582,7 +599,7 @@ private:
         drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
         if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
         drawPanelHeading(c, "Call " + std::to_string(k) + " of " + std::to_string(calls.size()) + ": " + std::to_string(r.steps) + " update(s)",
-                         "warm start from " + toString(call.seed.a) + ", " + toString(call.seed.b));
+                         std::string(k == 0 ? "first call, seeded with " : "warm start from ") + toString(call.seed.a) + ", " + toString(call.seed.b));
         const Image main = c.readPixels();
 
         DiagramInput din;
@@ -631,7 +648,7 @@ private:
         lines.push_back("Call " + std::to_string(k) + ": " + statusName(r.status) + ", features " + featureLabel(r.featureA, 0) + ", " +
                         featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK " +
                         (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
-        lines.push_back("started from the previous call's pair " + toString(call.seed.a) + ", " + toString(call.seed.b) + "; states: " + states);
+        lines.push_back(std::string(k == 0 ? "first call, seeded with " : "started from the previous call's pair ") + toString(call.seed.a) + ", " + toString(call.seed.b) + "; states: " + states);
         int total = 0;
         for (const Call& cc : calls) total += cc.result.steps;
         lines.push_back("B orbits " + formatNumber(s_.motion->orbitDegrees) + "° and spins " + formatNumber(s_.motion->spinDegrees) +
@@ -642,7 +659,7 @@ private:
         std::snprintf(name, sizeof name, "call_%02d", k);
         f.name = name;
         f.caption = "call " + std::to_string(k) + ": " + std::to_string(r.steps) + " update(s), d " + formatNumber(r.distance);
-        f.image = composeFrame(gl, L, ss, common_.title, main, diagram, plot, lines);
+        f.image = composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, lines);
         return f;
     }
 };

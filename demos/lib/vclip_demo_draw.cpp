@@ -173,8 +173,8 @@ RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFe
     return out;
 }
 
-Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const std::string& title, const Image& main,
-                   const Image& diagram, const Image& plot, const std::vector<std::string>& captionLines) {
+Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const std::string& title, const std::string& sceneCaption,
+                   const Image& main, const Image& diagram, const Image& plot, const std::vector<std::string>& captionLines) {
     CanvasOptions o;
     o.width = layout.width;
     o.height = layout.height;
@@ -183,10 +183,13 @@ Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const s
     canvas.setBackground(roleColor(Role::Background));
     canvas.setCamera(Camera::twoD(0, 0, 1));
     canvas.drawTextPx(16, 8, title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
-    double y = layout.height - layout.captionBand + 6;
+    double y = layout.height - layout.captionBand + 5;
+    if (!sceneCaption.empty())
+        canvas.drawTextPx(16, y, sceneCaption, TextStyle{16.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.55f), Anchor::TopLeft, false, false});
+    y += 25.0;
     for (const std::string& line : captionLines) {
         canvas.drawTextPx(16, y, line, TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
-        y += 26.0;
+        y += 25.0;
     }
     Image frame = canvas.readPixels();
     blit(frame, main, 0, layout.titleBand);

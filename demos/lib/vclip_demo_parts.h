@@ -28,10 +28,10 @@ Body parseBody(const JsonNode& node);
 VClipFeature parseFeature(const JsonNode& node, const Body& body);
 
 /// Frame layout: title band, the 3D panel on the left, the state diagram over the distance plot on
-/// the right, a caption band of up to three lines.
+/// the right, a caption band: the scene's caption, then up to three lines about the frame.
 struct Layout {
     int width = 1024, height = 768;
-    int titleBand = 40, captionBand = 86;
+    int titleBand = 40, captionBand = 104;
     int columnWidth = 384;
     int mainWidth() const { return width - columnWidth; }
     int panelHeight() const { return height - titleBand - captionBand; }
@@ -40,7 +40,7 @@ struct Layout {
 };
 
 render::Image composeFrame(render::GlContext& gl, const Layout& layout, int supersample, const std::string& title,
-                           const render::Image& main, const render::Image& diagram, const render::Image& plot,
+                           const std::string& sceneCaption, const render::Image& main, const render::Image& diagram, const render::Image& plot,
                            const std::vector<std::string>& captionLines);
 
 // ---- the 3D panel pieces (vclip_demo_draw.cpp)
