@@ -257,7 +257,7 @@ private:
                     if (outline.size() >= 2) c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
                     for (const auto& x : tr.crossings) c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
                     if (labels) {
-                        lg.item("▭ contact polygon (on the plane)", Role::Result);
+                        lg.item("contact polygon (on the plane)", Role::Result);
                         lg.item("○ edge–plane crossings", Role::Ink);
                     }
                 }
@@ -267,15 +267,15 @@ private:
                         c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
                         c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
                         c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
-                        if (labels) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
+                        if (labels && (k == 0 || p.depth > 0)) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
                                                   (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
                     }
-                    if (labels) lg.item("● manifold points, with depth", Role::Result);
+                    if (labels) lg.item("manifold points, with depth", Role::Result);
                 }
                 if (common_.hasLayer("normals")) {
                     for (const ContactPoint& p : r.manifold)
                         c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal, lineStyle(Role::Direction, 3.0f, false, true));
-                    if (labels) lg.item("→ plane normal n̂ (pushes the body out)", Role::Direction);
+                    if (labels) lg.item("→ plane normal n (pushes the body out)", Role::Direction);
                 }
             } else if (common_.hasLayer("contacts")) {
                 // Closest feature and its projection onto the plane.
@@ -289,12 +289,12 @@ private:
                 if (labels) {
                     drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center, "distance " + fmt(r.signedDistance),
                                   labelStyle(Role::Result, 17.0f), 18.0);
-                    lg.item("● closest feature and its projection", Role::Result);
+                    lg.item("closest feature and its projection", Role::Result);
                 }
             }
             char cap[400];
             if (r.colliding())
-                std::snprintf(cap, sizeof cap, "%s: %s, depth %s, deepest feature %s %s; polygon %d points (%d crossings) → manifold %d",
+                std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
                               poseLabels[i].c_str(), statusName(r.status), fmt(r.depth).c_str(), featureTypeName(r.feature.type),
                               featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
             else
@@ -341,7 +341,9 @@ private:
                     c.drawLine(f.points[0], f.points[1], lineStyle(role, 6.0f, false, true));
                 }
                 for (const Vec3& p : f.points) c.drawPoint(p, f.type == FeatureType::Vertex ? 8.0f : 4.0f, col, true, 1.5f, roleColor(Role::Ink));
-                if (labels) drawLabelAway(c, centroid(f.points), center, tag + " " + featureTypeName(f.type), labelStyle(role, 20.0f), 30.0);
+                // Edges are labelled a fifth of the way along (their midpoint is often the closest point).
+                const Vec3 at = f.type == FeatureType::Edge ? Vec3(f.points[0] + 0.2 * (f.points[1] - f.points[0])) : centroid(f.points);
+                if (labels) drawLabelAway(c, at, center, tag + " " + featureTypeName(f.type), labelStyle(role, 20.0f), 30.0);
             };
             drawFeature(pairs[i].first, Role::ShapeA, "A:");
             drawFeature(pairs[i].second, Role::ShapeB, "B:");
@@ -402,9 +404,10 @@ private:
         const bool faceContact = r.axisKind != SatAxisKind::EdgeEdge && r.colliding();
         const Posed& ref = tr.referenceOnA ? a : b;
         const Posed& inc = tr.referenceOnA ? b : a;
+        const Role refRole = tr.referenceOnA ? Role::ShapeA : Role::ShapeB, incRole = tr.referenceOnA ? Role::ShapeB : Role::ShapeA;
         char counts[200];
-        std::snprintf(counts, sizeof counts, "%d axes tested: %d + %d faces, %d of %d edge pairs (%d pruned by the Gauss map, %d parallel)",
-                      int(tr.axes.size()), a.mesh.faceCount(), b.mesh.faceCount(), int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(),
+        std::snprintf(counts, sizeof counts, "axes: %d+%d faces, %d/%d edge pairs (%d Gauss-map pruned, %d parallel)",
+                      a.mesh.faceCount(), b.mesh.faceCount(), int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(),
                       tr.edgePairsTotal, tr.edgePairsPruned, tr.edgePairsParallel);
         {
             Canvas c(*ctx.gl, canvasOptions(ss));
@@ -420,13 +423,13 @@ private:
             Vec3 axisFrom = center;
             if (faceContact) {
                 const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace), ip = facePolygon(inc, tr.incidentFace);
-                c.drawPolygon(rp, roleColor(Role::Highlight).withAlpha(0.6f));
-                c.drawPolyline(rp, true, lineStyle(Role::Highlight, 3.5f, false, true));
-                c.drawPolyline(ip, true, lineStyle(Role::Support, 3.0f, true, true));
+                c.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
+                c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
+                c.drawPolyline(ip, true, lineStyle(incRole, 4.0f, true, true));
                 axisFrom = centroid(rp);
                 if (labels) {
-                    lg.item(std::string("▭ reference face (") + (tr.referenceOnA ? "A" : "B") + ")", Role::Highlight);
-                    lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", Role::Support);
+                    lg.item(std::string("reference face (") + (tr.referenceOnA ? "A" : "B") + "), black outline", refRole);
+                    lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", incRole);
                 }
             } else if (r.colliding() && !r.manifold.empty()) {
                 const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
@@ -450,14 +453,14 @@ private:
                     c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
                     c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
                 }
-                if (labels && !r.manifold.empty()) lg.item("● manifold points (on A), depth segments", Role::Result);
+                if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
             }
             char cap[400];
             if (r.colliding())
-                std::snprintf(cap, sizeof cap, "%s along the %s axis: depth %s, %d point%s. %s", statusName(r.status), axisKindName(r.axisKind),
+                std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", axisKindName(r.axisKind),
                               fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
             else
-                std::snprintf(cap, sizeof cap, "Separated: separation %s along the %s axis. %s", fmt(r.separation).c_str(), axisKindName(r.axisKind), counts);
+                std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), axisKindName(r.axisKind), counts);
             out.frames.push_back(finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + axisKindName(r.axisKind)));
         }
         if (!faceContact) {
@@ -475,9 +478,9 @@ private:
         Canvas c(*ctx.gl, canvasOptions(ss));
         c.setBackground(roleColor(Role::Background));
         c.setCamera(framingCamera(cc, cr * 1.15, nr, nr.unitOrthogonal(), false));
-        c.drawPolygon(rp, roleColor(Role::Highlight).withAlpha(0.35f));
-        c.drawPolyline(rp, true, lineStyle(Role::Highlight, 3.5f, false, true));
-        c.drawPolyline(facePolygon(inc, tr.incidentFace), true, lineStyle(Role::Support, 3.0f, true, true));
+        c.drawPolygon(rp, roleColor(refRole).withAlpha(0.3f));
+        c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
+        c.drawPolyline(facePolygon(inc, tr.incidentFace), true, lineStyle(incRole, 4.0f, true, true));
         for (size_t k = 0; k + 1 < tr.clipSteps.size(); ++k)
             if (tr.clipSteps[k].after.size() >= 2) c.drawPolyline(tr.clipSteps[k].after, true, lineStyle(Role::Muted, 1.5f, true, true));
         if (!tr.clipSteps.empty() && tr.clipSteps.back().after.size() >= 3) {
@@ -492,16 +495,16 @@ private:
         }
         Legend lg{c};
         if (labels) {
-            lg.item("▭ reference face", Role::Highlight);
-            lg.item("- - incident face", Role::Support);
+            lg.item("reference face", refRole);
+            lg.item("- - incident face", incRole);
             lg.item("- - after each side-plane clip", Role::Muted);
-            lg.item("▭ clipped polygon; ● kept points, depth", Role::Result);
+            lg.item("clipped polygon; kept points, depth", Role::Result);
         }
         char cap[300];
         std::snprintf(cap, sizeof cap, "Sutherland–Hodgman: %d side planes clip the incident face to %d points; %d below the reference face → %d kept",
                       int(tr.clipSteps.size()), tr.clipSteps.empty() ? 0 : int(tr.clipSteps.back().after.size()), int(tr.clipped.size()),
                       int(r.manifold.size()));
-        out.frames.push_back(finish(c, "clip", common_.title + ": clipping (view along the reference normal)", cap, "face clipping"));
+        out.frames.push_back(finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping"));
     }
 };
 
