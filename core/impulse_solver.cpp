@@ -112,20 +112,26 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal, const std
         }
         result.lastIterationChange = change;
     }
-    // Restitution phase (Newton's law per bouncing point, normal impulses only, after compression and
-    // friction; after Box2D v3's b2ApplyRestitution): v_target = −e v_n⁻, accumulated clamping on the
-    // restitution impulse (>= 0: restitution only pushes; Box2D clamps the total), the same number of sweeps.
-    if (e > 0) {
-        bool any = false;
-        for (const ContactImpulse& c : result.points) any = any || (c.bounce && c.normalImpulse > 0);
-        for (int it = 0; any && it < options.iterations; ++it)
-            for (ContactImpulse& c : result.points) {
-                if (!c.bounce || c.normalImpulse - c.restitutionImpulse <= 0) continue;
+    // Restitution pass (Newton's law, normal impulses only, after compression and friction; after
+    // Box2D v3's b2ApplyRestitution): bouncing points get v_target = −e v_n⁻, every other point keeps
+    // its target, so a bounce cannot drive a neighbouring point into the ground. Sequential
+    // impulses clamped on the total normal impulse, the same number of sweeps. The clamp is
+    // λ_n >= |λ_t| / μ rather than >= 0, so the friction impulse of the compression phase stays
+    // inside the cone |λ_t| <= μ λ_n (it is 0 without friction).
+    bool anyBounce = false;
+    for (const ContactImpulse& c : result.points) anyBounce = anyBounce || (c.bounce && c.normalImpulse > 0);
+    if (e > 0 && anyBounce) {
+        for (ContactImpulse& c : result.points)
+            if (c.bounce && c.normalImpulse > 0) c.targetVelocity = -e * c.normalVelocityBefore;
+        for (int it = 0; it < options.iterations; ++it)
+            for (std::size_t i = 0; i < points.size(); ++i) {
+                ContactImpulse& c = result.points[i];
+                const double floor = mu > 0 ? std::hypot(rows[i].lambdaT1, rows[i].lambdaT2) / mu : 0.0;
                 const double vn = (body.linearVelocity + body.angularVelocity.cross(c.r)).dot(normal);
-                const double lambda = std::max(0.0, c.restitutionImpulse + c.normalMass * (-e * c.normalVelocityBefore - vn));
-                const double d = lambda - c.restitutionImpulse;
-                c.restitutionImpulse = lambda;
-                c.normalImpulse += d;
+                const double lambda = std::max(floor, c.normalImpulse + c.normalMass * (c.targetVelocity - vn));
+                const double d = lambda - c.normalImpulse;
+                c.normalImpulse = lambda;
+                c.restitutionImpulse += d;
                 apply(d * normal, c);
             }
     }

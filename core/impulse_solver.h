@@ -21,12 +21,14 @@
 //     speculative  s > 0: v_target = −s / dt (may approach, but only to touching; no bounce)
 //     resting      s <= 0: v_target = 0 (penetration is removed by the position correction of
 //                  core/simulation.h, not by a velocity bias: no energy is added)
-// Restitution (a second pass after the compression iterations, normal impulses only, after Box2D v3's
-// b2ApplyRestitution): Newton's law v_target = −e v_n⁻ at the bouncing points, sequential impulses
-// with accumulated clamping of the restitution impulse (>= 0), the same number of sweeps. At one
-// frictionless contact this is exactly v_n⁺ = −e v_n⁻, j = (1 + e) λ_c. Putting −e v_n⁻ into the
-// compression iterations instead (with friction active) let friction inflate the normal impulse:
-// measured energy gains up to 0.8 J per bounce at e = 1; Poisson's e λ_c after the loop was worse.
+// Restitution (a second pass after the compression iterations, normal impulses only, after Box2D
+// v3's b2ApplyRestitution): Newton's law v_target = −e v_n⁻ at the bouncing points while every other
+// point keeps its target, sequential impulses clamped on the total λ_n (>= |λ_t| / μ, so friction
+// stays inside the cone), the same number of sweeps. At one frictionless contact this is exactly
+// v_n⁺ = −e v_n⁻, j = (1 + e) λ_c. Measured alternatives: −e v_n⁻ inside the friction iterations let
+// friction inflate the normal impulse (energy gains up to 0.8 J per bounce at e = 1); Poisson's
+// e λ_c after the loop was worse; a pass over the bouncing points alone drove neighbouring points
+// 2 mm into the ground (a tetrahedron tipping onto a face).
 // Friction (Coulomb, coefficient μ): tangent impulses along two directions t1, t2 ⟂ n, each with
 // its own effective mass, the 2D accumulated tangent impulse clamped to the disc |λ_t| <= μ λ_n
 // during the compression iterations; the restitution pass adds normal impulse only (so the cone
@@ -64,7 +66,7 @@ struct ContactImpulse {
     double normalMass = 0.0;             ///< k = 1 / (1/m + n·((I⁻¹(r×n))×r))
     double targetVelocity = 0.0;         ///< v_target of the iterations (see file comment)
     bool bounce = false;                 ///< the restitution rule applied
-    double restitutionImpulse = 0.0;     ///< added by the restitution pass (part of normalImpulse)
+    double restitutionImpulse = 0.0;     ///< net change of λ_n in the restitution pass (part of normalImpulse; may be < 0)
     double normalVelocityBefore = 0.0;   ///< v_n⁻
     double normalVelocityAfter = 0.0;    ///< v_n⁺ after the last iteration
     double normalImpulse = 0.0;          ///< λ_n >= 0 (N·s), compression + restitution
