@@ -1,5 +1,6 @@
 #include "demos/lib/demo.h"
 
+#include "demos/lib/drop_demo.h"
 #include "demos/lib/epa_demo.h"
 #include "demos/lib/gjk_demo.h"
 #include "demos/lib/polyhedron_plane_demo.h"
@@ -9,7 +10,7 @@
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &polyhedronPlaneDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &polyhedronPlaneDemo(), &dropDemo()};
     return demos;
 }
 
