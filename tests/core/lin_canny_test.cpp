@@ -212,29 +212,65 @@ TEST_CASE("degenerate families never hang and never give a wrong distance") {
     CHECK(t.separated > 0);
 }
 
-TEST_CASE("a cycle without detection ends at the step limit") {
-    // Search a penetrating pair that cycles, then run it with detection off.
-    const VClipPolyhedron A = build(presets::icosahedron(1.0)), B = build(presets::box(Vec3(0.6, 0.4, 0.5)));
+TEST_CASE("cycles are detected, and without detection the step limit ends the walk") {
+    // A negative applicability tolerance makes a point ON a region boundary violate the regions on
+    // both sides: the mechanism of Lin–Canny's cycles (rounding puts a boundary point outside both
+    // regions), forced. The walk then bounces between neighbours for ever.
+    const VClipPolyhedron A = build(presets::box(Vec3(0.5, 0.5, 0.5))), B = build(presets::icosahedron(1.0));
     presets::SplitMix64 rng(15);
-    int found = 0;
-    for (int n = 0; n < 2000 && found < 3; ++n) {
+    int cycles = 0;
+    for (int n = 0; n < 50; ++n) {
+        const Transform pa = pose(Vec3::Zero(), randomRotation(rng));
+        const Transform pb = pose(rng.onUnitSphere() * 3.0, randomRotation(rng));
+        LinCannyOptions forced;
+        forced.applicability = -0.05;
+        LinCannyTrace trace;
+        const LinCannyResult r = linCanny(A, pa, B, pb, nullptr, forced, &trace);
+        CHECK(r.status != LinCannyStatus::StepLimit);
+        if (r.status != LinCannyStatus::CycleDetected) continue;
+        ++cycles;
+        CHECK(r.cycleLength >= 2);
+        CHECK(r.distance == 0.0);
+        CHECK(!r.intersect);
+        CHECK(trace.cycleLength == r.cycleLength);
+        CHECK(static_cast<int>(trace.steps.size()) == r.steps);
+        // The last cycleLength updates return to the pair they started from.
+        const LinCannyTraceStep& first = trace.steps[trace.steps.size() - r.cycleLength];
+        CHECK((first.featureA == r.featureA));
+        CHECK((first.featureB == r.featureB));
+        // Brent: found within 2 x (tail + cycle) updates.
+        CHECK(r.steps <= 2 * (r.steps - r.cycleLength + 1) + 2 * r.cycleLength);
+        // Detection off: the step limit stops the same walk.
+        forced.detectCycles = false;
+        forced.maxSteps = 300;
+        const LinCannyResult s = linCanny(A, pa, B, pb, nullptr, forced);
+        CHECK(s.status == LinCannyStatus::StepLimit);
+        CHECK(s.steps == 300);
+        CHECK(s.distance == 0.0);
+    }
+    MESSAGE("forced cycles: ", cycles, " of 50");
+    CHECK(cycles > 20);
+}
+
+TEST_CASE("natural cycles on penetrating pairs (count only)") {
+    // cdlab's Lin–Canny computes exact feature-pair closest points (an edge piercing a face gives
+    // distance 0: FeaturesMeet) and searches all faces at a local minimum, so penetrating pairs are
+    // mostly reported as such; any cycle must still be on an intersecting pair.
+    const VClipPolyhedron A = build(presets::icosahedron(1.0)), B = build(presets::box(Vec3(0.6, 0.4, 0.5)));
+    presets::SplitMix64 rng(16);
+    int cycles = 0;
+    for (int n = 0; n < 1000; ++n) {
         const Transform pa = pose(Vec3::Zero(), randomRotation(rng));
         const Transform pb = pose(rng.onUnitSphere() * rng.uniform(0.0, 0.6), randomRotation(rng));
-        LinCannyCache seed{VClipFeature::vertex(static_cast<int>(rng.next() % 12)), VClipFeature::vertex(static_cast<int>(rng.next() % 8))};
-        LinCannyCache c1 = seed;
-        const LinCannyResult r = linCanny(A, pa, B, pb, &c1);
-        if (r.status != LinCannyStatus::CycleDetected) continue;
-        ++found;
-        CHECK(oracleDistance(A.mesh(), pa, B.mesh(), pb).intersect);
-        LinCannyOptions off;
-        off.detectCycles = false;
-        off.maxSteps = 500;
-        LinCannyCache c2 = seed;
-        const LinCannyResult s = linCanny(A, pa, B, pb, &c2, off);
-        CHECK(s.status == LinCannyStatus::StepLimit);
-        CHECK(s.steps == 500);
+        LinCannyCache seed{VClipFeature::vertex(static_cast<int>(rng.next() % 12)), VClipFeature::face(static_cast<int>(rng.next() % 6))};
+        const LinCannyResult r = linCanny(A, pa, B, pb, &seed);
+        CHECK(r.status != LinCannyStatus::Separated);
+        if (r.status == LinCannyStatus::CycleDetected) {
+            ++cycles;
+            CHECK(oracleDistance(A.mesh(), pa, B.mesh(), pb).intersect);
+        }
     }
-    MESSAGE("cycling penetrating pairs found: ", found);
+    MESSAGE("natural cycles: ", cycles, " of 1000");
 }
 
 TEST_CASE("invalid input") {
