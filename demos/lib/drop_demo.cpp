@@ -260,12 +260,14 @@ private:
             }
             if (common_.hasLayer("trail")) item("dashed: centre-of-mass path", Role::Ink);
         }
-        char buf[400];
-        std::snprintf(buf, sizeof buf, "t = %.3f s (step %d): %d contact%s, %d pushing%s; E = %.4g J (KE %.3g + PE %.4g); depth %.2g (slop %.2g)",
-                      s.time, s.step, int(s.contacts.size()), s.contacts.size() == 1 ? "" : "s", pushing,
-                      bounces ? (", " + std::to_string(bounces) + " bounce").c_str() : "", s.energy, s.kinetic, s.potential,
-                      s.maxPenetration, options_.slop);
-        drawTitleAndCaption(c, common_.title, buf);
+        // Two caption lines: the contacts of the step, then energy and depth.
+        char line1[200], line2[200];
+        std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s", s.time, s.step, int(s.contacts.size()),
+                      s.contacts.size() == 1 ? "" : "s", pushing, bounces ? (", " + std::to_string(bounces) + " bouncing").c_str() : "");
+        std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground", s.energy, s.kinetic,
+                      s.potential, s.maxPenetration);
+        c.drawTextPx(18.0, o.height - 18.0 - 26.0, line1, TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        drawTitleAndCaption(c, common_.title, line2);
         Frame f;
         char name[32];
         std::snprintf(name, sizeof name, "frame_%02d", index);
@@ -336,7 +338,7 @@ private:
         c.drawPolyline(pe, false, lineStyle(Role::ShapeB, 2.5f));
         c.drawPolyline(ke, false, lineStyle(Role::ShapeA, 2.5f));
         c.drawPolyline(te, false, lineStyle(Role::Ink, 3.0f));
-        const double lx = x1 - 300;
+        double lx = x1 - 300;
         double ly = eY1 - 12;
         const auto legendLine = [&](Role role, float w, bool dashed, const std::string& text) {
             c.drawLine(P(lx, ly), P(lx + 36, ly), lineStyle(role, w, dashed));
@@ -370,7 +372,9 @@ private:
         c.drawLine(P(x0, YP(options_.slop)), P(x1, YP(options_.slop)), lineStyle(Role::Ink, 1.5f, true));
         c.drawPolyline(after, false, lineStyle(Role::Result, 3.0f));
         c.drawPolyline(before, false, lineStyle(Role::Direction, 1.5f, true));  // on top: equal unless corrected
-        ly = pY1 - 12;
+        // Legend on the left, below the slop line: bodies in flight have no depth there.
+        lx = x0 + 24;
+        ly = YP(options_.slop) - 26;
         legendLine(Role::Result, 3.0f, false, "after the step");
         legendLine(Role::Direction, 1.5f, true, "before the position correction");
         legendLine(Role::Ink, 1.5f, true, "slop (allowed depth)");
