@@ -86,6 +86,8 @@ struct LinCannyOptions {
     /// projection onto a face boundary) may land on either side in double, and without slack the
     /// walk can step to the neighbour and straight back. Lin & Canny's implementation has such a
     /// tolerance; 1e-12 is ~4500 ulps, far above the rounding (~10 ulps) and far below any feature.
+    /// A negative value makes boundary points violate both neighbouring regions: the walk then
+    /// cycles (the tests use that to exercise the cycle detection).
     double applicability = 1e-12;
     /// Touching tolerance, relative to scale: a pair whose closest points are this close is
     /// reported as Penetrating (FeaturesMeet). 16 DBL_EPSILON: the rounding floor of a distance

@@ -189,6 +189,11 @@ TEST_CASE("penetrating pairs: Penetrating or CycleDetected, never a distance") {
         LinCannyCache cache{VClipFeature::face(0), VClipFeature::vertex(0)};  // an arbitrary seed too
         checkPair(A, pa, B, pb, n % 2 ? &cache : nullptr, t);
         CHECK(t.separated == 0);
+        // With cdlab's inside test the verdict is the same (or found earlier).
+        LinCannyOptions inside;
+        inside.insideTest = true;
+        const LinCannyResult ri = linCanny(A, pa, B, pb, nullptr, inside);
+        CHECK((ri.status == LinCannyStatus::Penetrating || ri.status == LinCannyStatus::CycleDetected));
     }
     MESSAGE("penetrating ", t.penetrating, ", cycles ", t.cycles);
 }
