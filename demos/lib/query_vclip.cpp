@@ -1,6 +1,6 @@
 // `cdlab query` distance / penetration with method "vclip" (Mirtich 1998, core/vclip.h):
 // polyhedral shapes become convex hulls (coplanar faces merged), then one cold V-Clip walk.
-// "lin_canny" (Lin & Canny 1991) is not implemented.
+// "lin_canny" (Lin & Canny 1991) is answered by demos/lib/query_lin_canny.cpp.
 #include "demos/lib/query_vclip.h"
 
 #include <cmath>
@@ -8,6 +8,7 @@
 
 #include "core/convex_hull.h"
 #include "core/vclip.h"
+#include "demos/lib/query_lin_canny.h"
 
 namespace cdlab::demos {
 
@@ -79,7 +80,7 @@ Json traceJson(const VClipTrace& t) {
 
 Json answerFeatureWalkQuery(const std::string& op, const std::string& method, const QueryShape& a, const QueryShape& b,
                             const JsonNode& aNode, const JsonNode& bNode, bool wantTrace) {
-    if (method != "vclip") aNode.fail("method '" + method + "' for op '" + op + "' is not available in this build");
+    if (method == "lin_canny") return answerLinCannyQuery(op, a, b, aNode, bNode, wantTrace);
     const int k = normalisingExponent(a, b);
     Transform poseA, poseB;  // translations to the body-frame origins
     const VClipPolyhedron pa = polyhedronOf(a, k, aNode, poseA.position), pb = polyhedronOf(b, k, bNode, poseB.position);
