@@ -11,6 +11,8 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <memory>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -30,6 +32,8 @@
 #include "demos/lib/bench_measure.h"
 #include "demos/lib/bench_oracle.h"
 #include "demos/lib/bench_peers.h"
+#include "demos/lib/plot.h"
+#include "render/gl_context.h"
 #include "render/image.h"
 
 namespace cdlab::demos {
@@ -198,6 +202,103 @@ nlohmann::json toJson(const std::vector<Row>& rows, const std::string& machine, 
                              {"min_time_ratio_to_cdlab", r.ratio}});
     }
     return j;
+}
+
+/// Method without its tolerance ("SV tol 1e-06" -> "SV"): one Pareto series per method.
+std::string methodBase(const std::string& method, std::string* tolerance)
+{
+    const size_t at = method.find(" tol ");
+    if (at == std::string::npos) return method;
+    std::string rest = method.substr(at + 5);
+    const size_t comma = rest.find(',');
+    if (tolerance) *tolerance = rest.substr(0, comma);
+    return method.substr(0, at) + (comma == std::string::npos ? "" : rest.substr(comma));
+}
+
+/// Error shown for a row: p99 of the relative error; boolean queries: the fraction wrong.
+double rowError(const Row& r)
+{
+    if (!r.boolean) return r.error.p99;
+    double wrong = 0;
+    for (double e : r.errors) wrong += e;
+    return r.errors.empty() ? 0.0 : wrong / r.errors.size();
+}
+
+/// out/bench/pareto_<query>.png (time vs error, one series per method, tolerance sweeps as
+/// lines) and hist_<query>.png (error histograms of the default-setting rows).
+void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir)
+{
+    std::unique_ptr<render::GlContext> gl;
+    try {
+        gl = render::GlContext::create();
+    } catch (const std::exception& e) {
+        std::cerr << "cdlab bench: no figures (" << e.what() << ")\n";
+        return;
+    }
+    std::vector<std::string> queries;
+    for (const Row& r : rows)
+        if (std::find(queries.begin(), queries.end(), r.query) == queries.end()) queries.push_back(r.query);
+    for (const std::string& q : queries) {
+        std::vector<PlotSeries> series;
+        std::map<std::string, size_t> index;
+        bool boolean = false;
+        for (const Row& r : rows) {
+            if (r.query != q || r.queries == 0) continue;
+            boolean = r.boolean;
+            std::string tol;
+            const std::string base = methodBase(r.method, &tol);
+            const std::string& key = base;  // tolerance sweeps join their method's series
+            auto it = index.find(key);
+            if (it == index.end()) {
+                it = index.emplace(key, series.size()).first;
+                PlotSeries s;
+                s.label = key;
+                s.style = static_cast<int>(series.size());
+                series.push_back(s);
+            }
+            PlotSeries& s = series[it->second];
+            s.points.emplace_back(std::max(rowError(r), 1e-17), r.nsMedian);
+            s.pointLabels.push_back(tol.empty() || tol == "1e-13" ? "" : "tol " + tol);  // the sweep's points
+        }
+        PlotOptions po;
+        po.title = "cdlab bench: " + q + " — run time vs error";
+        po.xLabel = boolean ? "fraction of wrong answers (10⁻¹⁷: none)" : "error p99, relative (10⁻¹⁷: exact)";
+        po.yLabel = "time per query, ns (median)";
+        po.subtitle = "one marker per input set and setting; down and left is better; same inputs and support functions for every method";
+        po.xFloor = 1e-17;
+        po.yFloor = 1;
+        try {
+            render::writePngAtomic(outDir + "/pareto_" + q + ".png", drawLogLogPlot(*gl, po, series));
+        } catch (const std::exception& e) {
+            std::cerr << "cdlab bench: pareto_" << q << ": " << e.what() << "\n";
+        }
+        if (boolean) continue;
+        // Histograms: the default settings (tolerance 1e-13 or none) of each method, all inputs pooled.
+        std::map<std::string, std::vector<double>> pooled;
+        std::vector<std::string> order;
+        for (const Row& r : rows) {
+            if (r.query != q) continue;
+            std::string tol;
+            const std::string base = methodBase(r.method, &tol);
+            if (!tol.empty() && tol != "1e-13") continue;
+            if (!pooled.count(base)) order.push_back(base);
+            auto& v = pooled[base];
+            v.insert(v.end(), r.errors.begin(), r.errors.end());
+        }
+        std::vector<std::pair<std::string, std::vector<double>>> hist;
+        for (const std::string& m : order) hist.emplace_back(m + " (" + std::to_string(pooled[m].size()) + ")", pooled[m]);
+        PlotOptions ho;
+        ho.title = "cdlab bench: " + q + " — error histogram";
+        ho.xLabel = "relative error against the oracle (first bin: ≤ 10⁻¹⁷, including exact)";
+        ho.yLabel = "fraction of queries";
+        ho.subtitle = "default settings (tolerance 1e-13), every input set pooled; in parentheses: queries";
+        ho.xFloor = 1e-17;
+        try {
+            render::writePngAtomic(outDir + "/hist_" + q + ".png", drawDecadeHistogram(*gl, ho, hist));
+        } catch (const std::exception& e) {
+            std::cerr << "cdlab bench: hist_" << q << ": " << e.what() << "\n";
+        }
+    }
 }
 
 int usage()
@@ -426,6 +527,87 @@ int runBench(int argc, char** argv)
             [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
     }
 
+    // ---- capsules (oracle: long double segment-segment distance minus the radii) --------------------
+    {
+        std::cerr << "cdlab bench: capsules\n";
+        struct CapsulePair {
+            Transformed<CapsuleShape> a, b;
+            double distance = 0;  // signed: negative = depth
+        };
+        auto capsulePairs = [&](double offset, std::uint64_t seed) {
+            std::mt19937_64 rng(seed);
+            std::uniform_real_distribution<double> half(0.2, 1.0), radius(0.1, 0.5);
+            std::vector<CapsulePair> pairs;
+            for (int i = 0; i < nPairs; ++i) {
+                CapsulePair p;
+                p.a.shape = CapsuleShape::alongY(half(rng), radius(rng));
+                p.b.shape = CapsuleShape::alongY(half(rng), radius(rng));
+                p.a.transform.rotation = randomRotation(rng);
+                p.b.transform.rotation = randomRotation(rng);
+                p.b.transform.position = offset * randomUnit(rng);
+                const double seg = oracleSegmentDistance(p.a.transform.apply(p.a.shape.a), p.a.transform.apply(p.a.shape.b),
+                                                         p.b.transform.apply(p.b.shape.a), p.b.transform.apply(p.b.shape.b));
+                p.distance = seg - p.a.shape.radius - p.b.shape.radius;
+                pairs.push_back(p);
+            }
+            return pairs;
+        };
+        const auto sep = capsulePairs(3.0, 51);
+        auto pen = capsulePairs(0.3, 52);
+        std::erase_if(pen, [](const CapsulePair& p) { return !(p.distance < 0); });
+        // Full support (the rounded shape: GJK converges linearly on the caps) against the core
+        // segments plus the radii in closed form (what `cdlab query` does).
+        rows.push_back(measure(
+            settings, "gjk_distance", "capsules separated", "SV tol 1e-13, full support", nPairs,
+            [&](int i) {
+                const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
+                return Answer{r.distance, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+        rows.push_back(measure(
+            settings, "gjk_distance", "capsules separated", "SV on cores + radii", nPairs,
+            [&](int i) {
+                const SegmentShape ca{sep[i].a.transform.apply(sep[i].a.shape.a), sep[i].a.transform.apply(sep[i].a.shape.b)};
+                const SegmentShape cb{sep[i].b.transform.apply(sep[i].b.shape.a), sep[i].b.transform.apply(sep[i].b.shape.b)};
+                const GjkResult r = gjkDistance(ca, cb);
+                return Answer{r.distance - sep[i].a.shape.radius - sep[i].b.shape.radius, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+        rows.push_back(measure(
+            settings, "epa_depth", "capsules penetrating", "GJK+EPA tol 1e-8, full support", static_cast<int>(pen.size()),
+            [&](int i) {
+                EpaOptions o;
+                o.relativeTolerance = 1e-8;
+                const EpaResult r = penetration(pen[i].a, pen[i].b, o);
+                return Answer{r.depth, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
+    }
+
+    // ---- float vs double: cdlab has no float variant of GJK (core is double only), so this row
+    // measures what storing the geometry in float does: vertices rounded to float, GJK in double,
+    // error against the oracle of the double input.
+    {
+        std::cerr << "cdlab bench: float-rounded input\n";
+        const auto sep = polyPairs(16, nPairs, 2.2, 1016);
+        std::vector<PolytopeShape> fa, fb;
+        auto toFloat = [](std::vector<Vec3> v) {
+            for (Vec3& x : v) x = x.cast<float>().cast<double>();
+            return v;
+        };
+        for (const PolyPair& p : sep) {
+            fa.push_back(polytopeOf(toFloat(p.va)));
+            fb.push_back(polytopeOf(toFloat(p.vb)));
+        }
+        rows.push_back(measure(
+            settings, "gjk_distance", "poly16 separated", "SV, input rounded to float", nPairs,
+            [&](int i) {
+                const GjkResult r = gjkDistance(fa[i], fb[i]);
+                return Answer{r.distance, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].oracle.distance, 1.0); }));
+    }
+
     // ---- spheres (analytic oracle) -------------------------------------------------------------------
     {
         std::cerr << "cdlab bench: spheres\n";
@@ -477,7 +659,8 @@ int runBench(int argc, char** argv)
         std::cerr << "cdlab bench: " << e.what() << "\n";
         return 1;
     }
-    std::cerr << "cdlab bench: wrote " << outDir << "/bench.json and bench.md\n";
+    writeBenchFigures(rows, outDir);
+    std::cerr << "cdlab bench: wrote " << outDir << "/bench.json, bench.md, pareto_*.png and hist_*.png\n";
     return 0;
 }
 

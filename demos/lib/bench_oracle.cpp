@@ -143,6 +143,11 @@ MinkowskiOracle minkowskiOracle(const std::vector<Vec3>& a, const std::vector<Ve
     return o;
 }
 
+double oracleSegmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s)
+{
+    return static_cast<double>(segmentSegmentDistance(toL(p), toL(q), toL(r), toL(s)));
+}
+
 double oracleDistanceToTriangle(const Vec3& p, const Triangle& t)
 {
     const LVec q = toL(p);

@@ -33,6 +33,9 @@ MinkowskiOracle minkowskiOracle(const std::vector<Vec3>& a, const std::vector<Ve
 /// (too large) when the hulls overlap. O(n^3 m^3): for sets of up to ~6 vertices.
 double oracleDistanceBruteForce(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
 
+/// Distance between segments pq and rs, long double (ternary search, robust when parallel).
+double oracleSegmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s);
+
 /// Distance from p to the solid triangle t, long double brute force.
 double oracleDistanceToTriangle(const Vec3& p, const Triangle& t);
 

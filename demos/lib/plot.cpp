@@ -191,8 +191,8 @@ public:
         const TextStyle text{15.0f, roleColor(Role::Ink), Anchor::Left, false, false};
         double w = 0;
         for (const auto& e : entries) w = std::max(w, c_.measureText(e.first, text).x());
-        const double rowH = 24, boxW = w + 58, boxH = rowH * entries.size() + 12;
-        const double bx = f.x1 - boxW - 10, by = f.y0 + 10;
+        const double rowH = 24, boxW = std::min(w + 58, o_.width - f.x1 - 24), boxH = rowH * entries.size() + 12;
+        const double bx = f.x1 + 16, by = f.y0;
         c_.drawPolygon({P(bx, by), P(bx + boxW, by), P(bx + boxW, by + boxH), P(bx, by + boxH)},
                        roleColor(Role::Background).withAlpha(0.92f));
         c_.drawPolyline({P(bx, by), P(bx + boxW, by), P(bx + boxW, by + boxH), P(bx, by + boxH)}, true,
@@ -219,11 +219,12 @@ private:
     Canvas c_;
 };
 
+/// Plot area: room on the left for tick labels, on the right for the legend (outside the data).
 Frame plotFrame(const PlotOptions& o)
 {
     Frame f;
     f.x0 = 100;
-    f.x1 = o.width - 40;
+    f.x1 = o.width - o.legendWidth - 40;
     f.y0 = 92;
     f.y1 = o.height - 100;
     return f;
