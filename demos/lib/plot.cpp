@@ -61,8 +61,10 @@ Axis fitAxis(std::vector<double> values, bool log, double floor)
     }
     if (!(hi >= lo)) lo = 0, hi = 1;
     if (log) {
-        a.lo = std::floor(lo);
-        a.hi = std::ceil(hi);
+        // Whole decades, with at least 0.3 decade free above and below the data (a point or a
+        // reference line on the frame would hide under it).
+        a.lo = std::floor(lo - 0.3);
+        a.hi = std::ceil(hi + 0.3);
         if (a.hi <= a.lo) a.hi = a.lo + 1;
     } else {
         const double pad = hi > lo ? 0.05 * (hi - lo) : 0.5;
