@@ -451,7 +451,7 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
     Check oc;
     oc.error = o.ok ? 0.0 : 1.0;  // informational: pairs the oracle could not judge
     oc.tolerance = 0.5;
-    e.record(family, "oracle hull", "(info) hull failed", true, param, oc, [] { return std::string(); }, index);
+    e.record(family, "oracle hull", "hull failed", true, param, oc, [] { return std::string(); }, index);
     if (!o.ok) return;
     const double dTol = kDistanceTol + 8 * kU * M / L + extra;
     double trueDistance = o.inside ? 0.0 : o.distance;
@@ -464,7 +464,7 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
         h.got = o.distance;
         h.error = std::abs(o.distance - bruteForce) / L;
         h.tolerance = dTol;
-        e.record(family, "hull oracle = brute force", "(info) 1e-12 L + 8uM", true, param, h,
+        e.record(family, "hull oracle = brute force", "1e-12 L + 8uM", true, param, h,
                  [] { return std::string(); }, index);
         trueDistance = bruteForce;
     }
