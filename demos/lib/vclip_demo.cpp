@@ -272,8 +272,8 @@ private:
     const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
 
     void drawBodies(Canvas& c, const Transform& poseB) const {
-        drawPolyhedron(c, s_.a, roleColor(Role::ShapeA), 0.18f);
-        drawWithPose(c, poseB);
+        drawPolyhedron(c, s_.a, s_.a.pose, roleColor(Role::ShapeA), 0.18f);
+        drawPolyhedron(c, s_.b, poseB, roleColor(Role::ShapeB), 0.18f);
         if (common_.hasLayer("labels")) {
             // Each body's name on its far side from the other body, where the features are not.
             const Vec3 ca = s_.a.pose.apply(s_.a.regions.mesh().centroid());
@@ -283,25 +283,6 @@ private:
             const double rb = (s_.b.regions.mesh().boundsMax() - s_.b.regions.mesh().boundsMin()).norm() * 0.3;
             c.drawText(ca - away * ra, "A", labelStyle(Role::ShapeA, 26.0f));
             c.drawText(cb + away * rb, "B", labelStyle(Role::ShapeB, 26.0f));
-        }
-    }
-
-    void drawWithPose(Canvas& c, const Transform& poseB) const {
-        const ConvexPolyhedron& m = s_.b.regions.mesh();
-        std::vector<Vec3> verts;
-        for (const Vec3& p : m.positions()) verts.push_back(poseB.apply(p));
-        std::vector<Eigen::Vector3i> tris;
-        for (int f = 0; f < m.faceCount(); ++f) {
-            const std::vector<int> fv = m.faceVertices(f);
-            for (std::size_t i = 1; i + 1 < fv.size(); ++i) tris.emplace_back(fv[0], fv[i], fv[i + 1]);
-        }
-        c.drawMesh(verts, tris, roleColor(Role::ShapeB).withAlpha(0.18f), true);
-        LineStyle ls;
-        ls.widthPx = 1.5f;
-        ls.color = roleColor(Role::ShapeB).scaled(0.6f);
-        for (int e = 0; e < m.edgeCount(); ++e) {
-            const auto [i, j] = m.edgeVertices(e);
-            c.drawLine(verts[i], verts[j], ls);
         }
     }
 

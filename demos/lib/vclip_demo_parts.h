@@ -45,8 +45,8 @@ render::Image composeFrame(render::GlContext& gl, const Layout& layout, int supe
 
 // ---- the 3D panel pieces (vclip_demo_draw.cpp)
 
-/// A body translucent with its edges.
-void drawPolyhedron(render::Canvas& canvas, const Body& body, const render::Color& fill, float alpha);
+/// A body placed at `pose`, translucent, with its edges.
+void drawPolyhedron(render::Canvas& canvas, const Body& body, const Transform& pose, const render::Color& fill, float alpha);
 /// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; labelled
 /// with `label` pushed away from `awayFrom`.
 void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, const render::Color& color,
