@@ -464,6 +464,7 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
     int i2 = i0;
     best = 0.0;
     for (int i = 0; i < n; ++i) {
+        if (i == i0 || i == i1) continue;  // rounding must never pick a chosen point again
         const double d2 = u.cross(P[i] - P[i0]).squaredNorm();  // squared distance from line p0 p1
         if (d2 > best) { best = d2; i2 = i; }
     }
@@ -471,10 +472,15 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
         return failure(HullStatus::AllCollinear, "all " + std::to_string(n) +
                                                      " points lie on one line within eps = " + fmtNumber(eps));
     }
-    const Vec3 nrm = u.cross(P[i2] - P[i0]).normalized();
+    // The plane of a needle triangle (p2 barely off the line p0 p1) is ill-conditioned: the plain
+    // cross product's direction error is DBL_EPSILON * |p1 - p0| / dist(p2, line), enough to make
+    // p2 itself look farthest from its own plane (found by `cdlab stress`, slivers and needles).
+    // accurateCross is the exact cross product rounded, so the normal is right to ~DBL_EPSILON.
+    const Vec3 nrm = accurateCross(P[i0], P[i1], P[i2]).normalized();
     int i3 = i0;
     best = 0.0;
     for (int i = 0; i < n; ++i) {
+        if (i == i0 || i == i1 || i == i2) continue;
         const double d = std::abs(nrm.dot(P[i] - P[i0]));
         if (d > best) { best = d; i3 = i; }
     }

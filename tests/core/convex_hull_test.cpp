@@ -427,4 +427,29 @@ TEST_CASE("1e5 points in a ball and on a sphere") {
     }
 }
 
+TEST_CASE("needle-like point sets pick four distinct initial points (regression from cdlab stress)") {
+    // A flattened ellipsoid of 10 points whose third extreme point is barely off the line of the
+    // first two: the plain cross product's plane made that point look farthest from its own plane,
+    // the initial tetrahedron repeated a vertex and the insertion read out of bounds.
+    const std::vector<Vec3> points = {
+        {-0.81191040115917112, -0.73040833460757204, -0.10510358388988755},
+        {-0.037439397383196849, -0.56719165375767033, -0.71484918984523094},
+        {-0.31463457627842706, -0.62560943294677995, -0.49661178491331071},
+        {-0.32028032011562002, -0.62679925414521787, -0.49216685665118087},
+        {-0.27084226412538348, -0.61638037681092672, -0.53108973018498828},
+        {-1.0705601820233248, -0.78491774938139292, 0.098532919386849882},
+        {-1.1790481011406928, -0.80778114654010236, 0.18394610071197864},
+        {0.26689144431594874, -0.50305513950854808, -0.95445066068423801},
+        {-0.85843337661192809, -0.74021286663773989, -0.068475768005874571},
+        {-0.22493300424578866, -0.60670518658492889, -0.56723436269908067}};
+    // (The cloud is nearly flat, so the brute-force oracle's plane merging differs from the
+    // hull's; the checks are validity, containment and vertices drawn from the input.)
+    const HullResult h = convexHull(points);
+    REQUIRE(h.ok());
+    CHECK(h.polyhedron.validate().ok());
+    for (const Vec3& p : points)
+        for (int f = 0; f < h.polyhedron.faceCount(); ++f) CHECK(h.polyhedron.planeDistance(f, p) <= 8 * h.mergeTolerance);
+    for (int i = 0; i < h.polyhedron.vertexCount(); ++i) CHECK(h.polyhedron.position(i) == points[h.inputIndex[i]]);
+}
+
 }  // TEST_SUITE
