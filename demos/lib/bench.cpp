@@ -30,7 +30,9 @@
 #include "core/sat_tests.h"
 #include "core/shapes.h"
 #include "demos/lib/bench_measure.h"
+#include "demos/lib/bench_lin_canny.h"
 #include "demos/lib/bench_oracle.h"
+#include "demos/lib/bench_vclip.h"
 #include "demos/lib/bench_peers.h"
 #include "demos/lib/plot.h"
 #include "render/gl_context.h"
@@ -633,9 +635,21 @@ int runBench(int argc, char** argv)
         }
     }
 
+    // ---- feature walks: Lin–Canny beside V-Clip and warm GJK over coherence levels ---------------
+    {
+        std::cerr << "cdlab bench: Lin–Canny vs V-Clip vs warm GJK\n";
+        std::vector<Row> walk = benchLinCanny(settings);
+        rows.insert(rows.end(), walk.begin(), walk.end());
+    }
+    // V-Clip vs GJK, cold and warm, per shape and rotation per call (its own table: CPU time).
+    std::cerr << "cdlab bench: V-Clip vs GJK (coherence)\n";
+    std::ostringstream vclipTable;
+    runVclipBench(quick, vclipTable);
+
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const std::string machine = machineDescription();
     printTable(rows, std::cout, false);
+    std::cout << "\n" << vclipTable.str();
     std::cout << "machine: " << machine << "; " << fmt("%.1f", seconds) << " s\n";
 
     std::ostringstream md;
@@ -650,6 +664,7 @@ int runBench(int argc, char** argv)
        << "Inputs: fixed seeds; random polytopes = n points on random ellipsoids (radii 0.3..1), separated\n"
        << "(centres 2.2 apart), penetrating (0.4 apart), moved (same pairs moved by 1e-3: warm start).\n\n";
     printTable(rows, md, true);
+    md << "\n## V-Clip vs GJK over coherence levels\n\n```\n" << vclipTable.str() << "```\n";
     md << "\nRun time " << fmt("%.1f", seconds) << " s.\n";
     try {
         std::filesystem::create_directories(outDir);
