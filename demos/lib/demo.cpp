@@ -1,8 +1,10 @@
 #include "demos/lib/demo.h"
 
+#include "demos/lib/accuracy_demo.h"
 #include "demos/lib/drop_demo.h"
 #include "demos/lib/epa_demo.h"
 #include "demos/lib/gjk_demo.h"
+#include "demos/lib/lin_canny_demo.h"
 #include "demos/lib/polyhedron_plane_demo.h"
 #include "demos/lib/vclip_demo.h"
 #include "demos/lib/voronoi_demo.h"
@@ -10,7 +12,7 @@
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &polyhedronPlaneDemo(), &dropDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo()};
     return demos;
 }
 
