@@ -111,7 +111,7 @@ Image drawWalkList(GlContext& gl, int W, int H, int ss, const std::string& headi
             continue;
         }
         const bool now = i == current;
-        c.drawTextPx(x, y, (now ? "▶ " : "   ") + rows[i].text, TextStyle{13.0f, now ? roleColor(Role::Highlight).scaled(0.8f) : rows[i].color, Anchor::TopLeft, false, now});
+        c.drawTextPx(x, y, (now ? "> " : "   ") + rows[i].text, TextStyle{13.0f, now ? roleColor(Role::Highlight).scaled(0.8f) : rows[i].color, Anchor::TopLeft, false, now});
     }
     return c.readPixels();
 }
@@ -262,9 +262,9 @@ private:
 
     Layout layout() const { return Layout{common_.image.width, common_.image.height}; }
 
-    Camera camera(double shiftUp) const {
+    Camera camera(double shiftUp, double zoom) const {
         if (common_.camera) return *common_.camera;
-        Camera cam = framingCamera(center_, radius_ * 0.92, s_.view, Vec3::UnitY(), true);
+        Camera cam = framingCamera(center_, radius_ * zoom, s_.view, Vec3::UnitY(), true);
         const Vec3 forward = (cam.target - cam.eye).normalized();
         const Vec3 screenUp = (Vec3::UnitY() - Vec3::UnitY().dot(forward) * forward).normalized();
         cam.eye += screenUp * shiftUp * radius_;
@@ -280,9 +280,11 @@ private:
         return po;
     }
 
-    void setupPanel(Canvas& c, double shiftUp) const {
+    /// shiftUp: the view moves down by this fraction of the scene radius (room for the panel
+    /// heading); zoom: the fraction of the scene's bounding sphere that is framed.
+    void setupPanel(Canvas& c, double shiftUp, double zoom) const {
         c.setBackground(roleColor(Role::Background));
-        c.setCamera(camera(shiftUp));
+        c.setCamera(camera(shiftUp, zoom));
     }
 
     const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
@@ -389,7 +391,7 @@ private:
         const LinCannyResult& r = run.lc;
         const LinCannyTraceStep* st = index >= 0 ? &tr.steps[index] : nullptr;
         Canvas c(gl, panelOptions(L.mainWidth(), L.panelHeight(), ss));
-        setupPanel(c, 0.12);
+        setupPanel(c, 0.12, 0.92);
         drawBodies(c, true);
         std::string heading, sub;
         std::vector<std::string> lines;
@@ -492,7 +494,7 @@ private:
     Image walkPanel(GlContext& gl, int w, int h, int ss, const Trace& tr, const VClipFeature& fa, const VClipFeature& fb, const Vec3& pa,
                     const Vec3& pb, bool closest, const std::string& heading, const std::string& sub) const {
         Canvas c(gl, panelOptions(w, h, ss));
-        setupPanel(c, 0.18);
+        setupPanel(c, 0.28, 0.80);
         drawBodies(c, true);
         const bool labels = common_.hasLayer("labels");
         drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureColor(0), featureLabel(fa, 0), centroid(1), labels);
@@ -518,7 +520,7 @@ private:
         const int W = common_.image.width, H = common_.image.height;
         const int titleBand = 40, captionBand = 80, half = W / 2;
         const int panelH = H - titleBand - captionBand;
-        const int top3d = panelH * 50 / 100, listH = panelH * 24 / 100, plotH = panelH - top3d - listH;
+        const int top3d = panelH * 55 / 100, listH = panelH * 21 / 100, plotH = panelH - top3d - listH;
         const Image vc3 = walkPanel(gl, half, top3d, ss, r.vcTrace, r.vc.featureA, r.vc.featureB, r.vc.pointA, r.vc.pointB,
                                     r.vc.status == VClipStatus::Separated, "V-Clip: " + std::to_string(r.vc.steps) + " update(s)", verdict(r.vc));
         const Image lc3 = walkPanel(gl, W - half, top3d, ss, r.lcTrace, r.lc.featureA, r.lc.featureB, r.lc.pointA, r.lc.pointB,
