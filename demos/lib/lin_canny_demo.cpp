@@ -430,7 +430,8 @@ private:
                 lines.push_back(std::string(worst->regionBody == 0 ? "p_B" : "p_A") + " against VR(" + featureLabel(worst->owner, worst->regionBody) +
                                 "): " + (worst->maximal ? "most violated" : worst->violated ? "violated" : "closest") + " plane " +
                                 (worst->plane < 0 ? std::string("(the face plane)") : "| " + toString(worst->neighbor)) + " at signed distance " +
-                                formatNumber(worst->signedDistance) + (worst->violated ? " < 0" : " ≥ 0"));
+                                formatNumber(worst->signedDistance) +
+                                (!worst->violated ? " ≥ 0" : worst->signedDistance < 0 ? " < 0" : " ≥ 0, violated only by the forced negative tolerance"));
             if (st->updatedBody >= 0)
                 lines.push_back(std::string("update ") + (st->updatedBody == 0 ? "A: " : "B: ") + toString(st->from) + " → " + toString(st->to) +
                                 ";  pair distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
