@@ -403,11 +403,7 @@ public:
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers);
-        if (!r.has("image")) {
-            common.image.width = 960;
-            common.image.height = 720;
-        }
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{960, 720});
         DropInput in;
         std::string bodyName;
         {

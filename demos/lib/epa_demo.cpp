@@ -491,11 +491,7 @@ public:
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers);
-        if (!r.has("image")) {
-            common.image.width = 1280;
-            common.image.height = 640;
-        }
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1280, 640});
         PairScene pair = readPairScene(r);
         EpaOptions options;
         if (auto m = r.find("method")) {

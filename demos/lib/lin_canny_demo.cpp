@@ -599,11 +599,7 @@ public:
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers);
-        if (!r.has("image")) {
-            common.image.width = 1024;
-            common.image.height = 768;
-        }
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
         Settings s;
         JsonNode bodies = r.get("bodies");
         if (!bodies.isArray() || bodies.size() != 2) bodies.fail("expected [bodyA, bodyB]");

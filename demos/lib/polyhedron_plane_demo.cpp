@@ -516,11 +516,7 @@ public:
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers);
-        if (!r.has("image")) {
-            common.image.width = 960;
-            common.image.height = 720;
-        }
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{960, 720});
         auto scene = std::make_unique<ContactScene>(std::move(common));
         scene->mode = "plane";
         if (auto m = r.find("mode")) scene->mode = m->asEnum({"plane", "features", "sat"});

@@ -37,8 +37,9 @@ render::Camera readCamera(const JsonNode& node) {
 }
 
 SceneCommon readSceneCommon(ObjectReader& r, const std::string& file, const std::vector<std::string>& allowedLayers,
-                            const std::vector<std::string>& defaultLayers) {
+                            const std::vector<std::string>& defaultLayers, const ImageSettings& defaultImage) {
     SceneCommon s;
+    s.image = defaultImage;
     s.file = file;
     s.name = fs::path(file).stem().string();
     s.demo = r.get("demo").asString();

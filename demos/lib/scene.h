@@ -42,10 +42,11 @@ struct SceneCommon {
     bool hasLayer(const std::string& layer) const { return layers.count(layer) != 0; }
 };
 
-/// Reads the common keys; `allowedLayers` and `defaultLayers` come from the demo.
+/// Reads the common keys; `allowedLayers`, `defaultLayers` and the image size used where the
+/// scene gives none (`defaultImage`, per field) come from the demo.
 SceneCommon readSceneCommon(ObjectReader& reader, const std::string& file,
                             const std::vector<std::string>& allowedLayers,
-                            const std::vector<std::string>& defaultLayers);
+                            const std::vector<std::string>& defaultLayers, const ImageSettings& defaultImage = {});
 
 render::Camera readCamera(const JsonNode& node);
 
