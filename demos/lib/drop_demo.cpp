@@ -35,27 +35,6 @@ constexpr int kMaxFrames = 16;  // frames (plus plot and sheet) per scene: golde
 
 Json quatJson(const Quat& q) { return Json::array({q.w(), q.x(), q.y(), q.z()}); }
 
-// Convex hull of 2D points (Andrew's monotone chain), counter-clockwise; for the shadow outline.
-std::vector<Vec2> hull2d(std::vector<Vec2> p) {
-    std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-    if (p.size() < 3) return p;
-    std::vector<Vec2> h(2 * p.size());
-    std::size_t k = 0;
-    const auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
-        return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-    };
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-        while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    h.resize(k - 1);
-    return h;
-}
-
 class DropScene final : public PreparedScene {
 public:
     DropScene(SceneCommon common, DropInput input, SimulationOptions options, std::string body, int frameEvery, Vec3 view)
@@ -200,10 +179,8 @@ private:
         std::vector<Vec3> wv;
         for (const Vec3& v : r.shape.positions()) wv.push_back(s.orientation * v + s.position);
         if (common_.hasLayer("shadow")) {
-            std::vector<Vec2> flat;
-            for (const Vec3& v : wv) flat.emplace_back(v.x(), v.y());
-            std::vector<Vec3> outline;
-            for (const Vec2& p : hull2d(flat)) outline.emplace_back(p.x(), p.y(), 1e-3 * rho);  // just above the grid
+            std::vector<Vec3> outline = hull2d(wv);
+            for (Vec3& p : outline) p.z() = 1e-3 * rho;  // just above the grid
             if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Ink).withAlpha(0.16f));
         }
         if (common_.hasLayer("trail") && k > 0) {

@@ -154,27 +154,6 @@ std::vector<Vec3> sampleDirections(bool planar, int n) {
     return out;
 }
 
-// Andrew's monotone chain; drops collinear points. Counter-clockwise.
-std::vector<Vec3> hull2d(std::vector<Vec3> p) {
-    std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-    p.erase(std::unique(p.begin(), p.end()), p.end());
-    if (p.size() < 3) return p;
-    auto cross = [](const Vec3& o, const Vec3& a, const Vec3& b) {
-        return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-    };
-    std::vector<Vec3> h(2 * p.size());
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-        while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    h.resize(k - 1);
-    return h;
-}
 
 ConvexDrawable drawableFromPoints(const std::vector<Vec3>& points, bool planar, bool polytopeEdges) {
     ConvexDrawable d;
@@ -203,6 +182,28 @@ ConvexDrawable drawableFromPoints(const std::vector<Vec3>& points, bool planar, 
 }
 
 }  // namespace
+
+// Andrew's monotone chain; drops collinear points. Counter-clockwise.
+std::vector<Vec3> hull2d(std::vector<Vec3> p) {
+    std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    if (p.size() < 3) return p;
+    auto cross = [](const Vec3& o, const Vec3& a, const Vec3& b) {
+        return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+    };
+    std::vector<Vec3> h(2 * p.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+        while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    h.resize(k - 1);
+    return h;
+}
 
 void boundingSphere(const std::vector<Vec3>& points, Vec3& center, double& radius) {
     center.setZero();

@@ -16,6 +16,10 @@
 
 namespace cdlab::demos {
 
+/// Convex hull of points in the xy plane (z ignored, kept from the input), counter-clockwise,
+/// duplicates and collinear points dropped (Andrew's monotone chain). For 2D outlines in figures.
+std::vector<Vec3> hull2d(std::vector<Vec3> points);
+
 /// One convex shape of a GJK / EPA scene, world frame. 3D kinds: box, sphere, cylinder, cone,
 /// polytope; 2D kinds (z = 0 plane, rotation about z): polygon, box, circle.
 struct SceneShape {
