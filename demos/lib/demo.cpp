@@ -6,13 +6,14 @@
 #include "demos/lib/gjk_demo.h"
 #include "demos/lib/lin_canny_demo.h"
 #include "demos/lib/polyhedron_plane_demo.h"
+#include "demos/lib/space_partition_demo.h"
 #include "demos/lib/vclip_demo.h"
 #include "demos/lib/voronoi_demo.h"
 
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo(), &spacePartitionDemo()};
     return demos;
 }
 
