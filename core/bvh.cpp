@@ -250,14 +250,15 @@ struct Builder {
         while (!stack.empty()) {
             const int i = stack.back();
             stack.pop_back();
-            fit(i);
+            // OBB: the box is needed now (its longest axis is the split direction); AABB boxes are
+            // filled in bottom-up below (the union of the children's boxes equals the fit).
+            if (bvh.kind == BvKind::Obb) fit(i);
             const BvhNode n = bvh.nodes[i];
             BvhBuildStep step;
             step.node = i;
             step.depth = n.depth;
             step.first = n.first;
             step.count = n.count;
-            step.box = bvh.box(i);
             if (n.count > maxLeaf) {
                 const int leftCount = options.method == BvhBuildMethod::TopDownSah ? splitSah(n, step)
                                                                                     : splitMedian(n, i, step);
@@ -270,6 +271,19 @@ struct Builder {
                 stack.push_back(left);  // left first: depth-first, left to right
             }
             if (trace) trace->steps.push_back(step);
+        }
+        if (bvh.kind == BvKind::Aabb) fitAabbsBottomUp();
+        if (trace)
+            for (BvhBuildStep& step : trace->steps) step.box = bvh.box(step.node);
+    }
+
+    /// AABBs of all nodes: leaves fitted to their triangles, inner nodes the union of their
+    /// children (children have larger indices, so a backward walk sees them first).
+    void fitAabbsBottomUp() {
+        for (int i = static_cast<int>(bvh.nodes.size()) - 1; i >= 0; --i) {
+            const BvhNode& n = bvh.nodes[i];
+            if (n.isLeaf()) fit(i);
+            else bvh.aabbs[i] = merged(bvh.aabbs[n.left], bvh.aabbs[n.right]);
         }
     }
 
@@ -366,7 +380,9 @@ struct Builder {
             stack.push_back(left + 1);
             stack.push_back(left);
         }
-        for (int i = 0; i < static_cast<int>(bvh.nodes.size()); ++i) fit(i);
+        if (bvh.kind == BvKind::Aabb) fitAabbsBottomUp();
+        else
+            for (int i = 0; i < static_cast<int>(bvh.nodes.size()); ++i) fit(i);
         if (trace) {
             // Merge order: the nodes sorted by cluster id (triangles first, then each merge).
             std::vector<int> order(bvh.nodes.size());

@@ -110,7 +110,7 @@ struct BvhBuildStep {
     int node = -1;   ///< index in Bvh::nodes
     int depth = 0;
     int first = 0, count = 0;  ///< triangle range in Bvh::triangleOrder
-    Obb box;                   ///< the node's box (AABB nodes as identity-axes OBBs)
+    Obb box{Vec3::Zero(), Vec3::Zero(), Mat3::Identity()};  ///< the node's box (AABB nodes: identity axes)
     /// Top-down inner nodes: the split. axis is the world axis (SAH, median on an AABB) or the
     /// index of the node box's axis (median on an OBB); position is the split coordinate along
     /// it (median: the median centroid's projection; SAH: the bin plane). -1 for leaves.
