@@ -30,6 +30,7 @@
 #include "core/sat_tests.h"
 #include "core/shapes.h"
 #include "demos/lib/bench_measure.h"
+#include "demos/lib/bench_bvh.h"
 #include "demos/lib/bench_lin_canny.h"
 #include "demos/lib/bench_oracle.h"
 #include "demos/lib/bench_vclip.h"
@@ -645,11 +646,15 @@ int runBench(int argc, char** argv)
     std::cerr << "cdlab bench: V-Clip vs GJK (coherence)\n";
     std::ostringstream vclipTable;
     runVclipBench(quick, vclipTable);
+    std::ostringstream bvhTable;  // BVH build / query / refit (issue 9), figures bvh_*.png
+    std::cerr << "cdlab bench: BVH build / query / refit\n";
+    runBvhBench(quick, outDir, bvhTable);
 
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const std::string machine = machineDescription();
     printTable(rows, std::cout, false);
     std::cout << "\n" << vclipTable.str();
+    std::cout << "\n" << bvhTable.str();
     std::cout << "machine: " << machine << "; " << fmt("%.1f", seconds) << " s\n";
 
     std::ostringstream md;
@@ -665,6 +670,7 @@ int runBench(int argc, char** argv)
        << "(centres 2.2 apart), penetrating (0.4 apart), moved (same pairs moved by 1e-3: warm start).\n\n";
     printTable(rows, md, true);
     md << "\n## V-Clip vs GJK over coherence levels\n\n```\n" << vclipTable.str() << "```\n";
+    md << "\n## BVH build, query and refit\n\n```\n" << bvhTable.str() << "```\n";
     md << "\nRun time " << fmt("%.1f", seconds) << " s.\n";
     try {
         std::filesystem::create_directories(outDir);
