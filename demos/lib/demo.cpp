@@ -1,6 +1,7 @@
 #include "demos/lib/demo.h"
 
 #include "demos/lib/accuracy_demo.h"
+#include "demos/lib/bvh_demo.h"
 #include "demos/lib/drop_demo.h"
 #include "demos/lib/epa_demo.h"
 #include "demos/lib/gjk_demo.h"
@@ -13,7 +14,7 @@
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo(), &spacePartitionDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo(), &spacePartitionDemo(), &bvhDemo()};
     return demos;
 }
 
