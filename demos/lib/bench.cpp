@@ -31,6 +31,7 @@
 #include "core/shapes.h"
 #include "demos/lib/bench_measure.h"
 #include "demos/lib/bench_bvh.h"
+#include "demos/lib/bench_broadphase.h"
 #include "demos/lib/bench_lin_canny.h"
 #include "demos/lib/bench_oracle.h"
 #include "demos/lib/bench_vclip.h"
@@ -649,12 +650,16 @@ int runBench(int argc, char** argv)
     std::ostringstream bvhTable;  // BVH build / query / refit (issue 9), figures bvh_*.png
     std::cerr << "cdlab bench: BVH build / query / refit\n";
     runBvhBench(quick, outDir, bvhTable);
+    std::ostringstream broadphaseTable;  // sweep and prune vs uniform grid vs brute force (issue 9), broadphase_*.png
+    std::cerr << "cdlab bench: broad phase (sweep and prune, grid, brute force)\n";
+    runBroadphaseBench(quick, outDir, broadphaseTable);
 
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const std::string machine = machineDescription();
     printTable(rows, std::cout, false);
     std::cout << "\n" << vclipTable.str();
     std::cout << "\n" << bvhTable.str();
+    std::cout << "\n" << broadphaseTable.str();
     std::cout << "machine: " << machine << "; " << fmt("%.1f", seconds) << " s\n";
 
     std::ostringstream md;
@@ -671,6 +676,7 @@ int runBench(int argc, char** argv)
     printTable(rows, md, true);
     md << "\n## V-Clip vs GJK over coherence levels\n\n```\n" << vclipTable.str() << "```\n";
     md << "\n## BVH build, query and refit\n\n```\n" << bvhTable.str() << "```\n";
+    md << "\n## Broad phase: sweep and prune vs uniform grid vs brute force\n\n```\n" << broadphaseTable.str() << "```\n";
     md << "\nRun time " << fmt("%.1f", seconds) << " s.\n";
     try {
         std::filesystem::create_directories(outDir);
