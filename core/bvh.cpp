@@ -129,6 +129,14 @@ struct Builder {
         bvh.obbs[i] = box;
     }
 
+    /// Room for the 2n - 1 nodes of a full binary tree over n triangles (no reallocation).
+    void reserve(int n) {
+        const size_t nodes = 2 * static_cast<size_t>(n);
+        bvh.nodes.reserve(nodes);
+        if (bvh.kind == BvKind::Aabb) bvh.aabbs.reserve(nodes);
+        else bvh.obbs.reserve(nodes);
+    }
+
     int addChildren(int parent) {
         const int left = static_cast<int>(bvh.nodes.size());
         BvhNode child;
@@ -239,7 +247,7 @@ struct Builder {
 
     void buildTopDown(BvhBuildTrace* trace) {
         const int n = mesh.triangleCount();
-        bvh.nodes.reserve(2 * static_cast<size_t>(n));
+        reserve(n);
         BvhNode root;
         root.count = n;
         bvh.nodes.push_back(root);
@@ -340,7 +348,7 @@ struct Builder {
         // Emit the flat tree: children in adjacent slots, ranges in depth-first order; a cluster of
         // at most maxLeafTriangles triangles becomes one leaf.
         const int maxLeaf = std::max(1, options.maxLeafTriangles);
-        bvh.nodes.reserve(2 * static_cast<size_t>(n));
+        reserve(n);
         std::vector<int> clusterOfNode;
         clusterOfNode.reserve(2 * static_cast<size_t>(n));
         BvhNode root;

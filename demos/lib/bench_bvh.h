@@ -10,7 +10,8 @@
 namespace cdlab::demos {
 
 /// Runs the benchmark, prints a plain-text table to `table` and writes <outDir>/bvh_build.png,
-/// bvh_query.png and bvh_refit.png (log-log, demos/lib/plot.h; skipped without a GL context).
+/// bvh_query_mesh.png, bvh_query_ray.png and bvh_refit.png (log-log, demos/lib/plot.h; skipped
+/// without a GL context).
 /// Times are thread-CPU medians over repetitions, all configurations measured side by side in
 /// one run. Checks on the way that every tree reports the same pairs (and, at 1k triangles,
 /// the brute-force pairs); returns 0, or 1 when they differ. quick: sizes up to 100k (< 20 s).

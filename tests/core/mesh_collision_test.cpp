@@ -156,7 +156,7 @@ TEST_CASE("interlocked tori: linked rings perturbed into and out of contact") {
     size_t hits = 0, misses = 0;
     for (int p = 0; p < 25; ++p) {
         Transform pb;
-        // B in the xz plane through A's hole: linked, 0.5 apart at rest (core circles).
+        // B in the xz plane through A's hole: linked, core circles 1 apart everywhere at rest.
         pb.rotation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX())) *
                       Quat(Eigen::AngleAxisd(uniform(rng, -0.6, 0.6), randomUnit(rng)));
         pb.position = Vec3(1.0, 0, 0) + uniform(rng, 0.0, 0.7) * randomUnit(rng);
