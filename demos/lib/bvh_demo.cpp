@@ -334,6 +334,7 @@ private:
         if (!ctx.gl) return;
 
         GridLayout L = grid(W(), H(), 3, 2);
+        L.captionBand = 100;
         const MeshView mv = meshView(m.mesh, m.pose);
         Vec3 center;
         double radius;
@@ -371,7 +372,8 @@ private:
                           std::to_string(bvh.height()));
         std::string vols = "Summed box volume, levels 0.." + std::to_string(bvh.height()) + ":";
         for (int level = 0; level <= bvh.height(); ++level) vols += " " + fmt(sumVolume(bvh, levelNodes(bvh, level)));
-        caption.push_back(vols + " (boxes of a level overlap; on a closed surface it falls once boxes are thinner than the shape)");
+        caption.push_back(vols + ". Boxes of one level overlap, and on a closed");
+        caption.push_back("surface the sum only falls once the boxes are thinner than the shape: the tree pays off at the deep levels.");
         Frame f;
         f.name = "levels";
         f.caption = "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + kindName(bvh.kind) + " tree";
@@ -439,7 +441,8 @@ private:
             std::vector<std::string> caption;
             if (!common_.caption.empty()) caption.push_back(common_.caption);
             caption.push_back("Same mesh (" + std::to_string(trees[0].triangleCount()) + " triangles), same split rule (" + methodWords(build.method) +
-                              "), leaves of " + std::to_string(build.maxLeafTriangles) + ".");
+                              "), leaves of ≤ " + std::to_string(build.maxLeafTriangles) +
+                              (build.maxLeafTriangles == 1 ? " triangle." : " triangles."));
             caption.push_back("The OBBs turn with the tube and hug it; the AABBs keep the world axes and their corners stay empty.");
             Frame f;
             f.name = "levels";
@@ -493,8 +496,10 @@ private:
                 cc.valueFormat = "%.0f";
                 cc.logY = true;
                 panels.push_back(drawBarChart(*ctx.gl, L.panelWidth(), L.panelHeight(), ss_, cc));
-                caption.push_back("Same pairs from both trees (= brute force, " + std::to_string(q[0].pairs.size()) + " pairs of " +
-                                  std::to_string(m.mesh.triangleCount() * o.mesh.triangleCount()) + "). OBB boxes test dearer (15 axes) but far fewer of them.");
+                caption.push_back("Both trees report the brute-force pairs (" + std::to_string(q[0].pairs.size()) + " of " +
+                                  std::to_string(m.mesh.triangleCount() * o.mesh.triangleCount()) + "). An OBB test costs more (15 axes), but the OBB tree needs " +
+                                  pct(double(q[1].stats.bvTests) / double(std::max<long long>(1, q[0].stats.bvTests))) + " of the box tests and " +
+                                  pct(double(q[1].stats.triangleTests) / double(std::max<long long>(1, q[0].stats.triangleTests))) + " of the triangle tests.");
             }
             std::string vols = "Summed volume AABB / OBB:";
             for (int level : levels)
@@ -794,7 +799,7 @@ private:
                               deformAngle * times[i]);
                 const double ratio = totalVolume(refit[i][k]) / totalVolume(rebuilt[i][k]);
                 panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), views[i], b, m.pose, nodes, row == 0 ? levelColor(0) : levelColor(1), cam,
-                                            head, "all nodes: volume " + fmt(totalVolume(b)) + (row == 0 ? " (×" + fmt(ratio) + " rebuilt)" : "")));
+                                            head, "all nodes: volume " + fmt(totalVolume(b)) + (row == 0 ? " (" + fmt(ratio) + "× rebuilt)" : "")));
             }
         std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "deformed mesh"},
                                           {LegendItem::Swatch::Line, levelColor(0), std::string("refitted ") + kindName(kinds[k]) + "s (topology of the rest shape)"},
@@ -845,11 +850,17 @@ private:
         out.trace = {{"mesh", m.kind}, {"trees", {treeJson(trees[0], maxLevel + 2), treeJson(trees[1], maxLevel + 2)}}};
         if (!ctx.gl) return;
         GridLayout L = grid(W(), H(), int(levels.size()) + 1, 2);
+        L.captionBand = 100;
         const MeshView mv = meshView(m.mesh, m.pose);
         Vec3 center;
         double radius;
-        meshSphere({&mv}, center, radius);
-        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius * 1.02 / zoom, view, L.panelWidth(), L.panelHeight());
+        std::vector<Vec3> corners;
+        for (int k = 0; k < 2; ++k) {
+            const std::vector<Vec3> c = boxesCorners(trees[k], m.pose, levelNodes(trees[k], *std::min_element(levels.begin(), levels.end())));
+            corners.insert(corners.end(), c.begin(), c.end());
+        }
+        meshSphere({&mv}, center, radius, corners);
+        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
         std::vector<Image> panels;
         for (int k = 0; k < 2; ++k) {
             for (int level : levels) {
@@ -872,7 +883,12 @@ private:
         for (int level : levels) legend.push_back({LegendItem::Swatch::Line, levelColor(level), "level " + std::to_string(level)});
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
-        caption.push_back("Top-down splits the median centroid on the longest axis (balanced); bottom-up merges the pair with the smallest union box (Walter et al. 2008).");
+        caption.push_back("Top-down splits at the median centroid on the longest axis; bottom-up merges the pair with the smallest union box (Walter et al. 2008).");
+        std::string vols = "Summed volume top-down / bottom-up:";
+        for (int level : levels)
+            vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) + " / " +
+                    fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
+        caption.push_back(vols + ";  all nodes " + fmt(totalVolume(trees[0])) + " / " + fmt(totalVolume(trees[1])));
         Frame f;
         f.name = "methods";
         f.caption = "top-down vs bottom-up";
