@@ -1,6 +1,7 @@
 #include "demos/lib/demo.h"
 
 #include "demos/lib/accuracy_demo.h"
+#include "demos/lib/bounding_volumes_demo.h"
 #include "demos/lib/bvh_demo.h"
 #include "demos/lib/drop_demo.h"
 #include "demos/lib/epa_demo.h"
@@ -8,13 +9,14 @@
 #include "demos/lib/lin_canny_demo.h"
 #include "demos/lib/polyhedron_plane_demo.h"
 #include "demos/lib/space_partition_demo.h"
+#include "demos/lib/sweep_and_prune_demo.h"
 #include "demos/lib/vclip_demo.h"
 #include "demos/lib/voronoi_demo.h"
 
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo(), &spacePartitionDemo(), &bvhDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo(), &spacePartitionDemo(), &boundingVolumesDemo(), &bvhDemo(), &sweepAndPruneDemo()};
     return demos;
 }
 
