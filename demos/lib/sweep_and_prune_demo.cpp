@@ -193,12 +193,12 @@ private:
 
     // Layout (output pixels, y down): 3D view top left, events top right, three axis panels below.
     static constexpr double kTopY = 62, kTopH = 300;
-    static constexpr double kViewW = 400;
+    static constexpr double kViewX = 80, kViewW = 322;  // the triad sits left of the view
     static constexpr double kPanelY = 372, kPanelH = 118;
     static constexpr double kBarX0 = 70, kBarX1 = 540;
     static constexpr double kOrderX0 = 600, kOrderX1 = 1004;
 
-    Image draw3d(GlContext& gl, int ss, const FrameData& d) const {
+    Image draw3d(GlContext& gl, int ss, const FrameData& d, Eigen::Vector2d axisDir[3]) const {
         CanvasOptions co;
         co.width = static_cast<int>(kViewW);
         co.height = static_cast<int>(kTopH);
@@ -214,7 +214,7 @@ private:
             }
         const Vec3 center = 0.5 * (lo + hi);
         const double radius = 0.5 * (hi - lo).norm();
-        c.setCamera(framingCamera(center, radius * 1.02, s_.view, Vec3::UnitZ()));
+        c.setCamera(framingCamera(center, radius * 0.92, s_.view, Vec3::UnitZ()));
         std::vector<char> paired(d.boxes.size(), 0);
         for (const BoxPair& p : d.pairs) paired[p.a] = paired[p.b] = 1;
         for (std::size_t i = 0; i < d.boxes.size(); ++i) {
@@ -231,15 +231,19 @@ private:
             for (const auto& e : edges) c.drawLine(v[e[0]], v[e[1]], edge);
             TextStyle ts = labelStyle(Role::Ink, 18.0f);
             ts.color = col.scaled(0.6f);
+            // Identical boxes share a centre: their labels step right so each stays readable.
+            int same = 0;
+            for (std::size_t j = 0; j < i; ++j) same += (d.boxes[j].min == b.min && d.boxes[j].max == b.max) ? 1 : 0;
+            ts.offsetPx = Eigen::Vector2d(16.0 * same, 0.0);
             c.drawText(0.5 * (b.min + b.max), boxName(static_cast<int>(i)), ts);
         }
-        // Axis triad at the low corner, so the panels below can be matched to the picture.
-        const double len = 0.18 * (hi - lo).maxCoeff();
+        // Screen directions of the world axes, for the triad drawn beside the view.
+        Eigen::Vector2d p0;
+        c.project(center, p0);
         for (int k = 0; k < 3; ++k) {
-            const Vec3 q = lo + len * Vec3::Unit(k);
-            c.drawArrow(lo, q, lineStyle(Role::Ink, 2.0f, false, true));
-            TextStyle ts = labelStyle(Role::Ink, 16.0f);
-            c.drawText(q + 0.25 * len * Vec3::Unit(k), kAxisName[k], ts);
+            Eigen::Vector2d pk;
+            c.project(center + 0.1 * radius * Vec3::Unit(k), pk);
+            axisDir[k] = (pk - p0).normalized();
         }
         return c.readPixels();
     }
@@ -262,7 +266,7 @@ private:
         std::vector<BoxPair> added = d.trace.added, removed = d.trace.removed;
         if (common_.hasLayer("events")) {
             double y = kTopY + 8;
-            const double x0 = kViewW + 40;
+            const double x0 = kViewX + kViewW + 40;
             auto line = [&](const std::string& text, const TextStyle& st, double dy = 21) {
                 c.drawTextPx(x0, y, text, st);
                 y += dy;
@@ -277,19 +281,26 @@ private:
                 line("swaps: x " + std::to_string(d.result.swapsPerAxis[0]) + ", y " + std::to_string(d.result.swapsPerAxis[1]) +
                          ", z " + std::to_string(d.result.swapsPerAxis[2]) + "  (= inversions of the old order)",
                      body, 26);
+                // At most 6 lines: every swap that added or removed a pair, then the others in order.
                 const int maxLines = 6;
-                int shown = 0;
-                for (const SapSwap& s : d.trace.swaps) {
-                    if (shown == maxLines) break;
+                std::vector<char> keep(d.trace.swaps.size(), 0);
+                int kept = 0;
+                for (std::size_t i = 0; i < d.trace.swaps.size(); ++i)
+                    if (d.trace.swaps[i].event != SapPairEvent::None && kept < maxLines) keep[i] = 1, ++kept;
+                for (std::size_t i = 0; i < d.trace.swaps.size() && kept < maxLines; ++i)
+                    if (!keep[i]) keep[i] = 1, ++kept;
+                for (std::size_t i = 0; i < d.trace.swaps.size(); ++i) {
+                    if (!keep[i]) continue;
+                    const SapSwap& sw = d.trace.swaps[i];
                     TextStyle st = body;
                     st.sizePx = 14.0f;
-                    if (s.event != SapPairEvent::None) st.color = roleColor(Role::Highlight), st.bold = true;
-                    line(swapLine(s), st, 19);
-                    ++shown;
+                    if (sw.event != SapPairEvent::None) st.color = roleColor(Role::Highlight), st.bold = true;
+                    line(swapLine(sw), st, 19);
                 }
+                const int shown = kept;
                 if (d.trace.swaps.empty()) line("no swaps: every order still holds, no pair changes", body);
                 if (static_cast<int>(d.trace.swaps.size()) > shown)
-                    line("... and " + std::to_string(d.trace.swaps.size() - shown) + " more swaps", body);
+                    line("... and " + std::to_string(d.trace.swaps.size() - shown) + " more swaps (no pair change)", body);
                 y += 6;
             }
             TextStyle pairsStyle = head;
@@ -302,9 +313,22 @@ private:
         if (common_.hasLayer("intervals")) {
             for (int k = 0; k < 3; ++k) drawAxisPanel(c, P, frames, f, k, small, smallBold, n);
         }
+        // The 3D view is rendered on its own canvas and pasted in; its axis triad goes beside it.
+        Image view;
+        if (common_.hasLayer("view3d")) {
+            Eigen::Vector2d dir[3];
+            view = draw3d(gl, ss, d, dir);
+            const Eigen::Vector2d o(38, kTopY + kTopH - 80);
+            for (int k = 0; k < 3; ++k) {
+                const Eigen::Vector2d q = o + 22.0 * dir[k];
+                c.drawArrow(P(o.x(), o.y()), P(q.x(), q.y()), lineStyle(Role::Ink, 2.0f, false, true));
+                const Eigen::Vector2d t = o + 33.0 * dir[k];
+                c.drawTextPx(t.x(), t.y(), kAxisName[k], TextStyle{15.0f, roleColor(Role::Ink), Anchor::Center, false, true});
+            }
+        }
         drawTitleAndCaption(c, common_.title + " — frame " + std::to_string(f), common_.caption);
         Image img = c.readPixels();
-        if (common_.hasLayer("view3d")) blit(img, draw3d(gl, ss, d), 16, static_cast<int>(kTopY));
+        if (common_.hasLayer("view3d")) blit(img, view, static_cast<int>(kViewX), static_cast<int>(kTopY));
         Frame fr;
         char name[32];
         std::snprintf(name, sizeof name, "frame_%02d", f);
@@ -358,19 +382,30 @@ private:
                     c.drawLine(P(x, yc - hh - 2), P(x, yc + hh + 2), LineStyle{3.0f, roleColor(Role::Highlight), 0.0f, true});
                 }
         }
-        // Ties: a min and a max of different boxes at the same coordinate (touching intervals).
+        // Ties: a max of one box at the same coordinate as the min of another (touching intervals),
+        // one dashed line and one label per coordinate.
         const double barsBottom = y0 + 6 + n * rowH;
+        std::vector<std::pair<double, std::string>> ties;
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < n; ++j)
                 if (i != j && d.boxes[i].max[k] == d.boxes[j].min[k]) {
-                    const double x = X(d.boxes[i].max[k]);
-                    c.drawLine(P(x, y0 + 2), P(x, barsBottom + 2), LineStyle{1.5f, roleColor(Role::Ink), 4.0f, true});
-                    TextStyle t = small;
-                    t.anchor = Anchor::Left;
-                    t.sizePx = 12.0f;
-                    t.bold = true;
-                    c.drawTextPx(x + 4, y0 + 2, "tie: " + endName(j, false) + " sorts before " + endName(i, true), t);
+                    const double v = d.boxes[i].max[k];
+                    auto it = std::find_if(ties.begin(), ties.end(), [&](const auto& t) { return t.first == v; });
+                    const std::string what = endName(j, false) + " before " + endName(i, true);
+                    if (it == ties.end())
+                        ties.emplace_back(v, "tie: " + what);
+                    else
+                        it->second += ", " + what;
                 }
+        for (const auto& [v, label] : ties) {
+            const double x = X(v);
+            c.drawLine(P(x, y0 + 2), P(x, barsBottom + 2), LineStyle{1.5f, roleColor(Role::Ink), 4.0f, true});
+            TextStyle t = small;
+            t.anchor = Anchor::Left;
+            t.sizePx = 12.0f;
+            t.bold = true;
+            c.drawTextPx(x + 4, y0 + 2, label, t);
+        }
         // Number line with ticks.
         const double yl = y0 + 96;
         c.drawLine(P(kBarX0, yl), P(kBarX1, yl), lineStyle(Role::Ink, 1.0f, false, true));
