@@ -275,9 +275,9 @@ int runBvhBench(bool quick, const std::string& outDir, std::ostream& table) {
 
     table << "BVH bench: torus meshes (R = 1, r = 0.3), leaf size 1; thread CPU time, median of repetitions,\n"
           << "all rows side by side in one run on a shared 2-core machine. Bottom-up (O(n²) agglomerative)\n"
-          << "only up to " << bottomUpMax << " triangles. mesh-mesh: the torus against a copy linked through its hole\n"
-          << "(cutting the tube); linked: linked through the hole 0.4 apart (no contact). ray: 256 rays, all hits (columns: BV tests,\n"
-          << "triangle tests and hits per ray).\n\n"
+          << "only up to " << bottomUpMax << " triangles. mesh-mesh: the torus against a copy through its hole,\n"
+          << "cutting its tube; linked: the copy linked through the hole, tubes 0.4 apart (no contact).\n"
+          << "ray: 256 rays, all hits (columns: BV tests, triangle tests and hits per ray).\n\n"
           << buildTable.str() << "\n"
           << queryTable.str() << "\n"
           << refitTable.str();
