@@ -46,10 +46,17 @@ struct SceneRng {
     double uniform(double a, double b) { return a + (b - a) * (double(engine()) / 4294967296.0); }
 };
 
-// Depth colour ramp for split lines: deep blue at the root, towards light orange deep down.
+// Depth colour ramp for split lines: near-black blue at the root, lighter blue deeper down
+// (orange is kept for "in a pair" / "was split").
 Color depthColor(int depth, int maxDepth) {
     const float t = maxDepth > 0 ? float(std::min(depth, maxDepth)) / float(maxDepth) : 0.0f;
-    return roleColor(Role::Direction).mixed(categorical(0), t);
+    const Color blue = categorical(4);
+    return blue.scaled(0.35f).mixed(blue.mixed(roleColor(Role::Background), 0.45f), t);
+}
+// Box colour by the octree depth it is stored at (orange excluded: it marks pairs).
+Color octreeDepthColor(int depth) {
+    static const int kIndex[6] = {6, 1, 2, 3, 4, 5};
+    return categorical(kIndex[std::min(depth, 5)]);
 }
 float depthWidth(int depth) { return std::max(1.2f, 4.0f - 0.5f * float(depth)); }
 
@@ -302,17 +309,17 @@ private:
             if (cells)
                 for (const OctreeNode& node : ot.nodes())
                     outlineRect(canvas, node.cell, at, LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
-            drawBoxes(at, [&](int i) { return categorical(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
+            drawBoxes(at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
             outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
             heading(canvas, at + P(frame.min.x(), frame.max.y()),
-                    "Octree (top view: a quadtree), " + std::to_string(os.nodeCount) + " nodes",
+                    "Octree (seen as a quadtree), " + std::to_string(os.nodeCount) + " nodes",
                     std::to_string(octTests) + " tests, " + std::to_string(octPairs.size()) + " pairs; " +
-                        std::to_string(os.objectsAtRoot) + " boxes stuck at the root on split lines");
+                        std::to_string(os.objectsAtRoot) + " boxes on the root's split lines");
             if (common_.hasLayer("labels")) {
                 // Legend: box colour = depth of the node that stores it.
                 for (int d = 0; d <= os.maxDepthReached; ++d) {
                     const Vec3 p = at + P(frame.max.x(), frame.max.y()) + P(0.02 * W, -0.045 * W * (d + 0.5));
-                    canvas.drawPoint(p, 6.0f, categorical(d).withAlpha(0.8f));
+                    canvas.drawPoint(p, 6.0f, octreeDepthColor(d).withAlpha(0.8f));
                     canvas.drawText(p, (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
                                            std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
                                     TextStyle{14.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
@@ -342,24 +349,23 @@ private:
             heading(canvas, at + P(frame.min.x(), frame.max.y()),
                     "k-d tree of the box centres, depth " + std::to_string(kt.depth()),
                     std::to_string(kt.nodes().size()) + " nodes; median splits " +
-                        (kd.rule == KdSplitRule::Cycle ? "cycling x, y" : "on the widest axis") +
-                        "; root split thickest, darkest");
+                        (kd.rule == KdSplitRule::Cycle ? "cycling x, y" : "on the widest axis") + " (root: darkest)");
         }
-        // 4. BSP of the box walls: leaf regions (solid shaded), split lines, wall fragments.
+        // 4. BSP of the box walls: split lines and wall fragments. Overlapping boxes are not one
+        // closed surface (walls inside other boxes), so solid / empty leaves mean little here:
+        // the boxes are shaded instead (the bsp_shape figure shows solid leaves).
         {
             const Vec3 at = offsets[3];
             const auto regions = bspRegions(bt, rectPolygon(frame));
-            if (cells)
-                for (std::size_t i = 0; i < bt.nodes().size(); ++i)
-                    if (bt.nodes()[i].kind == BspNodeKind::SolidLeaf && regions[i].size() >= 3)
-                        canvas.drawPolygon(shifted(regions[i], at), roleColor(Role::ShapeA).withAlpha(0.35f));
+            if (drawObjects)
+                for (const Aabb& b : boxes) fillRect(canvas, b, at, roleColor(Role::ShapeA).withAlpha(0.30f));
             if (splits)
                 for (std::size_t i = 0; i < bt.nodes().size(); ++i) {
                     const BspNode& node = bt.nodes()[i];
                     Vec3 p, q;
                     if (node.kind == BspNodeKind::Inner &&
                         lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
-                        canvas.drawLine(at + p, at + q, LineStyle{depthWidth(node.depth), depthColor(node.depth, bs.depth), 5.0f});
+                        canvas.drawLine(at + p, at + q, LineStyle{0.6f * depthWidth(node.depth), depthColor(node.depth, bs.depth)});
                 }
             if (drawObjects)
                 for (const BspFragment& f : bt.fragments()) {
@@ -370,8 +376,8 @@ private:
             outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
             heading(canvas, at + P(frame.min.x(), frame.max.y()),
                     "BSP tree of the box walls, depth " + std::to_string(bs.depth),
-                    std::to_string(bs.innerCount) + " split planes, " + std::to_string(bs.splits) +
-                        " walls cut (fragments in orange), solid leaves shaded");
+                    std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
+                        " walls cut in two (orange pieces)");
         }
         drawTitleAndCaption(canvas, common_.title, common_.caption);
         Frame f;
@@ -460,7 +466,7 @@ private:
             canvas.drawPolyline(circle, true, lineStyle(Role::Result, 2.0f, true, true));
             // Improvements of the best point, in order: the search narrows.
             for (std::size_t k = 0; k + 1 < nt.bestSoFar.size(); ++k)
-                canvas.drawPoint(at + points[std::size_t(nt.bestSoFar[k])], 7.0f, roleColor(Role::Support), true, 1.5f);
+                canvas.drawPoint(at + points[std::size_t(nt.bestSoFar[k])], 7.0f, roleColor(Role::Simplex), true, 1.5f);
             canvas.drawLine(at + query, at + points[std::size_t(nearest.index)], lineStyle(Role::Result, 3.0f, false, true));
             canvas.drawPoint(at + points[std::size_t(nearest.index)], 8.0f, roleColor(Role::Result), true, 2.0f);
             canvas.drawPoint(at + query, 9.0f, roleColor(Role::Query), true, 2.0f);
@@ -468,13 +474,13 @@ private:
         }
         heading(canvas, offsets[0] + P(frame.min.x(), frame.max.y()), "Nearest neighbour of q",
                 std::to_string(nt.distanceTests) + " of " + std::to_string(points.size()) + " points tested, " +
-                    std::to_string(nt.pruned.size()) + " subtrees pruned (grey)");
+                    std::to_string(nt.pruned.size()) + " subtrees pruned (grey); green: earlier bests");
         // Right: range query.
         drawTree(offsets[1], rt);
         if (common_.hasLayer("queries")) {
             const Vec3 at = offsets[1];
-            fillRect(canvas, range, at, roleColor(Role::Query).withAlpha(0.18f));
-            outlineRect(canvas, range, at, lineStyle(Role::Query, 3.0f, false, true));
+            fillRect(canvas, range, at, roleColor(Role::Simplex).withAlpha(0.25f));
+            outlineRect(canvas, range, at, lineStyle(Role::Simplex, 3.0f, false, true));
             for (int i : hits) canvas.drawPoint(at + points[std::size_t(i)], 7.0f, roleColor(Role::Result), true, 1.5f);
         }
         heading(canvas, offsets[1] + P(frame.min.x(), frame.max.y()), "Range query (box)",
@@ -557,7 +563,7 @@ private:
                 const BspNode& node = nodes[i];
                 if (node.kind == BspNodeKind::Inner &&
                     lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
-                    canvas.drawLine(p, q, LineStyle{depthWidth(node.depth), depthColor(node.depth, bs.depth), 6.0f});
+                    canvas.drawLine(p, q, LineStyle{depthWidth(node.depth), depthColor(node.depth, bs.depth)});
             }
         if (common_.hasLayer("objects"))
             for (const BspFragment& f : bt.fragments()) {
@@ -578,7 +584,7 @@ private:
             for (std::size_t i = 0; i < queries.size(); ++i) {
                 const Role role = classes[i] == BspPointClass::Inside    ? Role::Result
                                   : classes[i] == BspPointClass::Outside ? Role::Query
-                                                                         : Role::Highlight;
+                                                                         : Role::Simplex;
                 canvas.drawPoint(queries[i], 8.0f, roleColor(role), true, 2.0f);
                 if (labels)
                     canvas.drawText(queries[i], kClass[int(classes[i])], TextStyle{15.0f, roleColor(Role::Ink), Anchor::Left, true, false, {10, 0}});
@@ -588,13 +594,14 @@ private:
                 if (ray.hit) {
                     canvas.drawPoint(ray.point, 9.0f, roleColor(Role::Support), true, 2.0f);
                     if (labels)
-                        canvas.drawText(ray.point, "first hit t = " + formatNumber(ray.t),
-                                        TextStyle{15.0f, roleColor(Role::Ink), Anchor::Right, true, true, {-12, -12}});
+                        canvas.drawText(ray.point, "first hit, t = " + formatNumber(ray.t),
+                                        TextStyle{15.0f, roleColor(Role::Ink), Anchor::TopRight, true, true, {-12, 6}});
                 }
             }
         }
         heading(canvas, P(frame.min.x(), frame.max.y()), "Splits and leaf regions (top view)",
-                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + " edges cut (orange pieces), solid leaves shaded");
+                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + (bs.splits == 1 ? " edge" : " edges") +
+                    " cut (orange pieces), solid leaves blue");
         if (common_.hasLayer("tree")) drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);
         drawTitleAndCaption(canvas, common_.title, common_.caption);
         Frame f;
@@ -621,7 +628,7 @@ private:
         };
         place(0);
         const double rowH = h / double(depth + 1);
-        auto pos = [&](int id) {
+        auto pos = [&](int id) -> Vec3 {
             return corner + P(x[std::size_t(id)] * w, h - (nodes[std::size_t(id)].depth + 0.5) * rowH);
         };
         for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -641,7 +648,9 @@ private:
                 canvas.drawPoint(p, 6.0f, solid ? roleColor(Role::ShapeA) : roleColor(Role::Background), true, 1.5f);
             }
         }
-        heading(canvas, corner + P(0, h), "The tree", "solid line: front (outside) child; dashed: back; dots: solid / empty leaves");
+        canvas.drawText(corner, "leaves: blue dot = solid (inside), white = empty (outside)",
+                        TextStyle{15.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        heading(canvas, corner + P(0, h), "The tree", "edge name = splitting line; grey: front child, dashed: back");
     }
 };
 
