@@ -27,7 +27,7 @@ struct BspTree::Work {
 
 namespace {
 
-// Ericson §8.3.2 ClassifyPolygonToPlane with a thick plane: vertices within eps are ON.
+// Ericson §8.3.3 ClassifyPolygonToPlane with a thick plane: vertices within eps are ON.
 Side classify(const Fragment& f, const Vec3& n, double d, double eps) {
     int front = 0, back = 0;
     for (const Vec3& v : f.vertices) {
@@ -175,7 +175,7 @@ int BspTree::buildNode(std::vector<int> polys, int depth, int parent, Work& work
         status_ = BspStatus::DepthLimit;
         return id;  // empty leaf: the polygons left here are dropped
     }
-    // Ericson §8.3.3 PickSplittingPlane: score every candidate's plane against the node's
+    // Ericson §8.3.2 PickSplittingPlane: score every candidate's plane against the node's
     // polygons; coplanar polygons count as in front, as there.
     const double K = options_.splitWeight;
     std::vector<int> candidates = polys;

@@ -1,8 +1,9 @@
 // Solid-leaf BSP tree by autopartition of a polygon soup (Fuchs, Kedem & Naylor, "On visible
 // surface generation by a priori tree structures", SIGGRAPH 1980; Thibault & Naylor, "Set
 // operations on polyhedra using binary space partitioning trees", SIGGRAPH 1987; Ericson,
-// Real-Time Collision Detection ch. 8: §8.3.2 classification, §8.3.3 plane selection, §8.3.4
-// polygon splitting, §8.4 solid-leaf trees, §8.4.1 point containment, §8.4.2 ray intersection).
+// Real-Time Collision Detection ch. 8: §8.2.3 solid-leaf trees, §8.3.2 evaluating dividing planes,
+// §8.3.3 classifying polygons, §8.3.4 polygon splitting, §8.4.1 point containment, §8.4.2 ray
+// intersection).
 //
 // Build: every inner node's plane is the plane of one of the input polygons (autopartition),
 // chosen by Ericson's score K * straddling + (1 - K) * |front - back| over the candidates. The
@@ -17,7 +18,7 @@
 // polygons must bound a closed solid (a closed, consistently oriented mesh); for any other soup
 // the tree is still a valid partition (figures), only the solid/empty labels mean little.
 //
-// Thick planes (Ericson §8.3.2): a point is ON a plane when its distance is within
+// Thick planes (Ericson §8.3.3): a point is ON a plane when its distance is within
 // thickness() = options.planeThickness * L + 8 ulp(M), L = the largest extent of the input
 // bounds, M = the largest |coordinate| (the input itself is rounded to ulp(M)). WHY:
 // polygon planes are fitted in floating point, so a polygon's own vertices, or a vertex shared
@@ -48,7 +49,7 @@ struct BspPolygon {
 
 struct BspOptions {
     double planeThickness = 1e-9;  ///< relative to the input size (see the header)
-    double splitWeight = 0.8;      ///< K of Ericson §8.3.3: weight of splits vs imbalance (0.8 as there)
+    double splitWeight = 0.8;      ///< K of Ericson §8.3.2: weight of splits vs imbalance (0.8 as there)
     int maxCandidates = 0;         ///< 0: every polygon of a node is a candidate; else at most this many (evenly spaced)
     int maxDepth = 1000;           ///< root depth 0 (a 5k-triangle torus needs ~220)
 };
@@ -85,7 +86,7 @@ struct BspNode {
     std::vector<int> fragments;  ///< indices into BspTree::fragments(): the polygons on this plane
 };
 
-/// One plane choice during the build (Ericson §8.3.3), in build order (parent before children).
+/// One plane choice during the build (Ericson §8.3.2), in build order (parent before children).
 struct BspSplitStep {
     int node = -1;
     int depth = 0;

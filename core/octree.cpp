@@ -118,7 +118,7 @@ void Octree::build(const std::vector<Aabb>& boxes, const OctreeOptions& options,
 }
 
 // Top-down: keep the objects if the node is small enough or deep enough, otherwise push each
-// object to the child that contains it (Ericson §7.3.1) and recurse.
+// object to the child that contains it (Ericson §7.3.2) and recurse.
 void Octree::insertAll(int node, std::vector<int> objects, OctreeTrace* trace) {
     OctreeBuildStep step;
     step.node = node;
@@ -180,7 +180,7 @@ std::vector<std::pair<int, int>> Octree::overlappingPairs(std::int64_t* pairTest
         // Classic octree: an overlapping pair always has one object in an ancestor-or-same node
         // of the other's. Depth-first with the objects of the current ancestors on a stack: each
         // object is tested against the later objects of its node and every ancestor object, so
-        // each pair is tested exactly once (Ericson §7.3.3, TestAllCollisions).
+        // each pair is tested exactly once (Ericson §7.3.2, TestAllCollisions).
         std::vector<int> ancestors;  // objects of the nodes on the current root path
         struct Item {
             int node;

@@ -1,5 +1,6 @@
 // Octree over axis-aligned boxes, for broad-phase pair finding and box queries (Ericson,
-// Real-Time Collision Detection §7.3 "Trees", §7.3.1-§7.3.3; loose octree after Ulrich, "Loose
+// Real-Time Collision Detection §7.3.1 octrees, §7.3.2 object assignment and TestAllCollisions,
+// §7.3.6 loose octrees; loose octree after Ulrich, "Loose
 // Octrees", Game Programming Gems, 2000).
 //
 // Each node is a cubic-ish cell (the root is the given or fitted bounds, cut at its midpoint on
