@@ -1,5 +1,9 @@
 #include "core/epa.h"
 
+#include <algorithm>
+
+#include "core/edge_pair_distance.h"
+
 namespace cdlab {
 
 const char* statusName(EpaStatus status)
@@ -295,6 +299,35 @@ void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA
     }
     pointA = v0.a + da;
     pointB = v0.b + db;
+}
+
+bool epaRefineEdgePair(const EpaPolytope& poly, int f, EpaResult& r)
+{
+    Vec3 a[3], b[3];
+    int na = 0, nb = 0;
+    for (int k = 0; k < 3; ++k) {
+        const EpaVertex& v = poly.vertex[poly.face[f].v[k]];
+        if (std::find(a, a + na, v.a) == a + na) a[na++] = v.a;
+        if (std::find(b, b + nb, v.b) == b + nb) b[nb++] = v.b;
+    }
+    if (na != 2 || nb != 2) return false;
+    const LinePairSeparation line = linePairSeparation(a[0], a[1], b[0], b[1]);
+    if (!line.ok) return false;
+    // The face is three corners of the parallelogram edgeA - edgeB and holds the origin's
+    // projection, so the feet lie on both edges; 1e-6 allows for EPA's rounding.
+    constexpr double kSlack = 1e-6;
+    if (line.s < -kSlack || line.s > 1 + kSlack || line.t < -kSlack || line.t > 1 + kSlack) return false;
+    // pointA - pointB = -separation * normal; EPA's normal points from A toward B.
+    const bool aligned = line.normal.dot(poly.face[f].normal) >= 0.0;
+    const double depth = aligned ? -line.separation : line.separation;
+    const double size = std::max((a[1] - a[0]).norm(), (b[1] - b[0]).norm());
+    if (!(std::abs(depth - r.depth) <= kSlack * size)) return false;
+    r.depth = std::max(depth, 0.0);
+    r.normal = aligned ? line.normal : Vec3(-line.normal);
+    r.pointA = line.pointA;
+    r.pointB = line.pointB;
+    r.edgePairRefined = true;
+    return true;
 }
 
 }  // namespace detail

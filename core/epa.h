@@ -57,6 +57,11 @@ struct EpaOptions {
     int maxIterations = 120;
     /// Options of the GJK run inside penetration().
     GjkOptions gjk{};
+    /// When the final face spans an edge of A and an edge of B (edge-edge penetration), take
+    /// depth, normal and witnesses from the two lines' common perpendicular in double-double
+    /// (core/edge_pair_distance.h): the face normal, a cross product of rounded differences,
+    /// errs by ~u / angle on nearly parallel edges.
+    bool refineEdgePairs = true;
 };
 
 struct EpaResult {
@@ -71,6 +76,7 @@ struct EpaResult {
     double upperBound = 0.0;                 ///< depth <= upperBound (best support value)
     int vertexCount = 0;                     ///< polytope size at the end
     int faceCount = 0;
+    bool edgePairRefined = false;            ///< depth and normal from the edge pair (options)
 };
 
 /// One EPA iteration as plain data. Vertex ids index `vertices`; faces are CCW seen from outside.
@@ -165,6 +171,12 @@ private:
 
 /// Contact point of GJK's terminal simplex (for touching contacts).
 void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA, Vec3& pointB);
+
+/// Final face f spanning exactly two points of A and two of B: depth, normal and witnesses from
+/// the lines' common perpendicular (EpaOptions::refineEdgePairs). Refused (false, r unchanged)
+/// when the feet leave the edges or the depth moves by more than EPA's rounding could explain;
+/// the caller still certifies the plane with the supports.
+bool epaRefineEdgePair(const EpaPolytope& poly, int f, EpaResult& r);
 
 }  // namespace detail
 
@@ -350,6 +362,19 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
     r.lowerBound = F.distance;
     r.upperBound = upper;
     poly.witness(f, r.depth, r.pointA, r.pointB);
+    if (options.refineEdgePairs) {
+        // Certify the edge pair's plane with the supports: h_C(n) = n.(s_A(n) - s_B(-n)) bounds
+        // the depth from above; equal to the refined depth up to rounding, the plane is a face
+        // of A - B and the depth is exact.
+        EpaResult refined = r;
+        if (detail::epaRefineEdgePair(poly, f, refined)) {
+            const Vec3& n = refined.normal;
+            const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
+            const double h = n.dot(sa) - n.dot(sb);
+            const double m = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
+            if (h <= refined.depth + 64.0 * 0x1p-53 * m) r = refined;
+        }
+    }
     r.status = r.depth <= kTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
     return stop(why);
 }

@@ -1,5 +1,7 @@
 #include "core/gjk.h"
 
+#include <algorithm>
+
 namespace cdlab {
 
 const char* statusName(GjkStatus status)
@@ -65,6 +67,36 @@ void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSim
     for (int k = 0; k < 4; ++k) step.lambda[k] = k < c.count ? c.lambda[k] : 0.0;
     step.v = c.v;
     gjkWitness(reduced, step.pointA, step.pointB);
+}
+
+bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r)
+{
+    // Uncertified: the lower bound is not within 1e-9 of |v| (a converged run has 1e-13).
+    if (!(r.lowerBound >= (1.0 - 1e-9) * r.distance)) return true;
+    if (s.count != 3) return false;
+    // Sliver: |e1 x e2| < 1e-3 |e1| |e2| leaves the normal's rounding error above 1e3 u.
+    const Vec3 e1 = s.vertex[1].w - s.vertex[0].w, e2 = s.vertex[2].w - s.vertex[0].w;
+    return e1.cross(e2).squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
+}
+
+int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out)
+{
+    Vec3 a[4], b[4];
+    int na = 0, nb = 0;
+    for (int i = 0; i < s.count; ++i) {
+        if (std::find(a, a + na, s.vertex[i].a) == a + na) a[na++] = s.vertex[i].a;
+        if (std::find(b, b + nb, s.vertex[i].b) == b + nb) b[nb++] = s.vertex[i].b;
+    }
+    int n = 0;
+    for (int i = 0; i < na; ++i)
+        for (int j = i + 1; j < na; ++j)
+            for (int k = 0; k < nb; ++k)
+                for (int l = k + 1; l < nb; ++l) {
+                    const EdgePairDistance e = edgePairDistance(a[i], a[j], b[k], b[l]);
+                    if (e.ok) out[n++] = e;
+                }
+    std::sort(out, out + n, [](const EdgePairDistance& x, const EdgePairDistance& y) { return x.distance < y.distance; });
+    return n;
 }
 
 }  // namespace detail

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/edge_pair_distance.h"
 #include "core/simplex_solver.h"
 #include "core/support.h"
 
@@ -67,6 +68,11 @@ struct GjkOptions {
     /// Optional simplex of a previous query (e.g. last frame): its vertices are re-evaluated as
     /// support points of the current shapes along their stored directions.
     const GjkSimplex* warmStart = nullptr;
+    /// When a separated answer is doubtful (a sliver terminal triangle, or an uncertified stop),
+    /// recompute it from the edge pairs of the terminal simplex in double-double arithmetic,
+    /// certified by the supports (core/edge_pair_distance.h, detail::gjkRefineEdgePairs): exact
+    /// to a few ulps even for nearly parallel edges, where |v| errs by ~u L / angle.
+    bool refineEdgePairs = true;
 };
 
 struct GjkResult {
@@ -82,6 +88,7 @@ struct GjkResult {
     GjkTermination termination = GjkTermination::InvalidInput;
     double lowerBound = 0.0;            ///< max over iterations of v·w / |v| (distance >= this)
     double upperBound = 0.0;            ///< |v| (distance <= this)
+    bool edgePairRefined = false;       ///< distance and witnesses from the edge pair (see options)
 };
 
 /// One GJK iteration as plain data (for demos / debugging). Simplex slots are named A, B, C, D.
@@ -122,6 +129,46 @@ void gjkReduce(const GjkVertex* in, const SimplexClosest& c, GjkSimplex& out);
 
 /// Fill the trace-side fields of a step from a reduced simplex.
 void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced);
+
+/// True when a separated answer may be off by more than rounding of L: the terminal triangle is
+/// a sliver (two nearly parallel edges, normal error ~u / angle) or GJK stopped without
+/// certifying the distance (lower bound well below |v|: duplicate support or no progress).
+bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r);
+
+/// Every two points of A with every two points of B among the simplex's vertices, as accurate
+/// segment-segment distances (core/edge_pair_distance.h), sorted by distance; returns the count
+/// (<= 9). Each is a distance between subsets of A and B: an upper bound of the true distance.
+int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
+
+/// Replace a doubtful separated answer (gjkNeedsEdgePairs) by the smallest edge-pair distance
+/// that the supports certify: with axis d of that pair, d . (s_B(-d) - s_A(d)) is a lower bound
+/// of the distance; when it equals the pair's distance up to rounding, that distance is exact.
+/// Uncertified candidates (e.g. crossed edges of penetrating shapes) change nothing.
+template <class A, class B>
+void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r)
+{
+    if (!gjkNeedsEdgePairs(s, r)) return;
+    EdgePairDistance candidate[9];
+    const int n = gjkEdgePairCandidates(s, candidate);
+    for (int i = 0; i < n; ++i) {
+        const EdgePairDistance& e = candidate[i];
+        if (!(e.distance > 0.0)) continue;  // touching edges give no axis to certify
+        const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
+        const double lower = e.axis.dot(sb) - e.axis.dot(sa);
+        // Rounding of the two dot products and of the axis (a few u) times the coordinates.
+        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(),
+                                   e.pointA.cwiseAbs().maxCoeff(), e.pointB.cwiseAbs().maxCoeff()});
+        if (!(lower >= e.distance - 64.0 * 0x1p-53 * m)) continue;
+        r.distance = e.distance;
+        r.upperBound = e.distance;
+        r.lowerBound = std::min(lower, e.distance);
+        r.pointA = e.pointA;
+        r.pointB = e.pointB;
+        r.separatingAxis = e.axis;
+        r.edgePairRefined = true;
+        return;
+    }
+}
 
 /// Support of `shape` along d, through the shape's hinted overload support(d, hint) when it has
 /// one (PolytopeShape: hill climbing restarts at the previous answer, see core/shapes.h).
@@ -218,6 +265,7 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
                 if (n.dot(v) > 0.5 * r.distance) r.separatingAxis = -n;  // sanity: same side
             }
         }
+        if (options.refineEdgePairs && s.count >= 2) gjkRefineEdgePairs(shapeA, shapeB, s, r);
     };
 
     // Initial simplex: warm start (re-evaluated supports) or one support point along +x.

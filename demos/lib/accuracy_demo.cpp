@@ -122,14 +122,17 @@ Pair makePair(const std::string& sweep, std::uint64_t seed, int k, int i)
 }
 
 struct Sample {
-    double param = 0, errorSv = 0, errorJohnson = 0;
+    // errorSv / errorJohnson: the plain GJK loop (GjkOptions::refineEdgePairs off), so the
+    // sub-algorithms are compared as they are; errorRefined: the default, signed volumes with the
+    // edge-pair refinement (core/edge_pair_distance.h).
+    double param = 0, errorSv = 0, errorJohnson = 0, errorRefined = 0;
 };
 
 struct Decade {
     int k = 0;
     int count = 0;
-    double svMedian = 0, svMax = 0, johnsonMedian = 0, johnsonMax = 0;
-    int svOverTolerance = 0, johnsonOverTolerance = 0;
+    double svMedian = 0, svMax = 0, johnsonMedian = 0, johnsonMax = 0, refinedMedian = 0, refinedMax = 0;
+    int svOverTolerance = 0, johnsonOverTolerance = 0, refinedOverTolerance = 0;
 };
 
 struct Sweep {
@@ -160,7 +163,7 @@ Sweep runSweep(const Settings& s)
     for (int k = s.kFrom; k < s.kTo; ++k) {
         Decade d;
         d.k = k;
-        std::vector<double> sv, jo;
+        std::vector<double> sv, jo, re;
         for (int i = 0; i < s.perDecade; ++i) {
             const Pair p = makePair(s.sweep, s.seed, k, i);
             const MinkowskiOracle o = minkowskiOracle(p.a, p.b);
@@ -176,17 +179,23 @@ Sweep runSweep(const Settings& s)
             const PolytopeShape a(p.a), b(p.b);
             Sample smp;
             smp.param = p.param;
+            auto error = [&](const GjkOptions& opt) {
+                const GjkResult g = gjkDistance(a, b, opt);
+                return std::isfinite(g.distance) ? std::abs(g.distance - exact) / L : INFINITY;
+            };
             for (const SimplexSolver solver : {SimplexSolver::SignedVolumes, SimplexSolver::Johnson}) {
                 GjkOptions opt;
                 opt.solver = solver;
-                const GjkResult g = gjkDistance(a, b, opt);
-                const double e = std::isfinite(g.distance) ? std::abs(g.distance - exact) / L : INFINITY;
-                (solver == SimplexSolver::SignedVolumes ? smp.errorSv : smp.errorJohnson) = e;
+                opt.refineEdgePairs = false;
+                (solver == SimplexSolver::SignedVolumes ? smp.errorSv : smp.errorJohnson) = error(opt);
             }
+            smp.errorRefined = error(GjkOptions{});
             sv.push_back(smp.errorSv);
             jo.push_back(smp.errorJohnson);
+            re.push_back(smp.errorRefined);
             d.svOverTolerance += !(smp.errorSv <= kStressTolerance);
             d.johnsonOverTolerance += !(smp.errorJohnson <= kStressTolerance);
+            d.refinedOverTolerance += !(smp.errorRefined <= kStressTolerance);
             out.samples.push_back(smp);
         }
         d.count = static_cast<int>(sv.size());
@@ -194,6 +203,8 @@ Sweep runSweep(const Settings& s)
         d.johnsonMedian = median(jo);
         d.svMax = sv.empty() ? 0.0 : *std::max_element(sv.begin(), sv.end());
         d.johnsonMax = jo.empty() ? 0.0 : *std::max_element(jo.begin(), jo.end());
+        d.refinedMedian = median(re);
+        d.refinedMax = re.empty() ? 0.0 : *std::max_element(re.begin(), re.end());
         out.decades.push_back(d);
     }
     return out;
@@ -233,15 +244,21 @@ public:
         if (s_.figure == "histogram") {
             po.xLabel = "|d - d*| / size, decade bins (0 counted in the first bin)";
             po.yLabel = "fraction of pairs";
-            std::vector<double> sv, jo;
-            for (const Sample& x : sw.samples) sv.push_back(x.errorSv), jo.push_back(x.errorJohnson);
-            int svOver = 0, joOver = 0;
-            for (const Sample& x : sw.samples) svOver += !(x.errorSv <= kStressTolerance), joOver += !(x.errorJohnson <= kStressTolerance);
+            std::vector<double> sv, jo, re;
+            for (const Sample& x : sw.samples) sv.push_back(x.errorSv), jo.push_back(x.errorJohnson), re.push_back(x.errorRefined);
+            int svOver = 0, joOver = 0, reOver = 0;
+            for (const Sample& x : sw.samples)
+                svOver += !(x.errorSv <= kStressTolerance), joOver += !(x.errorJohnson <= kStressTolerance),
+                    reOver += !(x.errorRefined <= kStressTolerance);
+            const bool withRefined = s_.sweep == "parallel_edges";
             po.subtitle += "; over 1e-12: Johnson " + std::to_string(joOver) + ", signed volumes " + std::to_string(svOver) +
-                           " of " + std::to_string(sw.samples.size()) + " pairs";
+                           (withRefined ? ", + edge pairs " + std::to_string(reOver) : std::string()) + " of " +
+                           std::to_string(sw.samples.size()) + " pairs";
             f.name = "histogram";
             f.caption = common_.title;
-            f.image = drawDecadeHistogram(*ctx.gl, po, {{"signed volumes", sv}, {"Johnson", jo}});
+            std::vector<std::pair<std::string, std::vector<double>>> groups = {{"signed volumes", sv}, {"Johnson", jo}};
+            if (withRefined) groups.push_back({"SV + edge pairs (default)", re});
+            f.image = drawDecadeHistogram(*ctx.gl, po, groups);
         } else {
             po.xLabel = xLabelOf(s_.sweep);
             po.yLabel = "|d - d*| / size (0 drawn at 1e-18)";
@@ -262,6 +279,13 @@ public:
             }
             std::vector<PlotSeries> series = {joMax, joMed, svMax, svMed};
             if (s_.sweep == "parallel_edges") {
+                // The default GJK: the terminal edge pair recomputed in double-double.
+                PlotSeries reMax{"SV + edge pairs (default), max", 2, true, true, {}, {}};
+                for (const Decade& d : sw.decades) {
+                    if (d.count == 0) continue;
+                    reMax.points.emplace_back(std::pow(10.0, d.k + 0.5), std::max(d.refinedMax, kErrorFloor));
+                }
+                series.push_back(reMax);
                 // Conditioning of the sliver triangles of A - B: barycentric weights from edges at
                 // angle theta carry a relative error ~u / theta, so ~u / theta * L is the floor of
                 // any double-precision simplex solve (no solver can do better without more bits).
@@ -288,16 +312,26 @@ private:
         t["error"] = "|d - d*| / L, d* = long double oracle, L = larger circumradius";
         t["oracle_failures"] = sw.oracleFailures;
         Json decades = Json::array();
-        double svWorst = 0, joWorst = 0;
-        int svOver = 0, joOver = 0;
+        double svWorst = 0, joWorst = 0, reWorst = 0;
+        int svOver = 0, joOver = 0, reOver = 0;
+        const bool withRefined = s_.sweep == "parallel_edges";
         for (const Decade& d : sw.decades) {
-            decades.push_back({{"from", std::pow(10.0, d.k)}, {"pairs", d.count},
-                               {"signed_volumes", {{"median", num(d.svMedian)}, {"max", num(d.svMax)}, {"over_1e-12", d.svOverTolerance}}},
-                               {"johnson", {{"median", num(d.johnsonMedian)}, {"max", num(d.johnsonMax)}, {"over_1e-12", d.johnsonOverTolerance}}}});
+            Json decade = {{"from", std::pow(10.0, d.k)}, {"pairs", d.count},
+                           {"signed_volumes", {{"median", num(d.svMedian)}, {"max", num(d.svMax)}, {"over_1e-12", d.svOverTolerance}}},
+                           {"johnson", {{"median", num(d.johnsonMedian)}, {"max", num(d.johnsonMax)}, {"over_1e-12", d.johnsonOverTolerance}}}};
+            if (withRefined)
+                decade["edge_pairs"] = {{"median", num(d.refinedMedian)}, {"max", num(d.refinedMax)}, {"over_1e-12", d.refinedOverTolerance}};
+            decades.push_back(decade);
             svWorst = std::max(svWorst, d.svMax);
             joWorst = std::max(joWorst, d.johnsonMax);
+            reWorst = std::max(reWorst, d.refinedMax);
             svOver += d.svOverTolerance;
             joOver += d.johnsonOverTolerance;
+            reOver += d.refinedOverTolerance;
+        }
+        if (withRefined) {
+            t["edge_pairs_worst"] = num(reWorst);
+            t["edge_pairs_over_1e-12"] = reOver;
         }
         t["decades"] = decades;
         t["signed_volumes_worst"] = num(svWorst);
@@ -306,10 +340,10 @@ private:
         t["johnson_over_1e-12"] = joOver;
         if (s_.figure == "histogram") {
             // Pairs per decade bin of the error (bin k: [10^k, 10^(k+1)), zeros in the floor bin).
-            auto bins = [&](bool sv) {
+            auto bins = [&](double Sample::*error) {
                 Json b = Json::object();
                 for (const Sample& x : sw.samples) {
-                    const double e = sv ? x.errorSv : x.errorJohnson;
+                    const double e = x.*error;
                     const std::string key = !std::isfinite(e) ? "nan"
                                             : e <= kErrorFloor ? "<=1e-18"
                                                                : "1e" + std::to_string(static_cast<int>(std::floor(std::log10(e))));
@@ -317,7 +351,8 @@ private:
                 }
                 return b;
             };
-            t["histogram"] = {{"signed_volumes", bins(true)}, {"johnson", bins(false)}};
+            t["histogram"] = {{"signed_volumes", bins(&Sample::errorSv)}, {"johnson", bins(&Sample::errorJohnson)}};
+            if (withRefined) t["histogram"]["edge_pairs"] = bins(&Sample::errorRefined);
         }
         return t;
     }
