@@ -187,6 +187,7 @@ nlohmann::json toJson(const std::vector<Row>& rows, const std::string& machine, 
     j["machine"] = machine;
     j["mode"] = quick ? "quick" : "full";
     j["error_definition"] = "relative |x - x*| / |x*| (touching: |x| / size); boolean queries: 1 per wrong answer";
+    j["rows"] = nlohmann::json::array();  // present (empty) when --only ran no query section
     for (const Row& r : rows) {
         j["rows"].push_back({{"query", r.query},
                              {"input", r.input},
@@ -305,41 +306,13 @@ void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir)
     }
 }
 
-int usage()
+/// The query rows (section "queries"): closest point, GJK distance / intersect, GJK+EPA, SAT on
+/// polytopes, boxes, capsules, float-rounded input and spheres, appended to rows.
+void runQueryRows(const Settings& settings, std::vector<Row>& rows)
 {
-    std::cerr << "usage: cdlab bench [--quick] [--out DIR]\n"
-                 "  time per query (median / min / max over repetitions) and error against independent\n"
-                 "  oracles for closest point, GJK intersect / distance, GJK+EPA, SAT OBB-OBB.\n"
-                 "  Writes DIR/bench.json and DIR/bench.md (default DIR: out/bench).\n";
-    return 2;
-}
-
-}  // namespace
-
-int runBench(int argc, char** argv)
-{
-    Settings settings;
-    std::string outDir = "out/bench";
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--quick") {
-            settings.quick = true;
-        } else if (arg == "--out" && i + 1 < argc) {
-            outDir = argv[++i];
-        } else if (arg == "-h" || arg == "--help") {
-            usage();
-            return 0;
-        } else {
-            std::cerr << "cdlab bench: unknown argument " << arg << "\n";
-            return usage();
-        }
-    }
     const bool quick = settings.quick;
-    settings.targetQueries = quick ? 20000 : 100000;
     const int nPairs = quick ? 200 : 1000;
     const int nLarge = quick ? 60 : 300;  // 64 / 100 vertices: the oracle hull has n^2 points
-    std::vector<Row> rows;
-    const auto start = Clock::now();
 
     // ---- closest point on triangle / tetrahedron -------------------------------------------------
     {
@@ -636,58 +609,142 @@ int runBench(int argc, char** argv)
                 [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
         }
     }
+}
+
+/// The sections of `cdlab bench`, in the order they run (--only picks some).
+constexpr const char* kSections[] = {"queries", "vclip", "bvh", "broadphase"};
+
+int usage()
+{
+    std::cerr << "usage: cdlab bench [--quick] [--out DIR] [--only SECTION[,SECTION...]]\n"
+                 "  time per query (median / min / max over repetitions) and error against independent\n"
+                 "  oracles for closest point, GJK intersect / distance, GJK+EPA, SAT OBB-OBB.\n"
+                 "  Sections (default: all): queries (those rows), vclip (Lin-Canny and V-Clip vs warm GJK),\n"
+                 "  bvh (BVH build / query / refit), broadphase (SAP, uniform grid, octrees, brute force).\n"
+                 "  Writes DIR/bench.json and DIR/bench.md (default DIR: out/bench).\n";
+    return 2;
+}
+
+/// Parses the --only list ("bvh,broadphase") into `only`; false (after one error line) on an
+/// empty or unknown name.
+bool parseSections(const std::string& list, std::vector<std::string>& only)
+{
+    std::string all;
+    for (const char* s : kSections) all += std::string(all.empty() ? "" : ", ") + s;
+    std::size_t from = 0;
+    while (true) {
+        const std::size_t comma = list.find(',', from);
+        const std::string name = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+        if (std::find(std::begin(kSections), std::end(kSections), name) == std::end(kSections)) {
+            std::cerr << "cdlab bench: unknown section '" << name << "' in --only (sections: " << all << ")\n";
+            return false;
+        }
+        if (std::find(only.begin(), only.end(), name) == only.end()) only.push_back(name);
+        if (comma == std::string::npos) return true;
+        from = comma + 1;
+    }
+}
+
+}  // namespace
+
+int runBench(int argc, char** argv)
+{
+    Settings settings;
+    std::string outDir = "out/bench";
+    std::vector<std::string> only;  // empty: every section
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--quick") {
+            settings.quick = true;
+        } else if (arg == "--out" && i + 1 < argc) {
+            outDir = argv[++i];
+        } else if (arg == "--only" && i + 1 < argc) {
+            if (!parseSections(argv[++i], only)) return 2;
+        } else if (arg == "-h" || arg == "--help") {
+            usage();
+            return 0;
+        } else {
+            std::cerr << "cdlab bench: unknown argument " << arg << "\n";
+            return usage();
+        }
+    }
+    const bool quick = settings.quick;
+    settings.targetQueries = quick ? 20000 : 100000;
+    auto runs = [&](const char* section) { return only.empty() || std::find(only.begin(), only.end(), section) != only.end(); };
+    std::string onlyList;  // "bvh,broadphase" as given to --only (empty: all sections)
+    for (const std::string& s : only) onlyList += (onlyList.empty() ? "" : ",") + s;
+    std::vector<Row> rows;
+    const auto start = Clock::now();
+    try {
+        std::filesystem::create_directories(outDir);  // the sections write their figures as they go
+    } catch (const std::exception& e) {
+        std::cerr << "cdlab bench: " << e.what() << "\n";
+        return 1;
+    }
+
+    if (runs("queries")) runQueryRows(settings, rows);
 
     // ---- feature walks: Lin–Canny beside V-Clip and warm GJK over coherence levels ---------------
-    {
+    std::ostringstream vclipTable;
+    if (runs("vclip")) {
         std::cerr << "cdlab bench: Lin–Canny vs V-Clip vs warm GJK\n";
         std::vector<Row> walk = benchLinCanny(settings);
         rows.insert(rows.end(), walk.begin(), walk.end());
+        // V-Clip vs GJK, cold and warm, per shape and rotation per call (its own table: CPU time).
+        std::cerr << "cdlab bench: V-Clip vs GJK (coherence)\n";
+        runVclipBench(quick, vclipTable);
     }
-    // V-Clip vs GJK, cold and warm, per shape and rotation per call (its own table: CPU time).
-    std::cerr << "cdlab bench: V-Clip vs GJK (coherence)\n";
-    std::ostringstream vclipTable;
-    runVclipBench(quick, vclipTable);
     std::ostringstream bvhTable;  // BVH build / query / refit (issue 9), figures bvh_*.png
-    std::cerr << "cdlab bench: BVH build / query / refit\n";
-    runBvhBench(quick, outDir, bvhTable);
-    std::ostringstream broadphaseTable;  // sweep and prune vs uniform grid vs brute force (issue 9), broadphase_*.png
-    std::cerr << "cdlab bench: broad phase (sweep and prune, grid, brute force)\n";
-    runBroadphaseBench(quick, outDir, broadphaseTable);
+    if (runs("bvh")) {
+        std::cerr << "cdlab bench: BVH build / query / refit\n";
+        runBvhBench(quick, outDir, bvhTable);
+    }
+    std::ostringstream broadphaseTable;  // SAP vs grid vs octrees vs brute force (issue 9), broadphase_*.png
+    if (runs("broadphase")) {
+        std::cerr << "cdlab bench: broad phase (sweep and prune, grid, octrees, brute force)\n";
+        runBroadphaseBench(quick, outDir, broadphaseTable);
+    }
 
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const std::string machine = machineDescription();
-    printTable(rows, std::cout, false);
-    std::cout << "\n" << vclipTable.str();
-    std::cout << "\n" << bvhTable.str();
-    std::cout << "\n" << broadphaseTable.str();
+    if (!rows.empty()) printTable(rows, std::cout, false);
+    if (runs("vclip")) std::cout << "\n" << vclipTable.str();
+    if (runs("bvh")) std::cout << "\n" << bvhTable.str();
+    if (runs("broadphase")) std::cout << "\n" << broadphaseTable.str();
     std::cout << "machine: " << machine << "; " << fmt("%.1f", seconds) << " s\n";
 
     std::ostringstream md;
-    md << "# cdlab bench" << (quick ? " (--quick)" : "") << "\n\n"
-       << "Machine: " << machine << ". Release build (-O3, -ffp-contract=off), one thread.\n\n"
-       << "Time per query: median (min, max) over repetitions of the whole input set, each repetition\n"
-       << ">= " << settings.targetQueries / 1000 << "k queries in total per row. Error: relative, |x - x*| / |x*| against an\n"
-       << "independent oracle (hull of the Minkowski difference {a_i - b_j} by core/convex_hull.h, distances to its\n"
-       << "faces by brute force in long double; spheres analytic; closest points by long double brute force);\n"
-       << "touching sets: |x| / size; boolean queries (intersect, SAT): fraction of wrong answers.\n"
-       << "time / cdlab: a peer's min time over cdlab's min time (default settings) on the same input.\n"
-       << "Inputs: fixed seeds; random polytopes = n points on random ellipsoids (radii 0.3..1), separated\n"
-       << "(centres 2.2 apart), penetrating (0.4 apart), moved (same pairs moved by 1e-3: warm start).\n\n";
-    printTable(rows, md, true);
-    md << "\n## V-Clip vs GJK over coherence levels\n\n```\n" << vclipTable.str() << "```\n";
-    md << "\n## BVH build, query and refit\n\n```\n" << bvhTable.str() << "```\n";
-    md << "\n## Broad phase: sweep and prune vs uniform grid vs brute force\n\n```\n" << broadphaseTable.str() << "```\n";
+    md << "# cdlab bench" << (quick ? " (--quick)" : "") << (only.empty() ? "" : " (--only " + onlyList + ")") << "\n\n"
+       << "Machine: " << machine << ". Release build (-O3, -ffp-contract=off), one thread.\n\n";
+    if (!rows.empty()) {
+        md << "Time per query: median (min, max) over repetitions of the whole input set, each repetition\n"
+           << ">= " << settings.targetQueries / 1000 << "k queries in total per row. Error: relative, |x - x*| / |x*| against an\n"
+           << "independent oracle (hull of the Minkowski difference {a_i - b_j} by core/convex_hull.h, distances to its\n"
+           << "faces by brute force in long double; spheres analytic; closest points by long double brute force);\n"
+           << "touching sets: |x| / size; boolean queries (intersect, SAT): fraction of wrong answers.\n"
+           << "time / cdlab: a peer's min time over cdlab's min time (default settings) on the same input.\n"
+           << "Inputs: fixed seeds; random polytopes = n points on random ellipsoids (radii 0.3..1), separated\n"
+           << "(centres 2.2 apart), penetrating (0.4 apart), moved (same pairs moved by 1e-3: warm start).\n\n";
+        printTable(rows, md, true);
+    }
+    if (runs("vclip")) md << "\n## V-Clip vs GJK over coherence levels\n\n```\n" << vclipTable.str() << "```\n";
+    if (runs("bvh")) md << "\n## BVH build, query and refit\n\n```\n" << bvhTable.str() << "```\n";
+    if (runs("broadphase"))
+        md << "\n## Broad phase: sweep and prune vs uniform grid vs octrees vs brute force\n\n```\n" << broadphaseTable.str()
+           << "```\n";
     md << "\nRun time " << fmt("%.1f", seconds) << " s.\n";
     try {
-        std::filesystem::create_directories(outDir);
-        render::writeFileAtomic(outDir + "/bench.json", toJson(rows, machine, quick).dump(2) + "\n");
+        nlohmann::json json = toJson(rows, machine, quick);
+        if (!only.empty()) json["sections"] = only;  // a partial run says which sections it holds
+        render::writeFileAtomic(outDir + "/bench.json", json.dump(2) + "\n");
         render::writeFileAtomic(outDir + "/bench.md", md.str());
     } catch (const std::exception& e) {
         std::cerr << "cdlab bench: " << e.what() << "\n";
         return 1;
     }
-    writeBenchFigures(rows, outDir);
-    std::cerr << "cdlab bench: wrote " << outDir << "/bench.json, bench.md, pareto_*.png and hist_*.png\n";
+    if (!rows.empty()) writeBenchFigures(rows, outDir);
+    std::cerr << "cdlab bench: wrote " << outDir << "/bench.json, bench.md"
+              << (rows.empty() ? "" : ", pareto_*.png and hist_*.png") << "\n";
     return 0;
 }
 
