@@ -115,6 +115,44 @@ EdgePairDistance edgePairDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0
     return best;
 }
 
+EdgePairDistance pointTriangleDistance(const Vec3& p, const Vec3& t0, const Vec3& t1, const Vec3& t2)
+{
+    EdgePairDistance best;
+    const ScaledQuad q(p, t0, t1, t2);
+    if (!q.finite) return best;
+    const Vec3& P = q.p[0];
+    const Vec3 T[3] = {q.p[1], q.p[2], q.p[3]};
+    const Vec3DD n = dd::cross(exactDifference(T[1], T[0]), exactDifference(T[2], T[0]));
+    const double nn = dd::dot(n, n).value();
+    if (nn > 0.0 && std::isfinite(nn)) {
+        // The projection of P lies in the triangle iff P is on the inner side of all three edge
+        // planes: ((T[j] - T[i]) x (P - T[i])) . n >= 0 for the edges in counterclockwise order.
+        bool inside = true;
+        for (int i = 0; i < 3 && inside; ++i) {
+            const int j = (i + 1) % 3;
+            inside = dd::dot(dd::cross(exactDifference(T[j], T[i]), exactDifference(P, T[i])), n).value() >= 0.0;
+        }
+        if (inside) {
+            const double length = std::sqrt(nn);
+            const Vec3 unit = rounded(n) / length;
+            const double separation = dd::dot(exactDifference(P, T[0]), n).value() / length;  // along unit
+            best.ok = true;
+            best.distance = q.unscale(std::abs(separation));
+            best.pointA = p;
+            best.pointB = q.unscale(Vec3(P - separation * unit));
+            best.axis = separation > 0.0 ? Vec3(-unit) : separation < 0.0 ? unit : Vec3::Zero();
+            best.interior = true;
+            return best;
+        }
+    }
+    // Outside the face (or a zero-area triangle): the nearest edge, a point being a zero-length edge.
+    for (int i = 0; i < 3; ++i) {
+        const EdgePairDistance e = edgePairDistance(p, p, i == 0 ? t0 : i == 1 ? t1 : t2, i == 0 ? t1 : i == 1 ? t2 : t0);
+        if (e.ok && (!best.ok || e.distance < best.distance)) best = e;
+    }
+    return best;
+}
+
 LinePairSeparation linePairSeparation(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1)
 {
     LinePairSeparation out;

@@ -32,6 +32,12 @@ struct EdgePairDistance {
 /// Accurate segment-segment distance (see the file comment). Zero-length segments are points.
 EdgePairDistance edgePairDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1);
 
+/// Closest points of point p (of A) and triangle [t0, t1, t2] (of B) in the same arithmetic: the
+/// face case from the triangle normal formed in double-double (a sliver's normal is then
+/// exact to a few u), otherwise the nearest edge. Result fields as for edgePairDistance, with
+/// pointA = p. For a triangle of A and a point of B, swap the roles and negate the axis.
+EdgePairDistance pointTriangleDistance(const Vec3& p, const Vec3& t0, const Vec3& t1, const Vec3& t2);
+
 /// The lines through [a0, a1] and [b0, b1] and their common perpendicular: for EPA, whose final
 /// face spans an edge of A and an edge of B (edge-edge penetration).
 struct LinePairSeparation {

@@ -95,6 +95,19 @@ int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out)
                     const EdgePairDistance e = edgePairDistance(a[i], a[j], b[k], b[l]);
                     if (e.ok) out[n++] = e;
                 }
+    // Vertex-face: a point of one shape against a (sliver) triangle of the other.
+    if (na == 1 && nb == 3) {
+        const EdgePairDistance e = pointTriangleDistance(a[0], b[0], b[1], b[2]);
+        if (e.ok) out[n++] = e;
+    }
+    if (na == 3 && nb == 1) {
+        EdgePairDistance e = pointTriangleDistance(b[0], a[0], a[1], a[2]);
+        if (e.ok) {
+            std::swap(e.pointA, e.pointB);
+            e.axis = -e.axis;
+            out[n++] = e;
+        }
+    }
     std::sort(out, out + n, [](const EdgePairDistance& x, const EdgePairDistance& y) { return x.distance < y.distance; });
     return n;
 }

@@ -136,8 +136,10 @@ void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSim
 bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r);
 
 /// Every two points of A with every two points of B among the simplex's vertices, as accurate
-/// segment-segment distances (core/edge_pair_distance.h), sorted by distance; returns the count
-/// (<= 9). Each is a distance between subsets of A and B: an upper bound of the true distance.
+/// segment-segment distances (core/edge_pair_distance.h), or the point-triangle distance when
+/// the simplex has one point of one shape and three of the other; sorted by distance, returns
+/// the count (<= 9). Each is a distance between subsets of A and B: an upper bound of the true
+/// distance.
 int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
 
 /// Replace a doubtful separated answer (gjkNeedsEdgePairs) by the smallest edge-pair distance

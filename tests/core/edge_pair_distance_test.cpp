@@ -12,6 +12,7 @@
 #include "core/edge_pair_distance.h"
 #include "core/gjk.h"
 #include "core/shapes.h"
+#include "tests/core/closest_test_oracle.h"
 #include "tests/core/gjk_oracle.h"
 
 using namespace cdlab;
@@ -174,6 +175,40 @@ TEST_SUITE("edge pair distance")
         const EdgePairDistance tiny = edgePairDistance(1e-300 * x, 2e-300 * x, Vec3(0, 1e-300, 0), Vec3(0, 1e-300, 1e-300));
         REQUIRE(tiny.ok);
         CHECK(tiny.distance == doctest::Approx(std::sqrt(2.0) * 1e-300).epsilon(1e-14));
+    }
+
+    TEST_CASE("point vs triangle: long double oracle, and slivers with the height known by construction")
+    {
+        std::mt19937_64 rng(13);
+        std::uniform_real_distribution<double> u(-1, 1);
+        for (int i = 0; i < 5000; ++i) {
+            const Vec3 p(u(rng), u(rng), u(rng)), t0(u(rng), u(rng), u(rng)), t1(u(rng), u(rng), u(rng)),
+                t2(u(rng), u(rng), u(rng));
+            const EdgePairDistance r = pointTriangleDistance(p, t0, t1, t2);
+            REQUIRE(r.ok);
+            const double expected = static_cast<double>(std::sqrt(oracle::triangleDistance2(p, t0, t1, t2)));
+            CAPTURE(i);
+            CHECK(std::abs(r.distance - expected) <= 1e-14);
+            CHECK(std::abs((r.pointB - r.pointA).norm() - r.distance) <= 1e-14);
+        }
+        // A needle triangle (width 1e-3..1e-12 of its length) in the plane through `at` spanned by
+        // e and m, and a point h above its interior along n = e x m: the distance is h.
+        for (int i = 0; i < 2000; ++i) {
+            const double width = logUniform(rng, 1e-12, 1e-3), h = logUniform(rng, 1e-9, 1.0);
+            const Vec3 e = test::randomUnit(rng), n = perpendicularUnit(e), m = n.cross(e);
+            const Vec3 at = i % 2 ? Vec3::Zero() : Vec3(3e3, 1e3, -2e3);
+            const Vec3 t0 = at - e, t1 = at + e + width * m, t2 = at + e - width * m;
+            const Vec3 p = at + 0.5 * e + h * n;
+            const EdgePairDistance r = pointTriangleDistance(p, t0, t1, t2);
+            REQUIRE(r.ok);
+            double c = 0;
+            for (const Vec3* x : {&p, &t0, &t1, &t2}) c = std::max(c, x->cwiseAbs().maxCoeff());
+            // Rounding of the constructed points (<= 4 operations each) moves the distance by at
+            // most their displacement.
+            CAPTURE(width);
+            CAPTURE(h);
+            CHECK(std::abs(r.distance - h) <= 32 * DBL_EPSILON * c + 4 * DBL_EPSILON * h);
+        }
     }
 
     TEST_CASE("GJK on wedges with nearly parallel ridges: distance = gap to rounding")
