@@ -25,6 +25,7 @@
 #include "core/triangle_mesh.h"
 #include "demos/lib/bvh_demo_parts.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/mesh_scene.h"
 #include "demos/lib/support_scene.h"
 
 namespace cdlab::demos {
@@ -76,29 +77,8 @@ MeshSpec parseMesh(const JsonNode& node) {
     JsonNode body = outer.get(s.kind);
     outer.finish();
     ObjectReader r(body);
-    if (s.kind == "torus") {
-        const double R = r.numberOr("major_radius", 1.0), rr = r.numberOr("minor_radius", 0.35);
-        int nu = 24, nv = 12;
-        if (auto n = r.find("major_segments")) nu = n->asInt(3, 256);
-        if (auto n = r.find("minor_segments")) nv = n->asInt(3, 256);
-        if (!(R > 0 && rr > 0 && rr < R)) body.fail("need 0 < minor_radius < major_radius");
-        s.mesh = torusMesh(R, rr, nu, nv);
-    } else if (s.kind == "ellipsoid") {
-        Vec3 radii(1, 1, 1);
-        if (auto v = r.find("radii")) radii = v->asVec3();
-        int sl = 16, st = 8;
-        if (auto n = r.find("slices")) sl = n->asInt(3, 256);
-        if (auto n = r.find("stacks")) st = n->asInt(2, 256);
-        if (!(radii.minCoeff() > 0)) body.fail("radii must be positive");
-        s.mesh = ellipsoidMesh(radii, sl, st);
-    } else if (s.kind == "blob") {
-        const double radius = r.numberOr("radius", 1.0), noise = r.numberOr("noise", 0.2);
-        int sl = 16, st = 8, seed = 1;
-        if (auto n = r.find("slices")) sl = n->asInt(3, 256);
-        if (auto n = r.find("stacks")) st = n->asInt(2, 256);
-        if (auto n = r.find("seed")) seed = n->asInt(0, 1 << 30);
-        if (!(radius > 0) || !(noise >= 0 && noise < 1)) body.fail("need radius > 0 and 0 <= noise < 1");
-        s.mesh = noisyBlobMesh(radius, noise, sl, st, std::uint64_t(seed));
+    if (readMeshGenerator(s.kind, body, r, MeshTessellation{24, 12, 16, 8}, s.mesh)) {
+        // torus, ellipsoid or blob
     } else if (s.kind == "sheet") {
         Vec3 size(3, 1, 0);
         if (auto v = r.find("size")) {
