@@ -694,15 +694,18 @@ int runBench(int argc, char** argv)
         std::cerr << "cdlab bench: V-Clip vs GJK (coherence)\n";
         runVclipBench(quick, vclipTable);
     }
+    // A section whose pair sets disagree with brute force makes the run fail (exit 1) after
+    // everything is written: the tables say where ("MISMATCH").
+    bool pairMismatch = false;
     std::ostringstream bvhTable;  // BVH build / query / refit (issue 9), figures bvh_*.png
     if (runs("bvh")) {
         std::cerr << "cdlab bench: BVH build / query / refit\n";
-        runBvhBench(quick, outDir, bvhTable);
+        pairMismatch |= runBvhBench(quick, outDir, bvhTable) != 0;
     }
     std::ostringstream broadphaseTable;  // SAP vs grid vs octrees vs brute force (issue 9), broadphase_*.png
     if (runs("broadphase")) {
         std::cerr << "cdlab bench: broad phase (sweep and prune, grid, octrees, brute force)\n";
-        runBroadphaseBench(quick, outDir, broadphaseTable);
+        pairMismatch |= runBroadphaseBench(quick, outDir, broadphaseTable) != 0;
     }
 
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -745,6 +748,10 @@ int runBench(int argc, char** argv)
     if (!rows.empty()) writeBenchFigures(rows, outDir);
     std::cerr << "cdlab bench: wrote " << outDir << "/bench.json, bench.md"
               << (rows.empty() ? "" : ", pareto_*.png and hist_*.png") << "\n";
+    if (pairMismatch) {
+        std::cerr << "cdlab bench: a broad or mid phase reported other pairs than brute force (see MISMATCH above)\n";
+        return 1;
+    }
     return 0;
 }
 

@@ -26,7 +26,7 @@ constexpr const char* kUsage =
     "            [--scene PATTERN] [--report DIR] [--update failing|all] [--verbose]\n"
     "            (CDLAB_UPDATE_GOLDEN=1 or =all also updates)\n"
     "  query     JSON Lines queries on stdin, one JSON answer per line on stdout (see README)\n"
-    "  bench     time per query against error, per method and setting [--quick] (see README)\n"
+    "  bench     time per query against error; BVH and broad phase [--quick] [--only queries,vclip,bvh,broadphase]\n"
     "  stress    numerical-stability families against independent oracles [--seconds N] (see README)\n"
     "  demos     list the demos\n"
     "exit status: 0 ok, 1 test/comparison failure or failed queries, 2 usage or input error\n";
