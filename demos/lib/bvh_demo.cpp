@@ -477,7 +477,8 @@ private:
                 cc.logY = true;
                 panels.push_back(drawBarChart(*ctx.gl, L.panelWidth(), L.panelHeight(), ss_, cc));
                 caption.push_back("Both trees report the brute-force pairs (" + std::to_string(q[0].pairs.size()) + " of " +
-                                  std::to_string(m.mesh.triangleCount() * o.mesh.triangleCount()) + "). An OBB test costs more (15 axes), but the OBB tree needs " +
+                                  std::to_string(m.mesh.triangleCount() * o.mesh.triangleCount()) + ").");
+                caption.push_back("An OBB test costs more (15 axes), but the OBB tree needs " +
                                   pct(double(q[1].stats.bvTests) / double(std::max<long long>(1, q[0].stats.bvTests))) + " of the box tests and " +
                                   pct(double(q[1].stats.triangleTests) / double(std::max<long long>(1, q[0].stats.triangleTests))) + " of the triangle tests.");
             }
