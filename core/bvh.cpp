@@ -35,8 +35,14 @@ constexpr double kParallelEpsilon = 1e-9;
 
 Obb aabbToObb(const Aabb& b) { return Obb{0.5 * (b.min + b.max), 0.5 * (b.max - b.min), Mat3::Identity()}; }
 
-double surfaceArea(const Aabb& b) {
-    const Vec3 d = (b.max - b.min).cwiseMax(0.0);
+Vec3 scaled(const Vec3& v, int k) { return v.unaryExpr([k](double x) { return std::ldexp(x, k); }); }
+
+// Surface area of 2^k · b. The builders pass the k that brings the mesh's largest coordinate into
+// [0.5, 1): the area of a box spanning 1e200 (or 1e308) is then no overflow (inf costs would leave
+// no best split and no nearest cluster), and scaling by a power of two keeps every comparison of
+// costs exactly as it is unscaled (the trace records areas scaled back, bit for bit).
+double surfaceArea(const Aabb& b, int k) {
+    const Vec3 d = (scaled(b.max, k) - scaled(b.min, k)).cwiseMax(0.0);
     return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
 }
 
@@ -110,10 +116,17 @@ struct Builder {
     std::vector<Vec3> centroids;       // per mesh triangle
     std::vector<Triangle> scratch;     // the current node's triangles, for the fits
 
+    int areaExponent = 0;              // surface areas are those of 2^areaExponent · box
+
     Builder(const TriangleMesh& m, const BvhBuildOptions& o, Bvh& b) : mesh(m), options(o), bvh(b) {
         centroids.resize(mesh.triangles.size());
         for (int i = 0; i < mesh.triangleCount(); ++i) centroids[i] = centroid(mesh.triangle(i));
+        double largest = 0.0;
+        for (const Vec3& v : mesh.vertices) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+        if (largest > 0.0) std::frexp(largest, &areaExponent), areaExponent = -areaExponent;
     }
+    double area(const Aabb& box) const { return surfaceArea(box, areaExponent); }
+    double unscaledArea(double a) const { return std::ldexp(a, -2 * areaExponent); }
 
     /// Fits node i's box to its triangle range.
     void fit(int i) {
@@ -183,7 +196,9 @@ struct Builder {
         int* end = begin + n.count;
         Aabb cb = emptyAabb();
         for (const int* p = begin; p != end; ++p) grow(cb, centroids[*p]);
-        const Vec3 extent = cb.max - cb.min;
+        // Bins on the scaled centroids (as the areas): a centroid span beyond 1e308 cannot overflow.
+        const Vec3 low = scaled(cb.min, areaExponent);
+        const Vec3 extent = scaled(cb.max, areaExponent) - low;
         if (!(extent.maxCoeff() > 0.0)) {
             // All centroids coincide: no plane separates them; split the range in halves.
             step.splitAxis = 0;
@@ -192,7 +207,7 @@ struct Builder {
         }
         const int nb = std::max(2, options.sahBins);
         auto binOf = [&](int tri, int axis) {
-            const double u = (centroids[tri][axis] - cb.min[axis]) / extent[axis];
+            const double u = (std::ldexp(centroids[tri][axis], areaExponent) - low[axis]) / extent[axis];
             return std::clamp(static_cast<int>(u * nb), 0, nb - 1);
         };
         std::vector<Aabb> boxes(nb);
@@ -218,17 +233,17 @@ struct Builder {
             for (int k = nb - 1; k > 0; --k) {
                 acc = merged(acc, boxes[k]);
                 c += counts[k];
-                rightArea[k - 1] = surfaceArea(acc);
+                rightArea[k - 1] = area(acc);
                 rightCount[k - 1] = c;
             }
-            nodeArea = surfaceArea(merged(acc, boxes[0]));
+            nodeArea = area(merged(acc, boxes[0]));
             acc = emptyAabb();
             c = 0;
             for (int k = 0; k + 1 < nb; ++k) {  // split between bin k and k + 1
                 acc = merged(acc, boxes[k]);
                 c += counts[k];
                 if (c == 0 || rightCount[k] == 0) continue;  // one side empty: not a split
-                const double cost = surfaceArea(acc) * c + rightArea[k] * rightCount[k];
+                const double cost = area(acc) * c + rightArea[k] * rightCount[k];
                 if (cost < bestCost) {
                     bestCost = cost;
                     bestAxis = axis;
@@ -238,10 +253,15 @@ struct Builder {
         }
         // The smallest and largest centroid on an axis with extent > 0 fall in bins 0 and nb - 1,
         // so some split has both sides non-empty.
+        if (bestAxis < 0) {  // no finite cost (cannot happen with the scaled areas; kept as a guard)
+            step.splitAxis = 0;
+            step.splitPosition = cb.min.x();
+            return n.count / 2;
+        }
         int* mid = std::partition(begin, end, [&](int tri) { return binOf(tri, bestAxis) <= bestSplit; });
         step.splitAxis = bestAxis;
-        step.splitPosition = cb.min[bestAxis] + extent[bestAxis] * (bestSplit + 1) / nb;
-        step.cost = nodeArea > 0.0 ? bestCost / nodeArea : bestCost;
+        step.splitPosition = cb.min[bestAxis] + std::ldexp(extent[bestAxis], -areaExponent) * (bestSplit + 1) / nb;
+        step.cost = nodeArea > 0.0 ? bestCost / nodeArea : unscaledArea(bestCost);
         return static_cast<int>(mid - begin);
     }
 
@@ -314,8 +334,8 @@ struct Builder {
             nnCost[id] = std::numeric_limits<double>::infinity();
             for (int other : active) {
                 if (other == id) continue;
-                const double c = surfaceArea(merged(box[id], box[other]));
-                if (c < nnCost[id] || (c == nnCost[id] && other < nn[id])) {
+                const double c = area(merged(box[id], box[other]));
+                if (nn[id] < 0 || c < nnCost[id] || (c == nnCost[id] && other < nn[id])) {
                     nnCost[id] = c;
                     nn[id] = other;
                 }
@@ -337,7 +357,7 @@ struct Builder {
             childA[k] = a;
             childB[k] = b;
             count[k] = count[a] + count[b];
-            mergeArea[k] = surfaceArea(box[k]);
+            mergeArea[k] = area(box[k]);
             active.erase(std::remove_if(active.begin(), active.end(), [&](int id) { return id == a || id == b; }),
                          active.end());
             active.push_back(k);
@@ -403,7 +423,7 @@ struct Builder {
                 step.first = bvh.nodes[i].first;
                 step.count = bvh.nodes[i].count;
                 step.box = bvh.box(i);
-                step.cost = mergeArea[clusterOfNode[i]];
+                step.cost = unscaledArea(mergeArea[clusterOfNode[i]]);
                 trace->steps.push_back(step);
             }
         }

@@ -1,13 +1,17 @@
 #include "demos/lib/query.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <string>
 #include <string_view>
 
 #include "core/closest_point.h"
 #include "demos/lib/query_contact.h"
+#include "demos/lib/query_json.h"
+#include "demos/lib/query_limits.h"
 #include "demos/lib/query_ops.h"
 #include "demos/lib/query_shapes.h"
 
@@ -16,8 +20,6 @@ namespace cdlab::demos {
 namespace {
 
 constexpr const char* kSource = "query";
-
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json closestPointTriangle(ObjectReader& r) {
     Vec3 p = r.get("point").asVec3();
@@ -31,10 +33,9 @@ Json closestPointTriangle(ObjectReader& r) {
                          v[2].cwiseAbs().maxCoeff()});
     int e = 0;
     if (m > 0) std::frexp(m, &e);
-    const auto scale = [](const Vec3& x, int k) { return Vec3(x.unaryExpr([k](double c) { return std::ldexp(c, k); })); };
     ClosestPointOnTriangleResult res =
-        closestPointOnTriangle(scale(p, -e), Triangle{scale(v[0], -e), scale(v[1], -e), scale(v[2], -e)});
-    return {{"point", vecJson(scale(res.point, e))}, {"region", toString(res.region)}};
+        closestPointOnTriangle(scaled(p, -e), Triangle{scaled(v[0], -e), scaled(v[1], -e), scaled(v[2], -e)});
+    return {{"point", vecJson(scaled(res.point, e))}, {"region", toString(res.region)}};
 }
 
 }  // namespace
@@ -64,23 +65,64 @@ Json answerQuery(const std::string& line) {
     return answer;
 }
 
+namespace {
+
+enum class LineRead { Line, TooLong, End };
+
+// Reads one line (the '\n' dropped) keeping at most `limit` bytes; a longer line is read to its
+// end and reported, so the next line is still answered.
+LineRead readLine(std::streambuf& in, std::string& line, std::size_t limit) {
+    line.clear();
+    bool any = false, tooLong = false;
+    for (;;) {
+        const int c = in.sbumpc();
+        if (c == std::char_traits<char>::eof()) return !any ? LineRead::End : tooLong ? LineRead::TooLong : LineRead::Line;
+        any = true;
+        if (c == '\n') return tooLong ? LineRead::TooLong : LineRead::Line;
+        if (line.size() < limit) line.push_back(char(c));
+        else tooLong = true;
+    }
+}
+
+// One answer line: "id" first, then the answer's keys; invalid UTF-8 in echoed strings is replaced.
+void writeAnswer(std::ostream& out, Json a) {
+    const auto dump = [](const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); };
+    Json id = a["id"];
+    a.erase("id");
+    std::string body = dump(a);
+    out << "{\"id\":" << dump(id);
+    if (body.size() > 2) out << ',' << std::string_view(body).substr(1) << '\n';
+    else out << "}\n";
+}
+
+}  // namespace
+
 int runQueries(std::istream& in, std::ostream& out) {
     std::string line;
     bool failed = false;
-    while (std::getline(in, line)) {
+    std::size_t lineNumber = 0;
+    for (LineRead read; (read = readLine(*in.rdbuf(), line, kMaxQueryLineBytes)) != LineRead::End && out;) {
+        ++lineNumber;
+        if (read == LineRead::TooLong) {
+            failed = true;
+            writeAnswer(out, {{"id", nullptr},
+                              {"error", "query: line " + std::to_string(lineNumber) + ": longer than the limit of " +
+                                            std::to_string(kMaxQueryLineBytes >> 20) + " MiB for one query line"}});
+            continue;
+        }
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         Json a = answerQuery(line);
         if (a.contains("error")) failed = true;
-        // "id" first, then the answer's keys; invalid UTF-8 in echoed strings is replaced.
-        const auto dump = [](const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); };
-        Json id = a["id"];
-        a.erase("id");
-        std::string body = dump(a);
-        out << "{\"id\":" << dump(id);
-        if (body.size() > 2) out << ',' << std::string_view(body).substr(1) << '\n';
-        else out << "}\n";
+        writeAnswer(out, std::move(a));
     }
+    // Answers that cannot be written (a full disk, a closed pipe) are an output error, not success.
+    errno = 0;
     out.flush();
+    if (!out) {
+        std::cerr << "cdlab query: cannot write the answers to standard output"
+                  << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << "\n";
+        return 2;
+    }
     return failed ? 1 : 0;
 }
 

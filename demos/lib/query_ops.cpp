@@ -19,7 +19,9 @@
 #include "core/primitives.h"
 #include "core/sat_tests.h"
 #include "core/shapes.h"
+#include "demos/lib/query_json.h"
 #include "demos/lib/query_shapes.h"
+#include "demos/lib/query_tolerance.h"
 #include "demos/lib/query_vclip.h"
 
 namespace cdlab::demos {
@@ -27,22 +29,6 @@ namespace cdlab::demos {
 namespace {
 
 using Kind = QueryShape::Kind;
-
-// -0 prints as "-0.0"; answers print +0 instead.
-double clean(double x) { return x == 0 ? 0.0 : x; }
-Json vecJson(const Vec3& v) { return Json::array({clean(v.x()), clean(v.y()), clean(v.z())}); }
-
-// Touching counts as intersecting (closed sets). Distances below this fraction of the shapes'
-// coordinate scale are rounding noise of the core distance (GJK computes it to ~1e-15 relative
-// of the support point magnitudes), so such shapes are reported as touching.
-constexpr double kTouchRelative = 1e-13;
-
-double coordinateScale(const QueryShape& a, const QueryShape& b) {
-    double s = 0;
-    for (const Vec3& v : a.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
-    for (const Vec3& v : b.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
-    return std::max({s, a.radius, b.radius});
-}
 
 struct PairAnswer {
     bool intersect = false;
@@ -81,18 +67,10 @@ Json epaTraceJson(const EpaTrace& t) {
 // ---------------------------------------------------------------------------------------------
 // Bounded pairs: GJK / EPA on the cores, radii in closed form.
 
-// Largest |coordinate| of the polytope cores (radii excluded).
-double coreScale(const QueryShape& a, const QueryShape& b) {
-    double s = 0;
-    for (const Vec3& v : a.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
-    for (const Vec3& v : b.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
-    return s;
-}
-
 std::vector<Vec3> scaledPoints(const std::vector<Vec3>& points, int k) {
     std::vector<Vec3> out;
     out.reserve(points.size());
-    for (const Vec3& v : points) out.push_back(v.unaryExpr([k](double x) { return std::ldexp(x, k); }));
+    for (const Vec3& v : points) out.push_back(scaled(v, k));
     return out;
 }
 
@@ -101,7 +79,7 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
     // its largest coordinate or radius, and a radius 1e300 times the core size would leave the
     // cores at 1e-300, where GJK's squared norms underflow (found by fuzzing). Core results are
     // scaled back before the radii are added, so the radii never see the core exponent.
-    const double cs = coreScale(a, b);
+    const double cs = std::max(largestCoordinate(a), largestCoordinate(b));  // of the cores (radii excluded)
     int kc = 0;
     if (cs > 0) std::frexp(cs, &kc), kc = -kc;
     const auto unscale = [kc](double x) { return std::ldexp(x, -kc); };
@@ -109,8 +87,8 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
     // Vertex loop support (first maximal vertex: deterministic ties); non-extreme points are harmless.
     const PolytopeShape ca(scaledPoints(a.vertices, kc)), cb(scaledPoints(b.vertices, kc));
     const double radii = a.radius + b.radius;
-    const double touch = kTouchRelative * coordinateScale(a, b);
-    const double coreTouch = kTouchRelative * cs;  // rounding noise of the core distance
+    const double touch = touchTolerance(a, b);  // the touching rule of every op (query_tolerance.h)
+    const double coreTouch = kTouchRelative * minkowskiExtent(a.vertices, b.vertices);  // of the cores alone
     PairAnswer ans;
     ans.traceExponent = kc;
     GjkTrace gtrace;
@@ -175,13 +153,22 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
 struct PlaneSpan {
     double lo, hi;       // min / max of (n·x - d)/|n| over the shape
     Vec3 lowPoint, highPoint;  // shape points attaining them
+    double touch;        // the touching tolerance of this plane and shape
 };
 
-PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
+// n̂·x = d̂ with |n̂| = 1 (the parser keeps |normal| in [0.5, sqrt 3], so this neither under- nor overflows).
+struct UnitPlane {
+    Vec3 n;
+    double d;
+};
+UnitPlane unitPlane(const QueryShape& plane) {
     const double m = plane.normal.norm();
-    const Vec3 n = plane.normal / m;
-    const double d = plane.offset / m;
-    PlaneSpan span{INFINITY, -INFINITY, Vec3::Zero(), Vec3::Zero()};
+    return {plane.normal / m, plane.offset / m};
+}
+
+PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
+    const auto [n, d] = unitPlane(plane);
+    PlaneSpan span{INFINITY, -INFINITY, Vec3::Zero(), Vec3::Zero(), planeTouchTolerance(d, largestCoordinate(s) + s.radius)};
     for (const Vec3& v : s.vertices) {
         double x = n.dot(v) - d;
         if (x < span.lo) span.lo = x, span.lowPoint = v;
@@ -196,12 +183,12 @@ PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
 
 // a = plane, b = bounded shape. Normal convention: translating b by depth * normal separates.
 PairAnswer planeBounded(const QueryShape& plane, const QueryShape& s) {
-    const Vec3 n = plane.normal.normalized();
+    const Vec3 n = unitPlane(plane).n;
     PlaneSpan span = planeSpan(plane, s);
     PairAnswer ans;
     ans.hasWitness = true;
-    if (span.lo > 0 || span.hi < 0) {
-        const bool above = span.lo > 0;
+    if (span.lo > span.touch || span.hi < -span.touch) {
+        const bool above = span.lo > span.touch;
         ans.distance = above ? span.lo : -span.hi;
         ans.pointB = above ? span.lowPoint : span.highPoint;
         ans.normal = above ? n : Vec3(-n);
@@ -211,11 +198,11 @@ PairAnswer planeBounded(const QueryShape& plane, const QueryShape& s) {
     ans.intersect = true;
     // Push b off the plane to whichever side is nearer (the plane is a surface, not a half-space).
     if (-span.lo <= span.hi) {
-        ans.depth = -span.lo;
+        ans.depth = std::max(-span.lo, 0.0);  // touching within the tolerance: depth 0
         ans.normal = n;
         ans.pointB = span.lowPoint;
     } else {
-        ans.depth = span.hi;
+        ans.depth = std::max(span.hi, 0.0);
         ans.normal = -n;
         ans.pointB = span.highPoint;
     }
@@ -224,8 +211,8 @@ PairAnswer planeBounded(const QueryShape& plane, const QueryShape& s) {
 }
 
 PairAnswer planePlane(const QueryShape& a, const QueryShape& b, bool wantDepth) {
-    const Vec3 na = a.normal.normalized(), nb = b.normal.normalized();
-    const double da = a.offset / a.normal.norm(), db = b.offset / b.normal.norm();
+    const auto [na, da] = unitPlane(a);
+    const auto [nb, db] = unitPlane(b);
     PairAnswer ans;
     // Parallel to rounding: |na x nb| below ~10 ulps.
     if (na.cross(nb).norm() > 1e-15) {
@@ -237,7 +224,8 @@ PairAnswer planePlane(const QueryShape& a, const QueryShape& b, bool wantDepth) 
     const double gap = sign * db - da;  // b's offset along na minus a's
     ans.hasWitness = true;
     ans.pointA = da * na;
-    if (std::abs(gap) > kTouchRelative * std::max({1.0, std::abs(da), std::abs(db)})) {
+    // The gap is rounded relative to the offsets (the touching rule, query_tolerance.h).
+    if (std::abs(gap) > kTouchRelative * std::max(std::abs(da), std::abs(db))) {
         ans.distance = std::abs(gap);
         ans.normal = gap > 0 ? na : Vec3(-na);
         ans.pointB = ans.pointA + ans.distance * ans.normal;
@@ -279,12 +267,13 @@ QueryShape clipRay(const QueryShape& ray, const QueryShape& s) {
 }
 
 PairAnswer rayPlane(const QueryShape& ray, const QueryShape& plane) {
-    const Vec3 n = plane.normal.normalized();
-    const double s0 = n.dot(ray.origin) - plane.offset / plane.normal.norm();
+    const auto [n, d] = unitPlane(plane);
+    const double s0 = n.dot(ray.origin) - d;
     const double slope = n.dot(ray.direction);
     PairAnswer ans;
     ans.hasWitness = true;
-    const bool reaches = s0 == 0 || (s0 > 0 ? slope < 0 : slope > 0);
+    const bool onPlane = std::abs(s0) <= planeTouchTolerance(d, ray.origin.cwiseAbs().maxCoeff());
+    const bool reaches = onPlane || (s0 > 0 ? slope < 0 : slope > 0);
     ans.pointA = ray.origin;
     if (!reaches) {
         ans.distance = std::abs(s0);
@@ -295,41 +284,43 @@ PairAnswer rayPlane(const QueryShape& ray, const QueryShape& plane) {
     ans.intersect = true;
     // The ray reaches the plane: translating the plane (B) onto the ray's origin leaves them
     // touching, and no shorter translation does.
-    ans.depth = std::abs(s0);
+    ans.depth = onPlane ? 0.0 : std::abs(s0);
     ans.normal = s0 >= 0 ? n : Vec3(-n);
-    ans.pointB = ray.origin - s0 * n;
+    ans.pointB = onPlane ? ray.origin : Vec3(ray.origin - s0 * n);
     return ans;
 }
 
 PairAnswer rayRay(const QueryShape& a, const QueryShape& b) {
     // Minimise |oa + s da - ob - t db| over s, t >= 0: the unconstrained optimum if feasible,
-    // else the best of the boundary cases s = 0 or t = 0 (each a point-ray problem).
+    // else the best of the boundary cases s = 0 or t = 0 (each a point-ray problem). Everything is
+    // computed relative to oa, so the rounding is relative to the distances involved, not to the
+    // coordinates (two rays crossing at x = 1e15 cross, they do not miss by 0.1).
+    const Vec3 r = a.origin - b.origin;  // ob = oa - r
     auto pointRay = [](const Vec3& p, const Vec3& o, const Vec3& d) {
         double t = std::max(0.0, d.dot(p - o) / d.squaredNorm());
         return Vec3(o + t * d);
     };
-    struct Cand { Vec3 pa, pb; };
+    struct Cand { Vec3 pa, pb; };  // relative to oa
     std::vector<Cand> cands;
-    const Vec3 r = a.origin - b.origin;
     const double A = a.direction.squaredNorm(), B = a.direction.dot(b.direction), C = b.direction.squaredNorm();
     const double D = a.direction.dot(r), E = b.direction.dot(r);
     const double det = A * C - B * B;
     if (det > 1e-14 * A * C) {
         double s = (B * E - C * D) / det, t = (A * E - B * D) / det;
-        if (s >= 0 && t >= 0) cands.push_back({a.origin + s * a.direction, b.origin + t * b.direction});
+        if (s >= 0 && t >= 0) cands.push_back({s * a.direction, t * b.direction - r});
     }
-    cands.push_back({a.origin, pointRay(a.origin, b.origin, b.direction)});
-    cands.push_back({pointRay(b.origin, a.origin, a.direction), b.origin});
+    cands.push_back({Vec3::Zero(), pointRay(Vec3::Zero(), -r, b.direction)});
+    cands.push_back({pointRay(-r, Vec3::Zero(), a.direction), -r});
     const Cand* best = &cands[0];
     for (const Cand& c : cands)
         if ((c.pa - c.pb).squaredNorm() < (best->pa - best->pb).squaredNorm()) best = &c;
     PairAnswer ans;
     ans.hasWitness = true;
-    ans.pointA = best->pa;
-    ans.pointB = best->pb;
-    double dist = (best->pa - best->pb).norm();
-    double scale = std::max({1.0, a.origin.cwiseAbs().maxCoeff(), b.origin.cwiseAbs().maxCoeff()});
-    if (dist > kTouchRelative * scale) {
+    ans.pointA = a.origin + best->pa;
+    ans.pointB = a.origin + best->pb;
+    const double dist = (best->pa - best->pb).norm();
+    const double extent = std::max({r.cwiseAbs().maxCoeff(), best->pa.cwiseAbs().maxCoeff(), best->pb.cwiseAbs().maxCoeff()});
+    if (dist > kTouchRelative * extent) {  // the touching rule (query_tolerance.h)
         ans.distance = dist;
         ans.normal = (best->pb - best->pa) / dist;
         return ans;
@@ -360,29 +351,6 @@ PairAnswer solvePair(const QueryShape& a, const QueryShape& b, bool wantDepth, b
     return boundedPair(a, clipRay(b, a), wantDepth, wantTrace);
 }
 
-// Exact rescaling by a power of two so that the largest coordinate or radius is in [0.5, 1):
-// tiny inputs (1e-300) would underflow squared norms, huge ones (1e308) overflow differences.
-// Multiplying by 2^k changes no bit of the mantissas, so the answer scaled back is the answer.
-int normalisingExponent(const QueryShape& a, const QueryShape& b) {
-    double m = 0;
-    for (const QueryShape* s : {&a, &b}) {
-        for (const Vec3& v : s->vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
-        m = std::max({m, s->radius, s->origin.cwiseAbs().maxCoeff()});
-        if (s->kind == Kind::Plane) m = std::max(m, std::abs(s->offset) / s->normal.norm());
-    }
-    if (m == 0) return 0;
-    int e;
-    std::frexp(m, &e);  // m = f 2^e, f in [0.5, 1)
-    return -e;
-}
-
-void scaleShape(QueryShape& s, int k) {
-    for (Vec3& v : s.vertices) v = v.unaryExpr([k](double x) { return std::ldexp(x, k); });
-    s.radius = std::ldexp(s.radius, k);
-    s.origin = s.origin.unaryExpr([k](double x) { return std::ldexp(x, k); });
-    s.offset = std::ldexp(s.offset, k);  // n·(2^k x) = 2^k d
-}
-
 bool isBox(const QueryShape& s) { return s.kind == Kind::Aabb || s.kind == Kind::Obb; }
 
 Obb toObb(const QueryShape& s) {
@@ -391,8 +359,10 @@ Obb toObb(const QueryShape& s) {
     Mat3 axes;
     Vec3 half;
     for (int i = 0; i < 3; ++i) {
+        // Half an edge. stableNorm: extents of 1e160 or 1e-170 would overflow or underflow the
+        // squared norm, and a box of zero extents on an axis keeps that coordinate axis.
         Vec3 e = (s.vertices[1 << i] - s.vertices[0]) * 0.5;
-        half[i] = e.norm();
+        half[i] = e.stableNorm();
         axes.col(i) = half[i] > 0 ? Vec3(e / half[i]) : Vec3::Unit(i);
     }
     return Obb{c, half, axes};
@@ -413,24 +383,29 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
 
     if (method == "vclip" || method == "lin_canny") return answerFeatureWalkQuery(op, method, a, b, an, bn, wantTrace);
 
-    if (method == "sat") {
+    const int k = normalisingExponent(a, b);
+    scaleShape(a, k);
+    scaleShape(b, k);
+    if (method == "sat") {  // on the normalised boxes: half extents neither overflow nor underflow
         SatTrace trace;
-        SatResult s = testObbObb(toObb(a), toObb(b), wantTrace ? &trace : nullptr);
+        const Obb boxA = toObb(a), boxB = toObb(b);
+        for (const Obb* box : {&boxA, &boxB})
+            if (!box->axes.allFinite() || !box->halfExtents.allFinite())
+                throw InputError("query: method 'sat': the box's axes overflow double precision");
+        SatResult s = testObbObb(boxA, boxB, wantTrace ? &trace : nullptr);
         Json out = {{"intersect", s.hit}};
-        if (wantTrace) {
+        if (wantTrace) {  // intervals in the query's units
+            const auto world = [k](double x) { return cleanZero(std::ldexp(x, -k)); };
             Json axes = Json::array();
             for (const SatAxisStep& st : trace.steps)
-                axes.push_back({{"axis", vecJson(st.axis)}, {"a", {st.minA, st.maxA}}, {"b", {st.minB, st.maxB}},
-                                {"separating", st.separating}});
+                axes.push_back({{"axis", vecJson(st.axis)}, {"a", {world(st.minA), world(st.maxA)}},
+                                {"b", {world(st.minB), world(st.maxB)}}, {"separating", st.separating}});
             out["trace"] = {{"algorithm", "sat"}, {"axes", axes}};
         }
         return out;
     }
 
     const bool wantDepth = op == "penetration";
-    const int k = normalisingExponent(a, b);
-    scaleShape(a, k);
-    scaleShape(b, k);
     PairAnswer ans = solvePair(a, b, wantDepth, wantTrace);
     const auto unscale = [k](double x) { return std::ldexp(x, -k); };
     ans.distance = unscale(ans.distance);

@@ -1,5 +1,8 @@
 #include "demos/lib/query_shapes.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace cdlab::demos {
 
 const char* toString(QueryShape::Kind kind) {
@@ -22,6 +25,13 @@ namespace {
 
 // Radii: 0 is allowed (a sphere of radius 0 is a point), negative is an error.
 double readRadius(ObjectReader& r) { return r.get("radius").asNonNegative(); }
+
+// The exponent e of the largest |coordinate| (x = f 2^e, f in [0.5, 1)); 0 for the zero vector.
+int largestExponent(const Vec3& v) {
+    int e = 0;
+    std::frexp(v.cwiseAbs().maxCoeff(), &e);
+    return e;
+}
 
 }  // namespace
 
@@ -51,7 +61,8 @@ QueryShape parseQueryShape(const JsonNode& node) {
         JsonNode d = r.get("direction");
         s.direction = d.asVec3();
         r.finish();
-        if (s.direction.squaredNorm() == 0 || !std::isfinite(s.direction.squaredNorm())) d.fail("ray direction must be non-zero");
+        if (s.direction.isZero(0.0)) d.fail("ray direction must be non-zero");
+        s.direction = scaled(s.direction, -largestExponent(s.direction));  // the same ray
     } else if (key == "sphere") {
         s.kind = K::Sphere;
         ObjectReader r(body);
@@ -107,9 +118,16 @@ QueryShape parseQueryShape(const JsonNode& node) {
         ObjectReader r(body);
         JsonNode nn = r.get("normal");
         s.normal = nn.asVec3();
-        s.offset = r.get("offset").asNumber();
+        JsonNode on = r.get("offset");
+        s.offset = on.asNumber();
         r.finish();
-        if (s.normal.squaredNorm() == 0 || !std::isfinite(s.normal.squaredNorm())) nn.fail("plane normal must be non-zero");
+        if (s.normal.isZero(0.0)) nn.fail("plane normal must be non-zero");
+        // n·x = d and (2^k n)·x = 2^k d are the same plane.
+        const int k = -largestExponent(s.normal);
+        s.normal = scaled(s.normal, k);
+        s.offset = std::ldexp(s.offset, k);
+        if (!std::isfinite(s.offset))
+            on.fail("the plane's distance from the origin, offset / |normal|, overflows double precision");
     } else {
         node.fail("unknown shape '" + key + "' (expected point, segment, ray, triangle, sphere, aabb, obb, capsule, "
                   "polytope or plane)");
@@ -117,6 +135,28 @@ QueryShape parseQueryShape(const JsonNode& node) {
     for (const Vec3& v : s.vertices)
         if (!v.allFinite()) node.fail("shape coordinates overflow after transformation");
     return s;
+}
+
+Vec3 scaled(const Vec3& v, int k) { return v.unaryExpr([k](double x) { return std::ldexp(x, k); }); }
+
+int normalisingExponent(const QueryShape& a, const QueryShape& b) {
+    double m = 0;
+    for (const QueryShape* s : {&a, &b}) {
+        for (const Vec3& v : s->vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
+        m = std::max({m, s->radius, s->origin.cwiseAbs().maxCoeff()});
+        if (s->kind == QueryShape::Kind::Plane) m = std::max(m, std::abs(s->offset) / s->normal.norm());
+    }
+    if (m == 0 || !std::isfinite(m)) return 0;
+    int e;
+    std::frexp(m, &e);  // m = f 2^e, f in [0.5, 1)
+    return -e;
+}
+
+void scaleShape(QueryShape& s, int k) {
+    for (Vec3& v : s.vertices) v = scaled(v, k);
+    s.radius = std::ldexp(s.radius, k);
+    s.origin = scaled(s.origin, k);
+    s.offset = std::ldexp(s.offset, k);  // n·(2^k x) = 2^k d
 }
 
 }  // namespace cdlab::demos

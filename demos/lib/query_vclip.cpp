@@ -9,29 +9,15 @@
 #include "core/convex_hull.h"
 #include "core/lin_canny.h"
 #include "core/vclip.h"
+#include "demos/lib/query_json.h"
+#include "demos/lib/query_limits.h"
+#include "demos/lib/query_tolerance.h"
 
 namespace cdlab::demos {
 
 namespace {
 
 using Kind = QueryShape::Kind;
-
-// -0 prints as "-0.0"; answers print +0 instead.
-double clean(double x) { return x == 0 ? 0.0 : x; }
-Json vecJson(const Vec3& v) { return Json::array({clean(v.x()), clean(v.y()), clean(v.z())}); }
-
-// Exact rescaling by a power of two (as answerShapeQuery does for GJK) so that the largest
-// coordinate is in [0.5, 1): 1e-300 inputs would underflow squared distances, 1e300 ones overflow
-// differences. Scaling by 2^k changes no mantissa bit, so the answer scaled back is the answer.
-int normalisingExponent(const QueryShape& a, const QueryShape& b) {
-    double m = 0;
-    for (const QueryShape* s : {&a, &b})
-        for (const Vec3& v : s->vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
-    if (m == 0) return 0;
-    int e;
-    std::frexp(m, &e);
-    return -e;
-}
 
 // The shape's hull as a V-Clip polyhedron (normalised coordinates) in a body frame centred at
 // `origin` (its first vertex, normalised), or a clear error at its node. Far from the world
@@ -40,10 +26,11 @@ int normalisingExponent(const QueryShape& a, const QueryShape& b) {
 VClipPolyhedron polyhedronOf(const QueryShape& s, int k, const JsonNode& node, Vec3& origin, const std::string& method) {
     if (s.kind != Kind::Polytope && s.kind != Kind::Aabb && s.kind != Kind::Obb)
         node.fail("method '" + method + "' needs polyhedra (polytope, aabb, obb), got " + toString(s.kind));
+    requireHullVerticesWithinLimit(s.vertices.size(), method.c_str(), node);
     std::vector<Vec3> points;
     points.reserve(s.vertices.size());
-    origin = s.vertices.front().unaryExpr([k](double x) { return std::ldexp(x, k); });
-    for (const Vec3& v : s.vertices) points.push_back(v.unaryExpr([k](double x) { return std::ldexp(x, k); }) - origin);
+    origin = scaled(s.vertices.front(), k);
+    for (const Vec3& v : s.vertices) points.push_back(scaled(v, k) - origin);
     const HullResult hull = convexHull(points);
     if (!hull.ok())
         node.fail("method '" + method + "' needs a solid polyhedron (4 points not in one plane); the hull is " +
@@ -100,10 +87,12 @@ Json traceJson(const LinCannyTrace& t) {
 }
 
 // The answer of either walk (VClipResult or LinCannyResult: the same fields), scaled back by 2^-k.
+// `touch` (normalised units) is the touching rule shared with GJK (query_tolerance.h): a walk that
+// ends at a distance within it reports touching, as every other op does.
 template <class Result>
-Json walkAnswer(const std::string& op, const Result& r, int k) {
+Json walkAnswer(const std::string& op, const Result& r, int k, double touch) {
     const auto unscale = [k](double x) { return std::ldexp(x, -k); };
-    if (r.intersect)  // the walk finds that the bodies meet, not a depth: the verdict only
+    if (r.intersect || r.distance <= touch)  // the walk finds that the bodies meet, not a depth: the verdict only
         return op == "distance" ? Json{{"intersect", true}, {"distance", 0.0}} : Json{{"intersect", true}};
     const double distance = unscale(r.distance);
     const Vec3 pA = r.pointA.unaryExpr(unscale), pB = r.pointB.unaryExpr(unscale);
@@ -121,6 +110,7 @@ Json walkAnswer(const std::string& op, const Result& r, int k) {
 Json answerFeatureWalkQuery(const std::string& op, const std::string& method, const QueryShape& a, const QueryShape& b,
                             const JsonNode& aNode, const JsonNode& bNode, bool wantTrace) {
     const int k = normalisingExponent(a, b);
+    const double touch = std::ldexp(touchTolerance(a, b), k);
     Transform poseA, poseB;  // translations to the body-frame origins
     const VClipPolyhedron pa = polyhedronOf(a, k, aNode, poseA.position, method),
                           pb = polyhedronOf(b, k, bNode, poseB.position, method);
@@ -131,14 +121,14 @@ Json answerFeatureWalkQuery(const std::string& op, const std::string& method, co
         if (r.status == LinCannyStatus::CycleDetected) throw InputError("lin_canny: cycle detected (penetrating?)");
         if (r.status != LinCannyStatus::Separated && r.status != LinCannyStatus::Penetrating)
             throw InputError("query: lin_canny failed (" + std::string(statusName(r.status)) + "): " + r.message);
-        out = walkAnswer(op, r, k);
+        out = walkAnswer(op, r, k, touch);
         if (wantTrace) trace = traceJson(t);
     } else {
         VClipTrace t;
         const VClipResult r = vclip(pa, poseA, pb, poseB, nullptr, {}, wantTrace ? &t : nullptr);
         if (r.status != VClipStatus::Separated && r.status != VClipStatus::Penetrating)
             throw InputError("query: vclip failed (" + std::string(statusName(r.status)) + "): " + r.message);
-        out = walkAnswer(op, r, k);
+        out = walkAnswer(op, r, k, touch);
         if (wantTrace) trace = traceJson(t);
     }
     // Trace coordinates are those of the normalised problem: world = unit * trace value.

@@ -212,6 +212,28 @@ TEST_CASE("structure and containment: every build x BV type x mesh, leaf sizes 1
             }
 }
 
+TEST_CASE("coordinates near the top of double range: every build method gives a valid tree") {
+    // Regression (found by the scene fuzzer): a bvh scene torus of major radius 1.1e308 crashed the
+    // bottom-up build. Box surface areas overflowed to inf (and 0 x inf extents to NaN), so no
+    // cluster had a nearest neighbour (index -1); the binned SAH likewise found no finite split.
+    for (double R : {1e154, 1e200, 1.1e308}) {
+        for (double r : {0.35, 1e-300, 0.35 * R}) {
+            const TriangleMesh mesh = torusMesh(R, r, 12, 6);
+            REQUIRE(validateMesh(mesh).status == MeshStatus::Valid);
+            for (const Combo& c : allCombos()) {
+                INFO(c.name, " R ", R, " r ", r);
+                BvhBuildOptions o;
+                o.method = c.method;
+                o.bvKind = c.kind;
+                o.maxLeafTriangles = 2;
+                const Bvh bvh = buildBvh(mesh, o);
+                REQUIRE(bvh.status == BvhStatus::Ok);
+                checkStructure(bvh, mesh, 2);
+            }
+        }
+    }
+}
+
 TEST_CASE("ray queries equal a loop over every world triangle (hits and first t)") {
     std::mt19937_64 rng(101);
     for (const TriangleMesh& mesh : testMeshes()) {

@@ -12,10 +12,17 @@ using namespace cdlab::fuzz;
 
 namespace {
 
-// CDLAB_FUZZ_SECONDS stretches the run (e.g. overnight); the default keeps ctest fast.
-double secondsPerTarget() {
+// The default budget is a number of inputs, the same on every machine and in every build (the
+// sanitizer build is ~10x slower: a time budget made it test fewer inputs, or none past the seeds).
+// CDLAB_FUZZ_SECONDS=N instead runs each target for N seconds (e.g. overnight).
+struct Budget {
+    std::size_t executions;
+    double seconds;
+};
+Budget budget(std::size_t defaultExecutions) {
     const char* s = std::getenv("CDLAB_FUZZ_SECONDS");
-    return s ? std::atof(s) : 2.0;
+    if (s && std::atof(s) > 0) return {std::size_t(-1), std::atof(s)};
+    return {defaultExecutions, 0.0};
 }
 
 const std::uint8_t* bytes(const std::string& s) { return reinterpret_cast<const std::uint8_t*>(s.data()); }
@@ -28,8 +35,8 @@ TEST_CASE("query answers keep the contract on mutated queries") {
     std::vector<std::string> seeds = readSeedLines(CDLAB_SOURCE_DIR "/tests/fuzz/seeds/queries.jsonl");
     REQUIRE(seeds.size() >= 20);
     MutationFuzzer fuzzer(seeds, 0xC0FFEE);
-    const std::size_t runs =
-        fuzzer.run([](const std::string& s) { fuzzQuery(bytes(s), s.size()); }, secondsPerTarget(), 2'000'000);
+    const Budget b = budget(40'000);
+    const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzQuery(bytes(s), s.size()); }, b.executions, b.seconds);
     MESSAGE("query: " << runs << " executions");
     CHECK(runs > seeds.size());
 }
@@ -38,8 +45,8 @@ TEST_CASE("scene loading keeps the contract on mutated scenes") {
     std::vector<std::string> seeds = readSceneSeeds(CDLAB_SOURCE_DIR "/golden");
     REQUIRE(seeds.size() >= 10);
     MutationFuzzer fuzzer(seeds, 0xBADC0DE, 16384);
-    const std::size_t runs =
-        fuzzer.run([](const std::string& s) { fuzzScene(bytes(s), s.size()); }, secondsPerTarget(), 2'000'000);
+    const Budget b = budget(2'000);
+    const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzScene(bytes(s), s.size()); }, b.executions, b.seconds);
     MESSAGE("scene: " << runs << " executions");
     CHECK(runs > seeds.size());
 }

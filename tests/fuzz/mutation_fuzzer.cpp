@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -87,16 +88,20 @@ std::string MutationFuzzer::next() {
     return s;
 }
 
-std::size_t MutationFuzzer::run(const std::function<void(const std::string&)>& target, double seconds,
-                                std::size_t maxExecutions) {
+std::size_t MutationFuzzer::run(const std::function<void(const std::string&)>& target, std::size_t maxExecutions,
+                                double seconds) {
     const auto start = std::chrono::steady_clock::now();
+    const char* last = std::getenv("CDLAB_FUZZ_LAST");
     std::size_t executions = 0;
-    for (const std::string& s : seeds_) target(s), ++executions;
-    while (executions < maxExecutions &&
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds) {
-        target(next());
+    const auto execute = [&](const std::string& input) {
+        if (last) std::ofstream(last, std::ios::binary | std::ios::trunc) << input;  // a crash leaves its input
+        target(input);
         ++executions;
-    }
+    };
+    for (const std::string& s : seeds_) execute(s);
+    while (executions < maxExecutions &&
+           (seconds <= 0 || std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds))
+        execute(next());
     return executions;
 }
 

@@ -20,9 +20,12 @@ public:
     /// The next input: a seed with 1..4 mutations applied.
     std::string next();
 
-    /// Runs `target` on every seed verbatim, then on mutated inputs until `seconds` pass or
-    /// `maxExecutions` inputs ran. Returns the number of executions.
-    std::size_t run(const std::function<void(const std::string&)>& target, double seconds, std::size_t maxExecutions);
+    /// Runs `target` on every seed verbatim, then on mutated inputs until `maxExecutions` inputs ran
+    /// (or, when `seconds` > 0, that much time passed first). Returns the number of executions.
+    /// The budget is a count, not a time, so a run tests the same inputs on any machine and in any
+    /// build (a sanitizer build is ~10x slower). With CDLAB_FUZZ_LAST=path in the environment each
+    /// input is written to that file before it runs: a crash leaves its reproducer there.
+    std::size_t run(const std::function<void(const std::string&)>& target, std::size_t maxExecutions, double seconds = 0);
 
 private:
     void mutate(std::string& s);
