@@ -1,6 +1,7 @@
 #include "render/image.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,8 +9,6 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -28,10 +27,11 @@ template <class Error>
     throw Error("cannot write '" + path + "': " + what);
 }
 
-/// Temp file in the target folder + write + fsync + rename (POSIX rename is atomic within a
-/// file system, so readers see the old file or the complete new one, never a truncated one).
+/// Writes `data` to a new temp file in the target's folder and fsyncs it; returns the temp name.
+/// The name is unique per process and call, so parallel writers of one file (two runs into the
+/// same folder) never share a temp file. On failure the temp file is removed.
 template <class Error>
-void writeAtomic(const std::string& path, const void* data, std::size_t size) {
+std::string stageFile(const std::string& path, const void* data, std::size_t size) {
     namespace fs = std::filesystem;
     if (path.empty()) throw Error("cannot write '': empty path");
     const fs::path target(path);
@@ -40,7 +40,8 @@ void writeAtomic(const std::string& path, const void* data, std::size_t size) {
         fs::create_directories(target.parent_path(), ec);
         if (ec) fail<Error>(path, "cannot create folder '" + target.parent_path().string() + "': " + ec.message());
     }
-    // Unique per process and call, so parallel writers of the same file never share a temp file.
+    // Found now, not at the rename: a FileSetWriter then fails before any file of its set is replaced.
+    if (fs::symlink_status(target, ec).type() == fs::file_type::directory) fail<Error>(path, "is a directory");
     static std::atomic<unsigned> counter{0};
     const std::string temp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
@@ -64,11 +65,23 @@ void writeAtomic(const std::string& path, const void* data, std::size_t size) {
         ::unlink(temp.c_str());
         fail<Error>(path, std::strerror(err));
     }
+    return temp;
+}
+
+/// POSIX rename is atomic within a file system: readers see the old file or the complete new one.
+template <class Error>
+void commitFile(const std::string& temp, const std::string& path) {
     if (::rename(temp.c_str(), path.c_str()) != 0) {
         const int err = errno;
         ::unlink(temp.c_str());
         fail<Error>(path, std::strerror(err));
     }
+}
+
+/// Temp file in the target folder + write + fsync + rename: never a truncated target.
+template <class Error>
+void writeAtomic(const std::string& path, const void* data, std::size_t size) {
+    commitFile<Error>(stageFile<Error>(path, data, size), path);
 }
 
 void appendBytes(void* context, void* data, int size) {
@@ -77,19 +90,72 @@ void appendBytes(void* context, void* data, int size) {
     out->insert(out->end(), p, p + size);
 }
 
+std::string sizeText(std::size_t bytes) {
+    if (bytes % (std::size_t(1) << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+    return std::to_string(bytes) + " bytes";
+}
+
 }  // namespace
 
+bool readFileBounded(const std::string& path, std::size_t maxBytes, const std::string& kind, std::string& bytes,
+                     std::string& problem) {
+    bytes.clear();
+    // O_NONBLOCK is not used: a FIFO (`<(cat scene.json)`) waits for its writer, as cat would.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+        problem = std::string("cannot open: ") + std::strerror(errno);
+        return false;
+    }
+    struct stat st {};
+    if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
+        ::close(fd);
+        problem = "is a directory, not a file";
+        return false;
+    }
+    if (S_ISREG(st.st_mode) && std::uintmax_t(st.st_size) > maxBytes) {  // refused before reading
+        ::close(fd);
+        problem = "larger than the " + sizeText(maxBytes) + " limit for " + kind;
+        return false;
+    }
+    // Devices and pipes have no size: read at most one byte past the limit.
+    char buffer[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            problem = std::string("read error: ") + std::strerror(errno);
+            ::close(fd);
+            bytes.clear();
+            return false;
+        }
+        if (n == 0) break;
+        if (bytes.size() + std::size_t(n) > maxBytes) {
+            ::close(fd);
+            bytes.clear();
+            problem = "larger than the " + sizeText(maxBytes) + " limit for " + kind;
+            return false;
+        }
+        bytes.append(buffer, std::size_t(n));
+    }
+    ::close(fd);
+    return true;
+}
+
 Image readPng(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ImageError("cannot read '" + path + "': " + std::strerror(errno));
-    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw ImageError("cannot read '" + path + "': read error");
+    std::string bytes, problem;
+    if (!readFileBounded(path, kMaxPngFileBytes, "a PNG file", bytes, problem))
+        throw ImageError("cannot read '" + path + "': " + problem);
     if (bytes.empty()) throw ImageError("cannot decode '" + path + "': empty file, not a PNG");
     if (bytes.size() < 8 || std::memcmp(bytes.data(), kPngSignature, 8) != 0)
         throw ImageError("cannot decode '" + path + "': not a PNG (bad signature)");
-    if (bytes.size() > std::size_t(INT32_MAX)) throw ImageError("cannot decode '" + path + "': file too large");
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     int w = 0, h = 0, channels = 0;
-    stbi_uc* pixels = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4);
+    // The header's size is checked before stb_image allocates w * h * 4 bytes for it.
+    if (stbi_info_from_memory(data, int(bytes.size()), &w, &h, &channels) &&
+        std::int64_t(w) * std::int64_t(h) > kMaxPngPixels)
+        throw ImageError("cannot decode '" + path + "': " + std::to_string(w) + " x " + std::to_string(h) +
+                         " pixels, more than the limit of " + std::to_string(kMaxPngPixels) + " (8192 x 8192)");
+    stbi_uc* pixels = stbi_load_from_memory(data, int(bytes.size()), &w, &h, &channels, 4);
     if (!pixels) {
         const std::string reason = stbi_failure_reason() ? stbi_failure_reason() : "unknown";
         // stb's terse reasons: "outofdata"/"bad zlib"/"no IEND"... mostly mean a cut-off file.
@@ -102,7 +168,9 @@ Image readPng(const std::string& path) {
     return image;
 }
 
-void writePngAtomic(const std::string& path, const Image& image) {
+namespace {
+
+std::vector<unsigned char> encodePng(const std::string& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0 || image.rgba.size() != std::size_t(image.width) * image.height * 4)
         throw ImageError("cannot write '" + path + "': invalid image " + std::to_string(image.width) + "x" +
                          std::to_string(image.height) + " with " + std::to_string(image.rgba.size()) + " bytes");
@@ -115,11 +183,44 @@ void writePngAtomic(const std::string& path, const Image& image) {
     png.reserve(image.rgba.size() / 4);
     if (!stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4))
         throw ImageError("cannot write '" + path + "': PNG encoding failed");
+    return png;
+}
+
+}  // namespace
+
+void writePngAtomic(const std::string& path, const Image& image) {
+    const std::vector<unsigned char> png = encodePng(path, image);
     writeAtomic<ImageError>(path, png.data(), png.size());
 }
 
 void writeFileAtomic(const std::string& path, const std::string& bytes) {
     writeAtomic<std::runtime_error>(path, bytes.data(), bytes.size());
+}
+
+FileSetWriter::~FileSetWriter() {
+    for (const Staged& s : staged_) ::unlink(s.temp.c_str());
+}
+
+void FileSetWriter::addPng(const std::string& path, const Image& image) {
+    const std::vector<unsigned char> png = encodePng(path, image);
+    staged_.push_back({stageFile<ImageError>(path, png.data(), png.size()), path});
+}
+
+void FileSetWriter::addFile(const std::string& path, const std::string& bytes) {
+    staged_.push_back({stageFile<std::runtime_error>(path, bytes.data(), bytes.size()), path});
+}
+
+void FileSetWriter::commit() {
+    std::vector<Staged> files = std::move(staged_);
+    staged_.clear();
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        try {
+            commitFile<std::runtime_error>(files[i].temp, files[i].target);
+        } catch (...) {
+            for (std::size_t j = i + 1; j < files.size(); ++j) ::unlink(files[j].temp.c_str());
+            throw;
+        }
+    }
 }
 
 Image downsample(const Image& image, int factor) {

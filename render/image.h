@@ -2,6 +2,7 @@
 // defines the implementations).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -26,8 +27,22 @@ struct ImageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// Decodes a PNG (any channel count, converted to RGBA8). Throws ImageError.
+/// Largest PNG file readPng reads: the size of an incompressible 8192 x 8192 RGBA image (the
+/// largest frame a scene can ask for) ...
+constexpr std::size_t kMaxPngFileBytes = std::size_t(256) << 20;
+/// ... and the most pixels it decodes (checked in the header, before stb_image allocates them).
+constexpr std::int64_t kMaxPngPixels = std::int64_t(8192) * 8192;
+
+/// Decodes a PNG (any channel count, converted to RGBA8). Throws ImageError naming the file: missing,
+/// a directory, larger than kMaxPngFileBytes / kMaxPngPixels, not a PNG, corrupt.
 Image readPng(const std::string& path);
+
+/// Reads a whole file of at most `maxBytes` into `bytes`. Refuses a directory; reads at most
+/// maxBytes + 1 bytes, so /dev/zero or an endless FIFO costs no more than the limit. On failure
+/// returns false with `problem` set to a phrase without the path: "cannot open: <reason>", "is a
+/// directory, not a file", "larger than the 16 MiB limit for <kind>", "read error: <reason>".
+bool readFileBounded(const std::string& path, std::size_t maxBytes, const std::string& kind, std::string& bytes,
+                     std::string& problem);
 
 /// Encodes to PNG deterministically (no timestamps) and writes it atomically: to a temp file
 /// in the same folder, then rename(), so an interrupted run never leaves a truncated PNG.
@@ -36,6 +51,28 @@ void writePngAtomic(const std::string& path, const Image& image);
 
 /// Writes bytes atomically (temp file + rename); used for JSON/HTML outputs. Throws std::runtime_error.
 void writeFileAtomic(const std::string& path, const std::string& bytes);
+
+/// Writes several files as one unit (a scene's frames, trace and manifest): each add*() stages a
+/// file (a temp file with a name unique to this process and call, written and fsynced); commit()
+/// renames them all into place, in the order added. A failure while staging, or destruction
+/// without commit(), removes the temp files: every target keeps its previous content.
+class FileSetWriter {
+public:
+    FileSetWriter() = default;
+    FileSetWriter(const FileSetWriter&) = delete;
+    FileSetWriter& operator=(const FileSetWriter&) = delete;
+    ~FileSetWriter();
+    void addPng(const std::string& path, const Image& image);         // throws ImageError
+    void addFile(const std::string& path, const std::string& bytes);  // throws std::runtime_error
+    /// Throws std::runtime_error naming the file whose rename failed (earlier ones are in place).
+    void commit();
+
+private:
+    struct Staged {
+        std::string temp, target;
+    };
+    std::vector<Staged> staged_;
+};
 
 /// Box-filter downsample by an integer factor (supersampling resolve for --scale).
 Image downsample(const Image& image, int factor);

@@ -29,7 +29,8 @@ constexpr const char* kUsage =
     "  bench     time per query against error; BVH and broad phase [--quick] [--only queries,vclip,bvh,broadphase]\n"
     "  stress    numerical-stability families against independent oracles [--seconds N] (see README)\n"
     "  demos     list the demos\n"
-    "exit status: 0 ok, 1 test/comparison failure or failed queries, 2 usage or input error\n";
+    "exit status: 0 ok, 1 test/comparison failure or failed queries, 2 usage or input error,\n"
+    "             or an output that cannot be written\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;

@@ -5,14 +5,25 @@
 // options that change pixels, the cdlab executable's bytes). A scene whose key matches and whose
 // files all exist is skipped; --force renders everything. Changing the code changes the
 // executable, so every scene re-renders after a rebuild that changed anything.
+//
+// What a run may delete: only files that the scene folder's previous manifest lists (cdlab wrote
+// them) and this run did not write again. Folders come from a checked scene name
+// (sceneOutputDir), so no scene can point a run at out/ itself or outside it. Each scene's files
+// are staged and renamed together under an flock() on the scene folder, so two runs into one
+// out/ both succeed and a failed scene keeps its previous complete files.
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "demos/lib/demo.h"
 #include "demos/lib/gallery.h"
@@ -50,40 +61,162 @@ std::uint64_t executableHash() {
     return h;
 }
 
-std::string cacheKey(const std::string& sceneFile, const RunnerOptions& o) {
-    std::uint64_t h = fnv1a(readBytes(sceneFile), executableHash());
+// From the bytes read once at validation: a scene given as a pipe (`<(cat scene.json)`) is not
+// opened twice.
+std::string cacheKey(const std::string& sceneBytes, const RunnerOptions& o) {
+    std::uint64_t h = fnv1a(sceneBytes, executableHash());
     h = fnv1a("scale=" + std::to_string(o.scale) + ";steps=" + std::to_string(o.steps), h);
     char buf[20];
     std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
     return buf;
 }
 
+bool pathExists(const fs::path& p) {
+    std::error_code ec;
+    return fs::symlink_status(p, ec).type() != fs::file_type::not_found;
+}
+
+// A cached scene: a readable manifest with this key whose files are all there. A manifest that does
+// not read is not trusted; the write step reports it (once) and replaces it.
 bool cacheValid(const fs::path& dir, const std::string& key) {
-    fs::path manifest = dir / "manifest.json";
-    if (!fs::exists(manifest)) return false;
+    if (!pathExists(dir / "manifest.json")) return false;
     try {
-        Json m = Json::parse(readBytes(manifest));
-        if (m.value("key", "") != key) return false;
-        for (const auto& f : m.at("files"))
-            if (!fs::exists(dir / f.get<std::string>())) return false;
+        const FigureManifest m = readFigureManifest(dir / "manifest.json");
+        if (m.key != key) return false;
+        for (const auto& f : m.files)
+            if (!pathExists(dir / f)) return false;
         return true;
-    } catch (const std::exception&) {
-        return false;  // unreadable manifest: render again
+    } catch (const InputError&) {
+        return false;
     }
 }
 
-// Files of an earlier run that this run did not write (e.g. fewer steps now) are removed after
-// the new ones are in place.
-void removeStale(const fs::path& dir, const std::vector<std::string>& keep) {
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-        std::string name = entry.path().filename().string();
-        if (name == "manifest.json" || std::find(keep.begin(), keep.end(), name) != keep.end()) continue;
-        if (entry.is_regular_file()) fs::remove(entry.path(), ec);
+// An exclusive flock() on a folder while this run changes it; released on destruction. Another
+// cdlab run writing the same folder waits. Without a lock (the folder cannot be opened) the
+// writes go on and report their own errors.
+class FolderLock {
+public:
+    explicit FolderLock(const fs::path& dir) : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+        if (fd_ >= 0)
+            while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+            }
     }
+    ~FolderLock() {
+        if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+    }
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+private:
+    int fd_;
+};
+
+// The files the previous run wrote into `dir` (its manifest's list). No manifest, or one that does
+// not read (reported with its path), lists nothing: nothing is deleted then.
+std::vector<std::string> previouslyWritten(const fs::path& dir) {
+    const fs::path file = dir / "manifest.json";
+    if (!pathExists(file)) return {};
+    try {
+        return readFigureManifest(file).files;
+    } catch (const InputError& e) {
+        std::cerr << "cdlab figures: " << e.what() << " (not used: no earlier file is deleted; a new manifest replaces it)\n";
+        return {};
+    }
+}
+
+// Files of an earlier run that this run did not write (e.g. fewer steps now). Names come from the
+// previous manifest and are plain names (readFigureManifest checks), so this never leaves `dir`.
+void removeStale(const fs::path& dir, const std::vector<std::string>& previous, const std::vector<std::string>& written) {
+    std::error_code ec;
+    for (const std::string& name : previous)
+        if (std::find(written.begin(), written.end(), name) == written.end() &&
+            fs::symlink_status(dir / name, ec).type() == fs::file_type::regular)
+            fs::remove(dir / name, ec);
+}
+
+// Names of frames and extra files come from demo code; checked all the same.
+std::string plainOutputName(const std::string& name) {
+    if (!isPlainName(name) || name == "manifest.json")
+        throw std::logic_error("output file name " + Json(name).dump() + " is not a plain file name");
+    return name;
+}
+
+// Writes one scene's output: everything staged first, then renamed in place; stale files of the
+// previous run go next, the manifest last (so a run killed half-way leaves a manifest that still
+// lists every file a later run may clean up).
+void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCommon& sc, const DemoOutput& out) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + ec.message());
+    FolderLock lock(dir);
+    const std::vector<std::string> previous = previouslyWritten(dir);
+
+    render::FileSetWriter files;
+    FigureManifest manifest{key, sc.title, sc.caption, {}, {}};
+    for (const Frame& fr : out.frames) {
+        const std::string name = plainOutputName(fr.name + ".png");
+        files.addPng((dir / name).string(), fr.image);
+        manifest.files.push_back(name);
+        manifest.frames.push_back({fr.name, fr.caption});
+    }
+    for (const auto& [name, bytes] : out.files) {
+        files.addFile((dir / plainOutputName(name)).string(), bytes);
+        manifest.files.push_back(name);
+    }
+    files.addFile((dir / "trace.json").string(), traceText(out.trace));
+    manifest.files.push_back("trace.json");
+    files.commit();
+    removeStale(dir, previous, manifest.files);
+    render::writeFileAtomic((dir / "manifest.json").string(), figureManifestText(manifest));
 }
 
 std::string ms(double seconds) { return std::to_string(int(seconds * 1000 + 0.5)) + " ms"; }
+
+struct SceneJob {
+    std::string file;
+    std::unique_ptr<PreparedScene> scene;
+    fs::path dir;     // <out>/<demo>/<scene>
+    std::string key;  // cache key
+    bool todo = true;
+};
+
+// Reads and checks one scene file; throws InputError naming it.
+SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
+    SceneJob job;
+    job.file = file;
+    const std::string bytes = readJsonText(file);
+    job.scene = loadSceneText(bytes, file);
+    const SceneCommon& sc = job.scene->common();
+    if (!o.demo.empty() && sc.demo != o.demo)
+        throw InputError(file + ": $.demo: this scene is for demo '" + sc.demo + "', not '" + o.demo + "'");
+    try {
+        job.dir = sceneOutputDir(o.outDir, sc.demo, sc.name);
+    } catch (const InputError& e) {
+        throw InputError(file + ": " + e.what());
+    }
+    job.key = cacheKey(bytes, o) + (o.noRender ? "-numeric" : "");
+    return job;
+}
+
+// Every scene is validated before anything is written; every bad one is reported (one line each).
+bool validateAll(const std::vector<std::string>& files, const RunnerOptions& o, std::vector<SceneJob>& jobs) {
+    int bad = 0;
+    for (const auto& f : files) {
+        try {
+            jobs.push_back(validateScene(f, o));
+        } catch (const InputError& e) {
+            std::cerr << e.what() << "\n";
+            ++bad;
+        } catch (const std::exception& e) {  // e.g. std::bad_alloc while reading a scene
+            std::cerr << f << ": " << e.what() << "\n";
+            ++bad;
+        }
+    }
+    if (bad)
+        std::cerr << "cdlab figures: " << bad << " of " << files.size() << " scene" << (files.size() == 1 ? "" : "s")
+                  << (bad == 1 ? " is" : " are") << " invalid; nothing written\n";
+    return bad == 0;
+}
 
 }  // namespace
 
@@ -99,25 +232,22 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         std::cerr << "cdlab figures: no scene matches\n";
         return 2;
     }
-    // Validate every scene before rendering anything: a bad file produces no output at all.
-    std::vector<std::unique_ptr<PreparedScene>> scenes;
-    for (const auto& f : files) {
-        scenes.push_back(loadScene(f));
-        const std::string& demo = scenes.back()->common().demo;
-        if (!o.demo.empty() && demo != o.demo)
-            throw InputError(f + ": $.demo: this scene is for demo '" + demo + "', not '" + o.demo + "'");
+    std::vector<SceneJob> jobs;
+    if (!validateAll(files, o, jobs)) return 2;
+    {
+        std::error_code ec;
+        fs::create_directories(o.outDir, ec);
+        if (ec) {
+            std::cerr << "cdlab figures: cannot create the output folder '" << o.outDir << "': " << ec.message() << "\n";
+            return 2;
+        }
     }
 
     // Which scenes need work: the GL context (70 ms .. 1 s) is created only if one does.
-    std::vector<std::string> keys;
-    std::vector<bool> todo;
     bool anyTodo = false;
-    for (std::size_t i = 0; i < scenes.size(); ++i) {
-        const SceneCommon& sc = scenes[i]->common();
-        keys.push_back(cacheKey(files[i], o) + (o.noRender ? "-numeric" : ""));
-        bool cached = !o.force && cacheValid(fs::path(o.outDir) / sc.demo / sc.name, keys.back());
-        todo.push_back(!cached);
-        anyTodo = anyTodo || !cached;
+    for (SceneJob& job : jobs) {
+        job.todo = o.force || !cacheValid(job.dir, job.key);
+        anyTodo = anyTodo || job.todo;
     }
     std::unique_ptr<render::GlContext> gl;
     if (anyTodo && !o.noRender) gl = createContext(o.verbose);
@@ -126,72 +256,76 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
     RunContext ctx{gl.get(), o.scale, o.steps};
 
     auto t0 = Clock::now();
-    int frames = 0, rendered = 0;
+    int frames = 0, rendered = 0, failed = 0;
     const bool tty = isatty(fileno(stderr)) && !std::getenv("CI");
-    for (std::size_t i = 0; i < scenes.size(); ++i) {
-        const SceneCommon& sc = scenes[i]->common();
-        const fs::path dir = fs::path(o.outDir) / sc.demo / sc.name;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const SceneJob& job = jobs[i];
+        const SceneCommon& sc = job.scene->common();
         if (tty && !o.verbose && !o.profile)
-            std::cerr << "\r[" << i + 1 << "/" << scenes.size() << "] " << sceneId(sc) << " (" << int(secondsSince(t0))
+            std::cerr << "\r[" << i + 1 << "/" << jobs.size() << "] " << sceneId(sc) << " (" << int(secondsSince(t0))
                       << " s)\x1b[K" << std::flush;
-        if (!todo[i]) {
+        if (!job.todo) {
             if (o.verbose || o.profile) std::cerr << sceneId(sc) << ": unchanged (cached)\n";
             continue;
         }
-        ++rendered;
-        double algorithm = 0;
-        if (o.profile) {  // the numeric part alone: what the algorithm costs without any drawing
-            auto ta = Clock::now();
-            scenes[i]->run(RunContext{});
-            algorithm = secondsSince(ta);
-        }
-        const render::RenderStats before = stats;
-        auto ts = Clock::now();
-        DemoOutput out = scenes[i]->run(ctx);
-        const double runSeconds = secondsSince(ts);
-
-        auto tw = Clock::now();
-        std::vector<std::string> written;
-        Json manifest = {{"key", keys[i]}, {"title", sc.title}, {"caption", sc.caption}, {"frames", Json::array()}};
-        for (const Frame& fr : out.frames) {
-            render::writePngAtomic((dir / (fr.name + ".png")).string(), fr.image);
-            written.push_back(fr.name + ".png");
-            manifest["frames"].push_back({{"name", fr.name}, {"caption", fr.caption}});
-            ++frames;
-        }
-        for (const auto& [name, bytes] : out.files) {
-            render::writeFileAtomic((dir / name).string(), bytes);
-            written.push_back(name);
-        }
-        render::writeFileAtomic((dir / "trace.json").string(), traceText(out.trace));
-        written.push_back("trace.json");
-        manifest["files"] = written;
-        removeStale(dir, written);
-        render::writeFileAtomic((dir / "manifest.json").string(), manifest.dump(1) + "\n");
-        const double writeSeconds = secondsSince(tw);
-
-        if (o.profile) {
-            const double build = stats.buildSeconds - before.buildSeconds, draw = stats.drawSeconds - before.drawSeconds,
-                         readback = stats.readbackSeconds - before.readbackSeconds;
-            std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames; algorithm " << ms(algorithm)
-                      << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices " << ms(build)
-                      << ", GL " << ms(draw) << "), read-back " << ms(readback) << ", PNG encoding + writes "
-                      << ms(writeSeconds);
-            if (!out.skipped.empty()) {
-                std::cerr << "; skipped:";
-                for (const auto& s : out.skipped) std::cerr << " " << s << ";";
+        // A scene that fails at run time (or whose files cannot be written) is reported with its
+        // file; its folder keeps the previous complete files and the other scenes still render.
+        try {
+            double algorithm = 0;
+            if (o.profile) {  // the numeric part alone: what the algorithm costs without any drawing
+                auto ta = Clock::now();
+                job.scene->run(RunContext{});
+                algorithm = secondsSince(ta);
             }
-            std::cerr << "\n";
-        } else if (o.verbose) {
-            std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << ms(runSeconds + writeSeconds) << "\n";
+            const render::RenderStats before = stats;
+            auto ts = Clock::now();
+            DemoOutput out = job.scene->run(ctx);
+            const double runSeconds = secondsSince(ts);
+
+            auto tw = Clock::now();
+            writeSceneFolder(job.dir, job.key, sc, out);
+            const double writeSeconds = secondsSince(tw);
+            ++rendered;
+            frames += int(out.frames.size());
+
+            if (o.profile) {
+                const double build = stats.buildSeconds - before.buildSeconds, draw = stats.drawSeconds - before.drawSeconds,
+                             readback = stats.readbackSeconds - before.readbackSeconds;
+                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames; algorithm " << ms(algorithm)
+                          << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices " << ms(build)
+                          << ", GL " << ms(draw) << "), read-back " << ms(readback) << ", PNG encoding + writes "
+                          << ms(writeSeconds);
+                if (!out.skipped.empty()) {
+                    std::cerr << "; skipped:";
+                    for (const auto& s : out.skipped) std::cerr << " " << s << ";";
+                }
+                std::cerr << "\n";
+            } else if (o.verbose) {
+                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << ms(runSeconds + writeSeconds) << "\n";
+            }
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            std::cerr << (tty ? "\n" : "") << (what.rfind(job.file, 0) == 0 ? what : job.file + ": " + what) << "\n";
+            ++failed;
+        } catch (const render::GlError& e) {
+            std::cerr << (tty ? "\n" : "") << job.file << ": OpenGL: " << e.what() << "\n";
+            ++failed;
+        } catch (const std::exception& e) {  // render::ImageError, write errors, std::bad_alloc, ...
+            std::cerr << (tty ? "\n" : "") << job.file << ": " << e.what() << "\n";
+            ++failed;
         }
     }
     if (tty && !o.verbose && !o.profile) std::cerr << "\n";
-    writeGallery(o.outDir);
-    std::cerr << "cdlab figures: " << scenes.size() << " scenes (" << rendered << " rendered, " << scenes.size() - rendered
-              << " unchanged), " << frames << " frames into " << o.outDir << " in " << secondsSince(t0) << " s; gallery "
+    {
+        FolderLock lock(o.outDir);
+        writeGallery(o.outDir);
+    }
+    std::cerr << "cdlab figures: " << jobs.size() << " scenes (" << rendered << " rendered, "
+              << jobs.size() - rendered - failed << " unchanged";
+    if (failed) std::cerr << ", " << failed << " failed";
+    std::cerr << "), " << frames << " frames into " << o.outDir << " in " << secondsSince(t0) << " s; gallery "
               << (fs::path(o.outDir) / "index.html").string() << "\n";
-    return 0;
+    return failed ? 2 : 0;
 }
 
 }  // namespace cdlab::demos

@@ -1,12 +1,35 @@
 // The static figure gallery: out/figures/index.html, one section per scene with its frames and
-// captions, relative image links only (opens offline, no scripts).
+// captions, relative image links only (opens offline, no scripts); and the per-scene manifest
+// that `cdlab figures` writes and the gallery reads.
 #pragma once
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace cdlab::demos {
 
-/// Scans <outDir>/<demo>/<scene>/manifest.json and writes <outDir>/index.html atomically.
+/// <out>/<demo>/<scene>/manifest.json: the cache key and what a figures run wrote into the folder.
+/// `files` is the only list of files cdlab may later delete there.
+struct FigureManifest {
+    struct FrameEntry {
+        std::string name;     // file stem of <name>.png
+        std::string caption;
+    };
+    std::string key;                  // cache key (scene bytes, options, executable)
+    std::string title, caption;
+    std::vector<FrameEntry> frames;
+    std::vector<std::string> files;   // every file written: plain names (no '/', not "..")
+};
+
+/// Reads a manifest written by `cdlab figures`. Anything else — not JSON, another layout, a file
+/// name that could leave the folder — throws InputError naming the file and the JSON path.
+FigureManifest readFigureManifest(const std::filesystem::path& file);
+/// The manifest's JSON text (readFigureManifest reads it back).
+std::string figureManifestText(const FigureManifest& manifest);
+
+/// Scans <outDir>/<demo>/<scene>/manifest.json and writes <outDir>/index.html atomically. A
+/// manifest that does not read is reported on stderr with its path and left out of the page.
 void writeGallery(const std::string& outDir);
 
 }  // namespace cdlab::demos

@@ -1,11 +1,10 @@
 #include "demos/lib/json_reader.h"
 
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <vector>
+
+#include "render/image.h"
 
 namespace cdlab::demos {
 
@@ -15,19 +14,46 @@ namespace {
 // keeps hostile input ("[[[[..." a million deep) from costing memory and time downstream.
 constexpr int kMaxJsonDepth = 64;
 
-// Scans text that already parsed as JSON for what the DOM parser silently accepts: duplicate keys
-// in one object (nlohmann keeps the last one — a typo'd duplicate would hide the first value) and
-// nesting deeper than kMaxJsonDepth. Reports the byte position like a syntax error.
-void checkJsonStructure(const std::string& text, const std::string& source) {
+[[noreturn]] void failAtByte(const std::string& source, std::size_t index, const std::string& what) {
+    throw InputError(source + ": byte " + std::to_string(index + 1) + ": " + what);
+}
+
+// Runs before the DOM parser, keeping only a depth counter: nlohmann builds the whole tree before
+// anyone could look at its depth (a 60 MB "[[[[..." line peaked at 2.24 GB, an unclosed one ended
+// in bad_alloc), and its lexer takes a NUL byte for the end of the input, silently dropping the
+// rest of the text. Stops at the first NUL byte, or at the first bracket that opens level 65.
+// Brackets inside strings do not count; a malformed text is left to the parser's own message.
+void checkDepthAndNulBytes(const std::string& text, const std::string& source) {
+    int depth = 0;
+    bool inString = false, escaped = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\0') failAtByte(source, i, "NUL byte (U+0000) is not allowed");
+        if (inString) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '{' || c == '[') {
+            if (++depth > kMaxJsonDepth)
+                failAtByte(source, i, "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        } else if ((c == '}' || c == ']') && depth > 0) {
+            --depth;
+        }
+    }
+}
+
+// Scans text that already parsed as JSON (so at most kMaxJsonDepth deep) for what the DOM parser
+// silently accepts: duplicate keys in one object (nlohmann keeps the last one — a typo'd duplicate
+// would hide the first value). Reports the byte position like a syntax error.
+void checkDuplicateKeys(const std::string& text, const std::string& source) {
     struct Level {
         bool object;
         bool expectKey;
         std::set<std::string> keys;
     };
     std::vector<Level> stack;
-    const auto error = [&](std::size_t byte, const std::string& what) {
-        throw InputError(source + ": byte " + std::to_string(byte + 1) + ": " + what);
-    };
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
         if (c == '"') {
@@ -42,13 +68,12 @@ void checkJsonStructure(const std::string& text, const std::string& source) {
                 // Keys with escapes are compared decoded ("a" and "\u0061" are the same key).
                 std::string key = escaped ? Json::parse(raw).get<std::string>() : raw.substr(1, raw.size() - 2);
                 if (!stack.back().keys.insert(key).second)
-                    error(start, "duplicate key " + Json(key).dump(-1, ' ', false, Json::error_handler_t::replace) +
-                                     " in one object");
+                    failAtByte(source, start,
+                               "duplicate key " + Json(key).dump(-1, ' ', false, Json::error_handler_t::replace) +
+                                   " in one object");
                 stack.back().expectKey = false;
             }
         } else if (c == '{' || c == '[') {
-            if (int(stack.size()) >= kMaxJsonDepth)
-                error(i, "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels");
             stack.push_back({c == '{', c == '{', {}});
         } else if (c == '}' || c == ']') {
             if (!stack.empty()) stack.pop_back();
@@ -61,9 +86,10 @@ void checkJsonStructure(const std::string& text, const std::string& source) {
 }  // namespace
 
 Json parseJson(const std::string& text, const std::string& source) {
+    checkDepthAndNulBytes(text, source);
     try {
         Json json = Json::parse(text);
-        checkJsonStructure(text, source);
+        checkDuplicateKeys(text, source);
         return json;
     } catch (const Json::parse_error& e) {
         // e.what() is "[json.exception.parse_error.101] parse error at line 1, column 5: ..."
@@ -80,14 +106,14 @@ Json parseJson(const std::string& text, const std::string& source) {
     }
 }
 
-Json readJsonFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw InputError(path + ": read error");
-    return parseJson(ss.str(), path);
+std::string readJsonText(const std::string& path) {
+    std::string bytes, problem;
+    if (!render::readFileBounded(path, kMaxJsonFileBytes, "a JSON file", bytes, problem))
+        throw InputError(path + ": " + problem);
+    return bytes;
 }
+
+Json readJsonFile(const std::string& path) { return parseJson(readJsonText(path), path); }
 
 void JsonNode::fail(const std::string& what) const { throw InputError(source_ + ": " + path_ + ": " + what); }
 

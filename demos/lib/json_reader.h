@@ -2,6 +2,7 @@
 // ($.queries[3][1]) or byte position, and what is wrong; unknown keys are errors (no silent typos).
 #pragma once
 
+#include <cstddef>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -20,9 +21,17 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// Parses text; a syntax error becomes "<source>: byte N: <what>".
+/// Largest JSON file read (scene, golden trace, figures manifest): the largest golden scene is a
+/// few KB and a 10^5-vertex polytope ~6 MB, so 16 MiB leaves room and bounds what a file costs.
+constexpr std::size_t kMaxJsonFileBytes = std::size_t(16) << 20;
+
+/// Parses text; a syntax error becomes "<source>: byte N: <what>". Before parsing, a NUL byte or
+/// nesting deeper than 64 levels is refused with its byte position (no tree is built for them).
 Json parseJson(const std::string& text, const std::string& source);
-/// Reads and parses a file; a missing file is "<path>: cannot open: <reason>".
+/// Reads a file of at most kMaxJsonFileBytes: "<path>: cannot open: <reason>", "<path>: is a
+/// directory, not a file", "<path>: larger than the 16 MiB limit for a JSON file".
+std::string readJsonText(const std::string& path);
+/// readJsonText + parseJson.
 Json readJsonFile(const std::string& path);
 
 /// A view of one JSON value with its path, for typed, checked access.

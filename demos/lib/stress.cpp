@@ -768,15 +768,17 @@ nlohmann::json reportJson(const StressReport& r, const StressOptions& o)
 }
 
 /// Error-vs-parameter figures: one per family with iterative checks, one series per check.
-void writeFigures(const StressReport& r, const std::string& outDir)
+/// False when a figure could not be written (reported); no GL context means no figures, not an error.
+bool writeFigures(const StressReport& r, const std::string& outDir)
 {
     std::unique_ptr<render::GlContext> gl;
     try {
         gl = render::GlContext::create();
     } catch (const std::exception& e) {
         std::cerr << "cdlab stress: no figures (" << e.what() << ")\n";
-        return;
+        return true;
     }
+    bool written = true;
     // Teaching figure: signed volumes vs Johnson on the sliver family and on scales.
     struct Figure {
         std::string file, family, title;
@@ -830,10 +832,15 @@ void writeFigures(const StressReport& r, const std::string& outDir)
         po.hLines.push_back({kDistanceTol, "1e-12 (distance tolerance)"});
         try {
             render::writePngAtomic(outDir + "/" + fig.file, drawLogLogPlot(*gl, po, series));
+        } catch (const render::ImageError& e) {  // names the file
+            std::cerr << "cdlab stress: " << e.what() << "\n";
+            written = false;
         } catch (const std::exception& e) {
             std::cerr << "cdlab stress: " << fig.file << ": " << e.what() << "\n";
+            written = false;
         }
     }
+    return written;
 }
 
 int usage(int status)
@@ -841,7 +848,8 @@ int usage(int status)
     std::cerr << "usage: cdlab stress [--seconds N] [--quick] [--seed S] [--out DIR] [--no-figures]\n"
                  "  families of hard inputs checked against independent oracles; writes DIR/stress.json,\n"
                  "  DIR/failures.jsonl (one `cdlab query` line per failure) and error-vs-parameter figures\n"
-                 "  (default DIR out/stress, 20 s; --quick: 3 s). Exit 0: all checks within tolerance; 1: failures.\n";
+                 "  (default DIR out/stress, 20 s; --quick: 3 s). Exit 0: all checks within tolerance; 1: failures;\n"
+                 "  2: usage error, or DIR cannot be written.\n";
     return status;
 }
 
@@ -874,22 +882,31 @@ int runStress(int argc, char** argv)
             return usage(2);
         }
     }
+    // An output folder that cannot be made is found before the run, not after it (exit 2, as for
+    // every output that cannot be written).
+    {
+        std::error_code ec;
+        std::filesystem::create_directories(outDir, ec);
+        if (ec) {
+            std::cerr << "cdlab stress: cannot create the output folder '" << outDir << "': " << ec.message() << "\n";
+            return 2;
+        }
+    }
     const StressReport report = runStressSuite(options);
     std::cout << stressTable(report);
     std::printf("%d checks in %.1f s, %d failures%s\n", report.totalCases, report.seconds, report.totalFailures,
                 report.ok() ? "" : (" (reproducers: " + outDir + "/failures.jsonl)").c_str());
     try {
-        std::filesystem::create_directories(outDir);
         render::writeFileAtomic(outDir + "/stress.json", reportJson(report, options).dump(2) + "\n");
         std::string lines;
         for (const std::string& l : report.failureLines) lines += l + "\n";
         render::writeFileAtomic(outDir + "/failures.jsonl", lines);
-    } catch (const std::exception& e) {
+    } catch (const std::exception& e) {  // "cannot write '<path>': <reason>"
         std::cerr << "cdlab stress: " << e.what() << "\n";
-        return 1;
+        return 2;
     }
-    if (figures) writeFigures(report, outDir);
-    std::cerr << "cdlab stress: wrote " << outDir << "/stress.json, failures.jsonl and figures\n";
+    if (figures && !writeFigures(report, outDir)) return 2;
+    std::cerr << "cdlab stress: wrote " << outDir << "/stress.json, failures.jsonl" << (figures ? " and figures" : "") << "\n";
     return report.ok() ? 0 : 1;
 }
 

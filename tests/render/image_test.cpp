@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include "render/image.h"
 
@@ -141,6 +143,75 @@ TEST_SUITE("render/image") {
         CHECK(msg.find(cut) != std::string::npos);
         CHECK(msg.find("truncated") != std::string::npos);
         CHECK(msg.find('\n') == std::string::npos);
+    }
+
+    TEST_CASE("readPng: a directory, a huge header and an endless file are one line each") {
+        // Reproducer (issue 22): rm golden/.../step_01.png && mkdir golden/.../step_01.png;
+        // cdlab golden -> "basic_filebuf::underflow error reading the file: Is a directory".
+        const fs::path dir = tempDir() / "hostile_png";
+        fs::create_directories(dir / "dir.png");
+        std::string msg = errorOf([&] { readPng((dir / "dir.png").string()); });
+        CHECK(msg == "cannot read '" + (dir / "dir.png").string() + "': is a directory, not a file");
+        CHECK_THROWS_AS(readPng((dir / "dir.png").string()), ImageError);
+
+        // A valid PNG whose IHDR claims 10000 x 10000 pixels (400 MB decoded): refused from the
+        // header, before stb_image allocates (stb does not check the CRC, so none is fixed up).
+        writePngAtomic((dir / "small.png").string(), noise(4, 4, 6));
+        std::string bytes = slurp(dir / "small.png");
+        for (int offset : {16, 20}) {  // IHDR width, height: big-endian after "\x89PNG....IHDR"
+            const std::uint32_t v = 10000;
+            for (int i = 0; i < 4; ++i) bytes[offset + i] = char(v >> (24 - 8 * i));
+        }
+        writeFileAtomic((dir / "huge.png").string(), bytes);
+        msg = errorOf([&] { readPng((dir / "huge.png").string()); });
+        CHECK(msg.find("10000 x 10000 pixels, more than the limit") != std::string::npos);
+
+        std::string content, problem;
+        CHECK_FALSE(readFileBounded("/dev/zero", std::size_t(1) << 20, "a test file", content, problem));
+        CHECK(problem == "larger than the 1 MiB limit for a test file");
+        CHECK(content.empty());
+        writeFileAtomic((dir / "three.txt").string(), "abc");
+        CHECK(readFileBounded((dir / "three.txt").string(), 3, "x", content, problem));
+        CHECK(content == "abc");
+        CHECK_FALSE(readFileBounded((dir / "three.txt").string(), 2, "x", content, problem));
+        CHECK(problem == "larger than the 2 bytes limit for x");
+    }
+
+    TEST_CASE("FileSetWriter replaces a set of files together, or none of them") {
+        const fs::path dir = tempDir() / "set";
+        writeFileAtomic((dir / "a.txt").string(), "old a");
+        writeFileAtomic((dir / "b.txt").string(), "old b");
+        const auto names = [&] {
+            std::vector<std::string> n;
+            for (const auto& e : fs::directory_iterator(dir)) n.push_back(e.path().filename().string());
+            std::sort(n.begin(), n.end());
+            return n;
+        };
+        {  // dropped without commit: nothing changes, no temp file stays
+            FileSetWriter set;
+            set.addFile((dir / "a.txt").string(), "new a");
+            set.addPng((dir / "c.png").string(), noise(4, 4, 7));
+        }
+        CHECK(names() == std::vector<std::string>{"a.txt", "b.txt"});
+        CHECK(slurp(dir / "a.txt") == "old a");
+
+        fs::create_directories(dir / "d.txt");  // a target that cannot be written
+        {  // a failure while staging: the caller never commits, the staged files go with the writer
+            FileSetWriter bad;
+            bad.addFile((dir / "a.txt").string(), "new a");
+            CHECK_THROWS_WITH_AS(bad.addFile((dir / "d.txt").string(), "x"), doctest::Contains("is a directory"),
+                                 std::runtime_error);
+        }
+        CHECK(slurp(dir / "a.txt") == "old a");
+        CHECK(names() == std::vector<std::string>{"a.txt", "b.txt", "d.txt"});
+
+        FileSetWriter good;
+        good.addFile((dir / "a.txt").string(), "new a");
+        good.addFile((dir / "b.txt").string(), "new b");
+        good.commit();
+        CHECK(slurp(dir / "a.txt") == "new a");
+        CHECK(slurp(dir / "b.txt") == "new b");
+        CHECK(names() == std::vector<std::string>{"a.txt", "b.txt", "d.txt"});
     }
 
     TEST_CASE("writePngAtomic rejects an inconsistent image") {
