@@ -504,10 +504,12 @@ void Canvas::drawArrow(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const
 }
 
 void Canvas::drawText(const Eigen::Vector3d& at, const std::string& text, const TextStyle& style) {
+    drawnTextLog().push_back(text);
     impl_->texts.push_back({true, at, Vector2d::Zero(), text, style});
 }
 
 void Canvas::drawTextPx(double x, double y, const std::string& text, const TextStyle& style) {
+    drawnTextLog().push_back(text);
     impl_->texts.push_back({false, Vector3d::Zero(), Vector2d(x, y), text, style});
 }
 
@@ -527,6 +529,11 @@ void Canvas::clearCommands() {
 RenderStats& renderStats() {
     static RenderStats stats;
     return stats;
+}
+
+std::vector<std::string>& drawnTextLog() {
+    thread_local std::vector<std::string> log;
+    return log;
 }
 
 namespace {

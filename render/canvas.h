@@ -56,6 +56,10 @@ struct RenderStats {
 };
 RenderStats& renderStats();
 
+/// Every string drawn by any Canvas of this thread since the last clear, in drawing order: what
+/// a caller checks in the text of its frames (e.g. that no number printed as "nan" or "inf").
+std::vector<std::string>& drawnTextLog();
+
 class Canvas {
 public:
     Canvas(GlContext& context, const CanvasOptions& options);

@@ -224,7 +224,7 @@ class AccuracyScene final : public PreparedScene {
 public:
     AccuracyScene(SceneCommon common, Settings settings) : PreparedScene(std::move(common)), s_(settings) {}
 
-    DemoOutput run(const RunContext& ctx) const override
+    DemoOutput execute(const RunContext& ctx) const override
     {
         const Sweep sw = runSweep(s_);
         DemoOutput out;

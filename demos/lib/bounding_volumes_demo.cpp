@@ -27,6 +27,7 @@
 #include "core/swept_sphere.h"
 #include "core/triangle_mesh.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/mesh_scene.h"
 #include "demos/lib/support_scene.h"
 #include "render/canvas.h"
@@ -77,8 +78,7 @@ ShapeSpec parseShape(const JsonNode& node) {
         Vec3 stretch(1, 1, 1);
         if (auto n = r.find("count")) count = n->asInt(4, 5000);
         if (auto n = r.find("seed")) seed = n->asInt(0, 1 << 30);
-        if (auto v = r.find("stretch")) stretch = v->asVec3();
-        if (!(stretch.minCoeff() > 0)) body.fail("stretch must be positive");
+        if (auto v = r.find("stretch")) stretch = sceneSizes(*v);
         // Uniform in the unit ball (rejection from the cube), then stretched.
         SplitMix rng{std::uint64_t(seed)};
         while (int(s.cloud.size()) < count) {
@@ -90,6 +90,13 @@ ShapeSpec parseShape(const JsonNode& node) {
     }
     r.finish();
     return s;
+}
+
+// The shape's points in the world frame (its pose applied).
+std::vector<Vec3> worldPoints(const ShapeSpec& shape) {
+    std::vector<Vec3> pts;
+    for (const Vec3& p : shape.isCloud() ? shape.cloud : shape.mesh.vertices) pts.push_back(shape.pose.apply(p));
+    return pts;
 }
 
 // ---- drawing geometry
@@ -284,18 +291,14 @@ public:
     BoundingVolumesScene(SceneCommon common, ShapeSpec shape, std::vector<std::string> volumes, int columns, Vec3 view)
         : PreparedScene(std::move(common)), shape_(std::move(shape)), volumes_(std::move(volumes)), columns_(columns), view_(view) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
         // World-frame points (and triangles for meshes): the pose applied once, here.
-        std::vector<Vec3> pts;
+        const std::vector<Vec3> pts = worldPoints(shape_);
         std::vector<Triangle> tris;
-        if (shape_.isCloud()) {
-            for (const Vec3& p : shape_.cloud) pts.push_back(shape_.pose.apply(p));
-        } else {
-            for (const Vec3& p : shape_.mesh.vertices) pts.push_back(shape_.pose.apply(p));
+        if (!shape_.isCloud())
             for (int i = 0; i < shape_.mesh.triangleCount(); ++i) tris.push_back(shape_.mesh.triangle(i, shape_.pose));
-        }
-        const HullResult hull = convexHull(pts);
+        const HullResult hull = convexHull(pts);  // checked in prepare
         if (hull.status != HullStatus::Ok)
             throw InputError(common_.file + ": the shape's convex hull failed: " + hull.message);
         const double hullVolume = hull.polyhedron.volume();
@@ -450,9 +453,14 @@ public:
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
         SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
-        ShapeSpec shape = parseShape(r.get("shape"));
-        if (auto p = r.find("position")) shape.pose.position = p->asVec3();
+        const JsonNode shapeNode = r.get("shape");
+        ShapeSpec shape = parseShape(shapeNode);
+        if (auto p = r.find("position")) shape.pose.position = sceneVec3(*p);
         if (auto q = r.find("rotation")) shape.pose.rotation = q->asQuat();
+        // Every figure compares with the hull's volume: a shape without one is refused here, with
+        // its path, not after earlier scenes were written.
+        if (const HullResult hull = convexHull(worldPoints(shape)); hull.status != HullStatus::Ok)
+            shapeNode.fail("the shape has no convex hull with a volume: " + hull.message);
         std::vector<std::string> volumes = kDefaultVolumes;
         if (auto v = r.find("volumes")) {
             volumes.clear();
@@ -462,7 +470,7 @@ public:
         int columns = 4;
         if (auto c = r.find("columns")) columns = c->asInt(1, 6);
         Vec3 view(1.0, -1.4, 0.9);
-        if (auto v = r.find("view")) view = v->asVec3();
+        if (auto v = r.find("view")) view = sceneVec3(*v);
         if (!(view.norm() > 0)) r.node().fail("view must be a non-zero direction");
         r.finish();
         if (common.image.width < 320 || common.image.height < 240)

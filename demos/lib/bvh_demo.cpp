@@ -25,6 +25,7 @@
 #include "core/triangle_mesh.h"
 #include "demos/lib/bvh_demo_parts.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/mesh_scene.h"
 #include "demos/lib/support_scene.h"
 
@@ -72,7 +73,7 @@ MeshSpec parseMesh(const JsonNode& node) {
     }
     if (s.kind.empty()) node.fail("expected one of the keys torus, ellipsoid, blob, sheet");
     ObjectReader outer(node);
-    if (auto p = outer.find("position")) s.pose.position = p->asVec3();
+    if (auto p = outer.find("position")) s.pose.position = sceneVec3(*p);
     if (auto q = outer.find("rotation")) s.pose.rotation = q->asQuat();
     JsonNode body = outer.get(s.kind);
     outer.finish();
@@ -83,7 +84,7 @@ MeshSpec parseMesh(const JsonNode& node) {
         Vec3 size(3, 1, 0);
         if (auto v = r.find("size")) {
             if (!v->isArray() || v->size() != 2) v->fail("expected [length_x, width_y]");
-            size = Vec3(v->at(0).asPositive(), v->at(1).asPositive(), 0);
+            size = Vec3(sceneSize(v->at(0)), sceneSize(v->at(1)), 0);
         }
         int nx = 24, ny = 6;
         if (auto v = r.find("segments")) {
@@ -228,7 +229,7 @@ public:
     double deformAngle = 270.0;   // degrees at t = 1
     std::vector<double> times = {0.33, 0.67, 1.0};
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
         ss_ = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
         switch (figure) {
@@ -922,8 +923,11 @@ public:
             for (const JsonNode& v : l->items()) s->levels.push_back(v.asInt(0, 30));
             if (s->levels.empty() || s->levels.size() > 5) l->fail("expected 1 to 5 levels");
         }
-        if (auto v = r.find("view")) s->view = v->asVec3();
-        if (auto z = r.find("zoom")) s->zoom = z->asPositive();
+        if (auto v = r.find("view")) s->view = sceneVec3(*v);
+        if (auto z = r.find("zoom")) {
+            s->zoom = z->asPositive();
+            if (s->zoom < 0.01 || s->zoom > 100) z->fail("expected a zoom in [0.01, 100]");
+        }
         if (auto d = r.find("tree_depth")) s->treeDepth = d->asInt(1, 8);
         if (auto f = r.find("step_frames")) {
             for (const JsonNode& v : f->items()) s->stepFrames.push_back(v.asInt(0, 100000));
@@ -932,10 +936,16 @@ public:
         if (auto d = r.find("deformation")) {
             ObjectReader dr(*d);
             s->deformation = dr.get("kind").asEnum({"roll", "twist"}) == "roll" ? Deformation::Roll : Deformation::Twist;
-            if (auto a = dr.find("angle")) s->deformAngle = a->asNumber();
+            if (auto a = dr.find("angle")) {
+                s->deformAngle = a->asNumber();
+                if (std::abs(s->deformAngle) > 3600) a->fail("expected an angle in [-3600, 3600] degrees");
+            }
             if (auto t = dr.find("times")) {
                 s->times.clear();
-                for (const JsonNode& v : t->items()) s->times.push_back(v.asNonNegative());
+                for (const JsonNode& v : t->items()) {
+                    s->times.push_back(v.asNonNegative());
+                    if (s->times.back() > 1e3) v.fail("expected a time in [0, 1000]");
+                }
                 if (s->times.empty() || s->times.size() > 4) t->fail("expected 1 to 4 times");
             }
             dr.finish();

@@ -37,13 +37,21 @@ struct RunContext {
 class PreparedScene {
 public:
     virtual ~PreparedScene() = default;
-    virtual DemoOutput run(const RunContext& context) const = 0;
+    /// Runs the scene (execute) and checks what it produced: a NaN or an infinity anywhere in the
+    /// trace, a caption or a text drawn on a frame is an InputError naming the scene file and the
+    /// quantity (the trace's JSON path, or the text) — never a figure that says "E = -nan J".
+    DemoOutput run(const RunContext& context) const;
     const SceneCommon& common() const { return common_; }
 
 protected:
     explicit PreparedScene(SceneCommon common) : common_(std::move(common)) {}
+    /// The demo's work: its core algorithm once, then what the scene's layers ask to draw.
+    virtual DemoOutput execute(const RunContext& context) const = 0;
     SceneCommon common_;
 };
+
+/// The check PreparedScene::run applies, on its own (throws InputError naming `scene.file`).
+void requireFiniteOutput(const SceneCommon& scene, const DemoOutput& out, const std::vector<std::string>& drawnTexts);
 
 class Demo {
 public:

@@ -21,6 +21,7 @@
 #include "core/simulation.h"
 #include "demos/lib/contact_sheet.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/support_scene.h"
 #include "render/canvas.h"
 
@@ -41,7 +42,7 @@ public:
         : PreparedScene(std::move(common)), input_(std::move(input)), options_(options), body_(std::move(body)),
           frameEvery_(frameEvery), view_(view) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         SimulationTrace tr;
         const SimulationResult r = simulateDrop(input_, options_, &tr);
         DemoOutput out;
@@ -391,25 +392,32 @@ public:
             ObjectReader br(JsonNode(b.raw().begin().value(), b.path() + "." + bodyName, b.source()));
             if (bodyName == "box") {
                 const JsonNode h = br.get("half_extents");
-                const Vec3 he = h.asVec3();
-                if (!(he.minCoeff() > 0)) h.fail("half extents must be > 0");
+                const Vec3 he = sceneSizes(h);
                 in.shape = presets::box(he);
             } else if (bodyName == "tetrahedron" || bodyName == "icosahedron") {
-                const double rad = br.get("circumradius").asPositive();
+                const double rad = sceneSize(br.get("circumradius"));
                 in.shape = bodyName == "tetrahedron" ? presets::tetrahedron(rad) : presets::icosahedron(rad);
             } else {
                 b.fail("unknown body '" + bodyName + "' (expected box, tetrahedron or icosahedron)");
             }
             br.finish();
         }
-        if (auto d = r.find("density")) in.density = d->asPositive();
-        if (auto p = r.find("position")) in.pose.position = p->asVec3();
+        // Physical ranges well beyond any teaching scene, and far inside what the energies (~ m v², in
+        // double) and the impulse solver can hold: density up to 10^6 (osmium is 2.2·10^4), speeds
+        // up to 10^3 m/s and rad/s, gravity up to 10^3 m/s² (100 g).
+        const auto atMost = [](const JsonNode& n, double value, double limit, const char* what) {
+            requireAtMost(n, value, limit, what, "the physical range a drop scene accepts");
+            return value;
+        };
+        if (auto d = r.find("density")) in.density = atMost(*d, d->asPositive(), kMaxDensity, "density");
+        if (auto p = r.find("position")) in.pose.position = sceneVec3(*p);
         if (auto q = r.find("rotation")) in.pose.rotation = q->asQuat();
-        if (auto v = r.find("velocity")) in.linearVelocity = v->asVec3();
-        if (auto w = r.find("angular_velocity")) in.angularVelocity = w->asVec3();
+        if (auto v = r.find("velocity")) in.linearVelocity = sceneVec3(*v), atMost(*v, in.linearVelocity.norm(), kMaxSpeed, "|velocity|");
+        if (auto w = r.find("angular_velocity"))
+            in.angularVelocity = sceneVec3(*w), atMost(*w, in.angularVelocity.norm(), kMaxSpeed, "|angular_velocity|");
         in.ground = Plane{Vec3::UnitZ(), 0.0};
         double g = 9.81;
-        if (auto gn = r.find("gravity")) g = gn->asNonNegative();
+        if (auto gn = r.find("gravity")) g = atMost(*gn, gn->asNonNegative(), kMaxGravity, "gravity");
         in.gravity = Vec3(0, 0, -g);
         SimulationOptions o;
         double duration = 3.0;
@@ -435,7 +443,7 @@ public:
                           " frames; at most " + std::to_string(kMaxFrames));
         Vec3 view(1.0, -1.6, 0.8);
         if (auto v = r.find("view")) {
-            view = v->asVec3();
+            view = sceneVec3(*v);
             if (!(view.norm() > 0)) v->fail("view direction must be non-zero");
         }
         r.finish();

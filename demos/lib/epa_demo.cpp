@@ -70,7 +70,7 @@ public:
     EpaScene(SceneCommon common, PairScene pair, EpaOptions options)
         : PreparedScene(std::move(common)), pair_(std::move(pair)), options_(options) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         const EpaRun run = compute();
         DemoOutput out;
         out.trace = traceJson(run);

@@ -189,6 +189,7 @@ SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
     const SceneCommon& sc = job.scene->common();
     if (!o.demo.empty() && sc.demo != o.demo)
         throw InputError(file + ": $.demo: this scene is for demo '" + sc.demo + "', not '" + o.demo + "'");
+    if (!o.noRender) checkImageBudget(sc, o.scale);  // --scale multiplies the pixels the scene asked for
     try {
         job.dir = sceneOutputDir(o.outDir, sc.demo, sc.name);
     } catch (const InputError& e) {

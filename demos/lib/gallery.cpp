@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "demos/lib/json_reader.h"
+#include "demos/lib/scene.h"
 #include "demos/lib/scene_runner.h"
 #include "render/compare.h"
 #include "render/image.h"

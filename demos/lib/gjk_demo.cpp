@@ -50,7 +50,7 @@ public:
     GjkScene(SceneCommon common, PairScene pair, GjkOptions options)
         : PreparedScene(std::move(common)), pair_(std::move(pair)), options_(options) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         GjkTrace trace;
         const GjkResult r = gjkDistance(pair_.a, pair_.b, options_, &trace);
         DemoOutput out;

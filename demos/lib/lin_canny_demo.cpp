@@ -27,6 +27,7 @@
 #include "core/vclip.h"
 #include "demos/lib/contact_sheet.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/support_scene.h"
 #include "demos/lib/vclip_demo_parts.h"
 #include "render/canvas.h"
@@ -148,7 +149,7 @@ class LinCannyScene final : public PreparedScene {
 public:
     LinCannyScene(SceneCommon common, Settings s) : PreparedScene(std::move(common)), s_(std::move(s)) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         const Runs r = compute();
         DemoOutput out;
         out.trace = traceJson(r);
@@ -610,7 +611,7 @@ public:
             s.seed = VClipCache{parseFeature(seed->at(0), s.a), parseFeature(seed->at(1), s.b)};
         }
         if (auto v = r.find("view")) {
-            s.view = v->asVec3();
+            s.view = sceneVec3(*v);
             if (s.view.squaredNorm() == 0) v->fail("view direction must be non-zero");
         }
         if (auto m = r.find("max_step_frames")) s.maxStepFrames = m->asInt(2, 40);

@@ -2,13 +2,16 @@
 
 #include <cstdint>
 
+#include "demos/lib/scene_limits.h"
+
 namespace cdlab::demos {
 
 bool readMeshGenerator(const std::string& kind, const JsonNode& body, ObjectReader& r, const MeshTessellation& defaults,
                        TriangleMesh& mesh)
 {
     if (kind == "torus") {
-        const double R = r.numberOr("major_radius", 1.0), rr = r.numberOr("minor_radius", 0.35);
+        const double R = r.find("major_radius") ? sceneSize(r.get("major_radius")) : 1.0;
+        const double rr = r.find("minor_radius") ? sceneSize(r.get("minor_radius")) : 0.35;
         int nu = defaults.torusMajorSegments, nv = defaults.torusMinorSegments;
         if (auto n = r.find("major_segments")) nu = n->asInt(3, 256);
         if (auto n = r.find("minor_segments")) nv = n->asInt(3, 256);
@@ -18,7 +21,7 @@ bool readMeshGenerator(const std::string& kind, const JsonNode& body, ObjectRead
     }
     if (kind == "ellipsoid") {
         Vec3 radii(1, 1, 1);
-        if (auto v = r.find("radii")) radii = v->asVec3();
+        if (auto v = r.find("radii")) radii = sceneSizes(*v);
         int sl = defaults.slices, st = defaults.stacks;
         if (auto n = r.find("slices")) sl = n->asInt(3, 256);
         if (auto n = r.find("stacks")) st = n->asInt(2, 256);
@@ -27,7 +30,7 @@ bool readMeshGenerator(const std::string& kind, const JsonNode& body, ObjectRead
         return true;
     }
     if (kind == "blob") {
-        const double radius = r.numberOr("radius", 1.0), noise = r.numberOr("noise", 0.2);
+        const double radius = r.find("radius") ? sceneSize(r.get("radius")) : 1.0, noise = r.numberOr("noise", 0.2);
         int sl = defaults.slices, st = defaults.stacks, seed = 1;
         if (auto n = r.find("slices")) sl = n->asInt(3, 256);
         if (auto n = r.find("stacks")) st = n->asInt(2, 256);

@@ -21,6 +21,7 @@
 #include "core/feature_distance.h"
 #include "core/polyhedron_presets.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/support_scene.h"
 #include "render/canvas.h"
 
@@ -53,15 +54,13 @@ ConvexPolyhedron readBody(const JsonNode& b, std::string& name) {
     ConvexPolyhedron m;
     if (name == "box") {
         const JsonNode h = r.get("half_extents");
-        const Vec3 he = h.asVec3();
-        if (!(he.minCoeff() > 0)) h.fail("half extents must be > 0");
-        m = presets::box(he);
+        m = presets::box(sceneSizes(h));
     } else if (name == "tetrahedron" || name == "icosahedron") {
-        const double rad = r.get("circumradius").asPositive();
+        const double rad = sceneSize(r.get("circumradius"));
         m = name == "tetrahedron" ? presets::tetrahedron(rad) : presets::icosahedron(rad);
     } else if (name == "prism") {
         const int n = r.get("sides").asInt(3, 64);
-        const double rad = r.get("radius").asPositive(), hh = r.get("half_height").asPositive();
+        const double rad = sceneSize(r.get("radius")), hh = sceneSize(r.get("half_height"));
         m = presets::prism(n, rad, hh);
     } else {
         b.fail("unknown body '" + name + "' (expected box, tetrahedron, icosahedron or prism)");
@@ -72,7 +71,7 @@ ConvexPolyhedron readBody(const JsonNode& b, std::string& name) {
 
 Transform readPose(ObjectReader& r) {
     Transform t;
-    if (auto p = r.find("position")) t.position = p->asVec3();
+    if (auto p = r.find("position")) t.position = sceneVec3(*p);
     if (auto q = r.find("rotation")) t.rotation = q->asQuat();
     return t;
 }
@@ -82,12 +81,12 @@ FeatureGeometry readFeature(const JsonNode& n) {
     const std::string key = n.raw().begin().key();
     const JsonNode v(n.raw().begin().value(), n.path() + "." + key, n.source());
     FeatureGeometry f;
-    if (key == "vertex") f = {FeatureType::Vertex, {v.asVec3()}};
+    if (key == "vertex") f = {FeatureType::Vertex, {sceneVec3(v)}};
     else if (key == "edge") {
         if (v.size() != 2) v.fail("an edge is [p, q]");
-        f = {FeatureType::Edge, v.asVec3List()};
+        f = {FeatureType::Edge, sceneVec3List(v, 2, 2)};
     } else if (key == "face") {
-        f = {FeatureType::Face, v.asVec3List(3)};
+        f = {FeatureType::Face, sceneVec3List(v, 3, kMaxFacePoints)};
     } else {
         n.fail("unknown feature '" + key + "'");
     }
@@ -169,7 +168,7 @@ public:
 
     explicit ContactScene(SceneCommon common) : PreparedScene(std::move(common)) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
         const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
         if (mode == "plane") runPlane(ctx, ss, out);
@@ -521,7 +520,7 @@ public:
         scene->mode = "plane";
         if (auto m = r.find("mode")) scene->mode = m->asEnum({"plane", "features", "sat"});
         if (auto v = r.find("view")) {
-            scene->view = v->asVec3();
+            scene->view = sceneVec3(*v);
             if (!(scene->view.norm() > 0)) v->fail("view direction must be non-zero");
         }
         if (scene->mode == "plane") {
@@ -538,8 +537,8 @@ public:
             if (auto p = r.find("plane")) {
                 ObjectReader pr(*p);
                 const JsonNode nn = pr.get("normal");
-                scene->plane.normal = nn.asVec3();
-                scene->plane.offset = pr.get("offset").asNumber();
+                scene->plane.normal = sceneVec3(nn);
+                scene->plane.offset = sceneCoordinate(pr.get("offset"));
                 pr.finish();
                 if (!(scene->plane.normal.norm() > 0)) nn.fail("plane normal must be non-zero");
             }

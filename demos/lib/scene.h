@@ -42,6 +42,10 @@ struct SceneCommon {
     bool hasLayer(const std::string& layer) const { return layers.count(layer) != 0; }
 };
 
+/// True for a name that stays inside the folder it is joined to: [A-Za-z0-9_-][A-Za-z0-9_.-]*,
+/// at most 255 bytes (so never "", ".", "..", a hidden name, nor anything with '/').
+bool isPlainName(const std::string& name);
+
 /// Reads the common keys; `allowedLayers`, `defaultLayers` and the image size used where the
 /// scene gives none (`defaultImage`, per field) come from the demo.
 SceneCommon readSceneCommon(ObjectReader& reader, const std::string& file,
@@ -49,6 +53,10 @@ SceneCommon readSceneCommon(ObjectReader& reader, const std::string& file,
                             const std::vector<std::string>& defaultLayers, const ImageSettings& defaultImage = {});
 
 render::Camera readCamera(const JsonNode& node);
+
+/// Fails (InputError naming the scene file) when the scene's frames, drawn at `scaleOverride` (> 0:
+/// the command line's --scale; 0: the scene's own), exceed kMaxSupersampledPixels.
+void checkImageBudget(const SceneCommon& scene, int scaleOverride);
 
 /// Scene files: golden/<demo>/<scene>.json, sorted.
 std::vector<std::string> findSceneFiles(const std::string& goldenDir);

@@ -53,15 +53,6 @@ std::vector<std::string> selectScenes(const RunnerOptions& o) {
     return out;
 }
 
-bool isPlainName(const std::string& name) {
-    if (name.empty() || name.size() > 255) return false;
-    const auto plainChar = [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
-               c == '.';
-    };
-    if (name[0] == '.') return false;  // ".", "..", and hidden names
-    return std::all_of(name.begin(), name.end(), plainChar);
-}
 
 fs::path sceneOutputDir(const fs::path& root, const std::string& demo, const std::string& name) {
     for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"demo", demo}, {"scene", name}})

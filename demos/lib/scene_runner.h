@@ -41,9 +41,6 @@ std::string traceText(const Json& trace);
 /// Scene files selected by goldenDir / demo / pattern (also used by tests and the demo executables).
 std::vector<std::string> selectScenes(const RunnerOptions& options);
 
-/// True for a name that stays inside the folder it is joined to: [A-Za-z0-9_-][A-Za-z0-9_.-]*,
-/// at most 255 bytes (so never "", ".", "..", a hidden name, nor anything with '/').
-bool isPlainName(const std::string& name);
 /// <root>/<demo>/<name>: where a scene's figures, goldens or report files go. Throws InputError
 /// ("scene name \"..\" ...") when demo or name is not a plain name, so no output path built from
 /// a scene can leave <root>, whatever the scene reader let through.

@@ -25,6 +25,7 @@
 #include "core/octree.h"
 #include "core/uniform_grid.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -162,7 +163,7 @@ public:
     Segment segment{P(0, 0), P(0, 0)};
     bool hasSegment = false;
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         if (figure == "panels") return runPanels(ctx);
         if (figure == "kd_query") return runKdQuery(ctx);
         return runBspShape(ctx);
@@ -658,13 +659,14 @@ private:
 
 Aabb readRect(const JsonNode& node) {
     if (node.size() != 4) node.fail("expected [x0, y0, x1, y1]");
-    const double x0 = node.at(0).asNumber(), y0 = node.at(1).asNumber(), x1 = node.at(2).asNumber(), y1 = node.at(3).asNumber();
+    const double x0 = sceneCoordinate(node.at(0)), y0 = sceneCoordinate(node.at(1)), x1 = sceneCoordinate(node.at(2)),
+                 y1 = sceneCoordinate(node.at(3));
     if (x0 > x1 || y0 > y1) node.fail("expected x0 <= x1 and y0 <= y1");
     return {P(x0, y0), P(x1, y1)};
 }
 Vec3 readPoint2(const JsonNode& node) {
     if (node.size() != 2) node.fail("expected [x, y]");
-    return P(node.at(0).asNumber(), node.at(1).asNumber());
+    return P(sceneCoordinate(node.at(0)), sceneCoordinate(node.at(1)));
 }
 
 class SpacePartitionDemo final : public Demo {
@@ -691,6 +693,7 @@ public:
                 if (v->size() != 2) v->fail("expected [min, max]");
                 sizeLo = v->at(0).asNonNegative();
                 sizeHi = v->at(1).asNonNegative();
+                requireAtMost(*v, sizeHi, kMaxSceneCoordinate, "the largest size", "figures are drawn in float32");
                 if (sizeLo > sizeHi) v->fail("expected min <= max");
             }
             gr.finish();
@@ -719,8 +722,10 @@ public:
             br.finish();
         }
         if (s->figure == "panels") {
-            if (auto b = r.find("boxes"))
+            if (auto b = r.find("boxes")) {
+                requireAtMost(*b, double(b->size()), kMaxPartitionItems, "the number of boxes", "one drawn box each");
                 for (const JsonNode& item : b->items()) s->boxes.push_back(readRect(item));
+            }
             for (int i = 0; i < count; ++i) {
                 const double w = rng.uniform(sizeLo, sizeHi), h = rng.uniform(sizeLo, sizeHi);
                 const double x = rng.uniform(s->region.min.x(), s->region.max.x() - w);
@@ -728,20 +733,37 @@ public:
                 s->boxes.push_back({P(x, y), P(x + w, y + h)});
             }
             if (s->boxes.empty()) r.node().fail("panels: expected 'boxes' or 'random'");
-            if (auto g = r.find("grid_cell")) s->gridCell = g->asPositive();
+            const auto g = r.find("grid_cell");
+            if (g) s->gridCell = g->asPositive();
+            // The grid panel draws one line per cell row and column over the region and the boxes,
+            // and the hashed grid visits every cell a box covers: their cell count is the cost.
+            Aabb all = s->region;
+            for (const Aabb& b : s->boxes) all.min = all.min.cwiseMin(b.min), all.max = all.max.cwiseMax(b.max);
+            const Vec3 extent = all.max - all.min;
+            const double cells = (std::floor(extent.x() / s->gridCell) + 2) * (std::floor(extent.y() / s->gridCell) + 2);
+            requireAtMost(g ? *g : r.node(), cells, kMaxGridCells, "the number of grid cells over the region and the boxes",
+                          "the grid panel draws every cell row and column");
         } else if (s->figure == "kd_query") {
-            if (auto p = r.find("points"))
+            if (auto p = r.find("points")) {
+                requireAtMost(*p, double(p->size()), kMaxPartitionItems, "the number of points", "one drawn point each");
                 for (const JsonNode& item : p->items()) s->points.push_back(readPoint2(item));
+            }
             for (int i = 0; i < count; ++i)
                 s->points.push_back(P(rng.uniform(s->region.min.x(), s->region.max.x()), rng.uniform(s->region.min.y(), s->region.max.y())));
             if (s->points.empty()) r.node().fail("kd_query: expected 'points' or 'random'");
             s->query = readPoint2(r.get("query"));
             s->range = readRect(r.get("range"));
         } else {
-            for (const JsonNode& item : r.get("polygon").items()) s->polygon.push_back(readPoint2(item));
+            const JsonNode polygon = r.get("polygon");
+            // The BSP autopartition splits every edge by every splitter: quadratic in the edges.
+            requireAtMost(polygon, double(polygon.size()), kMaxBspEdges, "the number of polygon edges",
+                          "the BSP autopartition is quadratic in the edges");
+            for (const JsonNode& item : polygon.items()) s->polygon.push_back(readPoint2(item));
             if (s->polygon.size() < 3) r.get("polygon").fail("expected at least 3 vertices (counter-clockwise)");
-            if (auto q = r.find("queries"))
+            if (auto q = r.find("queries")) {
+                requireAtMost(*q, double(q->size()), kMaxPartitionItems, "the number of query points", "one drawn point each");
                 for (const JsonNode& item : q->items()) s->queries.push_back(readPoint2(item));
+            }
             if (auto g = r.find("segment")) {
                 if (g->size() != 2) g->fail("expected [[x, y], [x, y]]");
                 s->segment = {readPoint2(g->at(0)), readPoint2(g->at(1))};

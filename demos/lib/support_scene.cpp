@@ -6,6 +6,7 @@
 
 #include "core/convex_hull.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "render/gif_writer.h"
 
 namespace cdlab::demos {
@@ -54,9 +55,13 @@ std::string SceneShape::kindName() const {
 
 namespace {
 
-Vec3 readVec2(const JsonNode& n) {
-    if (!n.isArray() || n.size() != 2) n.fail("expected [x, y], got " + JsonNode::describe(n.raw()));
-    return Vec3(n.at(0).asNumber(), n.at(1).asNumber(), 0.0);
+Vec3 readVec2(const JsonNode& n) { return sceneVec2(n); }
+
+// An explicit polygon / polytope: at most kMaxShapeVertices (the configuration-space view draws
+// the hull of all n·m differences of the pair).
+void requireShapeVertices(const JsonNode& vn) {
+    requireAtMost(vn, double(vn.size()), double(kMaxShapeVertices), "the number of vertices",
+                  "the Minkowski-difference view builds the hull of all n·m differences of the pair");
 }
 
 }  // namespace
@@ -76,14 +81,15 @@ SceneShape parseSceneShape(const JsonNode& node, bool planar) {
         if (key == "box") {
             s.kind = SceneShape::Kind::Box;
             JsonNode h = r.get("half_extents");
-            s.halfExtents = readVec2(h);
-            if (!(s.halfExtents.x() > 0 && s.halfExtents.y() > 0)) h.fail("half extents must be positive");
+            if (!h.isArray() || h.size() != 2) h.fail("expected [x, y], got " + JsonNode::describe(h.raw()));
+            s.halfExtents = Vec3(sceneSize(h.at(0)), sceneSize(h.at(1)), 0.0);
         } else if (key == "circle") {
             s.kind = SceneShape::Kind::Sphere;
-            s.radius = r.get("radius").asPositive();
+            s.radius = sceneSize(r.get("radius"));
         } else if (key == "polygon") {
             s.kind = SceneShape::Kind::Polytope;
             JsonNode vn = r.get("vertices");
+            requireShapeVertices(vn);
             std::vector<Vec3> v;
             for (const JsonNode& item : vn.items()) v.push_back(readVec2(item));
             if (v.size() < 3) vn.fail("a polygon needs at least 3 vertices, got " + std::to_string(v.size()));
@@ -94,32 +100,32 @@ SceneShape parseSceneShape(const JsonNode& node, bool planar) {
         if (auto p = r.find("position")) s.pose.position = readVec2(*p);
         if (auto a = r.find("angle")) {
             if (s.kind == SceneShape::Kind::Sphere) a->fail("a circle has no angle");
-            s.pose.rotation = Quat(Eigen::AngleAxisd(a->asNumber() * M_PI / 180.0, Vec3::UnitZ()));
+            s.pose.rotation = Quat(Eigen::AngleAxisd(std::fmod(a->asNumber(), 360.0) * M_PI / 180.0, Vec3::UnitZ()));
         }
     } else {
         if (key == "box") {
             s.kind = SceneShape::Kind::Box;
             JsonNode h = r.get("half_extents");
-            s.halfExtents = h.asVec3();
-            if (!(s.halfExtents.array() > 0).all()) h.fail("half extents must be positive");
+            s.halfExtents = sceneSizes(h);
         } else if (key == "sphere") {
             s.kind = SceneShape::Kind::Sphere;
-            s.radius = r.get("radius").asPositive();
+            s.radius = sceneSize(r.get("radius"));
         } else if (key == "cylinder" || key == "cone") {
             s.kind = key == "cylinder" ? SceneShape::Kind::Cylinder : SceneShape::Kind::Cone;
-            s.radius = r.get("radius").asPositive();
-            s.halfHeight = r.get("half_height").asPositive();
+            s.radius = sceneSize(r.get("radius"));
+            s.halfHeight = sceneSize(r.get("half_height"));
         } else if (key == "polytope") {
             s.kind = SceneShape::Kind::Polytope;
             JsonNode vn = r.get("vertices");
-            std::vector<Vec3> v = vn.asVec3List();
+            requireShapeVertices(vn);
+            std::vector<Vec3> v = sceneVec3List(vn, 0, kMaxShapeVertices);
             if (v.size() < 4) vn.fail("a polytope needs at least 4 vertices, got " + std::to_string(v.size()));
             if (!convexHull(v).ok()) vn.fail("the polytope's vertices span no volume");
             s.polytope = PolytopeShape(std::move(v));
         } else {
             node.fail("unknown shape '" + key + "' (expected " + kinds3 + ")");
         }
-        if (auto p = r.find("position")) s.pose.position = p->asVec3();
+        if (auto p = r.find("position")) s.pose.position = sceneVec3(*p);
         if (auto q = r.find("rotation")) s.pose.rotation = q->asQuat();
     }
     r.finish();
@@ -358,9 +364,12 @@ PairScene readPairScene(ObjectReader& r) {
     if (!shapes.isArray() || shapes.size() != 2) shapes.fail("expected [shapeA, shapeB]");
     s.a = parseSceneShape(shapes.at(0), s.dimension == 2);
     s.b = parseSceneShape(shapes.at(1), s.dimension == 2);
+    if (s.a.isPolytope() && s.b.isPolytope())
+        requireAtMost(shapes, double(s.a.worldVertices().size()) * double(s.b.worldVertices().size()), kMaxMinkowskiPoints,
+                      "vertices of A x vertices of B", "the Minkowski-difference view builds the hull of every difference");
     if (auto v = r.find("view")) {
         if (s.dimension == 2) v->fail("'view' is for 3D scenes");
-        s.view = v->asVec3();
+        s.view = sceneVec3(*v);
         if (s.view.squaredNorm() == 0) v->fail("view direction must be non-zero");
     }
     if (auto m = r.find("max_step_frames")) s.maxStepFrames = m->asInt(2, 60);

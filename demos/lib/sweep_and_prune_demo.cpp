@@ -21,6 +21,7 @@
 
 #include "core/sweep_and_prune.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/support_scene.h"
 #include "render/canvas.h"
 
@@ -120,7 +121,7 @@ class SapScene final : public PreparedScene {
 public:
     SapScene(SceneCommon common, Settings settings) : PreparedScene(std::move(common)), s_(std::move(settings)) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         const std::vector<FrameData> frames = simulate(s_);
         DemoOutput out;
         out.trace = traceJson(frames);
@@ -471,16 +472,16 @@ public:
         for (const JsonNode& b : boxes.items()) {
             ObjectReader br(b);
             MovingBox m;
-            m.box.min = br.get("min").asVec3();
-            m.box.max = br.get("max").asVec3();
-            if (auto v = br.find("velocity")) m.velocity = v->asVec3();
+            m.box.min = sceneVec3(br.get("min"));
+            m.box.max = sceneVec3(br.get("max"));
+            if (auto v = br.find("velocity")) m.velocity = sceneVec3(*v);
             br.finish();
             if (checkBox(m.box) != BoxStatus::Ok) b.fail("a box needs finite min <= max on every axis");
             s.boxes.push_back(m);
         }
         if (auto f = r.find("frames")) s.frames = f->asInt(1, 6);
         if (auto v = r.find("view")) {
-            s.view = v->asVec3();
+            s.view = sceneVec3(*v);
             if (!(s.view.norm() > 0)) v->fail("view direction must be non-zero");
         }
         r.finish();

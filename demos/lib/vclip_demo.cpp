@@ -22,6 +22,7 @@
 #include "core/shapes.h"
 #include "core/vclip.h"
 #include "demos/lib/contact_sheet.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/figure_style.h"
 #include "demos/lib/support_scene.h"
 #include "demos/lib/vclip_demo_parts.h"
@@ -91,7 +92,7 @@ class VclipScene final : public PreparedScene {
 public:
     VclipScene(SceneCommon common, Settings s) : PreparedScene(std::move(common)), s_(std::move(s)) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         std::vector<Call> calls = compute();
         DemoOutput out;
         out.trace = traceJson(calls);
@@ -664,7 +665,7 @@ public:
             s.seed = VClipCache{parseFeature(seed->at(0), s.a), parseFeature(seed->at(1), s.b)};
         }
         if (auto v = r.find("view")) {
-            s.view = v->asVec3();
+            s.view = sceneVec3(*v);
             if (s.view.squaredNorm() == 0) v->fail("view direction must be non-zero");
         }
         if (auto m = r.find("max_step_frames")) s.maxStepFrames = m->asInt(2, 40);
@@ -673,11 +674,17 @@ public:
             ObjectReader mr(*m);
             Motion mo;
             if (auto n = mr.find("calls")) mo.calls = n->asInt(2, 400);
-            if (auto n = mr.find("center")) mo.center = n->asVec3();
-            if (auto n = mr.find("orbit_axis")) mo.orbitAxis = n->asVec3();
-            if (auto n = mr.find("orbit_degrees")) mo.orbitDegrees = n->asNumber();
-            if (auto n = mr.find("spin_axis")) mo.spinAxis = n->asVec3();
-            if (auto n = mr.find("spin_degrees")) mo.spinDegrees = n->asNumber();
+            // Angles per call: one turn at most (1e308 degrees has no usable sine).
+            const auto degreesPerCall = [](const JsonNode& n) {
+                const double d = n.asNumber();
+                if (std::abs(d) > 360) n.fail("expected degrees per call in [-360, 360], got " + n.raw().dump());
+                return d;
+            };
+            if (auto n = mr.find("center")) mo.center = sceneVec3(*n);
+            if (auto n = mr.find("orbit_axis")) mo.orbitAxis = sceneVec3(*n);
+            if (auto n = mr.find("orbit_degrees")) mo.orbitDegrees = degreesPerCall(*n);
+            if (auto n = mr.find("spin_axis")) mo.spinAxis = sceneVec3(*n);
+            if (auto n = mr.find("spin_degrees")) mo.spinDegrees = degreesPerCall(*n);
             if (auto n = mr.find("drawn_frames")) mo.drawnFrames = n->asInt(1, 60);
             mr.finish();
             if (mo.orbitAxis.squaredNorm() == 0 || mo.spinAxis.squaredNorm() == 0) m->fail("motion axes must be non-zero");

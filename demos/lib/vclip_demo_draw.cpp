@@ -5,6 +5,7 @@
 
 #include "core/polyhedron_presets.h"
 #include "core/convex_hull.h"
+#include "demos/lib/scene_limits.h"
 #include "demos/lib/figure_style.h"
 #include "demos/lib/support_scene.h"
 #include "demos/lib/vclip_demo_parts.h"
@@ -29,24 +30,24 @@ Body parseBody(const JsonNode& node) {
     body.kind = kind;
     ConvexPolyhedron mesh;
     if (kind == "tetrahedron" || kind == "octahedron" || kind == "icosahedron" || kind == "dodecahedron") {
-        const double radius = s.find("radius") ? s.get("radius").asPositive() : 1.0;
+        const double radius = s.find("radius") ? sceneSize(s.get("radius")) : 1.0;
         mesh = kind == "tetrahedron"  ? presets::tetrahedron(radius)
                : kind == "octahedron" ? presets::octahedron(radius)
                : kind == "icosahedron" ? presets::icosahedron(radius)
                                        : presets::dodecahedron(radius);
     } else if (kind == "box") {
-        const Vec3 h = s.get("half_extents").asVec3();
-        if (!(h.minCoeff() > 0)) spec.fail("half_extents must be positive");
+        const Vec3 h = sceneSizes(s.get("half_extents"));
         mesh = presets::box(h);
     } else if (kind == "prism" || kind == "disk") {
         const int n = s.get("n").asInt(3, 200);
-        const double radius = s.get("radius").asPositive();
-        if (kind == "prism") mesh = presets::prism(n, radius, s.get("half_height").asPositive());
-        else mesh = presets::disk(n, radius, s.find("half_thickness") ? s.get("half_thickness").asPositive() : -1.0);
+        const double radius = sceneSize(s.get("radius"));
+        if (kind == "prism") mesh = presets::prism(n, radius, sceneSize(s.get("half_height")));
+        else mesh = presets::disk(n, radius, s.find("half_thickness") ? sceneSize(s.get("half_thickness")) : -1.0);
     } else if (kind == "geodesic_sphere") {
-        mesh = presets::geodesicSphere(s.get("level").asInt(0, 3), s.find("radius") ? s.get("radius").asPositive() : 1.0);
+        mesh = presets::geodesicSphere(s.get("level").asInt(0, 3), s.find("radius") ? sceneSize(s.get("radius")) : 1.0);
     } else if (kind == "hull") {
-        const std::vector<Vec3> points = s.get("vertices").asVec3List(4);
+        // The walk's step bound and the brute-force checks are quadratic in the feature count.
+        const std::vector<Vec3> points = sceneVec3List(s.get("vertices"), 4, kMaxShapeVertices);
         HullResult h = convexHull(points);
         if (!h.ok()) spec.fail("the hull of these vertices is not a solid polyhedron");
         mesh = h.polyhedron;
@@ -54,7 +55,7 @@ Body parseBody(const JsonNode& node) {
         node.fail("unknown body kind '" + kind + "' (tetrahedron, box, octahedron, icosahedron, dodecahedron, prism, disk, "
                   "geodesic_sphere, hull)");
     }
-    if (auto p = s.find("position")) body.pose.position = p->asVec3();
+    if (auto p = s.find("position")) body.pose.position = sceneVec3(*p);
     if (auto q = s.find("rotation")) body.pose.rotation = q->asQuat();
     s.finish();
     r.finish();

@@ -16,6 +16,7 @@
 #include "core/voronoi_regions.h"
 #include "demos/lib/contact_sheet.h"
 #include "demos/lib/figure_style.h"
+#include "demos/lib/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -100,7 +101,7 @@ public:
         : PreparedScene(std::move(common)), simplex_(std::move(simplex)), queries_(std::move(queries)),
           views_(std::move(views)), margin_(margin) {}
 
-    DemoOutput run(const RunContext& ctx) const override {
+    DemoOutput execute(const RunContext& ctx) const override {
         return simplex_.size() == 3 ? runTriangle(ctx) : runTetrahedron(ctx);
     }
 
@@ -404,15 +405,16 @@ public:
         if (r.has("triangle")) {
             JsonNode t = r.get("triangle");
             if (t.size() != 3) t.fail("expected [a, b, c]");
-            simplex = t.asVec3List();
+            simplex = sceneVec3List(t, 3, 3);
             views = {"plane", "3d"};
         } else {
             JsonNode t = r.get("tetrahedron");
             if (t.size() != 4) t.fail("expected [a, b, c, d]");
-            simplex = t.asVec3List();
+            simplex = sceneVec3List(t, 4, 4);
             views = {"3d"};
         }
-        std::vector<Vec3> queries = r.get("queries").asVec3List(1);
+        // One frame per query point with "steps": the list is the frame count.
+        std::vector<Vec3> queries = sceneVec3List(r.get("queries"), 1, kMaxQueryPoints);
         if (auto v = r.find("views")) {
             views.clear();
             for (const JsonNode& item : v->items())
@@ -421,7 +423,7 @@ public:
             if (views.empty()) v->fail("expected at least one view");
         }
         double margin = 0;
-        if (auto m = r.find("margin")) margin = m->asPositive();
+        if (auto m = r.find("margin")) margin = sceneSize(*m);
         r.finish();
         return std::make_unique<VoronoiScene>(std::move(common), std::move(simplex), std::move(queries), std::move(views),
                                               margin);

@@ -35,19 +35,29 @@ TEST_CASE("query answers keep the contract on mutated queries") {
     std::vector<std::string> seeds = readSeedLines(CDLAB_SOURCE_DIR "/tests/fuzz/seeds/queries.jsonl");
     REQUIRE(seeds.size() >= 20);
     MutationFuzzer fuzzer(seeds, 0xC0FFEE);
-    const Budget b = budget(40'000);
+    const Budget b = budget(100'000);
     const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzQuery(bytes(s), s.size()); }, b.executions, b.seconds);
     MESSAGE("query: " << runs << " executions");
     CHECK(runs > seeds.size());
 }
 
 TEST_CASE("scene loading keeps the contract on mutated scenes") {
-    std::vector<std::string> seeds = readSceneSeeds(CDLAB_SOURCE_DIR "/golden");
+    std::vector<std::string> seeds = readSceneSeeds(CDLAB_SOURCE_DIR "/golden", CDLAB_SOURCE_DIR "/tests/fuzz/seeds/scenes");
     REQUIRE(seeds.size() >= 10);
     MutationFuzzer fuzzer(seeds, 0xBADC0DE, 16384);
-    const Budget b = budget(2'000);
+    const Budget b = budget(5'000);
     const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzScene(bytes(s), s.size()); }, b.executions, b.seconds);
     MESSAGE("scene: " << runs << " executions");
+    CHECK(runs > seeds.size());
+}
+
+TEST_CASE("drawing mutated scenes at a small size keeps the contract") {
+    // The other targets never reach the drawing path; this one draws (96² pixels, one GL context).
+    std::vector<std::string> seeds = readSceneSeeds(CDLAB_SOURCE_DIR "/golden", CDLAB_SOURCE_DIR "/tests/fuzz/seeds/scenes");
+    MutationFuzzer fuzzer(seeds, 0xD2A3, 16384);
+    const Budget b = budget(150);
+    const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzRender(bytes(s), s.size()); }, b.executions, b.seconds);
+    MESSAGE("render: " << runs << " executions");
     CHECK(runs > seeds.size());
 }
 

@@ -9,6 +9,7 @@
 
 #include "demos/lib/demo.h"
 #include "demos/lib/query.h"
+#include "render/gl_context.h"
 
 namespace cdlab::fuzz {
 
@@ -108,6 +109,59 @@ void fuzzScene(const std::uint8_t* data, std::size_t size) {
         // Some checks need the computation (e.g. a degenerate hull); they are input errors too.
     } catch (const std::exception& e) {
         contractViolation(std::string("numeric scene run threw: ") + e.what(), input);
+    }
+}
+
+namespace {
+
+// One context for every input of a run (creating one costs 70 ms .. 1 s).
+render::GlContext& fuzzContext() {
+    static std::unique_ptr<render::GlContext> gl = render::GlContext::create();
+    return *gl;
+}
+
+}  // namespace
+
+void fuzzRender(const std::uint8_t* data, std::size_t size) {
+    const std::string input(reinterpret_cast<const char*>(data), size);
+    // The strict loader first (its contract is fuzzScene's); only scenes it accepts are drawn.
+    try {
+        demos::loadSceneText(input, "fuzz.json");
+    } catch (const demos::InputError& e) {
+        if (std::string_view(e.what()).rfind("fuzz.json: ", 0) != 0)
+            contractViolation(std::string("input error does not name the source: ") + e.what(), input);
+        return;
+    } catch (const std::exception& e) {
+        contractViolation(std::string("scene loading threw a non-input error: ") + e.what(), input);
+    }
+    // The same scene at a small size — the bound on the work of one input. Some demos have a fixed
+    // or a minimum layout (sweep_and_prune 1024 x 768, vclip 800 x 600): the first size the demo
+    // accepts is used.
+    demos::Json json = demos::Json::parse(input);
+    std::unique_ptr<demos::PreparedScene> scene;
+    for (const auto& [w, h] : {std::pair{kFuzzImageSide, kFuzzImageSide}, std::pair{480, 360}, std::pair{800, 600},
+                               std::pair{1024, 768}}) {
+        json["image"] = {{"width", w}, {"height", h}, {"scale", 1}};
+        try {
+            scene = demos::prepareScene(json, "fuzz.json");
+            break;
+        } catch (const demos::InputError&) {
+        }
+    }
+    if (!scene) return;  // refused at every size: an input error (the strict load above accepted it)
+    demos::RunContext ctx;
+    ctx.gl = &fuzzContext();
+    try {
+        const demos::DemoOutput out = scene->run(ctx);
+        for (const demos::Frame& f : out.frames)
+            if (f.image.width <= 0 || f.image.height <= 0 ||
+                f.image.rgba.size() != std::size_t(f.image.width) * std::size_t(f.image.height) * 4)
+                contractViolation("frame '" + f.name + "' is not a whole image", input);
+    } catch (const demos::InputError& e) {
+        if (std::string_view(e.what()).rfind("fuzz.json: ", 0) != 0)
+            contractViolation(std::string("run-time input error does not name the source: ") + e.what(), input);
+    } catch (const std::exception& e) {
+        contractViolation(std::string("drawing the scene threw: ") + e.what(), input);
     }
 }
 

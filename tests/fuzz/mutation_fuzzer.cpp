@@ -105,13 +105,21 @@ std::size_t MutationFuzzer::run(const std::function<void(const std::string&)>& t
     return executions;
 }
 
-std::vector<std::string> readSceneSeeds(const std::string& goldenFolder) {
+std::vector<std::string> readSceneSeeds(const std::string& goldenFolder, const std::string& extraFolder) {
+    const auto jsonFiles = [](const std::filesystem::path& folder) {
+        std::vector<std::string> paths;
+        for (const auto& entry : std::filesystem::directory_iterator(folder))
+            if (entry.is_regular_file() && entry.path().extension() == ".json") paths.push_back(entry.path().string());
+        std::sort(paths.begin(), paths.end());  // deterministic order
+        return paths;
+    };
     std::vector<std::string> paths;
     for (const auto& demo : std::filesystem::directory_iterator(goldenFolder))
         if (demo.is_directory())
-            for (const auto& entry : std::filesystem::directory_iterator(demo.path()))
-                if (entry.is_regular_file() && entry.path().extension() == ".json") paths.push_back(entry.path().string());
-    std::sort(paths.begin(), paths.end());  // deterministic order
+            for (const std::string& p : jsonFiles(demo.path())) paths.push_back(p);
+    std::sort(paths.begin(), paths.end());
+    if (!extraFolder.empty())
+        for (const std::string& p : jsonFiles(extraFolder)) paths.push_back(p);
     std::vector<std::string> out;
     for (const std::string& p : paths) {
         std::ifstream in(p, std::ios::binary);

@@ -36,8 +36,9 @@ private:
     std::size_t maxLength_;
 };
 
-/// Every scene file golden/<demo>/<scene>.json, read whole (the scene seed corpus).
-std::vector<std::string> readSceneSeeds(const std::string& goldenFolder);
+/// The scene seed corpus, read whole: every golden/<demo>/<scene>.json, then every *.json in
+/// `extraFolder` (tests/fuzz/seeds/scenes: the reproducers of bugs found so far), each sorted.
+std::vector<std::string> readSceneSeeds(const std::string& goldenFolder, const std::string& extraFolder = "");
 /// Non-blank lines of a file (a JSON Lines seed corpus).
 std::vector<std::string> readSeedLines(const std::string& file);
 
