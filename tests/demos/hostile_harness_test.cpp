@@ -20,6 +20,7 @@
 #include "demos/lib/cli.h"
 #include "demos/lib/gallery.h"
 #include "demos/lib/json_reader.h"
+#include "demos/lib/scene.h"
 #include "demos/lib/scene_runner.h"
 #include "render/image.h"
 
