@@ -1,5 +1,5 @@
 // Point vs triangle (and tetrahedron) Voronoi regions: renders golden/voronoi_triangle/*.json
 // (or the scene files given) into out/figures/voronoi_triangle/. `--steps` adds one frame per query.
-#include "demos/lib/cli.h"
+#include "demos/app/cli.h"
 
 int main(int argc, char** argv) { return cdlab::demos::demoMain("voronoi_triangle", argc, argv); }

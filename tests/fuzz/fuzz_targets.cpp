@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "demos/lib/demo.h"
-#include "demos/lib/query.h"
+#include "demos/catalog/catalog.h"
+#include "demos/query/query.h"
 #include "render/gl_context.h"
 
 namespace cdlab::fuzz {

@@ -1,0 +1,150 @@
+// Peers for `cdlab bench` (see demos/bench/peers/bench_peers.h). Built only when libccd and / or Bullet
+// (double precision) are installed: CDLAB_HAVE_CCD, CDLAB_HAVE_BULLET.
+#include "demos/bench/peers/bench_peers.h"
+
+#include <memory>
+
+#if CDLAB_HAVE_CCD
+#include <ccd/ccd.h>
+#include <ccd/vec3.h>
+#endif
+#if CDLAB_HAVE_BULLET
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#endif
+
+namespace cdlab::demos {
+
+namespace {
+
+#if CDLAB_HAVE_CCD
+// libccd object: cdlab's support mapping plus the centroid MPR starts from.
+struct CcdObject {
+    const PolytopeShape* shape = nullptr;
+    Vec3 center = Vec3::Zero();
+};
+
+void ccdSupport(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out)
+{
+    const auto* o = static_cast<const CcdObject*>(obj);
+    const Vec3 p = o->shape->support(Vec3(ccdVec3X(dir), ccdVec3Y(dir), ccdVec3Z(dir)));
+    ccdVec3Set(out, p.x(), p.y(), p.z());
+}
+
+void ccdCenter(const void* obj, ccd_vec3_t* center)
+{
+    const auto* o = static_cast<const CcdObject*>(obj);
+    ccdVec3Set(center, o->center.x(), o->center.y(), o->center.z());
+}
+
+struct CcdSet {
+    std::vector<CcdObject> a, b;
+    ccd_t ccd;
+};
+
+std::shared_ptr<CcdSet> makeCcdSet(const std::vector<PeerPair>& pairs)
+{
+    auto set = std::make_shared<CcdSet>();
+    auto centroid = [](const std::vector<Vec3>& v) {
+        Vec3 c = Vec3::Zero();
+        for (const Vec3& x : v) c += x;
+        return Vec3(c / static_cast<double>(v.size()));
+    };
+    for (const PeerPair& p : pairs) {
+        set->a.push_back({p.a, centroid(*p.va)});
+        set->b.push_back({p.b, centroid(*p.vb)});
+    }
+    CCD_INIT(&set->ccd);  // libccd's defaults: epa / mpr tolerance 1e-4
+    set->ccd.support1 = ccdSupport;
+    set->ccd.support2 = ccdSupport;
+    set->ccd.center1 = ccdCenter;
+    set->ccd.center2 = ccdCenter;
+    set->ccd.max_iterations = 1000;  // default is unbounded: cap it so a bad pair cannot hang the bench
+    return set;
+}
+#endif
+
+#if CDLAB_HAVE_BULLET
+struct BulletSet {
+    std::vector<std::unique_ptr<btConvexHullShape>> a, b;
+};
+
+std::unique_ptr<btConvexHullShape> bulletHull(const std::vector<Vec3>& v)
+{
+    auto hull = std::make_unique<btConvexHullShape>();
+    for (const Vec3& x : v) hull->addPoint(btVector3(x.x(), x.y(), x.z()), false);
+    hull->recalcLocalAabb();
+    hull->setMargin(0.0);  // the exact polytope: no rounding margin
+    return hull;
+}
+
+std::shared_ptr<BulletSet> makeBulletSet(const std::vector<PeerPair>& pairs)
+{
+    auto set = std::make_shared<BulletSet>();
+    for (const PeerPair& p : pairs) {
+        set->a.push_back(bulletHull(*p.va));
+        set->b.push_back(bulletHull(*p.vb));
+    }
+    return set;
+}
+#endif
+
+}  // namespace
+
+std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, const std::string& query)
+{
+    std::vector<PeerRunner> runners;
+#if CDLAB_HAVE_CCD
+    {
+        auto set = makeCcdSet(pairs);
+        if (query == "gjk_intersect") {
+            runners.push_back({"libccd GJK", [set](int i) {
+                                   return PeerAnswer{ccdGJKIntersect(&set->a[i], &set->b[i], &set->ccd) ? 1.0 : 0.0, 0};
+                               }});
+            runners.push_back({"libccd MPR", [set](int i) {
+                                   return PeerAnswer{ccdMPRIntersect(&set->a[i], &set->b[i], &set->ccd) ? 1.0 : 0.0, 0};
+                               }});
+        } else if (query == "epa_depth") {
+            runners.push_back({"libccd GJK+EPA", [set](int i) {
+                                   ccd_real_t depth = 0;
+                                   ccd_vec3_t dir, pos;
+                                   const int r = ccdGJKPenetration(&set->a[i], &set->b[i], &set->ccd, &depth, &dir, &pos);
+                                   return PeerAnswer{r == 0 ? double(depth) : 0.0, 0};
+                               }});
+            runners.push_back({"libccd MPR", [set](int i) {
+                                   ccd_real_t depth = 0;
+                                   ccd_vec3_t dir, pos;
+                                   const int r = ccdMPRPenetration(&set->a[i], &set->b[i], &set->ccd, &depth, &dir, &pos);
+                                   return PeerAnswer{r == 0 ? double(depth) : 0.0, 0};
+                               }});
+        }
+    }
+#endif
+#if CDLAB_HAVE_BULLET
+    {
+        auto set = makeBulletSet(pairs);
+        const btTransform identity = btTransform::getIdentity();
+        if (query == "gjk_distance") {
+            runners.push_back({"Bullet GJK (double)", [set, identity](int i) {
+                                   btGjkEpaSolver2::sResults r;
+                                   btGjkEpaSolver2::Distance(set->a[i].get(), identity, set->b[i].get(), identity,
+                                                             btVector3(1, 0, 0), r);
+                                   return PeerAnswer{double(r.distance), 0};
+                               }});
+        } else if (query == "epa_depth") {
+            runners.push_back({"Bullet GJK+EPA (double)", [set, identity](int i) {
+                                   btGjkEpaSolver2::sResults r;
+                                   const bool hit = btGjkEpaSolver2::Penetration(set->a[i].get(), identity, set->b[i].get(),
+                                                                                identity, btVector3(1, 0, 0), r);
+                                   return PeerAnswer{hit ? -double(r.distance) : 0.0, 0};  // distance = -depth
+                               }});
+        }
+    }
+#endif
+    (void)pairs;
+    (void)query;
+    return runners;
+}
+
+}  // namespace cdlab::demos

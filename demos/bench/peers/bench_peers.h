@@ -1,0 +1,41 @@
+// Peer libraries for `cdlab bench` (optional): libccd (GJK intersect, GJK+EPA, MPR) and Bullet in
+// double precision (btGjkEpaSolver2 Distance / Penetration), run on the same inputs as cdlab.
+// Implemented in demos/bench/peers/bench_peers.cpp, compiled only when CMake finds the packages
+// (pkg-config ccd / bullet-float64); the bench then defines CDLAB_BENCH_PEERS.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/shapes.h"
+
+namespace cdlab::demos {
+
+/// One polytope pair: world-frame vertices and cdlab's support mappings of both shapes.
+struct PeerPair {
+    const std::vector<Vec3>* va = nullptr;
+    const std::vector<Vec3>* vb = nullptr;
+    const PolytopeShape* a = nullptr;
+    const PolytopeShape* b = nullptr;
+};
+
+/// One query answered by a peer: the value compared with the oracle (distance, depth, or 1 / 0
+/// for intersect) and the iterations if the peer reports them (else 0).
+struct PeerAnswer {
+    double value = 0.0;
+    int iterations = 0;
+};
+
+/// A peer method over the pairs given to makePeerRunners: run(i) answers pair i.
+struct PeerRunner {
+    std::string method;  ///< e.g. "libccd GJK+EPA", "Bullet GJK"
+    std::function<PeerAnswer(int)> run;
+};
+
+/// Peer runners for `query` ("gjk_distance", "gjk_intersect", "epa_depth") on `pairs`, which must
+/// outlive the runners. libccd calls cdlab's PolytopeShape::support (the same support function);
+/// Bullet uses btConvexHullShape on the same vertices with margin 0 (its own vertex loop).
+std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, const std::string& query);
+
+}  // namespace cdlab::demos

@@ -1,0 +1,63 @@
+#include "demos/draw/contact_sheet.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Frame*>& frames,
+                               const ContactSheetOptions& o) {
+    using namespace render;
+    const int n = int(frames.size());
+    if (n == 0) return Image();
+    const int columns = o.columns > 0 ? o.columns : int(std::ceil(std::sqrt(double(n))));
+    const int rows = (n + columns - 1) / columns;
+
+    // Integer box downsampling keeps every cell a faithful average of its frame.
+    std::vector<Image> cells;
+    int cellW = 0, cellH = 0;
+    for (const Frame* f : frames) {
+        int factor = std::max(1, (f->image.width + o.cellWidth - 1) / o.cellWidth);
+        cells.push_back(factor > 1 ? downsample(f->image, factor) : f->image);
+        cellW = std::max(cellW, cells.back().width);
+        cellH = std::max(cellH, cells.back().height);
+    }
+    const int pad = 12, captionH = 44, titleH = o.title.empty() ? 0 : 48;
+    const int width = columns * (cellW + pad) + pad;
+    const int height = titleH + rows * (cellH + captionH + pad) + pad;
+
+    CanvasOptions co;
+    co.width = width;
+    co.height = height;
+    Canvas canvas(gl, co);
+    canvas.setBackground(roleColor(Role::Background));
+    canvas.setCamera(Camera::twoD(0, 0, 1));
+    TextStyle caption{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
+    if (!o.title.empty())
+        canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+    for (int i = 0; i < n; ++i) {
+        int x = pad + (i % columns) * (cellW + pad);
+        int y = titleH + pad + (i / columns) * (cellH + captionH + pad);
+        canvas.drawTextPx(x + cellW / 2.0, y + cellH + 6, frames[i]->caption, caption);
+    }
+    Image sheet = canvas.readPixels();
+    for (int i = 0; i < n; ++i) {
+        int x = pad + (i % columns) * (cellW + pad);
+        int y = titleH + pad + (i / columns) * (cellH + captionH + pad);
+        blit(sheet, cells[i], x, y);
+    }
+    return sheet;
+}
+
+Frame contactSheetFrame(render::GlContext& gl, const std::vector<const Frame*>& frames, const std::string& sceneTitle,
+                        const ContactSheetOptions& options) {
+    Frame sheet;
+    sheet.name = "contact_sheet";
+    sheet.caption = sceneTitle + " — contact sheet";
+    sheet.image = makeContactSheet(gl, frames, options);
+    return sheet;
+}
+
+}  // namespace cdlab::demos

@@ -1,0 +1,113 @@
+// Internal to the V-Clip demo (vclip_demo*.cpp, vclip_state_diagram.cpp): the scene's bodies, the
+// frame layout and the drawing pieces. Every number drawn comes from core's VClipTrace /
+// VClipResult (core/vclip.h); these files only add drawing geometry (plane patches, cameras) and the
+// Theorem-1 check, which re-evaluates the final closest points against the stored region planes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/polyhedron.h"
+#include "core/vclip.h"
+#include "demos/scene/demo.h"
+#include "demos/scene/json_reader.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos::vclipdemo {
+
+/// One body of a scene: the mesh, its precomputed Voronoi regions and its pose (body -> world).
+struct Body {
+    std::string kind;  // "icosahedron", "box", ...
+    VClipPolyhedron regions;
+    Transform pose;
+};
+
+/// Reads {"icosahedron": {"radius": 1, "position": [...], "rotation": [w, x, y, z]}} etc.
+Body parseBody(const JsonNode& node);
+/// "V3" / "E12" / "F0" (checked against the body's feature counts).
+VClipFeature parseFeature(const JsonNode& node, const Body& body);
+
+/// Frame layout: title band, the 3D panel on the left, the state diagram over the distance plot on
+/// the right, a caption band: the scene's caption, then up to three lines about the frame.
+struct Layout {
+    int width = 1024, height = 768;
+    int titleBand = 40, captionBand = 104;
+    int columnWidth = 384;
+    int mainWidth() const { return width - columnWidth; }
+    int panelHeight() const { return height - titleBand - captionBand; }
+    int diagramHeight() const { return panelHeight() * 45 / 100; }
+    int plotHeight() const { return panelHeight() - diagramHeight(); }
+};
+
+render::Image composeFrame(render::GlContext& gl, const Layout& layout, int supersample, const std::string& title,
+                           const std::string& sceneCaption, const render::Image& main, const render::Image& diagram, const render::Image& plot,
+                           const std::vector<std::string>& captionLines);
+
+// ---- the 3D panel pieces (vclip_demo_draw.cpp)
+
+/// A body placed at `pose`, translucent, with its edges.
+void drawPolyhedron(render::Canvas& canvas, const Body& body, const Transform& pose, const render::Color& fill, float alpha);
+/// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; labelled
+/// with `label` pushed away from `awayFrom`.
+void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, const render::Color& color,
+                 const std::string& label, const Vec3& awayFrom, bool labels);
+/// Mean of a feature's points.
+Vec3 featureCenter(const std::vector<Vec3>& geometry);
+/// A patch of a Voronoi plane of `body` placed at `pose`, world frame: FE planes are drawn as the edge extruded along
+/// the face's outward normal, VE planes as a square about the vertex turned towards `toward`.
+std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int plane, const Vec3& toward, double size);
+/// "V3 (A)".
+std::string featureLabel(const VClipFeature& f, int body);
+/// The scene's world bounding sphere.
+void sceneSphere(const std::vector<const Body*>& bodies, Vec3& center, double& radius);
+
+/// Theorem 1 (Mirtich 1998): the point x (world) lies in VR(feature) of `body` placed at `pose`. Returns the planes
+/// tested (index, signed distance, positive inside); the face plane itself is reported as index -1.
+struct RegionCheck {
+    struct Test {
+        int plane = -1;      // index into body.regions.planes(); -1 = the face's own plane
+        double distance = 0; // positive inside
+    };
+    std::vector<Test> tests;
+    double minDistance = 0;  // smallest signed distance (the margin of the check)
+};
+RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFeature& feature, const Vec3& x);
+
+// ---- state diagram and plots (vclip_state_diagram.cpp)
+
+/// What the diagram lights: the current state, the transition just taken (from -> to, -1 = none),
+/// how often each state was visited so far, and a terminal note ("DONE", "penetration").
+struct DiagramInput {
+    int current = -1;             // VClipState as int, -1 none
+    int from = -1, to = -1;       // transition taken by this step's update (to may equal from: self loop)
+    int visits[5] = {0, 0, 0, 0, 0};
+    std::string terminal;         // drawn under the current state
+    std::string heading = "V-Clip states";
+};
+render::Image drawStateDiagram(render::GlContext& gl, int width, int height, int supersample, const DiagramInput& in);
+
+/// One curve of a small plot: x, y points with a per-point colour.
+struct PlotSeries {
+    std::vector<double> x, y;
+    std::vector<render::Color> pointColors;
+    render::Color lineColor;
+    bool bars = false;  // draw as bars from 0 instead of a polyline
+};
+struct PlotInput {
+    std::string heading, xLabel;
+    std::vector<PlotSeries> series;
+    double marker = -1;   // x of a vertical "now" marker (< 0: none)
+    std::vector<std::pair<render::Color, std::string>> legend;
+    bool integerY = false;
+};
+/// A line / bar chart in pixel space.
+render::Image drawPlot(render::GlContext& gl, int width, int height, int supersample, const PlotInput& in);
+/// Two plots stacked in one panel.
+render::Image stackImages(const render::Image& top, const render::Image& bottom);
+
+/// Colours of the walk.
+render::Color violatedColor();   // red: violated plane / excluded part
+render::Color satisfiedColor();  // green: satisfied plane
+render::Color clipColor();       // the clipped part of an edge
+
+}  // namespace cdlab::demos::vclipdemo

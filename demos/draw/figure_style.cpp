@@ -1,0 +1,57 @@
+#include "demos/draw/figure_style.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace cdlab::demos {
+
+using namespace render;
+
+void drawTitleAndCaption(Canvas& canvas, const std::string& title, const std::string& caption) {
+    const double margin = 18;
+    if (!title.empty())
+        canvas.drawTextPx(margin, margin, title, TextStyle{26.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+    if (!caption.empty())
+        canvas.drawTextPx(margin, canvas.height() - margin, caption,
+                          TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+}
+
+LineStyle lineStyle(Role role, float widthPx, bool dashed, bool onTop) {
+    LineStyle s;
+    s.widthPx = widthPx;
+    s.color = roleColor(role);
+    s.dashPx = dashed ? 3.0f * widthPx + 4.0f : 0.0f;
+    s.onTop = onTop;
+    return s;
+}
+
+TextStyle labelStyle(Role role, float sizePx, bool bold) {
+    return TextStyle{sizePx, roleColor(role), Anchor::Center, true, bold};
+}
+
+std::string formatNumber(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", x == 0 ? 0.0 : x);  // no "-0"
+    return buf;
+}
+
+std::string formatPoint(const Vec3& p) {
+    return "(" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + ", " + formatNumber(p.z()) + ")";
+}
+
+Camera framingCamera(const Vec3& center, double radius, const Vec3& viewDirection, const Vec3& up, bool perspective) {
+    Camera cam;
+    cam.projection = perspective ? Camera::Projection::Perspective : Camera::Projection::Orthographic;
+    cam.fovYDegrees = 30.0;
+    const double halfFov = cam.fovYDegrees * M_PI / 360.0;
+    const double distance = radius / std::sin(halfFov) * 1.08;
+    cam.target = center;
+    cam.eye = center + viewDirection.normalized() * distance;
+    cam.up = up;
+    cam.viewHeight = 2.3 * radius;
+    cam.nearPlane = distance * 0.01;
+    cam.farPlane = distance * 10 + radius * 4;
+    return cam;
+}
+
+}  // namespace cdlab::demos

@@ -1,0 +1,345 @@
+#include "demos/draw/plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "demos/draw/figure_style.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+using render::Anchor;
+using render::Canvas;
+using render::Color;
+using render::LineStyle;
+using render::Role;
+using render::TextStyle;
+using render::roleColor;
+
+namespace {
+
+/// "10⁻¹²" with Unicode superscripts (DejaVu Sans has them).
+std::string decadeLabel(int k)
+{
+    if (k == 0) return "1";
+    if (k == 1) return "10";
+    static const char* sup[10] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+    std::string s = "10";
+    if (k < 0) s += "⁻";
+    const std::string digits = std::to_string(std::abs(k));
+    for (char c : digits) s += sup[c - '0'];
+    return s;
+}
+
+struct Axis {
+    double lo = 0, hi = 1;  // in axis units (log10 for log axes)
+    bool log = true;
+    double floor = 0;
+    double unit(double v) const { return log ? std::log10(std::max(v, floor)) : v; }
+};
+
+/// Pixel frame of the plot area (y down) and the mapping from data.
+struct Frame {
+    double x0, x1, y0, y1;  // left, right, top, bottom pixels
+    Axis ax, ay;
+    double px(double x) const { return x0 + (ax.unit(x) - ax.lo) / (ax.hi - ax.lo) * (x1 - x0); }
+    double py(double y) const { return y1 - (ay.unit(y) - ay.lo) / (ay.hi - ay.lo) * (y1 - y0); }
+};
+
+Axis fitAxis(std::vector<double> values, bool log, double floor)
+{
+    Axis a;
+    a.log = log;
+    a.floor = floor;
+    double lo = INFINITY, hi = -INFINITY;
+    for (double v : values) {
+        if (!std::isfinite(v)) continue;
+        const double u = a.unit(v);
+        lo = std::min(lo, u);
+        hi = std::max(hi, u);
+    }
+    if (!(hi >= lo)) lo = 0, hi = 1;
+    if (log) {
+        // Whole decades, with at least 0.3 decade free above and below the data (a point or a
+        // reference line on the frame would hide under it).
+        a.lo = std::floor(lo - 0.3);
+        a.hi = std::ceil(hi + 0.3);
+        if (a.hi <= a.lo) a.hi = a.lo + 1;
+    } else {
+        const double pad = hi > lo ? 0.05 * (hi - lo) : 0.5;
+        a.lo = lo >= 0 && lo - pad < 0 ? 0.0 : lo - pad;
+        a.hi = hi + pad;
+    }
+    return a;
+}
+
+
+/// Vertices of marker `shape` (0 disc: none, 1 square, 2 triangle, 3 diamond) of radius r at (x, y).
+std::vector<Eigen::Vector3d> markerPolygon(int shape, double x, double y, double r)
+{
+    std::vector<Eigen::Vector3d> v;
+    if (shape == 1) {
+        const double s = 0.85 * r;
+        v = {{x - s, y - s, 0}, {x + s, y - s, 0}, {x + s, y + s, 0}, {x - s, y + s, 0}};
+    } else if (shape == 2) {
+        v = {{x, y + 1.15 * r, 0}, {x - r, y - 0.6 * r, 0}, {x + r, y - 0.6 * r, 0}};
+    } else {
+        v = {{x, y + 1.2 * r, 0}, {x + r, y, 0}, {x, y - 1.2 * r, 0}, {x - r, y, 0}};
+    }
+    return v;
+}
+
+class PlotCanvas {
+public:
+    PlotCanvas(render::GlContext& gl, const PlotOptions& o) : o_(o), c_(gl, canvasOptions(o))
+    {
+        c_.setBackground(roleColor(Role::Background));
+        c_.setCamera(render::Camera::twoD(o.width / 2.0, o.height / 2.0, o.height));
+    }
+    static render::CanvasOptions canvasOptions(const PlotOptions& o)
+    {
+        render::CanvasOptions co;
+        co.width = o.width;
+        co.height = o.height;
+        co.supersample = 1;
+        return co;
+    }
+    // Pixel (x right, y down) to the 2D camera's world (y up).
+    Eigen::Vector3d P(double x, double y) const { return {x, o_.height - y, 0}; }
+    Canvas& canvas() { return c_; }
+
+    void marker(int style, double x, double y, double r, float alpha)
+    {
+        const Color color = render::categorical(style).withAlpha(alpha);
+        const int shape = style % 4;
+        if (shape == 0) {
+            c_.drawPoint(P(x, y), static_cast<float>(r), color, true, 0.8f, roleColor(Role::Ink).withAlpha(alpha));
+            return;
+        }
+        std::vector<Eigen::Vector3d> v = markerPolygon(shape, x, o_.height - y, r);
+        c_.drawPolygon(v, color);
+        LineStyle edge;
+        edge.widthPx = 1.0f;
+        edge.color = roleColor(Role::Ink).withAlpha(alpha);
+        edge.onTop = true;
+        c_.drawPolyline(v, true, edge);
+    }
+
+    /// Axes, ticks, tick labels, axis labels, title, subtitle.
+    void axes(const Frame& f)
+    {
+        const LineStyle axis = lineStyle(Role::Ink, 1.5f, false, true);
+        const LineStyle grid = lineStyle(Role::Muted, 1.0f, true, false);
+        LineStyle faint = grid;
+        faint.color = roleColor(Role::Muted).withAlpha(0.35f);
+        faint.dashPx = 0;
+        const TextStyle xtick{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
+        const TextStyle ytick{15.0f, roleColor(Role::Ink), Anchor::Right, false, false};
+        auto ticks = [&](const Axis& a, bool isX) {
+            const double span = a.hi - a.lo;
+            if (a.log) {
+                const int step = span > 14 ? 3 : span > 8 ? 2 : 1;
+                for (int k = static_cast<int>(a.lo); k <= static_cast<int>(a.hi); ++k) {
+                    const double u = (k - a.lo) / span;
+                    const bool labelled = (k - static_cast<int>(a.lo)) % step == 0;
+                    if (isX) {
+                        const double x = f.x0 + u * (f.x1 - f.x0);
+                        c_.drawLine(P(x, f.y0), P(x, f.y1), labelled ? grid : faint);
+                        c_.drawLine(P(x, f.y1), P(x, f.y1 + 6), axis);
+                        if (labelled) c_.drawTextPx(x, f.y1 + 9, decadeLabel(k), xtick);
+                    } else {
+                        const double y = f.y1 - u * (f.y1 - f.y0);
+                        c_.drawLine(P(f.x0, y), P(f.x1, y), labelled ? grid : faint);
+                        c_.drawLine(P(f.x0 - 6, y), P(f.x0, y), axis);
+                        if (labelled) c_.drawTextPx(f.x0 - 9, y, decadeLabel(k), ytick);
+                    }
+                }
+            } else {
+                // Linear: 5 intervals at a round step.
+                const double raw = span / 5;
+                const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+                const double step = raw / mag < 2 ? 2 * mag : raw / mag < 5 ? 5 * mag : 10 * mag;
+                for (double v = std::ceil(a.lo / step) * step; v <= a.hi + 1e-12 * span; v += step) {
+                    const double u = (v - a.lo) / span;
+                    char buf[32];
+                    std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-12 * span ? 0.0 : v);
+                    if (isX) {
+                        const double x = f.x0 + u * (f.x1 - f.x0);
+                        c_.drawLine(P(x, f.y0), P(x, f.y1), grid);
+                        c_.drawTextPx(x, f.y1 + 9, buf, xtick);
+                    } else {
+                        const double y = f.y1 - u * (f.y1 - f.y0);
+                        c_.drawLine(P(f.x0, y), P(f.x1, y), grid);
+                        c_.drawLine(P(f.x0 - 6, y), P(f.x0, y), axis);
+                        c_.drawTextPx(f.x0 - 9, y, buf, ytick);
+                    }
+                }
+            }
+        };
+        ticks(f.ax, true);
+        ticks(f.ay, false);
+        c_.drawPolyline({P(f.x0, f.y0), P(f.x1, f.y0), P(f.x1, f.y1), P(f.x0, f.y1)}, true, axis);
+        const TextStyle label{17.0f, roleColor(Role::Ink), Anchor::Top, false, true};
+        c_.drawTextPx(0.5 * (f.x0 + f.x1), f.y1 + 36, o_.xLabel, label);
+        c_.drawTextPx(f.x0 - 8, f.y0 - 10, o_.yLabel, TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
+        drawTitleAndCaption(c_, o_.title, o_.subtitle);
+    }
+
+    /// Legend box in the upper right corner of the plot area.
+    void legend(const Frame& f, const std::vector<std::pair<std::string, int>>& entries, bool steps)
+    {
+        if (entries.empty()) return;
+        const TextStyle text{15.0f, roleColor(Role::Ink), Anchor::Left, false, false};
+        double w = 0;
+        for (const auto& e : entries) w = std::max(w, c_.measureText(e.first, text).x());
+        const double rowH = 24, boxW = std::min(w + 58, o_.width - f.x1 - 24), boxH = rowH * entries.size() + 12;
+        const double bx = f.x1 + 16, by = f.y0;
+        c_.drawPolygon({P(bx, by), P(bx + boxW, by), P(bx + boxW, by + boxH), P(bx, by + boxH)},
+                       roleColor(Role::Background).withAlpha(0.92f));
+        c_.drawPolyline({P(bx, by), P(bx + boxW, by), P(bx + boxW, by + boxH), P(bx, by + boxH)}, true,
+                        lineStyle(Role::Muted, 1.0f, false, true));
+        for (size_t i = 0; i < entries.size(); ++i) {
+            const double y = by + 6 + rowH * (i + 0.5);
+            if (steps) {
+                LineStyle s;
+                s.widthPx = 3.0f;
+                s.color = render::categorical(entries[i].second);
+                s.onTop = true;
+                c_.drawLine(P(bx + 10, y), P(bx + 40, y), s);
+            } else {
+                marker(entries[i].second, bx + 25, y, 6.0, 1.0f);
+            }
+            c_.drawTextPx(bx + 50, y, entries[i].first, text);
+        }
+    }
+
+    render::Image image() { return c_.readPixels(); }
+
+private:
+    const PlotOptions& o_;
+    Canvas c_;
+};
+
+/// Plot area: room on the left for tick labels, on the right for the legend (outside the data).
+Frame plotFrame(const PlotOptions& o)
+{
+    Frame f;
+    f.x0 = 100;
+    f.x1 = o.width - o.legendWidth - 40;
+    f.y0 = 92;
+    f.y1 = o.height - 100;
+    return f;
+}
+
+}  // namespace
+
+render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const std::vector<PlotSeries>& series)
+{
+    PlotCanvas pc(gl, o);
+    Frame f = plotFrame(o);
+    std::vector<double> xs, ys;
+    for (const PlotSeries& s : series)
+        for (const auto& [x, y] : s.points) xs.push_back(x), ys.push_back(y);
+    for (const auto& h : o.hLines) ys.push_back(h.first);
+    f.ax = fitAxis(xs, o.logX, o.xFloor);
+    f.ay = fitAxis(ys, o.logY, o.yFloor);
+    pc.axes(f);
+    Canvas& c = pc.canvas();
+    for (const auto& [value, text] : o.hLines) {
+        const double y = f.py(value);
+        c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), lineStyle(Role::Highlight, 2.0f, true, false));
+        c.drawTextPx(f.x0 + 8, y - 4, text, TextStyle{14.0f, roleColor(Role::Highlight), Anchor::BottomLeft, true, false});
+    }
+    // Many points: smaller, translucent markers so that dense clouds stay readable.
+    size_t total = 0;
+    for (const PlotSeries& s : series) total += s.points.size();
+    const double r = total > 2000 ? 3.0 : total > 300 ? 4.5 : 7.0;
+    const float alpha = total > 2000 ? 0.55f : 0.9f;
+    std::vector<std::pair<std::string, int>> entries;
+    for (const PlotSeries& s : series) {
+        entries.emplace_back(s.label, s.style);
+        if (s.line && s.points.size() > 1) {
+            std::vector<Eigen::Vector3d> line;
+            for (const auto& [x, y] : s.points) line.push_back(pc.P(f.px(x), f.py(y)));
+            LineStyle ls;
+            ls.widthPx = 2.0f;
+            ls.color = render::categorical(s.style);
+            c.drawPolyline(line, false, ls);
+        }
+        if (!s.markers) continue;
+        for (size_t i = 0; i < s.points.size(); ++i) {
+            const double x = f.px(s.points[i].first), y = f.py(s.points[i].second);
+            pc.marker(s.style, x, y, r, alpha);
+            if (i < s.pointLabels.size() && !s.pointLabels[i].empty())
+                c.drawTextPx(x + r + 3, y - r - 1, s.pointLabels[i],
+                             TextStyle{12.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        }
+    }
+    pc.legend(f, entries, false);
+    return pc.image();
+}
+
+render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
+                                  const std::vector<std::pair<std::string, std::vector<double>>>& series)
+{
+    PlotCanvas pc(gl, o);
+    Frame f = plotFrame(o);
+    double maxValue = o.xFloor * 10;
+    for (const auto& s : series)
+        for (double v : s.second)
+            if (std::isfinite(v)) maxValue = std::max(maxValue, v);
+    const int k0 = static_cast<int>(std::floor(std::log10(o.xFloor)));
+    const int k1 = std::max(k0 + 1, static_cast<int>(std::ceil(std::log10(maxValue))));
+    f.ax.log = true;
+    f.ax.floor = o.xFloor;
+    f.ax.lo = k0;
+    f.ax.hi = k1;
+    // Fractions per bin [10^k, 10^(k+1)); the first bin also holds everything <= floor.
+    std::vector<std::vector<double>> frac;
+    double top = 0;
+    for (const auto& s : series) {
+        std::vector<double> h(k1 - k0, 0.0);
+        for (double v : s.second) {
+            int k = std::isfinite(v) && v > o.xFloor ? static_cast<int>(std::floor(std::log10(v))) : k0;
+            k = std::clamp(k, k0, k1 - 1);
+            h[k - k0] += 1.0;
+        }
+        for (double& x : h) {
+            x /= std::max<size_t>(1, s.second.size());
+            top = std::max(top, x);
+        }
+        frac.push_back(h);
+    }
+    f.ay.log = false;
+    f.ay.lo = 0;
+    f.ay.hi = std::max(0.05, std::min(1.0, top * 1.15));
+    pc.axes(f);
+    Canvas& c = pc.canvas();
+    std::vector<std::pair<std::string, int>> entries;
+    for (size_t si = 0; si < series.size(); ++si) {
+        const int style = static_cast<int>(si);
+        entries.emplace_back(series[si].first, style);
+        // Step outline with a translucent fill, slightly offset per series so equal bins stay visible.
+        const double dx = 2.0 * si;
+        std::vector<Eigen::Vector3d> outline;
+        for (int k = k0; k < k1; ++k) {
+            const double xa = f.px(std::pow(10.0, k)) + dx, xb = f.px(std::pow(10.0, k + 1)) + dx;
+            const double y = f.py(frac[si][k - k0]);
+            outline.push_back(pc.P(xa, y));
+            outline.push_back(pc.P(xb, y));
+            if (frac[si][k - k0] > 0)
+                c.drawPolygon({pc.P(xa, y), pc.P(xb, y), pc.P(xb, f.y1), pc.P(xa, f.y1)},
+                              render::categorical(style).withAlpha(0.18f));
+        }
+        LineStyle ls;
+        ls.widthPx = 2.5f;
+        ls.color = render::categorical(style);
+        ls.onTop = true;
+        c.drawPolyline(outline, false, ls);
+    }
+    pc.legend(f, entries, true);
+    return pc.image();
+}
+
+}  // namespace cdlab::demos

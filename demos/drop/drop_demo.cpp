@@ -1,0 +1,466 @@
+// Rigid-body drop step-through. Every number comes from core's simulateDrop and its per-step trace
+// (state, manifold with impulses, energies, penetration); this file only chooses frames and draws.
+//
+// Scene keys (besides the common ones):
+//   "body": {"box": {"half_extents": [x, y, z]}} | {"tetrahedron": {"circumradius": r}}
+//           | {"icosahedron": {"circumradius": r}}
+//   "density", "position", "rotation" [w,x,y,z], "velocity", "angular_velocity" (world, rad/s),
+//   "gravity" (m/s² along −z; the ground is the plane z = 0),
+//   "simulation": {"time_step", "duration", "restitution", "friction", "restitution_threshold",
+//                  "iterations", "slop"},
+//   "frame_every" (steps between frames), "view" (camera direction, z up).
+// Layers: "ground", "shadow", "trail", "contacts", "labels", "plot".
+// Frames: frame_NN (every frame_every steps from step 0), "energy" (plot), with "steps" a contact sheet.
+#include "demos/drop/drop_demo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/polyhedron_presets.h"
+#include "core/simulation.h"
+#include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_style.h"
+#include "demos/scene/scene_limits.h"
+#include "demos/draw/support_scene.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+
+const std::vector<std::string> kLayers = {"ground", "shadow", "trail", "contacts", "labels", "plot"};
+constexpr int kMaxFrames = 16;  // frames (plus plot and sheet) per scene: golden size and render time
+
+Json quatJson(const Quat& q) { return Json::array({q.w(), q.x(), q.y(), q.z()}); }
+
+class DropScene final : public PreparedScene {
+public:
+    DropScene(SceneCommon common, DropInput input, SimulationOptions options, std::string body, int frameEvery, Vec3 view)
+        : PreparedScene(std::move(common)), input_(std::move(input)), options_(options), body_(std::move(body)),
+          frameEvery_(frameEvery), view_(view) {}
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        SimulationTrace tr;
+        const SimulationResult r = simulateDrop(input_, options_, &tr);
+        DemoOutput out;
+        out.trace = traceJson(r, tr);
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        if (!r.ok()) return out;  // prepare() validated the inputs; nothing to draw otherwise
+        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+
+        // One camera for every frame: the bounding sphere of the body along its whole path.
+        std::vector<Vec3> path;
+        for (const SimulationStep& s : tr.steps) {
+            path.push_back(s.position);
+            path.push_back(s.position + r.boundingRadius * Vec3::UnitZ());
+            path.push_back(Vec3(s.position.x(), s.position.y(), 0.0));
+        }
+        Vec3 center;
+        double radius;
+        boundingSphere(path, center, radius);
+        radius += r.boundingRadius;
+        const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius, view_, Vec3::UnitZ());
+
+        std::vector<int> frameSteps;
+        for (int k = 0; k < int(tr.steps.size()); k += frameEvery_) frameSteps.push_back(k);
+        for (std::size_t i = 0; i < frameSteps.size(); ++i)
+            out.frames.push_back(drawFrame(*ctx.gl, ss, cam, center, radius, r, tr, frameSteps[i], int(i)));
+        std::vector<const Frame*> stepFrames;
+        for (const Frame& f : out.frames) stepFrames.push_back(&f);
+        Frame sheet;
+        const bool wantSheet = common_.steps || ctx.stepsOverride;
+        if (wantSheet) {
+            ContactSheetOptions o;
+            o.title = common_.title + ": every " + std::to_string(frameEvery_) + " steps (" +
+                      formatNumber(frameEvery_ * options_.timeStep) + " s)";
+            o.cellWidth = 300;
+            o.columns = 4;
+            sheet = contactSheetFrame(*ctx.gl, stepFrames, common_.title, o);
+        }
+        if (common_.hasLayer("plot")) out.frames.push_back(drawPlot(*ctx.gl, ss, r, tr, frameSteps));
+        else out.skipped.push_back("energy / penetration plot (no 'plot' layer)");
+        if (wantSheet) out.frames.push_back(std::move(sheet));
+        return out;
+    }
+
+private:
+    DropInput input_;
+    SimulationOptions options_;
+    std::string body_;
+    int frameEvery_;
+    Vec3 view_;
+
+    Json traceJson(const SimulationResult& r, const SimulationTrace& tr) const {
+        Json t;
+        t["body"] = body_;
+        t["status"] = statusName(r.status);
+        if (!r.ok()) {
+            t["message"] = r.message;
+            return t;
+        }
+        Json inertia = Json::array();
+        for (int i = 0; i < 3; ++i) inertia.push_back(Json::array({r.mass.inertia(i, 0), r.mass.inertia(i, 1), r.mass.inertia(i, 2)}));
+        t["mass_properties"] = {{"volume", r.mass.volume}, {"mass", r.mass.mass}, {"center_of_mass", vec3Json(r.mass.centerOfMass)},
+                                {"inertia", inertia}, {"frame", "shape frame; inertia about the centre of mass"}};
+        t["options"] = {{"time_step", options_.timeStep}, {"steps", options_.steps}, {"restitution", options_.solver.restitution},
+                        {"friction", options_.solver.friction}, {"restitution_threshold", options_.solver.restitutionThreshold},
+                        {"iterations", options_.solver.iterations}, {"slop", options_.slop}, {"gravity", vec3Json(input_.gravity)},
+                        {"max_contact_points", options_.maxContactPoints}};
+        t["summary"] = {{"rest_time", r.restTime},
+                        {"max_penetration", r.maxPenetration},
+                        {"max_penetration_before_correction", r.maxPenetrationBeforeCorrection},
+                        {"max_energy_increase", r.maxEnergyIncrease},
+                        {"total_correction", r.totalCorrection},
+                        {"bounding_radius", r.boundingRadius}};
+        Json steps = Json::array();
+        for (const SimulationStep& s : tr.steps) {
+            Json contacts = Json::array();
+            for (const ContactImpulse& c : s.contacts)
+                contacts.push_back({{"point", vec3Json(c.point)},
+                                    {"separation", c.separation},
+                                    {"normal_impulse", c.normalImpulse},
+                                    {"restitution_impulse", c.restitutionImpulse},
+                                    {"tangent_impulse", vec3Json(c.tangentImpulse)},
+                                    {"normal_velocity_before", c.normalVelocityBefore},
+                                    {"normal_velocity_after", c.normalVelocityAfter},
+                                    {"bounce", c.bounce}});
+            steps.push_back({{"step", s.step},
+                             {"time", s.time},
+                             {"position", vec3Json(s.position)},
+                             {"orientation", quatJson(s.orientation)},
+                             {"linear_velocity", vec3Json(s.linearVelocity)},
+                             {"angular_velocity", vec3Json(s.angularVelocity)},
+                             {"contact_status", statusName(s.contactStatus)},
+                             {"contacts", contacts},
+                             {"kinetic", s.kinetic},
+                             {"potential", s.potential},
+                             {"energy", s.energy},
+                             {"penetration_before_correction", s.penetrationBeforeCorrection},
+                             {"correction", s.correction},
+                             {"max_penetration", s.maxPenetration}});
+        }
+        t["steps"] = steps;
+        return t;
+    }
+
+    Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius, const SimulationResult& r,
+                    const SimulationTrace& tr, int k, int index) const {
+        CanvasOptions o;
+        o.width = common_.image.width;
+        o.height = common_.image.height;
+        o.supersample = ss;
+        Canvas c(gl, o);
+        c.setBackground(roleColor(Role::Background));
+        c.setCamera(cam);
+        const SimulationStep& s = tr.steps[k];
+        const double rho = r.boundingRadius;
+        const bool labels = common_.hasLayer("labels");
+
+        // Ground: a square patch under the path with a grid (z = 0).
+        if (common_.hasLayer("ground")) {
+            const double half = 1.6 * radius;
+            const Vec3 g(center.x(), center.y(), 0.0);
+            c.drawPolygon({g + Vec3(-half, -half, 0), g + Vec3(half, -half, 0), g + Vec3(half, half, 0), g + Vec3(-half, half, 0)},
+                          roleColor(Role::Muted).withAlpha(0.22f));
+            const double step = std::pow(10.0, std::floor(std::log10(half))) * (half / std::pow(10.0, std::floor(std::log10(half))) > 4 ? 1.0 : 0.5);
+            LineStyle grid = lineStyle(Role::Muted, 1.0f);
+            grid.color = roleColor(Role::Muted).withAlpha(0.6f);
+            for (double x = std::ceil((g.x() - half) / step) * step; x <= g.x() + half; x += step)
+                c.drawLine(Vec3(x, g.y() - half, 0), Vec3(x, g.y() + half, 0), grid);
+            for (double y = std::ceil((g.y() - half) / step) * step; y <= g.y() + half; y += step)
+                c.drawLine(Vec3(g.x() - half, y, 0), Vec3(g.x() + half, y, 0), grid);
+        }
+        // World vertices of the body at this step.
+        std::vector<Vec3> wv;
+        for (const Vec3& v : r.shape.positions()) wv.push_back(s.orientation * v + s.position);
+        if (common_.hasLayer("shadow")) {
+            std::vector<Vec3> outline = hull2d(wv);
+            for (Vec3& p : outline) p.z() = 1e-3 * rho;  // just above the grid
+            if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Ink).withAlpha(0.16f));
+        }
+        if (common_.hasLayer("trail") && k > 0) {
+            std::vector<Vec3> trail;
+            for (int i = 0; i <= k; ++i) trail.push_back(tr.steps[i].position);
+            LineStyle ls = lineStyle(Role::Ink, 2.0f, true, false);
+            ls.color = roleColor(Role::Ink).withAlpha(0.55f);
+            c.drawPolyline(trail, false, ls);
+        }
+        // The body: fan-triangulated faces, lit, with its edges.
+        std::vector<Eigen::Vector3i> tris;
+        for (int f = 0; f < r.shape.faceCount(); ++f) {
+            const std::vector<int> fv = r.shape.faceVertices(f);
+            for (std::size_t i = 1; i + 1 < fv.size(); ++i) tris.emplace_back(fv[0], fv[i], fv[i + 1]);
+        }
+        c.drawMesh(wv, tris, roleColor(Role::ShapeA), true);
+        LineStyle edge = lineStyle(Role::ShapeA, 2.0f);
+        edge.color = roleColor(Role::ShapeA).scaled(0.5f);
+        for (int e = 0; e < r.shape.edgeCount(); ++e) {
+            const auto [a, b] = r.shape.edgeVertices(e);
+            c.drawLine(wv[a], wv[b], edge);
+        }
+
+        // Contacts of this step: filled = pushing (λ_n > 0), hollow = speculative (λ_n = 0); normal arrows.
+        int pushing = 0, bounces = 0;
+        if (common_.hasLayer("contacts")) {
+            for (const ContactImpulse& ct : s.contacts) {
+                const bool push = ct.normalImpulse > 0;
+                pushing += push;
+                bounces += ct.bounce && push;
+                const Vec3 tip = ct.point + s.normal * 0.45 * rho;
+                c.drawArrow(ct.point, tip, lineStyle(Role::Direction, 3.0f, false, true));
+                if (push) c.drawPoint(ct.point, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                else c.drawPoint(ct.point, 6.0f, roleColor(Role::Background), true, 2.0f, roleColor(Role::Result));
+            }
+            if (labels && !s.contacts.empty()) {
+                const ContactImpulse& first = s.contacts.front();
+                drawLabelAway(c, first.point + s.normal * 0.45 * rho, first.point, "n", labelStyle(Role::Direction, 20.0f), 10.0);
+            }
+        }
+        if (labels) {
+            // Legend (top right), each entry in the colour of what it names.
+            const double x = o.width - 18.0;
+            double y = 18.0;
+            const auto item = [&](const std::string& text, Role role) {
+                c.drawTextPx(x, y, text, TextStyle{16.0f, role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role),
+                                                   Anchor::TopRight, true, true});
+                y += 22.0;
+            };
+            if (common_.hasLayer("contacts")) {
+                item("filled dot: contact pushing (λₙ > 0)", Role::Result);
+                item("hollow dot: speculative contact (λₙ = 0)", Role::Result);
+                item("arrow: ground normal n", Role::Direction);
+            }
+            if (common_.hasLayer("trail")) item("dashed: centre-of-mass path", Role::Ink);
+        }
+        // Two caption lines: the contacts of the step, then energy and depth.
+        char line1[200], line2[200];
+        std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s", s.time, s.step, int(s.contacts.size()),
+                      s.contacts.size() == 1 ? "" : "s", pushing, bounces ? (", " + std::to_string(bounces) + " bouncing").c_str() : "");
+        std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground", s.energy, s.kinetic,
+                      s.potential, s.maxPenetration);
+        c.drawTextPx(18.0, o.height - 18.0 - 26.0, line1, TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        drawTitleAndCaption(c, common_.title, line2);
+        Frame f;
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%02d", index);
+        f.name = name;
+        char cap[160];
+        std::snprintf(cap, sizeof cap, "t = %.2f s: %d contact%s, E = %.3g J", s.time, int(s.contacts.size()),
+                      s.contacts.size() == 1 ? "" : "s", s.energy);
+        f.caption = cap;
+        f.image = c.readPixels();
+        return f;
+    }
+
+    // Energy (top) and penetration on a log scale (bottom) against time, drawn in pixel units.
+    Frame drawPlot(GlContext& gl, int ss, const SimulationResult& r, const SimulationTrace& tr, const std::vector<int>& frameSteps) const {
+        const int W = common_.image.width, H = common_.image.height;
+        CanvasOptions o;
+        o.width = W;
+        o.height = H;
+        o.supersample = ss;
+        Canvas c(gl, o);
+        c.setBackground(roleColor(Role::Background));
+        c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));  // world = pixels, y up
+        const auto P = [](double x, double y) { return Vec3(x, y, 0); };
+        const double x0 = 110, x1 = W - 40;
+        const double tMax = tr.steps.back().time;
+        const auto X = [&](double t) { return x0 + (tMax > 0 ? t / tMax : 0.0) * (x1 - x0); };
+        const LineStyle axis = lineStyle(Role::Ink, 2.0f);
+        TextStyle tick{14.0f, roleColor(Role::Ink), Anchor::Top, false, false};
+        TextStyle ytick{14.0f, roleColor(Role::Ink), Anchor::Right, false, false};
+        TextStyle heading{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true};
+        TextStyle legend{15.0f, roleColor(Role::Ink), Anchor::Left, true, false};
+
+        // Panel geometry (y up): energy on top, penetration below.
+        const double eY0 = H * 0.50, eY1 = H - 95;
+        const double pY0 = 110, pY1 = H * 0.50 - 70;
+        const auto timeAxis = [&](double y0, bool labelsOn) {
+            c.drawLine(P(x0, y0), P(x1, y0), axis);
+            const double dtTick = tMax > 4 ? 1.0 : tMax > 1.5 ? 0.5 : 0.25;
+            for (double t = 0; t <= tMax + 1e-9; t += dtTick) {
+                c.drawLine(P(X(t), y0), P(X(t), y0 - 6), axis);
+                if (labelsOn) c.drawText(P(X(t), y0 - 9), formatNumber(t), tick);
+            }
+            for (int k : frameSteps) c.drawLine(P(X(tr.steps[k].time), y0), P(X(tr.steps[k].time), y0 + 8), lineStyle(Role::Highlight, 2.0f));
+        };
+
+        // Energy panel.
+        double eLo = 0.0, eHi = 0.0;
+        for (const SimulationStep& s : tr.steps) {
+            eLo = std::min({eLo, s.kinetic, s.potential, s.energy});
+            eHi = std::max({eHi, s.kinetic, s.potential, s.energy});
+        }
+        if (!(eHi > eLo)) eHi = eLo + 1.0;
+        const auto YE = [&](double v) { return eY0 + (v - eLo) / (eHi - eLo) * (eY1 - eY0); };
+        c.drawLine(P(x0, eY0), P(x0, eY1), axis);
+        for (int i = 0; i <= 4; ++i) {
+            const double v = eLo + (eHi - eLo) * i / 4.0;
+            c.drawLine(P(x0, YE(v)), P(x1, YE(v)), lineStyle(Role::Muted, 1.0f, true));
+            c.drawText(P(x0 - 8, YE(v)), formatNumber(v), ytick);
+        }
+        timeAxis(eY0, false);
+        c.drawText(P(x0, eY1 + 12), "energy (J): kinetic, potential m g z, total", heading);
+        std::vector<Vec3> ke, pe, te;
+        for (const SimulationStep& s : tr.steps) {
+            ke.push_back(P(X(s.time), YE(s.kinetic)));
+            pe.push_back(P(X(s.time), YE(s.potential)));
+            te.push_back(P(X(s.time), YE(s.energy)));
+        }
+        c.drawPolyline(pe, false, lineStyle(Role::ShapeB, 2.5f));
+        c.drawPolyline(ke, false, lineStyle(Role::ShapeA, 2.5f));
+        c.drawPolyline(te, false, lineStyle(Role::Ink, 3.0f));
+        double lx = x1 - 300;
+        double ly = eY1 - 12;
+        const auto legendLine = [&](Role role, float w, bool dashed, const std::string& text) {
+            c.drawLine(P(lx, ly), P(lx + 36, ly), lineStyle(role, w, dashed));
+            c.drawText(P(lx + 44, ly), text, legend);
+            ly -= 24;
+        };
+        legendLine(Role::Ink, 3.0f, false, "total E = KE + PE");
+        legendLine(Role::ShapeA, 2.5f, false, "kinetic KE");
+        legendLine(Role::ShapeB, 2.5f, false, "potential PE");
+
+        // Penetration panel, log10 from 1e-10 to 1e-2 (0 is drawn at the bottom).
+        const double lLo = -10, lHi = -2;
+        const auto YP = [&](double pen) {
+            const double l = pen > 0 ? std::clamp(std::log10(pen), lLo, lHi) : lLo;
+            return pY0 + (l - lLo) / (lHi - lLo) * (pY1 - pY0);
+        };
+        c.drawLine(P(x0, pY0), P(x0, pY1), axis);
+        for (int e = int(lLo); e <= int(lHi); e += 2) {
+            const double y = YP(std::pow(10.0, e));
+            c.drawLine(P(x0, y), P(x1, y), lineStyle(Role::Muted, 1.0f, true));
+            c.drawText(P(x0 - 8, y), "1e" + std::to_string(e), ytick);
+        }
+        timeAxis(pY0, true);
+        c.drawText(P(0.5 * (x0 + x1), pY0 - 34), "time (s); orange ticks: the frames", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+        c.drawText(P(x0, pY1 + 12), "deepest vertex below the ground (log scale; ≤ 1e-10 drawn at the bottom)", heading);
+        std::vector<Vec3> before, after;
+        for (const SimulationStep& s : tr.steps) {
+            before.push_back(P(X(s.time), YP(s.penetrationBeforeCorrection)));
+            after.push_back(P(X(s.time), YP(s.maxPenetration)));
+        }
+        c.drawLine(P(x0, YP(options_.slop)), P(x1, YP(options_.slop)), lineStyle(Role::Ink, 1.5f, true));
+        c.drawPolyline(after, false, lineStyle(Role::Result, 3.0f));
+        c.drawPolyline(before, false, lineStyle(Role::Direction, 1.5f, true));  // on top: equal unless corrected
+        // Legend on the left, below the slop line: bodies in flight have no depth there.
+        lx = x0 + 24;
+        ly = YP(options_.slop) - 26;
+        legendLine(Role::Result, 3.0f, false, "after the step");
+        legendLine(Role::Direction, 1.5f, true, "before the position correction");
+        legendLine(Role::Ink, 1.5f, true, "slop (allowed depth)");
+
+        char cap[300];
+        if (r.restTime >= 0)
+            std::snprintf(cap, sizeof cap, "at rest from t = %.3g s; max depth %.2g (slop %.2g); max energy rise per step %.2g J", r.restTime,
+                          r.maxPenetration, options_.slop, r.maxEnergyIncrease);
+        else
+            std::snprintf(cap, sizeof cap, "still moving at the end; max depth %.2g (slop %.2g); max energy rise per step %.2g J",
+                          r.maxPenetration, options_.slop, r.maxEnergyIncrease);
+        drawTitleAndCaption(c, common_.title + ": energy and penetration", cap);
+        Frame f;
+        f.name = "energy";
+        f.caption = "energy and penetration vs time";
+        f.image = c.readPixels();
+        return f;
+    }
+};
+
+class DropDemo final : public Demo {
+public:
+    std::string name() const override { return "drop"; }
+    std::string description() const override {
+        return "rigid body dropped with spin onto a plane: mass properties, impulses with restitution and friction, energy and penetration";
+    }
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
+        ObjectReader r(JsonNode(json, "$", file));
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{960, 720});
+        DropInput in;
+        std::string bodyName;
+        {
+            const JsonNode b = r.get("body");
+            if (!b.isObject() || b.raw().size() != 1)
+                b.fail("expected {\"box\": {...}}, {\"tetrahedron\": {...}} or {\"icosahedron\": {...}}");
+            bodyName = b.raw().begin().key();
+            ObjectReader br(JsonNode(b.raw().begin().value(), b.path() + "." + bodyName, b.source()));
+            if (bodyName == "box") {
+                const JsonNode h = br.get("half_extents");
+                const Vec3 he = sceneSizes(h);
+                in.shape = presets::box(he);
+            } else if (bodyName == "tetrahedron" || bodyName == "icosahedron") {
+                const double rad = sceneSize(br.get("circumradius"));
+                in.shape = bodyName == "tetrahedron" ? presets::tetrahedron(rad) : presets::icosahedron(rad);
+            } else {
+                b.fail("unknown body '" + bodyName + "' (expected box, tetrahedron or icosahedron)");
+            }
+            br.finish();
+        }
+        // Physical ranges well beyond any teaching scene, and far inside what the energies (~ m v², in
+        // double) and the impulse solver can hold: density up to 10^6 (osmium is 2.2·10^4), speeds
+        // up to 10^3 m/s and rad/s, gravity up to 10^3 m/s² (100 g).
+        const auto atMost = [](const JsonNode& n, double value, double limit, const char* what) {
+            requireAtMost(n, value, limit, what, "the physical range a drop scene accepts");
+            return value;
+        };
+        if (auto d = r.find("density")) in.density = atMost(*d, d->asPositive(), kMaxDensity, "density");
+        if (auto p = r.find("position")) in.pose.position = sceneVec3(*p);
+        if (auto q = r.find("rotation")) in.pose.rotation = q->asQuat();
+        if (auto v = r.find("velocity")) in.linearVelocity = sceneVec3(*v), atMost(*v, in.linearVelocity.norm(), kMaxSpeed, "|velocity|");
+        if (auto w = r.find("angular_velocity"))
+            in.angularVelocity = sceneVec3(*w), atMost(*w, in.angularVelocity.norm(), kMaxSpeed, "|angular_velocity|");
+        in.ground = Plane{Vec3::UnitZ(), 0.0};
+        double g = 9.81;
+        if (auto gn = r.find("gravity")) g = atMost(*gn, gn->asNonNegative(), kMaxGravity, "gravity");
+        in.gravity = Vec3(0, 0, -g);
+        SimulationOptions o;
+        double duration = 3.0;
+        if (auto s = r.find("simulation")) {
+            ObjectReader sr(*s);
+            if (auto t = sr.find("time_step")) o.timeStep = t->asPositive();
+            if (auto t = sr.find("duration")) duration = t->asPositive();
+            if (auto t = sr.find("restitution")) o.solver.restitution = t->asNonNegative();
+            if (auto t = sr.find("friction")) o.solver.friction = t->asNonNegative();
+            if (auto t = sr.find("restitution_threshold")) o.solver.restitutionThreshold = t->asNonNegative();
+            if (auto t = sr.find("iterations")) o.solver.iterations = t->asInt(1, 256);
+            if (auto t = sr.find("slop")) o.slop = t->asNonNegative();
+            sr.finish();
+            if (o.solver.restitution > 1) s->fail("restitution must be in [0, 1]");
+        }
+        const double steps = std::round(duration / o.timeStep);
+        if (!(steps >= 1 && steps <= 20000)) r.node().fail("simulation: duration / time_step must give 1..20000 steps");
+        o.steps = int(steps);
+        int frameEvery = std::max(1, o.steps / 11);
+        if (auto k = r.find("frame_every")) frameEvery = k->asInt(1, 20000);
+        if (o.steps / frameEvery + 1 > kMaxFrames)
+            r.node().fail("frame_every " + std::to_string(frameEvery) + " gives " + std::to_string(o.steps / frameEvery + 1) +
+                          " frames; at most " + std::to_string(kMaxFrames));
+        Vec3 view(1.0, -1.6, 0.8);
+        if (auto v = r.find("view")) {
+            view = sceneVec3(*v);
+            if (!(view.norm() > 0)) v->fail("view direction must be non-zero");
+        }
+        r.finish();
+        if (common.image.width < 480 || common.image.height < 360) r.node().fail("drop frames need an image of at least 480 x 360");
+        // The body must start above the ground (lowest vertex at z >= 0).
+        double lowest = INFINITY;
+        for (const Vec3& v : in.shape.positions()) lowest = std::min(lowest, in.pose.apply(v).z());
+        if (!(lowest >= 0)) r.node().fail("the body starts below the ground (lowest vertex z = " + formatNumber(lowest) + ")");
+        return std::make_unique<DropScene>(std::move(common), std::move(in), o, bodyName, frameEvery, view);
+    }
+};
+
+}  // namespace
+
+const Demo& dropDemo() {
+    static const DropDemo demo;
+    return demo;
+}
+
+}  // namespace cdlab::demos

@@ -1,0 +1,518 @@
+// EPA step-through. Numbers come from core (gjkDistance + epaPenetration with their traces) or, for
+// planar scenes, from epaPenetration2d (demos/epa/epa_2d.h: core's 3D EPA reports flat input as
+// touching). This file converts both traces into one drawable form and draws them.
+//
+// Scene keys (besides the common ones and the pair keys of support_scene.h):
+//   "method": {"tolerance": eps_rel (EPA), "max_iterations": n (EPA), "gjk_tolerance": eps_rel}
+// Layers: "minkowski", "polytope", "closest", "support", "horizon", "witness", "labels", "plot".
+// Frames: "gjk" (GJK's final simplex), step_NN (per EPA iteration, at most max_step_frames),
+// "result" (penetration vector), "bounds" (plot), with "steps" a contact sheet; animation.gif.
+#include "demos/epa/epa_demo.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/epa.h"
+#include "core/gjk.h"
+#include "demos/draw/contact_sheet.h"
+#include "demos/epa/epa_2d.h"
+#include "demos/draw/figure_style.h"
+#include "demos/draw/support_scene.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+
+// The closest face / edge and its closest point: yellow, distinct from the support colour (vermillion)
+// that marks w and the faces it removes.
+Color closestColor() { return categorical(3); }
+
+const std::vector<std::string> kLayers = {"minkowski", "polytope", "closest", "support", "horizon", "witness", "labels", "plot"};
+
+/// One EPA iteration in a dimension-free form: faces are vertex-id lists (3 in 3D, 2 in 2D).
+struct PolyStep {
+    int iteration = 0;
+    std::vector<Vec3> vertices;
+    std::vector<std::vector<int>> faces;
+    int closestFace = -1;
+    Vec3 normal = Vec3::Zero(), closestPoint = Vec3::Zero();
+    double distance = 0.0;
+    Vec3 support = Vec3::Zero(), supportA = Vec3::Zero(), supportB = Vec3::Zero();
+    std::vector<int> removed;                     // indices into faces
+    std::vector<std::array<int, 2>> horizonEdges; // 3D: vertex-id edges
+    std::vector<int> horizonVertices;             // 2D: the two kept ends
+    double lower = 0.0, upper = 0.0;
+    bool terminated = false;
+};
+
+struct EpaRun {
+    GjkResult gjk;
+    EpaStatus status = EpaStatus::InvalidInput;
+    EpaTermination termination = EpaTermination::InvalidInput;
+    double depth = 0.0, lower = 0.0, upper = 0.0;
+    Vec3 normal = Vec3::UnitX(), pointA = Vec3::Zero(), pointB = Vec3::Zero();
+    int iterations = 0;
+    std::string start;
+    std::vector<PolyStep> steps;
+};
+
+std::vector<std::vector<int>> faceList(const std::vector<std::array<int, 3>>& f) {
+    std::vector<std::vector<int>> out;
+    for (const auto& t : f) out.push_back({t[0], t[1], t[2]});
+    return out;
+}
+
+class EpaScene final : public PreparedScene {
+public:
+    EpaScene(SceneCommon common, PairScene pair, EpaOptions options)
+        : PreparedScene(std::move(common)), pair_(std::move(pair)), options_(options) {}
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        const EpaRun run = compute();
+        DemoOutput out;
+        out.trace = traceJson(run);
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+
+        std::vector<Vec3> cpts;
+        for (const PolyStep& s : run.steps) {
+            cpts.insert(cpts.end(), s.vertices.begin(), s.vertices.end());
+            cpts.push_back(s.support);
+        }
+        for (int i = 0; i < run.gjk.simplex.count; ++i) cpts.push_back(run.gjk.simplex.vertex[i].w);
+        const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
+
+        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
+        for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames)) out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
+        out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -1));
+        if (common_.hasLayer("plot") && !run.steps.empty()) out.frames.push_back(drawPlot(*ctx.gl, ss, run));
+        std::vector<const Frame*> all;
+        for (const Frame& f : out.frames) all.push_back(&f);
+        if (pair_.gif) addGif(out, all, 1);
+        if (common_.steps || ctx.stepsOverride) {
+            ContactSheetOptions o;
+            o.title = common_.title + ": EPA, one iteration per frame";
+            o.cellWidth = 320;
+            o.columns = std::min<int>(3, int(all.size()));
+            out.frames.push_back(contactSheetFrame(*ctx.gl, all, common_.title, o));
+        }
+        return out;
+    }
+
+private:
+    PairScene pair_;
+    EpaOptions options_;
+
+    using Drawing = PairDrawing;
+
+    EpaRun compute() const {
+        EpaRun run;
+        run.gjk = gjkDistance(pair_.a, pair_.b, options_.gjk);
+        if (run.gjk.status == GjkStatus::InvalidInput) return run;
+        if (!run.gjk.intersect) {
+            run.status = EpaStatus::Separated;
+            run.termination = EpaTermination::NotIntersecting;
+            run.normal = run.gjk.separatingAxis;
+            run.pointA = run.gjk.pointA;
+            run.pointB = run.gjk.pointB;
+            return run;
+        }
+        // The 3D and the 2D EPA report the same outcome fields.
+        const auto copyOutcome = [](EpaRun& out, const auto& r, const std::string& start) {
+            out.status = r.status;
+            out.termination = r.termination;
+            out.depth = r.depth;
+            out.lower = r.lowerBound;
+            out.upper = r.upperBound;
+            out.normal = r.normal;
+            out.pointA = r.pointA;
+            out.pointB = r.pointB;
+            out.iterations = r.iterations;
+            out.start = start;
+        };
+        if (pair_.dimension == 3) {
+            EpaTrace t;
+            const EpaResult r = epaPenetration(pair_.a, pair_.b, run.gjk.simplex, options_, &t);
+            copyOutcome(run, r, t.start);
+            for (const EpaTraceStep& s : t.steps) {
+                PolyStep p;
+                p.iteration = s.iteration;
+                p.vertices = s.vertices;
+                p.faces = faceList(s.faces);
+                p.closestFace = s.closestFace;
+                p.normal = s.closestNormal;
+                p.closestPoint = s.closestPoint;
+                p.distance = s.closestDistance;
+                p.support = s.support;
+                p.supportA = s.supportA;
+                p.supportB = s.supportB;
+                // Removed faces come as vertex triples: find them among the live faces.
+                for (const auto& rf : s.removedFaces)
+                    for (std::size_t k = 0; k < s.faces.size(); ++k)
+                        if (s.faces[k] == rf) p.removed.push_back(int(k));
+                p.horizonEdges = s.horizon;
+                p.lower = s.lowerBound;
+                p.upper = s.upperBound;
+                p.terminated = s.terminated;
+                run.steps.push_back(std::move(p));
+            }
+        } else {
+            Epa2dTrace t;
+            const Epa2dResult r = epaPenetration2d(pair_.a, pair_.b, run.gjk.simplex, options_, &t);
+            copyOutcome(run, r, t.start);
+            for (const Epa2dStep& s : t.steps) {
+                PolyStep p;
+                p.iteration = s.iteration;
+                p.vertices = s.vertices;
+                const int n = int(s.vertices.size());
+                for (int i = 0; i < n; ++i) p.faces.push_back({i, (i + 1) % n});
+                p.closestFace = s.closestEdge;
+                p.normal = s.closestNormal;
+                p.closestPoint = s.closestPoint;
+                p.distance = s.closestDistance;
+                p.support = s.support;
+                p.supportA = s.supportA;
+                p.supportB = s.supportB;
+                p.removed = s.removedEdges;
+                if (s.horizon[0] >= 0) p.horizonVertices = {s.horizon[0], s.horizon[1]};
+                p.lower = s.lowerBound;
+                p.upper = s.upperBound;
+                p.terminated = s.terminated;
+                run.steps.push_back(std::move(p));
+            }
+        }
+        return run;
+    }
+
+    Json traceJson(const EpaRun& run) const {
+        Json t;
+        t["dimension"] = pair_.dimension;
+        t["shapes"] = {pair_.a.kindName(), pair_.b.kindName()};
+        t["method"] = pair_.dimension == 3 ? "core epaPenetration (3D)" : "epaPenetration2d (expanding polygon)";
+        Json gs = Json::array();
+        for (int i = 0; i < run.gjk.simplex.count; ++i) gs.push_back(vec3Json(run.gjk.simplex.vertex[i].w));
+        t["gjk"] = {{"status", statusName(run.gjk.status)}, {"termination", terminationName(run.gjk.termination)},
+                    {"iterations", run.gjk.iterations}, {"distance", run.gjk.distance}, {"simplex", gs}};
+        t["status"] = statusName(run.status);
+        t["termination"] = terminationName(run.termination);
+        t["start"] = run.start;
+        t["depth"] = run.depth;
+        t["normal"] = vec3Json(run.normal);
+        t["point_a"] = vec3Json(run.pointA);
+        t["point_b"] = vec3Json(run.pointB);
+        t["iterations"] = run.iterations;
+        t["lower_bound"] = run.lower;
+        t["upper_bound"] = run.upper;
+        Json steps = Json::array();
+        for (const PolyStep& s : run.steps) {
+            Json verts = Json::array();
+            for (const Vec3& v : s.vertices) verts.push_back(vec3Json(v));
+            Json horizon = Json::array();
+            for (const auto& e : s.horizonEdges) horizon.push_back({e[0], e[1]});
+            for (int v : s.horizonVertices) horizon.push_back(v);
+            steps.push_back({{"iteration", s.iteration},
+                             {"vertices", verts},
+                             {"faces", s.faces},
+                             {"closest_face", s.closestFace},
+                             {"closest_normal", vec3Json(s.normal)},
+                             {"closest_distance", s.distance},
+                             {"closest_point", vec3Json(s.closestPoint)},
+                             {"support", vec3Json(s.support)},
+                             {"support_a", vec3Json(s.supportA)},
+                             {"support_b", vec3Json(s.supportB)},
+                             {"removed_faces", s.removed},
+                             {"horizon", horizon},
+                             {"lower_bound", s.lower},
+                             {"upper_bound", s.upper},
+                             {"terminated", s.terminated}});
+        }
+        t["steps"] = steps;
+        return t;
+    }
+
+    // Polytope of a step: faces shaded, removed ones in the support colour, the closest highlighted.
+    void drawPolytope(Canvas& cs, const Drawing& d, const PolyStep& s, bool showStep) const {
+        const bool labels = common_.hasLayer("labels");
+        std::vector<bool> removed(s.faces.size(), false);
+        if (showStep)
+            for (int k : s.removed) removed[k] = true;
+        if (d.planar) {
+            cs.drawPolygon(s.vertices, roleColor(Role::Simplex).withAlpha(0.30f));
+            for (std::size_t k = 0; k < s.faces.size(); ++k) {
+                const Vec3 &p = s.vertices[s.faces[k][0]], &q = s.vertices[s.faces[k][1]];
+                if (showStep && int(k) == s.closestFace && common_.hasLayer("closest"))
+                    {
+                    LineStyle ls = lineStyle(Role::Ink, 7.0f, false, true);
+                    ls.color = closestColor().scaled(0.85f);
+                    cs.drawLine(p, q, ls);
+                }
+                else if (removed[k] && common_.hasLayer("horizon"))
+                    cs.drawLine(p, q, lineStyle(Role::Support, 4.0f, true, true));
+                else
+                    cs.drawLine(p, q, lineStyle(Role::Simplex, 3.0f, false, true));
+                if (removed[k] && int(k) == s.closestFace && common_.hasLayer("horizon"))
+                    cs.drawLine(p, q, lineStyle(Role::Support, 2.0f, true, true));
+            }
+            if (showStep && common_.hasLayer("horizon"))
+                for (int v : s.horizonVertices) {
+                    cs.drawLine(s.vertices[v], s.support, lineStyle(Role::Direction, 2.5f, true, true));
+                    cs.drawPoint(s.vertices[v], 9.0f, roleColor(Role::Direction), true, 2.0f, roleColor(Role::Ink));
+                }
+        } else {
+            std::vector<Eigen::Vector3i> live, gone, closest;
+            for (std::size_t k = 0; k < s.faces.size(); ++k) {
+                Eigen::Vector3i t(s.faces[k][0], s.faces[k][1], s.faces[k][2]);
+                if (showStep && int(k) == s.closestFace && common_.hasLayer("closest")) closest.push_back(t);
+                else if (removed[k] && common_.hasLayer("horizon")) gone.push_back(t);
+                else live.push_back(t);
+            }
+            cs.drawMesh(s.vertices, live, roleColor(Role::Simplex).withAlpha(0.30f), true);
+            if (!gone.empty()) cs.drawMesh(s.vertices, gone, roleColor(Role::Support).withAlpha(0.45f), true);
+            if (!closest.empty()) cs.drawMesh(s.vertices, closest, closestColor().withAlpha(0.8f), true);
+            LineStyle edge = lineStyle(Role::Simplex, 1.5f);
+            edge.color = roleColor(Role::Simplex).scaled(0.6f);
+            for (const auto& f : s.faces)
+                for (int e = 0; e < 3; ++e)
+                    if (f[e] < f[(e + 1) % 3]) cs.drawLine(s.vertices[f[e]], s.vertices[f[(e + 1) % 3]], edge);
+            if (showStep && common_.hasLayer("horizon"))
+                for (const auto& e : s.horizonEdges) cs.drawLine(s.vertices[e[0]], s.vertices[e[1]], lineStyle(Role::Direction, 5.0f, false, true));
+        }
+        if (showStep && common_.hasLayer("closest")) {
+            cs.drawLine(Vec3::Zero(), s.closestPoint, lineStyle(Role::Ink, 2.0f, true, true));
+            cs.drawPoint(s.closestPoint, 7.0f, closestColor(), true, 1.5f, roleColor(Role::Ink));
+            if (labels) drawLabelAway(cs, s.closestPoint, Vec3::Zero(), "closest", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 10.0);
+        }
+        if (showStep && common_.hasLayer("support")) {
+            const double h = s.normal.dot(s.support);
+            const Vec3 tip = s.closestPoint + s.normal * std::max(h - s.distance, 0.25 * d.cRadius);
+            cs.drawArrow(s.closestPoint, tip, lineStyle(Role::Direction, 3.0f, false, true));
+            cs.drawPoint(s.support, 10.0f, roleColor(Role::Support), true, 2.0f, roleColor(Role::Ink));
+            if (labels) drawLabelAway(cs, s.support, d.cCenter, "w", labelStyle(Role::Ink, 20.0f), 10.0);
+        }
+    }
+
+    Frame drawFrame(GlContext& gl, int ss, const Drawing& d, const EpaRun& run, int index) const {
+        const TwoPanelLayout layout{common_.image.width, common_.image.height};
+        CanvasOptions po;
+        po.width = layout.panelWidth();
+        po.height = layout.panelHeight();
+        po.supersample = ss;
+        const bool labels = common_.hasLayer("labels");
+        const bool isGjk = index == -2, isResult = index == -1;
+        const PolyStep* s = index >= 0 ? &run.steps[index] : nullptr;
+        const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
+
+        Canvas world(gl, po);
+        world.setBackground(roleColor(Role::Background));
+        world.setCamera(panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
+        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeA).scaled(0.6f), 2.0f);
+        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeB).scaled(0.6f), 2.0f);
+        if (labels) {
+            world.drawText(d.a.center, "A", labelStyle(Role::ShapeA, 26.0f));
+            world.drawText(d.b.center, "B", labelStyle(Role::ShapeB, 26.0f));
+        }
+        if (s && common_.hasLayer("support")) {
+            world.drawPoint(s->supportA, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+            world.drawPoint(s->supportB, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+            if (labels) {
+                TextStyle ts{16.0f, roleColor(Role::Support).scaled(0.7f), Anchor::Center, true, true};
+                drawLabelAway(world, s->supportA, d.a.center, "s_A(n)", ts);
+                drawLabelAway(world, s->supportB, d.b.center, "s_B(−n)", ts);
+            }
+        }
+        if (isResult && common_.hasLayer("witness")) {
+            world.drawPoint(run.pointA, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+            world.drawPoint(run.pointB, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+            if (penetrating && run.depth > 0)
+                world.drawArrow(run.pointB, run.pointA, lineStyle(Role::Result, 3.5f, false, true));
+            else if (penetrating)
+                world.drawArrow(run.pointA, run.pointA + run.normal * 0.3 * d.wRadius, lineStyle(Role::Direction, 3.0f, false, true));
+            if (labels) {
+                TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                const bool apart = (run.pointA - run.pointB).norm() > 1e-3 * d.wRadius;
+                drawLabelAway(world, run.pointA, apart ? run.pointB : d.a.center, "p_A", ts);
+                drawLabelAway(world, run.pointB, apart ? run.pointA : d.b.center, "p_B", ts);
+            }
+        }
+        drawPanelHeading(world, "World space", isResult ? (run.status == EpaStatus::Separated ? "separated: closest points"
+                                                                                             : "witness points, p_A − p_B = depth · n")
+                                                        : s ? "support points of the new vertex" : "");
+
+        Canvas cs(gl, po);
+        cs.setBackground(roleColor(Role::Background));
+        cs.setCamera(common_.camera && !d.planar ? *common_.camera : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+        if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.18f : 0.12f, roleColor(Role::Minkowski).scaled(0.75f), 1.0f);
+        drawOrigin(cs, 0.06 * d.cRadius, d.planar);
+        std::string sub;
+        if (isGjk) {
+            std::vector<Vec3> w;
+            for (int i = 0; i < run.gjk.simplex.count; ++i) w.push_back(run.gjk.simplex.vertex[i].w);
+            if (w.size() == 3) cs.drawPolygon(w, roleColor(Role::Simplex).withAlpha(0.35f));
+            if (w.size() == 4)
+                cs.drawMesh(w, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
+                            roleColor(Role::Simplex).withAlpha(0.3f), true);
+            for (std::size_t i = 0; i < w.size(); ++i) {
+                for (std::size_t j = i + 1; j < w.size(); ++j) cs.drawLine(w[i], w[j], lineStyle(Role::Simplex, 4.0f, false, true));
+                cs.drawPoint(w[i], 8.0f, roleColor(Role::Simplex), true, 1.5f, roleColor(Role::Ink));
+                if (labels) drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)), labelStyle(Role::Ink, 20.0f), 12.0);
+            }
+            sub = "GJK's terminal simplex (" + std::to_string(w.size()) + " vertices): " + statusName(run.gjk.status);
+        } else if (s) {
+            drawPolytope(cs, d, *s, true);
+            sub = "closest " + std::string(d.planar ? "edge" : "face") + " (yellow) at distance " + formatNumber(s->distance) +
+                  "; " + std::to_string(s->removed.size()) + (d.planar ? " edge(s)" : " face(s)") + " visible from w (red)";
+            if (s->terminated) sub = "converged: the closest " + std::string(d.planar ? "edge" : "face") + " is on the boundary";
+        } else {
+            if (!run.steps.empty()) drawPolytope(cs, d, run.steps.back(), false);
+            if (penetrating && run.depth > 0) {
+                const Vec3 pv = run.depth * run.normal;
+                cs.drawArrow(Vec3::Zero(), pv, lineStyle(Role::Result, 4.0f, false, true));
+                if (labels) drawLabelAway(cs, pv, Vec3::Zero(), "depth · n", TextStyle{18.0f, roleColor(Role::Result).scaled(0.7f), Anchor::Center, true, true}, 8.0);
+            } else if (penetrating) {
+                cs.drawArrow(Vec3::Zero(), run.normal * 0.3 * d.cRadius, lineStyle(Role::Direction, 3.0f, false, true));
+            }
+            sub = run.status == EpaStatus::Separated ? "GJK: the origin is outside A − B (no penetration)"
+                  : run.depth > 0 ? "penetration vector: origin to the nearest boundary point"
+                                  : "origin on the boundary: depth 0, contact normal n";
+        }
+        drawPanelHeading(cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""), sub);
+
+        std::vector<std::string> lines;
+        Frame f;
+        if (isGjk) {
+            lines.push_back("GJK: " + std::string(statusName(run.gjk.status)) + " after " + std::to_string(run.gjk.iterations) +
+                            " iterations (" + terminationName(run.gjk.termination) + ")" +
+                            (run.gjk.intersect ? "; EPA starts from this simplex (" + run.start + ")" : ", distance " + formatNumber(run.gjk.distance)));
+            lines.push_back("EPA grows a polytope inside A − B around the origin until its face nearest the origin lies on the boundary.");
+            f.name = "gjk";
+            f.caption = std::string("GJK: ") + statusName(run.gjk.status) + ", " + std::to_string(run.gjk.simplex.count) + "-vertex simplex";
+        } else if (s) {
+            const double h = s->normal.dot(s->support);
+            lines.push_back("EPA iteration " + std::to_string(s->iteration) + ": " + std::to_string(s->faces.size()) +
+                            (d.planar ? " edges" : " faces") + ", closest at distance " + formatNumber(s->distance) + ", n = " +
+                            formatPoint(s->normal) + ", w = s_C(n) = " + formatPoint(s->support));
+            lines.push_back("bounds " + formatNumber(s->lower) + " ≤ depth ≤ " + formatNumber(s->upper) + ";  test n·w − d = " +
+                            formatNumber(h - s->distance) + (s->terminated ? "  → stop: " + std::string(terminationName(run.termination))
+                                                                           : "  → remove the visible " + std::string(d.planar ? "edges" : "faces") +
+                                                                                 ", connect the horizon to w"));
+            f.name = stepFrameName(s->iteration);
+            f.caption = "it " + std::to_string(s->iteration) + ": d = " + formatNumber(s->distance) + ", gap " + formatNumber(h - s->distance) +
+                        (s->terminated ? " (stop)" : "");
+        } else {
+            lines.push_back(std::string("Result: ") + statusName(run.status) + " (" + terminationName(run.termination) + ") after " +
+                            std::to_string(run.iterations) + " EPA iterations: depth " + formatNumber(run.depth) + ", normal " +
+                            formatPoint(run.normal));
+            lines.push_back("p_A = " + formatPoint(run.pointA) + ",  p_B = " + formatPoint(run.pointB) + ";  bounds " +
+                            formatNumber(run.lower) + " ≤ depth ≤ " + formatNumber(run.upper));
+            f.name = "result";
+            f.caption = std::string("result: ") + statusName(run.status) + ", depth " + formatNumber(run.depth);
+        }
+        f.image = composeTwoPanel(gl, layout, ss, common_.title, world.readPixels(), cs.readPixels(), lines);
+        return f;
+    }
+
+    // Lower and upper depth bounds against the iteration, drawn with the 2D canvas in pixel units.
+    Frame drawPlot(GlContext& gl, int ss, const EpaRun& run) const {
+        const int W = common_.image.width, H = common_.image.height;
+        CanvasOptions o;
+        o.width = W;
+        o.height = H;
+        o.supersample = ss;
+        Canvas c(gl, o);
+        c.setBackground(roleColor(Role::Background));
+        c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));  // world = pixels, y up
+        const double x0 = 110, x1 = W - 60, y0 = 125, y1 = H - 100;
+        double lo = INFINITY, hi = -INFINITY;
+        for (const PolyStep& s : run.steps) {
+            lo = std::min({lo, s.lower, s.upper});
+            hi = std::max({hi, s.lower, s.upper});
+        }
+        if (!(hi > lo)) hi = lo + 1e-9 + std::abs(lo) * 1e-6;
+        const double pad = 0.06 * (hi - lo);
+        lo -= pad;
+        hi += pad;
+        const int n = int(run.steps.size());
+        auto X = [&](double it) { return n > 1 ? x0 + (it - 1) / (n - 1) * (x1 - x0) : 0.5 * (x0 + x1); };
+        auto Y = [&](double v) { return y0 + (v - lo) / (hi - lo) * (y1 - y0); };
+        auto P = [](double x, double y) { return Vec3(x, y, 0); };
+        const LineStyle axis = lineStyle(Role::Ink, 2.0f);
+        c.drawLine(P(x0, y0), P(x1, y0), axis);
+        c.drawLine(P(x0, y0), P(x0, y1), axis);
+        TextStyle tick{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
+        const int xStep = std::max(1, n / 12);
+        for (int i = 1; i <= n; i += xStep) {
+            c.drawLine(P(X(i), y0), P(X(i), y0 - 6), axis);
+            c.drawText(P(X(i), y0 - 10), std::to_string(i), tick);
+        }
+        TextStyle ytick{15.0f, roleColor(Role::Ink), Anchor::Right, false, false};
+        for (int k = 0; k <= 5; ++k) {
+            const double v = lo + (hi - lo) * k / 5.0;
+            c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 1.0f, true));
+            c.drawText(P(x0 - 10, Y(v)), formatNumber(v), ytick);
+        }
+        c.drawText(P(0.5 * (x0 + x1), y0 - 40), "EPA iteration", TextStyle{17.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+        c.drawText(P(x0, y1 + 14), "penetration depth bounds", TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
+        std::vector<Vec3> lower, upper;
+        for (const PolyStep& s : run.steps) {
+            lower.push_back(P(X(s.iteration), Y(s.lower)));
+            upper.push_back(P(X(s.iteration), Y(s.upper)));
+        }
+        c.drawPolyline(upper, false, lineStyle(Role::ShapeB, 3.0f));
+        c.drawPolyline(lower, false, lineStyle(Role::ShapeA, 3.0f));
+        for (const Vec3& p : upper) c.drawPoint(p, 5.0f, roleColor(Role::ShapeB));
+        for (const Vec3& p : lower) c.drawPoint(p, 5.0f, roleColor(Role::ShapeA));
+        // Legend, top right.
+        const double lx = x1 - 330, ly = y1 - 10;
+        c.drawLine(P(lx, ly), P(lx + 40, ly), lineStyle(Role::ShapeB, 3.0f));
+        c.drawText(P(lx + 50, ly), "upper bound min n·s_C(n)", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+        c.drawLine(P(lx, ly - 28), P(lx + 40, ly - 28), lineStyle(Role::ShapeA, 3.0f));
+        c.drawText(P(lx + 50, ly - 28), "lower bound: closest face distance", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+        drawTitleAndCaption(c, common_.title + ": depth bounds per iteration",
+                            "final depth " + formatNumber(run.depth) + " (" + terminationName(run.termination) + "); the gap closes as the polytope reaches the boundary of A − B");
+        Frame f;
+        f.name = "bounds";
+        f.caption = "depth bounds vs iteration";
+        f.image = c.readPixels();
+        return f;
+    }
+};
+
+class EpaDemo final : public Demo {
+public:
+    std::string name() const override { return "epa"; }
+    std::string description() const override {
+        return "EPA step by step after GJK: expanding polytope, closest face, horizon, penetration vector, depth bounds; 3D and 2D";
+    }
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
+        ObjectReader r(JsonNode(json, "$", file));
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1280, 640});
+        PairScene pair = readPairScene(r);
+        EpaOptions options;
+        if (auto m = r.find("method")) {
+            ObjectReader mr(*m);
+            if (auto t = mr.find("tolerance")) options.relativeTolerance = t->asPositive();
+            if (auto n = mr.find("max_iterations")) options.maxIterations = n->asInt(1, 120);
+            if (auto g = mr.find("gjk_tolerance")) options.gjk.relativeTolerance = g->asPositive();
+            mr.finish();
+        }
+        r.finish();
+        if (common.image.width < 320 || common.image.height < 240)
+            r.node().fail("epa frames need an image of at least 320 x 240");
+        return std::make_unique<EpaScene>(std::move(common), std::move(pair), options);
+    }
+};
+
+}  // namespace
+
+const Demo& epaDemo() {
+    static const EpaDemo demo;
+    return demo;
+}
+
+}  // namespace cdlab::demos

@@ -1,0 +1,318 @@
+// GJK step-through (Gilbert, Johnson, Keerthi 1988, as in van den Bergen, "Collision Detection in
+// Interactive 3D Environments" §4.3, and Ericson, Real-Time Collision Detection §9.5). Every number
+// drawn comes from core's GjkTrace (core/gjk.h): this file computes only drawing geometry (the hull
+// of A − B, cameras).
+//
+// Scene keys (besides the common ones in scene.h and the pair keys of support_scene.h):
+//   "method": {"solver": "signed_volumes" | "johnson", "tolerance": eps_rel, "max_iterations": n}
+// Layers: "minkowski" (A − B), "simplex", "direction", "support", "witness", "labels".
+// Frames: step_NN (one per traced iteration, at most max_step_frames), "result", and with "steps"
+// a contact sheet; plus animation.gif (files) and the JSON trace.
+#include "demos/gjk/gjk_demo.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/gjk.h"
+#include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_style.h"
+#include "demos/draw/support_scene.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+
+const std::vector<std::string> kLayers = {"minkowski", "simplex", "direction", "support", "witness", "labels"};
+
+// What a kept sub-simplex of `letters` vertices is; a full simplex (dimension + 1 vertices) only
+// survives the reduction when it holds the origin.
+std::string regionKind(std::size_t letters, int dimension) {
+    if (int(letters) == dimension + 1) return dimension == 2 ? "triangle: origin inside" : "tetrahedron: origin inside";
+    static const char* kKind[4] = {"", "vertex", "edge", "face"};
+    return kKind[std::min<std::size_t>(letters, 3)];
+}
+
+Json vertexJson(const GjkVertex& v) { return {{"w", vec3Json(v.w)}, {"a", vec3Json(v.a)}, {"b", vec3Json(v.b)}}; }
+
+// Slot letter -> index ("ABD" -> 0, 1, 3).
+std::vector<int> regionSlots(const std::string& region) {
+    std::vector<int> out;
+    for (char c : region)
+        if (c >= 'A' && c <= 'D') out.push_back(c - 'A');
+    return out;
+}
+
+class GjkScene final : public PreparedScene {
+public:
+    GjkScene(SceneCommon common, PairScene pair, GjkOptions options)
+        : PreparedScene(std::move(common)), pair_(std::move(pair)), options_(options) {}
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        GjkTrace trace;
+        const GjkResult r = gjkDistance(pair_.a, pair_.b, options_, &trace);
+        DemoOutput out;
+        out.trace = traceJson(r, trace);
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+
+        // Configuration-space framing: A − B (or the simplices, without it) and the origin.
+        std::vector<Vec3> cpts;
+        for (const GjkTraceStep& s : trace.steps) {
+            for (int i = 0; i < s.simplexCount; ++i) cpts.push_back(s.simplex[i].w);
+            cpts.push_back(s.support.w);
+        }
+        const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
+
+        const int supersample = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        for (int i : framedSteps(int(trace.steps.size()), pair_.maxStepFrames))
+            out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, i, r));
+        out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, -1, r));
+        std::vector<const Frame*> all;
+        for (const Frame& f : out.frames) all.push_back(&f);
+        if (pair_.gif) addGif(out, all, 1);
+        if (common_.steps || ctx.stepsOverride) {
+            ContactSheetOptions o;
+            o.title = common_.title + ": GJK, one iteration per frame";
+            o.cellWidth = 320;
+            o.columns = std::min<int>(3, int(all.size()));
+            out.frames.push_back(contactSheetFrame(*ctx.gl, all, common_.title, o));
+        }
+        return out;
+    }
+
+private:
+    PairScene pair_;
+    GjkOptions options_;
+
+    using Drawing = PairDrawing;
+
+    Json traceJson(const GjkResult& r, const GjkTrace& trace) const {
+        Json t;
+        t["dimension"] = pair_.dimension;
+        t["shapes"] = {pair_.a.kindName(), pair_.b.kindName()};
+        t["solver"] = solverName(options_.solver);
+        t["status"] = statusName(r.status);
+        t["termination"] = terminationName(r.termination);
+        t["distance"] = r.distance;
+        t["point_a"] = vec3Json(r.pointA);
+        t["point_b"] = vec3Json(r.pointB);
+        t["separating_axis"] = vec3Json(r.separatingAxis);
+        t["iterations"] = r.iterations;
+        t["lower_bound"] = r.lowerBound;
+        t["upper_bound"] = r.upperBound;
+        Json fs = Json::array();
+        for (int i = 0; i < r.simplex.count; ++i) fs.push_back(vertexJson(r.simplex.vertex[i]));
+        t["final_simplex"] = fs;
+        Json steps = Json::array();
+        for (const GjkTraceStep& s : trace.steps) {
+            Json simplex = Json::array();
+            for (int i = 0; i < s.simplexCount; ++i) simplex.push_back(vertexJson(s.simplex[i]));
+            Json lambda = Json::array();
+            for (std::size_t k = 0; k < s.region.size(); ++k) lambda.push_back(s.lambda[k]);
+            steps.push_back({{"iteration", s.iteration},
+                             {"simplex", simplex},
+                             {"direction", vec3Json(s.direction)},
+                             {"support", vertexJson(s.support)},
+                             {"region", s.region},
+                             {"lambda", lambda},
+                             {"v", vec3Json(s.v)},
+                             {"point_a", vec3Json(s.pointA)},
+                             {"point_b", vec3Json(s.pointB)},
+                             {"lower_bound", s.lowerBound},
+                             {"upper_bound", s.upperBound},
+                             {"gap_test", s.gapTest},
+                             {"terminated", s.terminated}});
+        }
+        t["steps"] = steps;
+        return t;
+    }
+
+    Frame drawStep(GlContext& gl, int supersample, const Drawing& d, const GjkTrace& trace, int index,
+                   const GjkResult& r) const {
+        const TwoPanelLayout layout{common_.image.width, common_.image.height};
+        CanvasOptions po;
+        po.width = layout.panelWidth();
+        po.height = layout.panelHeight();
+        po.supersample = supersample;
+        const bool labels = common_.hasLayer("labels");
+        const GjkTraceStep* s = index >= 0 ? &trace.steps[index] : nullptr;
+        const bool touching = r.status == GjkStatus::Intersecting;
+
+        // ---- world panel
+        Canvas world(gl, po);
+        world.setBackground(roleColor(Role::Background));
+        world.setCamera(panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
+        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeA).scaled(0.6f), 2.0f);
+        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeB).scaled(0.6f), 2.0f);
+        if (labels) {
+            world.drawText(d.a.center, "A", labelStyle(Role::ShapeA, 26.0f));
+            world.drawText(d.b.center, "B", labelStyle(Role::ShapeB, 26.0f));
+        }
+        const Vec3 pa = s ? s->pointA : r.pointA, pb = s ? s->pointB : r.pointB;
+        if (common_.hasLayer("witness")) {
+            world.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
+            world.drawPoint(pa, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+            world.drawPoint(pb, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+            if (labels) {
+                TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                const bool apart = (pa - pb).norm() > 1e-3 * d.wRadius;
+                drawLabelAway(world, pa, apart ? pb : d.a.center, "p_A", ts);
+                drawLabelAway(world, pb, apart ? pa : d.b.center, "p_B", ts);
+            }
+        }
+        if (s && common_.hasLayer("support")) {
+            world.drawPoint(s->support.a, 6.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+            world.drawPoint(s->support.b, 6.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+            if (labels) {
+                TextStyle ts{16.0f, roleColor(Role::Support).scaled(0.7f), Anchor::Center, true, true};
+                drawLabelAway(world, s->support.a, d.a.center, "s_A(d)", ts);
+                drawLabelAway(world, s->support.b, d.b.center, "s_B(−d)", ts);
+            }
+        }
+        drawPanelHeading(world, "World space", s ? "witness points of the kept simplex" : "closest points");
+
+        // ---- configuration space panel
+        Canvas cs(gl, po);
+        cs.setBackground(roleColor(Role::Background));
+        cs.setCamera(common_.camera && !d.planar ? *common_.camera
+                                                : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+        if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.22f : 0.18f, roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
+        drawOrigin(cs, 0.06 * d.cRadius, d.planar);
+
+        // The simplex: W ∪ {w} dashed, the kept sub-simplex solid and filled.
+        std::vector<Vec3> w;
+        std::vector<int> kept;
+        if (s) {
+            for (int i = 0; i < s->simplexCount; ++i) w.push_back(s->simplex[i].w);
+            kept = regionSlots(s->region);
+        } else {
+            for (int i = 0; i < r.simplex.count; ++i) {
+                w.push_back(r.simplex.vertex[i].w);
+                kept.push_back(i);
+            }
+        }
+        if (common_.hasLayer("simplex")) {
+            for (std::size_t i = 0; i < w.size(); ++i)
+                for (std::size_t j = i + 1; j < w.size(); ++j) cs.drawLine(w[i], w[j], lineStyle(Role::Muted, 2.0f, true, true));
+            std::vector<Vec3> kv;
+            for (int k : kept) kv.push_back(w[k]);
+            if (kv.size() == 3) cs.drawPolygon(kv, roleColor(Role::Simplex).withAlpha(0.35f));
+            if (kv.size() == 4)
+                cs.drawMesh(kv, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
+                            roleColor(Role::Simplex).withAlpha(0.3f), true);
+            for (std::size_t i = 0; i < kv.size(); ++i)
+                for (std::size_t j = i + 1; j < kv.size(); ++j) cs.drawLine(kv[i], kv[j], lineStyle(Role::Simplex, 4.0f, false, true));
+            for (std::size_t i = 0; i < w.size(); ++i) {
+                const bool isKept = std::find(kept.begin(), kept.end(), int(i)) != kept.end();
+                cs.drawPoint(w[i], isKept ? 8.0f : 6.0f, isKept ? roleColor(Role::Simplex) : roleColor(Role::Muted), true, 1.5f,
+                             roleColor(Role::Ink));
+                if (labels) {
+                    TextStyle ts{20.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                    const bool isNew = s && int(i) + 1 == s->simplexCount && s->simplex[i].w == s->support.w;
+                    drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)) + (isNew ? " = w" : ""), ts, 12.0);
+                }
+            }
+        }
+        const double arrowLen = 0.35 * d.cRadius;
+        if (s && common_.hasLayer("direction") && s->direction.norm() > 0) {
+            const Vec3 tip = s->direction.normalized() * arrowLen;
+            cs.drawArrow(Vec3::Zero(), tip, lineStyle(Role::Direction, 3.0f, false, true));
+            if (labels) {
+                TextStyle ts{18.0f, roleColor(Role::Direction).scaled(0.8f), Anchor::Center, true, true};
+                drawLabelAway(cs, tip, Vec3::Zero(), "d = −v", ts, 8.0);
+            }
+        }
+        if (s && common_.hasLayer("support")) {
+            cs.drawPoint(s->support.w, 10.0f, roleColor(Role::Support), true, 2.0f, roleColor(Role::Ink));
+        }
+        // v: the closest point of the kept simplex (after this iteration's reduction).
+        const Vec3 v = s ? s->v : Vec3(r.pointA - r.pointB);
+        if (common_.hasLayer("witness") && v.norm() > 1e-12 * d.cRadius) {
+            cs.drawLine(Vec3::Zero(), v, lineStyle(Role::Result, 2.5f, false, true));
+            cs.drawPoint(v, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+            if (labels) {
+                TextStyle ts{18.0f, roleColor(Role::Result).scaled(0.7f), Anchor::Center, true, true};
+                drawLabelAway(cs, v, d.cCenter, "v", ts, 10.0);
+            }
+        }
+        std::string sub;
+        if (s) {
+            sub = "kept: region " + s->region + " (" + regionKind(s->region.size(), pair_.dimension) + ")";
+            // Converged / duplicate support: the loop stopped before reducing W ∪ {w}.
+            if (s->terminated && trace.termination != GjkTermination::OriginInSimplex)
+                sub = std::string("loop ends here (") + terminationName(trace.termination) + "): simplex not reduced";
+        } else {
+            sub = touching ? "origin inside the simplex: intersecting" : "final simplex";
+        }
+        drawPanelHeading(cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""),
+                         sub);
+
+        // ---- captions
+        std::vector<std::string> lines;
+        Frame f;
+        if (s) {
+            const double vv = s->upperBound * s->upperBound;
+            std::string stop = s->terminated ? std::string("stop: ") + terminationName(trace.termination) : "continue";
+            lines.push_back("Iteration " + std::to_string(s->iteration) + ": w = s_A(d) − s_B(−d) = " + formatPoint(s->support.w) +
+                            ", simplex {" + std::string("ABCD").substr(0, s->simplexCount) + "} → region " + s->region +
+                            ", |v| = " + formatNumber(s->v.norm()));
+            lines.push_back("bounds " + formatNumber(s->lowerBound) + " ≤ distance ≤ " + formatNumber(s->upperBound) +
+                            ";  test |v|² − v·w = " + formatNumber(s->gapTest) + (s->gapTest <= options_.relativeTolerance * vv ? " ≤ " : " > ") +
+                            "ε|v|² = " + formatNumber(options_.relativeTolerance * vv) + ":  " + stop);
+            f.name = stepFrameName(s->iteration);
+            f.caption = "it " + std::to_string(s->iteration) + ": region " + s->region + ", |v| " + formatNumber(s->v.norm()) +
+                        (s->terminated ? " (stop)" : "");
+        } else {
+            lines.push_back(std::string("Result: ") + statusName(r.status) + " after " + std::to_string(r.iterations) +
+                            " iterations (" + terminationName(r.termination) + "), distance " + formatNumber(r.distance));
+            lines.push_back(touching ? "the terminal simplex contains the origin: feed it to EPA for the penetration depth"
+                                     : "p_A = " + formatPoint(r.pointA) + ",  p_B = " + formatPoint(r.pointB) +
+                                           ",  bounds " + formatNumber(r.lowerBound) + " ≤ d ≤ " + formatNumber(r.upperBound));
+            f.name = "result";
+            f.caption = std::string("result: ") + statusName(r.status) + ", distance " + formatNumber(r.distance);
+        }
+        f.image = composeTwoPanel(gl, layout, supersample, common_.title, world.readPixels(), cs.readPixels(), lines);
+        return f;
+    }
+};
+
+class GjkDemo final : public Demo {
+public:
+    std::string name() const override { return "gjk"; }
+    std::string description() const override {
+        return "GJK step by step: world space and configuration space (A − B, simplex, direction, support point), 3D and 2D";
+    }
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
+        ObjectReader r(JsonNode(json, "$", file));
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1280, 640});
+        PairScene pair = readPairScene(r);
+        GjkOptions options;
+        if (auto m = r.find("method")) {
+            ObjectReader mr(*m);
+            if (auto s = mr.find("solver"))
+                options.solver = s->asEnum({"signed_volumes", "johnson"}) == "johnson" ? SimplexSolver::Johnson
+                                                                                       : SimplexSolver::SignedVolumes;
+            if (auto t = mr.find("tolerance")) options.relativeTolerance = t->asPositive();
+            if (auto n = mr.find("max_iterations")) options.maxIterations = n->asInt(1, 1000);
+            mr.finish();
+        }
+        r.finish();
+        if (common.image.width < 320 || common.image.height < 240)
+            r.node().fail("gjk frames need an image of at least 320 x 240");
+        return std::make_unique<GjkScene>(std::move(common), std::move(pair), options);
+    }
+};
+
+}  // namespace
+
+const Demo& gjkDemo() {
+    static const GjkDemo demo;
+    return demo;
+}
+
+}  // namespace cdlab::demos

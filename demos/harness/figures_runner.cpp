@@ -1,0 +1,332 @@
+// `cdlab figures`: render scenes into out/figures/<demo>/<scene>/ with a content-hash cache, an
+// optional per-scene profile, and one static gallery page out/figures/index.html.
+//
+// Cache: each scene folder holds manifest.json with a key = FNV-1a over (scene file bytes, the
+// options that change pixels, the cdlab executable's bytes). A scene whose key matches and whose
+// files all exist is skipped; --force renders everything. Changing the code changes the
+// executable, so every scene re-renders after a rebuild that changed anything.
+//
+// What a run may delete: only files that the scene folder's previous manifest lists (cdlab wrote
+// them) and this run did not write again. Folders come from a checked scene name
+// (sceneOutputDir), so no scene can point a run at out/ itself or outside it. Each scene's files
+// are staged and renamed together under an flock() on the scene folder, so two runs into one
+// out/ both succeed and a failed scene keeps its previous complete files.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <utility>
+
+#include "demos/catalog/catalog.h"
+#include "demos/harness/gallery.h"
+#include "demos/harness/scene_runner.h"
+#include "render/canvas.h"
+#include "render/image.h"
+
+namespace cdlab::demos {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
+    for (unsigned char c : bytes) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+std::string readBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// Hash of the running program: any code change re-renders every scene.
+std::uint64_t executableHash() {
+    static const std::uint64_t h = fnv1a(readBytes("/proc/self/exe"));
+    return h;
+}
+
+// From the bytes read once at validation: a scene given as a pipe (`<(cat scene.json)`) is not
+// opened twice.
+std::string cacheKey(const std::string& sceneBytes, const RunnerOptions& o) {
+    std::uint64_t h = fnv1a(sceneBytes, executableHash());
+    h = fnv1a("scale=" + std::to_string(o.scale) + ";steps=" + std::to_string(o.steps), h);
+    char buf[20];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+bool pathExists(const fs::path& p) {
+    std::error_code ec;
+    return fs::symlink_status(p, ec).type() != fs::file_type::not_found;
+}
+
+// A cached scene: a readable manifest with this key whose files are all there. A manifest that does
+// not read is not trusted; the write step reports it (once) and replaces it.
+bool cacheValid(const fs::path& dir, const std::string& key) {
+    if (!pathExists(dir / "manifest.json")) return false;
+    try {
+        const FigureManifest m = readFigureManifest(dir / "manifest.json");
+        if (m.key != key) return false;
+        for (const auto& f : m.files)
+            if (!pathExists(dir / f)) return false;
+        return true;
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
+// An exclusive flock() on a folder while this run changes it; released on destruction. Another
+// cdlab run writing the same folder waits. Without a lock (the folder cannot be opened) the
+// writes go on and report their own errors.
+class FolderLock {
+public:
+    explicit FolderLock(const fs::path& dir) : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+        if (fd_ >= 0)
+            while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+            }
+    }
+    ~FolderLock() {
+        if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+    }
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+private:
+    int fd_;
+};
+
+// The files the previous run wrote into `dir` (its manifest's list). No manifest, or one that does
+// not read (reported with its path), lists nothing: nothing is deleted then.
+std::vector<std::string> previouslyWritten(const fs::path& dir) {
+    const fs::path file = dir / "manifest.json";
+    if (!pathExists(file)) return {};
+    try {
+        return readFigureManifest(file).files;
+    } catch (const InputError& e) {
+        std::cerr << "cdlab figures: " << e.what() << " (not used: no earlier file is deleted; a new manifest replaces it)\n";
+        return {};
+    }
+}
+
+// Files of an earlier run that this run did not write (e.g. fewer steps now). Names come from the
+// previous manifest and are plain names (readFigureManifest checks), so this never leaves `dir`.
+void removeStale(const fs::path& dir, const std::vector<std::string>& previous, const std::vector<std::string>& written) {
+    std::error_code ec;
+    for (const std::string& name : previous)
+        if (std::find(written.begin(), written.end(), name) == written.end() &&
+            fs::symlink_status(dir / name, ec).type() == fs::file_type::regular)
+            fs::remove(dir / name, ec);
+}
+
+// Names of frames and extra files come from demo code; checked all the same.
+std::string plainOutputName(const std::string& name) {
+    if (!isPlainName(name) || name == "manifest.json")
+        throw std::logic_error("output file name " + Json(name).dump() + " is not a plain file name");
+    return name;
+}
+
+// Writes one scene's output: everything staged first, then renamed in place; stale files of the
+// previous run go next, the manifest last (so a run killed half-way leaves a manifest that still
+// lists every file a later run may clean up).
+void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCommon& sc, const DemoOutput& out) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + ec.message());
+    FolderLock lock(dir);
+    const std::vector<std::string> previous = previouslyWritten(dir);
+
+    render::FileSetWriter files;
+    FigureManifest manifest{key, sc.title, sc.caption, {}, {}};
+    for (const Frame& fr : out.frames) {
+        const std::string name = plainOutputName(fr.name + ".png");
+        files.addPng((dir / name).string(), fr.image);
+        manifest.files.push_back(name);
+        manifest.frames.push_back({fr.name, fr.caption});
+    }
+    for (const auto& [name, bytes] : out.files) {
+        files.addFile((dir / plainOutputName(name)).string(), bytes);
+        manifest.files.push_back(name);
+    }
+    files.addFile((dir / "trace.json").string(), traceText(out.trace));
+    manifest.files.push_back("trace.json");
+    files.commit();
+    removeStale(dir, previous, manifest.files);
+    render::writeFileAtomic((dir / "manifest.json").string(), figureManifestText(manifest));
+}
+
+std::string ms(double seconds) { return std::to_string(int(seconds * 1000 + 0.5)) + " ms"; }
+
+struct SceneJob {
+    std::string file;
+    std::unique_ptr<PreparedScene> scene;
+    fs::path dir;     // <out>/<demo>/<scene>
+    std::string key;  // cache key
+    bool todo = true;
+};
+
+// Reads and checks one scene file; throws InputError naming it.
+SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
+    SceneJob job;
+    job.file = file;
+    const std::string bytes = readJsonText(file);
+    job.scene = loadSceneText(bytes, file);
+    const SceneCommon& sc = job.scene->common();
+    if (!o.demo.empty() && sc.demo != o.demo)
+        throw InputError(file + ": $.demo: this scene is for demo '" + sc.demo + "', not '" + o.demo + "'");
+    if (!o.noRender) checkImageBudget(sc, o.scale);  // --scale multiplies the pixels the scene asked for
+    try {
+        job.dir = sceneOutputDir(o.outDir, sc.demo, sc.name);
+    } catch (const InputError& e) {
+        throw InputError(file + ": " + e.what());
+    }
+    job.key = cacheKey(bytes, o) + (o.noRender ? "-numeric" : "");
+    return job;
+}
+
+// Every scene is validated before anything is written; every bad one is reported (one line each).
+bool validateAll(const std::vector<std::string>& files, const RunnerOptions& o, std::vector<SceneJob>& jobs) {
+    int bad = 0;
+    for (const auto& f : files) {
+        try {
+            jobs.push_back(validateScene(f, o));
+        } catch (const InputError& e) {
+            std::cerr << e.what() << "\n";
+            ++bad;
+        } catch (const std::exception& e) {  // e.g. std::bad_alloc while reading a scene
+            std::cerr << f << ": " << e.what() << "\n";
+            ++bad;
+        }
+    }
+    if (bad)
+        std::cerr << "cdlab figures: " << bad << " of " << files.size() << " scene" << (files.size() == 1 ? "" : "s")
+                  << (bad == 1 ? " is" : " are") << " invalid; nothing written\n";
+    return bad == 0;
+}
+
+}  // namespace
+
+int runFigures(const RunnerOptions& o) { return renderSceneFiles(selectScenes(o), o); }
+
+int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions& o) {
+    if (o.list) {
+        for (const auto& f : files)
+            std::cout << fs::path(f).parent_path().filename().string() << "/" << fs::path(f).stem().string() << "\n";
+        return 0;
+    }
+    if (files.empty()) {
+        std::cerr << "cdlab figures: no scene matches\n";
+        return 2;
+    }
+    std::vector<SceneJob> jobs;
+    if (!validateAll(files, o, jobs)) return 2;
+    {
+        std::error_code ec;
+        fs::create_directories(o.outDir, ec);
+        if (ec) {
+            std::cerr << "cdlab figures: cannot create the output folder '" << o.outDir << "': " << ec.message() << "\n";
+            return 2;
+        }
+    }
+
+    // Which scenes need work: the GL context (70 ms .. 1 s) is created only if one does.
+    bool anyTodo = false;
+    for (SceneJob& job : jobs) {
+        job.todo = o.force || !cacheValid(job.dir, job.key);
+        anyTodo = anyTodo || job.todo;
+    }
+    std::unique_ptr<render::GlContext> gl;
+    if (anyTodo && !o.noRender) gl = createContext(o.verbose);
+    render::RenderStats& stats = render::renderStats();
+    stats.profiling = o.profile;
+    RunContext ctx{gl.get(), o.scale, o.steps};
+
+    auto t0 = Clock::now();
+    int frames = 0, rendered = 0, failed = 0;
+    const bool tty = isatty(fileno(stderr)) && !std::getenv("CI");
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const SceneJob& job = jobs[i];
+        const SceneCommon& sc = job.scene->common();
+        if (tty && !o.verbose && !o.profile)
+            std::cerr << "\r[" << i + 1 << "/" << jobs.size() << "] " << sceneId(sc) << " (" << int(secondsSince(t0))
+                      << " s)\x1b[K" << std::flush;
+        if (!job.todo) {
+            if (o.verbose || o.profile) std::cerr << sceneId(sc) << ": unchanged (cached)\n";
+            continue;
+        }
+        // A scene that fails at run time (or whose files cannot be written) is reported with its
+        // file; its folder keeps the previous complete files and the other scenes still render.
+        try {
+            double algorithm = 0;
+            if (o.profile) {  // the numeric part alone: what the algorithm costs without any drawing
+                auto ta = Clock::now();
+                job.scene->run(RunContext{});
+                algorithm = secondsSince(ta);
+            }
+            const render::RenderStats before = stats;
+            auto ts = Clock::now();
+            DemoOutput out = job.scene->run(ctx);
+            const double runSeconds = secondsSince(ts);
+
+            auto tw = Clock::now();
+            writeSceneFolder(job.dir, job.key, sc, out);
+            const double writeSeconds = secondsSince(tw);
+            ++rendered;
+            frames += int(out.frames.size());
+
+            if (o.profile) {
+                const double build = stats.buildSeconds - before.buildSeconds, draw = stats.drawSeconds - before.drawSeconds,
+                             readback = stats.readbackSeconds - before.readbackSeconds;
+                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames; algorithm " << ms(algorithm)
+                          << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices " << ms(build)
+                          << ", GL " << ms(draw) << "), read-back " << ms(readback) << ", PNG encoding + writes "
+                          << ms(writeSeconds);
+                if (!out.skipped.empty()) {
+                    std::cerr << "; skipped:";
+                    for (const auto& s : out.skipped) std::cerr << " " << s << ";";
+                }
+                std::cerr << "\n";
+            } else if (o.verbose) {
+                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << ms(runSeconds + writeSeconds) << "\n";
+            }
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            std::cerr << (tty ? "\n" : "") << (what.rfind(job.file, 0) == 0 ? what : job.file + ": " + what) << "\n";
+            ++failed;
+        } catch (const render::GlError& e) {
+            std::cerr << (tty ? "\n" : "") << job.file << ": OpenGL: " << e.what() << "\n";
+            ++failed;
+        } catch (const std::exception& e) {  // render::ImageError, write errors, std::bad_alloc, ...
+            std::cerr << (tty ? "\n" : "") << job.file << ": " << e.what() << "\n";
+            ++failed;
+        }
+    }
+    if (tty && !o.verbose && !o.profile) std::cerr << "\n";
+    {
+        FolderLock lock(o.outDir);
+        writeGallery(o.outDir);
+    }
+    std::cerr << "cdlab figures: " << jobs.size() << " scenes (" << rendered << " rendered, "
+              << jobs.size() - rendered - failed << " unchanged";
+    if (failed) std::cerr << ", " << failed << " failed";
+    std::cerr << "), " << frames << " frames into " << o.outDir << " in " << secondsSince(t0) << " s; gallery "
+              << (fs::path(o.outDir) / "index.html").string() << "\n";
+    return failed ? 2 : 0;
+}
+
+}  // namespace cdlab::demos

@@ -1,0 +1,347 @@
+#include "demos/harness/scene_runner.h"
+
+#include <fnmatch.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "demos/catalog/catalog.h"
+#include "demos/harness/trace_compare.h"
+#include "render/compare.h"
+#include "render/image.h"
+
+namespace cdlab::demos {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+std::unique_ptr<render::GlContext> createContext(bool verbose) {
+    auto t0 = Clock::now();
+    auto gl = render::GlContext::create();
+    if (verbose)
+        std::cerr << "GL_RENDERER: " << gl->glRenderer() << "\nGL_VERSION: " << gl->glVersion() << "\nEGL platform: "
+                  << gl->eglPlatform() << " (context created in " << int(secondsSince(t0) * 1000) << " ms)\n";
+    return gl;
+}
+
+std::string traceText(const Json& trace) { return trace.dump(1) + "\n"; }
+
+std::vector<std::string> selectScenes(const RunnerOptions& o) {
+    std::string golden = o.goldenDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/golden" : o.goldenDir;
+    std::vector<std::string> out;
+    for (const std::string& file : findSceneFiles(golden)) {
+        fs::path p(file);
+        std::string demo = p.parent_path().filename().string();
+        std::string id = demo + "/" + p.stem().string();
+        if (!o.demo.empty() && demo != o.demo) continue;
+        if (!o.pattern.empty() && fnmatch(o.pattern.c_str(), id.c_str(), 0) != 0 &&
+            id.find(o.pattern) == std::string::npos)
+            continue;
+        out.push_back(file);
+    }
+    return out;
+}
+
+
+fs::path sceneOutputDir(const fs::path& root, const std::string& demo, const std::string& name) {
+    for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"demo", demo}, {"scene", name}})
+        if (!isPlainName(value))
+            throw InputError(std::string(what) + " name " + Json(value).dump(-1, ' ', false, Json::error_handler_t::replace) +
+                             " cannot name an output folder (allowed: letters, digits, '_', '-', '.'; not '.' first)");
+    return root / demo / name;
+}
+
+namespace {
+
+// ---- The failure report folder ----------------------------------------------------------------
+// `--report DIR` may name a folder of the user's (`--report .`), so a run deletes only what an
+// earlier run wrote there: the files listed in DIR/cdlab-report.txt, then the folders that list
+// says it created (if empty), then the list itself. Nothing else in DIR is ever touched. Paths
+// are listed before their files are written, so a run killed half-way is still cleaned up. (A
+// text list, not JSON: a report folder inside golden/ must not look like a scene file.)
+constexpr const char* kReportList = "cdlab-report.txt";
+constexpr const char* kReportHeader = "# cdlab golden --report: what this report wrote (the next run deletes it)";
+
+// A path relative to the report folder whose every component is a plain name.
+bool isPlainRelativePath(const std::string& rel) {
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t slash = rel.find('/', start);
+        if (!isPlainName(rel.substr(start, slash == std::string::npos ? std::string::npos : slash - start))) return false;
+        if (slash == std::string::npos) return true;
+        start = slash + 1;
+    }
+}
+
+class ReportFolder {
+public:
+    explicit ReportFolder(fs::path root) : root_(std::move(root)) {}
+
+    const fs::path& root() const { return root_; }
+
+    /// Deletes what the previous report listed. A list that is not cdlab's (unreadable, another
+    /// format, a path that could leave the folder) is reported and nothing is deleted.
+    void removePrevious() const {
+        const fs::path list = root_ / kReportList;
+        std::error_code ec;
+        if (fs::symlink_status(list, ec).type() == fs::file_type::not_found) return;
+        std::vector<std::string> files, folders;
+        const std::string problem = readList(list, files, folders);
+        if (!problem.empty()) {
+            std::cerr << "cdlab golden: " << list.string() << ": " << problem << "; nothing in " << root_.string()
+                      << " deleted\n";
+            return;
+        }
+        for (const std::string& rel : files)
+            if (fs::symlink_status(root_ / rel, ec).type() == fs::file_type::regular) fs::remove(root_ / rel, ec);
+        // Deepest first; rmdir() removes only empty folders (and no symlink).
+        std::sort(folders.begin(), folders.end(), [](const std::string& a, const std::string& b) {
+            return std::count(a.begin(), a.end(), '/') > std::count(b.begin(), b.end(), '/');
+        });
+        for (const std::string& rel : folders) ::rmdir((root_ / rel).c_str());
+        fs::remove(list, ec);
+    }
+
+    /// Lists report files (paths relative to the folder) before they are written, with the
+    /// folders that do not exist yet. Throws std::runtime_error when the list cannot be written.
+    void plan(const std::vector<std::string>& relativeFiles) {
+        for (const std::string& rel : relativeFiles) {
+            for (std::size_t slash = rel.find('/'); slash != std::string::npos; slash = rel.find('/', slash + 1)) {
+                const std::string folder = rel.substr(0, slash);
+                std::error_code ec;
+                if (std::find(folders_.begin(), folders_.end(), folder) == folders_.end() && !fs::exists(root_ / folder, ec))
+                    folders_.push_back(folder);
+            }
+            if (std::find(files_.begin(), files_.end(), rel) == files_.end()) files_.push_back(rel);
+        }
+        std::string text = std::string(kReportHeader) + "\n";
+        for (const std::string& f : files_) text += "file " + f + "\n";
+        for (const std::string& f : folders_) text += "folder " + f + "\n";
+        render::writeFileAtomic((root_ / kReportList).string(), text);
+    }
+
+private:
+    // "" when the list reads; else what is wrong (with its line number).
+    static std::string readList(const fs::path& list, std::vector<std::string>& files, std::vector<std::string>& folders) {
+        std::string text, problem;
+        if (!render::readFileBounded(list.string(), kMaxJsonFileBytes, "a report list", text, problem)) return problem;
+        std::istringstream in(text);
+        std::string line;
+        if (!std::getline(in, line) || line != kReportHeader) return "line 1: not a cdlab report list";
+        for (int n = 2; std::getline(in, line); ++n) {
+            const std::size_t space = line.find(' ');
+            const std::string kind = line.substr(0, space), rel = space == std::string::npos ? "" : line.substr(space + 1);
+            if ((kind != "file" && kind != "folder") || !isPlainRelativePath(rel))
+                return "line " + std::to_string(n) + ": " + Json(line).dump(-1, ' ', false, Json::error_handler_t::replace) +
+                       " is not \"file <path>\" or \"folder <path>\" with a plain relative path";
+            (kind == "file" ? files : folders).push_back(rel);
+        }
+        return "";
+    }
+
+    fs::path root_;
+    std::vector<std::string> files_, folders_;
+};
+
+// ---- One golden run ---------------------------------------------------------------------------
+
+struct GoldenRun {
+    const RunnerOptions& options;
+    ReportFolder report;
+    std::vector<render::ReportEntry> entries;
+    int checked = 0, failed = 0, updated = 0;
+    bool writeFailed = false;  // a golden update or a report file could not be written: exit 2
+
+    void fail(const std::string& what) {
+        std::cout << "FAIL " << what << "\n";
+        ++failed;
+    }
+    void sceneFailed(const std::string& what) {  // one failed check for the scene as a whole
+        ++checked;
+        fail(what);
+    }
+    void writeError(const std::string& what) {
+        std::cerr << "cdlab golden: " << what << "\n";
+        writeFailed = true;
+    }
+    bool updates(const std::string& problem) const {
+        return options.update == "all" || (!problem.empty() && !options.update.empty());
+    }
+
+    void runScene(const std::string& file, const RunContext& ctx);
+    void checkFrame(const SceneCommon& sc, const Frame& fr, const fs::path& goldenDir);
+    void checkTrace(const SceneCommon& sc, const Json& trace, const fs::path& goldenDir);
+    void reportFrame(const SceneCommon& sc, const Frame& fr, const fs::path& goldenPng, bool exists,
+                     const std::string& problem);
+};
+
+// Any exception from one scene (its file, its run, a golden it reads) fails that scene only.
+void GoldenRun::runScene(const std::string& file, const RunContext& ctx) {
+    try {
+        std::unique_ptr<PreparedScene> scene = loadScene(file);
+        const SceneCommon& sc = scene->common();
+        const fs::path goldenDir = sceneOutputDir(fs::path(file).parent_path().parent_path(),
+                                                  fs::path(file).parent_path().filename().string(), sc.name);
+        DemoOutput out = scene->run(ctx);
+        for (const Frame& fr : out.frames) checkFrame(sc, fr, goldenDir);
+        checkTrace(sc, out.trace, goldenDir);
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        sceneFailed(what.rfind(file, 0) == 0 ? what : file + ": " + what);
+    } catch (const render::GlError& e) {
+        sceneFailed(file + ": OpenGL: " + e.what());
+    } catch (const std::exception& e) {  // render::ImageError, std::bad_alloc, ...
+        sceneFailed(file + ": " + e.what());
+    }
+}
+
+void GoldenRun::checkFrame(const SceneCommon& sc, const Frame& fr, const fs::path& goldenDir) {
+    ++checked;
+    const std::string id = sceneId(sc) + "/" + fr.name;
+    if (!isPlainName(fr.name)) throw std::logic_error("frame name " + Json(fr.name).dump() + " is not a plain name");
+    const fs::path goldenPng = goldenDir / (fr.name + ".png");
+    std::error_code ec;
+    const bool exists = fs::symlink_status(goldenPng, ec).type() != fs::file_type::not_found;
+    render::CompareResult cmp;
+    std::string problem;
+    if (exists) {
+        try {
+            cmp = render::compareImages(fr.image, render::readPng(goldenPng.string()), sc.golden.image);
+            if (!cmp.passed) problem = cmp.summary();
+        } catch (const render::ImageError& e) {
+            problem = e.what();
+        }
+    } else {
+        problem = "missing golden " + goldenPng.string();
+    }
+    if (updates(problem)) {
+        try {
+            render::writePngAtomic(goldenPng.string(), fr.image);
+            std::cout << "UPDATED " << id << (problem.empty() ? "" : " (was: " + problem + ")") << "\n";
+            ++updated;
+        } catch (const std::exception& e) {
+            fail(id + ": " + problem);
+            writeError(e.what());
+        }
+        return;
+    }
+    if (problem.empty()) {
+        std::cout << "PASS " << id << ": " << cmp.summary() << "\n";
+        return;
+    }
+    if (!exists) problem += " (create it with: ./cdlab test --update-golden)";
+    fail(id + ": " + problem);
+    reportFrame(sc, fr, goldenPng, exists, problem);
+}
+
+// actual / expected / diff PNGs of a failed frame into the report folder.
+void GoldenRun::reportFrame(const SceneCommon& sc, const Frame& fr, const fs::path& goldenPng, bool exists,
+                            const std::string& problem) {
+    const std::string id = sceneId(sc) + "/" + fr.name;
+    const std::string rel = sc.demo + "/" + sc.name + "/" + fr.name;
+    const fs::path rdir = sceneOutputDir(report.root(), sc.demo, sc.name);
+    render::ReportEntry entry{id, rel + ".actual.png", "", "", problem};
+    try {
+        std::optional<render::Image> expected;
+        if (exists) {
+            try {
+                expected = render::readPng(goldenPng.string());
+            } catch (const render::ImageError&) {  // already reported as the problem
+            }
+        }
+        report.plan(expected ? std::vector<std::string>{rel + ".actual.png", rel + ".expected.png", rel + ".diff.png"}
+                             : std::vector<std::string>{rel + ".actual.png"});
+        render::writePngAtomic((rdir / (fr.name + ".actual.png")).string(), fr.image);
+        if (expected) {
+            render::writePngAtomic((rdir / (fr.name + ".expected.png")).string(), *expected);
+            render::writePngAtomic((rdir / (fr.name + ".diff.png")).string(), render::diffImage(fr.image, *expected));
+            entry.expectedPng = rel + ".expected.png";
+            entry.diffPng = rel + ".diff.png";
+        }
+    } catch (const std::exception& e) {
+        writeError("report: " + std::string(e.what()));
+    }
+    entries.push_back(entry);
+}
+
+// The numeric trace: an algorithm regression fails even when the pixels look alike.
+void GoldenRun::checkTrace(const SceneCommon& sc, const Json& trace, const fs::path& goldenDir) {
+    ++checked;
+    const fs::path goldenTrace = goldenDir / "trace.json";
+    const std::string id = sceneId(sc) + "/trace.json";
+    std::error_code ec;
+    const bool exists = fs::symlink_status(goldenTrace, ec).type() != fs::file_type::not_found;
+    std::string problem;
+    TraceComparison tc;
+    if (exists) {
+        try {
+            tc = compareTraces(trace, readJsonFile(goldenTrace.string()), sc.golden.traceAbsolute, sc.golden.traceRelative);
+            if (!tc.passed()) problem = tc.summary();
+        } catch (const InputError& e) {
+            problem = e.what();
+        }
+    } else {
+        problem = "missing golden " + goldenTrace.string();
+    }
+    if (updates(problem)) {
+        try {
+            render::writeFileAtomic(goldenTrace.string(), traceText(trace));
+            std::cout << "UPDATED " << id << (problem.empty() ? "" : " (was: " + problem + ")") << "\n";
+            ++updated;
+        } catch (const std::exception& e) {
+            fail(id + ": " + problem);
+            writeError(e.what());
+        }
+    } else if (problem.empty()) {
+        std::cout << "PASS " << id << ": " << tc.summary() << "\n";
+    } else {
+        fail(id + ": " + problem + (exists ? "" : " (create it with: ./cdlab test --update-golden)"));
+        for (std::size_t i = 1; i < tc.mismatches.size(); ++i)
+            std::cout << "     " << tc.mismatches[i].path << ": " << tc.mismatches[i].what << "\n";
+    }
+}
+
+}  // namespace
+
+int runGolden(const RunnerOptions& o) {
+    const std::vector<std::string> files = selectScenes(o);
+    if (files.empty()) {
+        std::cerr << "cdlab golden: no scene matches\n";
+        return 2;
+    }
+    GoldenRun run{o, ReportFolder(o.reportDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/build/golden-report" : o.reportDir), {}};
+    run.report.removePrevious();
+
+    std::unique_ptr<render::GlContext> gl = createContext(o.verbose);  // one context for the whole run
+    const RunContext ctx{gl.get(), 0, false};
+    for (const auto& file : files) run.runScene(file, ctx);
+
+    if (!run.entries.empty()) {
+        const std::string page = (run.report.root() / "index.html").string();
+        try {
+            run.report.plan({"index.html"});
+            render::writeHtmlReport(page, run.entries);
+            std::cout << "report: " << page << "\n";
+        } catch (const std::exception& e) {
+            run.writeError("report: " + std::string(e.what()));
+        }
+    }
+    std::cout << "golden: " << run.checked - run.failed - run.updated << " passed, " << run.failed << " failed";
+    if (run.updated) std::cout << ", " << run.updated << " updated";
+    std::cout << "\n";
+    if (run.writeFailed) return 2;
+    return run.failed ? 1 : 0;
+}
+
+}  // namespace cdlab::demos

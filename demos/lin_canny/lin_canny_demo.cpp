@@ -1,0 +1,647 @@
+// Lin–Canny step-through (M. C. Lin, J. F. Canny, "A Fast Algorithm for Incremental Distance
+// Calculation", ICRA 1991; Lin, PhD thesis 1993, ch. 3). Runs core's linCanny() once per scene and
+// draws its LinCannyTrace; V-Clip (core's vclip()) and GJK run on the same pair for comparison. Every
+// number drawn comes from the traces or results; this file adds only drawing geometry and layout.
+// The drawing pieces (bodies, features, plane patches, frame composition, plots) are the V-Clip
+// demo's (demos/draw/feature_walk_figure.h).
+//
+// Scene keys (besides the common ones in scene.h; docs/scenes.md, "lin_canny"):
+//   "bodies": [A, B]          as in the vclip demo
+//   "seed": ["V0", "F3"]      first feature pair of both walks (default: vertex 0 of each)
+//   "view": [x, y, z]         view direction of the 3D panels
+//   "max_step_frames": n      with "steps": at most n step frames (the first ones and the last)
+//   "mode": "walk" | "side_by_side" | "cycling"
+//   "applicability": t        LinCannyOptions::applicability (negative: a forced cycle, said so in the frames)
+//   "inside_test": bool       LinCannyOptions::insideTest
+//   "gif": bool
+// Layers: "planes", "update", "closest", "labels", "list", "plot".
+#include "demos/lin_canny/lin_canny_demo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "core/gjk.h"
+#include "core/lin_canny.h"
+#include "core/shapes.h"
+#include "core/vclip.h"
+#include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_style.h"
+#include "demos/scene/scene_limits.h"
+#include "demos/draw/support_scene.h"
+#include "demos/draw/feature_walk_figure.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+using namespace vclipdemo;
+
+const std::vector<std::string> kLayers = {"planes", "update", "closest", "labels", "list", "plot"};
+
+enum class Mode { Walk, SideBySide, Cycling };
+
+struct Settings {
+    Body a, b;
+    std::optional<VClipCache> seed;
+    Vec3 view = Vec3(1.0, 0.8, 1.7);
+    int maxStepFrames = 8;
+    bool gif = true;
+    Mode mode = Mode::Walk;
+    LinCannyOptions options;
+};
+
+/// Both algorithms and GJK on the scene's pair.
+struct Runs {
+    VClipCache seed;
+    LinCannyResult lc;
+    LinCannyTrace lcTrace;
+    VClipResult vc;
+    VClipTrace vcTrace;
+    GjkResult gjk;
+};
+
+Json featureJson(const VClipFeature& f) { return toString(f); }
+
+std::string pairText(const VClipFeature& a, const VClipFeature& b) { return toString(a) + "·" + toString(b); }
+
+/// One row of a walk list: step number, the pair, its distance, the update (or the verdict).
+struct ListRow {
+    std::string text;
+    Color color;
+};
+
+/// A list of the feature pairs visited, in pixel space: two columns when long; when it does not
+/// fit, the first two rows, an ellipsis, and the last ones (where a cycle is).
+Image drawWalkList(GlContext& gl, int W, int H, int ss, const std::string& heading, const std::string& sub,
+                   const std::vector<ListRow>& rows, int current) {
+    CanvasOptions o;
+    o.width = W;
+    o.height = H;
+    o.supersample = ss;
+    Canvas c(gl, o);
+    c.setBackground(roleColor(Role::Background));
+    c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));
+    const Color ink = roleColor(Role::Ink);
+    c.drawTextPx(12, 8, heading, TextStyle{17.0f, ink, Anchor::TopLeft, true, true});
+    double top = 32;
+    if (!sub.empty()) {
+        c.drawTextPx(12, top, sub, TextStyle{13.0f, ink.mixed(roleColor(Role::Muted), 0.4f), Anchor::TopLeft, false, false});
+        top += 20;
+    }
+    const double rowH = 17;
+    const int perColumn = std::max(1, int((H - top - 4) / rowH));
+    const int columns = W >= 360 ? 2 : 1;
+    const int capacity = perColumn * columns;
+    std::vector<int> shown;  // row index, -1 = ellipsis
+    const int n = int(rows.size());
+    if (n <= capacity) {
+        for (int i = 0; i < n; ++i) shown.push_back(i);
+    } else {
+        shown = {0, 1, -1};
+        for (int i = n - (capacity - 3); i < n; ++i) shown.push_back(i);
+    }
+    for (int k = 0; k < int(shown.size()); ++k) {
+        const int col = k / perColumn, row = k % perColumn;
+        const double x = 12 + col * (W - 12) / double(columns), y = top + row * rowH;
+        const int i = shown[k];
+        if (i < 0) {
+            c.drawTextPx(x, y, "… " + std::to_string(n - capacity + 1) + " more …", TextStyle{13.0f, roleColor(Role::Muted).scaled(0.7f), Anchor::TopLeft, false, false});
+            continue;
+        }
+        const bool now = i == current;
+        c.drawTextPx(x, y, (now ? "> " : "   ") + rows[i].text, TextStyle{13.0f, now ? roleColor(Role::Highlight).scaled(0.8f) : rows[i].color, Anchor::TopLeft, false, now});
+    }
+    return c.readPixels();
+}
+
+Color changeColor(int change, bool localMinimum) {
+    return localMinimum ? clipColor() : change < 0 ? satisfiedColor() : change == 0 ? roleColor(Role::Muted) : violatedColor();
+}
+
+/// Pair distance per update of a walk: x = update count, y = distance of the pair after it.
+template <class Trace>
+PlotSeries distanceSeries(const Trace& tr, const Color& line) {
+    PlotSeries s;
+    s.lineColor = line;
+    if (tr.steps.empty()) return s;
+    s.x.push_back(0);
+    s.y.push_back(tr.steps.front().distanceBefore);
+    s.pointColors.push_back(line);
+    for (const auto& st : tr.steps) {
+        if (st.updatedBody < 0) continue;
+        s.x.push_back(st.step + 1);
+        s.y.push_back(st.distanceAfter);
+        s.pointColors.push_back(changeColor(st.distanceChange, st.localMinimum));
+    }
+    return s;
+}
+
+Image blank(int w, int h) {
+    Image im(w, h);
+    std::fill(im.rgba.begin(), im.rgba.end(), std::uint8_t(255));
+    return im;
+}
+
+class LinCannyScene final : public PreparedScene {
+public:
+    LinCannyScene(SceneCommon common, Settings s) : PreparedScene(std::move(common)), s_(std::move(s)) {}
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        const Runs r = compute();
+        DemoOutput out;
+        out.trace = traceJson(r);
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        std::vector<Vec3> pts;
+        for (const Vec3& p : s_.a.regions.mesh().positions()) pts.push_back(s_.a.pose.apply(p));
+        for (const Vec3& p : s_.b.regions.mesh().positions()) pts.push_back(s_.b.pose.apply(p));
+        boundingSphere(pts, center_, radius_);
+
+        if (s_.mode == Mode::SideBySide) {
+            out.frames.push_back(drawSideBySide(*ctx.gl, ss, r));
+            out.skipped.push_back("step frames (side_by_side draws one frame)");
+            return out;
+        }
+        if (common_.steps || ctx.stepsOverride)
+            for (int i : framedSteps(int(r.lcTrace.steps.size()), s_.maxStepFrames)) out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, i));
+        out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, -1));
+        std::vector<const Frame*> animated;
+        for (const Frame& f : out.frames) animated.push_back(&f);
+        if (s_.gif && animated.size() > 1) addGif(out, animated, 2);
+        else if (s_.gif) out.skipped.push_back("animation.gif (a single frame)");
+        if ((common_.steps || ctx.stepsOverride) && animated.size() > 1) {
+            ContactSheetOptions o;
+            o.title = "Lin–Canny, one update per frame";
+            const bool many = animated.size() > 6;
+            o.cellWidth = common_.image.width / (many ? 5 : 4) + 1;
+            o.columns = many ? 4 : 3;
+            out.frames.push_back(contactSheetFrame(*ctx.gl, animated, common_.title, o));
+        }
+        return out;
+    }
+
+private:
+    Settings s_;
+    mutable Vec3 center_ = Vec3::Zero();
+    mutable double radius_ = 1.0;
+
+    bool forced() const { return s_.options.applicability < 0; }
+
+    Runs compute() const {
+        Runs r;
+        r.seed = s_.seed ? *s_.seed : VClipCache{VClipFeature::vertex(0), VClipFeature::vertex(0)};
+        VClipCache lcCache = r.seed, vcCache = r.seed;
+        r.lc = linCanny(s_.a.regions, s_.a.pose, s_.b.regions, s_.b.pose, &lcCache, s_.options, &r.lcTrace);
+        r.vc = vclip(s_.a.regions, s_.a.pose, s_.b.regions, s_.b.pose, &vcCache, VClipOptions{}, &r.vcTrace);
+        const Transformed<PolytopeShape> sa{PolytopeShape(s_.a.regions.mesh()), s_.a.pose};
+        const Transformed<PolytopeShape> sb{PolytopeShape(s_.b.regions.mesh()), s_.b.pose};
+        r.gjk = gjkDistance(sa, sb);
+        return r;
+    }
+
+    // ------------------------------------------------------------------------------- trace JSON
+
+    Json traceJson(const Runs& r) const {
+        Json steps = Json::array();
+        for (const LinCannyTraceStep& st : r.lcTrace.steps) {
+            Json planes = Json::array();
+            for (const VClipPlaneTest& p : st.planes)
+                planes.push_back({{"region_body", p.regionBody}, {"owner", featureJson(p.owner)}, {"neighbor", featureJson(p.neighbor)},
+                                  {"plane", p.plane}, {"signed_distance", p.signedDistance}, {"violated", p.violated}, {"maximal", p.maximal}});
+            steps.push_back({{"step", st.step},
+                             {"state", contactTypeName(st.state)},
+                             {"feature_a", featureJson(st.featureA)},
+                             {"feature_b", featureJson(st.featureB)},
+                             {"kind", toString(st.kind)},
+                             {"updated_body", st.updatedBody},
+                             {"from", featureJson(st.from)},
+                             {"to", featureJson(st.to)},
+                             {"rule", st.rule},
+                             {"local_minimum", st.localMinimum},
+                             {"distance_before", st.distanceBefore},
+                             {"distance_after", st.distanceAfter},
+                             {"distance_change", st.distanceChange},
+                             {"closest_a", vec3Json(st.closestA)},
+                             {"closest_b", vec3Json(st.closestB)},
+                             {"planes", planes}});
+        }
+        Json vcPairs = Json::array();
+        for (const VClipTraceStep& st : r.vcTrace.steps) vcPairs.push_back(pairText(st.featureA, st.featureB));
+        return {{"lin_canny",
+                 {{"status", statusName(r.lc.status)},
+                  {"penetration", toString(r.lc.penetration)},
+                  {"distance", r.lc.distance},
+                  {"point_a", vec3Json(r.lc.pointA)},
+                  {"point_b", vec3Json(r.lc.pointB)},
+                  {"feature_a", featureJson(r.lc.featureA)},
+                  {"feature_b", featureJson(r.lc.featureB)},
+                  {"steps", r.lc.steps},
+                  {"cycle_length", r.lc.cycleLength},
+                  {"applicability", s_.options.applicability},
+                  {"inside_test", s_.options.insideTest},
+                  {"trace", steps}}},
+                {"vclip",
+                 {{"status", statusName(r.vc.status)},
+                  {"penetration", toString(r.vc.penetration)},
+                  {"distance", r.vc.distance},
+                  {"feature_a", featureJson(r.vc.featureA)},
+                  {"feature_b", featureJson(r.vc.featureB)},
+                  {"steps", r.vc.steps},
+                  {"pairs", vcPairs}}},
+                {"seed", {featureJson(r.seed.a), featureJson(r.seed.b)}},
+                {"gjk_distance", r.gjk.distance},
+                {"gjk_intersect", r.gjk.intersect}};
+    }
+
+    // ---------------------------------------------------------------------------------- drawing
+
+    Layout layout() const { return Layout{common_.image.width, common_.image.height}; }
+
+    Camera camera(double shiftUp, double zoom) const {
+        if (common_.camera) return *common_.camera;
+        Camera cam = framingCamera(center_, radius_ * zoom, s_.view, Vec3::UnitY(), true);
+        const Vec3 forward = (cam.target - cam.eye).normalized();
+        const Vec3 screenUp = (Vec3::UnitY() - Vec3::UnitY().dot(forward) * forward).normalized();
+        cam.eye += screenUp * shiftUp * radius_;
+        cam.target += screenUp * shiftUp * radius_;
+        return cam;
+    }
+
+    static CanvasOptions panelOptions(int w, int h, int ss) {
+        CanvasOptions po;
+        po.width = w;
+        po.height = h;
+        po.supersample = ss;
+        return po;
+    }
+
+    /// shiftUp: the view moves down by this fraction of the scene radius (room for the panel
+    /// heading); zoom: the fraction of the scene's bounding sphere that is framed.
+    void setupPanel(Canvas& c, double shiftUp, double zoom) const {
+        c.setBackground(roleColor(Role::Background));
+        c.setCamera(camera(shiftUp, zoom));
+    }
+
+    const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
+    const Transform& pose(int i) const { return i == 0 ? s_.a.pose : s_.b.pose; }
+    Vec3 centroid(int i) const { return pose(i).apply(body(i).regions.mesh().centroid()); }
+    Color featureColor(int i) const { return roleColor(i == 0 ? Role::ShapeA : Role::ShapeB).scaled(0.8f); }
+
+    void drawBodies(Canvas& c, bool names) const {
+        drawPolyhedron(c, s_.a, s_.a.pose, roleColor(Role::ShapeA), 0.18f);
+        drawPolyhedron(c, s_.b, s_.b.pose, roleColor(Role::ShapeB), 0.18f);
+        if (names && common_.hasLayer("labels")) {
+            // Each body's name on its far side from the other body, where the features are not.
+            const Vec3 ca = centroid(0), cb = centroid(1);
+            const Vec3 away = (cb - ca).norm() > 0 ? Vec3((cb - ca).normalized()) : Vec3::UnitX();
+            const double ra = (s_.a.regions.mesh().boundsMax() - s_.a.regions.mesh().boundsMin()).norm() * 0.3;
+            const double rb = (s_.b.regions.mesh().boundsMax() - s_.b.regions.mesh().boundsMin()).norm() * 0.3;
+            c.drawText(ca - away * ra, "A", labelStyle(Role::ShapeA, 26.0f));
+            c.drawText(cb + away * rb, "B", labelStyle(Role::ShapeB, 26.0f));
+        }
+    }
+
+    void drawClosest(Canvas& c, const Vec3& pa, const Vec3& pb, bool named) const {
+        const bool apart = (pa - pb).norm() > 1e-3 * radius_;
+        if (apart) c.drawLine(pa, pb, lineStyle(Role::Ink, 2.5f, true, true));
+        c.drawPoint(pa, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
+        c.drawPoint(pb, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
+        if (named && common_.hasLayer("labels")) {
+            const Camera& cam = c.camera();
+            const Vec3 right = (cam.target - cam.eye).cross(cam.up).normalized() * (0.3 * radius_);
+            TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+            if (apart) drawLabelAway(c, pa, pa + right, "p_A", ts, 10.0);
+            drawLabelAway(c, pb, pb - right, apart ? "p_B" : "p_A = p_B", ts, 10.0);
+        }
+    }
+
+    /// One applicability test: the plane patch (red when violated) and the tested point's offset.
+    void drawPlaneTest(Canvas& c, const VClipPlaneTest& p) const {
+        const Body& rb = body(p.regionBody);
+        const Transform& ps = pose(p.regionBody);
+        std::vector<Vec3> patch;
+        if (p.plane >= 0) {
+            patch = planePatch(rb, ps, p.plane, p.testedPoint, 0.25 * radius_);
+        } else if (p.owner.type == VClipFeatureType::Face) {
+            // The face plane itself (a face region's floor, or the local-minimum face search):
+            // drawn as the face, enlarged a little about its centre.
+            patch = featureGeometry(rb.regions, ps, p.owner);
+            const Vec3 mid = featureCenter(patch);
+            for (Vec3& q : patch) q = mid + 1.2 * (q - mid);
+        } else {
+            return;
+        }
+        const Color col = p.violated ? violatedColor() : satisfiedColor();
+        c.drawPolygon(patch, col.withAlpha(p.violated ? 0.40f : 0.12f));
+        LineStyle ls = lineStyle(Role::Ink, p.maximal ? 3.0f : p.violated ? 1.5f : 1.0f, false, false);
+        ls.color = p.violated ? col.scaled(0.8f) : col.withAlpha(0.6f);
+        c.drawPolyline(patch, true, ls);
+        const Vec3 foot = p.testedPoint - p.signedDistance * p.planeNormal;
+        LineStyle d = lineStyle(Role::Ink, 1.5f, true, true);
+        d.color = col.scaled(0.8f);
+        if ((foot - p.testedPoint).norm() > 1e-6 * radius_) c.drawLine(p.testedPoint, foot, d);
+        c.drawPoint(p.testedPoint, 4.0f, col, true, 1.0f, roleColor(Role::Ink));
+    }
+
+    std::vector<ListRow> lcRows(const LinCannyTrace& tr) const {
+        std::vector<ListRow> rows;
+        for (const LinCannyTraceStep& st : tr.steps) {
+            std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " + formatNumber(st.distanceBefore);
+            if (st.updatedBody >= 0) t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + toString(st.from) + "→" + toString(st.to);
+            else t += std::string("  ") + toString(st.kind);
+            rows.push_back({t, st.updatedBody >= 0 ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f) : roleColor(Role::Ink)});
+        }
+        return rows;
+    }
+
+    std::vector<ListRow> vcRows(const VClipTrace& tr) const {
+        std::vector<ListRow> rows;
+        for (const VClipTraceStep& st : tr.steps) {
+            std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " + formatNumber(st.distanceBefore);
+            if (st.kind == VClipStepKind::Update && st.updatedBody >= 0)
+                t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + toString(st.from) + "→" + toString(st.to);
+            else t += std::string("  ") + toString(st.kind);
+            rows.push_back({t, st.kind == VClipStepKind::Update ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f) : roleColor(Role::Ink)});
+        }
+        return rows;
+    }
+
+    std::string verdict(const LinCannyResult& r) const {
+        if (r.status == LinCannyStatus::Separated) return "Separated, distance " + formatNumber(r.distance);
+        if (r.status == LinCannyStatus::Penetrating) return std::string("Penetrating (") + toString(r.penetration) + ")";
+        if (r.status == LinCannyStatus::CycleDetected) return "CycleDetected (cycle of " + std::to_string(r.cycleLength) + " pairs)";
+        return statusName(r.status);
+    }
+    std::string verdict(const VClipResult& r) const {
+        if (r.status == VClipStatus::Separated) return "Separated, distance " + formatNumber(r.distance);
+        if (r.status == VClipStatus::Penetrating) return std::string("Penetrating (") + toString(r.penetration) + ")";
+        return statusName(r.status);
+    }
+    std::string gjkText(const GjkResult& g) const { return g.intersect ? std::string("intersecting") : formatNumber(g.distance); }
+
+    Frame drawStepFrame(GlContext& gl, int ss, const Runs& run, int index) const {
+        const Layout L = layout();
+        const bool labels = common_.hasLayer("labels");
+        const LinCannyTrace& tr = run.lcTrace;
+        const LinCannyResult& r = run.lc;
+        const LinCannyTraceStep* st = index >= 0 ? &tr.steps[index] : nullptr;
+        Canvas c(gl, panelOptions(L.mainWidth(), L.panelHeight(), ss));
+        setupPanel(c, 0.12, 0.92);
+        drawBodies(c, true);
+        std::string heading, sub;
+        std::vector<std::string> lines;
+        Frame f;
+        if (st) {
+            drawFeature(c, st->featureAWorld, featureColor(0), featureLabel(st->featureA, 0), centroid(1), labels);
+            drawFeature(c, st->featureBWorld, featureColor(1), featureLabel(st->featureB, 1), centroid(0), labels);
+            int violatedCount = 0, shown = 0;
+            for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
+            if (common_.hasLayer("planes"))
+                for (const VClipPlaneTest& p : st->planes) {
+                    // With many planes (a many-sided face) only the violated ones and the maximal one are drawn.
+                    if (st->planes.size() > 8 && !p.violated && !p.maximal) continue;
+                    drawPlaneTest(c, p);
+                    ++shown;
+                }
+            if (common_.hasLayer("closest")) drawClosest(c, st->closestA, st->closestB, false);
+            if (common_.hasLayer("update") && st->updatedBody >= 0) {
+                const std::vector<Vec3> gTo = featureGeometry(body(st->updatedBody).regions, pose(st->updatedBody), st->to);
+                const Vec3 from = featureCenter(st->updatedBody == 0 ? st->featureAWorld : st->featureBWorld), to = featureCenter(gTo);
+                if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, lineStyle(Role::Ink, 4.0f, false, true));
+                drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f), "", from, false);
+                if (labels)
+                    drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody), TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
+            }
+            heading = "Step " + std::to_string(st->step) + ": pair " + contactTypeName(st->state);
+            sub = std::to_string(st->planes.size()) + " applicability test(s), " + std::to_string(violatedCount) + " violated (red)";
+            if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
+            lines.push_back("Step " + std::to_string(st->step) + " (" + contactTypeName(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
+                            featureLabel(st->featureB, 1) + ", closest points at distance " + formatNumber(st->distanceBefore) + ";  rule: " + st->rule);
+            const VClipPlaneTest* worst = nullptr;
+            for (const VClipPlaneTest& p : st->planes)
+                if (!worst || (p.maximal && !worst->maximal) || (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance)) worst = &p;
+            if (!worst) lines.push_back("no plane test");
+            else
+                lines.push_back(std::string(worst->regionBody == 0 ? "p_B" : "p_A") + " against VR(" + featureLabel(worst->owner, worst->regionBody) +
+                                "): " + (worst->maximal ? "most violated" : worst->violated ? "violated" : "closest") + " plane " +
+                                (worst->plane < 0 ? std::string("(the face plane)") : "| " + toString(worst->neighbor)) + " at signed distance " +
+                                formatNumber(worst->signedDistance) +
+                                (!worst->violated ? " ≥ 0" : worst->signedDistance < 0 ? " < 0" : " ≥ 0, violated only by the forced negative tolerance"));
+            if (st->updatedBody >= 0)
+                lines.push_back(std::string("update ") + (st->updatedBody == 0 ? "A: " : "B: ") + toString(st->from) + " → " + toString(st->to) +
+                                ";  pair distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
+                                (st->localMinimum ? " (local-minimum face jump)" : st->distanceChange < 0 ? " (decreased)" : st->distanceChange == 0 ? " (equal)" : " (INCREASED)"));
+            else if (st->kind == VClipStepKind::Done)
+                lines.push_back("DONE: each closest point lies in the other feature's Voronoi region (Lin & Canny, Thm. 1)");
+            else
+                lines.push_back(std::string(toString(st->kind)) + ": " + verdict(r));
+            f.name = stepFrameName(st->step);
+            f.caption = "step " + std::to_string(st->step) + " " + contactTypeName(st->state) + ": " +
+                        (st->updatedBody >= 0 ? toString(st->from) + " → " + toString(st->to) : std::string(toString(st->kind)));
+        } else {
+            const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
+            const std::vector<Vec3> gb = featureGeometry(s_.b.regions, s_.b.pose, r.featureB);
+            drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroid(1), labels);
+            drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroid(0), labels);
+            if (common_.hasLayer("closest") && r.status != LinCannyStatus::CycleDetected) drawClosest(c, r.pointA, r.pointB, true);
+            heading = std::string("Result: ") + statusName(r.status) + " after " + std::to_string(r.steps) + " update(s)";
+            sub = r.status == LinCannyStatus::Separated ? "closest features and points" : r.status == LinCannyStatus::CycleDetected ? "the pair where the cycle was detected" : "";
+            lines.push_back("Lin–Canny: " + verdict(r) + ", features " + featureLabel(r.featureA, 0) + " and " + featureLabel(r.featureB, 1) +
+                            ", " + std::to_string(r.steps) + " update(s)");
+            lines.push_back("V-Clip on the same pair and seed: " + verdict(run.vc) + ", features " + featureLabel(run.vc.featureA, 0) + " and " +
+                            featureLabel(run.vc.featureB, 1) + ", " + std::to_string(run.vc.steps) + " update(s);  GJK: " + gjkText(run.gjk));
+            if (forced())
+                lines.push_back("cycle FORCED with a negative applicability tolerance (" + formatNumber(s_.options.applicability) +
+                                " × scale): boundary points violate both regions; not a natural cycle");
+            else if (r.status == LinCannyStatus::Separated)
+                lines.push_back("|Lin–Canny − GJK| = " + formatNumber(std::abs(r.distance - run.gjk.distance)) + ",  |Lin–Canny − V-Clip| = " +
+                                formatNumber(std::abs(r.distance - run.vc.distance)));
+            f.name = "result";
+            f.caption = std::string("result: ") + verdict(r);
+        }
+        drawPanelHeading(c, heading, sub);
+        const Image main = c.readPixels();
+
+        const int cur = st ? index : int(tr.steps.size()) - 1;
+        std::string listSub = forced() ? "cycle forced (negative tolerance)" : "";
+        if (r.status == LinCannyStatus::CycleDetected) listSub = "the last " + std::to_string(r.cycleLength) + " rows repeat" + (forced() ? " (forced)" : "");
+        const Image list = common_.hasLayer("list") ? drawWalkList(gl, L.columnWidth, L.diagramHeight(), ss, "Pairs visited (A·B, distance)", listSub, lcRows(tr), cur)
+                                                    : blank(L.columnWidth, L.diagramHeight());
+        Image plot = blank(L.columnWidth, L.plotHeight());
+        if (common_.hasLayer("plot")) {
+            PlotInput pin;
+            pin.heading = "Pair distance";
+            pin.xLabel = "update";
+            pin.series.push_back(distanceSeries(tr, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f)));
+            pin.marker = st ? index : -1;
+            pin.legend = {{satisfiedColor(), "decrease"}, {roleColor(Role::Muted), "equal"}};
+            if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const LinCannyTraceStep& s) { return s.distanceChange > 0 && !s.localMinimum; }))
+                pin.legend.push_back({violatedColor(), "increase"});
+            if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const LinCannyTraceStep& s) { return s.localMinimum; }))
+                pin.legend.push_back({clipColor(), "local-min jump"});
+            plot = drawPlot(gl, L.columnWidth, L.plotHeight(), ss, pin);
+        }
+        f.image = composeFrame(gl, L, ss, common_.title, common_.caption, main, list, plot, lines);
+        return f;
+    }
+
+    /// One walk in 3D: the bodies, the path of the closest points over the steps, the final features.
+    template <class Trace>
+    Image walkPanel(GlContext& gl, int w, int h, int ss, const Trace& tr, const VClipFeature& fa, const VClipFeature& fb, const Vec3& pa,
+                    const Vec3& pb, bool closest, const std::string& heading, const std::string& sub) const {
+        Canvas c(gl, panelOptions(w, h, ss));
+        setupPanel(c, 0.28, 0.80);
+        drawBodies(c, true);
+        const bool labels = common_.hasLayer("labels");
+        drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureColor(0), featureLabel(fa, 0), centroid(1), labels);
+        drawFeature(c, featureGeometry(s_.b.regions, s_.b.pose, fb), featureColor(1), featureLabel(fb, 1), centroid(0), labels);
+        std::vector<Vec3> pathA, pathB;
+        for (const auto& st : tr.steps) {
+            pathA.push_back(st.closestA);
+            pathB.push_back(st.closestB);
+        }
+        for (int side = 0; side < 2; ++side) {
+            const std::vector<Vec3>& path = side == 0 ? pathA : pathB;
+            LineStyle ls = lineStyle(side == 0 ? Role::ShapeA : Role::ShapeB, 2.0f, false, true);
+            ls.color = featureColor(side).scaled(0.8f);
+            if (path.size() > 1) c.drawPolyline(path, false, ls);
+            for (const Vec3& p : path) c.drawPoint(p, 3.5f, featureColor(side), true, 1.0f, roleColor(Role::Ink));
+        }
+        if (closest && common_.hasLayer("closest")) drawClosest(c, pa, pb, false);
+        drawPanelHeading(c, heading, sub);
+        return c.readPixels();
+    }
+
+    Frame drawSideBySide(GlContext& gl, int ss, const Runs& r) const {
+        const int W = common_.image.width, H = common_.image.height;
+        const int titleBand = 40, captionBand = 80, half = W / 2;
+        const int panelH = H - titleBand - captionBand;
+        const int top3d = panelH * 55 / 100, listH = panelH * 21 / 100, plotH = panelH - top3d - listH;
+        const Image vc3 = walkPanel(gl, half, top3d, ss, r.vcTrace, r.vc.featureA, r.vc.featureB, r.vc.pointA, r.vc.pointB,
+                                    r.vc.status == VClipStatus::Separated, "V-Clip: " + std::to_string(r.vc.steps) + " update(s)", verdict(r.vc));
+        const Image lc3 = walkPanel(gl, W - half, top3d, ss, r.lcTrace, r.lc.featureA, r.lc.featureB, r.lc.pointA, r.lc.pointB,
+                                    r.lc.status == LinCannyStatus::Separated, "Lin–Canny: " + std::to_string(r.lc.steps) + " update(s)", verdict(r.lc));
+        const bool lists = common_.hasLayer("list");
+        const Image vcl = lists ? drawWalkList(gl, half, listH, ss, "V-Clip pairs (A·B, distance)", "", vcRows(r.vcTrace), -1) : blank(half, listH);
+        const Image lcl = lists ? drawWalkList(gl, W - half, listH, ss, "Lin–Canny pairs (A·B, distance)", "", lcRows(r.lcTrace), -1) : blank(W - half, listH);
+        Image plot = blank(W, plotH);
+        if (common_.hasLayer("plot")) {
+            PlotInput pin;
+            pin.heading = "Pair distance per update";
+            pin.xLabel = "update";
+            PlotSeries v = distanceSeries(r.vcTrace, roleColor(Role::Simplex));
+            PlotSeries l = distanceSeries(r.lcTrace, roleColor(Role::Highlight));
+            for (Color& col : v.pointColors) col = roleColor(Role::Simplex);
+            for (Color& col : l.pointColors) col = roleColor(Role::Highlight);
+            pin.series = {v, l};
+            pin.legend = {{roleColor(Role::Simplex), "V-Clip"}, {roleColor(Role::Highlight), "Lin–Canny"}};
+            plot = drawPlot(gl, W, plotH, ss, pin);
+        }
+        CanvasOptions o;
+        o.width = W;
+        o.height = H;
+        o.supersample = ss;
+        Canvas canvas(gl, o);
+        canvas.setBackground(roleColor(Role::Background));
+        canvas.setCamera(Camera::twoD(0, 0, 1));
+        canvas.drawTextPx(16, 8, common_.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+        double y = H - captionBand + 5;
+        const Color soft = roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.55f);
+        if (!common_.caption.empty()) canvas.drawTextPx(16, y, common_.caption, TextStyle{16.0f, soft, Anchor::TopLeft, false, false});
+        y += 25;
+        canvas.drawTextPx(16, y,
+                          "Same seed " + pairText(r.seed.a, r.seed.b) + ":  V-Clip " + verdict(r.vc) + " in " + std::to_string(r.vc.steps) +
+                              " update(s);  Lin–Canny " + verdict(r.lc) + " in " + std::to_string(r.lc.steps) + " update(s);  GJK " + gjkText(r.gjk),
+                          TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
+        y += 25;
+        canvas.drawTextPx(16, y, "Dots: the pair's closest points at each step. V-Clip tests edges by clipping them; Lin–Canny tests the pair's closest points only.",
+                          TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
+        Image frame = canvas.readPixels();
+        blit(frame, vc3, 0, titleBand);
+        blit(frame, lc3, half, titleBand);
+        blit(frame, vcl, 0, titleBand + top3d);
+        blit(frame, lcl, half, titleBand + top3d);
+        blit(frame, plot, 0, titleBand + top3d + listH);
+        // 2-pixel rules between the panels.
+        const Color m = roleColor(Role::Muted);
+        auto put = [&](int xx, int yy) {
+            std::uint8_t* p = frame.pixel(xx, yy);
+            p[0] = std::uint8_t(std::lround(m.r * 255));
+            p[1] = std::uint8_t(std::lround(m.g * 255));
+            p[2] = std::uint8_t(std::lround(m.b * 255));
+            p[3] = 255;
+        };
+        for (int yy = titleBand; yy < titleBand + top3d + listH; ++yy)
+            for (int xx = half - 1; xx <= half; ++xx) put(xx, yy);
+        for (int xx = 0; xx < W; ++xx)
+            for (int k = 0; k < 2; ++k) {
+                put(xx, titleBand + top3d - 1 + k);
+                put(xx, titleBand + top3d + listH - 1 + k);
+            }
+        Frame f;
+        f.name = "side_by_side";
+        f.caption = "V-Clip " + std::to_string(r.vc.steps) + " vs Lin–Canny " + std::to_string(r.lc.steps) + " update(s)";
+        f.image = std::move(frame);
+        return f;
+    }
+};
+
+class LinCannyDemo final : public Demo {
+public:
+    std::string name() const override { return "lin_canny"; }
+    std::string description() const override {
+        return "Lin–Canny step by step: applicability tests, closest points of the feature pair, the walk beside V-Clip, a (forced) cycle";
+    }
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
+        ObjectReader r(JsonNode(json, "$", file));
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+        Settings s;
+        JsonNode bodies = r.get("bodies");
+        if (!bodies.isArray() || bodies.size() != 2) bodies.fail("expected [bodyA, bodyB]");
+        s.a = parseBody(bodies.at(0));
+        s.b = parseBody(bodies.at(1));
+        if (auto seed = r.find("seed")) {
+            if (!seed->isArray() || seed->size() != 2) seed->fail("expected [featureA, featureB], e.g. [\"V0\", \"F3\"]");
+            s.seed = VClipCache{parseFeature(seed->at(0), s.a), parseFeature(seed->at(1), s.b)};
+        }
+        if (auto v = r.find("view")) {
+            s.view = sceneVec3(*v);
+            if (s.view.squaredNorm() == 0) v->fail("view direction must be non-zero");
+        }
+        if (auto m = r.find("max_step_frames")) s.maxStepFrames = m->asInt(2, 40);
+        s.gif = r.boolOr("gif", true);
+        if (auto m = r.find("mode")) {
+            const std::string mode = m->asString();
+            if (mode == "walk") s.mode = Mode::Walk;
+            else if (mode == "side_by_side") s.mode = Mode::SideBySide;
+            else if (mode == "cycling") s.mode = Mode::Cycling;
+            else m->fail("expected \"walk\", \"side_by_side\" or \"cycling\"");
+        }
+        if (auto t = r.find("applicability")) {
+            s.options.applicability = t->asNumber();
+            if (!std::isfinite(s.options.applicability) || std::abs(s.options.applicability) > 0.5) t->fail("expected a number in [-0.5, 0.5]");
+        }
+        s.options.insideTest = r.boolOr("inside_test", false);
+        r.finish();
+        if (s.options.applicability < 0 && s.mode != Mode::Cycling)
+            r.node().fail("a negative \"applicability\" forces cycles: only with \"mode\": \"cycling\", whose frames say it is forced");
+        if (common.image.width < 800 || common.image.height < 600 || common.image.width > 2048 || common.image.height > 1536)
+            r.node().fail("lin_canny frames need an image between 800 x 600 and 2048 x 1536");
+        return std::make_unique<LinCannyScene>(std::move(common), std::move(s));
+    }
+};
+
+}  // namespace
+
+const Demo& linCannyDemo() {
+    static const LinCannyDemo demo;
+    return demo;
+}
+
+}  // namespace cdlab::demos

@@ -1,0 +1,576 @@
+// Contact-model figures. Every number comes from core (contactPolyhedronPlane, featureDistance,
+// contactPolyhedra) and their traces; this file only chooses what to draw.
+//
+// Scene keys (besides the common ones), by "mode":
+//   "plane" (default): "body" ({"box": {"half_extents"}} | {"tetrahedron"|"icosahedron": {"circumradius"}}
+//            | {"prism": {"sides", "radius", "half_height"}}), "poses": [{"position", "rotation", "label"}]
+//            (1..6, one frame each), "plane": {"normal", "offset"} (default z = 0), "max_points" (4).
+//   "features": "pairs": [{"a": F, "b": F, "label"}] (1..6, one frame each), F = {"vertex": p} |
+//            {"edge": [p, q]} | {"face": [p, ...]} (convex, counter-clockwise seen from outside).
+//   "sat": "a", "b": {"body": ..., "position", "rotation"}; frames "contact" and "clip".
+//   "view": camera direction (default (1, -1.6, 0.8)), z up.
+// Layers: "plane", "contacts", "normals", "polygon", "labels".
+#include "demos/polyhedron_plane/polyhedron_plane_demo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/contact_plane.h"
+#include "core/contact_sat.h"
+#include "core/feature_distance.h"
+#include "core/polyhedron_presets.h"
+#include "demos/draw/figure_style.h"
+#include "demos/scene/scene_limits.h"
+#include "demos/draw/support_scene.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+
+const std::vector<std::string> kLayers = {"plane", "contacts", "normals", "polygon", "labels"};
+constexpr int kMaxFrames = 6;
+
+std::string fmt(double x) { return formatNumber(x); }
+
+struct Posed {
+    ConvexPolyhedron mesh;
+    Transform pose;
+    std::string name;
+    std::vector<Vec3> world() const {
+        std::vector<Vec3> w;
+        for (const Vec3& v : mesh.positions()) w.push_back(pose.apply(v));
+        return w;
+    }
+};
+
+ConvexPolyhedron readBody(const JsonNode& b, std::string& name) {
+    if (!b.isObject() || b.raw().size() != 1) b.fail("expected {\"box\": {...}}, {\"tetrahedron\": {...}}, {\"icosahedron\": {...}} or {\"prism\": {...}}");
+    name = b.raw().begin().key();
+    ObjectReader r(JsonNode(b.raw().begin().value(), b.path() + "." + name, b.source()));
+    ConvexPolyhedron m;
+    if (name == "box") {
+        const JsonNode h = r.get("half_extents");
+        m = presets::box(sceneSizes(h));
+    } else if (name == "tetrahedron" || name == "icosahedron") {
+        const double rad = sceneSize(r.get("circumradius"));
+        m = name == "tetrahedron" ? presets::tetrahedron(rad) : presets::icosahedron(rad);
+    } else if (name == "prism") {
+        const int n = r.get("sides").asInt(3, 64);
+        const double rad = sceneSize(r.get("radius")), hh = sceneSize(r.get("half_height"));
+        m = presets::prism(n, rad, hh);
+    } else {
+        b.fail("unknown body '" + name + "' (expected box, tetrahedron, icosahedron or prism)");
+    }
+    r.finish();
+    return m;
+}
+
+Transform readPose(ObjectReader& r) {
+    Transform t;
+    if (auto p = r.find("position")) t.position = sceneVec3(*p);
+    if (auto q = r.find("rotation")) t.rotation = q->asQuat();
+    return t;
+}
+
+FeatureGeometry readFeature(const JsonNode& n) {
+    if (!n.isObject() || n.raw().size() != 1) n.fail("expected {\"vertex\": p}, {\"edge\": [p, q]} or {\"face\": [p, ...]}");
+    const std::string key = n.raw().begin().key();
+    const JsonNode v(n.raw().begin().value(), n.path() + "." + key, n.source());
+    FeatureGeometry f;
+    if (key == "vertex") f = {FeatureType::Vertex, {sceneVec3(v)}};
+    else if (key == "edge") {
+        if (v.size() != 2) v.fail("an edge is [p, q]");
+        f = {FeatureType::Edge, sceneVec3List(v, 2, 2)};
+    } else if (key == "face") {
+        f = {FeatureType::Face, sceneVec3List(v, 3, kMaxFacePoints)};
+    } else {
+        n.fail("unknown feature '" + key + "'");
+    }
+    return f;
+}
+
+std::vector<Eigen::Vector3i> triangles(const ConvexPolyhedron& m) {
+    std::vector<Eigen::Vector3i> t;
+    for (int f = 0; f < m.faceCount(); ++f) {
+        const std::vector<int> fv = m.faceVertices(f);
+        for (size_t i = 1; i + 1 < fv.size(); ++i) t.emplace_back(fv[0], fv[i], fv[i + 1]);
+    }
+    return t;
+}
+
+void drawPosed(Canvas& c, const Posed& b, const Color& fill, float alpha) {
+    const std::vector<Vec3> w = b.world();
+    c.drawMesh(w, triangles(b.mesh), fill.withAlpha(alpha), true);
+    LineStyle edge;
+    edge.widthPx = 2.0f;
+    edge.color = fill.scaled(0.55f);
+    for (int e = 0; e < b.mesh.edgeCount(); ++e) {
+        const auto [u, v] = b.mesh.edgeVertices(e);
+        c.drawLine(w[u], w[v], edge);
+    }
+}
+
+std::vector<Vec3> facePolygon(const Posed& b, int f) {
+    std::vector<Vec3> p;
+    for (int v : b.mesh.faceVertices(f)) p.push_back(b.pose.apply(b.mesh.position(v)));
+    return p;
+}
+
+Vec3 centroid(const std::vector<Vec3>& p) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& x : p) c += x;
+    return p.empty() ? c : Vec3(c / double(p.size()));
+}
+
+// Legend at the top right: entries in the colour of what they name.
+struct Legend {
+    Canvas& c;
+    double y = 60.0;
+    void item(const std::string& text, Role role) {
+        c.drawTextPx(c.width() - 18.0, y, text, TextStyle{16.0f, roleColor(role), Anchor::TopRight, true, true});
+        y += 22.0;
+    }
+};
+
+Frame finish(Canvas& c, const std::string& name, const std::string& title, const std::string& caption, const std::string& shortCaption) {
+    drawTitleAndCaption(c, title, caption);
+    Frame f;
+    f.name = name;
+    f.caption = shortCaption;
+    f.image = c.readPixels();
+    return f;
+}
+
+Json pointsJson(const std::vector<ContactPoint>& pts) {
+    Json a = Json::array();
+    for (const ContactPoint& p : pts) a.push_back({{"point_a", vec3Json(p.pointA)}, {"point_b", vec3Json(p.pointB)}, {"depth", p.depth}});
+    return a;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+class ContactScene final : public PreparedScene {
+public:
+    std::string mode;
+    Posed body;                       // plane mode
+    std::vector<Transform> poses;
+    std::vector<std::string> poseLabels;
+    Plane plane{Vec3::UnitZ(), 0.0};
+    int maxPoints = 4;
+    std::vector<std::pair<FeatureGeometry, FeatureGeometry>> pairs;  // features mode
+    std::vector<std::string> pairLabels;
+    Posed a, b;                       // sat mode
+    Vec3 view{1.0, -1.6, 0.8};
+
+    explicit ContactScene(SceneCommon common) : PreparedScene(std::move(common)) {}
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        DemoOutput out;
+        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        if (mode == "plane") runPlane(ctx, ss, out);
+        else if (mode == "features") runFeatures(ctx, ss, out);
+        else runSat(ctx, ss, out);
+        if (!ctx.gl) out.skipped.push_back("all drawing (no GL context)");
+        return out;
+    }
+
+private:
+    CanvasOptions canvasOptions(int ss) const {
+        CanvasOptions o;
+        o.width = common_.image.width;
+        o.height = common_.image.height;
+        o.supersample = ss;
+        return o;
+    }
+
+    // ---- plane mode ---------------------------------------------------------------------------
+    void runPlane(const RunContext& ctx, int ss, DemoOutput& out) const {
+        std::vector<PlaneContactResult> results;
+        std::vector<PlaneContactTrace> traces(poses.size());
+        Json frames = Json::array();
+        for (size_t i = 0; i < poses.size(); ++i) {
+            PlaneContactOptions opt;
+            opt.maxPoints = maxPoints;
+            results.push_back(contactPolyhedronPlane(body.mesh, poses[i], plane, opt, &traces[i]));
+            const PlaneContactResult& r = results.back();
+            Json fr = {{"label", poseLabels[i]}, {"status", statusName(r.status)}, {"signed_distance", r.signedDistance},
+                       {"depth", r.depth}, {"normal", vec3Json(r.normal)}, {"feature", featureLabel(r.feature)},
+                       {"vertex_signed_distances", traces[i].vertexDistances}, {"crossings", traces[i].crossings.size()},
+                       {"polygon", pointsJson(r.polygon)}, {"manifold", pointsJson(r.manifold)}};
+            Json red = Json::array();
+            for (const auto& s : traces[i].reduction) red.push_back({{"rule", s.rule}, {"candidate", s.chosen}, {"score", s.score}});
+            fr["reduction"] = red;
+            frames.push_back(fr);
+        }
+        out.trace = {{"mode", "plane"}, {"body", body.name}, {"frames", frames}};
+        if (!ctx.gl) return;
+
+        // One camera for all poses: the bodies and the plane patch under them.
+        Vec3 n;
+        double d;
+        n = plane.normal.normalized();
+        d = plane.offset / plane.normal.norm();
+        std::vector<Vec3> pts;
+        for (const Transform& t : poses)
+            for (const Vec3& v : body.mesh.positions()) {
+                const Vec3 x = t.apply(v);
+                pts.push_back(x);
+                pts.push_back(x - (n.dot(x) - d) * n);
+            }
+        Vec3 center;
+        double radius;
+        boundingSphere(pts, center, radius);
+        const Vec3 up = std::abs(n.z()) > 0.5 ? Vec3(n) : Vec3::UnitZ();
+        const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, up);
+        const double rho = radius;
+        for (size_t i = 0; i < poses.size(); ++i) {
+            const PlaneContactResult& r = results[i];
+            const PlaneContactTrace& tr = traces[i];
+            Canvas c(*ctx.gl, canvasOptions(ss));
+            c.setBackground(roleColor(Role::Background));
+            c.setCamera(cam);
+            const bool labels = common_.hasLayer("labels");
+            if (common_.hasLayer("plane")) {
+                const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
+                const Vec3 g = center - (n.dot(center) - d) * n;
+                const double h = 1.5 * radius;
+                c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, roleColor(Role::Muted).withAlpha(0.25f));
+                c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true, lineStyle(Role::Muted, 1.5f));
+                if (labels) c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
+            }
+            Posed pb = body;
+            pb.pose = poses[i];
+            drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA), r.colliding() ? 0.55f : 0.75f);
+            Legend lg{c};
+            if (labels) lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated", r.colliding() ? Role::Highlight : Role::ShapeA);
+            if (r.colliding()) {
+                // Vertices below the plane and the crossing points.
+                if (common_.hasLayer("polygon")) {
+                    std::vector<Vec3> outline;
+                    for (const ContactPoint& p : r.polygon) outline.push_back(p.pointB);
+                    if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Result).withAlpha(0.28f));
+                    if (outline.size() >= 2) c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
+                    for (const auto& x : tr.crossings) c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
+                    if (labels) {
+                        lg.item("contact polygon (on the plane)", Role::Result);
+                        lg.item("○ edge–plane crossings", Role::Ink);
+                    }
+                }
+                if (common_.hasLayer("contacts")) {
+                    for (size_t k = 0; k < r.manifold.size(); ++k) {
+                        const ContactPoint& p = r.manifold[k];
+                        c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                        c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                        c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+                        if (labels && (k == 0 || p.depth > 0)) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
+                                                  (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
+                    }
+                    if (labels) lg.item("manifold points, with depth", Role::Result);
+                }
+                if (common_.hasLayer("normals")) {
+                    for (const ContactPoint& p : r.manifold)
+                        c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal, lineStyle(Role::Direction, 3.0f, false, true));
+                    if (labels) lg.item("→ plane normal n (pushes the body out)", Role::Direction);
+                }
+            } else if (common_.hasLayer("contacts")) {
+                // Closest feature and its projection onto the plane.
+                for (size_t k = 0; k < r.featurePoints.size(); ++k) {
+                    c.drawLine(r.featurePoints[k], r.featurePointsOnPlane[k], lineStyle(Role::Result, 2.0f, true, true));
+                    c.drawPoint(r.featurePoints[k], 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                    c.drawPoint(r.featurePointsOnPlane[k], 4.0f, roleColor(Role::Ink), true);
+                }
+                if (r.featurePoints.size() >= 2)
+                    c.drawPolyline(r.featurePoints, r.featurePoints.size() >= 3, lineStyle(Role::Result, 4.0f, false, true));
+                if (labels) {
+                    drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center, "distance " + fmt(r.signedDistance),
+                                  labelStyle(Role::Result, 17.0f), 18.0);
+                    lg.item("closest feature and its projection", Role::Result);
+                }
+            }
+            char cap[400];
+            if (r.colliding())
+                std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
+                              poseLabels[i].c_str(), statusName(r.status), fmt(r.depth).c_str(), featureTypeName(r.feature.type),
+                              featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
+            else
+                std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)", poseLabels[i].c_str(),
+                              fmt(r.signedDistance).c_str(), featureTypeName(r.feature.type), featureLabel(r.feature).c_str(),
+                              int(r.featurePoints.size()), r.featurePoints.size() == 1 ? "" : "s");
+            char name[32];
+            std::snprintf(name, sizeof name, "pose_%02d", int(i));
+            out.frames.push_back(finish(c, name, common_.title, cap, poseLabels[i] + ": " + statusName(r.status)));
+        }
+    }
+
+    // ---- features mode ------------------------------------------------------------------------
+    void runFeatures(const RunContext& ctx, int ss, DemoOutput& out) const {
+        Json frames = Json::array();
+        std::vector<FeatureDistanceResult> results;
+        for (size_t i = 0; i < pairs.size(); ++i) {
+            results.push_back(featureDistance(pairs[i].first, pairs[i].second));
+            const FeatureDistanceResult& r = results.back();
+            frames.push_back({{"label", pairLabels[i]}, {"type", contactTypeName(r.type)}, {"distance", r.distance},
+                              {"point_a", vec3Json(r.pointA)}, {"point_b", vec3Json(r.pointB)}, {"normal", vec3Json(r.normal)},
+                              {"normal_rule", r.normalRule}, {"normal_unstable", r.normalUnstable}, {"parallel", r.parallel}});
+        }
+        out.trace = {{"mode", "features"}, {"frames", frames}};
+        if (!ctx.gl) return;
+        for (size_t i = 0; i < pairs.size(); ++i) {
+            const FeatureDistanceResult& r = results[i];
+            std::vector<Vec3> all = pairs[i].first.points;
+            all.insert(all.end(), pairs[i].second.points.begin(), pairs[i].second.points.end());
+            Vec3 center;
+            double radius;
+            boundingSphere(all, center, radius);
+            radius = std::max(radius, 0.6);
+            Canvas c(*ctx.gl, canvasOptions(ss));
+            c.setBackground(roleColor(Role::Background));
+            c.setCamera(common_.camera ? *common_.camera : framingCamera(center, radius * 1.25, view, Vec3::UnitZ()));
+            const bool labels = common_.hasLayer("labels");
+            const auto drawFeature = [&](const FeatureGeometry& f, Role role, const std::string& tag) {
+                const Color col = roleColor(role);
+                if (f.type == FeatureType::Face) {
+                    c.drawPolygon(f.points, col.withAlpha(0.45f), false);
+                    c.drawPolyline(f.points, true, lineStyle(role, 3.0f));
+                } else if (f.type == FeatureType::Edge) {
+                    c.drawLine(f.points[0], f.points[1], lineStyle(role, 6.0f, false, true));
+                }
+                for (const Vec3& p : f.points) c.drawPoint(p, f.type == FeatureType::Vertex ? 8.0f : 4.0f, col, true, 1.5f, roleColor(Role::Ink));
+                // Edges are labelled a fifth of the way along (their midpoint is often the closest point).
+                const Vec3 at = f.type == FeatureType::Edge ? Vec3(f.points[0] + 0.2 * (f.points[1] - f.points[0])) : centroid(f.points);
+                if (labels) drawLabelAway(c, at, center, tag + " " + featureTypeName(f.type), labelStyle(role, 20.0f), 30.0);
+            };
+            drawFeature(pairs[i].first, Role::ShapeA, "A:");
+            drawFeature(pairs[i].second, Role::ShapeB, "B:");
+            if (common_.hasLayer("contacts")) {
+                c.drawLine(r.pointA, r.pointB, lineStyle(Role::Result, 2.5f, true, true));
+                c.drawPoint(r.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                c.drawPoint(r.pointB, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                if (labels) {
+                    drawLabelAway(c, r.pointA, r.pointB, "p_A", labelStyle(Role::Result, 18.0f), 16.0);
+                    drawLabelAway(c, r.pointB, r.pointA, "p_B", labelStyle(Role::Result, 18.0f), 16.0);
+                }
+            }
+            if (common_.hasLayer("normals") && r.normalDefined) {
+                c.drawArrow(r.pointA, r.pointA + 0.45 * radius * r.normal, lineStyle(Role::Direction, 3.5f, false, true));
+                if (labels) c.drawText(r.pointA + 0.5 * radius * r.normal, "n", TextStyle{20.0f, roleColor(Role::Direction), Anchor::Left, true, true, {8, 0}});
+            }
+            Legend lg{c};
+            if (labels) {
+                lg.item("feature A", Role::ShapeA);
+                lg.item("feature B", Role::ShapeB);
+                lg.item("closest points p_A, p_B", Role::Result);
+                lg.item("→ contact normal n (A to B)", Role::Direction);
+            }
+            std::string flags;
+            if (r.parallel) flags += "; parallel: one of many closest pairs";
+            if (r.normalUnstable) flags += r.normalDefined ? "; normal UNSTABLE (features almost touch)" : "; no normal (points coincide)";
+            char cap[400];
+            std::snprintf(cap, sizeof cap, "%s: distance %s, normal from %s%s", contactTypeName(r.type), fmt(r.distance).c_str(),
+                          r.normalRule, flags.c_str());
+            char name[32];
+            std::snprintf(name, sizeof name, "pair_%02d", int(i));
+            const std::string title = common_.title + ": " + contactTypeName(r.type) + (pairLabels[i].empty() ? "" : " (" + pairLabels[i] + ")");
+            out.frames.push_back(finish(c, name, title, cap, std::string(contactTypeName(r.type)) + ", distance " + fmt(r.distance)));
+        }
+    }
+
+    // ---- sat mode -----------------------------------------------------------------------------
+    void runSat(const RunContext& ctx, int ss, DemoOutput& out) const {
+        SatContactTrace tr;
+        const SatContactResult r = contactPolyhedra(a.mesh, a.pose, b.mesh, b.pose, {}, &tr);
+        Json axes = Json::array();
+        for (const SatAxisRecord& x : tr.axes)
+            axes.push_back({{"kind", axisKindName(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vec3Json(x.axis)}, {"separation", x.separation}});
+        Json clips = Json::array();
+        for (const SatClipStep& s : tr.clipSteps) clips.push_back({{"reference_edge", s.referenceEdge}, {"before", s.before.size()}, {"after", s.after.size()}});
+        out.trace = {{"mode", "sat"}, {"status", statusName(r.status)}, {"separation", r.separation}, {"depth", r.depth},
+                     {"normal", vec3Json(r.normal)}, {"axis_kind", axisKindName(r.axisKind)}, {"axes", axes},
+                     {"edge_pairs", tr.edgePairsTotal}, {"edge_pairs_pruned", tr.edgePairsPruned}, {"edge_pairs_parallel", tr.edgePairsParallel},
+                     {"chosen", tr.chosen}, {"reference_on_a", tr.referenceOnA}, {"reference_face", tr.referenceFace},
+                     {"incident_face", tr.incidentFace}, {"clip_steps", clips}, {"manifold", pointsJson(r.manifold)}};
+        if (!ctx.gl) return;
+        std::vector<Vec3> all = a.world();
+        for (const Vec3& p : b.world()) all.push_back(p);
+        Vec3 center;
+        double radius;
+        boundingSphere(all, center, radius);
+        const bool labels = common_.hasLayer("labels");
+        const bool faceContact = r.axisKind != SatAxisKind::EdgeEdge && r.colliding();
+        const Posed& ref = tr.referenceOnA ? a : b;
+        const Posed& inc = tr.referenceOnA ? b : a;
+        const Role refRole = tr.referenceOnA ? Role::ShapeA : Role::ShapeB, incRole = tr.referenceOnA ? Role::ShapeB : Role::ShapeA;
+        char counts[200];
+        std::snprintf(counts, sizeof counts, "axes: %d+%d faces, %d/%d edge pairs (%d Gauss-map pruned, %d parallel)",
+                      a.mesh.faceCount(), b.mesh.faceCount(), int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(),
+                      tr.edgePairsTotal, tr.edgePairsPruned, tr.edgePairsParallel);
+        {
+            Canvas c(*ctx.gl, canvasOptions(ss));
+            c.setBackground(roleColor(Role::Background));
+            c.setCamera(common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ()));
+            drawPosed(c, a, roleColor(Role::ShapeA), 0.35f);
+            drawPosed(c, b, roleColor(Role::ShapeB), 0.35f);
+            Legend lg{c};
+            if (labels) {
+                lg.item("body A", Role::ShapeA);
+                lg.item("body B", Role::ShapeB);
+            }
+            Vec3 axisFrom = center;
+            if (faceContact) {
+                const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace), ip = facePolygon(inc, tr.incidentFace);
+                c.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
+                c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
+                c.drawPolyline(ip, true, lineStyle(incRole, 4.0f, true, true));
+                axisFrom = centroid(rp);
+                if (labels) {
+                    lg.item(std::string("reference face (") + (tr.referenceOnA ? "A" : "B") + "), black outline", refRole);
+                    lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", incRole);
+                }
+            } else if (r.colliding() && !r.manifold.empty()) {
+                const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
+                const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
+                c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)), lineStyle(Role::ShapeA, 6.0f, false, true));
+                c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)), lineStyle(Role::ShapeB, 6.0f, false, true));
+                axisFrom = r.manifold[0].pointA;
+                if (labels) lg.item("edges of the edge–edge axis", Role::Ink);
+            }
+            if (common_.hasLayer("normals")) {
+                c.drawArrow(axisFrom, axisFrom + 0.6 * radius * r.normal, lineStyle(Role::Direction, 4.0f, false, true));
+                if (labels) {
+                    c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + axisKindName(r.axisKind) + ")",
+                               TextStyle{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}});
+                    lg.item("→ axis of least penetration", Role::Direction);
+                }
+            }
+            if (common_.hasLayer("contacts")) {
+                for (const ContactPoint& p : r.manifold) {
+                    c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                    c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                    c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+                }
+                if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
+            }
+            char cap[400];
+            if (r.colliding())
+                std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", axisKindName(r.axisKind),
+                              fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
+            else
+                std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), axisKindName(r.axisKind), counts);
+            out.frames.push_back(finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + axisKindName(r.axisKind)));
+        }
+        if (!faceContact) {
+            out.skipped.push_back("clip frame (no face contact)");
+            return;
+        }
+        // The clip seen along the reference normal: reference face, incident face, each side-plane step.
+        const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace);
+        const Vec3 nr = ref.pose.rotate(ref.mesh.face(tr.referenceFace).normal);
+        Vec3 cc;
+        double cr;
+        std::vector<Vec3> both = rp;
+        for (const Vec3& p : facePolygon(inc, tr.incidentFace)) both.push_back(p);
+        boundingSphere(both, cc, cr);
+        Canvas c(*ctx.gl, canvasOptions(ss));
+        c.setBackground(roleColor(Role::Background));
+        c.setCamera(framingCamera(cc, cr * 1.15, nr, nr.unitOrthogonal(), false));
+        c.drawPolygon(rp, roleColor(refRole).withAlpha(0.3f));
+        c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
+        c.drawPolyline(facePolygon(inc, tr.incidentFace), true, lineStyle(incRole, 4.0f, true, true));
+        for (size_t k = 0; k + 1 < tr.clipSteps.size(); ++k)
+            if (tr.clipSteps[k].after.size() >= 2) c.drawPolyline(tr.clipSteps[k].after, true, lineStyle(Role::Muted, 1.5f, true, true));
+        if (!tr.clipSteps.empty() && tr.clipSteps.back().after.size() >= 3) {
+            c.drawPolygon(tr.clipSteps.back().after, roleColor(Role::Result).withAlpha(0.3f));
+            c.drawPolyline(tr.clipSteps.back().after, true, lineStyle(Role::Result, 3.0f, false, true));
+        }
+        for (const ContactPoint& p : tr.clipped) c.drawPoint(tr.referenceOnA ? p.pointB : p.pointA, 4.0f, roleColor(Role::Ink), true);
+        for (const ContactPoint& p : r.manifold) {
+            const Vec3 q = tr.referenceOnA ? p.pointB : p.pointA;
+            c.drawPoint(q, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+            if (labels) drawLabelAway(c, q, cc, fmt(p.depth), labelStyle(Role::Result, 16.0f), 16.0);
+        }
+        Legend lg{c};
+        if (labels) {
+            lg.item("reference face", refRole);
+            lg.item("- - incident face", incRole);
+            lg.item("- - after each side-plane clip", Role::Muted);
+            lg.item("clipped polygon; kept points, depth", Role::Result);
+        }
+        char cap[300];
+        std::snprintf(cap, sizeof cap, "Sutherland–Hodgman: %d side planes clip the incident face to %d points; %d below the reference face → %d kept",
+                      int(tr.clipSteps.size()), tr.clipSteps.empty() ? 0 : int(tr.clipSteps.back().after.size()), int(tr.clipped.size()),
+                      int(r.manifold.size()));
+        out.frames.push_back(finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping"));
+    }
+};
+
+class PolyhedronPlaneDemo final : public Demo {
+public:
+    std::string name() const override { return "polyhedron_plane"; }
+    std::string description() const override {
+        return "contact model: polyhedron vs plane manifolds, the six feature-pair contact types, SAT face clipping";
+    }
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
+        ObjectReader r(JsonNode(json, "$", file));
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{960, 720});
+        auto scene = std::make_unique<ContactScene>(std::move(common));
+        scene->mode = "plane";
+        if (auto m = r.find("mode")) scene->mode = m->asEnum({"plane", "features", "sat"});
+        if (auto v = r.find("view")) {
+            scene->view = sceneVec3(*v);
+            if (!(scene->view.norm() > 0)) v->fail("view direction must be non-zero");
+        }
+        if (scene->mode == "plane") {
+            scene->body.mesh = readBody(r.get("body"), scene->body.name);
+            const JsonNode ps = r.get("poses");
+            const std::vector<JsonNode> items = ps.items();
+            if (items.empty() || int(items.size()) > kMaxFrames) ps.fail("1 to " + std::to_string(kMaxFrames) + " poses");
+            for (const JsonNode& it : items) {
+                ObjectReader pr(it);
+                scene->poses.push_back(readPose(pr));
+                scene->poseLabels.push_back(pr.stringOr("label", ""));
+                pr.finish();
+            }
+            if (auto p = r.find("plane")) {
+                ObjectReader pr(*p);
+                const JsonNode nn = pr.get("normal");
+                scene->plane.normal = sceneVec3(nn);
+                scene->plane.offset = sceneCoordinate(pr.get("offset"));
+                pr.finish();
+                if (!(scene->plane.normal.norm() > 0)) nn.fail("plane normal must be non-zero");
+            }
+            if (auto m = r.find("max_points")) scene->maxPoints = m->asInt(1, 64);
+        } else if (scene->mode == "features") {
+            const JsonNode ps = r.get("pairs");
+            const std::vector<JsonNode> items = ps.items();
+            if (items.empty() || int(items.size()) > kMaxFrames) ps.fail("1 to " + std::to_string(kMaxFrames) + " pairs");
+            for (const JsonNode& it : items) {
+                ObjectReader pr(it);
+                scene->pairs.emplace_back(readFeature(pr.get("a")), readFeature(pr.get("b")));
+                scene->pairLabels.push_back(pr.stringOr("label", ""));
+                pr.finish();
+            }
+        } else {
+            for (auto [key, posed] : {std::pair{"a", &scene->a}, std::pair{"b", &scene->b}}) {
+                ObjectReader br(r.get(key));
+                posed->mesh = readBody(br.get("body"), posed->name);
+                posed->pose = readPose(br);
+                br.finish();
+            }
+        }
+        r.finish();
+        return scene;
+    }
+};
+
+}  // namespace
+
+const Demo& polyhedronPlaneDemo() {
+    static const PolyhedronPlaneDemo demo;
+    return demo;
+}
+
+}  // namespace cdlab::demos

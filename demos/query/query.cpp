@@ -1,0 +1,129 @@
+#include "demos/query/query.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <string_view>
+
+#include "core/closest_point.h"
+#include "demos/query/query_contact.h"
+#include "demos/query/query_json.h"
+#include "demos/query/query_limits.h"
+#include "demos/query/query_ops.h"
+#include "demos/query/query_shapes.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+constexpr const char* kSource = "query";
+
+Json closestPointTriangle(ObjectReader& r) {
+    Vec3 p = r.get("point").asVec3();
+    JsonNode t = r.get("triangle");
+    if (t.size() != 3) t.fail("expected [a, b, c]");
+    std::vector<Vec3> v = t.asVec3List();
+    r.finish();
+    // Scale by a power of two (exact) so the largest coordinate is in [0.5, 1): the exact region
+    // predicates hold for magnitudes in [2^-200, 2^240], and this brings 1e-300 or 1e300 inputs there.
+    double m = std::max({p.cwiseAbs().maxCoeff(), v[0].cwiseAbs().maxCoeff(), v[1].cwiseAbs().maxCoeff(),
+                         v[2].cwiseAbs().maxCoeff()});
+    int e = 0;
+    if (m > 0) std::frexp(m, &e);
+    ClosestPointOnTriangleResult res =
+        closestPointOnTriangle(scaled(p, -e), Triangle{scaled(v[0], -e), scaled(v[1], -e), scaled(v[2], -e)});
+    return {{"point", vecJson(scaled(res.point, e))}, {"region", toString(res.region)}};
+}
+
+}  // namespace
+
+Json answerQuery(const std::string& line) {
+    Json answer = Json::object();
+    Json id = nullptr;
+    try {
+        Json q = parseJson(line, kSource);
+        JsonNode root(q, "$", kSource);
+        if (q.is_object() && q.contains("id")) id = q["id"];
+        ObjectReader r(root);
+        r.ignore("id");
+        std::string op = r.get("op").asEnum(
+            {"closest_point_triangle", "intersect", "distance", "penetration", "contact", "mass_properties"});
+        Json result;
+        if (op == "closest_point_triangle") result = closestPointTriangle(r);
+        else if (op == "contact" || op == "mass_properties") result = answerContactQuery(op, r);
+        else result = answerShapeQuery(op, r);
+        answer["id"] = id;
+        for (auto it = result.begin(); it != result.end(); ++it) answer[it.key()] = it.value();
+    } catch (const InputError& e) {
+        answer = {{"id", id}, {"error", e.what()}};
+    } catch (const std::exception& e) {
+        answer = {{"id", id}, {"error", std::string("internal error: ") + e.what()}};
+    }
+    return answer;
+}
+
+namespace {
+
+enum class LineRead { Line, TooLong, End };
+
+// Reads one line (the '\n' dropped) keeping at most `limit` bytes; a longer line is read to its
+// end and reported, so the next line is still answered.
+LineRead readLine(std::streambuf& in, std::string& line, std::size_t limit) {
+    line.clear();
+    bool any = false, tooLong = false;
+    for (;;) {
+        const int c = in.sbumpc();
+        if (c == std::char_traits<char>::eof()) return !any ? LineRead::End : tooLong ? LineRead::TooLong : LineRead::Line;
+        any = true;
+        if (c == '\n') return tooLong ? LineRead::TooLong : LineRead::Line;
+        if (line.size() < limit) line.push_back(char(c));
+        else tooLong = true;
+    }
+}
+
+// One answer line: "id" first, then the answer's keys; invalid UTF-8 in echoed strings is replaced.
+void writeAnswer(std::ostream& out, Json a) {
+    const auto dump = [](const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); };
+    Json id = a["id"];
+    a.erase("id");
+    std::string body = dump(a);
+    out << "{\"id\":" << dump(id);
+    if (body.size() > 2) out << ',' << std::string_view(body).substr(1) << '\n';
+    else out << "}\n";
+}
+
+}  // namespace
+
+int runQueries(std::istream& in, std::ostream& out) {
+    std::string line;
+    bool failed = false;
+    std::size_t lineNumber = 0;
+    for (LineRead read; (read = readLine(*in.rdbuf(), line, kMaxQueryLineBytes)) != LineRead::End && out;) {
+        ++lineNumber;
+        if (read == LineRead::TooLong) {
+            failed = true;
+            writeAnswer(out, {{"id", nullptr},
+                              {"error", "query: line " + std::to_string(lineNumber) + ": longer than the limit of " +
+                                            std::to_string(kMaxQueryLineBytes >> 20) + " MiB for one query line"}});
+            continue;
+        }
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        Json a = answerQuery(line);
+        if (a.contains("error")) failed = true;
+        writeAnswer(out, std::move(a));
+    }
+    // Answers that cannot be written (a full disk, a closed pipe) are an output error, not success.
+    errno = 0;
+    out.flush();
+    if (!out) {
+        std::cerr << "cdlab query: cannot write the answers to standard output"
+                  << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << "\n";
+        return 2;
+    }
+    return failed ? 1 : 0;
+}
+
+}  // namespace cdlab::demos

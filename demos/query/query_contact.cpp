@@ -1,0 +1,253 @@
+// The "contact" op of `cdlab query` (README "cdlab query"): the contact manifold of a polytope
+// (polytope / aabb / obb) against a plane (core/contact_plane.h) or another polytope (SAT with
+// face clipping, core/contact_sat.h); separated pairs answer the distance (GJK) and the closest
+// features. "mass_properties" is answered by demos/query/query_mass.h.
+//
+// Answer conventions (the same as "penetration"): normal n is a unit vector from A toward B;
+// translating b by depth·n leaves the shapes touching; each contact point has point_a − point_b =
+// depth·n (point_a: the point of A inside B, point_b: its projection on B's surface). A plane in
+// this op is the solid half-space n·x <= d (a ground): a body below the plane is deep inside it.
+// Features name the input vertices of the shape: {"type":"vertex"|"edge"|"face","vertices":[i,...]}
+// (face vertices counter-clockwise seen from outside; aabb/obb corners are numbered with bit k of
+// the index choosing the + side of axis k); the plane's feature is {"type":"plane"}.
+//
+// Touching or separated is decided by the touching rule of every op (query_tolerance.h): for two
+// polytopes by the GJK distance, for a polytope and a plane by the lowest signed vertex distance.
+// The manifold itself (which vertices form the touching feature, which clipped points are kept)
+// uses the core's feature tolerance. Everything is computed in a frame local to the bodies —
+// translated to the first body's first vertex, then scaled by a power of two — so the rounding
+// is relative to the bodies' extent, not to how far they are from the origin.
+#include "demos/query/query_contact.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+#include "core/contact_plane.h"
+#include "core/contact_sat.h"
+#include "core/convex_hull.h"
+#include "core/gjk.h"
+#include "core/shapes.h"
+#include "demos/query/query_json.h"
+#include "demos/query/query_limits.h"
+#include "demos/query/query_mass.h"
+#include "demos/query/query_shapes.h"
+#include "demos/query/query_tolerance.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using Kind = QueryShape::Kind;
+
+// A bounded query shape as a convex polyhedron (world frame) and the map back to input vertices.
+struct Body {
+    ConvexPolyhedron mesh;
+    std::vector<int> inputIndex;  // hull vertex -> input vertex
+};
+
+Body makeBody(const QueryShape& s, const JsonNode& node) {
+    HullResult h = convexHull(s.vertices);
+    if (!h.ok()) node.fail(std::string("contact needs a solid polytope: its convex hull failed (") + h.message + ")");
+    return {std::move(h.polyhedron), std::move(h.inputIndex)};
+}
+
+// The bodies' local frame: world = 2^-k · local + origin.
+struct LocalFrame {
+    Vec3 origin = Vec3::Zero();
+    int k = 0;
+    Vec3 toWorld(const Vec3& p) const { return Vec3(scaled(p, -k) + origin); }
+    double length(double x) const { return std::ldexp(x, -k); }
+};
+
+// Translates the shape by -origin, then scales it by 2^k (a plane n·x = d becomes n·x = d - n·origin).
+void toLocal(QueryShape& s, const LocalFrame& f) {
+    for (Vec3& v : s.vertices) v -= f.origin;
+    if (s.kind == Kind::Plane) s.offset -= s.normal.dot(f.origin);
+    scaleShape(s, f.k);
+}
+
+// The input vertex indices of a feature of the hull.
+std::vector<int> featureVertices(const Body& b, const FeatureRef& f) {
+    std::vector<int> v;
+    if (f.type == FeatureType::Vertex) v = {f.index};
+    else if (f.type == FeatureType::Edge) v = {b.mesh.edgeVertices(f.index).first, b.mesh.edgeVertices(f.index).second};
+    else if (f.type == FeatureType::Face) v = b.mesh.faceVertices(f.index);
+    for (int& i : v) i = b.inputIndex[i];
+    return v;
+}
+Json featureJson(const Body& b, const FeatureRef& f) {
+    return {{"type", featureTypeName(f.type)}, {"vertices", featureVertices(b, f)}};
+}
+
+// The support feature of a body in direction d: the vertices within tol of the maximum of d·x,
+// as a vertex, an edge (two adjacent vertices) or the face holding them (core/contact_plane.h
+// does the same for -n̂; here reused by calling it with a plane through the support point).
+FeatureRef supportFeature(const Body& b, const Vec3& d) {
+    double top = -INFINITY;
+    for (const auto& v : b.mesh.vertices()) top = std::max(top, d.dot(v.position));
+    // The plane -d·x = -top touches the body from the side d (the body lies on its + side): the
+    // closest feature to it is the support set.
+    const PlaneContactResult r = contactPolyhedronPlane(b.mesh, Transform{}, Plane{-d, -top});
+    return r.feature;
+}
+
+Json pointsJson(const std::vector<ContactPoint>& pts, bool swap, const LocalFrame& frame) {
+    Json out = Json::array();
+    for (const ContactPoint& c : pts) {
+        const Vec3 pa = frame.toWorld(swap ? c.pointB : c.pointA), pb = frame.toWorld(swap ? c.pointA : c.pointB);
+        out.push_back({{"point_a", vecJson(pa)}, {"point_b", vecJson(pb)}, {"depth", frame.length(c.depth)}});
+    }
+    return out;
+}
+
+// Polytope (body) vs plane; bodyIsA says which side of the query the body is on. `touch` is the
+// touching rule's tolerance (local units): s_min > touch is separated, as for the distance op.
+Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxPoints, bool wantTrace,
+               double touch, const LocalFrame& frame) {
+    PlaneContactTrace trace;
+    PlaneContactOptions opt;
+    opt.maxPoints = maxPoints;
+    const Plane local{plane.normal, plane.offset};
+    PlaneContactResult r = contactPolyhedronPlane(body.mesh, Transform{}, local, opt, wantTrace ? &trace : nullptr);
+    if (r.status == PlaneContactStatus::InvalidInput) throw InputError("query: contact: " + r.message);
+    const bool colliding = r.signedDistance <= touch;
+    if (colliding && !r.colliding()) {  // the core's feature tolerance is below the rule's: widen it
+        opt.tolerance = std::max(touch, r.signedDistance);
+        r = contactPolyhedronPlane(body.mesh, Transform{}, local, opt, wantTrace ? &trace : nullptr);
+    }
+    // Core: A = body, normal = -n̂ (body toward the half-space). Swapped when the plane is a.
+    const Vec3 n = bodyIsA ? r.normal : Vec3(-r.normal);
+    const Json bodyFeature = featureJson(body, r.feature), planeFeature = {{"type", "plane"}};
+    Json out;
+    if (colliding) {
+        out = {{"colliding", true}, {"depth", frame.length(r.depth)}, {"normal", vecJson(n)},
+               {"points", pointsJson(r.manifold, !bodyIsA, frame)}};
+    } else {
+        std::vector<ContactPoint> closest;
+        for (size_t i = 0; i < r.featurePoints.size(); ++i) closest.push_back({r.featurePoints[i], r.featurePointsOnPlane[i], 0.0});
+        Json pairs = Json::array();
+        for (const Json& p : pointsJson(closest, !bodyIsA, frame)) pairs.push_back({{"point_a", p["point_a"]}, {"point_b", p["point_b"]}});
+        out = {{"colliding", false}, {"distance", frame.length(r.signedDistance)}, {"normal", vecJson(n)}, {"closest", pairs}};
+    }
+    out["feature_a"] = bodyIsA ? bodyFeature : planeFeature;
+    out["feature_b"] = bodyIsA ? planeFeature : bodyFeature;
+    if (wantTrace) {
+        Json depths = Json::array();
+        for (double s : trace.vertexDistances) depths.push_back(frame.length(s));
+        Json steps = Json::array();
+        for (const auto& st : trace.reduction) steps.push_back({{"rule", st.rule}, {"candidate", st.chosen}});
+        out["trace"] = {{"algorithm", "polytope-plane"}, {"vertex_signed_distances", depths},
+                        {"crossings", trace.crossings.size()}, {"candidates", trace.candidates.size()},
+                        {"polygon", trace.hull.size()}, {"reduction", steps}};
+    }
+    return out;
+}
+
+Json satTraceJson(const SatContactTrace& trace, const LocalFrame& frame) {
+    Json axes = Json::array();
+    for (const SatAxisRecord& x : trace.axes)
+        axes.push_back({{"kind", axisKindName(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vecJson(x.axis)},
+                        {"separation", frame.length(x.separation)}});
+    return {{"algorithm", "sat"}, {"axes", axes}, {"edge_pairs", trace.edgePairsTotal},
+            {"edge_pairs_pruned", trace.edgePairsPruned}, {"edge_pairs_parallel", trace.edgePairsParallel},
+            {"chosen", trace.chosen}, {"reference_on_a", trace.referenceOnA},
+            {"clip_steps", trace.clipSteps.size()}, {"clipped_points", trace.clipped.size()}};
+}
+
+// Separated polytopes: the distance and closest points by GJK; the features are the support sets
+// of each body along the separating direction (they hold the closest points).
+Json separatedBodies(const Body& a, const Body& b, const GjkResult& g, const LocalFrame& frame) {
+    const Vec3 n = g.separatingAxis;
+    Json pair = {{"point_a", vecJson(frame.toWorld(g.pointA))}, {"point_b", vecJson(frame.toWorld(g.pointB))}};
+    return {{"colliding", false}, {"distance", frame.length(g.distance)}, {"normal", vecJson(n)},
+            {"closest", Json::array({pair})}, {"feature_a", featureJson(a, supportFeature(a, n))},
+            {"feature_b", featureJson(b, supportFeature(b, -n))}};
+}
+
+// Two polytopes: GJK decides (the touching rule, `touch` in local units); colliding pairs get the
+// SAT manifold (Gregorius), the SAT trace is recorded either way.
+Json bodyBody(const Body& a, const Body& b, int maxPoints, bool wantTrace, double touch, const LocalFrame& frame,
+              const JsonNode& bNode) {
+    const GjkResult g = gjkDistance(PolytopeShape(a.mesh.positions()), PolytopeShape(b.mesh.positions()));
+    if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
+    const bool colliding = g.intersect || g.distance <= touch;
+    if (!colliding && !wantTrace) return separatedBodies(a, b, g, frame);  // no SAT needed: linear time
+    requireEdgePairsWithinLimit(a.mesh.edgeCount(), b.mesh.edgeCount(), bNode);
+    SatContactTrace trace;
+    SatContactOptions opt;
+    opt.maxPoints = maxPoints;
+    SatContactResult r = contactPolyhedra(a.mesh, Transform{}, b.mesh, Transform{}, opt, wantTrace ? &trace : nullptr);
+    if (r.status == SatContactStatus::InvalidInput) throw InputError("query: contact: " + r.message);
+    if (colliding && !r.colliding()) {  // rounding put the SAT just past its band: widen it to the rule's
+        opt.tolerance = std::max(touch, r.separation);
+        r = contactPolyhedra(a.mesh, Transform{}, b.mesh, Transform{}, opt, wantTrace ? &trace : nullptr);
+    }
+    Json out = colliding ? Json{{"colliding", true}, {"depth", frame.length(r.depth)}, {"normal", vecJson(r.normal)},
+                                {"points", pointsJson(r.manifold, false, frame)}, {"axis", axisKindName(r.axisKind)},
+                                {"feature_a", featureJson(a, r.featureA)}, {"feature_b", featureJson(b, r.featureB)}}
+                         : separatedBodies(a, b, g, frame);
+    if (wantTrace) out["trace"] = satTraceJson(trace, frame);
+    return out;
+}
+
+// The local frame of a contact query: the first body's first vertex as origin, and the power of two
+// that brings the bodies' largest local coordinate into [0.5, 1). A plane does not set the scale:
+// a unit box against a plane at offset 1e300 keeps its size (its depth is then ~1e300 local units).
+LocalFrame contactFrame(const QueryShape& a, const QueryShape& b) {
+    LocalFrame f;
+    f.origin = (a.kind == Kind::Plane ? b : a).vertices.front();
+    double m = 0.0;
+    for (const QueryShape* s : {&a, &b})
+        for (const Vec3& v : s->vertices) m = std::max(m, (v - f.origin).cwiseAbs().maxCoeff());
+    if (m > 0 && std::isfinite(m)) std::frexp(m, &f.k), f.k = -f.k;
+    return f;
+}
+
+Json contactQuery(ObjectReader& r) {
+    JsonNode an = r.get("a"), bn = r.get("b");
+    QueryShape a = parseQueryShape(an), b = parseQueryShape(bn);
+    int maxPoints = 4;
+    if (auto m = r.find("max_points")) maxPoints = m->asInt(1, 64);
+    const bool wantTrace = r.boolOr("trace", false);
+    r.finish();
+    const auto solid = [](const QueryShape& s) { return s.kind == Kind::Polytope || s.kind == Kind::Aabb || s.kind == Kind::Obb; };
+    for (const auto& [s, node] : {std::pair{&a, &an}, std::pair{&b, &bn}}) {
+        if (!solid(*s) && s->kind != Kind::Plane)
+            node->fail(std::string("contact supports polytope, aabb, obb and plane shapes, not ") + toString(s->kind));
+        requireHullVerticesWithinLimit(s->vertices.size(), "contact", *node);
+    }
+    if (a.kind == Kind::Plane && b.kind == Kind::Plane) bn.fail("contact needs at least one polytope (two planes given)");
+
+    // The touching rule's tolerance, from the shapes as given (world units).
+    const QueryShape& plane = a.kind == Kind::Plane ? a : b;
+    const QueryShape& body = a.kind == Kind::Plane ? b : a;
+    double touch = 0.0;
+    if (plane.kind == Kind::Plane) {
+        const double m = plane.normal.norm();
+        touch = planeTouchTolerance(plane.offset / m, largestCoordinate(body));
+    } else {
+        touch = touchTolerance(a, b);
+    }
+    const LocalFrame frame = contactFrame(a, b);
+    toLocal(a, frame);
+    toLocal(b, frame);
+    if (plane.kind == Kind::Plane && !std::isfinite((a.kind == Kind::Plane ? a : b).offset))
+        (a.kind == Kind::Plane ? an : bn).fail("the plane is farther from the body than double precision spans (offset / body size above ~1e308)");
+    touch = std::ldexp(touch, frame.k);
+    Json out;
+    if (b.kind == Kind::Plane) out = bodyPlane(makeBody(a, an), b, true, maxPoints, wantTrace, touch, frame);
+    else if (a.kind == Kind::Plane) out = bodyPlane(makeBody(b, bn), a, false, maxPoints, wantTrace, touch, frame);
+    else out = bodyBody(makeBody(a, an), makeBody(b, bn), maxPoints, wantTrace, touch, frame, bn);
+    requireFiniteAnswer(out);
+    return out;
+}
+
+}  // namespace
+
+Json answerContactQuery(const std::string& op, ObjectReader& reader) {
+    if (op == "mass_properties") return answerMassPropertiesQuery(reader);
+    return contactQuery(reader);
+}
+
+}  // namespace cdlab::demos

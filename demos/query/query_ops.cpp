@@ -1,0 +1,436 @@
+// Shape-pair queries. Every bounded query shape is conv(core points) ⊕ ball(radius) (sphere: a
+// point core, capsule: a segment core), so GJK and EPA run on the polytope cores — where they
+// terminate exactly — and the radii are added in closed form:
+//   distance(A, B)    = distance(coreA, coreB) - rA - rB            (when positive)
+//   depth(A, B)       = rA + rB - distance(coreA, coreB)            (cores apart, shapes overlapping)
+//                     = depth(coreA, coreB) + rA + rB               (cores overlapping)
+// with the normal of the core query in both cases (van den Bergen 2003, §4.3.7 "margins").
+// Rays are clipped to the segment that provably holds the answer; planes are handled in closed
+// form by their support values.
+#include "demos/query/query_ops.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/epa.h"
+#include "core/gjk.h"
+#include "core/primitives.h"
+#include "core/sat_tests.h"
+#include "core/shapes.h"
+#include "demos/query/query_json.h"
+#include "demos/query/query_shapes.h"
+#include "demos/query/query_tolerance.h"
+#include "demos/query/query_feature_walk.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using Kind = QueryShape::Kind;
+
+struct PairAnswer {
+    bool intersect = false;
+    double distance = 0;  // separated: > 0
+    double depth = 0;     // intersecting: >= 0
+    Vec3 normal = Vec3::UnitX();
+    Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
+    bool hasWitness = false;  // separated: closest points / overlapping: deepest points
+    Json trace;
+    int traceExponent = 0;  // trace coordinates are 2^traceExponent times those of the query
+};
+
+Json gjkTraceJson(const GjkTrace& t) {
+    Json steps = Json::array();
+    for (const GjkTraceStep& s : t.steps) {
+        Json simplex = Json::array();
+        for (int i = 0; i < s.simplexCount; ++i) simplex.push_back(vecJson(s.simplex[i].w));
+        steps.push_back({{"iteration", s.iteration}, {"simplex", simplex}, {"direction", vecJson(s.direction)},
+                         {"support", vecJson(s.support.w)}, {"region", s.region}, {"v", vecJson(s.v)},
+                         {"lower_bound", s.lowerBound}, {"upper_bound", s.upperBound}, {"terminated", s.terminated}});
+    }
+    return {{"algorithm", "gjk"}, {"termination", terminationName(t.termination)}, {"steps", steps}};
+}
+
+Json epaTraceJson(const EpaTrace& t) {
+    Json steps = Json::array();
+    for (const EpaTraceStep& s : t.steps)
+        steps.push_back({{"iteration", s.iteration}, {"vertices", s.vertices.size()}, {"faces", s.faces.size()},
+                         {"closest_normal", vecJson(s.closestNormal)}, {"closest_distance", s.closestDistance},
+                         {"support", vecJson(s.support)}, {"removed_faces", s.removedFaces.size()},
+                         {"horizon_edges", s.horizon.size()}, {"lower_bound", s.lowerBound},
+                         {"upper_bound", s.upperBound}});
+    return {{"algorithm", "epa"}, {"start", t.start}, {"termination", terminationName(t.termination)}, {"steps", steps}};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bounded pairs: GJK / EPA on the cores, radii in closed form.
+
+std::vector<Vec3> scaledPoints(const std::vector<Vec3>& points, int k) {
+    std::vector<Vec3> out;
+    out.reserve(points.size());
+    for (const Vec3& v : points) out.push_back(scaled(v, k));
+    return out;
+}
+
+PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
+    // The cores get their own exact power-of-two scaling: the query as a whole is normalised by
+    // its largest coordinate or radius, and a radius 1e300 times the core size would leave the
+    // cores at 1e-300, where GJK's squared norms underflow (found by fuzzing). Core results are
+    // scaled back before the radii are added, so the radii never see the core exponent.
+    const double cs = std::max(largestCoordinate(a), largestCoordinate(b));  // of the cores (radii excluded)
+    int kc = 0;
+    if (cs > 0) std::frexp(cs, &kc), kc = -kc;
+    const auto unscale = [kc](double x) { return std::ldexp(x, -kc); };
+    const auto unscaleVec = [&](const Vec3& v) { return Vec3(v.unaryExpr(unscale)); };
+    // Vertex loop support (first maximal vertex: deterministic ties); non-extreme points are harmless.
+    const PolytopeShape ca(scaledPoints(a.vertices, kc)), cb(scaledPoints(b.vertices, kc));
+    const double radii = a.radius + b.radius;
+    const double touch = touchTolerance(a, b);  // the touching rule of every op (query_tolerance.h)
+    const double coreTouch = kTouchRelative * minkowskiExtent(a.vertices, b.vertices);  // of the cores alone
+    PairAnswer ans;
+    ans.traceExponent = kc;
+    GjkTrace gtrace;
+    GjkResult g = gjkDistance(ca, cb, GjkOptions{}, wantTrace ? &gtrace : nullptr);
+    if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
+    if (wantTrace) ans.trace = Json::array({gjkTraceJson(gtrace)});
+    const double coreDistance = unscale(g.distance);
+    const Vec3 coreA = unscaleVec(g.pointA), coreB = unscaleVec(g.pointB);
+
+    if (!g.intersect && coreDistance > radii + touch) {  // separated
+        ans.distance = coreDistance - radii;
+        ans.normal = g.separatingAxis;  // unit, from A toward B
+        ans.pointA = coreA + a.radius * ans.normal;
+        ans.pointB = coreB - b.radius * ans.normal;
+        ans.hasWitness = true;
+        return ans;
+    }
+    ans.intersect = true;
+    if (!wantDepth) return ans;
+    if (!g.intersect && coreDistance > coreTouch) {
+        // Cores apart, rounded shapes overlapping (or touching): the core axis is the normal.
+        ans.depth = std::max(radii - coreDistance, 0.0);
+        ans.normal = g.separatingAxis;
+    } else {
+        EpaTrace etrace;
+        EpaResult e = epaPenetration(ca, cb, g.simplex, EpaOptions{}, wantTrace ? &etrace : nullptr);
+        if (e.status == EpaStatus::InvalidInput) throw InputError("query: penetration failed: invalid support points");
+        if (wantTrace) ans.trace.push_back(epaTraceJson(etrace));
+        if (std::abs(e.normal.squaredNorm() - 1) < 1e-9) {
+            ans.depth = unscale(e.depth) + radii;
+            ans.normal = e.normal;
+            // Deepest points of the cores, pushed out by the radii along the normal.
+            ans.pointA = unscaleVec(e.pointA) + a.radius * ans.normal;
+            ans.pointB = unscaleVec(e.pointB) - b.radius * ans.normal;
+        } else {
+            // EPA found no valid normal: the cores span ~1e300 in one direction and ~1 in
+            // another, so after normalisation their small features are subnormal (found by
+            // fuzzing). Defined fallback: the coordinate axis of least overlap, with its exact
+            // support-function overlap h_A(n) + h_B(-n) — a valid normal and a depth that separates.
+            double best = std::numeric_limits<double>::infinity();
+            for (int i = 0; i < 6; ++i) {
+                const Vec3 n = (i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2);
+                const double overlap = n.dot(ca.support(n)) - n.dot(cb.support(-n));
+                if (overlap < best) best = overlap, ans.normal = n, ans.pointB = unscaleVec(cb.support(-n));
+            }
+            ans.depth = std::max(unscale(best), 0.0) + radii;
+            ans.pointB -= b.radius * ans.normal;
+            ans.pointA = ans.pointB + ans.depth * ans.normal;
+        }
+        ans.hasWitness = true;
+        return ans;
+    }
+    ans.pointA = coreA + a.radius * ans.normal;
+    ans.pointB = coreB - b.radius * ans.normal;
+    ans.hasWitness = true;
+    return ans;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Planes: the signed distances of a bounded shape to the plane span [lo, hi] (closed form).
+
+struct PlaneSpan {
+    double lo, hi;       // min / max of (n·x - d)/|n| over the shape
+    Vec3 lowPoint, highPoint;  // shape points attaining them
+    double touch;        // the touching tolerance of this plane and shape
+};
+
+// n̂·x = d̂ with |n̂| = 1 (the parser keeps |normal| in [0.5, sqrt 3], so this neither under- nor overflows).
+struct UnitPlane {
+    Vec3 n;
+    double d;
+};
+UnitPlane unitPlane(const QueryShape& plane) {
+    const double m = plane.normal.norm();
+    return {plane.normal / m, plane.offset / m};
+}
+
+PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
+    const auto [n, d] = unitPlane(plane);
+    PlaneSpan span{INFINITY, -INFINITY, Vec3::Zero(), Vec3::Zero(), planeTouchTolerance(d, largestCoordinate(s) + s.radius)};
+    for (const Vec3& v : s.vertices) {
+        double x = n.dot(v) - d;
+        if (x < span.lo) span.lo = x, span.lowPoint = v;
+        if (x > span.hi) span.hi = x, span.highPoint = v;
+    }
+    span.lo -= s.radius;
+    span.hi += s.radius;
+    span.lowPoint -= s.radius * n;
+    span.highPoint += s.radius * n;
+    return span;
+}
+
+// a = plane, b = bounded shape. Normal convention: translating b by depth * normal separates.
+PairAnswer planeBounded(const QueryShape& plane, const QueryShape& s) {
+    const Vec3 n = unitPlane(plane).n;
+    PlaneSpan span = planeSpan(plane, s);
+    PairAnswer ans;
+    ans.hasWitness = true;
+    if (span.lo > span.touch || span.hi < -span.touch) {
+        const bool above = span.lo > span.touch;
+        ans.distance = above ? span.lo : -span.hi;
+        ans.pointB = above ? span.lowPoint : span.highPoint;
+        ans.normal = above ? n : Vec3(-n);
+        ans.pointA = ans.pointB - ans.distance * ans.normal;
+        return ans;
+    }
+    ans.intersect = true;
+    // Push b off the plane to whichever side is nearer (the plane is a surface, not a half-space).
+    if (-span.lo <= span.hi) {
+        ans.depth = std::max(-span.lo, 0.0);  // touching within the tolerance: depth 0
+        ans.normal = n;
+        ans.pointB = span.lowPoint;
+    } else {
+        ans.depth = std::max(span.hi, 0.0);
+        ans.normal = -n;
+        ans.pointB = span.highPoint;
+    }
+    ans.pointA = ans.pointB + ans.depth * ans.normal;
+    return ans;
+}
+
+PairAnswer planePlane(const QueryShape& a, const QueryShape& b, bool wantDepth) {
+    const auto [na, da] = unitPlane(a);
+    const auto [nb, db] = unitPlane(b);
+    PairAnswer ans;
+    // Parallel to rounding: |na x nb| below ~10 ulps.
+    if (na.cross(nb).norm() > 1e-15) {
+        ans.intersect = true;
+        if (wantDepth) throw InputError("query: penetration of two non-parallel planes is unbounded (no translation separates them)");
+        return ans;
+    }
+    const double sign = na.dot(nb) > 0 ? 1.0 : -1.0;
+    const double gap = sign * db - da;  // b's offset along na minus a's
+    ans.hasWitness = true;
+    ans.pointA = da * na;
+    // The gap is rounded relative to the offsets (the touching rule, query_tolerance.h).
+    if (std::abs(gap) > kTouchRelative * std::max(std::abs(da), std::abs(db))) {
+        ans.distance = std::abs(gap);
+        ans.normal = gap > 0 ? na : Vec3(-na);
+        ans.pointB = ans.pointA + ans.distance * ans.normal;
+        return ans;
+    }
+    ans.intersect = true;
+    ans.depth = 0;
+    ans.normal = na;
+    ans.pointB = ans.pointA;
+    return ans;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rays.
+
+// The part of the ray that can hold the answer against a bounded shape s: t in [0, tEnd].
+// Closest point: beyond tFar (the largest projection of s on the ray) moving back brings the ray
+// point nearer to every point of s, so t* <= tFar. Penetration: the clipped segment must not
+// escape backwards more cheaply than the ray can; a lateral escape costs at most the diameter of
+// s, so extending the segment by twice that diameter past tFar keeps the depth the ray's.
+QueryShape clipRay(const QueryShape& ray, const QueryShape& s) {
+    const double dd = ray.direction.squaredNorm();
+    double tFar = 0;
+    Vec3 center = Vec3::Zero();
+    for (const Vec3& v : s.vertices) {
+        tFar = std::max(tFar, ray.direction.dot(v - ray.origin) / dd);
+        center += v;
+    }
+    center /= double(s.vertices.size());
+    double diameter = 0;
+    for (const Vec3& v : s.vertices) diameter = std::max(diameter, 2 * (v - center).norm());
+    diameter += 2 * s.radius;
+    tFar += s.radius / std::sqrt(dd);
+    const double tEnd = tFar + 2 * (diameter + 1e-9 * (1 + tFar * std::sqrt(dd))) / std::sqrt(dd);
+    QueryShape seg;
+    seg.kind = Kind::Segment;
+    seg.vertices = {ray.origin, ray.origin + tEnd * ray.direction};
+    return seg;
+}
+
+PairAnswer rayPlane(const QueryShape& ray, const QueryShape& plane) {
+    const auto [n, d] = unitPlane(plane);
+    const double s0 = n.dot(ray.origin) - d;
+    const double slope = n.dot(ray.direction);
+    PairAnswer ans;
+    ans.hasWitness = true;
+    const bool onPlane = std::abs(s0) <= planeTouchTolerance(d, ray.origin.cwiseAbs().maxCoeff());
+    const bool reaches = onPlane || (s0 > 0 ? slope < 0 : slope > 0);
+    ans.pointA = ray.origin;
+    if (!reaches) {
+        ans.distance = std::abs(s0);
+        ans.normal = s0 > 0 ? Vec3(-n) : n;  // from the ray toward the plane
+        ans.pointB = ray.origin + ans.distance * ans.normal;
+        return ans;
+    }
+    ans.intersect = true;
+    // The ray reaches the plane: translating the plane (B) onto the ray's origin leaves them
+    // touching, and no shorter translation does.
+    ans.depth = onPlane ? 0.0 : std::abs(s0);
+    ans.normal = s0 >= 0 ? n : Vec3(-n);
+    ans.pointB = onPlane ? ray.origin : Vec3(ray.origin - s0 * n);
+    return ans;
+}
+
+PairAnswer rayRay(const QueryShape& a, const QueryShape& b) {
+    // Minimise |oa + s da - ob - t db| over s, t >= 0: the unconstrained optimum if feasible,
+    // else the best of the boundary cases s = 0 or t = 0 (each a point-ray problem). Everything is
+    // computed relative to oa, so the rounding is relative to the distances involved, not to the
+    // coordinates (two rays crossing at x = 1e15 cross, they do not miss by 0.1).
+    const Vec3 r = a.origin - b.origin;  // ob = oa - r
+    auto pointRay = [](const Vec3& p, const Vec3& o, const Vec3& d) {
+        double t = std::max(0.0, d.dot(p - o) / d.squaredNorm());
+        return Vec3(o + t * d);
+    };
+    struct Cand { Vec3 pa, pb; };  // relative to oa
+    std::vector<Cand> cands;
+    const double A = a.direction.squaredNorm(), B = a.direction.dot(b.direction), C = b.direction.squaredNorm();
+    const double D = a.direction.dot(r), E = b.direction.dot(r);
+    const double det = A * C - B * B;
+    if (det > 1e-14 * A * C) {
+        double s = (B * E - C * D) / det, t = (A * E - B * D) / det;
+        if (s >= 0 && t >= 0) cands.push_back({s * a.direction, t * b.direction - r});
+    }
+    cands.push_back({Vec3::Zero(), pointRay(Vec3::Zero(), -r, b.direction)});
+    cands.push_back({pointRay(-r, Vec3::Zero(), a.direction), -r});
+    const Cand* best = &cands[0];
+    for (const Cand& c : cands)
+        if ((c.pa - c.pb).squaredNorm() < (best->pa - best->pb).squaredNorm()) best = &c;
+    PairAnswer ans;
+    ans.hasWitness = true;
+    ans.pointA = a.origin + best->pa;
+    ans.pointB = a.origin + best->pb;
+    const double dist = (best->pa - best->pb).norm();
+    const double extent = std::max({r.cwiseAbs().maxCoeff(), best->pa.cwiseAbs().maxCoeff(), best->pb.cwiseAbs().maxCoeff()});
+    if (dist > kTouchRelative * extent) {  // the touching rule (query_tolerance.h)
+        ans.distance = dist;
+        ans.normal = (best->pb - best->pa) / dist;
+        return ans;
+    }
+    // Crossing or overlapping rays: a sideways nudge separates them, depth 0.
+    ans.intersect = true;
+    ans.depth = 0;
+    Vec3 n = a.direction.cross(b.direction);
+    ans.normal = n.squaredNorm() > 0 ? Vec3(n.normalized()) : a.direction.unitOrthogonal();
+    return ans;
+}
+
+PairAnswer swapped(PairAnswer x) {
+    std::swap(x.pointA, x.pointB);
+    x.normal = -x.normal;
+    return x;
+}
+
+PairAnswer solvePair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
+    if (a.bounded() && b.bounded()) return boundedPair(a, b, wantDepth, wantTrace);
+    if (a.kind == Kind::Plane && b.kind == Kind::Plane) return planePlane(a, b, wantDepth);
+    if (a.kind == Kind::Plane && b.bounded()) return planeBounded(a, b);
+    if (b.kind == Kind::Plane && a.bounded()) return swapped(planeBounded(b, a));
+    if (a.kind == Kind::Ray && b.kind == Kind::Ray) return rayRay(a, b);
+    if (a.kind == Kind::Ray && b.kind == Kind::Plane) return rayPlane(a, b);
+    if (b.kind == Kind::Ray && a.kind == Kind::Plane) return swapped(rayPlane(b, a));
+    if (a.kind == Kind::Ray) return boundedPair(clipRay(a, b), b, wantDepth, wantTrace);
+    return boundedPair(a, clipRay(b, a), wantDepth, wantTrace);
+}
+
+bool isBox(const QueryShape& s) { return s.kind == Kind::Aabb || s.kind == Kind::Obb; }
+
+Obb toObb(const QueryShape& s) {
+    // Box corners are stored with bit i of the index choosing +/- along axis i.
+    const Vec3 c = (s.vertices[0] + s.vertices[7]) * 0.5;
+    Mat3 axes;
+    Vec3 half;
+    for (int i = 0; i < 3; ++i) {
+        // Half an edge. stableNorm: extents of 1e160 or 1e-170 would overflow or underflow the
+        // squared norm, and a box of zero extents on an axis keeps that coordinate axis.
+        Vec3 e = (s.vertices[1 << i] - s.vertices[0]) * 0.5;
+        half[i] = e.stableNorm();
+        axes.col(i) = half[i] > 0 ? Vec3(e / half[i]) : Vec3::Unit(i);
+    }
+    return Obb{c, half, axes};
+}
+
+}  // namespace
+
+Json answerShapeQuery(const std::string& op, ObjectReader& r) {
+    JsonNode an = r.get("a"), bn = r.get("b");
+    QueryShape a = parseQueryShape(an), b = parseQueryShape(bn);
+    std::string method = "gjk";
+    if (auto m = r.find("method")) {
+        method = op == "intersect" ? m->asEnum({"gjk", "sat"}) : m->asEnum({"gjk", "vclip", "lin_canny"});
+        if (method == "sat" && !(isBox(a) && isBox(b))) m->fail("method 'sat' needs two boxes (aabb or obb)");
+    }
+    const bool wantTrace = r.boolOr("trace", false);
+    r.finish();
+
+    if (method == "vclip" || method == "lin_canny") return answerFeatureWalkQuery(op, method, a, b, an, bn, wantTrace);
+
+    const int k = normalisingExponent(a, b);
+    scaleShape(a, k);
+    scaleShape(b, k);
+    if (method == "sat") {  // on the normalised boxes: half extents neither overflow nor underflow
+        SatTrace trace;
+        const Obb boxA = toObb(a), boxB = toObb(b);
+        for (const Obb* box : {&boxA, &boxB})
+            if (!box->axes.allFinite() || !box->halfExtents.allFinite())
+                throw InputError("query: method 'sat': the box's axes overflow double precision");
+        SatResult s = testObbObb(boxA, boxB, wantTrace ? &trace : nullptr);
+        Json out = {{"intersect", s.hit}};
+        if (wantTrace) {  // intervals in the query's units
+            const auto world = [k](double x) { return cleanZero(std::ldexp(x, -k)); };
+            Json axes = Json::array();
+            for (const SatAxisStep& st : trace.steps)
+                axes.push_back({{"axis", vecJson(st.axis)}, {"a", {world(st.minA), world(st.maxA)}},
+                                {"b", {world(st.minB), world(st.maxB)}}, {"separating", st.separating}});
+            out["trace"] = {{"algorithm", "sat"}, {"axes", axes}};
+        }
+        return out;
+    }
+
+    const bool wantDepth = op == "penetration";
+    PairAnswer ans = solvePair(a, b, wantDepth, wantTrace);
+    const auto unscale = [k](double x) { return std::ldexp(x, -k); };
+    ans.distance = unscale(ans.distance);
+    ans.depth = unscale(ans.depth);
+    ans.pointA = ans.pointA.unaryExpr(unscale);
+    ans.pointB = ans.pointB.unaryExpr(unscale);
+    if (!std::isfinite(ans.distance) || !std::isfinite(ans.depth) || !ans.pointA.allFinite() || !ans.pointB.allFinite())
+        throw InputError("query: the answer overflows double precision (coordinates too large)");
+    Json out;
+    if (op == "intersect") {
+        out = {{"intersect", ans.intersect}};
+    } else if (op == "distance") {
+        if (ans.intersect) out = {{"intersect", true}, {"distance", 0.0}};
+        else out = {{"intersect", false}, {"distance", ans.distance}, {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+    } else {  // penetration
+        if (ans.intersect)
+            out = {{"intersect", true}, {"depth", ans.depth}, {"normal", vecJson(ans.normal)},
+                   {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+        else
+            out = {{"intersect", false}, {"distance", ans.distance}, {"normal", vecJson(ans.normal)},
+                   {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+    }
+    // Trace coordinates are those of the normalised problem: world = unit * trace value.
+    if (wantTrace && !ans.trace.is_null()) out["trace"] = {{"unit", std::ldexp(1.0, -k - ans.traceExponent)}, {"algorithms", ans.trace}};
+    return out;
+}
+
+}  // namespace cdlab::demos

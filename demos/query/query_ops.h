@@ -1,0 +1,13 @@
+// The shape-pair ops of `cdlab query`: intersect, distance, penetration (README, "cdlab query").
+#pragma once
+
+#include <string>
+
+#include "demos/scene/json_reader.h"
+
+namespace cdlab::demos {
+
+/// Reads "a", "b", "method", "trace" from the query object and answers `op`. Throws InputError.
+Json answerShapeQuery(const std::string& op, ObjectReader& reader);
+
+}  // namespace cdlab::demos

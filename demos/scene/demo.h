@@ -1,0 +1,66 @@
+// The interface every demo implements (the catalogue of all demos is demos/catalog/catalog.h). A demo reads its scene keys (prepare: validation only,
+// errors before any output), then runs its core algorithm once and draws only what the scene's
+// layers ask for (run). Numeric-only runs pass no GL context: nothing is drawn.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "demos/scene/json_reader.h"
+#include "demos/scene/scene.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+
+namespace cdlab::demos {
+
+struct Frame {
+    std::string name;     // file stem: "plane", "step_03", "contact_sheet"
+    std::string caption;  // one line for galleries and contact sheets
+    render::Image image;
+};
+
+struct DemoOutput {
+    std::vector<Frame> frames;
+    Json trace = Json::object();  // the algorithm's results per step (numbers compared with a tolerance)
+    std::vector<std::string> skipped;  // what the scene did not need and was not computed (for --profile)
+    std::vector<std::pair<std::string, std::string>> files;  // name -> bytes (e.g. "animation.gif"); not golden-compared
+};
+
+struct RunContext {
+    render::GlContext* gl = nullptr;  // null: numeric only, draw nothing
+    int scaleOverride = 0;            // > 0 replaces the scene's supersampling factor
+    bool stepsOverride = false;       // force per-step frames
+};
+
+class PreparedScene {
+public:
+    virtual ~PreparedScene() = default;
+    /// Runs the scene (execute) and checks what it produced: a NaN or an infinity anywhere in the
+    /// trace, a caption or a text drawn on a frame is an InputError naming the scene file and the
+    /// quantity (the trace's JSON path, or the text) — never a figure that says "E = -nan J".
+    DemoOutput run(const RunContext& context) const;
+    const SceneCommon& common() const { return common_; }
+
+protected:
+    explicit PreparedScene(SceneCommon common) : common_(std::move(common)) {}
+    /// The demo's work: its core algorithm once, then what the scene's layers ask to draw.
+    virtual DemoOutput execute(const RunContext& context) const = 0;
+    SceneCommon common_;
+};
+
+/// The check PreparedScene::run applies, on its own (throws InputError naming `scene.file`).
+void requireFiniteOutput(const SceneCommon& scene, const DemoOutput& out, const std::vector<std::string>& drawnTexts);
+
+class Demo {
+public:
+    virtual ~Demo() = default;
+    virtual std::string name() const = 0;          // "voronoi_triangle" (= golden/ folder, = demo_<name> executable)
+    virtual std::string description() const = 0;   // one line
+    /// Reads the scene (common keys + this demo's keys), validates everything, computes nothing heavy.
+    virtual std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const = 0;
+};
+
+
+}  // namespace cdlab::demos

@@ -1,0 +1,785 @@
+// Space partitioning, drawn from above (Ericson, Real-Time Collision Detection ch. 7-8): the same
+// boxes under a uniform grid (core/uniform_grid.h), an octree (core/octree.h), a k-d tree over
+// the box centres (core/kd_tree.h) and a solid-leaf BSP tree of the boxes' walls
+// (core/bsp_tree.h); k-d nearest / range queries; a BSP of a non-convex polygon with point
+// classification, a segment query and the tree diagram. All numbers come from core; this file
+// only draws.
+//
+// Everything lies in the plane z = 0 (boxes are flat, points have z = 0, BSP walls are vertical
+// quads over z in [-1, 1]), so each 3D structure is seen exactly from the top: the octree never
+// cuts at z (its root spans z in [0, S] and the boxes touch only z = 0), so it acts as a
+// quadtree; BSP planes are vertical and show as lines.
+//
+// Scene keys (besides the common ones): see docs/scenes.md, section space_partition.
+#include "demos/space_partition/space_partition_demo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <random>
+
+#include "core/bsp_tree.h"
+#include "core/kd_tree.h"
+#include "core/octree.h"
+#include "core/uniform_grid.h"
+#include "demos/draw/figure_style.h"
+#include "demos/scene/scene_limits.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+
+const std::vector<std::string> kLayers = {"objects", "cells", "splits", "labels", "queries", "tree"};
+
+Vec3 P(double x, double y) { return Vec3(x, y, 0.0); }
+Json vec2Json(const Vec3& v) { return Json::array({v.x(), v.y()}); }
+
+// mt19937's output sequence is fixed by the standard (unlike the distributions): uniform doubles
+// from it keep scenes identical on every platform.
+struct SceneRng {
+    std::mt19937 engine;
+    explicit SceneRng(unsigned seed) : engine(seed) {}
+    double uniform(double a, double b) { return a + (b - a) * (double(engine()) / 4294967296.0); }
+};
+
+// Depth colour ramp for split lines: near-black blue at the root, lighter blue deeper down
+// (orange is kept for "in a pair" / "was split").
+Color depthColor(int depth, int maxDepth) {
+    const float t = maxDepth > 0 ? float(std::min(depth, maxDepth)) / float(maxDepth) : 0.0f;
+    const Color blue = categorical(4);
+    return blue.scaled(0.35f).mixed(blue.mixed(roleColor(Role::Background), 0.45f), t);
+}
+// Box colour by the octree depth it is stored at (orange excluded: it marks pairs).
+Color octreeDepthColor(int depth) {
+    static const int kIndex[6] = {6, 1, 2, 3, 4, 5};
+    return categorical(kIndex[std::min(depth, 5)]);
+}
+float depthWidth(int depth) { return std::max(1.2f, 4.0f - 0.5f * float(depth)); }
+
+// Convex polygon (xy, counter-clockwise) clipped to n . x >= d (keepFront) or <= d.
+std::vector<Vec3> clipHalfPlane(const std::vector<Vec3>& poly, const Vec3& n, double d, bool keepFront) {
+    std::vector<Vec3> out;
+    const double sign = keepFront ? 1.0 : -1.0;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec3& a = poly[i];
+        const Vec3& b = poly[(i + 1) % poly.size()];
+        const double sa = sign * (n.dot(a) - d), sb = sign * (n.dot(b) - d);
+        if (sa >= 0) out.push_back(a);
+        if ((sa >= 0) != (sb >= 0)) out.push_back(a + (b - a) * (sa / (sa - sb)));
+    }
+    return out;
+}
+
+// The part of the line n . x = d inside a convex polygon: its two crossing points (false if none).
+bool lineInPolygon(const std::vector<Vec3>& poly, const Vec3& n, double d, Vec3& p, Vec3& q) {
+    std::vector<Vec3> hits;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec3& a = poly[i];
+        const Vec3& b = poly[(i + 1) % poly.size()];
+        const double sa = n.dot(a) - d, sb = n.dot(b) - d;
+        if ((sa <= 0 && sb > 0) || (sa > 0 && sb <= 0)) hits.push_back(a + (b - a) * (sa / (sa - sb)));
+    }
+    if (hits.size() < 2) return false;
+    p = hits[0];
+    q = hits[1];
+    return true;
+}
+
+std::vector<Vec3> rectPolygon(const Aabb& r) {
+    return {P(r.min.x(), r.min.y()), P(r.max.x(), r.min.y()), P(r.max.x(), r.max.y()), P(r.min.x(), r.max.y())};
+}
+
+// Vertical wall quads of a counter-clockwise xy polygon (outward normals), z in [-1, 1].
+void addWalls(const std::vector<Vec3>& poly, std::vector<BspPolygon>& walls) {
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec3& a = poly[i];
+        const Vec3& b = poly[(i + 1) % poly.size()];
+        walls.push_back({{Vec3(a.x(), a.y(), -1), Vec3(b.x(), b.y(), -1), Vec3(b.x(), b.y(), 1), Vec3(a.x(), a.y(), 1)}});
+    }
+}
+
+// Top view of a wall fragment: its bottom edge (z = min).
+void fragmentSegment(const BspFragment& f, Vec3& p, Vec3& q) {
+    double zmin = INFINITY;
+    for (const Vec3& v : f.vertices) zmin = std::min(zmin, v.z());
+    std::vector<Vec3> low;
+    for (const Vec3& v : f.vertices)
+        if (v.z() <= zmin + 1e-9) low.push_back(P(v.x(), v.y()));
+    p = low.empty() ? P(0, 0) : low.front();
+    q = low.empty() ? P(0, 0) : low.back();
+}
+
+// Region (xy polygon) of every BSP node inside `root`, by clipping with the ancestors' planes.
+std::vector<std::vector<Vec3>> bspRegions(const BspTree& tree, const std::vector<Vec3>& root) {
+    std::vector<std::vector<Vec3>> regions(tree.nodes().size());
+    if (tree.nodes().empty()) return regions;
+    regions[0] = root;
+    for (std::size_t i = 0; i < tree.nodes().size(); ++i) {  // parents come before children
+        const BspNode& n = tree.nodes()[i];
+        if (n.kind != BspNodeKind::Inner) continue;
+        const Vec3 nrm = P(n.plane.normal.x(), n.plane.normal.y());
+        regions[std::size_t(n.front)] = clipHalfPlane(regions[i], nrm, n.plane.offset, true);
+        regions[std::size_t(n.back)] = clipHalfPlane(regions[i], nrm, n.plane.offset, false);
+    }
+    return regions;
+}
+
+struct OctreeParams {
+    int maxDepth = 5;
+    int leaf = 2;
+    double looseness = 1.0;
+};
+struct KdParams {
+    KdSplitRule rule = KdSplitRule::Cycle;
+    int leaf = 1;
+};
+
+// ---------------------------------------------------------------------------------------------
+
+class SpaceScene final : public PreparedScene {
+public:
+    explicit SpaceScene(SceneCommon common) : PreparedScene(std::move(common)) {}
+
+    std::string figure = "panels";
+    // panels
+    std::vector<Aabb> boxes;
+    Aabb region{P(0, 0), P(16, 16)};
+    double gridCell = 2.0;
+    OctreeParams octree;
+    KdParams kd;
+    BspOptions bsp;
+    // kd_query
+    std::vector<Vec3> points;
+    Vec3 query = P(0, 0);
+    Aabb range{P(0, 0), P(0, 0)};
+    // bsp_shape
+    std::vector<Vec3> polygon;
+    std::vector<Vec3> queries;
+    Segment segment{P(0, 0), P(0, 0)};
+    bool hasSegment = false;
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        if (figure == "panels") return runPanels(ctx);
+        if (figure == "kd_query") return runKdQuery(ctx);
+        return runBspShape(ctx);
+    }
+
+private:
+    CanvasOptions canvasOptions(const RunContext& ctx) const {
+        CanvasOptions o;
+        o.width = common_.image.width;
+        o.height = common_.image.height;
+        o.supersample = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        return o;
+    }
+
+    static void outlineRect(Canvas& c, const Aabb& r, const Vec3& at, const LineStyle& s) {
+        std::vector<Vec3> poly = rectPolygon(r);
+        for (Vec3& v : poly) v += at;
+        c.drawPolyline(poly, true, s);
+    }
+    static void fillRect(Canvas& c, const Aabb& r, const Vec3& at, const Color& color) {
+        std::vector<Vec3> poly = rectPolygon(r);
+        for (Vec3& v : poly) v += at;
+        c.drawPolygon(poly, color);
+    }
+    static std::vector<Vec3> shifted(std::vector<Vec3> poly, const Vec3& at) {
+        for (Vec3& v : poly) v += at;
+        return poly;
+    }
+    // Heading above a panel whose top-left corner is `topLeft` (world).
+    static void heading(Canvas& c, const Vec3& topLeft, const std::string& text, const std::string& sub) {
+        c.drawText(topLeft, text, TextStyle{20.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, true, {0, -24}});
+        c.drawText(topLeft, sub, TextStyle{16.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false, {0, -5}});
+    }
+
+    // ------------------------------------------------------------------------------- panels
+
+    DemoOutput runPanels(const RunContext& ctx) const {
+        DemoOutput out;
+        const int n = int(boxes.size());
+        // Uniform grid (Ericson §7.1).
+        UniformGrid grid;
+        UniformGridOptions go;
+        go.cellSize = gridCell;
+        const UniformGridResult gr = grid.build(boxes, go);
+        // Octree, root = the square region x [0, S] in z (boxes touch z = 0 only: a quadtree).
+        const double S = (region.max - region.min).head<2>().maxCoeff();
+        OctreeOptions oo;
+        oo.maxDepth = octree.maxDepth;
+        oo.maxObjectsPerLeaf = octree.leaf;
+        oo.looseness = octree.looseness;
+        oo.useRootBounds = true;
+        oo.rootBounds = {Vec3(region.min.x(), region.min.y(), 0.0), Vec3(region.min.x() + S, region.min.y() + S, S)};
+        Octree ot;
+        ot.build(boxes, oo);
+        std::int64_t octTests = 0;
+        const auto octPairs = ot.overlappingPairs(&octTests);
+        const OctreeStats os = ot.stats();
+        // k-d tree over the box centres.
+        std::vector<Vec3> centres;
+        for (const Aabb& b : boxes) centres.push_back(0.5 * (b.min + b.max));
+        KdTree kt;
+        kt.build(centres, {kd.rule, kd.leaf});
+        // BSP tree of the boxes' walls.
+        std::vector<BspPolygon> walls;
+        for (const Aabb& b : boxes) addWalls(rectPolygon(b), walls);
+        BspTree bt;
+        BspTrace btrace;
+        bt.build(walls, bsp, &btrace);
+        const BspStats bs = bt.stats();
+
+        out.trace["objects"] = n;
+        out.trace["brute_force_tests"] = std::int64_t(n) * (n - 1) / 2;
+        out.trace["grid"] = {{"cell_size", gridCell}, {"status", int(gr.status)}, {"entries", gr.entries},
+                             {"pair_tests", gr.pairTests}, {"pairs", gr.pairs}};
+        Json depthCounts = Json::array();
+        for (int c : os.objectsPerDepth) depthCounts.push_back(c);
+        out.trace["octree"] = {{"nodes", os.nodeCount},      {"leaves", os.leafCount},   {"depth", os.maxDepthReached},
+                               {"objects_at_root", os.objectsAtRoot}, {"objects_per_depth", depthCounts},
+                               {"pair_tests", octTests},      {"pairs", int(octPairs.size())}};
+        out.trace["kd_tree"] = {{"nodes", int(kt.nodes().size())}, {"leaves", kt.leafCount()}, {"depth", kt.depth()}};
+        out.trace["bsp"] = {{"polygons", int(walls.size())}, {"nodes", bs.nodeCount}, {"inner", bs.innerCount},
+                            {"solid_leaves", bs.solidLeaves}, {"empty_leaves", bs.emptyLeaves}, {"depth", bs.depth},
+                            {"splits", bs.splits}, {"fragments", bs.fragmentCount}};
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+
+        Canvas canvas(*ctx.gl, canvasOptions(ctx));
+        canvas.setBackground(roleColor(Role::Background));
+        const Vec3 size = region.max - region.min;
+        const double W = std::max(size.x(), size.y());
+        const double gap = 0.16 * W;
+        const Vec3 offsets[4] = {P(0, 0), P(W + gap, 0), P(0, -(W + gap)), P(W + gap, -(W + gap))};
+        const Vec3 middle = region.min + P(0.5 * (2 * W + gap), 0.5 * W - 0.5 * (W + gap));
+        // Room above for the title and two heading lines per row, below for the caption.
+        canvas.setCamera(Camera::twoD(middle.x(), middle.y() + 0.02 * W, (2 * W + gap) * 1.26));
+        const bool drawObjects = common_.hasLayer("objects"), cells = common_.hasLayer("cells"),
+                   splits = common_.hasLayer("splits");
+
+        // Which boxes are in at least one pair (the same for every structure: each is exact).
+        std::vector<bool> paired(std::size_t(n), false);
+        for (const auto& p : octPairs) paired[std::size_t(p.first)] = paired[std::size_t(p.second)] = true;
+        auto drawBoxes = [&](const Vec3& at, const std::function<Color(int)>& fill, float alpha) {
+            if (!drawObjects) return;
+            for (int i = 0; i < n; ++i) {
+                fillRect(canvas, boxes[std::size_t(i)], at, fill(i).withAlpha(alpha));
+                outlineRect(canvas, boxes[std::size_t(i)], at,
+                            lineStyle(paired[std::size_t(i)] ? Role::Highlight : Role::Ink, paired[std::size_t(i)] ? 2.2f : 1.4f));
+            }
+        };
+        const Aabb frame{region.min, region.min + P(W, W)};
+
+        // 1. Uniform grid: lines every h, occupied cells shaded by their box count.
+        {
+            const Vec3 at = offsets[0];
+            if (cells) {
+                std::map<std::pair<std::int64_t, std::int64_t>, int> occupancy;
+                for (const Aabb& b : boxes) {
+                    const auto lo = UniformGrid::cellOf(b.min, gridCell), hi = UniformGrid::cellOf(b.max, gridCell);
+                    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+                        for (std::int64_t y = lo[1]; y <= hi[1]; ++y) ++occupancy[{x, y}];
+                }
+                for (const auto& [cell, count] : occupancy) {
+                    const Aabb r{P(double(cell.first) * gridCell, double(cell.second) * gridCell),
+                                 P(double(cell.first + 1) * gridCell, double(cell.second + 1) * gridCell)};
+                    fillRect(canvas, r, at, roleColor(Role::Muted).withAlpha(std::min(0.55f, 0.12f * float(count))));
+                }
+                const LineStyle gl = lineStyle(Role::Muted, 1.2f);
+                for (double x = std::ceil(frame.min.x() / gridCell) * gridCell; x <= frame.max.x(); x += gridCell)
+                    canvas.drawLine(at + P(x, frame.min.y()), at + P(x, frame.max.y()), gl);
+                for (double y = std::ceil(frame.min.y() / gridCell) * gridCell; y <= frame.max.y(); y += gridCell)
+                    canvas.drawLine(at + P(frame.min.x(), y), at + P(frame.max.x(), y), gl);
+            }
+            drawBoxes(at, [](int) { return roleColor(Role::ShapeA); }, 0.30f);
+            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
+            heading(canvas, at + P(frame.min.x(), frame.max.y()), "Uniform grid, cell h = " + formatNumber(gridCell),
+                    std::to_string(gr.entries) + " box-cell entries, " + std::to_string(gr.pairTests) + " tests, " +
+                        std::to_string(gr.pairs) + " pairs");
+        }
+        // 2. Octree (quadtree from the top): node cells, boxes coloured by the depth they sit at.
+        {
+            const Vec3 at = offsets[1];
+            if (cells)
+                for (const OctreeNode& node : ot.nodes())
+                    outlineRect(canvas, node.cell, at, LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
+            drawBoxes(at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
+            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
+            heading(canvas, at + P(frame.min.x(), frame.max.y()),
+                    "Octree (seen as a quadtree), " + std::to_string(os.nodeCount) + " nodes",
+                    std::to_string(octTests) + " tests, " + std::to_string(octPairs.size()) + " pairs; " +
+                        std::to_string(os.objectsAtRoot) + " boxes on the root's split lines");
+            if (common_.hasLayer("labels")) {
+                // Legend: box colour = depth of the node that stores it.
+                for (int d = 0; d <= os.maxDepthReached; ++d) {
+                    const Vec3 p = at + P(frame.max.x(), frame.max.y()) + P(0.02 * W, -0.045 * W * (d + 0.5));
+                    canvas.drawPoint(p, 6.0f, octreeDepthColor(d).withAlpha(0.8f));
+                    canvas.drawText(p, (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
+                                           std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
+                                    TextStyle{14.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
+                }
+            }
+        }
+        // 3. k-d tree over the box centres: split lines clipped to their cells, coloured by depth.
+        {
+            const Vec3 at = offsets[2];
+            drawBoxes(at, [](int) { return roleColor(Role::Muted); }, 0.18f);
+            if (splits)
+                for (const KdNode& node : kt.nodes()) {
+                    if (node.isLeaf()) continue;
+                    const LineStyle s{depthWidth(node.depth), depthColor(node.depth, kt.depth()), 0.0f, true};
+                    // The cell spans the points' bounds; extend the root's extent to the frame for clarity.
+                    Aabb c = node.cell;
+                    for (int a = 0; a < 2; ++a) {
+                        if (c.min[a] == kt.nodes()[0].cell.min[a]) c.min[a] = frame.min[a];
+                        if (c.max[a] == kt.nodes()[0].cell.max[a]) c.max[a] = frame.max[a];
+                    }
+                    if (node.axis == 0) canvas.drawLine(at + P(node.split, c.min.y()), at + P(node.split, c.max.y()), s);
+                    else canvas.drawLine(at + P(c.min.x(), node.split), at + P(c.max.x(), node.split), s);
+                }
+            if (drawObjects)
+                for (const Vec3& c : centres) canvas.drawPoint(at + c, 4.5f, roleColor(Role::Query), true, 1.0f, roleColor(Role::Ink));
+            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
+            heading(canvas, at + P(frame.min.x(), frame.max.y()),
+                    "k-d tree of the box centres, depth " + std::to_string(kt.depth()),
+                    std::to_string(kt.nodes().size()) + " nodes; median splits " +
+                        (kd.rule == KdSplitRule::Cycle ? "cycling x, y" : "on the widest axis") + " (root: darkest)");
+        }
+        // 4. BSP of the box walls: split lines and wall fragments. Overlapping boxes are not one
+        // closed surface (walls inside other boxes), so solid / empty leaves mean little here:
+        // the boxes are shaded instead (the bsp_shape figure shows solid leaves).
+        {
+            const Vec3 at = offsets[3];
+            const auto regions = bspRegions(bt, rectPolygon(frame));
+            if (drawObjects)
+                for (const Aabb& b : boxes) fillRect(canvas, b, at, roleColor(Role::ShapeA).withAlpha(0.30f));
+            if (splits)
+                for (std::size_t i = 0; i < bt.nodes().size(); ++i) {
+                    const BspNode& node = bt.nodes()[i];
+                    Vec3 p, q;
+                    if (node.kind == BspNodeKind::Inner &&
+                        lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
+                        canvas.drawLine(at + p, at + q, LineStyle{0.6f * depthWidth(node.depth), depthColor(node.depth, bs.depth)});
+                }
+            if (drawObjects)
+                for (const BspFragment& f : bt.fragments()) {
+                    Vec3 p, q;
+                    fragmentSegment(f, p, q);
+                    canvas.drawLine(at + p, at + q, lineStyle(f.split ? Role::Highlight : Role::Ink, f.split ? 3.5f : 2.5f, false, true));
+                }
+            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
+            heading(canvas, at + P(frame.min.x(), frame.max.y()),
+                    "BSP tree of the box walls, depth " + std::to_string(bs.depth),
+                    std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
+                        " walls cut in two (orange pieces)");
+        }
+        drawTitleAndCaption(canvas, common_.title, common_.caption);
+        Frame f;
+        f.name = "panels";
+        f.caption = common_.title;
+        f.image = canvas.readPixels();
+        out.frames.push_back(std::move(f));
+        return out;
+    }
+
+    // ----------------------------------------------------------------------------- kd_query
+
+    DemoOutput runKdQuery(const RunContext& ctx) const {
+        DemoOutput out;
+        KdTree kt;
+        kt.build(points, {kd.rule, kd.leaf});
+        KdQueryTrace nt, rt;
+        const KdNearestResult nearest = kt.nearest(query, &nt);
+        const std::vector<int> hits = kt.rangeQuery(range, &rt);
+        out.trace["points"] = int(points.size());
+        out.trace["nodes"] = int(kt.nodes().size());
+        out.trace["depth"] = kt.depth();
+        out.trace["nearest"] = {{"query", vec2Json(query)},
+                                {"index", nearest.index},
+                                {"distance", std::sqrt(nearest.distanceSquared)},
+                                {"distance_tests", nt.distanceTests},
+                                {"nodes_visited", int(nt.visited.size())},
+                                {"subtrees_pruned", int(nt.pruned.size())},
+                                {"best_so_far", nt.bestSoFar}};
+        out.trace["range"] = {{"box", {vec2Json(range.min), vec2Json(range.max)}},
+                              {"hits", hits},
+                              {"point_tests", rt.distanceTests},
+                              {"nodes_visited", int(rt.visited.size())},
+                              {"subtrees_pruned", int(rt.pruned.size())}};
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        Canvas canvas(*ctx.gl, canvasOptions(ctx));
+        canvas.setBackground(roleColor(Role::Background));
+        const Vec3 size = region.max - region.min;
+        const double W = std::max(size.x(), size.y());
+        const double gap = 0.12 * W;
+        const Vec3 offsets[2] = {P(0, 0), P(W + gap, 0)};
+        const Vec3 middle = region.min + P(0.5 * (2 * W + gap), 0.5 * W);
+        const double aspect = double(common_.image.width) / double(common_.image.height);
+        canvas.setCamera(Camera::twoD(middle.x(), middle.y() + 0.03 * W, std::max(W * 1.45, (2 * W + gap) * 1.05 / aspect)));
+        const Aabb frame{region.min, region.min + P(W, W)};
+        const auto& nodes = kt.nodes();
+
+        auto cellOf = [&](int id) {
+            Aabb c = nodes[std::size_t(id)].cell;
+            for (int a = 0; a < 2; ++a) {  // the root cell is the points' bounds: extend to the frame
+                if (c.min[a] == nodes[0].cell.min[a]) c.min[a] = frame.min[a];
+                if (c.max[a] == nodes[0].cell.max[a]) c.max[a] = frame.max[a];
+            }
+            return c;
+        };
+        auto drawTree = [&](const Vec3& at, const KdQueryTrace& t) {
+            if (common_.hasLayer("cells")) {
+                for (int id : t.pruned) fillRect(canvas, cellOf(id), at, roleColor(Role::Muted).withAlpha(0.30f));
+                for (int id : t.visited)
+                    if (nodes[std::size_t(id)].isLeaf()) fillRect(canvas, cellOf(id), at, roleColor(Role::Highlight).withAlpha(0.22f));
+            }
+            if (common_.hasLayer("splits"))
+                for (std::size_t id = 0; id < nodes.size(); ++id) {
+                    const KdNode& node = nodes[id];
+                    if (node.isLeaf()) continue;
+                    const Aabb c = cellOf(int(id));
+                    const LineStyle s{depthWidth(node.depth), depthColor(node.depth, kt.depth())};
+                    if (node.axis == 0) canvas.drawLine(at + P(node.split, c.min.y()), at + P(node.split, c.max.y()), s);
+                    else canvas.drawLine(at + P(c.min.x(), node.split), at + P(c.max.x(), node.split), s);
+                }
+            if (common_.hasLayer("objects"))
+                for (const Vec3& p : points) canvas.drawPoint(at + p, 4.0f, roleColor(Role::Ink), true, 0.0f);
+            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
+        };
+
+        // Left: nearest neighbour.
+        drawTree(offsets[0], nt);
+        if (common_.hasLayer("queries") && nearest.index >= 0) {
+            const Vec3 at = offsets[0];
+            const double r = std::sqrt(nearest.distanceSquared);
+            std::vector<Vec3> circle;
+            for (int k = 0; k < 96; ++k) circle.push_back(at + query + r * P(std::cos(2 * M_PI * k / 96), std::sin(2 * M_PI * k / 96)));
+            canvas.drawPolyline(circle, true, lineStyle(Role::Result, 2.0f, true, true));
+            // Improvements of the best point, in order: the search narrows.
+            for (std::size_t k = 0; k + 1 < nt.bestSoFar.size(); ++k)
+                canvas.drawPoint(at + points[std::size_t(nt.bestSoFar[k])], 7.0f, roleColor(Role::Simplex), true, 1.5f);
+            canvas.drawLine(at + query, at + points[std::size_t(nearest.index)], lineStyle(Role::Result, 3.0f, false, true));
+            canvas.drawPoint(at + points[std::size_t(nearest.index)], 8.0f, roleColor(Role::Result), true, 2.0f);
+            canvas.drawPoint(at + query, 9.0f, roleColor(Role::Query), true, 2.0f);
+            if (common_.hasLayer("labels")) canvas.drawText(at + query, "q", TextStyle{20.0f, roleColor(Role::Ink), Anchor::Left, true, true, {10, 0}});
+        }
+        heading(canvas, offsets[0] + P(frame.min.x(), frame.max.y()), "Nearest neighbour of q",
+                std::to_string(nt.distanceTests) + " of " + std::to_string(points.size()) + " points tested, " +
+                    std::to_string(nt.pruned.size()) + " subtrees pruned (grey); green: earlier bests");
+        // Right: range query.
+        drawTree(offsets[1], rt);
+        if (common_.hasLayer("queries")) {
+            const Vec3 at = offsets[1];
+            fillRect(canvas, range, at, roleColor(Role::Simplex).withAlpha(0.25f));
+            outlineRect(canvas, range, at, lineStyle(Role::Simplex, 3.0f, false, true));
+            for (int i : hits) canvas.drawPoint(at + points[std::size_t(i)], 7.0f, roleColor(Role::Result), true, 1.5f);
+        }
+        heading(canvas, offsets[1] + P(frame.min.x(), frame.max.y()), "Range query (box)",
+                std::to_string(hits.size()) + " hits, " + std::to_string(rt.distanceTests) + " points tested, " +
+                    std::to_string(rt.pruned.size()) + " subtrees pruned (grey)");
+        drawTitleAndCaption(canvas, common_.title, common_.caption);
+        Frame f;
+        f.name = "kd_query";
+        f.caption = common_.title;
+        f.image = canvas.readPixels();
+        out.frames.push_back(std::move(f));
+        return out;
+    }
+
+    // ---------------------------------------------------------------------------- bsp_shape
+
+    DemoOutput runBspShape(const RunContext& ctx) const {
+        DemoOutput out;
+        std::vector<BspPolygon> walls;
+        addWalls(polygon, walls);
+        BspTree bt;
+        BspTrace trace;
+        bt.build(walls, bsp, &trace);
+        const BspStats bs = bt.stats();
+        static const char* kClass[3] = {"inside", "outside", "on"};
+        std::vector<BspPointClass> classes;
+        for (const Vec3& q : queries) classes.push_back(bt.classifyPoint(q));
+        BspRayResult ray;
+        if (hasSegment) ray = bt.segmentQuery(segment);
+        out.trace["edges"] = int(polygon.size());
+        out.trace["nodes"] = bs.nodeCount;
+        out.trace["inner"] = bs.innerCount;
+        out.trace["solid_leaves"] = bs.solidLeaves;
+        out.trace["empty_leaves"] = bs.emptyLeaves;
+        out.trace["depth"] = bs.depth;
+        out.trace["splits"] = bs.splits;
+        out.trace["fragments"] = bs.fragmentCount;
+        Json steps = Json::array();
+        for (const BspSplitStep& s : trace.steps)
+            steps.push_back({{"node", s.node}, {"depth", s.depth}, {"splitter", s.splitter}, {"front", s.front},
+                             {"back", s.back}, {"coplanar", s.coplanar}, {"straddling", s.straddling}, {"score", s.score}});
+        out.trace["steps"] = steps;
+        Json qs = Json::array();
+        for (std::size_t i = 0; i < queries.size(); ++i)
+            qs.push_back({{"point", vec2Json(queries[i])}, {"class", kClass[int(classes[i])]}});
+        out.trace["queries"] = qs;
+        if (hasSegment)
+            out.trace["segment"] = {{"from", vec2Json(segment.a)}, {"to", vec2Json(segment.b)}, {"hit", ray.hit},
+                                    {"t", ray.t}, {"point", vec2Json(ray.point)}};
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        Canvas canvas(*ctx.gl, canvasOptions(ctx));
+        canvas.setBackground(roleColor(Role::Background));
+        // Shape panel on the left (square), tree diagram on the right.
+        Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+        for (const Vec3& v : polygon) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+        }
+        const double W = (hi - lo).head<2>().maxCoeff() * 1.25;
+        const Vec3 c = 0.5 * (lo + hi);
+        const Aabb frame{P(c.x() - 0.5 * W, c.y() - 0.5 * W), P(c.x() + 0.5 * W, c.y() + 0.5 * W)};
+        const double treeW = 0.85 * W, gap = 0.08 * W;
+        const double aspect = double(common_.image.width) / double(common_.image.height);
+        const double viewH = std::max(W * 1.32, (W + gap + treeW) * 1.04 / aspect);
+        canvas.setCamera(Camera::twoD(frame.min.x() + 0.5 * (W + gap + treeW), c.y() + 0.02 * W, viewH));
+        const auto regions = bspRegions(bt, rectPolygon(frame));
+        const auto& nodes = bt.nodes();
+        if (common_.hasLayer("cells"))
+            for (std::size_t i = 0; i < nodes.size(); ++i) {
+                if (nodes[i].kind == BspNodeKind::Inner || regions[i].size() < 3) continue;
+                const bool solid = nodes[i].kind == BspNodeKind::SolidLeaf;
+                canvas.drawPolygon(regions[i], solid ? roleColor(Role::ShapeA).withAlpha(0.38f) : roleColor(Role::Background));
+            }
+        if (common_.hasLayer("splits"))
+            for (std::size_t i = 0; i < nodes.size(); ++i) {
+                Vec3 p, q;
+                const BspNode& node = nodes[i];
+                if (node.kind == BspNodeKind::Inner &&
+                    lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
+                    canvas.drawLine(p, q, LineStyle{depthWidth(node.depth), depthColor(node.depth, bs.depth)});
+            }
+        if (common_.hasLayer("objects"))
+            for (const BspFragment& f : bt.fragments()) {
+                Vec3 p, q;
+                fragmentSegment(f, p, q);
+                canvas.drawLine(p, q, lineStyle(f.split ? Role::Highlight : Role::Ink, 4.0f, false, true));
+            }
+        outlineRect(canvas, frame, Vec3::Zero(), lineStyle(Role::Ink, 1.5f));
+        const bool labels = common_.hasLayer("labels");
+        if (labels)  // edge names e0, e1, ... at the midpoints, pushed outwards
+            for (std::size_t i = 0; i < polygon.size(); ++i) {
+                const Vec3 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+                const Vec3 out2 = Vec3(b.y() - a.y(), a.x() - b.x(), 0).normalized();
+                canvas.drawText(0.5 * (a + b) + out2 * 0.045 * W, "e" + std::to_string(i),
+                                TextStyle{15.0f, roleColor(Role::Ink), Anchor::Center, true, true});
+            }
+        if (common_.hasLayer("queries")) {
+            for (std::size_t i = 0; i < queries.size(); ++i) {
+                const Role role = classes[i] == BspPointClass::Inside    ? Role::Result
+                                  : classes[i] == BspPointClass::Outside ? Role::Query
+                                                                         : Role::Simplex;
+                canvas.drawPoint(queries[i], 8.0f, roleColor(role), true, 2.0f);
+                if (labels)
+                    canvas.drawText(queries[i], kClass[int(classes[i])], TextStyle{15.0f, roleColor(Role::Ink), Anchor::Left, true, false, {10, 0}});
+            }
+            if (hasSegment) {
+                canvas.drawArrow(segment.a, segment.b, lineStyle(Role::Direction, 2.5f, true, true));
+                if (ray.hit) {
+                    canvas.drawPoint(ray.point, 9.0f, roleColor(Role::Support), true, 2.0f);
+                    if (labels)
+                        canvas.drawText(ray.point, "first hit, t = " + formatNumber(ray.t),
+                                        TextStyle{15.0f, roleColor(Role::Ink), Anchor::TopRight, true, true, {-12, 6}});
+                }
+            }
+        }
+        heading(canvas, P(frame.min.x(), frame.max.y()), "Splits and leaf regions (top view)",
+                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + (bs.splits == 1 ? " edge" : " edges") +
+                    " cut (orange pieces), solid leaves blue");
+        if (common_.hasLayer("tree")) drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);
+        drawTitleAndCaption(canvas, common_.title, common_.caption);
+        Frame f;
+        f.name = "bsp_shape";
+        f.caption = common_.title;
+        f.image = canvas.readPixels();
+        out.frames.push_back(std::move(f));
+        return out;
+    }
+
+    // Tree diagram: leaves evenly spaced left to right (in-order, front child first), inner
+    // nodes centred over their children, one row per depth. Inner nodes name their splitter edge.
+    void drawTreeDiagram(Canvas& canvas, const BspTree& bt, const Vec3& corner, double w, double h, int depth) const {
+        const auto& nodes = bt.nodes();
+        std::vector<double> x(nodes.size(), 0.0);
+        int leafCount = 0;
+        for (const BspNode& n : nodes) leafCount += n.kind != BspNodeKind::Inner;
+        int next = 0;
+        std::function<double(int)> place = [&](int id) -> double {
+            const BspNode& n = nodes[std::size_t(id)];
+            if (n.kind != BspNodeKind::Inner) return x[std::size_t(id)] = (next++ + 0.5) / double(leafCount);
+            const double a = place(n.front), b = place(n.back);
+            return x[std::size_t(id)] = 0.5 * (a + b);
+        };
+        place(0);
+        const double rowH = h / double(depth + 1);
+        auto pos = [&](int id) -> Vec3 {
+            return corner + P(x[std::size_t(id)] * w, h - (nodes[std::size_t(id)].depth + 0.5) * rowH);
+        };
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            const BspNode& n = nodes[i];
+            if (n.kind != BspNodeKind::Inner) continue;
+            canvas.drawLine(pos(int(i)), pos(n.front), lineStyle(Role::Muted, 1.8f));
+            canvas.drawLine(pos(int(i)), pos(n.back), lineStyle(Role::Ink, 1.8f, true));
+        }
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            const BspNode& n = nodes[i];
+            const Vec3 p = pos(int(i));
+            if (n.kind == BspNodeKind::Inner) {
+                canvas.drawPoint(p, 11.0f, depthColor(n.depth, depth).mixed(roleColor(Role::Background), 0.35f), true, 1.5f);
+                canvas.drawText(p, "e" + std::to_string(n.splitter), TextStyle{12.0f, roleColor(Role::Ink), Anchor::Center, false, true});
+            } else {
+                const bool solid = n.kind == BspNodeKind::SolidLeaf;
+                canvas.drawPoint(p, 6.0f, solid ? roleColor(Role::ShapeA) : roleColor(Role::Background), true, 1.5f);
+            }
+        }
+        canvas.drawText(corner, "leaves: blue dot = solid (inside), white = empty (outside)",
+                        TextStyle{15.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        heading(canvas, corner + P(0, h), "The tree", "edge name = splitting line; grey: front child, dashed: back");
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+
+Aabb readRect(const JsonNode& node) {
+    if (node.size() != 4) node.fail("expected [x0, y0, x1, y1]");
+    const double x0 = sceneCoordinate(node.at(0)), y0 = sceneCoordinate(node.at(1)), x1 = sceneCoordinate(node.at(2)),
+                 y1 = sceneCoordinate(node.at(3));
+    if (x0 > x1 || y0 > y1) node.fail("expected x0 <= x1 and y0 <= y1");
+    return {P(x0, y0), P(x1, y1)};
+}
+Vec3 readPoint2(const JsonNode& node) {
+    if (node.size() != 2) node.fail("expected [x, y]");
+    return P(sceneCoordinate(node.at(0)), sceneCoordinate(node.at(1)));
+}
+
+class SpacePartitionDemo final : public Demo {
+public:
+    std::string name() const override { return "space_partition"; }
+    std::string description() const override {
+        return "uniform grid, octree, k-d tree and BSP tree on the same boxes (top views); k-d queries; solid-leaf BSP";
+    }
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
+        ObjectReader r(JsonNode(json, "$", file));
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+        auto s = std::make_unique<SpaceScene>(std::move(common));
+        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape"});
+        if (auto g = r.find("region")) s->region = readRect(*g);
+        // Random boxes / points: {"count", "seed", "size": [min, max]} inside the region.
+        unsigned seed = 1;
+        int count = 0;
+        double sizeLo = 0.5, sizeHi = 2.0;
+        if (auto g = r.find("random")) {
+            ObjectReader gr(*g);
+            count = gr.get("count").asInt(1, 2000);
+            if (auto v = gr.find("seed")) seed = unsigned(v->asInt(0, 1 << 30));
+            if (auto v = gr.find("size")) {
+                if (v->size() != 2) v->fail("expected [min, max]");
+                sizeLo = v->at(0).asNonNegative();
+                sizeHi = v->at(1).asNonNegative();
+                requireAtMost(*v, sizeHi, kMaxSceneCoordinate, "the largest size", "figures are drawn in float32");
+                if (sizeLo > sizeHi) v->fail("expected min <= max");
+            }
+            gr.finish();
+        }
+        SceneRng rng(seed);
+        if (auto o = r.find("octree")) {
+            ObjectReader orr(*o);
+            if (auto v = orr.find("max_depth")) s->octree.maxDepth = v->asInt(0, 12);
+            if (auto v = orr.find("leaf")) s->octree.leaf = v->asInt(0, 1000);
+            if (auto v = orr.find("looseness")) s->octree.looseness = v->asNumber();
+            if (!(s->octree.looseness >= 1.0 && s->octree.looseness <= 4.0)) o->fail("looseness must be in [1, 4]");
+            orr.finish();
+        }
+        if (auto k = r.find("kd")) {
+            ObjectReader kr(*k);
+            if (auto v = kr.find("rule")) s->kd.rule = v->asEnum({"cycle", "widest"}) == "cycle" ? KdSplitRule::Cycle : KdSplitRule::WidestAxis;
+            if (auto v = kr.find("leaf")) s->kd.leaf = v->asInt(1, 1000);
+            kr.finish();
+        }
+        if (auto b = r.find("bsp")) {
+            ObjectReader br(*b);
+            if (auto v = br.find("split_weight")) {
+                s->bsp.splitWeight = v->asNumber();
+                if (s->bsp.splitWeight < 0 || s->bsp.splitWeight > 1) v->fail("expected a number in [0, 1]");
+            }
+            br.finish();
+        }
+        if (s->figure == "panels") {
+            if (auto b = r.find("boxes")) {
+                requireAtMost(*b, double(b->size()), kMaxPartitionItems, "the number of boxes", "one drawn box each");
+                for (const JsonNode& item : b->items()) s->boxes.push_back(readRect(item));
+            }
+            for (int i = 0; i < count; ++i) {
+                const double w = rng.uniform(sizeLo, sizeHi), h = rng.uniform(sizeLo, sizeHi);
+                const double x = rng.uniform(s->region.min.x(), s->region.max.x() - w);
+                const double y = rng.uniform(s->region.min.y(), s->region.max.y() - h);
+                s->boxes.push_back({P(x, y), P(x + w, y + h)});
+            }
+            if (s->boxes.empty()) r.node().fail("panels: expected 'boxes' or 'random'");
+            const auto g = r.find("grid_cell");
+            if (g) s->gridCell = g->asPositive();
+            // The grid panel draws one line per cell row and column over the region and the boxes,
+            // and the hashed grid visits every cell a box covers: their cell count is the cost.
+            Aabb all = s->region;
+            for (const Aabb& b : s->boxes) all.min = all.min.cwiseMin(b.min), all.max = all.max.cwiseMax(b.max);
+            const Vec3 extent = all.max - all.min;
+            const double cells = (std::floor(extent.x() / s->gridCell) + 2) * (std::floor(extent.y() / s->gridCell) + 2);
+            requireAtMost(g ? *g : r.node(), cells, kMaxGridCells, "the number of grid cells over the region and the boxes",
+                          "the grid panel draws every cell row and column");
+        } else if (s->figure == "kd_query") {
+            if (auto p = r.find("points")) {
+                requireAtMost(*p, double(p->size()), kMaxPartitionItems, "the number of points", "one drawn point each");
+                for (const JsonNode& item : p->items()) s->points.push_back(readPoint2(item));
+            }
+            for (int i = 0; i < count; ++i)
+                s->points.push_back(P(rng.uniform(s->region.min.x(), s->region.max.x()), rng.uniform(s->region.min.y(), s->region.max.y())));
+            if (s->points.empty()) r.node().fail("kd_query: expected 'points' or 'random'");
+            s->query = readPoint2(r.get("query"));
+            s->range = readRect(r.get("range"));
+        } else {
+            const JsonNode polygon = r.get("polygon");
+            // The BSP autopartition splits every edge by every splitter: quadratic in the edges.
+            requireAtMost(polygon, double(polygon.size()), kMaxBspEdges, "the number of polygon edges",
+                          "the BSP autopartition is quadratic in the edges");
+            for (const JsonNode& item : polygon.items()) s->polygon.push_back(readPoint2(item));
+            if (s->polygon.size() < 3) r.get("polygon").fail("expected at least 3 vertices (counter-clockwise)");
+            if (auto q = r.find("queries")) {
+                requireAtMost(*q, double(q->size()), kMaxPartitionItems, "the number of query points", "one drawn point each");
+                for (const JsonNode& item : q->items()) s->queries.push_back(readPoint2(item));
+            }
+            if (auto g = r.find("segment")) {
+                if (g->size() != 2) g->fail("expected [[x, y], [x, y]]");
+                s->segment = {readPoint2(g->at(0)), readPoint2(g->at(1))};
+                s->hasSegment = true;
+            }
+        }
+        r.finish();
+        return s;
+    }
+};
+
+}  // namespace
+
+const Demo& spacePartitionDemo() {
+    static const SpacePartitionDemo demo;
+    return demo;
+}
+
+}  // namespace cdlab::demos

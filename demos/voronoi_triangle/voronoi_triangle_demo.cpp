@@ -1,0 +1,440 @@
+// Point vs triangle / tetrahedron Voronoi regions (Ericson, Real-Time Collision Detection §5.1.5,
+// §5.1.6). All geometry comes from core (closest_point.h, voronoi_regions.h): this file only draws.
+//
+// Scene keys (besides the common ones in scene.h):
+//   "triangle": [a, b, c]  or  "tetrahedron": [a, b, c, d]
+//   "queries": [[x, y, z], ...]     query points
+//   "views": ["plane", "3d"]        triangle: which overview frames to draw (tetrahedron: "3d" only)
+//   "margin": number                how far the drawn regions extend beyond the simplex (default: its size)
+// Layers: "regions" (coloured zones / region faces), "boundaries" (region boundaries: lines in the
+// plane view, translucent slabs in 3D), "labels", "closest" (segment to the closest point), "queries".
+#include "demos/voronoi_triangle/voronoi_triangle_demo.h"
+
+#include <algorithm>
+
+#include "core/closest_point.h"
+#include "core/voronoi_regions.h"
+#include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_style.h"
+#include "demos/scene/scene_limits.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+
+const std::vector<std::string> kLayers = {"regions", "boundaries", "labels", "closest", "queries"};
+
+// ---------------------------------------------------------------------------------------------
+// Numeric part: one closest-point query per point, with its exact region tests.
+
+struct TriangleQuery {
+    Vec3 point;
+    ClosestPointTrace trace;  // trace.result is the answer
+};
+
+struct TetrahedronQuery {
+    Vec3 point;
+    TetrahedronTrace trace;
+};
+
+Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+template <class Test>
+Json testsJson(const std::vector<Test>& tests) {
+    Json out = Json::array();
+    for (const auto& t : tests) {
+        Json terms = Json::array();
+        for (int i = 0; i < t.termCount; ++i)
+            terms.push_back({{"name", t.terms[i].name}, {"formula", t.terms[i].formula}, {"sign", t.terms[i].sign},
+                             {"exact_fallback", t.terms[i].exactFallback}});
+        out.push_back({{"candidate", toString(t.candidate)}, {"condition", t.condition}, {"terms", terms},
+                       {"accepted", t.accepted}});
+    }
+    return out;
+}
+
+// One query of the trace: the same fields for triangle and tetrahedron results.
+template <class Result, class Tests>
+Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
+    Json weights = Json::array();
+    for (int i = 0; i < r.barycentric.size(); ++i) weights.push_back(r.barycentric[i]);
+    return {{"point", vecJson(point)},         {"region", toString(r.region)},
+            {"closest", vecJson(r.point)},     {"barycentric", weights},
+            {"distance", std::sqrt(r.distanceSquared)}, {"degenerate", r.status != SimplexStatus::Regular},
+            {"tests", testsJson(tests)}};
+}
+
+// Caption of the step frame of query i.
+template <class Result>
+std::string focusCaption(int i, const Vec3& point, const Result& r) {
+    return "q" + std::to_string(i + 1) + " " + formatPoint(point) + ": region " + toString(r.region) + ", closest " +
+           formatPoint(r.point) + ", distance " + formatNumber(std::sqrt(r.distanceSquared));
+}
+
+Color regionColor(int regionIndex) { return categorical(regionIndex); }
+
+// Tetrahedron regions are coloured by the dimension of their feature (vertex, edge, face, inside).
+int tetraFeatureDimension(TetrahedronRegion r) {
+    int i = int(r);
+    return i < 4 ? 0 : i < 10 ? 1 : i < 14 ? 2 : 3;
+}
+Color tetraRegionColor(TetrahedronRegion r) {
+    static const int kColor[4] = {0, 4, 2, 6};  // orange, blue, bluish green, reddish purple
+    return categorical(kColor[tetraFeatureDimension(r)]);
+}
+
+Vec3 polygonCentroid(const std::vector<Vec3>& poly) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& p : poly) c += p;
+    return poly.empty() ? c : Vec3(c / double(poly.size()));
+}
+
+// ---------------------------------------------------------------------------------------------
+
+class VoronoiScene final : public PreparedScene {
+public:
+    VoronoiScene(SceneCommon common, std::vector<Vec3> simplex, std::vector<Vec3> queries, std::vector<std::string> views,
+                 double margin)
+        : PreparedScene(std::move(common)), simplex_(std::move(simplex)), queries_(std::move(queries)),
+          views_(std::move(views)), margin_(margin) {}
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        return simplex_.size() == 3 ? runTriangle(ctx) : runTetrahedron(ctx);
+    }
+
+private:
+    std::vector<Vec3> simplex_;
+    std::vector<Vec3> queries_;
+    std::vector<std::string> views_;
+    double margin_;
+
+    Vec3 center() const { return polygonCentroid(simplex_); }
+    double size() const {
+        double r = 0;
+        for (const Vec3& v : simplex_) r = std::max(r, (v - center()).norm());
+        return r;
+    }
+    double margin() const { return margin_ > 0 ? margin_ : size(); }
+
+    CanvasOptions canvasOptions(const RunContext& ctx) const {
+        CanvasOptions o;
+        o.width = common_.image.width;
+        o.height = common_.image.height;
+        o.supersample = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        return o;
+    }
+
+    // -------------------------------------------------------------------------------- triangle
+
+    DemoOutput runTriangle(const RunContext& ctx) const {
+        const Triangle tri{simplex_[0], simplex_[1], simplex_[2]};
+        std::vector<TriangleQuery> results;
+        for (const Vec3& q : queries_) {
+            TriangleQuery r{q, {}};
+            closestPointOnTriangle(q, tri, &r.trace);
+            results.push_back(r);
+        }
+        DemoOutput out;
+        out.trace["simplex"] = "triangle";
+        out.trace["vertices"] = {vecJson(tri.a), vecJson(tri.b), vecJson(tri.c)};
+        Json qs = Json::array();
+        for (const auto& r : results) qs.push_back(queryJson(r.point, r.trace.result, r.trace.tests));
+        out.trace["queries"] = qs;
+        if (!ctx.gl) {  // numeric only
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        // Region geometry only when something draws it.
+        TriangleVoronoiDiagram diagram;
+        if (common_.hasLayer("regions") || common_.hasLayer("boundaries"))
+            diagram = triangleVoronoiRegions({tri, margin(), margin() * 0.6});
+        else
+            out.skipped.push_back("region geometry (no 'regions' or 'boundaries' layer)");
+        for (const std::string& view : views_)
+            out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1));
+        if (common_.steps || ctx.stepsOverride) addSteps(out, ctx, [&](int i) {
+            return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i);
+        });
+        else out.skipped.push_back("per-step frames and contact sheet (steps off)");
+        return out;
+    }
+
+    Camera triangleCamera(const Triangle& tri, const TriangleVoronoiDiagram& diagram, const std::string& view) const {
+        Vec3 n = (tri.b - tri.a).cross(tri.c - tri.a);
+        if (n.squaredNorm() == 0) n = Vec3::UnitZ();  // collinear: any view direction works
+        n.normalize();
+        Vec3 u = (tri.b - tri.a).squaredNorm() > 0 ? Vec3((tri.b - tri.a).normalized()) : Vec3::UnitX();
+        if (std::abs(u.dot(n)) > 0.9) u = n.unitOrthogonal();
+        Vec3 up = n.cross(u).normalized();
+        double radius = size() + margin();
+        if (common_.camera && view == "3d") return *common_.camera;
+        if (view == "plane") {
+            // Frame the regions' clip rectangle (when drawn), with room for the title and caption.
+            Vec3 middle = center();
+            double extent = 2 * radius;
+            if (diagram.valid) {
+                middle = (diagram.rectangle[0] + diagram.rectangle[2]) * 0.5;
+                extent = std::max((diagram.rectangle[1] - diagram.rectangle[0]).norm(),
+                                  (diagram.rectangle[3] - diagram.rectangle[0]).norm());
+            }
+            Camera cam = framingCamera(middle, radius, n, up, false);
+            cam.viewHeight = 1.2 * extent;
+            return cam;
+        }
+        // 3D: look from above the plane, off to the side, so the slabs read as planes.
+        return framingCamera(center(), radius * 1.1, n * 1.1 - up * 1.4 + u * 0.7, n, true);
+    }
+
+    Frame drawTriangleFrame(GlContext& gl, const RunContext& ctx, const Triangle& tri, const TriangleVoronoiDiagram& diagram,
+                            const std::vector<TriangleQuery>& results, const std::string& view, int focus) const {
+        Canvas canvas(gl, canvasOptions(ctx));
+        canvas.setBackground(roleColor(Role::Background));
+        canvas.setCamera(triangleCamera(tri, diagram, view));
+        const bool is3d = view == "3d";
+
+        if (diagram.valid && common_.hasLayer("regions"))
+            for (const auto& region : diagram.regions)
+                canvas.drawPolygon(region.vertices, regionColor(int(region.region)).withAlpha(is3d ? 0.30f : 0.42f));
+        if (diagram.valid && common_.hasLayer("boundaries")) {
+            for (std::size_t i = 0; i < diagram.boundaries.size(); ++i) {
+                const auto& b = diagram.boundaries[i];
+                // In the plane view a boundary plane is seen edge-on: draw its in-plane segment.
+                Vec3 p0 = (b.quad[0] + b.quad[3]) * 0.5, p1 = (b.quad[1] + b.quad[2]) * 0.5;
+                canvas.drawLine(p0, p1, lineStyle(Role::Muted, 2.0f, true));
+                if (is3d) {
+                    Color c = (i < 6 ? roleColor(Role::Direction) : roleColor(Role::Simplex)).withAlpha(0.16f);
+                    canvas.drawPolygon(std::vector<Vec3>(b.quad.begin(), b.quad.end()), c);
+                }
+            }
+        }
+        // The triangle itself.
+        canvas.drawPolygon({tri.a, tri.b, tri.c}, roleColor(Role::Background).mixed(roleColor(Role::ShapeA), 0.25f), is3d);
+        canvas.drawPolyline({tri.a, tri.b, tri.c}, true, lineStyle(Role::Ink, 3.5f));
+
+        const bool labels = common_.hasLayer("labels");
+        if (labels) {
+            const Vec3 c = center();
+            const char* names[3] = {"A", "B", "C"};
+            const Vec3 corners[3] = {tri.a, tri.b, tri.c};
+            for (int i = 0; i < 3; ++i) {
+                Vec3 away = corners[i] - c;
+                Vec3 at = corners[i] + (away.squaredNorm() > 0 ? Vec3(away.normalized()) : Vec3::Zero()) * size() * 0.09;
+                canvas.drawText(at, names[i], labelStyle(Role::Ink, 28.0f));
+            }
+            if (diagram.valid && common_.hasLayer("regions") && !is3d)
+                for (const auto& region : diagram.regions) {
+                    if (region.vertices.empty()) continue;
+                    Vec3 at = polygonCentroid(region.vertices);
+                    if (region.region == TriangleRegion::ABC) at = c;
+                    else at = c + (at - c) * 0.85;  // pull labels of unbounded regions inwards, off the frame edge
+                    canvas.drawText(at, std::string("region ") + toString(region.region),
+                                    TextStyle{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true});
+                }
+        }
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            const auto& r = results[i].trace.result;
+            const bool faded = focus >= 0 && int(i) != focus;
+            Color qc = regionColor(int(r.region));
+            if (faded) qc = qc.withAlpha(0.25f);
+            if (common_.hasLayer("closest") && !faded) {
+                LineStyle s = lineStyle(Role::Result, 3.0f, false, true);
+                canvas.drawLine(results[i].point, r.point, s);
+                canvas.drawPoint(r.point, 6.0f, roleColor(Role::Result));
+            }
+            if (common_.hasLayer("queries")) {
+                canvas.drawPoint(results[i].point, focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
+                                 faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
+                if (labels && !faded)
+                    canvas.drawText(results[i].point + Vec3(0, 0, 0), "  q" + std::to_string(i + 1),
+                                    TextStyle{18.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+            }
+        }
+        std::string caption = common_.caption;
+        if (focus >= 0) caption = focusCaption(focus, results[focus].point, results[focus].trace.result);
+        drawTitleAndCaption(canvas, common_.title + (is3d ? " (3D)" : ""), caption);
+        Frame f;
+        f.name = focus >= 0 ? stepName(focus) : view;
+        f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + toString(results[focus].trace.result.region)
+                               : common_.title + " — " + view;
+        f.image = canvas.readPixels();
+        return f;
+    }
+
+    // ----------------------------------------------------------------------------- tetrahedron
+
+    DemoOutput runTetrahedron(const RunContext& ctx) const {
+        const Tetrahedron tet{simplex_[0], simplex_[1], simplex_[2], simplex_[3]};
+        std::vector<TetrahedronQuery> results;
+        for (const Vec3& q : queries_) {
+            TetrahedronQuery r{q, {}};
+            closestPointOnTetrahedron(q, tet, &r.trace);
+            results.push_back(r);
+        }
+        DemoOutput out;
+        out.trace["simplex"] = "tetrahedron";
+        out.trace["vertices"] = {vecJson(tet.a), vecJson(tet.b), vecJson(tet.c), vecJson(tet.d)};
+        Json qs = Json::array();
+        for (const auto& r : results) qs.push_back(queryJson(r.point, r.trace.result, r.trace.tests));
+        out.trace["queries"] = qs;
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        // The 15 region geometries are drawn only in step frames (one region each).
+        TetrahedronVoronoiDiagram diagram;
+        if ((common_.steps || ctx.stepsOverride) && (common_.hasLayer("regions") || common_.hasLayer("boundaries")))
+            diagram = tetrahedronVoronoiRegions({tet, margin_ > 0 ? margin_ : 0.5 * size()});
+        else
+            out.skipped.push_back("region geometry (not drawn without steps and a 'regions'/'boundaries' layer)");
+        out.frames.push_back(drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, -1));
+        if (common_.steps || ctx.stepsOverride)
+            addSteps(out, ctx, [&](int i) { return drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, i); });
+        return out;
+    }
+
+    Frame drawTetrahedronFrame(GlContext& gl, const RunContext& ctx, const Tetrahedron& tet,
+                               const TetrahedronVoronoiDiagram& diagram, const std::vector<TetrahedronQuery>& results,
+                               int focus) const {
+        Canvas canvas(gl, canvasOptions(ctx));
+        canvas.setBackground(roleColor(Role::Background));
+        double radius = size() + 0.6 * margin();
+        canvas.setCamera(common_.camera ? *common_.camera
+                                        : framingCamera(center(), radius, Vec3(1.0, 0.75, 1.6), Vec3::UnitY(), true));
+        const Vec3 v[4] = {tet.a, tet.b, tet.c, tet.d};
+        const std::vector<Vec3> verts(v, v + 4);
+        canvas.drawMesh(verts, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
+                        roleColor(Role::ShapeA).withAlpha(0.28f), true);
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) canvas.drawLine(v[i], v[j], lineStyle(Role::Ink, 3.0f));
+
+        // In a step frame, the focused point's region: its clipped boundary faces, faintly (all 15
+        // at once would hide the tetrahedron).
+        std::vector<bool> shown(15, false);
+        if (focus >= 0) shown[int(results[focus].trace.result.region)] = true;
+        if (diagram.valid && common_.hasLayer("regions"))
+            for (int r = 0; r < 15; ++r) {
+                if (!shown[r] || r == int(TetrahedronRegion::ABCD)) continue;
+                for (const auto& face : diagram.regions[r].faces)
+                    if (face.size() >= 3) canvas.drawPolygon(face, tetraRegionColor(TetrahedronRegion(r)).withAlpha(0.13f));
+            }
+        if (diagram.valid && common_.hasLayer("boundaries"))
+            for (int r = 0; r < 15; ++r) {
+                if (!shown[r]) continue;
+                for (const auto& face : diagram.regions[r].faces)
+                    if (face.size() >= 2) canvas.drawPolyline(face, true, lineStyle(Role::Muted, 1.5f, true));
+            }
+        const bool labels = common_.hasLayer("labels");
+        if (labels) {
+            const char* names[4] = {"A", "B", "C", "D"};
+            for (int i = 0; i < 4; ++i) {
+                Vec3 away = v[i] - center();
+                canvas.drawText(v[i] + away.normalized() * size() * 0.12, names[i], labelStyle(Role::Ink, 28.0f));
+            }
+        }
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            const auto& r = results[i].trace.result;
+            const bool faded = focus >= 0 && int(i) != focus;
+            Color qc = tetraRegionColor(r.region);
+            if (faded) qc = qc.withAlpha(0.25f);
+            if (common_.hasLayer("closest") && !faded && r.region != TetrahedronRegion::ABCD) {
+                canvas.drawLine(results[i].point, r.point, lineStyle(Role::Result, 3.0f, false, true));
+                canvas.drawPoint(r.point, 6.0f, roleColor(Role::Result));
+            }
+            if (common_.hasLayer("queries")) {
+                canvas.drawPoint(results[i].point, focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
+                                 faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
+                if (labels && !faded)
+                    canvas.drawText(results[i].point, "  q" + std::to_string(i + 1) + ": " + toString(r.region),
+                                    TextStyle{18.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+            }
+        }
+        // Legend: colour by feature dimension.
+        const char* kinds[4] = {"vertex region", "edge region", "face region", "inside"};
+        for (int k = 0; k < 4; ++k) {
+            double y = 70 + 28 * k;
+            TextStyle ts{18.0f, tetraRegionColor(TetrahedronRegion(k == 0 ? 0 : k == 1 ? 4 : k == 2 ? 10 : 14)).scaled(0.8f),
+                         Anchor::Left, true, true};
+            canvas.drawTextPx(22, y, kinds[k], ts);
+        }
+        std::string caption = common_.caption;
+        if (focus >= 0) caption = focusCaption(focus, results[focus].point, results[focus].trace.result);
+        drawTitleAndCaption(canvas, common_.title, caption);
+        Frame f;
+        f.name = focus >= 0 ? stepName(focus) : "3d";
+        f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + toString(results[focus].trace.result.region)
+                               : common_.title;
+        f.image = canvas.readPixels();
+        return f;
+    }
+
+    // ------------------------------------------------------------------------------- steps
+
+    static std::string stepName(int i) {
+        char buf[16];
+        std::snprintf(buf, sizeof buf, "step_%02d", i + 1);
+        return buf;
+    }
+
+    template <class DrawStep>
+    void addSteps(DemoOutput& out, const RunContext& ctx, DrawStep&& draw) const {
+        std::size_t first = out.frames.size();
+        for (std::size_t i = 0; i < queries_.size(); ++i) out.frames.push_back(draw(int(i)));
+        std::vector<const Frame*> steps;
+        for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
+        ContactSheetOptions o;
+        o.title = common_.title + ": one query point per frame";
+        out.frames.push_back(contactSheetFrame(*ctx.gl, steps, common_.title, o));
+    }
+};
+
+class VoronoiDemo final : public Demo {
+public:
+    std::string name() const override { return "voronoi_triangle"; }
+    std::string description() const override {
+        return "point vs triangle (7 Voronoi regions) and point vs tetrahedron (15), closest points";
+    }
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
+        ObjectReader r(JsonNode(json, "$", file));
+        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers);
+        std::vector<Vec3> simplex;
+        std::vector<std::string> views;
+        if (r.has("triangle") == r.has("tetrahedron")) r.node().fail("expected exactly one of 'triangle' or 'tetrahedron'");
+        if (r.has("triangle")) {
+            JsonNode t = r.get("triangle");
+            if (t.size() != 3) t.fail("expected [a, b, c]");
+            simplex = sceneVec3List(t, 3, 3);
+            views = {"plane", "3d"};
+        } else {
+            JsonNode t = r.get("tetrahedron");
+            if (t.size() != 4) t.fail("expected [a, b, c, d]");
+            simplex = sceneVec3List(t, 4, 4);
+            views = {"3d"};
+        }
+        // One frame per query point with "steps": the list is the frame count.
+        std::vector<Vec3> queries = sceneVec3List(r.get("queries"), 1, kMaxQueryPoints);
+        if (auto v = r.find("views")) {
+            views.clear();
+            for (const JsonNode& item : v->items())
+                views.push_back(item.asEnum(simplex.size() == 3 ? std::vector<std::string>{"plane", "3d"}
+                                                                : std::vector<std::string>{"3d"}));
+            if (views.empty()) v->fail("expected at least one view");
+        }
+        double margin = 0;
+        if (auto m = r.find("margin")) margin = sceneSize(*m);
+        r.finish();
+        return std::make_unique<VoronoiScene>(std::move(common), std::move(simplex), std::move(queries), std::move(views),
+                                              margin);
+    }
+};
+
+}  // namespace
+
+const Demo& voronoiDemo() {
+    static const VoronoiDemo demo;
+    return demo;
+}
+
+}  // namespace cdlab::demos

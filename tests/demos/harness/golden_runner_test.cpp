@@ -1,0 +1,74 @@
+// The golden harness itself: it passes on its own output, and it fails — with a report — when a
+// golden image is perturbed, is not a PNG, or is missing, and when a trace number moves.
+#include <doctest/doctest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "demos/scene/json_reader.h"
+#include "demos/harness/scene_runner.h"
+#include "render/image.h"
+
+using namespace cdlab::demos;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path makeGoldenDir() {
+    fs::path root = fs::temp_directory_path() / ("cdlab_golden_runner_test_" + std::to_string(getpid()));
+    fs::remove_all(root);
+    fs::create_directories(root / "voronoi_triangle");
+    std::ofstream(root / "voronoi_triangle" / "small.json") << R"({
+      "demo": "voronoi_triangle", "title": "small", "image": {"width": 256, "height": 256},
+      "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[-0.5, -0.5, 0.2], [1.0, 0.5, 0.5]],
+      "views": ["plane"]})";
+    return root;
+}
+
+RunnerOptions options(const fs::path& root, const std::string& update = "") {
+    RunnerOptions o;
+    o.goldenDir = root.string();
+    o.reportDir = (root / "report").string();
+    o.update = update;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("golden runner: creates, passes, and rejects perturbed or broken goldens") {
+    fs::path root = makeGoldenDir();
+    fs::path png = root / "voronoi_triangle" / "small" / "plane.png";
+    fs::path trace = root / "voronoi_triangle" / "small" / "trace.json";
+
+    // Missing goldens fail (CI never creates them silently) ...
+    CHECK(runGolden(options(root)) == 1);
+    CHECK_FALSE(fs::exists(png));
+    // ... until asked to update; then the same scene passes against its own output.
+    CHECK(runGolden(options(root, "failing")) == 0);
+    REQUIRE(fs::exists(png));
+    CHECK(runGolden(options(root)) == 0);
+
+    // A perturbed golden fails and produces actual / expected / diff PNGs and the HTML report.
+    cdlab::render::Image img = cdlab::render::readPng(png.string());
+    for (int y = 100; y < 110; ++y)
+        for (int x = 100; x < 110; ++x) img.pixel(x, y)[0] ^= 0x80;
+    cdlab::render::writePngAtomic(png.string(), img);
+    CHECK(runGolden(options(root)) == 1);
+    CHECK(fs::exists(root / "report" / "index.html"));
+    CHECK(fs::exists(root / "report" / "voronoi_triangle" / "small" / "plane.diff.png"));
+    CHECK(fs::exists(root / "report" / "voronoi_triangle" / "small" / "plane.expected.png"));
+
+    // A golden that is not a PNG fails cleanly.
+    std::ofstream(png, std::ios::trunc) << "not a png";
+    CHECK(runGolden(options(root)) == 1);
+    CHECK(runGolden(options(root, "failing")) == 0);  // repaired by an explicit update
+
+    // A trace number moved beyond the tolerance fails even though the pixels match.
+    Json t = readJsonFile(trace.string());
+    t["queries"][0]["distance"] = t["queries"][0]["distance"].get<double>() + 1e-6;
+    std::ofstream(trace, std::ios::trunc) << t.dump(1);
+    CHECK(runGolden(options(root)) == 1);
+    fs::remove_all(root);
+}
