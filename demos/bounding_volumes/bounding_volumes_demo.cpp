@@ -29,7 +29,8 @@
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/scene/mesh_scene.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/pair_figure.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

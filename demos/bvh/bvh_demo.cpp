@@ -27,7 +27,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/scene/mesh_scene.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/step_frames.h"
 
 namespace cdlab::demos {
 

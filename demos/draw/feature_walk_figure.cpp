@@ -7,7 +7,7 @@
 #include "core/convex_hull.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/feature_walk_figure.h"
 
 namespace cdlab::demos::vclipdemo {

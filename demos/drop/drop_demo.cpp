@@ -22,7 +22,7 @@
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/convex_drawable.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -434,7 +434,8 @@ public:
             if (o.solver.restitution > 1) s->fail("restitution must be in [0, 1]");
         }
         const double steps = std::round(duration / o.timeStep);
-        if (!(steps >= 1 && steps <= 20000)) r.node().fail("simulation: duration / time_step must give 1..20000 steps");
+        if (!(steps >= 1 && steps <= 20000))  // the frames, the energy plot and the trace hold every step
+            (r.has("simulation") ? r.get("simulation") : r.node()).fail("duration / time_step must give 1..20000 steps");
         o.steps = int(steps);
         int frameEvery = std::max(1, o.steps / 11);
         if (auto k = r.find("frame_every")) frameEvery = k->asInt(1, 20000);

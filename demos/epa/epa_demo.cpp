@@ -2,7 +2,7 @@
 // planar scenes, from epaPenetration2d (demos/epa/epa_2d.h: core's 3D EPA reports flat input as
 // touching). This file converts both traces into one drawable form and draws them.
 //
-// Scene keys (besides the common ones and the pair keys of support_scene.h):
+// Scene keys (besides the common ones and the pair keys of scene/pair_scene.h):
 //   "method": {"tolerance": eps_rel (EPA), "max_iterations": n (EPA), "gjk_tolerance": eps_rel}
 // Layers: "minkowski", "polytope", "closest", "support", "horizon", "witness", "labels", "plot".
 // Frames: "gjk" (GJK's final simplex), step_NN (per EPA iteration, at most max_step_frames),
@@ -17,7 +17,10 @@
 #include "demos/draw/contact_sheet.h"
 #include "demos/epa/epa_2d.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/pair_figure.h"
+#include "demos/draw/step_frames.h"
+#include "demos/scene/pair_scene.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

@@ -3,7 +3,7 @@
 // drawn comes from core's GjkTrace (core/gjk.h): this file computes only drawing geometry (the hull
 // of A − B, cameras).
 //
-// Scene keys (besides the common ones in scene.h and the pair keys of support_scene.h):
+// Scene keys (besides the common ones in scene.h and the pair keys of scene/pair_scene.h):
 //   "method": {"solver": "signed_volumes" | "johnson", "tolerance": eps_rel, "max_iterations": n}
 // Layers: "minkowski" (A − B), "simplex", "direction", "support", "witness", "labels".
 // Frames: step_NN (one per traced iteration, at most max_step_frames), "result", and with "steps"
@@ -16,7 +16,10 @@
 #include "core/gjk.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/pair_figure.h"
+#include "demos/draw/step_frames.h"
+#include "demos/scene/pair_scene.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

@@ -22,7 +22,7 @@
 #include "core/polyhedron_presets.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/convex_drawable.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

@@ -115,6 +115,8 @@ std::string readJsonText(const std::string& path) {
 
 Json readJsonFile(const std::string& path) { return parseJson(readJsonText(path), path); }
 
+Json vec3Json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
 void JsonNode::fail(const std::string& what) const { throw InputError(source_ + ": " + path_ + ": " + what); }
 
 std::string JsonNode::describe(const Json& v) {

@@ -34,6 +34,9 @@ std::string readJsonText(const std::string& path);
 /// readJsonText + parseJson.
 Json readJsonFile(const std::string& path);
 
+/// [x, y, z] as a JSON array (for traces; negative zeros kept as computed).
+Json vec3Json(const Vec3& v);
+
 /// A view of one JSON value with its path, for typed, checked access.
 class JsonNode {
 public:

@@ -22,7 +22,6 @@
 #include "core/sweep_and_prune.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
-#include "demos/draw/support_scene.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

@@ -24,7 +24,9 @@
 #include "demos/draw/contact_sheet.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/support_scene.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/pair_figure.h"
+#include "demos/draw/step_frames.h"
 #include "demos/draw/feature_walk_figure.h"
 #include "render/canvas.h"
 

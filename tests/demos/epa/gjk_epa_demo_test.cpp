@@ -16,7 +16,7 @@
 
 #include "demos/catalog/catalog.h"
 #include "demos/epa/epa_2d.h"
-#include "demos/draw/support_scene.h"
+#include "demos/scene/pair_scene.h"
 #include "render/gif_writer.h"
 
 using namespace cdlab;

@@ -1,0 +1,165 @@
+#include "demos/draw/convex_drawable.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/convex_hull.h"
+#include "demos/draw/figure_style.h"
+
+namespace cdlab::demos {
+
+using namespace render;
+
+namespace {
+
+// Evenly spread unit directions: Fibonacci sphere (3D) or equal angles (2D). Deterministic.
+std::vector<Vec3> sampleDirections(bool planar, int n) {
+    std::vector<Vec3> out;
+    if (planar) {
+        for (int i = 0; i < n; ++i) {
+            const double t = 2.0 * M_PI * (i + 0.5) / n;
+            out.emplace_back(std::cos(t), std::sin(t), 0.0);
+        }
+        return out;
+    }
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < n; ++i) {
+        const double y = 1.0 - 2.0 * (i + 0.5) / n;
+        const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
+        out.emplace_back(r * std::cos(golden * i), y, r * std::sin(golden * i));
+    }
+    // The poles and the equator's axis directions exactly: cylinder / cone caps and rims.
+    for (int k = 0; k < 3; ++k) {
+        out.push_back(Vec3::Unit(k));
+        out.push_back(-Vec3::Unit(k));
+    }
+    return out;
+}
+
+
+ConvexDrawable drawableFromPoints(const std::vector<Vec3>& points, bool planar, bool polytopeEdges) {
+    ConvexDrawable d;
+    d.planar = planar;
+    if (planar) {
+        d.outline = hull2d(points);
+        d.vertices = d.outline;
+        for (std::size_t i = 0; i < d.outline.size(); ++i) d.edges.emplace_back(int(i), int((i + 1) % d.outline.size()));
+        d.valid = d.outline.size() >= 3;
+    } else {
+        HullResult h = convexHull(points);
+        if (h.ok()) {
+            const ConvexPolyhedron& poly = h.polyhedron;
+            d.vertices = poly.positions();
+            for (int f = 0; f < poly.faceCount(); ++f) {
+                std::vector<int> fv = poly.faceVertices(f);
+                for (std::size_t i = 1; i + 1 < fv.size(); ++i) d.triangles.emplace_back(fv[0], fv[i], fv[i + 1]);
+            }
+            if (polytopeEdges)
+                for (int e = 0; e < poly.edgeCount(); ++e) d.edges.push_back(poly.edgeVertices(e));
+            d.valid = true;
+        }
+    }
+    boundingSphere(d.valid ? d.vertices : points, d.center, d.radius);
+    return d;
+}
+
+}  // namespace
+
+// Andrew's monotone chain; drops collinear points. Counter-clockwise.
+std::vector<Vec3> hull2d(std::vector<Vec3> p) {
+    std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    if (p.size() < 3) return p;
+    auto cross = [](const Vec3& o, const Vec3& a, const Vec3& b) {
+        return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+    };
+    std::vector<Vec3> h(2 * p.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+        while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    h.resize(k - 1);
+    return h;
+}
+
+void boundingSphere(const std::vector<Vec3>& points, Vec3& center, double& radius) {
+    center.setZero();
+    radius = 0.0;
+    if (points.empty()) return;
+    Vec3 lo = points[0], hi = points[0];
+    for (const Vec3& p : points) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    center = 0.5 * (lo + hi);
+    for (const Vec3& p : points) radius = std::max(radius, (p - center).norm());
+}
+
+ConvexDrawable shapeDrawable(const SceneShape& shape) {
+    std::vector<Vec3> points;
+    if (shape.isPolytope()) {
+        points = shape.worldVertices();
+    } else {
+        for (const Vec3& d : sampleDirections(shape.planar, shape.planar ? 160 : 900)) points.push_back(shape.support(d));
+    }
+    return drawableFromPoints(points, shape.planar, shape.isPolytope());
+}
+
+ConvexDrawable minkowskiDrawable(const SceneShape& a, const SceneShape& b, bool* exact) {
+    std::vector<Vec3> points;
+    const bool polytopes = a.isPolytope() && b.isPolytope();
+    if (polytopes) {
+        for (const Vec3& p : a.worldVertices())
+            for (const Vec3& q : b.worldVertices()) points.push_back(p - q);
+    } else {
+        for (const Vec3& d : sampleDirections(a.planar, a.planar ? 360 : 1500)) points.push_back(a.support(d) - b.support(-d));
+    }
+    if (exact) *exact = polytopes;
+    return drawableFromPoints(points, a.planar, polytopes);
+}
+
+void drawBody(Canvas& canvas, const ConvexDrawable& body, const Color& fill, float alpha, const Color& edge, float edgeWidth) {
+    if (!body.valid) return;
+    LineStyle ls;
+    ls.widthPx = edgeWidth;
+    ls.color = edge;
+    if (body.planar) {
+        canvas.drawPolygon(body.outline, fill.withAlpha(alpha));
+        canvas.drawPolyline(body.outline, true, ls);
+        return;
+    }
+    canvas.drawMesh(body.vertices, body.triangles, fill.withAlpha(alpha), true);
+    for (const auto& [i, j] : body.edges) canvas.drawLine(body.vertices[i], body.vertices[j], ls);
+}
+
+void drawOrigin(Canvas& canvas, double size, bool planar) {
+    LineStyle ls = lineStyle(Role::Origin, 2.0f, false, true);
+    for (int k = 0; k < (planar ? 2 : 3); ++k) {
+        Vec3 u = Vec3::Unit(k) * size;
+        canvas.drawLine(-u, u, ls);
+    }
+    canvas.drawPoint(Vec3::Zero(), 7.0f, roleColor(Role::Origin), true, 1.5f, roleColor(Role::Ink));
+    TextStyle ts = labelStyle(Role::Origin, 20.0f);
+    ts.anchor = Anchor::TopRight;
+    ts.offsetPx = Eigen::Vector2d(-6, 6);
+    canvas.drawText(Vec3::Zero(), "O", ts);
+}
+
+void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text, TextStyle style, double px) {
+    Eigen::Vector2d pa, pf;
+    Eigen::Vector2d dir(0.7071, -0.7071);  // up and to the right when there is no better direction
+    if (canvas.project(at, pa) && canvas.project(from, pf) && (pa - pf).norm() > 1.0) dir = (pa - pf).normalized();
+    style.anchor = Anchor::Center;
+    const Eigen::Vector2d box = canvas.measureText(text, style);
+    // Push the box centre out so its nearest edge is px away from the point.
+    const double reach = px + 0.5 * std::abs(dir.x()) * box.x() + 0.5 * std::abs(dir.y()) * box.y();
+    style.offsetPx = dir * reach;
+    canvas.drawText(at, text, style);
+}
+
+}  // namespace cdlab::demos

@@ -1,0 +1,53 @@
+// Convex bodies as drawn in figures: hulls of vertices (polytopes) or of support samples (curved
+// shapes), the Minkowski difference A − B as a hull, and the drawing of bodies, the origin and
+// labels pushed away from a centre. Only geometry for drawing: every answer comes from core.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/types.h"
+#include "demos/scene/pair_scene.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+/// Convex hull of points in the xy plane (z ignored, kept from the input), counter-clockwise,
+/// duplicates and collinear points dropped (Andrew's monotone chain). For 2D outlines in figures.
+std::vector<Vec3> hull2d(std::vector<Vec3> points);
+
+/// A drawable convex body: triangles (3D) or a CCW outline (2D), plus feature edges worth drawing.
+struct ConvexDrawable {
+    bool planar = false;
+    std::vector<Vec3> vertices;
+    std::vector<Eigen::Vector3i> triangles;   // 3D
+    std::vector<std::pair<int, int>> edges;   // 3D polytopes: hull edges; 2D: the outline loop
+    std::vector<Vec3> outline;                // 2D: CCW polygon
+    Vec3 center = Vec3::Zero();
+    double radius = 0.0;                      // bounding sphere about center
+    bool valid = false;
+};
+
+/// The shape as drawn: hull of its vertices (polytopes) or of support samples (curved shapes).
+ConvexDrawable shapeDrawable(const SceneShape& shape);
+/// A - B: hull of {a_i - b_j} when both are polytopes (exact), else of s_A(d) - s_B(-d) over
+/// evenly spread directions d (inscribed in the true set).
+ConvexDrawable minkowskiDrawable(const SceneShape& a, const SceneShape& b, bool* exact = nullptr);
+
+/// Bounding sphere of points (centre of the bounding box, max distance).
+void boundingSphere(const std::vector<Vec3>& points, Vec3& center, double& radius);
+
+/// Draws a body translucent with its edges (3D) or a filled outline (2D).
+void drawBody(render::Canvas& canvas, const ConvexDrawable& body, const render::Color& fill, float alpha,
+              const render::Color& edge, float edgeWidth);
+
+/// Draws the little "O" origin marker with a cross.
+void drawOrigin(render::Canvas& canvas, double size, bool planar);
+
+/// Text next to `at`, pushed `px` output pixels away from `from` on screen (so labels fan out
+/// from a centre instead of piling onto the point they name).
+void drawLabelAway(render::Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text,
+                   render::TextStyle style, double px = 16.0);
+
+}  // namespace cdlab::demos

@@ -1,0 +1,49 @@
+// The two-panel frame of the gjk and epa demos: world space | configuration space, with the bodies,
+// A − B and the framing spheres every frame draws from.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "demos/draw/convex_drawable.h"
+#include "demos/scene/pair_scene.h"
+#include "render/canvas.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+
+namespace cdlab::demos {
+
+/// Layout of a two-panel frame: title band, two panels side by side, caption band.
+struct TwoPanelLayout {
+    int width = 1280, height = 640;
+    int titleBand = 44, captionBand = 62;
+    int panelWidth() const { return width / 2; }
+    int panelHeight() const { return height - titleBand - captionBand; }
+};
+
+/// Camera for a panel: 2D (fits the sphere in the panel) or a perspective look-at from `view`.
+render::Camera panelCamera(bool planar, const Vec3& center, double radius, const Vec3& view, const TwoPanelLayout& layout);
+
+/// Panel heading (top left, bold) and an optional second line underneath.
+void drawPanelHeading(render::Canvas& canvas, const std::string& heading, const std::string& sub);
+
+/// Assembles the frame: title (top), left and right panels, up to two caption lines (bottom).
+render::Image composeTwoPanel(render::GlContext& gl, const TwoPanelLayout& layout, int supersample,
+                              const std::string& title, const render::Image& left, const render::Image& right,
+                              const std::vector<std::string>& captionLines);
+
+/// What every GJK and EPA frame draws from: both bodies, A − B (only when `drawMinkowski`), and
+/// the framing spheres of the world panel and of the configuration-space panel.
+struct PairDrawing {
+    bool planar = false, exact = false;  // exact: A − B is the exact hull (polytopes), not sampled
+    ConvexDrawable a, b, c;
+    Vec3 cCenter = Vec3::Zero(), wCenter = Vec3::Zero();
+    double cRadius = 1, wRadius = 1;
+};
+/// Builds the drawing; `csPoints` are the algorithm's configuration-space points (simplices,
+/// support points, polytopes) framed together with A − B and the origin. Records in `skipped`
+/// what was not computed.
+PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vector<Vec3> csPoints,
+                            std::vector<std::string>& skipped);
+
+}  // namespace cdlab::demos
