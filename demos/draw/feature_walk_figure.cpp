@@ -10,7 +10,7 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/feature_walk_figure.h"
 
-namespace cdlab::demos::vclipdemo {
+namespace cdlab::demos::walkfigure {
 
 using namespace render;
 
@@ -213,4 +213,4 @@ Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const s
     return frame;
 }
 
-}  // namespace cdlab::demos::vclipdemo
+}  // namespace cdlab::demos::walkfigure

@@ -1,5 +1,6 @@
-// Internal to the V-Clip demo (vclip_demo*.cpp, vclip_state_diagram.cpp): the scene's bodies, the
-// frame layout and the drawing pieces. Every number drawn comes from core's VClipTrace /
+// What the feature-walk demos (vclip, lin_canny) draw with: the scene's polyhedral bodies, the frame
+// layout, the 3D panel pieces (feature_walk_figure.cpp), the state diagram and the small plots
+// (feature_walk_state_diagram.cpp). Every number drawn comes from core's VClipTrace /
 // VClipResult (core/vclip.h); these files only add drawing geometry (plane patches, cameras) and the
 // Theorem-1 check, which re-evaluates the final closest points against the stored region planes.
 #pragma once
@@ -13,7 +14,7 @@
 #include "demos/scene/json_reader.h"
 #include "render/canvas.h"
 
-namespace cdlab::demos::vclipdemo {
+namespace cdlab::demos::walkfigure {
 
 /// One body of a scene: the mesh, its precomputed Voronoi regions and its pose (body -> world).
 struct Body {
@@ -110,4 +111,4 @@ render::Color violatedColor();   // red: violated plane / excluded part
 render::Color satisfiedColor();  // green: satisfied plane
 render::Color clipColor();       // the clipped part of an edge
 
-}  // namespace cdlab::demos::vclipdemo
+}  // namespace cdlab::demos::walkfigure

@@ -7,7 +7,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/feature_walk_figure.h"
 
-namespace cdlab::demos::vclipdemo {
+namespace cdlab::demos::walkfigure {
 
 using namespace render;
 
@@ -177,4 +177,4 @@ Image stackImages(const Image& top, const Image& bottom) {
     return out;
 }
 
-}  // namespace cdlab::demos::vclipdemo
+}  // namespace cdlab::demos::walkfigure

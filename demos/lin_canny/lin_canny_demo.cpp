@@ -39,7 +39,7 @@ namespace cdlab::demos {
 namespace {
 
 using namespace render;
-using namespace vclipdemo;
+using namespace walkfigure;
 
 const std::vector<std::string> kLayers = {"planes", "update", "closest", "labels", "list", "plot"};
 

@@ -35,7 +35,7 @@ namespace cdlab::demos {
 namespace {
 
 using namespace render;
-using namespace vclipdemo;
+using namespace walkfigure;
 
 const std::vector<std::string> kLayers = {"planes", "clip", "derivative", "update", "closest", "labels", "diagram", "plot"};
 
