@@ -30,6 +30,7 @@
 #include "core/shapes.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
 #include "demos/draw/plot.h"
+#include "demos/measure/statistics.h"
 
 namespace cdlab::demos {
 
@@ -74,16 +75,6 @@ std::vector<Vec3> ellipsoid(std::mt19937_64& rng, int n)
         v.push_back(p.x() * e0 + p.y() * e1 + p.z() * e2);
     }
     return v;
-}
-
-double circumradius(const std::vector<Vec3>& v)
-{
-    Vec3 c = Vec3::Zero();
-    for (const Vec3& x : v) c += x;
-    c /= static_cast<double>(v.size());
-    double r = 0;
-    for (const Vec3& x : v) r = std::max(r, (x - c).norm());
-    return r;
 }
 
 struct Pair {
@@ -141,14 +132,6 @@ struct Sweep {
     int oracleFailures = 0;
 };
 
-double median(std::vector<double> v)
-{
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t h = v.size() / 2;
-    return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-}
-
 struct Settings {
     std::string sweep = "scale";
     std::string figure = "plot";  // or "histogram"
@@ -175,7 +158,7 @@ Sweep runSweep(const Settings& s)
             const double exact = o.inside ? 0.0
                                  : p.a.size() <= 6 && p.b.size() <= 6 ? oracleDistanceBruteForce(p.a, p.b)
                                                                       : o.distance;
-            const double L = std::max(circumradius(p.a), circumradius(p.b));
+            const double L = std::max(centroidRadius(p.a), centroidRadius(p.b));
             const PolytopeShape a(p.a), b(p.b);
             Sample smp;
             smp.param = p.param;

@@ -20,6 +20,7 @@
 #include "core/sweep_and_prune.h"
 #include "core/uniform_grid.h"
 #include "demos/draw/plot.h"
+#include "demos/measure/statistics.h"
 #include "render/image.h"
 
 namespace cdlab::demos {
@@ -96,13 +97,6 @@ std::vector<std::uint64_t> pairKeys(const std::vector<std::pair<int, int>>& pair
     for (const auto& [a, b] : pairs) keys.push_back(BoxPair::make(a, b).key());
     std::sort(keys.begin(), keys.end());
     return keys;
-}
-
-double median(std::vector<double> v) {
-    if (v.empty()) return NAN;
-    std::sort(v.begin(), v.end());
-    const std::size_t h = v.size() / 2;
-    return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
 double msSince(double t0) { return cpuMs() - t0; }

@@ -15,22 +15,12 @@
 #include "core/mesh_collision.h"
 #include "core/triangle_mesh.h"
 #include "demos/draw/plot.h"
+#include "demos/measure/statistics.h"
 #include "render/image.h"
 
 namespace cdlab::demos {
 
 namespace {
-
-double threadSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 /// Median over `reps` runs of f() (seconds per run).
 template <class F>

@@ -1,5 +1,6 @@
 // V-Clip vs GJK under frame coherence: see bench_vclip.h.
 #include "demos/bench/bench_vclip.h"
+#include "demos/measure/statistics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,14 +17,6 @@
 namespace cdlab::demos {
 
 namespace {
-
-// Thread CPU time, not wall time: on a shared machine (the lab's 2 cores run several builds) wall
-// time per query triples while the CPU time of the thread stays what the query costs.
-double threadSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 struct Scenario {
     const char* name;

@@ -31,6 +31,7 @@
 #include "demos/bench/bench_measure.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
 #include "demos/draw/plot.h"
+#include "demos/measure/statistics.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 // The exact (BigInt) Ericson region of the closest-point tests: header-only, independent of core.
@@ -383,16 +384,6 @@ private:
     std::map<std::string, size_t> index_;
 };
 
-double circumradius(const std::vector<Vec3>& v)
-{
-    Vec3 c = Vec3::Zero();
-    for (const Vec3& x : v) c += x;
-    c /= static_cast<double>(v.size());
-    double r = 0;
-    for (const Vec3& x : v) r = std::max(r, (x - c).norm());
-    return r;
-}
-
 double maxAbs(const std::vector<Vec3>& v)
 {
     double m = 0;
@@ -436,7 +427,7 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
                const std::vector<Vec3>& algoB, bool floatRounded, double param)
 {
     const MinkowskiOracle o = minkowskiOracle(va, vb);
-    const double L = std::max(circumradius(va), circumradius(vb));
+    const double L = std::max(centroidRadius(va), centroidRadius(vb));
     const double M = std::max(maxAbs(va), maxAbs(vb));
     // Float-rounded inputs: the answers may move by the rounding of the vertices (file comment).
     const double extra = floatRounded ? kFloatU * (maxNorm(va) + maxNorm(vb)) / L : 0.0;
