@@ -3,15 +3,20 @@
 #include "core/closest_point.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "core/exact_predicates.h"
 
 namespace cdlab {
 
+using exact::BigDyadic;
 using exact::Bounded;
 using exact::Expansion;
 
@@ -50,37 +55,96 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool finite(const Vec3& v) { return v.allFinite(); }
 
-// Closest point of the segment xy to p when it is known (exactly) to lie strictly inside the
-// segment. Returns the weight s of y (point = (1-s) x + s y). The projection is taken from the
-// nearer endpoint, so the point's error is relative to that endpoint's distance, not to |x|.
+// The plain double formulas below (degree <= 4 in the coordinates) neither overflow nor lose
+// precision to underflow when every coordinate they read is 0 or of magnitude in [2^-200, 2^241)
+// (exact::inExpansionRange): every nonzero difference is then a multiple of 2^-252, and every
+// nonzero product of up to four of them lies in [2^-1008, 2^973] (as for the expansions,
+// core/exact_predicates.h). Outside that range the points are computed exactly in BigDyadic
+// arithmetic and rounded once.
+
+using BigVec = std::array<BigDyadic, 3>;
+BigVec big(const Vec3& v) { return {BigDyadic(v.x()), BigDyadic(v.y()), BigDyadic(v.z())}; }
+BigVec operator-(const BigVec& a, const BigVec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+BigDyadic dot(const BigVec& a, const BigVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+BigVec cross(const BigVec& a, const BigVec& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// numerator_i / denominator rounded (exact::quotient: within one ulp), kept inside [lo_i, hi_i]:
+// the exact quotient lies there, so this only undoes rounding past a bound (or past DBL_MAX).
+Vec3 roundedPoint(const BigVec& numerator, const BigDyadic& denominator, const Vec3& lo, const Vec3& hi) {
+    Vec3 point;
+    for (int i = 0; i < 3; ++i) point[i] = std::clamp(exact::quotient(numerator[i], denominator), lo[i], hi[i]);
+    return point;
+}
+
+// Closest point of the segment xy to p when it is known (exactly) to lie inside the closed
+// segment, with the weights of y (s) and x (r): point = r x + s y. In the plain range the
+// projection is taken from the nearer endpoint, so the point's error is relative to that
+// endpoint's distance, not to |x|, and r = 1 - s; outside it, exactly (exactEdgePoint).
 struct EdgePoint {
     Vec3 point;
     double s;
+    double r;
 };
-EdgePoint edgeInterior(const Vec3& p, const Vec3& x, const Vec3& y) {
+
+// With u = y - x and w = p - x: s = (u.w)/(u.u), point_i = (x_i (u.u) + u_i (u.w)) / (u.u) and
+// r = (u.u - u.w)/(u.u), each an exact rational rounded once: every coordinate and weight within
+// one ulp of the exact one (exact::quotient).
+[[gnu::noinline, gnu::cold]] EdgePoint exactEdgePoint(const Vec3& p, const Vec3& x, const Vec3& y) {
+    const BigVec bx = big(x), u = big(y) - bx, w = big(p) - bx;
+    const BigDyadic uu = dot(u, u), uw = dot(u, w);
+    if (uu.sign() == 0) return {x, 0.0, 1.0};  // x == y: not an edge interior; never NaN
+    BigVec numerator;
+    for (int i = 0; i < 3; ++i) numerator[i] = bx[i] * uu + u[i] * uw;
+    return {roundedPoint(numerator, uu, x.cwiseMin(y), x.cwiseMax(y)), std::clamp(exact::quotient(uw, uu), 0.0, 1.0),
+            std::clamp(exact::quotient(uu - uw, uu), 0.0, 1.0)};
+}
+
+EdgePoint edgeInterior(const Vec3& p, const Vec3& x, const Vec3& y, bool plain) {
+    if (!plain) return exactEdgePoint(p, x, y);
     const Vec3 xy = y - x;
     const double length2 = xy.squaredNorm();
-    // Outside the documented range |xy|^2 may underflow; fall back to the midpoint, never NaN.
-    if (!(length2 > 0.0)) return {0.5 * (x + y), 0.5};
+    if (!(length2 > 0.0)) return {x, 0.0, 1.0};  // x == y (never for an edge region): never NaN
     const double fromX = xy.dot(p - x) / length2;   // weight of y
     const double fromY = -xy.dot(p - y) / length2;  // weight of x
     if (fromX <= fromY) {
         const double s = std::clamp(fromX, 0.0, 1.0);
-        return {x + s * xy, s};
+        return {x + s * xy, s, 1.0 - s};
     }
     const double r = std::clamp(fromY, 0.0, 1.0);
-    return {y - r * xy, 1.0 - r};
+    return {y - r * xy, 1.0 - r, r};
 }
 
-// Closest point of the plane of (x, y, z) to p, known (exactly) to lie inside the triangle, with
-// barycentric weights. The projection is taken from the vertex nearest to p; the weights are
-// the signed sub-areas n·((y-p)×(z-p)) etc. (equal to Ericson's va, vb, vc, but without the
-// cancellation of d1*d4 - d3*d2), clamped at 0 against rounding and normalised.
+// Closest point of the plane of (x, y, z) to p, known (exactly) to lie in the closed triangle,
+// with barycentric weights. In the plain range the projection is taken from the vertex nearest
+// to p; the weights are the signed sub-areas n·((y-p)×(z-p)) etc. (equal to Ericson's va, vb,
+// vc, but without the cancellation of d1*d4 - d3*d2), clamped at 0 against rounding and
+// normalised. Outside it, exactly (exactFacePoint).
 struct FacePoint {
     Vec3 point;
     Vec3 weights;
 };
-FacePoint faceInterior(const Vec3& p, const Vec3& x, const Vec3& y, const Vec3& z) {
+
+// With n = (y-x)×(z-x) and w = p - x: point_i = (p_i (n.n) - n_i (n.w)) / (n.n), weights
+// n·((y-p)×(z-p)) / (n.n) etc. (they sum to 1 exactly), each an exact rational rounded once.
+[[gnu::noinline, gnu::cold]] FacePoint exactFacePoint(const Vec3& p, const Vec3& x, const Vec3& y, const Vec3& z) {
+    const BigVec bp = big(p), bx = big(x), by = big(y), bz = big(z);
+    const BigVec n = cross(by - bx, bz - bx);
+    const BigDyadic nn = dot(n, n);
+    if (nn.sign() == 0) return {x, Vec3(1, 0, 0)};  // collinear (never for a face region): never NaN
+    const BigDyadic height = dot(n, bp - bx);
+    BigVec numerator;
+    for (int i = 0; i < 3; ++i) numerator[i] = bp[i] * nn - n[i] * height;
+    const BigVec px = bx - bp, py = by - bp, pz = bz - bp;
+    const Vec3 weights(exact::quotient(dot(n, cross(py, pz)), nn), exact::quotient(dot(n, cross(pz, px)), nn),
+                       exact::quotient(dot(n, cross(px, py)), nn));
+    return {roundedPoint(numerator, nn, x.cwiseMin(y).cwiseMin(z), x.cwiseMax(y).cwiseMax(z)),
+            weights.cwiseMax(0.0).cwiseMin(1.0)};
+}
+
+FacePoint faceInterior(const Vec3& p, const Vec3& x, const Vec3& y, const Vec3& z, bool plain) {
+    if (!plain) return exactFacePoint(p, x, y, z);
     const Vec3 n = (y - x).cross(z - x);
     const double n2 = n.squaredNorm();
     const Vec3 px = x - p, py = y - p, pz = z - p;
@@ -111,7 +175,8 @@ class TriangleSigns {
 public:
     // The coordinate differences are shared by all quantities: computed once, as Bounded values
     // (each carries its own rounding error), and the quantities on demand, in Ericson's order.
-    TriangleSigns(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) : p_(p), a_(a), b_(b), c_(c) {
+    TriangleSigns(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, bool inputsInRange)
+        : p_(p), a_(a), b_(b), c_(c), inputsInRange_(inputsInRange) {
         for (int i = 0; i < 3; ++i) {
             ab_[i] = Bounded(b[i]) - Bounded(a[i]);
             ac_[i] = Bounded(c[i]) - Bounded(a[i]);
@@ -140,7 +205,7 @@ public:
         out.sign = exact::certainSign(approx);
         if (out.sign == 0) {
             out.exactFallback = true;
-            out.sign = exactValue(q).sign();
+            out.sign = exactSign(q);
         }
         return out;
     }
@@ -188,22 +253,62 @@ private:
         }
     }
 
-    const Expansion& exactValue(Quantity q) {
-        if (exact_[q]) return *exact_[q];
+    // Exact sign, as exact::exactSign: expansions where ExponentBounds shows them exact,
+    // BigDyadic otherwise. Both kinds of value are cached: va, vb, vc reuse d1..d6.
+    // When all twelve coordinates are in ExponentBounds' input range, every quantity is
+    // expansion-safe (degree <= 4, 3-term sums: high <= 973, grain >= -1008); otherwise each
+    // quantity is checked on the coordinates it reads. (Out of line: rare, and inlining it
+    // would make every caller larger.)
+    [[gnu::noinline]] int exactSign(Quantity q) {
+        if (inputsInRange_ || value<exact::ExponentBounds>(q).safe) return exactValue<Expansion>(q).sign();
+        return bigDyadicSign(q);
+    }
+    [[gnu::noinline, gnu::cold]] int bigDyadicSign(Quantity q) { return exactValue<BigDyadic>(q).sign(); }
+
+    // Quantity q in number type T, from scratch (for ExponentBounds, which is cheap).
+    template <class T>
+    T value(Quantity q) const {
         switch (q) {
-            case VA: exact_[q] = exactValue(D3) * exactValue(D6) - exactValue(D5) * exactValue(D4); break;
-            case VB: exact_[q] = exactValue(D5) * exactValue(D2) - exactValue(D1) * exactValue(D6); break;
-            case VC: exact_[q] = exactValue(D1) * exactValue(D4) - exactValue(D3) * exactValue(D2); break;
-            default: exact_[q] = dot<Expansion>(q); break;
+            case VA: return value<T>(D3) * value<T>(D6) - value<T>(D5) * value<T>(D4);
+            case VB: return value<T>(D5) * value<T>(D2) - value<T>(D1) * value<T>(D6);
+            case VC: return value<T>(D1) * value<T>(D4) - value<T>(D3) * value<T>(D2);
+            default: return dot<T>(q);
         }
-        return *exact_[q];
+    }
+
+    template <class T>
+    const T& exactValue(Quantity q) {
+        std::optional<T>& slot = cacheSlot<T>(q);
+        if (slot) return *slot;
+        T v;
+        switch (q) {
+            case VA: v = exactValue<T>(D3) * exactValue<T>(D6) - exactValue<T>(D5) * exactValue<T>(D4); break;
+            case VB: v = exactValue<T>(D5) * exactValue<T>(D2) - exactValue<T>(D1) * exactValue<T>(D6); break;
+            case VC: v = exactValue<T>(D1) * exactValue<T>(D4) - exactValue<T>(D3) * exactValue<T>(D2); break;
+            default: v = dot<T>(q); break;
+        }
+        slot = std::move(v);
+        return *slot;
+    }
+
+    template <class T>
+    std::optional<T>& cacheSlot(Quantity q) {
+        if constexpr (std::is_same_v<T, Expansion>) {
+            return exact_[q];
+        } else {
+            // Allocated only on the out-of-range path, so the common case pays nothing for it.
+            if (!dyadic_) dyadic_ = std::make_unique<std::array<std::optional<BigDyadic>, kQuantityCount>>();
+            return (*dyadic_)[q];
+        }
     }
 
     Vec3 p_, a_, b_, c_;
     Bounded ab_[3], ac_[3], bc_[3], ap_[3], bp_[3], cp_[3];
     Bounded approx_[kQuantityCount];
     bool have_[kQuantityCount] = {};
+    bool inputsInRange_;
     std::optional<Expansion> exact_[kQuantityCount];
+    std::unique_ptr<std::array<std::optional<BigDyadic>, kQuantityCount>> dyadic_;
 };
 
 struct TermSpec {
@@ -289,7 +394,9 @@ ClosestPointOnTriangleResult degenerateTriangle(const Vec3& p, const Triangle& t
 
 ClosestPointOnSegmentResult closestPointOnSegment(const Vec3& p, const Segment& s) {
     ClosestPointOnSegmentResult r;
-    if (!finite(p) || !finite(s.a) || !finite(s.b)) {
+    // One pass classifies the input: in the expansion range (so finite: plain arithmetic), or not.
+    const bool plain = exact::inExpansionRange({&p, &s.a, &s.b});
+    if (!plain && (!finite(p) || !finite(s.a) || !finite(s.b))) {
         r.point = Vec3::Constant(kNaN);
         r.t = r.distanceSquared = kNaN;
         return r;
@@ -304,7 +411,7 @@ ClosestPointOnSegmentResult closestPointOnSegment(const Vec3& p, const Segment& 
         r.t = 1.0;
         r.region = SegmentRegion::B;
     } else {
-        const EdgePoint e = edgeInterior(p, s.a, s.b);
+        const EdgePoint e = edgeInterior(p, s.a, s.b, plain);
         r.point = e.point;
         r.t = e.s;
         r.region = SegmentRegion::AB;
@@ -387,8 +494,11 @@ ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangl
         if (trace) trace->result = r;
         return r;
     };
-    if (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c)) return done(nonFiniteTriangle());
-    TriangleSigns signs(p, t.a, t.b, t.c);
+    // One pass classifies the input: in the expansion range (so finite: expansions and plain
+    // double points), or not (BigDyadic where needed), or not finite.
+    const bool plain = exact::inExpansionRange({&p, &t.a, &t.b, &t.c});
+    if (!plain && (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c))) return done(nonFiniteTriangle());
+    TriangleSigns signs(p, t.a, t.b, t.c, plain);
     if (!signs.certainlyNotCollinear() && exact::collinear(t.a, t.b, t.c)) return done(degenerateTriangle(p, t));
     ClosestPointOnTriangleResult r;
     r.region = TriangleRegion::ABC;
@@ -421,25 +531,25 @@ ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangl
         case TriangleRegion::B: r.point = t.b; r.barycentric = Vec3(0, 1, 0); break;
         case TriangleRegion::C: r.point = t.c; r.barycentric = Vec3(0, 0, 1); break;
         case TriangleRegion::AB: {
-            const EdgePoint e = edgeInterior(p, t.a, t.b);
+            const EdgePoint e = edgeInterior(p, t.a, t.b, plain);
             r.point = e.point;
-            r.barycentric = Vec3(1.0 - e.s, e.s, 0.0);
+            r.barycentric = Vec3(e.r, e.s, 0.0);
             break;
         }
         case TriangleRegion::BC: {
-            const EdgePoint e = edgeInterior(p, t.b, t.c);
+            const EdgePoint e = edgeInterior(p, t.b, t.c, plain);
             r.point = e.point;
-            r.barycentric = Vec3(0.0, 1.0 - e.s, e.s);
+            r.barycentric = Vec3(0.0, e.r, e.s);
             break;
         }
         case TriangleRegion::CA: {
-            const EdgePoint e = edgeInterior(p, t.c, t.a);
+            const EdgePoint e = edgeInterior(p, t.c, t.a, plain);
             r.point = e.point;
-            r.barycentric = Vec3(e.s, 0.0, 1.0 - e.s);
+            r.barycentric = Vec3(e.s, 0.0, e.r);
             break;
         }
         case TriangleRegion::ABC: {
-            const FacePoint f = faceInterior(p, t.a, t.b, t.c);
+            const FacePoint f = faceInterior(p, t.a, t.b, t.c, plain);
             r.point = f.point;
             r.barycentric = f.weights;
             break;
@@ -533,9 +643,16 @@ TetrahedronRegion tetFaceRegion(int opposite) {
     return TetrahedronRegion::ABC;
 }
 
+// (Out of line: the exact evaluation is rare, and inlining it would make every caller larger.)
+template <class Expression>
+[[gnu::noinline]] int exactTermSign(const Expression& expression, bool inputsInRange) {
+    return exact::exactSign(expression, inputsInRange);
+}
+
 // Evaluates one exact term and records it.
 template <class Expression>
-PredicateSign tetTerm(const char* name, const char* formula, int orientation, const Expression& expression) {
+PredicateSign tetTerm(const char* name, const char* formula, int orientation, bool inputsInRange,
+                      const Expression& expression) {
     PredicateSign out;
     out.name = name;
     out.formula = formula;
@@ -544,10 +661,44 @@ PredicateSign tetTerm(const char* name, const char* formula, int orientation, co
     out.sign = exact::certainSign(approx);
     if (out.sign == 0) {
         out.exactFallback = true;
-        out.sign = expression(Expansion{}).sign();
+        out.sign = exactTermSign(expression, inputsInRange);
     }
     out.sign *= orientation;
     return out;
+}
+
+// The four vertices with vertex i replaced by p.
+std::array<const Vec3*, 4> withP(const Vec3& p, const Vec3* const v[4], int i) {
+    std::array<const Vec3*, 4> u = {v[0], v[1], v[2], v[3]};
+    u[i] = &p;
+    return u;
+}
+
+// Barycentric weights of p inside the tetrahedron: the volume ratios orient(a..p..d) /
+// orient(a,b,c,d). In the plain range in double, clamped against rounding and normalised;
+// outside it, exact rationals rounded once (within one ulp; they sum to 1 exactly
+// before rounding).
+[[gnu::noinline, gnu::cold]] Eigen::Vector4d exactInsideWeights(const Vec3& p, const Vec3* const v[4]) {
+    const BigDyadic volume = exact::orient3d<BigDyadic>(*v[0], *v[1], *v[2], *v[3]);
+    Eigen::Vector4d w;
+    for (int i = 0; i < 4; ++i) {
+        const auto u = withP(p, v, i);
+        w[i] = std::clamp(exact::quotient(exact::orient3d<BigDyadic>(*u[0], *u[1], *u[2], *u[3]), volume), 0.0, 1.0);
+    }
+    return w;
+}
+
+Eigen::Vector4d insideWeights(const Vec3& p, const Vec3* const v[4], bool plain) {
+    if (!plain) return exactInsideWeights(p, v);
+    Eigen::Vector4d w;
+    const double volume = exact::orient3d<double>(*v[0], *v[1], *v[2], *v[3]);
+    for (int i = 0; i < 4; ++i) {
+        const auto u = withP(p, v, i);
+        w[i] = std::max(0.0, exact::orient3d<double>(*u[0], *u[1], *u[2], *u[3]) / volume);
+    }
+    const double sum = w.sum();
+    // A thin tetrahedron's volume may round to 0 (exact sign nonzero): equal weights then.
+    return std::isfinite(sum) && sum > 0.0 ? Eigen::Vector4d(w / sum) : Eigen::Vector4d::Constant(0.25);
 }
 
 ClosestPointOnTetrahedronResult degenerateTetrahedron(const Vec3& p, const Vec3* v[4]) {
@@ -585,7 +736,9 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
         return r;
     };
     const Vec3* v[4] = {&t.a, &t.b, &t.c, &t.d};
-    if (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c) || !finite(t.d)) {
+    // One pass classifies the input (see closestPointOnTriangle).
+    const bool plain = exact::inExpansionRange({&p, &t.a, &t.b, &t.c, &t.d});
+    if (!plain && (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c) || !finite(t.d))) {
         ClosestPointOnTetrahedronResult r;
         r.point = Vec3::Constant(kNaN);
         r.barycentric = Eigen::Vector4d::Constant(kNaN);
@@ -598,19 +751,19 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
 
     const TetNames& names = tetNames();
     auto dotTerm = [&](int x, int y) {  // (p-x)·(y-x)
-        return tetTerm(names.dotName[x][y].c_str(), names.dotName[x][y].c_str(), 1, [&](auto zero) {
+        return tetTerm(names.dotName[x][y].c_str(), names.dotName[x][y].c_str(), 1, plain, [&](auto zero) {
             return exact::dotOfDifferences<decltype(zero)>(*v[x], p, *v[x], *v[y]);
         });
     };
     auto sideTerm = [&](int x, int y, int z) {  // in-face side of edge xy (symmetric in x, y)
         if (x > y) std::swap(x, y);
-        return tetTerm(names.sideName[x][y][z].c_str(), names.sideFormula[x][y][z].c_str(), 1, [&](auto zero) {
+        return tetTerm(names.sideName[x][y][z].c_str(), names.sideFormula[x][y][z].c_str(), 1, plain, [&](auto zero) {
             return exact::edgeSide<decltype(zero)>(*v[x], *v[y], *v[z], p);
         });
     };
     auto planeTerm = [&](const int* f) {  // p's side of face plane, positive = the opposite vertex's side
         const int orientation = exact::orient3dSign(*v[f[0]], *v[f[1]], *v[f[2]], *v[f[3]]);
-        return tetTerm(names.planeName[f[3]].c_str(), names.planeFormula[f[3]].c_str(), orientation, [&](auto zero) {
+        return tetTerm(names.planeName[f[3]].c_str(), names.planeFormula[f[3]].c_str(), orientation, plain, [&](auto zero) {
             return exact::orient3d<decltype(zero)>(*v[f[0]], *v[f[1]], *v[f[2]], p);
         });
     };
@@ -655,11 +808,11 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
                    require(test, sideTerm(q[0], q[1], q[2]), true) && require(test, sideTerm(q[0], q[1], q[3]), true);
         });
         if (accepted) {
-            const EdgePoint ep = edgeInterior(p, *v[q[0]], *v[q[1]]);
+            const EdgePoint ep = edgeInterior(p, *v[q[0]], *v[q[1]], plain);
             r.region = region;
             r.point = ep.point;
             r.barycentric.setZero();
-            r.barycentric[q[0]] = 1.0 - ep.s;
+            r.barycentric[q[0]] = ep.r;
             r.barycentric[q[1]] = ep.s;
             r.distanceSquared = (p - r.point).squaredNorm();
             return done(r);
@@ -675,7 +828,7 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
                    require(test, sideTerm(q[1], q[2], q[0]), false) && require(test, sideTerm(q[0], q[2], q[1]), false);
         });
         if (accepted) {
-            const FacePoint fp = faceInterior(p, *v[q[0]], *v[q[1]], *v[q[2]]);
+            const FacePoint fp = faceInterior(p, *v[q[0]], *v[q[1]], *v[q[2]], plain);
             r.region = region;
             r.point = fp.point;
             r.barycentric.setZero();
@@ -684,21 +837,11 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
             return done(r);
         }
     }
-    // Inside (all closed regions of the boundary features rejected): p itself. Weights are the
-    // volume ratios orient(a..p..d) / orient(a,b,c,d), clamped against rounding.
+    // Inside (all closed regions of the boundary features rejected): p itself.
     r.region = TetrahedronRegion::ABCD;
     r.point = p;
     r.distanceSquared = 0.0;
-    const double volume = exact::orient3d<double>(t.a, t.b, t.c, t.d);
-    Eigen::Vector4d w;
-    for (int i = 0; i < 4; ++i) {
-        const Vec3* u[4] = {v[0], v[1], v[2], v[3]};
-        u[i] = &p;
-        w[i] = std::max(0.0, exact::orient3d<double>(*u[0], *u[1], *u[2], *u[3]) / volume);
-    }
-    const double sum = w.sum();
-    // A thin tetrahedron's volume may round to 0 (exact sign nonzero): equal weights then.
-    r.barycentric = std::isfinite(sum) && sum > 0.0 ? Eigen::Vector4d(w / sum) : Eigen::Vector4d::Constant(0.25);
+    r.barycentric = insideWeights(p, v, plain);
     if (trace) {
         RegionTest<TetrahedronRegion, 4> test;
         test.candidate = TetrahedronRegion::ABCD;

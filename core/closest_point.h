@@ -5,13 +5,31 @@
 // §5.1.5 ClosestPtPointTriangle, §5.1.6 ClosestPtPointTetrahedron, §5.1.9
 // ClosestPtSegmentSegment. Exact signs: Shewchuk 1997 (see core/exact_predicates.h).
 //
-// Region choice is EXACT for triangles and tetrahedra: every sign Ericson tests (d1..d6, va, vb,
-// vc, and for tetrahedra the orientations) is the sign the exact real value of that expression
-// on the input doubles has (filter + expansion fallback, valid for coordinates 0 or of
-// magnitude in [2^-200, 2^240]). Boundary ties follow Ericson's `<=` tests: a vertex region
-// wins over an edge, an edge over a face, a face over the inside. The returned point is then
-// computed in double for that region, as accurately as the region allows (vertex: the vertex
-// itself; edge: projection from the nearer endpoint; face: projection onto the plane).
+// Region choice is EXACT for segments, triangles and tetrahedra, for every finite input (any mix
+// of magnitudes, subnormals included): every sign Ericson tests (d1..d6, va, vb, vc, and for
+// tetrahedra the orientations) is the sign the exact real value of that expression on the input
+// doubles has (filter, then expansions, then BigDyadic where expansions could underflow or
+// overflow: core/exact_predicates.h). Boundary ties follow Ericson's `<=` tests: a vertex region
+// wins over an edge, an edge over a face, a face over the inside.
+//
+// The returned point (and weights) for that region:
+//  - vertex: the vertex itself, exactly (weights exactly 0 and 1);
+//  - a query with any coordinate outside the plain range (nonzero and of magnitude below 2^-200
+//    or from 2^241 on: exact::inExpansionRange): the exact closest point, a rational function of
+//    the inputs, evaluated in BigDyadic and rounded once per coordinate: within one ulp (half an
+//    ulp plus a relative 3 * 2^-63; exact where it is a double; at most 2^-1075 more where
+//    subnormal), kept within the feature's bounding box; weights likewise (they sum to 1 before
+//    rounding). E.g. p = (0.2, 0.2, 1e85)
+//    over the unit triangle gives (0.2, 0.2, 0) exactly. Costs tens of microseconds;
+//  - otherwise (the common case, unchanged): double arithmetic from the nearest feature vertex,
+//    no overflow or underflow possible. Edge: the projection from the nearer endpoint e, error a
+//    few ulps of max(|point|, |p - e|). Face: the projection onto the plane from the nearest
+//    vertex o, error a few ulps of max(|point|, |p - o| / sin of the angle between the edges at o)
+//    (the normal's direction error, times the height). Accurate relative to the distance when p
+//    is near the simplex; for p far above a tilted face (|p - o| >> its size) the point's error
+//    can exceed the face's size.
+// distanceSquared is |p - point|^2 in double: it overflows to +inf for distances above ~1.3e154
+// and loses precision below ~1.5e-154 (the square of the distance is not representable).
 // All functions work in the caller's frame and units; distanceSquared is in units^2.
 #pragma once
 
@@ -84,7 +102,7 @@ struct PredicateSign {
     const char* formula = "";    ///< the exact expression, ASCII, e.g. "(b-a).(p-a)"
     double value = 0.0;          ///< value in plain double arithmetic (what naive code would test)
     int sign = 0;                ///< sign (-1, 0, +1) of the EXACT value; the one the decision used
-    bool exactFallback = false;  ///< the double error bound straddled 0: expansion arithmetic decided
+    bool exactFallback = false;  ///< the double error bound straddled 0: exact arithmetic decided
 };
 
 /// One region test of Ericson's sequence: the candidate region, the conjunction tested, the
@@ -105,7 +123,7 @@ struct RegionTest {
 struct ClosestPointOnTriangleResult {
     Vec3 point = Vec3::Zero();               ///< closest point of the (closed, solid) triangle
     TriangleRegion region = TriangleRegion::A;  ///< feature whose relative interior holds point
-    Vec3 barycentric = Vec3::UnitX();        ///< (u, v, w): point = u a + v b + w c, u+v+w = 1, all >= 0
+    Vec3 barycentric = Vec3::UnitX();        ///< (u, v, w): point = u a + v b + w c, u+v+w = 1 (to rounding), all >= 0
     double distanceSquared = 0.0;            ///< |p - point|^2
     SimplexStatus status = SimplexStatus::Regular;
 };
@@ -130,7 +148,7 @@ ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangl
 struct ClosestPointOnTetrahedronResult {
     Vec3 point = Vec3::Zero();                       ///< closest point of the solid tetrahedron (p if inside)
     TetrahedronRegion region = TetrahedronRegion::A; ///< feature whose relative interior holds point
-    Eigen::Vector4d barycentric = Eigen::Vector4d::UnitX();  ///< weights of a, b, c, d (sum 1, all >= 0)
+    Eigen::Vector4d barycentric = Eigen::Vector4d::UnitX();  ///< weights of a, b, c, d (sum 1 to rounding, all >= 0)
     double distanceSquared = 0.0;                    ///< |p - point|^2 (0 inside)
     SimplexStatus status = SimplexStatus::Regular;
 };

@@ -144,21 +144,37 @@ void Expansion::compress() {
     std::erase(g, 0.0);  // a zero can only survive as the whole value
 }
 
+namespace {
+
+// filteredSign for the predicates below, which read exactly the given points: one range check
+// of their coordinates replaces the per-expression bookkeeping.
+template <class Expression>
+int predicateSign(const Expression& expression, std::initializer_list<const Vec3*> points, bool* usedExact = nullptr) {
+    const int s = certainSign(expression(Bounded{}));
+    if (usedExact) *usedExact = (s == 0);
+    if (s != 0) return s;
+    return exactSign(expression, inExpansionRange(points));
+}
+
+}  // namespace
+
 int dotSign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, bool* usedExact) {
-    return filteredSign([&](auto zero) { return dotOfDifferences<decltype(zero)>(a, b, c, d); }, usedExact);
+    return predicateSign([&](auto zero) { return dotOfDifferences<decltype(zero)>(a, b, c, d); }, {&a, &b, &c, &d},
+                         usedExact);
 }
 
 int orient3dSign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, bool* usedExact) {
-    return filteredSign([&](auto zero) { return orient3d<decltype(zero)>(a, b, c, d); }, usedExact);
+    return predicateSign([&](auto zero) { return orient3d<decltype(zero)>(a, b, c, d); }, {&a, &b, &c, &d}, usedExact);
 }
 
 int edgeSideSign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, bool* usedExact) {
-    return filteredSign([&](auto zero) { return edgeSide<decltype(zero)>(a, b, c, p); }, usedExact);
+    return predicateSign([&](auto zero) { return edgeSide<decltype(zero)>(a, b, c, p); }, {&a, &b, &c, &p}, usedExact);
 }
 
 bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
     for (int i = 0; i < 3; ++i) {
-        if (filteredSign([&](auto zero) { return crossComponent<decltype(zero)>(a, b, c, i); }) != 0) return false;
+        if (predicateSign([&](auto zero) { return crossComponent<decltype(zero)>(a, b, c, i); }, {&a, &b, &c}) != 0)
+            return false;
     }
     return true;
 }

@@ -1,6 +1,5 @@
 // Exact signs of small polynomials in double inputs: a floating-point filter with a rigorous
-// running error bound, backed by exact floating-point expansion arithmetic when the filter
-// cannot certify the sign.
+// running error bound, backed by exact arithmetic when the filter cannot certify the sign.
 //
 // Source: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust
 // Geometric Predicates", Discrete & Computational Geometry 18 (1997): two-sum (Thm. 7),
@@ -11,21 +10,35 @@
 //   auto d1 = [&](auto zero) { using T = decltype(zero); return dotOfDifferences<T>(a, b, a, p); };
 //   int s = filteredSign(d1);
 // The lambda is evaluated first with `Bounded` (plain double arithmetic that also carries an
-// upper bound on its absolute error) and, only if |value| <= error, again with `Expansion`
-// (exact). Both evaluations run the same expression, so the filter can never disagree with the
-// exact path about *which* polynomial is being signed.
+// upper bound on its absolute error) and, only if |value| <= error, exactly (exactSign): with
+// `Expansion` when `ExponentBounds` shows that no expansion component or intermediate can
+// underflow or overflow, otherwise with `BigDyadic` (core/big_dyadic.h: integers of any length
+// times a power of two, no exponent limit). All evaluations run the same expression, so they can
+// never disagree about *which* polynomial is being signed.
 //
-// Assumptions (Shewchuk's): IEEE-754 binary64, round-to-nearest-even, no FMA contraction
-// (-ffp-contract=off), no overflow or underflow inside the expansion arithmetic. For the degree
-// <= 4 predicates of closest_point.h the last one holds when every input coordinate is zero or
-// has magnitude in [2^-200, 2^240] (about [6e-61, 1.7e72]): every exact term is then a multiple
-// of 2^-4*(200+52) > 2^-1022 and below 2^996, where Dekker's split still works.
+// Exact for EVERY finite double input: any mix of magnitudes, subnormals included.
+//  - The filter stays valid under underflow (kUnderflow below) and overflow (an infinite or NaN
+//    value or bound is never certain).
+//  - Expansions follow Shewchuk's assumptions (IEEE-754 binary64, round-to-nearest-even, no FMA
+//    contraction: -ffp-contract=off, no overflow or underflow); ExponentBounds checks the last two
+//    per expression. For the degree <= 4 predicates below that holds whenever every input
+//    coordinate is zero or has magnitude in [2^-200, 2^241) (about [6e-61, 3.5e72]), so inputs
+//    there take exactly the path they always took.
+//  - Otherwise (e.g. 0.2 next to 1e85, both scaled by 2^-283: a degree-4 product is then about
+//    2^-1136, below the smallest subnormal, and twoProduct returns 0 + 0 for a nonzero product,
+//    a zero sign) BigDyadic decides: about 1-6 us more for the two queries of issue 22, about
+//    40 us for a whole closest-point query whose coordinates spread over the entire range.
 // Non-finite inputs do not crash or loop; their sign is meaningless.
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <initializer_list>
 #include <vector>
 
+#include "core/big_dyadic.h"
 #include "core/types.h"
 
 namespace cdlab::exact {
@@ -48,7 +61,9 @@ void twoProduct(double a, double b, double& product, double& error);
 class Expansion {
 public:
     Expansion() = default;
-    explicit Expansion(double x) {
+    // (Forced inline: GCC 12 stopped inlining it once exactSign gained its BigDyadic branch, and
+    // the out-of-line call cost ~2% on the exact path.)
+    [[gnu::always_inline]] explicit Expansion(double x) {
         if (x != 0.0) components_.push_back(x);
     }
 
@@ -119,15 +134,105 @@ inline int certainSign(const Bounded& x) {
     return 0;
 }
 
-/// Exact sign of `expression`, a generic callable `(auto zero) -> T` evaluated with T = Bounded
-/// and, if the filter is inconclusive, with T = Expansion. *usedExact (if given) tells which.
+/// Bookkeeping of binary exponents instead of a value: evaluating an expression with this type
+/// tells whether evaluating it with Expansion is exact. Each input must be zero or of magnitude
+/// in [2^-200, 2^241) (else the expression is not `safe`); every input then gets the same
+/// bounds (|x| < 2^241, x a multiple of 2^-252), so the check costs a few integer operations
+/// and depends only on the expression's shape. Per node of the expression:
+///   high:  the sum of the absolute values of its monomials (its "permanent") is < 2^high;
+///          every expansion component and every intermediate of twoSum / twoProduct / split is
+///          bounded by that sum (up to a factor 1 + 2^-40), hence below 2^high;
+///   grain: its exact value, and every component and intermediate, is an integer multiple of
+///          2^grain (rounding a multiple of 2^g gives a multiple of 2^g, Dekker's split pieces
+///          are multiples of their input's grain, products multiply grains);
+///   safe:  every input in range, and every node so far with high <= kMaxHigh (Dekker's split
+///          multiplies by 2^27 + 1, which must not overflow: < 2^996.9; 6 bits of margin) and
+///          grain >= -1074. A multiple of 2^-1074 below 2^-1022 is a subnormal, represented
+///          exactly, so with every intermediate such a multiple IEEE arithmetic rounds exactly
+///          as with an unbounded exponent, the model in which Shewchuk's theorems hold.
+/// The predicates below (degree <= 4, at most 3-term sums) reach high <= 973 and grain >= -1008.
+struct ExponentBounds {
+    static constexpr int kMaxHigh = 990;
+    static constexpr int kMinGrain = -1074;
+    int high = 241;    // |input| < 2^241
+    int grain = -252;  // |input| >= 2^-200 has its lowest bit at 2^-252 or above
+    bool safe = true;
+
+    /// x == 0 or 2^-200 <= |x| < 2^241, tested on the bit pattern: with the sign bit shifted
+    /// out, the pattern is 0 or has a biased exponent in [1023 - 200, 1023 + 240], i.e. lies in
+    /// [823 << 53, 1264 << 53); one wrapping subtraction tests both ends.
+    static bool inRange(double x) {
+        constexpr std::uint64_t kLow = std::uint64_t{1023 - 200} << 53, kWidth = std::uint64_t{200 + 240 + 1} << 53;
+        const std::uint64_t pattern = std::bit_cast<std::uint64_t>(x) << 1;
+        return (pattern - kLow < kWidth) | (pattern == 0);
+    }
+
+    ExponentBounds() = default;
+    explicit ExponentBounds(double x) : safe(inRange(x)) {}
+    ExponentBounds(int highBound, int grainBound, bool safeSoFar)
+        : high(highBound), grain(grainBound), safe(safeSoFar && highBound <= kMaxHigh && grainBound >= kMinGrain) {}
+};
+
+inline ExponentBounds operator+(const ExponentBounds& x, const ExponentBounds& y) {
+    return {std::max(x.high, y.high) + 1, std::min(x.grain, y.grain), x.safe && y.safe};
+}
+inline ExponentBounds operator-(const ExponentBounds& x, const ExponentBounds& y) { return x + y; }
+inline ExponentBounds operator*(const ExponentBounds& x, const ExponentBounds& y) {
+    return {x.high + y.high, x.grain + y.grain, x.safe && y.safe};
+}
+
+/// Sign of `expression` evaluated with T = BigDyadic (kept out of line so that the callers on the
+/// common paths stay small).
+template <class Expression>
+[[gnu::noinline, gnu::cold]] int bigDyadicSign(const Expression& expression) {
+    return expression(BigDyadic{}).sign();
+}
+
+/// Exact sign of `expression`, a generic callable `(auto zero) -> T`: with T = Expansion where
+/// ExponentBounds shows that to be exact, else with T = BigDyadic. For any finite inputs.
+template <class Expression>
+int exactSign(const Expression& expression) {
+    if (expression(ExponentBounds{}).safe) return expression(Expansion{}).sign();
+    return bigDyadicSign(expression);
+}
+
+/// True when every coordinate of every point is in ExponentBounds' input range (0 or magnitude in
+/// [2^-200, 2^241)); false for NaN and infinities. The predicates of this file (degree <= 4, at
+/// most 3-term sums: high <= 973, grain >= -1008) are then all expansion-safe, so a caller that
+/// checked its inputs once can skip the per-expression bookkeeping (exactSign(expression, true)).
+/// Tested as: no magnitude m with 0 < m < 2^-200 (min(2^-200 - m, m) > 0), and the sum of all
+/// magnitudes below 2^241 (a floating-point sum of nonnegative terms is at least its largest
+/// term; NaN and infinity propagate). Slightly stricter than per coordinate, and branch-free:
+/// it runs on every closest-point query, at about the cost of checking the inputs are finite.
+inline bool inExpansionRange(std::initializer_list<const Vec3*> points) {
+    Eigen::Array3d sum = Eigen::Array3d::Zero(), tiny = Eigen::Array3d::Zero();
+    for (const Vec3* point : points) {
+        const Eigen::Array3d magnitude = point->array().abs();
+        sum += magnitude;
+        tiny = tiny.max((0x1p-200 - magnitude).min(magnitude));
+    }
+    const bool belowTop = sum.sum() < 0x1p241, noneTiny = !(tiny.maxCoeff() > 0.0);
+    return belowTop && noneTiny;
+}
+
+/// exactSign for one of this file's predicates, when the caller knows whether all the points it
+/// reads are in range; if they are not, the per-expression bookkeeping decides (the expression
+/// may read only in-range ones).
+template <class Expression>
+int exactSign(const Expression& expression, bool inputsInRange) {
+    if (inputsInRange) return expression(Expansion{}).sign();
+    return exactSign(expression);
+}
+
+/// Exact sign of `expression` evaluated with T = Bounded and, if the filter is inconclusive,
+/// exactly (exactSign). *usedExact (if given) tells whether exact arithmetic decided.
 template <class Expression>
 int filteredSign(const Expression& expression, bool* usedExact = nullptr) {
     const Bounded approx = expression(Bounded{});
     const int s = certainSign(approx);
     if (usedExact) *usedExact = (s == 0);
     if (s != 0) return s;
-    return expression(Expansion{}).sign();
+    return exactSign(expression);
 }
 
 /// (b - a) · (d - c) in number type T (Bounded, Expansion or double).

@@ -27,8 +27,10 @@ Json closestPointTriangle(ObjectReader& r) {
     if (t.size() != 3) t.fail("expected [a, b, c]");
     std::vector<Vec3> v = t.asVec3List();
     r.finish();
-    // Scale by a power of two (exact) so the largest coordinate is in [0.5, 1): the exact region
-    // predicates hold for magnitudes in [2^-200, 2^240], and this brings 1e-300 or 1e300 inputs there.
+    // Scale by a power of two (exact) so the largest coordinate is in [0.5, 1). The region
+    // predicates are exact for any finite input (core/exact_predicates.h); the scaling keeps
+    // queries whose coordinates are all about 1e-300 or 1e300 on their fast path, and the closest
+    // point's arithmetic away from underflow and overflow.
     double m = std::max({p.cwiseAbs().maxCoeff(), v[0].cwiseAbs().maxCoeff(), v[1].cwiseAbs().maxCoeff(),
                          v[2].cwiseAbs().maxCoeff()});
     int e = 0;

@@ -148,9 +148,8 @@ TEST_CASE("filtered predicates: orient3d, edgeSide and collinearity on near-dege
         const Vec3 c = o + Vec3(small(rng), small(rng), small(rng)) / 8.0;
         // d coplanar with abc (dyadic combination), then one ulp off.
         Vec3 d = a + (b - a) * (small(rng) / 4.0) + (c - a) * (small(rng) / 4.0);
-        // (One ulp off 0 would be subnormal, outside the kit's documented exponent range
-        // [2^-200, 2^240]; step by 2^-100 there instead.)
-        d[i % 3] = d[i % 3] == 0.0 ? (i % 2 ? 0x1p-100 : -0x1p-100) : std::nextafter(d[i % 3], i % 2 ? INFINITY : -INFINITY);
+        // (One ulp off 0 is subnormal, 2^-1074: exact too, through the BigDyadic fallback.)
+        d[i % 3] = std::nextafter(d[i % 3], i % 2 ? INFINITY : -INFINITY);
         const int K = oracle::commonShift({a, b, c, d});
         const auto A = oracle::toBig(a, K), B = oracle::toBig(b, K), C = oracle::toBig(c, K), D = oracle::toBig(d, K);
         const BigInt vol = oracle::dotv(oracle::sub(B, A), oracle::cross(oracle::sub(C, A), oracle::sub(D, A)));
@@ -164,7 +163,7 @@ TEST_CASE("filtered predicates: orient3d, edgeSide and collinearity on near-dege
         // Collinearity: a, b and a dyadic point of line ab, then one ulp off.
         Vec3 e = a + (b - a) * (small(rng) / 8.0);
         const bool onLine = i % 2 == 0;
-        if (!onLine) e[(i / 2) % 3] = e[(i / 2) % 3] == 0.0 ? 0x1p-100 : std::nextafter(e[(i / 2) % 3], INFINITY);
+        if (!onLine) e[(i / 2) % 3] = std::nextafter(e[(i / 2) % 3], INFINITY);
         const auto E = oracle::toBig(e, oracle::commonShift({a, b, e}));
         const auto n = oracle::cross(oracle::sub(oracle::toBig(b, oracle::commonShift({a, b, e})), oracle::toBig(a, oracle::commonShift({a, b, e}))),
                                      oracle::sub(E, oracle::toBig(a, oracle::commonShift({a, b, e}))));

@@ -375,10 +375,9 @@ TEST_CASE("triangle: near-boundary points, exact region vs BigInt oracle (naive 
             if (i % 2) p += (y - x).cross(n) * (small(rng) / 16.0);  // off the edge, in-plane normal direction
             // One ulp in a random coordinate and direction.
             const int axis = i % 3;
-            // (Off 0 by 2^-100 rather than one subnormal ulp: subnormal coordinates are outside
-            // the documented exactness range [2^-200, 2^240].)
+            // (From 0 that is one subnormal ulp, 2^-1074: the predicates are exact there too.)
             const double toward = (i / 3) % 2 ? INFINITY : -INFINITY;
-            p[axis] = p[axis] == 0.0 ? std::copysign(0x1p-100, toward) : std::nextafter(p[axis], toward);
+            p[axis] = std::nextafter(p[axis], toward);
             const R truth = oracle::exactEricsonRegion(p, a, b, c);
             ClosestPointTrace trace;
             const auto r = closestPointOnTriangle(p, Triangle{a, b, c}, &trace);

@@ -159,10 +159,9 @@ TEST_CASE("near-boundary points: exact region vs BigInt oracle") {
             p += n * (small(rng) / 8.0);
             if (i % 3 == 0) p += (y - x) * (small(rng) / 4.0);
             const int axis = i % 3;
-            // (Off 0 by 2^-100 rather than one subnormal ulp: subnormal coordinates are outside
-            // the documented exactness range [2^-200, 2^240].)
+            // (From 0 that is one subnormal ulp, 2^-1074: the predicates are exact there too.)
             const double toward = (i / 3) % 2 ? INFINITY : -INFINITY;
-            p[axis] = p[axis] == 0.0 ? std::copysign(0x1p-100, toward) : std::nextafter(p[axis], toward);
+            p[axis] = std::nextafter(p[axis], toward);
             const T truth = oracle::exactTetrahedronRegion(p, v);
             TetrahedronTrace trace;
             const auto r = closestPointOnTetrahedron(p, make(v), &trace);
