@@ -384,6 +384,19 @@ TEST_CASE("the touching rule: relative to the extent of A − B, and the same in
     }
 }
 
+TEST_CASE("closest_point_triangle: mixed magnitudes get the exact region and point") {
+    // Reproducer: point [0.2,0.2,1e85] answered region AB (exact: ABC, point [0.2,0.2,0]); the
+    // triangle [[0,0,0],[1,0,0],[0,1,1e200]] and point [0.5,-1e-80,0] answered A at distance 0.5
+    // (exact: AB at [0.5,0,0], distance 1e-80). Scaled so the largest coordinate is ~1, the small
+    // ones fell below 2^-200 and the degree-4 region predicates underflowed to a zero sign.
+    Json a = ask(R"({"id":1,"op":"closest_point_triangle","point":[0.2,0.2,1e85],"triangle":[[0,0,0],[1,0,0],[0,1,0]]})");
+    CHECK(a["region"] == "ABC");
+    CHECK(a["point"] == Json::array({0.2, 0.2, 0.0}));
+    Json b = ask(R"({"id":1,"op":"closest_point_triangle","point":[0.5,-1e-80,0],"triangle":[[0,0,0],[1,0,0],[0,1,1e200]]})");
+    CHECK(b["region"] == "AB");
+    CHECK(b["point"] == Json::array({0.5, 0.0, 0.0}));
+}
+
 TEST_CASE("closest_point_triangle never prints -0") {
     // Reproducer: vertex A given as -0.0 (a double -0; the integer -0 reads as 0) and the point in
     // A's region: the answer printed "point":[-0.0,0.0,0.0].
