@@ -27,17 +27,11 @@ Json closestPointTriangle(ObjectReader& r) {
     if (t.size() != 3) t.fail("expected [a, b, c]");
     std::vector<Vec3> v = t.asVec3List();
     r.finish();
-    // Scale by a power of two (exact) so the largest coordinate is in [0.5, 1). The region
-    // predicates are exact for any finite input (core/exact_predicates.h); the scaling keeps
-    // queries whose coordinates are all about 1e-300 or 1e300 on their fast path, and the closest
-    // point's arithmetic away from underflow and overflow.
-    double m = std::max({p.cwiseAbs().maxCoeff(), v[0].cwiseAbs().maxCoeff(), v[1].cwiseAbs().maxCoeff(),
-                         v[2].cwiseAbs().maxCoeff()});
-    int e = 0;
-    if (m > 0) std::frexp(m, &e);
-    ClosestPointOnTriangleResult res =
-        closestPointOnTriangle(scaled(p, -e), Triangle{scaled(v[0], -e), scaled(v[1], -e), scaled(v[2], -e)});
-    return {{"point", vecJson(scaled(res.point, e))}, {"region", toString(res.region)}};
+    // Core decides the region exactly and rounds the point once for every finite input
+    // (core/exact_predicates.h); scaling the query by a power of two would flush coordinates of
+    // 1e-300 beside 1e300 to zero.
+    const ClosestPointOnTriangleResult res = closestPointOnTriangle(p, Triangle{v[0], v[1], v[2]});
+    return {{"point", vecJson(res.point)}, {"region", toString(res.region)}};
 }
 
 }  // namespace

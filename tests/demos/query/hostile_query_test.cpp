@@ -395,6 +395,10 @@ TEST_CASE("closest_point_triangle: mixed magnitudes get the exact region and poi
     Json b = ask(R"({"id":1,"op":"closest_point_triangle","point":[0.5,-1e-80,0],"triangle":[[0,0,0],[1,0,0],[0,1,1e200]]})");
     CHECK(b["region"] == "AB");
     CHECK(b["point"] == Json::array({0.5, 0.0, 0.0}));
+    // Scaling the whole query by 2^-997 flushed the 1e-300 coordinates to 0 (answer: A at the origin).
+    Json c = ask(R"({"id":1,"op":"closest_point_triangle","point":[1e-300,1e-300,5],"triangle":[[0,0,0],[1e300,0,0],[0,1e300,0]]})");
+    CHECK(c["region"] == "ABC");
+    CHECK(c["point"] == Json::array({1e-300, 1e-300, 0.0}));
 }
 
 TEST_CASE("closest_point_triangle never prints -0") {
