@@ -26,8 +26,8 @@
 #include <cstdint>
 #include <random>
 
-#include "core/gjk.h"
-#include "core/shapes.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/geometry/shapes.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
@@ -115,7 +115,7 @@ Pair makePair(const std::string& sweep, std::uint64_t seed, int k, int i)
 struct Sample {
     // errorSv / errorJohnson: the plain GJK loop (GjkOptions::refineEdgePairs off), so the
     // sub-algorithms are compared as they are; errorRefined: the default, signed volumes with the
-    // edge-pair refinement (core/edge_pair_distance.h).
+    // edge-pair refinement (core/closest/edge_pair_distance.h).
     double param = 0, errorSv = 0, errorJohnson = 0, errorRefined = 0;
 };
 

@@ -22,13 +22,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/closest_point.h"
-#include "core/convex_hull.h"
-#include "core/epa.h"
-#include "core/gjk.h"
-#include "core/primitives.h"
-#include "core/sat_tests.h"
-#include "core/shapes.h"
+#include "core/closest/closest_point.h"
+#include "core/geometry/convex_hull.h"
+#include "core/gjk_epa/epa.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/base/primitives.h"
+#include "core/overlap/sat_tests.h"
+#include "core/geometry/shapes.h"
 #include "demos/bench/bench_measure.h"
 #include "demos/bench/bench_bvh.h"
 #include "demos/bench/bench_broadphase.h"
@@ -722,7 +722,7 @@ int runBench(int argc, char** argv)
     if (!rows.empty()) {
         md << "Time per query: median (min, max) over repetitions of the whole input set, each repetition\n"
            << ">= " << settings.targetQueries / 1000 << "k queries in total per row. Error: relative, |x - x*| / |x*| against an\n"
-           << "independent oracle (hull of the Minkowski difference {a_i - b_j} by core/convex_hull.h, distances to its\n"
+           << "independent oracle (hull of the Minkowski difference {a_i - b_j} by core/geometry/convex_hull.h, distances to its\n"
            << "faces by brute force in long double; spheres analytic; closest points by long double brute force);\n"
            << "touching sets: |x| / size; boolean queries (intersect, SAT): fraction of wrong answers.\n"
            << "time / cdlab: a peer's min time over cdlab's min time (default settings) on the same input.\n"

@@ -16,9 +16,9 @@
 
 #include <time.h>
 
-#include "core/octree.h"
-#include "core/sweep_and_prune.h"
-#include "core/uniform_grid.h"
+#include "core/broadphase/octree.h"
+#include "core/broadphase/sweep_and_prune.h"
+#include "core/broadphase/uniform_grid.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
 #include "render/image.h"
@@ -367,7 +367,7 @@ int runBroadphaseBench(bool quick, const std::string& outDir, std::ostream& tabl
     table << "Broad phase, coherent motion (boxes of size 0.5..1.5 moving <= 0.05 per axis per frame, 0.05 boxes per\n"
           << "unit volume): median thread-CPU ms per frame, every method side by side on the same frames.\n"
           << "k = overlapping pairs, swaps = SAP insertion-sort swaps per frame (means). Grid cell 1.5.\n"
-          << "octree / loose: Octree (core/octree.h) built from scratch every frame, then overlappingPairs; classic\n"
+          << "octree / loose: Octree (core/broadphase/octree.h) built from scratch every frame, then overlappingPairs; classic\n"
           << "(looseness 1) and loose (looseness 2), split above 8 objects per node, depth <= 10; fewer frames at\n"
           << "n >= 10k (see the second table).\n"
           << "slow: SAP alone on the same boxes with speeds scaled by (100 / n)^(2/3), so that swaps per box stay\n"

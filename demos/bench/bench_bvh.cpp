@@ -11,9 +11,9 @@
 #include <sstream>
 #include <vector>
 
-#include "core/bvh.h"
-#include "core/mesh_collision.h"
-#include "core/triangle_mesh.h"
+#include "core/bvh/bvh.h"
+#include "core/bvh/mesh_collision.h"
+#include "core/geometry/triangle_mesh.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
 #include "render/image.h"

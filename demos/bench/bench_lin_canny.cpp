@@ -5,11 +5,11 @@
 #include <iostream>
 #include <string>
 
-#include "core/gjk.h"
-#include "core/lin_canny.h"
-#include "core/polyhedron_presets.h"
-#include "core/shapes.h"
-#include "core/vclip.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/feature_walk/lin_canny.h"
+#include "core/geometry/polyhedron_presets.h"
+#include "core/geometry/shapes.h"
+#include "core/feature_walk/vclip.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
 
 namespace cdlab::demos {

@@ -1,5 +1,5 @@
-// `cdlab bench` section: Lin–Canny (core/lin_canny.h) against V-Clip (core/vclip.h) and warm-started
-// GJK (core/gjk.h) on coherent motion, and both feature walks on degenerate families.
+// `cdlab bench` section: Lin–Canny (core/feature_walk/lin_canny.h) against V-Clip (core/feature_walk/vclip.h) and warm-started
+// GJK (core/gjk_epa/gjk.h) on coherent motion, and both feature walks on degenerate families.
 //
 // Coherent motion: A and B (same shape: cube, icosahedron, 60-gon disk) rotate by `level` degrees
 // per call about fixed random axes while B orbits A by level / 2 degrees; every method carries its

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/gjk.h"
-#include "core/polyhedron_presets.h"
-#include "core/shapes.h"
-#include "core/vclip.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/geometry/polyhedron_presets.h"
+#include "core/geometry/shapes.h"
+#include "core/feature_walk/vclip.h"
 
 namespace cdlab::demos {
 

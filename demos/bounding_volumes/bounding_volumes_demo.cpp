@@ -20,12 +20,12 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "core/bounding_sphere.h"
-#include "core/bounding_volume_fit.h"
-#include "core/convex_hull.h"
-#include "core/kdop.h"
-#include "core/swept_sphere.h"
-#include "core/triangle_mesh.h"
+#include "core/bounding/bounding_sphere.h"
+#include "core/bounding/bounding_volume_fit.h"
+#include "core/geometry/convex_hull.h"
+#include "core/bounding/kdop.h"
+#include "core/bounding/swept_sphere.h"
+#include "core/geometry/triangle_mesh.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/scene/mesh_scene.h"

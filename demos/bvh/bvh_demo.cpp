@@ -1,7 +1,7 @@
 // Bounding-volume hierarchies over triangle meshes, as teaching figures. Every tree, box, volume,
-// counter and triangle pair comes from core (core/bvh.h: buildBvh with its BvhBuildTrace,
-// refitBvh, traverseBvhPair; core/mesh_collision.h: collideMeshes with its BvhTraversalTrace;
-// core/bounding_volume_fit.h: volume). This file only chooses what to draw, counts trace steps
+// counter and triangle pair comes from core (core/bvh/bvh.h: buildBvh with its BvhBuildTrace,
+// refitBvh, traverseBvhPair; core/bvh/mesh_collision.h: collideMeshes with its BvhTraversalTrace;
+// core/bounding/bounding_volume_fit.h: volume). This file only chooses what to draw, counts trace steps
 // and moves boxes into the world for drawing.
 //
 // Sources: C. Ericson, "Real-Time Collision Detection" (2005) ch. 6 (§6.2 construction, §6.3.2
@@ -19,10 +19,10 @@
 #include <cstdio>
 #include <functional>
 
-#include "core/bounding_volume_fit.h"
-#include "core/bvh.h"
-#include "core/mesh_collision.h"
-#include "core/triangle_mesh.h"
+#include "core/bounding/bounding_volume_fit.h"
+#include "core/bvh/bvh.h"
+#include "core/bvh/mesh_collision.h"
+#include "core/geometry/triangle_mesh.h"
 #include "demos/bvh/bvh_draw.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"

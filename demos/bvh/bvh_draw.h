@@ -1,15 +1,15 @@
 // Internal to the BVH demo (bvh_demo*.cpp): drawing pieces only — boxes (AABB and OBB) as
 // wireframes coloured by tree level, triangle meshes, a small binary-tree diagram with the current
 // node lit, legends and the panel-grid frame layout. Every number drawn comes from core's BVH
-// traces (core/bvh.h); these files add drawing geometry (box corners, tree layout) only.
+// traces (core/bvh/bvh.h); these files add drawing geometry (box corners, tree layout) only.
 #pragma once
 
 #include <array>
 #include <string>
 #include <vector>
 
-#include "core/primitives.h"
-#include "core/types.h"
+#include "core/base/primitives.h"
+#include "core/base/types.h"
 #include "demos/scene/demo.h"
 #include "render/canvas.h"
 

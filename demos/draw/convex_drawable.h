@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/types.h"
+#include "core/base/types.h"
 #include "demos/scene/pair_scene.h"
 #include "render/canvas.h"
 

@@ -1,10 +1,10 @@
 // V-Clip demo: reading bodies and drawing the 3D pieces (polyhedra, features, Voronoi plane patches)
-// and the Theorem-1 check. Drawing geometry only; the walk's numbers come from core/vclip.h.
+// and the Theorem-1 check. Drawing geometry only; the walk's numbers come from core/feature_walk/vclip.h.
 #include <algorithm>
 #include <cmath>
 
-#include "core/polyhedron_presets.h"
-#include "core/convex_hull.h"
+#include "core/geometry/polyhedron_presets.h"
+#include "core/geometry/convex_hull.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/convex_drawable.h"

@@ -1,15 +1,15 @@
 // What the feature-walk demos (vclip, lin_canny) draw with: the scene's polyhedral bodies, the frame
 // layout, the 3D panel pieces (feature_walk_figure.cpp), the state diagram and the small plots
 // (feature_walk_state_diagram.cpp). Every number drawn comes from core's VClipTrace /
-// VClipResult (core/vclip.h); these files only add drawing geometry (plane patches, cameras) and the
+// VClipResult (core/feature_walk/vclip.h); these files only add drawing geometry (plane patches, cameras) and the
 // Theorem-1 check, which re-evaluates the final closest points against the stored region planes.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "core/polyhedron.h"
-#include "core/vclip.h"
+#include "core/geometry/polyhedron.h"
+#include "core/feature_walk/vclip.h"
 #include "demos/scene/demo.h"
 #include "demos/scene/json_reader.h"
 #include "render/canvas.h"

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/types.h"
+#include "core/base/types.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

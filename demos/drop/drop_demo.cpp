@@ -17,8 +17,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/polyhedron_presets.h"
-#include "core/simulation.h"
+#include "core/geometry/polyhedron_presets.h"
+#include "core/dynamics/simulation.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"

@@ -1,5 +1,5 @@
 // demo_drop: a rigid convex polyhedron (box, tetrahedron or icosahedron) dropped with spin onto a
-// ground plane and simulated step by step by core/simulation.h (mass properties, semi-implicit
+// ground plane and simulated step by step by core/dynamics/simulation.h (mass properties, semi-implicit
 // Euler, polyhedron–plane manifold, sequential impulses with restitution and friction). Frames
 // every k steps with the contact points and normals of that step, the centre-of-mass trail and the
 // shadow; a contact sheet; a plot of kinetic / potential / total energy and penetration vs time.

@@ -1,5 +1,5 @@
 // EPA in the plane (the "expanding polygon"): penetration depth of two convex shapes lying in the
-// z = 0 plane. core's 3D EPA (core/epa.h) cannot take flat input: it blows GJK's triangle up to a
+// z = 0 plane. core's 3D EPA (core/gjk_epa/epa.h) cannot take flat input: it blows GJK's triangle up to a
 // tetrahedron along the plane normal, where the support value of planar shapes is 0, and reports
 // Touching. This is the same algorithm one dimension down (van den Bergen, "Proximity Queries and
 // Penetration Depth Computation on 3D Game Objects", GDC 2001; the 2D form as in the textbook
@@ -7,7 +7,7 @@
 //   loop: e = edge of P nearest the origin (distance d_e: lower bound), w = s_C(n_e),
 //         upper bound min(n_e · w); stop when n_e · w − d_e <= eps_rel n_e · w;
 //         remove the edges visible from w (a contiguous chain), connect its two ends to w.
-// Same conventions as core/epa.h: normal from A toward B, pointA − pointB = depth · normal.
+// Same conventions as core/gjk_epa/epa.h: normal from A toward B, pointA − pointB = depth · normal.
 // Demo-side code because cdlab's core has no 2D EPA; it uses core's types and status enums.
 #pragma once
 
@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/epa.h"
-#include "core/gjk.h"
+#include "core/gjk_epa/epa.h"
+#include "core/gjk_epa/gjk.h"
 
 namespace cdlab {
 
@@ -57,7 +57,7 @@ struct Epa2dResult {
 template <class A, class B>
 Epa2dResult epaPenetration2d(const A& shapeA, const B& shapeB, const GjkSimplex& start, const EpaOptions& options,
                              Epa2dTrace* trace = nullptr) {
-    // Tolerances relative to the polygon's scale max|w|, as in core/epa.h: support values and edge
+    // Tolerances relative to the polygon's scale max|w|, as in core/gjk_epa/epa.h: support values and edge
     // distances carry a few ulps of |w| of rounding.
     constexpr double kTouch = 1e-14;
     constexpr double kAbsGap = 4.0 * 2.220446049250313e-16;

@@ -12,8 +12,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/epa.h"
-#include "core/gjk.h"
+#include "core/gjk_epa/epa.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/epa/epa_2d.h"
 #include "demos/draw/figure_style.h"

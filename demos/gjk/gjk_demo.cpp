@@ -1,6 +1,6 @@
 // GJK step-through (Gilbert, Johnson, Keerthi 1988, as in van den Bergen, "Collision Detection in
 // Interactive 3D Environments" §4.3, and Ericson, Real-Time Collision Detection §9.5). Every number
-// drawn comes from core's GjkTrace (core/gjk.h): this file computes only drawing geometry (the hull
+// drawn comes from core's GjkTrace (core/gjk_epa/gjk.h): this file computes only drawing geometry (the hull
 // of A − B, cameras).
 //
 // Scene keys (besides the common ones in scene.h and the pair keys of scene/pair_scene.h):
@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/gjk.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/convex_drawable.h"

@@ -21,10 +21,10 @@
 #include <cmath>
 #include <optional>
 
-#include "core/gjk.h"
-#include "core/lin_canny.h"
-#include "core/shapes.h"
-#include "core/vclip.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/feature_walk/lin_canny.h"
+#include "core/geometry/shapes.h"
+#include "core/feature_walk/vclip.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"

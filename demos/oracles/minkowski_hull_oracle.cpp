@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/convex_hull.h"
+#include "core/geometry/convex_hull.h"
 
 namespace cdlab::demos {
 

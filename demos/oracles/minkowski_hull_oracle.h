@@ -1,7 +1,7 @@
 // Independent oracles for `cdlab bench` (and its unit test): answers that share no code with
 // GJK, EPA or the simplex solvers of core/.
 //  - Convex sets given by vertex lists: the convex hull of the Minkowski difference {a_i - b_j}
-//    (core/convex_hull.h, an incremental hull that knows nothing of support mappings), then in
+//    (core/geometry/convex_hull.h, an incremental hull that knows nothing of support mappings), then in
 //    long double: distance from the origin = min over hull faces of the distance to that convex
 //    polygon (projection if it falls inside the polygon, else the nearest edge: brute force);
 //    when the origin is inside every face plane, depth = min face offset, normal = that face's.
@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "core/types.h"
+#include "core/base/types.h"
 
 namespace cdlab::demos {
 

@@ -16,10 +16,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/contact_plane.h"
-#include "core/contact_sat.h"
-#include "core/feature_distance.h"
-#include "core/polyhedron_presets.h"
+#include "core/contact/contact_plane.h"
+#include "core/contact/contact_sat.h"
+#include "core/closest/feature_distance.h"
+#include "core/geometry/polyhedron_presets.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/convex_drawable.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/closest_point.h"
+#include "core/closest/closest_point.h"
 #include "demos/query/query_contact.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
@@ -28,7 +28,7 @@ Json closestPointTriangle(ObjectReader& r) {
     std::vector<Vec3> v = t.asVec3List();
     r.finish();
     // Core decides the region exactly and rounds the point once for every finite input
-    // (core/exact_predicates.h); scaling the query by a power of two would flush coordinates of
+    // (core/base/exact_predicates.h); scaling the query by a power of two would flush coordinates of
     // 1e-300 beside 1e300 to zero.
     const ClosestPointOnTriangleResult res = closestPointOnTriangle(p, Triangle{v[0], v[1], v[2]});
     return {{"point", vecJson(res.point)}, {"region", toString(res.region)}};

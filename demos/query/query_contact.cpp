@@ -1,6 +1,6 @@
 // The "contact" op of `cdlab query` (README "cdlab query"): the contact manifold of a polytope
-// (polytope / aabb / obb) against a plane (core/contact_plane.h) or another polytope (SAT with
-// face clipping, core/contact_sat.h); separated pairs answer the distance (GJK) and the closest
+// (polytope / aabb / obb) against a plane (core/contact/contact_plane.h) or another polytope (SAT with
+// face clipping, core/contact/contact_sat.h); separated pairs answer the distance (GJK) and the closest
 // features. "mass_properties" is answered by demos/query/query_mass.h.
 //
 // Answer conventions (the same as "penetration"): normal n is a unit vector from A toward B;
@@ -23,11 +23,11 @@
 #include <cfloat>
 #include <cmath>
 
-#include "core/contact_plane.h"
-#include "core/contact_sat.h"
-#include "core/convex_hull.h"
-#include "core/gjk.h"
-#include "core/shapes.h"
+#include "core/contact/contact_plane.h"
+#include "core/contact/contact_sat.h"
+#include "core/geometry/convex_hull.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/geometry/shapes.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
 #include "demos/query/query_mass.h"
@@ -81,7 +81,7 @@ Json featureJson(const Body& b, const FeatureRef& f) {
 }
 
 // The support feature of a body in direction d: the vertices within tol of the maximum of d·x,
-// as a vertex, an edge (two adjacent vertices) or the face holding them (core/contact_plane.h
+// as a vertex, an edge (two adjacent vertices) or the face holding them (core/contact/contact_plane.h
 // does the same for -n̂; here reused by calling it with a plane through the support point).
 FeatureRef supportFeature(const Body& b, const Vec3& d) {
     double top = -INFINITY;

@@ -1,14 +1,14 @@
-// `cdlab query` distance / penetration with method "vclip" (Mirtich 1998, core/vclip.h):
+// `cdlab query` distance / penetration with method "vclip" (Mirtich 1998, core/feature_walk/vclip.h):
 // polyhedral shapes become convex hulls (coplanar faces merged), then one cold V-Clip walk.
-// "lin_canny" (Lin & Canny 1991) walks the same hulls with core/lin_canny.h; both answer alike.
+// "lin_canny" (Lin & Canny 1991) walks the same hulls with core/feature_walk/lin_canny.h; both answer alike.
 #include "demos/query/query_feature_walk.h"
 
 #include <cmath>
 #include <vector>
 
-#include "core/convex_hull.h"
-#include "core/lin_canny.h"
-#include "core/vclip.h"
+#include "core/geometry/convex_hull.h"
+#include "core/feature_walk/lin_canny.h"
+#include "core/feature_walk/vclip.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
 #include "demos/query/query_tolerance.h"

@@ -2,7 +2,7 @@
 // infinity (nlohmann would print them as null) in an answer.
 #pragma once
 
-#include "core/types.h"
+#include "core/base/types.h"
 #include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "core/convex_hull.h"
-#include "core/mass_properties.h"
+#include "core/geometry/convex_hull.h"
+#include "core/geometry/mass_properties.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
 #include "demos/query/query_shapes.h"

@@ -14,11 +14,11 @@
 #include <limits>
 #include <vector>
 
-#include "core/epa.h"
-#include "core/gjk.h"
-#include "core/primitives.h"
-#include "core/sat_tests.h"
-#include "core/shapes.h"
+#include "core/gjk_epa/epa.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/base/primitives.h"
+#include "core/overlap/sat_tests.h"
+#include "core/geometry/shapes.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_shapes.h"
 #include "demos/query/query_tolerance.h"

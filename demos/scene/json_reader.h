@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/types.h"
+#include "core/base/types.h"
 
 namespace cdlab::demos {
 

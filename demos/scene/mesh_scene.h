@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/triangle_mesh.h"
+#include "core/geometry/triangle_mesh.h"
 #include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {

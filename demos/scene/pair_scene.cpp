@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/convex_hull.h"
+#include "core/geometry/convex_hull.h"
 #include "demos/scene/scene_limits.h"
 
 namespace cdlab::demos {

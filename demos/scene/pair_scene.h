@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/shapes.h"
-#include "core/types.h"
+#include "core/geometry/shapes.h"
+#include "core/base/types.h"
 #include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {
@@ -23,7 +23,7 @@ struct SceneShape {
     double halfHeight = 0.5;
     PolytopeShape polytope;        ///< Polytope kind: body-frame vertices
 
-    /// World-frame support point (core/support.h concept).
+    /// World-frame support point (core/base/support.h concept).
     Vec3 support(const Vec3& d) const;
     /// Exactly the convex hull of finitely many points (box, polytope, polygon)?
     bool isPolytope() const { return kind == Kind::Box || kind == Kind::Polytope; }

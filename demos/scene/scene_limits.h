@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
+#include "core/base/types.h"
 #include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {

@@ -1,7 +1,7 @@
 // Space partitioning, drawn from above (Ericson, Real-Time Collision Detection ch. 7-8): the same
-// boxes under a uniform grid (core/uniform_grid.h), an octree (core/octree.h), a k-d tree over
-// the box centres (core/kd_tree.h) and a solid-leaf BSP tree of the boxes' walls
-// (core/bsp_tree.h); k-d nearest / range queries; a BSP of a non-convex polygon with point
+// boxes under a uniform grid (core/broadphase/uniform_grid.h), an octree (core/broadphase/octree.h), a k-d tree over
+// the box centres (core/spatial/kd_tree.h) and a solid-leaf BSP tree of the boxes' walls
+// (core/spatial/bsp_tree.h); k-d nearest / range queries; a BSP of a non-convex polygon with point
 // classification, a segment query and the tree diagram. All numbers come from core; this file
 // only draws.
 //
@@ -20,10 +20,10 @@
 #include <map>
 #include <random>
 
-#include "core/bsp_tree.h"
-#include "core/kd_tree.h"
-#include "core/octree.h"
-#include "core/uniform_grid.h"
+#include "core/spatial/bsp_tree.h"
+#include "core/spatial/kd_tree.h"
+#include "core/broadphase/octree.h"
+#include "core/broadphase/uniform_grid.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"

@@ -21,13 +21,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/closest_point.h"
-#include "core/convex_hull.h"
-#include "core/epa.h"
-#include "core/gjk.h"
-#include "core/primitives.h"
-#include "core/sat_tests.h"
-#include "core/shapes.h"
+#include "core/closest/closest_point.h"
+#include "core/geometry/convex_hull.h"
+#include "core/gjk_epa/epa.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/base/primitives.h"
+#include "core/overlap/sat_tests.h"
+#include "core/geometry/shapes.h"
 #include "demos/bench/bench_measure.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
 #include "demos/draw/plot.h"
@@ -35,7 +35,7 @@
 #include "render/gl_context.h"
 #include "render/image.h"
 // The exact (BigInt) Ericson region of the closest-point tests: header-only, independent of core.
-#include "tests/core/closest_test_oracle.h"
+#include "demos/oracles/closest_oracle.h"
 
 namespace cdlab::demos {
 
@@ -520,7 +520,7 @@ void runPoly(Engine& e, const Family& f, int index, PolyCase& c)
     const std::vector<Vec3> algoB = c.floatRounded ? toFloat(c.vb) : c.vb;
     const PolytopeShape a = polytopeOf(algoA, c.raw), b = polytopeOf(algoB, c.raw);
     checkPair(e, f.name, index, c.va, c.vb, a, b, algoA, algoB, c.floatRounded, c.param);
-    // V-Clip slot: when core/vclip.h lands, add "vclip_distance" = the same oracle here.
+    // V-Clip slot: when core/feature_walk/vclip.h lands, add "vclip_distance" = the same oracle here.
 }
 
 std::vector<Vec3> boxCorners(const Transformed<BoxShape>& box)

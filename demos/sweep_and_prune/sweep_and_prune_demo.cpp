@@ -1,6 +1,6 @@
 // Sweep and prune, frame by frame (Baraff 1992 §6.2; Cohen et al., I-COLLIDE 1995; Ericson,
 // Real-Time Collision Detection §7.5.2). Every number drawn comes from core's SweepAndPrune
-// (core/sweep_and_prune.h): its endpoint lists before and after each update, its SapTrace (the
+// (core/broadphase/sweep_and_prune.h): its endpoint lists before and after each update, its SapTrace (the
 // swaps of insertion sort with the pair events they caused) and its pair set. This file computes
 // only drawing geometry.
 //
@@ -19,7 +19,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/sweep_and_prune.h"
+#include "core/broadphase/sweep_and_prune.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"

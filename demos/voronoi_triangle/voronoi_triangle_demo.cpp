@@ -12,8 +12,8 @@
 
 #include <algorithm>
 
-#include "core/closest_point.h"
-#include "core/voronoi_regions.h"
+#include "core/closest/closest_point.h"
+#include "core/closest/voronoi_regions.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"

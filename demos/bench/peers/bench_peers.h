@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/shapes.h"
+#include "core/geometry/shapes.h"
 
 namespace cdlab::demos {
 

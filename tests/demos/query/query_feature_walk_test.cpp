@@ -1,14 +1,14 @@
 // `cdlab query` with method "vclip": answers against GJK's answers to the same line and a long
-// double brute-force oracle over the hulls' features (tests/core/vclip_oracle.h); the answer
+// double brute-force oracle over the hulls' features (demos/oracles/feature_walk_oracle.h); the answer
 // keys; errors for non-polyhedral and flat shapes; exact power-of-two scale invariance.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "core/convex_hull.h"
-#include "core/polyhedron_presets.h"
+#include "core/geometry/convex_hull.h"
+#include "core/geometry/polyhedron_presets.h"
 #include "demos/query/query.h"
-#include "tests/core/vclip_oracle.h"
+#include "demos/oracles/feature_walk_oracle.h"
 
 using cdlab::Vec3;
 using cdlab::demos::answerQuery;

@@ -19,7 +19,7 @@ StressOptions quickOptions(double seconds, int minCases)
     StressOptions o;
     o.seconds = seconds;
     o.minCasesPerFamily = minCases;
-    o.seed = 1;  // seed 7 crashes core/convex_hull.cpp on "slivers and needles" #48 (reported)
+    o.seed = 1;  // seed 7 crashes core/geometry/convex_hull.cpp on "slivers and needles" #48 (reported)
     return o;
 }
 

@@ -1,0 +1,855 @@
+// Closest points on segments, triangles and tetrahedra with exact Voronoi-region choice.
+// Ericson, Real-Time Collision Detection §5.1.2, §5.1.5, §5.1.6, §5.1.9.
+#include "core/closest/closest_point.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "core/base/exact_predicates.h"
+
+namespace cdlab {
+
+using exact::BigDyadic;
+using exact::Bounded;
+using exact::Expansion;
+
+const char* toString(SegmentRegion region) {
+    switch (region) {
+        case SegmentRegion::A: return "A";
+        case SegmentRegion::B: return "B";
+        case SegmentRegion::AB: return "AB";
+    }
+    return "?";
+}
+
+const char* toString(TriangleRegion region) {
+    switch (region) {
+        case TriangleRegion::A: return "A";
+        case TriangleRegion::B: return "B";
+        case TriangleRegion::C: return "C";
+        case TriangleRegion::AB: return "AB";
+        case TriangleRegion::BC: return "BC";
+        case TriangleRegion::CA: return "CA";
+        case TriangleRegion::ABC: return "ABC";
+    }
+    return "?";
+}
+
+const char* toString(TetrahedronRegion region) {
+    static constexpr const char* kNames[] = {"A",  "B",  "C",  "D",   "AB",  "AC",  "AD",  "BC",
+                                             "BD", "CD", "ABC", "ABD", "ACD", "BCD", "ABCD"};
+    const int i = static_cast<int>(region);
+    return (i >= 0 && i < 15) ? kNames[i] : "?";
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool finite(const Vec3& v) { return v.allFinite(); }
+
+// The plain double formulas below (degree <= 4 in the coordinates) neither overflow nor lose
+// precision to underflow when every coordinate they read is 0 or of magnitude in [2^-200, 2^241)
+// (exact::inExpansionRange): every nonzero difference is then a multiple of 2^-252, and every
+// nonzero product of up to four of them lies in [2^-1008, 2^973] (as for the expansions,
+// core/base/exact_predicates.h). Outside that range the points are computed exactly in BigDyadic
+// arithmetic and rounded once.
+
+using BigVec = std::array<BigDyadic, 3>;
+BigVec big(const Vec3& v) { return {BigDyadic(v.x()), BigDyadic(v.y()), BigDyadic(v.z())}; }
+BigVec operator-(const BigVec& a, const BigVec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+BigDyadic dot(const BigVec& a, const BigVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+BigVec cross(const BigVec& a, const BigVec& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// numerator_i / denominator rounded (exact::quotient: within one ulp), kept inside [lo_i, hi_i]:
+// the exact quotient lies there, so this only undoes rounding past a bound (or past DBL_MAX).
+Vec3 roundedPoint(const BigVec& numerator, const BigDyadic& denominator, const Vec3& lo, const Vec3& hi) {
+    Vec3 point;
+    for (int i = 0; i < 3; ++i) point[i] = std::clamp(exact::quotient(numerator[i], denominator), lo[i], hi[i]);
+    return point;
+}
+
+// Closest point of the segment xy to p when it is known (exactly) to lie inside the closed
+// segment, with the weights of y (s) and x (r): point = r x + s y. In the plain range the
+// projection is taken from the nearer endpoint, so the point's error is relative to that
+// endpoint's distance, not to |x|, and r = 1 - s; outside it, exactly (exactEdgePoint).
+struct EdgePoint {
+    Vec3 point;
+    double s;
+    double r;
+};
+
+// With u = y - x and w = p - x: s = (u.w)/(u.u), point_i = (x_i (u.u) + u_i (u.w)) / (u.u) and
+// r = (u.u - u.w)/(u.u), each an exact rational rounded once: every coordinate and weight within
+// one ulp of the exact one (exact::quotient).
+[[gnu::noinline, gnu::cold]] EdgePoint exactEdgePoint(const Vec3& p, const Vec3& x, const Vec3& y) {
+    const BigVec bx = big(x), u = big(y) - bx, w = big(p) - bx;
+    const BigDyadic uu = dot(u, u), uw = dot(u, w);
+    if (uu.sign() == 0) return {x, 0.0, 1.0};  // x == y: not an edge interior; never NaN
+    BigVec numerator;
+    for (int i = 0; i < 3; ++i) numerator[i] = bx[i] * uu + u[i] * uw;
+    return {roundedPoint(numerator, uu, x.cwiseMin(y), x.cwiseMax(y)), std::clamp(exact::quotient(uw, uu), 0.0, 1.0),
+            std::clamp(exact::quotient(uu - uw, uu), 0.0, 1.0)};
+}
+
+EdgePoint edgeInterior(const Vec3& p, const Vec3& x, const Vec3& y, bool plain) {
+    if (!plain) return exactEdgePoint(p, x, y);
+    const Vec3 xy = y - x;
+    const double length2 = xy.squaredNorm();
+    if (!(length2 > 0.0)) return {x, 0.0, 1.0};  // x == y (never for an edge region): never NaN
+    const double fromX = xy.dot(p - x) / length2;   // weight of y
+    const double fromY = -xy.dot(p - y) / length2;  // weight of x
+    if (fromX <= fromY) {
+        const double s = std::clamp(fromX, 0.0, 1.0);
+        return {x + s * xy, s, 1.0 - s};
+    }
+    const double r = std::clamp(fromY, 0.0, 1.0);
+    return {y - r * xy, 1.0 - r, r};
+}
+
+// Closest point of the plane of (x, y, z) to p, known (exactly) to lie in the closed triangle,
+// with barycentric weights. In the plain range the projection is taken from the vertex nearest
+// to p; the weights are the signed sub-areas n·((y-p)×(z-p)) etc. (equal to Ericson's va, vb,
+// vc, but without the cancellation of d1*d4 - d3*d2), clamped at 0 against rounding and
+// normalised. Outside it, exactly (exactFacePoint).
+struct FacePoint {
+    Vec3 point;
+    Vec3 weights;
+};
+
+// With n = (y-x)×(z-x) and w = p - x: point_i = (p_i (n.n) - n_i (n.w)) / (n.n), weights
+// n·((y-p)×(z-p)) / (n.n) etc. (they sum to 1 exactly), each an exact rational rounded once.
+[[gnu::noinline, gnu::cold]] FacePoint exactFacePoint(const Vec3& p, const Vec3& x, const Vec3& y, const Vec3& z) {
+    const BigVec bp = big(p), bx = big(x), by = big(y), bz = big(z);
+    const BigVec n = cross(by - bx, bz - bx);
+    const BigDyadic nn = dot(n, n);
+    if (nn.sign() == 0) return {x, Vec3(1, 0, 0)};  // collinear (never for a face region): never NaN
+    const BigDyadic height = dot(n, bp - bx);
+    BigVec numerator;
+    for (int i = 0; i < 3; ++i) numerator[i] = bp[i] * nn - n[i] * height;
+    const BigVec px = bx - bp, py = by - bp, pz = bz - bp;
+    const Vec3 weights(exact::quotient(dot(n, cross(py, pz)), nn), exact::quotient(dot(n, cross(pz, px)), nn),
+                       exact::quotient(dot(n, cross(px, py)), nn));
+    return {roundedPoint(numerator, nn, x.cwiseMin(y).cwiseMin(z), x.cwiseMax(y).cwiseMax(z)),
+            weights.cwiseMax(0.0).cwiseMin(1.0)};
+}
+
+FacePoint faceInterior(const Vec3& p, const Vec3& x, const Vec3& y, const Vec3& z, bool plain) {
+    if (!plain) return exactFacePoint(p, x, y, z);
+    const Vec3 n = (y - x).cross(z - x);
+    const double n2 = n.squaredNorm();
+    const Vec3 px = x - p, py = y - p, pz = z - p;
+    Vec3 weights(std::max(0.0, n.dot(py.cross(pz))), std::max(0.0, n.dot(pz.cross(px))),
+                 std::max(0.0, n.dot(px.cross(py))));
+    const double sum = weights.sum();
+    weights = sum > 0.0 ? Vec3(weights / sum) : Vec3::Constant(1.0 / 3.0);
+    if (!(n2 > 0.0)) return {weights.x() * x + weights.y() * y + weights.z() * z, weights};
+    const Vec3* origin = &x;
+    if (py.squaredNorm() < (p - *origin).squaredNorm()) origin = &y;
+    if (pz.squaredNorm() < (p - *origin).squaredNorm()) origin = &z;
+    const Vec3 point = p - n * (n.dot(p - *origin) / n2);
+    return {point, weights};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Triangle: Ericson's quantities, filtered in double, exact on demand.
+
+enum Quantity { D1, D2, D3, D4, D5, D6, D43, D56, VA, VB, VC, kQuantityCount };
+
+constexpr const char* kQuantityName[kQuantityCount] = {"d1", "d2", "d3", "d4", "d5", "d6",
+                                                       "d4-d3", "d5-d6", "va", "vb", "vc"};
+constexpr const char* kQuantityFormula[kQuantityCount] = {
+    "(b-a).(p-a)", "(c-a).(p-a)", "(b-a).(p-b)", "(c-a).(p-b)", "(b-a).(p-c)", "(c-a).(p-c)",
+    "(c-b).(p-b)", "(b-c).(p-c)", "d3*d6 - d5*d4", "d5*d2 - d1*d6", "d1*d4 - d3*d2"};
+
+class TriangleSigns {
+public:
+    // The coordinate differences are shared by all quantities: computed once, as Bounded values
+    // (each carries its own rounding error), and the quantities on demand, in Ericson's order.
+    TriangleSigns(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, bool inputsInRange)
+        : p_(p), a_(a), b_(b), c_(c), inputsInRange_(inputsInRange) {
+        for (int i = 0; i < 3; ++i) {
+            ab_[i] = Bounded(b[i]) - Bounded(a[i]);
+            ac_[i] = Bounded(c[i]) - Bounded(a[i]);
+            bc_[i] = Bounded(c[i]) - Bounded(b[i]);
+            ap_[i] = Bounded(p[i]) - Bounded(a[i]);
+            bp_[i] = Bounded(p[i]) - Bounded(b[i]);
+            cp_[i] = Bounded(p[i]) - Bounded(c[i]);
+        }
+    }
+
+    /// Cheap pre-test: true when the filter already certifies (b-a)×(c-a) != 0.
+    bool certainlyNotCollinear() const {
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3, k = (i + 2) % 3;
+            if (exact::certainSign(ab_[j] * ac_[k] - ab_[k] * ac_[j]) != 0) return true;
+        }
+        return false;
+    }
+
+    PredicateSign evaluate(Quantity q) {
+        const Bounded& approx = approximate(q);
+        PredicateSign out;
+        out.name = kQuantityName[q];
+        out.formula = kQuantityFormula[q];
+        out.value = approx.value;
+        out.sign = exact::certainSign(approx);
+        if (out.sign == 0) {
+            out.exactFallback = true;
+            out.sign = exactSign(q);
+        }
+        return out;
+    }
+
+private:
+    static Bounded dot3(const Bounded* x, const Bounded* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+
+    const Bounded& approximate(Quantity q) {
+        if (have_[q]) return approx_[q];
+        switch (q) {
+            case D1: approx_[q] = dot3(ab_, ap_); break;
+            case D2: approx_[q] = dot3(ac_, ap_); break;
+            case D3: approx_[q] = dot3(ab_, bp_); break;
+            case D4: approx_[q] = dot3(ac_, bp_); break;
+            case D5: approx_[q] = dot3(ab_, cp_); break;
+            case D6: approx_[q] = dot3(ac_, cp_); break;
+            // d4 - d3 = (c-b)·(p-b) and d5 - d6 = (b-c)·(p-c) exactly; filtering the direct dot
+            // product is tighter than filtering the difference.
+            case D43: approx_[q] = dot3(bc_, bp_); break;
+            case D56: {
+                const Bounded cb[3] = {Bounded() - bc_[0], Bounded() - bc_[1], Bounded() - bc_[2]};  // exact negation
+                approx_[q] = dot3(cb, cp_);
+                break;
+            }
+            case VA: approx_[q] = approximate(D3) * approximate(D6) - approximate(D5) * approximate(D4); break;
+            case VB: approx_[q] = approximate(D5) * approximate(D2) - approximate(D1) * approximate(D6); break;
+            case VC: approx_[q] = approximate(D1) * approximate(D4) - approximate(D3) * approximate(D2); break;
+            default: break;
+        }
+        have_[q] = true;
+        return approx_[q];
+    }
+
+    template <class T>
+    T dot(Quantity q) const {
+        switch (q) {
+            case D1: return exact::dotOfDifferences<T>(a_, b_, a_, p_);
+            case D2: return exact::dotOfDifferences<T>(a_, c_, a_, p_);
+            case D3: return exact::dotOfDifferences<T>(a_, b_, b_, p_);
+            case D4: return exact::dotOfDifferences<T>(a_, c_, b_, p_);
+            case D5: return exact::dotOfDifferences<T>(a_, b_, c_, p_);
+            case D6: return exact::dotOfDifferences<T>(a_, c_, c_, p_);
+            case D43: return exact::dotOfDifferences<T>(b_, c_, b_, p_);
+            default: return exact::dotOfDifferences<T>(c_, b_, c_, p_);  // D56
+        }
+    }
+
+    // Exact sign, as exact::exactSign: expansions where ExponentBounds shows them exact,
+    // BigDyadic otherwise. Both kinds of value are cached: va, vb, vc reuse d1..d6.
+    // When all twelve coordinates are in ExponentBounds' input range, every quantity is
+    // expansion-safe (degree <= 4, 3-term sums: high <= 973, grain >= -1008); otherwise each
+    // quantity is checked on the coordinates it reads. (Out of line: rare, and inlining it
+    // would make every caller larger.)
+    [[gnu::noinline]] int exactSign(Quantity q) {
+        if (inputsInRange_ || value<exact::ExponentBounds>(q).safe) return exactValue<Expansion>(q).sign();
+        return bigDyadicSign(q);
+    }
+    [[gnu::noinline, gnu::cold]] int bigDyadicSign(Quantity q) { return exactValue<BigDyadic>(q).sign(); }
+
+    // Quantity q in number type T, from scratch (for ExponentBounds, which is cheap).
+    template <class T>
+    T value(Quantity q) const {
+        switch (q) {
+            case VA: return value<T>(D3) * value<T>(D6) - value<T>(D5) * value<T>(D4);
+            case VB: return value<T>(D5) * value<T>(D2) - value<T>(D1) * value<T>(D6);
+            case VC: return value<T>(D1) * value<T>(D4) - value<T>(D3) * value<T>(D2);
+            default: return dot<T>(q);
+        }
+    }
+
+    template <class T>
+    const T& exactValue(Quantity q) {
+        std::optional<T>& slot = cacheSlot<T>(q);
+        if (slot) return *slot;
+        T v;
+        switch (q) {
+            case VA: v = exactValue<T>(D3) * exactValue<T>(D6) - exactValue<T>(D5) * exactValue<T>(D4); break;
+            case VB: v = exactValue<T>(D5) * exactValue<T>(D2) - exactValue<T>(D1) * exactValue<T>(D6); break;
+            case VC: v = exactValue<T>(D1) * exactValue<T>(D4) - exactValue<T>(D3) * exactValue<T>(D2); break;
+            default: v = dot<T>(q); break;
+        }
+        slot = std::move(v);
+        return *slot;
+    }
+
+    template <class T>
+    std::optional<T>& cacheSlot(Quantity q) {
+        if constexpr (std::is_same_v<T, Expansion>) {
+            return exact_[q];
+        } else {
+            // Allocated only on the out-of-range path, so the common case pays nothing for it.
+            if (!dyadic_) dyadic_ = std::make_unique<std::array<std::optional<BigDyadic>, kQuantityCount>>();
+            return (*dyadic_)[q];
+        }
+    }
+
+    Vec3 p_, a_, b_, c_;
+    Bounded ab_[3], ac_[3], bc_[3], ap_[3], bp_[3], cp_[3];
+    Bounded approx_[kQuantityCount];
+    bool have_[kQuantityCount] = {};
+    bool inputsInRange_;
+    std::optional<Expansion> exact_[kQuantityCount];
+    std::unique_ptr<std::array<std::optional<BigDyadic>, kQuantityCount>> dyadic_;
+};
+
+struct TermSpec {
+    Quantity quantity;
+    bool nonPositive;  // the term is "quantity <= 0" (else "quantity >= 0")
+};
+struct TriangleTestSpec {
+    TriangleRegion region;
+    const char* condition;
+    int termCount;
+    TermSpec terms[3];
+};
+
+// Ericson's order and comparisons (ClosestPtPointTriangle, §5.1.5). "d4 <= d3" is the sign of
+// d4 - d3 = (c-b)·(p-b); "d5 <= d6" the sign of d5 - d6 = (b-c)·(p-c).
+constexpr TriangleTestSpec kTriangleTests[] = {
+    {TriangleRegion::A, "d1 <= 0 && d2 <= 0", 2, {{D1, true}, {D2, true}, {D1, true}}},
+    {TriangleRegion::B, "d3 >= 0 && d4 <= d3", 2, {{D3, false}, {D43, true}, {D1, true}}},
+    {TriangleRegion::AB, "vc <= 0 && d1 >= 0 && d3 <= 0", 3, {{VC, true}, {D1, false}, {D3, true}}},
+    {TriangleRegion::C, "d6 >= 0 && d5 <= d6", 2, {{D6, false}, {D56, true}, {D1, true}}},
+    {TriangleRegion::CA, "vb <= 0 && d2 >= 0 && d6 <= 0", 3, {{VB, true}, {D2, false}, {D6, true}}},
+    {TriangleRegion::BC, "va <= 0 && d4-d3 >= 0 && d5-d6 >= 0", 3, {{VA, true}, {D43, false}, {D56, false}}},
+};
+
+ClosestPointOnTriangleResult nonFiniteTriangle() {
+    ClosestPointOnTriangleResult r;
+    r.point = Vec3::Constant(kNaN);
+    r.barycentric = Vec3::Constant(kNaN);
+    r.distanceSquared = kNaN;
+    r.status = SimplexStatus::NonFinite;
+    return r;
+}
+
+TriangleRegion edgeRegion(int i, int j) {
+    const int lo = std::min(i, j), hi = std::max(i, j);
+    if (lo == 0 && hi == 1) return TriangleRegion::AB;
+    if (lo == 1 && hi == 2) return TriangleRegion::BC;
+    return TriangleRegion::CA;
+}
+
+// Collinear (or repeated) vertices: the point set is the segment between the two extreme
+// vertices. Region: the vertex if the closest point is exactly one (the first of equal vertices),
+// else the spanning edge (the first of AB, BC, CA that spans the set).
+ClosestPointOnTriangleResult degenerateTriangle(const Vec3& p, const Triangle& t) {
+    const Vec3* v[3] = {&t.a, &t.b, &t.c};
+    ClosestPointOnTriangleResult r;
+    r.status = SimplexStatus::Degenerate;
+    auto setVertex = [&](int i) {
+        for (int k = 0; k < i; ++k) {
+            if (*v[k] == *v[i]) i = k;  // canonical label among repeated vertices
+        }
+        r.region = static_cast<TriangleRegion>(i);
+        r.point = *v[i];
+        r.barycentric = Vec3::Unit(i);
+    };
+    // Spanning edge: x, y such that the third vertex z lies between them, (x-z)·(y-z) <= 0.
+    static constexpr int kEdges[3][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}};
+    int e = 0;
+    while (e < 2 && exact::dotSign(*v[kEdges[e][2]], *v[kEdges[e][0]], *v[kEdges[e][2]], *v[kEdges[e][1]]) > 0) ++e;
+    const int x = kEdges[e][0], y = kEdges[e][1], z = kEdges[e][2];
+    const ClosestPointOnSegmentResult seg = closestPointOnSegment(p, Segment{*v[x], *v[y]});
+    if (seg.region == SegmentRegion::A) {
+        setVertex(x);
+    } else if (seg.region == SegmentRegion::B) {
+        setVertex(y);
+    } else if (*v[z] != *v[x] && *v[z] != *v[y] && exact::dotSign(*v[x], *v[y], *v[z], p) == 0) {
+        setVertex(z);  // p projects exactly onto the middle vertex
+    } else {
+        r.region = edgeRegion(x, y);
+        r.point = seg.point;
+        r.barycentric = Vec3::Zero();
+        r.barycentric[x] = 1.0 - seg.t;
+        r.barycentric[y] = seg.t;
+    }
+    r.distanceSquared = (p - r.point).squaredNorm();
+    return r;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Segments
+
+ClosestPointOnSegmentResult closestPointOnSegment(const Vec3& p, const Segment& s) {
+    ClosestPointOnSegmentResult r;
+    // One pass classifies the input: in the expansion range (so finite: plain arithmetic), or not.
+    const bool plain = exact::inExpansionRange({&p, &s.a, &s.b});
+    if (!plain && (!finite(p) || !finite(s.a) || !finite(s.b))) {
+        r.point = Vec3::Constant(kNaN);
+        r.t = r.distanceSquared = kNaN;
+        return r;
+    }
+    // Ericson §5.1.2 with exact signs: t = (p-a)·(b-a) / |b-a|^2 clamped to [0, 1].
+    if (exact::dotSign(s.a, s.b, s.a, p) <= 0) {  // (b-a)·(p-a) <= 0: before a (or a == b)
+        r.point = s.a;
+        r.t = 0.0;
+        r.region = SegmentRegion::A;
+    } else if (exact::dotSign(s.b, s.a, s.b, p) <= 0) {  // (a-b)·(p-b) <= 0: beyond b
+        r.point = s.b;
+        r.t = 1.0;
+        r.region = SegmentRegion::B;
+    } else {
+        const EdgePoint e = edgeInterior(p, s.a, s.b, plain);
+        r.point = e.point;
+        r.t = e.s;
+        r.region = SegmentRegion::AB;
+    }
+    r.distanceSquared = (p - r.point).squaredNorm();
+    return r;
+}
+
+SegmentSegmentResult closestPointsSegmentSegment(const Segment& first, const Segment& second) {
+    SegmentSegmentResult r;
+    if (!finite(first.a) || !finite(first.b) || !finite(second.a) || !finite(second.b)) {
+        r.s = r.t = r.distanceSquared = kNaN;
+        r.pointOnFirst = r.pointOnSecond = Vec3::Constant(kNaN);
+        return r;
+    }
+    auto finish = [&](double s, double t) {
+        r.s = s;
+        r.t = t;
+        r.pointOnFirst = first.a + s * (first.b - first.a);
+        r.pointOnSecond = second.a + t * (second.b - second.a);
+        if (s == 1.0) r.pointOnFirst = first.b;  // endpoints exactly, not a + 1*(b-a)
+        if (t == 1.0) r.pointOnSecond = second.b;
+        r.distanceSquared = (r.pointOnFirst - r.pointOnSecond).squaredNorm();
+        return r;
+    };
+    // Ericson §5.1.9 notation: d1, d2 directions, r = p1 - p2.
+    const Vec3 d1 = first.b - first.a, d2 = second.b - second.a, rr = first.a - second.a;
+    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(rr);
+    // Zero length: below the smallest normal double, 1/a overflows; such a segment is a point at
+    // every representable scale of the other one.
+    constexpr double kZeroLength = std::numeric_limits<double>::min();
+    const bool firstPoint = a < kZeroLength, secondPoint = e < kZeroLength;
+    if (firstPoint || secondPoint) r.degenerate = true;
+    if (firstPoint && secondPoint) return finish(0.0, 0.0);
+    if (firstPoint) return finish(0.0, closestPointOnSegment(first.a, second).t);
+    if (secondPoint) return finish(closestPointOnSegment(second.a, first).t, 0.0);
+
+    const double c = d1.dot(rr), b = d1.dot(d2);
+    const double denom = a * e - b * b;  // = a e sin^2(angle) >= 0
+    // a*e - b*b carries an absolute rounding error of a few u * a*e (u = 1.1e-16). Below 1e-14 a e
+    // (angle below ~1e-7 rad) its value is noise, so the segments are treated as parallel.
+    constexpr double kParallel = 1e-14;
+    if (denom > kParallel * a * e) {
+        double s = std::clamp((b * f - c * e) / denom, 0.0, 1.0);
+        double t = (b * s + f) / e;
+        // t outside [0, 1]: clamp t and recompute s for the clamped t (Ericson).
+        if (t < 0.0) {
+            t = 0.0;
+            s = std::clamp(-c / a, 0.0, 1.0);
+        } else if (t > 1.0) {
+            t = 1.0;
+            s = std::clamp((b - c) / a, 0.0, 1.0);
+        }
+        return finish(s, t);
+    }
+    // (Nearly) parallel: some closest pair has an endpoint of one segment; take the best of the
+    // four endpoint-to-segment pairs (first wins ties, so the answer is deterministic).
+    r.parallel = true;
+    const ClosestPointOnSegmentResult q[4] = {
+        closestPointOnSegment(first.a, second), closestPointOnSegment(first.b, second),
+        closestPointOnSegment(second.a, first), closestPointOnSegment(second.b, first)};
+    int best = 0;
+    for (int i = 1; i < 4; ++i) {
+        if (q[i].distanceSquared < q[best].distanceSquared) best = i;
+    }
+    switch (best) {
+        case 0: return finish(0.0, q[0].t);
+        case 1: return finish(1.0, q[1].t);
+        case 2: return finish(q[2].t, 0.0);
+        default: return finish(q[3].t, 1.0);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Triangles
+
+ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangle& t, ClosestPointTrace* trace) {
+    if (trace) trace->tests.clear();
+    auto done = [&](const ClosestPointOnTriangleResult& r) {
+        if (trace) trace->result = r;
+        return r;
+    };
+    // One pass classifies the input: in the expansion range (so finite: expansions and plain
+    // double points), or not (BigDyadic where needed), or not finite.
+    const bool plain = exact::inExpansionRange({&p, &t.a, &t.b, &t.c});
+    if (!plain && (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c))) return done(nonFiniteTriangle());
+    TriangleSigns signs(p, t.a, t.b, t.c, plain);
+    if (!signs.certainlyNotCollinear() && exact::collinear(t.a, t.b, t.c)) return done(degenerateTriangle(p, t));
+    ClosestPointOnTriangleResult r;
+    r.region = TriangleRegion::ABC;
+    for (const TriangleTestSpec& spec : kTriangleTests) {
+        RegionTest<TriangleRegion, 3> test;
+        test.candidate = spec.region;
+        test.condition = spec.condition;
+        test.accepted = true;
+        for (int k = 0; k < spec.termCount && test.accepted; ++k) {
+            const PredicateSign term = signs.evaluate(spec.terms[k].quantity);
+            test.terms[test.termCount++] = term;
+            test.accepted = spec.terms[k].nonPositive ? term.sign <= 0 : term.sign >= 0;
+        }
+        if (trace) trace->tests.push_back(test);
+        if (test.accepted) {
+            r.region = spec.region;
+            break;
+        }
+    }
+    if (r.region == TriangleRegion::ABC && trace) {
+        RegionTest<TriangleRegion, 3> test;
+        test.candidate = TriangleRegion::ABC;
+        test.condition = "otherwise (p projects inside the triangle)";
+        test.accepted = true;
+        trace->tests.push_back(test);
+    }
+
+    switch (r.region) {
+        case TriangleRegion::A: r.point = t.a; r.barycentric = Vec3(1, 0, 0); break;
+        case TriangleRegion::B: r.point = t.b; r.barycentric = Vec3(0, 1, 0); break;
+        case TriangleRegion::C: r.point = t.c; r.barycentric = Vec3(0, 0, 1); break;
+        case TriangleRegion::AB: {
+            const EdgePoint e = edgeInterior(p, t.a, t.b, plain);
+            r.point = e.point;
+            r.barycentric = Vec3(e.r, e.s, 0.0);
+            break;
+        }
+        case TriangleRegion::BC: {
+            const EdgePoint e = edgeInterior(p, t.b, t.c, plain);
+            r.point = e.point;
+            r.barycentric = Vec3(0.0, e.r, e.s);
+            break;
+        }
+        case TriangleRegion::CA: {
+            const EdgePoint e = edgeInterior(p, t.c, t.a, plain);
+            r.point = e.point;
+            r.barycentric = Vec3(e.s, 0.0, e.r);
+            break;
+        }
+        case TriangleRegion::ABC: {
+            const FacePoint f = faceInterior(p, t.a, t.b, t.c, plain);
+            r.point = f.point;
+            r.barycentric = f.weights;
+            break;
+        }
+    }
+    r.distanceSquared = (p - r.point).squaredNorm();
+    return done(r);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tetrahedra
+
+namespace {
+
+constexpr char kLetter[4] = {'a', 'b', 'c', 'd'};
+constexpr int kTetEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                 {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};  // x, y, then the others
+constexpr int kTetFaces[4][4] = {{0, 1, 2, 3}, {0, 1, 3, 2}, {0, 2, 3, 1}, {1, 2, 3, 0}};  // x, y, z, opposite
+
+// Names for the tetrahedron's predicates and conditions, built once (static storage, so the
+// const char* in traces stay valid for the program's lifetime).
+struct TetNames {
+    std::string dotName[4][4];       // "(p-a).(b-a)"
+    std::string sideName[4][4][4];   // edge (x<y), third z: "side(ab|c)"
+    std::string sideFormula[4][4][4];
+    std::string planeName[4];        // face opposite w: "side(abc|d)"
+    std::string planeFormula[4];
+    std::string condition[15];
+};
+
+std::string letters(std::initializer_list<int> indices) {
+    std::string s;
+    for (int i : indices) s += kLetter[i];
+    return s;
+}
+
+const TetNames& tetNames() {
+    static const TetNames names = [] {
+        TetNames n;
+        for (int x = 0; x < 4; ++x) {
+            for (int y = 0; y < 4; ++y) {
+                n.dotName[x][y] = "(p-" + letters({x}) + ").(" + letters({y}) + "-" + letters({x}) + ")";
+                for (int z = 0; z < 4; ++z) {
+                    n.sideName[x][y][z] = "side(" + letters({x, y}) + "|" + letters({z}) + ")";
+                    const std::string X = letters({x}), Y = letters({y}), Z = letters({z});
+                    n.sideFormula[x][y][z] =
+                        "((" + Y + "-" + X + ")x(" + Z + "-" + X + ")).((p-" + X + ")x(p-" + Y + "))";
+                }
+            }
+        }
+        for (const auto& f : kTetFaces) {
+            const std::string face = letters({f[0], f[1], f[2]});
+            n.planeName[f[3]] = "side(" + face + "|" + letters({f[3]}) + ")";
+            n.planeFormula[f[3]] = "orient(" + face + ",p)*sign(orient(" + face + "," + letters({f[3]}) + "))";
+        }
+        for (int v = 0; v < 4; ++v) {
+            std::string cond;
+            for (int y = 0; y < 4; ++y) {
+                if (y == v) continue;
+                cond += (cond.empty() ? "" : " && ") + n.dotName[v][y] + " <= 0";
+            }
+            n.condition[v] = cond;
+        }
+        for (int e = 0; e < 6; ++e) {
+            const int* q = kTetEdges[e];
+            n.condition[4 + e] = n.dotName[q[0]][q[1]] + " >= 0 && " + n.dotName[q[1]][q[0]] + " >= 0 && " +
+                                 n.sideName[q[0]][q[1]][q[2]] + " <= 0 && " + n.sideName[q[0]][q[1]][q[3]] + " <= 0";
+        }
+        for (int f = 0; f < 4; ++f) {
+            const int* q = kTetFaces[f];
+            n.condition[10 + f] = n.planeName[q[3]] + " <= 0 && " + n.sideName[q[0]][q[1]][q[2]] + " >= 0 && " +
+                                  n.sideName[q[1]][q[2]][q[0]] + " >= 0 && " + n.sideName[q[0]][q[2]][q[1]] + " >= 0";
+        }
+        return n;
+    }();
+    return names;
+}
+
+TetrahedronRegion tetEdgeRegion(int i, int j) {
+    const int lo = std::min(i, j), hi = std::max(i, j);
+    for (int e = 0; e < 6; ++e) {
+        if (kTetEdges[e][0] == lo && kTetEdges[e][1] == hi) return static_cast<TetrahedronRegion>(4 + e);
+    }
+    return TetrahedronRegion::AB;
+}
+
+TetrahedronRegion tetFaceRegion(int opposite) {
+    for (int f = 0; f < 4; ++f) {
+        if (kTetFaces[f][3] == opposite) return static_cast<TetrahedronRegion>(10 + f);
+    }
+    return TetrahedronRegion::ABC;
+}
+
+// (Out of line: the exact evaluation is rare, and inlining it would make every caller larger.)
+template <class Expression>
+[[gnu::noinline]] int exactTermSign(const Expression& expression, bool inputsInRange) {
+    return exact::exactSign(expression, inputsInRange);
+}
+
+// Evaluates one exact term and records it.
+template <class Expression>
+PredicateSign tetTerm(const char* name, const char* formula, int orientation, bool inputsInRange,
+                      const Expression& expression) {
+    PredicateSign out;
+    out.name = name;
+    out.formula = formula;
+    const Bounded approx = expression(Bounded{});
+    out.value = orientation * approx.value;
+    out.sign = exact::certainSign(approx);
+    if (out.sign == 0) {
+        out.exactFallback = true;
+        out.sign = exactTermSign(expression, inputsInRange);
+    }
+    out.sign *= orientation;
+    return out;
+}
+
+// The four vertices with vertex i replaced by p.
+std::array<const Vec3*, 4> withP(const Vec3& p, const Vec3* const v[4], int i) {
+    std::array<const Vec3*, 4> u = {v[0], v[1], v[2], v[3]};
+    u[i] = &p;
+    return u;
+}
+
+// Barycentric weights of p inside the tetrahedron: the volume ratios orient(a..p..d) /
+// orient(a,b,c,d). In the plain range in double, clamped against rounding and normalised;
+// outside it, exact rationals rounded once (within one ulp; they sum to 1 exactly
+// before rounding).
+[[gnu::noinline, gnu::cold]] Eigen::Vector4d exactInsideWeights(const Vec3& p, const Vec3* const v[4]) {
+    const BigDyadic volume = exact::orient3d<BigDyadic>(*v[0], *v[1], *v[2], *v[3]);
+    Eigen::Vector4d w;
+    for (int i = 0; i < 4; ++i) {
+        const auto u = withP(p, v, i);
+        w[i] = std::clamp(exact::quotient(exact::orient3d<BigDyadic>(*u[0], *u[1], *u[2], *u[3]), volume), 0.0, 1.0);
+    }
+    return w;
+}
+
+Eigen::Vector4d insideWeights(const Vec3& p, const Vec3* const v[4], bool plain) {
+    if (!plain) return exactInsideWeights(p, v);
+    Eigen::Vector4d w;
+    const double volume = exact::orient3d<double>(*v[0], *v[1], *v[2], *v[3]);
+    for (int i = 0; i < 4; ++i) {
+        const auto u = withP(p, v, i);
+        w[i] = std::max(0.0, exact::orient3d<double>(*u[0], *u[1], *u[2], *u[3]) / volume);
+    }
+    const double sum = w.sum();
+    // A thin tetrahedron's volume may round to 0 (exact sign nonzero): equal weights then.
+    return std::isfinite(sum) && sum > 0.0 ? Eigen::Vector4d(w / sum) : Eigen::Vector4d::Constant(0.25);
+}
+
+ClosestPointOnTetrahedronResult degenerateTetrahedron(const Vec3& p, const Vec3* v[4]) {
+    // Flat: the point set is the union of the four (possibly degenerate) faces; the best face
+    // wins, the first one on ties.
+    ClosestPointOnTetrahedronResult best;
+    best.distanceSquared = std::numeric_limits<double>::infinity();
+    for (const auto& f : kTetFaces) {
+        const ClosestPointOnTriangleResult r = closestPointOnTriangle(p, Triangle{*v[f[0]], *v[f[1]], *v[f[2]]});
+        if (!(r.distanceSquared < best.distanceSquared)) continue;
+        best.point = r.point;
+        best.distanceSquared = r.distanceSquared;
+        best.barycentric.setZero();
+        for (int k = 0; k < 3; ++k) best.barycentric[f[k]] = r.barycentric[k];
+        switch (r.region) {
+            case TriangleRegion::A: best.region = static_cast<TetrahedronRegion>(f[0]); break;
+            case TriangleRegion::B: best.region = static_cast<TetrahedronRegion>(f[1]); break;
+            case TriangleRegion::C: best.region = static_cast<TetrahedronRegion>(f[2]); break;
+            case TriangleRegion::AB: best.region = tetEdgeRegion(f[0], f[1]); break;
+            case TriangleRegion::BC: best.region = tetEdgeRegion(f[1], f[2]); break;
+            case TriangleRegion::CA: best.region = tetEdgeRegion(f[2], f[0]); break;
+            case TriangleRegion::ABC: best.region = tetFaceRegion(f[3]); break;
+        }
+    }
+    best.status = SimplexStatus::Degenerate;
+    return best;
+}
+
+}  // namespace
+
+ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const Tetrahedron& t, TetrahedronTrace* trace) {
+    if (trace) trace->tests.clear();
+    auto done = [&](const ClosestPointOnTetrahedronResult& r) {
+        if (trace) trace->result = r;
+        return r;
+    };
+    const Vec3* v[4] = {&t.a, &t.b, &t.c, &t.d};
+    // One pass classifies the input (see closestPointOnTriangle).
+    const bool plain = exact::inExpansionRange({&p, &t.a, &t.b, &t.c, &t.d});
+    if (!plain && (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c) || !finite(t.d))) {
+        ClosestPointOnTetrahedronResult r;
+        r.point = Vec3::Constant(kNaN);
+        r.barycentric = Eigen::Vector4d::Constant(kNaN);
+        r.distanceSquared = kNaN;
+        r.status = SimplexStatus::NonFinite;
+        return done(r);
+    }
+    const int volumeSign = exact::orient3dSign(t.a, t.b, t.c, t.d);
+    if (volumeSign == 0) return done(degenerateTetrahedron(p, v));
+
+    const TetNames& names = tetNames();
+    auto dotTerm = [&](int x, int y) {  // (p-x)·(y-x)
+        return tetTerm(names.dotName[x][y].c_str(), names.dotName[x][y].c_str(), 1, plain, [&](auto zero) {
+            return exact::dotOfDifferences<decltype(zero)>(*v[x], p, *v[x], *v[y]);
+        });
+    };
+    auto sideTerm = [&](int x, int y, int z) {  // in-face side of edge xy (symmetric in x, y)
+        if (x > y) std::swap(x, y);
+        return tetTerm(names.sideName[x][y][z].c_str(), names.sideFormula[x][y][z].c_str(), 1, plain, [&](auto zero) {
+            return exact::edgeSide<decltype(zero)>(*v[x], *v[y], *v[z], p);
+        });
+    };
+    auto planeTerm = [&](const int* f) {  // p's side of face plane, positive = the opposite vertex's side
+        const int orientation = exact::orient3dSign(*v[f[0]], *v[f[1]], *v[f[2]], *v[f[3]]);
+        return tetTerm(names.planeName[f[3]].c_str(), names.planeFormula[f[3]].c_str(), orientation, plain, [&](auto zero) {
+            return exact::orient3d<decltype(zero)>(*v[f[0]], *v[f[1]], *v[f[2]], p);
+        });
+    };
+
+    ClosestPointOnTetrahedronResult r;
+    // Runs one closed-region test: terms evaluated in order until one fails.
+    auto runTest = [&](TetrahedronRegion candidate, auto&& terms) {
+        RegionTest<TetrahedronRegion, 4> test;
+        test.candidate = candidate;
+        test.condition = names.condition[static_cast<int>(candidate)].c_str();
+        test.accepted = terms(test);
+        if (trace) trace->tests.push_back(test);
+        return test.accepted;
+    };
+    auto require = [](RegionTest<TetrahedronRegion, 4>& test, const PredicateSign& term, bool nonPositive) {
+        test.terms[test.termCount++] = term;
+        return nonPositive ? term.sign <= 0 : term.sign >= 0;
+    };
+
+    // Vertex regions: (p-x)·(y-x) <= 0 for the three other vertices y.
+    for (int x = 0; x < 4; ++x) {
+        const bool accepted = runTest(static_cast<TetrahedronRegion>(x), [&](auto& test) {
+            for (int y = 0; y < 4; ++y) {
+                if (y != x && !require(test, dotTerm(x, y), true)) return false;
+            }
+            return true;
+        });
+        if (accepted) {
+            r.region = static_cast<TetrahedronRegion>(x);
+            r.point = *v[x];
+            r.barycentric = Eigen::Vector4d::Unit(x);
+            r.distanceSquared = (p - r.point).squaredNorm();
+            return done(r);
+        }
+    }
+    // Edge regions: p projects into [x, y] and lies outside both faces at the edge, in-plane.
+    for (int e = 0; e < 6; ++e) {
+        const int* q = kTetEdges[e];
+        const TetrahedronRegion region = static_cast<TetrahedronRegion>(4 + e);
+        const bool accepted = runTest(region, [&](auto& test) {
+            return require(test, dotTerm(q[0], q[1]), false) && require(test, dotTerm(q[1], q[0]), false) &&
+                   require(test, sideTerm(q[0], q[1], q[2]), true) && require(test, sideTerm(q[0], q[1], q[3]), true);
+        });
+        if (accepted) {
+            const EdgePoint ep = edgeInterior(p, *v[q[0]], *v[q[1]], plain);
+            r.region = region;
+            r.point = ep.point;
+            r.barycentric.setZero();
+            r.barycentric[q[0]] = ep.r;
+            r.barycentric[q[1]] = ep.s;
+            r.distanceSquared = (p - r.point).squaredNorm();
+            return done(r);
+        }
+    }
+    // Face regions: p not strictly on the inner side of the face plane, and projecting into the
+    // closed face.
+    for (int f = 0; f < 4; ++f) {
+        const int* q = kTetFaces[f];
+        const TetrahedronRegion region = static_cast<TetrahedronRegion>(10 + f);
+        const bool accepted = runTest(region, [&](auto& test) {
+            return require(test, planeTerm(q), true) && require(test, sideTerm(q[0], q[1], q[2]), false) &&
+                   require(test, sideTerm(q[1], q[2], q[0]), false) && require(test, sideTerm(q[0], q[2], q[1]), false);
+        });
+        if (accepted) {
+            const FacePoint fp = faceInterior(p, *v[q[0]], *v[q[1]], *v[q[2]], plain);
+            r.region = region;
+            r.point = fp.point;
+            r.barycentric.setZero();
+            for (int k = 0; k < 3; ++k) r.barycentric[q[k]] = fp.weights[k];
+            r.distanceSquared = (p - r.point).squaredNorm();
+            return done(r);
+        }
+    }
+    // Inside (all closed regions of the boundary features rejected): p itself.
+    r.region = TetrahedronRegion::ABCD;
+    r.point = p;
+    r.distanceSquared = 0.0;
+    r.barycentric = insideWeights(p, v, plain);
+    if (trace) {
+        RegionTest<TetrahedronRegion, 4> test;
+        test.candidate = TetrahedronRegion::ABCD;
+        test.condition = "otherwise (p inside)";
+        test.accepted = true;
+        trace->tests.push_back(test);
+    }
+    return done(r);
+}
+
+}  // namespace cdlab

@@ -1,0 +1,250 @@
+#include "core/contact/contact_plane.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+namespace cdlab {
+
+const char* statusName(PlaneContactStatus status) {
+    switch (status) {
+        case PlaneContactStatus::Separated: return "Separated";
+        case PlaneContactStatus::Touching: return "Touching";
+        case PlaneContactStatus::Penetrating: return "Penetrating";
+        case PlaneContactStatus::InvalidInput: return "InvalidInput";
+    }
+    return "InvalidInput";
+}
+
+namespace {
+
+// Unit plane (n̂, d̂) from n · x = d without overflow / underflow: divide by the largest |n_i|
+// first. Empty string on success, else why the plane is invalid.
+std::string unitPlane(const Plane& plane, Vec3& n, double& d) {
+    const double m = plane.normal.cwiseAbs().maxCoeff();
+    if (!std::isfinite(m) || !std::isfinite(plane.offset)) return "plane normal or offset is not finite";
+    if (!(m > 0.0)) return "plane normal is zero";
+    const Vec3 s = plane.normal / m;
+    const double len = s.norm();
+    n = s / len;
+    d = (plane.offset / m) / len;
+    return {};
+}
+
+// A pose is usable when finite and its quaternion is unit to ~1e-6 (a typo-level error, not
+// rounding drift, which stays ~1e-15 per multiplication).
+std::string checkPose(const Transform& pose) {
+    if (!pose.position.allFinite() || !pose.rotation.coeffs().allFinite()) return "pose is not finite";
+    if (std::abs(pose.rotation.squaredNorm() - 1.0) > 1e-6) return "pose rotation is not a unit quaternion";
+    return {};
+}
+
+bool adjacent(const ConvexPolyhedron& body, int u, int v, int& edge) {
+    bool found = false;
+    body.forEachVertexHalfEdge(u, [&](int h) {
+        if (!found && body.halfEdgeDestination(h) == v) {
+            found = true;
+            edge = body.halfEdge(h).edge;
+        }
+    });
+    return found;
+}
+
+// 2D cross product of (a - o) and (b - o) in the plane basis.
+double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Andrew's monotone chain (Andrew 1979; de Berg et al. §1.1): indices of the strict convex hull,
+// counter-clockwise. Collinear and duplicate points are dropped; 1 or 2 points come back as is.
+std::vector<int> hull2d(const std::vector<Vec2>& p) {
+    const int n = static_cast<int>(p.size());
+    std::vector<int> idx(n);
+    for (int i = 0; i < n; ++i) idx[i] = i;
+    std::sort(idx.begin(), idx.end(), [&](int a, int b) {
+        return p[a].x() < p[b].x() || (p[a].x() == p[b].x() && (p[a].y() < p[b].y() || (p[a].y() == p[b].y() && a < b)));
+    });
+    idx.erase(std::unique(idx.begin(), idx.end(), [&](int a, int b) { return p[a] == p[b]; }), idx.end());
+    if (idx.size() <= 2) return idx;
+    std::vector<int> h(2 * idx.size());
+    int k = 0;
+    for (int i : idx) {  // lower chain
+        while (k >= 2 && cross2(p[h[k - 2]], p[h[k - 1]], p[i]) <= 0) --k;
+        h[k++] = i;
+    }
+    const int lower = k + 1;
+    for (int j = static_cast<int>(idx.size()) - 2; j >= 0; --j) {  // upper chain
+        const int i = idx[j];
+        while (k >= lower && cross2(p[h[k - 2]], p[h[k - 1]], p[i]) <= 0) --k;
+        h[k++] = i;
+    }
+    h.resize(k - 1);  // the last point repeats the first
+    return h;
+}
+
+}  // namespace
+
+bool intersectPolyhedronPlane(const ConvexPolyhedron& body, const Transform& pose, const Plane& plane) {
+    const double s = signedDistancePolyhedronPlane(body, pose, plane);
+    return s <= 0.0;  // NaN: false
+}
+
+bool intersectPolytopePlane(const PolytopeShape& body, const Transform& pose, const Plane& plane, int* hint) {
+    Vec3 n;
+    double d;
+    if (body.vertexCount() == 0 || !unitPlane(plane, n, d).empty() || !checkPose(pose).empty()) return false;
+    const Vec3 dir = pose.rotateInverse(-n);  // body-frame direction of the lowest point
+    const int i = hint ? body.supportIndex(dir, *hint) : body.supportIndex(dir);
+    if (hint) *hint = i;
+    return n.dot(pose.apply(body.vertex(i))) - d <= 0.0;
+}
+
+double signedDistancePolyhedronPlane(const ConvexPolyhedron& body, const Transform& pose, const Plane& plane) {
+    Vec3 n;
+    double d;
+    if (body.empty() || !unitPlane(plane, n, d).empty() || !checkPose(pose).empty()) return NAN;
+    double s = INFINITY;
+    for (const auto& v : body.vertices()) s = std::min(s, n.dot(pose.apply(v.position)) - d);
+    return s;
+}
+
+PlaneContactResult contactPolyhedronPlane(const ConvexPolyhedron& body, const Transform& pose, const Plane& plane,
+                                          const PlaneContactOptions& options, PlaneContactTrace* trace) {
+    PlaneContactResult r;
+    Vec3 n;
+    double d = 0.0;
+    r.message = body.empty() ? "empty polyhedron" : unitPlane(plane, n, d);
+    if (r.message.empty()) r.message = checkPose(pose);
+    if (r.message.empty() && !std::isfinite(options.tolerance)) r.message = "tolerance is not finite";
+    if (!r.message.empty()) {
+        r.status = PlaneContactStatus::InvalidInput;
+        r.signedDistance = NAN;
+        return r;
+    }
+    r.normal = -n;
+
+    // Signed vertex distances s_i.
+    const int nv = body.vertexCount();
+    std::vector<Vec3> x(nv);
+    std::vector<double> s(nv);
+    double maxCoord = std::abs(d);
+    int low = 0;
+    for (int i = 0; i < nv; ++i) {
+        x[i] = pose.apply(body.position(i));
+        s[i] = n.dot(x[i]) - d;
+        maxCoord = std::max(maxCoord, x[i].cwiseAbs().maxCoeff());
+        if (s[i] < s[low]) low = i;
+    }
+    // Tolerance: the caller's, else relative to the size plus 64 ulps of the coordinates (s_i is
+    // n̂ · x - d̂ rounded: ~4 ulps of |x| + |d|; the margin keeps coplanar vertices of a face-on
+    // body together at offsets 1e6 x its size).
+    const double diag = (body.boundsMax() - body.boundsMin()).norm();
+    r.tolerance = options.tolerance >= 0.0 ? options.tolerance
+                                           : options.relativeTolerance * diag + 64.0 * DBL_EPSILON * maxCoord;
+    const double tol = r.tolerance;
+    r.deepestVertex = low;
+    r.signedDistance = s[low];
+    r.depth = std::max(0.0, -s[low]);
+    r.status = s[low] > tol ? PlaneContactStatus::Separated
+             : s[low] >= -tol ? PlaneContactStatus::Touching
+                              : PlaneContactStatus::Penetrating;
+
+    // Closest / deepest feature: the vertices within tol of s_min.
+    std::vector<int> near;
+    for (int i = 0; i < nv; ++i)
+        if (s[i] <= s[low] + tol) near.push_back(i);
+    const auto inNear = [&](int v) { return std::find(near.begin(), near.end(), v) != near.end(); };
+    int edge = -1;
+    if (near.size() == 1) {
+        r.feature = {FeatureType::Vertex, low};
+        r.featurePoints = {x[low]};
+    } else if (near.size() == 2 && adjacent(body, near[0], near[1], edge)) {
+        r.feature = {FeatureType::Edge, edge};
+        r.featurePoints = {x[near[0]], x[near[1]]};
+    } else {
+        // The support set of -n̂ is a face: one around the lowest vertex holds every near vertex.
+        // If tolerance noise leaves none holding all (e.g. two opposite vertices of a nearly
+        // face-on quad), take the face around it whose normal is most opposite n̂.
+        int face = -1, fallback = -1;
+        double bestAlign = INFINITY;
+        for (int f : body.vertexFaces(low)) {
+            const std::vector<int> fv = body.faceVertices(f);
+            int held = 0;
+            for (int v : near) held += std::find(fv.begin(), fv.end(), v) != fv.end();
+            if (held == static_cast<int>(near.size()) && face < 0) face = f;
+            const double align = pose.rotate(body.face(f).normal).dot(n);
+            if (align < bestAlign) bestAlign = align, fallback = f;
+        }
+        if (face < 0) face = fallback;
+        r.feature = {FeatureType::Face, face};
+        for (int v : body.faceVertices(face))
+            if (inNear(v)) r.featurePoints.push_back(x[v]);
+    }
+    for (const Vec3& p : r.featurePoints) r.featurePointsOnPlane.push_back(p - (n.dot(p) - d) * n);
+
+    if (trace) {
+        *trace = PlaneContactTrace{};
+        trace->unitNormal = n;
+        trace->unitOffset = d;
+        trace->worldVertices = x;
+        trace->vertexDistances = s;
+        trace->featureVertices = near;
+    }
+    if (!r.colliding()) return r;
+
+    // Contact polygon: submerged (s_i <= tol) vertices and the edge crossings, on the plane.
+    std::vector<ContactPoint> cand;
+    std::vector<int> candVertex;
+    for (int i = 0; i < nv; ++i) {
+        if (s[i] > tol) continue;
+        cand.push_back({x[i], x[i] - s[i] * n, std::max(0.0, -s[i])});
+        candVertex.push_back(i);
+    }
+    for (int e = 0; e < body.edgeCount(); ++e) {
+        auto [u, v] = body.edgeVertices(e);
+        if (s[u] > s[v]) std::swap(u, v);
+        if (!(s[u] < -tol && s[v] > tol)) continue;
+        // s(t) = s_u + t (s_v - s_u) = 0; both sides are beyond tol, so the division is safe.
+        const double t = s[u] / (s[u] - s[v]);
+        const Vec3 p = x[u] + t * (x[v] - x[u]);
+        cand.push_back({p, p - (n.dot(p) - d) * n, 0.0});
+        candVertex.push_back(-1);
+        if (trace) trace->crossings.push_back({e, u, v, t, p});
+    }
+    // Plane basis (u, w) with u x w = n̂, coordinates relative to the deepest projection (small
+    // numbers at large offsets).
+    const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
+    std::vector<Vec2> p2(cand.size());
+    const Vec3 origin = cand.empty() ? Vec3::Zero() : cand[0].pointB;
+    for (size_t i = 0; i < cand.size(); ++i) {
+        const Vec3 q = cand[i].pointB - origin;
+        p2[i] = Vec2(u.dot(q), w.dot(q));
+    }
+    const std::vector<int> hull = hull2d(p2);
+    for (int i : hull) r.polygon.push_back(cand[i]);
+
+    // Reduction over every candidate, not just the hull: the deepest point may project inside
+    // the footprint (a corner pushed into the ground between its edge crossings) and must be kept.
+    int deepest = 0;
+    for (size_t i = 1; i < cand.size(); ++i)
+        if (cand[i].depth > cand[deepest].depth) deepest = static_cast<int>(i);
+    std::vector<ManifoldReductionStep> steps;
+    std::vector<int> chosen;
+    if (options.maxPoints > 0) {
+        chosen = reduceContactPolygon(cand, n, options.maxPoints, trace ? &steps : nullptr);
+    } else {
+        chosen = hull;
+        if (std::find(hull.begin(), hull.end(), deepest) == hull.end()) chosen.push_back(deepest);
+    }
+    for (int i : chosen) r.manifold.push_back(cand[i]);
+
+    if (trace) {
+        trace->candidates = cand;
+        trace->candidateVertex = candVertex;
+        trace->hull = hull;
+        trace->reduction = steps;
+    }
+    return r;
+}
+
+}  // namespace cdlab

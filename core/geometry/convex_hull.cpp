@@ -1,0 +1,743 @@
+#include "core/geometry/convex_hull.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <unordered_set>
+
+namespace cdlab {
+
+namespace {
+
+std::string fmtNumber(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
+
+// splitmix64 (Steele, Lea, Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014):
+// same sequence on every platform, unlike std::shuffle + std:: distributions.
+std::uint64_t splitmix64(std::uint64_t& state) {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+// A hull triangle during construction. Edge k runs v[k] -> v[(k+1)%3]; adj[k] is the triangle on
+// the other side of edge k. Vertices counter-clockwise seen from outside.
+struct Tri {
+    std::array<int, 3> v{};
+    std::array<int, 3> adj{{-1, -1, -1}};
+    Vec3 n = Vec3::Zero();  // unit outward normal
+    double d = 0.0;         // plane offset: n · x = d
+    bool alive = true;
+    std::vector<int> conflicts;  // points (not yet inserted) that see this triangle by more than eps
+};
+
+// Frame of the explicit depth-first search over visible triangles (Lloyd's quickhull3d
+// "calculateHorizon", iterative to survive very large visible regions).
+struct DfsFrame {
+    int face;
+    int firstEdge;  // edge the search entered through (root: 0)
+    int k;          // next offset to examine (root starts at 0, others at 1: skip the entry edge)
+};
+
+// Cone triangles whose apex is closer than kThin * eps to their base edge are not built (see insert).
+// 4: at 1 the tilt error of such slivers reaches 1 rad and noise of 2-3 eps broke convexity.
+constexpr double kThin = 4.0;
+
+class HullBuilder {
+public:
+    HullBuilder(const std::vector<Vec3>& local, std::span<const Vec3> original, double eps, HullTrace* trace)
+        : P_(local), original_(original), eps_(eps), trace_(trace) {
+        pointFaces_.resize(P_.size());
+        tris_.reserve(8 + 4 * P_.size());  // ~2 live + ~2 dead faces per inserted point on average
+        done_.assign(P_.size(), 0);
+        pointMark_.assign(P_.size(), -1);
+        vertexStamp_.assign(P_.size(), -1);
+    }
+
+    double dist(int q, int f) const { return tris_[f].n.dot(P_[q]) - tris_[f].d; }
+
+    void setPlane(Tri& t) const {
+        const Vec3& a = P_[t.v[0]];
+        const Vec3& b = P_[t.v[1]];
+        const Vec3& c = P_[t.v[2]];
+        const Vec3 n = accurateCross(a, b, c);  // slivers too get an accurate plane
+        const double len = n.norm();
+        // A new cone triangle has its apex > eps above the visible face it replaces, so it never
+        // has zero area; the guard only keeps NaN out of the planes.
+        t.n = len > 0.0 ? Vec3(n / len) : Vec3::UnitZ();
+        t.d = t.n.dot((a + b + c) / 3.0);
+    }
+
+    Triangle triangleOf(int f) const {
+        const Tri& t = tris_[f];
+        return Triangle{original_[t.v[0]], original_[t.v[1]], original_[t.v[2]]};
+    }
+
+    void buildTetrahedron(const std::array<int, 4>& ids) {
+        static const int kFaces[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+        for (const auto& f : kFaces) {
+            Tri t;
+            t.v = {ids[f[0]], ids[f[1]], ids[f[2]]};
+            setPlane(t);
+            tris_.push_back(std::move(t));
+        }
+        for (int f = 0; f < 4; ++f) {
+            for (int k = 0; k < 3; ++k) {
+                const int a = tris_[f].v[k], b = tris_[f].v[(k + 1) % 3];
+                for (int g = 0; g < 4; ++g) {
+                    for (int j = 0; j < 3; ++j) {
+                        if (tris_[g].v[j] == b && tris_[g].v[(j + 1) % 3] == a) tris_[f].adj[k] = g;
+                    }
+                }
+            }
+        }
+        for (int i : ids) done_[i] = 1;
+        interior_ = (P_[ids[0]] + P_[ids[1]] + P_[ids[2]] + P_[ids[3]]) / 4.0;
+        for (int q = 0; q < static_cast<int>(P_.size()); ++q) {
+            if (done_[q]) continue;
+            for (int f = 0; f < 4; ++f) {
+                if (dist(q, f) > eps_) {
+                    tris_[f].conflicts.push_back(q);
+                    pointFaces_[q].push_back(f);
+                }
+            }
+        }
+        aliveCount_ = 4;
+        if (trace_) {
+            trace_->initialIndices = ids;
+            for (int f = 0; f < 4; ++f) trace_->initialFaces.push_back({f, triangleOf(f)});
+        }
+    }
+
+    // Depth-first search of the faces r sees (by more than eps, or forced), from the eye face;
+    // fills visible_ and the ordered horizon_ (Lloyd's quickhull3d "calculateHorizon", iterative).
+    void findVisibleRegion(int r, int eye) {
+        ++stamp_;
+        faceStamp_.resize(tris_.size(), -1);
+        visible_.clear();
+        horizon_.clear();
+        stack_.clear();
+        faceStamp_[eye] = stamp_;
+        visible_.push_back(eye);
+        stack_.push_back({eye, 0, 0});
+        while (!stack_.empty()) {
+            DfsFrame& top = stack_.back();
+            if (top.k == 3) {
+                stack_.pop_back();
+                continue;
+            }
+            const int f = top.face;
+            const int e = (top.firstEdge + top.k) % 3;
+            ++top.k;
+            const int g = tris_[f].adj[e];
+            if (faceStamp_[g] == stamp_) continue;  // already in the visible region
+            if (forceMark_[g] == forceStamp_ || dist(r, g) > eps_) {
+                faceStamp_[g] = stamp_;
+                visible_.push_back(g);
+                int back = 0;
+                while (tris_[g].adj[back] != f || tris_[g].v[back] != tris_[f].v[(e + 1) % 3]) ++back;
+                stack_.push_back({g, back, 1});  // invalidates `top`; not used below
+            } else {
+                horizon_.push_back({f, e});
+            }
+        }
+    }
+
+    // Inserts point r if it is outside the current hull by more than eps.
+    void insert(int r) {
+        // Eye face: the farthest alive conflict face.
+        int eye = -1;
+        double eyeDist = eps_;
+        for (int f : pointFaces_[r]) {
+            if (!tris_[f].alive) continue;
+            const double dd = dist(r, f);
+            if (dd > eyeDist) {
+                eyeDist = dd;
+                eye = f;
+            }
+        }
+        std::vector<int>().swap(pointFaces_[r]);
+        done_[r] = 1;
+        if (eye < 0) return;  // inside or within eps of the hull: not a vertex
+
+        // Visible region: depth-first from the eye face over neighbours r sees by more than eps.
+        // The depth-first order emits the horizon edges as a loop (each starts where the last ended).
+        // Each cone triangle (a, b, r) must be convex with the kept neighbour g across a -> b: g's
+        // third vertex c behind the triangle's plane. In exact arithmetic that follows from r being
+        // behind g; when r is in front of g by at most eps (g not "visible"), a thin cone triangle
+        // can fold under g with c far in front of it. Such neighbours are deleted too ("forced",
+        // r is coplanar with them within eps) and the region is searched again; each round forces
+        // at least one more face, so this terminates.
+        ++forceStamp_;
+        forceMark_.resize(tris_.size(), -1);
+        bool forcedAny = false;
+        for (;;) {
+            findVisibleRegion(r, eye);
+            bool retry = false;
+            for (const auto& [f1, e] : horizon_) {
+                const Tri& t = tris_[f1];
+                const int ia = t.v[e], ib = t.v[(e + 1) % 3];
+                const Tri& g = tris_[t.adj[e]];
+                int c = g.v[0];
+                for (int j = 0; j < 3; ++j) {
+                    if (g.v[j] != ia && g.v[j] != ib) c = g.v[j];
+                }
+                const Vec3 n = accurateCross(P_[ia], P_[ib], P_[r]);
+                const double len = n.norm();
+                // Flat fold: r within eps of g's plane and on g's side of the line ab (the cone
+                // triangle would overlap g, flipped). Steep fold: c in front of the cone triangle.
+                // A thin cone triangle (r within kThin * eps of the line ab, so also of g's plane)
+                // has a plane whose tilt is only known to ~eps / (distance of r from ab): a hull
+                // that is eps-accurate would show up as vertices far in front of it. Force g.
+                const Vec3 intoG = g.n.cross(P_[ia] - P_[ib]);  // in g's plane, from edge b -> a into g
+                const bool flatFold = g.n.dot(P_[r]) - g.d >= -eps_ && intoG.dot(P_[r] - P_[ib]) > 0.0;
+                const bool degenerate = !(len > kThin * eps_ * (P_[ib] - P_[ia]).norm());
+                // Inside-out: the centroid of the initial tetrahedron is interior to every hull
+                // (by at least the tetrahedron's inradius), so it must be behind every face. This
+                // catches flat folds where r is more than eps behind g (input noise a few eps).
+                const bool insideOut = !(n.dot(interior_ - P_[ia]) < 0.0);
+                if (degenerate || flatFold || insideOut || n.dot(P_[c] - P_[ia]) / len > eps_) {
+                    forceMark_[t.adj[e]] = forceStamp_;
+                    retry = true;
+                }
+            }
+            if (!retry) break;
+            forcedAny = true;
+        }
+
+        // The horizon must be one simple loop. With tolerances a point within a few eps of the
+        // hull can see a region with a hole or a pinch; such a point is dropped (the hull stays
+        // valid and the point stays within a few eps of it).
+        const int m = static_cast<int>(horizon_.size());
+        bool simple = m >= 3;
+        for (int i = 0; simple && i < m; ++i) {
+            const Tri& t = tris_[horizon_[i].first];
+            const Tri& u = tris_[horizon_[(i + 1) % m].first];
+            const int a = t.v[horizon_[i].second];
+            const int b = t.v[(horizon_[i].second + 1) % 3];
+            if (b != u.v[horizon_[(i + 1) % m].second] || vertexStamp_[a] == stamp_) simple = false;
+            vertexStamp_[a] = stamp_;
+        }
+        HullTraceStep* step = nullptr;
+        if (trace_) {
+            trace_->steps.emplace_back();
+            step = &trace_->steps.back();
+            step->pointIndex = r;
+            step->point = original_[r];
+            step->eyeFaceId = eye;
+            step->eyeDistance = eyeDist;
+            step->visibleFaceIds = visible_;
+            for (const auto& [f, e] : horizon_) {
+                step->horizon.push_back(
+                    Segment{original_[tris_[f].v[e]], original_[tris_[f].v[(e + 1) % 3]]});
+            }
+        }
+        if (!simple) {
+            ++dropped_;
+            if (step) {
+                step->skipped = true;
+                step->visibleFaceIds.clear();
+                step->hullFaceCount = aliveCount_;
+            }
+            return;
+        }
+
+        // Cone of new triangles (a, b, r), one per horizon edge a -> b.
+        const int base = static_cast<int>(tris_.size());
+        pooled_.clear();
+        if (forcedAny) {
+            for (int f : visible_) {
+                for (int q : tris_[f].conflicts) {
+                    if (done_[q] || pointMark_[q] == -2 - r) continue;
+                    pointMark_[q] = -2 - r;  // distinct from every face id
+                    pooled_.push_back(q);
+                }
+            }
+        }
+        for (int i = 0; i < m; ++i) {
+            const auto [f1, e] = horizon_[i];
+            const int a = tris_[f1].v[e], b = tris_[f1].v[(e + 1) % 3];
+            const int g = tris_[f1].adj[e];
+            Tri t;
+            t.v = {a, b, r};
+            t.adj = {g, base + (i + 1) % m, base + (i + m - 1) % m};
+            setPlane(t);
+            for (int j = 0; j < 3; ++j) {
+                if (tris_[g].v[j] == b && tris_[g].v[(j + 1) % 3] == a) tris_[g].adj[j] = base + i;
+            }
+            // Conflicts of the new face: only points that saw f1 or g can see it (de Berg lemma 11.6).
+            // With forced (coplanar, not strictly visible) faces the lemma's premise fails, so then
+            // every point that saw any deleted face is a candidate.
+            const int id = base + i;
+            // g survives: drop its points that were inserted or discarded meanwhile (lazy deletion),
+            // or its list would be rescanned for every cone built against it.
+            std::vector<int>& keep = tris_[g].conflicts;
+            keep.erase(std::remove_if(keep.begin(), keep.end(), [&](int q) { return done_[q] != 0; }), keep.end());
+            for (const std::vector<int>* src : {forcedAny ? &pooled_ : &tris_[f1].conflicts, &keep}) {
+                for (int q : *src) {
+                    if (done_[q] || pointMark_[q] == id) continue;
+                    pointMark_[q] = id;
+                    if (t.n.dot(P_[q]) - t.d > eps_) {
+                        t.conflicts.push_back(q);
+                        pointFaces_[q].push_back(id);
+                    }
+                }
+            }
+            tris_.push_back(std::move(t));
+        }
+        for (int f : visible_) {
+            tris_[f].alive = false;
+            std::vector<int>().swap(tris_[f].conflicts);
+        }
+        aliveCount_ += m - static_cast<int>(visible_.size());
+        if (step) {
+            for (int i = 0; i < m; ++i) step->newFaces.push_back({base + i, triangleOf(base + i)});
+            step->hullFaceCount = aliveCount_;
+        }
+    }
+
+    const std::vector<Tri>& tris() const { return tris_; }
+    int dropped() const { return dropped_; }
+
+private:
+    const std::vector<Vec3>& P_;
+    std::span<const Vec3> original_;
+    double eps_;
+    HullTrace* trace_;
+    std::vector<Tri> tris_;
+    std::vector<std::vector<int>> pointFaces_;  // faces each point sees (may hold dead faces)
+    std::vector<char> done_;                    // inserted, dropped, or part of the tetrahedron
+    std::vector<int> pointMark_;                // dedup of candidate points per new face
+    std::vector<int> vertexStamp_;              // horizon simplicity check
+    std::vector<int> faceStamp_;                // visible-region membership
+    std::vector<int> forceMark_;                // faces forced into the visible region
+    int stamp_ = 0;
+    int forceStamp_ = 0;
+    int aliveCount_ = 0;
+    int dropped_ = 0;
+    std::vector<int> visible_;
+    std::vector<std::pair<int, int>> horizon_;  // (visible face, edge index)
+    std::vector<DfsFrame> stack_;
+    std::vector<int> pooled_;  // conflicts of all deleted faces, when some were forced
+    Vec3 interior_ = Vec3::Zero();  // centroid of the initial tetrahedron: inside every later hull
+};
+
+HullResult failure(HullStatus status, std::string message, int badIndex = -1) {
+    HullResult r;
+    r.status = status;
+    r.message = std::move(message);
+    r.badIndex = badIndex;
+    return r;
+}
+
+// Removes boundary vertices that have exactly two incident faces and lie within tol of the
+// segment joining their neighbours. Such a vertex has the same two neighbours in both faces (in
+// opposite order), so removing it from both keeps the mesh consistent. Returns the count removed.
+int removeCollinear(std::vector<std::vector<int>>& loops, const std::vector<Vec3>& P, double tol) {
+    std::vector<int> entryVertex, entryNext, entryPrev, entryFace;
+    std::vector<int> faceHead(loops.size()), faceSize(loops.size());
+    std::vector<std::vector<int>> entriesOf;
+    int maxVertex = -1;
+    for (const auto& l : loops) for (int v : l) maxVertex = std::max(maxVertex, v);
+    entriesOf.resize(maxVertex + 1);
+    for (int f = 0; f < static_cast<int>(loops.size()); ++f) {
+        const int base = static_cast<int>(entryVertex.size());
+        const int k = static_cast<int>(loops[f].size());
+        for (int i = 0; i < k; ++i) {
+            entryVertex.push_back(loops[f][i]);
+            entryNext.push_back(base + (i + 1) % k);
+            entryPrev.push_back(base + (i + k - 1) % k);
+            entryFace.push_back(f);
+            entriesOf[loops[f][i]].push_back(base + i);
+        }
+        faceHead[f] = base;
+        faceSize[f] = k;
+    }
+    auto edgeKey = [](int a, int b) {
+        if (a > b) std::swap(a, b);
+        return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+    };
+    std::unordered_set<std::uint64_t> edges;
+    for (const auto& l : loops)
+        for (size_t i = 0; i < l.size(); ++i) edges.insert(edgeKey(l[i], l[(i + 1) % l.size()]));
+    int removed = 0;
+    bool changed = true;
+    while (changed) {
+        changed = false;
+        for (int v = 0; v <= maxVertex; ++v) {
+            if (entriesOf[v].size() != 2) continue;
+            const int e1 = entriesOf[v][0], e2 = entriesOf[v][1];
+            const int f1 = entryFace[e1], f2 = entryFace[e2];
+            if (f1 == f2 || faceSize[f1] <= 3 || faceSize[f2] <= 3) continue;
+            const int u = entryVertex[entryPrev[e1]], w = entryVertex[entryNext[e1]];
+            if (entryVertex[entryNext[e2]] != u || entryVertex[entryPrev[e2]] != w) continue;
+            if (edges.count(edgeKey(u, w))) continue;  // u-w already an edge: removal would pinch the mesh
+            const Vec3 uw = P[w] - P[u];
+            const double len2 = uw.squaredNorm();
+            if (!(len2 > 0.0)) continue;
+            const double t = (P[v] - P[u]).dot(uw) / len2;
+            if (!(t > 0.0 && t < 1.0)) continue;
+            if ((P[v] - P[u] - t * uw).norm() > tol) continue;
+            for (int e : {e1, e2}) {
+                entryNext[entryPrev[e]] = entryNext[e];
+                entryPrev[entryNext[e]] = entryPrev[e];
+                const int f = entryFace[e];
+                if (faceHead[f] == e) faceHead[f] = entryNext[e];
+                --faceSize[f];
+            }
+            entriesOf[v].clear();
+            edges.erase(edgeKey(u, v));
+            edges.erase(edgeKey(v, w));
+            edges.insert(edgeKey(u, w));
+            ++removed;
+            changed = true;
+        }
+    }
+    for (int f = 0; f < static_cast<int>(loops.size()); ++f) {
+        loops[f].clear();
+        int e = faceHead[f];
+        for (int i = 0; i < faceSize[f]; ++i, e = entryNext[e]) loops[f].push_back(entryVertex[e]);
+    }
+    return removed;
+}
+
+}  // namespace
+
+const char* statusName(HullStatus status) {
+    switch (status) {
+        case HullStatus::Ok: return "Ok";
+        case HullStatus::EmptyInput: return "EmptyInput";
+        case HullStatus::NonFiniteInput: return "NonFiniteInput";
+        case HullStatus::AllCoincident: return "AllCoincident";
+        case HullStatus::AllCollinear: return "AllCollinear";
+        case HullStatus::AllCoplanar: return "AllCoplanar";
+        case HullStatus::InternalError: return "InternalError";
+    }
+    return "Unknown";
+}
+
+HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, HullTrace* trace) {
+    const int n = static_cast<int>(points.size());
+    if (n == 0) return failure(HullStatus::EmptyInput, "no input points");
+    for (int i = 0; i < n; ++i) {
+        if (!points[i].allFinite()) {
+            return failure(HullStatus::NonFiniteInput,
+                           "point " + std::to_string(i) + " has a non-finite coordinate", i);
+        }
+    }
+    // Scale and tolerance (see header): centred coordinates keep the cross products small.
+    Vec3 lo = points[0], hi = points[0];
+    for (const Vec3& p : points) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const double maxAbs = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    const double diagonal = (hi - lo).norm();
+    const double eps = options.absoluteEpsilon > 0.0
+                           ? options.absoluteEpsilon
+                           : options.epsilonFactor * DBL_EPSILON * (maxAbs + diagonal);
+    const double mergeTol = options.mergeFactor * eps;
+    const Vec3 center = 0.5 * (lo + hi);
+    std::vector<Vec3> P(n);
+    for (int i = 0; i < n; ++i) P[i] = points[i] - center;
+
+    // Initial tetrahedron from extreme points.
+    int i0 = 0;
+    for (int i = 1; i < n; ++i) if (P[i].x() < P[i0].x()) i0 = i;
+    int i1 = i0;
+    double best = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double d2 = (P[i] - P[i0]).squaredNorm();
+        if (d2 > best) { best = d2; i1 = i; }
+    }
+    if (!(std::sqrt(best) > eps)) {
+        return failure(HullStatus::AllCoincident, "all " + std::to_string(n) +
+                                                      " points coincide within eps = " + fmtNumber(eps));
+    }
+    const Vec3 u = (P[i1] - P[i0]).normalized();
+    int i2 = i0;
+    best = 0.0;
+    for (int i = 0; i < n; ++i) {
+        if (i == i0 || i == i1) continue;  // rounding must never pick a chosen point again
+        const double d2 = u.cross(P[i] - P[i0]).squaredNorm();  // squared distance from line p0 p1
+        if (d2 > best) { best = d2; i2 = i; }
+    }
+    if (!(std::sqrt(best) > eps)) {
+        return failure(HullStatus::AllCollinear, "all " + std::to_string(n) +
+                                                     " points lie on one line within eps = " + fmtNumber(eps));
+    }
+    // The plane of a needle triangle (p2 barely off the line p0 p1) is ill-conditioned: the plain
+    // cross product's direction error is DBL_EPSILON * |p1 - p0| / dist(p2, line), enough to make
+    // p2 itself look farthest from its own plane (found by `cdlab stress`, slivers and needles).
+    // accurateCross is the exact cross product rounded, so the normal is right to ~DBL_EPSILON.
+    const Vec3 nrm = accurateCross(P[i0], P[i1], P[i2]).normalized();
+    int i3 = i0;
+    best = 0.0;
+    for (int i = 0; i < n; ++i) {
+        if (i == i0 || i == i1 || i == i2) continue;
+        const double d = std::abs(nrm.dot(P[i] - P[i0]));
+        if (d > best) { best = d; i3 = i; }
+    }
+    if (!(best > eps)) {
+        return failure(HullStatus::AllCoplanar, "all " + std::to_string(n) +
+                                                    " points lie in one plane within eps = " + fmtNumber(eps));
+    }
+    // Orient so that p3 is behind the plane of (p0, p1, p2) with its right-hand normal.
+    if (nrm.dot(P[i3] - P[i0]) > 0.0) std::swap(i1, i2);
+
+    HullBuilder builder(P, points, eps, trace);
+    builder.buildTetrahedron({i0, i1, i2, i3});
+
+    std::vector<int> order;
+    order.reserve(n);
+    for (int i = 0; i < n; ++i) {
+        if (i != i0 && i != i1 && i != i2 && i != i3) order.push_back(i);
+    }
+    if (options.shuffle) {
+        std::uint64_t state = options.shuffleSeed;
+        for (int i = static_cast<int>(order.size()) - 1; i > 0; --i) {
+            const int j = static_cast<int>(splitmix64(state) % static_cast<std::uint64_t>(i + 1));
+            std::swap(order[i], order[j]);
+        }
+    }
+    for (int r : order) builder.insert(r);
+
+    // Alive triangles with compact indices.
+    const auto& tris = builder.tris();
+    std::vector<int> compact(tris.size(), -1);
+    std::vector<int> alive;
+    for (int f = 0; f < static_cast<int>(tris.size()); ++f) {
+        if (tris[f].alive) {
+            compact[f] = static_cast<int>(alive.size());
+            alive.push_back(f);
+        }
+    }
+    const int T = static_cast<int>(alive.size());
+    if (trace) {
+        for (int t = 0; t < T; ++t) {
+            const Tri& tri = tris[alive[t]];
+            trace->finalTriangles.push_back(
+                {alive[t], Triangle{points[tri.v[0]], points[tri.v[1]], points[tri.v[2]]}});
+        }
+    }
+
+    // Group nearly coplanar neighbours around seed triangles, largest area first (its plane is the
+    // most accurate). Every member's vertices are within mergeTol of the seed plane, so groups
+    // cannot creep around a curved surface.
+    std::vector<double> area2(T);
+    for (int t = 0; t < T; ++t) {
+        const Tri& tri = tris[alive[t]];
+        area2[t] = (P[tri.v[1]] - P[tri.v[0]]).cross(P[tri.v[2]] - P[tri.v[0]]).norm();
+    }
+    std::vector<int> seeds(T);
+    std::iota(seeds.begin(), seeds.end(), 0);
+    std::stable_sort(seeds.begin(), seeds.end(), [&](int a, int b) { return area2[a] > area2[b]; });
+    std::vector<int> group(T, -1);
+    std::vector<std::vector<int>> members;
+    for (int s : seeds) {
+        if (group[s] >= 0) continue;
+        const int gid = static_cast<int>(members.size());
+        members.emplace_back(1, s);
+        group[s] = gid;
+        if (!options.mergeCoplanarFaces) continue;
+        const Vec3 sn = tris[alive[s]].n;
+        const double sd = tris[alive[s]].d;
+        for (size_t qi = 0; qi < members[gid].size(); ++qi) {
+            const Tri& tri = tris[alive[members[gid][qi]]];
+            for (int k = 0; k < 3; ++k) {
+                const int nb = compact[tri.adj[k]];
+                if (group[nb] >= 0) continue;
+                const Tri& other = tris[tri.adj[k]];
+                bool coplanar = true;
+                for (int j = 0; j < 3; ++j) coplanar = coplanar && std::abs(sn.dot(P[other.v[j]]) - sd) <= mergeTol;
+                if (coplanar) {
+                    group[nb] = gid;
+                    members[gid].push_back(nb);
+                }
+            }
+        }
+    }
+
+    // Fold removal (as Qhull merges facets across non-convex ridges, Barber et al. §4): two groups
+    // meeting at an edge where a vertex of one lies more than eps in front of the other's plane
+    // are merged, until every edge is convex. This matters when points lie a few eps off a plane
+    // (noise just above eps): the construction is then only eps-accurate in position, and a thin
+    // triangle's plane, extended over the whole hull, can be far from supporting.
+    if (options.mergeCoplanarFaces) {
+        const int G = static_cast<int>(members.size());
+        std::vector<int> uf(G);
+        std::iota(uf.begin(), uf.end(), 0);
+        auto find = [&](int x) {
+            while (uf[x] != x) x = uf[x] = uf[uf[x]];
+            return x;
+        };
+        std::vector<Vec3> areaVec(T), centroidOf(T);
+        for (int t = 0; t < T; ++t) {
+            const Tri& tri = tris[alive[t]];
+            areaVec[t] = accurateCross(P[tri.v[0]], P[tri.v[1]], P[tri.v[2]]);
+            centroidOf[t] = (P[tri.v[0]] + P[tri.v[1]] + P[tri.v[2]]) / 3.0;
+        }
+        // A group's fitted plane may sit up to mergeTol off its members' vertices, so a fold must
+        // be deeper than that (2 * mergeTol) to be told apart from fitting error.
+        const double foldTol = 2.0 * mergeTol;
+        std::vector<Vec3> sumArea(G), sumMoment(G), normal(G);
+        std::vector<double> sumWeight(G), offset(G);
+        for (int round = 0; round < 64; ++round) {  // 64: folds are rare and shallow; a bound, not a tuning
+            std::fill(sumArea.begin(), sumArea.end(), Vec3::Zero());
+            std::fill(sumMoment.begin(), sumMoment.end(), Vec3::Zero());
+            std::fill(sumWeight.begin(), sumWeight.end(), 0.0);
+            for (int t = 0; t < T; ++t) {
+                const int g = find(group[t]);
+                const double w = areaVec[t].norm();
+                sumArea[g] += areaVec[t];
+                sumMoment[g] += w * centroidOf[t];
+                sumWeight[g] += w;
+            }
+            for (int g = 0; g < G; ++g) {
+                if (find(g) != g) continue;
+                const double len = sumArea[g].norm();
+                normal[g] = len > 0.0 ? Vec3(sumArea[g] / len) : Vec3::UnitZ();
+                offset[g] = sumWeight[g] > 0.0 ? normal[g].dot(sumMoment[g] / sumWeight[g]) : 0.0;
+            }
+            bool changed = false;
+            for (int t = 0; t < T; ++t) {
+                const Tri& tri = tris[alive[t]];
+                for (int k = 0; k < 3; ++k) {
+                    const int u = compact[tri.adj[k]];
+                    if (u < t) continue;  // each edge once
+                    const int A = find(group[t]), B = find(group[u]);
+                    if (A == B) continue;
+                    const Tri& other = tris[tri.adj[k]];
+                    int cu = other.v[0];
+                    for (int j = 0; j < 3; ++j) {
+                        if (other.v[j] != tri.v[k] && other.v[j] != tri.v[(k + 1) % 3]) cu = other.v[j];
+                    }
+                    const int ct = tri.v[(k + 2) % 3];
+                    if (normal[A].dot(P[cu]) - offset[A] > foldTol || normal[B].dot(P[ct]) - offset[B] > foldTol) {
+                        uf[std::max(A, B)] = std::min(A, B);
+                        changed = true;
+                    }
+                }
+            }
+            if (!changed) break;
+        }
+        std::vector<std::vector<int>> merged(G);
+        for (int t = 0; t < T; ++t) {
+            group[t] = find(group[t]);
+            merged[group[t]].push_back(t);
+        }
+        members.clear();
+        for (int g = 0; g < G; ++g) {
+            if (merged[g].empty()) continue;
+            for (int t : merged[g]) group[t] = static_cast<int>(members.size());
+            members.push_back(std::move(merged[g]));
+        }
+    }
+
+    // Each group becomes one polygon if its boundary is one simple loop, convex within mergeTol.
+    std::vector<std::vector<int>> loops;
+    std::vector<int> nextOf(n, -1);
+    int mergedGroups = 0, rejected = 0;
+    for (int gid = 0; gid < static_cast<int>(members.size()); ++gid) {
+        const auto& mem = members[gid];
+        auto emitTriangles = [&]() {
+            for (int t : mem) {
+                const Tri& tri = tris[alive[t]];
+                loops.push_back({tri.v[0], tri.v[1], tri.v[2]});
+            }
+        };
+        if (mem.size() == 1) {
+            emitTriangles();
+            continue;
+        }
+        std::vector<int> origins;
+        bool ok = true;
+        for (int t : mem) {
+            const Tri& tri = tris[alive[t]];
+            for (int k = 0; k < 3; ++k) {
+                if (group[compact[tri.adj[k]]] == gid) continue;
+                const int a = tri.v[k], b = tri.v[(k + 1) % 3];
+                if (nextOf[a] >= 0) ok = false;  // pinched: the region touches itself at a
+                nextOf[a] = b;
+                origins.push_back(a);
+            }
+        }
+        std::vector<int> loop;
+        if (ok && !origins.empty()) {
+            int v = origins[0];
+            do {
+                loop.push_back(v);
+                v = nextOf[v];
+            } while (v >= 0 && v != origins[0] && loop.size() <= origins.size());
+            ok = v == origins[0] && loop.size() == origins.size();
+        }
+        for (int a : origins) nextOf[a] = -1;
+        if (ok) {
+            // Convex within tolerance: each corner b must not lie inside the chord a -> c by more
+            // than mergeTol (a reflex corner would be a fold of the surface).
+            const Vec3& sn = tris[alive[mem[0]]].n;
+            const size_t k = loop.size();
+            for (size_t i = 0; ok && i < k; ++i) {
+                const Vec3& a = P[loop[(i + k - 1) % k]];
+                const Vec3& b = P[loop[i]];
+                const Vec3& c = P[loop[(i + 1) % k]];
+                const Vec3 chord = c - a;
+                const double len = chord.norm();
+                if (!(len > 0.0)) { ok = false; break; }
+                const Vec3 inward = sn.cross(chord) / len;
+                if (inward.dot(b - a) > mergeTol) ok = false;
+            }
+        }
+        if (ok) {
+            ++mergedGroups;
+            loops.push_back(std::move(loop));
+        } else {
+            ++rejected;
+            emitTriangles();
+        }
+    }
+    int removedCollinear = 0;
+    if (options.removeCollinearVertices) removedCollinear = removeCollinear(loops, P, mergeTol);
+    if (trace) {
+        trace->mergedGroups = mergedGroups;
+        trace->rejectedMerges = rejected;
+        trace->removedCollinearVertices = removedCollinear;
+    }
+
+    // Compact to the used input points (ascending input index) and build the mesh.
+    std::vector<int> newIndex(n, -1);
+    for (const auto& l : loops) for (int v : l) newIndex[v] = 0;
+    HullResult result;
+    for (int i = 0; i < n; ++i) {
+        if (newIndex[i] == 0) {
+            newIndex[i] = static_cast<int>(result.inputIndex.size());
+            result.inputIndex.push_back(i);
+        }
+    }
+    std::vector<Vec3> positions;
+    positions.reserve(result.inputIndex.size());
+    for (int i : result.inputIndex) positions.push_back(points[i]);
+    for (auto& l : loops) for (int& v : l) v = newIndex[v];
+    PolyhedronBuild build = ConvexPolyhedron::fromFaces(std::move(positions), loops);
+    result.epsilon = eps;
+    result.mergeTolerance = mergeTol;
+    result.triangleCount = T;
+    result.droppedPoints = builder.dropped();
+    if (!build.ok()) {
+        result.status = HullStatus::InternalError;
+        result.message = "hull mesh failed its check: " + build.check.message;
+        result.inputIndex.clear();
+        return result;
+    }
+    result.status = HullStatus::Ok;
+    result.polyhedron = std::move(build.polyhedron);
+    return result;
+}
+
+}  // namespace cdlab

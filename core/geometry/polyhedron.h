@@ -1,0 +1,209 @@
+// Convex polyhedron stored as a half-edge mesh (doubly connected edge list).
+//
+// Layout (de Berg et al., "Computational Geometry", 3rd ed., §2.2 DCEL; Mäntylä, "An Introduction
+// to Solid Modeling", ch. 10): every undirected edge is a pair of twin half-edges with opposite
+// directions; every face is the cycle of half-edges `next` walks, counter-clockwise seen from
+// outside (so the right-hand rule over the cycle gives the outward normal). Indices are int,
+// -1 means "none". The mesh is immutable after construction: build it with fromFaces() (or with
+// convexHull() in core/geometry/convex_hull.h, or a preset in core/geometry/polyhedron_presets.h).
+//
+// Orders the iteration helpers guarantee (all "seen from outside", i.e. looking against the
+// outward normal / towards the body):
+//   faceVertices(f)      counter-clockwise around f.
+//   vertexHalfEdges(v)   outgoing half-edges of v counter-clockwise around v; the next one after h
+//                        is twin(prev(h)).
+//   vertexFaces(v)       face(h) for h in vertexHalfEdges(v): face i lies between outgoing half-edge
+//                        i and outgoing half-edge i+1 (counter-clockwise).
+//   vertexNeighbors(v)   destination of each half-edge of vertexHalfEdges(v), same order.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/base/types.h"
+
+namespace cdlab {
+
+/// What validate() / fromFaces() found wrong first (None = nothing).
+enum class PolyhedronDefect {
+    None,
+    NoFaces,               ///< fewer than 4 faces / empty mesh
+    BadVertexIndex,        ///< a face refers to a vertex index out of range
+    FaceTooSmall,          ///< a face with fewer than 3 vertices
+    RepeatedVertexInFace,  ///< a face visits the same vertex twice
+    NonManifoldEdge,       ///< a directed edge used by two faces (inconsistent orientation or > 2 faces)
+    OpenEdge,              ///< a half-edge without twin: the surface is not closed
+    IsolatedVertex,        ///< a vertex used by no face
+    NonManifoldVertex,     ///< the faces around a vertex form more than one fan
+    BrokenLinks,           ///< twin/next/prev/face/edge pointers inconsistent
+    NonFinite,             ///< NaN/Inf position, normal or offset
+    EulerMismatch,         ///< V - E + F != 2
+    NonUnitNormal,         ///< face normal not of unit length
+    NonPlanarFace,         ///< a face vertex farther than the tolerance from its face plane
+    NonConvexFace,         ///< a face vertex outside an edge line of its own face
+    VertexOutside,         ///< a vertex in front of a face plane by more than the tolerance
+    NonPositiveVolume,     ///< inside-out or flat
+};
+
+/// Name of a defect, e.g. "NonPlanarFace".
+const char* defectName(PolyhedronDefect defect);
+
+/// Result of a structural or geometric check: the first defect found, the element it concerns
+/// (vertex, half-edge or face index, as the message says) and a one-line message.
+struct PolyhedronCheck {
+    PolyhedronDefect defect = PolyhedronDefect::None;
+    int index = -1;
+    std::string message;
+    bool ok() const { return defect == PolyhedronDefect::None; }
+};
+
+/// (b - a) x (c - a), twice the area vector of triangle abc, computed with error-free
+/// transformations (exact differences by two-sum, Dekker two-products, compensated sum; Ogita,
+/// Rump, Oishi, "Accurate sum and dot product", SIAM J. Sci. Comput. 2005). The result is the exact
+/// cross product rounded to ~2 ulps, so even a sliver triangle (height 1e-12 of its length) gets a
+/// normal accurate to ~DBL_EPSILON in direction; the plain formula's error is DBL_EPSILON * L / h.
+/// Needs -ffp-contract=off (set project-wide). Body frame of the inputs; units length^2.
+Vec3 accurateCross(const Vec3& a, const Vec3& b, const Vec3& c);
+
+struct PolyhedronBuild;
+
+class ConvexPolyhedron {
+public:
+    struct Vertex {
+        Vec3 position = Vec3::Zero();
+        int halfEdge = -1;  ///< one outgoing half-edge
+    };
+    struct HalfEdge {
+        int origin = -1;  ///< vertex the half-edge starts at
+        int twin = -1;    ///< opposite half-edge (same edge, other face)
+        int next = -1;    ///< next half-edge of the same face (counter-clockwise from outside)
+        int prev = -1;    ///< previous half-edge of the same face
+        int face = -1;    ///< face on the left of the half-edge (seen from outside)
+        int edge = -1;    ///< undirected edge index
+    };
+    struct Face {
+        int halfEdge = -1;              ///< one half-edge of the face cycle
+        Vec3 normal = Vec3::UnitZ();    ///< unit outward normal (Newell area vector, body frame)
+        double offset = 0.0;            ///< plane: normal · x = offset
+    };
+    struct Edge {
+        int halfEdge = -1;  ///< the lower-indexed half-edge of the twin pair
+    };
+
+    /// Empty polyhedron (no vertices); use fromFaces() or a preset.
+    ConvexPolyhedron() = default;
+
+    /// Builds the half-edge mesh from positions and faces given as vertex-index cycles,
+    /// counter-clockwise seen from outside. Checks topology only (indices, manifold, closed,
+    /// no isolated vertex, Euler); face normals are Newell area vectors (sum of accurateCross over
+    /// the face's fan) normalized, offsets taken at the vertex mean. Call validate() for convexity. On failure the returned polyhedron is empty.
+    static PolyhedronBuild fromFaces(std::vector<Vec3> positions,
+                                     const std::vector<std::vector<int>>& faces);
+
+    int vertexCount() const { return static_cast<int>(vertices_.size()); }
+    int halfEdgeCount() const { return static_cast<int>(halfEdges_.size()); }
+    int edgeCount() const { return static_cast<int>(edges_.size()); }
+    int faceCount() const { return static_cast<int>(faces_.size()); }
+    bool empty() const { return vertices_.empty(); }
+
+    const std::vector<Vertex>& vertices() const { return vertices_; }
+    const std::vector<HalfEdge>& halfEdges() const { return halfEdges_; }
+    const std::vector<Face>& faces() const { return faces_; }
+    const std::vector<Edge>& edges() const { return edges_; }
+    const Vertex& vertex(int v) const { return vertices_[v]; }
+    const HalfEdge& halfEdge(int h) const { return halfEdges_[h]; }
+    const Face& face(int f) const { return faces_[f]; }
+    const Edge& edge(int e) const { return edges_[e]; }
+    const Vec3& position(int v) const { return vertices_[v].position; }
+    /// All vertex positions, index-aligned with vertices().
+    std::vector<Vec3> positions() const;
+
+    /// Destination vertex of half-edge h (= origin of next(h) = origin of twin(h)).
+    int halfEdgeDestination(int h) const { return halfEdges_[halfEdges_[h].next].origin; }
+    /// The two vertices of edge e: origin and destination of edge(e).halfEdge.
+    std::pair<int, int> edgeVertices(int e) const;
+    /// The two faces of edge e: face of edge(e).halfEdge, then face of its twin.
+    std::pair<int, int> edgeFaces(int e) const;
+    /// Number of vertices (= half-edges) of face f.
+    int faceDegree(int f) const;
+    /// Vertex indices of face f, counter-clockwise seen from outside, starting at origin of face(f).halfEdge.
+    std::vector<int> faceVertices(int f) const;
+    /// Half-edges of face f in cycle order.
+    std::vector<int> faceHalfEdges(int f) const;
+    /// Outgoing half-edges of vertex v, counter-clockwise seen from outside.
+    std::vector<int> vertexHalfEdges(int v) const;
+    /// Faces around vertex v, counter-clockwise seen from outside (face of each outgoing half-edge).
+    std::vector<int> vertexFaces(int v) const;
+    /// Adjacent vertices of v (destinations of vertexHalfEdges(v)), same order.
+    std::vector<int> vertexNeighbors(int v) const;
+    /// Edges incident to v, in the order of vertexHalfEdges(v).
+    std::vector<int> vertexEdges(int v) const;
+
+    /// Calls fn(halfEdgeIndex) for each half-edge of face f in cycle order; no allocation.
+    template <class Fn>
+    void forEachFaceHalfEdge(int f, Fn&& fn) const {
+        const int start = faces_[f].halfEdge;
+        int h = start;
+        do {
+            fn(h);
+            h = halfEdges_[h].next;
+        } while (h != start);
+    }
+    /// Calls fn(outgoingHalfEdge) for each outgoing half-edge of v, counter-clockwise; no allocation.
+    template <class Fn>
+    void forEachVertexHalfEdge(int v, Fn&& fn) const {
+        const int start = vertices_[v].halfEdge;
+        int h = start;
+        do {
+            fn(h);
+            h = halfEdges_[halfEdges_[h].prev].twin;
+        } while (h != start);
+    }
+
+    /// Signed distance of x from the plane of face f (positive in front, i.e. outside).
+    double planeDistance(int f, const Vec3& x) const {
+        return faces_[f].normal.dot(x) - faces_[f].offset;
+    }
+    /// The plane of face f (unit normal).
+    Plane plane(int f) const { return Plane{faces_[f].normal, faces_[f].offset}; }
+
+    /// V - E + F (2 for every valid convex polyhedron).
+    int eulerCharacteristic() const { return vertexCount() - edgeCount() + faceCount(); }
+    /// Enclosed volume (divergence theorem over face fans, relative to the vertex mean for accuracy
+    /// at large offsets). Units: length^3. Positive for outward-oriented faces.
+    double volume() const;
+    /// Centroid (centre of mass of the uniform solid), body frame. Vertex mean if volume is 0.
+    Vec3 centroid() const;
+    /// Total face area. Units: length^2.
+    double surfaceArea() const;
+    /// Componentwise minimum / maximum of the vertex positions.
+    Vec3 boundsMin() const;
+    Vec3 boundsMax() const;
+    /// Default geometric tolerance for this mesh: 65536 * DBL_EPSILON * (max |coordinate| + bounds
+    /// diagonal), ~1.5e-11 of the scale. Well above what convexHull() leaves (faces planar within
+    /// ~2 x its merge tolerance of 16384 * DBL_EPSILON * scale) and far below any modelled feature.
+    double scaleTolerance() const;
+
+    /// Full check: links (twin/next/prev/face/edge), closed 2-manifold with single vertex fans,
+    /// Euler V - E + F = 2, finite unit normals, every face planar and convex within tolerance,
+    /// every vertex on or behind every face plane (done for all pairs when V*F <= 2e7, otherwise
+    /// for the neighbours of each face's vertices, which for a closed genus-0 surface implies
+    /// global convexity), positive volume. tolerance < 0 means scaleTolerance().
+    PolyhedronCheck validate(double tolerance = -1.0) const;
+
+private:
+    std::vector<Vertex> vertices_;
+    std::vector<HalfEdge> halfEdges_;
+    std::vector<Face> faces_;
+    std::vector<Edge> edges_;
+};
+
+/// Output of ConvexPolyhedron::fromFaces: the mesh (empty unless check.ok()) and the check.
+struct PolyhedronBuild {
+    ConvexPolyhedron polyhedron;
+    PolyhedronCheck check;
+    bool ok() const { return check.ok(); }
+};
+
+}  // namespace cdlab

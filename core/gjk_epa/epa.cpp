@@ -1,0 +1,335 @@
+#include "core/gjk_epa/epa.h"
+
+#include <algorithm>
+
+#include "core/closest/edge_pair_distance.h"
+
+namespace cdlab {
+
+const char* statusName(EpaStatus status)
+{
+    switch (status) {
+        case EpaStatus::Penetrating: return "Penetrating";
+        case EpaStatus::Touching: return "Touching";
+        case EpaStatus::Separated: return "Separated";
+        case EpaStatus::InvalidInput: return "InvalidInput";
+    }
+    return "?";
+}
+
+const char* terminationName(EpaTermination termination)
+{
+    switch (termination) {
+        case EpaTermination::Converged: return "Converged";
+        case EpaTermination::DuplicateSupport: return "DuplicateSupport";
+        case EpaTermination::MaxIterations: return "MaxIterations";
+        case EpaTermination::CapacityExceeded: return "CapacityExceeded";
+        case EpaTermination::Degenerate: return "Degenerate";
+        case EpaTermination::Touching: return "Touching";
+        case EpaTermination::NotIntersecting: return "NotIntersecting";
+        case EpaTermination::InvalidInput: return "InvalidInput";
+    }
+    return "?";
+}
+
+namespace detail {
+
+namespace {
+// A face whose doubled area is below this fraction of its squared longest edge has no reliable
+// normal (the cross product is rounding noise): such a face is refused.
+constexpr double kFlatFace = 1e-14;
+}  // namespace
+
+int EpaPolytope::addVertex(const EpaVertex& v)
+{
+    if (vertexCount >= kMaxVertices) return -1;
+    vertex[vertexCount] = v;
+    scale = std::max(scale, v.w.norm());
+    return vertexCount++;
+}
+
+bool EpaPolytope::plane(int i0, int i1, int i2, Vec3& normal, double& distance) const
+{
+    const Vec3& p0 = vertex[i0].w;
+    const Vec3& p1 = vertex[i1].w;
+    const Vec3& p2 = vertex[i2].w;
+    const Vec3 e0 = p1 - p0;  // opposite p2
+    const Vec3 e1 = p2 - p1;  // opposite p0
+    const Vec3 e2 = p0 - p2;  // opposite p1
+    const double l0 = e0.squaredNorm();
+    const double l1 = e1.squaredNorm();
+    const double l2 = e2.squaredNorm();
+    // n = e_i x e_j for any two edges (same vector in exact arithmetic); the rounding error is
+    // a few ulps of |e_i||e_j|, so use the two shortest edges, i.e. the apex opposite the longest.
+    Vec3 n;
+    const Vec3* base;
+    double longest;
+    if (l0 >= l1 && l0 >= l2) {  // longest p0p1: apex p2
+        n = e1.cross(e2);
+        base = &p2;
+        longest = l0;
+    } else if (l1 >= l2) {       // longest p1p2: apex p0
+        n = e2.cross(e0);
+        base = &p0;
+        longest = l1;
+    } else {                     // longest p2p0: apex p1
+        n = e0.cross(e1);
+        base = &p1;
+        longest = l2;
+    }
+    const double len = n.norm();
+    if (!(len > kFlatFace * longest)) return false;
+    normal = n / len;
+    distance = normal.dot(*base);
+    return true;
+}
+
+bool EpaPolytope::buildTetrahedron()
+{
+    const Vec3& w0 = vertex[0].w;
+    const double det = (vertex[1].w - w0).dot((vertex[2].w - w0).cross(vertex[3].w - w0));
+    // det > 0: vertex 3 lies on the side of (0,1,2)'s right-hand normal, so (0,2,1) faces out.
+    int t[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+    if (det < 0) {
+        for (auto& tri : t) std::swap(tri[1], tri[2]);
+    }
+    faceEnd = 4;
+    liveCount = 4;
+    freeCount = 0;
+    for (int i = 0; i < 4; ++i) {
+        EpaFace& F = face[i];
+        for (int k = 0; k < 3; ++k) F.v[k] = t[i][k];
+        F.live = true;
+        if (!plane(F.v[0], F.v[1], F.v[2], F.normal, F.distance)) return false;
+    }
+    // Adjacency: edge e of face i (v[e] -> v[e+1]) meets the reversed edge of another face.
+    // Every directed edge a -> b of the closed tetrahedron occurs once: index them in a 4x4 table.
+    int edgeFace[4][4], edgeIndex[4][4];
+    for (int i = 0; i < 4; ++i) {
+        for (int e = 0; e < 3; ++e) {
+            edgeFace[face[i].v[e]][face[i].v[(e + 1) % 3]] = i;
+            edgeIndex[face[i].v[e]][face[i].v[(e + 1) % 3]] = e;
+        }
+    }
+    for (int i = 0; i < 4; ++i) {
+        for (int e = 0; e < 3; ++e) {
+            const int a = face[i].v[e];
+            const int b = face[i].v[(e + 1) % 3];
+            face[i].adj[e] = edgeFace[b][a];
+            face[i].adjEdge[e] = edgeIndex[b][a];
+        }
+    }
+    return true;
+}
+
+int EpaPolytope::closestFace() const
+{
+    int best = -1;
+    double bestDistance = INFINITY;
+    for (int i = 0; i < faceEnd; ++i) {
+        if (face[i].live && face[i].distance < bestDistance) {
+            bestDistance = face[i].distance;
+            best = i;
+        }
+    }
+    return best;
+}
+
+bool EpaPolytope::hasVertex(const Vec3& w) const
+{
+    for (int i = 0; i < vertexCount; ++i)
+        if (vertex[i].w == w) return true;
+    return false;
+}
+
+// Depth-first walk over the faces visible from w (van den Bergen's silhouette): entering face f
+// through its edge `edge`; a face not visible contributes that edge to the horizon. Visiting the
+// other two edges in CCW order makes the horizon come out as one consecutive loop.
+void EpaPolytope::silhouette(int f, int edge, const Vec3& w, double tol)
+{
+    EpaFace& F = face[f];
+    if (!F.live) return;  // already removed in this expansion
+    if (F.normal.dot(w) - F.distance <= tol) {
+        if (horizonCount >= kMaxFaces) {
+            overflow = true;
+            return;
+        }
+        horizonFace[horizonCount] = f;
+        horizonEdge[horizonCount] = edge;
+        ++horizonCount;
+        return;
+    }
+    F.live = false;
+    removed[removedCount++] = f;
+    const int e1 = (edge + 1) % 3;
+    const int e2 = (edge + 2) % 3;
+    silhouette(F.adj[e1], F.adjEdge[e1], w, tol);
+    silhouette(F.adj[e2], F.adjEdge[e2], w, tol);
+}
+
+EpaExpand EpaPolytope::expand(int seed, int vi, double visibleTolerance, EpaTraceStep* trace)
+{
+    const Vec3& w = vertex[vi].w;
+    horizonCount = 0;
+    removedCount = 0;
+    overflow = false;
+    // The seed (nearest face) is visible by construction (its gap exceeded the tolerance).
+    face[seed].live = false;
+    removed[removedCount++] = seed;
+    for (int e = 0; e < 3; ++e) silhouette(face[seed].adj[e], face[seed].adjEdge[e], w, visibleTolerance);
+
+    auto rollback = [&](EpaExpand why) {
+        for (int i = 0; i < removedCount; ++i) face[removed[i]].live = true;
+        return why;
+    };
+    if (overflow || horizonCount < 3) return rollback(EpaExpand::Degenerate);
+    const int available = freeCount + (kMaxFaces - faceEnd) + removedCount;
+    if (horizonCount > available) return rollback(EpaExpand::Capacity);
+
+    // New face k = (a_k, b_k, w) over horizon edge (g, j), which runs b_k -> a_k in face g.
+    int va[kMaxFaces], vb[kMaxFaces], next[kMaxFaces];
+    Vec3 normal[kMaxFaces];
+    double distance[kMaxFaces];
+    for (int k = 0; k < horizonCount; ++k) {
+        const EpaFace& G = face[horizonFace[k]];
+        const int j = horizonEdge[k];
+        va[k] = G.v[(j + 1) % 3];
+        vb[k] = G.v[j];
+        if (!plane(va[k], vb[k], vi, normal[k], distance[k])) return rollback(EpaExpand::Degenerate);
+    }
+    // Face k's edge b_k -> w meets face m's edge w -> a_m where a_m = b_k. The walk gives the loop
+    // in order (m = k + 1); search only if rounding made the visible region odd.
+    for (int k = 0; k < horizonCount; ++k) {
+        const int m = (k + 1) % horizonCount;
+        if (va[m] == vb[k]) {
+            next[k] = m;
+            continue;
+        }
+        int found = -1;
+        for (int q = 0; q < horizonCount; ++q) {
+            if (va[q] == vb[k]) {
+                if (found >= 0) return rollback(EpaExpand::Degenerate);  // not a simple loop
+                found = q;
+            }
+        }
+        if (found < 0) return rollback(EpaExpand::Degenerate);
+        next[k] = found;
+    }
+
+    if (trace) {
+        for (int i = 0; i < removedCount; ++i) {
+            const EpaFace& R = face[removed[i]];
+            trace->removedFaces.push_back({R.v[0], R.v[1], R.v[2]});
+        }
+        for (int k = 0; k < horizonCount; ++k) trace->horizon.push_back({va[k], vb[k]});
+    }
+
+    // Commit: free the removed faces, create the fan.
+    for (int i = 0; i < removedCount; ++i) freeList[freeCount++] = removed[i];
+    liveCount -= removedCount;
+    int id[kMaxFaces];
+    for (int k = 0; k < horizonCount; ++k) id[k] = freeCount > 0 ? freeList[--freeCount] : faceEnd++;
+    for (int k = 0; k < horizonCount; ++k) {
+        EpaFace& N = face[id[k]];
+        N.v[0] = va[k];
+        N.v[1] = vb[k];
+        N.v[2] = vi;
+        N.normal = normal[k];
+        N.distance = distance[k];
+        N.live = true;
+        // edge 0 (a_k -> b_k) borders the surviving face g
+        const int g = horizonFace[k];
+        const int j = horizonEdge[k];
+        N.adj[0] = g;
+        N.adjEdge[0] = j;
+        face[g].adj[j] = id[k];
+        face[g].adjEdge[j] = 0;
+    }
+    for (int k = 0; k < horizonCount; ++k) {
+        // edge 1 (b_k -> w) of face k with edge 2 (w -> a_m) of face m
+        const int m = next[k];
+        face[id[k]].adj[1] = id[m];
+        face[id[k]].adjEdge[1] = 2;
+        face[id[m]].adj[2] = id[k];
+        face[id[m]].adjEdge[2] = 1;
+    }
+    liveCount += horizonCount;
+    return EpaExpand::Ok;
+}
+
+void EpaPolytope::witness(int f, double depth, Vec3& pointA, Vec3& pointB) const
+{
+    const EpaFace& F = face[f];
+    const EpaVertex& v0 = vertex[F.v[0]];
+    const EpaVertex& v1 = vertex[F.v[1]];
+    const EpaVertex& v2 = vertex[F.v[2]];
+    const Vec3 p = depth * F.normal;  // projection of the origin on the face plane
+    // Barycentric weights by areas signed along the normal: l1 = [p0 p p2] / [p0 p1 p2], etc.
+    const double total = F.normal.dot((v1.w - v0.w).cross(v2.w - v0.w));
+    double l1 = F.normal.dot((p - v0.w).cross(v2.w - v0.w)) / total;
+    double l2 = F.normal.dot((v1.w - v0.w).cross(p - v0.w)) / total;
+    if (!std::isfinite(l1) || !std::isfinite(l2)) l1 = l2 = 0.0;
+    // pointA = a0 + l1 (a1 - a0) + l2 (a2 - a0): relative to one vertex, exact far from origin.
+    pointA = v0.a + (l1 * (v1.a - v0.a) + l2 * (v2.a - v0.a));
+    pointB = v0.b + (l1 * (v1.b - v0.b) + l2 * (v2.b - v0.b));
+}
+
+int EpaPolytope::snapshot(EpaTraceStep& step, int f) const
+{
+    step.vertices.clear();
+    step.faces.clear();
+    for (int i = 0; i < vertexCount; ++i) step.vertices.push_back(vertex[i].w);
+    int index = -1;
+    for (int i = 0; i < faceEnd; ++i) {
+        if (!face[i].live) continue;
+        if (i == f) index = static_cast<int>(step.faces.size());
+        step.faces.push_back({face[i].v[0], face[i].v[1], face[i].v[2]});
+    }
+    return index;
+}
+
+void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA, Vec3& pointB)
+{
+    const EpaVertex& v0 = v[c.index[0]];
+    Vec3 da = Vec3::Zero();
+    Vec3 db = Vec3::Zero();
+    for (int k = 1; k < c.count; ++k) {
+        da += c.lambda[k] * (v[c.index[k]].a - v0.a);
+        db += c.lambda[k] * (v[c.index[k]].b - v0.b);
+    }
+    pointA = v0.a + da;
+    pointB = v0.b + db;
+}
+
+bool epaRefineEdgePair(const EpaPolytope& poly, int f, EpaResult& r)
+{
+    Vec3 a[3], b[3];
+    int na = 0, nb = 0;
+    for (int k = 0; k < 3; ++k) {
+        const EpaVertex& v = poly.vertex[poly.face[f].v[k]];
+        if (std::find(a, a + na, v.a) == a + na) a[na++] = v.a;
+        if (std::find(b, b + nb, v.b) == b + nb) b[nb++] = v.b;
+    }
+    if (na != 2 || nb != 2) return false;
+    const LinePairSeparation line = linePairSeparation(a[0], a[1], b[0], b[1]);
+    if (!line.ok) return false;
+    // The face is three corners of the parallelogram edgeA - edgeB and holds the origin's
+    // projection, so the feet lie on both edges; 1e-6 allows for EPA's rounding.
+    constexpr double kSlack = 1e-6;
+    if (line.s < -kSlack || line.s > 1 + kSlack || line.t < -kSlack || line.t > 1 + kSlack) return false;
+    // pointA - pointB = -separation * normal; EPA's normal points from A toward B.
+    const bool aligned = line.normal.dot(poly.face[f].normal) >= 0.0;
+    const double depth = aligned ? -line.separation : line.separation;
+    const double size = std::max((a[1] - a[0]).norm(), (b[1] - b[0]).norm());
+    if (!(std::abs(depth - r.depth) <= kSlack * size)) return false;
+    r.depth = std::max(depth, 0.0);
+    r.normal = aligned ? line.normal : Vec3(-line.normal);
+    r.pointA = line.pointA;
+    r.pointB = line.pointB;
+    r.edgePairRefined = true;
+    return true;
+}
+
+}  // namespace detail
+
+}  // namespace cdlab

@@ -1,0 +1,117 @@
+#include "core/gjk_epa/gjk.h"
+
+#include <algorithm>
+
+namespace cdlab {
+
+const char* statusName(GjkStatus status)
+{
+    switch (status) {
+        case GjkStatus::Separated: return "Separated";
+        case GjkStatus::Intersecting: return "Intersecting";
+        case GjkStatus::InvalidInput: return "InvalidInput";
+    }
+    return "?";
+}
+
+const char* terminationName(GjkTermination termination)
+{
+    switch (termination) {
+        case GjkTermination::Converged: return "Converged";
+        case GjkTermination::DuplicateSupport: return "DuplicateSupport";
+        case GjkTermination::NoProgress: return "NoProgress";
+        case GjkTermination::OriginInSimplex: return "OriginInSimplex";
+        case GjkTermination::SeparatingAxis: return "SeparatingAxis";
+        case GjkTermination::MaxIterations: return "MaxIterations";
+        case GjkTermination::InvalidInput: return "InvalidInput";
+    }
+    return "?";
+}
+
+namespace detail {
+
+void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB)
+{
+    if (s.count == 0) {
+        pointA.setZero();
+        pointB.setZero();
+        return;
+    }
+    // pointA = sum lambda_i a_i = a_0 + sum_{i>0} lambda_i (a_i - a_0): the differences are small
+    // when the shape is small, so a 1e6 offset only enters once, exactly.
+    const GjkVertex& v0 = s.vertex[0];
+    Vec3 da = Vec3::Zero();
+    Vec3 db = Vec3::Zero();
+    for (int i = 1; i < s.count; ++i) {
+        da += s.lambda[i] * (s.vertex[i].a - v0.a);
+        db += s.lambda[i] * (s.vertex[i].b - v0.b);
+    }
+    pointA = v0.a + da;
+    pointB = v0.b + db;
+}
+
+void gjkReduce(const GjkVertex* in, const SimplexClosest& c, GjkSimplex& out)
+{
+    out.count = c.count;
+    for (int k = 0; k < c.count; ++k) {
+        out.vertex[k] = in[c.index[k]];
+        out.lambda[k] = c.lambda[k];
+    }
+}
+
+void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced)
+{
+    char name[5];
+    simplexRegionName(c, name);
+    step.region = name;
+    for (int k = 0; k < 4; ++k) step.lambda[k] = k < c.count ? c.lambda[k] : 0.0;
+    step.v = c.v;
+    gjkWitness(reduced, step.pointA, step.pointB);
+}
+
+bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r)
+{
+    // Uncertified: the lower bound is not within 1e-9 of |v| (a converged run has 1e-13).
+    if (!(r.lowerBound >= (1.0 - 1e-9) * r.distance)) return true;
+    if (s.count != 3) return false;
+    // Sliver: |e1 x e2| < 1e-3 |e1| |e2| leaves the normal's rounding error above 1e3 u.
+    const Vec3 e1 = s.vertex[1].w - s.vertex[0].w, e2 = s.vertex[2].w - s.vertex[0].w;
+    return e1.cross(e2).squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
+}
+
+int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out)
+{
+    Vec3 a[4], b[4];
+    int na = 0, nb = 0;
+    for (int i = 0; i < s.count; ++i) {
+        if (std::find(a, a + na, s.vertex[i].a) == a + na) a[na++] = s.vertex[i].a;
+        if (std::find(b, b + nb, s.vertex[i].b) == b + nb) b[nb++] = s.vertex[i].b;
+    }
+    int n = 0;
+    for (int i = 0; i < na; ++i)
+        for (int j = i + 1; j < na; ++j)
+            for (int k = 0; k < nb; ++k)
+                for (int l = k + 1; l < nb; ++l) {
+                    const EdgePairDistance e = edgePairDistance(a[i], a[j], b[k], b[l]);
+                    if (e.ok) out[n++] = e;
+                }
+    // Vertex-face: a point of one shape against a (sliver) triangle of the other.
+    if (na == 1 && nb == 3) {
+        const EdgePairDistance e = pointTriangleDistance(a[0], b[0], b[1], b[2]);
+        if (e.ok) out[n++] = e;
+    }
+    if (na == 3 && nb == 1) {
+        EdgePairDistance e = pointTriangleDistance(b[0], a[0], a[1], a[2]);
+        if (e.ok) {
+            std::swap(e.pointA, e.pointB);
+            e.axis = -e.axis;
+            out[n++] = e;
+        }
+    }
+    std::sort(out, out + n, [](const EdgePairDistance& x, const EdgePairDistance& y) { return x.distance < y.distance; });
+    return n;
+}
+
+}  // namespace detail
+
+}  // namespace cdlab

@@ -1,0 +1,435 @@
+// GJK: distance, witness points and intersection of two convex sets given by support mappings.
+//
+// Gilbert, Johnson, Keerthi 1988, in the formulation of van den Bergen, "Collision Detection in
+// Interactive 3D Environments" §4.3 (see also Ericson, Real-Time Collision Detection §9.5).
+// Iterates on the Minkowski difference C = A - B with support s_C(d) = s_A(d) - s_B(-d):
+//   v = some point of C; W = {v}
+//   loop: w = s_C(-v)                          // support point opposite the current estimate
+//         lower bound on the distance: v·w / |v|, upper bound: |v|
+//         stop when |v|² - v·w <= eps_rel |v|²   // relative gap (upper - lower) <= eps_rel upper
+//         W = closest sub-simplex of W + {w} to the origin, v = its closest point
+// Every simplex vertex keeps the two shape points a_i, b_i (w_i = a_i - b_i), so the witness
+// points are pointA = sum lambda_i a_i and pointB = sum lambda_i b_i with the simplex weights.
+//
+// Shapes are given in one common (world) frame. No heap allocation unless a trace is recorded.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/closest/edge_pair_distance.h"
+#include "core/gjk_epa/simplex_solver.h"
+#include "core/base/support.h"
+
+namespace cdlab {
+
+/// Outcome of a GJK query.
+enum class GjkStatus {
+    Separated,     ///< distance > 0: distance, pointA, pointB, separatingAxis are meaningful
+    Intersecting,  ///< the shapes overlap or touch: distance = 0, simplex contains the origin
+    InvalidInput,  ///< a support point was NaN or infinite: outputs are zero, nothing meaningful
+};
+
+/// Why the GJK loop stopped.
+enum class GjkTermination {
+    Converged,         ///< |v|² - v·w <= relativeTolerance |v|²: distance within the tolerance
+    DuplicateSupport,  ///< the new support point is already in the simplex: no progress possible
+    NoProgress,        ///< |v| did not decrease (rounding floor reached): previous simplex kept
+    OriginInSimplex,   ///< v = 0 up to rounding, or a full tetrahedron enclosing the origin
+    SeparatingAxis,    ///< gjkIntersect early-out: v·w > 0, so -v separates the shapes
+    MaxIterations,     ///< iteration cap reached: bounds in the result say how far off it is
+    InvalidInput,      ///< NaN / infinite support point
+};
+
+/// One simplex vertex: the support points of both shapes and the direction that produced them.
+struct GjkVertex {
+    Vec3 w = Vec3::Zero();          ///< w = a - b, a point of the Minkowski difference A - B
+    Vec3 a = Vec3::Zero();          ///< a = s_A(direction)
+    Vec3 b = Vec3::Zero();          ///< b = s_B(-direction)
+    Vec3 direction = Vec3::Zero();  ///< search direction (not normalized), kept for warm starts
+};
+
+/// GJK simplex: 0..4 vertices with their barycentric weights for the closest point v.
+struct GjkSimplex {
+    GjkVertex vertex[4];
+    double lambda[4] = {};
+    int count = 0;
+};
+
+struct GjkOptions {
+    SimplexSolver solver = SimplexSolver::SignedVolumes;
+    /// Stop when (upper - lower) <= relativeTolerance * upper on the distance. 1e-13 keeps the
+    /// distance within 1e-13 relative; rounding noise of v·w is ~1e-16 |w|, far below.
+    double relativeTolerance = 1e-13;
+    /// Safety cap; polytopes converge in a few iterations, smooth shapes in tens.
+    int maxIterations = 128;
+    /// Optional simplex of a previous query (e.g. last frame): its vertices are re-evaluated as
+    /// support points of the current shapes along their stored directions.
+    const GjkSimplex* warmStart = nullptr;
+    /// When a separated answer is doubtful (a sliver terminal triangle, or an uncertified stop),
+    /// recompute it from the edge pairs of the terminal simplex in double-double arithmetic,
+    /// certified by the supports (core/closest/edge_pair_distance.h, detail::gjkRefineEdgePairs): exact
+    /// to a few ulps even for nearly parallel edges, where |v| errs by ~u L / angle.
+    bool refineEdgePairs = true;
+};
+
+struct GjkResult {
+    GjkStatus status = GjkStatus::InvalidInput;
+    bool intersect = false;
+    double distance = 0.0;              ///< Euclidean distance (0 when intersecting), world units
+    Vec3 pointA = Vec3::Zero();         ///< closest point on A (when intersecting: a common point
+    Vec3 pointB = Vec3::Zero();         ///<   of the simplex, pointA ~ pointB), world frame
+    Vec3 separatingAxis = Vec3::Zero(); ///< unit, from A toward B: (pointB - pointA) / distance;
+                                        ///< zero when intersecting
+    GjkSimplex simplex;                 ///< terminal simplex (input for EPA or a warm start)
+    int iterations = 0;
+    GjkTermination termination = GjkTermination::InvalidInput;
+    double lowerBound = 0.0;            ///< max over iterations of v·w / |v| (distance >= this)
+    double upperBound = 0.0;            ///< |v| (distance <= this)
+    bool edgePairRefined = false;       ///< distance and witnesses from the edge pair (see options)
+};
+
+/// One GJK iteration as plain data (for demos / debugging). Simplex slots are named A, B, C, D.
+struct GjkTraceStep {
+    int iteration = 0;
+    GjkVertex simplex[4];           ///< simplex after adding the new support point, before reduction
+    int simplexCount = 0;
+    Vec3 direction = Vec3::Zero();  ///< search direction d = -v
+    GjkVertex support;              ///< new support point (w, a, b)
+    std::string region;             ///< sub-simplex kept, by slot letters ("A", "BC", "ABD", ...)
+    double lambda[4] = {};          ///< barycentric weights of the kept vertices (region order)
+    Vec3 v = Vec3::Zero();          ///< closest point of the kept sub-simplex to the origin
+    Vec3 pointA = Vec3::Zero();     ///< witness points for this v
+    Vec3 pointB = Vec3::Zero();
+    double lowerBound = 0.0;        ///< distance lower bound so far
+    double upperBound = 0.0;        ///< |v| before this step's reduction
+    double gapTest = 0.0;           ///< |v|² - v·w, compared with relativeTolerance * |v|²
+    bool terminated = false;        ///< this step ended the loop (then region etc. are unchanged)
+};
+
+struct GjkTrace {
+    std::vector<GjkTraceStep> steps;
+    GjkTermination termination = GjkTermination::InvalidInput;
+};
+
+/// Display name of the enum values.
+const char* statusName(GjkStatus status);
+const char* terminationName(GjkTermination termination);
+
+namespace detail {
+
+/// Witness points sum lambda_i a_i, written relative to vertex 0 (pointA = a_0 + sum lambda_i
+/// (a_i - a_0)) so that far-from-origin shapes (offsets 1e6) lose no digits to the offset.
+void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB);
+
+/// Copy the sub-simplex `c` of the vertices `in` (kept vertices and their weights) into `out`.
+void gjkReduce(const GjkVertex* in, const SimplexClosest& c, GjkSimplex& out);
+
+/// Fill the trace-side fields of a step from a reduced simplex.
+void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced);
+
+/// True when a separated answer may be off by more than rounding of L: the terminal triangle is
+/// a sliver (two nearly parallel edges, normal error ~u / angle) or GJK stopped without
+/// certifying the distance (lower bound well below |v|: duplicate support or no progress).
+bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r);
+
+/// Every two points of A with every two points of B among the simplex's vertices, as accurate
+/// segment-segment distances (core/closest/edge_pair_distance.h), or the point-triangle distance when
+/// the simplex has one point of one shape and three of the other; sorted by distance, returns
+/// the count (<= 9). Each is a distance between subsets of A and B: an upper bound of the true
+/// distance.
+int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
+
+/// Replace a doubtful separated answer (gjkNeedsEdgePairs) by the smallest edge-pair distance
+/// that the supports certify: with axis d of that pair, d . (s_B(-d) - s_A(d)) is a lower bound
+/// of the distance; when it equals the pair's distance up to rounding, that distance is exact.
+/// Uncertified candidates (e.g. crossed edges of penetrating shapes) change nothing.
+template <class A, class B>
+void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r)
+{
+    if (!gjkNeedsEdgePairs(s, r)) return;
+    EdgePairDistance candidate[9];
+    const int n = gjkEdgePairCandidates(s, candidate);
+    for (int i = 0; i < n; ++i) {
+        const EdgePairDistance& e = candidate[i];
+        if (!(e.distance > 0.0)) continue;  // touching edges give no axis to certify
+        const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
+        const double lower = e.axis.dot(sb) - e.axis.dot(sa);
+        // Rounding of the two dot products and of the axis (a few u) times the coordinates.
+        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(),
+                                   e.pointA.cwiseAbs().maxCoeff(), e.pointB.cwiseAbs().maxCoeff()});
+        if (!(lower >= e.distance - 64.0 * 0x1p-53 * m)) continue;
+        r.distance = e.distance;
+        r.upperBound = e.distance;
+        r.lowerBound = std::min(lower, e.distance);
+        r.pointA = e.pointA;
+        r.pointB = e.pointB;
+        r.separatingAxis = e.axis;
+        r.edgePairRefined = true;
+        return;
+    }
+}
+
+/// Support of `shape` along d, through the shape's hinted overload support(d, hint) when it has
+/// one (PolytopeShape: hill climbing restarts at the previous answer, see core/geometry/shapes.h).
+template <class S>
+inline Vec3 hintedSupport(const S& shape, const Vec3& d, int& hint)
+{
+    if constexpr (requires { shape.support(d, hint); }) {
+        return shape.support(d, hint);
+    } else {
+        return shape.support(d);
+    }
+}
+
+/// Support hints of both shapes for one query (-1: cold start).
+struct SupportHints {
+    int a = -1;
+    int b = -1;
+};
+
+template <class A, class B>
+inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out,
+                       SupportHints& hints)
+{
+    out.direction = d;
+    out.a = hintedSupport(shapeA, d, hints.a);
+    out.b = hintedSupport(shapeB, Vec3(-d), hints.b);
+    out.w = out.a - out.b;  // exact (Sterbenz) when a and b are within a factor 2 per coordinate
+}
+
+template <class A, class B>
+inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out)
+{
+    SupportHints cold;
+    gjkSupport(shapeA, shapeB, d, out, cold);
+}
+
+/// Keep the sub-simplex `c` of s (indices ascending, so compaction in place is safe).
+inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c)
+{
+    for (int k = 0; k < c.count; ++k) {
+        if (c.index[k] != k) s.vertex[k] = s.vertex[c.index[k]];
+        s.lambda[k] = c.lambda[k];
+    }
+    s.count = c.count;
+}
+
+template <class A, class B>
+GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkTrace* trace,
+                 bool booleanQuery)
+{
+    // v = 0 up to rounding: |v|² <= kTouch² max|w_i|². Computing v from vertices of size |w|
+    // leaves an error of a few ulps of |w|; below 1e-14 |w| the origin is on the simplex.
+    constexpr double kTouch2 = 1e-14 * 1e-14;
+    GjkResult r;
+    // The simplex lives in r.simplex: W + {w} is built in slot s.count and reduced in place, so
+    // no vertex is copied unless the solver drops one before it.
+    GjkSimplex& s = r.simplex;
+    SupportHints hints;
+    Vec3 wv[4];
+    SimplexClosest c;
+    const double eps = options.relativeTolerance;
+    auto finish = [&](GjkTermination why) {
+        r.termination = why;
+        if (trace) trace->termination = why;
+        if (why == GjkTermination::InvalidInput) {
+            r.status = GjkStatus::InvalidInput;
+            return;
+        }
+        detail::gjkWitness(s, r.pointA, r.pointB);
+        Vec3 v = Vec3::Zero();
+        for (int i = 0; i < s.count; ++i) v += s.lambda[i] * s.vertex[i].w;
+        const double vv = v.squaredNorm();
+        if (why == GjkTermination::OriginInSimplex) {
+            r.status = GjkStatus::Intersecting;
+            r.intersect = true;
+            r.distance = 0.0;
+            r.upperBound = 0.0;
+            r.separatingAxis.setZero();
+            return;
+        }
+        r.status = GjkStatus::Separated;
+        r.intersect = false;
+        r.distance = std::sqrt(vv);
+        r.upperBound = r.distance;
+        r.separatingAxis = -v / r.distance;
+        if (s.count == 3) {
+            // Face region: the triangle normal is a better axis than v, whose direction carries
+            // an error of ~eps |w| / |v| when the distance is small against the shapes' size.
+            Vec3 n = (s.vertex[1].w - s.vertex[0].w).cross(s.vertex[2].w - s.vertex[0].w);
+            const double len = n.norm();
+            if (len > 0.0) {
+                n /= len;
+                if (n.dot(v) < 0.0) n = -n;
+                if (n.dot(v) > 0.5 * r.distance) r.separatingAxis = -n;  // sanity: same side
+            }
+        }
+        if (options.refineEdgePairs && s.count >= 2) gjkRefineEdgePairs(shapeA, shapeB, s, r);
+    };
+
+    // Initial simplex: warm start (re-evaluated supports) or one support point along +x.
+    if (options.warmStart && options.warmStart->count > 0) {
+        int n = 0;
+        for (int i = 0; i < options.warmStart->count && i < 4; ++i) {
+            gjkSupport(shapeA, shapeB, options.warmStart->vertex[i].direction, s.vertex[n], hints);
+            bool dup = false;
+            for (int j = 0; j < n; ++j) dup = dup || (s.vertex[j].w == s.vertex[n].w);
+            if (!dup) ++n;
+        }
+        s.count = n;
+        for (int i = 0; i < n; ++i) {
+            if (!s.vertex[i].w.allFinite()) {
+                s.count = 0;
+                finish(GjkTermination::InvalidInput);
+                return r;
+            }
+            wv[i] = s.vertex[i].w;
+        }
+        c = closestOnSimplex(wv, n, options.solver);
+        gjkCompact(s, c);
+    } else {
+        gjkSupport(shapeA, shapeB, Vec3::UnitX(), s.vertex[0], hints);
+        s.lambda[0] = 1.0;
+        s.count = 1;
+        if (!s.vertex[0].w.allFinite()) {
+            finish(GjkTermination::InvalidInput);
+            return r;
+        }
+        c.count = 1;
+        c.v = s.vertex[0].w;
+    }
+    Vec3 v = c.v;
+    double vv = v.squaredNorm();
+    double maxW2 = 0.0;
+    for (int i = 0; i < s.count; ++i) maxW2 = std::max(maxW2, s.vertex[i].w.squaredNorm());
+    if (s.count == 4 || vv <= kTouch2 * maxW2) {
+        finish(GjkTermination::OriginInSimplex);
+        return r;
+    }
+
+    for (int iter = 1;; ++iter) {
+        r.iterations = iter;
+        // The new support point goes into the free slot s.count (the simplex has at most 3
+        // vertices here: a full tetrahedron ended the loop).
+        GjkVertex& sup = s.vertex[s.count];
+        gjkSupport(shapeA, shapeB, Vec3(-v), sup, hints);
+        if (!sup.w.allFinite()) {
+            finish(GjkTermination::InvalidInput);
+            return r;
+        }
+        const double vw = v.dot(sup.w);
+        const double gapTest = vv - vw;  // = |v| (upper - lower) when vw > 0
+        const double vNorm = std::sqrt(vv);
+        if (vw > 0.0) r.lowerBound = std::max(r.lowerBound, vw / vNorm);
+        r.upperBound = vNorm;
+        GjkTraceStep* step = nullptr;
+        if (trace) {
+            trace->steps.emplace_back();
+            step = &trace->steps.back();
+            step->iteration = iter;
+            step->direction = -v;
+            step->support = sup;
+            step->lowerBound = r.lowerBound;
+            step->upperBound = r.upperBound;
+            step->gapTest = gapTest;
+            step->simplexCount = s.count;
+            for (int i = 0; i < s.count; ++i) step->simplex[i] = s.vertex[i];
+            step->v = v;
+            char name[5] = "ABCD";
+            name[s.count] = '\0';
+            step->region = name;
+            for (int i = 0; i < s.count; ++i) step->lambda[i] = s.lambda[i];
+            detail::gjkWitness(s, step->pointA, step->pointB);
+        }
+        // Boolean query: v·w > 0 means the plane through w orthogonal to v separates C from the
+        // origin, i.e. -v is a separating axis. Early-out before converging on the distance.
+        if (booleanQuery && vw > 0.0) {
+            if (step) step->terminated = true;
+            finish(GjkTermination::SeparatingAxis);
+            return r;
+        }
+        // Progress test (van den Bergen §4.3.5): |v|² - v·w <= eps |v|² bounds the relative
+        // distance error by eps. Also true when w brings nothing new (v·w >= |v|²).
+        if (gapTest <= eps * vv) {
+            if (step) step->terminated = true;
+            finish(GjkTermination::Converged);
+            return r;
+        }
+        // Duplicate support point: the simplex cannot change, exit to avoid cycling.
+        bool dup = false;
+        for (int i = 0; i < s.count; ++i) dup = dup || (s.vertex[i].w == sup.w);
+        if (dup) {
+            if (step) step->terminated = true;
+            finish(GjkTermination::DuplicateSupport);
+            return r;
+        }
+        // W + {w}, then its closest sub-simplex.
+        const int n = s.count + 1;
+        for (int i = 0; i < n; ++i) wv[i] = s.vertex[i].w;
+        c = closestOnSimplex(wv, n, options.solver);
+        const double vvNew = c.v.squaredNorm();
+        if (step) {
+            step->simplexCount = n;
+            for (int i = 0; i < n; ++i) step->simplex[i] = s.vertex[i];
+        }
+        maxW2 = std::max(maxW2, sup.w.squaredNorm());
+        if (c.count == 4 || vvNew <= kTouch2 * maxW2) {
+            gjkCompact(s, c);
+            if (step) {
+                gjkTraceReduction(*step, c, s);
+                step->terminated = true;
+            }
+            finish(GjkTermination::OriginInSimplex);
+            return r;
+        }
+        // |v| must strictly decrease; if rounding stalls it, keep the previous (better) simplex
+        // (still slots 0..count-1 with their weights: the new point in slot count is dropped).
+        if (!(vvNew < vv)) {
+            if (step) {
+                GjkSimplex reduced = s;
+                gjkCompact(reduced, c);
+                gjkTraceReduction(*step, c, reduced);
+                step->terminated = true;
+            }
+            finish(GjkTermination::NoProgress);
+            return r;
+        }
+        gjkCompact(s, c);
+        if (step) gjkTraceReduction(*step, c, s);
+        v = c.v;
+        vv = vvNew;
+        if (iter >= options.maxIterations) {
+            finish(GjkTermination::MaxIterations);
+            return r;
+        }
+    }
+}
+
+}  // namespace detail
+
+/// Distance between convex shapes A and B (world frame, world units) with witness points and a
+/// separating axis. Intersecting (or touching up to rounding) shapes give status Intersecting,
+/// distance 0 and a terminal simplex that contains the origin (feed it to epaPenetration).
+template <SupportMapping A, SupportMapping B>
+GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& options = {},
+                      GjkTrace* trace = nullptr)
+{
+    return detail::gjkRun(shapeA, shapeB, options, trace, false);
+}
+
+/// Boolean intersection test of A and B (world frame): stops as soon as a separating axis is
+/// found. Optional `result` receives the (partial) GJK result: for separated shapes its distance
+/// is only an upper bound unless the loop converged.
+template <SupportMapping A, SupportMapping B>
+bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options = {},
+                  GjkTrace* trace = nullptr, GjkResult* result = nullptr)
+{
+    GjkResult r = detail::gjkRun(shapeA, shapeB, options, trace, true);
+    if (result) *result = r;
+    return r.intersect;
+}
+
+}  // namespace cdlab

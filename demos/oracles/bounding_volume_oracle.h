@@ -1,0 +1,111 @@
+// Test-only helpers for the bounding-volume tests (bounding_volume_fit, bounding_sphere, kdop,
+// swept_sphere). Shares no code with core/: long double arithmetic, brute force.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/base/types.h"
+
+namespace bvoracle {
+
+using LD = long double;
+using cdlab::Mat3;
+using cdlab::Triangle;
+using cdlab::Vec3;
+
+struct V {
+    LD x = 0, y = 0, z = 0;
+    V() = default;
+    V(LD a, LD b, LD c) : x(a), y(b), z(c) {}
+    explicit V(const Vec3& v) : x(v.x()), y(v.y()), z(v.z()) {}
+    V operator+(const V& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    V operator-(const V& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    V operator*(LD s) const { return {x * s, y * s, z * s}; }
+    LD operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+inline LD dot(const V& a, const V& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V cross(const V& a, const V& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline LD norm(const V& a) { return std::sqrt(dot(a, a)); }
+
+/// Distance from p to segment ab in long double.
+inline LD distPointSegment(const V& p, const V& a, const V& b) {
+    const V ab = b - a;
+    const LD l2 = dot(ab, ab);
+    LD t = l2 > 0 ? dot(p - a, ab) / l2 : 0;
+    t = std::clamp<LD>(t, 0, 1);
+    return norm(p - (a + ab * t));
+}
+
+/// Random unit quaternion (uniform enough for tests).
+inline Eigen::Quaterniond randomRotation(std::mt19937& rng) {
+    std::normal_distribution<double> n(0.0, 1.0);
+    Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+    q.normalize();
+    return q;
+}
+
+/// Points uniform in [-1, 1]^3 times scale, rotated, plus offset.
+inline std::vector<Vec3> randomCloud(std::mt19937& rng, int n, const Vec3& stretch, double scale,
+                                     const Vec3& offset) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const Eigen::Quaterniond q = randomRotation(rng);
+    std::vector<Vec3> pts;
+    for (int i = 0; i < n; ++i) {
+        const Vec3 local(u(rng) * stretch.x(), u(rng) * stretch.y(), u(rng) * stretch.z());
+        pts.push_back(offset + scale * (q * local));
+    }
+    return pts;
+}
+
+/// Closed box mesh [-h, h] (12 triangles; the +x face split into 2 * k * k triangles when k > 1
+/// to test tessellation independence), rotated by q, translated by offset.
+inline std::vector<Triangle> boxMesh(const Vec3& h, const Eigen::Quaterniond& q, const Vec3& offset, int k = 1) {
+    std::vector<Triangle> tris;
+    auto map = [&](const Vec3& p) { return Vec3(offset + q * p.cwiseProduct(h)); };
+    for (int axis = 0; axis < 3; ++axis) {
+        for (int side = -1; side <= 1; side += 2) {
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            const int n = (axis == 0 && side == 1) ? k : 1;
+            for (int i = 0; i < n; ++i) {
+                for (int j = 0; j < n; ++j) {
+                    auto corner = [&](int a, int b) {
+                        Vec3 p;
+                        p[axis] = side;
+                        p[u] = -1.0 + 2.0 * (i + a) / n;
+                        p[v] = -1.0 + 2.0 * (j + b) / n;
+                        return map(p);
+                    };
+                    tris.push_back({corner(0, 0), corner(1, 0), corner(1, 1)});
+                    tris.push_back({corner(0, 0), corner(1, 1), corner(0, 1)});
+                }
+            }
+        }
+    }
+    return tris;
+}
+
+/// Vertices of a triangle list (with repeats).
+inline std::vector<Vec3> vertices(const std::vector<Triangle>& tris) {
+    std::vector<Vec3> v;
+    for (const Triangle& t : tris) {
+        v.push_back(t.a);
+        v.push_back(t.b);
+        v.push_back(t.c);
+    }
+    return v;
+}
+
+/// Largest |coordinate| over points (for tolerances relative to the magnitude of the input).
+inline double magnitude(const std::vector<Vec3>& pts) {
+    double m = 0.0;
+    for (const Vec3& p : pts) m = std::max(m, p.cwiseAbs().maxCoeff());
+    return m;
+}
+
+}  // namespace bvoracle

@@ -1,0 +1,287 @@
+// GJK distance / intersection tests against analytic answers and a long double brute-force
+// oracle (facet enumeration of the Minkowski difference, demos/oracles/minkowski_facet_oracle.h).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <random>
+#include <sstream>
+
+#include "core/gjk_epa/gjk.h"
+#include "demos/oracles/minkowski_facet_oracle.h"
+
+using namespace cdlab;
+using namespace cdlab::test;
+
+namespace {
+
+constexpr SimplexSolver kSolvers[] = {SimplexSolver::SignedVolumes, SimplexSolver::Johnson};
+
+GjkOptions withSolver(SimplexSolver s)
+{
+    GjkOptions o;
+    o.solver = s;
+    return o;
+}
+
+}  // namespace
+
+TEST_SUITE("gjk")
+{
+    TEST_CASE("spheres: exact distance, witness points and axis at every scale and offset")
+    {
+        for (SimplexSolver solver : kSolvers) {
+            for (double size : {1e-3, 1.0, 1e3}) {
+                for (double offset : {0.0, 1e4, 1e6}) {
+                    const Vec3 o(offset, -0.5 * offset, 0.25 * offset);
+                    const Vec3 dir = Vec3(1, 2, -0.5).normalized();
+                    SphereShape a{o, 0.7 * size};
+                    SphereShape b{o + 2.0 * size * dir, 0.5 * size};
+                    const GjkResult r = gjkDistance(a, b, withSolver(solver));
+                    CAPTURE(size);
+                    CAPTURE(offset);
+                    REQUIRE(r.status == GjkStatus::Separated);
+                    const double expected = 0.8 * size;
+                    // Spheres converge geometrically: the tolerance is GJK's relative tolerance
+                    // plus the rounding of the centers at the offset.
+                    const double slack = 1e-12 * expected + 16 * DBL_EPSILON * offset;
+                    CHECK(std::abs(r.distance - expected) <= slack);
+                    CHECK((r.pointA - (o + 0.7 * size * dir)).norm() <= (1e-6 + std::sqrt(64 * DBL_EPSILON * offset / size)) * size);
+                    // A sphere stored at offset 1e6 is only round to ulp(1e6) ~ 1e-10: the axis
+                    // is then known to ~sqrt(noise / size).
+                    const double noise = 64 * DBL_EPSILON * offset / size;
+                    CHECK((r.separatingAxis - dir).norm() <= 1e-6 + std::sqrt(noise));
+                    CHECK(r.lowerBound <= r.distance * (1 + 1e-13) + slack);
+                }
+            }
+        }
+    }
+
+    TEST_CASE("axis-aligned boxes: face, edge and vertex closest features")
+    {
+        BoxShape a{Vec3(0, 0, 0), Vec3(1, 2, 3)};
+        struct Case {
+            Vec3 center;
+            double distance;
+        } cases[] = {
+            {Vec3(3.5, 0.5, 0.5), 1.5},                       // face x
+            {Vec3(0.3, -5.0, 1.0), 2.0},                      // face -y
+            {Vec3(3.0, 4.0, 0.0), std::sqrt(1.0 + 1.0)},      // edge (x, y)
+            {Vec3(-3.0, -4.0, 5.0), std::sqrt(1.0 + 1 + 1)},  // vertex
+            {Vec3(2.0, 0.0, 0.0), 0.0},                       // touching faces
+        };
+        for (SimplexSolver solver : kSolvers) {
+            for (const Case& c : cases) {
+                for (double offset : {0.0, 1e6}) {
+                    const Vec3 o = Vec3::Constant(offset);
+                    BoxShape aa{a.center + o, a.half};
+                    BoxShape b{c.center + o, Vec3(1, 1, 1)};
+                    const GjkResult r = gjkDistance(aa, b, withSolver(solver));
+                    CAPTURE(c.center.transpose());
+                    CAPTURE(offset);
+                    if (c.distance == 0.0) {
+                        CHECK(r.intersect);
+                        CHECK(r.distance == 0.0);
+                    } else {
+                        REQUIRE(r.status == GjkStatus::Separated);
+                        CHECK(std::abs(r.distance - c.distance) <= 1e-14 * c.distance);
+                    }
+                    CHECK(gjkIntersect(aa, b, withSolver(solver)) == (c.distance == 0.0));
+                }
+            }
+        }
+    }
+
+    TEST_CASE("points and segments: degenerate shapes")
+    {
+        for (SimplexSolver solver : kSolvers) {
+            const GjkOptions opt = withSolver(solver);
+            PointShape p{Vec3(1, 2, 3)};
+            PointShape q{Vec3(1, 2, 3)};
+            GjkResult r = gjkDistance(p, q, opt);
+            CHECK(r.intersect);  // coincident points touch
+            CHECK(r.distance == 0.0);
+            q.p = Vec3(1, 2, 7);
+            r = gjkDistance(p, q, opt);
+            CHECK(r.distance == doctest::Approx(4.0).epsilon(1e-15));
+            CHECK((r.separatingAxis - Vec3(0, 0, 1)).norm() < 1e-15);
+            // point to segment interior, segment to segment (skew), parallel segments
+            SegmentShape s{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
+            PointShape c{Vec3(0.25, 3, 4)};
+            r = gjkDistance(s, c, opt);
+            CHECK(r.distance == doctest::Approx(5.0).epsilon(1e-15));
+            CHECK((r.pointA - Vec3(0.25, 0, 0)).norm() < 1e-15);
+            SegmentShape t{Vec3(0.5, -1, 2), Vec3(0.5, 1, 2)};
+            r = gjkDistance(s, t, opt);
+            CHECK(r.distance == doctest::Approx(2.0).epsilon(1e-15));
+            CHECK((r.pointA - Vec3(0.5, 0, 0)).norm() < 1e-15);
+            CHECK((r.pointB - Vec3(0.5, 0, 2)).norm() < 1e-15);
+            SegmentShape u{Vec3(-3, 0, 1), Vec3(3, 0, 1)};  // parallel, overlapping projections
+            r = gjkDistance(s, u, opt);
+            CHECK(r.distance == doctest::Approx(1.0).epsilon(1e-15));
+            SegmentShape x{Vec3(0, -1, 0), Vec3(0, 1, 0)};  // crossing segments
+            r = gjkDistance(s, x, opt);
+            CHECK(r.intersect);
+            // degenerate polytope: repeated and collinear vertices
+            PolytopeShape flat{{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 0, 0)}};
+            PointShape above{Vec3(1.5, 0, 2)};
+            r = gjkDistance(flat, above, opt);
+            CHECK(r.distance == doctest::Approx(2.0).epsilon(1e-15));
+        }
+    }
+
+    TEST_CASE("random polytope pairs vs long double facet-enumeration oracle")
+    {
+        std::mt19937_64 rng(1234);
+        std::uniform_int_distribution<int> count(8, 10);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        for (SimplexSolver solver : kSolvers) {
+            double maxDistErr = 0, maxAxisErr = 0, maxWitnessErr = 0;
+            int separated = 0, intersecting = 0, wrong = 0;
+            const double sizes[] = {1e-3, 1.0, 1e3};
+            const double offsets[] = {0.0, 1e3, 1e6};
+            for (int trial = 0; trial < 90; ++trial) {
+                const double size = sizes[trial % 3];
+                const double offset = offsets[(trial / 3) % 3];
+                const Vec3 o = offset * randomUnit(rng);
+                const Vec3 sep = size * (0.2 + 2.0 * unit(rng)) * randomUnit(rng);
+                PolytopeShape a{randomPolytope(rng, count(rng), size, o)};
+                PolytopeShape b{randomPolytope(rng, count(rng), size, o + sep)};
+                const HullOracle oracle = hullOracle(a.vertices, b.vertices);
+                const GjkResult r = gjkDistance(a, b, withSolver(solver));
+                const bool hit = gjkIntersect(a, b, withSolver(solver));
+                CHECK(std::isfinite(r.distance));
+                if (oracle.inside) {
+                    ++intersecting;
+                    if (oracle.depth > 1e-9 * size && (!r.intersect || !hit)) ++wrong;
+                    continue;
+                }
+                ++separated;
+                const double d = static_cast<double>(oracle.distance);
+                if (d < 1e-9 * size) continue;  // touching within rounding: either answer is right
+                if (r.intersect || hit) {
+                    ++wrong;
+                    continue;
+                }
+                maxDistErr = std::max(maxDistErr, std::abs(r.distance - d) / d);
+                // separating axis n (A -> B): the gap of the support planes equals the distance
+                const double gap = -static_cast<double>(supportValueL(a.vertices, b.vertices, r.separatingAxis));
+                maxAxisErr = std::max(maxAxisErr, std::abs(gap - d) / d);
+                // witness points are doubles at the offset: allow their own rounding
+                const double wErr = std::abs((r.pointA - r.pointB).norm() - d);
+                maxWitnessErr = std::max(maxWitnessErr, wErr / (1e-12 * d + 16 * DBL_EPSILON * (offset + size)));
+            }
+            std::ostringstream msg;
+            msg << solverName(solver) << ": separated " << separated << ", intersecting " << intersecting
+                << ", max rel distance error " << maxDistErr << ", axis " << maxAxisErr;
+            MESSAGE(msg.str());
+            CHECK(wrong == 0);
+            CHECK(separated > 20);
+            CHECK(intersecting > 10);
+            CHECK(maxDistErr <= 1e-12);
+            CHECK(maxAxisErr <= 1e-12);
+            CHECK(maxWitnessErr <= 1.0);
+        }
+    }
+
+    TEST_CASE("every vertex ordering gives the same distance")
+    {
+        std::mt19937_64 rng(77);
+        PolytopeShape a{randomPolytope(rng, 5, 1.0, Vec3::Zero())};
+        PolytopeShape b{randomPolytope(rng, 4, 1.0, Vec3(2.2, 0.3, -0.1))};
+        const double d = static_cast<double>(hullOracle(a.vertices, b.vertices).distance);
+        std::vector<int> perm = {0, 1, 2, 3, 4};
+        PolytopeShape pa = a;
+        int n = 0;
+        do {
+            for (int i = 0; i < 5; ++i) pa.vertices[i] = a.vertices[perm[i]];
+            for (SimplexSolver solver : kSolvers) {
+                const GjkResult r = gjkDistance(pa, b, withSolver(solver));
+                CHECK(std::abs(r.distance - d) <= 1e-13 * d);
+            }
+            ++n;
+        } while (std::next_permutation(perm.begin(), perm.end()));
+        CHECK(n == 120);
+    }
+
+    TEST_CASE("warm start from a previous simplex: same answer, no more iterations")
+    {
+        std::mt19937_64 rng(5);
+        for (int trial = 0; trial < 20; ++trial) {
+            PolytopeShape a{randomPolytope(rng, 32, 1.0, Vec3::Zero())};
+            const Vec3 c = 2.5 * randomUnit(rng);
+            PolytopeShape b{randomPolytope(rng, 32, 1.0, c)};
+            const GjkResult first = gjkDistance(a, b);
+            // move B a little (next frame) and warm start
+            PolytopeShape b2 = b;
+            for (Vec3& v : b2.vertices) v += Vec3(0.01, -0.005, 0.002);
+            GjkOptions warm;
+            warm.warmStart = &first.simplex;
+            const GjkResult cold = gjkDistance(a, b2);
+            const GjkResult hot = gjkDistance(a, b2, warm);
+            CHECK(hot.intersect == cold.intersect);
+            CHECK(std::abs(hot.distance - cold.distance) <= 1e-13 * std::max(cold.distance, 1.0));
+            CHECK(hot.iterations <= cold.iterations + 1);
+        }
+    }
+
+    TEST_CASE("termination: never NaN, never a hang, every reason reported")
+    {
+        // NaN shape -> InvalidInput
+        PointShape nan{Vec3(NAN, 0, 0)};
+        PointShape p{Vec3(0, 0, 0)};
+        GjkResult r = gjkDistance(nan, p);
+        CHECK(r.status == GjkStatus::InvalidInput);
+        CHECK(r.termination == GjkTermination::InvalidInput);
+        // Iteration cap on smooth shapes with an impossible tolerance
+        SphereShape s1{Vec3(0, 0, 0), 1.0}, s2{Vec3(3, 1, 0.5), 1.0};
+        GjkOptions tight;
+        tight.relativeTolerance = 0.0;
+        tight.maxIterations = 3;
+        r = gjkDistance(s1, s2, tight);
+        CHECK(r.termination != GjkTermination::Converged);
+        CHECK(r.iterations <= 3);
+        CHECK(std::isfinite(r.distance));
+        CHECK(r.lowerBound <= r.upperBound);
+        tight.maxIterations = 1000;
+        r = gjkDistance(s1, s2, tight);  // rounding floor: must stop by itself
+        CHECK(r.iterations < 1000);
+        CHECK(r.distance == doctest::Approx(std::sqrt(9 + 1 + 0.25) - 2).epsilon(1e-14));
+        // Intersecting boxes report OriginInSimplex, separated boolean query the early-out
+        BoxShape b1{Vec3(0, 0, 0), Vec3(1, 1, 1)}, b2{Vec3(0.5, 0.5, 0.5), Vec3(1, 1, 1)};
+        r = gjkDistance(b1, b2);
+        CHECK(r.termination == GjkTermination::OriginInSimplex);
+        GjkResult partial;
+        BoxShape far{Vec3(10, 0, 0), Vec3(1, 1, 1)};
+        CHECK_FALSE(gjkIntersect(b1, far, {}, nullptr, &partial));
+        CHECK(partial.termination == GjkTermination::SeparatingAxis);
+    }
+
+    TEST_CASE("trace records every iteration with bounds, regions and weights")
+    {
+        std::mt19937_64 rng(9);
+        PolytopeShape a{randomPolytope(rng, 16, 1.0, Vec3::Zero())};
+        PolytopeShape b{randomPolytope(rng, 16, 1.0, Vec3(2.0, 1.0, 0.0))};
+        GjkTrace trace;
+        const GjkResult r = gjkDistance(a, b, {}, &trace);
+        REQUIRE(static_cast<int>(trace.steps.size()) == r.iterations);
+        CHECK(trace.termination == r.termination);
+        CHECK(trace.steps.back().terminated);
+        double previousUpper = INFINITY;
+        for (const GjkTraceStep& s : trace.steps) {
+            CHECK(s.lowerBound <= r.distance * (1 + 1e-12));
+            CHECK(s.upperBound >= r.distance * (1 - 1e-12));
+            CHECK(s.upperBound <= previousUpper);
+            previousUpper = s.upperBound;
+            CHECK(!s.region.empty());
+            double sum = 0;
+            for (int k = 0; k < static_cast<int>(s.region.size()); ++k) sum += s.lambda[k];
+            CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
+            // the recorded v and witness points agree: v = pointA - pointB
+            CHECK((s.v - (s.pointA - s.pointB)).norm() <= 1e-12);
+            // support point is extreme along the search direction
+            CHECK(s.support.w.isApprox(a.support(s.direction) - b.support(-s.direction)));
+        }
+        CHECK((trace.steps.back().v.norm() - r.distance) <= 1e-12);
+    }
+}
