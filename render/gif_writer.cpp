@@ -96,8 +96,4 @@ std::string encodeGif(const std::vector<Image>& frames, const GifOptions& option
     return bytes;
 }
 
-void writeGifAtomic(const std::string& path, const std::vector<Image>& frames, const GifOptions& options) {
-    writeFileAtomic(path, encodeGif(frames, options));
-}
-
 }  // namespace cdlab::render

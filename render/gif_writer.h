@@ -26,8 +26,4 @@ struct GifError : std::runtime_error {
 /// Encodes RGBA8 frames (alpha ignored; all frames the same size) into GIF file bytes.
 std::string encodeGif(const std::vector<Image>& frames, const GifOptions& options = {});
 
-/// encodeGif() written atomically (temp file + rename, like writePngAtomic). Throws GifError or
-/// std::runtime_error on write errors.
-void writeGifAtomic(const std::string& path, const std::vector<Image>& frames, const GifOptions& options = {});
-
 }  // namespace cdlab::render

@@ -158,7 +158,7 @@ struct MoveToFront {
 
 }  // namespace
 
-const char* toString(WelzlStatus status) {
+const char* nameOf(WelzlStatus status) {
     switch (status) {
         case WelzlStatus::Exact: return "Exact";
         case WelzlStatus::Approximate: return "Approximate";

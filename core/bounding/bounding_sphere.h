@@ -55,7 +55,7 @@ enum class WelzlStatus {
 };
 
 /// "Exact", "Approximate", "Empty".
-const char* toString(WelzlStatus status);
+const char* nameOf(WelzlStatus status);
 
 /// One event of the move-to-front recursion: point `pointIndex` lay outside the current ball,
 /// so it joins the support set (the points forced onto the boundary) and a new ball is the

@@ -127,7 +127,7 @@ Obb pointCovarianceObb(const Aabb& bounds, int n, ForEachPoint forEachPoint, Obb
 
 }  // namespace
 
-const char* toString(ObbFitMethod method) {
+const char* nameOf(ObbFitMethod method) {
     switch (method) {
         case ObbFitMethod::TriangleCovariance: return "TriangleCovariance";
         case ObbFitMethod::PointCovariance: return "PointCovariance";

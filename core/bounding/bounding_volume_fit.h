@@ -34,7 +34,7 @@ enum class ObbFitMethod {
 };
 
 /// "TriangleCovariance", "PointCovariance", "AxisAligned", "Empty".
-const char* toString(ObbFitMethod method);
+const char* nameOf(ObbFitMethod method);
 
 /// What an OBB fit computed, for demos and tests (recorded in every build type).
 struct ObbFitTrace {

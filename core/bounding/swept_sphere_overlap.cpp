@@ -61,7 +61,7 @@ SweptSphereOverlapResult fromCoreDistance(double d, double ra, double rb, const 
 
 }  // namespace
 
-const char* toString(RectangleFeaturePair pair) {
+const char* nameOf(RectangleFeaturePair pair) {
     switch (pair) {
         case RectangleFeaturePair::EdgeEdge: return "EdgeEdge";
         case RectangleFeaturePair::VertexFace: return "VertexFace";

@@ -24,7 +24,7 @@ enum class RectangleFeaturePair {
 };
 
 /// "EdgeEdge", "VertexFace", "FaceVertex", "EdgeCrossesB", "EdgeCrossesA", "Invalid".
-const char* toString(RectangleFeaturePair pair);
+const char* nameOf(RectangleFeaturePair pair);
 
 /// Closest points of two rectangles (the cores of two RSSs; radii ignored).
 struct RectangleDistanceResult {

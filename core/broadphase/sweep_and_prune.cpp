@@ -6,6 +6,15 @@
 
 namespace cdlab {
 
+const char* nameOf(SapPairEvent event) {
+    switch (event) {
+        case SapPairEvent::None: return "none";
+        case SapPairEvent::Added: return "added";
+        case SapPairEvent::Removed: return "removed";
+    }
+    return "?";
+}
+
 namespace {
 
 constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};  // no pair has key (2^32-1, 2^32-1): a < b

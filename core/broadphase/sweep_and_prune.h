@@ -63,6 +63,9 @@ enum class SapPairEvent {
     Removed,  ///< the pair stopped overlapping on this axis: no longer reported
 };
 
+/// "none", "added", "removed".
+const char* nameOf(SapPairEvent event);
+
 /// One adjacent swap of insertion sort: `moving` (the endpoint being inserted) jumps left over
 /// `passed`, which moves one slot right. Values are this update's coordinates.
 struct SapSwap {

@@ -484,7 +484,18 @@ Obb toBody(const Obb& world, const Transform& pose, double margin) {
 
 }  // namespace
 
-const char* bvhStatusName(BvhStatus status) {
+const char* nameOf(BvKind kind) { return kind == BvKind::Aabb ? "AABB" : "OBB"; }
+
+const char* nameOf(BvhBuildMethod method) {
+    switch (method) {
+        case BvhBuildMethod::TopDownMedian: return "top_down_median";
+        case BvhBuildMethod::TopDownSah: return "top_down_sah";
+        case BvhBuildMethod::BottomUp: return "bottom_up";
+    }
+    return "?";
+}
+
+const char* nameOf(BvhStatus status) {
     switch (status) {
         case BvhStatus::Ok: return "ok";
         case BvhStatus::InvalidMesh: return "invalid mesh";
@@ -494,7 +505,7 @@ const char* bvhStatusName(BvhStatus status) {
     return "?";
 }
 
-const char* bvhTraversalActionName(BvhTraversalAction action) {
+const char* nameOf(BvhTraversalAction action) {
     switch (action) {
         case BvhTraversalAction::Prune: return "prune";
         case BvhTraversalAction::DescendA: return "descend A";

@@ -60,7 +60,11 @@ enum class BvhStatus {
 };
 
 /// "ok", "invalid mesh", "too many triangles for bottom-up", "topology mismatch".
-const char* bvhStatusName(BvhStatus status);
+const char* nameOf(BvhStatus status);
+/// "AABB", "OBB".
+const char* nameOf(BvKind kind);
+/// The scene spelling: "top_down_median", "top_down_sah", "bottom_up".
+const char* nameOf(BvhBuildMethod method);
 
 struct BvhBuildOptions {
     BvKind bvKind = BvKind::Obb;
@@ -152,7 +156,7 @@ enum class BvhTraversalAction {
 };
 
 /// "prune", "descend A", "descend B", "leaf test", "triangle test".
-const char* bvhTraversalActionName(BvhTraversalAction action);
+const char* nameOf(BvhTraversalAction action);
 
 /// One step of a traversal. Basic traversal: nodeB = -1, triangleB = -1.
 struct BvhTraversalStep {

@@ -5,15 +5,6 @@
 
 namespace cdlab {
 
-const char* meshCollisionStatusName(MeshCollisionStatus status) {
-    switch (status) {
-        case MeshCollisionStatus::Ok: return "ok";
-        case MeshCollisionStatus::InvalidTree: return "invalid tree";
-        case MeshCollisionStatus::TreeMeshMismatch: return "tree / mesh mismatch";
-    }
-    return "?";
-}
-
 MeshCollisionResult collideMeshes(const TriangleMesh& meshA, const Bvh& bvhA, const Transform& poseA,
                                   const TriangleMesh& meshB, const Bvh& bvhB, const Transform& poseB,
                                   const MeshCollisionOptions& options, BvhTraversalTrace* trace) {

@@ -29,9 +29,6 @@ enum class MeshCollisionStatus {
     TreeMeshMismatch,  ///< a tree's triangle count differs from its mesh's
 };
 
-/// "ok", "invalid tree", "tree / mesh mismatch".
-const char* meshCollisionStatusName(MeshCollisionStatus status);
-
 struct MeshCollisionOptions {
     /// Stop at the first intersecting pair (pairs then has at most one element).
     bool firstHitOnly = false;

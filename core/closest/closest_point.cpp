@@ -20,7 +20,7 @@ using exact::BigDyadic;
 using exact::Bounded;
 using exact::Expansion;
 
-const char* toString(SegmentRegion region) {
+const char* nameOf(SegmentRegion region) {
     switch (region) {
         case SegmentRegion::A: return "A";
         case SegmentRegion::B: return "B";
@@ -29,7 +29,7 @@ const char* toString(SegmentRegion region) {
     return "?";
 }
 
-const char* toString(TriangleRegion region) {
+const char* nameOf(TriangleRegion region) {
     switch (region) {
         case TriangleRegion::A: return "A";
         case TriangleRegion::B: return "B";
@@ -42,7 +42,7 @@ const char* toString(TriangleRegion region) {
     return "?";
 }
 
-const char* toString(TetrahedronRegion region) {
+const char* nameOf(TetrahedronRegion region) {
     static constexpr const char* kNames[] = {"A",  "B",  "C",  "D",   "AB",  "AC",  "AD",  "BC",
                                              "BD", "CD", "ABC", "ABD", "ACD", "BCD", "ABCD"};
     const int i = static_cast<int>(region);

@@ -50,11 +50,11 @@ enum class TriangleRegion { A, B, C, AB, BC, CA, ABC };
 enum class TetrahedronRegion { A, B, C, D, AB, AC, AD, BC, BD, CD, ABC, ABD, ACD, BCD, ABCD };
 
 /// "A", "B", "AB".
-const char* toString(SegmentRegion region);
+const char* nameOf(SegmentRegion region);
 /// "A", "B", "C", "AB", "BC", "CA", "ABC".
-const char* toString(TriangleRegion region);
+const char* nameOf(TriangleRegion region);
 /// "A".."D", "AB", "AC", "AD", "BC", "BD", "CD", "ABC", "ABD", "ACD", "BCD", "ABCD".
-const char* toString(TetrahedronRegion region);
+const char* nameOf(TetrahedronRegion region);
 
 /// What kind of input a closest-point query saw.
 enum class SimplexStatus {

@@ -7,7 +7,7 @@
 
 namespace cdlab {
 
-const char* contactTypeName(ContactType type) {
+const char* nameOf(ContactType type) {
     switch (type) {
         case ContactType::VV: return "V-V";
         case ContactType::VE: return "V-E";
@@ -134,7 +134,7 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
     for (const FeatureGeometry* f : {&a, &b}) {
         if (f->type == FeatureType::None) r.message = "feature type None";
         else if (f->type == FeatureType::Face ? f->points.size() < 3 : f->points.size() != size_t(expected(f->type)))
-            r.message = std::string("wrong point count for a ") + featureTypeName(f->type);
+            r.message = std::string("wrong point count for a ") + nameOf(f->type);
         else
             for (const Vec3& p : f->points)
                 if (!p.allFinite()) r.message = "non-finite feature point";

@@ -41,7 +41,7 @@ namespace cdlab {
 enum class ContactType { VV, VE, VF, EE, EF, FF };
 
 /// "V-V", "V-E", "V-F", "E-E", "E-F", "F-F" (the lower-dimensional feature first).
-const char* contactTypeName(ContactType type);
+const char* nameOf(ContactType type);
 
 /// A feature as geometry, world frame: Vertex = 1 point, Edge = 2 points, Face = >= 3 points of a
 /// convex planar polygon counter-clockwise seen from outside (right-hand rule gives the outward

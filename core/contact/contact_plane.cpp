@@ -6,7 +6,7 @@
 
 namespace cdlab {
 
-const char* statusName(PlaneContactStatus status) {
+const char* nameOf(PlaneContactStatus status) {
     switch (status) {
         case PlaneContactStatus::Separated: return "Separated";
         case PlaneContactStatus::Touching: return "Touching";

@@ -42,7 +42,7 @@ enum class PlaneContactStatus {
     InvalidInput, ///< empty polyhedron, zero / non-finite plane normal or offset, NaN pose: see message
 };
 
-const char* statusName(PlaneContactStatus status);
+const char* nameOf(PlaneContactStatus status);
 
 struct PlaneContactOptions {
     /// Feature tolerance tol (world units): vertices within tol of the extreme form the closest

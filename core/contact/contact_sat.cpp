@@ -8,7 +8,7 @@
 
 namespace cdlab {
 
-const char* statusName(SatContactStatus status) {
+const char* nameOf(SatContactStatus status) {
     switch (status) {
         case SatContactStatus::Separated: return "Separated";
         case SatContactStatus::Touching: return "Touching";
@@ -18,7 +18,7 @@ const char* statusName(SatContactStatus status) {
     return "InvalidInput";
 }
 
-const char* axisKindName(SatAxisKind kind) {
+const char* nameOf(SatAxisKind kind) {
     switch (kind) {
         case SatAxisKind::FaceA: return "face A";
         case SatAxisKind::FaceB: return "face B";

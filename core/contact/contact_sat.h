@@ -42,11 +42,11 @@ enum class SatContactStatus {
     Penetrating,  ///< separation < -tol: depth, normal, manifold meaningful
     InvalidInput, ///< empty polyhedron or non-finite / non-unit pose: see message
 };
-const char* statusName(SatContactStatus status);
+const char* nameOf(SatContactStatus status);
 
 enum class SatAxisKind { FaceA, FaceB, EdgeEdge };
 /// "face A", "face B", "edge-edge".
-const char* axisKindName(SatAxisKind kind);
+const char* nameOf(SatAxisKind kind);
 
 struct SatContactOptions {
     /// Touching tolerance (world units); < 0: 1e-9 x the larger body diagonal + 64 ulps of the coordinates.

@@ -8,7 +8,7 @@
 
 namespace cdlab {
 
-const char* statusName(RigidBodyStatus status) {
+const char* nameOf(RigidBodyStatus status) {
     switch (status) {
         case RigidBodyStatus::Ok: return "Ok";
         case RigidBodyStatus::ZeroMass: return "ZeroMass";

@@ -31,7 +31,7 @@ enum class RigidBodyStatus {
 };
 
 /// Name of a status, e.g. "ZeroMass".
-const char* statusName(RigidBodyStatus status);
+const char* nameOf(RigidBodyStatus status);
 
 struct RigidBody {
     Vec3 position = Vec3::Zero();          ///< centre of mass, world frame

@@ -5,7 +5,7 @@
 
 namespace cdlab {
 
-const char* statusName(SimulationStatus status) {
+const char* nameOf(SimulationStatus status) {
     switch (status) {
         case SimulationStatus::Ok: return "Ok";
         case SimulationStatus::InvalidShape: return "InvalidShape";
@@ -90,7 +90,7 @@ SimulationResult simulateDrop(const DropInput& input, const SimulationOptions& o
     const double d = input.ground.offset / nn;
 
     res.mass = computeMassProperties(input.shape, {.density = input.density});
-    if (!res.mass.ok()) return fail(SimulationStatus::InvalidShape, std::string(statusName(res.mass.status)) + ": " + res.mass.message);
+    if (!res.mass.ok()) return fail(SimulationStatus::InvalidShape, std::string(nameOf(res.mass.status)) + ": " + res.mass.message);
 
     // Recentre: body frame origin at the centre of mass (the inertia about it is unchanged).
     std::vector<Vec3> positions = input.shape.positions();
@@ -104,7 +104,7 @@ SimulationResult simulateDrop(const DropInput& input, const SimulationOptions& o
 
     const Transform comPose{input.pose.apply(res.mass.centerOfMass), input.pose.rotation};
     RigidBodyBuild built = makeDynamicBody(res.mass.mass, res.mass.inertia, comPose, input.linearVelocity, input.angularVelocity);
-    if (!built.ok()) return fail(SimulationStatus::InvalidBody, std::string(statusName(built.status)) + ": " + built.message);
+    if (!built.ok()) return fail(SimulationStatus::InvalidBody, std::string(nameOf(built.status)) + ": " + built.message);
     RigidBody body = built.body;
 
     SimulationStep initial;

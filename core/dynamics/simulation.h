@@ -64,7 +64,7 @@ enum class SimulationStatus {
 };
 
 /// Name of a status, e.g. "InvalidShape".
-const char* statusName(SimulationStatus status);
+const char* nameOf(SimulationStatus status);
 
 /// One step's record (state after the step; contacts as solved during it). World frame.
 struct SimulationStep {

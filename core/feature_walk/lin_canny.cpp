@@ -16,7 +16,7 @@
 
 namespace cdlab {
 
-const char* statusName(LinCannyStatus status) {
+const char* nameOf(LinCannyStatus status) {
     switch (status) {
         case LinCannyStatus::Separated: return "Separated";
         case LinCannyStatus::Penetrating: return "Penetrating";
@@ -27,7 +27,7 @@ const char* statusName(LinCannyStatus status) {
     return "?";
 }
 
-const char* toString(LinCannyPenetration how) {
+const char* nameOf(LinCannyPenetration how) {
     switch (how) {
         case LinCannyPenetration::None: return "None";
         case LinCannyPenetration::FeaturesMeet: return "FeaturesMeet";
@@ -217,7 +217,7 @@ struct Walk {
             out.body = r;
             out.to = owner.type == FT::Edge ? pl.other : pl.edge;
             out.rule = std::string(point) + " violates " + (pl.other.type == FT::Vertex ? "VE(" : "FE(") +
-                       toString(pl.edge) + " | " + toString(pl.other) + ")";
+                       nameOf(pl.edge) + " | " + nameOf(pl.other) + ")";
             markMaximal();
             return true;
         }
@@ -248,7 +248,7 @@ struct Walk {
             out.body = r;
             out.to = VClipFeature::face(bestFace);
             out.localMin = true;
-            out.rule = std::string("local minimum: ") + point + " behind " + toString(owner) + ", farthest in front of F" +
+            out.rule = std::string("local minimum: ") + point + " behind " + nameOf(owner) + ", farthest in front of F" +
                        std::to_string(bestFace);
             return true;
         }
@@ -388,7 +388,7 @@ LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const 
                     }
                     return finish(LinCannyStatus::CycleDetected,
                                   "lin_canny: cycle of " + std::to_string(lambda) + " feature pairs through " +
-                                      toString(w.X[0]) + "/" + toString(w.X[1]) + " (penetrating?)");
+                                      nameOf(w.X[0]) + "/" + nameOf(w.X[1]) + " (penetrating?)");
                 }
                 if (lambda == power) {
                     tortoise = key;

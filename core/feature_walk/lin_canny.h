@@ -52,7 +52,7 @@ enum class LinCannyStatus {
 };
 
 /// "Separated", "Penetrating", "CycleDetected", "StepLimit", "InvalidInput".
-const char* statusName(LinCannyStatus status);
+const char* nameOf(LinCannyStatus status);
 
 /// How a penetration was found.
 enum class LinCannyPenetration : std::uint8_t {
@@ -62,7 +62,7 @@ enum class LinCannyPenetration : std::uint8_t {
 };
 
 /// "None", "FeaturesMeet", "PointInside".
-const char* toString(LinCannyPenetration how);
+const char* nameOf(LinCannyPenetration how);
 
 /// Seed pair in, final pair out; same type as V-Clip's (invalid = cold start from vertex 0 / 0).
 using LinCannyCache = VClipCache;

@@ -5,7 +5,7 @@
 
 namespace cdlab {
 
-const char* toString(VClipFeatureType type) {
+const char* nameOf(VClipFeatureType type) {
     switch (type) {
         case VClipFeatureType::Vertex: return "vertex";
         case VClipFeatureType::Edge: return "edge";
@@ -15,7 +15,7 @@ const char* toString(VClipFeatureType type) {
     return "none";
 }
 
-std::string toString(const VClipFeature& f) {
+std::string nameOf(const VClipFeature& f) {
     switch (f.type) {
         case VClipFeatureType::Vertex: return "V" + std::to_string(f.index);
         case VClipFeatureType::Edge: return "E" + std::to_string(f.index);
@@ -25,7 +25,7 @@ std::string toString(const VClipFeature& f) {
     return "-";
 }
 
-const char* statusName(VClipBuildStatus status) {
+const char* nameOf(VClipBuildStatus status) {
     switch (status) {
         case VClipBuildStatus::Ok: return "Ok";
         case VClipBuildStatus::EmptyPolyhedron: return "EmptyPolyhedron";
@@ -35,7 +35,7 @@ const char* statusName(VClipBuildStatus status) {
     return "?";
 }
 
-const char* statusName(VClipStatus status) {
+const char* nameOf(VClipStatus status) {
     switch (status) {
         case VClipStatus::Separated: return "Separated";
         case VClipStatus::Penetrating: return "Penetrating";
@@ -46,7 +46,7 @@ const char* statusName(VClipStatus status) {
     return "?";
 }
 
-const char* toString(VClipPenetration how) {
+const char* nameOf(VClipPenetration how) {
     switch (how) {
         case VClipPenetration::None: return "None";
         case VClipPenetration::EdgePiercesFace: return "EdgePiercesFace";
@@ -56,7 +56,7 @@ const char* toString(VClipPenetration how) {
     return "?";
 }
 
-const char* toString(VClipState state) {
+const char* nameOf(VClipState state) {
     switch (state) {
         case VClipState::VertexVertex: return "V-V";
         case VClipState::VertexEdge: return "V-E";
@@ -67,7 +67,7 @@ const char* toString(VClipState state) {
     return "?";
 }
 
-const char* toString(VClipStepKind kind) {
+const char* nameOf(VClipStepKind kind) {
     switch (kind) {
         case VClipStepKind::Update: return "Update";
         case VClipStepKind::Done: return "Done";
@@ -94,7 +94,7 @@ VClipBuild buildVClipPolyhedron(const ConvexPolyhedron& poly) {
     const PolyhedronCheck check = poly.validate();
     if (!check.ok()) {
         out.status = VClipBuildStatus::InvalidMesh;
-        out.message = std::string("vclip: invalid polyhedron (") + defectName(check.defect) + "): " + check.message;
+        out.message = std::string("vclip: invalid polyhedron (") + nameOf(check.defect) + "): " + check.message;
         return out;
     }
     VClipPolyhedron& p = out.polyhedron;

@@ -65,9 +65,9 @@ struct VClipFeature {
 };
 
 /// "vertex", "edge", "face", "none".
-const char* toString(VClipFeatureType type);
+const char* nameOf(VClipFeatureType type);
 /// "V3", "E12", "F0", "-".
-std::string toString(const VClipFeature& feature);
+std::string nameOf(const VClipFeature& feature);
 
 /// A Voronoi plane (body frame): signedDistance(x) = normal · x - offset, unit normal, positive on
 /// the side of `edge`. `other` is the vertex (VE plane) or face (FE plane) on the negative side.
@@ -87,7 +87,7 @@ enum class VClipBuildStatus {
 };
 
 /// "Ok", "EmptyPolyhedron", ...
-const char* statusName(VClipBuildStatus status);
+const char* nameOf(VClipBuildStatus status);
 
 /// A convex polyhedron with its precomputed Voronoi regions (body frame). Build once, query often.
 class VClipPolyhedron {
@@ -157,7 +157,7 @@ enum class VClipStatus {
 };
 
 /// "Separated", "Penetrating", ...
-const char* statusName(VClipStatus status);
+const char* nameOf(VClipStatus status);
 
 /// How a penetration was found.
 enum class VClipPenetration : std::uint8_t {
@@ -167,7 +167,7 @@ enum class VClipPenetration : std::uint8_t {
     Touching,         ///< a DONE state (or a clip point) with distance exactly 0
 };
 
-const char* toString(VClipPenetration how);
+const char* nameOf(VClipPenetration how);
 
 /// Feature pair kept between calls (coherence). Invalid (default) = cold start from vertex 0 / 0.
 struct VClipCache {
@@ -203,7 +203,7 @@ struct VClipResult {
 /// The five states (body order ignored: V-E covers vertex on A / edge on B and the reverse).
 enum class VClipState : std::uint8_t { VertexVertex, VertexEdge, VertexFace, EdgeEdge, EdgeFace };
 /// "V-V", "V-E", "V-F", "E-E", "E-F".
-const char* toString(VClipState state);
+const char* nameOf(VClipState state);
 
 /// One Voronoi plane test: a point of one feature against one plane of the other's region.
 struct VClipPlaneTest {
@@ -244,7 +244,7 @@ enum class VClipStepKind : std::uint8_t {
     Penetration,  ///< see VClipResult::penetration
     Aborted,      ///< cycle / step limit
 };
-const char* toString(VClipStepKind kind);
+const char* nameOf(VClipStepKind kind);
 
 struct VClipTraceStep {
     int step = 0;                      ///< 0-based

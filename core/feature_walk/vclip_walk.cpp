@@ -701,7 +701,7 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
             if (steps > 0 && w.X[0] == savedA && w.X[1] == savedB) {
                 if (cache) *cache = VClipCache{w.X[0], w.X[1]};
                 if (trace && !trace->steps.empty()) trace->steps.back().kind = VClipStepKind::Aborted;
-                return fail(VClipStatus::CycleDetected, "vclip: feature pair " + toString(w.X[0]) + "/" + toString(w.X[1]) + " repeated");
+                return fail(VClipStatus::CycleDetected, "vclip: feature pair " + nameOf(w.X[0]) + "/" + nameOf(w.X[1]) + " repeated");
             }
             if (steps == nextSave - 1) {
                 savedA = w.X[0];

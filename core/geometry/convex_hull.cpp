@@ -409,7 +409,7 @@ int removeCollinear(std::vector<std::vector<int>>& loops, const std::vector<Vec3
 
 }  // namespace
 
-const char* statusName(HullStatus status) {
+const char* nameOf(HullStatus status) {
     switch (status) {
         case HullStatus::Ok: return "Ok";
         case HullStatus::EmptyInput: return "EmptyInput";

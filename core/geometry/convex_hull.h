@@ -57,7 +57,7 @@ enum class HullStatus {
 };
 
 /// Name of a status, e.g. "AllCoplanar".
-const char* statusName(HullStatus status);
+const char* nameOf(HullStatus status);
 
 struct HullOptions {
     double epsilonFactor = 4096.0;   ///< eps = epsilonFactor * DBL_EPSILON * (max|coord| + diagonal)

@@ -7,7 +7,7 @@
 
 namespace cdlab {
 
-const char* statusName(MassStatus status) {
+const char* nameOf(MassStatus status) {
     switch (status) {
         case MassStatus::Ok: return "Ok";
         case MassStatus::NonFinite: return "NonFinite";

@@ -36,7 +36,7 @@ enum class MassStatus {
 };
 
 /// Name of a status, e.g. "NonPlanarFace".
-const char* statusName(MassStatus status);
+const char* nameOf(MassStatus status);
 
 struct MassPropertiesOptions {
     double density = 1.0;  ///< mass per unit volume (> 0)

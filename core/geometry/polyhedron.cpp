@@ -85,7 +85,7 @@ Vec3 accurateCross(const Vec3& a, const Vec3& b, const Vec3& c) {
                 crossTerm(uh[0], ul[0], vh[1], vl[1], uh[1], ul[1], vh[0], vl[0]));
 }
 
-const char* defectName(PolyhedronDefect defect) {
+const char* nameOf(PolyhedronDefect defect) {
     switch (defect) {
         case PolyhedronDefect::None: return "None";
         case PolyhedronDefect::NoFaces: return "NoFaces";
@@ -253,12 +253,6 @@ int ConvexPolyhedron::faceDegree(int f) const {
 std::vector<int> ConvexPolyhedron::faceVertices(int f) const {
     std::vector<int> out;
     forEachFaceHalfEdge(f, [&](int h) { out.push_back(halfEdges_[h].origin); });
-    return out;
-}
-
-std::vector<int> ConvexPolyhedron::faceHalfEdges(int f) const {
-    std::vector<int> out;
-    forEachFaceHalfEdge(f, [&](int h) { out.push_back(h); });
     return out;
 }
 

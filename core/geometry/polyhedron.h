@@ -47,7 +47,7 @@ enum class PolyhedronDefect {
 };
 
 /// Name of a defect, e.g. "NonPlanarFace".
-const char* defectName(PolyhedronDefect defect);
+const char* nameOf(PolyhedronDefect defect);
 
 /// Result of a structural or geometric check: the first defect found, the element it concerns
 /// (vertex, half-edge or face index, as the message says) and a one-line message.
@@ -129,8 +129,6 @@ public:
     int faceDegree(int f) const;
     /// Vertex indices of face f, counter-clockwise seen from outside, starting at origin of face(f).halfEdge.
     std::vector<int> faceVertices(int f) const;
-    /// Half-edges of face f in cycle order.
-    std::vector<int> faceHalfEdges(int f) const;
     /// Outgoing half-edges of vertex v, counter-clockwise seen from outside.
     std::vector<int> vertexHalfEdges(int v) const;
     /// Faces around vertex v, counter-clockwise seen from outside (face of each outgoing half-edge).

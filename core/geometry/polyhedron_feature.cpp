@@ -2,7 +2,7 @@
 
 namespace cdlab {
 
-const char* featureTypeName(FeatureType type) {
+const char* nameOf(FeatureType type) {
     switch (type) {
         case FeatureType::None: return "none";
         case FeatureType::Vertex: return "vertex";

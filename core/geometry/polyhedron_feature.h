@@ -10,7 +10,7 @@ namespace cdlab {
 enum class FeatureType { None, Vertex, Edge, Face };
 
 /// "none", "vertex", "edge", "face".
-const char* featureTypeName(FeatureType type);
+const char* nameOf(FeatureType type);
 
 /// A feature of a ConvexPolyhedron: index into vertices(), edges() or faces() by type.
 struct FeatureRef {

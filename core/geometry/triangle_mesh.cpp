@@ -59,7 +59,7 @@ MeshValidation validateMesh(const TriangleMesh& mesh) {
     return v;
 }
 
-const char* meshStatusName(MeshStatus status) {
+const char* nameOf(MeshStatus status) {
     switch (status) {
         case MeshStatus::Valid: return "valid";
         case MeshStatus::IndexOutOfRange: return "index out of range";

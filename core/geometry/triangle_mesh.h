@@ -54,7 +54,7 @@ struct MeshValidation {
 MeshValidation validateMesh(const TriangleMesh& mesh);
 
 /// Human-readable name of a status ("valid", "index out of range", "non-finite vertex").
-const char* meshStatusName(MeshStatus status);
+const char* nameOf(MeshStatus status);
 
 /// Torus around the body z axis, centred at the origin: tube centre circle of radius
 /// majorRadius in the xy plane, tube radius minorRadius. majorSegments x minorSegments quads,

@@ -6,7 +6,7 @@
 
 namespace cdlab {
 
-const char* statusName(EpaStatus status)
+const char* nameOf(EpaStatus status)
 {
     switch (status) {
         case EpaStatus::Penetrating: return "Penetrating";
@@ -17,7 +17,7 @@ const char* statusName(EpaStatus status)
     return "?";
 }
 
-const char* terminationName(EpaTermination termination)
+const char* nameOf(EpaTermination termination)
 {
     switch (termination) {
         case EpaTermination::Converged: return "Converged";

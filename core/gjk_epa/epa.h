@@ -107,8 +107,8 @@ struct EpaTrace {
     EpaTermination termination = EpaTermination::InvalidInput;
 };
 
-const char* statusName(EpaStatus status);
-const char* terminationName(EpaTermination termination);
+const char* nameOf(EpaStatus status);
+const char* nameOf(EpaTermination termination);
 
 namespace detail {
 

@@ -4,7 +4,7 @@
 
 namespace cdlab {
 
-const char* statusName(GjkStatus status)
+const char* nameOf(GjkStatus status)
 {
     switch (status) {
         case GjkStatus::Separated: return "Separated";
@@ -14,7 +14,7 @@ const char* statusName(GjkStatus status)
     return "?";
 }
 
-const char* terminationName(GjkTermination termination)
+const char* nameOf(GjkTermination termination)
 {
     switch (termination) {
         case GjkTermination::Converged: return "Converged";
@@ -48,15 +48,6 @@ void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB)
     }
     pointA = v0.a + da;
     pointB = v0.b + db;
-}
-
-void gjkReduce(const GjkVertex* in, const SimplexClosest& c, GjkSimplex& out)
-{
-    out.count = c.count;
-    for (int k = 0; k < c.count; ++k) {
-        out.vertex[k] = in[c.index[k]];
-        out.lambda[k] = c.lambda[k];
-    }
 }
 
 void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced)

@@ -115,17 +115,14 @@ struct GjkTrace {
 };
 
 /// Display name of the enum values.
-const char* statusName(GjkStatus status);
-const char* terminationName(GjkTermination termination);
+const char* nameOf(GjkStatus status);
+const char* nameOf(GjkTermination termination);
 
 namespace detail {
 
 /// Witness points sum lambda_i a_i, written relative to vertex 0 (pointA = a_0 + sum lambda_i
 /// (a_i - a_0)) so that far-from-origin shapes (offsets 1e6) lose no digits to the offset.
 void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB);
-
-/// Copy the sub-simplex `c` of the vertices `in` (kept vertices and their weights) into `out`.
-void gjkReduce(const GjkVertex* in, const SimplexClosest& c, GjkSimplex& out);
 
 /// Fill the trace-side fields of a step from a reduced simplex.
 void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced);

@@ -256,7 +256,7 @@ void simplexRegionName(const SimplexClosest& c, char out[5])
     out[k] = '\0';
 }
 
-const char* solverName(SimplexSolver solver)
+const char* nameOf(SimplexSolver solver)
 {
     return solver == SimplexSolver::Johnson ? "Johnson" : "SignedVolumes";
 }

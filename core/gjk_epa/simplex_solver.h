@@ -46,6 +46,6 @@ inline SimplexClosest closestOnSimplex(const Vec3* w, int n, SimplexSolver solve
 void simplexRegionName(const SimplexClosest& c, char out[5]);
 
 /// Display name of the solver ("Johnson", "SignedVolumes").
-const char* solverName(SimplexSolver solver);
+const char* nameOf(SimplexSolver solver);
 
 }  // namespace cdlab

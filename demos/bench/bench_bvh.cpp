@@ -58,7 +58,8 @@ TriangleMesh benchTorus(int target) {
     return torusMesh(1.0, 0.3, major, minor);
 }
 
-const char* methodName(BvhBuildMethod m) {
+/// The bench tables' short label of a build method.
+const char* shortLabel(BvhBuildMethod m) {
     switch (m) {
         case BvhBuildMethod::TopDownMedian: return "median";
         case BvhBuildMethod::TopDownSah: return "SAH";
@@ -66,8 +67,6 @@ const char* methodName(BvhBuildMethod m) {
     }
     return "?";
 }
-
-const char* kindName(BvKind k) { return k == BvKind::Aabb ? "AABB" : "OBB"; }
 
 struct Series {
     std::string label;
@@ -159,7 +158,7 @@ int runBvhBench(bool quick, const std::string& outDir, std::ostream& table) {
                 Bvh tree;
                 const double s = timeRuns(method == BvhBuildMethod::BottomUp && n > 2000 ? 3 : reps,
                                           [&] { tree = buildBvh(mesh, o); });
-                const std::string label = std::string(methodName(method)) + " " + kindName(kind);
+                const std::string label = std::string(shortLabel(method)) + " " + nameOf(kind);
                 buildTable << "build      " << fmtNum("%9.0f", n) << "  " << padRight(label, 16) << fmtNum("%9.3f", 1e3 * s)
                            << fmtNum("%11.0f", static_cast<double>(tree.nodes.size()))
                            << fmtNum("%8.0f", static_cast<double>(tree.height())) << "\n";
@@ -254,7 +253,7 @@ int runBvhBench(bool quick, const std::string& outDir, std::ostream& table) {
             BvhBuildOptions o;
             o.bvKind = kinds[k];
             const double rebuild = timeRuns(reps, [&] { buildBvh(bent, o); });
-            const std::string label = std::string("median ") + kindName(kinds[k]);
+            const std::string label = std::string("median ") + nameOf(kinds[k]);
             refitTable << "wave 0.1   " << fmtNum("%9.0f", n) << "  "
                        << padRight(label, 16) << fmtNum("%10.3f", 1e3 * refit)
                        << fmtNum("%12.3f", 1e3 * rebuild) << fmtNum("%12.1f", rebuild / refit) << "\n";

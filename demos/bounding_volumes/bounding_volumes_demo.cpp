@@ -229,7 +229,7 @@ FittedBv fitOne(const std::string& key, const std::vector<Vec3>& pts, const std:
         f.heading = "Welzl sphere (minimum)";
         f.volume = volume(s);
         f.json = {{"center", vec3Json(s.center)}, {"radius", s.radius}, {"support", t.finalSupport},
-                  {"status", toString(t.status)}, {"steps", t.steps.size()}};
+                  {"status", nameOf(t.status)}, {"steps", t.steps.size()}};
         f.body = sweptDrawable({s.center}, s.radius);
         for (int i : t.finalSupport) f.marks.push_back(pts[i]);
         f.detail = "r " + formatNumber(s.radius) + "; dots: " + std::to_string(t.finalSupport.size()) + " support points";
@@ -247,7 +247,7 @@ FittedBv fitOne(const std::string& key, const std::vector<Vec3>& pts, const std:
         f.heading = tris.empty() ? "OBB (point covariance)" : "OBB (area covariance)";
         f.volume = volume(b);
         f.json = {{"center", vec3Json(b.center)}, {"half_extents", vec3Json(b.halfExtents)}, {"axes", axesJson(b.axes)},
-                  {"method", toString(t.method)}, {"eigenvalues", vec3Json(t.eigenvalues)}};
+                  {"method", nameOf(t.method)}, {"eigenvalues", vec3Json(t.eigenvalues)}};
         const std::array<Vec3, 8> c = boxCorners(b);
         f.body = hullDrawable(std::vector<Vec3>(c.begin(), c.end()), true);
         f.detail = "eigenvalues " + sig3(t.eigenvalues[0]) + ", " + sig3(t.eigenvalues[1]) + ", " + sig3(t.eigenvalues[2]);

@@ -167,15 +167,6 @@ TreeDiagramInput treeOf(const Bvh& bvh, int maxDepth) {
     return t;
 }
 
-const char* kindName(BvKind k) { return k == BvKind::Aabb ? "AABB" : "OBB"; }
-const char* methodName(BvhBuildMethod m) {
-    switch (m) {
-        case BvhBuildMethod::TopDownMedian: return "top_down_median";
-        case BvhBuildMethod::TopDownSah: return "top_down_sah";
-        case BvhBuildMethod::BottomUp: return "bottom_up";
-    }
-    return "?";
-}
 std::string methodWords(BvhBuildMethod m) {
     switch (m) {
         case BvhBuildMethod::TopDownMedian: return "top-down, median split on the longest axis";
@@ -256,7 +247,7 @@ private:
         o.method = method;
         Bvh b = buildBvh(mesh, o, trace);
         if (b.status != BvhStatus::Ok)
-            throw InputError(common_.file + ": building the " + std::string(kindName(kind)) + " tree failed: " + bvhStatusName(b.status));
+            throw InputError(common_.file + ": building the " + std::string(nameOf(kind)) + " tree failed: " + nameOf(b.status));
         return b;
     }
 
@@ -266,7 +257,7 @@ private:
             const std::vector<int> nodes = levelNodes(bvh, L);
             lv.push_back({{"level", L}, {"nodes", nodes.size()}, {"volume", sumVolume(bvh, nodes)}});
         }
-        return {{"bv", kindName(bvh.kind)}, {"method", methodName(bvh.method)}, {"nodes", bvh.nodes.size()},
+        return {{"bv", nameOf(bvh.kind)}, {"method", nameOf(bvh.method)}, {"nodes", bvh.nodes.size()},
                 {"height", bvh.height()}, {"triangles", bvh.triangleCount()}, {"total_volume", totalVolume(bvh)}, {"levels", lv}};
     }
 
@@ -347,7 +338,7 @@ private:
         for (int level : levels) legend.push_back({LegendItem::Swatch::Line, levelColor(level), "level " + std::to_string(level)});
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
-        caption.push_back(std::string(kindName(bvh.kind)) + " tree, " + methodWords(bvh.method) + ", leaves of ≤ " +
+        caption.push_back(std::string(nameOf(bvh.kind)) + " tree, " + methodWords(bvh.method) + ", leaves of ≤ " +
                           std::to_string(build.maxLeafTriangles) + " triangle" + (build.maxLeafTriangles == 1 ? "" : "s") + "; " +
                           std::to_string(bvh.triangleCount()) + " triangles, " + std::to_string(bvh.nodes.size()) + " nodes, height " +
                           std::to_string(bvh.height()));
@@ -357,7 +348,7 @@ private:
         caption.push_back("surface the sum only falls once the boxes are thinner than the shape: the tree pays off at the deep levels.");
         Frame f;
         f.name = "levels";
-        f.caption = "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + kindName(bvh.kind) + " tree";
+        f.caption = "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + nameOf(bvh.kind) + " tree";
         f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
         out.frames.push_back(std::move(f));
     }
@@ -384,7 +375,7 @@ private:
                 auto less = [](const TrianglePair& x, const TrianglePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
                 std::sort(a.begin(), a.end(), less);
                 std::sort(b.begin(), b.end(), less);
-                qj.push_back({{"bv", kindName(trees[k].kind)}, {"bv_tests", q[k].stats.bvTests}, {"leaf_pairs", q[k].stats.leafVisits},
+                qj.push_back({{"bv", nameOf(trees[k].kind)}, {"bv_tests", q[k].stats.bvTests}, {"leaf_pairs", q[k].stats.leafVisits},
                               {"triangle_tests", q[k].stats.triangleTests}, {"pairs", q[k].pairs.size()}, {"equals_brute_force", a == b}});
             }
             t["query"] = {{"mesh", o.kind}, {"brute_force_triangle_tests", brute.stats.triangleTests}, {"brute_force_pairs", brute.pairs.size()},
@@ -413,7 +404,7 @@ private:
                     const double v = sumVolume(trees[k], nodes);
                     panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes,
                                                 k == 0 ? levelColor(0) : levelColor(1), cam,
-                                                std::string(kindName(trees[k].kind)) + " tree, level " + std::to_string(level),
+                                                std::string(nameOf(trees[k].kind)) + " tree, level " + std::to_string(level),
                                                 std::to_string(nodes.size()) + " boxes, volume " + fmt(v)));
                 }
             std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "torus mesh"},
@@ -440,7 +431,7 @@ private:
             bc.heading = "Total box volume per level";
             bc.sub = "sum over the boxes of the level";
             for (int k = 0; k < 2; ++k) {
-                BarSeries s{kindName(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1), {}};
+                BarSeries s{nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1), {}};
                 for (int level = 0; level <= maxLevel; ++level) s.values.push_back(sumVolume(trees[k], levelNodes(trees[k], level)));
                 bc.series.push_back(s);
             }
@@ -472,7 +463,7 @@ private:
                 cc.sub = "dual traversal (log scale)";
                 cc.groups = {"BV tests", "leaf pairs", "triangle tests"};
                 for (int k = 0; k < 2; ++k)
-                    cc.series.push_back({kindName(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1),
+                    cc.series.push_back({nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1),
                                          {double(q[k].stats.bvTests), double(q[k].stats.leafVisits), double(q[k].stats.triangleTests)}});
                 cc.valueFormat = "%.0f";
                 cc.logY = true;
@@ -523,7 +514,7 @@ private:
             if (s.action == BvhTraversalAction::TriangleTest) {
                 ++triTests;
                 hits += s.triangleHit;
-                steps.push_back({{"action", bvhTraversalActionName(s.action)}, {"triangle_a", s.triangleA}, {"triangle_b", s.triangleB}, {"hit", s.triangleHit}});
+                steps.push_back({{"action", nameOf(s.action)}, {"triangle_a", s.triangleA}, {"triangle_b", s.triangleB}, {"hit", s.triangleHit}});
                 if (!bv.empty()) bv.back().triangleTests = triTests, bv.back().hits = hits;
                 continue;
             }
@@ -532,7 +523,7 @@ private:
             if (s.action == BvhTraversalAction::DescendA || s.action == BvhTraversalAction::DescendB) pending += 2;
             if (s.action == BvhTraversalAction::LeafTest) ++leafPairs;
             bv.push_back({i, s, bvTests, leafPairs, triTests, hits, pending});
-            steps.push_back({{"node_a", s.nodeA}, {"node_b", s.nodeB}, {"overlap", s.overlap}, {"action", bvhTraversalActionName(s.action)},
+            steps.push_back({{"node_a", s.nodeA}, {"node_b", s.nodeB}, {"overlap", s.overlap}, {"action", nameOf(s.action)},
                              {"pending", pending}});
         }
         auto less = [](const TrianglePair& x, const TrianglePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
@@ -667,7 +658,7 @@ private:
         }
         const std::string pair = "pair (A" + std::to_string(s.nodeA) + ", B" + std::to_string(s.nodeB) + ")";
         drawHeading(c, "Step " + std::to_string(k + 1) + " of " + std::to_string(bv.size()) + ": " + pair,
-                    std::string(s.overlap ? "boxes overlap" : "boxes disjoint") + " → " + bvhTraversalActionName(s.action) +
+                    std::string(s.overlap ? "boxes overlap" : "boxes disjoint") + " → " + nameOf(s.action) +
                         (triNote.empty() ? "" : ": " + triNote));
         if (labels()) {
             drawFooter(c, {"pending pairs on the stack: " + std::to_string(d.pending),
@@ -688,7 +679,7 @@ private:
                                            : TreeNodeLook{roleColor(Role::Muted), 2.5f, false});
             tin.look[current] = TreeNodeLook{base, 7.0f, true};
             for (int n = current; n > 0; n = t.nodes[n].parent) tin.litEdges.push_back(n);
-            tin.heading = std::string("Tree of ") + (isA ? "A" : "B") + " (" + kindName(t.kind) + ", " + std::to_string(t.nodes.size()) + " nodes)";
+            tin.heading = std::string("Tree of ") + (isA ? "A" : "B") + " (" + nameOf(t.kind) + ", " + std::to_string(t.nodes.size()) + " nodes)";
             tin.sub = "node " + std::to_string(current) + (t.nodes[current].isLeaf() ? " (leaf)" : "") + "; tinted: visited";
             tin.levelLabels = false;
             const int h = L.panelHeight() / 2;
@@ -705,7 +696,7 @@ private:
         caption.push_back(rule);
         Frame f;
         f.name = stepFrameName(k);
-        f.caption = "step " + std::to_string(k + 1) + ": " + pair + " " + bvhTraversalActionName(s.action);
+        f.caption = "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action);
         f.image = composeGrid(gl, L, ss_, common_.title, {main, trees}, legend, caption);
         return f;
     }
@@ -745,10 +736,10 @@ private:
             for (int k = 0; k < 2; ++k) {
                 rf[k] = buildChecked(m.mesh, kinds[k], build.method);
                 const BvhStatus st = refitBvh(rf[k], shapes.back());
-                if (st != BvhStatus::Ok) throw InputError(common_.file + ": refit failed: " + bvhStatusName(st));
+                if (st != BvhStatus::Ok) throw InputError(common_.file + ": refit failed: " + nameOf(st));
                 rb[k] = buildChecked(shapes.back(), kinds[k], build.method);
                 const std::vector<int> lr = levelNodes(rf[k], levels.front()), lb = levelNodes(rb[k], levels.front());
-                perKind.push_back({{"bv", kindName(kinds[k])}, {"refit_total_volume", totalVolume(rf[k])}, {"rebuilt_total_volume", totalVolume(rb[k])},
+                perKind.push_back({{"bv", nameOf(kinds[k])}, {"refit_total_volume", totalVolume(rf[k])}, {"rebuilt_total_volume", totalVolume(rb[k])},
                                    {"refit_level_volume", sumVolume(rf[k], lr)}, {"rebuilt_level_volume", sumVolume(rb[k], lb)},
                                    {"refit_root", obbJson(rf[k].box(0))}, {"rebuilt_root", obbJson(rb[k].box(0))}});
             }
@@ -784,7 +775,7 @@ private:
                                             head, "all nodes: volume " + fmt(totalVolume(b)) + (row == 0 ? " (" + fmt(ratio) + "× rebuilt)" : "")));
             }
         std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "deformed mesh"},
-                                          {LegendItem::Swatch::Line, levelColor(0), std::string("refitted ") + kindName(kinds[k]) + "s (topology of the rest shape)"},
+                                          {LegendItem::Swatch::Line, levelColor(0), std::string("refitted ") + nameOf(kinds[k]) + "s (topology of the rest shape)"},
                                           {LegendItem::Swatch::Line, levelColor(1), "rebuilt from scratch"}};
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
@@ -809,7 +800,7 @@ private:
         }
         for (int kk = 0; kk < 2; ++kk)
             for (int row = 0; row < 2; ++row) {
-                BarSeries s{std::string(kindName(kinds[kk])) + (row == 0 ? " refitted" : " rebuilt"),
+                BarSeries s{std::string(nameOf(kinds[kk])) + (row == 0 ? " refitted" : " rebuilt"),
                             (kk == 0 ? levelColor(0) : levelColor(2)).mixed(roleColor(Role::Background), row == 0 ? 0.0f : 0.45f), {}};
                 for (std::size_t i = 0; i < times.size(); ++i) s.values.push_back(totalVolume(row == 0 ? refit[i][kk] : rebuilt[i][kk]));
                 bc.series.push_back(s);

@@ -60,7 +60,7 @@ Body parseBody(const JsonNode& node) {
     s.finish();
     r.finish();
     VClipBuild build = buildVClipPolyhedron(mesh);
-    if (!build.ok()) spec.fail(std::string("V-Clip cannot use this body: ") + statusName(build.status) + ": " + build.message);
+    if (!build.ok()) spec.fail(std::string("V-Clip cannot use this body: ") + nameOf(build.status) + ": " + build.message);
     body.regions = std::move(build.polyhedron);
     return body;
 }
@@ -131,7 +131,7 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const Color& color,
     }
 }
 
-std::string featureLabel(const VClipFeature& f, int body) { return toString(f) + (body == 0 ? " (A)" : " (B)"); }
+std::string featureLabel(const VClipFeature& f, int body) { return nameOf(f) + (body == 0 ? " (A)" : " (B)"); }
 
 std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int planeIndex, const Vec3& toward, double size) {
     const VClipPolyhedron& p = body.regions;

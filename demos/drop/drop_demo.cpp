@@ -99,7 +99,7 @@ private:
     Json traceJson(const SimulationResult& r, const SimulationTrace& tr) const {
         Json t;
         t["body"] = body_;
-        t["status"] = statusName(r.status);
+        t["status"] = nameOf(r.status);
         if (!r.ok()) {
             t["message"] = r.message;
             return t;
@@ -136,7 +136,7 @@ private:
                              {"orientation", quatJson(s.orientation)},
                              {"linear_velocity", vec3Json(s.linearVelocity)},
                              {"angular_velocity", vec3Json(s.angularVelocity)},
-                             {"contact_status", statusName(s.contactStatus)},
+                             {"contact_status", nameOf(s.contactStatus)},
                              {"contacts", contacts},
                              {"kinetic", s.kinetic},
                              {"potential", s.potential},

@@ -200,10 +200,10 @@ private:
         t["method"] = pair_.dimension == 3 ? "core epaPenetration (3D)" : "epaPenetration2d (expanding polygon)";
         Json gs = Json::array();
         for (int i = 0; i < run.gjk.simplex.count; ++i) gs.push_back(vec3Json(run.gjk.simplex.vertex[i].w));
-        t["gjk"] = {{"status", statusName(run.gjk.status)}, {"termination", terminationName(run.gjk.termination)},
+        t["gjk"] = {{"status", nameOf(run.gjk.status)}, {"termination", nameOf(run.gjk.termination)},
                     {"iterations", run.gjk.iterations}, {"distance", run.gjk.distance}, {"simplex", gs}};
-        t["status"] = statusName(run.status);
-        t["termination"] = terminationName(run.termination);
+        t["status"] = nameOf(run.status);
+        t["termination"] = nameOf(run.termination);
         t["start"] = run.start;
         t["depth"] = run.depth;
         t["normal"] = vec3Json(run.normal);
@@ -365,7 +365,7 @@ private:
                 cs.drawPoint(w[i], 8.0f, roleColor(Role::Simplex), true, 1.5f, roleColor(Role::Ink));
                 if (labels) drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)), labelStyle(Role::Ink, 20.0f), 12.0);
             }
-            sub = "GJK's terminal simplex (" + std::to_string(w.size()) + " vertices): " + statusName(run.gjk.status);
+            sub = "GJK's terminal simplex (" + std::to_string(w.size()) + " vertices): " + nameOf(run.gjk.status);
         } else if (s) {
             drawPolytope(cs, d, *s, true);
             sub = "closest " + std::string(d.planar ? "edge" : "face") + " (yellow) at distance " + formatNumber(s->distance) +
@@ -389,32 +389,32 @@ private:
         std::vector<std::string> lines;
         Frame f;
         if (isGjk) {
-            lines.push_back("GJK: " + std::string(statusName(run.gjk.status)) + " after " + std::to_string(run.gjk.iterations) +
-                            " iterations (" + terminationName(run.gjk.termination) + ")" +
+            lines.push_back("GJK: " + std::string(nameOf(run.gjk.status)) + " after " + std::to_string(run.gjk.iterations) +
+                            " iterations (" + nameOf(run.gjk.termination) + ")" +
                             (run.gjk.intersect ? "; EPA starts from this simplex (" + run.start + ")" : ", distance " + formatNumber(run.gjk.distance)));
             lines.push_back("EPA grows a polytope inside A − B around the origin until its face nearest the origin lies on the boundary.");
             f.name = "gjk";
-            f.caption = std::string("GJK: ") + statusName(run.gjk.status) + ", " + std::to_string(run.gjk.simplex.count) + "-vertex simplex";
+            f.caption = std::string("GJK: ") + nameOf(run.gjk.status) + ", " + std::to_string(run.gjk.simplex.count) + "-vertex simplex";
         } else if (s) {
             const double h = s->normal.dot(s->support);
             lines.push_back("EPA iteration " + std::to_string(s->iteration) + ": " + std::to_string(s->faces.size()) +
                             (d.planar ? " edges" : " faces") + ", closest at distance " + formatNumber(s->distance) + ", n = " +
                             formatPoint(s->normal) + ", w = s_C(n) = " + formatPoint(s->support));
             lines.push_back("bounds " + formatNumber(s->lower) + " ≤ depth ≤ " + formatNumber(s->upper) + ";  test n·w − d = " +
-                            formatNumber(h - s->distance) + (s->terminated ? "  → stop: " + std::string(terminationName(run.termination))
+                            formatNumber(h - s->distance) + (s->terminated ? "  → stop: " + std::string(nameOf(run.termination))
                                                                            : "  → remove the visible " + std::string(d.planar ? "edges" : "faces") +
                                                                                  ", connect the horizon to w"));
             f.name = stepFrameName(s->iteration);
             f.caption = "it " + std::to_string(s->iteration) + ": d = " + formatNumber(s->distance) + ", gap " + formatNumber(h - s->distance) +
                         (s->terminated ? " (stop)" : "");
         } else {
-            lines.push_back(std::string("Result: ") + statusName(run.status) + " (" + terminationName(run.termination) + ") after " +
+            lines.push_back(std::string("Result: ") + nameOf(run.status) + " (" + nameOf(run.termination) + ") after " +
                             std::to_string(run.iterations) + " EPA iterations: depth " + formatNumber(run.depth) + ", normal " +
                             formatPoint(run.normal));
             lines.push_back("p_A = " + formatPoint(run.pointA) + ",  p_B = " + formatPoint(run.pointB) + ";  bounds " +
                             formatNumber(run.lower) + " ≤ depth ≤ " + formatNumber(run.upper));
             f.name = "result";
-            f.caption = std::string("result: ") + statusName(run.status) + ", depth " + formatNumber(run.depth);
+            f.caption = std::string("result: ") + nameOf(run.status) + ", depth " + formatNumber(run.depth);
         }
         f.image = composeTwoPanel(gl, layout, ss, common_.title, world.readPixels(), cs.readPixels(), lines);
         return f;
@@ -477,7 +477,7 @@ private:
         c.drawLine(P(lx, ly - 28), P(lx + 40, ly - 28), lineStyle(Role::ShapeA, 3.0f));
         c.drawText(P(lx + 50, ly - 28), "lower bound: closest face distance", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
         drawTitleAndCaption(c, common_.title + ": depth bounds per iteration",
-                            "final depth " + formatNumber(run.depth) + " (" + terminationName(run.termination) + "); the gap closes as the polytope reaches the boundary of A − B");
+                            "final depth " + formatNumber(run.depth) + " (" + nameOf(run.termination) + "); the gap closes as the polytope reaches the boundary of A − B");
         Frame f;
         f.name = "bounds";
         f.caption = "depth bounds vs iteration";

@@ -98,9 +98,9 @@ private:
         Json t;
         t["dimension"] = pair_.dimension;
         t["shapes"] = {pair_.a.kindName(), pair_.b.kindName()};
-        t["solver"] = solverName(options_.solver);
-        t["status"] = statusName(r.status);
-        t["termination"] = terminationName(r.termination);
+        t["solver"] = nameOf(options_.solver);
+        t["status"] = nameOf(r.status);
+        t["termination"] = nameOf(r.termination);
         t["distance"] = r.distance;
         t["point_a"] = vec3Json(r.pointA);
         t["point_b"] = vec3Json(r.pointB);
@@ -248,7 +248,7 @@ private:
             sub = "kept: region " + s->region + " (" + regionKind(s->region.size(), pair_.dimension) + ")";
             // Converged / duplicate support: the loop stopped before reducing W ∪ {w}.
             if (s->terminated && trace.termination != GjkTermination::OriginInSimplex)
-                sub = std::string("loop ends here (") + terminationName(trace.termination) + "): simplex not reduced";
+                sub = std::string("loop ends here (") + nameOf(trace.termination) + "): simplex not reduced";
         } else {
             sub = touching ? "origin inside the simplex: intersecting" : "final simplex";
         }
@@ -260,7 +260,7 @@ private:
         Frame f;
         if (s) {
             const double vv = s->upperBound * s->upperBound;
-            std::string stop = s->terminated ? std::string("stop: ") + terminationName(trace.termination) : "continue";
+            std::string stop = s->terminated ? std::string("stop: ") + nameOf(trace.termination) : "continue";
             lines.push_back("Iteration " + std::to_string(s->iteration) + ": w = s_A(d) − s_B(−d) = " + formatPoint(s->support.w) +
                             ", simplex {" + std::string("ABCD").substr(0, s->simplexCount) + "} → region " + s->region +
                             ", |v| = " + formatNumber(s->v.norm()));
@@ -271,13 +271,13 @@ private:
             f.caption = "it " + std::to_string(s->iteration) + ": region " + s->region + ", |v| " + formatNumber(s->v.norm()) +
                         (s->terminated ? " (stop)" : "");
         } else {
-            lines.push_back(std::string("Result: ") + statusName(r.status) + " after " + std::to_string(r.iterations) +
-                            " iterations (" + terminationName(r.termination) + "), distance " + formatNumber(r.distance));
+            lines.push_back(std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.iterations) +
+                            " iterations (" + nameOf(r.termination) + "), distance " + formatNumber(r.distance));
             lines.push_back(touching ? "the terminal simplex contains the origin: feed it to EPA for the penetration depth"
                                      : "p_A = " + formatPoint(r.pointA) + ",  p_B = " + formatPoint(r.pointB) +
                                            ",  bounds " + formatNumber(r.lowerBound) + " ≤ d ≤ " + formatNumber(r.upperBound));
             f.name = "result";
-            f.caption = std::string("result: ") + statusName(r.status) + ", distance " + formatNumber(r.distance);
+            f.caption = std::string("result: ") + nameOf(r.status) + ", distance " + formatNumber(r.distance);
         }
         f.image = composeTwoPanel(gl, layout, supersample, common_.title, world.readPixels(), cs.readPixels(), lines);
         return f;

@@ -65,9 +65,9 @@ struct Runs {
     GjkResult gjk;
 };
 
-Json featureJson(const VClipFeature& f) { return toString(f); }
+Json featureJson(const VClipFeature& f) { return nameOf(f); }
 
-std::string pairText(const VClipFeature& a, const VClipFeature& b) { return toString(a) + "·" + toString(b); }
+std::string pairText(const VClipFeature& a, const VClipFeature& b) { return nameOf(a) + "·" + nameOf(b); }
 
 /// One row of a walk list: step number, the pair, its distance, the update (or the verdict).
 struct ListRow {
@@ -217,10 +217,10 @@ private:
                 planes.push_back({{"region_body", p.regionBody}, {"owner", featureJson(p.owner)}, {"neighbor", featureJson(p.neighbor)},
                                   {"plane", p.plane}, {"signed_distance", p.signedDistance}, {"violated", p.violated}, {"maximal", p.maximal}});
             steps.push_back({{"step", st.step},
-                             {"state", contactTypeName(st.state)},
+                             {"state", nameOf(st.state)},
                              {"feature_a", featureJson(st.featureA)},
                              {"feature_b", featureJson(st.featureB)},
-                             {"kind", toString(st.kind)},
+                             {"kind", nameOf(st.kind)},
                              {"updated_body", st.updatedBody},
                              {"from", featureJson(st.from)},
                              {"to", featureJson(st.to)},
@@ -236,8 +236,8 @@ private:
         Json vcPairs = Json::array();
         for (const VClipTraceStep& st : r.vcTrace.steps) vcPairs.push_back(pairText(st.featureA, st.featureB));
         return {{"lin_canny",
-                 {{"status", statusName(r.lc.status)},
-                  {"penetration", toString(r.lc.penetration)},
+                 {{"status", nameOf(r.lc.status)},
+                  {"penetration", nameOf(r.lc.penetration)},
                   {"distance", r.lc.distance},
                   {"point_a", vec3Json(r.lc.pointA)},
                   {"point_b", vec3Json(r.lc.pointB)},
@@ -249,8 +249,8 @@ private:
                   {"inside_test", s_.options.insideTest},
                   {"trace", steps}}},
                 {"vclip",
-                 {{"status", statusName(r.vc.status)},
-                  {"penetration", toString(r.vc.penetration)},
+                 {{"status", nameOf(r.vc.status)},
+                  {"penetration", nameOf(r.vc.penetration)},
                   {"distance", r.vc.distance},
                   {"feature_a", featureJson(r.vc.featureA)},
                   {"feature_b", featureJson(r.vc.featureB)},
@@ -355,8 +355,8 @@ private:
         std::vector<ListRow> rows;
         for (const LinCannyTraceStep& st : tr.steps) {
             std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " + formatNumber(st.distanceBefore);
-            if (st.updatedBody >= 0) t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + toString(st.from) + "→" + toString(st.to);
-            else t += std::string("  ") + toString(st.kind);
+            if (st.updatedBody >= 0) t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + nameOf(st.from) + "→" + nameOf(st.to);
+            else t += std::string("  ") + nameOf(st.kind);
             rows.push_back({t, st.updatedBody >= 0 ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f) : roleColor(Role::Ink)});
         }
         return rows;
@@ -367,8 +367,8 @@ private:
         for (const VClipTraceStep& st : tr.steps) {
             std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " + formatNumber(st.distanceBefore);
             if (st.kind == VClipStepKind::Update && st.updatedBody >= 0)
-                t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + toString(st.from) + "→" + toString(st.to);
-            else t += std::string("  ") + toString(st.kind);
+                t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + nameOf(st.from) + "→" + nameOf(st.to);
+            else t += std::string("  ") + nameOf(st.kind);
             rows.push_back({t, st.kind == VClipStepKind::Update ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f) : roleColor(Role::Ink)});
         }
         return rows;
@@ -376,14 +376,14 @@ private:
 
     std::string verdict(const LinCannyResult& r) const {
         if (r.status == LinCannyStatus::Separated) return "Separated, distance " + formatNumber(r.distance);
-        if (r.status == LinCannyStatus::Penetrating) return std::string("Penetrating (") + toString(r.penetration) + ")";
+        if (r.status == LinCannyStatus::Penetrating) return std::string("Penetrating (") + nameOf(r.penetration) + ")";
         if (r.status == LinCannyStatus::CycleDetected) return "CycleDetected (cycle of " + std::to_string(r.cycleLength) + " pairs)";
-        return statusName(r.status);
+        return nameOf(r.status);
     }
     std::string verdict(const VClipResult& r) const {
         if (r.status == VClipStatus::Separated) return "Separated, distance " + formatNumber(r.distance);
-        if (r.status == VClipStatus::Penetrating) return std::string("Penetrating (") + toString(r.penetration) + ")";
-        return statusName(r.status);
+        if (r.status == VClipStatus::Penetrating) return std::string("Penetrating (") + nameOf(r.penetration) + ")";
+        return nameOf(r.status);
     }
     std::string gjkText(const GjkResult& g) const { return g.intersect ? std::string("intersecting") : formatNumber(g.distance); }
 
@@ -420,10 +420,10 @@ private:
                 if (labels)
                     drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody), TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
             }
-            heading = "Step " + std::to_string(st->step) + ": pair " + contactTypeName(st->state);
+            heading = "Step " + std::to_string(st->step) + ": pair " + nameOf(st->state);
             sub = std::to_string(st->planes.size()) + " applicability test(s), " + std::to_string(violatedCount) + " violated (red)";
             if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
-            lines.push_back("Step " + std::to_string(st->step) + " (" + contactTypeName(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
+            lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
                             featureLabel(st->featureB, 1) + ", closest points at distance " + formatNumber(st->distanceBefore) + ";  rule: " + st->rule);
             const VClipPlaneTest* worst = nullptr;
             for (const VClipPlaneTest& p : st->planes)
@@ -432,27 +432,27 @@ private:
             else
                 lines.push_back(std::string(worst->regionBody == 0 ? "p_B" : "p_A") + " against VR(" + featureLabel(worst->owner, worst->regionBody) +
                                 "): " + (worst->maximal ? "most violated" : worst->violated ? "violated" : "closest") + " plane " +
-                                (worst->plane < 0 ? std::string("(the face plane)") : "| " + toString(worst->neighbor)) + " at signed distance " +
+                                (worst->plane < 0 ? std::string("(the face plane)") : "| " + nameOf(worst->neighbor)) + " at signed distance " +
                                 formatNumber(worst->signedDistance) +
                                 (!worst->violated ? " ≥ 0" : worst->signedDistance < 0 ? " < 0" : " ≥ 0, violated only by the forced negative tolerance"));
             if (st->updatedBody >= 0)
-                lines.push_back(std::string("update ") + (st->updatedBody == 0 ? "A: " : "B: ") + toString(st->from) + " → " + toString(st->to) +
+                lines.push_back(std::string("update ") + (st->updatedBody == 0 ? "A: " : "B: ") + nameOf(st->from) + " → " + nameOf(st->to) +
                                 ";  pair distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
                                 (st->localMinimum ? " (local-minimum face jump)" : st->distanceChange < 0 ? " (decreased)" : st->distanceChange == 0 ? " (equal)" : " (INCREASED)"));
             else if (st->kind == VClipStepKind::Done)
                 lines.push_back("DONE: each closest point lies in the other feature's Voronoi region (Lin & Canny, Thm. 1)");
             else
-                lines.push_back(std::string(toString(st->kind)) + ": " + verdict(r));
+                lines.push_back(std::string(nameOf(st->kind)) + ": " + verdict(r));
             f.name = stepFrameName(st->step);
-            f.caption = "step " + std::to_string(st->step) + " " + contactTypeName(st->state) + ": " +
-                        (st->updatedBody >= 0 ? toString(st->from) + " → " + toString(st->to) : std::string(toString(st->kind)));
+            f.caption = "step " + std::to_string(st->step) + " " + nameOf(st->state) + ": " +
+                        (st->updatedBody >= 0 ? nameOf(st->from) + " → " + nameOf(st->to) : std::string(nameOf(st->kind)));
         } else {
             const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
             const std::vector<Vec3> gb = featureGeometry(s_.b.regions, s_.b.pose, r.featureB);
             drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroid(1), labels);
             drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroid(0), labels);
             if (common_.hasLayer("closest") && r.status != LinCannyStatus::CycleDetected) drawClosest(c, r.pointA, r.pointB, true);
-            heading = std::string("Result: ") + statusName(r.status) + " after " + std::to_string(r.steps) + " update(s)";
+            heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
             sub = r.status == LinCannyStatus::Separated ? "closest features and points" : r.status == LinCannyStatus::CycleDetected ? "the pair where the cycle was detected" : "";
             lines.push_back("Lin–Canny: " + verdict(r) + ", features " + featureLabel(r.featureA, 0) + " and " + featureLabel(r.featureB, 1) +
                             ", " + std::to_string(r.steps) + " update(s)");

@@ -197,7 +197,7 @@ private:
             opt.maxPoints = maxPoints;
             results.push_back(contactPolyhedronPlane(body.mesh, poses[i], plane, opt, &traces[i]));
             const PlaneContactResult& r = results.back();
-            Json fr = {{"label", poseLabels[i]}, {"status", statusName(r.status)}, {"signed_distance", r.signedDistance},
+            Json fr = {{"label", poseLabels[i]}, {"status", nameOf(r.status)}, {"signed_distance", r.signedDistance},
                        {"depth", r.depth}, {"normal", vec3Json(r.normal)}, {"feature", featureLabel(r.feature)},
                        {"vertex_signed_distances", traces[i].vertexDistances}, {"crossings", traces[i].crossings.size()},
                        {"polygon", pointsJson(r.polygon)}, {"manifold", pointsJson(r.manifold)}};
@@ -294,15 +294,15 @@ private:
             char cap[400];
             if (r.colliding())
                 std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
-                              poseLabels[i].c_str(), statusName(r.status), fmt(r.depth).c_str(), featureTypeName(r.feature.type),
+                              poseLabels[i].c_str(), nameOf(r.status), fmt(r.depth).c_str(), nameOf(r.feature.type),
                               featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
             else
                 std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)", poseLabels[i].c_str(),
-                              fmt(r.signedDistance).c_str(), featureTypeName(r.feature.type), featureLabel(r.feature).c_str(),
+                              fmt(r.signedDistance).c_str(), nameOf(r.feature.type), featureLabel(r.feature).c_str(),
                               int(r.featurePoints.size()), r.featurePoints.size() == 1 ? "" : "s");
             char name[32];
             std::snprintf(name, sizeof name, "pose_%02d", int(i));
-            out.frames.push_back(finish(c, name, common_.title, cap, poseLabels[i] + ": " + statusName(r.status)));
+            out.frames.push_back(finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status)));
         }
     }
 
@@ -313,7 +313,7 @@ private:
         for (size_t i = 0; i < pairs.size(); ++i) {
             results.push_back(featureDistance(pairs[i].first, pairs[i].second));
             const FeatureDistanceResult& r = results.back();
-            frames.push_back({{"label", pairLabels[i]}, {"type", contactTypeName(r.type)}, {"distance", r.distance},
+            frames.push_back({{"label", pairLabels[i]}, {"type", nameOf(r.type)}, {"distance", r.distance},
                               {"point_a", vec3Json(r.pointA)}, {"point_b", vec3Json(r.pointB)}, {"normal", vec3Json(r.normal)},
                               {"normal_rule", r.normalRule}, {"normal_unstable", r.normalUnstable}, {"parallel", r.parallel}});
         }
@@ -342,7 +342,7 @@ private:
                 for (const Vec3& p : f.points) c.drawPoint(p, f.type == FeatureType::Vertex ? 8.0f : 4.0f, col, true, 1.5f, roleColor(Role::Ink));
                 // Edges are labelled a fifth of the way along (their midpoint is often the closest point).
                 const Vec3 at = f.type == FeatureType::Edge ? Vec3(f.points[0] + 0.2 * (f.points[1] - f.points[0])) : centroid(f.points);
-                if (labels) drawLabelAway(c, at, center, tag + " " + featureTypeName(f.type), labelStyle(role, 20.0f), 30.0);
+                if (labels) drawLabelAway(c, at, center, tag + " " + nameOf(f.type), labelStyle(role, 20.0f), 30.0);
             };
             drawFeature(pairs[i].first, Role::ShapeA, "A:");
             drawFeature(pairs[i].second, Role::ShapeB, "B:");
@@ -370,12 +370,12 @@ private:
             if (r.parallel) flags += "; parallel: one of many closest pairs";
             if (r.normalUnstable) flags += r.normalDefined ? "; normal UNSTABLE (features almost touch)" : "; no normal (points coincide)";
             char cap[400];
-            std::snprintf(cap, sizeof cap, "%s: distance %s, normal from %s%s", contactTypeName(r.type), fmt(r.distance).c_str(),
+            std::snprintf(cap, sizeof cap, "%s: distance %s, normal from %s%s", nameOf(r.type), fmt(r.distance).c_str(),
                           r.normalRule, flags.c_str());
             char name[32];
             std::snprintf(name, sizeof name, "pair_%02d", int(i));
-            const std::string title = common_.title + ": " + contactTypeName(r.type) + (pairLabels[i].empty() ? "" : " (" + pairLabels[i] + ")");
-            out.frames.push_back(finish(c, name, title, cap, std::string(contactTypeName(r.type)) + ", distance " + fmt(r.distance)));
+            const std::string title = common_.title + ": " + nameOf(r.type) + (pairLabels[i].empty() ? "" : " (" + pairLabels[i] + ")");
+            out.frames.push_back(finish(c, name, title, cap, std::string(nameOf(r.type)) + ", distance " + fmt(r.distance)));
         }
     }
 
@@ -385,11 +385,11 @@ private:
         const SatContactResult r = contactPolyhedra(a.mesh, a.pose, b.mesh, b.pose, {}, &tr);
         Json axes = Json::array();
         for (const SatAxisRecord& x : tr.axes)
-            axes.push_back({{"kind", axisKindName(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vec3Json(x.axis)}, {"separation", x.separation}});
+            axes.push_back({{"kind", nameOf(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vec3Json(x.axis)}, {"separation", x.separation}});
         Json clips = Json::array();
         for (const SatClipStep& s : tr.clipSteps) clips.push_back({{"reference_edge", s.referenceEdge}, {"before", s.before.size()}, {"after", s.after.size()}});
-        out.trace = {{"mode", "sat"}, {"status", statusName(r.status)}, {"separation", r.separation}, {"depth", r.depth},
-                     {"normal", vec3Json(r.normal)}, {"axis_kind", axisKindName(r.axisKind)}, {"axes", axes},
+        out.trace = {{"mode", "sat"}, {"status", nameOf(r.status)}, {"separation", r.separation}, {"depth", r.depth},
+                     {"normal", vec3Json(r.normal)}, {"axis_kind", nameOf(r.axisKind)}, {"axes", axes},
                      {"edge_pairs", tr.edgePairsTotal}, {"edge_pairs_pruned", tr.edgePairsPruned}, {"edge_pairs_parallel", tr.edgePairsParallel},
                      {"chosen", tr.chosen}, {"reference_on_a", tr.referenceOnA}, {"reference_face", tr.referenceFace},
                      {"incident_face", tr.incidentFace}, {"clip_steps", clips}, {"manifold", pointsJson(r.manifold)}};
@@ -441,7 +441,7 @@ private:
             if (common_.hasLayer("normals")) {
                 c.drawArrow(axisFrom, axisFrom + 0.6 * radius * r.normal, lineStyle(Role::Direction, 4.0f, false, true));
                 if (labels) {
-                    c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + axisKindName(r.axisKind) + ")",
+                    c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + nameOf(r.axisKind) + ")",
                                TextStyle{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}});
                     lg.item("→ axis of least penetration", Role::Direction);
                 }
@@ -456,11 +456,11 @@ private:
             }
             char cap[400];
             if (r.colliding())
-                std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", axisKindName(r.axisKind),
+                std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", nameOf(r.axisKind),
                               fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
             else
-                std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), axisKindName(r.axisKind), counts);
-            out.frames.push_back(finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + axisKindName(r.axisKind)));
+                std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), nameOf(r.axisKind), counts);
+            out.frames.push_back(finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind)));
         }
         if (!faceContact) {
             out.skipped.push_back("clip frame (no face contact)");

@@ -31,7 +31,7 @@ Json closestPointTriangle(ObjectReader& r) {
     // (core/base/exact_predicates.h); scaling the query by a power of two would flush coordinates of
     // 1e-300 beside 1e300 to zero.
     const ClosestPointOnTriangleResult res = closestPointOnTriangle(p, Triangle{v[0], v[1], v[2]});
-    return {{"point", vecJson(res.point)}, {"region", toString(res.region)}};
+    return {{"point", vecJson(res.point)}, {"region", nameOf(res.region)}};
 }
 
 }  // namespace

@@ -77,7 +77,7 @@ std::vector<int> featureVertices(const Body& b, const FeatureRef& f) {
     return v;
 }
 Json featureJson(const Body& b, const FeatureRef& f) {
-    return {{"type", featureTypeName(f.type)}, {"vertices", featureVertices(b, f)}};
+    return {{"type", nameOf(f.type)}, {"vertices", featureVertices(b, f)}};
 }
 
 // The support feature of a body in direction d: the vertices within tol of the maximum of d·x,
@@ -147,7 +147,7 @@ Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxP
 Json satTraceJson(const SatContactTrace& trace, const LocalFrame& frame) {
     Json axes = Json::array();
     for (const SatAxisRecord& x : trace.axes)
-        axes.push_back({{"kind", axisKindName(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vecJson(x.axis)},
+        axes.push_back({{"kind", nameOf(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vecJson(x.axis)},
                         {"separation", frame.length(x.separation)}});
     return {{"algorithm", "sat"}, {"axes", axes}, {"edge_pairs", trace.edgePairsTotal},
             {"edge_pairs_pruned", trace.edgePairsPruned}, {"edge_pairs_parallel", trace.edgePairsParallel},
@@ -184,7 +184,7 @@ Json bodyBody(const Body& a, const Body& b, int maxPoints, bool wantTrace, doubl
         r = contactPolyhedra(a.mesh, Transform{}, b.mesh, Transform{}, opt, wantTrace ? &trace : nullptr);
     }
     Json out = colliding ? Json{{"colliding", true}, {"depth", frame.length(r.depth)}, {"normal", vecJson(r.normal)},
-                                {"points", pointsJson(r.manifold, false, frame)}, {"axis", axisKindName(r.axisKind)},
+                                {"points", pointsJson(r.manifold, false, frame)}, {"axis", nameOf(r.axisKind)},
                                 {"feature_a", featureJson(a, r.featureA)}, {"feature_b", featureJson(b, r.featureB)}}
                          : separatedBodies(a, b, g, frame);
     if (wantTrace) out["trace"] = satTraceJson(trace, frame);
@@ -214,7 +214,7 @@ Json contactQuery(ObjectReader& r) {
     const auto solid = [](const QueryShape& s) { return s.kind == Kind::Polytope || s.kind == Kind::Aabb || s.kind == Kind::Obb; };
     for (const auto& [s, node] : {std::pair{&a, &an}, std::pair{&b, &bn}}) {
         if (!solid(*s) && s->kind != Kind::Plane)
-            node->fail(std::string("contact supports polytope, aabb, obb and plane shapes, not ") + toString(s->kind));
+            node->fail(std::string("contact supports polytope, aabb, obb and plane shapes, not ") + nameOf(s->kind));
         requireHullVerticesWithinLimit(s->vertices.size(), "contact", *node);
     }
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) bn.fail("contact needs at least one polytope (two planes given)");

@@ -25,7 +25,7 @@ using Kind = QueryShape::Kind;
 // exact for the shape's own vertices (Sterbenz), so the distance loses no digits to the offset.
 VClipPolyhedron polyhedronOf(const QueryShape& s, int k, const JsonNode& node, Vec3& origin, const std::string& method) {
     if (s.kind != Kind::Polytope && s.kind != Kind::Aabb && s.kind != Kind::Obb)
-        node.fail("method '" + method + "' needs polyhedra (polytope, aabb, obb), got " + toString(s.kind));
+        node.fail("method '" + method + "' needs polyhedra (polytope, aabb, obb), got " + nameOf(s.kind));
     requireHullVerticesWithinLimit(s.vertices.size(), method.c_str(), node);
     std::vector<Vec3> points;
     points.reserve(s.vertices.size());
@@ -34,22 +34,22 @@ VClipPolyhedron polyhedronOf(const QueryShape& s, int k, const JsonNode& node, V
     const HullResult hull = convexHull(points);
     if (!hull.ok())
         node.fail("method '" + method + "' needs a solid polyhedron (4 points not in one plane); the hull is " +
-                  statusName(hull.status) + (hull.message.empty() ? "" : ": " + hull.message));
+                  nameOf(hull.status) + (hull.message.empty() ? "" : ": " + hull.message));
     VClipBuild built = buildVClipPolyhedron(hull.polyhedron);
     if (!built.ok()) node.fail("method '" + method + "': " + built.message);
     return std::move(built.polyhedron);
 }
 
-Json featureJson(const VClipFeature& f) { return {{"type", toString(f.type)}, {"index", f.index}}; }
+Json featureJson(const VClipFeature& f) { return {{"type", nameOf(f.type)}, {"index", f.index}}; }
 
 Json traceJson(const VClipTrace& t) {
     Json steps = Json::array();
     for (const VClipTraceStep& s : t.steps) {
         Json step = {{"step", s.step},
-                     {"state", toString(s.state)},
+                     {"state", nameOf(s.state)},
                      {"feature_a", featureJson(s.featureA)},
                      {"feature_b", featureJson(s.featureB)},
-                     {"kind", toString(s.kind)},
+                     {"kind", nameOf(s.kind)},
                      {"rule", s.rule},
                      {"distance_before", s.distanceBefore}};
         if (s.kind == VClipStepKind::Update) {
@@ -60,17 +60,17 @@ Json traceJson(const VClipTrace& t) {
         }
         steps.push_back(step);
     }
-    return {{"algorithm", "vclip"}, {"status", statusName(t.status)}, {"steps", steps}};
+    return {{"algorithm", "vclip"}, {"status", nameOf(t.status)}, {"steps", steps}};
 }
 
 Json traceJson(const LinCannyTrace& t) {
     Json steps = Json::array();
     for (const LinCannyTraceStep& s : t.steps) {
         Json step = {{"step", s.step},
-                     {"state", contactTypeName(s.state)},
+                     {"state", nameOf(s.state)},
                      {"feature_a", featureJson(s.featureA)},
                      {"feature_b", featureJson(s.featureB)},
-                     {"kind", toString(s.kind)},
+                     {"kind", nameOf(s.kind)},
                      {"rule", s.rule},
                      {"distance_before", s.distanceBefore}};
         if (s.kind == VClipStepKind::Update || s.kind == VClipStepKind::Aborted) {
@@ -81,7 +81,7 @@ Json traceJson(const LinCannyTrace& t) {
         }
         steps.push_back(step);
     }
-    Json out = {{"algorithm", "lin_canny"}, {"status", statusName(t.status)}, {"steps", steps}};
+    Json out = {{"algorithm", "lin_canny"}, {"status", nameOf(t.status)}, {"steps", steps}};
     if (t.status == LinCannyStatus::CycleDetected) out["cycle_length"] = t.cycleLength;
     return out;
 }
@@ -120,14 +120,14 @@ Json answerFeatureWalkQuery(const std::string& op, const std::string& method, co
         const LinCannyResult r = linCanny(pa, poseA, pb, poseB, nullptr, {}, wantTrace ? &t : nullptr);
         if (r.status == LinCannyStatus::CycleDetected) throw InputError("lin_canny: cycle detected (penetrating?)");
         if (r.status != LinCannyStatus::Separated && r.status != LinCannyStatus::Penetrating)
-            throw InputError("query: lin_canny failed (" + std::string(statusName(r.status)) + "): " + r.message);
+            throw InputError("query: lin_canny failed (" + std::string(nameOf(r.status)) + "): " + r.message);
         out = walkAnswer(op, r, k, touch);
         if (wantTrace) trace = traceJson(t);
     } else {
         VClipTrace t;
         const VClipResult r = vclip(pa, poseA, pb, poseB, nullptr, {}, wantTrace ? &t : nullptr);
         if (r.status != VClipStatus::Separated && r.status != VClipStatus::Penetrating)
-            throw InputError("query: vclip failed (" + std::string(statusName(r.status)) + "): " + r.message);
+            throw InputError("query: vclip failed (" + std::string(nameOf(r.status)) + "): " + r.message);
         out = walkAnswer(op, r, k, touch);
         if (wantTrace) trace = traceJson(t);
     }

@@ -19,7 +19,7 @@ Json answerMassPropertiesQuery(ObjectReader& r) {
     if (auto d = r.find("density")) density = d->asPositive();
     r.finish();
     if (shape.kind != QueryShape::Kind::Polytope)
-        a.fail(std::string("mass_properties needs a polytope, got a ") + toString(shape.kind));
+        a.fail(std::string("mass_properties needs a polytope, got a ") + nameOf(shape.kind));
 
     requireHullVerticesWithinLimit(shape.vertices.size(), "mass_properties", a);
 
@@ -38,9 +38,9 @@ Json answerMassPropertiesQuery(ObjectReader& r) {
     for (const Vec3& v : shape.vertices) unit.push_back(scaled(v - origin, -k));
 
     const HullResult hull = convexHull(unit);
-    if (hull.status != HullStatus::Ok) a.fail(std::string("the polytope's hull is ") + statusName(hull.status) + ": no volume");
+    if (hull.status != HullStatus::Ok) a.fail(std::string("the polytope's hull is ") + nameOf(hull.status) + ": no volume");
     const MassProperties mp = computeMassProperties(hull.polyhedron, {.density = density});
-    if (!mp.ok()) a.fail(std::string("mass properties: ") + statusName(mp.status) + ": " + mp.message);
+    if (!mp.ok()) a.fail(std::string("mass properties: ") + nameOf(mp.status) + ": " + mp.message);
 
     const double volume = std::ldexp(mp.volume, 3 * k);
     const double mass = density * volume;

@@ -50,7 +50,7 @@ Json gjkTraceJson(const GjkTrace& t) {
                          {"support", vecJson(s.support.w)}, {"region", s.region}, {"v", vecJson(s.v)},
                          {"lower_bound", s.lowerBound}, {"upper_bound", s.upperBound}, {"terminated", s.terminated}});
     }
-    return {{"algorithm", "gjk"}, {"termination", terminationName(t.termination)}, {"steps", steps}};
+    return {{"algorithm", "gjk"}, {"termination", nameOf(t.termination)}, {"steps", steps}};
 }
 
 Json epaTraceJson(const EpaTrace& t) {
@@ -61,7 +61,7 @@ Json epaTraceJson(const EpaTrace& t) {
                          {"support", vecJson(s.support)}, {"removed_faces", s.removedFaces.size()},
                          {"horizon_edges", s.horizon.size()}, {"lower_bound", s.lowerBound},
                          {"upper_bound", s.upperBound}});
-    return {{"algorithm", "epa"}, {"start", t.start}, {"termination", terminationName(t.termination)}, {"steps", steps}};
+    return {{"algorithm", "epa"}, {"start", t.start}, {"termination", nameOf(t.termination)}, {"steps", steps}};
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -5,7 +5,7 @@
 
 namespace cdlab::demos {
 
-const char* toString(QueryShape::Kind kind) {
+const char* nameOf(QueryShape::Kind kind) {
     switch (kind) {
         case QueryShape::Kind::Point: return "point";
         case QueryShape::Kind::Segment: return "segment";

@@ -23,7 +23,7 @@ struct QueryShape {
     bool bounded() const { return kind != Kind::Ray && kind != Kind::Plane; }
 };
 
-const char* toString(QueryShape::Kind kind);
+const char* nameOf(QueryShape::Kind kind);
 
 /// Parses {"sphere": {...}} and friends; errors name the JSON path. Plane normals (with their
 /// offsets) and ray directions are rescaled by a power of two — exactly, the same plane or ray — so

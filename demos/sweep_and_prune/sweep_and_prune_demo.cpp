@@ -66,14 +66,6 @@ std::string pairList(const std::vector<BoxPair>& pairs) {
     return s;
 }
 
-const char* eventName(SapPairEvent e) {
-    switch (e) {
-        case SapPairEvent::Added: return "added";
-        case SapPairEvent::Removed: return "removed";
-        default: return "none";
-    }
-}
-
 std::vector<FrameData> simulate(const Settings& s) {
     std::vector<FrameData> frames;
     SweepAndPrune sap;
@@ -169,7 +161,7 @@ private:
                                  {"passed", endName(s.passedObject, s.passedIsMax)},
                                  {"passed_value", s.passedValue},
                                  {"position", s.position},
-                                 {"event", eventName(s.event)},
+                                 {"event", nameOf(s.event)},
                                  {"axes_overlapping", s.axesOverlapping}});
             j["swaps"] = swaps;
             j["swaps_per_axis"] = {d.result.swapsPerAxis[0], d.result.swapsPerAxis[1], d.result.swapsPerAxis[2]};

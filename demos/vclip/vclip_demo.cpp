@@ -69,7 +69,7 @@ struct Call {
     GjkResult gjk;
 };
 
-Json featureJson(const VClipFeature& f) { return toString(f); }
+Json featureJson(const VClipFeature& f) { return nameOf(f); }
 
 int stateIndex(VClipState s) { return static_cast<int>(s); }
 
@@ -179,10 +179,10 @@ private:
                              {"compound_excluded", c.compoundExcluded}, {"excluded_by", featureJson(c.excludedBy)},
                              {"derivative_min", c.derivativeMin}, {"derivative_max", c.derivativeMax}});
         return {{"step", st.step},
-                {"state", toString(st.state)},
+                {"state", nameOf(st.state)},
                 {"feature_a", featureJson(st.featureA)},
                 {"feature_b", featureJson(st.featureB)},
-                {"kind", toString(st.kind)},
+                {"kind", nameOf(st.kind)},
                 {"updated_body", st.updatedBody},
                 {"from", featureJson(st.from)},
                 {"to", featureJson(st.to)},
@@ -198,8 +198,8 @@ private:
     }
 
     Json resultJson(const Call& c) const {
-        Json j = {{"status", statusName(c.result.status)},
-                  {"penetration", toString(c.result.penetration)},
+        Json j = {{"status", nameOf(c.result.status)},
+                  {"penetration", nameOf(c.result.penetration)},
                   {"distance", c.result.distance},
                   {"point_a", vec3Json(c.result.pointA)},
                   {"point_b", vec3Json(c.result.pointB)},
@@ -235,7 +235,7 @@ private:
                 j["call"] = k;
                 j["position_b"] = vec3Json(calls[k].poseB.position);
                 Json states = Json::array();
-                for (const VClipTraceStep& st : calls[k].trace.steps) states.push_back(toString(st.state));
+                for (const VClipTraceStep& st : calls[k].trace.steps) states.push_back(nameOf(st.state));
                 j["states"] = states;
                 cs.push_back(j);
             }
@@ -376,7 +376,7 @@ private:
     }
 
     std::string updateText(const VClipTraceStep& st) const {
-        return std::string(st.updatedBody == 0 ? "A" : "B") + ": " + toString(st.from) + " → " + toString(st.to);
+        return std::string(st.updatedBody == 0 ? "A" : "B") + ": " + nameOf(st.from) + " → " + nameOf(st.to);
     }
 
     Frame drawStepFrame(GlContext& gl, int ss, const Call& call, int index) const {
@@ -419,24 +419,24 @@ private:
                     drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
                                   TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
             }
-            heading = "Step " + std::to_string(st->step) + ": state " + toString(st->state);
+            heading = "Step " + std::to_string(st->step) + ": state " + nameOf(st->state);
             const bool faceSearch = std::any_of(st->planes.begin(), st->planes.end(), [](const VClipPlaneTest& p) { return p.plane < 0; });
             sub = std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated (red)";
             if (faceSearch) sub = "local minimum: red = the face plane V is farthest above";
             if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
             if (!st->clips.empty()) sub += "; " + std::to_string(st->clips.size()) + " clip(s)";
 
-            lines.push_back("Step " + std::to_string(st->step) + " (" + toString(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
+            lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
                             featureLabel(st->featureB, 1) + ";  rule: " + st->rule);
             std::string l2;
             for (const VClipClip& cl : st->clips) {
                 if (!l2.empty()) l2 += ";  ";
-                l2 += "clip " + toString(cl.edge) + " by VR(" + toString(cl.region) + "): ";
-                if (cl.simplyExcluded) l2 += "simply excluded by " + toString(cl.excludedBy);
+                l2 += "clip " + nameOf(cl.edge) + " by VR(" + nameOf(cl.region) + "): ";
+                if (cl.simplyExcluded) l2 += "simply excluded by " + nameOf(cl.excludedBy);
                 else if (cl.compoundExcluded) l2 += "compound excluded";
                 else
-                    l2 += "λ ∈ [" + formatNumber(cl.lambdaMin) + ", " + formatNumber(cl.lambdaMax) + "], N = " + toString(cl.neighborMin) + ", " +
-                          toString(cl.neighborMax) + ", D′ signs " + signName(cl.derivativeMin) + " " + signName(cl.derivativeMax);
+                    l2 += "λ ∈ [" + formatNumber(cl.lambdaMin) + ", " + formatNumber(cl.lambdaMax) + "], N = " + nameOf(cl.neighborMin) + ", " +
+                          nameOf(cl.neighborMax) + ", D′ signs " + signName(cl.derivativeMin) + " " + signName(cl.derivativeMax);
             }
             if (l2.empty()) {
                 const VClipPlaneTest* worst = nullptr;
@@ -444,11 +444,11 @@ private:
                     if (!worst || (p.maximal && !worst->maximal) || (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance)) worst = &p;
                 if (!worst) l2 = "no plane test";
                 else if (worst->plane < 0)
-                    l2 = "handleLocalMin: V lies on or behind " + toString(st->featureB.type == VClipFeatureType::Face ? st->featureB : st->featureA) +
-                         "'s plane; the face it is farthest above is " + toString(worst->owner) + " (height " + formatNumber(worst->signedDistance) + ")";
+                    l2 = "handleLocalMin: V lies on or behind " + nameOf(st->featureB.type == VClipFeatureType::Face ? st->featureB : st->featureA) +
+                         "'s plane; the face it is farthest above is " + nameOf(worst->owner) + " (height " + formatNumber(worst->signedDistance) + ")";
                 else
                     l2 = std::string(worst->maximal ? "maximally violated" : worst->violated ? "most violated" : "closest") + " plane: VR(" +
-                         toString(worst->owner) + ") | " + toString(worst->neighbor) + " at signed distance " + formatNumber(worst->signedDistance);
+                         nameOf(worst->owner) + ") | " + nameOf(worst->neighbor) + " at signed distance " + formatNumber(worst->signedDistance);
             }
             lines.push_back(l2);
             std::string l3;
@@ -459,14 +459,14 @@ private:
             } else if (st->kind == VClipStepKind::Done) {
                 l3 = "DONE: each closest point lies in the other feature's Voronoi region; distance " + formatNumber(st->distanceBefore);
             } else if (st->kind == VClipStepKind::Penetration) {
-                l3 = std::string("penetration found (") + toString(r.penetration) + ")";
+                l3 = std::string("penetration found (") + nameOf(r.penetration) + ")";
             } else {
-                l3 = std::string("aborted: ") + statusName(tr.status);
+                l3 = std::string("aborted: ") + nameOf(tr.status);
             }
             lines.push_back(l3);
             f.name = stepFrameName(st->step);
-            f.caption = "step " + std::to_string(st->step) + " " + toString(st->state) + ": " +
-                        (st->kind == VClipStepKind::Update ? updateText(*st) : std::string(toString(st->kind)));
+            f.caption = "step " + std::to_string(st->step) + " " + nameOf(st->state) + ": " +
+                        (st->kind == VClipStepKind::Update ? updateText(*st) : std::string(nameOf(st->kind)));
         } else {
             const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
             const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
@@ -494,13 +494,13 @@ private:
                      formatNumber(inB.minDistance) + verdict(inB) + ";  p_B ∈ VR(" + featureLabel(r.featureA, 0) + "): " +
                      std::to_string(inA.tests.size()) + " planes, min " + formatNumber(inA.minDistance) + verdict(inA);
             } else {
-                l2 = std::string("verdict: ") + toString(r.penetration) + ", common point " + formatPoint(r.pointA) + " (distance 0)";
+                l2 = std::string("verdict: ") + nameOf(r.penetration) + ", common point " + formatPoint(r.pointA) + " (distance 0)";
             }
             if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
-            heading = std::string("Result: ") + statusName(r.status) + " after " + std::to_string(r.steps) + " update(s)";
+            heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
             sub = separated ? "closest points; green: region planes they satisfy"
-                            : std::string("penetration: ") + toString(r.penetration);
-            lines.push_back(std::string("Result: ") + statusName(r.status) + (separated ? ", closest features " : ", found at features ") +
+                            : std::string("penetration: ") + nameOf(r.penetration);
+            lines.push_back(std::string("Result: ") + nameOf(r.status) + (separated ? ", closest features " : ", found at features ") +
                             featureLabel(r.featureA, 0) + " and " +
                             featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
                             (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
@@ -510,7 +510,7 @@ private:
                                       : "the bodies intersect: V-Clip stops with this feature pair (a depth needs EPA or another method)" +
                                             (r.message.empty() ? std::string() : "; " + r.message));
             f.name = "result";
-            f.caption = std::string("result: ") + statusName(r.status) + ", distance " + formatNumber(r.distance);
+            f.caption = std::string("result: ") + nameOf(r.status) + ", distance " + formatNumber(r.distance);
         }
         drawPanelHeading(c, heading, sub);
         const Image main = c.readPixels();
@@ -523,9 +523,9 @@ private:
             din.from = stateIndex(st->state);
             din.to = stateIndex(tr.steps[index + 1].state);
         }
-        if (st) din.terminal = st->kind == VClipStepKind::Update ? "update → " + std::string(index + 1 < int(tr.steps.size()) ? toString(tr.steps[index + 1].state) : "?")
-                               : st->kind == VClipStepKind::Done ? "DONE" : toString(st->kind);
-        else din.terminal = std::string(statusName(r.status)) + ": " + std::to_string(tr.steps.size()) + " states, " + std::to_string(r.steps) + " update(s)";
+        if (st) din.terminal = st->kind == VClipStepKind::Update ? "update → " + std::string(index + 1 < int(tr.steps.size()) ? nameOf(tr.steps[index + 1].state) : "?")
+                               : st->kind == VClipStepKind::Done ? "DONE" : nameOf(st->kind);
+        else din.terminal = std::string(nameOf(r.status)) + ": " + std::to_string(tr.steps.size()) + " states, " + std::to_string(r.steps) + " update(s)";
         const Image diagram = common_.hasLayer("diagram") ? drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din) : blank(L.columnWidth, L.diagramHeight());
 
         Image plot = blank(L.columnWidth, L.plotHeight());
@@ -583,7 +583,7 @@ private:
         drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
         if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
         drawPanelHeading(c, "Call " + std::to_string(k) + " of " + std::to_string(calls.size()) + ": " + std::to_string(r.steps) + " update(s)",
-                         std::string(k == 0 ? "first call, seeded with " : "warm start from ") + toString(call.seed.a) + ", " + toString(call.seed.b));
+                         std::string(k == 0 ? "first call, seeded with " : "warm start from ") + nameOf(call.seed.a) + ", " + nameOf(call.seed.b));
         const Image main = c.readPixels();
 
         DiagramInput din;
@@ -595,7 +595,7 @@ private:
             din.to = din.current;
         }
         din.heading = "States of this call";
-        din.terminal = std::string(statusName(r.status)) + " after " + std::to_string(r.steps) + " update(s)";
+        din.terminal = std::string(nameOf(r.status)) + " after " + std::to_string(r.steps) + " update(s)";
         const Image diagram = common_.hasLayer("diagram") ? drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din) : blank(L.columnWidth, L.diagramHeight());
 
         Image plot = blank(L.columnWidth, L.plotHeight());
@@ -628,11 +628,11 @@ private:
         }
         std::vector<std::string> lines;
         std::string states;
-        for (const VClipTraceStep& s : call.trace.steps) states += std::string(states.empty() ? "" : " → ") + toString(s.state);
-        lines.push_back("Call " + std::to_string(k) + ": " + statusName(r.status) + ", features " + featureLabel(r.featureA, 0) + ", " +
+        for (const VClipTraceStep& s : call.trace.steps) states += std::string(states.empty() ? "" : " → ") + nameOf(s.state);
+        lines.push_back("Call " + std::to_string(k) + ": " + nameOf(r.status) + ", features " + featureLabel(r.featureA, 0) + ", " +
                         featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK " +
                         (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
-        lines.push_back(std::string(k == 0 ? "first call, seeded with " : "started from the previous call's pair ") + toString(call.seed.a) + ", " + toString(call.seed.b) + "; states: " + states);
+        lines.push_back(std::string(k == 0 ? "first call, seeded with " : "started from the previous call's pair ") + nameOf(call.seed.a) + ", " + nameOf(call.seed.b) + "; states: " + states);
         int total = 0;
         for (const Call& cc : calls) total += cc.result.steps;
         lines.push_back("B orbits " + formatNumber(s_.motion->orbitDegrees) + "° and spins " + formatNumber(s_.motion->spinDegrees) +

@@ -50,7 +50,7 @@ Json testsJson(const std::vector<Test>& tests) {
         for (int i = 0; i < t.termCount; ++i)
             terms.push_back({{"name", t.terms[i].name}, {"formula", t.terms[i].formula}, {"sign", t.terms[i].sign},
                              {"exact_fallback", t.terms[i].exactFallback}});
-        out.push_back({{"candidate", toString(t.candidate)}, {"condition", t.condition}, {"terms", terms},
+        out.push_back({{"candidate", nameOf(t.candidate)}, {"condition", t.condition}, {"terms", terms},
                        {"accepted", t.accepted}});
     }
     return out;
@@ -61,7 +61,7 @@ template <class Result, class Tests>
 Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
     Json weights = Json::array();
     for (int i = 0; i < r.barycentric.size(); ++i) weights.push_back(r.barycentric[i]);
-    return {{"point", vecJson(point)},         {"region", toString(r.region)},
+    return {{"point", vecJson(point)},         {"region", nameOf(r.region)},
             {"closest", vecJson(r.point)},     {"barycentric", weights},
             {"distance", std::sqrt(r.distanceSquared)}, {"degenerate", r.status != SimplexStatus::Regular},
             {"tests", testsJson(tests)}};
@@ -70,7 +70,7 @@ Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
 // Caption of the step frame of query i.
 template <class Result>
 std::string focusCaption(int i, const Vec3& point, const Result& r) {
-    return "q" + std::to_string(i + 1) + " " + formatPoint(point) + ": region " + toString(r.region) + ", closest " +
+    return "q" + std::to_string(i + 1) + " " + formatPoint(point) + ": region " + nameOf(r.region) + ", closest " +
            formatPoint(r.point) + ", distance " + formatNumber(std::sqrt(r.distanceSquared));
 }
 
@@ -230,7 +230,7 @@ private:
                     Vec3 at = polygonCentroid(region.vertices);
                     if (region.region == TriangleRegion::ABC) at = c;
                     else at = c + (at - c) * 0.85;  // pull labels of unbounded regions inwards, off the frame edge
-                    canvas.drawText(at, std::string("region ") + toString(region.region),
+                    canvas.drawText(at, std::string("region ") + nameOf(region.region),
                                     TextStyle{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true});
                 }
         }
@@ -257,7 +257,7 @@ private:
         drawTitleAndCaption(canvas, common_.title + (is3d ? " (3D)" : ""), caption);
         Frame f;
         f.name = focus >= 0 ? stepName(focus) : view;
-        f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + toString(results[focus].trace.result.region)
+        f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + nameOf(results[focus].trace.result.region)
                                : common_.title + " — " + view;
         f.image = canvas.readPixels();
         return f;
@@ -347,7 +347,7 @@ private:
                 canvas.drawPoint(results[i].point, focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
                                  faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
                 if (labels && !faded)
-                    canvas.drawText(results[i].point, "  q" + std::to_string(i + 1) + ": " + toString(r.region),
+                    canvas.drawText(results[i].point, "  q" + std::to_string(i + 1) + ": " + nameOf(r.region),
                                     TextStyle{18.0f, roleColor(Role::Ink), Anchor::Left, true, false});
             }
         }
@@ -364,7 +364,7 @@ private:
         drawTitleAndCaption(canvas, common_.title, caption);
         Frame f;
         f.name = focus >= 0 ? stepName(focus) : "3d";
-        f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + toString(results[focus].trace.result.region)
+        f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + nameOf(results[focus].trace.result.region)
                                : common_.title;
         f.image = canvas.readPixels();
         return f;

@@ -166,7 +166,7 @@ TEST_CASE("validation: out-of-range index and NaN vertex give clear statuses") {
     v = validateMesh(bad);
     CHECK(v.status == MeshStatus::NonFiniteVertex);
     CHECK(v.vertex == bad.triangles[7][0]);
-    CHECK(std::string(meshStatusName(v.status)) == "non-finite vertex");
+    CHECK(std::string(nameOf(v.status)) == "non-finite vertex");
     for (const Combo& c : allCombos()) {
         const Bvh t = build(bad, c);
         CHECK(t.status == BvhStatus::InvalidMesh);
@@ -408,7 +408,7 @@ TEST_CASE("degenerate meshes: empty, one triangle, zero area, duplicates, coplan
     const Bvh big = buildBvh(randomSoupMesh(101, 1, 0.1, 1), o);
     CHECK(big.status == BvhStatus::TooManyTrianglesForBottomUp);
     CHECK(big.empty());
-    CHECK(std::string(bvhStatusName(big.status)) == "too many triangles for bottom-up");
+    CHECK(std::string(nameOf(big.status)) == "too many triangles for bottom-up");
 }
 
 }  // TEST_SUITE

@@ -28,7 +28,7 @@ namespace {
 
 template <class Region>
 std::string N(Region r) {
-    return toString(r);
+    return nameOf(r);
 }
 
 BigInt pow2(int k) { return BigInt::fromParts(1, k, false); }

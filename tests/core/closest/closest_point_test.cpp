@@ -17,11 +17,10 @@ using R = TriangleRegion;
 
 namespace {
 
-// Region names for doctest messages (doctest's stringification would pick up cdlab::toString
-// by argument-dependent lookup and choke on its const char* return).
+// Region names as std::string for doctest messages.
 template <class Region>
 std::string N(Region r) {
-    return toString(r);
+    return nameOf(r);
 }
 
 // Vertex set (indices into a, b, c) of a triangle region.
@@ -60,17 +59,17 @@ void checkWeights(const ClosestPointOnTriangleResult& r, const Triangle& t, doub
 
 TEST_SUITE("closest_point") {
 
-TEST_CASE("toString gives the exact region names") {
-    CHECK(std::string(toString(R::A)) == "A");
-    CHECK(std::string(toString(R::B)) == "B");
-    CHECK(std::string(toString(R::C)) == "C");
-    CHECK(std::string(toString(R::AB)) == "AB");
-    CHECK(std::string(toString(R::BC)) == "BC");
-    CHECK(std::string(toString(R::CA)) == "CA");
-    CHECK(std::string(toString(R::ABC)) == "ABC");
-    CHECK(std::string(toString(SegmentRegion::AB)) == "AB");
+TEST_CASE("nameOf gives the exact region names") {
+    CHECK(std::string(nameOf(R::A)) == "A");
+    CHECK(std::string(nameOf(R::B)) == "B");
+    CHECK(std::string(nameOf(R::C)) == "C");
+    CHECK(std::string(nameOf(R::AB)) == "AB");
+    CHECK(std::string(nameOf(R::BC)) == "BC");
+    CHECK(std::string(nameOf(R::CA)) == "CA");
+    CHECK(std::string(nameOf(R::ABC)) == "ABC");
+    CHECK(std::string(nameOf(SegmentRegion::AB)) == "AB");
     const char* tet[] = {"A", "B", "C", "D", "AB", "AC", "AD", "BC", "BD", "CD", "ABC", "ABD", "ACD", "BCD", "ABCD"};
-    for (int i = 0; i < 15; ++i) CHECK(std::string(toString(static_cast<TetrahedronRegion>(i))) == tet[i]);
+    for (int i = 0; i < 15; ++i) CHECK(std::string(nameOf(static_cast<TetrahedronRegion>(i))) == tet[i]);
 }
 
 TEST_CASE("point-segment: regions, endpoints exactly, zero length") {

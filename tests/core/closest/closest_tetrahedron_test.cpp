@@ -17,7 +17,7 @@ using T = TetrahedronRegion;
 
 namespace {
 
-std::string N(T r) { return toString(r); }
+std::string N(T r) { return nameOf(r); }
 
 std::set<int> featureOf(T r) {
     static const std::set<int> kSets[15] = {{0},       {1},       {2},       {3},       {0, 1},

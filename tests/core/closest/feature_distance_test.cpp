@@ -88,7 +88,7 @@ TEST_CASE("all six pair types vs dense sampling (long double), offsets and scale
                         long double best = INFINITY;
                         for (const LVec& p : sa)
                             for (const LVec& q : sb) best = std::min(best, (p - q).norm());
-                        CAPTURE(contactTypeName(r.type));
+                        CAPTURE(nameOf(r.type));
                         CAPTURE(scale);
                         CAPTURE(offset);
                         const double round = 1e-12 * (scale + offset);

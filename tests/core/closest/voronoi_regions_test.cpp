@@ -15,8 +15,8 @@ using R = TriangleRegion;
 
 namespace {
 
-std::string N(R r) { return toString(r); }
-std::string N(TetrahedronRegion r) { return toString(r); }
+std::string N(R r) { return nameOf(r); }
+std::string N(TetrahedronRegion r) { return nameOf(r); }
 
 double polygonArea(const std::vector<Vec3>& poly, const Vec3& normal, const Vec3& origin = Vec3::Zero()) {
     Vec3 sum = Vec3::Zero();

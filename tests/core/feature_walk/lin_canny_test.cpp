@@ -60,7 +60,7 @@ void checkPair(const VClipPolyhedron& A, const Transform& pa, const VClipPolyhed
     const double od = static_cast<double>(o.distance);
     const double scale = std::max(extent(A.mesh()), extent(B.mesh()));
     const double tol = tolScale * (scale + pa.position.norm() + pb.position.norm());
-    CAPTURE(statusName(r.status));
+    CAPTURE(nameOf(r.status));
     CAPTURE(r.message);
     CAPTURE(od);
     CAPTURE(r.distance);

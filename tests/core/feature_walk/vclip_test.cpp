@@ -312,8 +312,8 @@ TEST_SUITE("vclip") {
                     for (const VClipFeature& fb : seedsOf(B)) {
                         VClipCache cache{fa, fb};
                         const VClipResult r = vclip(A, pa, B, pb, &cache);
-                        CAPTURE(toString(fa));
-                        CAPTURE(toString(fb));
+                        CAPTURE(nameOf(fa));
+                        CAPTURE(nameOf(fb));
                         REQUIRE_MESSAGE((r.status == VClipStatus::Separated || r.status == VClipStatus::Penetrating), r.message);
                         CHECK(r.intersect == o.intersect);
                         if (!o.intersect) CHECK(std::abs(r.distance - static_cast<double>(o.distance)) <= 1e-12);

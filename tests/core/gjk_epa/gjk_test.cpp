@@ -172,7 +172,7 @@ TEST_SUITE("gjk")
                 maxWitnessErr = std::max(maxWitnessErr, wErr / (1e-12 * d + 16 * DBL_EPSILON * (offset + size)));
             }
             std::ostringstream msg;
-            msg << solverName(solver) << ": separated " << separated << ", intersecting " << intersecting
+            msg << nameOf(solver) << ": separated " << separated << ", intersecting " << intersecting
                 << ", max rel distance error " << maxDistErr << ", axis " << maxAxisErr;
             MESSAGE(msg.str());
             CHECK(wrong == 0);
