@@ -20,6 +20,7 @@
 #include "core/geometry/polyhedron_presets.h"
 #include "core/dynamics/simulation.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/convex_drawable.h"
@@ -52,7 +53,7 @@ public:
             return out;
         }
         if (!r.ok()) return out;  // prepare() validated the inputs; nothing to draw otherwise
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
 
         // One camera for every frame: the bounding sphere of the body along its whole path.
         std::vector<Vec3> path;
@@ -151,13 +152,7 @@ private:
 
     Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius, const SimulationResult& r,
                     const SimulationTrace& tr, int k, int index) const {
-        CanvasOptions o;
-        o.width = common_.image.width;
-        o.height = common_.image.height;
-        o.supersample = ss;
-        Canvas c(gl, o);
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(cam);
+        Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         const SimulationStep& s = tr.steps[k];
         const double rho = r.boundingRadius;
         const bool labels = common_.hasLayer("labels");
@@ -224,7 +219,7 @@ private:
         }
         if (labels) {
             // Legend (top right), each entry in the colour of what it names.
-            const double x = o.width - 18.0;
+            const double x = c.width() - 18.0;
             double y = 18.0;
             const auto item = [&](const std::string& text, Role role) {
                 c.drawTextPx(x, y, text, TextStyle{16.0f, role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role),
@@ -244,30 +239,20 @@ private:
                       s.contacts.size() == 1 ? "" : "s", pushing, bounces ? (", " + std::to_string(bounces) + " bouncing").c_str() : "");
         std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground", s.energy, s.kinetic,
                       s.potential, s.maxPenetration);
-        c.drawTextPx(18.0, o.height - 18.0 - 26.0, line1, TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        c.drawTextPx(18.0, c.height() - 18.0 - 26.0, line1, TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
         drawTitleAndCaption(c, common_.title, line2);
-        Frame f;
         char name[32];
         std::snprintf(name, sizeof name, "frame_%02d", index);
-        f.name = name;
         char cap[160];
         std::snprintf(cap, sizeof cap, "t = %.2f s: %d contact%s, E = %.3g J", s.time, int(s.contacts.size()),
                       s.contacts.size() == 1 ? "" : "s", s.energy);
-        f.caption = cap;
-        f.image = c.readPixels();
-        return f;
+        return Frame{name, cap, c.readPixels()};
     }
 
     // Energy (top) and penetration on a log scale (bottom) against time, drawn in pixel units.
     Frame drawPlot(GlContext& gl, int ss, const SimulationResult& r, const SimulationTrace& tr, const std::vector<int>& frameSteps) const {
         const int W = common_.image.width, H = common_.image.height;
-        CanvasOptions o;
-        o.width = W;
-        o.height = H;
-        o.supersample = ss;
-        Canvas c(gl, o);
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));  // world = pixels, y up
+        Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));  // world = pixels, y up
         const auto P = [](double x, double y) { return Vec3(x, y, 0); };
         const double x0 = 110, x1 = W - 40;
         const double tMax = tr.steps.back().time;
@@ -365,11 +350,7 @@ private:
             std::snprintf(cap, sizeof cap, "still moving at the end; max depth %.2g (slop %.2g); max energy rise per step %.2g J",
                           r.maxPenetration, options_.slop, r.maxEnergyIncrease);
         drawTitleAndCaption(c, common_.title + ": energy and penetration", cap);
-        Frame f;
-        f.name = "energy";
-        f.caption = "energy and penetration vs time";
-        f.image = c.readPixels();
-        return f;
+        return Frame{"energy", "energy and penetration vs time", c.readPixels()};
     }
 };
 

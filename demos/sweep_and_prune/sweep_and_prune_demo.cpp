@@ -20,6 +20,7 @@
 #include <cstdio>
 
 #include "core/broadphase/sweep_and_prune.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
@@ -120,7 +121,7 @@ public:
             out.skipped.push_back("all drawing (no GL context)");
             return out;
         }
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         for (std::size_t f = 0; f < frames.size(); ++f) out.frames.push_back(drawFrame(*ctx.gl, ss, frames, static_cast<int>(f)));
         return out;
     }
@@ -191,12 +192,7 @@ private:
     static constexpr double kOrderX0 = 600, kOrderX1 = 1004;
 
     Image draw3d(GlContext& gl, int ss, const FrameData& d, Eigen::Vector2d axisDir[3]) const {
-        CanvasOptions co;
-        co.width = static_cast<int>(kViewW);
-        co.height = static_cast<int>(kTopH);
-        co.supersample = ss;
-        Canvas c(gl, co);
-        c.setBackground(roleColor(Role::Background));
+        Canvas c(gl, canvasOptions(static_cast<int>(kViewW), static_cast<int>(kTopH), ss));
         // Frame the union of every frame's boxes so the camera does not move between frames.
         Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
         for (int f = 0; f <= s_.frames; ++f)
@@ -242,13 +238,7 @@ private:
 
     Frame drawFrame(GlContext& gl, int ss, const std::vector<FrameData>& frames, int f) const {
         const FrameData& d = frames[f];
-        CanvasOptions co;
-        co.width = kW;
-        co.height = kH;
-        co.supersample = ss;
-        Canvas c(gl, co);
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(Camera::twoD(kW / 2.0, kH / 2.0, kH));
+        Canvas c(gl, canvasOptions(kW, kH, ss), Camera::pixels(kW, kH));
         auto P = [](double x, double y) { return Eigen::Vector3d(x, kH - y, 0); };
         const int n = static_cast<int>(d.boxes.size());
         const TextStyle small{14.0f, roleColor(Role::Ink), Anchor::Left, false, false};
