@@ -20,6 +20,7 @@
 #include "core/contact/contact_sat.h"
 #include "core/closest/feature_distance.h"
 #include "core/geometry/polyhedron_presets.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/convex_drawable.h"
@@ -138,11 +139,7 @@ struct Legend {
 
 Frame finish(Canvas& c, const std::string& name, const std::string& title, const std::string& caption, const std::string& shortCaption) {
     drawTitleAndCaption(c, title, caption);
-    Frame f;
-    f.name = name;
-    f.caption = shortCaption;
-    f.image = c.readPixels();
-    return f;
+    return Frame{name, shortCaption, c.readPixels()};
 }
 
 Json pointsJson(const std::vector<ContactPoint>& pts) {
@@ -170,7 +167,7 @@ public:
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         if (mode == "plane") runPlane(ctx, ss, out);
         else if (mode == "features") runFeatures(ctx, ss, out);
         else runSat(ctx, ss, out);
@@ -179,14 +176,6 @@ public:
     }
 
 private:
-    CanvasOptions canvasOptions(int ss) const {
-        CanvasOptions o;
-        o.width = common_.image.width;
-        o.height = common_.image.height;
-        o.supersample = ss;
-        return o;
-    }
-
     // ---- plane mode ---------------------------------------------------------------------------
     void runPlane(const RunContext& ctx, int ss, DemoOutput& out) const {
         std::vector<PlaneContactResult> results;
@@ -230,9 +219,7 @@ private:
         for (size_t i = 0; i < poses.size(); ++i) {
             const PlaneContactResult& r = results[i];
             const PlaneContactTrace& tr = traces[i];
-            Canvas c(*ctx.gl, canvasOptions(ss));
-            c.setBackground(roleColor(Role::Background));
-            c.setCamera(cam);
+            Canvas c(*ctx.gl, sceneCanvasOptions(common_, ss), cam);
             const bool labels = common_.hasLayer("labels");
             if (common_.hasLayer("plane")) {
                 const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
@@ -327,9 +314,8 @@ private:
             double radius;
             boundingSphere(all, center, radius);
             radius = std::max(radius, 0.6);
-            Canvas c(*ctx.gl, canvasOptions(ss));
-            c.setBackground(roleColor(Role::Background));
-            c.setCamera(common_.camera ? *common_.camera : framingCamera(center, radius * 1.25, view, Vec3::UnitZ()));
+            const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.25, view, Vec3::UnitZ());
+            Canvas c(*ctx.gl, sceneCanvasOptions(common_, ss), cam);
             const bool labels = common_.hasLayer("labels");
             const auto drawFeature = [&](const FeatureGeometry& f, Role role, const std::string& tag) {
                 const Color col = roleColor(role);
@@ -383,17 +369,43 @@ private:
     void runSat(const RunContext& ctx, int ss, DemoOutput& out) const {
         SatContactTrace tr;
         const SatContactResult r = contactPolyhedra(a.mesh, a.pose, b.mesh, b.pose, {}, &tr);
+        out.trace = satTrace(r, tr);
+        if (!ctx.gl) return;
+        out.frames.push_back(satContactFrame(*ctx.gl, ss, r, tr));
+        const bool faceContact = r.axisKind != SatAxisKind::EdgeEdge && r.colliding();
+        if (!faceContact) {
+            out.skipped.push_back("clip frame (no face contact)");
+            return;
+        }
+        out.frames.push_back(satClipFrame(*ctx.gl, ss, r, tr));
+    }
+
+    static Json satTrace(const SatContactResult& r, const SatContactTrace& tr) {
         Json axes = Json::array();
         for (const SatAxisRecord& x : tr.axes)
             axes.push_back({{"kind", nameOf(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vec3Json(x.axis)}, {"separation", x.separation}});
         Json clips = Json::array();
         for (const SatClipStep& s : tr.clipSteps) clips.push_back({{"reference_edge", s.referenceEdge}, {"before", s.before.size()}, {"after", s.after.size()}});
-        out.trace = {{"mode", "sat"}, {"status", nameOf(r.status)}, {"separation", r.separation}, {"depth", r.depth},
-                     {"normal", vec3Json(r.normal)}, {"axis_kind", nameOf(r.axisKind)}, {"axes", axes},
-                     {"edge_pairs", tr.edgePairsTotal}, {"edge_pairs_pruned", tr.edgePairsPruned}, {"edge_pairs_parallel", tr.edgePairsParallel},
-                     {"chosen", tr.chosen}, {"reference_on_a", tr.referenceOnA}, {"reference_face", tr.referenceFace},
-                     {"incident_face", tr.incidentFace}, {"clip_steps", clips}, {"manifold", pointsJson(r.manifold)}};
-        if (!ctx.gl) return;
+        return {{"mode", "sat"}, {"status", nameOf(r.status)}, {"separation", r.separation}, {"depth", r.depth},
+                {"normal", vec3Json(r.normal)}, {"axis_kind", nameOf(r.axisKind)}, {"axes", axes},
+                {"edge_pairs", tr.edgePairsTotal}, {"edge_pairs_pruned", tr.edgePairsPruned}, {"edge_pairs_parallel", tr.edgePairsParallel},
+                {"chosen", tr.chosen}, {"reference_on_a", tr.referenceOnA}, {"reference_face", tr.referenceFace},
+                {"incident_face", tr.incidentFace}, {"clip_steps", clips}, {"manifold", pointsJson(r.manifold)}};
+    }
+
+    // The body that holds the reference face and the one that holds the incident face, with their colours.
+    struct ClipSides {
+        const Posed& ref;
+        const Posed& inc;
+        Role refRole, incRole;
+    };
+    ClipSides clipSides(const SatContactTrace& tr) const {
+        return {tr.referenceOnA ? a : b, tr.referenceOnA ? b : a, tr.referenceOnA ? Role::ShapeA : Role::ShapeB,
+                tr.referenceOnA ? Role::ShapeB : Role::ShapeA};
+    }
+
+    // The two bodies, the faces or edges that decide the axis, the axis and the manifold.
+    Frame satContactFrame(GlContext& gl, int ss, const SatContactResult& r, const SatContactTrace& tr) const {
         std::vector<Vec3> all = a.world();
         for (const Vec3& p : b.world()) all.push_back(p);
         Vec3 center;
@@ -401,72 +413,68 @@ private:
         boundingSphere(all, center, radius);
         const bool labels = common_.hasLayer("labels");
         const bool faceContact = r.axisKind != SatAxisKind::EdgeEdge && r.colliding();
-        const Posed& ref = tr.referenceOnA ? a : b;
-        const Posed& inc = tr.referenceOnA ? b : a;
-        const Role refRole = tr.referenceOnA ? Role::ShapeA : Role::ShapeB, incRole = tr.referenceOnA ? Role::ShapeB : Role::ShapeA;
+        const auto [ref, inc, refRole, incRole] = clipSides(tr);
         char counts[200];
         std::snprintf(counts, sizeof counts, "axes: %d+%d faces, %d/%d edge pairs (%d Gauss-map pruned, %d parallel)",
                       a.mesh.faceCount(), b.mesh.faceCount(), int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(),
                       tr.edgePairsTotal, tr.edgePairsPruned, tr.edgePairsParallel);
-        {
-            Canvas c(*ctx.gl, canvasOptions(ss));
-            c.setBackground(roleColor(Role::Background));
-            c.setCamera(common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ()));
-            drawPosed(c, a, roleColor(Role::ShapeA), 0.35f);
-            drawPosed(c, b, roleColor(Role::ShapeB), 0.35f);
-            Legend lg{c};
+        const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ());
+        Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
+        drawPosed(c, a, roleColor(Role::ShapeA), 0.35f);
+        drawPosed(c, b, roleColor(Role::ShapeB), 0.35f);
+        Legend lg{c};
+        if (labels) {
+            lg.item("body A", Role::ShapeA);
+            lg.item("body B", Role::ShapeB);
+        }
+        Vec3 axisFrom = center;
+        if (faceContact) {
+            const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace), ip = facePolygon(inc, tr.incidentFace);
+            c.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
+            c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
+            c.drawPolyline(ip, true, lineStyle(incRole, 4.0f, true, true));
+            axisFrom = centroid(rp);
             if (labels) {
-                lg.item("body A", Role::ShapeA);
-                lg.item("body B", Role::ShapeB);
+                lg.item(std::string("reference face (") + (tr.referenceOnA ? "A" : "B") + "), black outline", refRole);
+                lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", incRole);
             }
-            Vec3 axisFrom = center;
-            if (faceContact) {
-                const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace), ip = facePolygon(inc, tr.incidentFace);
-                c.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
-                c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
-                c.drawPolyline(ip, true, lineStyle(incRole, 4.0f, true, true));
-                axisFrom = centroid(rp);
-                if (labels) {
-                    lg.item(std::string("reference face (") + (tr.referenceOnA ? "A" : "B") + "), black outline", refRole);
-                    lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", incRole);
-                }
-            } else if (r.colliding() && !r.manifold.empty()) {
-                const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
-                const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
-                c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)), lineStyle(Role::ShapeA, 6.0f, false, true));
-                c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)), lineStyle(Role::ShapeB, 6.0f, false, true));
-                axisFrom = r.manifold[0].pointA;
-                if (labels) lg.item("edges of the edge–edge axis", Role::Ink);
-            }
-            if (common_.hasLayer("normals")) {
-                c.drawArrow(axisFrom, axisFrom + 0.6 * radius * r.normal, lineStyle(Role::Direction, 4.0f, false, true));
-                if (labels) {
-                    c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + nameOf(r.axisKind) + ")",
-                               TextStyle{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}});
-                    lg.item("→ axis of least penetration", Role::Direction);
-                }
-            }
-            if (common_.hasLayer("contacts")) {
-                for (const ContactPoint& p : r.manifold) {
-                    c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
-                    c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                    c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
-                }
-                if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
-            }
-            char cap[400];
-            if (r.colliding())
-                std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", nameOf(r.axisKind),
-                              fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
-            else
-                std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), nameOf(r.axisKind), counts);
-            out.frames.push_back(finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind)));
+        } else if (r.colliding() && !r.manifold.empty()) {
+            const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
+            const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
+            c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)), lineStyle(Role::ShapeA, 6.0f, false, true));
+            c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)), lineStyle(Role::ShapeB, 6.0f, false, true));
+            axisFrom = r.manifold[0].pointA;
+            if (labels) lg.item("edges of the edge–edge axis", Role::Ink);
         }
-        if (!faceContact) {
-            out.skipped.push_back("clip frame (no face contact)");
-            return;
+        if (common_.hasLayer("normals")) {
+            c.drawArrow(axisFrom, axisFrom + 0.6 * radius * r.normal, lineStyle(Role::Direction, 4.0f, false, true));
+            if (labels) {
+                c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + nameOf(r.axisKind) + ")",
+                           TextStyle{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}});
+                lg.item("→ axis of least penetration", Role::Direction);
+            }
         }
-        // The clip seen along the reference normal: reference face, incident face, each side-plane step.
+        if (common_.hasLayer("contacts")) {
+            for (const ContactPoint& p : r.manifold) {
+                c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+            }
+            if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
+        }
+        char cap[400];
+        if (r.colliding())
+            std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", nameOf(r.axisKind),
+                          fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
+        else
+            std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), nameOf(r.axisKind), counts);
+        return finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind));
+    }
+
+    // The clip seen along the reference normal: reference face, incident face, each side-plane step.
+    Frame satClipFrame(GlContext& gl, int ss, const SatContactResult& r, const SatContactTrace& tr) const {
+        const bool labels = common_.hasLayer("labels");
+        const auto [ref, inc, refRole, incRole] = clipSides(tr);
         const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace);
         const Vec3 nr = ref.pose.rotate(ref.mesh.face(tr.referenceFace).normal);
         Vec3 cc;
@@ -474,9 +482,8 @@ private:
         std::vector<Vec3> both = rp;
         for (const Vec3& p : facePolygon(inc, tr.incidentFace)) both.push_back(p);
         boundingSphere(both, cc, cr);
-        Canvas c(*ctx.gl, canvasOptions(ss));
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(framingCamera(cc, cr * 1.15, nr, nr.unitOrthogonal(), false));
+        const Camera cam = framingCamera(cc, cr * 1.15, nr, nr.unitOrthogonal(), false);
+        Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         c.drawPolygon(rp, roleColor(refRole).withAlpha(0.3f));
         c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
         c.drawPolyline(facePolygon(inc, tr.incidentFace), true, lineStyle(incRole, 4.0f, true, true));
@@ -503,7 +510,7 @@ private:
         std::snprintf(cap, sizeof cap, "Sutherland–Hodgman: %d side planes clip the incident face to %d points; %d below the reference face → %d kept",
                       int(tr.clipSteps.size()), tr.clipSteps.empty() ? 0 : int(tr.clipSteps.back().after.size()), int(tr.clipped.size()),
                       int(r.manifold.size()));
-        out.frames.push_back(finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping"));
+        return finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping");
     }
 };
 
