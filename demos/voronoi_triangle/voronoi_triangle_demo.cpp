@@ -68,6 +68,18 @@ Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
             {"tests", testsJson(tests)}};
 }
 
+/// Each query point through `closest(point, &trace)`, its trace kept (Query: TriangleQuery or TetrahedronQuery).
+template <class Query, class Closest>
+std::vector<Query> runQueries(const std::vector<Vec3>& points, const Closest& closest) {
+    std::vector<Query> results;
+    for (const Vec3& q : points) {
+        Query r{q, {}};
+        closest(q, &r.trace);
+        results.push_back(r);
+    }
+    return results;
+}
+
 /// Every query of a run (a TriangleQuery or TetrahedronQuery list) as trace JSON.
 template <class Query>
 Json queriesJson(const std::vector<Query>& results) {
@@ -132,12 +144,8 @@ private:
 
     DemoOutput runTriangle(const RunContext& ctx) const {
         const Triangle tri{simplex_[0], simplex_[1], simplex_[2]};
-        std::vector<TriangleQuery> results;
-        for (const Vec3& q : queries_) {
-            TriangleQuery r{q, {}};
-            closestPointOnTriangle(q, tri, &r.trace);
-            results.push_back(r);
-        }
+        const auto results =
+            runQueries<TriangleQuery>(queries_, [&](const Vec3& q, auto* trace) { closestPointOnTriangle(q, tri, trace); });
         DemoOutput out;
         out.trace["simplex"] = "triangle";
         out.trace["vertices"] = {vecJson(tri.a), vecJson(tri.b), vecJson(tri.c)};
@@ -265,12 +273,8 @@ private:
 
     DemoOutput runTetrahedron(const RunContext& ctx) const {
         const Tetrahedron tet{simplex_[0], simplex_[1], simplex_[2], simplex_[3]};
-        std::vector<TetrahedronQuery> results;
-        for (const Vec3& q : queries_) {
-            TetrahedronQuery r{q, {}};
-            closestPointOnTetrahedron(q, tet, &r.trace);
-            results.push_back(r);
-        }
+        const auto results =
+            runQueries<TetrahedronQuery>(queries_, [&](const Vec3& q, auto* trace) { closestPointOnTetrahedron(q, tet, trace); });
         DemoOutput out;
         out.trace["simplex"] = "tetrahedron";
         out.trace["vertices"] = {vecJson(tet.a), vecJson(tet.b), vecJson(tet.c), vecJson(tet.d)};
