@@ -363,11 +363,9 @@ private:
         for (int level = 0; level <= bvh.height(); ++level) vols += " " + fmt(sumVolume(bvh, levelNodes(bvh, level)));
         caption.push_back(vols + ". Boxes of one level overlap, and on a closed");
         caption.push_back("surface the sum only falls once the boxes are thinner than the shape: the tree pays off at the deep levels.");
-        Frame f;
-        f.name = "levels";
-        f.caption = "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + nameOf(bvh.kind) + " tree";
-        f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(Frame{"levels",
+                                   "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + nameOf(bvh.kind) + " tree",
+                                   composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
     }
 
     // ---- aabb_vs_obb --------------------------------------------------------------------------
@@ -712,11 +710,9 @@ private:
         if (s.action == BvhTraversalAction::Prune) rule = "prune: no triangle under A's node can touch one under B's node; the pair is dropped";
         if (s.action == BvhTraversalAction::LeafTest) rule = "leaf pair: test every triangle of A's leaf against every triangle of B's leaf (exact test)";
         caption.push_back(rule);
-        Frame f;
-        f.name = stepFrameName(k);
-        f.caption = "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action);
-        f.image = composeGrid(gl, L, ss_, common_.title, {main, trees}, legend, caption);
-        return f;
+        return Frame{stepFrameName(k),
+                     "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action),
+                     composeGrid(gl, L, ss_, common_.title, {main, trees}, legend, caption)};
     }
 
     // ---- refit ----------------------------------------------------------------------------------
@@ -799,11 +795,9 @@ private:
         if (!common_.caption.empty()) caption.push_back(common_.caption);
         caption.push_back("Level " + std::to_string(level) + " boxes drawn. Refit (van den Bergen 1997) keeps the tree built on the flat sheet: " +
                           (k == 0 ? "each AABB is exact for its triangles, but the groups no longer fit the shape." : "the OBB axes stay those of the rest shape."));
-        Frame f;
-        f.name = "refit";
-        f.caption = "refitted vs rebuilt boxes";
-        f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(Frame{"refit",
+                                   "refitted vs rebuilt boxes",
+                                   composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
 
         // Volume chart for both kinds.
         GridLayout C = grid(W(), std::min(H(), 460), 1, 1);
@@ -835,11 +829,9 @@ private:
             "AABB refit: union of the children's boxes, exact for the old groups: refitted / rebuilt volume " + fmt(lo[0]) + " .. " + fmt(hi[0]) + ".",
             "OBB refit: the flat sheet's axes, new extents: refitted / rebuilt " + fmt(lo[1]) + " .. " + fmt(hi[1]) +
                 ". Refitting is one bottom-up pass; rebuilding a full build per frame."};
-        Frame g;
-        g.name = "volume";
-        g.caption = "total box volume, refitted vs rebuilt";
-        g.image = composeGrid(*ctx.gl, C, ss_, common_.title, {drawBarChart(*ctx.gl, C.panelWidth(), C.panelHeight(), ss_, bc)}, {}, cap2);
-        out.frames.push_back(std::move(g));
+        out.frames.push_back(Frame{"volume",
+                                   "total box volume, refitted vs rebuilt",
+                                   composeGrid(*ctx.gl, C, ss_, common_.title, {drawBarChart(*ctx.gl, C.panelWidth(), C.panelHeight(), ss_, bc)}, {}, cap2)});
     }
 
     // ---- build_methods --------------------------------------------------------------------------
@@ -885,11 +877,9 @@ private:
             vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) + " / " +
                     fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
         caption.push_back(vols + ";  all nodes " + fmt(totalVolume(trees[0])) + " / " + fmt(totalVolume(trees[1])));
-        Frame f;
-        f.name = "methods";
-        f.caption = "top-down vs bottom-up";
-        f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(Frame{"methods",
+                                   "top-down vs bottom-up",
+                                   composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
     }
 };
 
