@@ -198,11 +198,21 @@ private:
         out.trace = {{"mode", "plane"}, {"body", body.name}, {"frames", frames}};
         if (!ctx.gl) return;
 
-        // One camera for all poses: the bodies and the plane patch under them.
+        const PlaneView v = planeView();
+        for (size_t i = 0; i < poses.size(); ++i) out.frames.push_back(planeFrame(*ctx.gl, ss, v, i, results[i], traces[i]));
+    }
+
+    // The plane (unit normal n, offset d) and one camera for all poses: the bodies and the plane patch under them.
+    struct PlaneView {
         Vec3 n;
         double d;
-        n = plane.normal.normalized();
-        d = plane.offset / plane.normal.norm();
+        Vec3 center;
+        double radius;
+        Camera cam;
+    };
+    PlaneView planeView() const {
+        const Vec3 n = plane.normal.normalized();
+        const double d = plane.offset / plane.normal.norm();
         std::vector<Vec3> pts;
         for (const Transform& t : poses)
             for (const Vec3& v : body.mesh.positions()) {
@@ -215,82 +225,85 @@ private:
         boundingSphere(pts, center, radius);
         const Vec3 up = std::abs(n.z()) > 0.5 ? Vec3(n) : Vec3::UnitZ();
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, up);
-        const double rho = radius;
-        for (size_t i = 0; i < poses.size(); ++i) {
-            const PlaneContactResult& r = results[i];
-            const PlaneContactTrace& tr = traces[i];
-            Canvas c(*ctx.gl, sceneCanvasOptions(common_, ss), cam);
-            const bool labels = common_.hasLayer("labels");
-            if (common_.hasLayer("plane")) {
-                const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
-                const Vec3 g = center - (n.dot(center) - d) * n;
-                const double h = 1.5 * radius;
-                c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, roleColor(Role::Muted).withAlpha(0.25f));
-                c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true, lineStyle(Role::Muted, 1.5f));
-                if (labels) c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
-            }
-            Posed pb = body;
-            pb.pose = poses[i];
-            drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA), r.colliding() ? 0.55f : 0.75f);
-            Legend lg{c};
-            if (labels) lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated", r.colliding() ? Role::Highlight : Role::ShapeA);
-            if (r.colliding()) {
-                // Vertices below the plane and the crossing points.
-                if (common_.hasLayer("polygon")) {
-                    std::vector<Vec3> outline;
-                    for (const ContactPoint& p : r.polygon) outline.push_back(p.pointB);
-                    if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Result).withAlpha(0.28f));
-                    if (outline.size() >= 2) c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
-                    for (const auto& x : tr.crossings) c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
-                    if (labels) {
-                        lg.item("contact polygon (on the plane)", Role::Result);
-                        lg.item("○ edge–plane crossings", Role::Ink);
-                    }
-                }
-                if (common_.hasLayer("contacts")) {
-                    for (size_t k = 0; k < r.manifold.size(); ++k) {
-                        const ContactPoint& p = r.manifold[k];
-                        c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
-                        c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                        c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
-                        if (labels && (k == 0 || p.depth > 0)) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
-                                                  (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
-                    }
-                    if (labels) lg.item("manifold points, with depth", Role::Result);
-                }
-                if (common_.hasLayer("normals")) {
-                    for (const ContactPoint& p : r.manifold)
-                        c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal, lineStyle(Role::Direction, 3.0f, false, true));
-                    if (labels) lg.item("→ plane normal n (pushes the body out)", Role::Direction);
-                }
-            } else if (common_.hasLayer("contacts")) {
-                // Closest feature and its projection onto the plane.
-                for (size_t k = 0; k < r.featurePoints.size(); ++k) {
-                    c.drawLine(r.featurePoints[k], r.featurePointsOnPlane[k], lineStyle(Role::Result, 2.0f, true, true));
-                    c.drawPoint(r.featurePoints[k], 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                    c.drawPoint(r.featurePointsOnPlane[k], 4.0f, roleColor(Role::Ink), true);
-                }
-                if (r.featurePoints.size() >= 2)
-                    c.drawPolyline(r.featurePoints, r.featurePoints.size() >= 3, lineStyle(Role::Result, 4.0f, false, true));
-                if (labels) {
-                    drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center, "distance " + fmt(r.signedDistance),
-                                  labelStyle(Role::Result, 17.0f), 18.0);
-                    lg.item("closest feature and its projection", Role::Result);
-                }
-            }
-            char cap[400];
-            if (r.colliding())
-                std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
-                              poseLabels[i].c_str(), nameOf(r.status), fmt(r.depth).c_str(), nameOf(r.feature.type),
-                              featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
-            else
-                std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)", poseLabels[i].c_str(),
-                              fmt(r.signedDistance).c_str(), nameOf(r.feature.type), featureLabel(r.feature).c_str(),
-                              int(r.featurePoints.size()), r.featurePoints.size() == 1 ? "" : "s");
-            char name[32];
-            std::snprintf(name, sizeof name, "pose_%02d", int(i));
-            out.frames.push_back(finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status)));
+        return {n, d, center, radius, cam};
+    }
+
+    // Pose i against the plane: the contact polygon, manifold and normals, or the closest feature.
+    Frame planeFrame(GlContext& gl, int ss, const PlaneView& v, size_t i, const PlaneContactResult& r, const PlaneContactTrace& tr) const {
+        const Vec3& n = v.n;
+        const double d = v.d, radius = v.radius, rho = v.radius;
+        const Vec3& center = v.center;
+        Canvas c(gl, sceneCanvasOptions(common_, ss), v.cam);
+        const bool labels = common_.hasLayer("labels");
+        if (common_.hasLayer("plane")) {
+            const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
+            const Vec3 g = center - (n.dot(center) - d) * n;
+            const double h = 1.5 * radius;
+            c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, roleColor(Role::Muted).withAlpha(0.25f));
+            c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true, lineStyle(Role::Muted, 1.5f));
+            if (labels) c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
         }
+        Posed pb = body;
+        pb.pose = poses[i];
+        drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA), r.colliding() ? 0.55f : 0.75f);
+        Legend lg{c};
+        if (labels) lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated", r.colliding() ? Role::Highlight : Role::ShapeA);
+        if (r.colliding()) {
+            // Vertices below the plane and the crossing points.
+            if (common_.hasLayer("polygon")) {
+                std::vector<Vec3> outline;
+                for (const ContactPoint& p : r.polygon) outline.push_back(p.pointB);
+                if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Result).withAlpha(0.28f));
+                if (outline.size() >= 2) c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
+                for (const auto& x : tr.crossings) c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
+                if (labels) {
+                    lg.item("contact polygon (on the plane)", Role::Result);
+                    lg.item("○ edge–plane crossings", Role::Ink);
+                }
+            }
+            if (common_.hasLayer("contacts")) {
+                for (size_t k = 0; k < r.manifold.size(); ++k) {
+                    const ContactPoint& p = r.manifold[k];
+                    c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                    c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                    c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+                    if (labels && (k == 0 || p.depth > 0)) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
+                                              (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
+                }
+                if (labels) lg.item("manifold points, with depth", Role::Result);
+            }
+            if (common_.hasLayer("normals")) {
+                for (const ContactPoint& p : r.manifold)
+                    c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal, lineStyle(Role::Direction, 3.0f, false, true));
+                if (labels) lg.item("→ plane normal n (pushes the body out)", Role::Direction);
+            }
+        } else if (common_.hasLayer("contacts")) {
+            // Closest feature and its projection onto the plane.
+            for (size_t k = 0; k < r.featurePoints.size(); ++k) {
+                c.drawLine(r.featurePoints[k], r.featurePointsOnPlane[k], lineStyle(Role::Result, 2.0f, true, true));
+                c.drawPoint(r.featurePoints[k], 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                c.drawPoint(r.featurePointsOnPlane[k], 4.0f, roleColor(Role::Ink), true);
+            }
+            if (r.featurePoints.size() >= 2)
+                c.drawPolyline(r.featurePoints, r.featurePoints.size() >= 3, lineStyle(Role::Result, 4.0f, false, true));
+            if (labels) {
+                drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center, "distance " + fmt(r.signedDistance),
+                              labelStyle(Role::Result, 17.0f), 18.0);
+                lg.item("closest feature and its projection", Role::Result);
+            }
+        }
+        char cap[400];
+        if (r.colliding())
+            std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
+                          poseLabels[i].c_str(), nameOf(r.status), fmt(r.depth).c_str(), nameOf(r.feature.type),
+                          featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
+        else
+            std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)", poseLabels[i].c_str(),
+                          fmt(r.signedDistance).c_str(), nameOf(r.feature.type), featureLabel(r.feature).c_str(),
+                          int(r.featurePoints.size()), r.featurePoints.size() == 1 ? "" : "s");
+        char name[32];
+        std::snprintf(name, sizeof name, "pose_%02d", int(i));
+        return finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status));
     }
 
     // ---- features mode ------------------------------------------------------------------------
