@@ -327,13 +327,6 @@ private:
                        const TextStyle& small, const TextStyle& smallBold, int n) const {
         const FrameData& d = frames[f];
         const double y0 = kPanelY + k * kPanelH;
-        // Fixed range over all frames so the motion reads from frame to frame.
-        double lo = INFINITY, hi = -INFINITY;
-        for (const FrameData& g : frames)
-            for (const Aabb& b : g.boxes) lo = std::min(lo, b.min[k]), hi = std::max(hi, b.max[k]);
-        const double pad = 0.04 * (hi - lo) + 1e-9;
-        lo -= pad, hi += pad;
-        auto X = [&](double v) { return kBarX0 + (v - lo) / (hi - lo) * (kBarX1 - kBarX0); };
         // Separator and axis name.
         c.drawLine(P(16, y0 - 4), P(kW - 16, y0 - 4), lineStyle(Role::Muted, 1.0f));
         c.drawTextPx(24, y0 + 46, kAxisName[k], TextStyle{30.0f, roleColor(Role::Ink), Anchor::Center, false, true});
@@ -341,6 +334,23 @@ private:
         std::vector<char> moved(2 * n, 0);
         for (const SapSwap& s : d.trace.swaps)
             if (s.axis == k) moved[2 * s.movingObject + s.movingIsMax] = moved[2 * s.passedObject + s.passedIsMax] = 1;
+        drawIntervals(c, P, frames, f, k, small, n, moved);
+        drawEndpointOrder(c, P, d, f, k, small, smallBold, n, moved);
+    }
+
+    // Left: each box's interval on axis k as a bar (moved endpoints marked), the ties, and the number line.
+    template <class ToWorld>
+    void drawIntervals(Canvas& c, const ToWorld& P, const std::vector<FrameData>& frames, int f, int k, const TextStyle& small, int n,
+                       const std::vector<char>& moved) const {
+        const FrameData& d = frames[f];
+        const double y0 = kPanelY + k * kPanelH;
+        // Fixed range over all frames so the motion reads from frame to frame.
+        double lo = INFINITY, hi = -INFINITY;
+        for (const FrameData& g : frames)
+            for (const Aabb& b : g.boxes) lo = std::min(lo, b.min[k]), hi = std::max(hi, b.max[k]);
+        const double pad = 0.04 * (hi - lo) + 1e-9;
+        lo -= pad, hi += pad;
+        auto X = [&](double v) { return kBarX0 + (v - lo) / (hi - lo) * (kBarX1 - kBarX0); };
         // Interval bars, one row per box.
         const double rowH = std::min(13.0, 84.0 / n);
         for (int i = 0; i < n; ++i) {
@@ -401,6 +411,13 @@ private:
             t.sizePx = 12.0f;
             c.drawTextPx(X(v), yl + 5, formatNumber(v), t);
         }
+    }
+
+    // Right: the sorted endpoint list before (top row) and after (bottom row) the insertion sort.
+    template <class ToWorld>
+    void drawEndpointOrder(Canvas& c, const ToWorld& P, const FrameData& d, int f, int k, const TextStyle& small,
+                           const TextStyle& smallBold, int n, const std::vector<char>& moved) const {
+        const double y0 = kPanelY + k * kPanelH;
         // Endpoint order before (top row) and after (bottom row) insertion sort.
         const int m = 2 * n;
         const double slot = (kOrderX1 - kOrderX0) / m;
