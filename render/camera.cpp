@@ -16,6 +16,8 @@ Camera Camera::twoD(double cx, double cy, double height) {
     return c;
 }
 
+Camera Camera::pixels(double width, double height) { return twoD(width / 2.0, height / 2.0, height); }
+
 Eigen::Vector3d Camera::viewDirection() const {
     if (projection == Projection::TwoD) return {0, 0, 1};
     const Eigen::Vector3d d = eye - target;

@@ -17,6 +17,9 @@ struct Camera {
 
     /// 2D view centred on (cx, cy) showing `height` world units vertically.
     static Camera twoD(double cx, double cy, double height);
+    /// 2D view of a width x height canvas in which one world unit is one output pixel, origin at the
+    /// bottom left, y up: for plots, diagrams and lists laid out in pixels.
+    static Camera pixels(double width, double height);
     /// Projection * view for the given aspect ratio (width / height), column-major like GL.
     Eigen::Matrix4d viewProjection(double aspect) const;
     /// Unit vector from target towards the eye (for lighting and sorting).

@@ -440,6 +440,10 @@ Canvas::Canvas(GlContext& context, const CanvasOptions& options) : impl_(nullptr
     impl_->samples = std::clamp(options.msaaSamples, 1, std::max(1, context.maxSamples()));
 }
 
+Canvas::Canvas(GlContext& context, const CanvasOptions& options, const Camera& camera) : Canvas(context, options) {
+    setCamera(camera);
+}
+
 Canvas::~Canvas() {
     if (impl_->haveTarget) {
         try {

@@ -63,6 +63,8 @@ std::vector<std::string>& drawnTextLog();
 class Canvas {
 public:
     Canvas(GlContext& context, const CanvasOptions& options);
+    /// The same, looking through `camera` (the background stays the default).
+    Canvas(GlContext& context, const CanvasOptions& options, const Camera& camera);
     ~Canvas();
     Canvas(const Canvas&) = delete;
     Canvas& operator=(const Canvas&) = delete;

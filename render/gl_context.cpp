@@ -290,6 +290,15 @@ void main() {
 }
 )";
 
+// The driver's message for a shader that failed to compile or a program that failed to link
+// (getLog: glGetShaderInfoLog or glGetProgramInfoLog), cut to 2 KiB.
+template <class GetLog>
+std::string infoLog(GLuint object, GetLog getLog) {
+    char log[2048] = {0};
+    getLog(object, sizeof log - 1, nullptr, log);
+    return log;
+}
+
 GLuint compile(GLenum type, const char* source, const char* what) {
     const GLuint shader = glCreateShader(type);
     glShaderSource(shader, 1, &source, nullptr);
@@ -297,10 +306,8 @@ GLuint compile(GLenum type, const char* source, const char* what) {
     GLint ok = 0;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        char log[2048] = {0};
-        glGetShaderInfoLog(shader, sizeof log - 1, nullptr, log);
+        std::string line = infoLog(shader, glGetShaderInfoLog);
         glDeleteShader(shader);
-        std::string line(log);
         for (char& ch : line)
             if (ch == '\n') ch = ' ';
         throw GlError(std::string("OpenGL: compiling the ") + what + " shader failed: " + line);
@@ -322,8 +329,7 @@ void GlContext::Impl::ensureDrawResources() {
     GLint ok = 0;
     glGetProgramiv(program, GL_LINK_STATUS, &ok);
     if (!ok) {
-        char log[2048] = {0};
-        glGetProgramInfoLog(program, sizeof log - 1, nullptr, log);
+        const std::string log = infoLog(program, glGetProgramInfoLog);
         glDeleteProgram(program);
         program = 0;
         throw GlError(std::string("OpenGL: linking the shader program failed: ") + log);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -248,6 +249,22 @@ void blit(Image& dst, const Image& src, int x, int y) {
     if (x0 >= x1) return;
     for (int row = y0; row < y1; ++row)
         std::memcpy(dst.pixel(x0, row), src.pixel(x0 - x, row - y), std::size_t(x1 - x0) * 4);
+}
+
+Image stackVertically(const Image& top, const Image& bottom) {
+    Image out(std::max(top.width, bottom.width), top.height + bottom.height);
+    blit(out, top, 0, 0);
+    blit(out, bottom, 0, top.height);
+    return out;
+}
+
+void paintRect(Image& image, int x, int y, int w, int h, const Color& color) {
+    auto byte = [](float channel) { return std::uint8_t(std::lround(std::clamp(channel, 0.0f, 1.0f) * 255)); };
+    const std::uint8_t rgba[4] = {byte(color.r), byte(color.g), byte(color.b), 255};
+    const int x0 = std::max(0, x), y0 = std::max(0, y);
+    const int x1 = std::min(image.width, x + w), y1 = std::min(image.height, y + h);
+    for (int row = y0; row < y1; ++row)
+        for (int col = x0; col < x1; ++col) std::memcpy(image.pixel(col, row), rgba, 4);
 }
 
 std::uint64_t pixelHash(const Image& image) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "render/color.h"
+
 namespace cdlab::render {
 
 /// Row-major RGBA8, first row = top of the picture.
@@ -79,6 +81,13 @@ Image downsample(const Image& image, int factor);
 
 /// Pastes src into dst with its top-left corner at (x, y), clipped.
 void blit(Image& dst, const Image& src, int x, int y);
+
+/// `top` over `bottom`, left-aligned, in a picture as wide as the wider one (the rest transparent black).
+Image stackVertically(const Image& top, const Image& bottom);
+
+/// Paints the w x h rectangle whose top-left corner is (x, y) in `color` (channels clamped to 0..1, opaque),
+/// clipped: the rules drawn between panels once they are blitted into a page.
+void paintRect(Image& image, int x, int y, int w, int h, const Color& color);
 
 /// 64-bit FNV-1a of width, height and pixels: the exact-match fingerprint of decoded pixels.
 std::uint64_t pixelHash(const Image& image);

@@ -26,6 +26,7 @@
 #include "core/bounding/kdop.h"
 #include "core/bounding/swept_sphere.h"
 #include "core/geometry/triangle_mesh.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/scene/mesh_scene.h"
@@ -338,7 +339,7 @@ private:
 
     Frame drawFrame(GlContext& gl, const RunContext& ctx, const std::vector<Vec3>& pts, const ConvexPolyhedron& hull,
                     const std::vector<FittedBv>& fitted, double hullVolume) const {
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         const int W = common_.image.width, H = common_.image.height;
         const int n = int(fitted.size());
         const int cols = std::min(columns_, n), rows = (n + cols - 1) / cols;
@@ -363,16 +364,10 @@ private:
         for (const auto& tr : shape_.mesh.triangles) meshTris.emplace_back(tr[0], tr[1], tr[2]);
         const ConvexDrawable hullBody = polyDrawable(hull, false);
 
-        CanvasOptions po;
-        po.width = pw;
-        po.height = ph;
-        po.supersample = ss;
         const Color bvColor = roleColor(Role::Highlight);
         std::vector<Image> panels;
         for (const FittedBv& f : fitted) {
-            Canvas c(gl, po);
-            c.setBackground(roleColor(Role::Background));
-            c.setCamera(cam);
+            Canvas c(gl, canvasOptions(pw, ph, ss), cam);
             if (common_.hasLayer("shape")) {
                 if (shape_.isCloud()) {
                     drawBody(c, hullBody, roleColor(Role::ShapeA), 0.35f, roleColor(Role::ShapeA), 0.0f);
@@ -397,13 +392,7 @@ private:
             panels.push_back(c.readPixels());
         }
 
-        CanvasOptions fo;
-        fo.width = W;
-        fo.height = H;
-        fo.supersample = ss;
-        Canvas frame(gl, fo);
-        frame.setBackground(roleColor(Role::Background));
-        frame.setCamera(Camera::twoD(0, 0, 1));
+        Canvas frame(gl, canvasOptions(W, H, ss), Camera::twoD(0, 0, 1));
         frame.drawTextPx(18, 10, common_.title, TextStyle{24.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
         std::vector<std::string> lines;
         if (!common_.caption.empty()) lines.push_back(common_.caption);
@@ -418,24 +407,10 @@ private:
         for (int i = 0; i < n; ++i) blit(image, panels[i], (i % cols) * pw, titleBand + (i / cols) * ph);
         // 1-pixel rules between panels.
         const Color m = roleColor(Role::Muted);
-        auto paint = [&](int x, int yy) {
-            if (x < 0 || x >= W || yy < 0 || yy >= H) return;
-            std::uint8_t* p = image.pixel(x, yy);
-            p[0] = std::uint8_t(std::lround(m.r * 255));
-            p[1] = std::uint8_t(std::lround(m.g * 255));
-            p[2] = std::uint8_t(std::lround(m.b * 255));
-            p[3] = 255;
-        };
-        for (int cI = 1; cI < cols; ++cI)
-            for (int yy = titleBand; yy < titleBand + rows * ph; ++yy) paint(cI * pw, yy);
-        for (int rI = 1; rI < rows; ++rI)
-            for (int x = 0; x < cols * pw; ++x) paint(x, titleBand + rI * ph);
-
-        Frame f;
-        f.name = "volumes";
-        f.caption = std::to_string(n) + " bounding volumes of the " + shape_.kind + " with their tightness";
-        f.image = std::move(image);
-        return f;
+        for (int cI = 1; cI < cols; ++cI) paintRect(image, cI * pw, titleBand, 1, rows * ph, m);
+        for (int rI = 1; rI < rows; ++rI) paintRect(image, 0, titleBand + rI * ph, cols * pw, 1, m);
+        const std::string caption = std::to_string(n) + " bounding volumes of the " + shape_.kind + " with their tightness";
+        return Frame{"volumes", caption, std::move(image)};
     }
 
     std::string shapeWords(int points) const {

@@ -24,6 +24,7 @@
 #include "core/bvh/mesh_collision.h"
 #include "core/geometry/triangle_mesh.h"
 #include "demos/bvh/bvh_draw.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/scene/mesh_scene.h"
@@ -198,6 +199,22 @@ std::string pct(double x) {
     return buf;
 }
 
+/// Whether two lists hold the same triangle pairs, in any order.
+bool samePairs(std::vector<TrianglePair> a, std::vector<TrianglePair> b) {
+    auto less = [](const TrianglePair& x, const TrianglePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
+    std::sort(a.begin(), a.end(), less);
+    std::sort(b.begin(), b.end(), less);
+    return a == b;
+}
+
+/// The triangles of A and of B in a list of pairs, in the pairs' order.
+void splitPairs(const std::vector<TrianglePair>& pairs, std::vector<int>& a, std::vector<int>& b) {
+    for (const TrianglePair& p : pairs) {
+        a.push_back(p.a);
+        b.push_back(p.b);
+    }
+}
+
 // ---- the scene
 
 enum class Figure { Levels, AabbVsObb, DualTraversal, Refit, BuildMethods };
@@ -222,7 +239,7 @@ public:
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
-        ss_ = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        ss_ = runSupersample(common_, ctx);
         switch (figure) {
             case Figure::Levels: runLevels(ctx, out); break;
             case Figure::AabbVsObb: runAabbVsObb(ctx, out); break;
@@ -265,7 +282,7 @@ private:
     Image boxesPanel(GlContext& gl, int w, int h, const MeshView& mesh, const Bvh& bvh, const Transform& pose,
                      const std::vector<int>& nodes, const Color& color, const Camera& cam, const std::string& heading,
                      const std::string& sub, const std::vector<std::string>& footer = {}) const {
-        Canvas c(gl, panelOptions(w, h, ss_));
+        Canvas c(gl, canvasOptions(w, h, ss_));
         c.setCamera(cam);
         if (common_.hasLayer("mesh")) drawMesh(c, mesh, roleColor(Role::ShapeA).withAlpha(0.35f), 0.6f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
         if (common_.hasLayer("boxes"))
@@ -346,11 +363,9 @@ private:
         for (int level = 0; level <= bvh.height(); ++level) vols += " " + fmt(sumVolume(bvh, levelNodes(bvh, level)));
         caption.push_back(vols + ". Boxes of one level overlap, and on a closed");
         caption.push_back("surface the sum only falls once the boxes are thinner than the shape: the tree pays off at the deep levels.");
-        Frame f;
-        f.name = "levels";
-        f.caption = "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + nameOf(bvh.kind) + " tree";
-        f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(Frame{"levels",
+                                   "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + nameOf(bvh.kind) + " tree",
+                                   composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
     }
 
     // ---- aabb_vs_obb --------------------------------------------------------------------------
@@ -363,128 +378,128 @@ private:
         t["trees"] = {treeJson(trees[0], maxLevel), treeJson(trees[1], maxLevel)};
         // The same query through both trees: mesh 1 (when given) against mesh 0.
         MeshCollisionResult q[2];
-        bool haveQuery = meshes.size() > 1;
-        if (haveQuery) {
-            const MeshSpec& o = meshes[1];
-            const MeshCollisionResult brute = collideMeshesBruteForce(m.mesh, m.pose, o.mesh, o.pose);
-            Json qj = Json::array();
-            for (int k = 0; k < 2; ++k) {
-                const Bvh other = buildChecked(o.mesh, trees[k].kind, build.method);
-                q[k] = collideMeshes(m.mesh, trees[k], m.pose, o.mesh, other, o.pose);
-                std::vector<TrianglePair> a = q[k].pairs, b = brute.pairs;
-                auto less = [](const TrianglePair& x, const TrianglePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
-                std::sort(a.begin(), a.end(), less);
-                std::sort(b.begin(), b.end(), less);
-                qj.push_back({{"bv", nameOf(trees[k].kind)}, {"bv_tests", q[k].stats.bvTests}, {"leaf_pairs", q[k].stats.leafVisits},
-                              {"triangle_tests", q[k].stats.triangleTests}, {"pairs", q[k].pairs.size()}, {"equals_brute_force", a == b}});
-            }
-            t["query"] = {{"mesh", o.kind}, {"brute_force_triangle_tests", brute.stats.triangleTests}, {"brute_force_pairs", brute.pairs.size()},
-                          {"trees", qj}};
-        }
+        const bool haveQuery = meshes.size() > 1;
+        if (haveQuery) t["query"] = queryBothTrees(trees, q);
         out.trace = t;
         if (!ctx.gl) return;
 
         const MeshView mv = meshView(m.mesh, m.pose);
         Vec3 center;
         double radius;
+        sphereOverTopLevel(mv, trees, m.pose, center, radius);
+        out.frames.push_back(aabbVsObbLevelsFrame(*ctx.gl, mv, trees, center, radius));
+        out.frames.push_back(aabbVsObbNumbersFrame(*ctx.gl, mv, trees, maxLevel, haveQuery ? q : nullptr));
+    }
+
+    /// Mesh 1 against mesh 0 through trees of each kind (q[k] with trees[k]'s kind), checked against brute force.
+    Json queryBothTrees(const Bvh (&trees)[2], MeshCollisionResult (&q)[2]) const {
+        const MeshSpec& m = meshes[0];
+        const MeshSpec& o = meshes[1];
+        const MeshCollisionResult brute = collideMeshesBruteForce(m.mesh, m.pose, o.mesh, o.pose);
+        Json qj = Json::array();
+        for (int k = 0; k < 2; ++k) {
+            const Bvh other = buildChecked(o.mesh, trees[k].kind, build.method);
+            q[k] = collideMeshes(m.mesh, trees[k], m.pose, o.mesh, other, o.pose);
+            qj.push_back({{"bv", nameOf(trees[k].kind)}, {"bv_tests", q[k].stats.bvTests}, {"leaf_pairs", q[k].stats.leafVisits},
+                          {"triangle_tests", q[k].stats.triangleTests}, {"pairs", q[k].pairs.size()},
+                          {"equals_brute_force", samePairs(q[k].pairs, brute.pairs)}});
+        }
+        return {{"mesh", o.kind}, {"brute_force_triangle_tests", brute.stats.triangleTests}, {"brute_force_pairs", brute.pairs.size()},
+                {"trees", qj}};
+    }
+
+    /// The sphere around the mesh and both trees' boxes at the shallowest drawn level: one camera frames every panel.
+    void sphereOverTopLevel(const MeshView& mv, const Bvh (&trees)[2], const Transform& pose, Vec3& center, double& radius) const {
         std::vector<Vec3> corners;
         for (int k = 0; k < 2; ++k) {
-            const std::vector<Vec3> c = boxesCorners(trees[k], m.pose, levelNodes(trees[k], *std::min_element(levels.begin(), levels.end())));
+            const std::vector<Vec3> c = boxesCorners(trees[k], pose, levelNodes(trees[k], *std::min_element(levels.begin(), levels.end())));
             corners.insert(corners.end(), c.begin(), c.end());
         }
         meshSphere({&mv}, center, radius, corners);
-        // Frame 1: AABB row over OBB row, one column per level.
-        {
-            GridLayout L = grid(W(), H(), int(levels.size()), 2);
-            const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
-            std::vector<Image> panels;
+    }
+
+    // Frame 1: AABB row over OBB row, one column per level.
+    Frame aabbVsObbLevelsFrame(GlContext& gl, const MeshView& mv, const Bvh (&trees)[2], const Vec3& center, double radius) const {
+        const MeshSpec& m = meshes[0];
+        GridLayout L = grid(W(), H(), int(levels.size()), 2);
+        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+        std::vector<Image> panels;
+        for (int k = 0; k < 2; ++k)
+            for (int level : levels) {
+                const std::vector<int> nodes = levelNodes(trees[k], level);
+                const double v = sumVolume(trees[k], nodes);
+                panels.push_back(boxesPanel(gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes,
+                                            k == 0 ? levelColor(0) : levelColor(1), cam,
+                                            std::string(nameOf(trees[k].kind)) + " tree, level " + std::to_string(level),
+                                            std::to_string(nodes.size()) + " boxes, volume " + fmt(v)));
+            }
+        std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "torus mesh"},
+                                          {LegendItem::Swatch::Line, levelColor(0), "AABB (world axes)"},
+                                          {LegendItem::Swatch::Line, levelColor(1), "OBB (covariance axes, Gottschalk 1996)"}};
+        std::vector<std::string> caption;
+        if (!common_.caption.empty()) caption.push_back(common_.caption);
+        caption.push_back("Same mesh (" + std::to_string(trees[0].triangleCount()) + " triangles), same split rule (" + methodWords(build.method) +
+                          "), leaves of ≤ " + std::to_string(build.maxLeafTriangles) +
+                          (build.maxLeafTriangles == 1 ? " triangle." : " triangles."));
+        caption.push_back("The OBBs turn with the tube and hug it; the AABBs keep the world axes and their corners stay empty.");
+        return Frame{"levels", "AABB vs OBB boxes at equal depth", composeGrid(gl, L, ss_, common_.title, panels, legend, caption)};
+    }
+
+    // Frame 2: volume per level, and the query's counters (q: the query through each tree, or null when none).
+    Frame aabbVsObbNumbersFrame(GlContext& gl, const MeshView& mv, const Bvh (&trees)[2], int maxLevel, const MeshCollisionResult* q) const {
+        const MeshSpec& m = meshes[0];
+        GridLayout L = grid(W(), std::min(H(), 520), q ? 3 : 1, 1);
+        L.legendBand = 0;
+        std::vector<Image> panels;
+        BarChartInput bc;
+        bc.heading = "Total box volume per level";
+        bc.sub = "sum over the boxes of the level";
+        for (int k = 0; k < 2; ++k) {
+            BarSeries s{nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1), {}};
+            for (int level = 0; level <= maxLevel; ++level) s.values.push_back(sumVolume(trees[k], levelNodes(trees[k], level)));
+            bc.series.push_back(s);
+        }
+        for (int level = 0; level <= maxLevel; ++level) bc.groups.push_back(std::to_string(level));
+        bc.valueFormat = "";
+        panels.push_back(drawBarChart(gl, L.panelWidth(), L.panelHeight(), ss_, bc));
+        std::vector<std::string> caption;
+        if (q) {
+            const MeshSpec& o = meshes[1];
+            const MeshView ov = meshView(o.mesh, o.pose);
+            Vec3 qc;
+            double qr;
+            meshSphere({&mv, &ov}, qc, qr);
+            Canvas c(gl, canvasOptions(L.panelWidth(), L.panelHeight(), ss_), sphereCamera(qc, qr / zoom, view, L.panelWidth(), L.panelHeight()));
+            drawMesh(c, mv, roleColor(Role::ShapeA).withAlpha(0.3f), 0.5f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.5f));
+            drawMesh(c, ov, roleColor(Role::ShapeB).withAlpha(0.3f), 0.5f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.5f));
+            std::vector<int> ha, hb;
+            splitPairs(q[1].pairs, ha, hb);
+            drawTriangleSubset(c, mv, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
+            drawTriangleSubset(c, ov, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
+            drawHeading(c, "The query: A vs B", std::to_string(q[1].pairs.size()) + " intersecting triangle pairs (red)");
+            panels.push_back(c.readPixels());
+            BarChartInput cc;
+            cc.heading = "Cost of the same query";
+            cc.sub = "dual traversal (log scale)";
+            cc.groups = {"BV tests", "leaf pairs", "triangle tests"};
             for (int k = 0; k < 2; ++k)
-                for (int level : levels) {
-                    const std::vector<int> nodes = levelNodes(trees[k], level);
-                    const double v = sumVolume(trees[k], nodes);
-                    panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes,
-                                                k == 0 ? levelColor(0) : levelColor(1), cam,
-                                                std::string(nameOf(trees[k].kind)) + " tree, level " + std::to_string(level),
-                                                std::to_string(nodes.size()) + " boxes, volume " + fmt(v)));
-                }
-            std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "torus mesh"},
-                                              {LegendItem::Swatch::Line, levelColor(0), "AABB (world axes)"},
-                                              {LegendItem::Swatch::Line, levelColor(1), "OBB (covariance axes, Gottschalk 1996)"}};
-            std::vector<std::string> caption;
-            if (!common_.caption.empty()) caption.push_back(common_.caption);
-            caption.push_back("Same mesh (" + std::to_string(trees[0].triangleCount()) + " triangles), same split rule (" + methodWords(build.method) +
-                              "), leaves of ≤ " + std::to_string(build.maxLeafTriangles) +
-                              (build.maxLeafTriangles == 1 ? " triangle." : " triangles."));
-            caption.push_back("The OBBs turn with the tube and hug it; the AABBs keep the world axes and their corners stay empty.");
-            Frame f;
-            f.name = "levels";
-            f.caption = "AABB vs OBB boxes at equal depth";
-            f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
-            out.frames.push_back(std::move(f));
+                cc.series.push_back({nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1),
+                                     {double(q[k].stats.bvTests), double(q[k].stats.leafVisits), double(q[k].stats.triangleTests)}});
+            cc.valueFormat = "%.0f";
+            cc.logY = true;
+            panels.push_back(drawBarChart(gl, L.panelWidth(), L.panelHeight(), ss_, cc));
+            caption.push_back("Both trees report the brute-force pairs (" + std::to_string(q[0].pairs.size()) + " of " +
+                              std::to_string(m.mesh.triangleCount() * o.mesh.triangleCount()) + ").");
+            caption.push_back("An OBB test costs more (15 axes), but the OBB tree needs " +
+                              pct(double(q[1].stats.bvTests) / double(std::max<long long>(1, q[0].stats.bvTests))) + " of the box tests and " +
+                              pct(double(q[1].stats.triangleTests) / double(std::max<long long>(1, q[0].stats.triangleTests))) + " of the triangle tests.");
         }
-        // Frame 2: volume per level, and the query's counters.
-        {
-            GridLayout L = grid(W(), std::min(H(), 520), haveQuery ? 3 : 1, 1);
-            L.legendBand = 0;
-            std::vector<Image> panels;
-            BarChartInput bc;
-            bc.heading = "Total box volume per level";
-            bc.sub = "sum over the boxes of the level";
-            for (int k = 0; k < 2; ++k) {
-                BarSeries s{nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1), {}};
-                for (int level = 0; level <= maxLevel; ++level) s.values.push_back(sumVolume(trees[k], levelNodes(trees[k], level)));
-                bc.series.push_back(s);
-            }
-            for (int level = 0; level <= maxLevel; ++level) bc.groups.push_back(std::to_string(level));
-            bc.valueFormat = "";
-            panels.push_back(drawBarChart(*ctx.gl, L.panelWidth(), L.panelHeight(), ss_, bc));
-            std::vector<std::string> caption;
-            if (haveQuery) {
-                const MeshSpec& o = meshes[1];
-                const MeshView ov = meshView(o.mesh, o.pose);
-                Vec3 qc;
-                double qr;
-                meshSphere({&mv, &ov}, qc, qr);
-                Canvas c(*ctx.gl, panelOptions(L.panelWidth(), L.panelHeight(), ss_));
-                c.setCamera(sphereCamera(qc, qr / zoom, view, L.panelWidth(), L.panelHeight()));
-                drawMesh(c, mv, roleColor(Role::ShapeA).withAlpha(0.3f), 0.5f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.5f));
-                drawMesh(c, ov, roleColor(Role::ShapeB).withAlpha(0.3f), 0.5f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.5f));
-                std::vector<int> ha, hb;
-                for (const TrianglePair& p : q[1].pairs) {
-                    ha.push_back(p.a);
-                    hb.push_back(p.b);
-                }
-                drawTriangleSubset(c, mv, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
-                drawTriangleSubset(c, ov, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
-                drawHeading(c, "The query: A vs B", std::to_string(q[1].pairs.size()) + " intersecting triangle pairs (red)");
-                panels.push_back(c.readPixels());
-                BarChartInput cc;
-                cc.heading = "Cost of the same query";
-                cc.sub = "dual traversal (log scale)";
-                cc.groups = {"BV tests", "leaf pairs", "triangle tests"};
-                for (int k = 0; k < 2; ++k)
-                    cc.series.push_back({nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1),
-                                         {double(q[k].stats.bvTests), double(q[k].stats.leafVisits), double(q[k].stats.triangleTests)}});
-                cc.valueFormat = "%.0f";
-                cc.logY = true;
-                panels.push_back(drawBarChart(*ctx.gl, L.panelWidth(), L.panelHeight(), ss_, cc));
-                caption.push_back("Both trees report the brute-force pairs (" + std::to_string(q[0].pairs.size()) + " of " +
-                                  std::to_string(m.mesh.triangleCount() * o.mesh.triangleCount()) + ").");
-                caption.push_back("An OBB test costs more (15 axes), but the OBB tree needs " +
-                                  pct(double(q[1].stats.bvTests) / double(std::max<long long>(1, q[0].stats.bvTests))) + " of the box tests and " +
-                                  pct(double(q[1].stats.triangleTests) / double(std::max<long long>(1, q[0].stats.triangleTests))) + " of the triangle tests.");
-            }
-            std::string vols = "Summed volume AABB / OBB:";
-            for (int level : levels)
-                vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) + " / " +
-                        fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
-            caption.push_back(vols + "  (the OBB tree converges to the surface faster)");
-            Frame f;
-            f.name = "numbers";
-            f.caption = "volume per level and query cost, AABB vs OBB";
-            f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, {}, caption);
-            out.frames.push_back(std::move(f));
-        }
+        std::string vols = "Summed volume AABB / OBB:";
+        for (int level : levels)
+            vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) + " / " +
+                    fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
+        caption.push_back(vols + "  (the OBB tree converges to the surface faster)");
+        return Frame{"numbers", "volume per level and query cost, AABB vs OBB", composeGrid(gl, L, ss_, common_.title, panels, {}, caption)};
     }
 
     // ---- dual_traversal -----------------------------------------------------------------------
@@ -502,10 +517,42 @@ private:
         BvhTraversalTrace tr;
         const MeshCollisionResult r = collideMeshes(ma.mesh, ta, ma.pose, mb.mesh, tb, mb.pose, {}, &tr);
         const MeshCollisionResult brute = collideMeshesBruteForce(ma.mesh, ma.pose, mb.mesh, mb.pose);
-
-        // Running counts. Every non-triangle step pops one node pair and tests its boxes; a descent
-        // pushes the two pairs of the split node's children.
         std::vector<DualStep> bv;  // the box-test steps
+        const Json steps = countDualSteps(tr, bv);
+        const bool equal = samePairs(r.pairs, brute.pairs);
+        Json pairs = Json::array();
+        for (const TrianglePair& p : r.pairs) pairs.push_back({p.a, p.b});
+        out.trace = {{"trees", {treeJson(ta, 3), treeJson(tb, 3)}},
+                     {"stats", {{"bv_tests", r.stats.bvTests}, {"leaf_pairs", r.stats.leafVisits}, {"triangle_tests", r.stats.triangleTests}}},
+                     {"pairs", pairs},
+                     {"brute_force", {{"triangle_tests", brute.stats.triangleTests}, {"pairs", brute.pairs.size()}, {"equal", equal}}},
+                     {"steps", steps}};
+        if (!ctx.gl) return;
+
+        const MeshView va = meshView(ma.mesh, ma.pose), vb = meshView(mb.mesh, mb.pose);
+        Vec3 center;
+        double radius;
+        meshSphere({&va, &vb}, center, radius);
+        GridLayout L = grid(W(), H(), 2, 1);
+        L.columnWidths = {W() - 360, 360};
+        L.captionBand = 100;
+        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(0), L.panelHeight());
+        const std::vector<LegendItem> legend = {
+            {LegendItem::Swatch::Line, roleColor(Role::ShapeA), "box of A's node"},
+            {LegendItem::Swatch::Line, roleColor(Role::ShapeB), "box of B's node"},
+            {LegendItem::Swatch::Dashed, roleColor(Role::Muted), "disjoint: pair pruned"},
+            {LegendItem::Swatch::Fill, roleColor(Role::Highlight), "intersecting triangles"}};
+        for (int k : chosenDualSteps(bv)) {
+            if (k < 0 || k >= int(bv.size())) continue;
+            out.frames.push_back(dualFrame(*ctx.gl, L, cam, va, vb, ta, tb, ma, mb, bv, k, tr, legend));
+        }
+        out.frames.push_back(dualResultFrame(*ctx.gl, L, cam, va, vb, r, brute, equal, legend));
+    }
+
+    // Running counts. Every non-triangle step pops one node pair and tests its boxes; a descent
+    // pushes the two pairs of the split node's children. Fills `bv` with the box-test steps and
+    // returns every step as trace JSON.
+    static Json countDualSteps(const BvhTraversalTrace& tr, std::vector<DualStep>& bv) {
         long long bvTests = 0, leafPairs = 0, triTests = 0, hits = 0;
         int pending = 1;
         Json steps = Json::array();
@@ -526,98 +573,67 @@ private:
             steps.push_back({{"node_a", s.nodeA}, {"node_b", s.nodeB}, {"overlap", s.overlap}, {"action", nameOf(s.action)},
                              {"pending", pending}});
         }
-        auto less = [](const TrianglePair& x, const TrianglePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
-        std::vector<TrianglePair> pa = r.pairs, pb = brute.pairs;
-        std::sort(pa.begin(), pa.end(), less);
-        std::sort(pb.begin(), pb.end(), less);
-        Json pairs = Json::array();
-        for (const TrianglePair& p : r.pairs) pairs.push_back({p.a, p.b});
-        out.trace = {{"trees", {treeJson(ta, 3), treeJson(tb, 3)}},
-                     {"stats", {{"bv_tests", r.stats.bvTests}, {"leaf_pairs", r.stats.leafVisits}, {"triangle_tests", r.stats.triangleTests}}},
-                     {"pairs", pairs},
-                     {"brute_force", {{"triangle_tests", brute.stats.triangleTests}, {"pairs", brute.pairs.size()}, {"equal", pa == pb}}},
-                     {"steps", steps}};
-        if (!ctx.gl) return;
+        return steps;
+    }
 
-        // Frames: the given box-test steps, or the first three, the first prune and the first leaf
-        // pair with a triangle hit.
+    // Frames: the given box-test steps, or the first three, the first prune and the first leaf
+    // pair with a triangle hit.
+    std::vector<int> chosenDualSteps(const std::vector<DualStep>& bv) const {
         std::vector<int> chosen = stepFrames;
-        if (chosen.empty()) {
-            for (int i = 0; i < std::min<int>(3, int(bv.size())); ++i) chosen.push_back(i);
-            for (int i = 0; i < int(bv.size()); ++i)
-                if (bv[i].step.action == BvhTraversalAction::Prune) {
-                    chosen.push_back(i);
-                    break;
-                }
-            for (int i = 0; i < int(bv.size()); ++i)
-                if (bv[i].step.action == BvhTraversalAction::LeafTest && bv[i].hits > (i > 0 ? bv[i - 1].hits : 0)) {
-                    chosen.push_back(i);
-                    break;
-                }
-            std::sort(chosen.begin(), chosen.end());
-            chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
-        }
-        const MeshView va = meshView(ma.mesh, ma.pose), vb = meshView(mb.mesh, mb.pose);
-        Vec3 center;
-        double radius;
-        meshSphere({&va, &vb}, center, radius);
-        GridLayout L = grid(W(), H(), 2, 1);
-        L.columnWidths = {W() - 360, 360};
-        L.captionBand = 100;
-        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(0), L.panelHeight());
-        const std::vector<LegendItem> legend = {
-            {LegendItem::Swatch::Line, roleColor(Role::ShapeA), "box of A's node"},
-            {LegendItem::Swatch::Line, roleColor(Role::ShapeB), "box of B's node"},
-            {LegendItem::Swatch::Dashed, roleColor(Role::Muted), "disjoint: pair pruned"},
-            {LegendItem::Swatch::Fill, roleColor(Role::Highlight), "intersecting triangles"}};
-        for (int k : chosen) {
-            if (k < 0 || k >= int(bv.size())) continue;
-            const DualStep& d = bv[k];
-            out.frames.push_back(dualFrame(*ctx.gl, L, cam, va, vb, ta, tb, ma, mb, bv, k, tr, legend));
-            (void)d;
-        }
-        // Result frame.
-        {
-            Canvas c(*ctx.gl, panelOptions(L.panelWidth(0), L.panelHeight(), ss_));
-            c.setCamera(cam);
-            drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.3f), 0.6f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
-            drawMesh(c, vb, roleColor(Role::ShapeB).withAlpha(0.3f), 0.6f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.6f));
-            std::vector<int> ha, hb;
-            for (const TrianglePair& p : r.pairs) {
-                ha.push_back(p.a);
-                hb.push_back(p.b);
+        if (!chosen.empty()) return chosen;
+        for (int i = 0; i < std::min<int>(3, int(bv.size())); ++i) chosen.push_back(i);
+        for (int i = 0; i < int(bv.size()); ++i)
+            if (bv[i].step.action == BvhTraversalAction::Prune) {
+                chosen.push_back(i);
+                break;
             }
-            std::sort(ha.begin(), ha.end());
-            ha.erase(std::unique(ha.begin(), ha.end()), ha.end());
-            std::sort(hb.begin(), hb.end());
-            hb.erase(std::unique(hb.begin(), hb.end()), hb.end());
-            drawTriangleSubset(c, va, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
-            drawTriangleSubset(c, vb, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
-            drawHeading(c, "Result: " + std::to_string(r.pairs.size()) + " intersecting triangle pairs",
-                        std::to_string(ha.size()) + " triangles of A, " + std::to_string(hb.size()) + " of B (red)");
-            const Image main = c.readPixels();
-            BarChartInput cc;
-            cc.heading = "Work done";
-            cc.sub = "log scale; brute force tests all " + std::to_string(brute.stats.triangleTests) + " pairs";
-            cc.groups = {"BV tests", "leaf pairs", "tri tests", "brute force"};
-            cc.series.push_back({"dual traversal", roleColor(Role::Simplex),
-                                 {double(r.stats.bvTests), double(r.stats.leafVisits), double(r.stats.triangleTests), double(brute.stats.triangleTests)}});
-            cc.valueFormat = "%.0f";
-            cc.logY = true;
-            const Image chart = drawBarChart(*ctx.gl, L.panelWidth(1), L.panelHeight(), ss_, cc);
-            std::vector<std::string> caption;
-            if (!common_.caption.empty()) caption.push_back(common_.caption);
-            caption.push_back(std::to_string(r.stats.bvTests) + " box tests, " + std::to_string(r.stats.leafVisits) + " overlapping leaf pairs, " +
-                              std::to_string(r.stats.triangleTests) + " triangle tests instead of " + std::to_string(brute.stats.triangleTests) +
-                              " (brute force)");
-            caption.push_back(std::string("pairs ") + (pa == pb ? "equal" : "DIFFER FROM") + " the brute-force loop over all triangle pairs (" +
-                              std::to_string(brute.pairs.size()) + ")");
-            Frame f;
-            f.name = "result";
-            f.caption = "result: " + std::to_string(r.pairs.size()) + " triangle pairs, " + std::to_string(r.stats.triangleTests) + " triangle tests";
-            f.image = composeGrid(*ctx.gl, L, ss_, common_.title, {main, chart}, legend, caption);
-            out.frames.push_back(std::move(f));
-        }
+        for (int i = 0; i < int(bv.size()); ++i)
+            if (bv[i].step.action == BvhTraversalAction::LeafTest && bv[i].hits > (i > 0 ? bv[i - 1].hits : 0)) {
+                chosen.push_back(i);
+                break;
+            }
+        std::sort(chosen.begin(), chosen.end());
+        chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+        return chosen;
+    }
+
+    // Result frame: the intersecting triangles, and the work beside brute force.
+    Frame dualResultFrame(GlContext& gl, const GridLayout& L, const Camera& cam, const MeshView& va, const MeshView& vb,
+                          const MeshCollisionResult& r, const MeshCollisionResult& brute, bool equal,
+                          const std::vector<LegendItem>& legend) const {
+        Canvas c(gl, canvasOptions(L.panelWidth(0), L.panelHeight(), ss_), cam);
+        drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.3f), 0.6f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
+        drawMesh(c, vb, roleColor(Role::ShapeB).withAlpha(0.3f), 0.6f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.6f));
+        std::vector<int> ha, hb;
+        splitPairs(r.pairs, ha, hb);
+        std::sort(ha.begin(), ha.end());
+        ha.erase(std::unique(ha.begin(), ha.end()), ha.end());
+        std::sort(hb.begin(), hb.end());
+        hb.erase(std::unique(hb.begin(), hb.end()), hb.end());
+        drawTriangleSubset(c, va, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
+        drawTriangleSubset(c, vb, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
+        drawHeading(c, "Result: " + std::to_string(r.pairs.size()) + " intersecting triangle pairs",
+                    std::to_string(ha.size()) + " triangles of A, " + std::to_string(hb.size()) + " of B (red)");
+        const Image main = c.readPixels();
+        BarChartInput cc;
+        cc.heading = "Work done";
+        cc.sub = "log scale; brute force tests all " + std::to_string(brute.stats.triangleTests) + " pairs";
+        cc.groups = {"BV tests", "leaf pairs", "tri tests", "brute force"};
+        cc.series.push_back({"dual traversal", roleColor(Role::Simplex),
+                             {double(r.stats.bvTests), double(r.stats.leafVisits), double(r.stats.triangleTests), double(brute.stats.triangleTests)}});
+        cc.valueFormat = "%.0f";
+        cc.logY = true;
+        const Image chart = drawBarChart(gl, L.panelWidth(1), L.panelHeight(), ss_, cc);
+        std::vector<std::string> caption;
+        if (!common_.caption.empty()) caption.push_back(common_.caption);
+        caption.push_back(std::to_string(r.stats.bvTests) + " box tests, " + std::to_string(r.stats.leafVisits) + " overlapping leaf pairs, " +
+                          std::to_string(r.stats.triangleTests) + " triangle tests instead of " + std::to_string(brute.stats.triangleTests) +
+                          " (brute force)");
+        caption.push_back(std::string("pairs ") + (equal ? "equal" : "DIFFER FROM") + " the brute-force loop over all triangle pairs (" +
+                          std::to_string(brute.pairs.size()) + ")");
+        return Frame{"result",
+                     "result: " + std::to_string(r.pairs.size()) + " triangle pairs, " + std::to_string(r.stats.triangleTests) + " triangle tests",
+                     composeGrid(gl, L, ss_, common_.title, {main, chart}, legend, caption)};
     }
 
     Frame dualFrame(GlContext& gl, const GridLayout& L, const Camera& cam, const MeshView& va, const MeshView& vb, const Bvh& ta,
@@ -625,7 +641,7 @@ private:
                     const BvhTraversalTrace& tr, const std::vector<LegendItem>& legend) const {
         const DualStep& d = bv[k];
         const BvhTraversalStep& s = d.step;
-        Canvas c(gl, panelOptions(L.panelWidth(0), L.panelHeight(), ss_));
+        Canvas c(gl, canvasOptions(L.panelWidth(0), L.panelHeight(), ss_));
         c.setCamera(cam);
         drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.18f), 0.5f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.35f));
         drawMesh(c, vb, roleColor(Role::ShapeB).withAlpha(0.18f), 0.5f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.35f));
@@ -685,7 +701,7 @@ private:
             const int h = L.panelHeight() / 2;
             return drawTreeDiagram(gl, L.panelWidth(1), isA ? h : L.panelHeight() - h, ss_, tin);
         };
-        const Image trees = stackImages(treeImage(ta, s.nodeA, true), treeImage(tb, s.nodeB, false));
+        const Image trees = stackVertically(treeImage(ta, s.nodeA, true), treeImage(tb, s.nodeB, false));
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
         std::string rule;
@@ -694,11 +710,9 @@ private:
         if (s.action == BvhTraversalAction::Prune) rule = "prune: no triangle under A's node can touch one under B's node; the pair is dropped";
         if (s.action == BvhTraversalAction::LeafTest) rule = "leaf pair: test every triangle of A's leaf against every triangle of B's leaf (exact test)";
         caption.push_back(rule);
-        Frame f;
-        f.name = stepFrameName(k);
-        f.caption = "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action);
-        f.image = composeGrid(gl, L, ss_, common_.title, {main, trees}, legend, caption);
-        return f;
+        return Frame{stepFrameName(k),
+                     "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action),
+                     composeGrid(gl, L, ss_, common_.title, {main, trees}, legend, caption)};
     }
 
     // ---- refit ----------------------------------------------------------------------------------
@@ -781,11 +795,9 @@ private:
         if (!common_.caption.empty()) caption.push_back(common_.caption);
         caption.push_back("Level " + std::to_string(level) + " boxes drawn. Refit (van den Bergen 1997) keeps the tree built on the flat sheet: " +
                           (k == 0 ? "each AABB is exact for its triangles, but the groups no longer fit the shape." : "the OBB axes stay those of the rest shape."));
-        Frame f;
-        f.name = "refit";
-        f.caption = "refitted vs rebuilt boxes";
-        f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(Frame{"refit",
+                                   "refitted vs rebuilt boxes",
+                                   composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
 
         // Volume chart for both kinds.
         GridLayout C = grid(W(), std::min(H(), 460), 1, 1);
@@ -817,11 +829,9 @@ private:
             "AABB refit: union of the children's boxes, exact for the old groups: refitted / rebuilt volume " + fmt(lo[0]) + " .. " + fmt(hi[0]) + ".",
             "OBB refit: the flat sheet's axes, new extents: refitted / rebuilt " + fmt(lo[1]) + " .. " + fmt(hi[1]) +
                 ". Refitting is one bottom-up pass; rebuilding a full build per frame."};
-        Frame g;
-        g.name = "volume";
-        g.caption = "total box volume, refitted vs rebuilt";
-        g.image = composeGrid(*ctx.gl, C, ss_, common_.title, {drawBarChart(*ctx.gl, C.panelWidth(), C.panelHeight(), ss_, bc)}, {}, cap2);
-        out.frames.push_back(std::move(g));
+        out.frames.push_back(Frame{"volume",
+                                   "total box volume, refitted vs rebuilt",
+                                   composeGrid(*ctx.gl, C, ss_, common_.title, {drawBarChart(*ctx.gl, C.panelWidth(), C.panelHeight(), ss_, bc)}, {}, cap2)});
     }
 
     // ---- build_methods --------------------------------------------------------------------------
@@ -837,12 +847,7 @@ private:
         const MeshView mv = meshView(m.mesh, m.pose);
         Vec3 center;
         double radius;
-        std::vector<Vec3> corners;
-        for (int k = 0; k < 2; ++k) {
-            const std::vector<Vec3> c = boxesCorners(trees[k], m.pose, levelNodes(trees[k], *std::min_element(levels.begin(), levels.end())));
-            corners.insert(corners.end(), c.begin(), c.end());
-        }
-        meshSphere({&mv}, center, radius, corners);
+        sphereOverTopLevel(mv, trees, m.pose, center, radius);
         const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
         std::vector<Image> panels;
         for (int k = 0; k < 2; ++k) {
@@ -872,11 +877,9 @@ private:
             vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) + " / " +
                     fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
         caption.push_back(vols + ";  all nodes " + fmt(totalVolume(trees[0])) + " / " + fmt(totalVolume(trees[1])));
-        Frame f;
-        f.name = "methods";
-        f.caption = "top-down vs bottom-up";
-        f.image = composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption);
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(Frame{"methods",
+                                   "top-down vs bottom-up",
+                                   composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
     }
 };
 

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "demos/bvh/bvh_draw.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 
 namespace cdlab::demos::bvhdemo {
@@ -115,8 +116,7 @@ void meshSphere(const std::vector<const MeshView*>& meshes, Vec3& center, double
 // ---- tree diagram
 
 Image drawTreeDiagram(GlContext& gl, int W, int H, int ss, const TreeDiagramInput& in) {
-    Canvas c(gl, panelOptions(W, H, ss));
-    c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));
+    Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));
     auto P = [&](double x, double yDown) { return Vec3(x, H - yDown, 0); };
     drawHeading(c, in.heading, in.sub);
     const int n = int(in.children.size());
@@ -194,21 +194,6 @@ Image drawTreeDiagram(GlContext& gl, int W, int H, int ss, const TreeDiagramInpu
 
 // ---- legends and frames
 
-Image stackImages(const Image& top, const Image& bottom) {
-    Image out(std::max(top.width, bottom.width), top.height + bottom.height);
-    blit(out, top, 0, 0);
-    blit(out, bottom, 0, top.height);
-    return out;
-}
-
-CanvasOptions panelOptions(int width, int height, int supersample) {
-    CanvasOptions o;
-    o.width = width;
-    o.height = height;
-    o.supersample = supersample;
-    return o;
-}
-
 void drawHeading(Canvas& canvas, const std::string& heading, const std::string& sub) {
     if (!heading.empty())
         canvas.drawTextPx(12, 8, heading, TextStyle{18.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
@@ -242,8 +227,7 @@ Camera sphereCamera(const Vec3& center, double radius, const Vec3& view, int wid
 
 Image composeGrid(GlContext& gl, const GridLayout& L, int ss, const std::string& title, const std::vector<Image>& panels,
                   const std::vector<LegendItem>& legend, const std::vector<std::string>& captionLines) {
-    Canvas c(gl, panelOptions(L.width, L.height, ss));
-    c.setCamera(Camera::twoD(L.width / 2.0, L.height / 2.0, L.height));
+    Canvas c(gl, canvasOptions(L.width, L.height, ss), Camera::pixels(L.width, L.height));
     auto P = [&](double x, double yDown) { return Vec3(x, L.height - yDown, 0); };
     c.drawTextPx(16, 9, title, TextStyle{23.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     const double gridBottom = L.titleBand + L.rows * L.panelHeight();
@@ -283,18 +267,8 @@ Image composeGrid(GlContext& gl, const GridLayout& L, int ss, const std::string&
     }
     // 1-pixel rules between panels.
     const Color m = roleColor(Role::Muted);
-    auto px = [&](int xx, int yy) {
-        if (xx < 0 || yy < 0 || xx >= frame.width || yy >= frame.height) return;
-        std::uint8_t* p = frame.pixel(xx, yy);
-        p[0] = std::uint8_t(std::lround(std::clamp(m.r, 0.0f, 1.0f) * 255));
-        p[1] = std::uint8_t(std::lround(std::clamp(m.g, 0.0f, 1.0f) * 255));
-        p[2] = std::uint8_t(std::lround(std::clamp(m.b, 0.0f, 1.0f) * 255));
-        p[3] = 255;
-    };
-    for (int col = 1; col < L.columns; ++col)
-        for (int yy = L.titleBand; yy < int(gridBottom); ++yy) px(L.columnX(col) - 1, yy);
-    for (int row = 1; row < L.rows; ++row)
-        for (int xx = 0; xx < L.columnX(L.columns); ++xx) px(xx, L.titleBand + row * L.panelHeight() - 1);
+    for (int col = 1; col < L.columns; ++col) paintRect(frame, L.columnX(col) - 1, L.titleBand, 1, int(gridBottom) - L.titleBand, m);
+    for (int row = 1; row < L.rows; ++row) paintRect(frame, 0, L.titleBand + row * L.panelHeight() - 1, L.columnX(L.columns), 1, m);
     return frame;
 }
 
@@ -305,8 +279,7 @@ namespace cdlab::demos::bvhdemo {
 using namespace render;
 
 Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in) {
-    Canvas c(gl, panelOptions(W, H, ss));
-    c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));
+    Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));
     auto P = [&](double x, double yDown) { return Vec3(x, H - yDown, 0); };
     drawHeading(c, in.heading, in.sub);
     const double left = 24, right = 16, legendTop = in.sub.empty() ? 40 : 62, bottom = 40;

@@ -119,11 +119,6 @@ render::Image composeGrid(render::GlContext& gl, const GridLayout& layout, int s
                           const std::vector<render::Image>& panels, const std::vector<LegendItem>& legend,
                           const std::vector<std::string>& captionLines);
 
-/// `top` over `bottom` (same width).
-render::Image stackImages(const render::Image& top, const render::Image& bottom);
-
-/// A canvas of one panel with the page background.
-render::CanvasOptions panelOptions(int width, int height, int supersample);
 /// Heading (bold) and an optional second line at the top left of a panel.
 void drawHeading(render::Canvas& canvas, const std::string& heading, const std::string& sub);
 /// Small text lines at the bottom left of a panel (last line lowest).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "demos/draw/figure_canvas.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -28,12 +29,7 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     const int width = columns * (cellW + pad) + pad;
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
 
-    CanvasOptions co;
-    co.width = width;
-    co.height = height;
-    Canvas canvas(gl, co);
-    canvas.setBackground(roleColor(Role::Background));
-    canvas.setCamera(Camera::twoD(0, 0, 1));
+    Canvas canvas(gl, canvasOptions(width, height, 1), Camera::twoD(0, 0, 1));
     TextStyle caption{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
     if (!o.title.empty())
         canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::Top, false, true});
@@ -53,11 +49,7 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
 
 Frame contactSheetFrame(render::GlContext& gl, const std::vector<const Frame*>& frames, const std::string& sceneTitle,
                         const ContactSheetOptions& options) {
-    Frame sheet;
-    sheet.name = "contact_sheet";
-    sheet.caption = sceneTitle + " — contact sheet";
-    sheet.image = makeContactSheet(gl, frames, options);
-    return sheet;
+    return Frame{"contact_sheet", sceneTitle + " — contact sheet", makeContactSheet(gl, frames, options)};
 }
 
 }  // namespace cdlab::demos

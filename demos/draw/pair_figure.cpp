@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 
 namespace cdlab::demos {
@@ -27,13 +28,7 @@ void drawPanelHeading(Canvas& canvas, const std::string& heading, const std::str
 
 Image composeTwoPanel(GlContext& gl, const TwoPanelLayout& layout, int supersample, const std::string& title,
                       const Image& left, const Image& right, const std::vector<std::string>& captionLines) {
-    CanvasOptions o;
-    o.width = layout.width;
-    o.height = layout.height;
-    o.supersample = supersample;
-    Canvas canvas(gl, o);
-    canvas.setBackground(roleColor(Role::Background));
-    canvas.setCamera(Camera::twoD(0, 0, 1));
+    Canvas canvas(gl, canvasOptions(layout.width, layout.height, supersample), Camera::twoD(0, 0, 1));
     canvas.drawTextPx(18, 10, title, TextStyle{24.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     const double lineH = 25.0;
     double y = layout.height - layout.captionBand + 8;
@@ -45,15 +40,7 @@ Image composeTwoPanel(GlContext& gl, const TwoPanelLayout& layout, int supersamp
     blit(frame, left, 0, layout.titleBand);
     blit(frame, right, layout.panelWidth(), layout.titleBand);
     // A 2-pixel rule between the panels.
-    const Color m = roleColor(Role::Muted);
-    for (int yy = layout.titleBand; yy < layout.titleBand + layout.panelHeight(); ++yy)
-        for (int xx = layout.panelWidth() - 1; xx <= layout.panelWidth(); ++xx) {
-            std::uint8_t* p = frame.pixel(xx, yy);
-            p[0] = std::uint8_t(std::lround(std::clamp(m.r, 0.0f, 1.0f) * 255));
-            p[1] = std::uint8_t(std::lround(std::clamp(m.g, 0.0f, 1.0f) * 255));
-            p[2] = std::uint8_t(std::lround(std::clamp(m.b, 0.0f, 1.0f) * 255));
-            p[3] = 255;
-        }
+    paintRect(frame, layout.panelWidth() - 1, layout.titleBand, 2, layout.panelHeight(), roleColor(Role::Muted));
     return frame;
 }
 

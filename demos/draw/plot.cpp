@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "render/canvas.h"
 
@@ -92,18 +93,9 @@ std::vector<Eigen::Vector3d> markerPolygon(int shape, double x, double y, double
 
 class PlotCanvas {
 public:
-    PlotCanvas(render::GlContext& gl, const PlotOptions& o) : o_(o), c_(gl, canvasOptions(o))
+    PlotCanvas(render::GlContext& gl, const PlotOptions& o)
+        : o_(o), c_(gl, canvasOptions(o.width, o.height, 1), render::Camera::pixels(o.width, o.height))
     {
-        c_.setBackground(roleColor(Role::Background));
-        c_.setCamera(render::Camera::twoD(o.width / 2.0, o.height / 2.0, o.height));
-    }
-    static render::CanvasOptions canvasOptions(const PlotOptions& o)
-    {
-        render::CanvasOptions co;
-        co.width = o.width;
-        co.height = o.height;
-        co.supersample = 1;
-        return co;
     }
     // Pixel (x right, y down) to the 2D camera's world (y up).
     Eigen::Vector3d P(double x, double y) const { return {x, o_.height - y, 0}; }

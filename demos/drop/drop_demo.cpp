@@ -20,6 +20,7 @@
 #include "core/geometry/polyhedron_presets.h"
 #include "core/dynamics/simulation.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/convex_drawable.h"
@@ -35,6 +36,113 @@ const std::vector<std::string> kLayers = {"ground", "shadow", "trail", "contacts
 constexpr int kMaxFrames = 16;  // frames (plus plot and sheet) per scene: golden size and render time
 
 Json quatJson(const Quat& q) { return Json::array({q.w(), q.x(), q.y(), q.z()}); }
+
+// Energy (top) and penetration on a log scale (bottom) against time, drawn in pixel units (y up)
+// on one time axis; the frames drawn as figures are ticked on it.
+class TimePlot {
+public:
+    TimePlot(Canvas& c, const SimulationTrace& tr, const std::vector<int>& frameSteps, int W, int H)
+        : c_(c), tr_(tr), frameSteps_(frameSteps), x1_(W - 40), tMax_(tr.steps.back().time), H_(H) {}
+
+    void energyPanel() {
+        double eLo = 0.0, eHi = 0.0;
+        for (const SimulationStep& s : tr_.steps) {
+            eLo = std::min({eLo, s.kinetic, s.potential, s.energy});
+            eHi = std::max({eHi, s.kinetic, s.potential, s.energy});
+        }
+        if (!(eHi > eLo)) eHi = eLo + 1.0;
+        const double eY0 = H_ * 0.50, eY1 = H_ - 95;
+        const auto YE = [&](double v) { return eY0 + (v - eLo) / (eHi - eLo) * (eY1 - eY0); };
+        c_.drawLine(P(x0_, eY0), P(x0_, eY1), axis_);
+        for (int i = 0; i <= 4; ++i) {
+            const double v = eLo + (eHi - eLo) * i / 4.0;
+            c_.drawLine(P(x0_, YE(v)), P(x1_, YE(v)), lineStyle(Role::Muted, 1.0f, true));
+            c_.drawText(P(x0_ - 8, YE(v)), formatNumber(v), ytick_);
+        }
+        timeAxis(eY0, false);
+        c_.drawText(P(x0_, eY1 + 12), "energy (J): kinetic, potential m g z, total", heading_);
+        std::vector<Vec3> ke, pe, te;
+        for (const SimulationStep& s : tr_.steps) {
+            ke.push_back(P(X(s.time), YE(s.kinetic)));
+            pe.push_back(P(X(s.time), YE(s.potential)));
+            te.push_back(P(X(s.time), YE(s.energy)));
+        }
+        c_.drawPolyline(pe, false, lineStyle(Role::ShapeB, 2.5f));
+        c_.drawPolyline(ke, false, lineStyle(Role::ShapeA, 2.5f));
+        c_.drawPolyline(te, false, lineStyle(Role::Ink, 3.0f));
+        lx_ = x1_ - 300;
+        ly_ = eY1 - 12;
+        legendLine(Role::Ink, 3.0f, false, "total E = KE + PE");
+        legendLine(Role::ShapeA, 2.5f, false, "kinetic KE");
+        legendLine(Role::ShapeB, 2.5f, false, "potential PE");
+    }
+
+    // Log10 from 1e-10 to 1e-2 (0 is drawn at the bottom).
+    void penetrationPanel(double slop) {
+        const double pY0 = 110, pY1 = H_ * 0.50 - 70;
+        const double lLo = -10, lHi = -2;
+        const auto YP = [&](double pen) {
+            const double l = pen > 0 ? std::clamp(std::log10(pen), lLo, lHi) : lLo;
+            return pY0 + (l - lLo) / (lHi - lLo) * (pY1 - pY0);
+        };
+        c_.drawLine(P(x0_, pY0), P(x0_, pY1), axis_);
+        for (int e = int(lLo); e <= int(lHi); e += 2) {
+            const double y = YP(std::pow(10.0, e));
+            c_.drawLine(P(x0_, y), P(x1_, y), lineStyle(Role::Muted, 1.0f, true));
+            c_.drawText(P(x0_ - 8, y), "1e" + std::to_string(e), ytick_);
+        }
+        timeAxis(pY0, true);
+        c_.drawText(P(0.5 * (x0_ + x1_), pY0 - 34), "time (s); orange ticks: the frames", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+        c_.drawText(P(x0_, pY1 + 12), "deepest vertex below the ground (log scale; ≤ 1e-10 drawn at the bottom)", heading_);
+        std::vector<Vec3> before, after;
+        for (const SimulationStep& s : tr_.steps) {
+            before.push_back(P(X(s.time), YP(s.penetrationBeforeCorrection)));
+            after.push_back(P(X(s.time), YP(s.maxPenetration)));
+        }
+        c_.drawLine(P(x0_, YP(slop)), P(x1_, YP(slop)), lineStyle(Role::Ink, 1.5f, true));
+        c_.drawPolyline(after, false, lineStyle(Role::Result, 3.0f));
+        c_.drawPolyline(before, false, lineStyle(Role::Direction, 1.5f, true));  // on top: equal unless corrected
+        // Legend on the left, below the slop line: bodies in flight have no depth there.
+        lx_ = x0_ + 24;
+        ly_ = YP(slop) - 26;
+        legendLine(Role::Result, 3.0f, false, "after the step");
+        legendLine(Role::Direction, 1.5f, true, "before the position correction");
+        legendLine(Role::Ink, 1.5f, true, "slop (allowed depth)");
+    }
+
+private:
+    static Vec3 P(double x, double y) { return Vec3(x, y, 0); }
+    double X(double t) const { return x0_ + (tMax_ > 0 ? t / tMax_ : 0.0) * (x1_ - x0_); }
+
+    void timeAxis(double y0, bool labelsOn) {
+        c_.drawLine(P(x0_, y0), P(x1_, y0), axis_);
+        const double dtTick = tMax_ > 4 ? 1.0 : tMax_ > 1.5 ? 0.5 : 0.25;
+        for (double t = 0; t <= tMax_ + 1e-9; t += dtTick) {
+            c_.drawLine(P(X(t), y0), P(X(t), y0 - 6), axis_);
+            if (labelsOn) c_.drawText(P(X(t), y0 - 9), formatNumber(t), tick_);
+        }
+        for (int k : frameSteps_)
+            c_.drawLine(P(X(tr_.steps[k].time), y0), P(X(tr_.steps[k].time), y0 + 8), lineStyle(Role::Highlight, 2.0f));
+    }
+    // One legend entry at (lx_, ly_), the next one below it.
+    void legendLine(Role role, float w, bool dashed, const std::string& text) {
+        c_.drawLine(P(lx_, ly_), P(lx_ + 36, ly_), lineStyle(role, w, dashed));
+        c_.drawText(P(lx_ + 44, ly_), text, legend_);
+        ly_ -= 24;
+    }
+
+    Canvas& c_;
+    const SimulationTrace& tr_;
+    const std::vector<int>& frameSteps_;
+    const double x0_ = 110, x1_, tMax_;
+    const int H_;
+    double lx_ = 0, ly_ = 0;
+    const LineStyle axis_ = lineStyle(Role::Ink, 2.0f);
+    const TextStyle tick_{14.0f, roleColor(Role::Ink), Anchor::Top, false, false};
+    const TextStyle ytick_{14.0f, roleColor(Role::Ink), Anchor::Right, false, false};
+    const TextStyle heading_{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true};
+    const TextStyle legend_{15.0f, roleColor(Role::Ink), Anchor::Left, true, false};
+};
 
 class DropScene final : public PreparedScene {
 public:
@@ -52,7 +160,7 @@ public:
             return out;
         }
         if (!r.ok()) return out;  // prepare() validated the inputs; nothing to draw otherwise
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
 
         // One camera for every frame: the bounding sphere of the body along its whole path.
         std::vector<Vec3> path;
@@ -151,13 +259,7 @@ private:
 
     Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius, const SimulationResult& r,
                     const SimulationTrace& tr, int k, int index) const {
-        CanvasOptions o;
-        o.width = common_.image.width;
-        o.height = common_.image.height;
-        o.supersample = ss;
-        Canvas c(gl, o);
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(cam);
+        Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         const SimulationStep& s = tr.steps[k];
         const double rho = r.boundingRadius;
         const bool labels = common_.hasLayer("labels");
@@ -224,7 +326,7 @@ private:
         }
         if (labels) {
             // Legend (top right), each entry in the colour of what it names.
-            const double x = o.width - 18.0;
+            const double x = c.width() - 18.0;
             double y = 18.0;
             const auto item = [&](const std::string& text, Role role) {
                 c.drawTextPx(x, y, text, TextStyle{16.0f, role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role),
@@ -244,118 +346,23 @@ private:
                       s.contacts.size() == 1 ? "" : "s", pushing, bounces ? (", " + std::to_string(bounces) + " bouncing").c_str() : "");
         std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground", s.energy, s.kinetic,
                       s.potential, s.maxPenetration);
-        c.drawTextPx(18.0, o.height - 18.0 - 26.0, line1, TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        c.drawTextPx(18.0, c.height() - 18.0 - 26.0, line1, TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
         drawTitleAndCaption(c, common_.title, line2);
-        Frame f;
         char name[32];
         std::snprintf(name, sizeof name, "frame_%02d", index);
-        f.name = name;
         char cap[160];
         std::snprintf(cap, sizeof cap, "t = %.2f s: %d contact%s, E = %.3g J", s.time, int(s.contacts.size()),
                       s.contacts.size() == 1 ? "" : "s", s.energy);
-        f.caption = cap;
-        f.image = c.readPixels();
-        return f;
+        return Frame{name, cap, c.readPixels()};
     }
 
     // Energy (top) and penetration on a log scale (bottom) against time, drawn in pixel units.
     Frame drawPlot(GlContext& gl, int ss, const SimulationResult& r, const SimulationTrace& tr, const std::vector<int>& frameSteps) const {
         const int W = common_.image.width, H = common_.image.height;
-        CanvasOptions o;
-        o.width = W;
-        o.height = H;
-        o.supersample = ss;
-        Canvas c(gl, o);
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));  // world = pixels, y up
-        const auto P = [](double x, double y) { return Vec3(x, y, 0); };
-        const double x0 = 110, x1 = W - 40;
-        const double tMax = tr.steps.back().time;
-        const auto X = [&](double t) { return x0 + (tMax > 0 ? t / tMax : 0.0) * (x1 - x0); };
-        const LineStyle axis = lineStyle(Role::Ink, 2.0f);
-        TextStyle tick{14.0f, roleColor(Role::Ink), Anchor::Top, false, false};
-        TextStyle ytick{14.0f, roleColor(Role::Ink), Anchor::Right, false, false};
-        TextStyle heading{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true};
-        TextStyle legend{15.0f, roleColor(Role::Ink), Anchor::Left, true, false};
-
-        // Panel geometry (y up): energy on top, penetration below.
-        const double eY0 = H * 0.50, eY1 = H - 95;
-        const double pY0 = 110, pY1 = H * 0.50 - 70;
-        const auto timeAxis = [&](double y0, bool labelsOn) {
-            c.drawLine(P(x0, y0), P(x1, y0), axis);
-            const double dtTick = tMax > 4 ? 1.0 : tMax > 1.5 ? 0.5 : 0.25;
-            for (double t = 0; t <= tMax + 1e-9; t += dtTick) {
-                c.drawLine(P(X(t), y0), P(X(t), y0 - 6), axis);
-                if (labelsOn) c.drawText(P(X(t), y0 - 9), formatNumber(t), tick);
-            }
-            for (int k : frameSteps) c.drawLine(P(X(tr.steps[k].time), y0), P(X(tr.steps[k].time), y0 + 8), lineStyle(Role::Highlight, 2.0f));
-        };
-
-        // Energy panel.
-        double eLo = 0.0, eHi = 0.0;
-        for (const SimulationStep& s : tr.steps) {
-            eLo = std::min({eLo, s.kinetic, s.potential, s.energy});
-            eHi = std::max({eHi, s.kinetic, s.potential, s.energy});
-        }
-        if (!(eHi > eLo)) eHi = eLo + 1.0;
-        const auto YE = [&](double v) { return eY0 + (v - eLo) / (eHi - eLo) * (eY1 - eY0); };
-        c.drawLine(P(x0, eY0), P(x0, eY1), axis);
-        for (int i = 0; i <= 4; ++i) {
-            const double v = eLo + (eHi - eLo) * i / 4.0;
-            c.drawLine(P(x0, YE(v)), P(x1, YE(v)), lineStyle(Role::Muted, 1.0f, true));
-            c.drawText(P(x0 - 8, YE(v)), formatNumber(v), ytick);
-        }
-        timeAxis(eY0, false);
-        c.drawText(P(x0, eY1 + 12), "energy (J): kinetic, potential m g z, total", heading);
-        std::vector<Vec3> ke, pe, te;
-        for (const SimulationStep& s : tr.steps) {
-            ke.push_back(P(X(s.time), YE(s.kinetic)));
-            pe.push_back(P(X(s.time), YE(s.potential)));
-            te.push_back(P(X(s.time), YE(s.energy)));
-        }
-        c.drawPolyline(pe, false, lineStyle(Role::ShapeB, 2.5f));
-        c.drawPolyline(ke, false, lineStyle(Role::ShapeA, 2.5f));
-        c.drawPolyline(te, false, lineStyle(Role::Ink, 3.0f));
-        double lx = x1 - 300;
-        double ly = eY1 - 12;
-        const auto legendLine = [&](Role role, float w, bool dashed, const std::string& text) {
-            c.drawLine(P(lx, ly), P(lx + 36, ly), lineStyle(role, w, dashed));
-            c.drawText(P(lx + 44, ly), text, legend);
-            ly -= 24;
-        };
-        legendLine(Role::Ink, 3.0f, false, "total E = KE + PE");
-        legendLine(Role::ShapeA, 2.5f, false, "kinetic KE");
-        legendLine(Role::ShapeB, 2.5f, false, "potential PE");
-
-        // Penetration panel, log10 from 1e-10 to 1e-2 (0 is drawn at the bottom).
-        const double lLo = -10, lHi = -2;
-        const auto YP = [&](double pen) {
-            const double l = pen > 0 ? std::clamp(std::log10(pen), lLo, lHi) : lLo;
-            return pY0 + (l - lLo) / (lHi - lLo) * (pY1 - pY0);
-        };
-        c.drawLine(P(x0, pY0), P(x0, pY1), axis);
-        for (int e = int(lLo); e <= int(lHi); e += 2) {
-            const double y = YP(std::pow(10.0, e));
-            c.drawLine(P(x0, y), P(x1, y), lineStyle(Role::Muted, 1.0f, true));
-            c.drawText(P(x0 - 8, y), "1e" + std::to_string(e), ytick);
-        }
-        timeAxis(pY0, true);
-        c.drawText(P(0.5 * (x0 + x1), pY0 - 34), "time (s); orange ticks: the frames", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Top, false, true});
-        c.drawText(P(x0, pY1 + 12), "deepest vertex below the ground (log scale; ≤ 1e-10 drawn at the bottom)", heading);
-        std::vector<Vec3> before, after;
-        for (const SimulationStep& s : tr.steps) {
-            before.push_back(P(X(s.time), YP(s.penetrationBeforeCorrection)));
-            after.push_back(P(X(s.time), YP(s.maxPenetration)));
-        }
-        c.drawLine(P(x0, YP(options_.slop)), P(x1, YP(options_.slop)), lineStyle(Role::Ink, 1.5f, true));
-        c.drawPolyline(after, false, lineStyle(Role::Result, 3.0f));
-        c.drawPolyline(before, false, lineStyle(Role::Direction, 1.5f, true));  // on top: equal unless corrected
-        // Legend on the left, below the slop line: bodies in flight have no depth there.
-        lx = x0 + 24;
-        ly = YP(options_.slop) - 26;
-        legendLine(Role::Result, 3.0f, false, "after the step");
-        legendLine(Role::Direction, 1.5f, true, "before the position correction");
-        legendLine(Role::Ink, 1.5f, true, "slop (allowed depth)");
+        Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));  // world = pixels, y up
+        TimePlot plot(c, tr, frameSteps, W, H);
+        plot.energyPanel();
+        plot.penetrationPanel(options_.slop);
 
         char cap[300];
         if (r.restTime >= 0)
@@ -365,11 +372,7 @@ private:
             std::snprintf(cap, sizeof cap, "still moving at the end; max depth %.2g (slop %.2g); max energy rise per step %.2g J",
                           r.maxPenetration, options_.slop, r.maxEnergyIncrease);
         drawTitleAndCaption(c, common_.title + ": energy and penetration", cap);
-        Frame f;
-        f.name = "energy";
-        f.caption = "energy and penetration vs time";
-        f.image = c.readPixels();
-        return f;
+        return Frame{"energy", "energy and penetration vs time", c.readPixels()};
     }
 };
 

@@ -115,6 +115,24 @@ private:
 
 // ---- One golden run ---------------------------------------------------------------------------
 
+bool goldenExists(const fs::path& golden) {
+    std::error_code ec;
+    return fs::symlink_status(golden, ec).type() != fs::file_type::not_found;
+}
+
+// What is wrong with a golden: "" when `compare` (which reads it and returns "" or what differs)
+// passes, the ReadError it throws, or that the golden is missing.
+template <class ReadError, class Compare>
+std::string goldenProblem(const fs::path& golden, bool exists, const Compare& compare) {
+    if (!exists) return "missing golden " + golden.string();
+    try {
+        return compare();
+    } catch (const ReadError& e) {
+        return e.what();
+    }
+}
+
+
 struct GoldenRun {
     const RunnerOptions& options;
     ReportFolder report;
@@ -136,6 +154,21 @@ struct GoldenRun {
     }
     bool updates(const std::string& problem) const {
         return options.update == "all" || (!problem.empty() && !options.update.empty());
+    }
+    /// With --update-golden, rewrites golden `id` through `write` when `problem` (or "all") asks for
+    /// it; true when it did or tried (nothing more to check then).
+    template <class Write>
+    bool updateGolden(const std::string& id, const std::string& problem, const Write& write) {
+        if (!updates(problem)) return false;
+        try {
+            write();
+            std::cout << "UPDATED " << id << (problem.empty() ? "" : " (was: " + problem + ")") << "\n";
+            ++updated;
+        } catch (const std::exception& e) {
+            fail(id + ": " + problem);
+            writeError(e.what());
+        }
+        return true;
     }
 
     void runScene(const std::string& file, const RunContext& ctx);
@@ -170,31 +203,13 @@ void GoldenRun::checkFrame(const SceneCommon& sc, const Frame& fr, const fs::pat
     const std::string id = sceneId(sc) + "/" + fr.name;
     if (!isPlainName(fr.name)) throw std::logic_error("frame name " + Json(fr.name).dump() + " is not a plain name");
     const fs::path goldenPng = goldenDir / (fr.name + ".png");
-    std::error_code ec;
-    const bool exists = fs::symlink_status(goldenPng, ec).type() != fs::file_type::not_found;
+    const bool exists = goldenExists(goldenPng);
     render::CompareResult cmp;
-    std::string problem;
-    if (exists) {
-        try {
-            cmp = render::compareImages(fr.image, render::readPng(goldenPng.string()), sc.golden.image);
-            if (!cmp.passed) problem = cmp.summary();
-        } catch (const render::ImageError& e) {
-            problem = e.what();
-        }
-    } else {
-        problem = "missing golden " + goldenPng.string();
-    }
-    if (updates(problem)) {
-        try {
-            render::writePngAtomic(goldenPng.string(), fr.image);
-            std::cout << "UPDATED " << id << (problem.empty() ? "" : " (was: " + problem + ")") << "\n";
-            ++updated;
-        } catch (const std::exception& e) {
-            fail(id + ": " + problem);
-            writeError(e.what());
-        }
-        return;
-    }
+    std::string problem = goldenProblem<render::ImageError>(goldenPng, exists, [&] {
+        cmp = render::compareImages(fr.image, render::readPng(goldenPng.string()), sc.golden.image);
+        return cmp.passed ? std::string() : cmp.summary();
+    });
+    if (updateGolden(id, problem, [&] { render::writePngAtomic(goldenPng.string(), fr.image); })) return;
     if (problem.empty()) {
         std::cout << "PASS " << id << ": " << cmp.summary() << "\n";
         return;
@@ -239,36 +254,20 @@ void GoldenRun::checkTrace(const SceneCommon& sc, const Json& trace, const fs::p
     ++checked;
     const fs::path goldenTrace = goldenDir / "trace.json";
     const std::string id = sceneId(sc) + "/trace.json";
-    std::error_code ec;
-    const bool exists = fs::symlink_status(goldenTrace, ec).type() != fs::file_type::not_found;
-    std::string problem;
+    const bool exists = goldenExists(goldenTrace);
     TraceComparison tc;
-    if (exists) {
-        try {
-            tc = compareTraces(trace, readJsonFile(goldenTrace.string()), sc.golden.traceAbsolute, sc.golden.traceRelative);
-            if (!tc.passed()) problem = tc.summary();
-        } catch (const InputError& e) {
-            problem = e.what();
-        }
-    } else {
-        problem = "missing golden " + goldenTrace.string();
-    }
-    if (updates(problem)) {
-        try {
-            render::writeFileAtomic(goldenTrace.string(), traceText(trace));
-            std::cout << "UPDATED " << id << (problem.empty() ? "" : " (was: " + problem + ")") << "\n";
-            ++updated;
-        } catch (const std::exception& e) {
-            fail(id + ": " + problem);
-            writeError(e.what());
-        }
-    } else if (problem.empty()) {
+    const std::string problem = goldenProblem<InputError>(goldenTrace, exists, [&] {
+        tc = compareTraces(trace, readJsonFile(goldenTrace.string()), sc.golden.traceAbsolute, sc.golden.traceRelative);
+        return tc.passed() ? std::string() : tc.summary();
+    });
+    if (updateGolden(id, problem, [&] { render::writeFileAtomic(goldenTrace.string(), traceText(trace)); })) return;
+    if (problem.empty()) {
         std::cout << "PASS " << id << ": " << tc.summary() << "\n";
-    } else {
-        fail(id + ": " + problem + (exists ? "" : " (create it with: ./cdlab test --update-golden)"));
-        for (std::size_t i = 1; i < tc.mismatches.size(); ++i)
-            std::cout << "     " << tc.mismatches[i].path << ": " << tc.mismatches[i].what << "\n";
+        return;
     }
+    fail(id + ": " + problem + (exists ? "" : " (create it with: ./cdlab test --update-golden)"));
+    for (std::size_t i = 1; i < tc.mismatches.size(); ++i)
+        std::cout << "     " << tc.mismatches[i].path << ": " << tc.mismatches[i].what << "\n";
 }
 
 }  // namespace

@@ -13,9 +13,9 @@ namespace cdlab::demos {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-namespace {
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 std::unique_ptr<render::GlContext> createContext(bool verbose) {
     auto t0 = Clock::now();

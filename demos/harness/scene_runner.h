@@ -2,6 +2,7 @@
 // `cdlab golden` (compare with golden/, write a failure report, optionally update goldens).
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -35,6 +36,8 @@ int runGolden(const RunnerOptions& options);
 
 /// The one GL context of a run (prints GL_RENDERER / GL_VERSION when verbose). Throws render::GlError.
 std::unique_ptr<render::GlContext> createContext(bool verbose);
+/// Wall-clock seconds since t0 (the runners' progress and timing lines).
+double secondsSince(std::chrono::steady_clock::time_point t0);
 /// A trace as written to trace.json (stable formatting, so goldens diff well).
 std::string traceText(const Json& trace);
 

@@ -20,6 +20,7 @@
 #include "core/contact/contact_sat.h"
 #include "core/closest/feature_distance.h"
 #include "core/geometry/polyhedron_presets.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/convex_drawable.h"
@@ -138,11 +139,7 @@ struct Legend {
 
 Frame finish(Canvas& c, const std::string& name, const std::string& title, const std::string& caption, const std::string& shortCaption) {
     drawTitleAndCaption(c, title, caption);
-    Frame f;
-    f.name = name;
-    f.caption = shortCaption;
-    f.image = c.readPixels();
-    return f;
+    return Frame{name, shortCaption, c.readPixels()};
 }
 
 Json pointsJson(const std::vector<ContactPoint>& pts) {
@@ -170,7 +167,7 @@ public:
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         if (mode == "plane") runPlane(ctx, ss, out);
         else if (mode == "features") runFeatures(ctx, ss, out);
         else runSat(ctx, ss, out);
@@ -179,14 +176,6 @@ public:
     }
 
 private:
-    CanvasOptions canvasOptions(int ss) const {
-        CanvasOptions o;
-        o.width = common_.image.width;
-        o.height = common_.image.height;
-        o.supersample = ss;
-        return o;
-    }
-
     // ---- plane mode ---------------------------------------------------------------------------
     void runPlane(const RunContext& ctx, int ss, DemoOutput& out) const {
         std::vector<PlaneContactResult> results;
@@ -209,11 +198,21 @@ private:
         out.trace = {{"mode", "plane"}, {"body", body.name}, {"frames", frames}};
         if (!ctx.gl) return;
 
-        // One camera for all poses: the bodies and the plane patch under them.
+        const PlaneView v = planeView();
+        for (size_t i = 0; i < poses.size(); ++i) out.frames.push_back(planeFrame(*ctx.gl, ss, v, i, results[i], traces[i]));
+    }
+
+    // The plane (unit normal n, offset d) and one camera for all poses: the bodies and the plane patch under them.
+    struct PlaneView {
         Vec3 n;
         double d;
-        n = plane.normal.normalized();
-        d = plane.offset / plane.normal.norm();
+        Vec3 center;
+        double radius;
+        Camera cam;
+    };
+    PlaneView planeView() const {
+        const Vec3 n = plane.normal.normalized();
+        const double d = plane.offset / plane.normal.norm();
         std::vector<Vec3> pts;
         for (const Transform& t : poses)
             for (const Vec3& v : body.mesh.positions()) {
@@ -226,84 +225,85 @@ private:
         boundingSphere(pts, center, radius);
         const Vec3 up = std::abs(n.z()) > 0.5 ? Vec3(n) : Vec3::UnitZ();
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, up);
-        const double rho = radius;
-        for (size_t i = 0; i < poses.size(); ++i) {
-            const PlaneContactResult& r = results[i];
-            const PlaneContactTrace& tr = traces[i];
-            Canvas c(*ctx.gl, canvasOptions(ss));
-            c.setBackground(roleColor(Role::Background));
-            c.setCamera(cam);
-            const bool labels = common_.hasLayer("labels");
-            if (common_.hasLayer("plane")) {
-                const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
-                const Vec3 g = center - (n.dot(center) - d) * n;
-                const double h = 1.5 * radius;
-                c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, roleColor(Role::Muted).withAlpha(0.25f));
-                c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true, lineStyle(Role::Muted, 1.5f));
-                if (labels) c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
-            }
-            Posed pb = body;
-            pb.pose = poses[i];
-            drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA), r.colliding() ? 0.55f : 0.75f);
-            Legend lg{c};
-            if (labels) lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated", r.colliding() ? Role::Highlight : Role::ShapeA);
-            if (r.colliding()) {
-                // Vertices below the plane and the crossing points.
-                if (common_.hasLayer("polygon")) {
-                    std::vector<Vec3> outline;
-                    for (const ContactPoint& p : r.polygon) outline.push_back(p.pointB);
-                    if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Result).withAlpha(0.28f));
-                    if (outline.size() >= 2) c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
-                    for (const auto& x : tr.crossings) c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
-                    if (labels) {
-                        lg.item("contact polygon (on the plane)", Role::Result);
-                        lg.item("○ edge–plane crossings", Role::Ink);
-                    }
-                }
-                if (common_.hasLayer("contacts")) {
-                    for (size_t k = 0; k < r.manifold.size(); ++k) {
-                        const ContactPoint& p = r.manifold[k];
-                        c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
-                        c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                        c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
-                        if (labels && (k == 0 || p.depth > 0)) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
-                                                  (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
-                    }
-                    if (labels) lg.item("manifold points, with depth", Role::Result);
-                }
-                if (common_.hasLayer("normals")) {
-                    for (const ContactPoint& p : r.manifold)
-                        c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal, lineStyle(Role::Direction, 3.0f, false, true));
-                    if (labels) lg.item("→ plane normal n (pushes the body out)", Role::Direction);
-                }
-            } else if (common_.hasLayer("contacts")) {
-                // Closest feature and its projection onto the plane.
-                for (size_t k = 0; k < r.featurePoints.size(); ++k) {
-                    c.drawLine(r.featurePoints[k], r.featurePointsOnPlane[k], lineStyle(Role::Result, 2.0f, true, true));
-                    c.drawPoint(r.featurePoints[k], 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                    c.drawPoint(r.featurePointsOnPlane[k], 4.0f, roleColor(Role::Ink), true);
-                }
-                if (r.featurePoints.size() >= 2)
-                    c.drawPolyline(r.featurePoints, r.featurePoints.size() >= 3, lineStyle(Role::Result, 4.0f, false, true));
-                if (labels) {
-                    drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center, "distance " + fmt(r.signedDistance),
-                                  labelStyle(Role::Result, 17.0f), 18.0);
-                    lg.item("closest feature and its projection", Role::Result);
-                }
-            }
-            char cap[400];
-            if (r.colliding())
-                std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
-                              poseLabels[i].c_str(), nameOf(r.status), fmt(r.depth).c_str(), nameOf(r.feature.type),
-                              featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
-            else
-                std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)", poseLabels[i].c_str(),
-                              fmt(r.signedDistance).c_str(), nameOf(r.feature.type), featureLabel(r.feature).c_str(),
-                              int(r.featurePoints.size()), r.featurePoints.size() == 1 ? "" : "s");
-            char name[32];
-            std::snprintf(name, sizeof name, "pose_%02d", int(i));
-            out.frames.push_back(finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status)));
+        return {n, d, center, radius, cam};
+    }
+
+    // Pose i against the plane: the contact polygon, manifold and normals, or the closest feature.
+    Frame planeFrame(GlContext& gl, int ss, const PlaneView& v, size_t i, const PlaneContactResult& r, const PlaneContactTrace& tr) const {
+        const Vec3& n = v.n;
+        const double d = v.d, radius = v.radius, rho = v.radius;
+        const Vec3& center = v.center;
+        Canvas c(gl, sceneCanvasOptions(common_, ss), v.cam);
+        const bool labels = common_.hasLayer("labels");
+        if (common_.hasLayer("plane")) {
+            const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
+            const Vec3 g = center - (n.dot(center) - d) * n;
+            const double h = 1.5 * radius;
+            c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, roleColor(Role::Muted).withAlpha(0.25f));
+            c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true, lineStyle(Role::Muted, 1.5f));
+            if (labels) c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
         }
+        Posed pb = body;
+        pb.pose = poses[i];
+        drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA), r.colliding() ? 0.55f : 0.75f);
+        Legend lg{c};
+        if (labels) lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated", r.colliding() ? Role::Highlight : Role::ShapeA);
+        if (r.colliding()) {
+            // Vertices below the plane and the crossing points.
+            if (common_.hasLayer("polygon")) {
+                std::vector<Vec3> outline;
+                for (const ContactPoint& p : r.polygon) outline.push_back(p.pointB);
+                if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Result).withAlpha(0.28f));
+                if (outline.size() >= 2) c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
+                for (const auto& x : tr.crossings) c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
+                if (labels) {
+                    lg.item("contact polygon (on the plane)", Role::Result);
+                    lg.item("○ edge–plane crossings", Role::Ink);
+                }
+            }
+            if (common_.hasLayer("contacts")) {
+                for (size_t k = 0; k < r.manifold.size(); ++k) {
+                    const ContactPoint& p = r.manifold[k];
+                    c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                    c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                    c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+                    if (labels && (k == 0 || p.depth > 0)) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
+                                              (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
+                }
+                if (labels) lg.item("manifold points, with depth", Role::Result);
+            }
+            if (common_.hasLayer("normals")) {
+                for (const ContactPoint& p : r.manifold)
+                    c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal, lineStyle(Role::Direction, 3.0f, false, true));
+                if (labels) lg.item("→ plane normal n (pushes the body out)", Role::Direction);
+            }
+        } else if (common_.hasLayer("contacts")) {
+            // Closest feature and its projection onto the plane.
+            for (size_t k = 0; k < r.featurePoints.size(); ++k) {
+                c.drawLine(r.featurePoints[k], r.featurePointsOnPlane[k], lineStyle(Role::Result, 2.0f, true, true));
+                c.drawPoint(r.featurePoints[k], 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                c.drawPoint(r.featurePointsOnPlane[k], 4.0f, roleColor(Role::Ink), true);
+            }
+            if (r.featurePoints.size() >= 2)
+                c.drawPolyline(r.featurePoints, r.featurePoints.size() >= 3, lineStyle(Role::Result, 4.0f, false, true));
+            if (labels) {
+                drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center, "distance " + fmt(r.signedDistance),
+                              labelStyle(Role::Result, 17.0f), 18.0);
+                lg.item("closest feature and its projection", Role::Result);
+            }
+        }
+        char cap[400];
+        if (r.colliding())
+            std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
+                          poseLabels[i].c_str(), nameOf(r.status), fmt(r.depth).c_str(), nameOf(r.feature.type),
+                          featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
+        else
+            std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)", poseLabels[i].c_str(),
+                          fmt(r.signedDistance).c_str(), nameOf(r.feature.type), featureLabel(r.feature).c_str(),
+                          int(r.featurePoints.size()), r.featurePoints.size() == 1 ? "" : "s");
+        char name[32];
+        std::snprintf(name, sizeof name, "pose_%02d", int(i));
+        return finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status));
     }
 
     // ---- features mode ------------------------------------------------------------------------
@@ -327,9 +327,8 @@ private:
             double radius;
             boundingSphere(all, center, radius);
             radius = std::max(radius, 0.6);
-            Canvas c(*ctx.gl, canvasOptions(ss));
-            c.setBackground(roleColor(Role::Background));
-            c.setCamera(common_.camera ? *common_.camera : framingCamera(center, radius * 1.25, view, Vec3::UnitZ()));
+            const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.25, view, Vec3::UnitZ());
+            Canvas c(*ctx.gl, sceneCanvasOptions(common_, ss), cam);
             const bool labels = common_.hasLayer("labels");
             const auto drawFeature = [&](const FeatureGeometry& f, Role role, const std::string& tag) {
                 const Color col = roleColor(role);
@@ -383,17 +382,43 @@ private:
     void runSat(const RunContext& ctx, int ss, DemoOutput& out) const {
         SatContactTrace tr;
         const SatContactResult r = contactPolyhedra(a.mesh, a.pose, b.mesh, b.pose, {}, &tr);
+        out.trace = satTrace(r, tr);
+        if (!ctx.gl) return;
+        out.frames.push_back(satContactFrame(*ctx.gl, ss, r, tr));
+        const bool faceContact = r.axisKind != SatAxisKind::EdgeEdge && r.colliding();
+        if (!faceContact) {
+            out.skipped.push_back("clip frame (no face contact)");
+            return;
+        }
+        out.frames.push_back(satClipFrame(*ctx.gl, ss, r, tr));
+    }
+
+    static Json satTrace(const SatContactResult& r, const SatContactTrace& tr) {
         Json axes = Json::array();
         for (const SatAxisRecord& x : tr.axes)
             axes.push_back({{"kind", nameOf(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vec3Json(x.axis)}, {"separation", x.separation}});
         Json clips = Json::array();
         for (const SatClipStep& s : tr.clipSteps) clips.push_back({{"reference_edge", s.referenceEdge}, {"before", s.before.size()}, {"after", s.after.size()}});
-        out.trace = {{"mode", "sat"}, {"status", nameOf(r.status)}, {"separation", r.separation}, {"depth", r.depth},
-                     {"normal", vec3Json(r.normal)}, {"axis_kind", nameOf(r.axisKind)}, {"axes", axes},
-                     {"edge_pairs", tr.edgePairsTotal}, {"edge_pairs_pruned", tr.edgePairsPruned}, {"edge_pairs_parallel", tr.edgePairsParallel},
-                     {"chosen", tr.chosen}, {"reference_on_a", tr.referenceOnA}, {"reference_face", tr.referenceFace},
-                     {"incident_face", tr.incidentFace}, {"clip_steps", clips}, {"manifold", pointsJson(r.manifold)}};
-        if (!ctx.gl) return;
+        return {{"mode", "sat"}, {"status", nameOf(r.status)}, {"separation", r.separation}, {"depth", r.depth},
+                {"normal", vec3Json(r.normal)}, {"axis_kind", nameOf(r.axisKind)}, {"axes", axes},
+                {"edge_pairs", tr.edgePairsTotal}, {"edge_pairs_pruned", tr.edgePairsPruned}, {"edge_pairs_parallel", tr.edgePairsParallel},
+                {"chosen", tr.chosen}, {"reference_on_a", tr.referenceOnA}, {"reference_face", tr.referenceFace},
+                {"incident_face", tr.incidentFace}, {"clip_steps", clips}, {"manifold", pointsJson(r.manifold)}};
+    }
+
+    // The body that holds the reference face and the one that holds the incident face, with their colours.
+    struct ClipSides {
+        const Posed& ref;
+        const Posed& inc;
+        Role refRole, incRole;
+    };
+    ClipSides clipSides(const SatContactTrace& tr) const {
+        return {tr.referenceOnA ? a : b, tr.referenceOnA ? b : a, tr.referenceOnA ? Role::ShapeA : Role::ShapeB,
+                tr.referenceOnA ? Role::ShapeB : Role::ShapeA};
+    }
+
+    // The two bodies, the faces or edges that decide the axis, the axis and the manifold.
+    Frame satContactFrame(GlContext& gl, int ss, const SatContactResult& r, const SatContactTrace& tr) const {
         std::vector<Vec3> all = a.world();
         for (const Vec3& p : b.world()) all.push_back(p);
         Vec3 center;
@@ -401,72 +426,68 @@ private:
         boundingSphere(all, center, radius);
         const bool labels = common_.hasLayer("labels");
         const bool faceContact = r.axisKind != SatAxisKind::EdgeEdge && r.colliding();
-        const Posed& ref = tr.referenceOnA ? a : b;
-        const Posed& inc = tr.referenceOnA ? b : a;
-        const Role refRole = tr.referenceOnA ? Role::ShapeA : Role::ShapeB, incRole = tr.referenceOnA ? Role::ShapeB : Role::ShapeA;
+        const auto [ref, inc, refRole, incRole] = clipSides(tr);
         char counts[200];
         std::snprintf(counts, sizeof counts, "axes: %d+%d faces, %d/%d edge pairs (%d Gauss-map pruned, %d parallel)",
                       a.mesh.faceCount(), b.mesh.faceCount(), int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(),
                       tr.edgePairsTotal, tr.edgePairsPruned, tr.edgePairsParallel);
-        {
-            Canvas c(*ctx.gl, canvasOptions(ss));
-            c.setBackground(roleColor(Role::Background));
-            c.setCamera(common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ()));
-            drawPosed(c, a, roleColor(Role::ShapeA), 0.35f);
-            drawPosed(c, b, roleColor(Role::ShapeB), 0.35f);
-            Legend lg{c};
+        const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ());
+        Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
+        drawPosed(c, a, roleColor(Role::ShapeA), 0.35f);
+        drawPosed(c, b, roleColor(Role::ShapeB), 0.35f);
+        Legend lg{c};
+        if (labels) {
+            lg.item("body A", Role::ShapeA);
+            lg.item("body B", Role::ShapeB);
+        }
+        Vec3 axisFrom = center;
+        if (faceContact) {
+            const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace), ip = facePolygon(inc, tr.incidentFace);
+            c.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
+            c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
+            c.drawPolyline(ip, true, lineStyle(incRole, 4.0f, true, true));
+            axisFrom = centroid(rp);
             if (labels) {
-                lg.item("body A", Role::ShapeA);
-                lg.item("body B", Role::ShapeB);
+                lg.item(std::string("reference face (") + (tr.referenceOnA ? "A" : "B") + "), black outline", refRole);
+                lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", incRole);
             }
-            Vec3 axisFrom = center;
-            if (faceContact) {
-                const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace), ip = facePolygon(inc, tr.incidentFace);
-                c.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
-                c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
-                c.drawPolyline(ip, true, lineStyle(incRole, 4.0f, true, true));
-                axisFrom = centroid(rp);
-                if (labels) {
-                    lg.item(std::string("reference face (") + (tr.referenceOnA ? "A" : "B") + "), black outline", refRole);
-                    lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", incRole);
-                }
-            } else if (r.colliding() && !r.manifold.empty()) {
-                const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
-                const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
-                c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)), lineStyle(Role::ShapeA, 6.0f, false, true));
-                c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)), lineStyle(Role::ShapeB, 6.0f, false, true));
-                axisFrom = r.manifold[0].pointA;
-                if (labels) lg.item("edges of the edge–edge axis", Role::Ink);
-            }
-            if (common_.hasLayer("normals")) {
-                c.drawArrow(axisFrom, axisFrom + 0.6 * radius * r.normal, lineStyle(Role::Direction, 4.0f, false, true));
-                if (labels) {
-                    c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + nameOf(r.axisKind) + ")",
-                               TextStyle{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}});
-                    lg.item("→ axis of least penetration", Role::Direction);
-                }
-            }
-            if (common_.hasLayer("contacts")) {
-                for (const ContactPoint& p : r.manifold) {
-                    c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
-                    c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                    c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
-                }
-                if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
-            }
-            char cap[400];
-            if (r.colliding())
-                std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", nameOf(r.axisKind),
-                              fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
-            else
-                std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), nameOf(r.axisKind), counts);
-            out.frames.push_back(finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind)));
+        } else if (r.colliding() && !r.manifold.empty()) {
+            const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
+            const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
+            c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)), lineStyle(Role::ShapeA, 6.0f, false, true));
+            c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)), lineStyle(Role::ShapeB, 6.0f, false, true));
+            axisFrom = r.manifold[0].pointA;
+            if (labels) lg.item("edges of the edge–edge axis", Role::Ink);
         }
-        if (!faceContact) {
-            out.skipped.push_back("clip frame (no face contact)");
-            return;
+        if (common_.hasLayer("normals")) {
+            c.drawArrow(axisFrom, axisFrom + 0.6 * radius * r.normal, lineStyle(Role::Direction, 4.0f, false, true));
+            if (labels) {
+                c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + nameOf(r.axisKind) + ")",
+                           TextStyle{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}});
+                lg.item("→ axis of least penetration", Role::Direction);
+            }
         }
-        // The clip seen along the reference normal: reference face, incident face, each side-plane step.
+        if (common_.hasLayer("contacts")) {
+            for (const ContactPoint& p : r.manifold) {
+                c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+            }
+            if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
+        }
+        char cap[400];
+        if (r.colliding())
+            std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", nameOf(r.axisKind),
+                          fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
+        else
+            std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), nameOf(r.axisKind), counts);
+        return finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind));
+    }
+
+    // The clip seen along the reference normal: reference face, incident face, each side-plane step.
+    Frame satClipFrame(GlContext& gl, int ss, const SatContactResult& r, const SatContactTrace& tr) const {
+        const bool labels = common_.hasLayer("labels");
+        const auto [ref, inc, refRole, incRole] = clipSides(tr);
         const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace);
         const Vec3 nr = ref.pose.rotate(ref.mesh.face(tr.referenceFace).normal);
         Vec3 cc;
@@ -474,9 +495,8 @@ private:
         std::vector<Vec3> both = rp;
         for (const Vec3& p : facePolygon(inc, tr.incidentFace)) both.push_back(p);
         boundingSphere(both, cc, cr);
-        Canvas c(*ctx.gl, canvasOptions(ss));
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(framingCamera(cc, cr * 1.15, nr, nr.unitOrthogonal(), false));
+        const Camera cam = framingCamera(cc, cr * 1.15, nr, nr.unitOrthogonal(), false);
+        Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         c.drawPolygon(rp, roleColor(refRole).withAlpha(0.3f));
         c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
         c.drawPolyline(facePolygon(inc, tr.incidentFace), true, lineStyle(incRole, 4.0f, true, true));
@@ -503,7 +523,7 @@ private:
         std::snprintf(cap, sizeof cap, "Sutherland–Hodgman: %d side planes clip the incident face to %d points; %d below the reference face → %d kept",
                       int(tr.clipSteps.size()), tr.clipSteps.empty() ? 0 : int(tr.clipSteps.back().after.size()), int(tr.clipped.size()),
                       int(r.manifold.size()));
-        out.frames.push_back(finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping"));
+        return finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping");
     }
 };
 

@@ -24,6 +24,7 @@
 #include "core/spatial/kd_tree.h"
 #include "core/broadphase/octree.h"
 #include "core/broadphase/uniform_grid.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
@@ -170,14 +171,6 @@ public:
     }
 
 private:
-    CanvasOptions canvasOptions(const RunContext& ctx) const {
-        CanvasOptions o;
-        o.width = common_.image.width;
-        o.height = common_.image.height;
-        o.supersample = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
-        return o;
-    }
-
     static void outlineRect(Canvas& c, const Aabb& r, const Vec3& at, const LineStyle& s) {
         std::vector<Vec3> poly = rectPolygon(r);
         for (Vec3& v : poly) v += at;
@@ -197,17 +190,93 @@ private:
         c.drawText(topLeft, text, TextStyle{20.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, true, {0, -24}});
         c.drawText(topLeft, sub, TextStyle{16.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false, {0, -5}});
     }
+    // The title and caption drawn over a finished figure, which is named `name` and captioned by the title.
+    Frame titledFrame(Canvas& canvas, const std::string& name) const {
+        drawTitleAndCaption(canvas, common_.title, common_.caption);
+        return Frame{name, common_.title, canvas.readPixels()};
+    }
+    // Cell of k-d node `id`: the root's cell is the points' bounds, so the sides a cell shares with
+    // the root reach out to the frame.
+    static Aabb kdCellInFrame(const KdTree& tree, int id, const Aabb& frame) {
+        const auto& nodes = tree.nodes();
+        Aabb c = nodes[std::size_t(id)].cell;
+        for (int a = 0; a < 2; ++a) {
+            if (c.min[a] == nodes[0].cell.min[a]) c.min[a] = frame.min[a];
+            if (c.max[a] == nodes[0].cell.max[a]) c.max[a] = frame.max[a];
+        }
+        return c;
+    }
+    // The split line of an inner k-d node across its cell.
+    static void drawKdSplit(Canvas& c, const KdNode& node, const Aabb& cell, const Vec3& at, const LineStyle& s) {
+        if (node.axis == 0) c.drawLine(at + P(node.split, cell.min.y()), at + P(node.split, cell.max.y()), s);
+        else c.drawLine(at + P(cell.min.x(), node.split), at + P(cell.max.x(), node.split), s);
+    }
+    // Every BSP plane as the part of its line inside the node's region, by depth (width scaled by `widthScale`).
+    static void drawBspSplits(Canvas& c, const BspTree& tree, const std::vector<std::vector<Vec3>>& regions, const Vec3& at,
+                              float widthScale) {
+        const int maxDepth = tree.stats().depth;
+        for (std::size_t i = 0; i < tree.nodes().size(); ++i) {
+            const BspNode& node = tree.nodes()[i];
+            Vec3 p, q;
+            if (node.kind == BspNodeKind::Inner &&
+                lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
+                c.drawLine(at + p, at + q, LineStyle{widthScale * depthWidth(node.depth), depthColor(node.depth, maxDepth)});
+        }
+    }
+    // The wall fragments seen from the top; the pieces of walls that a plane cut in two are highlighted.
+    static void drawBspFragments(Canvas& c, const BspTree& tree, const Vec3& at, float splitWidth, float wallWidth) {
+        for (const BspFragment& f : tree.fragments()) {
+            Vec3 p, q;
+            fragmentSegment(f, p, q);
+            c.drawLine(at + p, at + q, lineStyle(f.split ? Role::Highlight : Role::Ink, f.split ? splitWidth : wallWidth, false, true));
+        }
+    }
 
     // ------------------------------------------------------------------------------- panels
 
+    // The four structures of the panels figure, each built over the same boxes.
+    struct PanelStructures {
+        UniformGridResult grid;
+        Octree octree;
+        std::int64_t octreeTests = 0;
+        std::vector<std::pair<int, int>> octreePairs;
+        OctreeStats octreeStats;
+        std::vector<Vec3> centres;
+        KdTree kdTree;
+        std::vector<BspPolygon> walls;
+        BspTree bspTree;
+        BspStats bspStats;
+    };
+
+    // What the four panels share: the canvas, the region's square frame (side W), which boxes are in
+    // a pair (the same for every structure: each is exact) and the layers asked for.
+    struct PanelView {
+        Canvas& canvas;
+        Aabb frame;
+        double W;
+        std::vector<bool> paired;
+        bool drawObjects, cells, splits;
+    };
+
     DemoOutput runPanels(const RunContext& ctx) const {
         DemoOutput out;
-        const int n = int(boxes.size());
+        PanelStructures st;
+        buildPanelStructures(st);
+        out.trace = panelsTrace(st);
+        if (!ctx.gl) {
+            out.skipped.push_back("all drawing (no GL context)");
+            return out;
+        }
+        out.frames.push_back(drawPanels(*ctx.gl, runSupersample(common_, ctx), st));
+        return out;
+    }
+
+    void buildPanelStructures(PanelStructures& st) const {
         // Uniform grid (Ericson §7.1).
         UniformGrid grid;
         UniformGridOptions go;
         go.cellSize = gridCell;
-        const UniformGridResult gr = grid.build(boxes, go);
+        st.grid = grid.build(boxes, go);
         // Octree, root = the square region x [0, S] in z (boxes touch z = 0 only: a quadtree).
         const double S = (region.max - region.min).head<2>().maxCoeff();
         OctreeOptions oo;
@@ -216,44 +285,44 @@ private:
         oo.looseness = octree.looseness;
         oo.useRootBounds = true;
         oo.rootBounds = {Vec3(region.min.x(), region.min.y(), 0.0), Vec3(region.min.x() + S, region.min.y() + S, S)};
-        Octree ot;
-        ot.build(boxes, oo);
-        std::int64_t octTests = 0;
-        const auto octPairs = ot.overlappingPairs(&octTests);
-        const OctreeStats os = ot.stats();
+        st.octree.build(boxes, oo);
+        st.octreePairs = st.octree.overlappingPairs(&st.octreeTests);
+        st.octreeStats = st.octree.stats();
         // k-d tree over the box centres.
-        std::vector<Vec3> centres;
-        for (const Aabb& b : boxes) centres.push_back(0.5 * (b.min + b.max));
-        KdTree kt;
-        kt.build(centres, {kd.rule, kd.leaf});
+        for (const Aabb& b : boxes) st.centres.push_back(0.5 * (b.min + b.max));
+        st.kdTree.build(st.centres, {kd.rule, kd.leaf});
         // BSP tree of the boxes' walls.
-        std::vector<BspPolygon> walls;
-        for (const Aabb& b : boxes) addWalls(rectPolygon(b), walls);
-        BspTree bt;
+        for (const Aabb& b : boxes) addWalls(rectPolygon(b), st.walls);
         BspTrace btrace;
-        bt.build(walls, bsp, &btrace);
-        const BspStats bs = bt.stats();
+        st.bspTree.build(st.walls, bsp, &btrace);
+        st.bspStats = st.bspTree.stats();
+    }
 
-        out.trace["objects"] = n;
-        out.trace["brute_force_tests"] = std::int64_t(n) * (n - 1) / 2;
-        out.trace["grid"] = {{"cell_size", gridCell}, {"status", int(gr.status)}, {"entries", gr.entries},
-                             {"pair_tests", gr.pairTests}, {"pairs", gr.pairs}};
+    Json panelsTrace(const PanelStructures& st) const {
+        const int n = int(boxes.size());
+        const UniformGridResult& gr = st.grid;
+        const OctreeStats& os = st.octreeStats;
+        const KdTree& kt = st.kdTree;
+        const BspStats& bs = st.bspStats;
+        Json t = Json::object();
+        t["objects"] = n;
+        t["brute_force_tests"] = std::int64_t(n) * (n - 1) / 2;
+        t["grid"] = {{"cell_size", gridCell}, {"status", int(gr.status)}, {"entries", gr.entries},
+                     {"pair_tests", gr.pairTests}, {"pairs", gr.pairs}};
         Json depthCounts = Json::array();
         for (int c : os.objectsPerDepth) depthCounts.push_back(c);
-        out.trace["octree"] = {{"nodes", os.nodeCount},      {"leaves", os.leafCount},   {"depth", os.maxDepthReached},
-                               {"objects_at_root", os.objectsAtRoot}, {"objects_per_depth", depthCounts},
-                               {"pair_tests", octTests},      {"pairs", int(octPairs.size())}};
-        out.trace["kd_tree"] = {{"nodes", int(kt.nodes().size())}, {"leaves", kt.leafCount()}, {"depth", kt.depth()}};
-        out.trace["bsp"] = {{"polygons", int(walls.size())}, {"nodes", bs.nodeCount}, {"inner", bs.innerCount},
-                            {"solid_leaves", bs.solidLeaves}, {"empty_leaves", bs.emptyLeaves}, {"depth", bs.depth},
-                            {"splits", bs.splits}, {"fragments", bs.fragmentCount}};
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        t["octree"] = {{"nodes", os.nodeCount},      {"leaves", os.leafCount},   {"depth", os.maxDepthReached},
+                       {"objects_at_root", os.objectsAtRoot}, {"objects_per_depth", depthCounts},
+                       {"pair_tests", st.octreeTests}, {"pairs", int(st.octreePairs.size())}};
+        t["kd_tree"] = {{"nodes", int(kt.nodes().size())}, {"leaves", kt.leafCount()}, {"depth", kt.depth()}};
+        t["bsp"] = {{"polygons", int(st.walls.size())}, {"nodes", bs.nodeCount}, {"inner", bs.innerCount},
+                    {"solid_leaves", bs.solidLeaves}, {"empty_leaves", bs.emptyLeaves}, {"depth", bs.depth},
+                    {"splits", bs.splits}, {"fragments", bs.fragmentCount}};
+        return t;
+    }
 
-        Canvas canvas(*ctx.gl, canvasOptions(ctx));
-        canvas.setBackground(roleColor(Role::Background));
+    Frame drawPanels(GlContext& gl, int ss, const PanelStructures& st) const {
+        Canvas canvas(gl, sceneCanvasOptions(common_, ss));
         const Vec3 size = region.max - region.min;
         const double W = std::max(size.x(), size.y());
         const double gap = 0.16 * W;
@@ -261,132 +330,119 @@ private:
         const Vec3 middle = region.min + P(0.5 * (2 * W + gap), 0.5 * W - 0.5 * (W + gap));
         // Room above for the title and two heading lines per row, below for the caption.
         canvas.setCamera(Camera::twoD(middle.x(), middle.y() + 0.02 * W, (2 * W + gap) * 1.26));
-        const bool drawObjects = common_.hasLayer("objects"), cells = common_.hasLayer("cells"),
-                   splits = common_.hasLayer("splits");
+        PanelView v{canvas, Aabb{region.min, region.min + P(W, W)}, W, std::vector<bool>(boxes.size(), false),
+                    common_.hasLayer("objects"), common_.hasLayer("cells"), common_.hasLayer("splits")};
+        for (const auto& p : st.octreePairs) v.paired[std::size_t(p.first)] = v.paired[std::size_t(p.second)] = true;
+        drawGridPanel(v, offsets[0], st);
+        drawOctreePanel(v, offsets[1], st);
+        drawKdPanel(v, offsets[2], st);
+        drawBspPanel(v, offsets[3], st);
+        return titledFrame(canvas, "panels");
+    }
 
-        // Which boxes are in at least one pair (the same for every structure: each is exact).
-        std::vector<bool> paired(std::size_t(n), false);
-        for (const auto& p : octPairs) paired[std::size_t(p.first)] = paired[std::size_t(p.second)] = true;
-        auto drawBoxes = [&](const Vec3& at, const std::function<Color(int)>& fill, float alpha) {
-            if (!drawObjects) return;
-            for (int i = 0; i < n; ++i) {
-                fillRect(canvas, boxes[std::size_t(i)], at, fill(i).withAlpha(alpha));
-                outlineRect(canvas, boxes[std::size_t(i)], at,
-                            lineStyle(paired[std::size_t(i)] ? Role::Highlight : Role::Ink, paired[std::size_t(i)] ? 2.2f : 1.4f));
-            }
-        };
-        const Aabb frame{region.min, region.min + P(W, W)};
+    void drawBoxes(const PanelView& v, const Vec3& at, const std::function<Color(int)>& fill, float alpha) const {
+        if (!v.drawObjects) return;
+        for (int i = 0; i < int(boxes.size()); ++i) {
+            fillRect(v.canvas, boxes[std::size_t(i)], at, fill(i).withAlpha(alpha));
+            outlineRect(v.canvas, boxes[std::size_t(i)], at,
+                        lineStyle(v.paired[std::size_t(i)] ? Role::Highlight : Role::Ink, v.paired[std::size_t(i)] ? 2.2f : 1.4f));
+        }
+    }
 
-        // 1. Uniform grid: lines every h, occupied cells shaded by their box count.
-        {
-            const Vec3 at = offsets[0];
-            if (cells) {
-                std::map<std::pair<std::int64_t, std::int64_t>, int> occupancy;
-                for (const Aabb& b : boxes) {
-                    const auto lo = UniformGrid::cellOf(b.min, gridCell), hi = UniformGrid::cellOf(b.max, gridCell);
-                    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-                        for (std::int64_t y = lo[1]; y <= hi[1]; ++y) ++occupancy[{x, y}];
-                }
-                for (const auto& [cell, count] : occupancy) {
-                    const Aabb r{P(double(cell.first) * gridCell, double(cell.second) * gridCell),
-                                 P(double(cell.first + 1) * gridCell, double(cell.second + 1) * gridCell)};
-                    fillRect(canvas, r, at, roleColor(Role::Muted).withAlpha(std::min(0.55f, 0.12f * float(count))));
-                }
-                const LineStyle gl = lineStyle(Role::Muted, 1.2f);
-                for (double x = std::ceil(frame.min.x() / gridCell) * gridCell; x <= frame.max.x(); x += gridCell)
-                    canvas.drawLine(at + P(x, frame.min.y()), at + P(x, frame.max.y()), gl);
-                for (double y = std::ceil(frame.min.y() / gridCell) * gridCell; y <= frame.max.y(); y += gridCell)
-                    canvas.drawLine(at + P(frame.min.x(), y), at + P(frame.max.x(), y), gl);
+    // 1. Uniform grid: lines every h, occupied cells shaded by their box count.
+    void drawGridPanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const {
+        Canvas& canvas = v.canvas;
+        const Aabb& frame = v.frame;
+        if (v.cells) {
+            std::map<std::pair<std::int64_t, std::int64_t>, int> occupancy;
+            for (const Aabb& b : boxes) {
+                const auto lo = UniformGrid::cellOf(b.min, gridCell), hi = UniformGrid::cellOf(b.max, gridCell);
+                for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+                    for (std::int64_t y = lo[1]; y <= hi[1]; ++y) ++occupancy[{x, y}];
             }
-            drawBoxes(at, [](int) { return roleColor(Role::ShapeA); }, 0.30f);
-            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
-            heading(canvas, at + P(frame.min.x(), frame.max.y()), "Uniform grid, cell h = " + formatNumber(gridCell),
-                    std::to_string(gr.entries) + " box-cell entries, " + std::to_string(gr.pairTests) + " tests, " +
-                        std::to_string(gr.pairs) + " pairs");
+            for (const auto& [cell, count] : occupancy) {
+                const Aabb r{P(double(cell.first) * gridCell, double(cell.second) * gridCell),
+                             P(double(cell.first + 1) * gridCell, double(cell.second + 1) * gridCell)};
+                fillRect(canvas, r, at, roleColor(Role::Muted).withAlpha(std::min(0.55f, 0.12f * float(count))));
+            }
+            const LineStyle gl = lineStyle(Role::Muted, 1.2f);
+            for (double x = std::ceil(frame.min.x() / gridCell) * gridCell; x <= frame.max.x(); x += gridCell)
+                canvas.drawLine(at + P(x, frame.min.y()), at + P(x, frame.max.y()), gl);
+            for (double y = std::ceil(frame.min.y() / gridCell) * gridCell; y <= frame.max.y(); y += gridCell)
+                canvas.drawLine(at + P(frame.min.x(), y), at + P(frame.max.x(), y), gl);
         }
-        // 2. Octree (quadtree from the top): node cells, boxes coloured by the depth they sit at.
-        {
-            const Vec3 at = offsets[1];
-            if (cells)
-                for (const OctreeNode& node : ot.nodes())
-                    outlineRect(canvas, node.cell, at, LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
-            drawBoxes(at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
-            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
-            heading(canvas, at + P(frame.min.x(), frame.max.y()),
-                    "Octree (seen as a quadtree), " + std::to_string(os.nodeCount) + " nodes",
-                    std::to_string(octTests) + " tests, " + std::to_string(octPairs.size()) + " pairs; " +
-                        std::to_string(os.objectsAtRoot) + " boxes on the root's split lines");
-            if (common_.hasLayer("labels")) {
-                // Legend: box colour = depth of the node that stores it.
-                for (int d = 0; d <= os.maxDepthReached; ++d) {
-                    const Vec3 p = at + P(frame.max.x(), frame.max.y()) + P(0.02 * W, -0.045 * W * (d + 0.5));
-                    canvas.drawPoint(p, 6.0f, octreeDepthColor(d).withAlpha(0.8f));
-                    canvas.drawText(p, (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
-                                           std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
-                                    TextStyle{14.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
-                }
+        drawBoxes(v, at, [](int) { return roleColor(Role::ShapeA); }, 0.30f);
+        outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
+        heading(canvas, at + P(frame.min.x(), frame.max.y()), "Uniform grid, cell h = " + formatNumber(gridCell),
+                std::to_string(st.grid.entries) + " box-cell entries, " + std::to_string(st.grid.pairTests) + " tests, " +
+                    std::to_string(st.grid.pairs) + " pairs");
+    }
+
+    // 2. Octree (quadtree from the top): node cells, boxes coloured by the depth they sit at.
+    void drawOctreePanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const {
+        Canvas& canvas = v.canvas;
+        const Aabb& frame = v.frame;
+        const Octree& ot = st.octree;
+        const OctreeStats& os = st.octreeStats;
+        if (v.cells)
+            for (const OctreeNode& node : ot.nodes())
+                outlineRect(canvas, node.cell, at, LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
+        drawBoxes(v, at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
+        outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
+        heading(canvas, at + P(frame.min.x(), frame.max.y()),
+                "Octree (seen as a quadtree), " + std::to_string(os.nodeCount) + " nodes",
+                std::to_string(st.octreeTests) + " tests, " + std::to_string(st.octreePairs.size()) + " pairs; " +
+                    std::to_string(os.objectsAtRoot) + " boxes on the root's split lines");
+        if (common_.hasLayer("labels")) {
+            // Legend: box colour = depth of the node that stores it.
+            for (int d = 0; d <= os.maxDepthReached; ++d) {
+                const Vec3 p = at + P(frame.max.x(), frame.max.y()) + P(0.02 * v.W, -0.045 * v.W * (d + 0.5));
+                canvas.drawPoint(p, 6.0f, octreeDepthColor(d).withAlpha(0.8f));
+                canvas.drawText(p, (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
+                                       std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
+                                TextStyle{14.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
             }
         }
-        // 3. k-d tree over the box centres: split lines clipped to their cells, coloured by depth.
-        {
-            const Vec3 at = offsets[2];
-            drawBoxes(at, [](int) { return roleColor(Role::Muted); }, 0.18f);
-            if (splits)
-                for (const KdNode& node : kt.nodes()) {
-                    if (node.isLeaf()) continue;
-                    const LineStyle s{depthWidth(node.depth), depthColor(node.depth, kt.depth()), 0.0f, true};
-                    // The cell spans the points' bounds; extend the root's extent to the frame for clarity.
-                    Aabb c = node.cell;
-                    for (int a = 0; a < 2; ++a) {
-                        if (c.min[a] == kt.nodes()[0].cell.min[a]) c.min[a] = frame.min[a];
-                        if (c.max[a] == kt.nodes()[0].cell.max[a]) c.max[a] = frame.max[a];
-                    }
-                    if (node.axis == 0) canvas.drawLine(at + P(node.split, c.min.y()), at + P(node.split, c.max.y()), s);
-                    else canvas.drawLine(at + P(c.min.x(), node.split), at + P(c.max.x(), node.split), s);
-                }
-            if (drawObjects)
-                for (const Vec3& c : centres) canvas.drawPoint(at + c, 4.5f, roleColor(Role::Query), true, 1.0f, roleColor(Role::Ink));
-            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
-            heading(canvas, at + P(frame.min.x(), frame.max.y()),
-                    "k-d tree of the box centres, depth " + std::to_string(kt.depth()),
-                    std::to_string(kt.nodes().size()) + " nodes; median splits " +
-                        (kd.rule == KdSplitRule::Cycle ? "cycling x, y" : "on the widest axis") + " (root: darkest)");
-        }
-        // 4. BSP of the box walls: split lines and wall fragments. Overlapping boxes are not one
-        // closed surface (walls inside other boxes), so solid / empty leaves mean little here:
-        // the boxes are shaded instead (the bsp_shape figure shows solid leaves).
-        {
-            const Vec3 at = offsets[3];
-            const auto regions = bspRegions(bt, rectPolygon(frame));
-            if (drawObjects)
-                for (const Aabb& b : boxes) fillRect(canvas, b, at, roleColor(Role::ShapeA).withAlpha(0.30f));
-            if (splits)
-                for (std::size_t i = 0; i < bt.nodes().size(); ++i) {
-                    const BspNode& node = bt.nodes()[i];
-                    Vec3 p, q;
-                    if (node.kind == BspNodeKind::Inner &&
-                        lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
-                        canvas.drawLine(at + p, at + q, LineStyle{0.6f * depthWidth(node.depth), depthColor(node.depth, bs.depth)});
-                }
-            if (drawObjects)
-                for (const BspFragment& f : bt.fragments()) {
-                    Vec3 p, q;
-                    fragmentSegment(f, p, q);
-                    canvas.drawLine(at + p, at + q, lineStyle(f.split ? Role::Highlight : Role::Ink, f.split ? 3.5f : 2.5f, false, true));
-                }
-            outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
-            heading(canvas, at + P(frame.min.x(), frame.max.y()),
-                    "BSP tree of the box walls, depth " + std::to_string(bs.depth),
-                    std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
-                        " walls cut in two (orange pieces)");
-        }
-        drawTitleAndCaption(canvas, common_.title, common_.caption);
-        Frame f;
-        f.name = "panels";
-        f.caption = common_.title;
-        f.image = canvas.readPixels();
-        out.frames.push_back(std::move(f));
-        return out;
+    }
+
+    // 3. k-d tree over the box centres: split lines clipped to their cells, coloured by depth.
+    void drawKdPanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const {
+        Canvas& canvas = v.canvas;
+        const KdTree& kt = st.kdTree;
+        drawBoxes(v, at, [](int) { return roleColor(Role::Muted); }, 0.18f);
+        if (v.splits)
+            for (std::size_t id = 0; id < kt.nodes().size(); ++id) {
+                const KdNode& node = kt.nodes()[id];
+                if (node.isLeaf()) continue;
+                const LineStyle s{depthWidth(node.depth), depthColor(node.depth, kt.depth()), 0.0f, true};
+                drawKdSplit(canvas, node, kdCellInFrame(kt, int(id), v.frame), at, s);
+            }
+        if (v.drawObjects)
+            for (const Vec3& c : st.centres) canvas.drawPoint(at + c, 4.5f, roleColor(Role::Query), true, 1.0f, roleColor(Role::Ink));
+        outlineRect(canvas, v.frame, at, lineStyle(Role::Ink, 1.5f));
+        heading(canvas, at + P(v.frame.min.x(), v.frame.max.y()),
+                "k-d tree of the box centres, depth " + std::to_string(kt.depth()),
+                std::to_string(kt.nodes().size()) + " nodes; median splits " +
+                    (kd.rule == KdSplitRule::Cycle ? "cycling x, y" : "on the widest axis") + " (root: darkest)");
+    }
+
+    // 4. BSP of the box walls: split lines and wall fragments. Overlapping boxes are not one
+    // closed surface (walls inside other boxes), so solid / empty leaves mean little here:
+    // the boxes are shaded instead (the bsp_shape figure shows solid leaves).
+    void drawBspPanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const {
+        Canvas& canvas = v.canvas;
+        const BspTree& bt = st.bspTree;
+        const BspStats& bs = st.bspStats;
+        const auto regions = bspRegions(bt, rectPolygon(v.frame));
+        if (v.drawObjects)
+            for (const Aabb& b : boxes) fillRect(canvas, b, at, roleColor(Role::ShapeA).withAlpha(0.30f));
+        if (v.splits) drawBspSplits(canvas, bt, regions, at, 0.6f);
+        if (v.drawObjects) drawBspFragments(canvas, bt, at, 3.5f, 2.5f);
+        outlineRect(canvas, v.frame, at, lineStyle(Role::Ink, 1.5f));
+        heading(canvas, at + P(v.frame.min.x(), v.frame.max.y()),
+                "BSP tree of the box walls, depth " + std::to_string(bs.depth),
+                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
+                    " walls cut in two (orange pieces)");
     }
 
     // ----------------------------------------------------------------------------- kd_query
@@ -417,8 +473,7 @@ private:
             out.skipped.push_back("all drawing (no GL context)");
             return out;
         }
-        Canvas canvas(*ctx.gl, canvasOptions(ctx));
-        canvas.setBackground(roleColor(Role::Background));
+        Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
         const Vec3 size = region.max - region.min;
         const double W = std::max(size.x(), size.y());
         const double gap = 0.12 * W;
@@ -429,14 +484,7 @@ private:
         const Aabb frame{region.min, region.min + P(W, W)};
         const auto& nodes = kt.nodes();
 
-        auto cellOf = [&](int id) {
-            Aabb c = nodes[std::size_t(id)].cell;
-            for (int a = 0; a < 2; ++a) {  // the root cell is the points' bounds: extend to the frame
-                if (c.min[a] == nodes[0].cell.min[a]) c.min[a] = frame.min[a];
-                if (c.max[a] == nodes[0].cell.max[a]) c.max[a] = frame.max[a];
-            }
-            return c;
-        };
+        auto cellOf = [&](int id) { return kdCellInFrame(kt, id, frame); };
         auto drawTree = [&](const Vec3& at, const KdQueryTrace& t) {
             if (common_.hasLayer("cells")) {
                 for (int id : t.pruned) fillRect(canvas, cellOf(id), at, roleColor(Role::Muted).withAlpha(0.30f));
@@ -447,10 +495,7 @@ private:
                 for (std::size_t id = 0; id < nodes.size(); ++id) {
                     const KdNode& node = nodes[id];
                     if (node.isLeaf()) continue;
-                    const Aabb c = cellOf(int(id));
-                    const LineStyle s{depthWidth(node.depth), depthColor(node.depth, kt.depth())};
-                    if (node.axis == 0) canvas.drawLine(at + P(node.split, c.min.y()), at + P(node.split, c.max.y()), s);
-                    else canvas.drawLine(at + P(c.min.x(), node.split), at + P(c.max.x(), node.split), s);
+                    drawKdSplit(canvas, node, cellOf(int(id)), at, LineStyle{depthWidth(node.depth), depthColor(node.depth, kt.depth())});
                 }
             if (common_.hasLayer("objects"))
                 for (const Vec3& p : points) canvas.drawPoint(at + p, 4.0f, roleColor(Role::Ink), true, 0.0f);
@@ -487,12 +532,7 @@ private:
         heading(canvas, offsets[1] + P(frame.min.x(), frame.max.y()), "Range query (box)",
                 std::to_string(hits.size()) + " hits, " + std::to_string(rt.distanceTests) + " points tested, " +
                     std::to_string(rt.pruned.size()) + " subtrees pruned (grey)");
-        drawTitleAndCaption(canvas, common_.title, common_.caption);
-        Frame f;
-        f.name = "kd_query";
-        f.caption = common_.title;
-        f.image = canvas.readPixels();
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(titledFrame(canvas, "kd_query"));
         return out;
     }
 
@@ -535,8 +575,7 @@ private:
             out.skipped.push_back("all drawing (no GL context)");
             return out;
         }
-        Canvas canvas(*ctx.gl, canvasOptions(ctx));
-        canvas.setBackground(roleColor(Role::Background));
+        Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
         // Shape panel on the left (square), tree diagram on the right.
         Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
         for (const Vec3& v : polygon) {
@@ -558,20 +597,8 @@ private:
                 const bool solid = nodes[i].kind == BspNodeKind::SolidLeaf;
                 canvas.drawPolygon(regions[i], solid ? roleColor(Role::ShapeA).withAlpha(0.38f) : roleColor(Role::Background));
             }
-        if (common_.hasLayer("splits"))
-            for (std::size_t i = 0; i < nodes.size(); ++i) {
-                Vec3 p, q;
-                const BspNode& node = nodes[i];
-                if (node.kind == BspNodeKind::Inner &&
-                    lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
-                    canvas.drawLine(p, q, LineStyle{depthWidth(node.depth), depthColor(node.depth, bs.depth)});
-            }
-        if (common_.hasLayer("objects"))
-            for (const BspFragment& f : bt.fragments()) {
-                Vec3 p, q;
-                fragmentSegment(f, p, q);
-                canvas.drawLine(p, q, lineStyle(f.split ? Role::Highlight : Role::Ink, 4.0f, false, true));
-            }
+        if (common_.hasLayer("splits")) drawBspSplits(canvas, bt, regions, Vec3::Zero(), 1.0f);
+        if (common_.hasLayer("objects")) drawBspFragments(canvas, bt, Vec3::Zero(), 4.0f, 4.0f);
         outlineRect(canvas, frame, Vec3::Zero(), lineStyle(Role::Ink, 1.5f));
         const bool labels = common_.hasLayer("labels");
         if (labels)  // edge names e0, e1, ... at the midpoints, pushed outwards
@@ -604,12 +631,7 @@ private:
                 std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + (bs.splits == 1 ? " edge" : " edges") +
                     " cut (orange pieces), solid leaves blue");
         if (common_.hasLayer("tree")) drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);
-        drawTitleAndCaption(canvas, common_.title, common_.caption);
-        Frame f;
-        f.name = "bsp_shape";
-        f.caption = common_.title;
-        f.image = canvas.readPixels();
-        out.frames.push_back(std::move(f));
+        out.frames.push_back(titledFrame(canvas, "bsp_shape"));
         return out;
     }
 

@@ -20,6 +20,7 @@
 #include <cstdio>
 
 #include "core/broadphase/sweep_and_prune.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
@@ -120,7 +121,7 @@ public:
             out.skipped.push_back("all drawing (no GL context)");
             return out;
         }
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         for (std::size_t f = 0; f < frames.size(); ++f) out.frames.push_back(drawFrame(*ctx.gl, ss, frames, static_cast<int>(f)));
         return out;
     }
@@ -191,12 +192,7 @@ private:
     static constexpr double kOrderX0 = 600, kOrderX1 = 1004;
 
     Image draw3d(GlContext& gl, int ss, const FrameData& d, Eigen::Vector2d axisDir[3]) const {
-        CanvasOptions co;
-        co.width = static_cast<int>(kViewW);
-        co.height = static_cast<int>(kTopH);
-        co.supersample = ss;
-        Canvas c(gl, co);
-        c.setBackground(roleColor(Role::Background));
+        Canvas c(gl, canvasOptions(static_cast<int>(kViewW), static_cast<int>(kTopH), ss));
         // Frame the union of every frame's boxes so the camera does not move between frames.
         Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
         for (int f = 0; f <= s_.frames; ++f)
@@ -242,13 +238,7 @@ private:
 
     Frame drawFrame(GlContext& gl, int ss, const std::vector<FrameData>& frames, int f) const {
         const FrameData& d = frames[f];
-        CanvasOptions co;
-        co.width = kW;
-        co.height = kH;
-        co.supersample = ss;
-        Canvas c(gl, co);
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(Camera::twoD(kW / 2.0, kH / 2.0, kH));
+        Canvas c(gl, canvasOptions(kW, kH, ss), Camera::pixels(kW, kH));
         auto P = [](double x, double y) { return Eigen::Vector3d(x, kH - y, 0); };
         const int n = static_cast<int>(d.boxes.size());
         const TextStyle small{14.0f, roleColor(Role::Ink), Anchor::Left, false, false};
@@ -337,13 +327,6 @@ private:
                        const TextStyle& small, const TextStyle& smallBold, int n) const {
         const FrameData& d = frames[f];
         const double y0 = kPanelY + k * kPanelH;
-        // Fixed range over all frames so the motion reads from frame to frame.
-        double lo = INFINITY, hi = -INFINITY;
-        for (const FrameData& g : frames)
-            for (const Aabb& b : g.boxes) lo = std::min(lo, b.min[k]), hi = std::max(hi, b.max[k]);
-        const double pad = 0.04 * (hi - lo) + 1e-9;
-        lo -= pad, hi += pad;
-        auto X = [&](double v) { return kBarX0 + (v - lo) / (hi - lo) * (kBarX1 - kBarX0); };
         // Separator and axis name.
         c.drawLine(P(16, y0 - 4), P(kW - 16, y0 - 4), lineStyle(Role::Muted, 1.0f));
         c.drawTextPx(24, y0 + 46, kAxisName[k], TextStyle{30.0f, roleColor(Role::Ink), Anchor::Center, false, true});
@@ -351,6 +334,23 @@ private:
         std::vector<char> moved(2 * n, 0);
         for (const SapSwap& s : d.trace.swaps)
             if (s.axis == k) moved[2 * s.movingObject + s.movingIsMax] = moved[2 * s.passedObject + s.passedIsMax] = 1;
+        drawIntervals(c, P, frames, f, k, small, n, moved);
+        drawEndpointOrder(c, P, d, f, k, small, smallBold, n, moved);
+    }
+
+    // Left: each box's interval on axis k as a bar (moved endpoints marked), the ties, and the number line.
+    template <class ToWorld>
+    void drawIntervals(Canvas& c, const ToWorld& P, const std::vector<FrameData>& frames, int f, int k, const TextStyle& small, int n,
+                       const std::vector<char>& moved) const {
+        const FrameData& d = frames[f];
+        const double y0 = kPanelY + k * kPanelH;
+        // Fixed range over all frames so the motion reads from frame to frame.
+        double lo = INFINITY, hi = -INFINITY;
+        for (const FrameData& g : frames)
+            for (const Aabb& b : g.boxes) lo = std::min(lo, b.min[k]), hi = std::max(hi, b.max[k]);
+        const double pad = 0.04 * (hi - lo) + 1e-9;
+        lo -= pad, hi += pad;
+        auto X = [&](double v) { return kBarX0 + (v - lo) / (hi - lo) * (kBarX1 - kBarX0); };
         // Interval bars, one row per box.
         const double rowH = std::min(13.0, 84.0 / n);
         for (int i = 0; i < n; ++i) {
@@ -411,6 +411,13 @@ private:
             t.sizePx = 12.0f;
             c.drawTextPx(X(v), yl + 5, formatNumber(v), t);
         }
+    }
+
+    // Right: the sorted endpoint list before (top row) and after (bottom row) the insertion sort.
+    template <class ToWorld>
+    void drawEndpointOrder(Canvas& c, const ToWorld& P, const FrameData& d, int f, int k, const TextStyle& small,
+                           const TextStyle& smallBold, int n, const std::vector<char>& moved) const {
+        const double y0 = kPanelY + k * kPanelH;
         // Endpoint order before (top row) and after (bottom row) insertion sort.
         const int m = 2 * n;
         const double slot = (kOrderX1 - kOrderX0) / m;

@@ -15,6 +15,7 @@
 #include "core/closest/closest_point.h"
 #include "core/closest/voronoi_regions.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
@@ -65,6 +66,26 @@ Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
             {"closest", vecJson(r.point)},     {"barycentric", weights},
             {"distance", std::sqrt(r.distanceSquared)}, {"degenerate", r.status != SimplexStatus::Regular},
             {"tests", testsJson(tests)}};
+}
+
+/// Each query point through `closest(point, &trace)`, its trace kept (Query: TriangleQuery or TetrahedronQuery).
+template <class Query, class Closest>
+std::vector<Query> runQueries(const std::vector<Vec3>& points, const Closest& closest) {
+    std::vector<Query> results;
+    for (const Vec3& q : points) {
+        Query r{q, {}};
+        closest(q, &r.trace);
+        results.push_back(r);
+    }
+    return results;
+}
+
+/// Every query of a run (a TriangleQuery or TetrahedronQuery list) as trace JSON.
+template <class Query>
+Json queriesJson(const std::vector<Query>& results) {
+    Json qs = Json::array();
+    for (const auto& r : results) qs.push_back(queryJson(r.point, r.trace.result, r.trace.tests));
+    return qs;
 }
 
 // Caption of the step frame of query i.
@@ -119,30 +140,16 @@ private:
     }
     double margin() const { return margin_ > 0 ? margin_ : size(); }
 
-    CanvasOptions canvasOptions(const RunContext& ctx) const {
-        CanvasOptions o;
-        o.width = common_.image.width;
-        o.height = common_.image.height;
-        o.supersample = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
-        return o;
-    }
-
     // -------------------------------------------------------------------------------- triangle
 
     DemoOutput runTriangle(const RunContext& ctx) const {
         const Triangle tri{simplex_[0], simplex_[1], simplex_[2]};
-        std::vector<TriangleQuery> results;
-        for (const Vec3& q : queries_) {
-            TriangleQuery r{q, {}};
-            closestPointOnTriangle(q, tri, &r.trace);
-            results.push_back(r);
-        }
+        const auto results =
+            runQueries<TriangleQuery>(queries_, [&](const Vec3& q, auto* trace) { closestPointOnTriangle(q, tri, trace); });
         DemoOutput out;
         out.trace["simplex"] = "triangle";
         out.trace["vertices"] = {vecJson(tri.a), vecJson(tri.b), vecJson(tri.c)};
-        Json qs = Json::array();
-        for (const auto& r : results) qs.push_back(queryJson(r.point, r.trace.result, r.trace.tests));
-        out.trace["queries"] = qs;
+        out.trace["queries"] = queriesJson(results);
         if (!ctx.gl) {  // numeric only
             out.skipped.push_back("all drawing (no GL context)");
             return out;
@@ -190,8 +197,7 @@ private:
 
     Frame drawTriangleFrame(GlContext& gl, const RunContext& ctx, const Triangle& tri, const TriangleVoronoiDiagram& diagram,
                             const std::vector<TriangleQuery>& results, const std::string& view, int focus) const {
-        Canvas canvas(gl, canvasOptions(ctx));
-        canvas.setBackground(roleColor(Role::Background));
+        Canvas canvas(gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
         canvas.setCamera(triangleCamera(tri, diagram, view));
         const bool is3d = view == "3d";
 
@@ -267,18 +273,12 @@ private:
 
     DemoOutput runTetrahedron(const RunContext& ctx) const {
         const Tetrahedron tet{simplex_[0], simplex_[1], simplex_[2], simplex_[3]};
-        std::vector<TetrahedronQuery> results;
-        for (const Vec3& q : queries_) {
-            TetrahedronQuery r{q, {}};
-            closestPointOnTetrahedron(q, tet, &r.trace);
-            results.push_back(r);
-        }
+        const auto results =
+            runQueries<TetrahedronQuery>(queries_, [&](const Vec3& q, auto* trace) { closestPointOnTetrahedron(q, tet, trace); });
         DemoOutput out;
         out.trace["simplex"] = "tetrahedron";
         out.trace["vertices"] = {vecJson(tet.a), vecJson(tet.b), vecJson(tet.c), vecJson(tet.d)};
-        Json qs = Json::array();
-        for (const auto& r : results) qs.push_back(queryJson(r.point, r.trace.result, r.trace.tests));
-        out.trace["queries"] = qs;
+        out.trace["queries"] = queriesJson(results);
         if (!ctx.gl) {
             out.skipped.push_back("all drawing (no GL context)");
             return out;
@@ -298,8 +298,7 @@ private:
     Frame drawTetrahedronFrame(GlContext& gl, const RunContext& ctx, const Tetrahedron& tet,
                                const TetrahedronVoronoiDiagram& diagram, const std::vector<TetrahedronQuery>& results,
                                int focus) const {
-        Canvas canvas(gl, canvasOptions(ctx));
-        canvas.setBackground(roleColor(Role::Background));
+        Canvas canvas(gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
         double radius = size() + 0.6 * margin();
         canvas.setCamera(common_.camera ? *common_.camera
                                         : framingCamera(center(), radius, Vec3(1.0, 0.75, 1.6), Vec3::UnitY(), true));

@@ -146,8 +146,8 @@ TEST_SUITE("render/image") {
     }
 
     TEST_CASE("readPng: a directory, a huge header and an endless file are one line each") {
-        // Reproducer (issue 22): rm golden/.../step_01.png && mkdir golden/.../step_01.png;
-        // cdlab golden -> "basic_filebuf::underflow error reading the file: Is a directory".
+        // A golden PNG replaced by a folder (rm golden/.../step_01.png && mkdir golden/.../step_01.png)
+        // once made cdlab golden print "basic_filebuf::underflow error reading the file: Is a directory".
         const fs::path dir = tempDir() / "hostile_png";
         fs::create_directories(dir / "dir.png");
         std::string msg = errorOf([&] { readPng((dir / "dir.png").string()); });

@@ -1,4 +1,4 @@
-// The harness and the file system under hostile conditions (issue 22): no run deletes a file it
+// The harness and the file system under hostile conditions: no run deletes a file it
 // did not write, concurrent runs into one folder both succeed, state in out/ that cdlab did not
 // write is reported and skipped, a broken golden or scene fails that scene only, and the JSON
 // reader bounds what a few bytes can cost. Every cdlab run here is a forked child (its own GL
