@@ -6,6 +6,7 @@
 #include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/convex_hull.h"
 #include "demos/scene/scene_limits.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/feature_walk_figure.h"
@@ -176,13 +177,7 @@ RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFe
 
 Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const std::string& title, const std::string& sceneCaption,
                    const Image& main, const Image& diagram, const Image& plot, const std::vector<std::string>& captionLines) {
-    CanvasOptions o;
-    o.width = layout.width;
-    o.height = layout.height;
-    o.supersample = supersample;
-    Canvas canvas(gl, o);
-    canvas.setBackground(roleColor(Role::Background));
-    canvas.setCamera(Camera::twoD(0, 0, 1));
+    Canvas canvas(gl, canvasOptions(layout.width, layout.height, supersample), Camera::twoD(0, 0, 1));
     canvas.drawTextPx(16, 8, title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     double y = layout.height - layout.captionBand + 5;
     if (!sceneCaption.empty())
@@ -198,18 +193,8 @@ Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const s
     blit(frame, plot, layout.mainWidth(), layout.titleBand + layout.diagramHeight());
     // 2-pixel rules between the panels.
     const Color m = roleColor(Role::Muted);
-    auto put = [&](int xx, int yy) {
-        std::uint8_t* p = frame.pixel(xx, yy);
-        p[0] = std::uint8_t(std::lround(m.r * 255));
-        p[1] = std::uint8_t(std::lround(m.g * 255));
-        p[2] = std::uint8_t(std::lround(m.b * 255));
-        p[3] = 255;
-    };
-    for (int yy = layout.titleBand; yy < layout.titleBand + layout.panelHeight(); ++yy)
-        for (int xx = layout.mainWidth() - 1; xx <= layout.mainWidth(); ++xx) put(xx, yy);
-    for (int xx = layout.mainWidth(); xx < layout.width; ++xx)
-        for (int yy = layout.titleBand + layout.diagramHeight() - 1; yy <= layout.titleBand + layout.diagramHeight(); ++yy)
-            put(xx, yy);
+    paintRect(frame, layout.mainWidth() - 1, layout.titleBand, 2, layout.panelHeight(), m);
+    paintRect(frame, layout.mainWidth(), layout.titleBand + layout.diagramHeight() - 1, layout.width - layout.mainWidth(), 2, m);
     return frame;
 }
 

@@ -103,8 +103,6 @@ struct PlotInput {
 };
 /// A line / bar chart in pixel space.
 render::Image drawPlot(render::GlContext& gl, int width, int height, int supersample, const PlotInput& in);
-/// Two plots stacked in one panel.
-render::Image stackImages(const render::Image& top, const render::Image& bottom);
 
 /// Colours of the walk.
 render::Color violatedColor();   // red: violated plane / excluded part

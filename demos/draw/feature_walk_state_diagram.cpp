@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/feature_walk_figure.h"
 
@@ -28,13 +29,7 @@ constexpr double kNodeRadius = 25;
 }  // namespace
 
 Image drawStateDiagram(GlContext& gl, int W, int H, int ss, const DiagramInput& in) {
-    CanvasOptions o;
-    o.width = W;
-    o.height = H;
-    o.supersample = ss;
-    Canvas c(gl, o);
-    c.setBackground(roleColor(Role::Background));
-    c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));
+    Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));
     const double top = 44;  // below the heading
     auto P = [&](double x, double yDown) { return Vec3(x * W / 384.0, H - yDown, 0); };
     auto node = [&](int s) { return P(kNode[s].x, top + kNode[s].y * (H - top)); };
@@ -94,13 +89,7 @@ Image drawStateDiagram(GlContext& gl, int W, int H, int ss, const DiagramInput& 
 }
 
 Image drawPlot(GlContext& gl, int W, int H, int ss, const PlotInput& in) {
-    CanvasOptions o;
-    o.width = W;
-    o.height = H;
-    o.supersample = ss;
-    Canvas c(gl, o);
-    c.setBackground(roleColor(Role::Background));
-    c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));
+    Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));
     auto P = [&](double x, double yDown) { return Vec3(x, H - yDown, 0); };
     const double x0 = 62, x1 = W - 18, yTop = 40 + 18.0 * ((in.legend.size() + 1) / 2), yBot = H - 40;
     double xmin = INFINITY, xmax = -INFINITY, ymin = 0, ymax = -INFINITY;
@@ -168,13 +157,6 @@ Image drawPlot(GlContext& gl, int W, int H, int ss, const PlotInput& in) {
         c.drawText(P(lx + 14, ly), in.legend[i].second, TextStyle{13.0f, ink, Anchor::Left, false, false});
     }
     return c.readPixels();
-}
-
-Image stackImages(const Image& top, const Image& bottom) {
-    Image out(std::max(top.width, bottom.width), top.height + bottom.height);
-    blit(out, top, 0, 0);
-    blit(out, bottom, 0, top.height);
-    return out;
 }
 
 }  // namespace cdlab::demos::walkfigure

@@ -16,6 +16,7 @@
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/epa/epa_2d.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
@@ -90,7 +91,7 @@ public:
         for (int i = 0; i < run.gjk.simplex.count; ++i) cpts.push_back(run.gjk.simplex.vertex[i].w);
         const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
         for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames)) out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -1));
@@ -302,18 +303,13 @@ private:
 
     Frame drawFrame(GlContext& gl, int ss, const Drawing& d, const EpaRun& run, int index) const {
         const TwoPanelLayout layout{common_.image.width, common_.image.height};
-        CanvasOptions po;
-        po.width = layout.panelWidth();
-        po.height = layout.panelHeight();
-        po.supersample = ss;
+        const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), ss);
         const bool labels = common_.hasLayer("labels");
         const bool isGjk = index == -2, isResult = index == -1;
         const PolyStep* s = index >= 0 ? &run.steps[index] : nullptr;
         const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
 
-        Canvas world(gl, po);
-        world.setBackground(roleColor(Role::Background));
-        world.setCamera(panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
+        Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
         drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeA).scaled(0.6f), 2.0f);
         drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeB).scaled(0.6f), 2.0f);
         if (labels) {
@@ -347,9 +343,7 @@ private:
                                                                                              : "witness points, p_A − p_B = depth · n")
                                                         : s ? "support points of the new vertex" : "");
 
-        Canvas cs(gl, po);
-        cs.setBackground(roleColor(Role::Background));
-        cs.setCamera(common_.camera && !d.planar ? *common_.camera : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+        Canvas cs(gl, po, common_.camera && !d.planar ? *common_.camera : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
         if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.18f : 0.12f, roleColor(Role::Minkowski).scaled(0.75f), 1.0f);
         drawOrigin(cs, 0.06 * d.cRadius, d.planar);
         std::string sub;
@@ -423,13 +417,7 @@ private:
     // Lower and upper depth bounds against the iteration, drawn with the 2D canvas in pixel units.
     Frame drawPlot(GlContext& gl, int ss, const EpaRun& run) const {
         const int W = common_.image.width, H = common_.image.height;
-        CanvasOptions o;
-        o.width = W;
-        o.height = H;
-        o.supersample = ss;
-        Canvas c(gl, o);
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));  // world = pixels, y up
+        Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));  // world = pixels, y up
         const double x0 = 110, x1 = W - 60, y0 = 125, y1 = H - 100;
         double lo = INFINITY, hi = -INFINITY;
         for (const PolyStep& s : run.steps) {
@@ -478,11 +466,7 @@ private:
         c.drawText(P(lx + 50, ly - 28), "lower bound: closest face distance", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
         drawTitleAndCaption(c, common_.title + ": depth bounds per iteration",
                             "final depth " + formatNumber(run.depth) + " (" + nameOf(run.termination) + "); the gap closes as the polytope reaches the boundary of A − B");
-        Frame f;
-        f.name = "bounds";
-        f.caption = "depth bounds vs iteration";
-        f.image = c.readPixels();
-        return f;
+        return Frame{"bounds", "depth bounds vs iteration", c.readPixels()};
     }
 };
 

@@ -15,6 +15,7 @@
 
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
@@ -71,7 +72,7 @@ public:
         }
         const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
-        const int supersample = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int supersample = runSupersample(common_, ctx);
         for (int i : framedSteps(int(trace.steps.size()), pair_.maxStepFrames))
             out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, i, r));
         out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, -1, r));
@@ -138,18 +139,13 @@ private:
     Frame drawStep(GlContext& gl, int supersample, const Drawing& d, const GjkTrace& trace, int index,
                    const GjkResult& r) const {
         const TwoPanelLayout layout{common_.image.width, common_.image.height};
-        CanvasOptions po;
-        po.width = layout.panelWidth();
-        po.height = layout.panelHeight();
-        po.supersample = supersample;
+        const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), supersample);
         const bool labels = common_.hasLayer("labels");
         const GjkTraceStep* s = index >= 0 ? &trace.steps[index] : nullptr;
         const bool touching = r.status == GjkStatus::Intersecting;
 
         // ---- world panel
-        Canvas world(gl, po);
-        world.setBackground(roleColor(Role::Background));
-        world.setCamera(panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
+        Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
         drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeA).scaled(0.6f), 2.0f);
         drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeB).scaled(0.6f), 2.0f);
         if (labels) {
@@ -180,9 +176,7 @@ private:
         drawPanelHeading(world, "World space", s ? "witness points of the kept simplex" : "closest points");
 
         // ---- configuration space panel
-        Canvas cs(gl, po);
-        cs.setBackground(roleColor(Role::Background));
-        cs.setCamera(common_.camera && !d.planar ? *common_.camera
+        Canvas cs(gl, po, common_.camera && !d.planar ? *common_.camera
                                                 : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
         if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.22f : 0.18f, roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
         drawOrigin(cs, 0.06 * d.cRadius, d.planar);

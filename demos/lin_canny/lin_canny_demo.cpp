@@ -26,6 +26,7 @@
 #include "core/geometry/shapes.h"
 #include "core/feature_walk/vclip.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/draw/convex_drawable.h"
@@ -79,13 +80,7 @@ struct ListRow {
 /// fit, the first two rows, an ellipsis, and the last ones (where a cycle is).
 Image drawWalkList(GlContext& gl, int W, int H, int ss, const std::string& heading, const std::string& sub,
                    const std::vector<ListRow>& rows, int current) {
-    CanvasOptions o;
-    o.width = W;
-    o.height = H;
-    o.supersample = ss;
-    Canvas c(gl, o);
-    c.setBackground(roleColor(Role::Background));
-    c.setCamera(Camera::twoD(W / 2.0, H / 2.0, H));
+    Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));
     const Color ink = roleColor(Role::Ink);
     c.drawTextPx(12, 8, heading, TextStyle{17.0f, ink, Anchor::TopLeft, true, true});
     double top = 32;
@@ -159,7 +154,7 @@ public:
             out.skipped.push_back("all drawing (no GL context)");
             return out;
         }
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         std::vector<Vec3> pts;
         for (const Vec3& p : s_.a.regions.mesh().positions()) pts.push_back(s_.a.pose.apply(p));
         for (const Vec3& p : s_.b.regions.mesh().positions()) pts.push_back(s_.b.pose.apply(p));
@@ -275,20 +270,9 @@ private:
         return cam;
     }
 
-    static CanvasOptions panelOptions(int w, int h, int ss) {
-        CanvasOptions po;
-        po.width = w;
-        po.height = h;
-        po.supersample = ss;
-        return po;
-    }
-
     /// shiftUp: the view moves down by this fraction of the scene radius (room for the panel
     /// heading); zoom: the fraction of the scene's bounding sphere that is framed.
-    void setupPanel(Canvas& c, double shiftUp, double zoom) const {
-        c.setBackground(roleColor(Role::Background));
-        c.setCamera(camera(shiftUp, zoom));
-    }
+    void setupPanel(Canvas& c, double shiftUp, double zoom) const { c.setCamera(camera(shiftUp, zoom)); }
 
     const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
     const Transform& pose(int i) const { return i == 0 ? s_.a.pose : s_.b.pose; }
@@ -393,7 +377,7 @@ private:
         const LinCannyTrace& tr = run.lcTrace;
         const LinCannyResult& r = run.lc;
         const LinCannyTraceStep* st = index >= 0 ? &tr.steps[index] : nullptr;
-        Canvas c(gl, panelOptions(L.mainWidth(), L.panelHeight(), ss));
+        Canvas c(gl, canvasOptions(L.mainWidth(), L.panelHeight(), ss));
         setupPanel(c, 0.12, 0.92);
         drawBodies(c, true);
         std::string heading, sub;
@@ -497,7 +481,7 @@ private:
     template <class Trace>
     Image walkPanel(GlContext& gl, int w, int h, int ss, const Trace& tr, const VClipFeature& fa, const VClipFeature& fb, const Vec3& pa,
                     const Vec3& pb, bool closest, const std::string& heading, const std::string& sub) const {
-        Canvas c(gl, panelOptions(w, h, ss));
+        Canvas c(gl, canvasOptions(w, h, ss));
         setupPanel(c, 0.28, 0.80);
         drawBodies(c, true);
         const bool labels = common_.hasLayer("labels");
@@ -545,13 +529,7 @@ private:
             pin.legend = {{roleColor(Role::Simplex), "V-Clip"}, {roleColor(Role::Highlight), "Lin–Canny"}};
             plot = drawPlot(gl, W, plotH, ss, pin);
         }
-        CanvasOptions o;
-        o.width = W;
-        o.height = H;
-        o.supersample = ss;
-        Canvas canvas(gl, o);
-        canvas.setBackground(roleColor(Role::Background));
-        canvas.setCamera(Camera::twoD(0, 0, 1));
+        Canvas canvas(gl, canvasOptions(W, H, ss), Camera::twoD(0, 0, 1));
         canvas.drawTextPx(16, 8, common_.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
         double y = H - captionBand + 5;
         const Color soft = roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.55f);
@@ -572,25 +550,11 @@ private:
         blit(frame, plot, 0, titleBand + top3d + listH);
         // 2-pixel rules between the panels.
         const Color m = roleColor(Role::Muted);
-        auto put = [&](int xx, int yy) {
-            std::uint8_t* p = frame.pixel(xx, yy);
-            p[0] = std::uint8_t(std::lround(m.r * 255));
-            p[1] = std::uint8_t(std::lround(m.g * 255));
-            p[2] = std::uint8_t(std::lround(m.b * 255));
-            p[3] = 255;
-        };
-        for (int yy = titleBand; yy < titleBand + top3d + listH; ++yy)
-            for (int xx = half - 1; xx <= half; ++xx) put(xx, yy);
-        for (int xx = 0; xx < W; ++xx)
-            for (int k = 0; k < 2; ++k) {
-                put(xx, titleBand + top3d - 1 + k);
-                put(xx, titleBand + top3d + listH - 1 + k);
-            }
-        Frame f;
-        f.name = "side_by_side";
-        f.caption = "V-Clip " + std::to_string(r.vc.steps) + " vs Lin–Canny " + std::to_string(r.lc.steps) + " update(s)";
-        f.image = std::move(frame);
-        return f;
+        paintRect(frame, half - 1, titleBand, 2, top3d + listH, m);
+        paintRect(frame, 0, titleBand + top3d - 1, W, 2, m);
+        paintRect(frame, 0, titleBand + top3d + listH - 1, W, 2, m);
+        return Frame{"side_by_side", "V-Clip " + std::to_string(r.vc.steps) + " vs Lin–Canny " + std::to_string(r.lc.steps) + " update(s)",
+                     std::move(frame)};
     }
 };
 

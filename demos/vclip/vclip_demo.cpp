@@ -23,6 +23,7 @@
 #include "core/feature_walk/vclip.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/scene/scene_limits.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
@@ -102,7 +103,7 @@ public:
             out.skipped.push_back("all drawing (no GL context)");
             return out;
         }
-        const int ss = ctx.scaleOverride > 0 ? ctx.scaleOverride : common_.image.scale;
+        const int ss = runSupersample(common_, ctx);
         // Framing: every pose of B with A.
         std::vector<Vec3> pts;
         for (const Vec3& p : s_.a.regions.mesh().positions()) pts.push_back(s_.a.pose.apply(p));
@@ -250,15 +251,10 @@ private:
 
     CanvasOptions mainOptions(int ss) const {
         const Layout L = layout();
-        CanvasOptions po;
-        po.width = L.mainWidth();
-        po.height = L.panelHeight();
-        po.supersample = ss;
-        return po;
+        return canvasOptions(L.mainWidth(), L.panelHeight(), ss);
     }
 
     void setupMain(Canvas& c) const {
-        c.setBackground(roleColor(Role::Background));
         if (common_.camera) {
             c.setCamera(*common_.camera);
             return;
@@ -624,7 +620,7 @@ private:
             ps.series = {s};
             ps.marker = k;
             const int h1 = L.plotHeight() / 2;
-            plot = stackImages(drawPlot(gl, L.columnWidth, h1, ss, pd), drawPlot(gl, L.columnWidth, L.plotHeight() - h1, ss, ps));
+            plot = stackVertically(drawPlot(gl, L.columnWidth, h1, ss, pd), drawPlot(gl, L.columnWidth, L.plotHeight() - h1, ss, ps));
         }
         std::vector<std::string> lines;
         std::string states;
@@ -638,13 +634,10 @@ private:
         lines.push_back("B orbits " + formatNumber(s_.motion->orbitDegrees) + "° and spins " + formatNumber(s_.motion->spinDegrees) +
                         "° per call; coherence: " + formatNumber(double(total) / calls.size()) + " updates per call on average over " +
                         std::to_string(calls.size()) + " calls");
-        Frame f;
         char name[32];
         std::snprintf(name, sizeof name, "call_%02d", k);
-        f.name = name;
-        f.caption = "call " + std::to_string(k) + ": " + std::to_string(r.steps) + " update(s), d " + formatNumber(r.distance);
-        f.image = composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, lines);
-        return f;
+        return Frame{name, "call " + std::to_string(k) + ": " + std::to_string(r.steps) + " update(s), d " + formatNumber(r.distance),
+                     composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, lines)};
     }
 };
 
