@@ -10,9 +10,7 @@
 
 #include "render/gl_internal.h"
 
-#ifndef CDLAB_FONT_DIR
-#define CDLAB_FONT_DIR "/usr/share/fonts/truetype/dejavu"
-#endif
+// CDLAB_FONT_DIR: the folder holding DejaVuSans.ttf, found by render/CMakeLists.txt (find_path).
 
 namespace cdlab::render {
 
