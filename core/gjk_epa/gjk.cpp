@@ -28,6 +28,14 @@ const char* nameOf(GjkTermination termination)
     return "?";
 }
 
+std::string slotLetters(std::uint8_t slots)
+{
+    std::string letters;
+    for (int i = 0; i < 4; ++i)
+        if (slots & (1u << i)) letters += static_cast<char>('A' + i);
+    return letters;
+}
+
 namespace detail {
 
 void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB)
@@ -50,14 +58,50 @@ void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB)
     pointB = v0.b + db;
 }
 
-void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced)
+void GjkRecorder::beginStep(int iteration, const Vec3& v, const GjkVertex& support, double lowerBound,
+                            double upperBound, double gapTest, const GjkSimplex& s)
 {
-    char name[5];
-    simplexRegionName(c, name);
-    step.region = name;
-    for (int k = 0; k < 4; ++k) step.lambda[k] = k < c.count ? c.lambda[k] : 0.0;
-    step.v = c.v;
-    gjkWitness(reduced, step.pointA, step.pointB);
+    if (!trace_) return;
+    step_ = &trace_->steps.emplace_back();
+    step_->iteration = iteration;
+    step_->direction = -v;
+    step_->support = support;
+    step_->lowerBound = lowerBound;
+    step_->upperBound = upperBound;
+    step_->gapTest = gapTest;
+    step_->simplexCount = s.count;
+    for (int i = 0; i < s.count; ++i) step_->simplex[i] = s.vertex[i];
+    step_->v = v;
+    step_->keptSlots = static_cast<std::uint8_t>((1u << s.count) - 1u);
+    for (int i = 0; i < s.count; ++i) step_->lambda[i] = s.lambda[i];
+    gjkWitness(s, step_->pointA, step_->pointB);
+}
+
+void GjkRecorder::candidate(const GjkSimplex& s, int n)
+{
+    if (!step_) return;
+    step_->simplexCount = n;
+    for (int i = 0; i < n; ++i) step_->simplex[i] = s.vertex[i];
+}
+
+void GjkRecorder::reduction(const SimplexClosest& c, const GjkSimplex& reduced)
+{
+    if (!step_) return;
+    step_->keptSlots = 0;
+    for (int k = 0; k < c.count; ++k) step_->keptSlots |= static_cast<std::uint8_t>(1u << c.index[k]);
+    for (int k = 0; k < 4; ++k) step_->lambda[k] = k < c.count ? c.lambda[k] : 0.0;
+    step_->v = c.v;
+    gjkWitness(reduced, step_->pointA, step_->pointB);
+}
+
+void GjkRecorder::stepEndsLoop()
+{
+    if (step_) step_->terminated = true;
+}
+
+void GjkRecorder::termination(GjkTermination why)
+{
+    if (trace_) trace_->termination = why;
 }
 
 bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r)

@@ -15,13 +15,16 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/closest/edge_pair_distance.h"
 #include "core/gjk_epa/simplex_solver.h"
 #include "core/base/support.h"
+#include "core/base/tolerances.h"
 
 namespace cdlab {
 
@@ -98,16 +101,21 @@ struct GjkTraceStep {
     int simplexCount = 0;
     Vec3 direction = Vec3::Zero();  ///< search direction d = -v
     GjkVertex support;              ///< new support point (w, a, b)
-    std::string region;             ///< sub-simplex kept, by slot letters ("A", "BC", "ABD", ...)
-    double lambda[4] = {};          ///< barycentric weights of the kept vertices (region order)
+    std::uint8_t keptSlots = 0;     ///< sub-simplex kept: bit i set = slot i of simplex[] kept
+    double lambda[4] = {};          ///< barycentric weights of the kept vertices (ascending slots)
     Vec3 v = Vec3::Zero();          ///< closest point of the kept sub-simplex to the origin
     Vec3 pointA = Vec3::Zero();     ///< witness points for this v
     Vec3 pointB = Vec3::Zero();
     double lowerBound = 0.0;        ///< distance lower bound so far
     double upperBound = 0.0;        ///< |v| before this step's reduction
     double gapTest = 0.0;           ///< |v|² - v·w, compared with relativeTolerance * |v|²
-    bool terminated = false;        ///< this step ended the loop (then region etc. are unchanged)
+    bool terminated = false;        ///< this step ended the loop (then keptSlots etc. are unchanged)
+
+    int keptCount() const { return std::popcount(keptSlots); }
 };
+
+/// The slots of a kept sub-simplex by letter, ascending: 0b0101 -> "AC" (trace display).
+std::string slotLetters(std::uint8_t slots);
 
 struct GjkTrace {
     std::vector<GjkTraceStep> steps;
@@ -124,8 +132,27 @@ namespace detail {
 /// (a_i - a_0)) so that far-from-origin shapes (offsets 1e6) lose no digits to the offset.
 void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB);
 
-/// Fill the trace-side fields of a step from a reduced simplex.
-void gjkTraceReduction(GjkTraceStep& step, const SimplexClosest& c, const GjkSimplex& reduced);
+/// Trace recording for gjkRun, one call per event of the loop; without a trace every call is a
+/// no-op, so the loop reads as the algorithm and the untraced run does no trace work.
+class GjkRecorder {
+public:
+    explicit GjkRecorder(GjkTrace* trace) : trace_(trace) {}
+    /// A new iteration: direction -v, the support point, the bounds and the gap test, and the
+    /// simplex W before w joins it (kept slots: all of W).
+    void beginStep(int iteration, const Vec3& v, const GjkVertex& support, double lowerBound, double upperBound,
+                   double gapTest, const GjkSimplex& s);
+    /// W + {w}: the n = |W| + 1 vertices the solver reduces.
+    void candidate(const GjkSimplex& s, int n);
+    /// The sub-simplex c kept out of W + {w}, with v and the witnesses of `reduced` (c compacted).
+    void reduction(const SimplexClosest& c, const GjkSimplex& reduced);
+    /// This step ended the loop.
+    void stepEndsLoop();
+    void termination(GjkTermination why);
+
+private:
+    GjkTrace* trace_;
+    GjkTraceStep* step_ = nullptr;
+};
 
 /// True when a separated answer may be off by more than rounding of L: the terminal triangle is
 /// a sliver (two nearly parallel edges, normal error ~u / angle) or GJK stopped without
@@ -157,7 +184,7 @@ void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, G
         // Rounding of the two dot products and of the axis (a few u) times the coordinates.
         const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(),
                                    e.pointA.cwiseAbs().maxCoeff(), e.pointB.cwiseAbs().maxCoeff()});
-        if (!(lower >= e.distance - 64.0 * 0x1p-53 * m)) continue;
+        if (!(lower >= e.distance - ulps(32, m))) continue;  // 32 ulps = 64 unit roundoffs
         r.distance = e.distance;
         r.upperBound = e.distance;
         r.lowerBound = std::min(lower, e.distance);
@@ -214,6 +241,90 @@ inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c)
     s.count = c.count;
 }
 
+/// The result from the terminal simplex s (van den Bergen §4.3: v = sum lambda_i w_i, the
+/// witnesses from the same weights): the distance |v| and the axis -v / |v|, a face's normal when
+/// the simplex is a triangle, edge-pair refinement when asked for.
+template <class A, class B>
+void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s,
+               GjkTermination why, GjkResult& r)
+{
+    r.termination = why;
+    if (why == GjkTermination::InvalidInput) {
+        r.status = GjkStatus::InvalidInput;
+        return;
+    }
+    detail::gjkWitness(s, r.pointA, r.pointB);
+    Vec3 v = Vec3::Zero();
+    for (int i = 0; i < s.count; ++i) v += s.lambda[i] * s.vertex[i].w;
+    const double vv = v.squaredNorm();
+    if (why == GjkTermination::OriginInSimplex) {
+        r.status = GjkStatus::Intersecting;
+        r.intersect = true;
+        r.distance = 0.0;
+        r.upperBound = 0.0;
+        r.separatingAxis.setZero();
+        return;
+    }
+    r.status = GjkStatus::Separated;
+    r.intersect = false;
+    r.distance = std::sqrt(vv);
+    r.upperBound = r.distance;
+    r.separatingAxis = -v / r.distance;
+    if (s.count == 3) {
+        // Face region: the triangle normal is a better axis than v, whose direction carries
+        // an error of ~eps |w| / |v| when the distance is small against the shapes' size.
+        Vec3 n = (s.vertex[1].w - s.vertex[0].w).cross(s.vertex[2].w - s.vertex[0].w);
+        const double len = n.norm();
+        if (len > 0.0) {
+            n /= len;
+            if (n.dot(v) < 0.0) n = -n;
+            if (n.dot(v) > 0.5 * r.distance) r.separatingAxis = -n;  // sanity: same side
+        }
+    }
+    if (options.refineEdgePairs && s.count >= 2) gjkRefineEdgePairs(shapeA, shapeB, s, r);
+}
+
+/// The initial simplex in s with its closest point c: the warm start's directions re-evaluated
+/// as supports of the current shapes (duplicates dropped, then reduced), or one support point
+/// along +x. False when a support is not finite.
+template <class A, class B>
+bool gjkStartSimplex(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkSimplex& s,
+                     SupportHints& hints, SimplexClosest& c)
+{
+    if (options.warmStart && options.warmStart->count > 0) {
+        int n = 0;
+        for (int i = 0; i < options.warmStart->count && i < 4; ++i) {
+            gjkSupport(shapeA, shapeB, options.warmStart->vertex[i].direction, s.vertex[n], hints);
+            bool dup = false;
+            for (int j = 0; j < n; ++j) dup = dup || (s.vertex[j].w == s.vertex[n].w);
+            if (!dup) ++n;
+        }
+        s.count = n;
+        Vec3 wv[4];
+        for (int i = 0; i < n; ++i) {
+            if (!s.vertex[i].w.allFinite()) {
+                s.count = 0;
+                return false;
+            }
+            wv[i] = s.vertex[i].w;
+        }
+        c = closestOnSimplex(wv, n, options.solver);
+        gjkCompact(s, c);
+        return true;
+    }
+    gjkSupport(shapeA, shapeB, Vec3::UnitX(), s.vertex[0], hints);
+    s.lambda[0] = 1.0;
+    s.count = 1;
+    if (!s.vertex[0].w.allFinite()) return false;
+    c.count = 1;
+    c.v = s.vertex[0].w;
+    return true;
+}
+
+/// GJK (Gilbert, Johnson, Keerthi 1988; van den Bergen, "Collision Detection in Interactive 3D
+/// Environments", §4.3): v is the point of the simplex W nearest the origin; each iteration adds
+/// the support point w of A − B along -v and keeps the smallest sub-simplex of W + {w} that holds
+/// the new nearest point, until the bounds v·w / |v| <= distance <= |v| meet.
 template <class A, class B>
 GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkTrace* trace,
                  bool booleanQuery)
@@ -225,183 +336,84 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
     // The simplex lives in r.simplex: W + {w} is built in slot s.count and reduced in place, so
     // no vertex is copied unless the solver drops one before it.
     GjkSimplex& s = r.simplex;
-    SupportHints hints;
-    Vec3 wv[4];
-    SimplexClosest c;
-    const double eps = options.relativeTolerance;
-    auto finish = [&](GjkTermination why) {
-        r.termination = why;
-        if (trace) trace->termination = why;
-        if (why == GjkTermination::InvalidInput) {
-            r.status = GjkStatus::InvalidInput;
-            return;
-        }
-        detail::gjkWitness(s, r.pointA, r.pointB);
-        Vec3 v = Vec3::Zero();
-        for (int i = 0; i < s.count; ++i) v += s.lambda[i] * s.vertex[i].w;
-        const double vv = v.squaredNorm();
-        if (why == GjkTermination::OriginInSimplex) {
-            r.status = GjkStatus::Intersecting;
-            r.intersect = true;
-            r.distance = 0.0;
-            r.upperBound = 0.0;
-            r.separatingAxis.setZero();
-            return;
-        }
-        r.status = GjkStatus::Separated;
-        r.intersect = false;
-        r.distance = std::sqrt(vv);
-        r.upperBound = r.distance;
-        r.separatingAxis = -v / r.distance;
-        if (s.count == 3) {
-            // Face region: the triangle normal is a better axis than v, whose direction carries
-            // an error of ~eps |w| / |v| when the distance is small against the shapes' size.
-            Vec3 n = (s.vertex[1].w - s.vertex[0].w).cross(s.vertex[2].w - s.vertex[0].w);
-            const double len = n.norm();
-            if (len > 0.0) {
-                n /= len;
-                if (n.dot(v) < 0.0) n = -n;
-                if (n.dot(v) > 0.5 * r.distance) r.separatingAxis = -n;  // sanity: same side
-            }
-        }
-        if (options.refineEdgePairs && s.count >= 2) gjkRefineEdgePairs(shapeA, shapeB, s, r);
+    GjkRecorder record(trace);
+    const auto finish = [&](GjkTermination why) {
+        record.termination(why);
+        gjkFinish(shapeA, shapeB, options, s, why, r);
+        return r;
     };
-
-    // Initial simplex: warm start (re-evaluated supports) or one support point along +x.
-    if (options.warmStart && options.warmStart->count > 0) {
-        int n = 0;
-        for (int i = 0; i < options.warmStart->count && i < 4; ++i) {
-            gjkSupport(shapeA, shapeB, options.warmStart->vertex[i].direction, s.vertex[n], hints);
-            bool dup = false;
-            for (int j = 0; j < n; ++j) dup = dup || (s.vertex[j].w == s.vertex[n].w);
-            if (!dup) ++n;
-        }
-        s.count = n;
-        for (int i = 0; i < n; ++i) {
-            if (!s.vertex[i].w.allFinite()) {
-                s.count = 0;
-                finish(GjkTermination::InvalidInput);
-                return r;
-            }
-            wv[i] = s.vertex[i].w;
-        }
-        c = closestOnSimplex(wv, n, options.solver);
-        gjkCompact(s, c);
-    } else {
-        gjkSupport(shapeA, shapeB, Vec3::UnitX(), s.vertex[0], hints);
-        s.lambda[0] = 1.0;
-        s.count = 1;
-        if (!s.vertex[0].w.allFinite()) {
-            finish(GjkTermination::InvalidInput);
-            return r;
-        }
-        c.count = 1;
-        c.v = s.vertex[0].w;
-    }
+    SupportHints hints;
+    SimplexClosest c;
+    if (!gjkStartSimplex(shapeA, shapeB, options, s, hints, c)) return finish(GjkTermination::InvalidInput);
     Vec3 v = c.v;
     double vv = v.squaredNorm();
     double maxW2 = 0.0;
     for (int i = 0; i < s.count; ++i) maxW2 = std::max(maxW2, s.vertex[i].w.squaredNorm());
-    if (s.count == 4 || vv <= kTouch2 * maxW2) {
-        finish(GjkTermination::OriginInSimplex);
-        return r;
-    }
+    if (s.count == 4 || vv <= kTouch2 * maxW2) return finish(GjkTermination::OriginInSimplex);
 
+    const double eps = options.relativeTolerance;
+    Vec3 wv[4];
     for (int iter = 1;; ++iter) {
         r.iterations = iter;
         // The new support point goes into the free slot s.count (the simplex has at most 3
         // vertices here: a full tetrahedron ended the loop).
         GjkVertex& sup = s.vertex[s.count];
         gjkSupport(shapeA, shapeB, Vec3(-v), sup, hints);
-        if (!sup.w.allFinite()) {
-            finish(GjkTermination::InvalidInput);
-            return r;
-        }
+        if (!sup.w.allFinite()) return finish(GjkTermination::InvalidInput);
         const double vw = v.dot(sup.w);
         const double gapTest = vv - vw;  // = |v| (upper - lower) when vw > 0
         const double vNorm = std::sqrt(vv);
         if (vw > 0.0) r.lowerBound = std::max(r.lowerBound, vw / vNorm);
         r.upperBound = vNorm;
-        GjkTraceStep* step = nullptr;
-        if (trace) {
-            trace->steps.emplace_back();
-            step = &trace->steps.back();
-            step->iteration = iter;
-            step->direction = -v;
-            step->support = sup;
-            step->lowerBound = r.lowerBound;
-            step->upperBound = r.upperBound;
-            step->gapTest = gapTest;
-            step->simplexCount = s.count;
-            for (int i = 0; i < s.count; ++i) step->simplex[i] = s.vertex[i];
-            step->v = v;
-            char name[5] = "ABCD";
-            name[s.count] = '\0';
-            step->region = name;
-            for (int i = 0; i < s.count; ++i) step->lambda[i] = s.lambda[i];
-            detail::gjkWitness(s, step->pointA, step->pointB);
-        }
+        record.beginStep(iter, v, sup, r.lowerBound, r.upperBound, gapTest, s);
         // Boolean query: v·w > 0 means the plane through w orthogonal to v separates C from the
         // origin, i.e. -v is a separating axis. Early-out before converging on the distance.
         if (booleanQuery && vw > 0.0) {
-            if (step) step->terminated = true;
-            finish(GjkTermination::SeparatingAxis);
-            return r;
+            record.stepEndsLoop();
+            return finish(GjkTermination::SeparatingAxis);
         }
         // Progress test (van den Bergen §4.3.5): |v|² - v·w <= eps |v|² bounds the relative
         // distance error by eps. Also true when w brings nothing new (v·w >= |v|²).
         if (gapTest <= eps * vv) {
-            if (step) step->terminated = true;
-            finish(GjkTermination::Converged);
-            return r;
+            record.stepEndsLoop();
+            return finish(GjkTermination::Converged);
         }
         // Duplicate support point: the simplex cannot change, exit to avoid cycling.
         bool dup = false;
         for (int i = 0; i < s.count; ++i) dup = dup || (s.vertex[i].w == sup.w);
         if (dup) {
-            if (step) step->terminated = true;
-            finish(GjkTermination::DuplicateSupport);
-            return r;
+            record.stepEndsLoop();
+            return finish(GjkTermination::DuplicateSupport);
         }
         // W + {w}, then its closest sub-simplex.
         const int n = s.count + 1;
         for (int i = 0; i < n; ++i) wv[i] = s.vertex[i].w;
         c = closestOnSimplex(wv, n, options.solver);
         const double vvNew = c.v.squaredNorm();
-        if (step) {
-            step->simplexCount = n;
-            for (int i = 0; i < n; ++i) step->simplex[i] = s.vertex[i];
-        }
+        record.candidate(s, n);
         maxW2 = std::max(maxW2, sup.w.squaredNorm());
         if (c.count == 4 || vvNew <= kTouch2 * maxW2) {
             gjkCompact(s, c);
-            if (step) {
-                gjkTraceReduction(*step, c, s);
-                step->terminated = true;
-            }
-            finish(GjkTermination::OriginInSimplex);
-            return r;
+            record.reduction(c, s);
+            record.stepEndsLoop();
+            return finish(GjkTermination::OriginInSimplex);
         }
         // |v| must strictly decrease; if rounding stalls it, keep the previous (better) simplex
         // (still slots 0..count-1 with their weights: the new point in slot count is dropped).
         if (!(vvNew < vv)) {
-            if (step) {
+            if (trace) {
                 GjkSimplex reduced = s;
                 gjkCompact(reduced, c);
-                gjkTraceReduction(*step, c, reduced);
-                step->terminated = true;
+                record.reduction(c, reduced);
             }
-            finish(GjkTermination::NoProgress);
-            return r;
+            record.stepEndsLoop();
+            return finish(GjkTermination::NoProgress);
         }
         gjkCompact(s, c);
-        if (step) gjkTraceReduction(*step, c, s);
+        record.reduction(c, s);
         v = c.v;
         vv = vvNew;
-        if (iter >= options.maxIterations) {
-            finish(GjkTermination::MaxIterations);
-            return r;
-        }
+        if (iter >= options.maxIterations) return finish(GjkTermination::MaxIterations);
     }
 }
 

@@ -249,13 +249,6 @@ SimplexClosest closestJohnson(const Vec3* y, int n)
     return c;
 }
 
-void simplexRegionName(const SimplexClosest& c, char out[5])
-{
-    int k = 0;
-    for (; k < c.count && k < 4; ++k) out[k] = static_cast<char>('A' + c.index[k]);
-    out[k] = '\0';
-}
-
 const char* nameOf(SimplexSolver solver)
 {
     return solver == SimplexSolver::Johnson ? "Johnson" : "SignedVolumes";

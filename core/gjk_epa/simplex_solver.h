@@ -41,10 +41,6 @@ inline SimplexClosest closestOnSimplex(const Vec3* w, int n, SimplexSolver solve
     return solver == SimplexSolver::Johnson ? closestJohnson(w, n) : closestSignedVolumes(w, n);
 }
 
-/// Name of a sub-simplex as letters of its input slots ("A", "BC", "ABD", ...). Writes at most
-/// 5 chars including the terminating zero.
-void simplexRegionName(const SimplexClosest& c, char out[5]);
-
 /// Display name of the solver ("Johnson", "SignedVolumes").
 const char* nameOf(SimplexSolver solver);
 

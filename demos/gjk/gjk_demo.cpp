@@ -41,11 +41,11 @@ std::string regionKind(std::size_t letters, int dimension) {
 
 Json vertexJson(const GjkVertex& v) { return {{"w", vec3Json(v.w)}, {"a", vec3Json(v.a)}, {"b", vec3Json(v.b)}}; }
 
-// Slot letter -> index ("ABD" -> 0, 1, 3).
-std::vector<int> regionSlots(const std::string& region) {
+// The kept slots' indices, ascending (0b1011 -> 0, 1, 3).
+std::vector<int> keptSlotIndices(std::uint8_t slots) {
     std::vector<int> out;
-    for (char c : region)
-        if (c >= 'A' && c <= 'D') out.push_back(c - 'A');
+    for (int i = 0; i < 4; ++i)
+        if (slots & (1u << i)) out.push_back(i);
     return out;
 }
 
@@ -117,12 +117,12 @@ private:
             Json simplex = Json::array();
             for (int i = 0; i < s.simplexCount; ++i) simplex.push_back(vertexJson(s.simplex[i]));
             Json lambda = Json::array();
-            for (std::size_t k = 0; k < s.region.size(); ++k) lambda.push_back(s.lambda[k]);
+            for (int k = 0; k < s.keptCount(); ++k) lambda.push_back(s.lambda[k]);
             steps.push_back({{"iteration", s.iteration},
                              {"simplex", simplex},
                              {"direction", vec3Json(s.direction)},
                              {"support", vertexJson(s.support)},
-                             {"region", s.region},
+                             {"region", slotLetters(s.keptSlots)},
                              {"lambda", lambda},
                              {"v", vec3Json(s.v)},
                              {"point_a", vec3Json(s.pointA)},
@@ -186,7 +186,7 @@ private:
         std::vector<int> kept;
         if (s) {
             for (int i = 0; i < s->simplexCount; ++i) w.push_back(s->simplex[i].w);
-            kept = regionSlots(s->region);
+            kept = keptSlotIndices(s->keptSlots);
         } else {
             for (int i = 0; i < r.simplex.count; ++i) {
                 w.push_back(r.simplex.vertex[i].w);
@@ -239,7 +239,7 @@ private:
         }
         std::string sub;
         if (s) {
-            sub = "kept: region " + s->region + " (" + regionKind(s->region.size(), pair_.dimension) + ")";
+            sub = "kept: region " + slotLetters(s->keptSlots) + " (" + regionKind(std::size_t(s->keptCount()), pair_.dimension) + ")";
             // Converged / duplicate support: the loop stopped before reducing W ∪ {w}.
             if (s->terminated && trace.termination != GjkTermination::OriginInSimplex)
                 sub = std::string("loop ends here (") + nameOf(trace.termination) + "): simplex not reduced";
@@ -256,13 +256,13 @@ private:
             const double vv = s->upperBound * s->upperBound;
             std::string stop = s->terminated ? std::string("stop: ") + nameOf(trace.termination) : "continue";
             lines.push_back("Iteration " + std::to_string(s->iteration) + ": w = s_A(d) − s_B(−d) = " + formatPoint(s->support.w) +
-                            ", simplex {" + std::string("ABCD").substr(0, s->simplexCount) + "} → region " + s->region +
+                            ", simplex {" + std::string("ABCD").substr(0, s->simplexCount) + "} → region " + slotLetters(s->keptSlots) +
                             ", |v| = " + formatNumber(s->v.norm()));
             lines.push_back("bounds " + formatNumber(s->lowerBound) + " ≤ distance ≤ " + formatNumber(s->upperBound) +
                             ";  test |v|² − v·w = " + formatNumber(s->gapTest) + (s->gapTest <= options_.relativeTolerance * vv ? " ≤ " : " > ") +
                             "ε|v|² = " + formatNumber(options_.relativeTolerance * vv) + ":  " + stop);
             f.name = stepFrameName(s->iteration);
-            f.caption = "it " + std::to_string(s->iteration) + ": region " + s->region + ", |v| " + formatNumber(s->v.norm()) +
+            f.caption = "it " + std::to_string(s->iteration) + ": region " + slotLetters(s->keptSlots) + ", |v| " + formatNumber(s->v.norm()) +
                         (s->terminated ? " (stop)" : "");
         } else {
             lines.push_back(std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.iterations) +

@@ -47,7 +47,7 @@ Json gjkTraceJson(const GjkTrace& t) {
         Json simplex = Json::array();
         for (int i = 0; i < s.simplexCount; ++i) simplex.push_back(vecJson(s.simplex[i].w));
         steps.push_back({{"iteration", s.iteration}, {"simplex", simplex}, {"direction", vecJson(s.direction)},
-                         {"support", vecJson(s.support.w)}, {"region", s.region}, {"v", vecJson(s.v)},
+                         {"support", vecJson(s.support.w)}, {"region", slotLetters(s.keptSlots)}, {"v", vecJson(s.v)},
                          {"lower_bound", s.lowerBound}, {"upper_bound", s.upperBound}, {"terminated", s.terminated}});
     }
     return {{"algorithm", "gjk"}, {"termination", nameOf(t.termination)}, {"steps", steps}};

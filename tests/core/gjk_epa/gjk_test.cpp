@@ -273,9 +273,9 @@ TEST_SUITE("gjk")
             CHECK(s.upperBound >= r.distance * (1 - 1e-12));
             CHECK(s.upperBound <= previousUpper);
             previousUpper = s.upperBound;
-            CHECK(!s.region.empty());
+            CHECK(s.keptSlots != 0);
             double sum = 0;
-            for (int k = 0; k < static_cast<int>(s.region.size()); ++k) sum += s.lambda[k];
+            for (int k = 0; k < s.keptCount(); ++k) sum += s.lambda[k];
             CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
             // the recorded v and witness points agree: v = pointA - pointB
             CHECK((s.v - (s.pointA - s.pointB)).norm() <= 1e-12);
