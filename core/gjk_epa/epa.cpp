@@ -288,6 +288,85 @@ int EpaPolytope::snapshot(EpaTraceStep& step, int f) const
     return index;
 }
 
+bool EpaPolytope::adjacencyConsistent() const
+{
+    for (int f = 0; f < faceEnd; ++f) {
+        if (!face[f].live) continue;
+        for (int e = 0; e < 3; ++e) {
+            const int g = face[f].adj[e], k = face[f].adjEdge[e];
+            if (g < 0 || g >= faceEnd || k < 0 || k > 2 || !face[g].live) return false;
+            if (face[g].adj[k] != f || face[g].adjEdge[k] != e) return false;
+            // Edge e runs v[e] -> v[e+1]; the neighbour runs it back.
+            if (face[g].v[k] != face[f].v[(e + 1) % 3] || face[g].v[(k + 1) % 3] != face[f].v[e]) return false;
+        }
+    }
+    return true;
+}
+
+int epaSeed(const GjkSimplex& start, EpaVertex seed[4], EpaResult& r)
+{
+    int n = 0;
+    for (int i = 0; i < start.count && i < 4; ++i) {
+        const GjkVertex& g = start.vertex[i];
+        if (!g.w.allFinite() || !g.a.allFinite() || !g.b.allFinite()) return 0;
+        bool dup = false;
+        for (int j = 0; j < n; ++j) dup = dup || seed[j].w == g.w;
+        if (!dup) seed[n++] = {g.w, g.a, g.b};
+    }
+    if (n == 0) return 0;
+    Vec3 wv[4];
+    for (int i = 0; i < n; ++i) wv[i] = seed[i].w;
+    const SimplexClosest c = closestSignedVolumes(wv, n);
+    EpaVertex kept[4];
+    for (int k = 0; k < c.count; ++k) kept[k] = seed[c.index[k]];
+    // Contact point for a touching answer: the point of the simplex nearest the origin.
+    epaSimplexWitness(seed, c, r.pointA, r.pointB);
+    for (int k = 0; k < c.count; ++k) seed[k] = kept[k];
+    return c.count;
+}
+
+void EpaRecorder::start(int n)
+{
+    static const char* kStartName[5] = {"", "point", "segment", "triangle", "tetrahedron"};
+    if (trace_) trace_->start = std::string(kStartName[n]) + (n < 4 ? " blown up" : " from GJK");
+}
+
+void EpaRecorder::blowUp(const Vec3& direction, const Vec3& point)
+{
+    if (!trace_) return;
+    trace_->blowUpDirections.push_back(direction);
+    trace_->blowUpPoints.push_back(point);
+}
+
+EpaTraceStep* EpaRecorder::beginStep(int iteration, const EpaPolytope& poly, int f, const EpaVertex& s, double upper)
+{
+    if (!trace_) return nullptr;
+    const EpaFace& F = poly.face[f];
+    step_ = &trace_->steps.emplace_back();
+    step_->iteration = iteration;
+    step_->closestFace = poly.snapshot(*step_, f);
+    step_->closestNormal = F.normal;
+    step_->closestDistance = F.distance;
+    step_->closestPoint = F.distance * F.normal;
+    step_->direction = F.normal;
+    step_->support = s.w;
+    step_->supportA = s.a;
+    step_->supportB = s.b;
+    step_->lowerBound = F.distance;
+    step_->upperBound = upper;
+    return step_;
+}
+
+void EpaRecorder::stepEndsLoop()
+{
+    if (step_) step_->terminated = true;
+}
+
+void EpaRecorder::termination(EpaTermination why)
+{
+    if (trace_) trace_->termination = why;
+}
+
 void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA, Vec3& pointB)
 {
     const EpaVertex& v0 = v[c.index[0]];

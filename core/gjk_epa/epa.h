@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "core/gjk_epa/gjk.h"
 #include "core/gjk_epa/simplex_solver.h"
 #include "core/base/support.h"
+#include "core/base/tolerances.h"
 
 namespace cdlab {
 
@@ -154,6 +156,10 @@ public:
     void witness(int f, double depth, Vec3& pointA, Vec3& pointB) const;
     /// Record vertices and live faces into a trace step; returns the index of face f in it.
     int snapshot(EpaTraceStep& step, int f) const;
+    /// The invariant of the face graph: every live face's neighbour across edge e is live, names
+    /// it back (adj / adjEdge) and runs the same edge the other way. Checked by assert() after
+    /// every change (on in the sanitizer build, compiled away in Release).
+    bool adjacencyConsistent() const;
 
 private:
     int freeList[kMaxFaces];
@@ -178,71 +184,49 @@ void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA
 /// the caller still certifies the plane with the supports.
 bool epaRefineEdgePair(const EpaPolytope& poly, int f, EpaResult& r);
 
-}  // namespace detail
+/// Trace recording for epaPenetration, one call per event; without a trace every call is a no-op.
+class EpaRecorder {
+public:
+    explicit EpaRecorder(EpaTrace* trace) : trace_(trace) {}
+    /// How the first tetrahedron is made from GJK's n-vertex simplex.
+    void start(int n);
+    void blowUp(const Vec3& direction, const Vec3& point);
+    /// A new iteration: the polytope, its face f nearest the origin and the support point s
+    /// along f's normal, with the bounds. Returns the step for the expansion to fill (or null).
+    EpaTraceStep* beginStep(int iteration, const EpaPolytope& poly, int f, const EpaVertex& s, double upper);
+    /// This step ended the loop.
+    void stepEndsLoop();
+    void termination(EpaTermination why);
 
-/// Penetration depth of intersecting shapes A and B (world frame, world units) starting from
-/// GJK's terminal simplex `start` (any size 1..4, containing the origin up to rounding). See the
-/// file comment for the normal / witness convention. Never NaN for finite shapes.
-template <SupportMapping A, SupportMapping B>
-EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& start,
-                         const EpaOptions& options = {}, EpaTrace* trace = nullptr)
+private:
+    EpaTrace* trace_;
+    EpaTraceStep* step_ = nullptr;
+};
+
+// Absolute tolerances relative to the polytope's scale max|w|: a support value, face distance
+// or plane test carries a rounding error of a few ulps of |w| (Sterbenz keeps w itself exact).
+inline constexpr double kEpaTouch = 1e-14;    // origin within 1e-14 |w| of the boundary: touching
+inline constexpr double kEpaVisible = 1e-14;  // w above a face plane by less than this: not visible
+inline constexpr double kEpaAbsGap = ulps(4, 1.0);  // gap noise floor (4 ulps of |w|)
+
+/// Stage 1: the distinct finite vertices of GJK's simplex, reduced to the smallest sub-simplex
+/// that holds the origin (a flat tetrahedron becomes a triangle, etc.); r's witnesses become the
+/// simplex point nearest the origin (the contact of a touching answer). Returns the vertex count
+/// in seed, 0 for invalid input.
+int epaSeed(const GjkSimplex& start, EpaVertex seed[4], EpaResult& r);
+
+/// The outcome of blowing up the seed to a tetrahedron.
+enum class EpaBlowUp { Tetrahedron, Touching, InvalidInput };
+
+/// Stage 2: blow a point / segment / triangle up to a tetrahedron, adding the support point along
+/// a direction orthogonal to its affine hull. If that support value is ~0, the whole of A − B lies
+/// behind the plane through the origin orthogonal to d: the origin is on the boundary, the shapes
+/// touch with normal d (r is then the touching answer).
+template <class Support>
+EpaBlowUp epaBlowUp(const Support& support, EpaVertex seed[4], int n, double& scale, EpaRecorder& record,
+                    EpaResult& r)
 {
-    // Absolute tolerances relative to the polytope's scale max|w|: a support value, face distance
-    // or plane test carries a rounding error of a few ulps of |w| (Sterbenz keeps w itself exact).
-    constexpr double kTouch = 1e-14;    // origin within 1e-14 |w| of the boundary: touching
-    constexpr double kVisible = 1e-14;  // w above a face plane by less than this: not visible
-    constexpr double kAbsGap = 4.0 * 2.220446049250313e-16;  // gap noise floor (4 ulps of |w|)
-
-    EpaResult r;
-    detail::EpaPolytope poly;
-    // Plain (cold) supports: successive EPA directions are face normals far apart, so starting a
-    // hill climb at the previous answer costs more than the shape's own seeds (measured).
-    auto support = [&](const Vec3& d, detail::EpaVertex& out) {
-        out.a = shapeA.support(d);
-        out.b = shapeB.support(-d);
-        out.w = out.a - out.b;
-    };
-    auto stop = [&](EpaTermination why) {
-        r.termination = why;
-        if (trace) trace->termination = why;
-        r.vertexCount = poly.vertexCount;
-        r.faceCount = poly.liveCount;
-        return r;
-    };
-
-    // 1. Seed: the distinct finite vertices of GJK's simplex, reduced to the smallest
-    //    sub-simplex that holds the origin (a flat tetrahedron becomes a triangle, etc.).
-    detail::EpaVertex seed[4];
-    int n = 0;
-    for (int i = 0; i < start.count && i < 4; ++i) {
-        const GjkVertex& g = start.vertex[i];
-        if (!g.w.allFinite() || !g.a.allFinite() || !g.b.allFinite()) return stop(EpaTermination::InvalidInput);
-        bool dup = false;
-        for (int j = 0; j < n; ++j) dup = dup || seed[j].w == g.w;
-        if (!dup) seed[n++] = {g.w, g.a, g.b};
-    }
-    if (n == 0) return stop(EpaTermination::InvalidInput);
-    {
-        Vec3 wv[4];
-        for (int i = 0; i < n; ++i) wv[i] = seed[i].w;
-        const SimplexClosest c = closestSignedVolumes(wv, n);
-        detail::EpaVertex kept[4];
-        for (int k = 0; k < c.count; ++k) kept[k] = seed[c.index[k]];
-        // Contact point for a touching answer: the point of the simplex nearest the origin.
-        detail::epaSimplexWitness(seed, c, r.pointA, r.pointB);
-        n = c.count;
-        for (int k = 0; k < n; ++k) seed[k] = kept[k];
-    }
-    double scale = 0.0;
-    for (int i = 0; i < n; ++i) scale = std::max(scale, seed[i].w.norm());
-    static const char* kStartName[5] = {"", "point", "segment", "triangle", "tetrahedron"};
-    if (trace) trace->start = std::string(kStartName[n]) + (n < 4 ? " blown up" : " from GJK");
-
-    // 2. Blow up a point / segment / triangle to a tetrahedron: add the support point along a
-    //    direction orthogonal to its affine hull. If that support value is ~0, the whole of A - B
-    //    lies behind the plane through the origin orthogonal to d: the origin is on the boundary,
-    //    the shapes touch with normal d (depth <= h(d) ~ 0).
-    while (n < 4) {
+    for (; n < 4; ++n) {
         Vec3 d;
         if (n == 1) {
             d = Vec3::UnitX();
@@ -257,22 +241,140 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
             d = (seed[1].w - seed[0].w).cross(seed[2].w - seed[0].w).normalized();
         }
         support(d, seed[n]);
-        if (!seed[n].w.allFinite()) return stop(EpaTermination::InvalidInput);
+        if (!seed[n].w.allFinite()) return EpaBlowUp::InvalidInput;
         const double h = d.dot(seed[n].w);
-        if (trace) {
-            trace->blowUpDirections.push_back(d);
-            trace->blowUpPoints.push_back(seed[n].w);
-        }
+        record.blowUp(d, seed[n].w);
         scale = std::max(scale, seed[n].w.norm());
-        if (!(h > kTouch * scale)) {
+        if (!(h > kEpaTouch * scale)) {
             r.status = EpaStatus::Touching;
             r.depth = 0.0;
             r.normal = d;
             r.lowerBound = 0.0;
             r.upperBound = std::max(h, 0.0);
-            return stop(EpaTermination::Touching);
+            return EpaBlowUp::Touching;
         }
-        ++n;
+    }
+    return EpaBlowUp::Tetrahedron;
+}
+
+/// Stage 3 (van den Bergen §4.3.8; Ericson §9.5.3): expand the polytope at its face nearest the
+/// origin by the support point along that face's normal, until the support value h and the
+/// face's distance agree (the depth lies between them) or the polytope cannot grow. r.iterations
+/// and the bounds follow the loop; `upper` is the smallest h seen, `nearest` the face it ended on
+/// (-1 when it ended without one).
+template <class Support>
+EpaTermination epaExpandLoop(const Support& support, const EpaOptions& options, EpaPolytope& poly,
+                             double& scale, EpaRecorder& record, EpaResult& r, double& upper, int& nearest)
+{
+    upper = INFINITY;
+    nearest = -1;
+    for (int iter = 1; iter <= options.maxIterations; ++iter) {
+        r.iterations = iter;
+        const int f = poly.closestFace();
+        if (f < 0) return EpaTermination::Degenerate;
+        nearest = f;
+        const EpaFace& F = poly.face[f];
+        const double lower = F.distance;
+        EpaVertex s;
+        support(F.normal, s);
+        if (!s.w.allFinite()) return EpaTermination::InvalidInput;
+        const double h = F.normal.dot(s.w);
+        upper = std::min(upper, h);
+        r.lowerBound = lower;
+        r.upperBound = upper;
+        EpaTraceStep* step = record.beginStep(iter, poly, f, s, upper);
+        scale = std::max({scale, poly.scale, s.w.norm()});
+        // Relative gap: h(n_F) - d_F bounds both the depth error and |h(n) - depth| of the
+        // reported normal. The absolute floor stops at the rounding level of near-zero depths.
+        if (h - lower <= std::max(options.relativeTolerance * std::abs(h), kEpaAbsGap * scale)) {
+            record.stepEndsLoop();
+            return EpaTermination::Converged;
+        }
+        // Support point already on the polytope: the polytope cannot grow, exit to avoid cycling.
+        if (poly.hasVertex(s.w)) {
+            record.stepEndsLoop();
+            return EpaTermination::DuplicateSupport;
+        }
+        const int vi = poly.addVertex(s);
+        if (vi < 0) {
+            record.stepEndsLoop();
+            return EpaTermination::CapacityExceeded;
+        }
+        const EpaExpand e = poly.expand(f, vi, kEpaVisible * scale, step);
+        if (e != EpaExpand::Ok) {
+            --poly.vertexCount;  // expansion rolled back: drop the unused vertex
+            record.stepEndsLoop();
+            return e == EpaExpand::Capacity ? EpaTermination::CapacityExceeded : EpaTermination::Degenerate;
+        }
+        assert(poly.adjacencyConsistent());
+        nearest = -1;
+    }
+    return EpaTermination::MaxIterations;
+}
+
+/// The answer from the polytope's face f: depth (clamped at 0: the origin may sit a rounding
+/// error outside), normal and witnesses; with options.refineEdgePairs, a face spanning two edges
+/// is replaced by the edges' common perpendicular when the supports certify that plane as a face
+/// of A − B (h_C(n) = n·(s_A(n) - s_B(-n)) bounds the depth from above; equal to the refined
+/// depth up to rounding, the depth is exact).
+template <class A, class B>
+void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& options, const EpaPolytope& poly, int f,
+                       double upper, EpaResult& r)
+{
+    const EpaFace& F = poly.face[f];
+    r.depth = std::max(F.distance, 0.0);
+    r.normal = F.normal;
+    r.lowerBound = F.distance;
+    r.upperBound = upper;
+    poly.witness(f, r.depth, r.pointA, r.pointB);
+    if (!options.refineEdgePairs) return;
+    EpaResult refined = r;
+    if (!epaRefineEdgePair(poly, f, refined)) return;
+    const Vec3& n = refined.normal;
+    const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
+    const double h = n.dot(sa) - n.dot(sb);
+    const double m = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
+    if (h <= refined.depth + ulps(32, m)) r = refined;  // 32 ulps = 64 unit roundoffs
+}
+
+}  // namespace detail
+
+/// Penetration depth of intersecting shapes A and B (world frame, world units) starting from
+/// GJK's terminal simplex `start` (any size 1..4, containing the origin up to rounding). See the
+/// file comment for the normal / witness convention. Never NaN for finite shapes.
+template <SupportMapping A, SupportMapping B>
+EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& start,
+                         const EpaOptions& options = {}, EpaTrace* trace = nullptr)
+{
+    EpaResult r;
+    detail::EpaPolytope poly;
+    detail::EpaRecorder record(trace);
+    // Plain (cold) supports: successive EPA directions are face normals far apart, so starting a
+    // hill climb at the previous answer costs more than the shape's own seeds (measured).
+    const auto support = [&](const Vec3& d, detail::EpaVertex& out) {
+        out.a = shapeA.support(d);
+        out.b = shapeB.support(-d);
+        out.w = out.a - out.b;
+    };
+    const auto stop = [&](EpaTermination why) {
+        r.termination = why;
+        record.termination(why);
+        r.vertexCount = poly.vertexCount;
+        r.faceCount = poly.liveCount;
+        return r;
+    };
+
+    detail::EpaVertex seed[4];
+    const int n = detail::epaSeed(start, seed, r);
+    if (n == 0) return stop(EpaTermination::InvalidInput);
+    double scale = 0.0;
+    for (int i = 0; i < n; ++i) scale = std::max(scale, seed[i].w.norm());
+    record.start(n);
+
+    switch (detail::epaBlowUp(support, seed, n, scale, record, r)) {
+        case detail::EpaBlowUp::InvalidInput: return stop(EpaTermination::InvalidInput);
+        case detail::EpaBlowUp::Touching: return stop(EpaTermination::Touching);
+        case detail::EpaBlowUp::Tetrahedron: break;
     }
     for (int i = 0; i < 4; ++i) poly.addVertex(seed[i]);
     if (!poly.buildTetrahedron()) {
@@ -283,99 +385,19 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
         if (!r.normal.allFinite()) r.normal = Vec3::UnitX();
         return stop(EpaTermination::Degenerate);
     }
+    assert(poly.adjacencyConsistent());
 
-    // 3. Expand.
     double upper = INFINITY;
     int f = -1;
-    EpaTermination why = EpaTermination::MaxIterations;
-    for (int iter = 1; iter <= options.maxIterations; ++iter) {
-        r.iterations = iter;
-        f = poly.closestFace();
-        if (f < 0) {
-            why = EpaTermination::Degenerate;
-            break;
-        }
-        const detail::EpaFace& F = poly.face[f];
-        const double lower = F.distance;
-        detail::EpaVertex s;
-        support(F.normal, s);
-        if (!s.w.allFinite()) return stop(EpaTermination::InvalidInput);
-        const double h = F.normal.dot(s.w);
-        upper = std::min(upper, h);
-        r.lowerBound = lower;
-        r.upperBound = upper;
-        EpaTraceStep* step = nullptr;
-        if (trace) {
-            trace->steps.emplace_back();
-            step = &trace->steps.back();
-            step->iteration = iter;
-            step->closestFace = poly.snapshot(*step, f);
-            step->closestNormal = F.normal;
-            step->closestDistance = lower;
-            step->closestPoint = lower * F.normal;
-            step->direction = F.normal;
-            step->support = s.w;
-            step->supportA = s.a;
-            step->supportB = s.b;
-            step->lowerBound = lower;
-            step->upperBound = upper;
-        }
-        scale = std::max({scale, poly.scale, s.w.norm()});
-        // Relative gap: h(n_F) - d_F bounds both the depth error and |h(n) - depth| of the
-        // reported normal. The absolute floor stops at the rounding level of near-zero depths.
-        if (h - lower <= std::max(options.relativeTolerance * std::abs(h), kAbsGap * scale)) {
-            why = EpaTermination::Converged;
-            if (step) step->terminated = true;
-            break;
-        }
-        // Support point already on the polytope: the polytope cannot grow, exit to avoid cycling.
-        if (poly.hasVertex(s.w)) {
-            why = EpaTermination::DuplicateSupport;
-            if (step) step->terminated = true;
-            break;
-        }
-        const int vi = poly.addVertex(s);
-        if (vi < 0) {
-            why = EpaTermination::CapacityExceeded;
-            if (step) step->terminated = true;
-            break;
-        }
-        const detail::EpaExpand e = poly.expand(f, vi, kVisible * scale, step);
-        if (e != detail::EpaExpand::Ok) {
-            --poly.vertexCount;  // expansion rolled back: drop the unused vertex
-            why = e == detail::EpaExpand::Capacity ? EpaTermination::CapacityExceeded
-                                                   : EpaTermination::Degenerate;
-            if (step) step->terminated = true;
-            break;
-        }
-        f = -1;
-    }
+    const EpaTermination why = detail::epaExpandLoop(support, options, poly, scale, record, r, upper, f);
+    if (why == EpaTermination::InvalidInput) return stop(why);
     if (f < 0) f = poly.closestFace();
     if (f < 0) {
         r.status = EpaStatus::Touching;
         return stop(EpaTermination::Degenerate);
     }
-    const detail::EpaFace& F = poly.face[f];
-    // The origin may sit a rounding error outside the polytope (touching): clamp to 0.
-    r.depth = std::max(F.distance, 0.0);
-    r.normal = F.normal;
-    r.lowerBound = F.distance;
-    r.upperBound = upper;
-    poly.witness(f, r.depth, r.pointA, r.pointB);
-    if (options.refineEdgePairs) {
-        // Certify the edge pair's plane with the supports: h_C(n) = n.(s_A(n) - s_B(-n)) bounds
-        // the depth from above; equal to the refined depth up to rounding, the plane is a face
-        // of A - B and the depth is exact.
-        EpaResult refined = r;
-        if (detail::epaRefineEdgePair(poly, f, refined)) {
-            const Vec3& n = refined.normal;
-            const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
-            const double h = n.dot(sa) - n.dot(sb);
-            const double m = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
-            if (h <= refined.depth + 64.0 * 0x1p-53 * m) r = refined;
-        }
-    }
-    r.status = r.depth <= kTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
+    detail::epaAnswerFromFace(shapeA, shapeB, options, poly, f, upper, r);
+    r.status = r.depth <= detail::kEpaTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
     return stop(why);
 }
 

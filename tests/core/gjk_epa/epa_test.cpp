@@ -257,3 +257,26 @@ TEST_SUITE("epa")
         }
     }
 }
+
+TEST_CASE("the EPA face graph stays consistent through expansion, and the check catches a broken link") {
+    // The invariant the sanitizer build asserts after every expansion: build a tetrahedron around
+    // the origin, expand it by points outside each face in turn, check after each step.
+    detail::EpaPolytope poly;
+    const Vec3 corners[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    for (const Vec3& c : corners) poly.addVertex({c, c, Vec3::Zero()});
+    REQUIRE(poly.buildTetrahedron());
+    CHECK(poly.adjacencyConsistent());
+    for (int step = 0; step < 6; ++step) {
+        const int f = poly.closestFace();
+        REQUIRE(f >= 0);
+        const Vec3 w = 3.0 * poly.face[f].normal + 0.1 * Vec3(step, -step, 0.5 * step);
+        const int vi = poly.addVertex({w, w, Vec3::Zero()});
+        REQUIRE(vi >= 0);
+        REQUIRE(poly.expand(f, vi, 1e-14, nullptr) == detail::EpaExpand::Ok);
+        CHECK(poly.adjacencyConsistent());
+    }
+    // A neighbour that does not name the face back is caught.
+    const int f = poly.closestFace();
+    poly.face[f].adjEdge[0] = (poly.face[f].adjEdge[0] + 1) % 3;
+    CHECK_FALSE(poly.adjacencyConsistent());
+}
