@@ -1,6 +1,10 @@
 #include "core/geometry/convex_hull.h"
 
+#include "core/base/tolerances.h"
+
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
@@ -149,24 +153,49 @@ public:
         }
     }
 
-    // Inserts point r if it is outside the current hull by more than eps.
+    // Inserts point r if it is outside the current hull by more than eps (de Berg §11.2): the
+    // faces r sees, their horizon, and a cone of new faces from the horizon to r.
     void insert(int r) {
-        // Eye face: the farthest alive conflict face.
-        int eye = -1;
         double eyeDist = eps_;
-        for (int f : pointFaces_[r]) {
-            if (!tris_[f].alive) continue;
-            const double dd = dist(r, f);
-            if (dd > eyeDist) {
-                eyeDist = dd;
-                eye = f;
-            }
-        }
+        const int eye = eyeFace(r, eyeDist);
         std::vector<int>().swap(pointFaces_[r]);
         done_[r] = 1;
         if (eye < 0) return;  // inside or within eps of the hull: not a vertex
+        const bool forcedAny = findVisibleRegionWithoutFolds(r, eye);
+        const bool simple = horizonIsSimpleLoop();
+        HullTraceStep* step = recordStep(r, eye, eyeDist);
+        if (!simple) {
+            ++dropped_;
+            if (step) {
+                step->skipped = true;
+                step->visibleFaceIds.clear();
+                step->hullFaceCount = aliveCount_;
+            }
+            return;
+        }
+        buildCone(r, forcedAny, step);
+    }
 
-        // Visible region: depth-first from the eye face over neighbours r sees by more than eps.
+    const std::vector<Tri>& tris() const { return tris_; }
+    int dropped() const { return dropped_; }
+
+private:
+    // Eye face: the farthest alive conflict face of r by more than eyeDist (-1 when none).
+    int eyeFace(int r, double& eyeDist) const {
+    // Eye face: the farthest alive conflict face.
+    int eye = -1;
+    for (int f : pointFaces_[r]) {
+        if (!tris_[f].alive) continue;
+        const double dd = dist(r, f);
+        if (dd > eyeDist) {
+            eyeDist = dd;
+            eye = f;
+        }
+    }
+        return eye;
+    }
+
+    // Visible region: depth-first from the eye face over neighbours r sees by more than eps.
         // The depth-first order emits the horizon edges as a loop (each starts where the last ended).
         // Each cone triangle (a, b, r) must be convex with the kept neighbour g across a -> b: g's
         // third vertex c behind the triangle's plane. In exact arithmetic that follows from r being
@@ -174,6 +203,8 @@ public:
         // can fold under g with c far in front of it. Such neighbours are deleted too ("forced",
         // r is coplanar with them within eps) and the region is searched again; each round forces
         // at least one more face, so this terminates.
+    // Returns whether any face was forced.
+    bool findVisibleRegionWithoutFolds(int r, int eye) {
         ++forceStamp_;
         forceMark_.resize(tris_.size(), -1);
         bool forcedAny = false;
@@ -211,9 +242,13 @@ public:
             forcedAny = true;
         }
 
-        // The horizon must be one simple loop. With tolerances a point within a few eps of the
-        // hull can see a region with a hole or a pinch; such a point is dropped (the hull stays
-        // valid and the point stays within a few eps of it).
+        return forcedAny;
+    }
+
+    // The horizon must be one simple loop. With tolerances a point within a few eps of the
+    // hull can see a region with a hole or a pinch; such a point is dropped (the hull stays
+    // valid and the point stays within a few eps of it).
+    bool horizonIsSimpleLoop() {
         const int m = static_cast<int>(horizon_.size());
         bool simple = m >= 3;
         for (int i = 0; simple && i < m; ++i) {
@@ -224,6 +259,11 @@ public:
             if (b != u.v[horizon_[(i + 1) % m].second] || vertexStamp_[a] == stamp_) simple = false;
             vertexStamp_[a] = stamp_;
         }
+        return simple;
+    }
+
+    // The trace step of inserting r (null without a trace).
+    HullTraceStep* recordStep(int r, int eye, double eyeDist) {
         HullTraceStep* step = nullptr;
         if (trace_) {
             trace_->steps.emplace_back();
@@ -238,17 +278,13 @@ public:
                     Segment{original_[tris_[f].v[e]], original_[tris_[f].v[(e + 1) % 3]]});
             }
         }
-        if (!simple) {
-            ++dropped_;
-            if (step) {
-                step->skipped = true;
-                step->visibleFaceIds.clear();
-                step->hullFaceCount = aliveCount_;
-            }
-            return;
-        }
+        return step;
+    }
 
-        // Cone of new triangles (a, b, r), one per horizon edge a -> b.
+    // Cone of new triangles (a, b, r), one per horizon edge a -> b, with their conflict lists;
+    // the visible faces die.
+    void buildCone(int r, bool forcedAny, HullTraceStep* step) {
+        const int m = static_cast<int>(horizon_.size());
         const int base = static_cast<int>(tris_.size());
         pooled_.clear();
         if (forcedAny) {
@@ -302,10 +338,6 @@ public:
         }
     }
 
-    const std::vector<Tri>& tris() const { return tris_; }
-    int dropped() const { return dropped_; }
-
-private:
     const std::vector<Vec3>& P_;
     std::span<const Vec3> original_;
     double eps_;
@@ -407,31 +439,39 @@ int removeCollinear(std::vector<std::vector<int>>& loops, const std::vector<Vec3
     return removed;
 }
 
-}  // namespace
+// The alive triangles of the finished triangulation, numbered 0..count-1 ("compact" indices).
+struct AliveTriangles {
+    const std::vector<Tri>& tris;
+    std::vector<int> compact;  // triangle id -> compact index, -1 when dead
+    std::vector<int> alive;    // compact index -> triangle id
+};
 
-const char* nameOf(HullStatus status) {
-    switch (status) {
-        case HullStatus::Ok: return "Ok";
-        case HullStatus::EmptyInput: return "EmptyInput";
-        case HullStatus::NonFiniteInput: return "NonFiniteInput";
-        case HullStatus::AllCoincident: return "AllCoincident";
-        case HullStatus::AllCollinear: return "AllCollinear";
-        case HullStatus::AllCoplanar: return "AllCoplanar";
-        case HullStatus::InternalError: return "InternalError";
-    }
-    return "Unknown";
-}
-
-HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, HullTrace* trace) {
-    const int n = static_cast<int>(points.size());
-    if (n == 0) return failure(HullStatus::EmptyInput, "no input points");
-    for (int i = 0; i < n; ++i) {
-        if (!points[i].allFinite()) {
-            return failure(HullStatus::NonFiniteInput,
-                           "point " + std::to_string(i) + " has a non-finite coordinate", i);
+AliveTriangles aliveTriangles(const std::vector<Tri>& tris) {
+    AliveTriangles at{tris, std::vector<int>(tris.size(), -1), {}};
+    for (int f = 0; f < static_cast<int>(tris.size()); ++f) {
+        if (tris[f].alive) {
+            at.compact[f] = static_cast<int>(at.alive.size());
+            at.alive.push_back(f);
         }
     }
-    // Scale and tolerance (see header): centred coordinates keep the cross products small.
+    return at;
+}
+
+// Triangles grouped into would-be polygon faces: group[t] of each compact triangle, members of each group.
+struct FaceGroups {
+    std::vector<int> group;
+    std::vector<std::vector<int>> members;
+};
+
+// The input's frame: the tolerance eps (see the header), the merge tolerance and the points
+// centred on their bounding box (centred coordinates keep the cross products small).
+struct HullFrame {
+    double eps = 0.0;
+    double mergeTol = 0.0;
+    std::vector<Vec3> P;
+};
+
+HullFrame hullFrame(std::span<const Vec3> points, const HullOptions& options) {
     Vec3 lo = points[0], hi = points[0];
     for (const Vec3& p : points) {
         lo = lo.cwiseMin(p);
@@ -439,15 +479,27 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
     }
     const double maxAbs = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
     const double diagonal = (hi - lo).norm();
-    const double eps = options.absoluteEpsilon > 0.0
-                           ? options.absoluteEpsilon
-                           : options.epsilonFactor * DBL_EPSILON * (maxAbs + diagonal);
-    const double mergeTol = options.mergeFactor * eps;
+    HullFrame frame;
+    frame.eps = options.absoluteEpsilon > 0.0 ? options.absoluteEpsilon
+                                              : options.epsilonFactor * kMachineEpsilon * (maxAbs + diagonal);
+    frame.mergeTol = options.mergeFactor * frame.eps;
     const Vec3 center = 0.5 * (lo + hi);
-    std::vector<Vec3> P(n);
-    for (int i = 0; i < n; ++i) P[i] = points[i] - center;
+    frame.P.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) frame.P[i] = points[i] - center;
+    return frame;
+}
 
-    // Initial tetrahedron from extreme points.
+// The initial tetrahedron from extreme points (i0 leftmost, i1 farthest from it, i2 farthest
+// from their line, i3 farthest from their plane), oriented so that i3 is behind the plane of
+// (i0, i1, i2); or the failure that says which degenerate input this is.
+struct InitialTetrahedron {
+    std::array<int, 4> vertex{};
+    std::optional<HullResult> failure;
+};
+
+InitialTetrahedron initialTetrahedron(const std::vector<Vec3>& P, double eps) {
+    const int n = static_cast<int>(P.size());
+    InitialTetrahedron tet;
     int i0 = 0;
     for (int i = 1; i < n; ++i) if (P[i].x() < P[i0].x()) i0 = i;
     int i1 = i0;
@@ -457,8 +509,9 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
         if (d2 > best) { best = d2; i1 = i; }
     }
     if (!(std::sqrt(best) > eps)) {
-        return failure(HullStatus::AllCoincident, "all " + std::to_string(n) +
+        tet.failure = failure(HullStatus::AllCoincident, "all " + std::to_string(n) +
                                                       " points coincide within eps = " + fmtNumber(eps));
+        return tet;
     }
     const Vec3 u = (P[i1] - P[i0]).normalized();
     int i2 = i0;
@@ -469,8 +522,9 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
         if (d2 > best) { best = d2; i2 = i; }
     }
     if (!(std::sqrt(best) > eps)) {
-        return failure(HullStatus::AllCollinear, "all " + std::to_string(n) +
+        tet.failure = failure(HullStatus::AllCollinear, "all " + std::to_string(n) +
                                                      " points lie on one line within eps = " + fmtNumber(eps));
+        return tet;
     }
     // The plane of a needle triangle (p2 barely off the line p0 p1) is ill-conditioned: the plain
     // cross product's direction error is DBL_EPSILON * |p1 - p0| / dist(p2, line), enough to make
@@ -485,19 +539,23 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
         if (d > best) { best = d; i3 = i; }
     }
     if (!(best > eps)) {
-        return failure(HullStatus::AllCoplanar, "all " + std::to_string(n) +
+        tet.failure = failure(HullStatus::AllCoplanar, "all " + std::to_string(n) +
                                                     " points lie in one plane within eps = " + fmtNumber(eps));
+        return tet;
     }
     // Orient so that p3 is behind the plane of (p0, p1, p2) with its right-hand normal.
     if (nrm.dot(P[i3] - P[i0]) > 0.0) std::swap(i1, i2);
 
-    HullBuilder builder(P, points, eps, trace);
-    builder.buildTetrahedron({i0, i1, i2, i3});
+    tet.vertex = {i0, i1, i2, i3};
+    return tet;
+}
 
+// Insertion order of the points not in the tetrahedron: input order, or a seeded shuffle.
+std::vector<int> insertionOrder(int n, const std::array<int, 4>& tet, const HullOptions& options) {
     std::vector<int> order;
     order.reserve(n);
     for (int i = 0; i < n; ++i) {
-        if (i != i0 && i != i1 && i != i2 && i != i3) order.push_back(i);
+        if (i != tet[0] && i != tet[1] && i != tet[2] && i != tet[3]) order.push_back(i);
     }
     if (options.shuffle) {
         std::uint64_t state = options.shuffleSeed;
@@ -506,27 +564,15 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
             std::swap(order[i], order[j]);
         }
     }
-    for (int r : order) builder.insert(r);
+    return order;
+}
 
-    // Alive triangles with compact indices.
-    const auto& tris = builder.tris();
-    std::vector<int> compact(tris.size(), -1);
-    std::vector<int> alive;
-    for (int f = 0; f < static_cast<int>(tris.size()); ++f) {
-        if (tris[f].alive) {
-            compact[f] = static_cast<int>(alive.size());
-            alive.push_back(f);
-        }
-    }
+FaceGroups groupCoplanar(const AliveTriangles& at, const std::vector<Vec3>& P, double mergeTol,
+                         const HullOptions& options) {
+    const auto& tris = at.tris;
+    const auto& alive = at.alive;
+    const auto& compact = at.compact;
     const int T = static_cast<int>(alive.size());
-    if (trace) {
-        for (int t = 0; t < T; ++t) {
-            const Tri& tri = tris[alive[t]];
-            trace->finalTriangles.push_back(
-                {alive[t], Triangle{points[tri.v[0]], points[tri.v[1]], points[tri.v[2]]}});
-        }
-    }
-
     // Group nearly coplanar neighbours around seed triangles, largest area first (its plane is the
     // most accurate). Every member's vertices are within mergeTol of the seed plane, so groups
     // cannot creep around a curved surface.
@@ -538,8 +584,9 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
     std::vector<int> seeds(T);
     std::iota(seeds.begin(), seeds.end(), 0);
     std::stable_sort(seeds.begin(), seeds.end(), [&](int a, int b) { return area2[a] > area2[b]; });
-    std::vector<int> group(T, -1);
-    std::vector<std::vector<int>> members;
+    FaceGroups fg{std::vector<int>(T, -1), {}};
+    std::vector<int>& group = fg.group;
+    std::vector<std::vector<int>>& members = fg.members;
     for (int s : seeds) {
         if (group[s] >= 0) continue;
         const int gid = static_cast<int>(members.size());
@@ -564,86 +611,112 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
         }
     }
 
+    return fg;
+}
+
     // Fold removal (as Qhull merges facets across non-convex ridges, Barber et al. §4): two groups
     // meeting at an edge where a vertex of one lies more than eps in front of the other's plane
     // are merged, until every edge is convex. This matters when points lie a few eps off a plane
     // (noise just above eps): the construction is then only eps-accurate in position, and a thin
     // triangle's plane, extended over the whole hull, can be far from supporting.
-    if (options.mergeCoplanarFaces) {
-        const int G = static_cast<int>(members.size());
-        std::vector<int> uf(G);
-        std::iota(uf.begin(), uf.end(), 0);
-        auto find = [&](int x) {
-            while (uf[x] != x) x = uf[x] = uf[uf[x]];
-            return x;
-        };
-        std::vector<Vec3> areaVec(T), centroidOf(T);
+void mergeFolds(const AliveTriangles& at, const std::vector<Vec3>& P, double mergeTol, FaceGroups& fg) {
+    const auto& tris = at.tris;
+    const auto& alive = at.alive;
+    const auto& compact = at.compact;
+    const int T = static_cast<int>(alive.size());
+    std::vector<int>& group = fg.group;
+    std::vector<std::vector<int>>& members = fg.members;
+    const int G = static_cast<int>(members.size());
+    std::vector<int> uf(G);
+    std::iota(uf.begin(), uf.end(), 0);
+    auto find = [&](int x) {
+        while (uf[x] != x) x = uf[x] = uf[uf[x]];
+        return x;
+    };
+    std::vector<Vec3> areaVec(T), centroidOf(T);
+    for (int t = 0; t < T; ++t) {
+        const Tri& tri = tris[alive[t]];
+        areaVec[t] = accurateCross(P[tri.v[0]], P[tri.v[1]], P[tri.v[2]]);
+        centroidOf[t] = (P[tri.v[0]] + P[tri.v[1]] + P[tri.v[2]]) / 3.0;
+    }
+    // A group's fitted plane may sit up to mergeTol off its members' vertices, so a fold must
+    // be deeper than that (2 * mergeTol) to be told apart from fitting error.
+    const double foldTol = 2.0 * mergeTol;
+    std::vector<Vec3> sumArea(G), sumMoment(G), normal(G);
+    std::vector<double> sumWeight(G), offset(G);
+    for (int round = 0; round < 64; ++round) {  // 64: folds are rare and shallow; a bound, not a tuning
+        std::fill(sumArea.begin(), sumArea.end(), Vec3::Zero());
+        std::fill(sumMoment.begin(), sumMoment.end(), Vec3::Zero());
+        std::fill(sumWeight.begin(), sumWeight.end(), 0.0);
+        for (int t = 0; t < T; ++t) {
+            const int g = find(group[t]);
+            const double w = areaVec[t].norm();
+            sumArea[g] += areaVec[t];
+            sumMoment[g] += w * centroidOf[t];
+            sumWeight[g] += w;
+        }
+        for (int g = 0; g < G; ++g) {
+            if (find(g) != g) continue;
+            const double len = sumArea[g].norm();
+            normal[g] = len > 0.0 ? Vec3(sumArea[g] / len) : Vec3::UnitZ();
+            offset[g] = sumWeight[g] > 0.0 ? normal[g].dot(sumMoment[g] / sumWeight[g]) : 0.0;
+        }
+        bool changed = false;
         for (int t = 0; t < T; ++t) {
             const Tri& tri = tris[alive[t]];
-            areaVec[t] = accurateCross(P[tri.v[0]], P[tri.v[1]], P[tri.v[2]]);
-            centroidOf[t] = (P[tri.v[0]] + P[tri.v[1]] + P[tri.v[2]]) / 3.0;
-        }
-        // A group's fitted plane may sit up to mergeTol off its members' vertices, so a fold must
-        // be deeper than that (2 * mergeTol) to be told apart from fitting error.
-        const double foldTol = 2.0 * mergeTol;
-        std::vector<Vec3> sumArea(G), sumMoment(G), normal(G);
-        std::vector<double> sumWeight(G), offset(G);
-        for (int round = 0; round < 64; ++round) {  // 64: folds are rare and shallow; a bound, not a tuning
-            std::fill(sumArea.begin(), sumArea.end(), Vec3::Zero());
-            std::fill(sumMoment.begin(), sumMoment.end(), Vec3::Zero());
-            std::fill(sumWeight.begin(), sumWeight.end(), 0.0);
-            for (int t = 0; t < T; ++t) {
-                const int g = find(group[t]);
-                const double w = areaVec[t].norm();
-                sumArea[g] += areaVec[t];
-                sumMoment[g] += w * centroidOf[t];
-                sumWeight[g] += w;
-            }
-            for (int g = 0; g < G; ++g) {
-                if (find(g) != g) continue;
-                const double len = sumArea[g].norm();
-                normal[g] = len > 0.0 ? Vec3(sumArea[g] / len) : Vec3::UnitZ();
-                offset[g] = sumWeight[g] > 0.0 ? normal[g].dot(sumMoment[g] / sumWeight[g]) : 0.0;
-            }
-            bool changed = false;
-            for (int t = 0; t < T; ++t) {
-                const Tri& tri = tris[alive[t]];
-                for (int k = 0; k < 3; ++k) {
-                    const int u = compact[tri.adj[k]];
-                    if (u < t) continue;  // each edge once
-                    const int A = find(group[t]), B = find(group[u]);
-                    if (A == B) continue;
-                    const Tri& other = tris[tri.adj[k]];
-                    int cu = other.v[0];
-                    for (int j = 0; j < 3; ++j) {
-                        if (other.v[j] != tri.v[k] && other.v[j] != tri.v[(k + 1) % 3]) cu = other.v[j];
-                    }
-                    const int ct = tri.v[(k + 2) % 3];
-                    if (normal[A].dot(P[cu]) - offset[A] > foldTol || normal[B].dot(P[ct]) - offset[B] > foldTol) {
-                        uf[std::max(A, B)] = std::min(A, B);
-                        changed = true;
-                    }
+            for (int k = 0; k < 3; ++k) {
+                const int u = compact[tri.adj[k]];
+                if (u < t) continue;  // each edge once
+                const int A = find(group[t]), B = find(group[u]);
+                if (A == B) continue;
+                const Tri& other = tris[tri.adj[k]];
+                int cu = other.v[0];
+                for (int j = 0; j < 3; ++j) {
+                    if (other.v[j] != tri.v[k] && other.v[j] != tri.v[(k + 1) % 3]) cu = other.v[j];
+                }
+                const int ct = tri.v[(k + 2) % 3];
+                if (normal[A].dot(P[cu]) - offset[A] > foldTol || normal[B].dot(P[ct]) - offset[B] > foldTol) {
+                    uf[std::max(A, B)] = std::min(A, B);
+                    changed = true;
                 }
             }
-            if (!changed) break;
         }
-        std::vector<std::vector<int>> merged(G);
-        for (int t = 0; t < T; ++t) {
-            group[t] = find(group[t]);
-            merged[group[t]].push_back(t);
-        }
-        members.clear();
-        for (int g = 0; g < G; ++g) {
-            if (merged[g].empty()) continue;
-            for (int t : merged[g]) group[t] = static_cast<int>(members.size());
-            members.push_back(std::move(merged[g]));
-        }
+        if (!changed) break;
     }
+    std::vector<std::vector<int>> merged(G);
+    for (int t = 0; t < T; ++t) {
+        group[t] = find(group[t]);
+        merged[group[t]].push_back(t);
+    }
+    members.clear();
+    for (int g = 0; g < G; ++g) {
+        if (merged[g].empty()) continue;
+        for (int t : merged[g]) group[t] = static_cast<int>(members.size());
+        members.push_back(std::move(merged[g]));
+    }
+}
 
-    // Each group becomes one polygon if its boundary is one simple loop, convex within mergeTol.
+// The polygons of the hull: each group becomes one polygon if its boundary is one simple loop,
+// convex within mergeTol; otherwise its triangles stay.
+struct FacePolygons {
     std::vector<std::vector<int>> loops;
+    int mergedGroups = 0;
+    int rejected = 0;
+};
+
+FacePolygons facePolygons(const AliveTriangles& at, const std::vector<Vec3>& P, double mergeTol,
+                          const FaceGroups& fg) {
+    const auto& tris = at.tris;
+    const auto& alive = at.alive;
+    const auto& compact = at.compact;
+    const std::vector<int>& group = fg.group;
+    const std::vector<std::vector<int>>& members = fg.members;
+    const int n = static_cast<int>(P.size());
+    FacePolygons out;
+    std::vector<std::vector<int>>& loops = out.loops;
+    int& mergedGroups = out.mergedGroups;
+    int& rejected = out.rejected;
     std::vector<int> nextOf(n, -1);
-    int mergedGroups = 0, rejected = 0;
     for (int gid = 0; gid < static_cast<int>(members.size()); ++gid) {
         const auto& mem = members[gid];
         auto emitTriangles = [&]() {
@@ -702,14 +775,14 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
             emitTriangles();
         }
     }
-    int removedCollinear = 0;
-    if (options.removeCollinearVertices) removedCollinear = removeCollinear(loops, P, mergeTol);
-    if (trace) {
-        trace->mergedGroups = mergedGroups;
-        trace->rejectedMerges = rejected;
-        trace->removedCollinearVertices = removedCollinear;
-    }
+    return out;
+}
 
+// The polyhedron from the polygon loops, on the input points it uses (ascending input index).
+HullResult hullResult(std::span<const Vec3> points, std::vector<std::vector<int>>& loops, const HullFrame& frame,
+                      int T, int droppedPoints) {
+    const int n = static_cast<int>(points.size());
+    const double eps = frame.eps, mergeTol = frame.mergeTol;
     // Compact to the used input points (ascending input index) and build the mesh.
     std::vector<int> newIndex(n, -1);
     for (const auto& l : loops) for (int v : l) newIndex[v] = 0;
@@ -728,7 +801,7 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
     result.epsilon = eps;
     result.mergeTolerance = mergeTol;
     result.triangleCount = T;
-    result.droppedPoints = builder.dropped();
+    result.droppedPoints = droppedPoints;
     if (!build.ok()) {
         result.status = HullStatus::InternalError;
         result.message = "hull mesh failed its check: " + build.check.message;
@@ -738,6 +811,63 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
     result.status = HullStatus::Ok;
     result.polyhedron = std::move(build.polyhedron);
     return result;
+}
+
+
+}  // namespace
+
+const char* nameOf(HullStatus status) {
+    switch (status) {
+        case HullStatus::Ok: return "Ok";
+        case HullStatus::EmptyInput: return "EmptyInput";
+        case HullStatus::NonFiniteInput: return "NonFiniteInput";
+        case HullStatus::AllCoincident: return "AllCoincident";
+        case HullStatus::AllCollinear: return "AllCollinear";
+        case HullStatus::AllCoplanar: return "AllCoplanar";
+        case HullStatus::InternalError: return "InternalError";
+    }
+    return "Unknown";
+}
+
+// Incremental hull (de Berg et al., "Computational Geometry", 3rd ed., ch. 11, with conflict
+// lists), then the triangles merged into polygon faces within tolerance (see the header).
+HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, HullTrace* trace) {
+    const int n = static_cast<int>(points.size());
+    if (n == 0) return failure(HullStatus::EmptyInput, "no input points");
+    for (int i = 0; i < n; ++i) {
+        if (!points[i].allFinite()) {
+            return failure(HullStatus::NonFiniteInput,
+                           "point " + std::to_string(i) + " has a non-finite coordinate", i);
+        }
+    }
+    const HullFrame frame = hullFrame(points, options);
+    const InitialTetrahedron tet = initialTetrahedron(frame.P, frame.eps);
+    if (tet.failure) return *tet.failure;
+
+    HullBuilder builder(frame.P, points, frame.eps, trace);
+    builder.buildTetrahedron(tet.vertex);
+    for (int r : insertionOrder(n, tet.vertex, options)) builder.insert(r);
+
+    const AliveTriangles at = aliveTriangles(builder.tris());
+    const int T = static_cast<int>(at.alive.size());
+    if (trace) {
+        for (int t = 0; t < T; ++t) {
+            const Tri& tri = at.tris[at.alive[t]];
+            trace->finalTriangles.push_back(
+                {at.alive[t], Triangle{points[tri.v[0]], points[tri.v[1]], points[tri.v[2]]}});
+        }
+    }
+    FaceGroups groups = groupCoplanar(at, frame.P, frame.mergeTol, options);
+    if (options.mergeCoplanarFaces) mergeFolds(at, frame.P, frame.mergeTol, groups);
+    FacePolygons polygons = facePolygons(at, frame.P, frame.mergeTol, groups);
+    int removedCollinear = 0;
+    if (options.removeCollinearVertices) removedCollinear = removeCollinear(polygons.loops, frame.P, frame.mergeTol);
+    if (trace) {
+        trace->mergedGroups = polygons.mergedGroups;
+        trace->rejectedMerges = polygons.rejected;
+        trace->removedCollinearVertices = removedCollinear;
+    }
+    return hullResult(points, polygons.loops, frame, T, builder.dropped());
 }
 
 }  // namespace cdlab
