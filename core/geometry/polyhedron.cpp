@@ -1,6 +1,7 @@
 #include "core/geometry/polyhedron.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -223,6 +224,7 @@ PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions,
                          "V - E + F = " + std::to_string(poly.eulerCharacteristic()) + ", not 2");
         return out;
     }
+    assert(poly.checkLinks().ok());
     out.polyhedron = std::move(poly);
     return out;
 }
@@ -356,8 +358,31 @@ double ConvexPolyhedron::scaleTolerance() const {
 
 PolyhedronCheck ConvexPolyhedron::validate(double tolerance) const {
     if (tolerance < 0.0) tolerance = scaleTolerance();
-    const int V = vertexCount(), H = halfEdgeCount(), F = faceCount(), E = edgeCount();
+    const int V = vertexCount(), F = faceCount();
     if (V < 4 || F < 4) return fail(PolyhedronDefect::NoFaces, -1, "fewer than 4 vertices or faces");
+    // 1-3. Links, face cycles, vertex fans.
+    if (PolyhedronCheck links = checkLinks(); !links.ok()) return links;
+    // 4. Topology of a sphere.
+    if (eulerCharacteristic() != 2) {
+        return fail(PolyhedronDefect::EulerMismatch, -1, "V - E + F = " + std::to_string(eulerCharacteristic()) + ", not 2");
+    }
+    // 5. Geometry: finite values, unit normals, planar and convex faces.
+    for (int v = 0; v < V; ++v) {
+        if (!vertices_[v].position.allFinite()) {
+            return fail(PolyhedronDefect::NonFinite, v, "vertex " + std::to_string(v) + " is not finite");
+        }
+    }
+    for (int f = 0; f < F; ++f) {
+        if (PolyhedronCheck face = checkFaceGeometry(f, tolerance); !face.ok()) return face;
+    }
+    // 6. Convexity of the solid: every vertex on or behind every face plane.
+    if (PolyhedronCheck solid = checkSolidConvexity(tolerance); !solid.ok()) return solid;
+    if (!(volume() > 0.0)) return fail(PolyhedronDefect::NonPositiveVolume, -1, "volume is not positive");
+    return PolyhedronCheck{};
+}
+
+PolyhedronCheck ConvexPolyhedron::checkLinks() const {
+    const int V = vertexCount(), H = halfEdgeCount(), F = faceCount(), E = edgeCount();
     auto inRange = [](int i, int n) { return i >= 0 && i < n; };
     // 1. Pointer consistency of every half-edge.
     for (int h = 0; h < H; ++h) {
@@ -417,58 +442,57 @@ PolyhedronCheck ConvexPolyhedron::validate(double tolerance) const {
                         "the faces around vertex " + std::to_string(v) + " form more than one fan");
         }
     }
-    // 4. Topology of a sphere.
-    if (eulerCharacteristic() != 2) {
-        return fail(PolyhedronDefect::EulerMismatch, -1, "V - E + F = " + std::to_string(eulerCharacteristic()) + ", not 2");
+    return PolyhedronCheck{};
+}
+
+// Finite unit normal, every vertex within tolerance of the plane, convex within tolerance.
+PolyhedronCheck ConvexPolyhedron::checkFaceGeometry(int f, double tolerance) const {
+    const Face& face = faces_[f];
+    if (!face.normal.allFinite() || !std::isfinite(face.offset)) {
+        return fail(PolyhedronDefect::NonFinite, f, "face " + std::to_string(f) + " plane is not finite");
     }
-    // 5. Geometry: finite values, unit normals, planar and convex faces.
-    for (int v = 0; v < V; ++v) {
-        if (!vertices_[v].position.allFinite()) {
-            return fail(PolyhedronDefect::NonFinite, v, "vertex " + std::to_string(v) + " is not finite");
+    // 1e-9: a normal fitted and normalized in double is unit to ~1e-16; anything
+    // farther was not normalized at all.
+    if (std::abs(face.normal.norm() - 1.0) > 1e-9) {
+        return fail(PolyhedronDefect::NonUnitNormal, f, "face " + std::to_string(f) + " normal is not unit");
+    }
+    const std::vector<int> loop = faceVertices(f);
+    const size_t k = loop.size();
+    for (int v : loop) {
+        const double dist = std::abs(planeDistance(f, position(v)));
+        if (dist > tolerance) {
+            return fail(PolyhedronDefect::NonPlanarFace, f,
+                        "vertex " + std::to_string(v) + " is " + fmt(dist) +
+                            " off the plane of face " + std::to_string(f));
         }
     }
-    for (int f = 0; f < F; ++f) {
-        const Face& face = faces_[f];
-        if (!face.normal.allFinite() || !std::isfinite(face.offset)) {
-            return fail(PolyhedronDefect::NonFinite, f, "face " + std::to_string(f) + " plane is not finite");
+    // Every vertex of the face on the inner side of every edge line of the face (in the
+    // face plane): catches reflex corners and self-overlapping (star) cycles.
+    for (size_t i = 0; i < k; ++i) {
+        const Vec3& a = position(loop[i]);
+        const Vec3 ab = position(loop[(i + 1) % k]) - a;
+        const double len = ab.norm();
+        if (!(len > 0.0)) {
+            return fail(PolyhedronDefect::NonConvexFace, f, "face " + std::to_string(f) + " has a zero-length edge");
         }
-        // 1e-9: a normal fitted and normalized in double is unit to ~1e-16; anything
-        // farther was not normalized at all.
-        if (std::abs(face.normal.norm() - 1.0) > 1e-9) {
-            return fail(PolyhedronDefect::NonUnitNormal, f, "face " + std::to_string(f) + " normal is not unit");
-        }
-        const std::vector<int> loop = faceVertices(f);
-        const size_t k = loop.size();
-        for (int v : loop) {
-            const double dist = std::abs(planeDistance(f, position(v)));
-            if (dist > tolerance) {
-                return fail(PolyhedronDefect::NonPlanarFace, f,
-                            "vertex " + std::to_string(v) + " is " + fmt(dist) +
-                                " off the plane of face " + std::to_string(f));
-            }
-        }
-        // Every vertex of the face on the inner side of every edge line of the face (in the
-        // face plane): catches reflex corners and self-overlapping (star) cycles.
-        for (size_t i = 0; i < k; ++i) {
-            const Vec3& a = position(loop[i]);
-            const Vec3 ab = position(loop[(i + 1) % k]) - a;
-            const double len = ab.norm();
-            if (!(len > 0.0)) {
-                return fail(PolyhedronDefect::NonConvexFace, f, "face " + std::to_string(f) + " has a zero-length edge");
-            }
-            const Vec3 inward = face.normal.cross(ab) / len;  // in-plane, pointing into the face
-            for (size_t j = 0; j < k; ++j) {
-                if (j == i || j == (i + 1) % k) continue;
-                if (inward.dot(position(loop[j]) - a) < -tolerance) {
-                    return fail(PolyhedronDefect::NonConvexFace, f,
-                                "vertex " + std::to_string(loop[j]) + " lies outside edge " +
-                                    std::to_string(loop[i]) + "->" + std::to_string(loop[(i + 1) % k]) +
-                                    " of face " + std::to_string(f));
-                }
+        const Vec3 inward = face.normal.cross(ab) / len;  // in-plane, pointing into the face
+        for (size_t j = 0; j < k; ++j) {
+            if (j == i || j == (i + 1) % k) continue;
+            if (inward.dot(position(loop[j]) - a) < -tolerance) {
+                return fail(PolyhedronDefect::NonConvexFace, f,
+                            "vertex " + std::to_string(loop[j]) + " lies outside edge " +
+                                std::to_string(loop[i]) + "->" + std::to_string(loop[(i + 1) % k]) +
+                                " of face " + std::to_string(f));
             }
         }
     }
-    // 6. Convexity of the solid: every vertex on or behind every face plane.
+    return PolyhedronCheck{};
+}
+
+// Every vertex on or behind every face plane (all pairs when V*F <= 2e7, else the neighbours of
+// each face's vertices, which for a closed genus-0 surface implies global convexity).
+PolyhedronCheck ConvexPolyhedron::checkSolidConvexity(double tolerance) const {
+    const int V = vertexCount(), F = faceCount();
     auto outsideMessage = [&](int v, int f, double d) {
         return "vertex " + std::to_string(v) + " is " + fmt(d) + " in front of face " + std::to_string(f);
     };
@@ -497,7 +521,6 @@ PolyhedronCheck ConvexPolyhedron::validate(double tolerance) const {
             if (bad >= 0) return fail(PolyhedronDefect::VertexOutside, bad, outsideMessage(bad, f, badDist));
         }
     }
-    if (!(volume() > 0.0)) return fail(PolyhedronDefect::NonPositiveVolume, -1, "volume is not positive");
     return PolyhedronCheck{};
 }
 

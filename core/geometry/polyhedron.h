@@ -189,8 +189,14 @@ public:
     /// for the neighbours of each face's vertices, which for a closed genus-0 surface implies
     /// global convexity), positive volume. tolerance < 0 means scaleTolerance().
     PolyhedronCheck validate(double tolerance = -1.0) const;
+    /// validate()'s structural part alone: every half-edge's twin / next / prev / face / edge
+    /// consistent, face cycles closed and covering every half-edge once, one fan per vertex.
+    /// fromFaces() asserts it on what it builds (on in the sanitizer build).
+    PolyhedronCheck checkLinks() const;
 
 private:
+    PolyhedronCheck checkFaceGeometry(int f, double tolerance) const;
+    PolyhedronCheck checkSolidConvexity(double tolerance) const;
     std::vector<Vertex> vertices_;
     std::vector<HalfEdge> halfEdges_;
     std::vector<Face> faces_;
