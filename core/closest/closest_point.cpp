@@ -727,8 +727,28 @@ ClosestPointOnTetrahedronResult degenerateTetrahedron(const Vec3& p, const Vec3*
     return best;
 }
 
+ClosestPointOnTetrahedronResult nonFiniteTetrahedronResult() {
+    ClosestPointOnTetrahedronResult r;
+    r.point = Vec3::Constant(kNaN);
+    r.barycentric = Eigen::Vector4d::Constant(kNaN);
+    r.distanceSquared = kNaN;
+    r.status = SimplexStatus::NonFinite;
+    return r;
+}
+
+// The last test of the trace: every closed region of a boundary feature rejected, p is inside.
+RegionTest<TetrahedronRegion, 4> insideTest() {
+    RegionTest<TetrahedronRegion, 4> test;
+    test.candidate = TetrahedronRegion::ABCD;
+    test.condition = "otherwise (p inside)";
+    test.accepted = true;
+    return test;
+}
+
 }  // namespace
 
+// Ericson, "Real-Time Collision Detection", §5.1.6: the Voronoi region of p among the vertices,
+// edges and faces of the tetrahedron, each region's test decided by exact signs.
 ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const Tetrahedron& t, TetrahedronTrace* trace) {
     if (trace) trace->tests.clear();
     auto done = [&](const ClosestPointOnTetrahedronResult& r) {
@@ -739,12 +759,7 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
     // One pass classifies the input (see closestPointOnTriangle).
     const bool plain = exact::inExpansionRange({&p, &t.a, &t.b, &t.c, &t.d});
     if (!plain && (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c) || !finite(t.d))) {
-        ClosestPointOnTetrahedronResult r;
-        r.point = Vec3::Constant(kNaN);
-        r.barycentric = Eigen::Vector4d::Constant(kNaN);
-        r.distanceSquared = kNaN;
-        r.status = SimplexStatus::NonFinite;
-        return done(r);
+        return done(nonFiniteTetrahedronResult());
     }
     const int volumeSign = exact::orient3dSign(t.a, t.b, t.c, t.d);
     if (volumeSign == 0) return done(degenerateTetrahedron(p, v));
@@ -842,13 +857,7 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
     r.point = p;
     r.distanceSquared = 0.0;
     r.barycentric = insideWeights(p, v, plain);
-    if (trace) {
-        RegionTest<TetrahedronRegion, 4> test;
-        test.candidate = TetrahedronRegion::ABCD;
-        test.condition = "otherwise (p inside)";
-        test.accepted = true;
-        trace->tests.push_back(test);
-    }
+    if (trace) trace->tests.push_back(insideTest());
     return done(r);
 }
 

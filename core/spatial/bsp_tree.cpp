@@ -175,8 +175,36 @@ int BspTree::buildNode(std::vector<int> polys, int depth, int parent, Work& work
         status_ = BspStatus::DepthLimit;
         return id;  // empty leaf: the polygons left here are dropped
     }
-    // Ericson §8.3.2 PickSplittingPlane: score every candidate's plane against the node's
-    // polygons; coplanar polygons count as in front, as there.
+    BspSplitStep step;
+    step.node = id;
+    step.depth = depth;
+    step.polygons = int(polys.size());
+    const int splitter = pickSplitter(polys, work, step);
+    std::vector<int> frontList, backList;
+    partition(polys, id, work, step, frontList, backList);
+    if (trace) trace->steps.push_back(step);
+    const Vec3 n = work.normal[std::size_t(splitter)];
+    const double d = work.offset[std::size_t(splitter)];
+    {
+        BspNode& node = nodes_[std::size_t(id)];
+        node.kind = BspNodeKind::Inner;
+        node.splitter = splitter;
+        node.plane = Plane{n, d + n.dot(origin_)};
+        localOffset_[std::size_t(id)] = d;
+    }
+    polys.clear();
+    polys.shrink_to_fit();
+    // Front: nothing left means outside (empty leaf); back: nothing left means solid.
+    const int front = buildChild(std::move(frontList), BspNodeKind::EmptyLeaf, depth + 1, id, work, trace);
+    const int back = buildChild(std::move(backList), BspNodeKind::SolidLeaf, depth + 1, id, work, trace);
+    nodes_[std::size_t(id)].front = front;
+    nodes_[std::size_t(id)].back = back;
+    return id;
+}
+
+int BspTree::pickSplitter(const std::vector<int>& polys, const Work& work, BspSplitStep& step) const {
+    // Score every candidate's plane against the node's polygons; coplanar polygons count as in
+    // front, as in Ericson's code.
     const double K = options_.splitWeight;
     std::vector<int> candidates = polys;
     if (options_.maxCandidates > 0 && int(polys.size()) > options_.maxCandidates) {
@@ -203,16 +231,17 @@ int BspTree::buildNode(std::vector<int> polys, int depth, int parent, Work& work
             bestSource = s;
         }
     }
-    const Vec3 n = work.normal[std::size_t(bestSource)];
-    const double d = work.offset[std::size_t(bestSource)];
-    BspSplitStep step;
-    step.node = id;
-    step.depth = depth;
     step.splitter = bestSource;
     step.candidates = int(candidates.size());
-    step.polygons = int(polys.size());
     step.score = bestScore;
-    std::vector<int> frontList, backList;
+    return bestSource;
+}
+
+void BspTree::partition(const std::vector<int>& polys, int id, Work& work, BspSplitStep& step,
+                        std::vector<int>& frontList, std::vector<int>& backList) {
+    const int bestSource = step.splitter;
+    const Vec3 n = work.normal[std::size_t(bestSource)];
+    const double d = work.offset[std::size_t(bestSource)];
     for (int j : polys) {
         Fragment& f = work.frags[std::size_t(j)];
         Side side = f.source == bestSource ? Side::Coplanar : classify(f, n, d, work.eps);
@@ -251,42 +280,18 @@ int BspTree::buildNode(std::vector<int> polys, int depth, int parent, Work& work
         }
         }
     }
-    if (trace) trace->steps.push_back(step);
-    {
-        BspNode& node = nodes_[std::size_t(id)];
-        node.kind = BspNodeKind::Inner;
-        node.splitter = bestSource;
-        node.plane = Plane{n, d + n.dot(origin_)};
-        localOffset_[std::size_t(id)] = d;
-    }
-    polys.clear();
-    polys.shrink_to_fit();
-    // Front: nothing left means outside (empty leaf); back: nothing left means solid.
-    int front, back;
-    if (frontList.empty()) {
-        front = int(nodes_.size());
-        BspNode leaf;
-        leaf.kind = BspNodeKind::EmptyLeaf;
-        leaf.parent = id;
-        leaf.depth = depth + 1;
-        nodes_.push_back(leaf);
-        localOffset_.push_back(0.0);
-    } else {
-        front = buildNode(std::move(frontList), depth + 1, id, work, trace);
-    }
-    if (backList.empty()) {
-        back = int(nodes_.size());
-        BspNode leaf;
-        leaf.kind = BspNodeKind::SolidLeaf;
-        leaf.parent = id;
-        leaf.depth = depth + 1;
-        nodes_.push_back(leaf);
-        localOffset_.push_back(0.0);
-    } else {
-        back = buildNode(std::move(backList), depth + 1, id, work, trace);
-    }
-    nodes_[std::size_t(id)].front = front;
-    nodes_[std::size_t(id)].back = back;
+}
+
+int BspTree::buildChild(std::vector<int> polys, BspNodeKind leafKind, int depth, int parent, Work& work,
+                        BspTrace* trace) {
+    if (!polys.empty()) return buildNode(std::move(polys), depth, parent, work, trace);
+    const int id = int(nodes_.size());
+    BspNode leaf;
+    leaf.kind = leafKind;
+    leaf.parent = parent;
+    leaf.depth = depth;
+    nodes_.push_back(leaf);
+    localOffset_.push_back(0.0);
     return id;
 }
 

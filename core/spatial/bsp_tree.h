@@ -141,6 +141,15 @@ public:
 private:
     struct Work;
     int buildNode(std::vector<int> polys, int depth, int parent, Work& work, BspTrace* trace);
+    // Ericson §8.3.2 PickSplittingPlane: the source polygon whose plane scores best; step gets
+    // the candidate count and the score.
+    int pickSplitter(const std::vector<int>& polys, const Work& work, BspSplitStep& step) const;
+    // The node's polygons sorted against the splitter's plane: coplanar ones stored at node id,
+    // straddling ones split, the rest into front / back.
+    void partition(const std::vector<int>& polys, int id, Work& work, BspSplitStep& step, std::vector<int>& frontList,
+                   std::vector<int>& backList);
+    // A child: a leaf of the given kind when no polygon is left, else the subtree.
+    int buildChild(std::vector<int> polys, BspNodeKind leafKind, int depth, int parent, Work& work, BspTrace* trace);
     BspPointClass classifyFrom(int node, const Vec3& local) const;
     bool firstSolid(int node, const Vec3& p, const Vec3& d, double t0, double t1, double& tHit, int& leaf) const;
     double localDistance(const BspNode& n, const Vec3& local) const;
