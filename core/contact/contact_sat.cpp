@@ -4,6 +4,7 @@
 #include <cfloat>
 #include <cmath>
 
+#include "core/base/tolerances.h"
 #include "core/closest/closest_point.h"
 
 namespace cdlab {
@@ -94,49 +95,37 @@ std::vector<Vec3> clipPolygon(const std::vector<Vec3>& poly, const Vec3& n, doub
     return out;
 }
 
-}  // namespace
-
-SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& ta, const ConvexPolyhedron& mb,
-                                  const Transform& tb, const SatContactOptions& options, SatContactTrace* trace) {
-    SatContactResult r;
-    if (ma.empty() || mb.empty()) r.message = "empty polyhedron";
-    else if (std::string m = checkPose(ta); !m.empty()) r.message = "A: " + m;
-    else if (std::string m2 = checkPose(tb); !m2.empty()) r.message = "B: " + m2;
-    if (!r.message.empty()) {
-        r.separation = r.depth = NAN;
-        return r;
-    }
-    if (trace) *trace = SatContactTrace{};
-    const Vec3 origin = ta.position;
-    const Posed A(ma, ta, origin), B(mb, tb, origin);
-    double maxCoord = 0.0;
-    for (const Vec3& p : B.x) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
-    maxCoord += origin.cwiseAbs().maxCoeff();
-    const double size = std::max((ma.boundsMax() - ma.boundsMin()).norm(), (mb.boundsMax() - mb.boundsMin()).norm());
-    // Touching band: relative to the size, plus 64 ulps of the coordinates (support values are
-    // dot products of coordinates up to maxCoord, rounded to a few ulps).
-    r.tolerance = options.tolerance >= 0.0 ? options.tolerance : 1e-9 * size + 64.0 * DBL_EPSILON * maxCoord;
-    const double tol = r.tolerance;
-
+// Every axis tested (for the trace), the best of each family and its index in axes.
+struct SatQuery {
     std::vector<SatAxisRecord> axes;
-    // 1. Face axes of A, then of B (B's normal points from B toward A: the axis A→B is -n).
     SatAxisRecord bestA{SatAxisKind::FaceA, -1, -1, Vec3::Zero(), -INFINITY};
+    SatAxisRecord bestB{SatAxisKind::FaceB, -1, -1, Vec3::Zero(), -INFINITY};
+    SatAxisRecord bestE{SatAxisKind::EdgeEdge, -1, -1, Vec3::Zero(), -INFINITY};
+    int bestFaceAIndex = -1, bestFaceBIndex = -1, bestEdgeIndex = -1, pruned = 0, parallel = 0;
+};
+
+// 1. Face axes of A, then of B (B's normal points from B toward A: the axis A→B is -n).
+void queryFaceAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
+                   SatQuery& q) {
+    auto& [axes, bestA, bestB, bestE, bestFaceAIndex, bestFaceBIndex, bestEdgeIndex, pruned, parallel] = q;
     for (int f = 0; f < ma.faceCount(); ++f) {
         const SatAxisRecord rec{SatAxisKind::FaceA, f, -1, A.n[f], B.minProjection(A.n[f]) - A.d[f]};
         if (rec.separation > bestA.separation) bestA = rec;
         axes.push_back(rec);
     }
-    const int bestFaceAIndex = static_cast<int>(std::find_if(axes.begin(), axes.end(), [&](const SatAxisRecord& x) { return x.indexA == bestA.indexA; }) - axes.begin());
-    SatAxisRecord bestB{SatAxisKind::FaceB, -1, -1, Vec3::Zero(), -INFINITY};
-    int bestFaceBIndex = -1;
+    bestFaceAIndex = static_cast<int>(std::find_if(axes.begin(), axes.end(), [&](const SatAxisRecord& x) { return x.indexA == bestA.indexA; }) - axes.begin());
     for (int f = 0; f < mb.faceCount(); ++f) {
         const SatAxisRecord rec{SatAxisKind::FaceB, -1, f, -B.n[f], A.minProjection(B.n[f]) - B.d[f]};
         if (rec.separation > bestB.separation) bestB = rec, bestFaceBIndex = static_cast<int>(axes.size());
         axes.push_back(rec);
     }
-    // 2. Edge pairs that form a face of the Minkowski difference.
-    SatAxisRecord bestE{SatAxisKind::EdgeEdge, -1, -1, Vec3::Zero(), -INFINITY};
-    int bestEdgeIndex = -1, pruned = 0, parallel = 0;
+}
+
+// 2. Edge pairs that form a face of the Minkowski difference (their Gauss-map arcs cross), the
+// axis their cross product, oriented away from A.
+void queryEdgeAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
+                   SatQuery& q) {
+    auto& [axes, bestA, bestB, bestE, bestFaceAIndex, bestFaceBIndex, bestEdgeIndex, pruned, parallel] = q;
     for (int ea = 0; ea < ma.edgeCount(); ++ea) {
         const auto [a0, a1] = ma.edgeVertices(ea);
         const auto [fa1, fa2] = ma.edgeFaces(ea);
@@ -165,11 +154,24 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         }
     }
 
-    // 3. Separated, or the axis of least penetration with the face preference.
-    const double maxSep = std::max({bestA.separation, bestB.separation, bestE.separation});
-    r.separation = maxSep;
-    SatAxisRecord best = bestA;
-    int chosen = bestFaceAIndex;
+}
+
+struct ChosenAxis {
+    SatAxisRecord best;
+    int chosen = -1;      // its index in the query's axes
+    double maxSep = 0.0;  // the largest separation over all axes
+};
+
+// 3. Separated: the axis of largest separation. Otherwise the axis of least penetration, with
+// faces preferred to edges and A's faces to B's unless the other is better by the bias.
+ChosenAxis chooseAxis(const SatQuery& q, double tol, const SatContactOptions& options) {
+    const auto& [axes, bestA, bestB, bestE, bestFaceAIndex, bestFaceBIndex, bestEdgeIndex, pruned, parallel] = q;
+    ChosenAxis c;
+    const double maxSep = c.maxSep = std::max({bestA.separation, bestB.separation, bestE.separation});
+    SatAxisRecord& best = c.best;
+    int& chosen = c.chosen;
+    best = bestA;
+    chosen = bestFaceAIndex;
     if (maxSep > tol) {  // separated: the axis of largest separation, no preference needed
         if (bestB.separation == maxSep) best = bestB, chosen = bestFaceBIndex;
         if (bestE.separation == maxSep && best.separation != maxSep) best = bestE, chosen = bestEdgeIndex;
@@ -181,46 +183,29 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         if (bestB.indexB >= 0 && better(bestB)) best = bestB, chosen = bestFaceBIndex;
         if (bestE.indexA >= 0 && better(bestE)) best = bestE, chosen = bestEdgeIndex;
     }
-    r.normal = best.axis;
-    r.axisKind = best.kind;
-    r.depth = std::max(0.0, -best.separation);
-    r.status = maxSep > tol ? SatContactStatus::Separated
-             : maxSep >= -tol ? SatContactStatus::Touching
-                              : SatContactStatus::Penetrating;
+    return c;
+}
+
+// 4a. Edge–edge: one point, the closest points of the two edges.
+void edgeContact(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
+                 const SatAxisRecord& best, const Vec3& origin, SatContactResult& r, SatContactTrace* trace) {
+    const auto [a0, a1] = ma.edgeVertices(best.indexA);
+    const auto [b0, b1] = mb.edgeVertices(best.indexB);
+    const SegmentSegmentResult c = closestPointsSegmentSegment(Segment{A.x[a0], A.x[a1]}, Segment{B.x[b0], B.x[b1]});
+    r.featureA = {FeatureType::Edge, best.indexA};
+    r.featureB = {FeatureType::Edge, best.indexB};
+    r.manifold.push_back({c.pointOnFirst + origin, c.pointOnSecond + origin, r.depth});
     if (trace) {
-        trace->axes = axes;
-        trace->edgePairsTotal = ma.edgeCount() * mb.edgeCount();
-        trace->edgePairsPruned = pruned;
-        trace->edgePairsParallel = parallel;
-        trace->bestFaceA = bestFaceAIndex;
-        trace->bestFaceB = bestFaceBIndex;
-        trace->bestEdgePair = bestEdgeIndex;
-        trace->chosen = chosen;
+        trace->edgePointA = c.pointOnFirst + origin;
+        trace->edgePointB = c.pointOnSecond + origin;
     }
-    if (r.status == SatContactStatus::Separated) {
-        if (best.kind == SatAxisKind::EdgeEdge) r.featureA = {FeatureType::Edge, best.indexA}, r.featureB = {FeatureType::Edge, best.indexB};
-        else if (best.kind == SatAxisKind::FaceA) r.featureA = {FeatureType::Face, best.indexA};
-        else r.featureB = {FeatureType::Face, best.indexB};
-        return r;
-    }
+}
 
-    // 4a. Edge–edge: one point, the closest points of the two edges.
-    if (best.kind == SatAxisKind::EdgeEdge) {
-        const auto [a0, a1] = ma.edgeVertices(best.indexA);
-        const auto [b0, b1] = mb.edgeVertices(best.indexB);
-        const SegmentSegmentResult c = closestPointsSegmentSegment(Segment{A.x[a0], A.x[a1]}, Segment{B.x[b0], B.x[b1]});
-        r.featureA = {FeatureType::Edge, best.indexA};
-        r.featureB = {FeatureType::Edge, best.indexB};
-        r.manifold.push_back({c.pointOnFirst + origin, c.pointOnSecond + origin, r.depth});
-        if (trace) {
-            trace->edgePointA = c.pointOnFirst + origin;
-            trace->edgePointB = c.pointOnSecond + origin;
-        }
-        return r;
-    }
-
-    // 4b. Face contact: reference face on A (FaceA) or B (FaceB); incident face = the other
-    // body's face most anti-parallel to the reference normal.
+// 4b. Face contact: reference face on A (FaceA) or B (FaceB); incident face = the other body's
+// face most anti-parallel to the reference normal, clipped by the reference face's side planes
+// (Sutherland–Hodgman), the points behind the reference plane kept and reduced.
+void faceContact(const Posed& A, const Posed& B, const SatAxisRecord& best, const Vec3& origin, double tol,
+                 const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace) {
     const bool refOnA = best.kind == SatAxisKind::FaceA;
     const Posed& R = refOnA ? A : B;
     const Posed& I = refOnA ? B : A;
@@ -283,6 +268,65 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         trace->clipped = pts;
         trace->reduction = steps;
     }
+}
+
+}  // namespace
+
+// Gregorius, "The Separating Axis Test between Convex Polyhedra" (GDC 2013) and "Robust Contact
+// Creation for Physics Simulations" (GDC 2015): face axes, edge axes pruned on the Gauss map,
+// the axis chosen with a face preference, then the contact from clipping.
+SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& ta, const ConvexPolyhedron& mb,
+                                  const Transform& tb, const SatContactOptions& options, SatContactTrace* trace) {
+    SatContactResult r;
+    if (ma.empty() || mb.empty()) r.message = "empty polyhedron";
+    else if (std::string m = checkPose(ta); !m.empty()) r.message = "A: " + m;
+    else if (std::string m2 = checkPose(tb); !m2.empty()) r.message = "B: " + m2;
+    if (!r.message.empty()) {
+        r.separation = r.depth = NAN;
+        return r;
+    }
+    if (trace) *trace = SatContactTrace{};
+    const Vec3 origin = ta.position;
+    const Posed A(ma, ta, origin), B(mb, tb, origin);
+    double maxCoord = 0.0;
+    for (const Vec3& p : B.x) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
+    maxCoord += origin.cwiseAbs().maxCoeff();
+    const double size = std::max((ma.boundsMax() - ma.boundsMin()).norm(), (mb.boundsMax() - mb.boundsMin()).norm());
+    // Touching band: relative to the size, plus 64 ulps of the coordinates (support values are
+    // dot products of coordinates up to maxCoord, rounded to a few ulps).
+    r.tolerance = options.tolerance >= 0.0 ? options.tolerance : 1e-9 * size + ulps(64, maxCoord);
+    const double tol = r.tolerance;
+
+    SatQuery q;
+    queryFaceAxes(ma, A, mb, B, q);
+    queryEdgeAxes(ma, A, mb, B, q);
+    const ChosenAxis c = chooseAxis(q, tol, options);
+    const SatAxisRecord& best = c.best;
+    r.separation = c.maxSep;
+    r.normal = best.axis;
+    r.axisKind = best.kind;
+    r.depth = std::max(0.0, -best.separation);
+    r.status = c.maxSep > tol ? SatContactStatus::Separated
+             : c.maxSep >= -tol ? SatContactStatus::Touching
+                                : SatContactStatus::Penetrating;
+    if (trace) {
+        trace->axes = q.axes;
+        trace->edgePairsTotal = ma.edgeCount() * mb.edgeCount();
+        trace->edgePairsPruned = q.pruned;
+        trace->edgePairsParallel = q.parallel;
+        trace->bestFaceA = q.bestFaceAIndex;
+        trace->bestFaceB = q.bestFaceBIndex;
+        trace->bestEdgePair = q.bestEdgeIndex;
+        trace->chosen = c.chosen;
+    }
+    if (r.status == SatContactStatus::Separated) {
+        if (best.kind == SatAxisKind::EdgeEdge) r.featureA = {FeatureType::Edge, best.indexA}, r.featureB = {FeatureType::Edge, best.indexB};
+        else if (best.kind == SatAxisKind::FaceA) r.featureA = {FeatureType::Face, best.indexA};
+        else r.featureB = {FeatureType::Face, best.indexB};
+        return r;
+    }
+    if (best.kind == SatAxisKind::EdgeEdge) edgeContact(ma, A, mb, B, best, origin, r, trace);
+    else faceContact(A, B, best, origin, tol, options, r, trace);
     return r;
 }
 
