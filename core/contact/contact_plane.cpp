@@ -1,5 +1,7 @@
 #include "core/contact/contact_plane.h"
 
+#include "core/base/tolerances.h"
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -82,6 +84,113 @@ std::vector<int> hull2d(const std::vector<Vec2>& p) {
     return h;
 }
 
+// The body in world space: vertices x_i and their signed plane distances s_i, the lowest one.
+struct PosedVertices {
+    std::vector<Vec3> x;
+    std::vector<double> s;
+    int low = 0;
+};
+
+// Closest / deepest feature: the vertices within tol of s_min (returned), as a vertex, an edge or
+// the face of the support set of -n̂.
+std::vector<int> closestFeature(const ConvexPolyhedron& body, const Transform& pose, const Vec3& n,
+                                const PosedVertices& pv, double tol, PlaneContactResult& r) {
+    const std::vector<Vec3>& x = pv.x;
+    const std::vector<double>& s = pv.s;
+    const int nv = static_cast<int>(x.size());
+    const int low = pv.low;
+    std::vector<int> near;
+    for (int i = 0; i < nv; ++i)
+        if (s[i] <= s[low] + tol) near.push_back(i);
+    const auto inNear = [&](int v) { return std::find(near.begin(), near.end(), v) != near.end(); };
+    int edge = -1;
+    if (near.size() == 1) {
+        r.feature = {FeatureType::Vertex, low};
+        r.featurePoints = {x[low]};
+    } else if (near.size() == 2 && adjacent(body, near[0], near[1], edge)) {
+        r.feature = {FeatureType::Edge, edge};
+        r.featurePoints = {x[near[0]], x[near[1]]};
+    } else {
+        // The support set of -n̂ is a face: one around the lowest vertex holds every near vertex.
+        // If tolerance noise leaves none holding all (e.g. two opposite vertices of a nearly
+        // face-on quad), take the face around it whose normal is most opposite n̂.
+        int face = -1, fallback = -1;
+        double bestAlign = INFINITY;
+        for (int f : body.vertexFaces(low)) {
+            const std::vector<int> fv = body.faceVertices(f);
+            int held = 0;
+            for (int v : near) held += std::find(fv.begin(), fv.end(), v) != fv.end();
+            if (held == static_cast<int>(near.size()) && face < 0) face = f;
+            const double align = pose.rotate(body.face(f).normal).dot(n);
+            if (align < bestAlign) bestAlign = align, fallback = f;
+        }
+        if (face < 0) face = fallback;
+        r.feature = {FeatureType::Face, face};
+        for (int v : body.faceVertices(face))
+            if (inNear(v)) r.featurePoints.push_back(x[v]);
+    }
+    return near;
+}
+
+// Contact candidates: submerged (s_i <= tol) vertices and the edge crossings, each with its
+// projection on the plane and its depth; candVertex names the vertex (-1 for a crossing).
+void contactCandidates(const ConvexPolyhedron& body, const Vec3& n, double d, const PosedVertices& pv, double tol,
+                       std::vector<ContactPoint>& cand, std::vector<int>& candVertex, PlaneContactTrace* trace) {
+    const std::vector<Vec3>& x = pv.x;
+    const std::vector<double>& s = pv.s;
+    const int nv = static_cast<int>(x.size());
+    for (int i = 0; i < nv; ++i) {
+        if (s[i] > tol) continue;
+        cand.push_back({x[i], x[i] - s[i] * n, std::max(0.0, -s[i])});
+        candVertex.push_back(i);
+    }
+    for (int e = 0; e < body.edgeCount(); ++e) {
+        auto [u, v] = body.edgeVertices(e);
+        if (s[u] > s[v]) std::swap(u, v);
+        if (!(s[u] < -tol && s[v] > tol)) continue;
+        // s(t) = s_u + t (s_v - s_u) = 0; both sides are beyond tol, so the division is safe.
+        const double t = s[u] / (s[u] - s[v]);
+        const Vec3 p = x[u] + t * (x[v] - x[u]);
+        cand.push_back({p, p - (n.dot(p) - d) * n, 0.0});
+        candVertex.push_back(-1);
+        if (trace) trace->crossings.push_back({e, u, v, t, p});
+    }
+}
+
+// The contact polygon (2D hull of the candidates on the plane) and the manifold: every candidate
+// reduced to options.maxPoints, or the hull plus the deepest point. Returns the hull.
+std::vector<int> contactManifold(const std::vector<ContactPoint>& cand, const Vec3& n,
+                                 const PlaneContactOptions& options, PlaneContactResult& r,
+                                 std::vector<ManifoldReductionStep>& steps, bool traced) {
+    // Plane basis (u, w) with u x w = n̂, coordinates relative to the deepest projection (small
+    // numbers at large offsets).
+    const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
+    std::vector<Vec2> p2(cand.size());
+    const Vec3 origin = cand.empty() ? Vec3::Zero() : cand[0].pointB;
+    for (size_t i = 0; i < cand.size(); ++i) {
+        const Vec3 q = cand[i].pointB - origin;
+        p2[i] = Vec2(u.dot(q), w.dot(q));
+    }
+    const std::vector<int> hull = hull2d(p2);
+    for (int i : hull) r.polygon.push_back(cand[i]);
+
+    // Reduction over every candidate, not just the hull: the deepest point may project inside
+    // the footprint (a corner pushed into the ground between its edge crossings) and must be kept.
+    int deepest = 0;
+    for (size_t i = 1; i < cand.size(); ++i)
+        if (cand[i].depth > cand[deepest].depth) deepest = static_cast<int>(i);
+    std::vector<int> chosen;
+    if (options.maxPoints > 0) {
+        chosen = reduceContactPolygon(cand, n, options.maxPoints, traced ? &steps : nullptr);
+    } else {
+        chosen = hull;
+        if (std::find(hull.begin(), hull.end(), deepest) == hull.end()) chosen.push_back(deepest);
+    }
+    for (int i : chosen) r.manifold.push_back(cand[i]);
+
+    return hull;
+}
+
 }  // namespace
 
 bool intersectPolyhedronPlane(const ConvexPolyhedron& body, const Transform& pose, const Plane& plane) {
@@ -125,119 +234,45 @@ PlaneContactResult contactPolyhedronPlane(const ConvexPolyhedron& body, const Tr
 
     // Signed vertex distances s_i.
     const int nv = body.vertexCount();
-    std::vector<Vec3> x(nv);
-    std::vector<double> s(nv);
+    PosedVertices pv{std::vector<Vec3>(nv), std::vector<double>(nv), 0};
     double maxCoord = std::abs(d);
-    int low = 0;
     for (int i = 0; i < nv; ++i) {
-        x[i] = pose.apply(body.position(i));
-        s[i] = n.dot(x[i]) - d;
-        maxCoord = std::max(maxCoord, x[i].cwiseAbs().maxCoeff());
-        if (s[i] < s[low]) low = i;
+        pv.x[i] = pose.apply(body.position(i));
+        pv.s[i] = n.dot(pv.x[i]) - d;
+        maxCoord = std::max(maxCoord, pv.x[i].cwiseAbs().maxCoeff());
+        if (pv.s[i] < pv.s[pv.low]) pv.low = i;
     }
     // Tolerance: the caller's, else relative to the size plus 64 ulps of the coordinates (s_i is
     // n̂ · x - d̂ rounded: ~4 ulps of |x| + |d|; the margin keeps coplanar vertices of a face-on
     // body together at offsets 1e6 x its size).
     const double diag = (body.boundsMax() - body.boundsMin()).norm();
-    r.tolerance = options.tolerance >= 0.0 ? options.tolerance
-                                           : options.relativeTolerance * diag + 64.0 * DBL_EPSILON * maxCoord;
+    r.tolerance = options.tolerance >= 0.0 ? options.tolerance : options.relativeTolerance * diag + ulps(64, maxCoord);
     const double tol = r.tolerance;
-    r.deepestVertex = low;
-    r.signedDistance = s[low];
-    r.depth = std::max(0.0, -s[low]);
-    r.status = s[low] > tol ? PlaneContactStatus::Separated
-             : s[low] >= -tol ? PlaneContactStatus::Touching
-                              : PlaneContactStatus::Penetrating;
+    const double sLow = pv.s[pv.low];
+    r.deepestVertex = pv.low;
+    r.signedDistance = sLow;
+    r.depth = std::max(0.0, -sLow);
+    r.status = sLow > tol ? PlaneContactStatus::Separated
+             : sLow >= -tol ? PlaneContactStatus::Touching
+                            : PlaneContactStatus::Penetrating;
 
-    // Closest / deepest feature: the vertices within tol of s_min.
-    std::vector<int> near;
-    for (int i = 0; i < nv; ++i)
-        if (s[i] <= s[low] + tol) near.push_back(i);
-    const auto inNear = [&](int v) { return std::find(near.begin(), near.end(), v) != near.end(); };
-    int edge = -1;
-    if (near.size() == 1) {
-        r.feature = {FeatureType::Vertex, low};
-        r.featurePoints = {x[low]};
-    } else if (near.size() == 2 && adjacent(body, near[0], near[1], edge)) {
-        r.feature = {FeatureType::Edge, edge};
-        r.featurePoints = {x[near[0]], x[near[1]]};
-    } else {
-        // The support set of -n̂ is a face: one around the lowest vertex holds every near vertex.
-        // If tolerance noise leaves none holding all (e.g. two opposite vertices of a nearly
-        // face-on quad), take the face around it whose normal is most opposite n̂.
-        int face = -1, fallback = -1;
-        double bestAlign = INFINITY;
-        for (int f : body.vertexFaces(low)) {
-            const std::vector<int> fv = body.faceVertices(f);
-            int held = 0;
-            for (int v : near) held += std::find(fv.begin(), fv.end(), v) != fv.end();
-            if (held == static_cast<int>(near.size()) && face < 0) face = f;
-            const double align = pose.rotate(body.face(f).normal).dot(n);
-            if (align < bestAlign) bestAlign = align, fallback = f;
-        }
-        if (face < 0) face = fallback;
-        r.feature = {FeatureType::Face, face};
-        for (int v : body.faceVertices(face))
-            if (inNear(v)) r.featurePoints.push_back(x[v]);
-    }
+    const std::vector<int> near = closestFeature(body, pose, n, pv, tol, r);
     for (const Vec3& p : r.featurePoints) r.featurePointsOnPlane.push_back(p - (n.dot(p) - d) * n);
-
     if (trace) {
         *trace = PlaneContactTrace{};
         trace->unitNormal = n;
         trace->unitOffset = d;
-        trace->worldVertices = x;
-        trace->vertexDistances = s;
+        trace->worldVertices = pv.x;
+        trace->vertexDistances = pv.s;
         trace->featureVertices = near;
     }
     if (!r.colliding()) return r;
 
-    // Contact polygon: submerged (s_i <= tol) vertices and the edge crossings, on the plane.
     std::vector<ContactPoint> cand;
     std::vector<int> candVertex;
-    for (int i = 0; i < nv; ++i) {
-        if (s[i] > tol) continue;
-        cand.push_back({x[i], x[i] - s[i] * n, std::max(0.0, -s[i])});
-        candVertex.push_back(i);
-    }
-    for (int e = 0; e < body.edgeCount(); ++e) {
-        auto [u, v] = body.edgeVertices(e);
-        if (s[u] > s[v]) std::swap(u, v);
-        if (!(s[u] < -tol && s[v] > tol)) continue;
-        // s(t) = s_u + t (s_v - s_u) = 0; both sides are beyond tol, so the division is safe.
-        const double t = s[u] / (s[u] - s[v]);
-        const Vec3 p = x[u] + t * (x[v] - x[u]);
-        cand.push_back({p, p - (n.dot(p) - d) * n, 0.0});
-        candVertex.push_back(-1);
-        if (trace) trace->crossings.push_back({e, u, v, t, p});
-    }
-    // Plane basis (u, w) with u x w = n̂, coordinates relative to the deepest projection (small
-    // numbers at large offsets).
-    const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
-    std::vector<Vec2> p2(cand.size());
-    const Vec3 origin = cand.empty() ? Vec3::Zero() : cand[0].pointB;
-    for (size_t i = 0; i < cand.size(); ++i) {
-        const Vec3 q = cand[i].pointB - origin;
-        p2[i] = Vec2(u.dot(q), w.dot(q));
-    }
-    const std::vector<int> hull = hull2d(p2);
-    for (int i : hull) r.polygon.push_back(cand[i]);
-
-    // Reduction over every candidate, not just the hull: the deepest point may project inside
-    // the footprint (a corner pushed into the ground between its edge crossings) and must be kept.
-    int deepest = 0;
-    for (size_t i = 1; i < cand.size(); ++i)
-        if (cand[i].depth > cand[deepest].depth) deepest = static_cast<int>(i);
+    contactCandidates(body, n, d, pv, tol, cand, candVertex, trace);
     std::vector<ManifoldReductionStep> steps;
-    std::vector<int> chosen;
-    if (options.maxPoints > 0) {
-        chosen = reduceContactPolygon(cand, n, options.maxPoints, trace ? &steps : nullptr);
-    } else {
-        chosen = hull;
-        if (std::find(hull.begin(), hull.end(), deepest) == hull.end()) chosen.push_back(deepest);
-    }
-    for (int i : chosen) r.manifold.push_back(cand[i]);
-
+    const std::vector<int> hull = contactManifold(cand, n, options, r, steps, trace != nullptr);
     if (trace) {
         trace->candidates = cand;
         trace->candidateVertex = candVertex;
