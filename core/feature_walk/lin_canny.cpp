@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "core/closest/closest_point.h"
+#include "core/feature_walk/feature_walk_pair.h"
 
 namespace cdlab {
 
@@ -40,29 +41,9 @@ namespace {
 
 using FT = VClipFeatureType;
 
-double mag(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
-
-std::uint64_t pairKey(const VClipFeature& a, const VClipFeature& b) {
-    const auto code = [](const VClipFeature& f) {
-        return (static_cast<std::uint64_t>(f.type) << 30) | static_cast<std::uint64_t>(static_cast<std::uint32_t>(f.index));
-    };
-    return (code(a) << 32) | code(b);
-}
-
-bool validFeature(const VClipPolyhedron& p, const VClipFeature& f) {
-    const ConvexPolyhedron& m = p.mesh();
-    switch (f.type) {
-        case FT::Vertex: return f.index >= 0 && f.index < m.vertexCount();
-        case FT::Edge: return f.index >= 0 && f.index < m.edgeCount();
-        case FT::Face: return f.index >= 0 && f.index < m.faceCount();
-        case FT::None: break;
-    }
-    return false;
-}
-
-bool finitePose(const Transform& t) {
-    return t.position.allFinite() && t.rotation.coeffs().allFinite() && t.rotation.norm() > 0.0;
-}
+using feature_walk::finitePose;
+using feature_walk::maxAbs;
+using feature_walk::validFeature;
 
 ContactType pairType(const VClipFeature& a, const VClipFeature& b) {
     const int lo = std::min(a.dimension(), b.dimension()), hi = std::max(a.dimension(), b.dimension());
@@ -81,13 +62,7 @@ struct Outcome {
     std::string rule;
 };
 
-struct Walk {
-    const VClipPolyhedron* P[2];
-    const ConvexPolyhedron* M[2];
-    Transform pose[2];
-    Mat3 R[2];  // R[i], T[i]: body i frame -> frame of body 1 - i
-    Vec3 T[2];
-    VClipFeature X[2];
+struct Walk : feature_walk::WalkPair {
     double eps = 0.0;    // applicability slack, absolute (options.applicability * scale)
     double touch = 0.0;  // touching distance, absolute
     bool insideTest = false;
@@ -98,11 +73,9 @@ struct Walk {
     Vec3 p[2];
     double distance = 0.0;
 
-    Vec3 toFrame(int from, const Vec3& x) const { return R[from] * x + T[from]; }
     // Body-i point in A's frame.
     Vec3 inA(int i, const Vec3& x) const { return i == 0 ? x : toFrame(1, x); }
     Vec3 world(int i, const Vec3& x) const { return pose[i].apply(x); }
-    const Vec3& pos(int i, int v) const { return M[i]->position(v); }
 
     void polygon(int i, int f, std::vector<Vec3>& out) const {
         out.clear();
@@ -210,13 +183,13 @@ struct Walk {
         } else {
             for (int i : poly.facePlanes(owner.index)) test(i);
         }
-        const char* point = r == 0 ? "pB" : "pA";
+        const char* point = r == 0 ? "pB" : "pA";  // rules are text for the trace only
         if (worst >= 0) {
             const VClipPlane& pl = poly.plane(worst);
             out.kind = VClipStepKind::Update;
             out.body = r;
             out.to = owner.type == FT::Edge ? pl.other : pl.edge;
-            out.rule = std::string(point) + " violates " + (pl.other.type == FT::Vertex ? "VE(" : "FE(") +
+            if (ts) out.rule = std::string(point) + " violates " + (pl.other.type == FT::Vertex ? "VE(" : "FE(") +
                        nameOf(pl.edge) + " | " + nameOf(pl.other) + ")";
             markMaximal();
             return true;
@@ -248,14 +221,14 @@ struct Walk {
             out.body = r;
             out.to = VClipFeature::face(bestFace);
             out.localMin = true;
-            out.rule = std::string("local minimum: ") + point + " behind " + nameOf(owner) + ", farthest in front of F" +
+            if (ts) out.rule = std::string("local minimum: ") + point + " behind " + nameOf(owner) + ", farthest in front of F" +
                        std::to_string(bestFace);
             return true;
         }
         out.kind = VClipStepKind::Penetration;
         out.body = r;
         out.penetration = LinCannyPenetration::PointInside;
-        out.rule = std::string(point) + " behind every face plane of " + (r == 0 ? "A" : "B");
+        if (ts) out.rule = std::string(point) + " behind every face plane of " + (r == 0 ? "A" : "B");
         return true;
     }
 
@@ -265,19 +238,86 @@ struct Walk {
         if (distance <= touch) {
             out.kind = VClipStepKind::Penetration;
             out.penetration = LinCannyPenetration::FeaturesMeet;
-            out.rule = "features meet";
+            if (ts) out.rule = "features meet";
             return out;
         }
         if (applicability(0, p[1], out)) return out;
         if (applicability(1, toFrame(0, p[0]), out)) return out;
         out.kind = VClipStepKind::Done;
-        out.rule = "pA in VR(XB) and pB in VR(XA)";
+        if (ts) out.rule = "pA in VR(XB) and pB in VR(XA)";
         return out;
     }
 };
 
 }  // namespace
 
+namespace {
+
+// The trace step of the pair before it moves: the state, the features in world space.
+LinCannyTraceStep* beginTraceStep(LinCannyTrace* trace, const Walk& w, int step) {
+    if (!trace) return nullptr;
+    LinCannyTraceStep* ts = &trace->steps.emplace_back();
+    ts->step = step;
+    ts->state = pairType(w.X[0], w.X[1]);
+    ts->featureA = w.X[0];
+    ts->featureB = w.X[1];
+    ts->featureAWorld = featureGeometry(*w.P[0], w.pose[0], w.X[0]);
+    ts->featureBWorld = featureGeometry(*w.P[1], w.pose[1], w.X[1]);
+    return ts;
+}
+
+// What the step decided and the closest points it found.
+void recordOutcome(LinCannyTraceStep* ts, const Walk& w, const Outcome& out) {
+    if (!ts) return;
+    ts->closestA = w.world(0, w.p[0]);
+    ts->closestB = w.world(0, w.p[1]);
+    ts->distanceBefore = ts->distanceAfter = w.distance;
+    ts->kind = out.kind;
+    ts->rule = out.rule;
+    ts->localMinimum = out.localMin;
+}
+
+// The distance after an update and its sign of change. Equal in exact arithmetic can differ by
+// rounding: 1e-12 of the bodies' size.
+void recordUpdate(LinCannyTraceStep* ts, Walk& w, const Outcome& out, const VClipFeature& from, double extent) {
+    if (!ts) return;
+    ts->updatedBody = out.body;
+    ts->from = from;
+    ts->to = out.to;
+    const double before = w.distance;
+    w.closest();
+    ts->distanceAfter = w.distance;
+    const double tol = 1e-12 * (extent + before);
+    const double diff = ts->distanceAfter - before;
+    ts->distanceChange = diff > tol ? 1 : diff < -tol ? -1 : 0;
+}
+
+// The answer when the walk stops: separated at the closest points, or penetrating.
+void finalAnswer(const Walk& w, const Outcome& out, LinCannyResult& res) {
+    const Vec3 pa = w.world(0, w.p[0]), pb = w.world(0, w.p[1]);
+    if (out.kind == VClipStepKind::Done) {
+        res.distance = w.distance;
+        res.pointA = pa;
+        res.pointB = pb;
+        // From the A-frame difference: world points far from the origin lose digits.
+        res.normal = w.pose[0].rotate(w.p[1] - w.p[0]) / w.distance;
+        return;
+    }
+    res.intersect = true;
+    res.penetration = out.penetration;
+    if (out.penetration == LinCannyPenetration::FeaturesMeet) {
+        res.pointA = res.pointB = 0.5 * (pa + pb);
+    } else {
+        // PointInside: the tested point was B's (A's region failed first) or A's.
+        res.pointA = res.pointB = out.body == 0 ? pb : pa;
+    }
+}
+
+}  // namespace
+
+// Lin and Canny, "A fast algorithm for incremental distance calculation" (ICRA 1991), Lin's
+// thesis (1993) §3: walk the pair of closest features, each step moving one feature to a
+// neighbour whose Voronoi region the other body's closest point violates.
 LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const VClipPolyhedron& b,
                         const Transform& poseB, LinCannyCache* cache, const LinCannyOptions& options,
                         LinCannyTrace* trace) {
@@ -293,29 +333,13 @@ LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const 
     if (!finitePose(poseA) || !finitePose(poseB)) return finish(LinCannyStatus::InvalidInput, "lin_canny: non-finite pose");
 
     Walk w;
-    w.P[0] = &a;
-    w.P[1] = &b;
-    w.M[0] = &a.mesh();
-    w.M[1] = &b.mesh();
-    w.pose[0] = poseA;
-    w.pose[1] = poseB;
-    w.pose[0].rotation.normalize();
-    w.pose[1].rotation.normalize();
-    const Mat3 ra = w.pose[0].rotation.toRotationMatrix(), rb = w.pose[1].rotation.toRotationMatrix();
-    // B -> A: x_A = RA^T (RB x_B + pB - pA); A -> B is its inverse.
-    w.R[1] = ra.transpose() * rb;
-    w.T[1] = ra.transpose() * (w.pose[1].position - w.pose[0].position);
-    w.R[0] = w.R[1].transpose();
-    w.T[0] = -(w.R[0] * w.T[1]);
+    w.setup(a, poseA, b, poseB);
     // Scale: largest coordinate magnitude met in A's frame (B's bounds shifted by its offset).
-    const double scale = std::max({mag(a.mesh().boundsMin()), mag(a.mesh().boundsMax()),
-                                   mag(b.mesh().boundsMin()) + mag(b.mesh().boundsMax()) + mag(w.T[1])});
+    const double scale = std::max({maxAbs(a.mesh().boundsMin()), maxAbs(a.mesh().boundsMax()),
+                                   maxAbs(b.mesh().boundsMin()) + maxAbs(b.mesh().boundsMax()) + maxAbs(w.T[1])});
     w.eps = options.applicability * scale;
     w.touch = options.touching * scale;
     w.insideTest = options.insideTest;
-
-    w.X[0] = VClipFeature::vertex(0);
-    w.X[1] = VClipFeature::vertex(0);
     if (cache && validFeature(a, cache->a) && validFeature(b, cache->b)) {
         w.X[0] = cache->a;
         w.X[1] = cache->b;
@@ -323,9 +347,7 @@ LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const 
 
     const long long bound = static_cast<long long>(a.featureCount()) * b.featureCount();
     const long long maxSteps = options.maxSteps > 0 ? options.maxSteps : bound;
-    // Brent's cycle detection: `tortoise` is the pair at the last power-of-two checkpoint.
-    std::uint64_t tortoise = pairKey(w.X[0], w.X[1]);
-    long long power = 1, lambda = 0;
+    feature_walk::FeaturePairCycle cycle(w.X[0], w.X[1]);
     const double extent = std::max((a.mesh().boundsMax() - a.mesh().boundsMin()).norm(),
                                    (b.mesh().boundsMax() - b.mesh().boundsMin()).norm());
 
@@ -336,87 +358,31 @@ LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const 
         if (cache) *cache = LinCannyCache{w.X[0], w.X[1]};
         if (steps >= maxSteps)
             return finish(LinCannyStatus::StepLimit, "lin_canny: step limit " + std::to_string(maxSteps) + " reached");
-        LinCannyTraceStep* ts = nullptr;
-        if (trace) {
-            trace->steps.emplace_back();
-            ts = &trace->steps.back();
-            ts->step = steps;
-            ts->state = pairType(w.X[0], w.X[1]);
-            ts->featureA = w.X[0];
-            ts->featureB = w.X[1];
-            ts->featureAWorld = featureGeometry(a, w.pose[0], w.X[0]);
-            ts->featureBWorld = featureGeometry(b, w.pose[1], w.X[1]);
-        }
+        LinCannyTraceStep* ts = beginTraceStep(trace, w, steps);
         w.ts = ts;
         const Outcome out = w.step();
-        if (ts) {
-            ts->closestA = w.world(0, w.p[0]);
-            ts->closestB = w.world(0, w.p[1]);
-            ts->distanceBefore = ts->distanceAfter = w.distance;
-            ts->kind = out.kind;
-            ts->rule = out.rule;
-            ts->localMinimum = out.localMin;
+        recordOutcome(ts, w, out);
+        if (out.kind != VClipStepKind::Update) {  // Done or Penetration
+            finalAnswer(w, out, res);
+            return finish(res.intersect ? LinCannyStatus::Penetrating : LinCannyStatus::Separated, "");
         }
-        if (out.kind == VClipStepKind::Update) {
-            if (ts) {
-                ts->updatedBody = out.body;
-                ts->from = w.X[out.body];
-                ts->to = out.to;
+        const VClipFeature from = w.X[out.body];
+        w.X[out.body] = out.to;
+        recordUpdate(ts, w, out, from, extent);
+        if (options.detectCycles && cycle.repeats(w.X[0], w.X[1])) {
+            res.steps = steps + 1;
+            res.featureA = w.X[0];
+            res.featureB = w.X[1];
+            res.cycleLength = static_cast<int>(cycle.cycleLength());
+            if (cache) *cache = LinCannyCache{w.X[0], w.X[1]};
+            if (trace) {
+                trace->cycleLength = res.cycleLength;
+                trace->steps.back().kind = VClipStepKind::Aborted;
             }
-            w.X[out.body] = out.to;
-            if (ts) {
-                const double before = w.distance;
-                w.closest();
-                ts->distanceAfter = w.distance;
-                // Equal in exact arithmetic can differ by rounding: 1e-12 of the bodies' size.
-                const double tol = 1e-12 * (extent + before);
-                const double diff = ts->distanceAfter - before;
-                ts->distanceChange = diff > tol ? 1 : diff < -tol ? -1 : 0;
-            }
-            if (options.detectCycles) {
-                ++lambda;
-                const std::uint64_t key = pairKey(w.X[0], w.X[1]);
-                if (key == tortoise) {
-                    res.steps = steps + 1;
-                    res.featureA = w.X[0];
-                    res.featureB = w.X[1];
-                    res.cycleLength = static_cast<int>(lambda);
-                    if (cache) *cache = LinCannyCache{w.X[0], w.X[1]};
-                    if (trace) {
-                        trace->cycleLength = res.cycleLength;
-                        trace->steps.back().kind = VClipStepKind::Aborted;
-                    }
-                    return finish(LinCannyStatus::CycleDetected,
-                                  "lin_canny: cycle of " + std::to_string(lambda) + " feature pairs through " +
-                                      nameOf(w.X[0]) + "/" + nameOf(w.X[1]) + " (penetrating?)");
-                }
-                if (lambda == power) {
-                    tortoise = key;
-                    power *= 2;
-                    lambda = 0;
-                }
-            }
-            continue;
+            return finish(LinCannyStatus::CycleDetected, "lin_canny: cycle of " + std::to_string(cycle.cycleLength()) +
+                                                             " feature pairs through " + nameOf(w.X[0]) + "/" +
+                                                             nameOf(w.X[1]) + " (penetrating?)");
         }
-        // Done or Penetration.
-        const Vec3 pa = w.world(0, w.p[0]), pb = w.world(0, w.p[1]);
-        if (out.kind == VClipStepKind::Done) {
-            res.distance = w.distance;
-            res.pointA = pa;
-            res.pointB = pb;
-            // From the A-frame difference: world points far from the origin lose digits.
-            res.normal = w.pose[0].rotate(w.p[1] - w.p[0]) / w.distance;
-            return finish(LinCannyStatus::Separated, "");
-        }
-        res.intersect = true;
-        res.penetration = out.penetration;
-        if (out.penetration == LinCannyPenetration::FeaturesMeet) {
-            res.pointA = res.pointB = 0.5 * (pa + pb);
-        } else {
-            // PointInside: the tested point was B's (A's region failed first) or A's.
-            res.pointA = res.pointB = out.body == 0 ? pb : pa;
-        }
-        return finish(LinCannyStatus::Penetrating, "");
     }
 }
 

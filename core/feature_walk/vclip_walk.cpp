@@ -7,9 +7,10 @@
 // paper, so world offsets never enter a plane test. Region distances are positive INSIDE the
 // region. An edge is e(l) = tail + l (head - tail), l in [0, 1].
 //
-// Numerics (no epsilon anywhere in the walk): every branch takes the sign of a plane distance or
-// of a derivative computed in double; regions are closed (distance 0 = inside), so every point is
-// in at least one region and ties go to the current feature (no update). Distances that are
+// Numerics: every branch takes the sign of a plane distance or of a derivative computed in double;
+// plane tests use no tolerance, derivatives and distances a rounding floor only (kRound below: a
+// value below the rounding of its coordinates has no sign). Regions are closed (distance 0 =
+// inside), so every point is in at least one region and ties go to the current feature (no update). Distances that are
 // exactly 0 at a clip point or a DONE pair are reported as touching (Penetrating). The walk is
 // kept monotone (see below), which makes it terminate in exact arithmetic; the repeated-pair
 // detector and the step bound only guard against rounding and never fire in the test suite.
@@ -32,6 +33,8 @@
 #include <limits>
 
 #include "core/closest/closest_point.h"
+#include "core/base/tolerances.h"
+#include "core/feature_walk/feature_walk_pair.h"
 #include "core/feature_walk/vclip.h"
 
 namespace cdlab {
@@ -41,17 +44,19 @@ using FT = VClipFeatureType;
 
 // Rounding floor of a value computed in double from coordinates of magnitude m (max-norm): the
 // point mapping between frames and one dot product make <= 6 roundings of size ulp(m), so
-// 16 DBL_EPSILON * m bounds their error with margin. A derivative, a plane distance difference or
+// 16 ulps of m (kRound * m) bound their error with margin. A derivative, a plane distance difference or
 // a distance below its floor has no sign determined by the inputs (it depends on the order of
 // operations) and is treated as 0: for a derivative that is the tie of two closed regions (the
 // current feature stays), for a distance it is contact. Without this, a derivative of pure noise
 // (an edge parallel to a face to rounding) can send E-E -> E-F -> E-E with equal distances
 // (found by the 642-vertex sphere test). Plane tests need no floor: each plane is stored once,
 // so both regions read the same double and can never both claim or both reject a point.
-constexpr double kRound = 16.0 * std::numeric_limits<double>::epsilon();
+constexpr double kRound = 16.0 * kMachineEpsilon;
 
 int signAbove(double x, double floor) { return x > floor ? 1 : (x < -floor ? -1 : 0); }
-double mag(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
+using feature_walk::finitePose;
+using feature_walk::maxAbs;
+using feature_walk::validFeature;
 
 struct Outcome {
     VClipStepKind kind = VClipStepKind::Done;
@@ -107,18 +112,9 @@ struct PairClosest {
     double distance = 0.0;
 };
 
-struct Walk {
-    const VClipPolyhedron* P[2];
-    const ConvexPolyhedron* M[2];
-    Transform pose[2];
-    Mat3 R[2];  // R[i], T[i]: body i frame -> frame of body 1 - i
-    Vec3 T[2];
-    Mat3 Rw[2];  // rotation of pose[i] as a matrix (world mapping without quaternion products)
-    VClipFeature X[2];
+struct Walk : feature_walk::WalkPair {
     VClipTraceStep* ts = nullptr;
 
-    Vec3 toFrame(int from, const Vec3& x) const { return R[from] * x + T[from]; }
-    const Vec3& pos(int i, int v) const { return M[i]->position(v); }
     Vec3 world(int i, const Vec3& x) const { return Rw[i] * x + pose[i].position; }
     VClipFeature neighborOf(int r, int plane, const VClipFeature& owner) const {
         const VClipPlane& pl = P[r]->plane(plane);
@@ -230,15 +226,15 @@ struct Walk {
         if (pl.other.type == FT::Vertex) {
             const Vec3& v = pos(r, pl.other.index);
             const Vec3 d = e - v;
-            const double m = mag(e) + mag(v);
-            onFeature = mag(d) <= kRound * m;
-            return signAbove(u.dot(d), 3.0 * kRound * mag(u) * m);
+            const double m = maxAbs(e) + maxAbs(v);
+            onFeature = maxAbs(d) <= kRound * m;
+            return signAbove(u.dot(d), 3.0 * kRound * maxAbs(u) * m);
         }
         const int f = pl.other.index;
         const double hf = M[r]->planeDistance(f, e);
-        const double floorH = kRound * (mag(e) + std::abs(M[r]->face(f).offset));
+        const double floorH = kRound * (maxAbs(e) + std::abs(M[r]->face(f).offset));
         onFeature = std::abs(hf) <= floorH;
-        return signAbove(hf, floorH) * signAbove(u.dot(M[r]->face(f).normal), 3.0 * kRound * mag(u));
+        return signAbove(hf, floorH) * signAbove(u.dot(M[r]->face(f).normal), 3.0 * kRound * maxAbs(u));
     }
 
     // --- nearest boundary feature of a face (O(|F|)) ---------------------------------------
@@ -362,7 +358,7 @@ struct Walk {
         if (worst >= 0)
             return update(fb, nearestBoundaryFeature(fb, f, p, nullptr), "V outside VR(F): F -> its boundary feature nearest to V");
         const double hv = M[fb]->planeDistance(f, p);
-        const double floorV = kRound * (mag(p) + std::abs(M[fb]->face(f).offset));
+        const double floorV = kRound * (maxAbs(p) + std::abs(M[fb]->face(f).offset));
         if (std::abs(hv) <= floorV) return penetration(VClipPenetration::Touching, fb, p, "V lies on F");
         // An edge of V leading towards F's plane (|h| decreases along it) is closer: V -> edge.
         const int start = M[vb]->vertex(v).halfEdge;
@@ -372,7 +368,7 @@ struct Walk {
             const Vec3 pw = toFrame(vb, pos(vb, w));
             const double hw = M[fb]->planeDistance(f, pw);
             // |h| must drop by more than the rounding of the two plane distances.
-            const double floorW = 2.0 * floorV + kRound * mag(pw);
+            const double floorW = 2.0 * floorV + kRound * maxAbs(pw);
             if ((hv > 0.0 && hw < hv - floorW) || (hv < 0.0 && hw > hv + floorW))
                 return update(vb, VClipFeature::edge(M[vb]->halfEdge(he).edge), "an edge of V points towards F: V -> that edge");
             he = M[vb]->halfEdge(M[vb]->halfEdge(he).prev).twin;
@@ -400,7 +396,7 @@ struct Walk {
             t.testedPoint = world(fb, p);
             ts->planes.push_back(t);
         }
-        if (dmax <= kRound * (mag(p) + std::abs(M[fb]->face(best).offset))) return penetration(VClipPenetration::LocalMinimum, fb, p, "local minimum with dmax <= 0: V inside");
+        if (dmax <= kRound * (maxAbs(p) + std::abs(M[fb]->face(best).offset))) return penetration(VClipPenetration::LocalMinimum, fb, p, "local minimum with dmax <= 0: V inside");
         return update(fb, VClipFeature::face(best), "local minimum: F -> the face V is farthest above", true);
     }
 
@@ -486,14 +482,14 @@ struct Walk {
         const Vec3 u = h - t;
         const Vec3 emin = t + c.lmin * u, emax = t + c.lmax * u;
         const double hmin = M[fb]->planeDistance(f, emin), hmax = M[fb]->planeDistance(f, emax);
-        const double floorH = kRound * (std::max(mag(emin), mag(emax)) + std::abs(M[fb]->face(f).offset));
+        const double floorH = kRound * (std::max(maxAbs(emin), maxAbs(emax)) + std::abs(M[fb]->face(f).offset));
         if (std::abs(hmin) <= floorH || std::abs(hmax) <= floorH || (hmin > 0.0) != (hmax > 0.0)) {
             // The clipped edge crosses (or touches) F's plane inside VR(F): it meets F.
             const double w = hmin == hmax ? 0.0 : hmin / (hmin - hmax);
             return penetration(VClipPenetration::EdgePiercesFace, fb, emin + w * (emax - emin), "E pierces F");
         }
         // Both clipped ends on one side: the distance to F is |h| there, linear in l.
-        const int s = signAbove(hmin, floorH) * signAbove(u.dot(M[fb]->face(f).normal), 3.0 * kRound * mag(u));
+        const int s = signAbove(hmin, floorH) * signAbove(u.dot(M[fb]->face(f).normal), 3.0 * kRound * maxAbs(u));
         setDerivatives(s, s);
         if (s > 0) {
             if (c.nmin.valid())
@@ -620,22 +616,78 @@ struct Walk {
     }
 };
 
-bool validFeature(const VClipPolyhedron& p, const VClipFeature& f) {
-    switch (f.type) {
-        case FT::Vertex: return f.index >= 0 && f.index < p.mesh().vertexCount();
-        case FT::Edge: return f.index >= 0 && f.index < p.mesh().edgeCount();
-        case FT::Face: return f.index >= 0 && f.index < p.mesh().faceCount();
-        case FT::None: break;
-    }
-    return false;
+}  // namespace
+
+namespace {
+
+// The trace step of the pair before it moves: the state, the features and their closest points.
+VClipTraceStep* beginTraceStep(VClipTrace* trace, const Walk& w, int step) {
+    if (!trace) return nullptr;
+    VClipTraceStep* ts = &trace->steps.emplace_back();
+    ts->step = step;
+    const FT ta = w.X[0].type, tb = w.X[1].type;
+    const int lo = std::min(static_cast<int>(ta), static_cast<int>(tb)), hi = std::max(static_cast<int>(ta), static_cast<int>(tb));
+    ts->state = lo == 1 ? (hi == 1 ? VClipState::VertexVertex : hi == 2 ? VClipState::VertexEdge : VClipState::VertexFace)
+                        : (hi == 2 ? VClipState::EdgeEdge : VClipState::EdgeFace);
+    ts->featureA = w.X[0];
+    ts->featureB = w.X[1];
+    ts->featureAWorld = featureGeometry(*w.P[0], w.pose[0], w.X[0]);
+    ts->featureBWorld = featureGeometry(*w.P[1], w.pose[1], w.X[1]);
+    int frame = 0;
+    const PairClosest pc = w.closest(w.X[0], w.X[1], frame);
+    ts->closestA = w.world(frame, pc.p[0]);
+    ts->closestB = w.world(frame, pc.p[1]);
+    ts->distanceBefore = ts->distanceAfter = pc.distance;
+    return ts;
 }
 
-bool finitePose(const Transform& t) {
-    return t.position.allFinite() && t.rotation.coeffs().allFinite() && t.rotation.norm() > 0.0;
+// The distance after an update and its sign of change. Equal in exact arithmetic, computed by
+// different formulas: allow rounding of ~1e-12 of the size of the bodies (formula errors are
+// ~1e-15 of it).
+void recordUpdate(VClipTraceStep* ts, const Walk& w, const Outcome& out, const VClipFeature& from, double extent) {
+    if (!ts) return;
+    ts->updatedBody = out.body;
+    ts->from = from;
+    ts->to = out.to;
+    int frame = 0;
+    ts->distanceAfter = w.closest(w.X[0], w.X[1], frame).distance;
+    const double tol = 1e-12 * (extent + ts->distanceBefore);
+    const double diff = ts->distanceAfter - ts->distanceBefore;
+    ts->distanceChange = diff > tol ? 1 : diff < -tol ? -1 : 0;
+}
+
+// The answer when the walk stops: penetrating, touching (DONE at a distance below the rounding of
+// the features' coordinates) or separated at the closest points.
+void finalAnswer(const Walk& w, const Outcome& out, VClipTraceStep* ts, VClipResult& res) {
+    if (out.kind == VClipStepKind::Penetration) {
+        res.status = VClipStatus::Penetrating;
+        res.penetration = out.penetration;
+        res.intersect = true;
+        res.distance = 0.0;
+        res.pointA = res.pointB = w.world(out.pointBody, out.point);
+        return;
+    }
+    int frame = 0;
+    const PairClosest pc = w.closest(w.X[0], w.X[1], frame);
+    if (pc.distance <= kRound * (maxAbs(pc.p[0]) + maxAbs(pc.p[1]))) {
+        res.status = VClipStatus::Penetrating;
+        res.penetration = VClipPenetration::Touching;
+        res.intersect = true;
+        res.pointA = res.pointB = w.world(frame, pc.p[0]);
+        if (ts) ts->kind = VClipStepKind::Penetration;
+    } else {
+        res.status = VClipStatus::Separated;
+        res.distance = pc.distance;
+        res.pointA = w.world(frame, pc.p[0]);
+        res.pointB = w.world(frame, pc.p[1]);
+        res.normal = w.Rw[frame] * ((pc.p[1] - pc.p[0]) / pc.distance);
+    }
 }
 
 }  // namespace
 
+// Mirtich 1998 (see the top of this file): from the seed pair, apply the state's update rule
+// until it reports DONE or penetration; a repeated pair or the step bound stops a rounding loop.
 VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipPolyhedron& b, const Transform& poseB,
                   VClipCache* cache, const VClipOptions& options, VClipTrace* trace) {
     VClipResult res;
@@ -650,28 +702,9 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
     if (!finitePose(poseA) || !finitePose(poseB)) return fail(VClipStatus::InvalidInput, "vclip: non-finite pose");
 
     Walk w;
-    w.P[0] = &a;
-    w.P[1] = &b;
-    w.M[0] = &a.mesh();
-    w.M[1] = &b.mesh();
-    w.pose[0] = poseA;
-    w.pose[1] = poseB;
-    w.pose[0].rotation.normalize();
-    w.pose[1].rotation.normalize();
-    w.Rw[0] = w.pose[0].rotation.toRotationMatrix();
-    w.Rw[1] = w.pose[1].rotation.toRotationMatrix();
-    const Mat3& ra = w.Rw[0];
-    const Mat3& rb = w.Rw[1];
-    // B -> A: x_A = RA^T (RB x_B + pB - pA); A -> B is its inverse.
-    w.R[1] = ra.transpose() * rb;
-    w.T[1] = ra.transpose() * (w.pose[1].position - w.pose[0].position);
-    w.R[0] = w.R[1].transpose();
-    w.T[0] = -(w.R[0] * w.T[1]);
-
+    w.setup(a, poseA, b, poseB);
     // Seed: the cached pair if valid, else vertex 0 of each. F-F is never a state: B's face is
     // replaced by one of its vertices.
-    w.X[0] = VClipFeature::vertex(0);
-    w.X[1] = VClipFeature::vertex(0);
     if (cache && validFeature(a, cache->a) && validFeature(b, cache->b)) {
         w.X[0] = cache->a;
         w.X[1] = cache->b;
@@ -681,14 +714,7 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
 
     const long long bound = static_cast<long long>(a.featureCount()) * b.featureCount();
     const long long maxSteps = options.maxSteps > 0 ? options.maxSteps : bound;
-    // Repeated-pair detector: Brent's cycle finding (R. P. Brent, "An improved Monte Carlo
-    // factorization algorithm", BIT 20, 1980). A step is a pure function of the feature pair (the
-    // poses are fixed), so one repeated pair means an endless cycle. Comparing each pair with one
-    // saved pair, re-saved at steps 0, 1, 3, 7, 15, ..., finds any cycle within about twice
-    // (steps before it + its length): O(1) time and memory per step.
-    VClipFeature savedA, savedB;
-    long long nextSave = 1;
-
+    feature_walk::FeaturePairCycle cycle(w.X[0], w.X[1]);
     double extent = 0.0;  // trace only: scale for "equal" distances
     if (trace)
         extent = std::max((a.mesh().boundsMax() - a.mesh().boundsMin()).norm(), (b.mesh().boundsMax() - b.mesh().boundsMin()).norm());
@@ -697,41 +723,16 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
         res.steps = steps;
         res.featureA = w.X[0];
         res.featureB = w.X[1];
-        if (options.detectCycles) {
-            if (steps > 0 && w.X[0] == savedA && w.X[1] == savedB) {
-                if (cache) *cache = VClipCache{w.X[0], w.X[1]};
-                if (trace && !trace->steps.empty()) trace->steps.back().kind = VClipStepKind::Aborted;
-                return fail(VClipStatus::CycleDetected, "vclip: feature pair " + nameOf(w.X[0]) + "/" + nameOf(w.X[1]) + " repeated");
-            }
-            if (steps == nextSave - 1) {
-                savedA = w.X[0];
-                savedB = w.X[1];
-                nextSave *= 2;
-            }
+        if (options.detectCycles && steps > 0 && cycle.repeats(w.X[0], w.X[1])) {
+            if (cache) *cache = VClipCache{w.X[0], w.X[1]};
+            if (trace && !trace->steps.empty()) trace->steps.back().kind = VClipStepKind::Aborted;
+            return fail(VClipStatus::CycleDetected, "vclip: feature pair " + nameOf(w.X[0]) + "/" + nameOf(w.X[1]) + " repeated");
         }
         if (steps >= maxSteps) {
             if (cache) *cache = VClipCache{w.X[0], w.X[1]};
             return fail(VClipStatus::StepLimit, "vclip: step limit " + std::to_string(maxSteps) + " reached");
         }
-        VClipTraceStep* ts = nullptr;
-        if (trace) {
-            trace->steps.emplace_back();
-            ts = &trace->steps.back();
-            ts->step = steps;
-            const FT ta = w.X[0].type, tb = w.X[1].type;
-            const int lo = std::min(static_cast<int>(ta), static_cast<int>(tb)), hi = std::max(static_cast<int>(ta), static_cast<int>(tb));
-            ts->state = lo == 1 ? (hi == 1 ? VClipState::VertexVertex : hi == 2 ? VClipState::VertexEdge : VClipState::VertexFace)
-                                : (hi == 2 ? VClipState::EdgeEdge : VClipState::EdgeFace);
-            ts->featureA = w.X[0];
-            ts->featureB = w.X[1];
-            ts->featureAWorld = featureGeometry(a, w.pose[0], w.X[0]);
-            ts->featureBWorld = featureGeometry(b, w.pose[1], w.X[1]);
-            int frame = 0;
-            const PairClosest pc = w.closest(w.X[0], w.X[1], frame);
-            ts->closestA = w.world(frame, pc.p[0]);
-            ts->closestB = w.world(frame, pc.p[1]);
-            ts->distanceBefore = ts->distanceAfter = pc.distance;
-        }
+        VClipTraceStep* ts = beginTraceStep(trace, w, steps);
         w.ts = ts;
         const Outcome out = w.step();
         if (ts) {
@@ -740,51 +741,13 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
             ts->localMinimum = out.localMin;
         }
         if (out.kind == VClipStepKind::Update) {
-            if (ts) {
-                ts->updatedBody = out.body;
-                ts->from = w.X[out.body];
-                ts->to = out.to;
-            }
+            const VClipFeature from = w.X[out.body];
             w.X[out.body] = out.to;
-            if (ts) {
-                int frame = 0;
-                ts->distanceAfter = w.closest(w.X[0], w.X[1], frame).distance;
-                // Equal in exact arithmetic, computed by different formulas: allow rounding of
-                // ~1e-12 of the size of the bodies (formula errors are ~1e-15 of it).
-                const double tol = 1e-12 * (extent + ts->distanceBefore);
-                const double diff = ts->distanceAfter - ts->distanceBefore;
-                ts->distanceChange = diff > tol ? 1 : diff < -tol ? -1 : 0;
-            }
+            recordUpdate(ts, w, out, from, extent);
             continue;
         }
-        res.steps = steps;
-        res.featureA = w.X[0];
-        res.featureB = w.X[1];
         if (cache) *cache = VClipCache{w.X[0], w.X[1]};
-        if (out.kind == VClipStepKind::Penetration) {
-            res.status = VClipStatus::Penetrating;
-            res.penetration = out.penetration;
-            res.intersect = true;
-            res.distance = 0.0;
-            res.pointA = res.pointB = w.world(out.pointBody, out.point);
-        } else {
-            int frame = 0;
-            const PairClosest pc = w.closest(w.X[0], w.X[1], frame);
-            // DONE at a distance below the rounding of the features' coordinates: contact.
-            if (pc.distance <= kRound * (mag(pc.p[0]) + mag(pc.p[1]))) {
-                res.status = VClipStatus::Penetrating;
-                res.penetration = VClipPenetration::Touching;
-                res.intersect = true;
-                res.pointA = res.pointB = w.world(frame, pc.p[0]);
-                if (ts) ts->kind = VClipStepKind::Penetration;
-            } else {
-                res.status = VClipStatus::Separated;
-                res.distance = pc.distance;
-                res.pointA = w.world(frame, pc.p[0]);
-                res.pointB = w.world(frame, pc.p[1]);
-                res.normal = w.Rw[frame] * ((pc.p[1] - pc.p[0]) / pc.distance);
-            }
-        }
+        finalAnswer(w, out, ts, res);
         if (trace) trace->status = res.status;
         return res;
     }
