@@ -306,309 +306,331 @@ void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir)
     }
 }
 
-/// The query rows (section "queries"): closest point, GJK distance / intersect, GJK+EPA, SAT on
-/// polytopes, boxes, capsules, float-rounded input and spheres, appended to rows.
-void runQueryRows(const Settings& settings, std::vector<Row>& rows)
+// Peers (libccd, Bullet) on the same pairs, each row's time relative to cdlab's row `reference`.
+void peerRows(const Settings& settings, std::vector<Row>& rows, const std::string& query, const std::string& input,
+              const std::vector<const PolyPair*>& set, size_t reference,
+              const std::function<double(int, const Answer&)>& error, bool boolean)
+{
+#ifdef CDLAB_BENCH_PEERS
+    std::vector<PeerPair> peerPairs;
+    for (const PolyPair* p : set) peerPairs.push_back({&p->va, &p->vb, &p->a, &p->b});
+    for (const PeerRunner& peer : makePeerRunners(peerPairs, query)) {
+        Row row = measure(
+            settings, query, input, peer.method, static_cast<int>(set.size()),
+            [&](int i) {
+                const PeerAnswer a = peer.run(i);
+                return Answer{a.value, a.iterations};
+            },
+            error, boolean);
+        // Ratio of the fastest repetitions: on a shared machine the minimum is the time least
+        // disturbed by other processes (medians are reported too).
+        row.ratio = row.nsMin / rows[reference].nsMin;
+        rows.push_back(row);
+    }
+#else
+    (void)settings, (void)rows, (void)query, (void)input, (void)set, (void)reference, (void)error, (void)boolean;
+#endif
+}
+
+// Closest point on triangle / tetrahedron against the long-double oracle.
+void benchClosestPoint(const Settings& settings, std::vector<Row>& rows)
+{
+    const bool quick = settings.quick;
+    std::cerr << "cdlab bench: closest point\n";
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    auto rp = [&] { return Vec3(u(rng), u(rng), u(rng)); };
+    const int n = quick ? 2000 : 10000;
+    std::vector<Vec3> points;
+    std::vector<Triangle> tris;
+    std::vector<Tetrahedron> tets;
+    std::vector<double> triOracle, tetOracle;
+    for (int i = 0; i < n; ++i) {
+        points.push_back(2.0 * rp());
+        tris.push_back({rp(), rp(), rp()});
+        tets.push_back({rp(), rp(), rp(), rp()});
+        triOracle.push_back(oracleDistanceToTriangle(points[i], tris[i]));
+        tetOracle.push_back(oracleDistanceToTetrahedron(points[i], tets[i]));
+    }
+    rows.push_back(measure(
+        settings, "closest_point", "triangle, random", "Ericson 5.1.5", n,
+        [&](int i) { return Answer{std::sqrt(closestPointOnTriangle(points[i], tris[i]).distanceSquared), 0}; },
+        [&](int i, const Answer& a) { return relativeError(a.value, triOracle[i], 1.0); }));
+    rows.push_back(measure(
+        settings, "closest_point", "tetrahedron, random", "regions", n,
+        [&](int i) { return Answer{std::sqrt(closestPointOnTetrahedron(points[i], tets[i]).distanceSquared), 0}; },
+        [&](int i, const Answer& a) { return relativeError(a.value, tetOracle[i], 1.0); }));
+}
+
+// GJK distance / intersect and GJK+EPA depth on random polytopes of nv vertices (count pairs per
+// set), with the tolerance sweep, warm starts and the peers on the same pairs.
+void benchPolytopes(const Settings& settings, int nv, int count, std::vector<Row>& rows)
+{
+    std::cerr << "cdlab bench: polytopes with " << nv << " vertices (" << count << " pairs per set)\n";
+    const std::string tag = "poly" + std::to_string(nv);
+    const auto sep = polyPairs(nv, count, 2.2, 1000 + nv);
+    const auto pen = polyPairs(nv, count, 0.4, 2000 + nv);
+    auto distanceRow = [&](const std::vector<PolyPair>& set, const std::string& input, const std::string& method,
+                           GjkOptions options) {
+        return measure(
+            settings, "gjk_distance", input, method, static_cast<int>(set.size()),
+            [&, options](int i) {
+                const GjkResult r = gjkDistance(set[i].a, set[i].b, options);
+                return Answer{r.distance, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, set[i].oracle.distance, 1.0); });
+    };
+    std::vector<const PolyPair*> sepPointers;
+    for (const auto& p : sep) sepPointers.push_back(&p);
+    GjkOptions sv;
+    GjkOptions johnson;
+    johnson.solver = SimplexSolver::Johnson;
+    const size_t distanceReference = rows.size();
+    rows.push_back(distanceRow(sep, tag + " separated", "SV tol 1e-13", sv));
+    rows.push_back(distanceRow(sep, tag + " separated", "Johnson tol 1e-13", johnson));
+    peerRows(settings, rows, "gjk_distance", tag + " separated", sepPointers, distanceReference,
+             [&](int i, const Answer& a) { return relativeError(a.value, sepPointers[i]->oracle.distance, 1.0); }, false);
+    if (nv == 16 || nv == 64) {
+        for (double tol : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14}) {
+            GjkOptions o;
+            o.relativeTolerance = tol;
+            rows.push_back(distanceRow(sep, tag + " separated", "SV tol " + fmt("%.0e", tol), o));
+        }
+        // Warm start: the same pairs moved by 1e-3 of their size, seeded with the simplex of
+        // the previous position (as a frame-coherent caller would).
+        const auto moved = polyPairs(nv, count, 2.2, 1000 + nv, 1e-3);
+        std::vector<GjkSimplex> previous;
+        for (const PolyPair& p : sep) previous.push_back(gjkDistance(p.a, p.b).simplex);
+        rows.push_back(distanceRow(moved, tag + " moved 1e-3", "SV cold", sv));
+        rows.push_back(measure(
+            settings, "gjk_distance", tag + " moved 1e-3", "SV warm", count,
+            [&](int i) {
+                GjkOptions o;
+                o.warmStart = &previous[i];
+                const GjkResult r = gjkDistance(moved[i].a, moved[i].b, o);
+                return Answer{r.distance, r.iterations};
+            },
+            [&](int i, const Answer& a) { return relativeError(a.value, moved[i].oracle.distance, 1.0); }));
+    }
+    // Boolean intersection over both sets (separated and overlapping).
+    std::vector<const PolyPair*> both;
+    for (const auto& p : sep) both.push_back(&p);
+    for (const auto& p : pen) both.push_back(&p);
+    auto wrongBoolean = [&](int i, const Answer& a) { return (a.value != 0.0) != both[i]->oracle.inside ? 1.0 : 0.0; };
+    const size_t intersectReference = rows.size();
+    rows.push_back(measure(
+        settings, "gjk_intersect", tag + " sep+pen", "SV", static_cast<int>(both.size()),
+        [&](int i) {
+            GjkResult r;
+            const bool hit = gjkIntersect(both[i]->a, both[i]->b, {}, nullptr, &r);
+            return Answer{hit ? 1.0 : 0.0, r.iterations};
+        },
+        wrongBoolean, true));
+    peerRows(settings, rows, "gjk_intersect", tag + " sep+pen", both, intersectReference, wrongBoolean, true);
+    // Penetration depth (GJK + EPA) on the overlapping pairs.
+    std::vector<const PolyPair*> inside;
+    for (const auto& p : pen)
+        if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
+    auto depthError = [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); };
+    const size_t depthReference = rows.size();
+    for (double tol : {1e-13, 1e-6, 1e-3}) {
+        EpaOptions o;
+        o.relativeTolerance = tol;
+        rows.push_back(measure(
+            settings, "epa_depth", tag + " penetrating", "GJK+EPA tol " + fmt("%.0e", tol),
+            static_cast<int>(inside.size()),
+            [&, o](int i) {
+                const EpaResult r = penetration(inside[i]->a, inside[i]->b, o);
+                return Answer{r.depth, r.iterations};
+            },
+            depthError));
+    }
+    peerRows(settings, rows, "epa_depth", tag + " penetrating", inside, depthReference, depthError, false);
+}
+
+// Boxes: GJK on separated and touching boxes, EPA, boolean GJK and the 15-axis SAT.
+void benchBoxes(const Settings& settings, std::vector<Row>& rows)
 {
     const bool quick = settings.quick;
     const int nPairs = quick ? 200 : 1000;
-    const int nLarge = quick ? 60 : 300;  // 64 / 100 vertices: the oracle hull has n^2 points
-
-    // ---- closest point on triangle / tetrahedron -------------------------------------------------
-    {
-        std::cerr << "cdlab bench: closest point\n";
-        std::mt19937_64 rng(1);
-        std::uniform_real_distribution<double> u(-1.0, 1.0);
-        auto rp = [&] { return Vec3(u(rng), u(rng), u(rng)); };
-        const int n = quick ? 2000 : 10000;
-        std::vector<Vec3> points;
-        std::vector<Triangle> tris;
-        std::vector<Tetrahedron> tets;
-        std::vector<double> triOracle, tetOracle;
-        for (int i = 0; i < n; ++i) {
-            points.push_back(2.0 * rp());
-            tris.push_back({rp(), rp(), rp()});
-            tets.push_back({rp(), rp(), rp(), rp()});
-            triOracle.push_back(oracleDistanceToTriangle(points[i], tris[i]));
-            tetOracle.push_back(oracleDistanceToTetrahedron(points[i], tets[i]));
-        }
+    std::cerr << "cdlab bench: boxes\n";
+    const auto sep = boxPairs(nPairs, 3.0, false, 31);
+    const auto pen = boxPairs(nPairs, 0.5, false, 32);
+    const auto touch = boxPairs(nPairs, 0.0, true, 33);
+    for (const auto* set : {&sep, &touch}) {
+        const bool touching = set == &touch;
         rows.push_back(measure(
-            settings, "closest_point", "triangle, random", "Ericson 5.1.5", n,
-            [&](int i) { return Answer{std::sqrt(closestPointOnTriangle(points[i], tris[i]).distanceSquared), 0}; },
-            [&](int i, const Answer& a) { return relativeError(a.value, triOracle[i], 1.0); }));
-        rows.push_back(measure(
-            settings, "closest_point", "tetrahedron, random", "regions", n,
-            [&](int i) { return Answer{std::sqrt(closestPointOnTetrahedron(points[i], tets[i]).distanceSquared), 0}; },
-            [&](int i, const Answer& a) { return relativeError(a.value, tetOracle[i], 1.0); }));
-    }
-
-    // ---- GJK distance / intersect, EPA on random polytopes -----------------------------------------
-    const int sizes[] = {8, 16, 64, 100};
-    for (int nv : sizes) {
-        const int count = nv >= 64 ? nLarge : nPairs;
-        std::cerr << "cdlab bench: polytopes with " << nv << " vertices (" << count << " pairs per set)\n";
-        const std::string tag = "poly" + std::to_string(nv);
-        const auto sep = polyPairs(nv, count, 2.2, 1000 + nv);
-        const auto pen = polyPairs(nv, count, 0.4, 2000 + nv);
-        auto distanceRow = [&](const std::vector<PolyPair>& set, const std::string& input, const std::string& method,
-                               GjkOptions options) {
-            return measure(
-                settings, "gjk_distance", input, method, static_cast<int>(set.size()),
-                [&, options](int i) {
-                    const GjkResult r = gjkDistance(set[i].a, set[i].b, options);
-                    return Answer{r.distance, r.iterations};
-                },
-                [&](int i, const Answer& a) { return relativeError(a.value, set[i].oracle.distance, 1.0); });
-        };
-        // Peers (libccd, Bullet) on the same pairs, each row's time relative to cdlab's row `reference`.
-        auto peerRows = [&](const std::string& query, const std::string& input, const std::vector<const PolyPair*>& set,
-                            size_t reference, const std::function<double(int, const Answer&)>& error, bool boolean) {
-#ifdef CDLAB_BENCH_PEERS
-            std::vector<PeerPair> peerPairs;
-            for (const PolyPair* p : set) peerPairs.push_back({&p->va, &p->vb, &p->a, &p->b});
-            for (const PeerRunner& peer : makePeerRunners(peerPairs, query)) {
-                Row row = measure(
-                    settings, query, input, peer.method, static_cast<int>(set.size()),
-                    [&](int i) {
-                        const PeerAnswer a = peer.run(i);
-                        return Answer{a.value, a.iterations};
-                    },
-                    error, boolean);
-                // Ratio of the fastest repetitions: on a shared machine the minimum is the time least
-                // disturbed by other processes (medians are reported too).
-                row.ratio = row.nsMin / rows[reference].nsMin;
-                rows.push_back(row);
-            }
-#else
-            (void)query, (void)input, (void)set, (void)reference, (void)error, (void)boolean;
-#endif
-        };
-        std::vector<const PolyPair*> sepPointers;
-        for (const auto& p : sep) sepPointers.push_back(&p);
-        GjkOptions sv;
-        GjkOptions johnson;
-        johnson.solver = SimplexSolver::Johnson;
-        const size_t distanceReference = rows.size();
-        rows.push_back(distanceRow(sep, tag + " separated", "SV tol 1e-13", sv));
-        rows.push_back(distanceRow(sep, tag + " separated", "Johnson tol 1e-13", johnson));
-        peerRows("gjk_distance", tag + " separated", sepPointers, distanceReference,
-                 [&](int i, const Answer& a) { return relativeError(a.value, sepPointers[i]->oracle.distance, 1.0); }, false);
-        if (nv == 16 || nv == 64) {
-            for (double tol : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14}) {
-                GjkOptions o;
-                o.relativeTolerance = tol;
-                rows.push_back(distanceRow(sep, tag + " separated", "SV tol " + fmt("%.0e", tol), o));
-            }
-            // Warm start: the same pairs moved by 1e-3 of their size, seeded with the simplex of
-            // the previous position (as a frame-coherent caller would).
-            const auto moved = polyPairs(nv, count, 2.2, 1000 + nv, 1e-3);
-            std::vector<GjkSimplex> previous;
-            for (const PolyPair& p : sep) previous.push_back(gjkDistance(p.a, p.b).simplex);
-            rows.push_back(distanceRow(moved, tag + " moved 1e-3", "SV cold", sv));
-            rows.push_back(measure(
-                settings, "gjk_distance", tag + " moved 1e-3", "SV warm", count,
-                [&](int i) {
-                    GjkOptions o;
-                    o.warmStart = &previous[i];
-                    const GjkResult r = gjkDistance(moved[i].a, moved[i].b, o);
-                    return Answer{r.distance, r.iterations};
-                },
-                [&](int i, const Answer& a) { return relativeError(a.value, moved[i].oracle.distance, 1.0); }));
-        }
-        // Boolean intersection over both sets (separated and overlapping).
-        std::vector<const PolyPair*> both;
-        for (const auto& p : sep) both.push_back(&p);
-        for (const auto& p : pen) both.push_back(&p);
-        auto wrongBoolean = [&](int i, const Answer& a) { return (a.value != 0.0) != both[i]->oracle.inside ? 1.0 : 0.0; };
-        const size_t intersectReference = rows.size();
-        rows.push_back(measure(
-            settings, "gjk_intersect", tag + " sep+pen", "SV", static_cast<int>(both.size()),
+            settings, "gjk_distance", touching ? "AABB face touching" : "OBB separated", "SV tol 1e-13", nPairs,
             [&](int i) {
-                GjkResult r;
-                const bool hit = gjkIntersect(both[i]->a, both[i]->b, {}, nullptr, &r);
-                return Answer{hit ? 1.0 : 0.0, r.iterations};
-            },
-            wrongBoolean, true));
-        peerRows("gjk_intersect", tag + " sep+pen", both, intersectReference, wrongBoolean, true);
-        // Penetration depth (GJK + EPA) on the overlapping pairs.
-        std::vector<const PolyPair*> inside;
-        for (const auto& p : pen)
-            if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
-        auto depthError = [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); };
-        const size_t depthReference = rows.size();
-        for (double tol : {1e-13, 1e-6, 1e-3}) {
-            EpaOptions o;
-            o.relativeTolerance = tol;
-            rows.push_back(measure(
-                settings, "epa_depth", tag + " penetrating", "GJK+EPA tol " + fmt("%.0e", tol),
-                static_cast<int>(inside.size()),
-                [&, o](int i) {
-                    const EpaResult r = penetration(inside[i]->a, inside[i]->b, o);
-                    return Answer{r.depth, r.iterations};
-                },
-                depthError));
-        }
-        peerRows("epa_depth", tag + " penetrating", inside, depthReference, depthError, false);
-    }
-
-    // ---- boxes ------------------------------------------------------------------------------------
-    {
-        std::cerr << "cdlab bench: boxes\n";
-        const auto sep = boxPairs(nPairs, 3.0, false, 31);
-        const auto pen = boxPairs(nPairs, 0.5, false, 32);
-        const auto touch = boxPairs(nPairs, 0.0, true, 33);
-        for (const auto* set : {&sep, &touch}) {
-            const bool touching = set == &touch;
-            rows.push_back(measure(
-                settings, "gjk_distance", touching ? "AABB face touching" : "OBB separated", "SV tol 1e-13", nPairs,
-                [&](int i) {
-                    const GjkResult r = gjkDistance((*set)[i].a, (*set)[i].b);
-                    return Answer{r.distance, r.iterations};
-                },
-                [&, touching](int i, const Answer& a) {
-                    // Touching: the exact distance is 0 (the oracle gives 0 up to its rounding);
-                    // the error is relative to the size (~1), not to 0.
-                    return touching ? std::abs(a.value) : relativeError(a.value, (*set)[i].oracle.distance, 1.0);
-                }));
-        }
-        std::vector<const BoxPair*> inside, all;
-        for (const auto& p : pen)
-            if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
-        for (const auto& p : sep) all.push_back(&p);
-        for (const auto& p : pen) all.push_back(&p);
-        rows.push_back(measure(
-            settings, "epa_depth", "OBB penetrating", "GJK+EPA tol 1e-13", static_cast<int>(inside.size()),
-            [&](int i) {
-                const EpaResult r = penetration(inside[i]->a, inside[i]->b);
-                return Answer{r.depth, r.iterations};
-            },
-            [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); }));
-        rows.push_back(measure(
-            settings, "epa_depth", "AABB face touching", "GJK+EPA tol 1e-13", nPairs,
-            [&](int i) {
-                const EpaResult r = penetration(touch[i].a, touch[i].b);
-                return Answer{r.depth, r.iterations};
-            },
-            [&](int, const Answer& a) { return std::abs(a.value); }));  // exact answer 0; size ~1
-        rows.push_back(measure(
-            settings, "gjk_intersect", "OBB sep+pen", "SV", static_cast<int>(all.size()),
-            [&](int i) {
-                GjkResult r;
-                const bool hit = gjkIntersect(all[i]->a, all[i]->b, {}, nullptr, &r);
-                return Answer{hit ? 1.0 : 0.0, r.iterations};
-            },
-            [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
-        rows.push_back(measure(
-            settings, "sat_obb_obb", "OBB sep+pen", "15 axes", static_cast<int>(all.size()),
-            [&](int i) { return Answer{testObbObb(all[i]->obbA, all[i]->obbB).hit ? 1.0 : 0.0, 0}; },
-            [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
-    }
-
-    // ---- capsules (oracle: long double segment-segment distance minus the radii) --------------------
-    {
-        std::cerr << "cdlab bench: capsules\n";
-        struct CapsulePair {
-            Transformed<CapsuleShape> a, b;
-            double distance = 0;  // signed: negative = depth
-        };
-        auto capsulePairs = [&](double offset, std::uint64_t seed) {
-            std::mt19937_64 rng(seed);
-            std::uniform_real_distribution<double> half(0.2, 1.0), radius(0.1, 0.5);
-            std::vector<CapsulePair> pairs;
-            for (int i = 0; i < nPairs; ++i) {
-                CapsulePair p;
-                p.a.shape = CapsuleShape::alongY(half(rng), radius(rng));
-                p.b.shape = CapsuleShape::alongY(half(rng), radius(rng));
-                p.a.transform.rotation = randomRotation(rng);
-                p.b.transform.rotation = randomRotation(rng);
-                p.b.transform.position = offset * randomUnit(rng);
-                const double seg = oracleSegmentDistance(p.a.transform.apply(p.a.shape.a), p.a.transform.apply(p.a.shape.b),
-                                                         p.b.transform.apply(p.b.shape.a), p.b.transform.apply(p.b.shape.b));
-                p.distance = seg - p.a.shape.radius - p.b.shape.radius;
-                pairs.push_back(p);
-            }
-            return pairs;
-        };
-        const auto sep = capsulePairs(3.0, 51);
-        auto pen = capsulePairs(0.3, 52);
-        std::erase_if(pen, [](const CapsulePair& p) { return !(p.distance < 0); });
-        // Full support (the rounded shape: GJK converges linearly on the caps) against the core
-        // segments plus the radii in closed form (what `cdlab query` does).
-        rows.push_back(measure(
-            settings, "gjk_distance", "capsules separated", "SV tol 1e-13, full support", nPairs,
-            [&](int i) {
-                const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
+                const GjkResult r = gjkDistance((*set)[i].a, (*set)[i].b);
                 return Answer{r.distance, r.iterations};
             },
-            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+            [&, touching](int i, const Answer& a) {
+                // Touching: the exact distance is 0 (the oracle gives 0 up to its rounding);
+                // the error is relative to the size (~1), not to 0.
+                return touching ? std::abs(a.value) : relativeError(a.value, (*set)[i].oracle.distance, 1.0);
+            }));
+    }
+    std::vector<const BoxPair*> inside, all;
+    for (const auto& p : pen)
+        if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
+    for (const auto& p : sep) all.push_back(&p);
+    for (const auto& p : pen) all.push_back(&p);
+    rows.push_back(measure(
+        settings, "epa_depth", "OBB penetrating", "GJK+EPA tol 1e-13", static_cast<int>(inside.size()),
+        [&](int i) {
+            const EpaResult r = penetration(inside[i]->a, inside[i]->b);
+            return Answer{r.depth, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, inside[i]->oracle.depth, 1.0); }));
+    rows.push_back(measure(
+        settings, "epa_depth", "AABB face touching", "GJK+EPA tol 1e-13", nPairs,
+        [&](int i) {
+            const EpaResult r = penetration(touch[i].a, touch[i].b);
+            return Answer{r.depth, r.iterations};
+        },
+        [&](int, const Answer& a) { return std::abs(a.value); }));  // exact answer 0; size ~1
+    rows.push_back(measure(
+        settings, "gjk_intersect", "OBB sep+pen", "SV", static_cast<int>(all.size()),
+        [&](int i) {
+            GjkResult r;
+            const bool hit = gjkIntersect(all[i]->a, all[i]->b, {}, nullptr, &r);
+            return Answer{hit ? 1.0 : 0.0, r.iterations};
+        },
+        [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
+    rows.push_back(measure(
+        settings, "sat_obb_obb", "OBB sep+pen", "15 axes", static_cast<int>(all.size()),
+        [&](int i) { return Answer{testObbObb(all[i]->obbA, all[i]->obbB).hit ? 1.0 : 0.0, 0}; },
+        [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
+}
+
+// Capsules (oracle: long double segment-segment distance minus the radii).
+void benchCapsules(const Settings& settings, std::vector<Row>& rows)
+{
+    const bool quick = settings.quick;
+    const int nPairs = quick ? 200 : 1000;
+    std::cerr << "cdlab bench: capsules\n";
+    struct CapsulePair {
+        Transformed<CapsuleShape> a, b;
+        double distance = 0;  // signed: negative = depth
+    };
+    auto capsulePairs = [&](double offset, std::uint64_t seed) {
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> half(0.2, 1.0), radius(0.1, 0.5);
+        std::vector<CapsulePair> pairs;
+        for (int i = 0; i < nPairs; ++i) {
+            CapsulePair p;
+            p.a.shape = CapsuleShape::alongY(half(rng), radius(rng));
+            p.b.shape = CapsuleShape::alongY(half(rng), radius(rng));
+            p.a.transform.rotation = randomRotation(rng);
+            p.b.transform.rotation = randomRotation(rng);
+            p.b.transform.position = offset * randomUnit(rng);
+            const double seg = oracleSegmentDistance(p.a.transform.apply(p.a.shape.a), p.a.transform.apply(p.a.shape.b),
+                                                     p.b.transform.apply(p.b.shape.a), p.b.transform.apply(p.b.shape.b));
+            p.distance = seg - p.a.shape.radius - p.b.shape.radius;
+            pairs.push_back(p);
+        }
+        return pairs;
+    };
+    const auto sep = capsulePairs(3.0, 51);
+    auto pen = capsulePairs(0.3, 52);
+    std::erase_if(pen, [](const CapsulePair& p) { return !(p.distance < 0); });
+    // Full support (the rounded shape: GJK converges linearly on the caps) against the core
+    // segments plus the radii in closed form (what `cdlab query` does).
+    rows.push_back(measure(
+        settings, "gjk_distance", "capsules separated", "SV tol 1e-13, full support", nPairs,
+        [&](int i) {
+            const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
+            return Answer{r.distance, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+    rows.push_back(measure(
+        settings, "gjk_distance", "capsules separated", "SV on cores + radii", nPairs,
+        [&](int i) {
+            const SegmentShape ca{sep[i].a.transform.apply(sep[i].a.shape.a), sep[i].a.transform.apply(sep[i].a.shape.b)};
+            const SegmentShape cb{sep[i].b.transform.apply(sep[i].b.shape.a), sep[i].b.transform.apply(sep[i].b.shape.b)};
+            const GjkResult r = gjkDistance(ca, cb);
+            return Answer{r.distance - sep[i].a.shape.radius - sep[i].b.shape.radius, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+    rows.push_back(measure(
+        settings, "epa_depth", "capsules penetrating", "GJK+EPA tol 1e-8, full support", static_cast<int>(pen.size()),
+        [&](int i) {
+            EpaOptions o;
+            o.relativeTolerance = 1e-8;
+            const EpaResult r = penetration(pen[i].a, pen[i].b, o);
+            return Answer{r.depth, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
+}
+
+// Float vs double: cdlab has no float variant of GJK (core is double only), so this row
+// measures what storing the geometry in float does: vertices rounded to float, GJK in double,
+// error against the oracle of the double input.
+void benchFloatInput(const Settings& settings, std::vector<Row>& rows)
+{
+    const bool quick = settings.quick;
+    const int nPairs = quick ? 200 : 1000;
+    std::cerr << "cdlab bench: float-rounded input\n";
+    const auto sep = polyPairs(16, nPairs, 2.2, 1016);
+    std::vector<PolytopeShape> fa, fb;
+    auto toFloat = [](std::vector<Vec3> v) {
+        for (Vec3& x : v) x = x.cast<float>().cast<double>();
+        return v;
+    };
+    for (const PolyPair& p : sep) {
+        fa.push_back(polytopeOf(toFloat(p.va)));
+        fb.push_back(polytopeOf(toFloat(p.vb)));
+    }
+    rows.push_back(measure(
+        settings, "gjk_distance", "poly16 separated", "SV, input rounded to float", nPairs,
+        [&](int i) {
+            const GjkResult r = gjkDistance(fa[i], fb[i]);
+            return Answer{r.distance, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].oracle.distance, 1.0); }));
+}
+
+// Spheres (analytic oracle).
+void benchSpheres(const Settings& settings, std::vector<Row>& rows)
+{
+    const bool quick = settings.quick;
+    const int nPairs = quick ? 200 : 1000;
+    std::cerr << "cdlab bench: spheres\n";
+    const auto sep = spherePairs(nPairs, 2.5, 41);
+    const auto pen = spherePairs(nPairs, 0.5, 42);
+    rows.push_back(measure(
+        settings, "gjk_distance", "spheres separated", "SV tol 1e-13", nPairs,
+        [&](int i) {
+            const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
+            return Answer{r.distance, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+    for (double tol : {1e-4, 1e-8}) {
+        EpaOptions o;
+        o.relativeTolerance = tol;
         rows.push_back(measure(
-            settings, "gjk_distance", "capsules separated", "SV on cores + radii", nPairs,
-            [&](int i) {
-                const SegmentShape ca{sep[i].a.transform.apply(sep[i].a.shape.a), sep[i].a.transform.apply(sep[i].a.shape.b)};
-                const SegmentShape cb{sep[i].b.transform.apply(sep[i].b.shape.a), sep[i].b.transform.apply(sep[i].b.shape.b)};
-                const GjkResult r = gjkDistance(ca, cb);
-                return Answer{r.distance - sep[i].a.shape.radius - sep[i].b.shape.radius, r.iterations};
-            },
-            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
-        rows.push_back(measure(
-            settings, "epa_depth", "capsules penetrating", "GJK+EPA tol 1e-8, full support", static_cast<int>(pen.size()),
-            [&](int i) {
-                EpaOptions o;
-                o.relativeTolerance = 1e-8;
+            settings, "epa_depth", "spheres penetrating", "GJK+EPA tol " + fmt("%.0e", tol), nPairs,
+            [&, o](int i) {
                 const EpaResult r = penetration(pen[i].a, pen[i].b, o);
                 return Answer{r.depth, r.iterations};
             },
             [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
     }
+}
 
-    // ---- float vs double: cdlab has no float variant of GJK (core is double only), so this row
-    // measures what storing the geometry in float does: vertices rounded to float, GJK in double,
-    // error against the oracle of the double input.
-    {
-        std::cerr << "cdlab bench: float-rounded input\n";
-        const auto sep = polyPairs(16, nPairs, 2.2, 1016);
-        std::vector<PolytopeShape> fa, fb;
-        auto toFloat = [](std::vector<Vec3> v) {
-            for (Vec3& x : v) x = x.cast<float>().cast<double>();
-            return v;
-        };
-        for (const PolyPair& p : sep) {
-            fa.push_back(polytopeOf(toFloat(p.va)));
-            fb.push_back(polytopeOf(toFloat(p.vb)));
-        }
-        rows.push_back(measure(
-            settings, "gjk_distance", "poly16 separated", "SV, input rounded to float", nPairs,
-            [&](int i) {
-                const GjkResult r = gjkDistance(fa[i], fb[i]);
-                return Answer{r.distance, r.iterations};
-            },
-            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].oracle.distance, 1.0); }));
-    }
-
-    // ---- spheres (analytic oracle) -------------------------------------------------------------------
-    {
-        std::cerr << "cdlab bench: spheres\n";
-        const auto sep = spherePairs(nPairs, 2.5, 41);
-        const auto pen = spherePairs(nPairs, 0.5, 42);
-        rows.push_back(measure(
-            settings, "gjk_distance", "spheres separated", "SV tol 1e-13", nPairs,
-            [&](int i) {
-                const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
-                return Answer{r.distance, r.iterations};
-            },
-            [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
-        for (double tol : {1e-4, 1e-8}) {
-            EpaOptions o;
-            o.relativeTolerance = tol;
-            rows.push_back(measure(
-                settings, "epa_depth", "spheres penetrating", "GJK+EPA tol " + fmt("%.0e", tol), nPairs,
-                [&, o](int i) {
-                    const EpaResult r = penetration(pen[i].a, pen[i].b, o);
-                    return Answer{r.depth, r.iterations};
-                },
-                [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
-        }
-    }
+/// The query rows (section "queries"): closest point, GJK distance / intersect, GJK+EPA, SAT on
+/// polytopes, boxes, capsules, float-rounded input and spheres, appended to rows.
+void runQueryRows(const Settings& settings, std::vector<Row>& rows)
+{
+    benchClosestPoint(settings, rows);
+    const int nPairs = settings.quick ? 200 : 1000;
+    const int nLarge = settings.quick ? 60 : 300;  // 64 / 100 vertices: the oracle hull has n^2 points
+    for (int nv : {8, 16, 64, 100}) benchPolytopes(settings, nv, nv >= 64 ? nLarge : nPairs, rows);
+    benchBoxes(settings, rows);
+    benchCapsules(settings, rows);
+    benchFloatInput(settings, rows);
+    benchSpheres(settings, rows);
 }
 
 /// The sections of `cdlab bench`, in the order they run (--only picks some).
