@@ -378,139 +378,173 @@ private:
     Frame drawStepFrame(GlContext& gl, int ss, const Call& call, int index) const {
         const Layout L = layout();
         const bool labels = common_.hasLayer("labels");
-        const VClipTrace& tr = call.trace;
-        const VClipResult& r = call.result;
-        const VClipTraceStep* st = index >= 0 ? &tr.steps[index] : nullptr;
+        const VClipTraceStep* st = index >= 0 ? &call.trace.steps[index] : nullptr;
         Canvas c(gl, mainOptions(ss));
         setupMain(c);
         drawBodies(c, call.poseB);
+        FrameText text;
+        Frame f;
+        if (st) drawStepView(c, call, *st, labels, text, f);
+        else drawResultView(c, call, labels, text, f);
+        drawPanelHeading(c, text.heading, text.sub);
+        const Image main = c.readPixels();
+        const Image diagram = common_.hasLayer("diagram") ? stateDiagram(gl, ss, call, st, index)
+                                                          : blank(L.columnWidth, L.diagramHeight());
+        const Image plot = common_.hasLayer("plot") ? distancePlot(gl, ss, call.trace, st, index)
+                                                    : blank(L.columnWidth, L.plotHeight());
+        f.image = composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, text.lines);
+        return f;
+    }
+
+    // The main panel's heading, its subtitle and the text lines under the figure.
+    struct FrameText {
         std::string heading, sub;
         std::vector<std::string> lines;
-        Frame f;
-        if (st) {
-            const std::vector<Vec3> ga = st->featureAWorld, gb = st->featureBWorld;
-            drawFeature(c, ga, featureColor(0), featureLabel(st->featureA, 0), centroidB(call.poseB), labels);
-            drawFeature(c, gb, featureColor(1), featureLabel(st->featureB, 1), centroidA(), labels);
-            // With many planes (a 60-gon face) only the violated ones and the maximal one are drawn.
-            int shown = 0, violatedCount = 0;
-            for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
-            if (common_.hasLayer("planes"))
-                for (const VClipPlaneTest& p : st->planes) {
-                    if (st->planes.size() > 8 && !p.violated && !p.maximal) continue;
-                    drawPlaneTest(c, body(p.regionBody), call.poseB, p.plane, p.owner, p.testedPoint, p.signedDistance, p.planeNormal, p.violated, p.maximal);
-                    ++shown;
-                }
-            if (common_.hasLayer("clip"))
-                for (const VClipClip& cl : st->clips) drawClip(c, cl, common_.hasLayer("derivative"));
-            if (common_.hasLayer("closest")) drawClosest(c, st->closestA, st->closestB, false);
-            if (common_.hasLayer("update") && st->kind == VClipStepKind::Update && st->updatedBody >= 0) {
-                const Body& ub = body(st->updatedBody);
-                const Transform& pose = st->updatedBody == 0 ? s_.a.pose : call.poseB;
-                const std::vector<Vec3> gTo = featureGeometry(ub.regions, pose, st->to);
-                const Vec3 from = featureCenter(st->updatedBody == 0 ? ga : gb), to = featureCenter(gTo);
-                LineStyle ls = lineStyle(Role::Ink, 4.0f, false, true);
-                if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, ls);
-                drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f), "", from, false);
-                if (labels)
-                    drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
-                                  TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
-            }
-            heading = "Step " + std::to_string(st->step) + ": state " + nameOf(st->state);
-            const bool faceSearch = std::any_of(st->planes.begin(), st->planes.end(), [](const VClipPlaneTest& p) { return p.plane < 0; });
-            sub = std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated (red)";
-            if (faceSearch) sub = "local minimum: red = the face plane V is farthest above";
-            if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
-            if (!st->clips.empty()) sub += "; " + std::to_string(st->clips.size()) + " clip(s)";
+    };
 
-            lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
-                            featureLabel(st->featureB, 1) + ";  rule: " + st->rule);
-            std::string l2;
-            for (const VClipClip& cl : st->clips) {
-                if (!l2.empty()) l2 += ";  ";
-                l2 += "clip " + nameOf(cl.edge) + " by VR(" + nameOf(cl.region) + "): ";
-                if (cl.simplyExcluded) l2 += "simply excluded by " + nameOf(cl.excludedBy);
-                else if (cl.compoundExcluded) l2 += "compound excluded";
-                else
-                    l2 += "λ ∈ [" + formatNumber(cl.lambdaMin) + ", " + formatNumber(cl.lambdaMax) + "], N = " + nameOf(cl.neighborMin) + ", " +
-                          nameOf(cl.neighborMax) + ", D′ signs " + signName(cl.derivativeMin) + " " + signName(cl.derivativeMax);
+    // One step: the two features, the plane tests (with many planes, as on a 60-gon face, only the
+    // violated and the maximal ones), clips, closest points and the update; its text.
+    void drawStepView(Canvas& c, const Call& call, const VClipTraceStep& step, bool labels, FrameText& text,
+                      Frame& f) const {
+        const VClipTraceStep* st = &step;
+        const VClipTrace& tr = call.trace;
+        const VClipResult& r = call.result;
+        std::string& heading = text.heading;
+        std::string& sub = text.sub;
+        std::vector<std::string>& lines = text.lines;
+        const std::vector<Vec3> ga = st->featureAWorld, gb = st->featureBWorld;
+        drawFeature(c, ga, featureColor(0), featureLabel(st->featureA, 0), centroidB(call.poseB), labels);
+        drawFeature(c, gb, featureColor(1), featureLabel(st->featureB, 1), centroidA(), labels);
+        int shown = 0, violatedCount = 0;
+        for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
+        if (common_.hasLayer("planes"))
+            for (const VClipPlaneTest& p : st->planes) {
+                if (st->planes.size() > 8 && !p.violated && !p.maximal) continue;
+                drawPlaneTest(c, body(p.regionBody), call.poseB, p.plane, p.owner, p.testedPoint, p.signedDistance, p.planeNormal, p.violated, p.maximal);
+                ++shown;
             }
-            if (l2.empty()) {
-                const VClipPlaneTest* worst = nullptr;
-                for (const VClipPlaneTest& p : st->planes)
-                    if (!worst || (p.maximal && !worst->maximal) || (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance)) worst = &p;
-                if (!worst) l2 = "no plane test";
-                else if (worst->plane < 0)
-                    l2 = "handleLocalMin: V lies on or behind " + nameOf(st->featureB.type == VClipFeatureType::Face ? st->featureB : st->featureA) +
-                         "'s plane; the face it is farthest above is " + nameOf(worst->owner) + " (height " + formatNumber(worst->signedDistance) + ")";
-                else
-                    l2 = std::string(worst->maximal ? "maximally violated" : worst->violated ? "most violated" : "closest") + " plane: VR(" +
-                         nameOf(worst->owner) + ") | " + nameOf(worst->neighbor) + " at signed distance " + formatNumber(worst->signedDistance);
-            }
-            lines.push_back(l2);
-            std::string l3;
-            if (st->kind == VClipStepKind::Update) {
-                l3 = "update " + updateText(*st) + ";  distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
-                     (st->localMinimum ? " (handleLocalMin: the face the vertex is farthest above)"
-                      : st->distanceChange < 0 ? " (decreased: dimension up)" : st->distanceChange == 0 ? " (equal: dimension down)" : " (increased)");
-            } else if (st->kind == VClipStepKind::Done) {
-                l3 = "DONE: each closest point lies in the other feature's Voronoi region; distance " + formatNumber(st->distanceBefore);
-            } else if (st->kind == VClipStepKind::Penetration) {
-                l3 = std::string("penetration found (") + nameOf(r.penetration) + ")";
-            } else {
-                l3 = std::string("aborted: ") + nameOf(tr.status);
-            }
-            lines.push_back(l3);
-            f.name = stepFrameName(st->step);
-            f.caption = "step " + std::to_string(st->step) + " " + nameOf(st->state) + ": " +
-                        (st->kind == VClipStepKind::Update ? updateText(*st) : std::string(nameOf(st->kind)));
-        } else {
-            const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
-            const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
-            drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroidB(call.poseB), labels);
-            drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
-            const bool separated = r.status == VClipStatus::Separated;
-            std::string l2;
-            if (separated) {
-                const RegionCheck inB = checkInRegion(s_.b, call.poseB, r.featureB, r.pointA);
-                const RegionCheck inA = checkInRegion(s_.a, s_.a.pose, r.featureA, r.pointB);
-                if (common_.hasLayer("planes")) {
-                    for (const auto& t : inB.tests)
-                        if (t.plane >= 0 && inB.tests.size() <= 9)
-                            drawPlaneTest(c, s_.b, call.poseB, t.plane, r.featureB, r.pointA, t.distance,
-                                          call.poseB.rotate(s_.b.regions.plane(t.plane).normal * (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
-                                          t.distance < 0, false);
-                    for (const auto& t : inA.tests)
-                        if (t.plane >= 0 && inA.tests.size() <= 9)
-                            drawPlaneTest(c, s_.a, call.poseB, t.plane, r.featureA, r.pointB, t.distance,
-                                          s_.a.pose.rotate(s_.a.regions.plane(t.plane).normal * (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
-                                          t.distance < 0, false);
-                }
-                auto verdict = [](const RegionCheck& k) { return k.minDistance >= -1e-12 ? " ≥ 0: inside" : " < 0: OUTSIDE"; };
-                l2 = "Theorem 1: p_A ∈ VR(" + featureLabel(r.featureB, 1) + "): " + std::to_string(inB.tests.size()) + " planes, min " +
-                     formatNumber(inB.minDistance) + verdict(inB) + ";  p_B ∈ VR(" + featureLabel(r.featureA, 0) + "): " +
-                     std::to_string(inA.tests.size()) + " planes, min " + formatNumber(inA.minDistance) + verdict(inA);
-            } else {
-                l2 = std::string("verdict: ") + nameOf(r.penetration) + ", common point " + formatPoint(r.pointA) + " (distance 0)";
-            }
-            if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
-            heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
-            sub = separated ? "closest points; green: region planes they satisfy"
-                            : std::string("penetration: ") + nameOf(r.penetration);
-            lines.push_back(std::string("Result: ") + nameOf(r.status) + (separated ? ", closest features " : ", found at features ") +
-                            featureLabel(r.featureA, 0) + " and " +
-                            featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
-                            (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
-            lines.push_back(l2);
-            lines.push_back(separated ? "so no other feature pair is closer (Mirtich 1998, Thm. 1): p_A = " + formatPoint(r.pointA) +
-                                            ", p_B = " + formatPoint(r.pointB)
-                                      : "the bodies intersect: V-Clip stops with this feature pair (a depth needs EPA or another method)" +
-                                            (r.message.empty() ? std::string() : "; " + r.message));
-            f.name = "result";
-            f.caption = std::string("result: ") + nameOf(r.status) + ", distance " + formatNumber(r.distance);
+        if (common_.hasLayer("clip"))
+            for (const VClipClip& cl : st->clips) drawClip(c, cl, common_.hasLayer("derivative"));
+        if (common_.hasLayer("closest")) drawClosest(c, st->closestA, st->closestB, false);
+        if (common_.hasLayer("update") && st->kind == VClipStepKind::Update && st->updatedBody >= 0) {
+            const Body& ub = body(st->updatedBody);
+            const Transform& pose = st->updatedBody == 0 ? s_.a.pose : call.poseB;
+            const std::vector<Vec3> gTo = featureGeometry(ub.regions, pose, st->to);
+            const Vec3 from = featureCenter(st->updatedBody == 0 ? ga : gb), to = featureCenter(gTo);
+            LineStyle ls = lineStyle(Role::Ink, 4.0f, false, true);
+            if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, ls);
+            drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f), "", from, false);
+            if (labels)
+                drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
+                              TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
         }
-        drawPanelHeading(c, heading, sub);
-        const Image main = c.readPixels();
+        heading = "Step " + std::to_string(st->step) + ": state " + nameOf(st->state);
+        const bool faceSearch = std::any_of(st->planes.begin(), st->planes.end(), [](const VClipPlaneTest& p) { return p.plane < 0; });
+        sub = std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated (red)";
+        if (faceSearch) sub = "local minimum: red = the face plane V is farthest above";
+        if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
+        if (!st->clips.empty()) sub += "; " + std::to_string(st->clips.size()) + " clip(s)";
 
+        lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
+                        featureLabel(st->featureB, 1) + ";  rule: " + st->rule);
+        std::string l2;
+        for (const VClipClip& cl : st->clips) {
+            if (!l2.empty()) l2 += ";  ";
+            l2 += "clip " + nameOf(cl.edge) + " by VR(" + nameOf(cl.region) + "): ";
+            if (cl.simplyExcluded) l2 += "simply excluded by " + nameOf(cl.excludedBy);
+            else if (cl.compoundExcluded) l2 += "compound excluded";
+            else
+                l2 += "λ ∈ [" + formatNumber(cl.lambdaMin) + ", " + formatNumber(cl.lambdaMax) + "], N = " + nameOf(cl.neighborMin) + ", " +
+                      nameOf(cl.neighborMax) + ", D′ signs " + signName(cl.derivativeMin) + " " + signName(cl.derivativeMax);
+        }
+        if (l2.empty()) {
+            const VClipPlaneTest* worst = nullptr;
+            for (const VClipPlaneTest& p : st->planes)
+                if (!worst || (p.maximal && !worst->maximal) || (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance)) worst = &p;
+            if (!worst) l2 = "no plane test";
+            else if (worst->plane < 0)
+                l2 = "handleLocalMin: V lies on or behind " + nameOf(st->featureB.type == VClipFeatureType::Face ? st->featureB : st->featureA) +
+                     "'s plane; the face it is farthest above is " + nameOf(worst->owner) + " (height " + formatNumber(worst->signedDistance) + ")";
+            else
+                l2 = std::string(worst->maximal ? "maximally violated" : worst->violated ? "most violated" : "closest") + " plane: VR(" +
+                     nameOf(worst->owner) + ") | " + nameOf(worst->neighbor) + " at signed distance " + formatNumber(worst->signedDistance);
+        }
+        lines.push_back(l2);
+        std::string l3;
+        if (st->kind == VClipStepKind::Update) {
+            l3 = "update " + updateText(*st) + ";  distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
+                 (st->localMinimum ? " (handleLocalMin: the face the vertex is farthest above)"
+                  : st->distanceChange < 0 ? " (decreased: dimension up)" : st->distanceChange == 0 ? " (equal: dimension down)" : " (increased)");
+        } else if (st->kind == VClipStepKind::Done) {
+            l3 = "DONE: each closest point lies in the other feature's Voronoi region; distance " + formatNumber(st->distanceBefore);
+        } else if (st->kind == VClipStepKind::Penetration) {
+            l3 = std::string("penetration found (") + nameOf(r.penetration) + ")";
+        } else {
+            l3 = std::string("aborted: ") + nameOf(tr.status);
+        }
+        lines.push_back(l3);
+        f.name = stepFrameName(st->step);
+        f.caption = "step " + std::to_string(st->step) + " " + nameOf(st->state) + ": " +
+                    (st->kind == VClipStepKind::Update ? updateText(*st) : std::string(nameOf(st->kind)));
+    }
+
+    // The result: the final features, the region-plane checks of Mirtich's Theorem 1 (separated)
+    // or the penetration verdict; its text.
+    void drawResultView(Canvas& c, const Call& call, bool labels, FrameText& text, Frame& f) const {
+        const VClipResult& r = call.result;
+        std::string& heading = text.heading;
+        std::string& sub = text.sub;
+        std::vector<std::string>& lines = text.lines;
+        const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
+        const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
+        drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroidB(call.poseB), labels);
+        drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
+        const bool separated = r.status == VClipStatus::Separated;
+        std::string l2;
+        if (separated) {
+            const RegionCheck inB = checkInRegion(s_.b, call.poseB, r.featureB, r.pointA);
+            const RegionCheck inA = checkInRegion(s_.a, s_.a.pose, r.featureA, r.pointB);
+            if (common_.hasLayer("planes")) {
+                for (const auto& t : inB.tests)
+                    if (t.plane >= 0 && inB.tests.size() <= 9)
+                        drawPlaneTest(c, s_.b, call.poseB, t.plane, r.featureB, r.pointA, t.distance,
+                                      call.poseB.rotate(s_.b.regions.plane(t.plane).normal * (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
+                                      t.distance < 0, false);
+                for (const auto& t : inA.tests)
+                    if (t.plane >= 0 && inA.tests.size() <= 9)
+                        drawPlaneTest(c, s_.a, call.poseB, t.plane, r.featureA, r.pointB, t.distance,
+                                      s_.a.pose.rotate(s_.a.regions.plane(t.plane).normal * (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
+                                      t.distance < 0, false);
+            }
+            auto verdict = [](const RegionCheck& k) { return k.minDistance >= -1e-12 ? " ≥ 0: inside" : " < 0: OUTSIDE"; };
+            l2 = "Theorem 1: p_A ∈ VR(" + featureLabel(r.featureB, 1) + "): " + std::to_string(inB.tests.size()) + " planes, min " +
+                 formatNumber(inB.minDistance) + verdict(inB) + ";  p_B ∈ VR(" + featureLabel(r.featureA, 0) + "): " +
+                 std::to_string(inA.tests.size()) + " planes, min " + formatNumber(inA.minDistance) + verdict(inA);
+        } else {
+            l2 = std::string("verdict: ") + nameOf(r.penetration) + ", common point " + formatPoint(r.pointA) + " (distance 0)";
+        }
+        if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
+        heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
+        sub = separated ? "closest points; green: region planes they satisfy"
+                        : std::string("penetration: ") + nameOf(r.penetration);
+        lines.push_back(std::string("Result: ") + nameOf(r.status) + (separated ? ", closest features " : ", found at features ") +
+                        featureLabel(r.featureA, 0) + " and " +
+                        featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
+                        (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
+        lines.push_back(l2);
+        lines.push_back(separated ? "so no other feature pair is closer (Mirtich 1998, Thm. 1): p_A = " + formatPoint(r.pointA) +
+                                        ", p_B = " + formatPoint(r.pointB)
+                                  : "the bodies intersect: V-Clip stops with this feature pair (a depth needs EPA or another method)" +
+                                        (r.message.empty() ? std::string() : "; " + r.message));
+        f.name = "result";
+        f.caption = std::string("result: ") + nameOf(r.status) + ", distance " + formatNumber(r.distance);
+    }
+
+    // The five-state diagram with the states visited up to this step and the transition it takes.
+    Image stateDiagram(GlContext& gl, int ss, const Call& call, const VClipTraceStep* st, int index) const {
+        const Layout L = layout();
+        const VClipTrace& tr = call.trace;
+        const VClipResult& r = call.result;
         DiagramInput din;
         int upto = st ? index : int(tr.steps.size()) - 1;
         for (int i = 0; i <= upto; ++i) din.visits[stateIndex(tr.steps[i].state)]++;
@@ -522,36 +556,36 @@ private:
         if (st) din.terminal = st->kind == VClipStepKind::Update ? "update → " + std::string(index + 1 < int(tr.steps.size()) ? nameOf(tr.steps[index + 1].state) : "?")
                                : st->kind == VClipStepKind::Done ? "DONE" : nameOf(st->kind);
         else din.terminal = std::string(nameOf(r.status)) + ": " + std::to_string(tr.steps.size()) + " states, " + std::to_string(r.steps) + " update(s)";
-        const Image diagram = common_.hasLayer("diagram") ? drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din) : blank(L.columnWidth, L.diagramHeight());
+        return drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din);
 
-        Image plot = blank(L.columnWidth, L.plotHeight());
-        if (common_.hasLayer("plot")) {
-            PlotInput pin;
-            pin.heading = "Inter-feature distance";
-            pin.xLabel = "update";
-            PlotSeries sd;
-            sd.lineColor = roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f);
-            if (!tr.steps.empty()) {
-                sd.x.push_back(0);
-                sd.y.push_back(tr.steps.front().distanceBefore);
-                sd.pointColors.push_back(roleColor(Role::Ink));
-            }
-            for (const VClipTraceStep& s : tr.steps) {
-                if (s.kind != VClipStepKind::Update) continue;
-                sd.x.push_back(s.step + 1);
-                sd.y.push_back(s.distanceAfter);
-                sd.pointColors.push_back(s.localMinimum ? clipColor()
-                                         : s.distanceChange < 0 ? satisfiedColor() : s.distanceChange == 0 ? roleColor(Role::Muted) : violatedColor());
-            }
-            pin.series.push_back(sd);
-            pin.marker = st ? index : -1;
-            pin.legend = {{satisfiedColor(), "decrease (dim. up)"}, {roleColor(Role::Muted), "equal (dim. down)"}};
-            if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const VClipTraceStep& s) { return s.localMinimum; }))
-                pin.legend.push_back({clipColor(), "handleLocalMin (face → face)"});
-            plot = drawPlot(gl, L.columnWidth, L.plotHeight(), ss, pin);
+    }
+
+    // The inter-feature distance per update, coloured by what the update did.
+    Image distancePlot(GlContext& gl, int ss, const VClipTrace& tr, const VClipTraceStep* st, int index) const {
+        const Layout L = layout();
+        PlotInput pin;
+        pin.heading = "Inter-feature distance";
+        pin.xLabel = "update";
+        PlotSeries sd;
+        sd.lineColor = roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f);
+        if (!tr.steps.empty()) {
+            sd.x.push_back(0);
+            sd.y.push_back(tr.steps.front().distanceBefore);
+            sd.pointColors.push_back(roleColor(Role::Ink));
         }
-        f.image = composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, lines);
-        return f;
+        for (const VClipTraceStep& s : tr.steps) {
+            if (s.kind != VClipStepKind::Update) continue;
+            sd.x.push_back(s.step + 1);
+            sd.y.push_back(s.distanceAfter);
+            sd.pointColors.push_back(s.localMinimum ? clipColor()
+                                     : s.distanceChange < 0 ? satisfiedColor() : s.distanceChange == 0 ? roleColor(Role::Muted) : violatedColor());
+        }
+        pin.series.push_back(sd);
+        pin.marker = st ? index : -1;
+        pin.legend = {{satisfiedColor(), "decrease (dim. up)"}, {roleColor(Role::Muted), "equal (dim. down)"}};
+        if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const VClipTraceStep& s) { return s.localMinimum; }))
+            pin.legend.push_back({clipColor(), "handleLocalMin (face → face)"});
+        return drawPlot(gl, L.columnWidth, L.plotHeight(), ss, pin);
     }
 
     static Image blank(int w, int h) {
