@@ -140,11 +140,19 @@ private:
                    const GjkResult& r) const {
         const TwoPanelLayout layout{common_.image.width, common_.image.height};
         const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), supersample);
-        const bool labels = common_.hasLayer("labels");
         const GjkTraceStep* s = index >= 0 ? &trace.steps[index] : nullptr;
-        const bool touching = r.status == GjkStatus::Intersecting;
+        const Image world = worldPanel(gl, po, layout, d, s, r);
+        const Image configuration = configurationPanel(gl, po, layout, d, trace, s, r);
+        Frame f;
+        const std::vector<std::string> lines = captionLines(trace, s, r, f);
+        f.image = composeTwoPanel(gl, layout, supersample, common_.title, world, configuration, lines);
+        return f;
+    }
 
-        // ---- world panel
+    // World space: the bodies, the witness points of the kept simplex, the support points.
+    Image worldPanel(GlContext& gl, const CanvasOptions& po, const TwoPanelLayout& layout, const Drawing& d,
+                     const GjkTraceStep* s, const GjkResult& r) const {
+        const bool labels = common_.hasLayer("labels");
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
         drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeA).scaled(0.6f), 2.0f);
         drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeB).scaled(0.6f), 2.0f);
@@ -175,7 +183,14 @@ private:
         }
         drawPanelHeading(world, "World space", s ? "witness points of the kept simplex" : "closest points");
 
-        // ---- configuration space panel
+        return world.readPixels();
+    }
+
+    // Configuration space: A − B, the origin, the simplex, the direction, the support point, v.
+    Image configurationPanel(GlContext& gl, const CanvasOptions& po, const TwoPanelLayout& layout, const Drawing& d,
+                             const GjkTrace& trace, const GjkTraceStep* s, const GjkResult& r) const {
+        const bool labels = common_.hasLayer("labels");
+        const bool touching = r.status == GjkStatus::Intersecting;
         Canvas cs(gl, po, common_.camera && !d.planar ? *common_.camera
                                                 : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
         if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.22f : 0.18f, roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
@@ -193,28 +208,7 @@ private:
                 kept.push_back(i);
             }
         }
-        if (common_.hasLayer("simplex")) {
-            for (std::size_t i = 0; i < w.size(); ++i)
-                for (std::size_t j = i + 1; j < w.size(); ++j) cs.drawLine(w[i], w[j], lineStyle(Role::Muted, 2.0f, true, true));
-            std::vector<Vec3> kv;
-            for (int k : kept) kv.push_back(w[k]);
-            if (kv.size() == 3) cs.drawPolygon(kv, roleColor(Role::Simplex).withAlpha(0.35f));
-            if (kv.size() == 4)
-                cs.drawMesh(kv, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
-                            roleColor(Role::Simplex).withAlpha(0.3f), true);
-            for (std::size_t i = 0; i < kv.size(); ++i)
-                for (std::size_t j = i + 1; j < kv.size(); ++j) cs.drawLine(kv[i], kv[j], lineStyle(Role::Simplex, 4.0f, false, true));
-            for (std::size_t i = 0; i < w.size(); ++i) {
-                const bool isKept = std::find(kept.begin(), kept.end(), int(i)) != kept.end();
-                cs.drawPoint(w[i], isKept ? 8.0f : 6.0f, isKept ? roleColor(Role::Simplex) : roleColor(Role::Muted), true, 1.5f,
-                             roleColor(Role::Ink));
-                if (labels) {
-                    TextStyle ts{20.0f, roleColor(Role::Ink), Anchor::Center, true, true};
-                    const bool isNew = s && int(i) + 1 == s->simplexCount && s->simplex[i].w == s->support.w;
-                    drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)) + (isNew ? " = w" : ""), ts, 12.0);
-                }
-            }
-        }
+        if (common_.hasLayer("simplex")) drawSimplex(cs, d, s, w, kept, labels);
         const double arrowLen = 0.35 * d.cRadius;
         if (s && common_.hasLayer("direction") && s->direction.norm() > 0) {
             const Vec3 tip = s->direction.normalized() * arrowLen;
@@ -249,9 +243,39 @@ private:
         drawPanelHeading(cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""),
                          sub);
 
-        // ---- captions
+        return cs.readPixels();
+    }
+
+    // The simplex: W ∪ {w} dashed, the kept sub-simplex solid and filled, the vertices named.
+    void drawSimplex(Canvas& cs, const Drawing& d, const GjkTraceStep* s, const std::vector<Vec3>& w,
+                     const std::vector<int>& kept, bool labels) const {
+        for (std::size_t i = 0; i < w.size(); ++i)
+            for (std::size_t j = i + 1; j < w.size(); ++j) cs.drawLine(w[i], w[j], lineStyle(Role::Muted, 2.0f, true, true));
+        std::vector<Vec3> kv;
+        for (int k : kept) kv.push_back(w[k]);
+        if (kv.size() == 3) cs.drawPolygon(kv, roleColor(Role::Simplex).withAlpha(0.35f));
+        if (kv.size() == 4)
+            cs.drawMesh(kv, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
+                        roleColor(Role::Simplex).withAlpha(0.3f), true);
+        for (std::size_t i = 0; i < kv.size(); ++i)
+            for (std::size_t j = i + 1; j < kv.size(); ++j) cs.drawLine(kv[i], kv[j], lineStyle(Role::Simplex, 4.0f, false, true));
+        for (std::size_t i = 0; i < w.size(); ++i) {
+            const bool isKept = std::find(kept.begin(), kept.end(), int(i)) != kept.end();
+            cs.drawPoint(w[i], isKept ? 8.0f : 6.0f, isKept ? roleColor(Role::Simplex) : roleColor(Role::Muted), true, 1.5f,
+                         roleColor(Role::Ink));
+            if (labels) {
+                TextStyle ts{20.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                const bool isNew = s && int(i) + 1 == s->simplexCount && s->simplex[i].w == s->support.w;
+                drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)) + (isNew ? " = w" : ""), ts, 12.0);
+            }
+        }
+    }
+
+    // The text under the panels, and the frame's name and caption.
+    std::vector<std::string> captionLines(const GjkTrace& trace, const GjkTraceStep* s, const GjkResult& r,
+                                          Frame& f) const {
+        const bool touching = r.status == GjkStatus::Intersecting;
         std::vector<std::string> lines;
-        Frame f;
         if (s) {
             const double vv = s->upperBound * s->upperBound;
             std::string stop = s->terminated ? std::string("stop: ") + nameOf(trace.termination) : "continue";
@@ -273,8 +297,7 @@ private:
             f.name = "result";
             f.caption = std::string("result: ") + nameOf(r.status) + ", distance " + formatNumber(r.distance);
         }
-        f.image = composeTwoPanel(gl, layout, supersample, common_.title, world.readPixels(), cs.readPixels(), lines);
-        return f;
+        return lines;
     }
 };
 
