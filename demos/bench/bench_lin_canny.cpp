@@ -59,13 +59,10 @@ struct Trial {
     double exact = 0;
 };
 
-}  // namespace
-
-std::vector<Row> benchLinCanny(const Settings& settings, std::vector<DegenerateCount>* counts) {
-    std::vector<Row> rows;
+// Coherent motion: Lin–Canny, V-Clip and warm-started GJK on the same frames of a spinning pair,
+// for a cube, an icosahedron and a 60-gon disk at 0..25 degrees per call.
+void benchCoherent(const Settings& settings, std::vector<Row>& rows) {
     const bool quick = settings.quick;
-
-    // ---- coherent motion ----------------------------------------------------------------------
     struct Shape {
         const char* name;
         ConvexPolyhedron mesh;
@@ -114,12 +111,24 @@ std::vector<Row> benchLinCanny(const Settings& settings, std::vector<DegenerateC
         }
     }
 
-    // ---- degenerate families --------------------------------------------------------------------
-    const std::vector<Vec3> halves = {Vec3(0.5, 0.5, 0.5), Vec3(0.25, 0.5, 0.75), Vec3(0.5, 0.25, 0.25)};
+}
+
+// Degenerate families: boxes on a 1/4 grid, axis-aligned (90-degree turns), every pair of seed
+// features; the exact gap from the box offsets.
+struct DegenerateSet {
+    std::vector<Vec3> halves;
     std::vector<VClipPolyhedron> boxes;
+    std::vector<Trial> trials;
+};
+
+DegenerateSet degenerateSet(int trials) {
+    DegenerateSet out;
+    out.halves = {Vec3(0.5, 0.5, 0.5), Vec3(0.25, 0.5, 0.75), Vec3(0.5, 0.25, 0.25)};
+    std::vector<VClipPolyhedron>& boxes = out.boxes;
+    const std::vector<Vec3>& halves = out.halves;
     for (const Vec3& h : halves) boxes.push_back(buildVClipPolyhedron(presets::box(h)).polyhedron);
-    const int trials = quick ? 10000 : 100000;
-    std::vector<Trial> set(trials);
+    out.trials.resize(trials);
+    std::vector<Trial>& set = out.trials;
     std::mt19937_64 rng(2026);
     auto grid = [&](int lo, int hi) { return 0.25 * static_cast<double>(lo + static_cast<int>(rng() % (hi - lo + 1))); };
     // 90-degree rotations about the axes keep the boxes axis-aligned (the half extents permute).
@@ -140,6 +149,16 @@ std::vector<Row> benchLinCanny(const Settings& settings, std::vector<DegenerateC
         t.seedB = {static_cast<VClipFeatureType>(kb + 1), static_cast<int>(rng() % nb[kb])};
         t.exact = boxGap(halves[t.a], halves[t.b], t.pb.position - t.pa.position);
     }
+    return out;
+}
+
+// One walk on every trial of the degenerate set: 0 ok, 1 cycle or step limit, 2 wrong distance,
+// 3 wrong verdict (touching or penetrating called separated, or the reverse).
+void benchDegenerate(const Settings& settings, std::vector<Row>& rows, std::vector<DegenerateCount>* counts) {
+    const int trials = settings.quick ? 10000 : 100000;
+    const DegenerateSet data = degenerateSet(trials);
+    const std::vector<VClipPolyhedron>& boxes = data.boxes;
+    const std::vector<Trial>& set = data.trials;
     const double tol = 1e-9;
     for (int m = 0; m < 2; ++m) {
         const char* method = m == 0 ? "lin_canny" : "vclip";
@@ -187,6 +206,14 @@ std::vector<Row> benchLinCanny(const Settings& settings, std::vector<DegenerateC
             counts->push_back(c);
         }
     }
+}
+
+}  // namespace
+
+std::vector<Row> benchLinCanny(const Settings& settings, std::vector<DegenerateCount>* counts) {
+    std::vector<Row> rows;
+    benchCoherent(settings, rows);
+    benchDegenerate(settings, rows, counts);
     return rows;
 }
 
