@@ -133,9 +133,10 @@ void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, dou
     if (gap == 0.0) vb[ib] = va[ia];
 }
 
-std::vector<Family> families()
+// Polytope pairs: scale, offset, gap, penetration, slivers, parallel edges, duplicates, rotations,
+// float rounding.
+void addPolytopeFamilies(std::vector<Family>& f)
 {
-    std::vector<Family> f;
     auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
         f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}});
     };
@@ -231,6 +232,11 @@ std::vector<Family> families()
         c.floatRounded = true;
         c.param = o / s;
     });
+}
+
+// Box pairs: axis-aligned with support ties, and random rotations.
+void addBoxFamilies(std::vector<Family>& f)
+{
     f.push_back({"axis-aligned boxes (support ties)", "|gap| / size", Kind::Box, {}, [](std::mt19937_64& rng, BoxCase& c) {
         // Face / edge / corner contact of axis-aligned boxes (all supports tie on whole faces),
         // coplanar side faces where the extents match, gaps 0 or +-1e-12..1e-3.
@@ -261,6 +267,11 @@ std::vector<Family> families()
         c.b.transform.position = s * d * randomUnit(rng);
         c.param = d;
     }, {}});
+}
+
+// Point vs triangle: near-boundary points, slivers and needles, far offsets.
+void addTriangleFamilies(std::vector<Family>& f)
+{
     auto tri = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, TriCase&)> g) {
         f.push_back({std::move(name), std::move(param), Kind::Tri, {}, {}, std::move(g)});
     };
@@ -289,6 +300,14 @@ std::vector<Family> families()
         c.p = at + uniform(rng, 0.0, 1.5) * randomUnit(rng);
         c.param = o;
     });
+}
+
+std::vector<Family> families()
+{
+    std::vector<Family> f;
+    addPolytopeFamilies(f);
+    addBoxFamilies(f);
+    addTriangleFamilies(f);
     return f;
 }
 
