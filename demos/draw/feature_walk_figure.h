@@ -12,6 +12,7 @@
 #include "core/feature_walk/vclip.h"
 #include "demos/scene/demo.h"
 #include "demos/scene/json_reader.h"
+#include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos::walkfigure {
@@ -27,6 +28,26 @@ struct Body {
 Body parseBody(const JsonNode& node);
 /// "V3" / "E12" / "F0" (checked against the body's feature counts).
 VClipFeature parseFeature(const JsonNode& node, const Body& body);
+
+/// The scene keys the V-Clip and Lin–Canny demos share, read into either demo's settings:
+/// "bodies" [A, B], "seed" [featureA, featureB], "view", "max_step_frames", "gif".
+template <class Settings>
+void readWalkSceneKeys(ObjectReader& r, Settings& s) {
+    JsonNode bodies = r.get("bodies");
+    if (!bodies.isArray() || bodies.size() != 2) bodies.fail("expected [bodyA, bodyB]");
+    s.a = parseBody(bodies.at(0));
+    s.b = parseBody(bodies.at(1));
+    if (auto seed = r.find("seed")) {
+        if (!seed->isArray() || seed->size() != 2) seed->fail("expected [featureA, featureB], e.g. [\"V0\", \"F3\"]");
+        s.seed = VClipCache{parseFeature(seed->at(0), s.a), parseFeature(seed->at(1), s.b)};
+    }
+    if (auto v = r.find("view")) {
+        s.view = sceneVec3(*v);
+        if (s.view.squaredNorm() == 0) v->fail("view direction must be non-zero");
+    }
+    if (auto m = r.find("max_step_frames")) s.maxStepFrames = m->asInt(2, 40);
+    s.gif = r.boolOr("gif", true);
+}
 
 /// Frame layout: title band, the 3D panel on the left, the state diagram over the distance plot on
 /// the right, a caption band: the scene's caption, then up to three lines about the frame.

@@ -49,11 +49,8 @@ public:
 
     [[noreturn]] void fail(const std::string& what) const;
 
-    bool isNull() const { return value_->is_null(); }
     bool isObject() const { return value_->is_object(); }
     bool isArray() const { return value_->is_array(); }
-    bool isString() const { return value_->is_string(); }
-    bool isNumber() const { return value_->is_number(); }
 
     double asNumber() const;        // finite number
     double asPositive() const;      // finite, > 0

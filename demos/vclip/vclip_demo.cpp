@@ -685,20 +685,7 @@ public:
         ObjectReader r(JsonNode(json, "$", file));
         SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
         Settings s;
-        JsonNode bodies = r.get("bodies");
-        if (!bodies.isArray() || bodies.size() != 2) bodies.fail("expected [bodyA, bodyB]");
-        s.a = parseBody(bodies.at(0));
-        s.b = parseBody(bodies.at(1));
-        if (auto seed = r.find("seed")) {
-            if (!seed->isArray() || seed->size() != 2) seed->fail("expected [featureA, featureB], e.g. [\"V0\", \"F3\"]");
-            s.seed = VClipCache{parseFeature(seed->at(0), s.a), parseFeature(seed->at(1), s.b)};
-        }
-        if (auto v = r.find("view")) {
-            s.view = sceneVec3(*v);
-            if (s.view.squaredNorm() == 0) v->fail("view direction must be non-zero");
-        }
-        if (auto m = r.find("max_step_frames")) s.maxStepFrames = m->asInt(2, 40);
-        s.gif = r.boolOr("gif", true);
+        readWalkSceneKeys(r, s);
         if (auto m = r.find("motion")) {
             ObjectReader mr(*m);
             Motion mo;
