@@ -1,7 +1,9 @@
 #include "demos/draw/step_frames.h"
 
+#include <algorithm>
 #include <cstdio>
 
+#include "demos/draw/contact_sheet.h"
 #include "render/gif_writer.h"
 #include "render/image.h"
 
@@ -31,6 +33,20 @@ void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downsc
     for (const Frame* f : frames) images.push_back(downscale > 1 ? downsample(f->image, downscale) : f->image);
     if (images.empty()) return;
     out.files.emplace_back("animation.gif", encodeGif(images));
+}
+
+void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, const RunContext& ctx, bool gif,
+                          const std::string& algorithm, DemoOutput& out) {
+    std::vector<const Frame*> all;
+    for (const Frame& f : out.frames) all.push_back(&f);
+    if (gif) addGif(out, all, 1);
+    if (common.steps || ctx.stepsOverride) {
+        ContactSheetOptions o;
+        o.title = common.title + ": " + algorithm + ", one iteration per frame";
+        o.cellWidth = 320;
+        o.columns = std::min<int>(3, int(all.size()));
+        out.frames.push_back(contactSheetFrame(gl, all, common.title, o));
+    }
 }
 
 }  // namespace cdlab::demos

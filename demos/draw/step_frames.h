@@ -19,4 +19,10 @@ std::string stepFrameName(int i);
 /// "animation.gif"; frames are box-downsampled by `downscale`.
 void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downscale);
 
+/// The end of a run that draws one frame per iteration (gjk, epa): the GIF of every frame so far
+/// when `gif`, and with --steps a contact sheet of them titled "<scene title>: <algorithm>, one
+/// iteration per frame".
+void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, const RunContext& ctx, bool gif,
+                          const std::string& algorithm, DemoOutput& out);
+
 }  // namespace cdlab::demos

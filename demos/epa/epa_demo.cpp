@@ -96,16 +96,7 @@ public:
         for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames)) out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -1));
         if (common_.hasLayer("plot") && !run.steps.empty()) out.frames.push_back(drawPlot(*ctx.gl, ss, run));
-        std::vector<const Frame*> all;
-        for (const Frame& f : out.frames) all.push_back(&f);
-        if (pair_.gif) addGif(out, all, 1);
-        if (common_.steps || ctx.stepsOverride) {
-            ContactSheetOptions o;
-            o.title = common_.title + ": EPA, one iteration per frame";
-            o.cellWidth = 320;
-            o.columns = std::min<int>(3, int(all.size()));
-            out.frames.push_back(contactSheetFrame(*ctx.gl, all, common_.title, o));
-        }
+        addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "EPA", out);
         return out;
     }
 

@@ -76,16 +76,7 @@ public:
         for (int i : framedSteps(int(trace.steps.size()), pair_.maxStepFrames))
             out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, i, r));
         out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, -1, r));
-        std::vector<const Frame*> all;
-        for (const Frame& f : out.frames) all.push_back(&f);
-        if (pair_.gif) addGif(out, all, 1);
-        if (common_.steps || ctx.stepsOverride) {
-            ContactSheetOptions o;
-            o.title = common_.title + ": GJK, one iteration per frame";
-            o.cellWidth = 320;
-            o.columns = std::min<int>(3, int(all.size()));
-            out.frames.push_back(contactSheetFrame(*ctx.gl, all, common_.title, o));
-        }
+        addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "GJK", out);
         return out;
     }
 
