@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/base/types.h"
+#include "demos/oracles/long_double_geometry.h"
 
 namespace cdlab::test {
 
@@ -100,34 +101,9 @@ inline Vec3 randomUnit(std::mt19937_64& rng)
 
 // ---- Long double brute-force oracle -----------------------------------------------------------
 
-using LVec = Eigen::Matrix<long double, 3, 1>;
-
-inline LVec toL(const Vec3& v) { return LVec(v.x(), v.y(), v.z()); }
-
-/// Distance from the origin to segment pq, long double.
-inline long double segmentDistanceL(const LVec& p, const LVec& q)
-{
-    const LVec t = q - p;
-    const long double tt = t.squaredNorm();
-    long double s = tt > 0 ? -p.dot(t) / tt : 0;
-    s = std::clamp(s, 0.0L, 1.0L);
-    return (p + s * t).norm();
-}
-
-/// Distance from the origin to triangle pqr, long double: projection if inside, else edges.
-inline long double triangleDistanceL(const LVec& p, const LVec& q, const LVec& r)
-{
-    const LVec n = (q - p).cross(r - p);
-    const long double nn = n.squaredNorm();
-    if (nn > 0) {
-        const LVec x = n * (p.dot(n) / nn);
-        const long double s0 = n.dot((q - x).cross(r - x));
-        const long double s1 = n.dot((r - x).cross(p - x));
-        const long double s2 = n.dot((p - x).cross(q - x));
-        if (s0 >= 0 && s1 >= 0 && s2 >= 0) return x.norm();
-    }
-    return std::min({segmentDistanceL(p, q), segmentDistanceL(q, r), segmentDistanceL(r, p)});
-}
+using long_double::LVec;
+using long_double::toL;
+using long_double::triangleDistanceL;
 
 struct HullOracle {
     bool inside = false;      ///< origin strictly inside conv{a_i - b_j}

@@ -4,50 +4,17 @@
 #include <cmath>
 
 #include "core/geometry/convex_hull.h"
+#include "demos/oracles/long_double_geometry.h"
 
 namespace cdlab::demos {
 
 namespace {
 
-using LVec = Eigen::Matrix<long double, 3, 1>;
-
-LVec toL(const Vec3& v) { return LVec(v.x(), v.y(), v.z()); }
-
-// |origin - segment pq|, clamped projection.
-long double segmentDistance(const LVec& p, const LVec& q)
-{
-    const LVec t = q - p;
-    const long double tt = t.squaredNorm();
-    long double s = tt > 0 ? -p.dot(t) / tt : 0;
-    s = std::clamp(s, 0.0L, 1.0L);
-    return (p + s * t).norm();
-}
-
-// |origin - convex polygon| (vertices in order, normal n of unit length, any winding sign
-// consistent with n): the projection when it lies inside every edge, else the nearest edge.
-long double polygonDistance(const std::vector<LVec>& v, const LVec& n)
-{
-    const long double offset = n.dot(v[0]);
-    const LVec x = offset * n;  // projection of the origin on the plane
-    bool inside = true;
-    for (size_t i = 0; i < v.size() && inside; ++i) {
-        const LVec& p = v[i];
-        const LVec& q = v[(i + 1) % v.size()];
-        if (n.dot((q - p).cross(x - p)) < 0) inside = false;
-    }
-    if (inside) return std::abs(offset);
-    long double best = INFINITY;
-    for (size_t i = 0; i < v.size(); ++i) best = std::min(best, segmentDistance(v[i], v[(i + 1) % v.size()]));
-    return best;
-}
-
-long double triangleDistance(const LVec& a, const LVec& b, const LVec& c)
-{
-    LVec n = (b - a).cross(c - a);
-    const long double len = n.norm();
-    if (len > 0) return polygonDistance({a, b, c}, n / len);
-    return std::min({segmentDistance(a, b), segmentDistance(b, c), segmentDistance(c, a)});
-}
+using long_double::LVec;
+using long_double::toL;
+using long_double::polygonDistanceL;
+using long_double::segmentDistanceL;
+using long_double::triangleDistanceL;
 
 // |segment pq - segment rs|: t -> |p + t (q - p) - segment rs| is convex (the distance to a
 // convex set along a line), so a ternary search on [0, 1] finds its minimum; 90 steps shrink the
@@ -57,7 +24,7 @@ long double segmentSegmentDistance(const LVec& p, const LVec& q, const LVec& r, 
 {
     auto f = [&](long double t) {
         const LVec x = p + t * (q - p);
-        return segmentDistance(r - x, s - x);
+        return segmentDistanceL(r - x, s - x);
     };
     long double lo = 0, hi = 1;
     for (int i = 0; i < 90; ++i) {
@@ -82,7 +49,7 @@ double oracleDistanceBruteForce(const std::vector<Vec3>& a, const std::vector<Ve
         for (const LVec& x : pts)
             for (size_t i = 0; i < n; ++i)
                 for (size_t j = i; j < n; ++j)
-                    for (size_t k = j; k < n; ++k) best = std::min(best, triangleDistance(tri[i] - x, tri[j] - x, tri[k] - x));
+                    for (size_t k = j; k < n; ++k) best = std::min(best, triangleDistanceL(tri[i] - x, tri[j] - x, tri[k] - x));
     };
     pointTriangles(la, lb);
     pointTriangles(lb, la);
@@ -136,7 +103,7 @@ MinkowskiOracle minkowskiOracle(const std::vector<Vec3>& a, const std::vector<Ve
             minOffset = offset;
             o.normal = Vec3(static_cast<double>(n.x()), static_cast<double>(n.y()), static_cast<double>(n.z()));
         }
-        minDistance = std::min(minDistance, polygonDistance(v, n));
+        minDistance = std::min(minDistance, polygonDistanceL(v, n));
     }
     o.depth = o.inside ? static_cast<double>(minOffset) : 0.0;
     o.distance = o.inside ? 0.0 : static_cast<double>(minDistance);
@@ -151,7 +118,7 @@ double oracleSegmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const 
 double oracleDistanceToTriangle(const Vec3& p, const Triangle& t)
 {
     const LVec q = toL(p);
-    return static_cast<double>(triangleDistance(toL(t.a) - q, toL(t.b) - q, toL(t.c) - q));
+    return static_cast<double>(triangleDistanceL(toL(t.a) - q, toL(t.b) - q, toL(t.c) - q));
 }
 
 double oracleDistanceToTetrahedron(const Vec3& p, const Tetrahedron& t)
@@ -167,8 +134,8 @@ double oracleDistanceToTetrahedron(const Vec3& p, const Tetrahedron& t)
     const long double s[4] = {vol(o, v[1], v[2], v[3]), vol(v[0], o, v[2], v[3]),
                               vol(v[0], v[1], o, v[3]), vol(v[0], v[1], v[2], o)};
     if (total != 0 && std::all_of(s, s + 4, [&](long double x) { return x * total >= 0; })) return 0.0;
-    return static_cast<double>(std::min({triangleDistance(v[1], v[2], v[3]), triangleDistance(v[0], v[2], v[3]),
-                                         triangleDistance(v[0], v[1], v[3]), triangleDistance(v[0], v[1], v[2])}));
+    return static_cast<double>(std::min({triangleDistanceL(v[1], v[2], v[3]), triangleDistanceL(v[0], v[2], v[3]),
+                                         triangleDistanceL(v[0], v[1], v[3]), triangleDistanceL(v[0], v[1], v[2])}));
 }
 
 }  // namespace cdlab::demos

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "demos/oracles/minkowski_facet_oracle.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
 
 using namespace cdlab;
@@ -35,6 +36,33 @@ struct BoxCase {
 
 TEST_SUITE("bench oracle")
 {
+    TEST_CASE("the two Minkowski oracles agree: hull of the differences vs facet enumeration by triples")
+    {
+        // Two independent ways to the same answer (the bench's builds core's hull of {a_i - b_j}; the
+        // tests' enumerates facet planes by triples and uses no core algorithm): distance, inside
+        // and depth agree on random 6-vertex pairs, separated and overlapping.
+        std::mt19937_64 rng(7);
+        int separated = 0, overlapping = 0;
+        for (int trial = 0; trial < 200; ++trial) {
+            const Vec3 offset = (trial % 2 ? 0.5 : 2.2) * cdlab::test::randomUnit(rng);
+            const std::vector<Vec3> a = cdlab::test::randomPolytope(rng, 6, 1.0, Vec3::Zero());
+            const std::vector<Vec3> b = cdlab::test::randomPolytope(rng, 6, 1.0, offset);
+            const MinkowskiOracle hull = minkowskiOracle(a, b);
+            const cdlab::test::HullOracle facets = cdlab::test::hullOracle(a, b);
+            REQUIRE(hull.ok);
+            REQUIRE(hull.inside == facets.inside);
+            if (hull.inside) {
+                ++overlapping;
+                CHECK(hull.depth == doctest::Approx(double(facets.depth)).epsilon(1e-12));
+            } else {
+                ++separated;
+                CHECK(hull.distance == doctest::Approx(double(facets.distance)).epsilon(1e-12));
+            }
+        }
+        CHECK(separated > 30);
+        CHECK(overlapping > 30);
+    }
+
     TEST_CASE("boxes: face, edge, vertex distance and overlap depth, under rotations and offsets")
     {
         const Vec3 halfA(1.0, 2.0, 3.0);

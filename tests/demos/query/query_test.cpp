@@ -7,86 +7,15 @@
 #include <cstdint>
 #include <sstream>
 
+#include "demos/oracles/minkowski_facet_oracle.h"
 #include "demos/query/query.h"
 
 using cdlab::demos::answerQuery;
 using cdlab::demos::Json;
 using cdlab::demos::runQueries;
+using cdlab::Vec3;
 
 namespace {
-
-using LVec = std::array<long double, 3>;
-
-LVec sub(const LVec& a, const LVec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-long double dot(const LVec& a, const LVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-LVec cross(const LVec& a, const LVec& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-long double norm(const LVec& a) { return std::sqrt(dot(a, a)); }
-
-// Distance from the origin to segment pq.
-long double distSegment(const LVec& p, const LVec& q) {
-    LVec d = sub(q, p);
-    long double dd = dot(d, d);
-    long double t = dd > 0 ? std::clamp(-dot(p, d) / dd, 0.0L, 1.0L) : 0.0L;
-    return norm({p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]});
-}
-
-// Distance from the origin to triangle abc: plane projection if inside, else the nearest edge.
-long double distTriangle(const LVec& a, const LVec& b, const LVec& c) {
-    LVec n = cross(sub(b, a), sub(c, a));
-    long double nn = dot(n, n);
-    if (nn > 0) {
-        long double s = dot(n, a) / nn;  // projection of the origin: s n
-        LVec p = {s * n[0], s * n[1], s * n[2]};
-        bool inside = dot(cross(sub(b, a), sub(p, a)), n) >= 0 && dot(cross(sub(c, b), sub(p, b)), n) >= 0 &&
-                      dot(cross(sub(a, c), sub(p, c)), n) >= 0;
-        if (inside) return std::fabs(dot(n, a)) / std::sqrt(nn);
-    }
-    return std::min({distSegment(a, b), distSegment(b, c), distSegment(c, a)});
-}
-
-struct HullOracle {
-    bool inside = false;
-    long double distance = 0;  // origin outside: distance to the hull
-    long double depth = 0;     // origin inside: smallest facet offset
-};
-
-// Brute force over all triples of the Minkowski difference: a triple spans a facet plane when
-// every point lies on one side. Depth = min facet offset; distance = min over facet triangles.
-HullOracle minkowskiOracle(const std::vector<LVec>& w) {
-    const std::size_t n = w.size();
-    long double scale = 0;
-    for (const auto& p : w) scale = std::max(scale, norm(p));
-    const long double tol = 1e-15L * scale;
-    HullOracle o;
-    o.inside = true;
-    long double depth = INFINITY, dist = INFINITY;
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = i + 1; j < n; ++j)
-            for (std::size_t k = j + 1; k < n; ++k) {
-                LVec nrm = cross(sub(w[j], w[i]), sub(w[k], w[i]));
-                long double len = norm(nrm);
-                if (len <= 1e-12L * scale * scale) continue;
-                nrm = {nrm[0] / len, nrm[1] / len, nrm[2] / len};
-                long double off = dot(nrm, w[i]);
-                bool pos = false, neg = false;
-                for (const auto& p : w) {
-                    long double s = dot(nrm, p) - off;
-                    if (s > tol) pos = true;
-                    if (s < -tol) neg = true;
-                    if (pos && neg) break;
-                }
-                if (pos && neg) continue;
-                if (pos) nrm = {-nrm[0], -nrm[1], -nrm[2]}, off = -off;  // outward
-                if (off < 0) o.inside = false;                          // origin in front of a facet
-                depth = std::min(depth, off);
-                dist = std::min(dist, distTriangle(w[i], w[j], w[k]));
-            }
-    o.depth = depth;
-    o.distance = dist;
-    return o;
-}
 
 std::uint64_t rngState = 0x1234567;
 double uniform() {  // splitmix64 -> [0, 1)
@@ -106,13 +35,9 @@ Json polytopeJson(const std::vector<std::array<double, 3>>& v, const std::array<
     return {{"polytope", {{"vertices", v}, {"position", pos}}}};
 }
 
-// h_{A-B}(n) = max over the Minkowski-difference points of n·w (w from exact differences, so the
-// check stays well conditioned at offsets of 1e6).
-double hSupport(const std::vector<LVec>& w, const Json& n) {
-    long double h = -INFINITY;
-    const LVec nl = {n[0].get<double>(), n[1].get<double>(), n[2].get<double>()};
-    for (const LVec& p : w) h = std::max(h, dot(nl, p));
-    return double(h);
+// h_{A-B}(n) in long double, both sides relative to a_0 (well conditioned at offsets of 1e6).
+double hSupport(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Json& n) {
+    return double(cdlab::test::supportValueL(a, b, Vec3(n[0].get<double>(), n[1].get<double>(), n[2].get<double>())));
 }
 
 Json ask(const Json& q) { return answerQuery(q.dump()); }
@@ -134,13 +59,10 @@ TEST_CASE("random polytope pairs: distance and penetration match the Minkowski-h
         std::array<double, 3> pb = {pa[0] + (uniform() - 0.5) * 1.6 * size, pa[1] + (uniform() - 0.5) * 1.6 * size,
                                     pa[2] + (uniform() - 0.5) * 1.6 * size};
         // The oracle sees the same world vertices the query builds (rotation identity: v + position).
-        std::vector<LVec> w;
-        for (const auto& a : va)
-            for (const auto& b : vb)
-                w.push_back({(long double)(a[0] + pa[0]) - (long double)(b[0] + pb[0]),
-                             (long double)(a[1] + pa[1]) - (long double)(b[1] + pb[1]),
-                             (long double)(a[2] + pa[2]) - (long double)(b[2] + pb[2])});
-        HullOracle o = minkowskiOracle(w);
+        std::vector<Vec3> worldA, worldB;
+        for (const auto& a : va) worldA.push_back(Vec3(a[0] + pa[0], a[1] + pa[1], a[2] + pa[2]));
+        for (const auto& b : vb) worldB.push_back(Vec3(b[0] + pb[0], b[1] + pb[1], b[2] + pb[2]));
+        const cdlab::test::HullOracle o = cdlab::test::hullOracle(worldA, worldB);
         Json q = {{"op", "penetration"}, {"a", polytopeJson(va, pa)}, {"b", polytopeJson(vb, pb)}};
         Json ans = ask(q);
         REQUIRE_MESSAGE(!ans.contains("error"), ans.dump());
@@ -151,7 +73,7 @@ TEST_CASE("random polytope pairs: distance and penetration match the Minkowski-h
             double rel = std::fabs(depth - double(o.depth)) / double(o.depth);
             worstDepth = std::max(worstDepth, rel);
             CHECK_MESSAGE(rel <= 1e-12, "depth " << depth << " oracle " << double(o.depth));
-            double hn = hSupport(w, ans["normal"]);
+            double hn = hSupport(worldA, worldB, ans["normal"]);
             worstNormal = std::max(worstNormal, std::fabs(hn - depth) / depth);
             CHECK(std::fabs(hn - depth) <= 1e-12 * depth);
             for (int i = 0; i < 3; ++i) {
