@@ -3,10 +3,9 @@
 // Follows Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
 // Predicates" (1997): the determinant is first evaluated in doubles and its sign accepted when
 // |det| exceeds Shewchuk's a-priori error bound (errboundA); otherwise it is recomputed exactly
-// as a nonoverlapping floating-point expansion (TwoSum / TwoProduct with std::fma).
-// The answer is the exact sign of the determinant of the double inputs, as long as no product
-// of three coordinates overflows or underflows (|coordinates| in about [1e-90, 1e90], or 0).
-// Non-finite inputs give 0; callers reject NaN / inf before asking.
+// with the expansion arithmetic of exact_predicates.h (BigDyadic where an expansion could
+// underflow or overflow): the exact sign of the determinant of the double inputs, for every
+// finite input. Non-finite inputs give 0; callers reject NaN / inf before asking.
 #pragma once
 
 #include "core/base/types.h"
