@@ -15,32 +15,12 @@
 #include "core/geometry/shapes.h"
 #include "core/feature_walk/vclip.h"
 #include "demos/oracles/feature_walk_oracle.h"
+#include "tests/core/feature_walk/walk_test_bodies.h"
 
 using namespace cdlab;
 using namespace cdlab::test;
 
 namespace {
-
-VClipPolyhedron build(const ConvexPolyhedron& p) {
-    VClipBuild b = buildVClipPolyhedron(p);
-    REQUIRE_MESSAGE(b.ok(), b.message);
-    return b.polyhedron;
-}
-
-Quat randomRotation(presets::SplitMix64& rng) {
-    Quat q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    if (q.norm() < 1e-3) q = Quat::Identity();
-    return q.normalized();
-}
-
-Transform pose(const Vec3& p, const Quat& q = Quat::Identity()) {
-    Transform t;
-    t.position = p;
-    t.rotation = q;
-    return t;
-}
-
-double extent(const ConvexPolyhedron& p) { return (p.boundsMax() - p.boundsMin()).norm(); }
 
 struct CheckStats {
     int queries = 0, separated = 0, penetrating = 0, steps = 0, updates = 0, dimUp = 0, dimDown = 0, localMin = 0;
