@@ -42,45 +42,37 @@ VClipPolyhedron polyhedronOf(const QueryShape& s, int k, const JsonNode& node, V
 
 Json featureJson(const VClipFeature& f) { return {{"type", nameOf(f.type)}, {"index", f.index}}; }
 
+// One step of either walk (VClipTraceStep or LinCannyTraceStep: the same fields); the update
+// fields when the step moved a feature.
+template <class Step>
+Json walkStepJson(const Step& s, bool moved) {
+    Json step = {{"step", s.step},
+                 {"state", nameOf(s.state)},
+                 {"feature_a", featureJson(s.featureA)},
+                 {"feature_b", featureJson(s.featureB)},
+                 {"kind", nameOf(s.kind)},
+                 {"rule", s.rule},
+                 {"distance_before", s.distanceBefore}};
+    if (moved) {
+        step["updated"] = s.updatedBody == 0 ? "a" : "b";
+        step["to"] = featureJson(s.to);
+        step["distance_after"] = s.distanceAfter;
+        step["local_minimum"] = s.localMinimum;
+    }
+    return step;
+}
+
 Json traceJson(const VClipTrace& t) {
     Json steps = Json::array();
-    for (const VClipTraceStep& s : t.steps) {
-        Json step = {{"step", s.step},
-                     {"state", nameOf(s.state)},
-                     {"feature_a", featureJson(s.featureA)},
-                     {"feature_b", featureJson(s.featureB)},
-                     {"kind", nameOf(s.kind)},
-                     {"rule", s.rule},
-                     {"distance_before", s.distanceBefore}};
-        if (s.kind == VClipStepKind::Update) {
-            step["updated"] = s.updatedBody == 0 ? "a" : "b";
-            step["to"] = featureJson(s.to);
-            step["distance_after"] = s.distanceAfter;
-            step["local_minimum"] = s.localMinimum;
-        }
-        steps.push_back(step);
-    }
+    for (const VClipTraceStep& s : t.steps) steps.push_back(walkStepJson(s, s.kind == VClipStepKind::Update));
     return {{"algorithm", "vclip"}, {"status", nameOf(t.status)}, {"steps", steps}};
 }
 
+// Lin–Canny's aborted step (a cycle) has moved a feature too.
 Json traceJson(const LinCannyTrace& t) {
     Json steps = Json::array();
-    for (const LinCannyTraceStep& s : t.steps) {
-        Json step = {{"step", s.step},
-                     {"state", nameOf(s.state)},
-                     {"feature_a", featureJson(s.featureA)},
-                     {"feature_b", featureJson(s.featureB)},
-                     {"kind", nameOf(s.kind)},
-                     {"rule", s.rule},
-                     {"distance_before", s.distanceBefore}};
-        if (s.kind == VClipStepKind::Update || s.kind == VClipStepKind::Aborted) {
-            step["updated"] = s.updatedBody == 0 ? "a" : "b";
-            step["to"] = featureJson(s.to);
-            step["distance_after"] = s.distanceAfter;
-            step["local_minimum"] = s.localMinimum;
-        }
-        steps.push_back(step);
-    }
+    for (const LinCannyTraceStep& s : t.steps)
+        steps.push_back(walkStepJson(s, s.kind == VClipStepKind::Update || s.kind == VClipStepKind::Aborted));
     Json out = {{"algorithm", "lin_canny"}, {"status", nameOf(t.status)}, {"steps", steps}};
     if (t.status == LinCannyStatus::CycleDetected) out["cycle_length"] = t.cycleLength;
     return out;
