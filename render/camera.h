@@ -11,8 +11,8 @@ struct Camera {
     Eigen::Vector3d eye{3, 2.5, 4};
     Eigen::Vector3d target{0, 0, 0};
     Eigen::Vector3d up{0, 1, 0};
-    double fovYDegrees = 35.0;   // Perspective
-    double viewHeight = 4.0;     // Orthographic and TwoD: world units visible vertically
+    double fovYDegrees = 35.0;  // Perspective
+    double viewHeight = 4.0;    // Orthographic and TwoD: world units visible vertically
     double nearPlane = 0.01, farPlane = 1000.0;
 
     /// 2D view centred on (cx, cy) showing `height` world units vertically.

@@ -60,8 +60,8 @@ struct PointCmd {
 };
 struct TextCmd {
     bool world;
-    Vector3d at;    // world
-    Vector2d px;    // output pixels
+    Vector3d at;  // world
+    Vector2d px;  // output pixels
     std::string text;
     TextStyle style;
 };
@@ -244,10 +244,8 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
                 set4(s.v[i].local, 0, 0, 0, 0);
                 set4(s.v[i].param, kFlat, 0, 0, 0);
             }
-            if (isTranslucent)
-                sorted.push_back(s);
-            else
-                opaque.insert(opaque.end(), s.v, s.v + 3);
+            if (isTranslucent) sorted.push_back(s);
+            else opaque.insert(opaque.end(), s.v, s.v + 3);
         }
     }
     // Back to front by centroid depth (painter's order); stable, so equal depths (every face in
@@ -258,8 +256,8 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
 
 /// Thick line from a to b (render pixels + NDC depth) as one quad: a capsule (round caps)
 /// with a 1 px anti-aliasing ramp, optionally dashed with the dash pattern starting at `phase`.
-void Canvas::Impl::addCapsule(std::vector<Vertex>& out, const Vector3d& a, const Vector3d& b, double halfW,
-                              double dash, double phase, const Color& color) {
+void Canvas::Impl::addCapsule(std::vector<Vertex>& out, const Vector3d& a, const Vector3d& b, double halfW, double dash,
+                              double phase, const Color& color) {
     Vector2d d(b.x() - a.x(), b.y() - a.y());
     const double len = d.norm();
     d = len > 1e-9 ? Vector2d(d / len) : Vector2d(1, 0);  // zero length: a round dot
@@ -393,8 +391,8 @@ void Canvas::Impl::buildText(std::vector<Vertex>& out, std::vector<std::pair<GLu
                     const double gw = pc.x1 - pc.x0, gh = pc.y1 - pc.y0;
                     const double u0 = pc.x0 / double(atlas.width), u1 = pc.x1 / double(atlas.width);
                     const double v0 = pc.y0 / double(atlas.height), v1 = pc.y1 / double(atlas.height);
-                    const double cs[4][4] = {{gx, gy, u0, v0}, {gx + gw, gy, u1, v0}, {gx + gw, gy + gh, u1, v1},
-                                             {gx, gy + gh, u0, v1}};
+                    const double cs[4][4] = {
+                        {gx, gy, u0, v0}, {gx + gw, gy, u1, v0}, {gx + gw, gy + gh, u1, v1}, {gx, gy + gh, u0, v1}};
                     Vertex q[4];
                     for (int k = 0; k < 4; ++k) {
                         pixelVertex(q[k], cs[k][0], cs[k][1], -1.0);
@@ -421,10 +419,8 @@ void Canvas::Impl::buildText(std::vector<Vertex>& out, std::vector<std::pair<GLu
         emitGlyphs(0, 0, t.style.color);
         const int count = int(out.size()) - first;
         if (count == 0) continue;
-        if (!runs.empty() && runs.back().first == atlas.texture)
-            runs.back().second.second += count;
-        else
-            runs.push_back({atlas.texture, {base + first, count}});
+        if (!runs.empty() && runs.back().first == atlas.texture) runs.back().second.second += count;
+        else runs.push_back({atlas.texture, {base + first, count}});
     }
 }
 
@@ -608,10 +604,8 @@ Image Canvas::readPixels() {
     };
     // 1. Opaque meshes: depth test + write. Polygon offset pushes faces back a little so lines
     //    drawn along their edges win the depth test.
-    if (m.is3D())
-        glEnable(GL_DEPTH_TEST);
-    else
-        glDisable(GL_DEPTH_TEST);  // 2D: painter's order
+    if (m.is3D()) glEnable(GL_DEPTH_TEST);
+    else glDisable(GL_DEPTH_TEST);  // 2D: painter's order
     glDepthFunc(GL_LESS);
     glDisable(GL_BLEND);
     glEnable(GL_POLYGON_OFFSET_FILL);
@@ -654,7 +648,8 @@ Image Canvas::readPixels() {
     checkGl("rendering and reading back the canvas");
     const std::size_t stride = std::size_t(m.rw) * 4;
     for (int y = 0; y < m.rh; ++y)
-        std::copy_n(rows.data() + std::size_t(m.rh - 1 - y) * stride, stride, raw.rgba.data() + std::size_t(y) * stride);
+        std::copy_n(rows.data() + std::size_t(m.rh - 1 - y) * stride, stride,
+                    raw.rgba.data() + std::size_t(y) * stride);
     Image out = m.ss > 1 ? downsample(raw, m.ss) : raw;
     stats.readbackSeconds += secondsSince(t0);
     ++stats.frames;

@@ -18,17 +18,17 @@
 namespace cdlab::render {
 
 struct CanvasOptions {
-    int width = 1024;       // output size in pixels
+    int width = 1024;  // output size in pixels
     int height = 1024;
-    int supersample = 1;    // render at width*s x height*s, box-filter down (--scale)
-    int msaaSamples = 4;    // 4x MSAA (llvmpipe supports 4, not 8); clamped to GL_MAX_SAMPLES
+    int supersample = 1;  // render at width*s x height*s, box-filter down (--scale)
+    int msaaSamples = 4;  // 4x MSAA (llvmpipe supports 4, not 8); clamped to GL_MAX_SAMPLES
 };
 
 struct LineStyle {
     float widthPx = 2.0f;
     Color color;
-    float dashPx = 0.0f;     // > 0: dashed with this dash length (gap = dash)
-    bool onTop = false;      // ignore depth (annotations); otherwise depth-tested in 3D
+    float dashPx = 0.0f;  // > 0: dashed with this dash length (gap = dash)
+    bool onTop = false;   // ignore depth (annotations); otherwise depth-tested in 3D
 };
 
 enum class Anchor { Center, Left, Right, Top, Bottom, TopLeft, TopRight, BottomLeft, BottomRight };
@@ -77,8 +77,8 @@ public:
 
     /// Triangle mesh, flat shaded per triangle (+ simple directional light when `lit`).
     /// color.a < 1 draws it translucent (sorted back to front, no depth write).
-    void drawMesh(const std::vector<Eigen::Vector3d>& vertices,
-                  const std::vector<Eigen::Vector3i>& triangles, const Color& color, bool lit = true);
+    void drawMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
+                  const Color& color, bool lit = true);
     /// Convex planar polygon (fan-triangulated), e.g. a face, a region or a translucent plane patch.
     void drawPolygon(const std::vector<Eigen::Vector3d>& corners, const Color& color, bool lit = false);
     /// Thick anti-aliased line as a screen-space quad (any width; dashed optional).
@@ -109,6 +109,7 @@ public:
     bool project(const Eigen::Vector3d& p, Eigen::Vector2d& pixel) const;
 
     struct Impl;
+
 private:
     Impl* impl_;
 };

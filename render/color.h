@@ -18,19 +18,19 @@ struct Color {
 
 /// What a colour is used for in a figure.
 enum class Role {
-    Background,   // page
-    Ink,          // text, axes, outlines
-    Muted,        // grid, construction lines, inactive things
-    ShapeA,       // first body
-    ShapeB,       // second body
-    Minkowski,    // configuration-space obstacle A - B
-    Simplex,      // current GJK simplex / EPA polytope
-    Origin,       // the origin of configuration space
-    Direction,    // search direction, normals
-    Support,      // new support point
-    Highlight,    // the thing the caption talks about
-    Query,        // query points
-    Result,       // closest points, witnesses, answers
+    Background,  // page
+    Ink,         // text, axes, outlines
+    Muted,       // grid, construction lines, inactive things
+    ShapeA,      // first body
+    ShapeB,      // second body
+    Minkowski,   // configuration-space obstacle A - B
+    Simplex,     // current GJK simplex / EPA polytope
+    Origin,      // the origin of configuration space
+    Direction,   // search direction, normals
+    Support,     // new support point
+    Highlight,   // the thing the caption talks about
+    Query,       // query points
+    Result,      // closest points, witnesses, answers
 };
 
 Color roleColor(Role role);

@@ -62,19 +62,20 @@ CompareResult compareImages(const Image& actual, const Image& expected, const Co
 }
 
 std::string CompareResult::summary() const {
-    const std::string tolerance = format("tolerance: channel delta <= %d, differing pixels <= %lld or <= %.4g%%",
-                                         applied.maxChannelDelta, (long long)applied.maxDiffPixels,
-                                         applied.maxDiffFraction * 100.0);
+    const std::string tolerance =
+        format("tolerance: channel delta <= %d, differing pixels <= %lld or <= %.4g%%", applied.maxChannelDelta,
+               (long long)applied.maxDiffPixels, applied.maxDiffFraction * 100.0);
     if (sizeMismatch)
         return format("FAIL size mismatch: actual %dx%d, expected %dx%d; ", actualWidth, actualHeight, expectedWidth,
                       expectedHeight) +
                tolerance;
     if (exact) return format("PASS exact (identical pixel hash, %dx%d); ", expectedWidth, expectedHeight) + tolerance;
     const double pct = totalPixels > 0 ? 100.0 * double(diffPixels) / double(totalPixels) : 0.0;
-    return format("%s %lld of %lld pixels differ beyond tolerance (%.4g%%), %lld differ at all; max delta %d at (%d,%d); "
-                  "RMS %.3f; PSNR %.2f dB; ",
-                  passed ? "PASS fuzzy:" : "FAIL:", (long long)diffPixels, (long long)totalPixels, pct,
-                  (long long)anyDiffPixels, maxDelta, maxDeltaX, maxDeltaY, rms, psnr) +
+    return format(
+               "%s %lld of %lld pixels differ beyond tolerance (%.4g%%), %lld differ at all; max delta %d at (%d,%d); "
+               "RMS %.3f; PSNR %.2f dB; ",
+               passed ? "PASS fuzzy:" : "FAIL:", (long long)diffPixels, (long long)totalPixels, pct,
+               (long long)anyDiffPixels, maxDelta, maxDeltaX, maxDeltaY, rms, psnr) +
            tolerance;
 }
 
@@ -124,7 +125,8 @@ std::string htmlEscape(const std::string& text) {
 
 void writeHtmlReport(const std::string& path, const std::vector<ReportEntry>& entries) {
     std::string html =
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>cdlab golden-image report</title>\n"
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>cdlab golden-image "
+        "report</title>\n"
         "<style>\n"
         "body{font-family:sans-serif;margin:1.5em;background:#fafafa;color:#1a1a1f}\n"
         "section{background:#fff;border:1px solid #ddd;margin:0 0 1.5em 0;padding:0.8em}\n"
@@ -140,10 +142,10 @@ void writeHtmlReport(const std::string& path, const std::vector<ReportEntry>& en
             (entries.size() == 1 ? " failure" : " failures") + ".</p>\n";
     auto figure = [](const std::string& src, const char* caption) {
         std::string f = "<figure>";
-        if (src.empty())
-            f += "<div class=\"missing\">none</div>";
+        if (src.empty()) f += "<div class=\"missing\">none</div>";
         else
-            f += "<a href=\"" + htmlEscape(src) + "\"><img src=\"" + htmlEscape(src) + "\" alt=\"" + caption + "\"></a>";
+            f +=
+                "<a href=\"" + htmlEscape(src) + "\"><img src=\"" + htmlEscape(src) + "\" alt=\"" + caption + "\"></a>";
         return f + "<figcaption>" + caption + "</figcaption></figure>";
     };
     for (const ReportEntry& e : entries) {

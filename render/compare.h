@@ -18,16 +18,16 @@ struct CompareTolerance {
 
 struct CompareResult {
     bool sizeMismatch = false;
-    bool exact = false;   // pixel hashes equal
-    bool passed = false;  // exact, or within tolerance
-    std::int64_t diffPixels = 0;  // pixels with some channel delta > maxChannelDelta
-    std::int64_t anyDiffPixels = 0;  // pixels with any delta at all
-    int maxDelta = 0;             // largest channel delta ...
+    bool exact = false;                  // pixel hashes equal
+    bool passed = false;                 // exact, or within tolerance
+    std::int64_t diffPixels = 0;         // pixels with some channel delta > maxChannelDelta
+    std::int64_t anyDiffPixels = 0;      // pixels with any delta at all
+    int maxDelta = 0;                    // largest channel delta ...
     int maxDeltaX = -1, maxDeltaY = -1;  // ... and where
-    double rms = 0.0;             // over all channels, 0..255 scale
-    double psnr = 0.0;            // dB; +inf when identical
+    double rms = 0.0;                    // over all channels, 0..255 scale
+    double psnr = 0.0;                   // dB; +inf when identical
     CompareTolerance applied;
-    std::int64_t totalPixels = 0;        // of expected (0 on size mismatch)
+    std::int64_t totalPixels = 0;  // of expected (0 on size mismatch)
     int actualWidth = 0, actualHeight = 0, expectedWidth = 0, expectedHeight = 0;
     /// One line: what was applied and what was measured.
     std::string summary() const;
@@ -42,11 +42,11 @@ CompareResult compareImages(const Image& actual, const Image& expected, const Co
 Image diffImage(const Image& actual, const Image& expected, int gain = 16);
 
 struct ReportEntry {
-    std::string name;          // e.g. "voronoi_triangle/regions"
-    std::string actualPng;     // paths relative to the report's folder
-    std::string expectedPng;   // may be empty when the golden is missing
-    std::string diffPng;       // may be empty
-    std::string summary;       // CompareResult::summary() or the reason
+    std::string name;         // e.g. "voronoi_triangle/regions"
+    std::string actualPng;    // paths relative to the report's folder
+    std::string expectedPng;  // may be empty when the golden is missing
+    std::string diffPng;      // may be empty
+    std::string summary;      // CompareResult::summary() or the reason
 };
 
 /// Escapes & < > " ' for HTML text and attribute values.

@@ -71,8 +71,8 @@ std::string encodeGif(const std::vector<Image>& frames, const GifOptions& option
             std::unique_ptr<ColorMapObject, MapDeleter> map(GifMakeMapObject(256, nullptr));
             if (!map) throw GifError("gif: out of memory for a colour map");
             int colors = 256;
-            if (GifQuantizeBuffer(unsigned(w), unsigned(h), &colors, red.data(), green.data(), blue.data(), index.data(),
-                                  map->Colors) != GIF_OK)
+            if (GifQuantizeBuffer(unsigned(w), unsigned(h), &colors, red.data(), green.data(), blue.data(),
+                                  index.data(), map->Colors) != GIF_OK)
                 throw GifError("gif: colour quantisation failed");
             // Graphics control extension: frame delay, no transparency, disposal "do not dispose".
             const int delay = k + 1 == frames.size() ? options.lastDelayCentiseconds : options.delayCentiseconds;

@@ -13,9 +13,9 @@
 namespace cdlab::render {
 
 struct GifOptions {
-    int delayCentiseconds = 120;   ///< display time of each frame (1/100 s)
+    int delayCentiseconds = 120;      ///< display time of each frame (1/100 s)
     int lastDelayCentiseconds = 300;  ///< display time of the last frame (a pause before looping)
-    int loopCount = 0;             ///< Netscape loop count, 0 = forever
+    int loopCount = 0;                ///< Netscape loop count, 0 = forever
 };
 
 /// Thrown for empty input, frames of different sizes or a giflib error; what() is one line.

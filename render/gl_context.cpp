@@ -79,8 +79,9 @@ std::string createOn(EGLDisplay display, GlContext::Impl& out) {
     }
     if (count < 1) return "eglChooseConfig found no OpenGL-renderable config (" + eglErrorName(eglGetError()) + ")";
 
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint contextAttribs[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
     if (context == EGL_NO_CONTEXT) return eglFailure("eglCreateContext(OpenGL 3.3 core)");
     EGLSurface surface = EGL_NO_SURFACE;
@@ -122,8 +123,7 @@ const char* glErrorName(GLenum error) {
 void checkGl(const char* step) {
     const GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
-        while (glGetError() != GL_NO_ERROR) {
-        }  // drain, so the next check reports its own step
+        while (glGetError() != GL_NO_ERROR) {}  // drain, so the next check reports its own step
         throw GlError(std::string("OpenGL: ") + step + " failed (" + glErrorName(e) + ")");
     }
 }
@@ -157,15 +157,14 @@ std::unique_ptr<GlContext> GlContext::create() {
         EGLint numDevices = 0;
         if (!queryDevices(16, devices, &numDevices) || numDevices < 1)
             failures = "device: eglQueryDevicesEXT found no device (" + eglErrorName(eglGetError()) + ")";
-        else
-            ok = attempt("device", [&] { return getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr); });
+        else ok = attempt("device", [&] { return getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr); });
     }
     if (!ok) {
         if (havePlatformBase && hasExtension(clientExt, "EGL_MESA_platform_surfaceless"))
-            ok = attempt("surfaceless",
-                         [&] { return getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr); });
-        else
-            failures += "; surfaceless: EGL_MESA_platform_surfaceless not offered";
+            ok = attempt("surfaceless", [&] {
+                return getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+            });
+        else failures += "; surfaceless: EGL_MESA_platform_surfaceless not offered";
     }
     if (!ok) ok = attempt("default", [] { return eglGetDisplay(EGL_DEFAULT_DISPLAY); });
     if (!ok) throw GlError("EGL: no headless OpenGL 3.3 core context: " + failures);
@@ -382,19 +381,19 @@ const FontFace& GlContext::Impl::font(bool bold) {
 
 const std::vector<int>& atlasCodepoints() {
     static const std::vector<int> list = [] {
-    std::vector<int> cps;
-    for (int c = 32; c < 127; ++c) cps.push_back(c);
-    for (int c = 0xA0; c <= 0xFF; ++c) cps.push_back(c);  // · × ± ° ² ³ ...
-    for (int c = 0x391; c <= 0x3A9; ++c) cps.push_back(c);  // Greek capitals
-    for (int c = 0x3B1; c <= 0x3C9; ++c) cps.push_back(c);  // Greek small
-    for (int c = 0x2070; c <= 0x209C; ++c) cps.push_back(c);  // super/subscripts
-    for (int c : {0x03D5, 0x03F5, 0x2013, 0x2014, 0x2016, 0x2020, 0x2022, 0x2026, 0x2032, 0x2033, 0x2190, 0x2191,
-                  0x2192, 0x2193, 0x2194, 0x21D0, 0x21D2, 0x21D4, 0x2200, 0x2202, 0x2203, 0x2205, 0x2207, 0x2208,
-                  0x2209, 0x2211, 0x2212, 0x2218, 0x2219, 0x221A, 0x221E, 0x2220, 0x2225, 0x2227, 0x2228, 0x2229,
-                  0x222A, 0x222B, 0x2248, 0x2260, 0x2261, 0x2264, 0x2265, 0x2282, 0x2283, 0x2286, 0x2287, 0x2295,
-                  0x2296, 0x2297, 0x22C5, 0x25A1, 0x25B3, 0x25CB, 0x27E8, 0x27E9})
-        cps.push_back(c);
-    return cps;
+        std::vector<int> cps;
+        for (int c = 32; c < 127; ++c) cps.push_back(c);
+        for (int c = 0xA0; c <= 0xFF; ++c) cps.push_back(c);      // · × ± ° ² ³ ...
+        for (int c = 0x391; c <= 0x3A9; ++c) cps.push_back(c);    // Greek capitals
+        for (int c = 0x3B1; c <= 0x3C9; ++c) cps.push_back(c);    // Greek small
+        for (int c = 0x2070; c <= 0x209C; ++c) cps.push_back(c);  // super/subscripts
+        for (int c : {0x03D5, 0x03F5, 0x2013, 0x2014, 0x2016, 0x2020, 0x2022, 0x2026, 0x2032, 0x2033, 0x2190, 0x2191,
+                      0x2192, 0x2193, 0x2194, 0x21D0, 0x21D2, 0x21D4, 0x2200, 0x2202, 0x2203, 0x2205, 0x2207, 0x2208,
+                      0x2209, 0x2211, 0x2212, 0x2218, 0x2219, 0x221A, 0x221E, 0x2220, 0x2225, 0x2227, 0x2228, 0x2229,
+                      0x222A, 0x222B, 0x2248, 0x2260, 0x2261, 0x2264, 0x2265, 0x2282, 0x2283, 0x2286, 0x2287, 0x2295,
+                      0x2296, 0x2297, 0x22C5, 0x25A1, 0x25B3, 0x25CB, 0x27E8, 0x27E9})
+            cps.push_back(c);
+        return cps;
     }();
     return list;
 }
@@ -423,7 +422,8 @@ GlyphAtlas& GlContext::Impl::atlas(bool bold, int pixelSize) {
         if (side > 8192) throw GlError("font: glyph atlas for " + std::to_string(pixelSize) + " px exceeds 8192x8192");
         bitmap.assign(std::size_t(side) * side, 0);
         stbtt_pack_context pc;
-        if (!stbtt_PackBegin(&pc, bitmap.data(), side, side, 0, 1, nullptr)) throw GlError("font: stbtt_PackBegin failed");
+        if (!stbtt_PackBegin(&pc, bitmap.data(), side, side, 0, 1, nullptr))
+            throw GlError("font: stbtt_PackBegin failed");
         stbtt_PackSetOversampling(&pc, 1, 1);  // integer-aligned glyphs: crisp and deterministic
         const int ok = stbtt_PackFontRanges(&pc, face.ttf.data(), 0, &range, 1);
         stbtt_PackEnd(&pc);
@@ -432,8 +432,7 @@ GlyphAtlas& GlContext::Impl::atlas(bool bold, int pixelSize) {
     auto a = std::make_unique<GlyphAtlas>();
     a->width = a->height = side;
     a->pixelSize = float(pixelSize);
-    for (std::size_t i = 0; i < codepoints.size(); ++i)
-        a->glyphs.emplace(std::uint32_t(codepoints[i]), packed[i]);
+    for (std::size_t i = 0; i < codepoints.size(); ++i) a->glyphs.emplace(std::uint32_t(codepoints[i]), packed[i]);
     glGenTextures(1, &a->texture);
     glBindTexture(GL_TEXTURE_2D, a->texture);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);

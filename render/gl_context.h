@@ -23,16 +23,17 @@ public:
     GlContext(const GlContext&) = delete;
     GlContext& operator=(const GlContext&) = delete;
 
-    std::string glRenderer() const;  // GL_RENDERER
-    std::string glVersion() const;   // GL_VERSION
-    std::string eglPlatform() const; // "device", "surfaceless" or "default"
-    int maxSamples() const;          // GL_MAX_SAMPLES
+    std::string glRenderer() const;   // GL_RENDERER
+    std::string glVersion() const;    // GL_VERSION
+    std::string eglPlatform() const;  // "device", "surfaceless" or "default"
+    int maxSamples() const;           // GL_MAX_SAMPLES
     /// Makes this context current on the calling thread (Canvas does it before every GL call).
     void makeCurrent();
 
     /// Internal state (EGL handles, compiled programs, glyph atlases): for render/*.cpp only.
     struct Impl;
     Impl& impl() { return *impl_; }
+
 private:
     explicit GlContext(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;

@@ -2,7 +2,7 @@
 // Not installed for other folders (it needs the stb include path and GL headers).
 #pragma once
 
-#define EGL_NO_X11                // no X11 types through eglplatform.h
+#define EGL_NO_X11  // no X11 types through eglplatform.h
 #define MESA_EGL_NO_X11_HEADERS
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -33,7 +33,7 @@ namespace cdlab::render {
 struct FontFace {
     std::vector<unsigned char> ttf;
     stbtt_fontinfo info{};
-    int ascent = 0, descent = 0, lineGap = 0;  // font units
+    int ascent = 0, descent = 0, lineGap = 0;     // font units
     std::unordered_set<std::uint32_t> available;  // atlas code points this face has glyphs for
 };
 
@@ -51,7 +51,7 @@ struct GlyphAtlas {
 /// Multisampled draw target + single-sample resolve target of one size; pooled per context.
 struct RenderTarget {
     int width = 0, height = 0, requestedSamples = 0, samples = 0;  // samples: effective
-    GLuint msaaFbo = 0, msaaColor = 0, msaaDepth = 0;  // msaaFbo == 0 when samples <= 1
+    GLuint msaaFbo = 0, msaaColor = 0, msaaDepth = 0;              // msaaFbo == 0 when samples <= 1
     GLuint resolveFbo = 0, resolveColor = 0, resolveDepth = 0;
 };
 
@@ -74,7 +74,7 @@ struct GlContext::Impl {
     FontFace fonts[2];  // regular, bold; loaded on first use
     bool fontsLoaded = false;
     std::map<std::pair<int, int>, std::unique_ptr<GlyphAtlas>> atlases;  // (bold, pixel size)
-    std::vector<RenderTarget> targetPool;  // released by destroyed canvases
+    std::vector<RenderTarget> targetPool;                                // released by destroyed canvases
 
     void makeCurrent();
     void ensureDrawResources();

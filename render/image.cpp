@@ -238,7 +238,8 @@ Image downsample(const Image& image, int factor) {
                     for (int c = 0; c < 4; ++c) sum[c] += p[c];
                 }
             std::uint8_t* q = out.pixel(x, y);
-            for (int c = 0; c < 4; ++c) q[c] = std::uint8_t((sum[c] + unsigned(n) / 2) / unsigned(n));  // round to nearest
+            for (int c = 0; c < 4; ++c)
+                q[c] = std::uint8_t((sum[c] + unsigned(n) / 2) / unsigned(n));  // round to nearest
         }
     return out;
 }

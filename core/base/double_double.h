@@ -11,8 +11,7 @@
 namespace cdlab::dd {
 
 /// s + e == a + b exactly (no precondition on the magnitudes).
-inline void twoSum(double a, double b, double& s, double& e)
-{
+inline void twoSum(double a, double b, double& s, double& e) {
     s = a + b;
     const double bv = s - a;
     const double av = s - bv;
@@ -20,16 +19,14 @@ inline void twoSum(double a, double b, double& s, double& e)
 }
 
 /// s + e == a + b exactly, valid when |a| >= |b| or a == 0.
-inline void fastTwoSum(double a, double b, double& s, double& e)
-{
+inline void fastTwoSum(double a, double b, double& s, double& e) {
     s = a + b;
     e = b - (s - a);
 }
 
 /// p + e == a * b exactly (Dekker's product; no fma needed, so the result does not depend on
 /// -ffp-contract or on the CPU having an fma unit).
-inline void twoProduct(double a, double b, double& p, double& e)
-{
+inline void twoProduct(double a, double b, double& p, double& e) {
     constexpr double kSplitter = 134217729.0;  // 2^27 + 1: halves of at most 26 bits each
     p = a * b;
     double c = kSplitter * a;
@@ -52,15 +49,13 @@ struct DoubleDouble {
 };
 
 /// a - b of two doubles, exact.
-inline DoubleDouble exactDifference(double a, double b)
-{
+inline DoubleDouble exactDifference(double a, double b) {
     DoubleDouble r;
     twoSum(a, -b, r.hi, r.lo);
     return r;
 }
 
-inline DoubleDouble operator+(const DoubleDouble& a, const DoubleDouble& b)
-{
+inline DoubleDouble operator+(const DoubleDouble& a, const DoubleDouble& b) {
     double s, e;
     twoSum(a.hi, b.hi, s, e);
     e += a.lo + b.lo;
@@ -72,8 +67,7 @@ inline DoubleDouble operator+(const DoubleDouble& a, const DoubleDouble& b)
 inline DoubleDouble operator-(const DoubleDouble& a) { return {-a.hi, -a.lo}; }
 inline DoubleDouble operator-(const DoubleDouble& a, const DoubleDouble& b) { return a + (-b); }
 
-inline DoubleDouble operator*(const DoubleDouble& a, const DoubleDouble& b)
-{
+inline DoubleDouble operator*(const DoubleDouble& a, const DoubleDouble& b) {
     double p, e;
     twoProduct(a.hi, b.hi, p, e);
     e += a.hi * b.lo + a.lo * b.hi;
@@ -90,8 +84,7 @@ struct Vec3DD {
 inline Vec3DD operator-(const Vec3DD& a, const Vec3DD& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline Vec3DD operator*(const DoubleDouble& s, const Vec3DD& a) { return {s * a.x, s * a.y, s * a.z}; }
 inline DoubleDouble dot(const Vec3DD& a, const Vec3DD& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Vec3DD cross(const Vec3DD& a, const Vec3DD& b)
-{
+inline Vec3DD cross(const Vec3DD& a, const Vec3DD& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 

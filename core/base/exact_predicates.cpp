@@ -60,8 +60,8 @@ Expansion operator+(const Expansion& e, const Expansion& f) {
     if (e.components_.empty()) return f;
     if (f.components_.empty()) return e;
     std::vector<double> merged(e.components_.size() + f.components_.size());
-    std::merge(e.components_.begin(), e.components_.end(), f.components_.begin(), f.components_.end(),
-               merged.begin(), [](double x, double y) { return std::abs(x) < std::abs(y); });
+    std::merge(e.components_.begin(), e.components_.end(), f.components_.begin(), f.components_.end(), merged.begin(),
+               [](double x, double y) { return std::abs(x) < std::abs(y); });
     Expansion h;
     h.components_.reserve(merged.size());
     double q = merged[0];

@@ -29,8 +29,7 @@ T det3OfDifferences(const Vec3* u, const Vec3* v) {
 
 }  // namespace
 
-int signDet3(const Vec3& u1, const Vec3& v1, const Vec3& u2, const Vec3& v2, const Vec3& u3,
-             const Vec3& v3) {
+int signDet3(const Vec3& u1, const Vec3& v1, const Vec3& u2, const Vec3& v2, const Vec3& u3, const Vec3& v3) {
     // Filter: Shewchuk's orient3d evaluation order, expanded along the z column.
     const Vec3 a = u1 - v1, b = u2 - v2, c = u3 - v3;
     const double bxcy = b.x() * c.y(), cxby = c.x() * b.y();
@@ -51,9 +50,7 @@ int signDet3(const Vec3& u1, const Vec3& v1, const Vec3& u2, const Vec3& v2, con
     return exact::exactSign([&](auto zero) { return det3OfDifferences<decltype(zero)>(u, v); });
 }
 
-int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-    return signDet3(b, a, c, a, d, a);
-}
+int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return signDet3(b, a, c, a, d, a); }
 
 int orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
     const double left = (b.x() - a.x()) * (c.y() - a.y());
@@ -77,16 +74,13 @@ int dominantAxis(const Vec3& n) {
     return m.y() >= m.z() ? 1 : 2;
 }
 
-Vec2 dropAxis(const Vec3& p, int axis) {
-    return Vec2(p[(axis + 1) % 3], p[(axis + 2) % 3]);
-}
+Vec2 dropAxis(const Vec3& p, int axis) { return Vec2(p[(axis + 1) % 3], p[(axis + 2) % 3]); }
 
 int projectionAxis(const Triangle& t) {
     const int first = dominantAxis((t.b - t.a).cross(t.c - t.a));
     for (int k = 0; k < 3; ++k) {
         const int axis = (first + k) % 3;
-        if (orient2d(dropAxis(t.a, axis), dropAxis(t.b, axis), dropAxis(t.c, axis)) != 0)
-            return axis;
+        if (orient2d(dropAxis(t.a, axis), dropAxis(t.b, axis), dropAxis(t.c, axis)) != 0) return axis;
     }
     return -1;
 }

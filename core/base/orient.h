@@ -21,8 +21,7 @@ int orient2d(const Vec2& a, const Vec2& b, const Vec2& c);
 
 /// Exact sign of det[u1 - v1; u2 - v2; u3 - v3] (rows), the differences taken exactly.
 /// orient3d(a, b, c, d) == signDet3(b, a, c, a, d, a); a zero v gives a plain row.
-int signDet3(const Vec3& u1, const Vec3& v1, const Vec3& u2, const Vec3& v2, const Vec3& u3,
-             const Vec3& v3);
+int signDet3(const Vec3& u1, const Vec3& v1, const Vec3& u2, const Vec3& v2, const Vec3& u3, const Vec3& v3);
 
 /// Index of the component of n with the largest magnitude (0 for the zero vector).
 int dominantAxis(const Vec3& n);

@@ -110,10 +110,10 @@ bool supportBall(const std::vector<Vec3>& q, Vec3& center, double& r2) {
 struct MoveToFront {
     const LocalPoints& lp;
     std::list<int> order;
-    std::vector<int> support;           // local indices
-    std::vector<int> ballSupport;       // support of the current ball
+    std::vector<int> support;      // local indices
+    std::vector<int> ballSupport;  // support of the current ball
     Vec3 center = Vec3::Zero();
-    double r2 = -1.0;                   // empty ball: every point is outside
+    double r2 = -1.0;  // empty ball: every point is outside
     WelzlTrace* trace = nullptr;
 
     bool outside(const Vec3& p) const { return (p - center).squaredNorm() > r2 + kOutsideRel * std::max(r2, 0.0); }

@@ -47,11 +47,11 @@ Sphere fitSphereRitter(std::span<const Vec3> points, RitterTrace* trace = nullpt
 
 /// How Welzl's recursion ended.
 enum class WelzlStatus {
-    Exact,          ///< minimum ball to rounding (every point within the support ball)
-    Approximate,    ///< a nearly affinely dependent support set was rejected and the final
-                    ///< radius (max distance) exceeds the support ball's by more than 1e-9
-                    ///< relative: still encloses every point, may be slightly larger than minimal
-    Empty,          ///< no finite point
+    Exact,        ///< minimum ball to rounding (every point within the support ball)
+    Approximate,  ///< a nearly affinely dependent support set was rejected and the final
+                  ///< radius (max distance) exceeds the support ball's by more than 1e-9
+                  ///< relative: still encloses every point, may be slightly larger than minimal
+    Empty,        ///< no finite point
 };
 
 /// "Exact", "Approximate", "Empty".
@@ -62,10 +62,10 @@ const char* nameOf(WelzlStatus status);
 /// smallest one with the whole support set on its boundary.
 struct WelzlStep {
     int pointIndex = -1;
-    int depth = 0;                  ///< support-set size before adding the point (0..3)
-    std::vector<int> support;       ///< support set after adding it (input indices)
+    int depth = 0;                   ///< support-set size before adding the point (0..3)
+    std::vector<int> support;        ///< support set after adding it (input indices)
     Sphere ball{Vec3::Zero(), 0.0};  ///< the new ball (world frame); unchanged if !accepted
-    bool accepted = true;           ///< false: support set + point nearly affinely dependent
+    bool accepted = true;            ///< false: support set + point nearly affinely dependent
 };
 
 /// Trace of fitSphereWelzl.

@@ -208,8 +208,8 @@ Obb fitObbTriangles(std::span<const Triangle> triangles, ObbFitTrace* trace) {
         const Vec3 c = (p + q + r) / 3.0;
         totalArea += area;
         firstMoment += area * c;
-        secondMoment += (area / 12.0) * (9.0 * c * c.transpose() + p * p.transpose() +
-                                         q * q.transpose() + r * r.transpose());
+        secondMoment +=
+            (area / 12.0) * (9.0 * c * c.transpose() + p * p.transpose() + q * q.transpose() + r * r.transpose());
     }
     if (!(totalArea > 0.0)) {
         // Every triangle has zero area: fall back to the covariance of the vertices.

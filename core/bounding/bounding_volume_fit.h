@@ -39,11 +39,11 @@ const char* nameOf(ObbFitMethod method);
 /// What an OBB fit computed, for demos and tests (recorded in every build type).
 struct ObbFitTrace {
     ObbFitMethod method = ObbFitMethod::Empty;
-    Vec3 mean = Vec3::Zero();          ///< mean of the distribution (area centroid for triangles)
-    Mat3 covariance = Mat3::Zero();    ///< covariance matrix whose eigenvectors gave the axes
-    Vec3 eigenvalues = Vec3::Zero();   ///< in the order of the box axes (descending)
-    double totalArea = 0.0;            ///< sum of triangle areas (triangle fit only)
-    int skippedNonFinite = 0;          ///< points / triangles skipped for a NaN or inf coordinate
+    Vec3 mean = Vec3::Zero();         ///< mean of the distribution (area centroid for triangles)
+    Mat3 covariance = Mat3::Zero();   ///< covariance matrix whose eigenvectors gave the axes
+    Vec3 eigenvalues = Vec3::Zero();  ///< in the order of the box axes (descending)
+    double totalArea = 0.0;           ///< sum of triangle areas (triangle fit only)
+    int skippedNonFinite = 0;         ///< points / triangles skipped for a NaN or inf coordinate
 };
 
 /// Smallest axis-aligned box holding every finite point (exact). Empty input: min = +inf,

@@ -13,11 +13,11 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // Ericson §4.6: the 13 directions, axes first, then the 4 cube diagonals, then the 6 edge
 // diagonals (see the table in kdop.h).
-const std::array<Vec3, 13> kAllDirections = {
-    Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1),                                   // 6-DOP
-    Vec3(1, 1, 1),  Vec3(1, 1, -1), Vec3(1, -1, 1), Vec3(-1, 1, 1),                  // corners
-    Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 0, 1),  Vec3(1, 0, -1), Vec3(0, 1, 1),   // edges
-    Vec3(0, 1, -1)};
+const std::array<Vec3, 13> kAllDirections = {Vec3(1, 0, 0), Vec3(0, 1, 0),  Vec3(0, 0, 1),                   // 6-DOP
+                                             Vec3(1, 1, 1), Vec3(1, 1, -1), Vec3(1, -1, 1), Vec3(-1, 1, 1),  // corners
+                                             Vec3(1, 1, 0), Vec3(1, -1, 0), Vec3(1, 0, 1),  Vec3(1, 0, -1),
+                                             Vec3(0, 1, 1),  // edges
+                                             Vec3(0, 1, -1)};
 
 // Directions of a K-DOP: which of the 13 it uses, in slab order.
 template <int K>
@@ -154,7 +154,8 @@ ConvexPolyhedron kdopPolytope(const Kdop<K>& dop) {
                 if (det == 0.0) continue;
                 const Vec3 x = n.inverse() * Vec3(offsets[a], offsets[b], offsets[c]);
                 bool inside = true;
-                for (int j = 0; j < m && inside; ++j) inside = normals[j].dot(x) <= offsets[j] + tol * normals[j].norm();
+                for (int j = 0; j < m && inside; ++j)
+                    inside = normals[j].dot(x) <= offsets[j] + tol * normals[j].norm();
                 if (inside) corners.push_back(x);
             }
     const HullResult hull = convexHull(corners);
@@ -173,13 +174,13 @@ double volume(const Kdop<K>& dop) {
     return poly.empty() ? 0.0 : poly.volume();
 }
 
-#define CDLAB_INSTANTIATE_KDOP(K)                                                   \
-    template std::span<const Vec3> kdopDirections<K>();                             \
-    template Kdop<K> fitKdop<K>(std::span<const Vec3>);                             \
-    template Kdop<K> fitKdop<K>(std::span<const Triangle>);                         \
-    template KdopOverlapResult testKdopKdop<K>(const Kdop<K>&, const Kdop<K>&);     \
-    template bool contains<K>(const Kdop<K>&, const Vec3&);                         \
-    template ConvexPolyhedron kdopPolytope<K>(const Kdop<K>&);                      \
+#define CDLAB_INSTANTIATE_KDOP(K)                                               \
+    template std::span<const Vec3> kdopDirections<K>();                         \
+    template Kdop<K> fitKdop<K>(std::span<const Vec3>);                         \
+    template Kdop<K> fitKdop<K>(std::span<const Triangle>);                     \
+    template KdopOverlapResult testKdopKdop<K>(const Kdop<K>&, const Kdop<K>&); \
+    template bool contains<K>(const Kdop<K>&, const Vec3&);                     \
+    template ConvexPolyhedron kdopPolytope<K>(const Kdop<K>&);                  \
     template double volume<K>(const Kdop<K>&);
 
 CDLAB_INSTANTIATE_KDOP(6)

@@ -21,8 +21,8 @@
 #include <span>
 #include <vector>
 
-#include "core/geometry/polyhedron.h"
 #include "core/base/types.h"
+#include "core/geometry/polyhedron.h"
 
 namespace cdlab {
 

@@ -17,8 +17,8 @@
 
 #include <span>
 
-#include "core/bounding/bounding_volume_fit.h"
 #include "core/base/primitives.h"
+#include "core/bounding/bounding_volume_fit.h"
 
 namespace cdlab {
 
@@ -37,10 +37,10 @@ struct Rss {
 struct SweptSphereFitTrace {
     /// covariance OBB of the points (its axes are the SSV's axes)
     Obb principalBox{Vec3::Zero(), Vec3::Zero(), Mat3::Identity()};
-    ObbFitTrace covariance;       ///< the covariance and its eigenvalues
-    double coreRadius = 0.0;      ///< radius from the first pass (LSS: the points' minimum circle
-                                  ///< across the axis; RSS: half the thickness along the normal)
-    int cornerFixes = 0;          ///< RSS: rectangle ends pushed out for points off a corner
+    ObbFitTrace covariance;   ///< the covariance and its eigenvalues
+    double coreRadius = 0.0;  ///< radius from the first pass (LSS: the points' minimum circle
+                              ///< across the axis; RSS: half the thickness along the normal)
+    int cornerFixes = 0;      ///< RSS: rectangle ends pushed out for points off a corner
 };
 
 /// PSS: the minimum enclosing sphere (Welzl; see core/bounding/bounding_sphere.h).

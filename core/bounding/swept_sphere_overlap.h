@@ -15,12 +15,12 @@ namespace cdlab {
 
 /// Which pair of features of two rectangles gave their distance.
 enum class RectangleFeaturePair {
-    EdgeEdge,       ///< an edge of A and an edge of B (segment-segment)
-    VertexFace,     ///< a corner of A and the rectangle B
-    FaceVertex,     ///< the rectangle A and a corner of B
-    EdgeCrossesB,   ///< an edge of A pierces B (distance 0)
-    EdgeCrossesA,   ///< an edge of B pierces A (distance 0)
-    Invalid,        ///< non-finite input
+    EdgeEdge,      ///< an edge of A and an edge of B (segment-segment)
+    VertexFace,    ///< a corner of A and the rectangle B
+    FaceVertex,    ///< the rectangle A and a corner of B
+    EdgeCrossesB,  ///< an edge of A pierces B (distance 0)
+    EdgeCrossesA,  ///< an edge of B pierces A (distance 0)
+    Invalid,       ///< non-finite input
 };
 
 /// "EdgeEdge", "VertexFace", "FaceVertex", "EdgeCrossesB", "EdgeCrossesA", "Invalid".
@@ -28,12 +28,12 @@ const char* nameOf(RectangleFeaturePair pair);
 
 /// Closest points of two rectangles (the cores of two RSSs; radii ignored).
 struct RectangleDistanceResult {
-    double distance = 0.0;           ///< >= 0; 0 when the rectangles touch or cross
-    Vec3 pointOnA = Vec3::Zero();    ///< on rectangle A
-    Vec3 pointOnB = Vec3::Zero();    ///< on rectangle B
+    double distance = 0.0;         ///< >= 0; 0 when the rectangles touch or cross
+    Vec3 pointOnA = Vec3::Zero();  ///< on rectangle A
+    Vec3 pointOnB = Vec3::Zero();  ///< on rectangle B
     RectangleFeaturePair features = RectangleFeaturePair::Invalid;
-    int featureA = -1;               ///< edge or corner index of A (0..3), -1 for a face
-    int featureB = -1;               ///< edge or corner index of B (0..3), -1 for a face
+    int featureA = -1;  ///< edge or corner index of A (0..3), -1 for a face
+    int featureB = -1;  ///< edge or corner index of B (0..3), -1 for a face
 };
 
 /// Distance between two (solid, closed) rectangles in 3D. Two convex polygons that do not cross
@@ -48,10 +48,10 @@ RectangleDistanceResult distanceRectangleRectangle(const Rss& a, const Rss& b);
 /// Result of an SSV-SSV overlap test.
 struct SweptSphereOverlapResult {
     bool hit = false;
-    double coreDistance = 0.0;      ///< distance between the cores (NaN for invalid input)
-    double separation = 0.0;        ///< coreDistance - ra - rb: the gap (> 0) or overlap depth (<= 0)
-    Vec3 pointOnA = Vec3::Zero();   ///< closest point of A's core
-    Vec3 pointOnB = Vec3::Zero();   ///< closest point of B's core
+    double coreDistance = 0.0;     ///< distance between the cores (NaN for invalid input)
+    double separation = 0.0;       ///< coreDistance - ra - rb: the gap (> 0) or overlap depth (<= 0)
+    Vec3 pointOnA = Vec3::Zero();  ///< closest point of A's core
+    Vec3 pointOnB = Vec3::Zero();  ///< closest point of B's core
 };
 
 /// PSS-PSS (sphere-sphere): |cb - ca| <= ra + rb.

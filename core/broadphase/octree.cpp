@@ -174,7 +174,8 @@ std::vector<std::pair<int, int>> Octree::overlappingPairs(std::int64_t* pairTest
     std::int64_t tests = 0;
     auto test = [&](int a, int b) {
         ++tests;
-        if (aabbOverlapClosed(boxes_[std::size_t(a)], boxes_[std::size_t(b)])) pairs.emplace_back(std::min(a, b), std::max(a, b));
+        if (aabbOverlapClosed(boxes_[std::size_t(a)], boxes_[std::size_t(b)]))
+            pairs.emplace_back(std::min(a, b), std::max(a, b));
     };
     if (options_.looseness <= 1.0) {
         // Classic octree: an overlapping pair always has one object in an ancestor-or-same node

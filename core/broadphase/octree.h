@@ -40,17 +40,17 @@ bool aabbOverlapClosed(const Aabb& a, const Aabb& b);
 bool aabbValid(const Aabb& box);
 
 struct OctreeOptions {
-    int maxDepth = 8;             ///< the root has depth 0; nodes at maxDepth are never split
-    int maxObjectsPerLeaf = 4;    ///< a node with more objects than this (at its depth) is split
-    double looseness = 1.0;       ///< k >= 1: cells enlarged by k about their centre (1 = classic)
-    bool useRootBounds = false;   ///< true: rootBounds is the root cell; false: fitted to the input
+    int maxDepth = 8;            ///< the root has depth 0; nodes at maxDepth are never split
+    int maxObjectsPerLeaf = 4;   ///< a node with more objects than this (at its depth) is split
+    double looseness = 1.0;      ///< k >= 1: cells enlarged by k about their centre (1 = classic)
+    bool useRootBounds = false;  ///< true: rootBounds is the root cell; false: fitted to the input
     Aabb rootBounds{Vec3::Zero(), Vec3::Zero()};
 };
 
 enum class OctreeStatus {
-    Ok,              ///< every box inserted
-    SomeRejected,    ///< some boxes were invalid (NaN / inf / min > max): see rejected
-    Empty,           ///< no valid box: the tree is a single empty root
+    Ok,            ///< every box inserted
+    SomeRejected,  ///< some boxes were invalid (NaN / inf / min > max): see rejected
+    Empty,         ///< no valid box: the tree is a single empty root
 };
 
 /// One node. cell is the tight cell (the cut), looseCell the cell the objects fit in (== cell
@@ -75,9 +75,9 @@ struct OctreeNode {
 struct OctreeBuildStep {
     int node = -1;
     int depth = 0;
-    int objectsIn = 0;      ///< objects that reached this node
-    int objectsKept = 0;    ///< of those, stored here (straddling a split plane, or a leaf)
-    bool split = false;     ///< children were created
+    int objectsIn = 0;    ///< objects that reached this node
+    int objectsKept = 0;  ///< of those, stored here (straddling a split plane, or a leaf)
+    bool split = false;   ///< children were created
 };
 struct OctreeTrace {
     std::vector<OctreeBuildStep> steps;

@@ -174,7 +174,8 @@ void SweepAndPrune::swapped(int axis, const SapEndpoint& moving, const SapEndpoi
         s.passedValue = passed.value;
         s.position = static_cast<int>(position);
         s.event = event;
-        s.axesOverlapping = (overlapHere ? 1 : 0) + (overlapOnAxis(o1, a, b) ? 1 : 0) + (overlapOnAxis(o2, a, b) ? 1 : 0);
+        s.axesOverlapping =
+            (overlapHere ? 1 : 0) + (overlapOnAxis(o1, a, b) ? 1 : 0) + (overlapOnAxis(o2, a, b) ? 1 : 0);
         trace->swaps.push_back(s);
         ++trace->swapsPerAxis[axis];
     }

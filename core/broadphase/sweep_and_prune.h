@@ -76,7 +76,7 @@ struct SapSwap {
     int passedObject = 0;
     bool passedIsMax = false;
     double passedValue = 0.0;
-    int position = 0;        ///< index of the moving endpoint after the swap (passed is at position + 1)
+    int position = 0;  ///< index of the moving endpoint after the swap (passed is at position + 1)
     SapPairEvent event = SapPairEvent::None;
     int axesOverlapping = 0;  ///< after the swap: on how many axes the two objects' ranks overlap (0..3)
 };
@@ -85,17 +85,17 @@ struct SapSwap {
 struct SapTrace {
     std::vector<SapSwap> swaps;  ///< axis x first, then y, then z
     int swapsPerAxis[3] = {0, 0, 0};
-    std::vector<BoxPair> added;    ///< pair events in order; a pair may be added and removed in one update
+    std::vector<BoxPair> added;  ///< pair events in order; a pair may be added and removed in one update
     std::vector<BoxPair> removed;
 };
 
 /// Outcome of build / update / add / remove.
 struct SapResult {
     SapStatus status = SapStatus::Ok;
-    int object = -1;              ///< the offending id when status is a box error; the new id for add()
-    std::int64_t swaps = 0;       ///< adjacent swaps of this call (all three axes)
+    int object = -1;         ///< the offending id when status is a box error; the new id for add()
+    std::int64_t swaps = 0;  ///< adjacent swaps of this call (all three axes)
     std::int64_t swapsPerAxis[3] = {0, 0, 0};
-    int pairsAdded = 0;           ///< pair events of this call
+    int pairsAdded = 0;  ///< pair events of this call
     int pairsRemoved = 0;
 };
 
@@ -143,8 +143,8 @@ public:
 
 private:
     void sortAxis(int axis, std::size_t from, SapTrace* trace, SapResult& result);
-    void swapped(int axis, const SapEndpoint& moving, const SapEndpoint& passed, std::size_t position,
-                 SapTrace* trace, SapResult& result);
+    void swapped(int axis, const SapEndpoint& moving, const SapEndpoint& passed, std::size_t position, SapTrace* trace,
+                 SapResult& result);
     bool overlapOnAxis(int axis, int a, int b) const {
         const std::vector<std::uint32_t>& r = rank_[axis];
         return r[2 * a] < r[2 * b + 1] && r[2 * b] < r[2 * a + 1];

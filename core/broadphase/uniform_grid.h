@@ -33,15 +33,15 @@ enum class GridStatus {
 };
 
 struct UniformGridOptions {
-    double cellSize = 1.0;                ///< h, world units
+    double cellSize = 1.0;  ///< h, world units
     std::int64_t maxCellsPerBox = 1 << 16;
 };
 
 struct UniformGridResult {
     GridStatus status = GridStatus::Ok;
-    int object = -1;              ///< offending box when status is a box error
-    std::int64_t entries = 0;     ///< (cell, box) entries, = sum over boxes of cells touched
-    std::int64_t pairTests = 0;   ///< box pairs examined in shared buckets
+    int object = -1;             ///< offending box when status is a box error
+    std::int64_t entries = 0;    ///< (cell, box) entries, = sum over boxes of cells touched
+    std::int64_t pairTests = 0;  ///< box pairs examined in shared buckets
     int pairs = 0;
 };
 

@@ -35,7 +35,9 @@ constexpr double kParallelEpsilon = 1e-9;
 
 Obb aabbToObb(const Aabb& b) { return Obb{0.5 * (b.min + b.max), 0.5 * (b.max - b.min), Mat3::Identity()}; }
 
-Vec3 scaled(const Vec3& v, int k) { return v.unaryExpr([k](double x) { return std::ldexp(x, k); }); }
+Vec3 scaled(const Vec3& v, int k) {
+    return v.unaryExpr([k](double x) { return std::ldexp(x, k); });
+}
 
 // Surface area of 2^k · b. The builders pass the k that brings the mesh's largest coordinate into
 // [0.5, 1): the area of a box spanning 1e200 (or 1e308) is then no overflow (inf costs would leave
@@ -58,9 +60,7 @@ void grow(Aabb& b, const Vec3& p) {
 
 Aabb merged(const Aabb& a, const Aabb& b) { return Aabb{a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
 
-Aabb triangleAabb(const Triangle& t) {
-    return Aabb{t.a.cwiseMin(t.b).cwiseMin(t.c), t.a.cwiseMax(t.b).cwiseMax(t.c)};
-}
+Aabb triangleAabb(const Triangle& t) { return Aabb{t.a.cwiseMin(t.b).cwiseMin(t.c), t.a.cwiseMax(t.b).cwiseMax(t.c)}; }
 
 Vec3 centroid(const Triangle& t) { return (t.a + t.b + t.c) / 3.0; }
 
@@ -113,10 +113,10 @@ struct Builder {
     const TriangleMesh& mesh;
     const BvhBuildOptions& options;
     Bvh& bvh;
-    std::vector<Vec3> centroids;       // per mesh triangle
-    std::vector<Triangle> scratch;     // the current node's triangles, for the fits
+    std::vector<Vec3> centroids;    // per mesh triangle
+    std::vector<Triangle> scratch;  // the current node's triangles, for the fits
 
-    int areaExponent = 0;              // surface areas are those of 2^areaExponent · box
+    int areaExponent = 0;  // surface areas are those of 2^areaExponent · box
 
     Builder(const TriangleMesh& m, const BvhBuildOptions& o, Bvh& b) : mesh(m), options(o), bvh(b) {
         centroids.resize(mesh.triangles.size());
@@ -288,8 +288,8 @@ struct Builder {
             step.first = n.first;
             step.count = n.count;
             if (n.count > maxLeaf) {
-                const int leftCount = options.method == BvhBuildMethod::TopDownSah ? splitSah(n, step)
-                                                                                    : splitMedian(n, i, step);
+                const int leftCount =
+                    options.method == BvhBuildMethod::TopDownSah ? splitSah(n, step) : splitMedian(n, i, step);
                 const int left = addChildren(i);
                 bvh.nodes[left].first = n.first;
                 bvh.nodes[left].count = leftCount;
@@ -591,15 +591,16 @@ BvhStatus refitBvh(Bvh& bvh, const TriangleMesh& deformed) {
 
 bool testTriangleObb(const Triangle& triangle, const Obb& box) {
     const Mat3 At = box.axes.transpose();
-    const Triangle local{At * (triangle.a - box.center), At * (triangle.b - box.center), At * (triangle.c - box.center)};
+    const Triangle local{At * (triangle.a - box.center), At * (triangle.b - box.center),
+                         At * (triangle.c - box.center)};
     return testTriangleAabb(local, Aabb{-box.halfExtents, box.halfExtents}).hit;
 }
 
 BvhQueryResult queryBvhBox(const Bvh& bvh, const TriangleMesh& mesh, const Transform& pose, const Obb& box,
                            BvhTraversalTrace* trace) {
     BvhQueryResult result;
-    const double margin = kBvMarginRelative * (bvh.vertexRadius + pose.position.norm() + box.center.norm() +
-                                               box.halfExtents.norm());
+    const double margin =
+        kBvMarginRelative * (bvh.vertexRadius + pose.position.norm() + box.center.norm() + box.halfExtents.norm());
     const Obb q = toBody(box, pose, margin);
     traverseOne(
         bvh, result.stats, trace, [&](int i) { return obbOverlap(bvh.box(i), q); },

@@ -93,9 +93,9 @@ struct Bvh {
     BvhStatus status = BvhStatus::Ok;
     BvKind kind = BvKind::Obb;
     BvhBuildMethod method = BvhBuildMethod::TopDownMedian;
-    std::vector<BvhNode> nodes;  ///< nodes[0] is the root (when non-empty)
-    std::vector<Aabb> aabbs;     ///< per node, when kind == Aabb (empty otherwise)
-    std::vector<Obb> obbs;       ///< per node, when kind == Obb (empty otherwise)
+    std::vector<BvhNode> nodes;      ///< nodes[0] is the root (when non-empty)
+    std::vector<Aabb> aabbs;         ///< per node, when kind == Aabb (empty otherwise)
+    std::vector<Obb> obbs;           ///< per node, when kind == Obb (empty otherwise)
     std::vector<int> triangleOrder;  ///< position in tree order -> mesh triangle index
     /// max |v| over the mesh's vertices (body frame): scales the rounding margin of BV tests.
     double vertexRadius = 0.0;
@@ -111,9 +111,9 @@ struct Bvh {
 /// One node as the builder created it (top-down: parents before children; bottom-up: in merge
 /// order, i.e. children before parents), for figures of the hierarchy levels.
 struct BvhBuildStep {
-    int node = -1;   ///< index in Bvh::nodes
+    int node = -1;  ///< index in Bvh::nodes
     int depth = 0;
-    int first = 0, count = 0;  ///< triangle range in Bvh::triangleOrder
+    int first = 0, count = 0;                               ///< triangle range in Bvh::triangleOrder
     Obb box{Vec3::Zero(), Vec3::Zero(), Mat3::Identity()};  ///< the node's box (AABB nodes: identity axes)
     /// Top-down inner nodes: the split. axis is the world axis (SAH, median on an AABB) or the
     /// index of the node box's axis (median on an OBB); position is the split coordinate along

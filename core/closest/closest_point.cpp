@@ -43,7 +43,7 @@ const char* nameOf(TriangleRegion region) {
 }
 
 const char* nameOf(TetrahedronRegion region) {
-    static constexpr const char* kNames[] = {"A",  "B",  "C",  "D",   "AB",  "AC",  "AD",  "BC",
+    static constexpr const char* kNames[] = {"A",  "B",  "C",   "D",   "AB",  "AC",  "AD",  "BC",
                                              "BD", "CD", "ABC", "ABD", "ACD", "BCD", "ABCD"};
     const int i = static_cast<int>(region);
     return (i >= 0 && i < 15) ? kNames[i] : "?";
@@ -105,7 +105,7 @@ EdgePoint edgeInterior(const Vec3& p, const Vec3& x, const Vec3& y, bool plain) 
     if (!plain) return exactEdgePoint(p, x, y);
     const Vec3 xy = y - x;
     const double length2 = xy.squaredNorm();
-    if (!(length2 > 0.0)) return {x, 0.0, 1.0};  // x == y (never for an edge region): never NaN
+    if (!(length2 > 0.0)) return {x, 0.0, 1.0};     // x == y (never for an edge region): never NaN
     const double fromX = xy.dot(p - x) / length2;   // weight of y
     const double fromY = -xy.dot(p - y) / length2;  // weight of x
     if (fromX <= fromY) {
@@ -165,10 +165,10 @@ FacePoint faceInterior(const Vec3& p, const Vec3& x, const Vec3& y, const Vec3& 
 
 enum Quantity { D1, D2, D3, D4, D5, D6, D43, D56, VA, VB, VC, kQuantityCount };
 
-constexpr const char* kQuantityName[kQuantityCount] = {"d1", "d2", "d3", "d4", "d5", "d6",
+constexpr const char* kQuantityName[kQuantityCount] = {"d1",    "d2",    "d3", "d4", "d5", "d6",
                                                        "d4-d3", "d5-d6", "va", "vb", "vc"};
 constexpr const char* kQuantityFormula[kQuantityCount] = {
-    "(b-a).(p-a)", "(c-a).(p-a)", "(b-a).(p-b)", "(c-a).(p-b)", "(b-a).(p-c)", "(c-a).(p-c)",
+    "(b-a).(p-a)", "(c-a).(p-a)", "(b-a).(p-b)",   "(c-a).(p-b)",   "(b-a).(p-c)",  "(c-a).(p-c)",
     "(c-b).(p-b)", "(b-c).(p-c)", "d3*d6 - d5*d4", "d5*d2 - d1*d6", "d1*d4 - d3*d2"};
 
 class TriangleSigns {
@@ -527,9 +527,18 @@ ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangl
     }
 
     switch (r.region) {
-        case TriangleRegion::A: r.point = t.a; r.barycentric = Vec3(1, 0, 0); break;
-        case TriangleRegion::B: r.point = t.b; r.barycentric = Vec3(0, 1, 0); break;
-        case TriangleRegion::C: r.point = t.c; r.barycentric = Vec3(0, 0, 1); break;
+        case TriangleRegion::A:
+            r.point = t.a;
+            r.barycentric = Vec3(1, 0, 0);
+            break;
+        case TriangleRegion::B:
+            r.point = t.b;
+            r.barycentric = Vec3(0, 1, 0);
+            break;
+        case TriangleRegion::C:
+            r.point = t.c;
+            r.barycentric = Vec3(0, 0, 1);
+            break;
         case TriangleRegion::AB: {
             const EdgePoint e = edgeInterior(p, t.a, t.b, plain);
             r.point = e.point;
@@ -566,16 +575,16 @@ namespace {
 
 constexpr char kLetter[4] = {'a', 'b', 'c', 'd'};
 constexpr int kTetEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
-                                 {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};  // x, y, then the others
+                                 {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};                // x, y, then the others
 constexpr int kTetFaces[4][4] = {{0, 1, 2, 3}, {0, 1, 3, 2}, {0, 2, 3, 1}, {1, 2, 3, 0}};  // x, y, z, opposite
 
 // Names for the tetrahedron's predicates and conditions, built once (static storage, so the
 // const char* in traces stay valid for the program's lifetime).
 struct TetNames {
-    std::string dotName[4][4];       // "(p-a).(b-a)"
-    std::string sideName[4][4][4];   // edge (x<y), third z: "side(ab|c)"
+    std::string dotName[4][4];      // "(p-a).(b-a)"
+    std::string sideName[4][4][4];  // edge (x<y), third z: "side(ab|c)"
     std::string sideFormula[4][4][4];
-    std::string planeName[4];        // face opposite w: "side(abc|d)"
+    std::string planeName[4];  // face opposite w: "side(abc|d)"
     std::string planeFormula[4];
     std::string condition[15];
 };
@@ -749,7 +758,8 @@ RegionTest<TetrahedronRegion, 4> insideTest() {
 
 // Ericson, "Real-Time Collision Detection", §5.1.6: the Voronoi region of p among the vertices,
 // edges and faces of the tetrahedron, each region's test decided by exact signs.
-ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const Tetrahedron& t, TetrahedronTrace* trace) {
+ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const Tetrahedron& t,
+                                                          TetrahedronTrace* trace) {
     if (trace) trace->tests.clear();
     auto done = [&](const ClosestPointOnTetrahedronResult& r) {
         if (trace) trace->result = r;
@@ -766,21 +776,18 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
 
     const TetNames& names = tetNames();
     auto dotTerm = [&](int x, int y) {  // (p-x)·(y-x)
-        return tetTerm(names.dotName[x][y].c_str(), names.dotName[x][y].c_str(), 1, plain, [&](auto zero) {
-            return exact::dotOfDifferences<decltype(zero)>(*v[x], p, *v[x], *v[y]);
-        });
+        return tetTerm(names.dotName[x][y].c_str(), names.dotName[x][y].c_str(), 1, plain,
+                       [&](auto zero) { return exact::dotOfDifferences<decltype(zero)>(*v[x], p, *v[x], *v[y]); });
     };
     auto sideTerm = [&](int x, int y, int z) {  // in-face side of edge xy (symmetric in x, y)
         if (x > y) std::swap(x, y);
-        return tetTerm(names.sideName[x][y][z].c_str(), names.sideFormula[x][y][z].c_str(), 1, plain, [&](auto zero) {
-            return exact::edgeSide<decltype(zero)>(*v[x], *v[y], *v[z], p);
-        });
+        return tetTerm(names.sideName[x][y][z].c_str(), names.sideFormula[x][y][z].c_str(), 1, plain,
+                       [&](auto zero) { return exact::edgeSide<decltype(zero)>(*v[x], *v[y], *v[z], p); });
     };
     auto planeTerm = [&](const int* f) {  // p's side of face plane, positive = the opposite vertex's side
         const int orientation = exact::orient3dSign(*v[f[0]], *v[f[1]], *v[f[2]], *v[f[3]]);
-        return tetTerm(names.planeName[f[3]].c_str(), names.planeFormula[f[3]].c_str(), orientation, plain, [&](auto zero) {
-            return exact::orient3d<decltype(zero)>(*v[f[0]], *v[f[1]], *v[f[2]], p);
-        });
+        return tetTerm(names.planeName[f[3]].c_str(), names.planeFormula[f[3]].c_str(), orientation, plain,
+                       [&](auto zero) { return exact::orient3d<decltype(zero)>(*v[f[0]], *v[f[1]], *v[f[2]], p); });
     };
 
     ClosestPointOnTetrahedronResult r;

@@ -67,10 +67,10 @@ enum class SimplexStatus {
 // Segments
 
 struct ClosestPointOnSegmentResult {
-    Vec3 point = Vec3::Zero();      ///< closest point of the segment, = a + t (b - a)
-    double t = 0.0;                 ///< parameter in [0, 1]; exactly 0 for region A, 1 for region B
+    Vec3 point = Vec3::Zero();  ///< closest point of the segment, = a + t (b - a)
+    double t = 0.0;             ///< parameter in [0, 1]; exactly 0 for region A, 1 for region B
     SegmentRegion region = SegmentRegion::A;
-    double distanceSquared = 0.0;   ///< |p - point|^2
+    double distanceSquared = 0.0;  ///< |p - point|^2
 };
 
 /// Closest point of segment s to p (Ericson §5.1.2). Region choice is exact (signs of
@@ -78,13 +78,13 @@ struct ClosestPointOnSegmentResult {
 ClosestPointOnSegmentResult closestPointOnSegment(const Vec3& p, const Segment& s);
 
 struct SegmentSegmentResult {
-    double s = 0.0;                   ///< parameter on the first segment, in [0, 1]
-    double t = 0.0;                   ///< parameter on the second segment, in [0, 1]
+    double s = 0.0;                     ///< parameter on the first segment, in [0, 1]
+    double t = 0.0;                     ///< parameter on the second segment, in [0, 1]
     Vec3 pointOnFirst = Vec3::Zero();   ///< first.a + s (first.b - first.a)
     Vec3 pointOnSecond = Vec3::Zero();  ///< second.a + t (second.b - second.a)
-    double distanceSquared = 0.0;     ///< |pointOnFirst - pointOnSecond|^2
-    bool parallel = false;            ///< directions parallel to rounding: one of many closest pairs
-    bool degenerate = false;          ///< at least one segment has (numerically) zero length
+    double distanceSquared = 0.0;       ///< |pointOnFirst - pointOnSecond|^2
+    bool parallel = false;              ///< directions parallel to rounding: one of many closest pairs
+    bool degenerate = false;            ///< at least one segment has (numerically) zero length
 };
 
 /// Closest pair between two segments (Ericson §5.1.9 ClosestPtSegmentSegment). Parallel and
@@ -121,10 +121,10 @@ struct RegionTest {
 // Triangles
 
 struct ClosestPointOnTriangleResult {
-    Vec3 point = Vec3::Zero();               ///< closest point of the (closed, solid) triangle
+    Vec3 point = Vec3::Zero();                  ///< closest point of the (closed, solid) triangle
     TriangleRegion region = TriangleRegion::A;  ///< feature whose relative interior holds point
-    Vec3 barycentric = Vec3::UnitX();        ///< (u, v, w): point = u a + v b + w c, u+v+w = 1 (to rounding), all >= 0
-    double distanceSquared = 0.0;            ///< |p - point|^2
+    Vec3 barycentric = Vec3::UnitX();  ///< (u, v, w): point = u a + v b + w c, u+v+w = 1 (to rounding), all >= 0
+    double distanceSquared = 0.0;      ///< |p - point|^2
     SimplexStatus status = SimplexStatus::Regular;
 };
 
@@ -146,10 +146,10 @@ ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangl
 // Tetrahedra
 
 struct ClosestPointOnTetrahedronResult {
-    Vec3 point = Vec3::Zero();                       ///< closest point of the solid tetrahedron (p if inside)
-    TetrahedronRegion region = TetrahedronRegion::A; ///< feature whose relative interior holds point
+    Vec3 point = Vec3::Zero();                               ///< closest point of the solid tetrahedron (p if inside)
+    TetrahedronRegion region = TetrahedronRegion::A;         ///< feature whose relative interior holds point
     Eigen::Vector4d barycentric = Eigen::Vector4d::UnitX();  ///< weights of a, b, c, d (sum 1 to rounding, all >= 0)
-    double distanceSquared = 0.0;                    ///< |p - point|^2 (0 inside)
+    double distanceSquared = 0.0;                            ///< |p - point|^2 (0 inside)
     SimplexStatus status = SimplexStatus::Regular;
 };
 

@@ -12,10 +12,8 @@ namespace {
 using dd::DoubleDouble;
 using dd::Vec3DD;
 
-Vec3DD exactDifference(const Vec3& a, const Vec3& b)
-{
-    return {dd::exactDifference(a.x(), b.x()), dd::exactDifference(a.y(), b.y()),
-            dd::exactDifference(a.z(), b.z())};
+Vec3DD exactDifference(const Vec3& a, const Vec3& b) {
+    return {dd::exactDifference(a.x(), b.x()), dd::exactDifference(a.y(), b.y()), dd::exactDifference(a.z(), b.z())};
 }
 
 Vec3 rounded(const Vec3DD& v) { return {v.x.value(), v.y.value(), v.z.value()}; }
@@ -28,8 +26,7 @@ struct ScaledQuad {
     int exponent = 0;  // original = scaled * 2^exponent
     bool finite = true;
 
-    ScaledQuad(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1)
-    {
+    ScaledQuad(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
         const Vec3 in[4] = {a0, a1, b0, b1};
         double m = 0.0;
         for (const Vec3& v : in) {
@@ -40,15 +37,16 @@ struct ScaledQuad {
         for (int i = 0; i < 4; ++i) p[i] = in[i].unaryExpr([e = -exponent](double x) { return std::ldexp(x, e); });
     }
     double unscale(double x) const { return std::ldexp(x, exponent); }
-    Vec3 unscale(const Vec3& v) const { return v.unaryExpr([e = exponent](double x) { return std::ldexp(x, e); }); }
+    Vec3 unscale(const Vec3& v) const {
+        return v.unaryExpr([e = exponent](double x) { return std::ldexp(x, e); });
+    }
 };
 
 /// Common perpendicular of lines a0 + s (a1 - a0) and b0 + t (b1 - b0), scaled coordinates.
 /// With c = dA x dB and r = b0 - a0: s = (r x dB).c / |c|^2, t = (r x dA).c / |c|^2 (Cramer's
 /// rule on s dA - t dB + u c = r), and the separation along c/|c| is r.c / |c|.
 bool commonPerpendicular(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& s, double& t,
-                         double& separation, Vec3& normal)
-{
+                         double& separation, Vec3& normal) {
     const Vec3DD dA = exactDifference(a1, a0), dB = exactDifference(b1, b0), r = exactDifference(b0, a0);
     const Vec3DD c = dd::cross(dA, dB);
     const double cc = dd::dot(c, c).value();
@@ -62,8 +60,7 @@ bool commonPerpendicular(const Vec3& a0, const Vec3& a1, const Vec3& b0, const V
 }
 
 /// Distance from x to segment [p, q] (scaled coordinates); closest point and x - closest.
-double pointSegment(const Vec3& x, const Vec3& p, const Vec3& q, Vec3& closest, Vec3& offset)
-{
+double pointSegment(const Vec3& x, const Vec3& p, const Vec3& q, Vec3& closest, Vec3& offset) {
     const Vec3DD d = exactDifference(q, p), w = exactDifference(x, p);
     const double dd2 = dd::dot(d, d).value();
     double t = dd2 > 0.0 ? dd::dot(w, d).value() / dd2 : 0.0;
@@ -75,8 +72,7 @@ double pointSegment(const Vec3& x, const Vec3& p, const Vec3& q, Vec3& closest, 
 
 }  // namespace
 
-EdgePairDistance edgePairDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1)
-{
+EdgePairDistance edgePairDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
     EdgePairDistance best;
     const ScaledQuad q(a0, a1, b0, b1);
     if (!q.finite) return best;
@@ -94,8 +90,7 @@ EdgePairDistance edgePairDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0
     // Interior minimum: the common perpendicular, when its feet lie on both segments.
     double s = 0.0, t = 0.0, separation = 0.0;
     Vec3 normal;
-    if (commonPerpendicular(A0, A1, B0, B1, s, t, separation, normal) && s >= 0.0 && s <= 1.0 && t >= 0.0 &&
-        t <= 1.0) {
+    if (commonPerpendicular(A0, A1, B0, B1, s, t, separation, normal) && s >= 0.0 && s <= 1.0 && t >= 0.0 && t <= 1.0) {
         const Vec3 pa = A0 + s * (A1 - A0), pb = B0 + t * (B1 - B0);
         consider(std::abs(separation), pa, pb, separation < 0.0 ? Vec3(-normal) : normal, true);
     }
@@ -115,8 +110,7 @@ EdgePairDistance edgePairDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0
     return best;
 }
 
-EdgePairDistance pointTriangleDistance(const Vec3& p, const Vec3& t0, const Vec3& t1, const Vec3& t2)
-{
+EdgePairDistance pointTriangleDistance(const Vec3& p, const Vec3& t0, const Vec3& t1, const Vec3& t2) {
     EdgePairDistance best;
     const ScaledQuad q(p, t0, t1, t2);
     if (!q.finite) return best;
@@ -147,14 +141,19 @@ EdgePairDistance pointTriangleDistance(const Vec3& p, const Vec3& t0, const Vec3
     }
     // Outside the face (or a zero-area triangle): the nearest edge, a point being a zero-length edge.
     for (int i = 0; i < 3; ++i) {
-        const EdgePairDistance e = edgePairDistance(p, p, i == 0 ? t0 : i == 1 ? t1 : t2, i == 0 ? t1 : i == 1 ? t2 : t0);
+        const EdgePairDistance e = edgePairDistance(p, p,
+                                                    i == 0   ? t0
+                                                    : i == 1 ? t1
+                                                             : t2,
+                                                    i == 0   ? t1
+                                                    : i == 1 ? t2
+                                                             : t0);
         if (e.ok && (!best.ok || e.distance < best.distance)) best = e;
     }
     return best;
 }
 
-LinePairSeparation linePairSeparation(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1)
-{
+LinePairSeparation linePairSeparation(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
     LinePairSeparation out;
     const ScaledQuad q(a0, a1, b0, b1);
     if (!q.finite) return out;

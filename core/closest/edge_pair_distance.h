@@ -21,12 +21,12 @@ namespace cdlab {
 
 /// Closest points of segments [a0, a1] (of A) and [b0, b1] (of B), world frame.
 struct EdgePairDistance {
-    bool ok = false;              ///< false: non-finite input (every other field is then unset)
-    double distance = 0.0;        ///< >= 0, world units
-    Vec3 pointA = Vec3::Zero();   ///< closest point on [a0, a1]
-    Vec3 pointB = Vec3::Zero();   ///< closest point on [b0, b1]
-    Vec3 axis = Vec3::Zero();     ///< unit, from pointA toward pointB; zero when distance == 0
-    bool interior = false;        ///< the closest points are the lines' common perpendicular
+    bool ok = false;             ///< false: non-finite input (every other field is then unset)
+    double distance = 0.0;       ///< >= 0, world units
+    Vec3 pointA = Vec3::Zero();  ///< closest point on [a0, a1]
+    Vec3 pointB = Vec3::Zero();  ///< closest point on [b0, b1]
+    Vec3 axis = Vec3::Zero();    ///< unit, from pointA toward pointB; zero when distance == 0
+    bool interior = false;       ///< the closest points are the lines' common perpendicular
 };
 
 /// Accurate segment-segment distance (see the file comment). Zero-length segments are points.
@@ -41,12 +41,12 @@ EdgePairDistance pointTriangleDistance(const Vec3& p, const Vec3& t0, const Vec3
 /// The lines through [a0, a1] and [b0, b1] and their common perpendicular: for EPA, whose final
 /// face spans an edge of A and an edge of B (edge-edge penetration).
 struct LinePairSeparation {
-    bool ok = false;              ///< false: parallel (or zero-length) edges, or non-finite input
-    double separation = 0.0;      ///< (pointB - pointA) . normal, world units (signed)
-    Vec3 normal = Vec3::Zero();   ///< unit, along (a1 - a0) x (b1 - b0)
-    Vec3 pointA = Vec3::Zero();   ///< foot on line A: a0 + s (a1 - a0)
-    Vec3 pointB = Vec3::Zero();   ///< foot on line B: b0 + t (b1 - b0)
-    double s = 0.0;               ///< in [0, 1] when the foot lies on the segment
+    bool ok = false;             ///< false: parallel (or zero-length) edges, or non-finite input
+    double separation = 0.0;     ///< (pointB - pointA) . normal, world units (signed)
+    Vec3 normal = Vec3::Zero();  ///< unit, along (a1 - a0) x (b1 - b0)
+    Vec3 pointA = Vec3::Zero();  ///< foot on line A: a0 + s (a1 - a0)
+    Vec3 pointB = Vec3::Zero();  ///< foot on line B: b0 + t (b1 - b0)
+    double s = 0.0;              ///< in [0, 1] when the foot lies on the segment
     double t = 0.0;
 };
 

@@ -97,7 +97,8 @@ FeaturePairPoints closestPointsSegmentPolygon(const Segment& s, const std::vecto
     r.distanceSquared = INFINITY;
     for (const Vec3& e : {s.a, s.b}) {
         const PointPolygonResult c = closestPointOnPolygon(e, poly);
-        if (c.distanceSquared < r.distanceSquared) r.pointA = e, r.pointB = c.point, r.distanceSquared = c.distanceSquared;
+        if (c.distanceSquared < r.distanceSquared)
+            r.pointA = e, r.pointB = c.point, r.distanceSquared = c.distanceSquared;
     }
     for (size_t i = 0; i < poly.size(); ++i) {
         const SegmentSegmentResult c = closestPointsSegmentSegment(s, Segment{poly[i], poly[(i + 1) % poly.size()]});
@@ -143,18 +144,24 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
     r.valid = true;
     const int da = expected(a.type), db = expected(b.type);
     const int lo = std::min(da, db), hi = std::max(da, db);
-    r.type = lo == 1 ? (hi == 1 ? ContactType::VV : hi == 2 ? ContactType::VE : ContactType::VF)
-           : lo == 2 ? (hi == 2 ? ContactType::EE : ContactType::EF)
-                     : ContactType::FF;
+    r.type = lo == 1   ? (hi == 1   ? ContactType::VV
+                          : hi == 2 ? ContactType::VE
+                                    : ContactType::VF)
+             : lo == 2 ? (hi == 2 ? ContactType::EE : ContactType::EF)
+                       : ContactType::FF;
 
     // Closest points: dispatch on (dim A, dim B), swapping the roles back when B is the lower one.
     FeaturePairPoints c;
-    const auto flip = [](FeaturePairPoints x) { std::swap(x.pointA, x.pointB); return x; };
+    const auto flip = [](FeaturePairPoints x) {
+        std::swap(x.pointA, x.pointB);
+        return x;
+    };
     const auto pointVs = [](const Vec3& p, const FeatureGeometry& f) {
         FeaturePairPoints x;
         x.pointA = p;
         if (f.type == FeatureType::Vertex) x.pointB = f.points[0];
-        else if (f.type == FeatureType::Edge) x.pointB = closestPointOnSegment(p, Segment{f.points[0], f.points[1]}).point;
+        else if (f.type == FeatureType::Edge)
+            x.pointB = closestPointOnSegment(p, Segment{f.points[0], f.points[1]}).point;
         else x.pointB = closestPointOnPolygon(p, f.points).point;
         x.distanceSquared = (x.pointA - x.pointB).squaredNorm();
         return x;

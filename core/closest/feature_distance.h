@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "core/geometry/polyhedron_feature.h"
 #include "core/base/types.h"
+#include "core/geometry/polyhedron_feature.h"
 
 namespace cdlab {
 
@@ -52,17 +52,17 @@ struct FeatureGeometry {
 };
 
 struct FeatureDistanceResult {
-    bool valid = false;             ///< false: wrong point count or non-finite input (see message)
+    bool valid = false;  ///< false: wrong point count or non-finite input (see message)
     std::string message;
     ContactType type = ContactType::VV;
-    double distance = 0.0;          ///< |pointA - pointB|, world units (0: the features meet)
-    Vec3 pointA = Vec3::Zero();     ///< closest point on feature A
-    Vec3 pointB = Vec3::Zero();     ///< closest point on feature B
-    Vec3 normal = Vec3::Zero();     ///< unit contact normal from A toward B (0 if !normalDefined)
+    double distance = 0.0;       ///< |pointA - pointB|, world units (0: the features meet)
+    Vec3 pointA = Vec3::Zero();  ///< closest point on feature A
+    Vec3 pointB = Vec3::Zero();  ///< closest point on feature B
+    Vec3 normal = Vec3::Zero();  ///< unit contact normal from A toward B (0 if !normalDefined)
     bool normalDefined = false;
-    const char* normalRule = "";    ///< "face A", "face B", "closest points", "edge cross product", "none"
-    bool normalUnstable = false;    ///< normal from the closest-point line at distance < 1e-9 x size (or none)
-    bool parallel = false;          ///< parallel edges / faces: one of many closest pairs
+    const char* normalRule = "";  ///< "face A", "face B", "closest points", "edge cross product", "none"
+    bool normalUnstable = false;  ///< normal from the closest-point line at distance < 1e-9 x size (or none)
+    bool parallel = false;        ///< parallel edges / faces: one of many closest pairs
 };
 
 /// Closest point of the convex planar polygon (>= 3 points, any orientation; collinear points

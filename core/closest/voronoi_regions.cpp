@@ -154,8 +154,8 @@ TetrahedronVoronoiDiagram tetrahedronVoronoiRegions(const TetrahedronVoronoiInpu
         r.region = static_cast<TetrahedronRegion>(10 + f);
         const Vec3 n = outward(x, y, z, w);
         // Outside the face plane, inside the prism over the face (toward each edge's third vertex).
-        r.halfSpaces = {{v[x], -n}, {v[x], -towardThird(x, y, z)}, {v[y], -towardThird(y, z, x)},
-                        {v[z], -towardThird(z, x, y)}};
+        r.halfSpaces = {
+            {v[x], -n}, {v[x], -towardThird(x, y, z)}, {v[y], -towardThird(y, z, x)}, {v[z], -towardThird(z, x, y)}};
         inside.halfSpaces.push_back({v[x], n});
     }
 
@@ -163,9 +163,9 @@ TetrahedronVoronoiDiagram tetrahedronVoronoiRegions(const TetrahedronVoronoiInpu
     // and by the region's other half-spaces.
     const Vec3 center = d.box.center();
     const double radius = d.box.diagonal().norm();
-    const std::initializer_list<HalfSpace> boxSides = {
-        {d.box.max(), Vec3::UnitX()}, {d.box.min(), -Vec3::UnitX()}, {d.box.max(), Vec3::UnitY()},
-        {d.box.min(), -Vec3::UnitY()}, {d.box.max(), Vec3::UnitZ()}, {d.box.min(), -Vec3::UnitZ()}};
+    const std::initializer_list<HalfSpace> boxSides = {{d.box.max(), Vec3::UnitX()}, {d.box.min(), -Vec3::UnitX()},
+                                                       {d.box.max(), Vec3::UnitY()}, {d.box.min(), -Vec3::UnitY()},
+                                                       {d.box.max(), Vec3::UnitZ()}, {d.box.min(), -Vec3::UnitZ()}};
     for (auto& r : d.regions) {
         r.faces.resize(r.halfSpaces.size());
         for (std::size_t i = 0; i < r.halfSpaces.size(); ++i) {

@@ -16,8 +16,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/closest/closest_point.h"
 #include "core/base/types.h"
+#include "core/closest/closest_point.h"
 
 namespace cdlab {
 
@@ -60,10 +60,10 @@ struct VoronoiBoundaryPlane {
 };
 
 struct TriangleVoronoiDiagram {
-    bool valid = false;          ///< false for a (exactly) collinear triangle or non-finite input: nothing else is set
-    Vec3 normal = Vec3::UnitZ(); ///< unit normal (b-a)×(c-a) / |...|
-    Vec3 axisU = Vec3::UnitX();  ///< in-plane unit axis along b - a
-    Vec3 axisV = Vec3::UnitY();  ///< normal × axisU
+    bool valid = false;           ///< false for a (exactly) collinear triangle or non-finite input: nothing else is set
+    Vec3 normal = Vec3::UnitZ();  ///< unit normal (b-a)×(c-a) / |...|
+    Vec3 axisU = Vec3::UnitX();   ///< in-plane unit axis along b - a
+    Vec3 axisV = Vec3::UnitY();   ///< normal × axisU
     std::array<Vec3, 4> rectangle{};  ///< clip rectangle corners, counterclockwise about normal
     /// Indexed by TriangleRegion (A, B, C, AB, BC, CA, ABC); together they tile the rectangle.
     std::array<TriangleRegionPolygon, 7> regions{};
@@ -88,8 +88,8 @@ struct TetrahedronVoronoiInput {
 /// intersection) and, for drawing, each bounding plane's part on the region clipped to the box.
 struct TetrahedronRegionGeometry {
     TetrahedronRegion region = TetrahedronRegion::ABCD;
-    std::vector<HalfSpace> halfSpaces;        ///< normals unit length
-    std::vector<std::vector<Vec3>> faces;     ///< faces[i] lies on halfSpaces[i]'s plane (may be empty)
+    std::vector<HalfSpace> halfSpaces;     ///< normals unit length
+    std::vector<std::vector<Vec3>> faces;  ///< faces[i] lies on halfSpaces[i]'s plane (may be empty)
 };
 
 struct TetrahedronVoronoiDiagram {

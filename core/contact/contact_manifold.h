@@ -40,8 +40,9 @@ struct ManifoldReductionStep {
 
 /// Indices (into `polygon`: the contact points, any order; interior points allowed) of at most
 /// maxPoints points chosen by the rules of the file comment, in the order chosen. maxPoints <= 0
-/// or >= polygon.size() keeps every point (the deepest first, then input order; no steps). A rule whose best score is 0 (all remaining points coincide with
-/// or are collinear with the chosen ones) stops the reduction early. normal: unit, any sign.
+/// or >= polygon.size() keeps every point (the deepest first, then input order; no steps). A rule whose best score is 0
+/// (all remaining points coincide with or are collinear with the chosen ones) stops the reduction early. normal: unit,
+/// any sign.
 std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, const Vec3& normal, int maxPoints,
                                       std::vector<ManifoldReductionStep>* steps = nullptr);
 

@@ -64,7 +64,8 @@ std::vector<int> hull2d(const std::vector<Vec2>& p) {
     std::vector<int> idx(n);
     for (int i = 0; i < n; ++i) idx[i] = i;
     std::sort(idx.begin(), idx.end(), [&](int a, int b) {
-        return p[a].x() < p[b].x() || (p[a].x() == p[b].x() && (p[a].y() < p[b].y() || (p[a].y() == p[b].y() && a < b)));
+        return p[a].x() < p[b].x() ||
+               (p[a].x() == p[b].x() && (p[a].y() < p[b].y() || (p[a].y() == p[b].y() && a < b)));
     });
     idx.erase(std::unique(idx.begin(), idx.end(), [&](int a, int b) { return p[a] == p[b]; }), idx.end());
     if (idx.size() <= 2) return idx;
@@ -252,9 +253,9 @@ PlaneContactResult contactPolyhedronPlane(const ConvexPolyhedron& body, const Tr
     r.deepestVertex = pv.low;
     r.signedDistance = sLow;
     r.depth = std::max(0.0, -sLow);
-    r.status = sLow > tol ? PlaneContactStatus::Separated
-             : sLow >= -tol ? PlaneContactStatus::Touching
-                            : PlaneContactStatus::Penetrating;
+    r.status = sLow > tol     ? PlaneContactStatus::Separated
+               : sLow >= -tol ? PlaneContactStatus::Touching
+                              : PlaneContactStatus::Penetrating;
 
     const std::vector<int> near = closestFeature(body, pose, n, pv, tol, r);
     for (const Vec3& p : r.featurePoints) r.featurePointsOnPlane.push_back(p - (n.dot(p) - d) * n);

@@ -28,18 +28,18 @@
 #include <string>
 #include <vector>
 
+#include "core/base/types.h"
 #include "core/contact/contact_manifold.h"
 #include "core/geometry/polyhedron.h"
 #include "core/geometry/shapes.h"
-#include "core/base/types.h"
 
 namespace cdlab {
 
 enum class PlaneContactStatus {
-    Separated,    ///< s_min > tol: distance = s_min, closest feature / points meaningful, no manifold
-    Touching,     ///< |s_min| <= tol: depth = max(0, -s_min), manifold = the touching feature
-    Penetrating,  ///< s_min < -tol: depth = -s_min, manifold meaningful
-    InvalidInput, ///< empty polyhedron, zero / non-finite plane normal or offset, NaN pose: see message
+    Separated,     ///< s_min > tol: distance = s_min, closest feature / points meaningful, no manifold
+    Touching,      ///< |s_min| <= tol: depth = max(0, -s_min), manifold = the touching feature
+    Penetrating,   ///< s_min < -tol: depth = -s_min, manifold meaningful
+    InvalidInput,  ///< empty polyhedron, zero / non-finite plane normal or offset, NaN pose: see message
 };
 
 const char* nameOf(PlaneContactStatus status);
@@ -59,40 +59,42 @@ struct PlaneContactOptions {
 
 struct PlaneContactResult {
     PlaneContactStatus status = PlaneContactStatus::InvalidInput;
-    std::string message;                  ///< InvalidInput: why
-    double signedDistance = 0.0;          ///< s_min, world units (< 0: below the plane)
-    double depth = 0.0;                   ///< max(0, -s_min)
-    Vec3 normal = Vec3::UnitX();          ///< unit, from the body toward the half-space: -n̂
-    double tolerance = 0.0;               ///< tol actually used (world units)
-    int deepestVertex = -1;               ///< a vertex attaining s_min (first index)
-    FeatureRef feature;                   ///< closest (separated) / deepest (colliding) feature of the body
-    std::vector<Vec3> featurePoints;      ///< its vertices, world frame (face: counter-clockwise from outside)
+    std::string message;                     ///< InvalidInput: why
+    double signedDistance = 0.0;             ///< s_min, world units (< 0: below the plane)
+    double depth = 0.0;                      ///< max(0, -s_min)
+    Vec3 normal = Vec3::UnitX();             ///< unit, from the body toward the half-space: -n̂
+    double tolerance = 0.0;                  ///< tol actually used (world units)
+    int deepestVertex = -1;                  ///< a vertex attaining s_min (first index)
+    FeatureRef feature;                      ///< closest (separated) / deepest (colliding) feature of the body
+    std::vector<Vec3> featurePoints;         ///< its vertices, world frame (face: counter-clockwise from outside)
     std::vector<Vec3> featurePointsOnPlane;  ///< their projections on the plane (closest points of the plane)
-    std::vector<ContactPoint> polygon;    ///< colliding: full contact polygon (see file comment), CCW about n̂
-    std::vector<ContactPoint> manifold;   ///< colliding: <= maxPoints points, deepest first (maxPoints <= 0:
-                                          ///< the polygon, plus the deepest point if it projects inside it)
+    std::vector<ContactPoint> polygon;       ///< colliding: full contact polygon (see file comment), CCW about n̂
+    std::vector<ContactPoint> manifold;      ///< colliding: <= maxPoints points, deepest first (maxPoints <= 0:
+                                             ///< the polygon, plus the deepest point if it projects inside it)
 
-    bool colliding() const { return status == PlaneContactStatus::Touching || status == PlaneContactStatus::Penetrating; }
+    bool colliding() const {
+        return status == PlaneContactStatus::Touching || status == PlaneContactStatus::Penetrating;
+    }
 };
 
 /// Every intermediate of contactPolyhedronPlane, for figures.
 struct PlaneContactTrace {
-    Vec3 unitNormal = Vec3::UnitZ();                  ///< n̂
-    double unitOffset = 0.0;                          ///< d̂
-    std::vector<Vec3> worldVertices;                  ///< x_i
-    std::vector<double> vertexDistances;              ///< s_i
-    std::vector<int> featureVertices;                 ///< vertices within tol of s_min
+    Vec3 unitNormal = Vec3::UnitZ();      ///< n̂
+    double unitOffset = 0.0;              ///< d̂
+    std::vector<Vec3> worldVertices;      ///< x_i
+    std::vector<double> vertexDistances;  ///< s_i
+    std::vector<int> featureVertices;     ///< vertices within tol of s_min
     struct Crossing {
         int edge = -1;
-        int below = -1, above = -1;                   ///< vertex ids (s_below < -tol, s_above > tol)
-        double t = 0.0;                               ///< point = x_below + t (x_above - x_below)
+        int below = -1, above = -1;  ///< vertex ids (s_below < -tol, s_above > tol)
+        double t = 0.0;              ///< point = x_below + t (x_above - x_below)
         Vec3 point = Vec3::Zero();
     };
     std::vector<Crossing> crossings;
-    std::vector<ContactPoint> candidates;             ///< submerged vertices then crossings, before the hull
-    std::vector<int> candidateVertex;                 ///< vertex id of each candidate, -1 for a crossing
-    std::vector<int> hull;                            ///< candidates on the polygon, CCW about n̂
-    std::vector<ManifoldReductionStep> reduction;     ///< reduction choices (indices into candidates)
+    std::vector<ContactPoint> candidates;          ///< submerged vertices then crossings, before the hull
+    std::vector<int> candidateVertex;              ///< vertex id of each candidate, -1 for a crossing
+    std::vector<int> hull;                         ///< candidates on the polygon, CCW about n̂
+    std::vector<ManifoldReductionStep> reduction;  ///< reduction choices (indices into candidates)
 };
 
 /// Boolean, brute force: some world vertex has n · x <= d. O(V). Invalid input (NaN, n = 0): false.

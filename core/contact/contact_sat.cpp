@@ -33,10 +33,10 @@ namespace {
 // A posed polyhedron in world orientation, positions relative to the common origin o.
 struct Posed {
     const ConvexPolyhedron* mesh = nullptr;
-    std::vector<Vec3> x;        // vertices
-    std::vector<Vec3> n;        // face normals (unit)
-    std::vector<double> d;      // face offsets: n · x = d
-    Vec3 center = Vec3::Zero(); // vertex mean (inside: convex)
+    std::vector<Vec3> x;         // vertices
+    std::vector<Vec3> n;         // face normals (unit)
+    std::vector<double> d;       // face offsets: n · x = d
+    Vec3 center = Vec3::Zero();  // vertex mean (inside: convex)
 
     Posed(const ConvexPolyhedron& m, const Transform& t, const Vec3& origin) : mesh(&m) {
         const Vec3 shift = t.position - origin;  // exact when t.position == origin
@@ -50,7 +50,10 @@ struct Posed {
             // Offset at the face's vertex mean (as the mesh does): rounding averages out.
             Vec3 c = Vec3::Zero();
             int k = 0;
-            m.forEachFaceHalfEdge(f, [&](int h) { c += x[m.halfEdge(h).origin]; ++k; });
+            m.forEachFaceHalfEdge(f, [&](int h) {
+                c += x[m.halfEdge(h).origin];
+                ++k;
+            });
             d.push_back(n.back().dot(c / double(k)));
         }
     }
@@ -113,7 +116,9 @@ void queryFaceAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyh
         if (rec.separation > bestA.separation) bestA = rec;
         axes.push_back(rec);
     }
-    bestFaceAIndex = static_cast<int>(std::find_if(axes.begin(), axes.end(), [&](const SatAxisRecord& x) { return x.indexA == bestA.indexA; }) - axes.begin());
+    bestFaceAIndex = static_cast<int>(
+        std::find_if(axes.begin(), axes.end(), [&](const SatAxisRecord& x) { return x.indexA == bestA.indexA; }) -
+        axes.begin());
     for (int f = 0; f < mb.faceCount(); ++f) {
         const SatAxisRecord rec{SatAxisKind::FaceB, -1, f, -B.n[f], A.minProjection(B.n[f]) - B.d[f]};
         if (rec.separation > bestB.separation) bestB = rec, bestFaceBIndex = static_cast<int>(axes.size());
@@ -153,7 +158,6 @@ void queryEdgeAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyh
             axes.push_back(rec);
         }
     }
-
 }
 
 struct ChosenAxis {
@@ -178,7 +182,8 @@ ChosenAxis chooseAxis(const SatQuery& q, double tol, const SatContactOptions& op
     } else {
         const double biasAbs = std::max(0.0, options.faceBiasAbsolute);
         const auto better = [&](const SatAxisRecord& c) {
-            return c.separation > best.separation + options.faceBiasRelative * std::abs(best.separation) + biasAbs + tol;
+            return c.separation >
+                   best.separation + options.faceBiasRelative * std::abs(best.separation) + biasAbs + tol;
         };
         if (bestB.indexB >= 0 && better(bestB)) best = bestB, chosen = bestFaceBIndex;
         if (bestE.indexA >= 0 && better(bestE)) best = bestE, chosen = bestEdgeIndex;
@@ -261,7 +266,8 @@ void faceContact(const Posed& A, const Posed& B, const SatAxisRecord& best, cons
         else pts.push_back({I.x[v] + origin, onRef + origin, std::max(0.0, -s)});
     }
     std::vector<ManifoldReductionStep> steps;
-    for (int i : reduceContactPolygon(pts, nr, options.maxPoints, trace ? &steps : nullptr)) r.manifold.push_back(pts[i]);
+    for (int i : reduceContactPolygon(pts, nr, options.maxPoints, trace ? &steps : nullptr))
+        r.manifold.push_back(pts[i]);
     r.featureA = {FeatureType::Face, refOnA ? rf : inc};
     r.featureB = {FeatureType::Face, refOnA ? inc : rf};
     if (trace) {
@@ -306,9 +312,9 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     r.normal = best.axis;
     r.axisKind = best.kind;
     r.depth = std::max(0.0, -best.separation);
-    r.status = c.maxSep > tol ? SatContactStatus::Separated
-             : c.maxSep >= -tol ? SatContactStatus::Touching
-                                : SatContactStatus::Penetrating;
+    r.status = c.maxSep > tol     ? SatContactStatus::Separated
+               : c.maxSep >= -tol ? SatContactStatus::Touching
+                                  : SatContactStatus::Penetrating;
     if (trace) {
         trace->axes = q.axes;
         trace->edgePairsTotal = ma.edgeCount() * mb.edgeCount();
@@ -320,7 +326,8 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         trace->chosen = c.chosen;
     }
     if (r.status == SatContactStatus::Separated) {
-        if (best.kind == SatAxisKind::EdgeEdge) r.featureA = {FeatureType::Edge, best.indexA}, r.featureB = {FeatureType::Edge, best.indexB};
+        if (best.kind == SatAxisKind::EdgeEdge)
+            r.featureA = {FeatureType::Edge, best.indexA}, r.featureB = {FeatureType::Edge, best.indexB};
         else if (best.kind == SatAxisKind::FaceA) r.featureA = {FeatureType::Face, best.indexA};
         else r.featureB = {FeatureType::Face, best.indexB};
         return r;

@@ -30,17 +30,17 @@
 #include <string>
 #include <vector>
 
+#include "core/base/types.h"
 #include "core/contact/contact_manifold.h"
 #include "core/geometry/polyhedron.h"
-#include "core/base/types.h"
 
 namespace cdlab {
 
 enum class SatContactStatus {
-    Separated,    ///< separation > tol: normal = separating axis (A→B), no manifold
-    Touching,     ///< |separation| <= tol: manifold of the touching features, depth ~0
-    Penetrating,  ///< separation < -tol: depth, normal, manifold meaningful
-    InvalidInput, ///< empty polyhedron or non-finite / non-unit pose: see message
+    Separated,     ///< separation > tol: normal = separating axis (A→B), no manifold
+    Touching,      ///< |separation| <= tol: manifold of the touching features, depth ~0
+    Penetrating,   ///< separation < -tol: depth, normal, manifold meaningful
+    InvalidInput,  ///< empty polyhedron or non-finite / non-unit pose: see message
 };
 const char* nameOf(SatContactStatus status);
 
@@ -61,11 +61,11 @@ struct SatContactOptions {
 struct SatContactResult {
     SatContactStatus status = SatContactStatus::InvalidInput;
     std::string message;
-    double separation = 0.0;     ///< max over all axes (world units): > 0 apart, <= 0 overlapping (= -SAT depth)
-    double depth = 0.0;          ///< penetration along the chosen axis, >= 0 (>= -separation by at most the bias)
-    Vec3 normal = Vec3::UnitX(); ///< unit, from A toward B (chosen axis)
+    double separation = 0.0;      ///< max over all axes (world units): > 0 apart, <= 0 overlapping (= -SAT depth)
+    double depth = 0.0;           ///< penetration along the chosen axis, >= 0 (>= -separation by at most the bias)
+    Vec3 normal = Vec3::UnitX();  ///< unit, from A toward B (chosen axis)
     SatAxisKind axisKind = SatAxisKind::FaceA;
-    FeatureRef featureA, featureB;  ///< face: reference / incident face; edge-edge: the two edges
+    FeatureRef featureA, featureB;       ///< face: reference / incident face; edge-edge: the two edges
     std::vector<ContactPoint> manifold;  ///< colliding: <= maxPoints points, deepest first
     double tolerance = 0.0;
     bool colliding() const { return status == SatContactStatus::Touching || status == SatContactStatus::Penetrating; }
@@ -74,9 +74,9 @@ struct SatContactResult {
 /// One axis tested.
 struct SatAxisRecord {
     SatAxisKind kind = SatAxisKind::FaceA;
-    int indexA = -1;             ///< face of A (FaceA) or edge of A (EdgeEdge)
-    int indexB = -1;             ///< face of B (FaceB) or edge of B (EdgeEdge)
-    Vec3 axis = Vec3::Zero();    ///< unit, world, oriented from A toward B
+    int indexA = -1;           ///< face of A (FaceA) or edge of A (EdgeEdge)
+    int indexB = -1;           ///< face of B (FaceB) or edge of B (EdgeEdge)
+    Vec3 axis = Vec3::Zero();  ///< unit, world, oriented from A toward B
     double separation = 0.0;
 };
 
@@ -89,18 +89,18 @@ struct SatClipStep {
 };
 
 struct SatContactTrace {
-    std::vector<SatAxisRecord> axes;     ///< every face axis and every surviving edge pair, in test order
-    int edgePairsTotal = 0;              ///< |E_A| x |E_B|
-    int edgePairsPruned = 0;             ///< rejected by the Gauss-map arc test
-    int edgePairsParallel = 0;           ///< skipped as parallel
+    std::vector<SatAxisRecord> axes;  ///< every face axis and every surviving edge pair, in test order
+    int edgePairsTotal = 0;           ///< |E_A| x |E_B|
+    int edgePairsPruned = 0;          ///< rejected by the Gauss-map arc test
+    int edgePairsParallel = 0;        ///< skipped as parallel
     int bestFaceA = -1, bestFaceB = -1, bestEdgePair = -1;  ///< indices into axes
-    int chosen = -1;                     ///< index into axes
-    bool referenceOnA = true;            ///< face contact: which body holds the reference face
+    int chosen = -1;                                        ///< index into axes
+    bool referenceOnA = true;                               ///< face contact: which body holds the reference face
     int referenceFace = -1, incidentFace = -1;
     std::vector<Vec3> referencePolygon, incidentPolygon;  ///< world
     std::vector<SatClipStep> clipSteps;
-    std::vector<ContactPoint> clipped;   ///< points after clipping and the below-reference test
-    std::vector<ManifoldReductionStep> reduction;  ///< indices into clipped
+    std::vector<ContactPoint> clipped;                          ///< points after clipping and the below-reference test
+    std::vector<ManifoldReductionStep> reduction;               ///< indices into clipped
     Vec3 edgePointA = Vec3::Zero(), edgePointB = Vec3::Zero();  ///< edge contact: closest points
 };
 

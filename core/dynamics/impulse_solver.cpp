@@ -34,7 +34,8 @@ double singleContactImpulse(const RigidBody& body, const Vec3& normal, const Vec
     return -(1.0 + restitution) * vn * effectiveMass(body, body.inverseInertiaWorld(), r, normal);
 }
 
-ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal, const std::vector<ContactConstraintPoint>& points,
+ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal,
+                                  const std::vector<ContactConstraintPoint>& points,
                                   const ImpulseSolverOptions& options) {
     ImpulseSolverResult result;
     if (body.isStatic() || points.empty()) return result;

@@ -37,19 +37,19 @@
 
 #include <vector>
 
-#include "core/dynamics/rigid_body.h"
 #include "core/base/types.h"
+#include "core/dynamics/rigid_body.h"
 
 namespace cdlab {
 
 struct ImpulseSolverOptions {
-    double restitution = 0.5;            ///< e in [0, 1]
-    double friction = 0.5;               ///< Coulomb μ >= 0 (0: frictionless)
+    double restitution = 0.5;  ///< e in [0, 1]
+    double friction = 0.5;     ///< Coulomb μ >= 0 (0: frictionless)
     /// Approach speeds below this (world units / s) do not bounce: resting and slow contacts are
     /// perfectly inelastic, so a body can come to rest (a bounce of v_n ~ |g| dt every step is jitter).
     double restitutionThreshold = 0.25;
-    int iterations = 16;                 ///< fixed count: deterministic, same work every step
-    double timeStep = 1.0 / 240.0;       ///< s, for the speculative target −s / dt
+    int iterations = 16;            ///< fixed count: deterministic, same work every step
+    double timeStep = 1.0 / 240.0;  ///< s, for the speculative target −s / dt
 };
 
 /// One contact point of the manifold (input).
@@ -62,11 +62,11 @@ struct ContactConstraintPoint {
 struct ContactImpulse {
     Vec3 point = Vec3::Zero();
     double separation = 0.0;
-    Vec3 r = Vec3::Zero();               ///< point − centre of mass
-    double normalMass = 0.0;             ///< k = 1 / (1/m + n·((I⁻¹(r×n))×r))
-    double targetVelocity = 0.0;         ///< v_target of the iterations (see file comment)
-    bool bounce = false;                 ///< the restitution rule applied
-    double restitutionImpulse = 0.0;     ///< net change of λ_n in the restitution pass (part of normalImpulse; may be < 0)
+    Vec3 r = Vec3::Zero();            ///< point − centre of mass
+    double normalMass = 0.0;          ///< k = 1 / (1/m + n·((I⁻¹(r×n))×r))
+    double targetVelocity = 0.0;      ///< v_target of the iterations (see file comment)
+    bool bounce = false;              ///< the restitution rule applied
+    double restitutionImpulse = 0.0;  ///< net change of λ_n in the restitution pass (part of normalImpulse; may be < 0)
     double normalVelocityBefore = 0.0;   ///< v_n⁻
     double normalVelocityAfter = 0.0;    ///< v_n⁺ after the last iteration
     double normalImpulse = 0.0;          ///< λ_n >= 0 (N·s), compression + restitution
@@ -82,7 +82,8 @@ struct ImpulseSolverResult {
 /// Solves the contacts of `body` against a static surface with unit normal `normal` (from the
 /// surface toward the body) and applies the impulses to body's velocities. Static bodies and an
 /// empty point list are left untouched.
-ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal, const std::vector<ContactConstraintPoint>& points,
+ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal,
+                                  const std::vector<ContactConstraintPoint>& points,
                                   const ImpulseSolverOptions& options = {});
 
 /// Closed-form single-contact collision impulse magnitude j = −(1 + e) v_n k (0 if v_n >= 0),

@@ -18,9 +18,7 @@ const char* nameOf(RigidBodyStatus status) {
     return "?";
 }
 
-double RigidBody::mass() const {
-    return inverseMass > 0 ? 1.0 / inverseMass : std::numeric_limits<double>::infinity();
-}
+double RigidBody::mass() const { return inverseMass > 0 ? 1.0 / inverseMass : std::numeric_limits<double>::infinity(); }
 
 Mat3 RigidBody::inverseInertiaWorld() const {
     const Mat3 R = orientation.toRotationMatrix();
@@ -60,10 +58,11 @@ RigidBodyBuild makeDynamicBody(double mass, const Mat3& inertiaBody, const Trans
         b.message = m;
         return b;
     };
-    if (!std::isfinite(mass) || !inertiaBody.allFinite() || !pose.position.allFinite() || !pose.rotation.coeffs().allFinite() ||
-        !linearVelocity.allFinite() || !angularVelocity.allFinite())
+    if (!std::isfinite(mass) || !inertiaBody.allFinite() || !pose.position.allFinite() ||
+        !pose.rotation.coeffs().allFinite() || !linearVelocity.allFinite() || !angularVelocity.allFinite())
         return fail(RigidBodyStatus::NonFinite, "mass, inertia, pose or velocity is not finite");
-    if (!(mass > 0)) return fail(RigidBodyStatus::ZeroMass, "a dynamic body needs mass > 0 (got " + std::to_string(mass) + ")");
+    if (!(mass > 0))
+        return fail(RigidBodyStatus::ZeroMass, "a dynamic body needs mass > 0 (got " + std::to_string(mass) + ")");
     // Symmetric within rounding: 1e-12 of the tensor's size (mass-property sums are symmetric to ~1e-16).
     const double scale = inertiaBody.cwiseAbs().maxCoeff();
     if (!((inertiaBody - inertiaBody.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale))
@@ -74,7 +73,8 @@ RigidBodyBuild makeDynamicBody(double mass, const Mat3& inertiaBody, const Trans
     // Positive definite, and the triangle inequality every real mass distribution satisfies
     // (I1 + I2 >= I3); 1e-12 relative slack for rounding (a thin rod/plate sits on the boundary).
     if (!(p[0] > 1e-12 * p[2])) return fail(RigidBodyStatus::BadInertia, "inertia tensor is not positive definite");
-    if (!(p[0] + p[1] >= p[2] * (1 - 1e-12))) return fail(RigidBodyStatus::BadInertia, "principal moments violate I1 + I2 >= I3");
+    if (!(p[0] + p[1] >= p[2] * (1 - 1e-12)))
+        return fail(RigidBodyStatus::BadInertia, "principal moments violate I1 + I2 >= I3");
     const double qn = pose.rotation.norm();
     if (!(qn > 0)) return fail(RigidBodyStatus::NonFinite, "orientation quaternion is zero");
     RigidBody& body = b.body;

@@ -34,13 +34,13 @@ enum class RigidBodyStatus {
 const char* nameOf(RigidBodyStatus status);
 
 struct RigidBody {
-    Vec3 position = Vec3::Zero();          ///< centre of mass, world frame
-    Quat orientation = Quat::Identity();   ///< body -> world, unit
-    Vec3 linearVelocity = Vec3::Zero();    ///< of the centre of mass, world frame
-    Vec3 angularVelocity = Vec3::Zero();   ///< world frame, rad/s
-    double inverseMass = 0.0;              ///< 1 / m; 0: static (infinite mass)
-    Mat3 inertiaBody = Mat3::Zero();       ///< about the centre of mass, body axes (0 for static)
-    Mat3 inverseInertiaBody = Mat3::Zero();///< its inverse (0 for static)
+    Vec3 position = Vec3::Zero();            ///< centre of mass, world frame
+    Quat orientation = Quat::Identity();     ///< body -> world, unit
+    Vec3 linearVelocity = Vec3::Zero();      ///< of the centre of mass, world frame
+    Vec3 angularVelocity = Vec3::Zero();     ///< world frame, rad/s
+    double inverseMass = 0.0;                ///< 1 / m; 0: static (infinite mass)
+    Mat3 inertiaBody = Mat3::Zero();         ///< about the centre of mass, body axes (0 for static)
+    Mat3 inverseInertiaBody = Mat3::Zero();  ///< its inverse (0 for static)
 
     bool isStatic() const { return inverseMass == 0.0; }
     /// Mass (+infinity for a static body).

@@ -48,7 +48,8 @@ SimulationStep stepBodyOnPlane(RigidBody& body, const ConvexPolyhedron& shape, d
     out.contactStatus = contact.status;
     std::vector<ContactConstraintPoint> points;
     if (contact.colliding())
-        for (const ContactPoint& p : contact.manifold) points.push_back({p.pointA, unitNormal.dot(p.pointA) - unitOffset});
+        for (const ContactPoint& p : contact.manifold)
+            points.push_back({p.pointA, unitNormal.dot(p.pointA) - unitOffset});
 
     // 3. Impulses.
     ImpulseSolverOptions solver = options.solver;
@@ -81,16 +82,19 @@ SimulationResult simulateDrop(const DropInput& input, const SimulationOptions& o
     if (!(options.timeStep > 0) || !std::isfinite(options.timeStep) || options.steps < 0 || !(options.slop >= 0) ||
         !std::isfinite(options.slop) || !(so.friction >= 0) || !std::isfinite(so.friction) || !(so.restitution >= 0) ||
         !(so.restitution <= 1) || !(so.restitutionThreshold >= 0) || so.iterations < 1 || !(options.restSpeed >= 0))
-        return fail(SimulationStatus::InvalidOptions,
-                    "options: need timeStep > 0, steps >= 0, slop >= 0, friction >= 0, restitution in [0, 1], iterations >= 1");
+        return fail(
+            SimulationStatus::InvalidOptions,
+            "options: need timeStep > 0, steps >= 0, slop >= 0, friction >= 0, restitution in [0, 1], iterations >= 1");
     const double nn = input.ground.normal.norm();
     if (!(nn > 0) || !std::isfinite(nn) || !std::isfinite(input.ground.offset) || !input.gravity.allFinite())
-        return fail(SimulationStatus::InvalidPlane, "ground normal must be non-zero and finite, offset and gravity finite");
+        return fail(SimulationStatus::InvalidPlane,
+                    "ground normal must be non-zero and finite, offset and gravity finite");
     const Vec3 n = input.ground.normal / nn;
     const double d = input.ground.offset / nn;
 
     res.mass = computeMassProperties(input.shape, {.density = input.density});
-    if (!res.mass.ok()) return fail(SimulationStatus::InvalidShape, std::string(nameOf(res.mass.status)) + ": " + res.mass.message);
+    if (!res.mass.ok())
+        return fail(SimulationStatus::InvalidShape, std::string(nameOf(res.mass.status)) + ": " + res.mass.message);
 
     // Recentre: body frame origin at the centre of mass (the inertia about it is unchanged).
     std::vector<Vec3> positions = input.shape.positions();
@@ -103,8 +107,10 @@ SimulationResult simulateDrop(const DropInput& input, const SimulationOptions& o
     for (const Vec3& p : positions) res.boundingRadius = std::max(res.boundingRadius, p.norm());
 
     const Transform comPose{input.pose.apply(res.mass.centerOfMass), input.pose.rotation};
-    RigidBodyBuild built = makeDynamicBody(res.mass.mass, res.mass.inertia, comPose, input.linearVelocity, input.angularVelocity);
-    if (!built.ok()) return fail(SimulationStatus::InvalidBody, std::string(nameOf(built.status)) + ": " + built.message);
+    RigidBodyBuild built =
+        makeDynamicBody(res.mass.mass, res.mass.inertia, comPose, input.linearVelocity, input.angularVelocity);
+    if (!built.ok())
+        return fail(SimulationStatus::InvalidBody, std::string(nameOf(built.status)) + ": " + built.message);
     RigidBody body = built.body;
 
     SimulationStep initial;
@@ -125,7 +131,8 @@ SimulationResult simulateDrop(const DropInput& input, const SimulationOptions& o
         s.step = k;
         s.time = k * options.timeStep;
         res.maxPenetration = std::max(res.maxPenetration, s.maxPenetration);
-        res.maxPenetrationBeforeCorrection = std::max(res.maxPenetrationBeforeCorrection, s.penetrationBeforeCorrection);
+        res.maxPenetrationBeforeCorrection =
+            std::max(res.maxPenetrationBeforeCorrection, s.penetrationBeforeCorrection);
         res.maxEnergyIncrease = std::max(res.maxEnergyIncrease, s.energy - previousEnergy);
         res.totalCorrection += s.correction;
         previousEnergy = s.energy;

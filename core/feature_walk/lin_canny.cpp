@@ -81,7 +81,9 @@ struct Walk : feature_walk::WalkPair {
         out.clear();
         M[i]->forEachFaceHalfEdge(f, [&](int h) { out.push_back(inA(i, pos(i, M[i]->halfEdge(h).origin))); });
     }
-    Segment segment(int i, int e) const { return {inA(i, pos(i, P[i]->edgeTail(e))), inA(i, pos(i, P[i]->edgeHead(e)))}; }
+    Segment segment(int i, int e) const {
+        return {inA(i, pos(i, P[i]->edgeTail(e))), inA(i, pos(i, P[i]->edgeHead(e)))};
+    }
 
     // --- 1. closest points of the feature pair (Ericson §5.1 via core/closest/closest_point.h and
     //        core/closest/feature_distance.h; both have their own parallel thresholds, documented there) ---
@@ -140,7 +142,8 @@ struct Walk : feature_walk::WalkPair {
         if (plane >= 0) {
             const VClipPlane& pl = P[r]->plane(plane);
             t.neighbor = owner.type == FT::Edge ? pl.other : pl.edge;
-            const Vec3 on = pl.other.type == FT::Vertex ? pos(r, pl.other.index) : pos(r, P[r]->edgeTail(pl.edge.index));
+            const Vec3 on =
+                pl.other.type == FT::Vertex ? pos(r, pl.other.index) : pos(r, P[r]->edgeTail(pl.edge.index));
             t.planePoint = world(r, on);
             t.planeNormal = pose[r].rotate(owner.type == FT::Edge ? pl.normal : Vec3(-pl.normal));
         } else {  // the face plane itself
@@ -155,7 +158,8 @@ struct Walk : feature_walk::WalkPair {
             // The chosen plane is the most violated one recorded for this region: mark it.
             VClipPlaneTest* best = nullptr;
             for (VClipPlaneTest& t : ts->planes)
-                if (t.regionBody == ts->planes.back().regionBody && t.violated && (!best || t.signedDistance < best->signedDistance))
+                if (t.regionBody == ts->planes.back().regionBody && t.violated &&
+                    (!best || t.signedDistance < best->signedDistance))
                     best = &t;
             if (best) best->maximal = true;
         }
@@ -189,8 +193,9 @@ struct Walk : feature_walk::WalkPair {
             out.kind = VClipStepKind::Update;
             out.body = r;
             out.to = owner.type == FT::Edge ? pl.other : pl.edge;
-            if (ts) out.rule = std::string(point) + " violates " + (pl.other.type == FT::Vertex ? "VE(" : "FE(") +
-                       nameOf(pl.edge) + " | " + nameOf(pl.other) + ")";
+            if (ts)
+                out.rule = std::string(point) + " violates " + (pl.other.type == FT::Vertex ? "VE(" : "FE(") +
+                           nameOf(pl.edge) + " | " + nameOf(pl.other) + ")";
             markMaximal();
             return true;
         }
@@ -221,8 +226,9 @@ struct Walk : feature_walk::WalkPair {
             out.body = r;
             out.to = VClipFeature::face(bestFace);
             out.localMin = true;
-            if (ts) out.rule = std::string("local minimum: ") + point + " behind " + nameOf(owner) + ", farthest in front of F" +
-                       std::to_string(bestFace);
+            if (ts)
+                out.rule = std::string("local minimum: ") + point + " behind " + nameOf(owner) +
+                           ", farthest in front of F" + std::to_string(bestFace);
             return true;
         }
         out.kind = VClipStepKind::Penetration;
@@ -330,7 +336,8 @@ LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const 
         return res;
     };
     if (a.empty() || b.empty()) return finish(LinCannyStatus::InvalidInput, "lin_canny: empty polyhedron");
-    if (!finitePose(poseA) || !finitePose(poseB)) return finish(LinCannyStatus::InvalidInput, "lin_canny: non-finite pose");
+    if (!finitePose(poseA) || !finitePose(poseB))
+        return finish(LinCannyStatus::InvalidInput, "lin_canny: non-finite pose");
 
     Walk w;
     w.setup(a, poseA, b, poseB);

@@ -37,8 +37,8 @@
 #include <string>
 #include <vector>
 
-#include "core/closest/feature_distance.h"
 #include "core/base/types.h"
+#include "core/closest/feature_distance.h"
 #include "core/feature_walk/vclip.h"
 
 namespace cdlab {
@@ -98,16 +98,16 @@ struct LinCannyOptions {
 struct LinCannyResult {
     LinCannyStatus status = LinCannyStatus::InvalidInput;
     LinCannyPenetration penetration = LinCannyPenetration::None;
-    bool intersect = false;       ///< status == Penetrating
-    double distance = 0.0;        ///< Separated: the distance (world units); else 0
-    Vec3 pointA = Vec3::Zero();   ///< Separated: closest point on A, world. Penetrating: a common
-    Vec3 pointB = Vec3::Zero();   ///<   point (FeaturesMeet: the pair's midpoint; PointInside: the point)
-    Vec3 normal = Vec3::Zero();   ///< Separated: unit (pointB - pointA) / distance, else zero
-    VClipFeature featureA;        ///< final features (closest features when Separated)
+    bool intersect = false;      ///< status == Penetrating
+    double distance = 0.0;       ///< Separated: the distance (world units); else 0
+    Vec3 pointA = Vec3::Zero();  ///< Separated: closest point on A, world. Penetrating: a common
+    Vec3 pointB = Vec3::Zero();  ///<   point (FeaturesMeet: the pair's midpoint; PointInside: the point)
+    Vec3 normal = Vec3::Zero();  ///< Separated: unit (pointB - pointA) / distance, else zero
+    VClipFeature featureA;       ///< final features (closest features when Separated)
     VClipFeature featureB;
-    int steps = 0;                ///< updates made (0: the seed pair was already closest)
-    int cycleLength = 0;          ///< CycleDetected: number of pairs in the cycle
-    std::string message;          ///< InvalidInput / CycleDetected / StepLimit: why
+    int steps = 0;        ///< updates made (0: the seed pair was already closest)
+    int cycleLength = 0;  ///< CycleDetected: number of pairs in the cycle
+    std::string message;  ///< InvalidInput / CycleDetected / StepLimit: why
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -115,12 +115,12 @@ struct LinCannyResult {
 // match; everything a demo draws is in WORLD frame.
 
 struct LinCannyTraceStep {
-    int step = 0;                        ///< 0-based
-    ContactType state = ContactType::VV; ///< the pair's type (lower dimension first); F-F allowed
-    VClipFeature featureA, featureB;     ///< features at the start of the step
-    std::vector<Vec3> featureAWorld;     ///< their geometry: 1 point, 2 endpoints or the face polygon
+    int step = 0;                         ///< 0-based
+    ContactType state = ContactType::VV;  ///< the pair's type (lower dimension first); F-F allowed
+    VClipFeature featureA, featureB;      ///< features at the start of the step
+    std::vector<Vec3> featureAWorld;      ///< their geometry: 1 point, 2 endpoints or the face polygon
     std::vector<Vec3> featureBWorld;
-    Vec3 closestA = Vec3::Zero();        ///< closest points of the pair (the points tested), world
+    Vec3 closestA = Vec3::Zero();  ///< closest points of the pair (the points tested), world
     Vec3 closestB = Vec3::Zero();
     /// Plane tests in the order made: closestB against VR(featureA) (regionBody 0), then closestA
     /// against VR(featureB) (regionBody 1) if the first passed. The face plane itself is recorded
@@ -128,19 +128,19 @@ struct LinCannyTraceStep {
     /// plane whose neighbour was taken.
     std::vector<VClipPlaneTest> planes;
     VClipStepKind kind = VClipStepKind::Update;
-    int updatedBody = -1;                ///< Update: 0 = A's feature replaced, 1 = B's
-    VClipFeature from, to;               ///< Update: replaced feature and replacement
-    std::string rule;                    ///< e.g. "pB violates VE(E3 | V1)", "local minimum: F2 -> F5"
-    bool localMinimum = false;           ///< the update was a local-minimum face jump
-    double distanceBefore = 0.0;         ///< pair distance before / after the update, world units
+    int updatedBody = -1;         ///< Update: 0 = A's feature replaced, 1 = B's
+    VClipFeature from, to;        ///< Update: replaced feature and replacement
+    std::string rule;             ///< e.g. "pB violates VE(E3 | V1)", "local minimum: F2 -> F5"
+    bool localMinimum = false;    ///< the update was a local-minimum face jump
+    double distanceBefore = 0.0;  ///< pair distance before / after the update, world units
     double distanceAfter = 0.0;
-    int distanceChange = 0;              ///< sign of after - before (1e-12 relative dead band)
+    int distanceChange = 0;  ///< sign of after - before (1e-12 relative dead band)
 };
 
 struct LinCannyTrace {
     std::vector<LinCannyTraceStep> steps;
     LinCannyStatus status = LinCannyStatus::InvalidInput;
-    int cycleLength = 0;                 ///< CycleDetected: the last cycleLength steps form the cycle
+    int cycleLength = 0;  ///< CycleDetected: the last cycleLength steps form the cycle
 };
 
 /// Closest features and distance of convex polyhedra A and B placed by poseA and poseB

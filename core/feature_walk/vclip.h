@@ -40,8 +40,8 @@
 #include <string>
 #include <vector>
 
-#include "core/geometry/polyhedron.h"
 #include "core/base/types.h"
+#include "core/geometry/polyhedron.h"
 
 namespace cdlab {
 
@@ -186,15 +186,15 @@ struct VClipOptions {
 struct VClipResult {
     VClipStatus status = VClipStatus::InvalidInput;
     VClipPenetration penetration = VClipPenetration::None;
-    bool intersect = false;       ///< status == Penetrating
-    double distance = 0.0;        ///< Separated: the distance (world units); else 0
-    Vec3 pointA = Vec3::Zero();   ///< Separated: closest point on A, world frame. Penetrating: a
-    Vec3 pointB = Vec3::Zero();   ///<   common point where found (E-F) or the vertex (V-F), both equal
-    Vec3 normal = Vec3::Zero();   ///< Separated: unit (pointB - pointA) / distance, else zero
-    VClipFeature featureA;        ///< final features (closest features when Separated)
+    bool intersect = false;      ///< status == Penetrating
+    double distance = 0.0;       ///< Separated: the distance (world units); else 0
+    Vec3 pointA = Vec3::Zero();  ///< Separated: closest point on A, world frame. Penetrating: a
+    Vec3 pointB = Vec3::Zero();  ///<   common point where found (E-F) or the vertex (V-F), both equal
+    Vec3 normal = Vec3::Zero();  ///< Separated: unit (pointB - pointA) / distance, else zero
+    VClipFeature featureA;       ///< final features (closest features when Separated)
     VClipFeature featureB;
-    int steps = 0;                ///< number of updates made (0: the seed pair was already closest)
-    std::string message;          ///< InvalidInput / CycleDetected / StepLimit: why
+    int steps = 0;        ///< number of updates made (0: the seed pair was already closest)
+    std::string message;  ///< InvalidInput / CycleDetected / StepLimit: why
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -207,13 +207,13 @@ const char* nameOf(VClipState state);
 
 /// One Voronoi plane test: a point of one feature against one plane of the other's region.
 struct VClipPlaneTest {
-    int regionBody = 0;          ///< 0 = plane of A's region, 1 = B's
-    VClipFeature owner;          ///< feature whose region the plane bounds
-    VClipFeature neighbor;       ///< feature on the other side of the plane
-    int plane = -1;              ///< plane index in that body's planes()
-    double signedDistance = 0.0; ///< of the tested point, positive inside VR(owner)
-    bool violated = false;       ///< signedDistance < 0
-    bool maximal = false;        ///< V-F: the most violated plane (or handleLocalMin: the max face)
+    int regionBody = 0;               ///< 0 = plane of A's region, 1 = B's
+    VClipFeature owner;               ///< feature whose region the plane bounds
+    VClipFeature neighbor;            ///< feature on the other side of the plane
+    int plane = -1;                   ///< plane index in that body's planes()
+    double signedDistance = 0.0;      ///< of the tested point, positive inside VR(owner)
+    bool violated = false;            ///< signedDistance < 0
+    bool maximal = false;             ///< V-F: the most violated plane (or handleLocalMin: the max face)
     Vec3 planePoint = Vec3::Zero();   ///< a point of the plane, world
     Vec3 planeNormal = Vec3::Zero();  ///< unit, pointing INTO VR(owner), world
     Vec3 testedPoint = Vec3::Zero();  ///< the point tested, world
@@ -221,19 +221,19 @@ struct VClipPlaneTest {
 
 /// clipEdge of an edge of one body against (part of) the Voronoi region of a feature of the other.
 struct VClipClip {
-    int edgeBody = 0;            ///< body of the clipped edge (0 = A)
-    VClipFeature edge;           ///< the clipped edge
-    VClipFeature region;         ///< the feature whose region clips it
-    double lambdaMin = 0.0;      ///< clipped interval [lambdaMin, lambdaMax] of e(l) = tail + l (head - tail)
+    int edgeBody = 0;        ///< body of the clipped edge (0 = A)
+    VClipFeature edge;       ///< the clipped edge
+    VClipFeature region;     ///< the feature whose region clips it
+    double lambdaMin = 0.0;  ///< clipped interval [lambdaMin, lambdaMax] of e(l) = tail + l (head - tail)
     double lambdaMax = 1.0;
-    VClipFeature neighborMin;    ///< Nmin: neighbour of the plane that set lambdaMin (None: the tail)
-    VClipFeature neighborMax;    ///< Nmax (None: the head)
-    bool simplyExcluded = false;   ///< both ends outside one plane
-    bool compoundExcluded = false; ///< lambdaMin > lambdaMax without a simple exclusion
-    VClipFeature excludedBy;       ///< simple exclusion: the neighbour of that plane
-    int derivativeMin = 0;       ///< sign of D'(lambdaMin) (-1, 0, +1); 2 = not evaluated
-    int derivativeMax = 0;       ///< sign of D'(lambdaMax); 2 = not evaluated
-    Vec3 tail = Vec3::Zero(), head = Vec3::Zero();               ///< the edge, world
+    VClipFeature neighborMin;       ///< Nmin: neighbour of the plane that set lambdaMin (None: the tail)
+    VClipFeature neighborMax;       ///< Nmax (None: the head)
+    bool simplyExcluded = false;    ///< both ends outside one plane
+    bool compoundExcluded = false;  ///< lambdaMin > lambdaMax without a simple exclusion
+    VClipFeature excludedBy;        ///< simple exclusion: the neighbour of that plane
+    int derivativeMin = 0;          ///< sign of D'(lambdaMin) (-1, 0, +1); 2 = not evaluated
+    int derivativeMax = 0;          ///< sign of D'(lambdaMax); 2 = not evaluated
+    Vec3 tail = Vec3::Zero(), head = Vec3::Zero();                ///< the edge, world
     Vec3 clippedTail = Vec3::Zero(), clippedHead = Vec3::Zero();  ///< e(lambdaMin), e(lambdaMax), world
 };
 
@@ -247,22 +247,22 @@ enum class VClipStepKind : std::uint8_t {
 const char* nameOf(VClipStepKind kind);
 
 struct VClipTraceStep {
-    int step = 0;                      ///< 0-based
+    int step = 0;  ///< 0-based
     VClipState state = VClipState::VertexVertex;
-    VClipFeature featureA, featureB;   ///< features at the start of the step
-    std::vector<Vec3> featureAWorld;   ///< their geometry: 1 point, 2 endpoints or the face polygon
-    std::vector<Vec3> featureBWorld;   ///<   (counter-clockwise from outside), world
+    VClipFeature featureA, featureB;     ///< features at the start of the step
+    std::vector<Vec3> featureAWorld;     ///< their geometry: 1 point, 2 endpoints or the face polygon
+    std::vector<Vec3> featureBWorld;     ///<   (counter-clockwise from outside), world
     std::vector<VClipPlaneTest> planes;  ///< plane tests in the order made
     std::vector<VClipClip> clips;        ///< clipEdge calls in the order made
     VClipStepKind kind = VClipStepKind::Update;
-    int updatedBody = -1;              ///< Update: 0 = A's feature replaced, 1 = B's
-    VClipFeature from, to;             ///< Update: the replaced feature and its replacement
-    std::string rule;                  ///< short name of the rule applied, e.g. "V_B violates VE(E_A)"
-    bool localMinimum = false;         ///< the update came from handleLocalMin (distance not monotone)
-    double distanceBefore = 0.0;       ///< inter-feature distance of the pair before / after the update
-    double distanceAfter = 0.0;        ///<   (0 when the features intersect), world units
-    int distanceChange = 0;            ///< -1 decreased, 0 equal, +1 increased (sign of after - before)
-    Vec3 closestA = Vec3::Zero();      ///< closest points of the pair before the update, world
+    int updatedBody = -1;          ///< Update: 0 = A's feature replaced, 1 = B's
+    VClipFeature from, to;         ///< Update: the replaced feature and its replacement
+    std::string rule;              ///< short name of the rule applied, e.g. "V_B violates VE(E_A)"
+    bool localMinimum = false;     ///< the update came from handleLocalMin (distance not monotone)
+    double distanceBefore = 0.0;   ///< inter-feature distance of the pair before / after the update
+    double distanceAfter = 0.0;    ///<   (0 when the features intersect), world units
+    int distanceChange = 0;        ///< -1 decreased, 0 equal, +1 increased (sign of after - before)
+    Vec3 closestA = Vec3::Zero();  ///< closest points of the pair before the update, world
     Vec3 closestB = Vec3::Zero();
 };
 
@@ -274,9 +274,8 @@ struct VClipTrace {
 /// Closest features and distance of convex polyhedra A and B placed by poseA and poseB
 /// (x_world = pose.apply(x_body)). cache: seed pair in, final pair out (nullptr: cold start from
 /// vertex 0 of each). Outputs in world frame and units; see VClipResult for what is meaningful.
-VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipPolyhedron& b,
-                  const Transform& poseB, VClipCache* cache = nullptr, const VClipOptions& options = {},
-                  VClipTrace* trace = nullptr);
+VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipPolyhedron& b, const Transform& poseB,
+                  VClipCache* cache = nullptr, const VClipOptions& options = {}, VClipTrace* trace = nullptr);
 
 /// World-frame geometry of a feature: 1 point (vertex), 2 (edge tail, head) or the face polygon.
 std::vector<Vec3> featureGeometry(const VClipPolyhedron& p, const Transform& pose, const VClipFeature& f);

@@ -32,8 +32,8 @@
 #include <cmath>
 #include <limits>
 
-#include "core/closest/closest_point.h"
 #include "core/base/tolerances.h"
+#include "core/closest/closest_point.h"
 #include "core/feature_walk/feature_walk_pair.h"
 #include "core/feature_walk/vclip.h"
 
@@ -287,7 +287,9 @@ struct Walk : feature_walk::WalkPair {
                     worst = i;
                 }
             }
-            if (worst >= 0) return update(r, neighborOf(r, worst, X[r]), "vertex outside VR(V): V -> edge of the most violated VE plane");
+            if (worst >= 0)
+                return update(r, neighborOf(r, worst, X[r]),
+                              "vertex outside VR(V): V -> edge of the most violated VE plane");
         }
         return done("V-V: each vertex in the other's region");
     }
@@ -356,7 +358,8 @@ struct Walk : feature_walk::WalkPair {
         if (ts)
             for (int i : planes) recordPlane(fb, X[fb], i, P[fb]->regionDistance(i, X[fb], p), p, i == worst);
         if (worst >= 0)
-            return update(fb, nearestBoundaryFeature(fb, f, p, nullptr), "V outside VR(F): F -> its boundary feature nearest to V");
+            return update(fb, nearestBoundaryFeature(fb, f, p, nullptr),
+                          "V outside VR(F): F -> its boundary feature nearest to V");
         const double hv = M[fb]->planeDistance(f, p);
         const double floorV = kRound * (maxAbs(p) + std::abs(M[fb]->face(f).offset));
         if (std::abs(hv) <= floorV) return penetration(VClipPenetration::Touching, fb, p, "V lies on F");
@@ -370,7 +373,8 @@ struct Walk : feature_walk::WalkPair {
             // |h| must drop by more than the rounding of the two plane distances.
             const double floorW = 2.0 * floorV + kRound * maxAbs(pw);
             if ((hv > 0.0 && hw < hv - floorW) || (hv < 0.0 && hw > hv + floorW))
-                return update(vb, VClipFeature::edge(M[vb]->halfEdge(he).edge), "an edge of V points towards F: V -> that edge");
+                return update(vb, VClipFeature::edge(M[vb]->halfEdge(he).edge),
+                              "an edge of V points towards F: V -> that edge");
             he = M[vb]->halfEdge(M[vb]->halfEdge(he).prev).twin;
         } while (he != start);
         if (hv > 0.0) return done("V-F: V in VR(F) above F, no edge of V leads closer");
@@ -396,7 +400,8 @@ struct Walk : feature_walk::WalkPair {
             t.testedPoint = world(fb, p);
             ts->planes.push_back(t);
         }
-        if (dmax <= kRound * (maxAbs(p) + std::abs(M[fb]->face(best).offset))) return penetration(VClipPenetration::LocalMinimum, fb, p, "local minimum with dmax <= 0: V inside");
+        if (dmax <= kRound * (maxAbs(p) + std::abs(M[fb]->face(best).offset)))
+            return penetration(VClipPenetration::LocalMinimum, fb, p, "local minimum with dmax <= 0: V inside");
         return update(fb, VClipFeature::face(best), "local minimum: F -> the face V is farthest above", true);
     }
 
@@ -422,13 +427,25 @@ struct Walk : feature_walk::WalkPair {
             // on E' is an endpoint (E' -> vertex) or interior (E' -> the face: closer).
             if (cv.nmin.valid()) {
                 const int s = derivativeSign(r, cv.pmin, t, h, cv.lmin, on);
-                if (on) { out = penetration(VClipPenetration::Touching, r, t + cv.lmin * (h - t), "E touches E'"); return true; }
-                if (s > 0) { out = update(r, cv.nmin, "E excluded by an FE plane, D'(vertex lambdaMin) > 0: E' -> Nmin"); return true; }
+                if (on) {
+                    out = penetration(VClipPenetration::Touching, r, t + cv.lmin * (h - t), "E touches E'");
+                    return true;
+                }
+                if (s > 0) {
+                    out = update(r, cv.nmin, "E excluded by an FE plane, D'(vertex lambdaMin) > 0: E' -> Nmin");
+                    return true;
+                }
             }
             if (cv.nmax.valid()) {
                 const int s = derivativeSign(r, cv.pmax, t, h, cv.lmax, on);
-                if (on) { out = penetration(VClipPenetration::Touching, r, t + cv.lmax * (h - t), "E touches E'"); return true; }
-                if (s < 0) { out = update(r, cv.nmax, "E excluded by an FE plane, D'(vertex lambdaMax) < 0: E' -> Nmax"); return true; }
+                if (on) {
+                    out = penetration(VClipPenetration::Touching, r, t + cv.lmax * (h - t), "E touches E'");
+                    return true;
+                }
+                if (s < 0) {
+                    out = update(r, cv.nmax, "E excluded by an FE plane, D'(vertex lambdaMax) < 0: E' -> Nmax");
+                    return true;
+                }
             }
             out = update(r, c.excluder, "E simply excluded by an FE plane of VR(E'): E' -> that face");
             return true;
@@ -437,8 +454,16 @@ struct Walk : feature_walk::WalkPair {
             // Decide from the closest pair of the two segments (see the file comment).
             const Segment sx{pos(r, P[r]->edgeTail(x)), pos(r, P[r]->edgeHead(x))};
             const SegmentSegmentResult ss = closestPointsSegmentSegment(Segment{t, h}, sx);
-            if (ss.t <= 0.0) { out = update(r, VClipFeature::vertex(P[r]->edgeTail(x)), "compound exclusion, closest point of E' is its tail: E' -> tail"); return true; }
-            if (ss.t >= 1.0) { out = update(r, VClipFeature::vertex(P[r]->edgeHead(x)), "compound exclusion, closest point of E' is its head: E' -> head"); return true; }
+            if (ss.t <= 0.0) {
+                out = update(r, VClipFeature::vertex(P[r]->edgeTail(x)),
+                             "compound exclusion, closest point of E' is its tail: E' -> tail");
+                return true;
+            }
+            if (ss.t >= 1.0) {
+                out = update(r, VClipFeature::vertex(P[r]->edgeHead(x)),
+                             "compound exclusion, closest point of E' is its head: E' -> head");
+                return true;
+            }
             const double d2 = P[r]->regionDistance(4 * x + 2, X[r], ss.pointOnFirst);
             const double d3 = P[r]->regionDistance(4 * x + 3, X[r], ss.pointOnFirst);
             out = update(r, P[r]->plane(d2 <= d3 ? 4 * x + 2 : 4 * x + 3).other,
@@ -450,14 +475,26 @@ struct Walk : feature_walk::WalkPair {
         if (c.nmin.valid()) {
             smin = derivativeSign(r, c.pmin, t, h, c.lmin, on);
             setDerivatives(smin, smax);
-            if (on) { out = penetration(VClipPenetration::Touching, r, t + c.lmin * (h - t), "E touches E'"); return true; }
-            if (smin > 0) { out = update(r, c.nmin, "D'(lambdaMin) > 0: E' -> Nmin"); return true; }
+            if (on) {
+                out = penetration(VClipPenetration::Touching, r, t + c.lmin * (h - t), "E touches E'");
+                return true;
+            }
+            if (smin > 0) {
+                out = update(r, c.nmin, "D'(lambdaMin) > 0: E' -> Nmin");
+                return true;
+            }
         }
         if (c.nmax.valid()) {
             smax = derivativeSign(r, c.pmax, t, h, c.lmax, on);
             setDerivatives(smin, smax);
-            if (on) { out = penetration(VClipPenetration::Touching, r, t + c.lmax * (h - t), "E touches E'"); return true; }
-            if (smax < 0) { out = update(r, c.nmax, "D'(lambdaMax) < 0: E' -> Nmax"); return true; }
+            if (on) {
+                out = penetration(VClipPenetration::Touching, r, t + c.lmax * (h - t), "E touches E'");
+                return true;
+            }
+            if (smax < 0) {
+                out = update(r, c.nmax, "D'(lambdaMax) < 0: E' -> Nmax");
+                return true;
+            }
         }
         return false;
     }
@@ -478,7 +515,8 @@ struct Walk : feature_walk::WalkPair {
         clipEdge(fb, X[fb], P[fb]->facePlanes(f), t, h, c);
         recordClip(fb, X[fb], X[eb], t, h, c);
         if (c.simple || c.compound)
-            return update(fb, nearestBoundaryFeature(fb, f, t, &h), "E excluded from VR(F): F -> its boundary feature nearest to E");
+            return update(fb, nearestBoundaryFeature(fb, f, t, &h),
+                          "E excluded from VR(F): F -> its boundary feature nearest to E");
         const Vec3 u = h - t;
         const Vec3 emin = t + c.lmin * u, emax = t + c.lmax * u;
         const double hmin = M[fb]->planeDistance(f, emin), hmax = M[fb]->planeDistance(f, emax);
@@ -493,17 +531,21 @@ struct Walk : feature_walk::WalkPair {
         setDerivatives(s, s);
         if (s > 0) {
             if (c.nmin.valid())
-                return update(fb, nearestBoundaryFeature(fb, f, t, &h), "D'(lambdaMin) > 0 at a side plane: F -> its boundary feature nearest to E");
+                return update(fb, nearestBoundaryFeature(fb, f, t, &h),
+                              "D'(lambdaMin) > 0 at a side plane: F -> its boundary feature nearest to E");
             return update(eb, VClipFeature::vertex(P[eb]->edgeTail(e)), "D'(0) > 0 inside VR(F): E -> tail");
         }
         if (s < 0) {
             if (c.nmax.valid())
-                return update(fb, nearestBoundaryFeature(fb, f, t, &h), "D'(lambdaMax) < 0 at a side plane: F -> its boundary feature nearest to E");
+                return update(fb, nearestBoundaryFeature(fb, f, t, &h),
+                              "D'(lambdaMax) < 0 at a side plane: F -> its boundary feature nearest to E");
             return update(eb, VClipFeature::vertex(P[eb]->edgeHead(e)), "D'(1) < 0 inside VR(F): E -> head");
         }
         // E parallel to F: every point of the clipped part is at the same distance.
-        if (!c.nmin.valid()) return update(eb, VClipFeature::vertex(P[eb]->edgeTail(e)), "E parallel to F, tail in VR(F): E -> tail");
-        if (!c.nmax.valid()) return update(eb, VClipFeature::vertex(P[eb]->edgeHead(e)), "E parallel to F, head in VR(F): E -> head");
+        if (!c.nmin.valid())
+            return update(eb, VClipFeature::vertex(P[eb]->edgeTail(e)), "E parallel to F, tail in VR(F): E -> tail");
+        if (!c.nmax.valid())
+            return update(eb, VClipFeature::vertex(P[eb]->edgeHead(e)), "E parallel to F, head in VR(F): E -> head");
         return update(fb, c.nmin, "E parallel to F: F -> Nmin");
     }
 
@@ -531,7 +573,8 @@ struct Walk : feature_walk::WalkPair {
         Vec3 q = p;
         M[r]->forEachFaceHalfEdge(f, [&](int he) {
             const int e = M[r]->halfEdge(he).edge;
-            const ClosestPointOnSegmentResult c = closestPointOnSegment(p, Segment{pos(r, P[r]->edgeTail(e)), pos(r, P[r]->edgeHead(e))});
+            const ClosestPointOnSegmentResult c =
+                closestPointOnSegment(p, Segment{pos(r, P[r]->edgeTail(e)), pos(r, P[r]->edgeHead(e))});
             if (c.distanceSquared < best) {
                 best = c.distanceSquared;
                 q = c.point;
@@ -550,7 +593,10 @@ struct Walk : feature_walk::WalkPair {
         const int r = frame, o = 1 - r;
         auto pts = [&](int i, Vec3* out) -> int {
             auto map = [&](const Vec3& x) { return i == r ? x : toFrame(i, x); };
-            if (f[i].type == FT::Vertex) { out[0] = map(pos(i, f[i].index)); return 1; }
+            if (f[i].type == FT::Vertex) {
+                out[0] = map(pos(i, f[i].index));
+                return 1;
+            }
             if (f[i].type == FT::Edge) {
                 out[0] = map(pos(i, P[i]->edgeTail(f[i].index)));
                 out[1] = map(pos(i, P[i]->edgeHead(f[i].index)));
@@ -585,13 +631,21 @@ struct Walk : feature_walk::WalkPair {
                     for (int k = 0; k < 2; ++k) {
                         const Vec3 q = closestOnFace(r, face, b[k]);
                         const double d2 = (q - b[k]).squaredNorm();
-                        if (d2 < best) { best = d2; qr = q; qo = b[k]; }
+                        if (d2 < best) {
+                            best = d2;
+                            qr = q;
+                            qo = b[k];
+                        }
                     }
                     M[r]->forEachFaceHalfEdge(face, [&](int he) {
                         const int e = M[r]->halfEdge(he).edge;
                         const SegmentSegmentResult ss = closestPointsSegmentSegment(
                             Segment{b[0], b[1]}, Segment{pos(r, P[r]->edgeTail(e)), pos(r, P[r]->edgeHead(e))});
-                        if (ss.distanceSquared < best) { best = ss.distanceSquared; qo = ss.pointOnFirst; qr = ss.pointOnSecond; }
+                        if (ss.distanceSquared < best) {
+                            best = ss.distanceSquared;
+                            qo = ss.pointOnFirst;
+                            qr = ss.pointOnSecond;
+                        }
                     });
                 }
             }
@@ -626,8 +680,11 @@ VClipTraceStep* beginTraceStep(VClipTrace* trace, const Walk& w, int step) {
     VClipTraceStep* ts = &trace->steps.emplace_back();
     ts->step = step;
     const FT ta = w.X[0].type, tb = w.X[1].type;
-    const int lo = std::min(static_cast<int>(ta), static_cast<int>(tb)), hi = std::max(static_cast<int>(ta), static_cast<int>(tb));
-    ts->state = lo == 1 ? (hi == 1 ? VClipState::VertexVertex : hi == 2 ? VClipState::VertexEdge : VClipState::VertexFace)
+    const int lo = std::min(static_cast<int>(ta), static_cast<int>(tb)),
+              hi = std::max(static_cast<int>(ta), static_cast<int>(tb));
+    ts->state = lo == 1 ? (hi == 1   ? VClipState::VertexVertex
+                           : hi == 2 ? VClipState::VertexEdge
+                                     : VClipState::VertexFace)
                         : (hi == 2 ? VClipState::EdgeEdge : VClipState::EdgeFace);
     ts->featureA = w.X[0];
     ts->featureB = w.X[1];
@@ -717,7 +774,8 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
     feature_walk::FeaturePairCycle cycle(w.X[0], w.X[1]);
     double extent = 0.0;  // trace only: scale for "equal" distances
     if (trace)
-        extent = std::max((a.mesh().boundsMax() - a.mesh().boundsMin()).norm(), (b.mesh().boundsMax() - b.mesh().boundsMin()).norm());
+        extent = std::max((a.mesh().boundsMax() - a.mesh().boundsMin()).norm(),
+                          (b.mesh().boundsMax() - b.mesh().boundsMin()).norm());
 
     for (int steps = 0;; ++steps) {
         res.steps = steps;
@@ -726,7 +784,8 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
         if (options.detectCycles && steps > 0 && cycle.repeats(w.X[0], w.X[1])) {
             if (cache) *cache = VClipCache{w.X[0], w.X[1]};
             if (trace && !trace->steps.empty()) trace->steps.back().kind = VClipStepKind::Aborted;
-            return fail(VClipStatus::CycleDetected, "vclip: feature pair " + nameOf(w.X[0]) + "/" + nameOf(w.X[1]) + " repeated");
+            return fail(VClipStatus::CycleDetected,
+                        "vclip: feature pair " + nameOf(w.X[0]) + "/" + nameOf(w.X[1]) + " repeated");
         }
         if (steps >= maxSteps) {
             if (cache) *cache = VClipCache{w.X[0], w.X[1]};

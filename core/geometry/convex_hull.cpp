@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <array>
-#include <optional>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 #include <unordered_set>
 
 namespace cdlab {
@@ -182,27 +182,27 @@ public:
 private:
     // Eye face: the farthest alive conflict face of r by more than eyeDist (-1 when none).
     int eyeFace(int r, double& eyeDist) const {
-    // Eye face: the farthest alive conflict face.
-    int eye = -1;
-    for (int f : pointFaces_[r]) {
-        if (!tris_[f].alive) continue;
-        const double dd = dist(r, f);
-        if (dd > eyeDist) {
-            eyeDist = dd;
-            eye = f;
+        // Eye face: the farthest alive conflict face.
+        int eye = -1;
+        for (int f : pointFaces_[r]) {
+            if (!tris_[f].alive) continue;
+            const double dd = dist(r, f);
+            if (dd > eyeDist) {
+                eyeDist = dd;
+                eye = f;
+            }
         }
-    }
         return eye;
     }
 
     // Visible region: depth-first from the eye face over neighbours r sees by more than eps.
-        // The depth-first order emits the horizon edges as a loop (each starts where the last ended).
-        // Each cone triangle (a, b, r) must be convex with the kept neighbour g across a -> b: g's
-        // third vertex c behind the triangle's plane. In exact arithmetic that follows from r being
-        // behind g; when r is in front of g by at most eps (g not "visible"), a thin cone triangle
-        // can fold under g with c far in front of it. Such neighbours are deleted too ("forced",
-        // r is coplanar with them within eps) and the region is searched again; each round forces
-        // at least one more face, so this terminates.
+    // The depth-first order emits the horizon edges as a loop (each starts where the last ended).
+    // Each cone triangle (a, b, r) must be convex with the kept neighbour g across a -> b: g's
+    // third vertex c behind the triangle's plane. In exact arithmetic that follows from r being
+    // behind g; when r is in front of g by at most eps (g not "visible"), a thin cone triangle
+    // can fold under g with c far in front of it. Such neighbours are deleted too ("forced",
+    // r is coplanar with them within eps) and the region is searched again; each round forces
+    // at least one more face, so this terminates.
     // Returns whether any face was forced.
     bool findVisibleRegionWithoutFolds(int r, int eye) {
         ++forceStamp_;
@@ -274,8 +274,7 @@ private:
             step->eyeDistance = eyeDist;
             step->visibleFaceIds = visible_;
             for (const auto& [f, e] : horizon_) {
-                step->horizon.push_back(
-                    Segment{original_[tris_[f].v[e]], original_[tris_[f].v[(e + 1) % 3]]});
+                step->horizon.push_back(Segment{original_[tris_[f].v[e]], original_[tris_[f].v[(e + 1) % 3]]});
             }
         }
         return step;
@@ -356,7 +355,7 @@ private:
     std::vector<int> visible_;
     std::vector<std::pair<int, int>> horizon_;  // (visible face, edge index)
     std::vector<DfsFrame> stack_;
-    std::vector<int> pooled_;  // conflicts of all deleted faces, when some were forced
+    std::vector<int> pooled_;       // conflicts of all deleted faces, when some were forced
     Vec3 interior_ = Vec3::Zero();  // centroid of the initial tetrahedron: inside every later hull
 };
 
@@ -376,7 +375,8 @@ int removeCollinear(std::vector<std::vector<int>>& loops, const std::vector<Vec3
     std::vector<int> faceHead(loops.size()), faceSize(loops.size());
     std::vector<std::vector<int>> entriesOf;
     int maxVertex = -1;
-    for (const auto& l : loops) for (int v : l) maxVertex = std::max(maxVertex, v);
+    for (const auto& l : loops)
+        for (int v : l) maxVertex = std::max(maxVertex, v);
     entriesOf.resize(maxVertex + 1);
     for (int f = 0; f < static_cast<int>(loops.size()); ++f) {
         const int base = static_cast<int>(entryVertex.size());
@@ -501,29 +501,36 @@ InitialTetrahedron initialTetrahedron(const std::vector<Vec3>& P, double eps) {
     const int n = static_cast<int>(P.size());
     InitialTetrahedron tet;
     int i0 = 0;
-    for (int i = 1; i < n; ++i) if (P[i].x() < P[i0].x()) i0 = i;
+    for (int i = 1; i < n; ++i)
+        if (P[i].x() < P[i0].x()) i0 = i;
     int i1 = i0;
     double best = 0.0;
     for (int i = 0; i < n; ++i) {
         const double d2 = (P[i] - P[i0]).squaredNorm();
-        if (d2 > best) { best = d2; i1 = i; }
+        if (d2 > best) {
+            best = d2;
+            i1 = i;
+        }
     }
     if (!(std::sqrt(best) > eps)) {
-        tet.failure = failure(HullStatus::AllCoincident, "all " + std::to_string(n) +
-                                                      " points coincide within eps = " + fmtNumber(eps));
+        tet.failure = failure(HullStatus::AllCoincident,
+                              "all " + std::to_string(n) + " points coincide within eps = " + fmtNumber(eps));
         return tet;
     }
     const Vec3 u = (P[i1] - P[i0]).normalized();
     int i2 = i0;
     best = 0.0;
     for (int i = 0; i < n; ++i) {
-        if (i == i0 || i == i1) continue;  // rounding must never pick a chosen point again
+        if (i == i0 || i == i1) continue;                       // rounding must never pick a chosen point again
         const double d2 = u.cross(P[i] - P[i0]).squaredNorm();  // squared distance from line p0 p1
-        if (d2 > best) { best = d2; i2 = i; }
+        if (d2 > best) {
+            best = d2;
+            i2 = i;
+        }
     }
     if (!(std::sqrt(best) > eps)) {
-        tet.failure = failure(HullStatus::AllCollinear, "all " + std::to_string(n) +
-                                                     " points lie on one line within eps = " + fmtNumber(eps));
+        tet.failure = failure(HullStatus::AllCollinear,
+                              "all " + std::to_string(n) + " points lie on one line within eps = " + fmtNumber(eps));
         return tet;
     }
     // The plane of a needle triangle (p2 barely off the line p0 p1) is ill-conditioned: the plain
@@ -536,11 +543,14 @@ InitialTetrahedron initialTetrahedron(const std::vector<Vec3>& P, double eps) {
     for (int i = 0; i < n; ++i) {
         if (i == i0 || i == i1 || i == i2) continue;
         const double d = std::abs(nrm.dot(P[i] - P[i0]));
-        if (d > best) { best = d; i3 = i; }
+        if (d > best) {
+            best = d;
+            i3 = i;
+        }
     }
     if (!(best > eps)) {
-        tet.failure = failure(HullStatus::AllCoplanar, "all " + std::to_string(n) +
-                                                    " points lie in one plane within eps = " + fmtNumber(eps));
+        tet.failure = failure(HullStatus::AllCoplanar,
+                              "all " + std::to_string(n) + " points lie in one plane within eps = " + fmtNumber(eps));
         return tet;
     }
     // Orient so that p3 is behind the plane of (p0, p1, p2) with its right-hand normal.
@@ -614,11 +624,11 @@ FaceGroups groupCoplanar(const AliveTriangles& at, const std::vector<Vec3>& P, d
     return fg;
 }
 
-    // Fold removal (as Qhull merges facets across non-convex ridges, Barber et al. §4): two groups
-    // meeting at an edge where a vertex of one lies more than eps in front of the other's plane
-    // are merged, until every edge is convex. This matters when points lie a few eps off a plane
-    // (noise just above eps): the construction is then only eps-accurate in position, and a thin
-    // triangle's plane, extended over the whole hull, can be far from supporting.
+// Fold removal (as Qhull merges facets across non-convex ridges, Barber et al. §4): two groups
+// meeting at an edge where a vertex of one lies more than eps in front of the other's plane
+// are merged, until every edge is convex. This matters when points lie a few eps off a plane
+// (noise just above eps): the construction is then only eps-accurate in position, and a thin
+// triangle's plane, extended over the whole hull, can be far from supporting.
 void mergeFolds(const AliveTriangles& at, const std::vector<Vec3>& P, double mergeTol, FaceGroups& fg) {
     const auto& tris = at.tris;
     const auto& alive = at.alive;
@@ -704,8 +714,7 @@ struct FacePolygons {
     int rejected = 0;
 };
 
-FacePolygons facePolygons(const AliveTriangles& at, const std::vector<Vec3>& P, double mergeTol,
-                          const FaceGroups& fg) {
+FacePolygons facePolygons(const AliveTriangles& at, const std::vector<Vec3>& P, double mergeTol, const FaceGroups& fg) {
     const auto& tris = at.tris;
     const auto& alive = at.alive;
     const auto& compact = at.compact;
@@ -762,7 +771,10 @@ FacePolygons facePolygons(const AliveTriangles& at, const std::vector<Vec3>& P, 
                 const Vec3& c = P[loop[(i + 1) % k]];
                 const Vec3 chord = c - a;
                 const double len = chord.norm();
-                if (!(len > 0.0)) { ok = false; break; }
+                if (!(len > 0.0)) {
+                    ok = false;
+                    break;
+                }
                 const Vec3 inward = sn.cross(chord) / len;
                 if (inward.dot(b - a) > mergeTol) ok = false;
             }
@@ -779,13 +791,14 @@ FacePolygons facePolygons(const AliveTriangles& at, const std::vector<Vec3>& P, 
 }
 
 // The polyhedron from the polygon loops, on the input points it uses (ascending input index).
-HullResult hullResult(std::span<const Vec3> points, std::vector<std::vector<int>>& loops, const HullFrame& frame,
-                      int T, int droppedPoints) {
+HullResult hullResult(std::span<const Vec3> points, std::vector<std::vector<int>>& loops, const HullFrame& frame, int T,
+                      int droppedPoints) {
     const int n = static_cast<int>(points.size());
     const double eps = frame.eps, mergeTol = frame.mergeTol;
     // Compact to the used input points (ascending input index) and build the mesh.
     std::vector<int> newIndex(n, -1);
-    for (const auto& l : loops) for (int v : l) newIndex[v] = 0;
+    for (const auto& l : loops)
+        for (int v : l) newIndex[v] = 0;
     HullResult result;
     for (int i = 0; i < n; ++i) {
         if (newIndex[i] == 0) {
@@ -796,7 +809,8 @@ HullResult hullResult(std::span<const Vec3> points, std::vector<std::vector<int>
     std::vector<Vec3> positions;
     positions.reserve(result.inputIndex.size());
     for (int i : result.inputIndex) positions.push_back(points[i]);
-    for (auto& l : loops) for (int& v : l) v = newIndex[v];
+    for (auto& l : loops)
+        for (int& v : l) v = newIndex[v];
     PolyhedronBuild build = ConvexPolyhedron::fromFaces(std::move(positions), loops);
     result.epsilon = eps;
     result.mergeTolerance = mergeTol;
@@ -812,7 +826,6 @@ HullResult hullResult(std::span<const Vec3> points, std::vector<std::vector<int>
     result.polyhedron = std::move(build.polyhedron);
     return result;
 }
-
 
 }  // namespace
 
@@ -836,8 +849,8 @@ HullResult convexHull(std::span<const Vec3> points, const HullOptions& options, 
     if (n == 0) return failure(HullStatus::EmptyInput, "no input points");
     for (int i = 0; i < n; ++i) {
         if (!points[i].allFinite()) {
-            return failure(HullStatus::NonFiniteInput,
-                           "point " + std::to_string(i) + " has a non-finite coordinate", i);
+            return failure(HullStatus::NonFiniteInput, "point " + std::to_string(i) + " has a non-finite coordinate",
+                           i);
         }
     }
     const HullFrame frame = hullFrame(points, options);

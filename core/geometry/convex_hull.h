@@ -16,8 +16,9 @@
 //      of a new face are found among the points of the two faces of its horizon edge (de Berg, lemma 11.6).
 //   5. Merge adjacent triangles whose vertices lie within mergeTolerance of a seed triangle's plane
 //      (largest seeds first) into polygons, then merge groups across concave edges; keep a merge only
-//      if its boundary is one simple loop and convex within tolerance (else its triangles stay). Remove boundary vertices with exactly two incident faces that are
-//      collinear with their neighbours (such a vertex is collinear in both faces at once).
+//      if its boundary is one simple loop and convex within tolerance (else its triangles stay). Remove boundary
+//      vertices with exactly two incident faces that are collinear with their neighbours (such a vertex is collinear in
+//      both faces at once).
 //
 // Tolerance: eps = epsilonFactor * DBL_EPSILON * (max |coordinate| + bounding-box diagonal), default
 // factor 4096 (eps ~ 9e-13 of the scale: far below any modelled feature, far above the rounding of
@@ -41,8 +42,8 @@
 #include <string>
 #include <vector>
 
-#include "core/geometry/polyhedron.h"
 #include "core/base/types.h"
+#include "core/geometry/polyhedron.h"
 
 namespace cdlab {
 
@@ -65,21 +66,21 @@ struct HullOptions {
     double mergeFactor = 4.0;        ///< merge tolerance = mergeFactor * eps (folds of eps can chain)
     bool mergeCoplanarFaces = true;  ///< false: output the triangulated hull
     bool removeCollinearVertices = true;
-    bool shuffle = true;             ///< false: insert in input order (worst case O(n^2))
+    bool shuffle = true;  ///< false: insert in input order (worst case O(n^2))
     std::uint64_t shuffleSeed = 0x9E3779B97F4A7C15ull;
 };
 
 struct HullResult {
     HullStatus status = HullStatus::EmptyInput;
-    std::string message;           ///< one line; empty when Ok
-    int badIndex = -1;             ///< NonFiniteInput: the offending point index
-    ConvexPolyhedron polyhedron;   ///< Ok: the hull (input coordinates, faces CCW from outside)
-    std::vector<int> inputIndex;   ///< Ok: polyhedron vertex i is points[inputIndex[i]]
-    double epsilon = 0.0;          ///< visibility tolerance used (length units)
-    double mergeTolerance = 0.0;   ///< coplanarity tolerance used for merging
-    int triangleCount = 0;         ///< triangles before merging
-    int droppedPoints = 0;         ///< points whose visible region was not a disc (they lie within
-                                   ///< a few eps of the hull); normally 0
+    std::string message;          ///< one line; empty when Ok
+    int badIndex = -1;            ///< NonFiniteInput: the offending point index
+    ConvexPolyhedron polyhedron;  ///< Ok: the hull (input coordinates, faces CCW from outside)
+    std::vector<int> inputIndex;  ///< Ok: polyhedron vertex i is points[inputIndex[i]]
+    double epsilon = 0.0;         ///< visibility tolerance used (length units)
+    double mergeTolerance = 0.0;  ///< coplanarity tolerance used for merging
+    int triangleCount = 0;        ///< triangles before merging
+    int droppedPoints = 0;        ///< points whose visible region was not a disc (they lie within
+                                  ///< a few eps of the hull); normally 0
     bool ok() const { return status == HullStatus::Ok; }
 };
 
@@ -91,7 +92,7 @@ struct HullTraceFace {
 
 /// One insertion of the incremental algorithm.
 struct HullTraceStep {
-    int pointIndex = -1;                  ///< input index of the inserted point
+    int pointIndex = -1;  ///< input index of the inserted point
     Vec3 point = Vec3::Zero();
     int eyeFaceId = -1;                   ///< farthest face the point sees
     double eyeDistance = 0.0;             ///< its distance above that face
@@ -106,15 +107,14 @@ struct HullTraceStep {
 struct HullTrace {
     std::array<int, 4> initialIndices{{-1, -1, -1, -1}};  ///< input indices of the tetrahedron
     std::vector<HullTraceFace> initialFaces;
-    std::vector<HullTraceStep> steps;  ///< one per point that was outside when its turn came
+    std::vector<HullTraceStep> steps;           ///< one per point that was outside when its turn came
     std::vector<HullTraceFace> finalTriangles;  ///< triangulated hull before merging
-    int mergedGroups = 0;              ///< polygons made of 2+ triangles
-    int rejectedMerges = 0;            ///< groups split back into triangles (not a convex disc)
+    int mergedGroups = 0;                       ///< polygons made of 2+ triangles
+    int rejectedMerges = 0;                     ///< groups split back into triangles (not a convex disc)
     int removedCollinearVertices = 0;
 };
 
 /// Convex hull of points (any frame, length units). Never throws; status says what went wrong.
-HullResult convexHull(std::span<const Vec3> points, const HullOptions& options = {},
-                      HullTrace* trace = nullptr);
+HullResult convexHull(std::span<const Vec3> points, const HullOptions& options = {}, HullTrace* trace = nullptr);
 
 }  // namespace cdlab

@@ -48,10 +48,12 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
         if (face.size() < 3)
-            return fail(MassStatus::BadFace, static_cast<int>(f), "face " + std::to_string(f) + " has fewer than 3 vertices");
+            return fail(MassStatus::BadFace, static_cast<int>(f),
+                        "face " + std::to_string(f) + " has fewer than 3 vertices");
         for (std::size_t k = 0; k < face.size(); ++k) {
             if (face[k] < 0 || face[k] >= n)
-                return fail(MassStatus::BadFace, static_cast<int>(f), "face " + std::to_string(f) + " has a vertex index out of range");
+                return fail(MassStatus::BadFace, static_cast<int>(f),
+                            "face " + std::to_string(f) + " has a vertex index out of range");
             directed.emplace_back(face[k], face[(k + 1) % face.size()]);
         }
     }
@@ -60,11 +62,13 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
     for (std::size_t i = 0; i < directed.size(); ++i) {
         const auto e = directed[i];
         if (i + 1 < directed.size() && directed[i + 1] == e)
-            return fail(MassStatus::OpenSurface, -1, "directed edge " + std::to_string(e.first) + "->" +
-                                                         std::to_string(e.second) + " is used twice (faces not consistently oriented)");
+            return fail(MassStatus::OpenSurface, -1,
+                        "directed edge " + std::to_string(e.first) + "->" + std::to_string(e.second) +
+                            " is used twice (faces not consistently oriented)");
         if (!std::binary_search(directed.begin(), directed.end(), std::make_pair(e.second, e.first)))
-            return fail(MassStatus::OpenSurface, -1, "edge " + std::to_string(e.first) + "->" + std::to_string(e.second) +
-                                                         " has no opposite: the surface is not closed");
+            return fail(MassStatus::OpenSurface, -1,
+                        "edge " + std::to_string(e.first) + "->" + std::to_string(e.second) +
+                            " has no opposite: the surface is not closed");
     }
 
     // Reference point r: the vertex mean (keeps every term O(size), not O(offset)).
@@ -82,9 +86,9 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
     // magnitude maxCoord (a few ulps each) so that far-away solids are not called non-planar.
     const double planeTol = options.planarTolerance * diagonal + 64.0 * DBL_EPSILON * maxCoord;
 
-    double six = 0.0;                // Σ D      = 6 V
-    Vec3 first = Vec3::Zero();       // Σ D (a+b+c) = 24 ∫x
-    Mat3 second = Mat3::Zero();      // Σ D (aaᵀ+bbᵀ+ccᵀ+ssᵀ) = 120 ∫xxᵀ
+    double six = 0.0;            // Σ D      = 6 V
+    Vec3 first = Vec3::Zero();   // Σ D (a+b+c) = 24 ∫x
+    Mat3 second = Mat3::Zero();  // Σ D (aaᵀ+bbᵀ+ccᵀ+ssᵀ) = 120 ∫xxᵀ
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
         // Planarity against the Newell plane (area vector; Newell's method, see Sutherland et al. 1974).
@@ -104,7 +108,8 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
                 if (off > planeTol)
                     return fail(MassStatus::NonPlanarFace, static_cast<int>(f),
                                 "face " + std::to_string(f) + ": vertex " + std::to_string(face[k]) + " is " +
-                                    std::to_string(off) + " off the face plane (tolerance " + std::to_string(planeTol) + ")");
+                                    std::to_string(off) + " off the face plane (tolerance " + std::to_string(planeTol) +
+                                    ")");
             }
         }
         // Fan (v0, vk, vk+1) with the reference point r.
@@ -122,8 +127,9 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
     // Degenerate: relative to the bounding box volume scale diagonal^3; 1e-12 of it is far below any
     // real solid (a 1 x 1 x 1e-4 slab is 1e-4 of its diagonal^3) and above the rounding of a flat one.
     if (!(volume > 1e-12 * diagonal * diagonal * diagonal))
-        return fail(MassStatus::Degenerate, -1, "volume " + std::to_string(volume) +
-                                                    " is not positive: flat, empty or inside-out (faces must be counter-clockwise from outside)");
+        return fail(MassStatus::Degenerate, -1,
+                    "volume " + std::to_string(volume) +
+                        " is not positive: flat, empty or inside-out (faces must be counter-clockwise from outside)");
 
     MassProperties m;
     m.status = MassStatus::Ok;

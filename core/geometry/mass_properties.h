@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "core/geometry/polyhedron.h"
 #include "core/base/types.h"
+#include "core/geometry/polyhedron.h"
 
 namespace cdlab {
 
@@ -50,12 +50,12 @@ struct MassPropertiesOptions {
 
 struct MassProperties {
     MassStatus status = MassStatus::Degenerate;
-    std::string message;              ///< one line; empty when Ok
-    int index = -1;                   ///< the offending vertex / face, as the status says
-    double volume = 0.0;              ///< length^3
-    double mass = 0.0;                ///< density * volume
-    Vec3 centerOfMass = Vec3::Zero(); ///< same frame as the input vertices
-    Mat3 inertia = Mat3::Zero();      ///< about centerOfMass, axes of the input frame; mass * length^2
+    std::string message;               ///< one line; empty when Ok
+    int index = -1;                    ///< the offending vertex / face, as the status says
+    double volume = 0.0;               ///< length^3
+    double mass = 0.0;                 ///< density * volume
+    Vec3 centerOfMass = Vec3::Zero();  ///< same frame as the input vertices
+    Mat3 inertia = Mat3::Zero();       ///< about centerOfMass, axes of the input frame; mass * length^2
     bool ok() const { return status == MassStatus::Ok; }
 };
 

@@ -13,8 +13,7 @@ namespace cdlab {
 namespace {
 
 std::uint64_t directedKey(int a, int b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-           static_cast<std::uint32_t>(b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
 // Error-free transformations (Knuth two-sum; Dekker/Veltkamp split and two-product).
@@ -58,8 +57,7 @@ PolyhedronCheck fail(PolyhedronDefect defect, int index, std::string message) {
 
 // Newell's method (Newell 1972; Ericson §12.4.1): the normal of a possibly non-planar polygon as
 // its area vector, here the sum of the fan's accurate cross products (the same vector).
-void fitPlane(const std::vector<Vec3>& positions, const std::vector<int>& loop, Vec3& normal,
-              double& offset) {
+void fitPlane(const std::vector<Vec3>& positions, const std::vector<int>& loop, Vec3& normal, double& offset) {
     Vec3 mean = Vec3::Zero();
     for (int v : loop) mean += positions[v];
     mean /= static_cast<double>(loop.size());
@@ -109,20 +107,18 @@ const char* nameOf(PolyhedronDefect defect) {
     return "Unknown";
 }
 
-PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions,
-                                            const std::vector<std::vector<int>>& faces) {
+PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions, const std::vector<std::vector<int>>& faces) {
     PolyhedronBuild out;
     const int vertexCount = static_cast<int>(positions.size());
     for (int v = 0; v < vertexCount; ++v) {
         if (!positions[v].allFinite()) {
-            out.check = fail(PolyhedronDefect::NonFinite, v,
-                             "vertex " + std::to_string(v) + " has a non-finite coordinate");
+            out.check =
+                fail(PolyhedronDefect::NonFinite, v, "vertex " + std::to_string(v) + " has a non-finite coordinate");
             return out;
         }
     }
     if (faces.size() < 4 || vertexCount < 4) {
-        out.check = fail(PolyhedronDefect::NoFaces, -1,
-                         "a closed polyhedron needs at least 4 faces and 4 vertices");
+        out.check = fail(PolyhedronDefect::NoFaces, -1, "a closed polyhedron needs at least 4 faces and 4 vertices");
         return out;
     }
     ConvexPolyhedron poly;
@@ -137,22 +133,22 @@ PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions,
         const auto& loop = faces[fi];
         const int k = static_cast<int>(loop.size());
         if (k < 3) {
-            out.check = fail(PolyhedronDefect::FaceTooSmall, fi,
-                             "face " + std::to_string(fi) + " has fewer than 3 vertices");
+            out.check =
+                fail(PolyhedronDefect::FaceTooSmall, fi, "face " + std::to_string(fi) + " has fewer than 3 vertices");
             return out;
         }
         for (int i = 0; i < k; ++i) {
             if (loop[i] < 0 || loop[i] >= vertexCount) {
-                out.check = fail(PolyhedronDefect::BadVertexIndex, fi,
-                                 "face " + std::to_string(fi) + " refers to vertex " +
-                                     std::to_string(loop[i]) + " out of range");
+                out.check = fail(
+                    PolyhedronDefect::BadVertexIndex, fi,
+                    "face " + std::to_string(fi) + " refers to vertex " + std::to_string(loop[i]) + " out of range");
                 return out;
             }
             for (int j = 0; j < i; ++j) {
                 if (loop[j] == loop[i]) {
-                    out.check = fail(PolyhedronDefect::RepeatedVertexInFace, fi,
-                                     "face " + std::to_string(fi) + " visits vertex " +
-                                         std::to_string(loop[i]) + " twice");
+                    out.check =
+                        fail(PolyhedronDefect::RepeatedVertexInFace, fi,
+                             "face " + std::to_string(fi) + " visits vertex " + std::to_string(loop[i]) + " twice");
                     return out;
                 }
             }
@@ -184,8 +180,8 @@ PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions,
         const auto it = directed.find(directedKey(b, he.origin));
         if (it == directed.end()) {
             out.check = fail(PolyhedronDefect::OpenEdge, h,
-                             "half-edge " + std::to_string(h) + " (" + std::to_string(he.origin) +
-                                 "->" + std::to_string(b) + ") has no twin: surface not closed");
+                             "half-edge " + std::to_string(h) + " (" + std::to_string(he.origin) + "->" +
+                                 std::to_string(b) + ") has no twin: surface not closed");
             return out;
         }
         he.twin = it->second;
@@ -206,16 +202,15 @@ PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions,
     }
     for (int v = 0; v < vertexCount; ++v) {
         if (poly.vertices_[v].halfEdge < 0) {
-            out.check = fail(PolyhedronDefect::IsolatedVertex, v,
-                             "vertex " + std::to_string(v) + " belongs to no face");
+            out.check =
+                fail(PolyhedronDefect::IsolatedVertex, v, "vertex " + std::to_string(v) + " belongs to no face");
             return out;
         }
         int count = 0;
         poly.forEachVertexHalfEdge(v, [&](int) { ++count; });
         if (count != outDegree[v]) {
             out.check = fail(PolyhedronDefect::NonManifoldVertex, v,
-                             "the faces around vertex " + std::to_string(v) +
-                                 " form more than one fan");
+                             "the faces around vertex " + std::to_string(v) + " form more than one fan");
             return out;
         }
     }
@@ -364,7 +359,8 @@ PolyhedronCheck ConvexPolyhedron::validate(double tolerance) const {
     if (PolyhedronCheck links = checkLinks(); !links.ok()) return links;
     // 4. Topology of a sphere.
     if (eulerCharacteristic() != 2) {
-        return fail(PolyhedronDefect::EulerMismatch, -1, "V - E + F = " + std::to_string(eulerCharacteristic()) + ", not 2");
+        return fail(PolyhedronDefect::EulerMismatch, -1,
+                    "V - E + F = " + std::to_string(eulerCharacteristic()) + ", not 2");
     }
     // 5. Geometry: finite values, unit normals, planar and convex faces.
     for (int v = 0; v < V; ++v) {
@@ -387,14 +383,12 @@ PolyhedronCheck ConvexPolyhedron::checkLinks() const {
     // 1. Pointer consistency of every half-edge.
     for (int h = 0; h < H; ++h) {
         const HalfEdge& he = halfEdges_[h];
-        const bool ok = inRange(he.origin, V) && inRange(he.twin, H) && inRange(he.next, H) &&
-                        inRange(he.prev, H) && inRange(he.face, F) && inRange(he.edge, E) &&
-                        he.twin != h && halfEdges_[he.twin].twin == h &&
-                        halfEdges_[he.next].prev == h && halfEdges_[he.prev].next == h &&
-                        halfEdges_[he.next].face == he.face &&
-                        halfEdges_[he.twin].origin == halfEdges_[he.next].origin &&
-                        halfEdges_[he.twin].edge == he.edge &&
-                        (edges_[he.edge].halfEdge == h || edges_[he.edge].halfEdge == he.twin);
+        const bool ok =
+            inRange(he.origin, V) && inRange(he.twin, H) && inRange(he.next, H) && inRange(he.prev, H) &&
+            inRange(he.face, F) && inRange(he.edge, E) && he.twin != h && halfEdges_[he.twin].twin == h &&
+            halfEdges_[he.next].prev == h && halfEdges_[he.prev].next == h && halfEdges_[he.next].face == he.face &&
+            halfEdges_[he.twin].origin == halfEdges_[he.next].origin && halfEdges_[he.twin].edge == he.edge &&
+            (edges_[he.edge].halfEdge == h || edges_[he.edge].halfEdge == he.twin);
         if (!ok) {
             return fail(PolyhedronDefect::BrokenLinks, h,
                         "half-edge " + std::to_string(h) + " has inconsistent twin/next/prev/face/edge");
@@ -430,7 +424,8 @@ PolyhedronCheck ConvexPolyhedron::checkLinks() const {
     for (int v = 0; v < V; ++v) {
         const int start = vertices_[v].halfEdge;
         if (!inRange(start, H) || halfEdges_[start].origin != v) {
-            return fail(PolyhedronDefect::IsolatedVertex, v, "vertex " + std::to_string(v) + " has no valid outgoing half-edge");
+            return fail(PolyhedronDefect::IsolatedVertex, v,
+                        "vertex " + std::to_string(v) + " has no valid outgoing half-edge");
         }
         int h = start, count = 0;
         do {
@@ -461,9 +456,9 @@ PolyhedronCheck ConvexPolyhedron::checkFaceGeometry(int f, double tolerance) con
     for (int v : loop) {
         const double dist = std::abs(planeDistance(f, position(v)));
         if (dist > tolerance) {
-            return fail(PolyhedronDefect::NonPlanarFace, f,
-                        "vertex " + std::to_string(v) + " is " + fmt(dist) +
-                            " off the plane of face " + std::to_string(f));
+            return fail(
+                PolyhedronDefect::NonPlanarFace, f,
+                "vertex " + std::to_string(v) + " is " + fmt(dist) + " off the plane of face " + std::to_string(f));
         }
     }
     // Every vertex of the face on the inner side of every edge line of the face (in the
@@ -480,9 +475,8 @@ PolyhedronCheck ConvexPolyhedron::checkFaceGeometry(int f, double tolerance) con
             if (j == i || j == (i + 1) % k) continue;
             if (inward.dot(position(loop[j]) - a) < -tolerance) {
                 return fail(PolyhedronDefect::NonConvexFace, f,
-                            "vertex " + std::to_string(loop[j]) + " lies outside edge " +
-                                std::to_string(loop[i]) + "->" + std::to_string(loop[(i + 1) % k]) +
-                                " of face " + std::to_string(f));
+                            "vertex " + std::to_string(loop[j]) + " lies outside edge " + std::to_string(loop[i]) +
+                                "->" + std::to_string(loop[(i + 1) % k]) + " of face " + std::to_string(f));
             }
         }
     }

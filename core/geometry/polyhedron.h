@@ -83,9 +83,9 @@ public:
         int edge = -1;    ///< undirected edge index
     };
     struct Face {
-        int halfEdge = -1;              ///< one half-edge of the face cycle
-        Vec3 normal = Vec3::UnitZ();    ///< unit outward normal (Newell area vector, body frame)
-        double offset = 0.0;            ///< plane: normal · x = offset
+        int halfEdge = -1;            ///< one half-edge of the face cycle
+        Vec3 normal = Vec3::UnitZ();  ///< unit outward normal (Newell area vector, body frame)
+        double offset = 0.0;          ///< plane: normal · x = offset
     };
     struct Edge {
         int halfEdge = -1;  ///< the lower-indexed half-edge of the twin pair
@@ -97,9 +97,9 @@ public:
     /// Builds the half-edge mesh from positions and faces given as vertex-index cycles,
     /// counter-clockwise seen from outside. Checks topology only (indices, manifold, closed,
     /// no isolated vertex, Euler); face normals are Newell area vectors (sum of accurateCross over
-    /// the face's fan) normalized, offsets taken at the vertex mean. Call validate() for convexity. On failure the returned polyhedron is empty.
-    static PolyhedronBuild fromFaces(std::vector<Vec3> positions,
-                                     const std::vector<std::vector<int>>& faces);
+    /// the face's fan) normalized, offsets taken at the vertex mean. Call validate() for convexity. On failure the
+    /// returned polyhedron is empty.
+    static PolyhedronBuild fromFaces(std::vector<Vec3> positions, const std::vector<std::vector<int>>& faces);
 
     int vertexCount() const { return static_cast<int>(vertices_.size()); }
     int halfEdgeCount() const { return static_cast<int>(halfEdges_.size()); }
@@ -160,9 +160,7 @@ public:
     }
 
     /// Signed distance of x from the plane of face f (positive in front, i.e. outside).
-    double planeDistance(int f, const Vec3& x) const {
-        return faces_[f].normal.dot(x) - faces_[f].offset;
-    }
+    double planeDistance(int f, const Vec3& x) const { return faces_[f].normal.dot(x) - faces_[f].offset; }
     /// The plane of face f (unit normal).
     Plane plane(int f) const { return Plane{faces_[f].normal, faces_[f].offset}; }
 

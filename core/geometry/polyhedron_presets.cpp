@@ -78,17 +78,15 @@ ConvexPolyhedron box(const Vec3& h) {
         v[i] = Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
     }
     // Vertex i has bit 0 = +x, bit 1 = +y, bit 2 = +z. Faces counter-clockwise from outside.
-    return fromFacesOrEmpty(std::move(v), {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3},
-                                            {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}});
+    return fromFacesOrEmpty(std::move(v),
+                            {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}});
 }
 
 ConvexPolyhedron octahedron(double r) {
     return hullOf({{r, 0, 0}, {-r, 0, 0}, {0, r, 0}, {0, -r, 0}, {0, 0, r}, {0, 0, -r}});
 }
 
-ConvexPolyhedron icosahedron(double circumradius) {
-    return hullOf(scaledTo(icosahedronPoints(), circumradius));
-}
+ConvexPolyhedron icosahedron(double circumradius) { return hullOf(scaledTo(icosahedronPoints(), circumradius)); }
 
 ConvexPolyhedron dodecahedron(double circumradius) {
     const double phi = std::numbers::phi, inv = 1.0 / phi;

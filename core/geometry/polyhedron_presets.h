@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/geometry/polyhedron.h"
 #include "core/base/types.h"
+#include "core/geometry/polyhedron.h"
 
 namespace cdlab::presets {
 

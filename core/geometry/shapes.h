@@ -151,8 +151,7 @@ struct SphereShape {
 struct BoxShape {
     Vec3 halfExtents = Vec3::Ones();
     Vec3 support(const Vec3& d) const {
-        return Vec3(d.x() < 0.0 ? -halfExtents.x() : halfExtents.x(),
-                    d.y() < 0.0 ? -halfExtents.y() : halfExtents.y(),
+        return Vec3(d.x() < 0.0 ? -halfExtents.x() : halfExtents.x(), d.y() < 0.0 ? -halfExtents.y() : halfExtents.y(),
                     d.z() < 0.0 ? -halfExtents.z() : halfExtents.z());
     }
     Vec3 supportCore(const Vec3& d) const { return support(d); }
@@ -259,7 +258,8 @@ public:
     /// adjacency and more than kLoopMaxVertices vertices; an invalid start falls back to the seeds.
     int supportIndex(const Vec3& d, int startVertex) const {
         // Inline dispatch: GJK's inner loop pays one call, not two.
-        if (adjacencyStart_.empty() || vertices_.size() <= static_cast<size_t>(kLoopMaxVertices)) return supportIndexLoop(d);
+        if (adjacencyStart_.empty() || vertices_.size() <= static_cast<size_t>(kLoopMaxVertices))
+            return supportIndexLoop(d);
         return supportIndexClimb(d, startVertex);
     }
     /// Brute-force loop over all vertices: first maximal vertex; -1 if empty.
@@ -291,11 +291,10 @@ struct Transformed {
     Transform transform;
     Vec3 support(const Vec3& d) const { return transform.apply(Vec3(shape.support(transform.rotateInverse(d)))); }
     /// Hinted support (see PolytopeShape::support(d, hint)), forwarded when S has one.
-    Vec3 support(const Vec3& d, int& hint) const
-        requires requires(const S& s, const Vec3& v, int& h) { s.support(v, h); }
-    {
-        return transform.apply(Vec3(shape.support(transform.rotateInverse(d), hint)));
+    Vec3 support(const Vec3& d, int& hint) const requires requires(const S& s, const Vec3& v, int& h) {
+        s.support(v, h);
     }
+    { return transform.apply(Vec3(shape.support(transform.rotateInverse(d), hint))); }
     Vec3 supportCore(const Vec3& d) const { return transform.apply(coreSupport(shape, transform.rotateInverse(d))); }
     double margin() const { return marginOf(shape); }
     /// About the parent-frame origin: |position| + the body's radius.

@@ -18,9 +18,7 @@ std::uint64_t nextRandom(std::uint64_t& state) {
 }
 
 /// Uniform double in [0, 1) from the top 53 bits.
-double uniform01(std::uint64_t& state) {
-    return static_cast<double>(nextRandom(state) >> 11) * 0x1.0p-53;
-}
+double uniform01(std::uint64_t& state) { return static_cast<double>(nextRandom(state) >> 11) * 0x1.0p-53; }
 
 double uniform(std::uint64_t& state, double lo, double hi) { return lo + (hi - lo) * uniform01(state); }
 

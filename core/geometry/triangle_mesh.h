@@ -45,8 +45,8 @@ enum class MeshStatus {
 /// and counts of the allowed degeneracies.
 struct MeshValidation {
     MeshStatus status = MeshStatus::Valid;
-    int triangle = -1;  ///< first triangle with a bad index or a non-finite vertex
-    int vertex = -1;    ///< the offending vertex index (out of range, or non-finite)
+    int triangle = -1;          ///< first triangle with a bad index or a non-finite vertex
+    int vertex = -1;            ///< the offending vertex index (out of range, or non-finite)
     int zeroAreaTriangles = 0;  ///< triangles with exactly zero cross product (b - a) x (c - a)
 };
 

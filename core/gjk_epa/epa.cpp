@@ -6,8 +6,7 @@
 
 namespace cdlab {
 
-const char* nameOf(EpaStatus status)
-{
+const char* nameOf(EpaStatus status) {
     switch (status) {
         case EpaStatus::Penetrating: return "Penetrating";
         case EpaStatus::Touching: return "Touching";
@@ -17,8 +16,7 @@ const char* nameOf(EpaStatus status)
     return "?";
 }
 
-const char* nameOf(EpaTermination termination)
-{
+const char* nameOf(EpaTermination termination) {
     switch (termination) {
         case EpaTermination::Converged: return "Converged";
         case EpaTermination::DuplicateSupport: return "DuplicateSupport";
@@ -40,16 +38,14 @@ namespace {
 constexpr double kFlatFace = 1e-14;
 }  // namespace
 
-int EpaPolytope::addVertex(const EpaVertex& v)
-{
+int EpaPolytope::addVertex(const EpaVertex& v) {
     if (vertexCount >= kMaxVertices) return -1;
     vertex[vertexCount] = v;
     scale = std::max(scale, v.w.norm());
     return vertexCount++;
 }
 
-bool EpaPolytope::plane(int i0, int i1, int i2, Vec3& normal, double& distance) const
-{
+bool EpaPolytope::plane(int i0, int i1, int i2, Vec3& normal, double& distance) const {
     const Vec3& p0 = vertex[i0].w;
     const Vec3& p1 = vertex[i1].w;
     const Vec3& p2 = vertex[i2].w;
@@ -68,11 +64,11 @@ bool EpaPolytope::plane(int i0, int i1, int i2, Vec3& normal, double& distance) 
         n = e1.cross(e2);
         base = &p2;
         longest = l0;
-    } else if (l1 >= l2) {       // longest p1p2: apex p0
+    } else if (l1 >= l2) {  // longest p1p2: apex p0
         n = e2.cross(e0);
         base = &p0;
         longest = l1;
-    } else {                     // longest p2p0: apex p1
+    } else {  // longest p2p0: apex p1
         n = e0.cross(e1);
         base = &p1;
         longest = l2;
@@ -84,8 +80,7 @@ bool EpaPolytope::plane(int i0, int i1, int i2, Vec3& normal, double& distance) 
     return true;
 }
 
-bool EpaPolytope::buildTetrahedron()
-{
+bool EpaPolytope::buildTetrahedron() {
     const Vec3& w0 = vertex[0].w;
     const double det = (vertex[1].w - w0).dot((vertex[2].w - w0).cross(vertex[3].w - w0));
     // det > 0: vertex 3 lies on the side of (0,1,2)'s right-hand normal, so (0,2,1) faces out.
@@ -122,8 +117,7 @@ bool EpaPolytope::buildTetrahedron()
     return true;
 }
 
-int EpaPolytope::closestFace() const
-{
+int EpaPolytope::closestFace() const {
     int best = -1;
     double bestDistance = INFINITY;
     for (int i = 0; i < faceEnd; ++i) {
@@ -135,8 +129,7 @@ int EpaPolytope::closestFace() const
     return best;
 }
 
-bool EpaPolytope::hasVertex(const Vec3& w) const
-{
+bool EpaPolytope::hasVertex(const Vec3& w) const {
     for (int i = 0; i < vertexCount; ++i)
         if (vertex[i].w == w) return true;
     return false;
@@ -145,8 +138,7 @@ bool EpaPolytope::hasVertex(const Vec3& w) const
 // Depth-first walk over the faces visible from w (van den Bergen's silhouette): entering face f
 // through its edge `edge`; a face not visible contributes that edge to the horizon. Visiting the
 // other two edges in CCW order makes the horizon come out as one consecutive loop.
-void EpaPolytope::silhouette(int f, int edge, const Vec3& w, double tol)
-{
+void EpaPolytope::silhouette(int f, int edge, const Vec3& w, double tol) {
     EpaFace& F = face[f];
     if (!F.live) return;  // already removed in this expansion
     if (F.normal.dot(w) - F.distance <= tol) {
@@ -167,8 +159,7 @@ void EpaPolytope::silhouette(int f, int edge, const Vec3& w, double tol)
     silhouette(F.adj[e2], F.adjEdge[e2], w, tol);
 }
 
-EpaExpand EpaPolytope::expand(int seed, int vi, double visibleTolerance, EpaTraceStep* trace)
-{
+EpaExpand EpaPolytope::expand(int seed, int vi, double visibleTolerance, EpaTraceStep* trace) {
     const Vec3& w = vertex[vi].w;
     horizonCount = 0;
     removedCount = 0;
@@ -257,8 +248,7 @@ EpaExpand EpaPolytope::expand(int seed, int vi, double visibleTolerance, EpaTrac
     return EpaExpand::Ok;
 }
 
-void EpaPolytope::witness(int f, double depth, Vec3& pointA, Vec3& pointB) const
-{
+void EpaPolytope::witness(int f, double depth, Vec3& pointA, Vec3& pointB) const {
     const EpaFace& F = face[f];
     const EpaVertex& v0 = vertex[F.v[0]];
     const EpaVertex& v1 = vertex[F.v[1]];
@@ -274,8 +264,7 @@ void EpaPolytope::witness(int f, double depth, Vec3& pointA, Vec3& pointB) const
     pointB = v0.b + (l1 * (v1.b - v0.b) + l2 * (v2.b - v0.b));
 }
 
-int EpaPolytope::snapshot(EpaTraceStep& step, int f) const
-{
+int EpaPolytope::snapshot(EpaTraceStep& step, int f) const {
     step.vertices.clear();
     step.faces.clear();
     for (int i = 0; i < vertexCount; ++i) step.vertices.push_back(vertex[i].w);
@@ -288,8 +277,7 @@ int EpaPolytope::snapshot(EpaTraceStep& step, int f) const
     return index;
 }
 
-bool EpaPolytope::adjacencyConsistent() const
-{
+bool EpaPolytope::adjacencyConsistent() const {
     for (int f = 0; f < faceEnd; ++f) {
         if (!face[f].live) continue;
         for (int e = 0; e < 3; ++e) {
@@ -303,8 +291,7 @@ bool EpaPolytope::adjacencyConsistent() const
     return true;
 }
 
-int epaSeed(const GjkSimplex& start, EpaVertex seed[4], EpaResult& r)
-{
+int epaSeed(const GjkSimplex& start, EpaVertex seed[4], EpaResult& r) {
     int n = 0;
     for (int i = 0; i < start.count && i < 4; ++i) {
         const GjkVertex& g = start.vertex[i];
@@ -325,21 +312,18 @@ int epaSeed(const GjkSimplex& start, EpaVertex seed[4], EpaResult& r)
     return c.count;
 }
 
-void EpaRecorder::start(int n)
-{
+void EpaRecorder::start(int n) {
     static const char* kStartName[5] = {"", "point", "segment", "triangle", "tetrahedron"};
     if (trace_) trace_->start = std::string(kStartName[n]) + (n < 4 ? " blown up" : " from GJK");
 }
 
-void EpaRecorder::blowUp(const Vec3& direction, const Vec3& point)
-{
+void EpaRecorder::blowUp(const Vec3& direction, const Vec3& point) {
     if (!trace_) return;
     trace_->blowUpDirections.push_back(direction);
     trace_->blowUpPoints.push_back(point);
 }
 
-EpaTraceStep* EpaRecorder::beginStep(int iteration, const EpaPolytope& poly, int f, const EpaVertex& s, double upper)
-{
+EpaTraceStep* EpaRecorder::beginStep(int iteration, const EpaPolytope& poly, int f, const EpaVertex& s, double upper) {
     if (!trace_) return nullptr;
     const EpaFace& F = poly.face[f];
     step_ = &trace_->steps.emplace_back();
@@ -357,18 +341,15 @@ EpaTraceStep* EpaRecorder::beginStep(int iteration, const EpaPolytope& poly, int
     return step_;
 }
 
-void EpaRecorder::stepEndsLoop()
-{
+void EpaRecorder::stepEndsLoop() {
     if (step_) step_->terminated = true;
 }
 
-void EpaRecorder::termination(EpaTermination why)
-{
+void EpaRecorder::termination(EpaTermination why) {
     if (trace_) trace_->termination = why;
 }
 
-void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA, Vec3& pointB)
-{
+void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA, Vec3& pointB) {
     const EpaVertex& v0 = v[c.index[0]];
     Vec3 da = Vec3::Zero();
     Vec3 db = Vec3::Zero();
@@ -380,8 +361,7 @@ void epaSimplexWitness(const EpaVertex* v, const SimplexClosest& c, Vec3& pointA
     pointB = v0.b + db;
 }
 
-bool epaRefineEdgePair(const EpaPolytope& poly, int f, EpaResult& r)
-{
+bool epaRefineEdgePair(const EpaPolytope& poly, int f, EpaResult& r) {
     Vec3 a[3], b[3];
     int na = 0, nb = 0;
     for (int k = 0; k < 3; ++k) {

@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "core/gjk_epa/gjk.h"
-#include "core/gjk_epa/simplex_solver.h"
 #include "core/base/support.h"
 #include "core/base/tolerances.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/gjk_epa/simplex_solver.h"
 
 namespace cdlab {
 
@@ -68,43 +68,43 @@ struct EpaOptions {
 
 struct EpaResult {
     EpaStatus status = EpaStatus::InvalidInput;
-    double depth = 0.0;                      ///< penetration depth, world units, >= 0
-    Vec3 normal = Vec3::UnitX();             ///< unit, from A toward B (see file comment)
-    Vec3 pointA = Vec3::Zero();              ///< deepest point of A in B, world frame
-    Vec3 pointB = Vec3::Zero();              ///< deepest point of B in A, world frame
+    double depth = 0.0;           ///< penetration depth, world units, >= 0
+    Vec3 normal = Vec3::UnitX();  ///< unit, from A toward B (see file comment)
+    Vec3 pointA = Vec3::Zero();   ///< deepest point of A in B, world frame
+    Vec3 pointB = Vec3::Zero();   ///< deepest point of B in A, world frame
     int iterations = 0;
     EpaTermination termination = EpaTermination::InvalidInput;
-    double lowerBound = 0.0;                 ///< depth >= lowerBound (distance of nearest face)
-    double upperBound = 0.0;                 ///< depth <= upperBound (best support value)
-    int vertexCount = 0;                     ///< polytope size at the end
+    double lowerBound = 0.0;  ///< depth >= lowerBound (distance of nearest face)
+    double upperBound = 0.0;  ///< depth <= upperBound (best support value)
+    int vertexCount = 0;      ///< polytope size at the end
     int faceCount = 0;
-    bool edgePairRefined = false;            ///< depth and normal from the edge pair (options)
+    bool edgePairRefined = false;  ///< depth and normal from the edge pair (options)
 };
 
 /// One EPA iteration as plain data. Vertex ids index `vertices`; faces are CCW seen from outside.
 struct EpaTraceStep {
     int iteration = 0;
-    std::vector<Vec3> vertices;                    ///< polytope vertices w = a - b (before expansion)
-    std::vector<std::array<int, 3>> faces;         ///< live faces before expansion
-    int closestFace = -1;                          ///< index into faces
-    Vec3 closestNormal = Vec3::Zero();             ///< its outward unit normal
-    double closestDistance = 0.0;                  ///< its distance to the origin (lower bound)
-    Vec3 closestPoint = Vec3::Zero();              ///< projection of the origin on it
-    Vec3 direction = Vec3::Zero();                 ///< support direction (= closestNormal)
-    Vec3 support = Vec3::Zero();                   ///< new point w and its shape points a, b
+    std::vector<Vec3> vertices;             ///< polytope vertices w = a - b (before expansion)
+    std::vector<std::array<int, 3>> faces;  ///< live faces before expansion
+    int closestFace = -1;                   ///< index into faces
+    Vec3 closestNormal = Vec3::Zero();      ///< its outward unit normal
+    double closestDistance = 0.0;           ///< its distance to the origin (lower bound)
+    Vec3 closestPoint = Vec3::Zero();       ///< projection of the origin on it
+    Vec3 direction = Vec3::Zero();          ///< support direction (= closestNormal)
+    Vec3 support = Vec3::Zero();            ///< new point w and its shape points a, b
     Vec3 supportA = Vec3::Zero();
     Vec3 supportB = Vec3::Zero();
     std::vector<std::array<int, 3>> removedFaces;  ///< faces visible from w (vertex ids)
     std::vector<std::array<int, 2>> horizon;       ///< horizon edges (vertex ids), in loop order
     double lowerBound = 0.0;
     double upperBound = 0.0;
-    bool terminated = false;                       ///< loop stopped here (no expansion)
+    bool terminated = false;  ///< loop stopped here (no expansion)
 };
 
 struct EpaTrace {
-    std::string start;                       ///< how the first tetrahedron was made
-    std::vector<Vec3> blowUpDirections;      ///< directions used to blow up a degenerate simplex
-    std::vector<Vec3> blowUpPoints;          ///< the support points they gave
+    std::string start;                   ///< how the first tetrahedron was made
+    std::vector<Vec3> blowUpDirections;  ///< directions used to blow up a degenerate simplex
+    std::vector<Vec3> blowUpPoints;      ///< the support points they gave
     std::vector<EpaTraceStep> steps;
     EpaTermination termination = EpaTermination::InvalidInput;
 };
@@ -119,11 +119,11 @@ struct EpaVertex {
 };
 
 struct EpaFace {
-    int v[3];        // vertex ids, CCW seen from outside; edge e runs v[e] -> v[(e+1)%3]
-    int adj[3];      // face across edge e
-    int adjEdge[3];  // index of that edge in the neighbour
-    Vec3 normal;     // outward unit normal
-    double distance; // normal · (any vertex): signed distance of the plane from the origin
+    int v[3];         // vertex ids, CCW seen from outside; edge e runs v[e] -> v[(e+1)%3]
+    int adj[3];       // face across edge e
+    int adjEdge[3];   // index of that edge in the neighbour
+    Vec3 normal;      // outward unit normal
+    double distance;  // normal · (any vertex): signed distance of the plane from the origin
     bool live;
 };
 
@@ -138,7 +138,7 @@ public:
     EpaVertex vertex[kMaxVertices];
     int vertexCount = 0;
     EpaFace face[kMaxFaces];
-    int faceEnd = 0;   // slots [0, faceEnd) have been used; dead ones sit in the free list
+    int faceEnd = 0;  // slots [0, faceEnd) have been used; dead ones sit in the free list
     int liveCount = 0;
     double scale = 0.0;  // max |w| over the vertices: the length scale for absolute tolerances
 
@@ -205,8 +205,8 @@ private:
 
 // Absolute tolerances relative to the polytope's scale max|w|: a support value, face distance
 // or plane test carries a rounding error of a few ulps of |w| (Sterbenz keeps w itself exact).
-inline constexpr double kEpaTouch = 1e-14;    // origin within 1e-14 |w| of the boundary: touching
-inline constexpr double kEpaVisible = 1e-14;  // w above a face plane by less than this: not visible
+inline constexpr double kEpaTouch = 1e-14;          // origin within 1e-14 |w| of the boundary: touching
+inline constexpr double kEpaVisible = 1e-14;        // w above a face plane by less than this: not visible
 inline constexpr double kEpaAbsGap = ulps(4, 1.0);  // gap noise floor (4 ulps of |w|)
 
 /// Stage 1: the distinct finite vertices of GJK's simplex, reduced to the smallest sub-simplex
@@ -224,8 +224,7 @@ enum class EpaBlowUp { Tetrahedron, Touching, InvalidInput };
 /// touch with normal d (r is then the touching answer).
 template <class Support>
 EpaBlowUp epaBlowUp(const Support& support, EpaVertex seed[4], int n, double& scale, EpaRecorder& record,
-                    EpaResult& r)
-{
+                    EpaResult& r) {
     for (; n < 4; ++n) {
         Vec3 d;
         if (n == 1) {
@@ -263,9 +262,8 @@ EpaBlowUp epaBlowUp(const Support& support, EpaVertex seed[4], int n, double& sc
 /// and the bounds follow the loop; `upper` is the smallest h seen, `nearest` the face it ended on
 /// (-1 when it ended without one).
 template <class Support>
-EpaTermination epaExpandLoop(const Support& support, const EpaOptions& options, EpaPolytope& poly,
-                             double& scale, EpaRecorder& record, EpaResult& r, double& upper, int& nearest)
-{
+EpaTermination epaExpandLoop(const Support& support, const EpaOptions& options, EpaPolytope& poly, double& scale,
+                             EpaRecorder& record, EpaResult& r, double& upper, int& nearest) {
     upper = INFINITY;
     nearest = -1;
     for (int iter = 1; iter <= options.maxIterations; ++iter) {
@@ -319,8 +317,7 @@ EpaTermination epaExpandLoop(const Support& support, const EpaOptions& options, 
 /// depth up to rounding, the depth is exact).
 template <class A, class B>
 void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& options, const EpaPolytope& poly, int f,
-                       double upper, EpaResult& r)
-{
+                       double upper, EpaResult& r) {
     const EpaFace& F = poly.face[f];
     r.depth = std::max(F.distance, 0.0);
     r.normal = F.normal;
@@ -343,9 +340,8 @@ void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& optio
 /// GJK's terminal simplex `start` (any size 1..4, containing the origin up to rounding). See the
 /// file comment for the normal / witness convention. Never NaN for finite shapes.
 template <SupportMapping A, SupportMapping B>
-EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& start,
-                         const EpaOptions& options = {}, EpaTrace* trace = nullptr)
-{
+EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& start, const EpaOptions& options = {},
+                         EpaTrace* trace = nullptr) {
     EpaResult r;
     detail::EpaPolytope poly;
     detail::EpaRecorder record(trace);
@@ -405,9 +401,8 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
 /// (depth 0, normal = GJK's separating axis, witness points = GJK's closest points).
 /// `gjkOut` optionally receives the GJK result (distance, simplex).
 template <SupportMapping A, SupportMapping B>
-EpaResult penetration(const A& shapeA, const B& shapeB, const EpaOptions& options = {},
-                      EpaTrace* trace = nullptr, GjkResult* gjkOut = nullptr)
-{
+EpaResult penetration(const A& shapeA, const B& shapeB, const EpaOptions& options = {}, EpaTrace* trace = nullptr,
+                      GjkResult* gjkOut = nullptr) {
     const GjkResult g = gjkDistance(shapeA, shapeB, options.gjk);
     if (gjkOut) *gjkOut = g;
     if (g.status == GjkStatus::InvalidInput) {

@@ -4,8 +4,7 @@
 
 namespace cdlab {
 
-const char* nameOf(GjkStatus status)
-{
+const char* nameOf(GjkStatus status) {
     switch (status) {
         case GjkStatus::Separated: return "Separated";
         case GjkStatus::Intersecting: return "Intersecting";
@@ -14,8 +13,7 @@ const char* nameOf(GjkStatus status)
     return "?";
 }
 
-const char* nameOf(GjkTermination termination)
-{
+const char* nameOf(GjkTermination termination) {
     switch (termination) {
         case GjkTermination::Converged: return "Converged";
         case GjkTermination::DuplicateSupport: return "DuplicateSupport";
@@ -28,8 +26,7 @@ const char* nameOf(GjkTermination termination)
     return "?";
 }
 
-std::string slotLetters(std::uint8_t slots)
-{
+std::string slotLetters(std::uint8_t slots) {
     std::string letters;
     for (int i = 0; i < 4; ++i)
         if (slots & (1u << i)) letters += static_cast<char>('A' + i);
@@ -38,8 +35,7 @@ std::string slotLetters(std::uint8_t slots)
 
 namespace detail {
 
-void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB)
-{
+void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB) {
     if (s.count == 0) {
         pointA.setZero();
         pointB.setZero();
@@ -59,8 +55,7 @@ void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB)
 }
 
 void GjkRecorder::beginStep(int iteration, const Vec3& v, const GjkVertex& support, double lowerBound,
-                            double upperBound, double gapTest, const GjkSimplex& s)
-{
+                            double upperBound, double gapTest, const GjkSimplex& s) {
     if (!trace_) return;
     step_ = &trace_->steps.emplace_back();
     step_->iteration = iteration;
@@ -77,15 +72,13 @@ void GjkRecorder::beginStep(int iteration, const Vec3& v, const GjkVertex& suppo
     gjkWitness(s, step_->pointA, step_->pointB);
 }
 
-void GjkRecorder::candidate(const GjkSimplex& s, int n)
-{
+void GjkRecorder::candidate(const GjkSimplex& s, int n) {
     if (!step_) return;
     step_->simplexCount = n;
     for (int i = 0; i < n; ++i) step_->simplex[i] = s.vertex[i];
 }
 
-void GjkRecorder::reduction(const SimplexClosest& c, const GjkSimplex& reduced)
-{
+void GjkRecorder::reduction(const SimplexClosest& c, const GjkSimplex& reduced) {
     if (!step_) return;
     step_->keptSlots = 0;
     for (int k = 0; k < c.count; ++k) step_->keptSlots |= static_cast<std::uint8_t>(1u << c.index[k]);
@@ -94,18 +87,15 @@ void GjkRecorder::reduction(const SimplexClosest& c, const GjkSimplex& reduced)
     gjkWitness(reduced, step_->pointA, step_->pointB);
 }
 
-void GjkRecorder::stepEndsLoop()
-{
+void GjkRecorder::stepEndsLoop() {
     if (step_) step_->terminated = true;
 }
 
-void GjkRecorder::termination(GjkTermination why)
-{
+void GjkRecorder::termination(GjkTermination why) {
     if (trace_) trace_->termination = why;
 }
 
-bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r)
-{
+bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r) {
     // Uncertified: the lower bound is not within 1e-9 of |v| (a converged run has 1e-13).
     if (!(r.lowerBound >= (1.0 - 1e-9) * r.distance)) return true;
     if (s.count != 3) return false;
@@ -114,8 +104,7 @@ bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r)
     return e1.cross(e2).squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
 }
 
-int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out)
-{
+int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out) {
     Vec3 a[4], b[4];
     int na = 0, nb = 0;
     for (int i = 0; i < s.count; ++i) {
@@ -143,7 +132,8 @@ int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out)
             out[n++] = e;
         }
     }
-    std::sort(out, out + n, [](const EdgePairDistance& x, const EdgePairDistance& y) { return x.distance < y.distance; });
+    std::sort(out, out + n,
+              [](const EdgePairDistance& x, const EdgePairDistance& y) { return x.distance < y.distance; });
     return n;
 }
 

@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "core/closest/edge_pair_distance.h"
-#include "core/gjk_epa/simplex_solver.h"
 #include "core/base/support.h"
 #include "core/base/tolerances.h"
+#include "core/closest/edge_pair_distance.h"
+#include "core/gjk_epa/simplex_solver.h"
 
 namespace cdlab {
 
@@ -81,23 +81,23 @@ struct GjkOptions {
 struct GjkResult {
     GjkStatus status = GjkStatus::InvalidInput;
     bool intersect = false;
-    double distance = 0.0;              ///< Euclidean distance (0 when intersecting), world units
-    Vec3 pointA = Vec3::Zero();         ///< closest point on A (when intersecting: a common point
-    Vec3 pointB = Vec3::Zero();         ///<   of the simplex, pointA ~ pointB), world frame
-    Vec3 separatingAxis = Vec3::Zero(); ///< unit, from A toward B: (pointB - pointA) / distance;
-                                        ///< zero when intersecting
-    GjkSimplex simplex;                 ///< terminal simplex (input for EPA or a warm start)
+    double distance = 0.0;               ///< Euclidean distance (0 when intersecting), world units
+    Vec3 pointA = Vec3::Zero();          ///< closest point on A (when intersecting: a common point
+    Vec3 pointB = Vec3::Zero();          ///<   of the simplex, pointA ~ pointB), world frame
+    Vec3 separatingAxis = Vec3::Zero();  ///< unit, from A toward B: (pointB - pointA) / distance;
+                                         ///< zero when intersecting
+    GjkSimplex simplex;                  ///< terminal simplex (input for EPA or a warm start)
     int iterations = 0;
     GjkTermination termination = GjkTermination::InvalidInput;
-    double lowerBound = 0.0;            ///< max over iterations of v·w / |v| (distance >= this)
-    double upperBound = 0.0;            ///< |v| (distance <= this)
-    bool edgePairRefined = false;       ///< distance and witnesses from the edge pair (see options)
+    double lowerBound = 0.0;       ///< max over iterations of v·w / |v| (distance >= this)
+    double upperBound = 0.0;       ///< |v| (distance <= this)
+    bool edgePairRefined = false;  ///< distance and witnesses from the edge pair (see options)
 };
 
 /// One GJK iteration as plain data (for demos / debugging). Simplex slots are named A, B, C, D.
 struct GjkTraceStep {
     int iteration = 0;
-    GjkVertex simplex[4];           ///< simplex after adding the new support point, before reduction
+    GjkVertex simplex[4];  ///< simplex after adding the new support point, before reduction
     int simplexCount = 0;
     Vec3 direction = Vec3::Zero();  ///< search direction d = -v
     GjkVertex support;              ///< new support point (w, a, b)
@@ -106,10 +106,10 @@ struct GjkTraceStep {
     Vec3 v = Vec3::Zero();          ///< closest point of the kept sub-simplex to the origin
     Vec3 pointA = Vec3::Zero();     ///< witness points for this v
     Vec3 pointB = Vec3::Zero();
-    double lowerBound = 0.0;        ///< distance lower bound so far
-    double upperBound = 0.0;        ///< |v| before this step's reduction
-    double gapTest = 0.0;           ///< |v|² - v·w, compared with relativeTolerance * |v|²
-    bool terminated = false;        ///< this step ended the loop (then keptSlots etc. are unchanged)
+    double lowerBound = 0.0;  ///< distance lower bound so far
+    double upperBound = 0.0;  ///< |v| before this step's reduction
+    double gapTest = 0.0;     ///< |v|² - v·w, compared with relativeTolerance * |v|²
+    bool terminated = false;  ///< this step ended the loop (then keptSlots etc. are unchanged)
 
     int keptCount() const { return std::popcount(keptSlots); }
 };
@@ -171,8 +171,7 @@ int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
 /// of the distance; when it equals the pair's distance up to rounding, that distance is exact.
 /// Uncertified candidates (e.g. crossed edges of penetrating shapes) change nothing.
 template <class A, class B>
-void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r)
-{
+void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
     if (!gjkNeedsEdgePairs(s, r)) return;
     EdgePairDistance candidate[9];
     const int n = gjkEdgePairCandidates(s, candidate);
@@ -182,8 +181,8 @@ void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, G
         const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
         const double lower = e.axis.dot(sb) - e.axis.dot(sa);
         // Rounding of the two dot products and of the axis (a few u) times the coordinates.
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(),
-                                   e.pointA.cwiseAbs().maxCoeff(), e.pointB.cwiseAbs().maxCoeff()});
+        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), e.pointA.cwiseAbs().maxCoeff(),
+                                   e.pointB.cwiseAbs().maxCoeff()});
         if (!(lower >= e.distance - ulps(32, m))) continue;  // 32 ulps = 64 unit roundoffs
         r.distance = e.distance;
         r.upperBound = e.distance;
@@ -199,8 +198,7 @@ void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, G
 /// Support of `shape` along d, through the shape's hinted overload support(d, hint) when it has
 /// one (PolytopeShape: hill climbing restarts at the previous answer, see core/geometry/shapes.h).
 template <class S>
-inline Vec3 hintedSupport(const S& shape, const Vec3& d, int& hint)
-{
+inline Vec3 hintedSupport(const S& shape, const Vec3& d, int& hint) {
     if constexpr (requires { shape.support(d, hint); }) {
         return shape.support(d, hint);
     } else {
@@ -215,9 +213,7 @@ struct SupportHints {
 };
 
 template <class A, class B>
-inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out,
-                       SupportHints& hints)
-{
+inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out, SupportHints& hints) {
     out.direction = d;
     out.a = hintedSupport(shapeA, d, hints.a);
     out.b = hintedSupport(shapeB, Vec3(-d), hints.b);
@@ -225,15 +221,13 @@ inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVerte
 }
 
 template <class A, class B>
-inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out)
-{
+inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out) {
     SupportHints cold;
     gjkSupport(shapeA, shapeB, d, out, cold);
 }
 
 /// Keep the sub-simplex `c` of s (indices ascending, so compaction in place is safe).
-inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c)
-{
+inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c) {
     for (int k = 0; k < c.count; ++k) {
         if (c.index[k] != k) s.vertex[k] = s.vertex[c.index[k]];
         s.lambda[k] = c.lambda[k];
@@ -245,9 +239,8 @@ inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c)
 /// witnesses from the same weights): the distance |v| and the axis -v / |v|, a face's normal when
 /// the simplex is a triangle, edge-pair refinement when asked for.
 template <class A, class B>
-void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s,
-               GjkTermination why, GjkResult& r)
-{
+void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s, GjkTermination why,
+               GjkResult& r) {
     r.termination = why;
     if (why == GjkTermination::InvalidInput) {
         r.status = GjkStatus::InvalidInput;
@@ -288,9 +281,8 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
 /// as supports of the current shapes (duplicates dropped, then reduced), or one support point
 /// along +x. False when a support is not finite.
 template <class A, class B>
-bool gjkStartSimplex(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkSimplex& s,
-                     SupportHints& hints, SimplexClosest& c)
-{
+bool gjkStartSimplex(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkSimplex& s, SupportHints& hints,
+                     SimplexClosest& c) {
     if (options.warmStart && options.warmStart->count > 0) {
         int n = 0;
         for (int i = 0; i < options.warmStart->count && i < 4; ++i) {
@@ -326,9 +318,7 @@ bool gjkStartSimplex(const A& shapeA, const B& shapeB, const GjkOptions& options
 /// the support point w of A − B along -v and keeps the smallest sub-simplex of W + {w} that holds
 /// the new nearest point, until the bounds v·w / |v| <= distance <= |v| meet.
 template <class A, class B>
-GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkTrace* trace,
-                 bool booleanQuery)
-{
+GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkTrace* trace, bool booleanQuery) {
     // v = 0 up to rounding: |v|² <= kTouch² max|w_i|². Computing v from vertices of size |w|
     // leaves an error of a few ulps of |w|; below 1e-14 |w| the origin is on the simplex.
     constexpr double kTouch2 = 1e-14 * 1e-14;
@@ -423,9 +413,7 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
 /// separating axis. Intersecting (or touching up to rounding) shapes give status Intersecting,
 /// distance 0 and a terminal simplex that contains the origin (feed it to epaPenetration).
 template <SupportMapping A, SupportMapping B>
-GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& options = {},
-                      GjkTrace* trace = nullptr)
-{
+GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& options = {}, GjkTrace* trace = nullptr) {
     return detail::gjkRun(shapeA, shapeB, options, trace, false);
 }
 
@@ -433,9 +421,8 @@ GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& option
 /// found. Optional `result` receives the (partial) GJK result: for separated shapes its distance
 /// is only an upper bound unless the loop converged.
 template <SupportMapping A, SupportMapping B>
-bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options = {},
-                  GjkTrace* trace = nullptr, GjkResult* result = nullptr)
-{
+bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options = {}, GjkTrace* trace = nullptr,
+                  GjkResult* result = nullptr) {
     GjkResult r = detail::gjkRun(shapeA, shapeB, options, trace, true);
     if (result) *result = r;
     return r.intersect;

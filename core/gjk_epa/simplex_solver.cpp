@@ -12,8 +12,7 @@ namespace {
 // rounding error of a few ulps of that product, so below ~1e-14 their sign and direction are noise.
 constexpr double kDegenerate = 1e-14;
 
-void setVertex(SimplexClosest& c, const Vec3* w, int i)
-{
+void setVertex(SimplexClosest& c, const Vec3* w, int i) {
     c.count = 1;
     c.index[0] = i;
     c.lambda[0] = 1.0;
@@ -24,8 +23,7 @@ void setVertex(SimplexClosest& c, const Vec3* w, int i)
 
 // S1D: segment w[i] w[j], i < j. Barycentric weights from dot products with t = w[j] - w[i]:
 // lambda_j = -w[i]·t / t·t, lambda_i = w[j]·t / t·t (both positive iff the origin projects inside).
-void s1d(const Vec3* w, int i, int j, SimplexClosest& c)
-{
+void s1d(const Vec3* w, int i, int j, SimplexClosest& c) {
     const Vec3& p = w[i];
     const Vec3& q = w[j];
     const Vec3 t = q - p;
@@ -54,8 +52,7 @@ void s1d(const Vec3* w, int i, int j, SimplexClosest& c)
     c.v = p + lj * t;
 }
 
-void keepNearest(SimplexClosest& best, const SimplexClosest& candidate, bool& have)
-{
+void keepNearest(SimplexClosest& best, const SimplexClosest& candidate, bool& have) {
     if (!have || candidate.v.squaredNorm() < best.v.squaredNorm()) {
         best = candidate;
         have = true;
@@ -66,8 +63,7 @@ void keepNearest(SimplexClosest& best, const SimplexClosest& candidate, bool& ha
 // the signed areas of the sub-triangles (p0 replacing one vertex) in the coordinate plane where the
 // triangle's projection is largest. Same signs: p0 is inside. Otherwise descend into the edges the
 // origin lies beyond (their area has the wrong sign).
-void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c)
-{
+void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
     const Vec3& a = w[i];
     const Vec3& b = w[j];
     const Vec3& d = w[k];
@@ -121,8 +117,7 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c)
 
 // S3D: tetrahedron w[0..3]. C_m = signed volume with the origin in place of vertex m, D = sum C_m.
 // All C_m of D's sign: the origin is inside. Otherwise descend into the facets it lies beyond.
-void s3d(const Vec3* w, SimplexClosest& c)
-{
+void s3d(const Vec3* w, SimplexClosest& c) {
     const Vec3 e1 = w[1] - w[0];
     const Vec3 e2 = w[2] - w[0];
     const Vec3 e3 = w[3] - w[0];
@@ -169,8 +164,7 @@ void s3d(const Vec3* w, SimplexClosest& c)
 
 }  // namespace
 
-SimplexClosest closestSignedVolumes(const Vec3* w, int n)
-{
+SimplexClosest closestSignedVolumes(const Vec3* w, int n) {
     SimplexClosest c;
     switch (n) {
         case 1: setVertex(c, w, 0); break;
@@ -184,8 +178,7 @@ SimplexClosest closestSignedVolumes(const Vec3* w, int n)
 
 // ---- Johnson's distance sub-algorithm (van den Bergen §4.3.3) ---------------------------------
 
-SimplexClosest closestJohnson(const Vec3* y, int n)
-{
+SimplexClosest closestJohnson(const Vec3* y, int n) {
     SimplexClosest c;
     if (n < 1 || n > 4) return c;
     double dp[4][4];
@@ -249,9 +242,6 @@ SimplexClosest closestJohnson(const Vec3* y, int n)
     return c;
 }
 
-const char* nameOf(SimplexSolver solver)
-{
-    return solver == SimplexSolver::Johnson ? "Johnson" : "SignedVolumes";
-}
+const char* nameOf(SimplexSolver solver) { return solver == SimplexSolver::Johnson ? "Johnson" : "SignedVolumes"; }
 
 }  // namespace cdlab

@@ -21,10 +21,10 @@ enum class SimplexSolver { Johnson, SignedVolumes };
 
 /// The closest point of conv{w[0..n-1]} to the origin, as a sub-simplex plus barycentric weights.
 struct SimplexClosest {
-    Vec3 v = Vec3::Zero();   ///< closest point, v = sum lambda[k] * w[index[k]]
-    double lambda[4] = {};   ///< barycentric weights of the kept vertices, each > 0, sum 1
-    int index[4] = {};       ///< input indices of the kept vertices, ascending
-    int count = 0;           ///< number of kept vertices (1..4); 4 means the origin is inside
+    Vec3 v = Vec3::Zero();  ///< closest point, v = sum lambda[k] * w[index[k]]
+    double lambda[4] = {};  ///< barycentric weights of the kept vertices, each > 0, sum 1
+    int index[4] = {};      ///< input indices of the kept vertices, ascending
+    int count = 0;          ///< number of kept vertices (1..4); 4 means the origin is inside
 };
 
 /// Closest point of the simplex w[0..n-1] (1 <= n <= 4, any frame, any units) to the origin by
@@ -36,8 +36,7 @@ SimplexClosest closestSignedVolumes(const Vec3* w, int n);
 SimplexClosest closestJohnson(const Vec3* w, int n);
 
 /// Dispatch on the solver.
-inline SimplexClosest closestOnSimplex(const Vec3* w, int n, SimplexSolver solver)
-{
+inline SimplexClosest closestOnSimplex(const Vec3* w, int n, SimplexSolver solver) {
     return solver == SimplexSolver::Johnson ? closestJohnson(w, n) : closestSignedVolumes(w, n);
 }
 

@@ -42,12 +42,10 @@ bool finite(const Triangle& t) { return t.a.allFinite() && t.b.allFinite() && t.
 
 // A ray / segment o + t d, t in [0, tMax], lying in the plane of a non-degenerate triangle:
 // first contact by 2D clipping in the projection along `axis`.
-RayTriangleHit coplanarHit(const Vec3& o, const Vec3& d, double tMax, const Triangle& tri,
-                           int axis, bool exactHit) {
+RayTriangleHit coplanarHit(const Vec3& o, const Vec3& d, double tMax, const Triangle& tri, int axis, bool exactHit) {
     RayTriangleHit hit;
     const auto poly = projectTriangle(tri, axis);
-    const LineClip2d clip =
-        clipLineToConvexPolygon2d(poly, dropAxis(o, axis), dropAxis(d, axis), 0.0, tMax);
+    const LineClip2d clip = clipLineToConvexPolygon2d(poly, dropAxis(o, axis), dropAxis(d, axis), 0.0, tMax);
     if (!clip.hit && !exactHit) return hit;
     hit.hit = true;
     hit.coplanar = true;
@@ -110,8 +108,8 @@ RayBoxHit slabs(const Vec3& o, const Vec3& d, double tMax, const Aabb& box, Slab
 
 RayHit linePlane(const Vec3& o, const Vec3& d, double tMax, const Plane& plane) {
     RayHit hit;
-    if (!o.allFinite() || !d.allFinite() || !plane.normal.allFinite() ||
-        !std::isfinite(plane.offset) || plane.normal.isZero(0.0))
+    if (!o.allFinite() || !d.allFinite() || !plane.normal.allFinite() || !std::isfinite(plane.offset) ||
+        plane.normal.isZero(0.0))
         return hit;
     // n . (o + t d) = offset  =>  t = (offset - n . o) / (n . d)
     const double num = plane.offset - plane.normal.dot(o);
@@ -133,8 +131,7 @@ RayHit linePlane(const Vec3& o, const Vec3& d, double tMax, const Plane& plane) 
 
 RayHit lineSphere(const Vec3& o, const Vec3& d, double tMax, const Sphere& s) {
     RayHit hit;
-    if (!o.allFinite() || !d.allFinite() || !s.center.allFinite() || !(s.radius >= 0.0) ||
-        !std::isfinite(s.radius))
+    if (!o.allFinite() || !d.allFinite() || !s.center.allFinite() || !(s.radius >= 0.0) || !std::isfinite(s.radius))
         return hit;
     // |m + t d|^2 = r^2 with m = o - c:  a t^2 + 2 b t + c = 0.
     const Vec3 m = o - s.center;
@@ -189,8 +186,7 @@ RayBoxHit intersectSegmentAabb(const Segment& segment, const Aabb& box, SlabTrac
     return slabs(segment.a, segment.b - segment.a, 1.0, box, trace);
 }
 
-RayTriangleHit intersectRayTriangle(const Ray& ray, const Triangle& tri,
-                                    const RayTriangleOptions& options) {
+RayTriangleHit intersectRayTriangle(const Ray& ray, const Triangle& tri, const RayTriangleOptions& options) {
     RayTriangleHit hit;
     const Vec3& o = ray.origin;
     const Vec3& d = ray.direction;

@@ -41,12 +41,12 @@ RayHit intersectSegmentSphere(const Segment& segment, const Sphere& sphere);
 /// One slab of the ray-box test, recorded for demos.
 struct SlabStep {
     int axis = 0;
-    bool parallel = false;   ///< direction[axis] is +0 or -0: the slab only tests the origin.
-    double tNear = 0.0;      ///< entry / exit parameters of this slab (when !parallel)
+    bool parallel = false;  ///< direction[axis] is +0 or -0: the slab only tests the origin.
+    double tNear = 0.0;     ///< entry / exit parameters of this slab (when !parallel)
     double tFar = 0.0;
-    double tEnter = 0.0;     ///< running interval after this slab
+    double tEnter = 0.0;  ///< running interval after this slab
     double tExit = 0.0;
-    bool rejected = false;   ///< the running interval became empty here
+    bool rejected = false;  ///< the running interval became empty here
 };
 struct SlabTrace {
     std::vector<SlabStep> steps;
@@ -97,8 +97,7 @@ struct RayTriangleHit {
 /// triangles sharing it. t and barycentric are then computed by Möller-Trumbore in doubles
 /// (clamped to the exact decision). A ray in the triangle's plane hits iff it meets the
 /// triangle in that plane (decided in doubles by 2D clipping; single-sided: no hit).
-RayTriangleHit intersectRayTriangle(const Ray& ray, const Triangle& triangle,
-                                    const RayTriangleOptions& options = {});
+RayTriangleHit intersectRayTriangle(const Ray& ray, const Triangle& triangle, const RayTriangleOptions& options = {});
 
 /// Segment against triangle (Ericson §5.3.6, both faces). Exact decision from orient3d of the
 /// segment end points and the vertices (also in the coplanar case, by exact 2D tests); t,

@@ -83,8 +83,8 @@ SphereShapeResult intersectSphereAabb(const Sphere& sphere, const Aabb& box) {
 }
 
 SphereShapeResult intersectSphereObb(const Sphere& sphere, const Obb& box) {
-    if (!validSphere(sphere) || !box.center.allFinite() || !box.axes.allFinite() ||
-        !box.halfExtents.allFinite() || !(box.halfExtents.array() >= 0.0).all())
+    if (!validSphere(sphere) || !box.center.allFinite() || !box.axes.allFinite() || !box.halfExtents.allFinite() ||
+        !(box.halfExtents.array() >= 0.0).all())
         return {};
     // Ericson §5.1.4: clamp the center's box coordinates to the half extents.
     const Vec3 local = box.axes.transpose() * (sphere.center - box.center);
@@ -93,8 +93,7 @@ SphereShapeResult intersectSphereObb(const Sphere& sphere, const Obb& box) {
 }
 
 SphereShapeResult intersectSphereTriangle(const Sphere& sphere, const Triangle& tri) {
-    if (!validSphere(sphere) || !tri.a.allFinite() || !tri.b.allFinite() || !tri.c.allFinite())
-        return {};
+    if (!validSphere(sphere) || !tri.a.allFinite() || !tri.b.allFinite() || !tri.c.allFinite()) return {};
     const Vec3& p = sphere.center;
     if (projectionAxis(tri) >= 0) return finish(sphere, closestOnTriangle(p, tri.a, tri.b, tri.c));
     // Zero-area triangle: the closest of its three edges.

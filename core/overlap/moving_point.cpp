@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/overlap/intersect_ray.h"
 #include "core/base/orient.h"
+#include "core/overlap/intersect_ray.h"
 #include "core/overlap/polygon_tests.h"
 
 namespace cdlab {
@@ -12,8 +12,8 @@ namespace cdlab {
 namespace {
 
 bool validMotion(const MovingPoint& m) {
-    return m.position.allFinite() && m.velocity.allFinite() && std::isfinite(m.tBegin) &&
-           std::isfinite(m.tEnd) && m.tBegin <= m.tEnd;
+    return m.position.allFinite() && m.velocity.allFinite() && std::isfinite(m.tBegin) && std::isfinite(m.tEnd) &&
+           m.tBegin <= m.tEnd;
 }
 
 // The path as a segment: s in [0, 1] maps to t = tBegin + s (tEnd - tBegin).
@@ -45,8 +45,7 @@ double closestParameter(const Vec3& p, const Vec3& a, const Vec3& b) {
 bool segmentsMeetExactly(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b) {
     if (orient3d(p, q, a, b) != 0) return false;
     for (int axis = 0; axis < 3; ++axis)
-        if (!segmentsIntersect2d(dropAxis(p, axis), dropAxis(q, axis), dropAxis(a, axis),
-                                 dropAxis(b, axis)))
+        if (!segmentsIntersect2d(dropAxis(p, axis), dropAxis(q, axis), dropAxis(a, axis), dropAxis(b, axis)))
             return false;
     return true;
 }
@@ -86,8 +85,7 @@ MovingPointHit intersectMovingPointSphere(const MovingPoint& m, const Sphere& sp
 }
 
 MovingPointHit intersectMovingPointCapsule(const MovingPoint& m, const Capsule& c) {
-    if (!validMotion(m) || !c.a.allFinite() || !c.b.allFinite() || !(c.radius >= 0.0) ||
-        !std::isfinite(c.radius))
+    if (!validMotion(m) || !c.a.allFinite() || !c.b.allFinite() || !(c.radius >= 0.0) || !std::isfinite(c.radius))
         return {};
     const Segment path = pathOf(m);
     if (c.radius == 0.0) return capsuleZeroRadius(m, path, c);

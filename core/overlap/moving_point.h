@@ -15,7 +15,7 @@ namespace cdlab {
 
 /// A point moving at constant velocity: position + t * velocity for t in [tBegin, tEnd].
 struct MovingPoint {
-    Vec3 position;   ///< position at t = 0
+    Vec3 position;  ///< position at t = 0
     Vec3 velocity;
     double tBegin = 0.0;
     double tEnd = 1.0;

@@ -13,8 +13,8 @@ namespace {
 // p lies in the axis-aligned bounding box of a and b; for p collinear with a, b this is
 // "p on the closed segment ab".
 bool inBox(const Vec2& a, const Vec2& b, const Vec2& p) {
-    return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) &&
-           std::min(a.y(), b.y()) <= p.y() && p.y() <= std::max(a.y(), b.y());
+    return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
+           p.y() <= std::max(a.y(), b.y());
 }
 
 // Winding of a convex polygon: the sign of the first nonzero orient2d(v0, v_i, v_i+1),
@@ -42,8 +42,7 @@ bool intersectByFeatures(std::span<const Vec2> a, std::span<const Vec2> b) {
         if (pointInConvexPolygon2d(a, v)) return true;
     for (std::size_t i = 0; i < a.size(); ++i)
         for (std::size_t j = 0; j < b.size(); ++j)
-            if (segmentsIntersect2d(a[i], a[(i + 1) % a.size()], b[j], b[(j + 1) % b.size()]))
-                return true;
+            if (segmentsIntersect2d(a[i], a[(i + 1) % a.size()], b[j], b[(j + 1) % b.size()])) return true;
     return false;
 }
 
@@ -121,8 +120,8 @@ PolygonOverlapResult intersectConvexPolygons2d(std::span<const Vec2> a, std::spa
     return result;
 }
 
-LineClip2d clipLineToConvexPolygon2d(std::span<const Vec2> polygon, const Vec2& p, const Vec2& d,
-                                     double tMin, double tMax) {
+LineClip2d clipLineToConvexPolygon2d(std::span<const Vec2> polygon, const Vec2& p, const Vec2& d, double tMin,
+                                     double tMax) {
     LineClip2d clip;
     const int w = winding(polygon);
     if (w == 0 || !(tMin <= tMax)) return clip;
@@ -194,8 +193,7 @@ bool pointInConvexPolygon3d(std::span<const Vec3> polygon, const Vec3& p, double
     return pointInConvexPolygon2d(project(polygon, axis), dropAxis(p, axis));
 }
 
-PolygonOverlapResult intersectCoplanarConvexPolygons3d(std::span<const Vec3> a,
-                                                       std::span<const Vec3> b,
+PolygonOverlapResult intersectCoplanarConvexPolygons3d(std::span<const Vec3> a, std::span<const Vec3> b,
                                                        double planeTolerance) {
     PolygonOverlapResult result;
     if (a.empty() || b.empty()) return result;

@@ -43,8 +43,8 @@ struct LineClip2d {
     double tExit = 0.0;
 };
 /// Clip p + t d, t in [tMin, tMax], to the polygon; inexact at the boundary (floating point).
-LineClip2d clipLineToConvexPolygon2d(std::span<const Vec2> polygon, const Vec2& p, const Vec2& d,
-                                     double tMin, double tMax);
+LineClip2d clipLineToConvexPolygon2d(std::span<const Vec2> polygon, const Vec2& p, const Vec2& d, double tMin,
+                                     double tMax);
 
 /// Unit normal of a planar polygon by Newell's method (zero vector for zero area); sign follows
 /// the right-hand rule on the vertex order.
@@ -54,14 +54,12 @@ Vec3 polygonNormal(std::span<const Vec3> polygon);
 /// (world units), and its projection lies in the polygon (exact 2D test after dropping the
 /// dominant normal axis). Zero-area polygons: p must lie on the segment (or point) they span
 /// exactly (planeTolerance unused).
-bool pointInConvexPolygon3d(std::span<const Vec3> polygon, const Vec3& p,
-                            double planeTolerance = 1e-9);
+bool pointInConvexPolygon3d(std::span<const Vec3> polygon, const Vec3& p, double planeTolerance = 1e-9);
 
 /// Coplanar convex 3D polygons overlap: false when some vertex of b is farther than
 /// planeTolerance (world units) from the plane of a; otherwise the 2D test on both polygons
 /// projected along a's dominant normal axis.
-PolygonOverlapResult intersectCoplanarConvexPolygons3d(std::span<const Vec3> a,
-                                                       std::span<const Vec3> b,
+PolygonOverlapResult intersectCoplanarConvexPolygons3d(std::span<const Vec3> a, std::span<const Vec3> b,
                                                        double planeTolerance = 1e-9);
 
 }  // namespace cdlab

@@ -28,8 +28,8 @@ bool validObb(const Obb& box) {
 
 // Records a step and says whether it separates: intervals [minA, maxA] and [minB, maxB] are
 // disjoint (strictly: touching does not separate).
-bool axisStep(SatAxisKind kind, int ia, int ib, const Vec3& axis, double minA, double maxA,
-              double minB, double maxB, SatTrace* trace, SatResult& result) {
+bool axisStep(SatAxisKind kind, int ia, int ib, const Vec3& axis, double minA, double maxA, double minB, double maxB,
+              SatTrace* trace, SatResult& result) {
     SatAxisStep step;
     step.kind = kind;
     step.indexA = ia;
@@ -46,8 +46,7 @@ bool axisStep(SatAxisKind kind, int ia, int ib, const Vec3& axis, double minA, d
 }
 
 // Segment p0p1 against the box [-e, e] (box frame). toWorld maps box-frame axes to world.
-SatResult segmentBoxLocal(const Vec3& p0, const Vec3& p1, const Vec3& e, const Mat3& toWorld,
-                          SatTrace* trace) {
+SatResult segmentBoxLocal(const Vec3& p0, const Vec3& p1, const Vec3& e, const Mat3& toWorld, SatTrace* trace) {
     SatResult result;
     // Ericson §5.3.3: segment midpoint m and half-length vector d.
     const Vec3 m = 0.5 * (p0 + p1);
@@ -55,8 +54,7 @@ SatResult segmentBoxLocal(const Vec3& p0, const Vec3& p1, const Vec3& e, const M
     Vec3 ad = d.cwiseAbs();
     // Box face axes: |m_i| > e_i + |d_i| separates.
     for (int i = 0; i < 3; ++i)
-        if (axisStep(SatAxisKind::FaceA, i, -1, toWorld.col(i), -e[i], e[i], m[i] - ad[i],
-                     m[i] + ad[i], trace, result))
+        if (axisStep(SatAxisKind::FaceA, i, -1, toWorld.col(i), -e[i], e[i], m[i] - ad[i], m[i] + ad[i], trace, result))
             return result;
     // Cross axes e_i x d: the epsilon guards the near-parallel case (see kSatParallelEpsilon).
     ad.array() += kSatParallelEpsilon * ad.maxCoeff();
@@ -68,17 +66,14 @@ SatResult segmentBoxLocal(const Vec3& p0, const Vec3& p1, const Vec3& e, const M
         const double r = e[j] * ad[k] + e[k] * ad[j];
         Vec3 local = Vec3::Zero();
         local[i] = 1.0;
-        if (axisStep(SatAxisKind::EdgeEdge, i, 0, toWorld * local.cross(d), -r, r, c, c, trace,
-                     result))
-            return result;
+        if (axisStep(SatAxisKind::EdgeEdge, i, 0, toWorld * local.cross(d), -r, r, c, c, trace, result)) return result;
     }
     result.hit = true;
     return result;
 }
 
 // Projection interval of triangle vertices (relative to the box center) on axis.
-void projectTriangle(const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& axis,
-                     double& lo, double& hi) {
+void projectTriangle(const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& axis, double& lo, double& hi) {
     const double p0 = v0.dot(axis), p1 = v1.dot(axis), p2 = v2.dot(axis);
     lo = std::min({p0, p1, p2});
     hi = std::max({p0, p1, p2});
@@ -91,8 +86,8 @@ SatResult testAabbAabb(const Aabb& a, const Aabb& b, SatTrace* trace) {
     if (!validAabb(a) || !validAabb(b)) return result;
     const Vec3 c = 0.5 * (a.min + a.max);
     for (int i = 0; i < 3; ++i)
-        if (axisStep(SatAxisKind::FaceA, i, -1, Vec3::Unit(i), a.min[i] - c[i], a.max[i] - c[i],
-                     b.min[i] - c[i], b.max[i] - c[i], trace, result))
+        if (axisStep(SatAxisKind::FaceA, i, -1, Vec3::Unit(i), a.min[i] - c[i], a.max[i] - c[i], b.min[i] - c[i],
+                     b.max[i] - c[i], trace, result))
             return result;
     result.hit = true;
     return result;
@@ -108,14 +103,13 @@ SatResult testSegmentAabb(const Segment& segment, const Aabb& box, SatTrace* tra
 SatResult testSegmentObb(const Segment& segment, const Obb& box, SatTrace* trace) {
     if (!validObb(box) || !segment.a.allFinite() || !segment.b.allFinite()) return {};
     const Mat3 toLocal = box.axes.transpose();
-    return segmentBoxLocal(toLocal * (segment.a - box.center), toLocal * (segment.b - box.center),
-                           box.halfExtents, box.axes, trace);
+    return segmentBoxLocal(toLocal * (segment.a - box.center), toLocal * (segment.b - box.center), box.halfExtents,
+                           box.axes, trace);
 }
 
 SatResult testTriangleAabb(const Triangle& tri, const Aabb& box, SatTrace* trace) {
     SatResult result;
-    if (!validAabb(box) || !tri.a.allFinite() || !tri.b.allFinite() || !tri.c.allFinite())
-        return result;
+    if (!validAabb(box) || !tri.a.allFinite() || !tri.b.allFinite() || !tri.c.allFinite()) return result;
     // Ericson §5.2.9: move the box to the origin.
     const Vec3 c = 0.5 * (box.min + box.max);
     const Vec3 e = box.max - c;
@@ -132,15 +126,13 @@ SatResult testTriangleAabb(const Triangle& tri, const Aabb& box, SatTrace* trace
             const Vec3 L = Vec3::Unit(i).cross(f[j]);
             projectTriangle(v0, v1, v2, L, lo, hi);
             const double r = radius(L);
-            if (axisStep(SatAxisKind::EdgeEdge, i, j, L, -r, r, lo, hi, trace, result))
-                return result;
+            if (axisStep(SatAxisKind::EdgeEdge, i, j, L, -r, r, lo, hi, trace, result)) return result;
         }
     }
     // Category 1: the box face normals (the triangle's bounding box against the box).
     for (int i = 0; i < 3; ++i) {
         projectTriangle(v0, v1, v2, Vec3::Unit(i), lo, hi);
-        if (axisStep(SatAxisKind::FaceA, i, -1, Vec3::Unit(i), -e[i], e[i], lo, hi, trace, result))
-            return result;
+        if (axisStep(SatAxisKind::FaceA, i, -1, Vec3::Unit(i), -e[i], e[i], lo, hi, trace, result)) return result;
     }
     // Category 2: the triangle normal (plane-box test, Ericson §5.2.3). All three vertices
     // project to n . v0 up to rounding; use the interval of all three to stay conservative.
@@ -167,16 +159,14 @@ SatResult testObbObb(const Obb& a, const Obb& b, SatTrace* trace) {
     // Axes A_i: ra = ea_i, rb = sum_j eb_j |R_ij|, distance t_i.
     for (int i = 0; i < 3; ++i) {
         const double rb = eb.dot(absR.row(i));
-        if (axisStep(SatAxisKind::FaceA, i, -1, a.axes.col(i), -ea[i], ea[i], t[i] - rb, t[i] + rb,
-                     trace, result))
+        if (axisStep(SatAxisKind::FaceA, i, -1, a.axes.col(i), -ea[i], ea[i], t[i] - rb, t[i] + rb, trace, result))
             return result;
     }
     // Axes B_j: ra = sum_i ea_i |R_ij|, rb = eb_j, distance t . R_col_j.
     for (int j = 0; j < 3; ++j) {
         const double ra = ea.dot(absR.col(j));
         const double s = t.dot(R.col(j));
-        if (axisStep(SatAxisKind::FaceB, -1, j, b.axes.col(j), -ra, ra, s - eb[j], s + eb[j], trace,
-                     result))
+        if (axisStep(SatAxisKind::FaceB, -1, j, b.axes.col(j), -ra, ra, s - eb[j], s + eb[j], trace, result))
             return result;
     }
     // Axes A_i x B_j (in a's frame L = e_i x R_col_j):
@@ -190,8 +180,7 @@ SatResult testObbObb(const Obb& a, const Obb& b, SatTrace* trace) {
             const double rb = eb[j1] * absR(i, j2) + eb[j2] * absR(i, j1);
             const double s = t[i2] * R(i1, j) - t[i1] * R(i2, j);
             const Vec3 axis = a.axes.col(i).cross(b.axes.col(j));
-            if (axisStep(SatAxisKind::EdgeEdge, i, j, axis, -ra, ra, s - rb, s + rb, trace, result))
-                return result;
+            if (axisStep(SatAxisKind::EdgeEdge, i, j, axis, -ra, ra, s - rb, s + rb, trace, result)) return result;
         }
     }
     result.hit = true;

@@ -2,8 +2,8 @@
 
 #include <array>
 
-#include "core/overlap/intersect_ray.h"
 #include "core/base/orient.h"
+#include "core/overlap/intersect_ray.h"
 #include "core/overlap/polygon_tests.h"
 
 namespace cdlab {
@@ -23,8 +23,7 @@ bool strictlyOneSide(const Triangle& p, const Triangle& t, bool& allZero) {
 }
 
 // Contact points of the edges of `edges` with triangle `t`, appended to points.
-void edgeContacts(const Triangle& edges, const Triangle& t, std::array<Vec3, 12>& points,
-                  int& count) {
+void edgeContacts(const Triangle& edges, const Triangle& t, std::array<Vec3, 12>& points, int& count) {
     const Vec3 v[3] = {edges.a, edges.b, edges.c};
     for (int i = 0; i < 3; ++i) {
         const Segment s{v[i], v[(i + 1) % 3]};
@@ -57,10 +56,8 @@ TriangleTriangleResult intersectTriangleTriangle(const Triangle& a, const Triang
     if (bOnPlaneA) {
         // Coplanar: exact 2D SAT in the projection that keeps a non-degenerate (b lies in the
         // same plane, so that projection keeps it non-degenerate too).
-        const std::array<Vec2, 3> a2 = {dropAxis(a.a, axisA), dropAxis(a.b, axisA),
-                                        dropAxis(a.c, axisA)};
-        const std::array<Vec2, 3> b2 = {dropAxis(b.a, axisA), dropAxis(b.b, axisA),
-                                        dropAxis(b.c, axisA)};
+        const std::array<Vec2, 3> a2 = {dropAxis(a.a, axisA), dropAxis(a.b, axisA), dropAxis(a.c, axisA)};
+        const std::array<Vec2, 3> b2 = {dropAxis(b.a, axisA), dropAxis(b.b, axisA), dropAxis(b.c, axisA)};
         result.coplanar = true;
         result.hit = intersectConvexPolygons2d(a2, b2).hit;
         return result;

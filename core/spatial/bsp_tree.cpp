@@ -20,8 +20,8 @@ struct Fragment {
 
 struct BspTree::Work {
     std::vector<Fragment> frags;
-    std::vector<Vec3> normal;   // per input polygon: unit normal (local frame)
-    std::vector<double> offset; // per input polygon: normal . x = offset (local frame)
+    std::vector<Vec3> normal;    // per input polygon: unit normal (local frame)
+    std::vector<double> offset;  // per input polygon: normal . x = offset (local frame)
     double eps = 0.0;
 };
 
@@ -210,7 +210,8 @@ int BspTree::pickSplitter(const std::vector<int>& polys, const Work& work, BspSp
     if (options_.maxCandidates > 0 && int(polys.size()) > options_.maxCandidates) {
         candidates.clear();
         for (int k = 0; k < options_.maxCandidates; ++k)
-            candidates.push_back(polys[std::size_t(std::int64_t(k) * std::int64_t(polys.size()) / options_.maxCandidates)]);
+            candidates.push_back(
+                polys[std::size_t(std::int64_t(k) * std::int64_t(polys.size()) / options_.maxCandidates)]);
     }
     int bestSource = -1;
     double bestScore = INFINITY;
@@ -219,8 +220,9 @@ int BspTree::pickSplitter(const std::vector<int>& polys, const Work& work, BspSp
         int nf = 0, nb = 0, ns = 0;
         for (int j : polys) {
             const Fragment& f = work.frags[std::size_t(j)];
-            const Side side = f.source == s ? Side::Coplanar
-                                            : classify(f, work.normal[std::size_t(s)], work.offset[std::size_t(s)], work.eps);
+            const Side side = f.source == s
+                                  ? Side::Coplanar
+                                  : classify(f, work.normal[std::size_t(s)], work.offset[std::size_t(s)], work.eps);
             if (side == Side::Front || side == Side::Coplanar) ++nf;
             else if (side == Side::Back) ++nb;
             else ++ns;
@@ -248,36 +250,36 @@ void BspTree::partition(const std::vector<int>& polys, int id, Work& work, BspSp
         if (side == Side::Coplanar && f.source != bestSource && work.normal[std::size_t(f.source)].dot(n) < 0)
             side = Side::Back;  // opposite facing: its solid is on our front side, handled behind (see header)
         switch (side) {
-        case Side::Coplanar: {
-            BspFragment out;
-            for (const Vec3& v : f.vertices) out.vertices.push_back(v + origin_);
-            out.source = f.source;
-            out.split = f.split;
-            out.node = id;
-            nodes_[std::size_t(id)].fragments.push_back(int(fragments_.size()));
-            fragments_.push_back(std::move(out));
-            ++step.coplanar;
-            break;
-        }
-        case Side::Front:
-            frontList.push_back(j);
-            ++step.front;
-            break;
-        case Side::Back:
-            backList.push_back(j);
-            ++step.back;
-            break;
-        case Side::Straddling: {
-            Fragment fp, bp;
-            splitPolygon(f, n, d, work.eps, fp, bp);
-            ++step.straddling;
-            ++stats_.splits;
-            f = std::move(fp);  // reuse the slot for the front piece
-            frontList.push_back(j);
-            backList.push_back(int(work.frags.size()));
-            work.frags.push_back(std::move(bp));
-            break;
-        }
+            case Side::Coplanar: {
+                BspFragment out;
+                for (const Vec3& v : f.vertices) out.vertices.push_back(v + origin_);
+                out.source = f.source;
+                out.split = f.split;
+                out.node = id;
+                nodes_[std::size_t(id)].fragments.push_back(int(fragments_.size()));
+                fragments_.push_back(std::move(out));
+                ++step.coplanar;
+                break;
+            }
+            case Side::Front:
+                frontList.push_back(j);
+                ++step.front;
+                break;
+            case Side::Back:
+                backList.push_back(j);
+                ++step.back;
+                break;
+            case Side::Straddling: {
+                Fragment fp, bp;
+                splitPolygon(f, n, d, work.eps, fp, bp);
+                ++step.straddling;
+                ++stats_.splits;
+                f = std::move(fp);  // reuse the slot for the front piece
+                frontList.push_back(j);
+                backList.push_back(int(work.frags.size()));
+                work.frags.push_back(std::move(bp));
+                break;
+            }
         }
     }
 }

@@ -50,8 +50,8 @@ struct BspPolygon {
 struct BspOptions {
     double planeThickness = 1e-9;  ///< relative to the input size (see the header)
     double splitWeight = 0.8;      ///< K of Ericson §8.3.2: weight of splits vs imbalance (0.8 as there)
-    int maxCandidates = 0;         ///< 0: every polygon of a node is a candidate; else at most this many (evenly spaced)
-    int maxDepth = 1000;           ///< root depth 0 (a 5k-triangle torus needs ~220)
+    int maxCandidates = 0;  ///< 0: every polygon of a node is a candidate; else at most this many (evenly spaced)
+    int maxDepth = 1000;    ///< root depth 0 (a 5k-triangle torus needs ~220)
 };
 
 enum class BspStatus {
@@ -105,16 +105,16 @@ struct BspTrace {
 /// Result of a segment / ray query: the first point where it is in the solid (closed).
 struct BspRayResult {
     bool hit = false;
-    double t = 0.0;           ///< parameter of the first solid point (segment: 0..1; ray: units of |direction|)
+    double t = 0.0;  ///< parameter of the first solid point (segment: 0..1; ray: units of |direction|)
     Vec3 point = Vec3::Zero();
     bool startsInside = false;  ///< the start point is already in the solid (t = 0)
-    int leaf = -1;            ///< the solid leaf hit
+    int leaf = -1;              ///< the solid leaf hit
 };
 
 struct BspStats {
     int nodeCount = 0, innerCount = 0, solidLeaves = 0, emptyLeaves = 0;
     int depth = 0;
-    int splits = 0;           ///< polygons cut in two during the build
+    int splits = 0;  ///< polygons cut in two during the build
     int fragmentCount = 0;
 };
 

@@ -56,12 +56,12 @@ struct KdNode {
 struct KdQueryTrace {
     std::vector<int> visited;
     std::vector<int> pruned;
-    int distanceTests = 0;                 ///< point tests done
-    std::vector<int> bestSoFar;            ///< nearest: every improvement of the best point
+    int distanceTests = 0;       ///< point tests done
+    std::vector<int> bestSoFar;  ///< nearest: every improvement of the best point
 };
 
 struct KdNearestResult {
-    int index = -1;                  ///< input index of the nearest point; -1 if the tree is empty / query invalid
+    int index = -1;  ///< input index of the nearest point; -1 if the tree is empty / query invalid
     double distanceSquared = INFINITY;
 };
 
@@ -76,7 +76,7 @@ public:
     const std::vector<Vec3>& points() const { return points_; }
     /// Input indices in tree order: node n holds order()[n.begin .. n.end).
     const std::vector<int>& order() const { return order_; }
-    int depth() const;      ///< deepest node's depth (root 0)
+    int depth() const;  ///< deepest node's depth (root 0)
     int leafCount() const;
 
     /// Indices (sorted) of the points inside the closed box. An invalid box gives none.

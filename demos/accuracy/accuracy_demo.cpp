@@ -26,11 +26,11 @@
 #include <cstdint>
 #include <random>
 
-#include "core/gjk_epa/gjk.h"
 #include "core/geometry/shapes.h"
-#include "demos/oracles/minkowski_hull_oracle.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
+#include "demos/oracles/minkowski_hull_oracle.h"
 
 namespace cdlab::demos {
 
@@ -51,22 +51,19 @@ constexpr double kStressTolerance = 1e-12;
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
 double uniform(std::mt19937_64& rng, double lo, double hi) { return lo + (hi - lo) * uniform01(rng); }
 
-Vec3 randomUnit(std::mt19937_64& rng)
-{
+Vec3 randomUnit(std::mt19937_64& rng) {
     const double z = uniform(rng, -1.0, 1.0), phi = uniform(rng, 0.0, 6.283185307179586);
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
     return Vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 
-Vec3 perpendicular(const Vec3& u)
-{
+Vec3 perpendicular(const Vec3& u) {
     const Vec3 t = std::abs(u.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
     return u.cross(t).normalized();
 }
 
 /// n points on an ellipsoid with radii in [0.3, 1], randomly oriented (all in convex position).
-std::vector<Vec3> ellipsoid(std::mt19937_64& rng, int n)
-{
+std::vector<Vec3> ellipsoid(std::mt19937_64& rng, int n) {
     const Vec3 radii(uniform(rng, 0.3, 1.0), uniform(rng, 0.3, 1.0), uniform(rng, 0.3, 1.0));
     const Vec3 e0 = randomUnit(rng), e1 = perpendicular(e0), e2 = e0.cross(e1);
     std::vector<Vec3> v;
@@ -83,8 +80,7 @@ struct Pair {
 };
 
 /// Case `i` of decade `k` (x in [10^k, 10^(k+1))), drawn from (seed, k, i) only.
-Pair makePair(const std::string& sweep, std::uint64_t seed, int k, int i)
-{
+Pair makePair(const std::string& sweep, std::uint64_t seed, int k, int i) {
     std::mt19937_64 rng(seed * 1000003u + static_cast<std::uint64_t>(k + 100) * 1009u + static_cast<std::uint64_t>(i));
     const double x = std::pow(10.0, k + uniform01(rng));
     Pair p;
@@ -140,8 +136,7 @@ struct Settings {
     std::uint64_t seed = 1;
 };
 
-Sweep runSweep(const Settings& s)
-{
+Sweep runSweep(const Settings& s) {
     Sweep out;
     for (int k = s.kFrom; k < s.kTo; ++k) {
         Decade d;
@@ -155,7 +150,7 @@ Sweep runSweep(const Settings& s)
                 continue;
             }
             // Small separated sets: the hull-free brute force decides (as in `cdlab stress`).
-            const double exact = o.inside ? 0.0
+            const double exact = o.inside                             ? 0.0
                                  : p.a.size() <= 6 && p.b.size() <= 6 ? oracleDistanceBruteForce(p.a, p.b)
                                                                       : o.distance;
             const double L = std::max(centroidRadius(p.a), centroidRadius(p.b));
@@ -196,8 +191,7 @@ Sweep runSweep(const Settings& s)
 /// JSON number, with infinities (a NaN answer) written as null.
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
-std::string xLabelOf(const std::string& sweep)
-{
+std::string xLabelOf(const std::string& sweep) {
     if (sweep == "scale") return "size s of both polytopes (world units)";
     if (sweep == "offset") return "distance from the origin / size";
     return "angle between the two ridges (rad)";
@@ -207,8 +201,7 @@ class AccuracyScene final : public PreparedScene {
 public:
     AccuracyScene(SceneCommon common, Settings settings) : PreparedScene(std::move(common)), s_(settings) {}
 
-    DemoOutput execute(const RunContext& ctx) const override
-    {
+    DemoOutput execute(const RunContext& ctx) const override {
         const Sweep sw = runSweep(s_);
         DemoOutput out;
         out.trace = traceJson(sw);
@@ -228,13 +221,15 @@ public:
             po.xLabel = "|d - d*| / size, decade bins (0 counted in the first bin)";
             po.yLabel = "fraction of pairs";
             std::vector<double> sv, jo, re;
-            for (const Sample& x : sw.samples) sv.push_back(x.errorSv), jo.push_back(x.errorJohnson), re.push_back(x.errorRefined);
+            for (const Sample& x : sw.samples)
+                sv.push_back(x.errorSv), jo.push_back(x.errorJohnson), re.push_back(x.errorRefined);
             int svOver = 0, joOver = 0, reOver = 0;
             for (const Sample& x : sw.samples)
                 svOver += !(x.errorSv <= kStressTolerance), joOver += !(x.errorJohnson <= kStressTolerance),
                     reOver += !(x.errorRefined <= kStressTolerance);
             const bool withRefined = s_.sweep == "parallel_edges";
-            po.subtitle += "; over 1e-12: Johnson " + std::to_string(joOver) + ", signed volumes " + std::to_string(svOver) +
+            po.subtitle += "; over 1e-12: Johnson " + std::to_string(joOver) + ", signed volumes " +
+                           std::to_string(svOver) +
                            (withRefined ? ", + edge pairs " + std::to_string(reOver) : std::string()) + " of " +
                            std::to_string(sw.samples.size()) + " pairs";
             f.name = "histogram";
@@ -273,7 +268,8 @@ public:
                 // angle theta carry a relative error ~u / theta, so ~u / theta * L is the floor of
                 // any double-precision simplex solve (no solver can do better without more bits).
                 PlotSeries cond{"u / angle (sliver floor)", 6, true, false, {}, {}};
-                for (int k = s_.kFrom; k <= s_.kTo; ++k) cond.points.emplace_back(std::pow(10.0, k), 0x1p-53 / std::pow(10.0, k));
+                for (int k = s_.kFrom; k <= s_.kTo; ++k)
+                    cond.points.emplace_back(std::pow(10.0, k), 0x1p-53 / std::pow(10.0, k));
                 series.push_back(cond);
             }
             f.name = "plot";
@@ -285,8 +281,7 @@ public:
     }
 
 private:
-    Json traceJson(const Sweep& sw) const
-    {
+    Json traceJson(const Sweep& sw) const {
         Json t = Json::object();
         t["sweep"] = s_.sweep;
         t["seed"] = s_.seed;
@@ -299,11 +294,18 @@ private:
         int svOver = 0, joOver = 0, reOver = 0;
         const bool withRefined = s_.sweep == "parallel_edges";
         for (const Decade& d : sw.decades) {
-            Json decade = {{"from", std::pow(10.0, d.k)}, {"pairs", d.count},
-                           {"signed_volumes", {{"median", num(d.svMedian)}, {"max", num(d.svMax)}, {"over_1e-12", d.svOverTolerance}}},
-                           {"johnson", {{"median", num(d.johnsonMedian)}, {"max", num(d.johnsonMax)}, {"over_1e-12", d.johnsonOverTolerance}}}};
+            Json decade = {{"from", std::pow(10.0, d.k)},
+                           {"pairs", d.count},
+                           {"signed_volumes",
+                            {{"median", num(d.svMedian)}, {"max", num(d.svMax)}, {"over_1e-12", d.svOverTolerance}}},
+                           {"johnson",
+                            {{"median", num(d.johnsonMedian)},
+                             {"max", num(d.johnsonMax)},
+                             {"over_1e-12", d.johnsonOverTolerance}}}};
             if (withRefined)
-                decade["edge_pairs"] = {{"median", num(d.refinedMedian)}, {"max", num(d.refinedMax)}, {"over_1e-12", d.refinedOverTolerance}};
+                decade["edge_pairs"] = {{"median", num(d.refinedMedian)},
+                                        {"max", num(d.refinedMax)},
+                                        {"over_1e-12", d.refinedOverTolerance}};
             decades.push_back(decade);
             svWorst = std::max(svWorst, d.svMax);
             joWorst = std::max(joWorst, d.johnsonMax);
@@ -328,8 +330,9 @@ private:
                 for (const Sample& x : sw.samples) {
                     const double e = x.*error;
                     const std::string key = !std::isfinite(e) ? "nan"
-                                            : e <= kErrorFloor ? "<=1e-18"
-                                                               : "1e" + std::to_string(static_cast<int>(std::floor(std::log10(e))));
+                                            : e <= kErrorFloor
+                                                ? "<=1e-18"
+                                                : "1e" + std::to_string(static_cast<int>(std::floor(std::log10(e))));
                     b[key] = b.value(key, 0) + 1;
                 }
                 return b;
@@ -346,12 +349,11 @@ private:
 class AccuracyDemo final : public Demo {
 public:
     std::string name() const override { return "accuracy"; }
-    std::string description() const override
-    {
-        return "GJK distance error vs scale, offset and edge angle: signed volumes vs Johnson against a long double oracle";
+    std::string description() const override {
+        return "GJK distance error vs scale, offset and edge angle: signed volumes vs Johnson against a long double "
+               "oracle";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override
-    {
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
         SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
         Settings s;
@@ -376,8 +378,7 @@ public:
 
 }  // namespace
 
-const Demo& accuracyDemo()
-{
+const Demo& accuracyDemo() {
     static const AccuracyDemo demo;
     return demo;
 }

@@ -7,8 +7,8 @@
 
 #include "demos/bench/bench.h"
 #include "demos/catalog/catalog.h"
-#include "demos/query/query.h"
 #include "demos/harness/scene_runner.h"
+#include "demos/query/query.h"
 #include "demos/stress/stress.h"
 #include "render/gl_context.h"
 #include "render/image.h"
@@ -106,7 +106,8 @@ int cdlabMain(int argc, char** argv) {
             RunnerOptions o = parseRunnerOptions(argc, argv, 2, nullptr);
             if (o.update.empty()) {
                 const char* env = std::getenv("CDLAB_UPDATE_GOLDEN");
-                if (env && *env && std::strcmp(env, "0") != 0) o.update = std::strcmp(env, "all") == 0 ? "all" : "failing";
+                if (env && *env && std::strcmp(env, "0") != 0)
+                    o.update = std::strcmp(env, "all") == 0 ? "all" : "failing";
             }
             return runGolden(o);
         }

@@ -11,9 +11,9 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <memory>
-#include <iostream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -22,21 +22,21 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/primitives.h"
 #include "core/closest/closest_point.h"
 #include "core/geometry/convex_hull.h"
+#include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
-#include "core/base/primitives.h"
 #include "core/overlap/sat_tests.h"
-#include "core/geometry/shapes.h"
-#include "demos/bench/bench_measure.h"
-#include "demos/bench/bench_bvh.h"
 #include "demos/bench/bench_broadphase.h"
+#include "demos/bench/bench_bvh.h"
 #include "demos/bench/bench_lin_canny.h"
-#include "demos/oracles/minkowski_hull_oracle.h"
+#include "demos/bench/bench_measure.h"
 #include "demos/bench/bench_vclip.h"
 #include "demos/bench/peers/bench_peers.h"
 #include "demos/draw/plot.h"
+#include "demos/oracles/minkowski_hull_oracle.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 
@@ -53,16 +53,14 @@ struct PolyPair {
     MinkowskiOracle oracle;
 };
 
-PolytopeShape polytopeOf(const std::vector<Vec3>& v)
-{
+PolytopeShape polytopeOf(const std::vector<Vec3>& v) {
     const HullResult h = convexHull(v);
     return h.ok() ? PolytopeShape(h.polyhedron) : PolytopeShape(v);
 }
 
 /// `count` pairs of n-vertex polytopes, B's centre at `offset` (in units of the size, ~1) along a
 /// random direction. offset 2.2 > 1 + 1: always separated; 0.4: nearly always overlapping.
-std::vector<PolyPair> polyPairs(int n, int count, double offset, std::uint64_t seed, double moveBy = 0.0)
-{
+std::vector<PolyPair> polyPairs(int n, int count, double offset, std::uint64_t seed, double moveBy = 0.0) {
     std::mt19937_64 rng(seed);
     std::vector<PolyPair> pairs;
     for (int i = 0; i < count; ++i) {
@@ -97,17 +95,16 @@ struct BoxPair {
     Obb obbA, obbB;
 };
 
-std::vector<Vec3> corners(const Transformed<BoxShape>& box)
-{
+std::vector<Vec3> corners(const Transformed<BoxShape>& box) {
     std::vector<Vec3> c;
     const Vec3& h = box.shape.halfExtents;
     for (int i = 0; i < 8; ++i)
-        c.push_back(box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
+        c.push_back(
+            box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
     return c;
 }
 
-std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed)
-{
+std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> half(0.2, 1.0), lateral(-0.3, 0.3);
     std::vector<BoxPair> pairs;
@@ -118,8 +115,9 @@ std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint
         if (touching) {
             // Face x = +h_a of A against face x = -h_b of B, lateral shift inside both faces:
             // exact in binary (sums of doubles of similar size, then compared by the oracle).
-            p.b.transform.position = Vec3(p.a.shape.halfExtents.x() + p.b.shape.halfExtents.x(),
-                                          lateral(rng) * p.a.shape.halfExtents.y(), lateral(rng) * p.a.shape.halfExtents.z());
+            p.b.transform.position =
+                Vec3(p.a.shape.halfExtents.x() + p.b.shape.halfExtents.x(), lateral(rng) * p.a.shape.halfExtents.y(),
+                     lateral(rng) * p.a.shape.halfExtents.z());
         } else {
             p.a.transform.rotation = randomRotation(rng);
             p.b.transform.rotation = randomRotation(rng);
@@ -140,8 +138,7 @@ struct SpherePair {
     double distance = 0;  // analytic: |c_b - c_a| - r_a - r_b (negative: depth)
 };
 
-std::vector<SpherePair> spherePairs(int count, double offset, std::uint64_t seed)
-{
+std::vector<SpherePair> spherePairs(int count, double offset, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> radius(0.3, 1.0);
     std::vector<SpherePair> pairs;
@@ -158,31 +155,31 @@ std::vector<SpherePair> spherePairs(int count, double offset, std::uint64_t seed
 
 // ---- Output -------------------------------------------------------------------------------------
 
-void printTable(const std::vector<Row>& rows, std::ostream& out, bool markdown)
-{
+void printTable(const std::vector<Row>& rows, std::ostream& out, bool markdown) {
     char line[512];
     if (markdown) {
-        out << "| query | input | method | ns median | ns min | ns max | err median | err p99 | err max | >1e-6 | >1e-2 | iters | time / cdlab |\n"
+        out << "| query | input | method | ns median | ns min | ns max | err median | err p99 | err max | >1e-6 | "
+               ">1e-2 | iters | time / cdlab |\n"
                "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     } else {
-        std::snprintf(line, sizeof line, "%-14s %-22s %-24s %9s %9s %9s %9s %9s %9s %7s %7s %6s %7s\n", "query", "input",
-                      "method", "ns med", "ns min", "ns max", "err med", "err p99", "err max", ">1e-6", ">1e-2", "iters",
-                      "/cdlab");
+        std::snprintf(line, sizeof line, "%-14s %-22s %-24s %9s %9s %9s %9s %9s %9s %7s %7s %6s %7s\n", "query",
+                      "input", "method", "ns med", "ns min", "ns max", "err med", "err p99", "err max", ">1e-6",
+                      ">1e-2", "iters", "/cdlab");
         out << line;
     }
     for (const Row& r : rows) {
-        const char* f = markdown ? "| %s | %s | %s | %.1f | %.1f | %.1f | %.2g | %.2g | %.2g | %.3g | %.3g | %.2f | %s |\n"
-                                 : "%-14s %-22s %-24s %9.1f %9.1f %9.1f %9.2g %9.2g %9.2g %7.3g %7.3g %6.2f %7s\n";
+        const char* f = markdown
+                            ? "| %s | %s | %s | %.1f | %.1f | %.1f | %.2g | %.2g | %.2g | %.3g | %.3g | %.2f | %s |\n"
+                            : "%-14s %-22s %-24s %9.1f %9.1f %9.1f %9.2g %9.2g %9.2g %7.3g %7.3g %6.2f %7s\n";
         const std::string ratio = r.ratio > 0 ? fmt("%.2f", r.ratio) : "";
         std::snprintf(line, sizeof line, f, r.query.c_str(), r.input.c_str(), r.method.c_str(), r.nsMedian, r.nsMin,
-                      r.nsMax, r.error.median, r.error.p99, r.error.max, r.error.above1e6, r.error.above1e2, r.iterations,
-                      ratio.c_str());
+                      r.nsMax, r.error.median, r.error.p99, r.error.max, r.error.above1e6, r.error.above1e2,
+                      r.iterations, ratio.c_str());
         out << line;
     }
 }
 
-nlohmann::json toJson(const std::vector<Row>& rows, const std::string& machine, bool quick)
-{
+nlohmann::json toJson(const std::vector<Row>& rows, const std::string& machine, bool quick) {
     nlohmann::json j;
     j["machine"] = machine;
     j["mode"] = quick ? "quick" : "full";
@@ -210,8 +207,7 @@ nlohmann::json toJson(const std::vector<Row>& rows, const std::string& machine, 
 }
 
 /// Method without its tolerance ("SV tol 1e-06" -> "SV"): one Pareto series per method.
-std::string methodBase(const std::string& method, std::string* tolerance)
-{
+std::string methodBase(const std::string& method, std::string* tolerance) {
     const size_t at = method.find(" tol ");
     if (at == std::string::npos) return method;
     std::string rest = method.substr(at + 5);
@@ -221,8 +217,7 @@ std::string methodBase(const std::string& method, std::string* tolerance)
 }
 
 /// Error shown for a row: p99 of the relative error; boolean queries: the fraction wrong.
-double rowError(const Row& r)
-{
+double rowError(const Row& r) {
     if (!r.boolean) return r.error.p99;
     double wrong = 0;
     for (double e : r.errors) wrong += e;
@@ -231,8 +226,7 @@ double rowError(const Row& r)
 
 /// out/bench/pareto_<query>.png (time vs error, one series per method, tolerance sweeps as
 /// lines) and hist_<query>.png (error histograms of the default-setting rows).
-void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir)
-{
+void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir) {
     std::unique_ptr<render::GlContext> gl;
     try {
         gl = render::GlContext::create();
@@ -269,7 +263,9 @@ void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir)
         po.title = "cdlab bench: " + q + " — run time vs error";
         po.xLabel = boolean ? "fraction of wrong answers (10⁻¹⁷: none)" : "error p99, relative (10⁻¹⁷: exact)";
         po.yLabel = "time per query, ns (median)";
-        po.subtitle = "one marker per input set and setting; down and left is better; same inputs and support functions for every method";
+        po.subtitle =
+            "one marker per input set and setting; down and left is better; same inputs and support functions for "
+            "every method";
         po.xFloor = 1e-17;
         po.yFloor = 1;
         try {
@@ -291,7 +287,8 @@ void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir)
             v.insert(v.end(), r.errors.begin(), r.errors.end());
         }
         std::vector<std::pair<std::string, std::vector<double>>> hist;
-        for (const std::string& m : order) hist.emplace_back(m + " (" + std::to_string(pooled[m].size()) + ")", pooled[m]);
+        for (const std::string& m : order)
+            hist.emplace_back(m + " (" + std::to_string(pooled[m].size()) + ")", pooled[m]);
         PlotOptions ho;
         ho.title = "cdlab bench: " + q + " — error histogram";
         ho.xLabel = "relative error against the oracle (first bin: ≤ 10⁻¹⁷, including exact)";
@@ -309,8 +306,7 @@ void writeBenchFigures(const std::vector<Row>& rows, const std::string& outDir)
 // Peers (libccd, Bullet) on the same pairs, each row's time relative to cdlab's row `reference`.
 void peerRows(const Settings& settings, std::vector<Row>& rows, const std::string& query, const std::string& input,
               const std::vector<const PolyPair*>& set, size_t reference,
-              const std::function<double(int, const Answer&)>& error, bool boolean)
-{
+              const std::function<double(int, const Answer&)>& error, bool boolean) {
 #ifdef CDLAB_BENCH_PEERS
     std::vector<PeerPair> peerPairs;
     for (const PolyPair* p : set) peerPairs.push_back({&p->va, &p->vb, &p->a, &p->b});
@@ -333,8 +329,7 @@ void peerRows(const Settings& settings, std::vector<Row>& rows, const std::strin
 }
 
 // Closest point on triangle / tetrahedron against the long-double oracle.
-void benchClosestPoint(const Settings& settings, std::vector<Row>& rows)
-{
+void benchClosestPoint(const Settings& settings, std::vector<Row>& rows) {
     const bool quick = settings.quick;
     std::cerr << "cdlab bench: closest point\n";
     std::mt19937_64 rng(1);
@@ -354,18 +349,21 @@ void benchClosestPoint(const Settings& settings, std::vector<Row>& rows)
     }
     rows.push_back(measure(
         settings, "closest_point", "triangle, random", "Ericson 5.1.5", n,
-        [&](int i) { return Answer{std::sqrt(closestPointOnTriangle(points[i], tris[i]).distanceSquared), 0}; },
+        [&](int i) {
+            return Answer{std::sqrt(closestPointOnTriangle(points[i], tris[i]).distanceSquared), 0};
+        },
         [&](int i, const Answer& a) { return relativeError(a.value, triOracle[i], 1.0); }));
     rows.push_back(measure(
         settings, "closest_point", "tetrahedron, random", "regions", n,
-        [&](int i) { return Answer{std::sqrt(closestPointOnTetrahedron(points[i], tets[i]).distanceSquared), 0}; },
+        [&](int i) {
+            return Answer{std::sqrt(closestPointOnTetrahedron(points[i], tets[i]).distanceSquared), 0};
+        },
         [&](int i, const Answer& a) { return relativeError(a.value, tetOracle[i], 1.0); }));
 }
 
 // GJK distance / intersect and GJK+EPA depth on random polytopes of nv vertices (count pairs per
 // set), with the tolerance sweep, warm starts and the peers on the same pairs.
-void benchPolytopes(const Settings& settings, int nv, int count, std::vector<Row>& rows)
-{
+void benchPolytopes(const Settings& settings, int nv, int count, std::vector<Row>& rows) {
     std::cerr << "cdlab bench: polytopes with " << nv << " vertices (" << count << " pairs per set)\n";
     const std::string tag = "poly" + std::to_string(nv);
     const auto sep = polyPairs(nv, count, 2.2, 1000 + nv);
@@ -388,8 +386,9 @@ void benchPolytopes(const Settings& settings, int nv, int count, std::vector<Row
     const size_t distanceReference = rows.size();
     rows.push_back(distanceRow(sep, tag + " separated", "SV tol 1e-13", sv));
     rows.push_back(distanceRow(sep, tag + " separated", "Johnson tol 1e-13", johnson));
-    peerRows(settings, rows, "gjk_distance", tag + " separated", sepPointers, distanceReference,
-             [&](int i, const Answer& a) { return relativeError(a.value, sepPointers[i]->oracle.distance, 1.0); }, false);
+    peerRows(
+        settings, rows, "gjk_distance", tag + " separated", sepPointers, distanceReference,
+        [&](int i, const Answer& a) { return relativeError(a.value, sepPointers[i]->oracle.distance, 1.0); }, false);
     if (nv == 16 || nv == 64) {
         for (double tol : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14}) {
             GjkOptions o;
@@ -449,8 +448,7 @@ void benchPolytopes(const Settings& settings, int nv, int count, std::vector<Row
 }
 
 // Boxes: GJK on separated and touching boxes, EPA, boolean GJK and the 15-axis SAT.
-void benchBoxes(const Settings& settings, std::vector<Row>& rows)
-{
+void benchBoxes(const Settings& settings, std::vector<Row>& rows) {
     const bool quick = settings.quick;
     const int nPairs = quick ? 200 : 1000;
     std::cerr << "cdlab bench: boxes\n";
@@ -500,13 +498,14 @@ void benchBoxes(const Settings& settings, std::vector<Row>& rows)
         [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
     rows.push_back(measure(
         settings, "sat_obb_obb", "OBB sep+pen", "15 axes", static_cast<int>(all.size()),
-        [&](int i) { return Answer{testObbObb(all[i]->obbA, all[i]->obbB).hit ? 1.0 : 0.0, 0}; },
+        [&](int i) {
+            return Answer{testObbObb(all[i]->obbA, all[i]->obbB).hit ? 1.0 : 0.0, 0};
+        },
         [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
 }
 
 // Capsules (oracle: long double segment-segment distance minus the radii).
-void benchCapsules(const Settings& settings, std::vector<Row>& rows)
-{
+void benchCapsules(const Settings& settings, std::vector<Row>& rows) {
     const bool quick = settings.quick;
     const int nPairs = quick ? 200 : 1000;
     std::cerr << "cdlab bench: capsules\n";
@@ -525,8 +524,9 @@ void benchCapsules(const Settings& settings, std::vector<Row>& rows)
             p.a.transform.rotation = randomRotation(rng);
             p.b.transform.rotation = randomRotation(rng);
             p.b.transform.position = offset * randomUnit(rng);
-            const double seg = oracleSegmentDistance(p.a.transform.apply(p.a.shape.a), p.a.transform.apply(p.a.shape.b),
-                                                     p.b.transform.apply(p.b.shape.a), p.b.transform.apply(p.b.shape.b));
+            const double seg =
+                oracleSegmentDistance(p.a.transform.apply(p.a.shape.a), p.a.transform.apply(p.a.shape.b),
+                                      p.b.transform.apply(p.b.shape.a), p.b.transform.apply(p.b.shape.b));
             p.distance = seg - p.a.shape.radius - p.b.shape.radius;
             pairs.push_back(p);
         }
@@ -547,8 +547,10 @@ void benchCapsules(const Settings& settings, std::vector<Row>& rows)
     rows.push_back(measure(
         settings, "gjk_distance", "capsules separated", "SV on cores + radii", nPairs,
         [&](int i) {
-            const SegmentShape ca{sep[i].a.transform.apply(sep[i].a.shape.a), sep[i].a.transform.apply(sep[i].a.shape.b)};
-            const SegmentShape cb{sep[i].b.transform.apply(sep[i].b.shape.a), sep[i].b.transform.apply(sep[i].b.shape.b)};
+            const SegmentShape ca{sep[i].a.transform.apply(sep[i].a.shape.a),
+                                  sep[i].a.transform.apply(sep[i].a.shape.b)};
+            const SegmentShape cb{sep[i].b.transform.apply(sep[i].b.shape.a),
+                                  sep[i].b.transform.apply(sep[i].b.shape.b)};
             const GjkResult r = gjkDistance(ca, cb);
             return Answer{r.distance - sep[i].a.shape.radius - sep[i].b.shape.radius, r.iterations};
         },
@@ -567,8 +569,7 @@ void benchCapsules(const Settings& settings, std::vector<Row>& rows)
 // Float vs double: cdlab has no float variant of GJK (core is double only), so this row
 // measures what storing the geometry in float does: vertices rounded to float, GJK in double,
 // error against the oracle of the double input.
-void benchFloatInput(const Settings& settings, std::vector<Row>& rows)
-{
+void benchFloatInput(const Settings& settings, std::vector<Row>& rows) {
     const bool quick = settings.quick;
     const int nPairs = quick ? 200 : 1000;
     std::cerr << "cdlab bench: float-rounded input\n";
@@ -592,8 +593,7 @@ void benchFloatInput(const Settings& settings, std::vector<Row>& rows)
 }
 
 // Spheres (analytic oracle).
-void benchSpheres(const Settings& settings, std::vector<Row>& rows)
-{
+void benchSpheres(const Settings& settings, std::vector<Row>& rows) {
     const bool quick = settings.quick;
     const int nPairs = quick ? 200 : 1000;
     std::cerr << "cdlab bench: spheres\n";
@@ -621,8 +621,7 @@ void benchSpheres(const Settings& settings, std::vector<Row>& rows)
 
 /// The query rows (section "queries"): closest point, GJK distance / intersect, GJK+EPA, SAT on
 /// polytopes, boxes, capsules, float-rounded input and spheres, appended to rows.
-void runQueryRows(const Settings& settings, std::vector<Row>& rows)
-{
+void runQueryRows(const Settings& settings, std::vector<Row>& rows) {
     benchClosestPoint(settings, rows);
     const int nPairs = settings.quick ? 200 : 1000;
     const int nLarge = settings.quick ? 60 : 300;  // 64 / 100 vertices: the oracle hull has n^2 points
@@ -636,8 +635,7 @@ void runQueryRows(const Settings& settings, std::vector<Row>& rows)
 /// The sections of `cdlab bench`, in the order they run (--only picks some).
 constexpr const char* kSections[] = {"queries", "vclip", "bvh", "broadphase"};
 
-int usage()
-{
+int usage() {
     std::cerr << "usage: cdlab bench [--quick] [--out DIR] [--only SECTION[,SECTION...]]\n"
                  "  time per query (median / min / max over repetitions) and error against independent\n"
                  "  oracles for closest point, GJK intersect / distance, GJK+EPA, SAT OBB-OBB.\n"
@@ -649,8 +647,7 @@ int usage()
 
 /// Parses the --only list ("bvh,broadphase") into `only`; false (after one error line) on an
 /// empty or unknown name.
-bool parseSections(const std::string& list, std::vector<std::string>& only)
-{
+bool parseSections(const std::string& list, std::vector<std::string>& only) {
     std::string all;
     for (const char* s : kSections) all += std::string(all.empty() ? "" : ", ") + s;
     std::size_t from = 0;
@@ -669,8 +666,7 @@ bool parseSections(const std::string& list, std::vector<std::string>& only)
 
 }  // namespace
 
-int runBench(int argc, char** argv)
-{
+int runBench(int argc, char** argv) {
     Settings settings;
     std::string outDir = "out/bench";
     std::vector<std::string> only;  // empty: every section
@@ -692,7 +688,9 @@ int runBench(int argc, char** argv)
     }
     const bool quick = settings.quick;
     settings.targetQueries = quick ? 20000 : 100000;
-    auto runs = [&](const char* section) { return only.empty() || std::find(only.begin(), only.end(), section) != only.end(); };
+    auto runs = [&](const char* section) {
+        return only.empty() || std::find(only.begin(), only.end(), section) != only.end();
+    };
     std::string onlyList;  // "bvh,broadphase" as given to --only (empty: all sections)
     for (const std::string& s : only) onlyList += (onlyList.empty() ? "" : ",") + s;
     std::vector<Row> rows;
@@ -743,8 +741,10 @@ int runBench(int argc, char** argv)
        << "Machine: " << machine << ". Release build (-O3, -ffp-contract=off), one thread.\n\n";
     if (!rows.empty()) {
         md << "Time per query: median (min, max) over repetitions of the whole input set, each repetition\n"
-           << ">= " << settings.targetQueries / 1000 << "k queries in total per row. Error: relative, |x - x*| / |x*| against an\n"
-           << "independent oracle (hull of the Minkowski difference {a_i - b_j} by core/geometry/convex_hull.h, distances to its\n"
+           << ">= " << settings.targetQueries / 1000
+           << "k queries in total per row. Error: relative, |x - x*| / |x*| against an\n"
+           << "independent oracle (hull of the Minkowski difference {a_i - b_j} by core/geometry/convex_hull.h, "
+              "distances to its\n"
            << "faces by brute force in long double; spheres analytic; closest points by long double brute force);\n"
            << "touching sets: |x| / size; boolean queries (intersect, SAT): fraction of wrong answers.\n"
            << "time / cdlab: a peer's min time over cdlab's min time (default settings) on the same input.\n"
@@ -755,8 +755,8 @@ int runBench(int argc, char** argv)
     if (runs("vclip")) md << "\n## V-Clip vs GJK over coherence levels\n\n```\n" << vclipTable.str() << "```\n";
     if (runs("bvh")) md << "\n## BVH build, query and refit\n\n```\n" << bvhTable.str() << "```\n";
     if (runs("broadphase"))
-        md << "\n## Broad phase: sweep and prune vs uniform grid vs octrees vs brute force\n\n```\n" << broadphaseTable.str()
-           << "```\n";
+        md << "\n## Broad phase: sweep and prune vs uniform grid vs octrees vs brute force\n\n```\n"
+           << broadphaseTable.str() << "```\n";
     md << "\nRun time " << fmt("%.1f", seconds) << " s.\n";
     try {
         nlohmann::json json = toJson(rows, machine, quick);

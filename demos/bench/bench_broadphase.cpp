@@ -52,7 +52,8 @@ struct Motion {
         for (int i = 0; i < n; ++i) {
             center.emplace_back(uniform(rng, 0, side), uniform(rng, 0, side), uniform(rng, 0, side));
             half.emplace_back(uniform(rng, 0.25, 0.75), uniform(rng, 0.25, 0.75), uniform(rng, 0.25, 0.75));
-            velocity.emplace_back(uniform(rng, -speed, speed), uniform(rng, -speed, speed), uniform(rng, -speed, speed));
+            velocity.emplace_back(uniform(rng, -speed, speed), uniform(rng, -speed, speed),
+                                  uniform(rng, -speed, speed));
         }
     }
     void step(std::vector<Aabb>& boxes) {
@@ -105,10 +106,10 @@ struct Result {
     int n = 0;
     double pairs = 0, swaps = 0;  // mean per frame
     double sapMs = 0, gridMs = 0, bruteMs = NAN, buildMs = 0;
-    double octMs = NAN, looseMs = NAN;        // octree build + overlappingPairs, classic / loose (k = 2)
-    double octTests = 0, looseTests = 0;      // mean box-box tests per frame
-    double octRoot = 0, looseRoot = 0;        // mean objects stored at the root
-    double octDepth = 0, looseDepth = 0;      // mean depth of an object's node
+    double octMs = NAN, looseMs = NAN;    // octree build + overlappingPairs, classic / loose (k = 2)
+    double octTests = 0, looseTests = 0;  // mean box-box tests per frame
+    double octRoot = 0, looseRoot = 0;    // mean objects stored at the root
+    double octDepth = 0, looseDepth = 0;  // mean depth of an object's node
     double slowSwaps = 0, slowSapMs = 0;  // SAP alone with speed 0.05 (100 / n)^(2/3): swaps per box ~constant
     int frames = 0, bruteFrames = 0, octFrames = 0;
     int setChecks = 0;  // frames on which every method's pair set was compared with brute force's
@@ -223,7 +224,8 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
     r.looseMs = median(looseT);
     r.octFrames = static_cast<int>(octT.size());
     if (r.octFrames > 0) {
-        for (double* x : {&r.octTests, &r.looseTests, &r.octRoot, &r.looseRoot, &r.octDepth, &r.looseDepth}) *x /= r.octFrames;
+        for (double* x : {&r.octTests, &r.looseTests, &r.octRoot, &r.looseRoot, &r.octDepth, &r.looseDepth})
+            *x /= r.octFrames;
     }
     // The same boxes with velocities scaled so that the endpoint gaps crossed per frame stay constant
     // (projected endpoint density grows as n / side = n^(2/3)): SAP's s = O(n) regime.
@@ -303,7 +305,8 @@ void writeFigures(const std::vector<Result>& results, bool quick, int bruteLimit
         if (std::isfinite(r0.bruteMs) && r.n <= bruteLimit) refN2.points.emplace_back(r.n, r0.bruteMs * x * x);
     }
     char sub[256];
-    std::snprintf(sub, sizeof sub, "Slopes: SAP %.2f (slow %.2f), grid %.2f, octree %.2f, loose %.2f, brute force %.2f (to n = %d).%s",
+    std::snprintf(sub, sizeof sub,
+                  "Slopes: SAP %.2f (slow %.2f), grid %.2f, octree %.2f, loose %.2f, brute force %.2f (to n = %d).%s",
                   slope(results, &Result::sapMs), slope(results, &Result::slowSapMs), slope(results, &Result::gridMs),
                   slope(results, &Result::octMs), slope(results, &Result::looseMs), bruteSlope(results), bruteLimit,
                   quick ? " Quick run." : "");
@@ -316,7 +319,8 @@ void writeFigures(const std::vector<Result>& results, bool quick, int bruteLimit
     po.height = 768;
     po.legendWidth = 260;
     try {
-        render::writePngAtomic(outDir + "/broadphase_time.png", drawLogLogPlot(*gl, po, {sap, slowSap, grid, octree, loose, brute, refN, refN2}));
+        render::writePngAtomic(outDir + "/broadphase_time.png",
+                               drawLogLogPlot(*gl, po, {sap, slowSap, grid, octree, loose, brute, refN, refN2}));
         // Colours as in the time figure (SAP, slow SAP, grid, octrees); SAP / (n + k) takes brute force's.
         PlotSeries sapWork{"SAP / (n + k + swaps)", 0, true, true, {}, {}};
         PlotSeries sapPer{"SAP / (n + k)", 2, true, true, {}, {}};
@@ -336,9 +340,13 @@ void writeFigures(const std::vector<Result>& results, bool quick, int bruteLimit
         }
         PlotOptions pp = po;
         pp.title = "Broad phase: cost per unit of work, k = overlapping pairs";
-        pp.subtitle = "SAP / (n + k + s) flat: O(n + s + k); s / n grows ~n^(2/3) at constant density, unless motion slows (slow)";
+        pp.subtitle =
+            "SAP / (n + k + s) flat: O(n + s + k); s / n grows ~n^(2/3) at constant density, unless motion slows "
+            "(slow)";
         pp.yLabel = "ns per item (swaps per box: count)";
-        render::writePngAtomic(outDir + "/broadphase_per_item.png", drawLogLogPlot(*gl, pp, {sapWork, sapPer, slowWork, gridPer, octPer, loosePer, swapsPer}));
+        render::writePngAtomic(
+            outDir + "/broadphase_per_item.png",
+            drawLogLogPlot(*gl, pp, {sapWork, sapPer, slowWork, gridPer, octPer, loosePer, swapsPer}));
     } catch (const std::exception& e) {
         std::cerr << "cdlab bench: " << e.what() << "\n";
     }
@@ -367,7 +375,8 @@ int runBroadphaseBench(bool quick, const std::string& outDir, std::ostream& tabl
     table << "Broad phase, coherent motion (boxes of size 0.5..1.5 moving <= 0.05 per axis per frame, 0.05 boxes per\n"
           << "unit volume): median thread-CPU ms per frame, every method side by side on the same frames.\n"
           << "k = overlapping pairs, swaps = SAP insertion-sort swaps per frame (means). Grid cell 1.5.\n"
-          << "octree / loose: Octree (core/broadphase/octree.h) built from scratch every frame, then overlappingPairs; classic\n"
+          << "octree / loose: Octree (core/broadphase/octree.h) built from scratch every frame, then overlappingPairs; "
+             "classic\n"
           << "(looseness 1) and loose (looseness 2), split above 8 objects per node, depth <= 10; fewer frames at\n"
           << "n >= 10k (see the second table).\n"
           << "slow: SAP alone on the same boxes with speeds scaled by (100 / n)^(2/3), so that swaps per box stay\n"
@@ -378,7 +387,8 @@ int runBroadphaseBench(bool quick, const std::string& outDir, std::ostream& tabl
     std::snprintf(line, sizeof line, head, "n", "k", "swaps", "swaps/n", "SAP ms", "grid ms", "octree ms", "loose ms",
                   "brute ms", "SAP ns/", "SAP ns/", "grid ns/", "build ms", "slow", "slow SAP");
     table << line;
-    std::snprintf(line, sizeof line, head, "", "", "", "", "", "", "", "", "", "(n+k)", "(n+k+s)", "(n+k)", "", "swaps/n", "ms");
+    std::snprintf(line, sizeof line, head, "", "", "", "", "", "", "", "", "", "(n+k)", "(n+k+s)", "(n+k)", "",
+                  "swaps/n", "ms");
     table << line;
     for (const Result& r : results) {
         std::snprintf(line, sizeof line, "%7d %7.0f %9.0f %7.1f %9s %9s %9s %9s %9s %9s %9s %9s %9s | %7.2f %9s\n", r.n,
@@ -390,26 +400,29 @@ int runBroadphaseBench(bool quick, const std::string& outDir, std::ostream& tabl
                       r.slowSwaps / r.n, cell("%.4f", r.slowSapMs).c_str());
         table << line;
     }
-    std::snprintf(line, sizeof line,
-                  "log-log slopes vs n: SAP %.2f, swaps %.2f, grid %.2f, octree %.2f, loose octree %.2f, brute force %.2f;\n"
-                  "slow motion: SAP %.2f, swaps %.2f\n",
-                  slope(results, &Result::sapMs), slope(results, &Result::swaps), slope(results, &Result::gridMs),
-                  slope(results, &Result::octMs), slope(results, &Result::looseMs), bruteSlope(results),
-                  slope(results, &Result::slowSapMs), slope(results, &Result::slowSwaps));
+    std::snprintf(
+        line, sizeof line,
+        "log-log slopes vs n: SAP %.2f, swaps %.2f, grid %.2f, octree %.2f, loose octree %.2f, brute force %.2f;\n"
+        "slow motion: SAP %.2f, swaps %.2f\n",
+        slope(results, &Result::sapMs), slope(results, &Result::swaps), slope(results, &Result::gridMs),
+        slope(results, &Result::octMs), slope(results, &Result::looseMs), bruteSlope(results),
+        slope(results, &Result::slowSapMs), slope(results, &Result::slowSwaps));
     table << line;
     // Why the classic octree scales worse: boxes on split planes stay high up and meet everything below.
-    table << "\nOctrees per frame (means over the measured frames): box-box tests per box, objects stored at the root,\n"
-          << "mean depth of an object's node, ns per (n + k).\n";
+    table
+        << "\nOctrees per frame (means over the measured frames): box-box tests per box, objects stored at the root,\n"
+        << "mean depth of an object's node, ns per (n + k).\n";
     const char* octHead = "%7s %7s | %9s %9s %9s %9s | %9s %9s %9s %9s\n";
-    std::snprintf(line, sizeof line, octHead, "n", "frames", "tests/n", "at root", "depth", "ns/(n+k)", "tests/n", "at root",
-                  "depth", "ns/(n+k)");
+    std::snprintf(line, sizeof line, octHead, "n", "frames", "tests/n", "at root", "depth", "ns/(n+k)", "tests/n",
+                  "at root", "depth", "ns/(n+k)");
     table << line;
     std::snprintf(line, sizeof line, octHead, "", "", "classic", "", "", "", "loose k=2", "", "", "");
     table << line;
     for (const Result& r : results) {
         std::snprintf(line, sizeof line, "%7d %7d | %9.1f %9.0f %9.2f %9s | %9.1f %9.0f %9.2f %9s\n", r.n, r.octFrames,
                       r.octTests / r.n, r.octRoot, r.octDepth, cell("%.1f", 1e6 * r.octMs / (r.n + r.pairs)).c_str(),
-                      r.looseTests / r.n, r.looseRoot, r.looseDepth, cell("%.1f", 1e6 * r.looseMs / (r.n + r.pairs)).c_str());
+                      r.looseTests / r.n, r.looseRoot, r.looseDepth,
+                      cell("%.1f", 1e6 * r.looseMs / (r.n + r.pairs)).c_str());
         table << line;
     }
     table << (agree ? "SAP, grid, both octrees and brute force reported the same number of pairs on every frame"

@@ -45,9 +45,10 @@ double timePerCall(int reps, double minSeconds, F&& f) {
         if (threadSeconds() - t0 >= minSeconds || batch >= (1 << 20)) break;
         batch *= 4;
     }
-    return timeRuns(reps, [&] {
-               for (int i = 0; i < batch; ++i) f(i);
-           }) /
+    return timeRuns(reps,
+                    [&] {
+                        for (int i = 0; i < batch; ++i) f(i);
+                    }) /
            batch;
 }
 
@@ -144,8 +145,8 @@ void benchBuilds(const TriangleMesh& mesh, int reps, int bottomUpMax, std::vecto
             o.bvKind = kind;
             o.method = method;
             Bvh tree;
-            const double s = timeRuns(method == BvhBuildMethod::BottomUp && n > 2000 ? 3 : reps,
-                                      [&] { tree = buildBvh(mesh, o); });
+            const double s =
+                timeRuns(method == BvhBuildMethod::BottomUp && n > 2000 ? 3 : reps, [&] { tree = buildBvh(mesh, o); });
             const std::string label = std::string(shortLabel(method)) + " " + nameOf(kind);
             buildTable << "build      " << fmtNum("%9.0f", n) << "  " << padRight(label, 16) << fmtNum("%9.3f", 1e3 * s)
                        << fmtNum("%11.0f", static_cast<double>(tree.nodes.size()))
@@ -186,8 +187,8 @@ std::vector<std::pair<int, int>> benchMeshQueries(const TriangleMesh& mesh, cons
             });
             const std::string label = std::string(p == 0 ? "cutting: " : "linked 0.4 apart: ") + t.label;
             queryTable << (p == 0 ? "mesh-mesh  " : "linked     ") << fmtNum("%9.0f", n) << "  "
-                       << padRight(t.label, 16)
-                       << fmtNum("%10.1f", 1e6 * s) << fmtNum("%11.0f", static_cast<double>(r.stats.bvTests))
+                       << padRight(t.label, 16) << fmtNum("%10.1f", 1e6 * s)
+                       << fmtNum("%11.0f", static_cast<double>(r.stats.bvTests))
                        << fmtNum("%11.0f", static_cast<double>(r.stats.triangleTests))
                        << fmtNum("%7.0f", static_cast<double>(r.pairs.size())) << "\n";
             addPoint(meshSeries, label, n, 1e6 * s);
@@ -241,8 +242,7 @@ void benchRays(const TriangleMesh& mesh, const std::vector<NamedTree>& trees, bo
         const double s = timePerCall(5, quick ? 0.01 : 0.05, [&](int i) {
             return queryBvhRay(*t.tree, mesh, Transform{}, rays[i % rays.size()]).hits.size();
         });
-        queryTable << "ray        " << fmtNum("%9.0f", n) << "  "
-                   << padRight(t.label, 16) << fmtNum("%10.2f", 1e6 * s)
+        queryTable << "ray        " << fmtNum("%9.0f", n) << "  " << padRight(t.label, 16) << fmtNum("%10.2f", 1e6 * s)
                    << fmtNum("%11.1f", static_cast<double>(bv) / rays.size())
                    << fmtNum("%11.1f", static_cast<double>(tri) / rays.size())
                    << fmtNum("%7.2f", static_cast<double>(hits) / rays.size()) << "\n";
@@ -264,9 +264,9 @@ void benchRefit(const TriangleMesh& mesh, const std::vector<Bvh>& medianTrees, i
         o.bvKind = kKinds[k];
         const double rebuild = timeRuns(reps, [&] { buildBvh(bent, o); });
         const std::string label = std::string("median ") + nameOf(kKinds[k]);
-        refitTable << "wave 0.1   " << fmtNum("%9.0f", n) << "  "
-                   << padRight(label, 16) << fmtNum("%10.3f", 1e3 * refit)
-                   << fmtNum("%12.3f", 1e3 * rebuild) << fmtNum("%12.1f", rebuild / refit) << "\n";
+        refitTable << "wave 0.1   " << fmtNum("%9.0f", n) << "  " << padRight(label, 16)
+                   << fmtNum("%10.3f", 1e3 * refit) << fmtNum("%12.3f", 1e3 * rebuild)
+                   << fmtNum("%12.1f", rebuild / refit) << "\n";
         addPoint(refitSeries, "refit " + label, n, 1e3 * refit);
         addPoint(refitSeries, "rebuild " + label, n, 1e3 * rebuild);
     }

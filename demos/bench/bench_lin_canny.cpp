@@ -5,11 +5,11 @@
 #include <iostream>
 #include <string>
 
-#include "core/gjk_epa/gjk.h"
 #include "core/feature_walk/lin_canny.h"
+#include "core/feature_walk/vclip.h"
 #include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/shapes.h"
-#include "core/feature_walk/vclip.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
 
 namespace cdlab::demos {
@@ -77,40 +77,43 @@ void benchCoherent(const Settings& settings, std::vector<Row>& rows) {
         // The disk's Minkowski oracle hull has 122^2 points: fewer frames there.
         const int count = quick ? 200 : (s.mesh.vertexCount() > 64 ? 400 : 2000);
         for (double level : levels) {
-            if (settings.progress) std::cerr << "cdlab bench: lin_canny coherent " << s.name << ", " << level << " deg/call\n";
+            if (settings.progress)
+                std::cerr << "cdlab bench: lin_canny coherent " << s.name << ", " << level << " deg/call\n";
             const std::vector<Frame> frames = motion(s.mesh, level, count, 77 + static_cast<int>(level), true);
             const std::string input = std::string(s.name) + ", " + fmt("%.0f", level) + " deg/call";
             auto error = [&](int i, const Answer& a) { return relativeError(a.value, frames[i].oracle, 1.0); };
             LinCannyCache lc;
-            rows.push_back(measure(settings, "feature_walk_coherent", input, "lin_canny", count,
-                                   [&](int i) {
-                                       if (i == 0) lc = {};
-                                       const LinCannyResult r = linCanny(poly, frames[i].a, poly, frames[i].b, &lc);
-                                       return Answer{r.distance, r.steps};
-                                   },
-                                   error));
+            rows.push_back(measure(
+                settings, "feature_walk_coherent", input, "lin_canny", count,
+                [&](int i) {
+                    if (i == 0) lc = {};
+                    const LinCannyResult r = linCanny(poly, frames[i].a, poly, frames[i].b, &lc);
+                    return Answer{r.distance, r.steps};
+                },
+                error));
             VClipCache vc;
-            rows.push_back(measure(settings, "feature_walk_coherent", input, "vclip", count,
-                                   [&](int i) {
-                                       if (i == 0) vc = {};
-                                       const VClipResult r = vclip(poly, frames[i].a, poly, frames[i].b, &vc);
-                                       return Answer{r.distance, r.steps};
-                                   },
-                                   error));
+            rows.push_back(measure(
+                settings, "feature_walk_coherent", input, "vclip", count,
+                [&](int i) {
+                    if (i == 0) vc = {};
+                    const VClipResult r = vclip(poly, frames[i].a, poly, frames[i].b, &vc);
+                    return Answer{r.distance, r.steps};
+                },
+                error));
             GjkSimplex simplex;
-            rows.push_back(measure(settings, "feature_walk_coherent", input, "gjk warm", count,
-                                   [&](int i) {
-                                       GjkOptions o;
-                                       if (i > 0) o.warmStart = &simplex;
-                                       const GjkResult r = gjkDistance(Transformed<PolytopeShape>{support, frames[i].a},
-                                                                       Transformed<PolytopeShape>{support, frames[i].b}, o);
-                                       simplex = r.simplex;
-                                       return Answer{r.distance, r.iterations};
-                                   },
-                                   error));
+            rows.push_back(measure(
+                settings, "feature_walk_coherent", input, "gjk warm", count,
+                [&](int i) {
+                    GjkOptions o;
+                    if (i > 0) o.warmStart = &simplex;
+                    const GjkResult r = gjkDistance(Transformed<PolytopeShape>{support, frames[i].a},
+                                                    Transformed<PolytopeShape>{support, frames[i].b}, o);
+                    simplex = r.simplex;
+                    return Answer{r.distance, r.iterations};
+                },
+                error));
         }
     }
-
 }
 
 // Degenerate families: boxes on a 1/4 grid, axis-aligned (90-degree turns), every pair of seed
@@ -130,7 +133,9 @@ DegenerateSet degenerateSet(int trials) {
     out.trials.resize(trials);
     std::vector<Trial>& set = out.trials;
     std::mt19937_64 rng(2026);
-    auto grid = [&](int lo, int hi) { return 0.25 * static_cast<double>(lo + static_cast<int>(rng() % (hi - lo + 1))); };
+    auto grid = [&](int lo, int hi) {
+        return 0.25 * static_cast<double>(lo + static_cast<int>(rng() % (hi - lo + 1)));
+    };
     // 90-degree rotations about the axes keep the boxes axis-aligned (the half extents permute).
     const Quat turns[] = {Quat::Identity(), Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ())),
                           Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitX())), Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitY()))};
@@ -144,7 +149,8 @@ DegenerateSet degenerateSet(int trials) {
         const ConvexPolyhedron& ma = boxes[t.a].mesh();
         const ConvexPolyhedron& mb = boxes[t.b].mesh();
         const int ka = static_cast<int>(rng() % 3), kb = static_cast<int>(rng() % 3);
-        const int na[] = {ma.vertexCount(), ma.edgeCount(), ma.faceCount()}, nb[] = {mb.vertexCount(), mb.edgeCount(), mb.faceCount()};
+        const int na[] = {ma.vertexCount(), ma.edgeCount(), ma.faceCount()},
+                  nb[] = {mb.vertexCount(), mb.edgeCount(), mb.faceCount()};
         t.seedA = {static_cast<VClipFeatureType>(ka + 1), static_cast<int>(rng() % na[ka])};
         t.seedB = {static_cast<VClipFeatureType>(kb + 1), static_cast<int>(rng() % nb[kb])};
         t.exact = boxGap(halves[t.a], halves[t.b], t.pb.position - t.pa.position);
@@ -177,7 +183,8 @@ void benchDegenerate(const Settings& settings, std::vector<Row>& rows, std::vect
                     d = r.distance;
                     steps = r.steps;
                     if (r.status == LinCannyStatus::CycleDetected || r.status == LinCannyStatus::StepLimit) code = 1;
-                    else if (r.status == LinCannyStatus::Separated) code = (t.exact <= tol || std::abs(d - t.exact) > tol) ? 2 : 0;
+                    else if (r.status == LinCannyStatus::Separated)
+                        code = (t.exact <= tol || std::abs(d - t.exact) > tol) ? 2 : 0;
                     else code = t.exact > tol ? 3 : 0;
                 } else {
                     VClipCache c{t.seedA, t.seedB};
@@ -186,7 +193,8 @@ void benchDegenerate(const Settings& settings, std::vector<Row>& rows, std::vect
                     d = r.distance;
                     steps = r.steps;
                     if (r.status == VClipStatus::CycleDetected || r.status == VClipStatus::StepLimit) code = 1;
-                    else if (r.status == VClipStatus::Separated) code = (t.exact <= tol || std::abs(d - t.exact) > tol) ? 2 : 0;
+                    else if (r.status == VClipStatus::Separated)
+                        code = (t.exact <= tol || std::abs(d - t.exact) > tol) ? 2 : 0;
                     else code = t.exact > tol ? 3 : 0;
                 }
                 outcome[i] = code;

@@ -1,5 +1,5 @@
-// `cdlab bench` section: Lin–Canny (core/feature_walk/lin_canny.h) against V-Clip (core/feature_walk/vclip.h) and warm-started
-// GJK (core/gjk_epa/gjk.h) on coherent motion, and both feature walks on degenerate families.
+// `cdlab bench` section: Lin–Canny (core/feature_walk/lin_canny.h) against V-Clip (core/feature_walk/vclip.h) and
+// warm-started GJK (core/gjk_epa/gjk.h) on coherent motion, and both feature walks on degenerate families.
 //
 // Coherent motion: A and B (same shape: cube, icosahedron, 60-gon disk) rotate by `level` degrees
 // per call about fixed random axes while B orbits A by level / 2 degrees; every method carries its
@@ -23,9 +23,9 @@ namespace cdlab::demos {
 struct DegenerateCount {
     const char* method = "";
     int trials = 0;
-    int cycles = 0;          ///< CycleDetected or StepLimit
-    int wrongDistance = 0;   ///< Separated with |d - exact| > 1e-9 (size ~1), or Separated when they meet
-    int wrongVerdict = 0;    ///< Penetrating although the gap is > 1e-9
+    int cycles = 0;         ///< CycleDetected or StepLimit
+    int wrongDistance = 0;  ///< Separated with |d - exact| > 1e-9 (size ~1), or Separated when they meet
+    int wrongVerdict = 0;   ///< Penetrating although the gap is > 1e-9
 };
 
 /// Runs the section; appends the counts of the degenerate families to `counts` when given.

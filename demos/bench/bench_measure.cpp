@@ -13,8 +13,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 }  // namespace
 
-ErrorStats errorStats(std::vector<double> e)
-{
+ErrorStats errorStats(std::vector<double> e) {
     ErrorStats s;
     if (e.empty()) return s;
     std::sort(e.begin(), e.end());
@@ -33,8 +32,7 @@ ErrorStats errorStats(std::vector<double> e)
 
 Row measure(const Settings& settings, std::string query, std::string input, std::string method, int count,
             const std::function<Answer(int)>& run, const std::function<double(int, const Answer&)>& error,
-            bool boolean)
-{
+            bool boolean) {
     Row row;
     row.query = std::move(query);
     row.input = std::move(input);
@@ -70,29 +68,25 @@ Row measure(const Settings& settings, std::string query, std::string input, std:
     return row;
 }
 
-double relativeError(double x, double exact, double size)
-{
+double relativeError(double x, double exact, double size) {
     const double denom = exact > 0 ? exact : size;
     return std::abs(x - exact) / denom;
 }
 
 // ---- Inputs --------------------------------------------------------------------------------------
 
-Quat randomRotation(std::mt19937_64& rng)
-{
+Quat randomRotation(std::mt19937_64& rng) {
     std::normal_distribution<double> g(0.0, 1.0);
     Quat q(g(rng), g(rng), g(rng), g(rng));
     return q.normalized();
 }
 
-Vec3 randomUnit(std::mt19937_64& rng)
-{
+Vec3 randomUnit(std::mt19937_64& rng) {
     std::normal_distribution<double> g(0.0, 1.0);
     return Vec3(g(rng), g(rng), g(rng)).normalized();
 }
 
-std::vector<Vec3> ellipsoidPoints(std::mt19937_64& rng, int n)
-{
+std::vector<Vec3> ellipsoidPoints(std::mt19937_64& rng, int n) {
     std::uniform_real_distribution<double> radius(0.3, 1.0);
     const Vec3 radii(radius(rng), radius(rng), radius(rng));
     const Quat q = randomRotation(rng);
@@ -101,15 +95,13 @@ std::vector<Vec3> ellipsoidPoints(std::mt19937_64& rng, int n)
     return v;
 }
 
-std::string fmt(const char* f, double x)
-{
+std::string fmt(const char* f, double x) {
     char buf[64];
     std::snprintf(buf, sizeof buf, f, x);
     return buf;
 }
 
-std::string machineDescription()
-{
+std::string machineDescription() {
     std::string model = "unknown CPU";
     if (FILE* f = std::fopen("/proc/cpuinfo", "r")) {
         char line[512];

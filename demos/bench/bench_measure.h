@@ -29,13 +29,13 @@ ErrorStats errorStats(std::vector<double> errors);
 /// One line of the bench table.
 struct Row {
     std::string query, input, method;
-    int queries = 0;    ///< inputs in the set
-    int reps = 0;       ///< repetitions of the whole set
+    int queries = 0;                            ///< inputs in the set
+    int reps = 0;                               ///< repetitions of the whole set
     double nsMedian = 0, nsMin = 0, nsMax = 0;  ///< time per query over the repetitions, ns
     ErrorStats error;
-    double iterations = 0;  ///< mean per query (0 where meaningless)
-    bool boolean = false;   ///< error = wrong answers
-    double ratio = 0;       ///< peers: min time / cdlab's min time on the same input (0: not a peer)
+    double iterations = 0;       ///< mean per query (0 where meaningless)
+    bool boolean = false;        ///< error = wrong answers
+    double ratio = 0;            ///< peers: min time / cdlab's min time on the same input (0: not a peer)
     std::vector<double> errors;  ///< every query's error (last repetition), for histograms
 };
 

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/gjk_epa/gjk.h"
+#include "core/feature_walk/vclip.h"
 #include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/shapes.h"
-#include "core/feature_walk/vclip.h"
+#include "core/gjk_epa/gjk.h"
 
 namespace cdlab::demos {
 
@@ -60,7 +60,8 @@ int runVclipBench(bool quick, std::ostream& out) {
     int status = 0;
     out << "V-Clip vs GJK, " << queries << " coherent queries per sequence, median of " << reps
         << " repetitions (thread CPU ns per query; steps = V-Clip updates / GJK iterations per query)\n\n"
-        << "| shape | deg/call | V-Clip cold ns | steps | V-Clip warm ns | steps | GJK cold ns | iters | GJK warm ns | iters |\n"
+        << "| shape | deg/call | V-Clip cold ns | steps | V-Clip warm ns | steps | GJK cold ns | iters | GJK warm ns | "
+           "iters |\n"
         << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Scenario& sc : scenarios) {
         const VClipPolyhedron vp = buildVClipPolyhedron(sc.poly).polyhedron;
@@ -130,9 +131,9 @@ int runVclipBench(bool quick, std::ostream& out) {
                     break;
                 }
             char line[256];
-            std::snprintf(line, sizeof line, "| %s | %g | %.0f | %.2f | %.0f | %.2f | %.0f | %.2f | %.0f | %.2f |\n", sc.name, deg,
-                          vcold.nsMedian, vcold.stepsMean, vwarm.nsMedian, vwarm.stepsMean, gcold.nsMedian, gcold.stepsMean,
-                          gwarm.nsMedian, gwarm.stepsMean);
+            std::snprintf(line, sizeof line, "| %s | %g | %.0f | %.2f | %.0f | %.2f | %.0f | %.2f | %.0f | %.2f |\n",
+                          sc.name, deg, vcold.nsMedian, vcold.stepsMean, vwarm.nsMedian, vwarm.stepsMean,
+                          gcold.nsMedian, gcold.stepsMean, gwarm.nsMedian, gwarm.stepsMean);
             out << line;
         }
     }

@@ -22,16 +22,16 @@
 
 #include "core/bounding/bounding_sphere.h"
 #include "core/bounding/bounding_volume_fit.h"
-#include "core/geometry/convex_hull.h"
 #include "core/bounding/kdop.h"
 #include "core/bounding/swept_sphere.h"
+#include "core/geometry/convex_hull.h"
 #include "core/geometry/triangle_mesh.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/scene_limits.h"
-#include "demos/scene/mesh_scene.h"
-#include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
+#include "demos/scene/mesh_scene.h"
+#include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -41,8 +41,8 @@ namespace {
 using namespace render;
 
 const std::vector<std::string> kLayers = {"shape", "volumes", "cores", "labels"};
-const std::vector<std::string> kAllVolumes = {"ritter", "welzl", "aabb", "obb", "kdop6", "kdop14",
-                                              "kdop18", "kdop26", "lss", "rss"};
+const std::vector<std::string> kAllVolumes = {"ritter", "welzl",  "aabb",   "obb", "kdop6",
+                                              "kdop14", "kdop18", "kdop26", "lss", "rss"};
 const std::vector<std::string> kDefaultVolumes = {"ritter", "welzl", "aabb", "obb", "kdop14", "kdop26", "lss", "rss"};
 
 // Deterministic uniform numbers on every platform (splitmix64; no std distributions).
@@ -60,15 +60,16 @@ struct SplitMix {
 // ---- the shape
 
 struct ShapeSpec {
-    std::string kind;             // "torus", "ellipsoid", "blob", "cloud"
-    TriangleMesh mesh;            // meshes (body frame)
-    std::vector<Vec3> cloud;      // cloud: points (body frame)
+    std::string kind;         // "torus", "ellipsoid", "blob", "cloud"
+    TriangleMesh mesh;        // meshes (body frame)
+    std::vector<Vec3> cloud;  // cloud: points (body frame)
     Transform pose;
     bool isCloud() const { return kind == "cloud"; }
 };
 
 ShapeSpec parseShape(const JsonNode& node) {
-    if (!node.isObject() || node.raw().size() != 1) node.fail("expected an object with one key: torus, ellipsoid, blob or cloud");
+    if (!node.isObject() || node.raw().size() != 1)
+        node.fail("expected an object with one key: torus, ellipsoid, blob or cloud");
     ShapeSpec s;
     s.kind = node.raw().begin().key();
     JsonNode body(node.raw().begin().value(), node.path() + "." + s.kind, node.source());
@@ -185,14 +186,14 @@ std::string fixed(double x, int digits) {
 
 // One fitted bounding volume: what the trace records and what its panel draws.
 struct FittedBv {
-    std::string key;       // scene name: "welzl"
-    std::string heading;   // "Welzl sphere (minimum)"
+    std::string key;      // scene name: "welzl"
+    std::string heading;  // "Welzl sphere (minimum)"
     double volume = 0.0;
     Json json;
-    ConvexDrawable body;                          // the BV's surface (fill; edges for polytopes)
-    std::vector<std::pair<Vec3, Vec3>> core;      // LSS segment / RSS rectangle / Ritter diameter
-    std::vector<Vec3> marks;                      // Welzl support points, Ritter initial pair
-    std::string detail;                           // footer line
+    ConvexDrawable body;                      // the BV's surface (fill; edges for polytopes)
+    std::vector<std::pair<Vec3, Vec3>> core;  // LSS segment / RSS rectangle / Ritter diameter
+    std::vector<Vec3> marks;                  // Welzl support points, Ritter initial pair
+    std::string detail;                       // footer line
 };
 
 template <int K>
@@ -218,8 +219,11 @@ FittedBv fitOne(const std::string& key, const std::vector<Vec3>& pts, const std:
         const Sphere s = fitSphereRitter(ps, &t);
         f.heading = "Ritter sphere";
         f.volume = volume(s);
-        f.json = {{"center", vec3Json(s.center)}, {"radius", s.radius}, {"initial_pair", {t.initialPair[0], t.initialPair[1]}},
-                  {"initial_radius", t.initial.radius}, {"grow_steps", t.steps.size()}};
+        f.json = {{"center", vec3Json(s.center)},
+                  {"radius", s.radius},
+                  {"initial_pair", {t.initialPair[0], t.initialPair[1]}},
+                  {"initial_radius", t.initial.radius},
+                  {"grow_steps", t.steps.size()}};
         f.body = sweptDrawable({s.center}, s.radius);
         f.marks = {pts[t.initialPair[0]], pts[t.initialPair[1]]};
         f.core.emplace_back(pts[t.initialPair[0]], pts[t.initialPair[1]]);
@@ -229,11 +233,15 @@ FittedBv fitOne(const std::string& key, const std::vector<Vec3>& pts, const std:
         const Sphere s = fitSphereWelzl(ps, &t);
         f.heading = "Welzl sphere (minimum)";
         f.volume = volume(s);
-        f.json = {{"center", vec3Json(s.center)}, {"radius", s.radius}, {"support", t.finalSupport},
-                  {"status", nameOf(t.status)}, {"steps", t.steps.size()}};
+        f.json = {{"center", vec3Json(s.center)},
+                  {"radius", s.radius},
+                  {"support", t.finalSupport},
+                  {"status", nameOf(t.status)},
+                  {"steps", t.steps.size()}};
         f.body = sweptDrawable({s.center}, s.radius);
         for (int i : t.finalSupport) f.marks.push_back(pts[i]);
-        f.detail = "r " + formatNumber(s.radius) + "; dots: " + std::to_string(t.finalSupport.size()) + " support points";
+        f.detail =
+            "r " + formatNumber(s.radius) + "; dots: " + std::to_string(t.finalSupport.size()) + " support points";
     } else if (key == "aabb") {
         const Aabb b = fitAabb(ps);
         f.heading = "AABB";
@@ -247,11 +255,15 @@ FittedBv fitOne(const std::string& key, const std::vector<Vec3>& pts, const std:
         const Obb b = tris.empty() ? fitObbCovariance(ps, &t) : fitObbTriangles(std::span<const Triangle>(tris), &t);
         f.heading = tris.empty() ? "OBB (point covariance)" : "OBB (area covariance)";
         f.volume = volume(b);
-        f.json = {{"center", vec3Json(b.center)}, {"half_extents", vec3Json(b.halfExtents)}, {"axes", axesJson(b.axes)},
-                  {"method", nameOf(t.method)}, {"eigenvalues", vec3Json(t.eigenvalues)}};
+        f.json = {{"center", vec3Json(b.center)},
+                  {"half_extents", vec3Json(b.halfExtents)},
+                  {"axes", axesJson(b.axes)},
+                  {"method", nameOf(t.method)},
+                  {"eigenvalues", vec3Json(t.eigenvalues)}};
         const std::array<Vec3, 8> c = boxCorners(b);
         f.body = hullDrawable(std::vector<Vec3>(c.begin(), c.end()), true);
-        f.detail = "eigenvalues " + sig3(t.eigenvalues[0]) + ", " + sig3(t.eigenvalues[1]) + ", " + sig3(t.eigenvalues[2]);
+        f.detail =
+            "eigenvalues " + sig3(t.eigenvalues[0]) + ", " + sig3(t.eigenvalues[1]) + ", " + sig3(t.eigenvalues[2]);
     } else if (key == "kdop6") {
         f = fitKdopBv<6>(pts);
     } else if (key == "kdop14") {
@@ -274,8 +286,10 @@ FittedBv fitOne(const std::string& key, const std::vector<Vec3>& pts, const std:
         const Rss r = fitRss(ps, &t);
         f.heading = "RSS (swept rectangle)";
         f.volume = volume(r);
-        f.json = {{"center", vec3Json(r.center)}, {"axes", axesJson(r.axes)},
-                  {"half_lengths", {r.halfLengths.x(), r.halfLengths.y()}}, {"radius", r.radius},
+        f.json = {{"center", vec3Json(r.center)},
+                  {"axes", axesJson(r.axes)},
+                  {"half_lengths", {r.halfLengths.x(), r.halfLengths.y()}},
+                  {"radius", r.radius},
                   {"corner_fixes", t.cornerFixes}};
         const std::array<Vec3, 4> q = rssCorners(r);
         f.body = sweptDrawable(std::vector<Vec3>(q.begin(), q.end()), r.radius);
@@ -291,7 +305,11 @@ FittedBv fitOne(const std::string& key, const std::vector<Vec3>& pts, const std:
 class BoundingVolumesScene final : public PreparedScene {
 public:
     BoundingVolumesScene(SceneCommon common, ShapeSpec shape, std::vector<std::string> volumes, int columns, Vec3 view)
-        : PreparedScene(std::move(common)), shape_(std::move(shape)), volumes_(std::move(volumes)), columns_(columns), view_(view) {}
+        : PreparedScene(std::move(common)),
+          shape_(std::move(shape)),
+          volumes_(std::move(volumes)),
+          columns_(columns),
+          view_(view) {}
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
@@ -380,7 +398,8 @@ private:
                 drawBody(c, f.body, bvColor, 0.16f, bvColor.scaled(0.75f), 1.6f);
             if (common_.hasLayer("cores")) {
                 for (const auto& [a, b] : f.core) c.drawLine(a, b, lineStyle(Role::Ink, 2.5f, f.key == "ritter", true));
-                for (const Vec3& m : f.marks) c.drawPoint(m, 5.0f, roleColor(Role::Support), true, 1.2f, roleColor(Role::Ink));
+                for (const Vec3& m : f.marks)
+                    c.drawPoint(m, 5.0f, roleColor(Role::Support), true, 1.2f, roleColor(Role::Ink));
             }
             const double tight = f.volume / hullVolume;
             drawPanelHeading(c, f.heading, "tightness " + fixed(tight, 2) + " × hull");
@@ -409,14 +428,15 @@ private:
         const Color m = roleColor(Role::Muted);
         for (int cI = 1; cI < cols; ++cI) paintRect(image, cI * pw, titleBand, 1, rows * ph, m);
         for (int rI = 1; rI < rows; ++rI) paintRect(image, 0, titleBand + rI * ph, cols * pw, 1, m);
-        const std::string caption = std::to_string(n) + " bounding volumes of the " + shape_.kind + " with their tightness";
+        const std::string caption =
+            std::to_string(n) + " bounding volumes of the " + shape_.kind + " with their tightness";
         return Frame{"volumes", caption, std::move(image)};
     }
 
     std::string shapeWords(int points) const {
         if (shape_.isCloud()) return std::to_string(points) + " random points";
-        return shape_.kind + " mesh, " + std::to_string(shape_.mesh.triangleCount()) + " triangles, " + std::to_string(points) +
-               " vertices";
+        return shape_.kind + " mesh, " + std::to_string(shape_.mesh.triangleCount()) + " triangles, " +
+               std::to_string(points) + " vertices";
     }
 };
 
@@ -424,7 +444,8 @@ class BoundingVolumesDemo final : public Demo {
 public:
     std::string name() const override { return "bounding_volumes"; }
     std::string description() const override {
-        return "bounding volumes fitted to one shape: Ritter / Welzl spheres, AABB, covariance OBB, k-DOPs, LSS, RSS, with tightness";
+        return "bounding volumes fitted to one shape: Ritter / Welzl spheres, AABB, covariance OBB, k-DOPs, LSS, RSS, "
+               "with tightness";
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
@@ -451,7 +472,8 @@ public:
         r.finish();
         if (common.image.width < 320 || common.image.height < 240)
             r.node().fail("bounding_volumes frames need an image of at least 320 x 240");
-        return std::make_unique<BoundingVolumesScene>(std::move(common), std::move(shape), std::move(volumes), columns, view);
+        return std::make_unique<BoundingVolumesScene>(std::move(common), std::move(shape), std::move(volumes), columns,
+                                                      view);
     }
 };
 

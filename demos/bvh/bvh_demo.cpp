@@ -26,9 +26,9 @@
 #include "demos/bvh/bvh_draw.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/scene_limits.h"
-#include "demos/scene/mesh_scene.h"
 #include "demos/draw/step_frames.h"
+#include "demos/scene/mesh_scene.h"
+#include "demos/scene/scene_limits.h"
 
 namespace cdlab::demos {
 
@@ -46,7 +46,8 @@ const std::vector<std::string> kLayers = {"mesh", "boxes", "tree", "labels"};
 TriangleMesh sheetMesh(double lx, double ly, int nx, int ny) {
     TriangleMesh m;
     for (int j = 0; j <= ny; ++j)
-        for (int i = 0; i <= nx; ++i) m.vertices.emplace_back(lx * (double(i) / nx - 0.5), ly * (double(j) / ny - 0.5), 0.0);
+        for (int i = 0; i <= nx; ++i)
+            m.vertices.emplace_back(lx * (double(i) / nx - 0.5), ly * (double(j) / ny - 0.5), 0.0);
     auto id = [&](int i, int j) { return j * (nx + 1) + i; };
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
@@ -234,7 +235,7 @@ public:
     std::vector<int> stepFrames;  // dual traversal: BV step indices to draw (empty: chosen)
     int treeDepth = 5;            // tree diagram depth
     Deformation deformation = Deformation::Roll;
-    double deformAngle = 270.0;   // degrees at t = 1
+    double deformAngle = 270.0;  // degrees at t = 1
     std::vector<double> times = {0.33, 0.67, 1.0};
 
     DemoOutput execute(const RunContext& ctx) const override {
@@ -258,13 +259,15 @@ private:
     int H() const { return common_.image.height; }
     bool labels() const { return common_.hasLayer("labels"); }
 
-    Bvh buildChecked(const TriangleMesh& mesh, BvKind kind, BvhBuildMethod method, BvhBuildTrace* trace = nullptr) const {
+    Bvh buildChecked(const TriangleMesh& mesh, BvKind kind, BvhBuildMethod method,
+                     BvhBuildTrace* trace = nullptr) const {
         BvhBuildOptions o = build;
         o.bvKind = kind;
         o.method = method;
         Bvh b = buildBvh(mesh, o, trace);
         if (b.status != BvhStatus::Ok)
-            throw InputError(common_.file + ": building the " + std::string(nameOf(kind)) + " tree failed: " + nameOf(b.status));
+            throw InputError(common_.file + ": building the " + std::string(nameOf(kind)) +
+                             " tree failed: " + nameOf(b.status));
         return b;
     }
 
@@ -274,8 +277,13 @@ private:
             const std::vector<int> nodes = levelNodes(bvh, L);
             lv.push_back({{"level", L}, {"nodes", nodes.size()}, {"volume", sumVolume(bvh, nodes)}});
         }
-        return {{"bv", nameOf(bvh.kind)}, {"method", nameOf(bvh.method)}, {"nodes", bvh.nodes.size()},
-                {"height", bvh.height()}, {"triangles", bvh.triangleCount()}, {"total_volume", totalVolume(bvh)}, {"levels", lv}};
+        return {{"bv", nameOf(bvh.kind)},
+                {"method", nameOf(bvh.method)},
+                {"nodes", bvh.nodes.size()},
+                {"height", bvh.height()},
+                {"triangles", bvh.triangleCount()},
+                {"total_volume", totalVolume(bvh)},
+                {"levels", lv}};
     }
 
     /// One 3D panel: the mesh (translucent) and the boxes of `nodes` coloured by `color`.
@@ -284,7 +292,9 @@ private:
                      const std::string& sub, const std::vector<std::string>& footer = {}) const {
         Canvas c(gl, canvasOptions(w, h, ss_));
         c.setCamera(cam);
-        if (common_.hasLayer("mesh")) drawMesh(c, mesh, roleColor(Role::ShapeA).withAlpha(0.35f), 0.6f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
+        if (common_.hasLayer("mesh"))
+            drawMesh(c, mesh, roleColor(Role::ShapeA).withAlpha(0.35f), 0.6f,
+                     roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
         if (common_.hasLayer("boxes"))
             for (int i : nodes) {
                 const Obb b = worldBox(bvh.box(i), pose);
@@ -316,8 +326,13 @@ private:
         Json steps = Json::array();
         for (const BvhBuildStep& s : bt.steps)
             if (s.depth <= maxLevel)
-                steps.push_back({{"node", s.node}, {"depth", s.depth}, {"first", s.first}, {"count", s.count},
-                                 {"split_axis", s.splitAxis}, {"split_position", s.splitPosition}, {"box", obbJson(s.box)}});
+                steps.push_back({{"node", s.node},
+                                 {"depth", s.depth},
+                                 {"first", s.first},
+                                 {"count", s.count},
+                                 {"split_axis", s.splitAxis},
+                                 {"split_position", s.splitPosition},
+                                 {"box", obbJson(s.box)}});
         t["build_steps"] = steps;
         out.trace = t;
         if (!ctx.gl) return;
@@ -328,20 +343,24 @@ private:
         Vec3 center;
         double radius;
         meshSphere({&mv}, center, radius, rootCorners(bvh, m.pose));
-        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+        const Camera cam = common_.camera ? *common_.camera
+                                          : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
         const double rootVolume = volume(bvh.box(0));
         std::vector<Image> panels;
         for (int level : levels) {
             const std::vector<int> nodes = levelNodes(bvh, level);
             const double v = sumVolume(bvh, nodes);
-            panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, bvh, m.pose, nodes, levelColor(level), cam,
-                                        "Level " + std::to_string(level) + ": " + std::to_string(nodes.size()) + " box" + (nodes.size() == 1 ? "" : "es"),
+            panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, bvh, m.pose, nodes,
+                                        levelColor(level), cam,
+                                        "Level " + std::to_string(level) + ": " + std::to_string(nodes.size()) +
+                                            " box" + (nodes.size() == 1 ? "" : "es"),
                                         "total volume " + fmt(v) + " (" + pct(v / rootVolume) + " of the root)"));
         }
         while (int(panels.size()) < L.columns * L.rows - 1) panels.push_back(Image(L.panelWidth(), L.panelHeight()));
         if (common_.hasLayer("tree")) {
             TreeDiagramInput tin = treeOf(bvh, treeDepth);
-            tin.heading = "The tree (" + std::to_string(bvh.nodes.size()) + " nodes, height " + std::to_string(bvh.height()) + ")";
+            tin.heading = "The tree (" + std::to_string(bvh.nodes.size()) + " nodes, height " +
+                          std::to_string(bvh.height()) + ")";
             tin.sub = "binary; drawn to level " + std::to_string(treeDepth) + ", dashed: more below";
             for (const BvhNode& n : bvh.nodes) {
                 const bool shown = std::find(levels.begin(), levels.end(), n.depth) != levels.end();
@@ -352,27 +371,34 @@ private:
             panels.push_back(drawTreeDiagram(*ctx.gl, L.panelWidth(), L.panelHeight(), ss_, tin));
         }
         std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "mesh"}};
-        for (int level : levels) legend.push_back({LegendItem::Swatch::Line, levelColor(level), "level " + std::to_string(level)});
+        for (int level : levels)
+            legend.push_back({LegendItem::Swatch::Line, levelColor(level), "level " + std::to_string(level)});
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
         caption.push_back(std::string(nameOf(bvh.kind)) + " tree, " + methodWords(bvh.method) + ", leaves of ≤ " +
-                          std::to_string(build.maxLeafTriangles) + " triangle" + (build.maxLeafTriangles == 1 ? "" : "s") + "; " +
-                          std::to_string(bvh.triangleCount()) + " triangles, " + std::to_string(bvh.nodes.size()) + " nodes, height " +
+                          std::to_string(build.maxLeafTriangles) + " triangle" +
+                          (build.maxLeafTriangles == 1 ? "" : "s") + "; " + std::to_string(bvh.triangleCount()) +
+                          " triangles, " + std::to_string(bvh.nodes.size()) + " nodes, height " +
                           std::to_string(bvh.height()));
         std::string vols = "Summed box volume, levels 0.." + std::to_string(bvh.height()) + ":";
         for (int level = 0; level <= bvh.height(); ++level) vols += " " + fmt(sumVolume(bvh, levelNodes(bvh, level)));
         caption.push_back(vols + ". Boxes of one level overlap, and on a closed");
-        caption.push_back("surface the sum only falls once the boxes are thinner than the shape: the tree pays off at the deep levels.");
+        caption.push_back(
+            "surface the sum only falls once the boxes are thinner than the shape: the tree pays off at the deep "
+            "levels.");
         out.frames.push_back(Frame{"levels",
-                                   "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) + " of the " + nameOf(bvh.kind) + " tree",
+                                   "levels " + std::to_string(levels.front()) + ".." + std::to_string(maxLevel) +
+                                       " of the " + nameOf(bvh.kind) + " tree",
                                    composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
     }
 
     // ---- aabb_vs_obb --------------------------------------------------------------------------
     void runAabbVsObb(const RunContext& ctx, DemoOutput& out) const {
         const MeshSpec& m = meshes[0];
-        const Bvh trees[2] = {buildChecked(m.mesh, BvKind::Aabb, build.method), buildChecked(m.mesh, BvKind::Obb, build.method)};
-        const int maxLevel = std::min(*std::max_element(levels.begin(), levels.end()) + 2, std::min(trees[0].height(), trees[1].height()));
+        const Bvh trees[2] = {buildChecked(m.mesh, BvKind::Aabb, build.method),
+                              buildChecked(m.mesh, BvKind::Obb, build.method)};
+        const int maxLevel = std::min(*std::max_element(levels.begin(), levels.end()) + 2,
+                                      std::min(trees[0].height(), trees[1].height()));
         Json t;
         t["mesh"] = m.kind;
         t["trees"] = {treeJson(trees[0], maxLevel), treeJson(trees[1], maxLevel)};
@@ -400,53 +426,67 @@ private:
         for (int k = 0; k < 2; ++k) {
             const Bvh other = buildChecked(o.mesh, trees[k].kind, build.method);
             q[k] = collideMeshes(m.mesh, trees[k], m.pose, o.mesh, other, o.pose);
-            qj.push_back({{"bv", nameOf(trees[k].kind)}, {"bv_tests", q[k].stats.bvTests}, {"leaf_pairs", q[k].stats.leafVisits},
-                          {"triangle_tests", q[k].stats.triangleTests}, {"pairs", q[k].pairs.size()},
+            qj.push_back({{"bv", nameOf(trees[k].kind)},
+                          {"bv_tests", q[k].stats.bvTests},
+                          {"leaf_pairs", q[k].stats.leafVisits},
+                          {"triangle_tests", q[k].stats.triangleTests},
+                          {"pairs", q[k].pairs.size()},
                           {"equals_brute_force", samePairs(q[k].pairs, brute.pairs)}});
         }
-        return {{"mesh", o.kind}, {"brute_force_triangle_tests", brute.stats.triangleTests}, {"brute_force_pairs", brute.pairs.size()},
+        return {{"mesh", o.kind},
+                {"brute_force_triangle_tests", brute.stats.triangleTests},
+                {"brute_force_pairs", brute.pairs.size()},
                 {"trees", qj}};
     }
 
     /// The sphere around the mesh and both trees' boxes at the shallowest drawn level: one camera frames every panel.
-    void sphereOverTopLevel(const MeshView& mv, const Bvh (&trees)[2], const Transform& pose, Vec3& center, double& radius) const {
+    void sphereOverTopLevel(const MeshView& mv, const Bvh (&trees)[2], const Transform& pose, Vec3& center,
+                            double& radius) const {
         std::vector<Vec3> corners;
         for (int k = 0; k < 2; ++k) {
-            const std::vector<Vec3> c = boxesCorners(trees[k], pose, levelNodes(trees[k], *std::min_element(levels.begin(), levels.end())));
+            const std::vector<Vec3> c =
+                boxesCorners(trees[k], pose, levelNodes(trees[k], *std::min_element(levels.begin(), levels.end())));
             corners.insert(corners.end(), c.begin(), c.end());
         }
         meshSphere({&mv}, center, radius, corners);
     }
 
     // Frame 1: AABB row over OBB row, one column per level.
-    Frame aabbVsObbLevelsFrame(GlContext& gl, const MeshView& mv, const Bvh (&trees)[2], const Vec3& center, double radius) const {
+    Frame aabbVsObbLevelsFrame(GlContext& gl, const MeshView& mv, const Bvh (&trees)[2], const Vec3& center,
+                               double radius) const {
         const MeshSpec& m = meshes[0];
         GridLayout L = grid(W(), H(), int(levels.size()), 2);
-        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+        const Camera cam = common_.camera ? *common_.camera
+                                          : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
         std::vector<Image> panels;
         for (int k = 0; k < 2; ++k)
             for (int level : levels) {
                 const std::vector<int> nodes = levelNodes(trees[k], level);
                 const double v = sumVolume(trees[k], nodes);
-                panels.push_back(boxesPanel(gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes,
-                                            k == 0 ? levelColor(0) : levelColor(1), cam,
-                                            std::string(nameOf(trees[k].kind)) + " tree, level " + std::to_string(level),
-                                            std::to_string(nodes.size()) + " boxes, volume " + fmt(v)));
+                panels.push_back(
+                    boxesPanel(gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes,
+                               k == 0 ? levelColor(0) : levelColor(1), cam,
+                               std::string(nameOf(trees[k].kind)) + " tree, level " + std::to_string(level),
+                               std::to_string(nodes.size()) + " boxes, volume " + fmt(v)));
             }
-        std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "torus mesh"},
-                                          {LegendItem::Swatch::Line, levelColor(0), "AABB (world axes)"},
-                                          {LegendItem::Swatch::Line, levelColor(1), "OBB (covariance axes, Gottschalk 1996)"}};
+        std::vector<LegendItem> legend = {
+            {LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "torus mesh"},
+            {LegendItem::Swatch::Line, levelColor(0), "AABB (world axes)"},
+            {LegendItem::Swatch::Line, levelColor(1), "OBB (covariance axes, Gottschalk 1996)"}};
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
-        caption.push_back("Same mesh (" + std::to_string(trees[0].triangleCount()) + " triangles), same split rule (" + methodWords(build.method) +
-                          "), leaves of ≤ " + std::to_string(build.maxLeafTriangles) +
+        caption.push_back("Same mesh (" + std::to_string(trees[0].triangleCount()) + " triangles), same split rule (" +
+                          methodWords(build.method) + "), leaves of ≤ " + std::to_string(build.maxLeafTriangles) +
                           (build.maxLeafTriangles == 1 ? " triangle." : " triangles."));
-        caption.push_back("The OBBs turn with the tube and hug it; the AABBs keep the world axes and their corners stay empty.");
-        return Frame{"levels", "AABB vs OBB boxes at equal depth", composeGrid(gl, L, ss_, common_.title, panels, legend, caption)};
+        caption.push_back(
+            "The OBBs turn with the tube and hug it; the AABBs keep the world axes and their corners stay empty.");
+        return Frame{"levels", "AABB vs OBB boxes at equal depth",
+                     composeGrid(gl, L, ss_, common_.title, panels, legend, caption)};
     }
 
     // Frame 2: volume per level, and the query's counters (q: the query through each tree, or null when none).
-    Frame aabbVsObbNumbersFrame(GlContext& gl, const MeshView& mv, const Bvh (&trees)[2], int maxLevel, const MeshCollisionResult* q) const {
+    Frame aabbVsObbNumbersFrame(GlContext& gl, const MeshView& mv, const Bvh (&trees)[2], int maxLevel,
+                                const MeshCollisionResult* q) const {
         const MeshSpec& m = meshes[0];
         GridLayout L = grid(W(), std::min(H(), 520), q ? 3 : 1, 1);
         L.legendBand = 0;
@@ -456,7 +496,8 @@ private:
         bc.sub = "sum over the boxes of the level";
         for (int k = 0; k < 2; ++k) {
             BarSeries s{nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1), {}};
-            for (int level = 0; level <= maxLevel; ++level) s.values.push_back(sumVolume(trees[k], levelNodes(trees[k], level)));
+            for (int level = 0; level <= maxLevel; ++level)
+                s.values.push_back(sumVolume(trees[k], levelNodes(trees[k], level)));
             bc.series.push_back(s);
         }
         for (int level = 0; level <= maxLevel; ++level) bc.groups.push_back(std::to_string(level));
@@ -469,37 +510,47 @@ private:
             Vec3 qc;
             double qr;
             meshSphere({&mv, &ov}, qc, qr);
-            Canvas c(gl, canvasOptions(L.panelWidth(), L.panelHeight(), ss_), sphereCamera(qc, qr / zoom, view, L.panelWidth(), L.panelHeight()));
-            drawMesh(c, mv, roleColor(Role::ShapeA).withAlpha(0.3f), 0.5f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.5f));
-            drawMesh(c, ov, roleColor(Role::ShapeB).withAlpha(0.3f), 0.5f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.5f));
+            Canvas c(gl, canvasOptions(L.panelWidth(), L.panelHeight(), ss_),
+                     sphereCamera(qc, qr / zoom, view, L.panelWidth(), L.panelHeight()));
+            drawMesh(c, mv, roleColor(Role::ShapeA).withAlpha(0.3f), 0.5f,
+                     roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.5f));
+            drawMesh(c, ov, roleColor(Role::ShapeB).withAlpha(0.3f), 0.5f,
+                     roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.5f));
             std::vector<int> ha, hb;
             splitPairs(q[1].pairs, ha, hb);
             drawTriangleSubset(c, mv, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
             drawTriangleSubset(c, ov, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
-            drawHeading(c, "The query: A vs B", std::to_string(q[1].pairs.size()) + " intersecting triangle pairs (red)");
+            drawHeading(c, "The query: A vs B",
+                        std::to_string(q[1].pairs.size()) + " intersecting triangle pairs (red)");
             panels.push_back(c.readPixels());
             BarChartInput cc;
             cc.heading = "Cost of the same query";
             cc.sub = "dual traversal (log scale)";
             cc.groups = {"BV tests", "leaf pairs", "triangle tests"};
             for (int k = 0; k < 2; ++k)
-                cc.series.push_back({nameOf(trees[k].kind), k == 0 ? levelColor(0) : levelColor(1),
-                                     {double(q[k].stats.bvTests), double(q[k].stats.leafVisits), double(q[k].stats.triangleTests)}});
+                cc.series.push_back(
+                    {nameOf(trees[k].kind),
+                     k == 0 ? levelColor(0) : levelColor(1),
+                     {double(q[k].stats.bvTests), double(q[k].stats.leafVisits), double(q[k].stats.triangleTests)}});
             cc.valueFormat = "%.0f";
             cc.logY = true;
             panels.push_back(drawBarChart(gl, L.panelWidth(), L.panelHeight(), ss_, cc));
             caption.push_back("Both trees report the brute-force pairs (" + std::to_string(q[0].pairs.size()) + " of " +
                               std::to_string(m.mesh.triangleCount() * o.mesh.triangleCount()) + ").");
-            caption.push_back("An OBB test costs more (15 axes), but the OBB tree needs " +
-                              pct(double(q[1].stats.bvTests) / double(std::max<long long>(1, q[0].stats.bvTests))) + " of the box tests and " +
-                              pct(double(q[1].stats.triangleTests) / double(std::max<long long>(1, q[0].stats.triangleTests))) + " of the triangle tests.");
+            caption.push_back(
+                "An OBB test costs more (15 axes), but the OBB tree needs " +
+                pct(double(q[1].stats.bvTests) / double(std::max<long long>(1, q[0].stats.bvTests))) +
+                " of the box tests and " +
+                pct(double(q[1].stats.triangleTests) / double(std::max<long long>(1, q[0].stats.triangleTests))) +
+                " of the triangle tests.");
         }
         std::string vols = "Summed volume AABB / OBB:";
         for (int level : levels)
-            vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) + " / " +
-                    fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
+            vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) +
+                    " / " + fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
         caption.push_back(vols + "  (the OBB tree converges to the surface faster)");
-        return Frame{"numbers", "volume per level and query cost, AABB vs OBB", composeGrid(gl, L, ss_, common_.title, panels, {}, caption)};
+        return Frame{"numbers", "volume per level and query cost, AABB vs OBB",
+                     composeGrid(gl, L, ss_, common_.title, panels, {}, caption)};
     }
 
     // ---- dual_traversal -----------------------------------------------------------------------
@@ -513,7 +564,8 @@ private:
     void runDual(const RunContext& ctx, DemoOutput& out) const {
         const MeshSpec& ma = meshes[0];
         const MeshSpec& mb = meshes[1];
-        const Bvh ta = buildChecked(ma.mesh, build.bvKind, build.method), tb = buildChecked(mb.mesh, build.bvKind, build.method);
+        const Bvh ta = buildChecked(ma.mesh, build.bvKind, build.method),
+                  tb = buildChecked(mb.mesh, build.bvKind, build.method);
         BvhTraversalTrace tr;
         const MeshCollisionResult r = collideMeshes(ma.mesh, ta, ma.pose, mb.mesh, tb, mb.pose, {}, &tr);
         const MeshCollisionResult brute = collideMeshesBruteForce(ma.mesh, ma.pose, mb.mesh, mb.pose);
@@ -523,9 +575,13 @@ private:
         Json pairs = Json::array();
         for (const TrianglePair& p : r.pairs) pairs.push_back({p.a, p.b});
         out.trace = {{"trees", {treeJson(ta, 3), treeJson(tb, 3)}},
-                     {"stats", {{"bv_tests", r.stats.bvTests}, {"leaf_pairs", r.stats.leafVisits}, {"triangle_tests", r.stats.triangleTests}}},
+                     {"stats",
+                      {{"bv_tests", r.stats.bvTests},
+                       {"leaf_pairs", r.stats.leafVisits},
+                       {"triangle_tests", r.stats.triangleTests}}},
                      {"pairs", pairs},
-                     {"brute_force", {{"triangle_tests", brute.stats.triangleTests}, {"pairs", brute.pairs.size()}, {"equal", equal}}},
+                     {"brute_force",
+                      {{"triangle_tests", brute.stats.triangleTests}, {"pairs", brute.pairs.size()}, {"equal", equal}}},
                      {"steps", steps}};
         if (!ctx.gl) return;
 
@@ -536,7 +592,8 @@ private:
         GridLayout L = grid(W(), H(), 2, 1);
         L.columnWidths = {W() - 360, 360};
         L.captionBand = 100;
-        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(0), L.panelHeight());
+        const Camera cam = common_.camera ? *common_.camera
+                                          : sphereCamera(center, radius / zoom, view, L.panelWidth(0), L.panelHeight());
         const std::vector<LegendItem> legend = {
             {LegendItem::Swatch::Line, roleColor(Role::ShapeA), "box of A's node"},
             {LegendItem::Swatch::Line, roleColor(Role::ShapeB), "box of B's node"},
@@ -561,7 +618,10 @@ private:
             if (s.action == BvhTraversalAction::TriangleTest) {
                 ++triTests;
                 hits += s.triangleHit;
-                steps.push_back({{"action", nameOf(s.action)}, {"triangle_a", s.triangleA}, {"triangle_b", s.triangleB}, {"hit", s.triangleHit}});
+                steps.push_back({{"action", nameOf(s.action)},
+                                 {"triangle_a", s.triangleA},
+                                 {"triangle_b", s.triangleB},
+                                 {"hit", s.triangleHit}});
                 if (!bv.empty()) bv.back().triangleTests = triTests, bv.back().hits = hits;
                 continue;
             }
@@ -570,7 +630,10 @@ private:
             if (s.action == BvhTraversalAction::DescendA || s.action == BvhTraversalAction::DescendB) pending += 2;
             if (s.action == BvhTraversalAction::LeafTest) ++leafPairs;
             bv.push_back({i, s, bvTests, leafPairs, triTests, hits, pending});
-            steps.push_back({{"node_a", s.nodeA}, {"node_b", s.nodeB}, {"overlap", s.overlap}, {"action", nameOf(s.action)},
+            steps.push_back({{"node_a", s.nodeA},
+                             {"node_b", s.nodeB},
+                             {"overlap", s.overlap},
+                             {"action", nameOf(s.action)},
                              {"pending", pending}});
         }
         return steps;
@@ -602,8 +665,10 @@ private:
                           const MeshCollisionResult& r, const MeshCollisionResult& brute, bool equal,
                           const std::vector<LegendItem>& legend) const {
         Canvas c(gl, canvasOptions(L.panelWidth(0), L.panelHeight(), ss_), cam);
-        drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.3f), 0.6f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
-        drawMesh(c, vb, roleColor(Role::ShapeB).withAlpha(0.3f), 0.6f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.6f));
+        drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.3f), 0.6f,
+                 roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
+        drawMesh(c, vb, roleColor(Role::ShapeB).withAlpha(0.3f), 0.6f,
+                 roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.6f));
         std::vector<int> ha, hb;
         splitPairs(r.pairs, ha, hb);
         std::sort(ha.begin(), ha.end());
@@ -619,35 +684,43 @@ private:
         cc.heading = "Work done";
         cc.sub = "log scale; brute force tests all " + std::to_string(brute.stats.triangleTests) + " pairs";
         cc.groups = {"BV tests", "leaf pairs", "tri tests", "brute force"};
-        cc.series.push_back({"dual traversal", roleColor(Role::Simplex),
-                             {double(r.stats.bvTests), double(r.stats.leafVisits), double(r.stats.triangleTests), double(brute.stats.triangleTests)}});
+        cc.series.push_back({"dual traversal",
+                             roleColor(Role::Simplex),
+                             {double(r.stats.bvTests), double(r.stats.leafVisits), double(r.stats.triangleTests),
+                              double(brute.stats.triangleTests)}});
         cc.valueFormat = "%.0f";
         cc.logY = true;
         const Image chart = drawBarChart(gl, L.panelWidth(1), L.panelHeight(), ss_, cc);
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
-        caption.push_back(std::to_string(r.stats.bvTests) + " box tests, " + std::to_string(r.stats.leafVisits) + " overlapping leaf pairs, " +
-                          std::to_string(r.stats.triangleTests) + " triangle tests instead of " + std::to_string(brute.stats.triangleTests) +
-                          " (brute force)");
-        caption.push_back(std::string("pairs ") + (equal ? "equal" : "DIFFER FROM") + " the brute-force loop over all triangle pairs (" +
-                          std::to_string(brute.pairs.size()) + ")");
+        caption.push_back(std::to_string(r.stats.bvTests) + " box tests, " + std::to_string(r.stats.leafVisits) +
+                          " overlapping leaf pairs, " + std::to_string(r.stats.triangleTests) +
+                          " triangle tests instead of " + std::to_string(brute.stats.triangleTests) + " (brute force)");
+        caption.push_back(std::string("pairs ") + (equal ? "equal" : "DIFFER FROM") +
+                          " the brute-force loop over all triangle pairs (" + std::to_string(brute.pairs.size()) + ")");
         return Frame{"result",
-                     "result: " + std::to_string(r.pairs.size()) + " triangle pairs, " + std::to_string(r.stats.triangleTests) + " triangle tests",
+                     "result: " + std::to_string(r.pairs.size()) + " triangle pairs, " +
+                         std::to_string(r.stats.triangleTests) + " triangle tests",
                      composeGrid(gl, L, ss_, common_.title, {main, chart}, legend, caption)};
     }
 
-    Frame dualFrame(GlContext& gl, const GridLayout& L, const Camera& cam, const MeshView& va, const MeshView& vb, const Bvh& ta,
-                    const Bvh& tb, const MeshSpec& ma, const MeshSpec& mb, const std::vector<DualStep>& bv, int k,
-                    const BvhTraversalTrace& tr, const std::vector<LegendItem>& legend) const {
+    Frame dualFrame(GlContext& gl, const GridLayout& L, const Camera& cam, const MeshView& va, const MeshView& vb,
+                    const Bvh& ta, const Bvh& tb, const MeshSpec& ma, const MeshSpec& mb,
+                    const std::vector<DualStep>& bv, int k, const BvhTraversalTrace& tr,
+                    const std::vector<LegendItem>& legend) const {
         const DualStep& d = bv[k];
         const BvhTraversalStep& s = d.step;
         Canvas c(gl, canvasOptions(L.panelWidth(0), L.panelHeight(), ss_));
         c.setCamera(cam);
-        drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.18f), 0.5f, roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.35f));
-        drawMesh(c, vb, roleColor(Role::ShapeB).withAlpha(0.18f), 0.5f, roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.35f));
+        drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.18f), 0.5f,
+                 roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.35f));
+        drawMesh(c, vb, roleColor(Role::ShapeB).withAlpha(0.18f), 0.5f,
+                 roleColor(Role::ShapeB).scaled(0.7f).withAlpha(0.35f));
         // The triangles under the two nodes, and their boxes.
-        drawTriangleSubset(c, va, nodeTriangles(ta, s.nodeA), roleColor(Role::ShapeA).withAlpha(0.55f), roleColor(Role::ShapeA).scaled(0.6f), 0.8f);
-        drawTriangleSubset(c, vb, nodeTriangles(tb, s.nodeB), roleColor(Role::ShapeB).withAlpha(0.55f), roleColor(Role::ShapeB).scaled(0.6f), 0.8f);
+        drawTriangleSubset(c, va, nodeTriangles(ta, s.nodeA), roleColor(Role::ShapeA).withAlpha(0.55f),
+                           roleColor(Role::ShapeA).scaled(0.6f), 0.8f);
+        drawTriangleSubset(c, vb, nodeTriangles(tb, s.nodeB), roleColor(Role::ShapeB).withAlpha(0.55f),
+                           roleColor(Role::ShapeB).scaled(0.6f), 0.8f);
         const bool leafTest = s.action == BvhTraversalAction::LeafTest;
         for (int side = 0; side < 2; ++side) {
             const Obb b = side == 0 ? worldBox(ta.box(s.nodeA), ma.pose) : worldBox(tb.box(s.nodeB), mb.pose);
@@ -660,7 +733,8 @@ private:
         if (leafTest) {
             std::vector<int> ha, hb;
             int tests = 0, hit = 0;
-            for (int i = d.trace + 1; i < int(tr.steps.size()) && tr.steps[i].action == BvhTraversalAction::TriangleTest; ++i) {
+            for (int i = d.trace + 1;
+                 i < int(tr.steps.size()) && tr.steps[i].action == BvhTraversalAction::TriangleTest; ++i) {
                 ++tests;
                 if (tr.steps[i].triangleHit) {
                     ++hit;
@@ -670,16 +744,19 @@ private:
             }
             drawTriangleSubset(c, va, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
             drawTriangleSubset(c, vb, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
-            triNote = std::to_string(tests) + " triangle test" + (tests == 1 ? "" : "s") + ", " + std::to_string(hit) + (hit == 1 ? " hit" : " hits");
+            triNote = std::to_string(tests) + " triangle test" + (tests == 1 ? "" : "s") + ", " + std::to_string(hit) +
+                      (hit == 1 ? " hit" : " hits");
         }
         const std::string pair = "pair (A" + std::to_string(s.nodeA) + ", B" + std::to_string(s.nodeB) + ")";
         drawHeading(c, "Step " + std::to_string(k + 1) + " of " + std::to_string(bv.size()) + ": " + pair,
                     std::string(s.overlap ? "boxes overlap" : "boxes disjoint") + " → " + nameOf(s.action) +
                         (triNote.empty() ? "" : ": " + triNote));
         if (labels()) {
-            drawFooter(c, {"pending pairs on the stack: " + std::to_string(d.pending),
-                           "so far: " + std::to_string(d.bvTests) + " box tests, " + std::to_string(d.leafPairs) + " leaf pairs, " +
-                               std::to_string(d.triangleTests) + " triangle tests, " + std::to_string(d.hits) + (d.hits == 1 ? " hit" : " hits")},
+            drawFooter(c,
+                       {"pending pairs on the stack: " + std::to_string(d.pending),
+                        "so far: " + std::to_string(d.bvTests) + " box tests, " + std::to_string(d.leafPairs) +
+                            " leaf pairs, " + std::to_string(d.triangleTests) + " triangle tests, " +
+                            std::to_string(d.hits) + (d.hits == 1 ? " hit" : " hits")},
                        roleColor(Role::Ink));
         }
         const Image main = c.readPixels();
@@ -695,8 +772,10 @@ private:
                                            : TreeNodeLook{roleColor(Role::Muted), 2.5f, false});
             tin.look[current] = TreeNodeLook{base, 7.0f, true};
             for (int n = current; n > 0; n = t.nodes[n].parent) tin.litEdges.push_back(n);
-            tin.heading = std::string("Tree of ") + (isA ? "A" : "B") + " (" + nameOf(t.kind) + ", " + std::to_string(t.nodes.size()) + " nodes)";
-            tin.sub = "node " + std::to_string(current) + (t.nodes[current].isLeaf() ? " (leaf)" : "") + "; tinted: visited";
+            tin.heading = std::string("Tree of ") + (isA ? "A" : "B") + " (" + nameOf(t.kind) + ", " +
+                          std::to_string(t.nodes.size()) + " nodes)";
+            tin.sub =
+                "node " + std::to_string(current) + (t.nodes[current].isLeaf() ? " (leaf)" : "") + "; tinted: visited";
             tin.levelLabels = false;
             const int h = L.panelHeight() / 2;
             return drawTreeDiagram(gl, L.panelWidth(1), isA ? h : L.panelHeight() - h, ss_, tin);
@@ -705,13 +784,18 @@ private:
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
         std::string rule;
-        if (s.action == BvhTraversalAction::DescendA) rule = "descend A: B is a leaf or A's box is at least as large (Ericson's \"descend larger\") → push (A.left, B), (A.right, B)";
-        if (s.action == BvhTraversalAction::DescendB) rule = "descend B: B's box is larger and not a leaf → push (A, B.left), (A, B.right)";
-        if (s.action == BvhTraversalAction::Prune) rule = "prune: no triangle under A's node can touch one under B's node; the pair is dropped";
-        if (s.action == BvhTraversalAction::LeafTest) rule = "leaf pair: test every triangle of A's leaf against every triangle of B's leaf (exact test)";
+        if (s.action == BvhTraversalAction::DescendA)
+            rule =
+                "descend A: B is a leaf or A's box is at least as large (Ericson's \"descend larger\") → push (A.left, "
+                "B), (A.right, B)";
+        if (s.action == BvhTraversalAction::DescendB)
+            rule = "descend B: B's box is larger and not a leaf → push (A, B.left), (A, B.right)";
+        if (s.action == BvhTraversalAction::Prune)
+            rule = "prune: no triangle under A's node can touch one under B's node; the pair is dropped";
+        if (s.action == BvhTraversalAction::LeafTest)
+            rule = "leaf pair: test every triangle of A's leaf against every triangle of B's leaf (exact test)";
         caption.push_back(rule);
-        return Frame{stepFrameName(k),
-                     "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action),
+        return Frame{stepFrameName(k), "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action),
                      composeGrid(gl, L, ss_, common_.title, {main, trees}, legend, caption)};
     }
 
@@ -753,16 +837,23 @@ private:
                 if (st != BvhStatus::Ok) throw InputError(common_.file + ": refit failed: " + nameOf(st));
                 rb[k] = buildChecked(shapes.back(), kinds[k], build.method);
                 const std::vector<int> lr = levelNodes(rf[k], levels.front()), lb = levelNodes(rb[k], levels.front());
-                perKind.push_back({{"bv", nameOf(kinds[k])}, {"refit_total_volume", totalVolume(rf[k])}, {"rebuilt_total_volume", totalVolume(rb[k])},
-                                   {"refit_level_volume", sumVolume(rf[k], lr)}, {"rebuilt_level_volume", sumVolume(rb[k], lb)},
-                                   {"refit_root", obbJson(rf[k].box(0))}, {"rebuilt_root", obbJson(rb[k].box(0))}});
+                perKind.push_back({{"bv", nameOf(kinds[k])},
+                                   {"refit_total_volume", totalVolume(rf[k])},
+                                   {"rebuilt_total_volume", totalVolume(rb[k])},
+                                   {"refit_level_volume", sumVolume(rf[k], lr)},
+                                   {"rebuilt_level_volume", sumVolume(rb[k], lb)},
+                                   {"refit_root", obbJson(rf[k].box(0))},
+                                   {"rebuilt_root", obbJson(rb[k].box(0))}});
             }
             rows.push_back({{"t", t}, {"angle_degrees", deformAngle * t}, {"trees", perKind}});
             refit.push_back(std::move(rf));
             rebuilt.push_back(std::move(rb));
         }
-        out.trace = {{"mesh", m.kind}, {"triangles", m.mesh.triangleCount()}, {"deformation", deformation == Deformation::Roll ? "roll" : "twist"},
-                     {"level", levels.front()}, {"frames", rows}};
+        out.trace = {{"mesh", m.kind},
+                     {"triangles", m.mesh.triangleCount()},
+                     {"deformation", deformation == Deformation::Roll ? "roll" : "twist"},
+                     {"level", levels.front()},
+                     {"frames", rows}};
         if (!ctx.gl) return;
 
         const int k = build.bvKind == BvKind::Aabb ? 0 : 1;  // the kind drawn in the grid
@@ -775,28 +866,34 @@ private:
         Vec3 center;
         double radius;
         meshSphere(all, center, radius);
-        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+        const Camera cam = common_.camera ? *common_.camera
+                                          : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
         std::vector<Image> panels;
         for (int row = 0; row < 2; ++row)
             for (std::size_t i = 0; i < times.size(); ++i) {
                 const Bvh& b = row == 0 ? refit[i][k] : rebuilt[i][k];
                 const std::vector<int> nodes = levelNodes(b, level);
                 char head[96];
-                std::snprintf(head, sizeof head, "%s, %s%.0f°", row == 0 ? "Refitted" : "Rebuilt", deformation == Deformation::Roll ? "rolled " : "twisted ",
-                              deformAngle * times[i]);
+                std::snprintf(head, sizeof head, "%s, %s%.0f°", row == 0 ? "Refitted" : "Rebuilt",
+                              deformation == Deformation::Roll ? "rolled " : "twisted ", deformAngle * times[i]);
                 const double ratio = totalVolume(refit[i][k]) / totalVolume(rebuilt[i][k]);
-                panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), views[i], b, m.pose, nodes, row == 0 ? levelColor(0) : levelColor(1), cam,
-                                            head, "all nodes: volume " + fmt(totalVolume(b)) + (row == 0 ? " (" + fmt(ratio) + "× rebuilt)" : "")));
+                panels.push_back(boxesPanel(
+                    *ctx.gl, L.panelWidth(), L.panelHeight(), views[i], b, m.pose, nodes,
+                    row == 0 ? levelColor(0) : levelColor(1), cam, head,
+                    "all nodes: volume " + fmt(totalVolume(b)) + (row == 0 ? " (" + fmt(ratio) + "× rebuilt)" : "")));
             }
-        std::vector<LegendItem> legend = {{LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "deformed mesh"},
-                                          {LegendItem::Swatch::Line, levelColor(0), std::string("refitted ") + nameOf(kinds[k]) + "s (topology of the rest shape)"},
-                                          {LegendItem::Swatch::Line, levelColor(1), "rebuilt from scratch"}};
+        std::vector<LegendItem> legend = {
+            {LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "deformed mesh"},
+            {LegendItem::Swatch::Line, levelColor(0),
+             std::string("refitted ") + nameOf(kinds[k]) + "s (topology of the rest shape)"},
+            {LegendItem::Swatch::Line, levelColor(1), "rebuilt from scratch"}};
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
-        caption.push_back("Level " + std::to_string(level) + " boxes drawn. Refit (van den Bergen 1997) keeps the tree built on the flat sheet: " +
-                          (k == 0 ? "each AABB is exact for its triangles, but the groups no longer fit the shape." : "the OBB axes stay those of the rest shape."));
-        out.frames.push_back(Frame{"refit",
-                                   "refitted vs rebuilt boxes",
+        caption.push_back("Level " + std::to_string(level) +
+                          " boxes drawn. Refit (van den Bergen 1997) keeps the tree built on the flat sheet: " +
+                          (k == 0 ? "each AABB is exact for its triangles, but the groups no longer fit the shape."
+                                  : "the OBB axes stay those of the rest shape."));
+        out.frames.push_back(Frame{"refit", "refitted vs rebuilt boxes",
                                    composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
 
         // Volume chart for both kinds.
@@ -813,8 +910,11 @@ private:
         for (int kk = 0; kk < 2; ++kk)
             for (int row = 0; row < 2; ++row) {
                 BarSeries s{std::string(nameOf(kinds[kk])) + (row == 0 ? " refitted" : " rebuilt"),
-                            (kk == 0 ? levelColor(0) : levelColor(2)).mixed(roleColor(Role::Background), row == 0 ? 0.0f : 0.45f), {}};
-                for (std::size_t i = 0; i < times.size(); ++i) s.values.push_back(totalVolume(row == 0 ? refit[i][kk] : rebuilt[i][kk]));
+                            (kk == 0 ? levelColor(0) : levelColor(2))
+                                .mixed(roleColor(Role::Background), row == 0 ? 0.0f : 0.45f),
+                            {}};
+                for (std::size_t i = 0; i < times.size(); ++i)
+                    s.values.push_back(totalVolume(row == 0 ? refit[i][kk] : rebuilt[i][kk]));
                 bc.series.push_back(s);
             }
         // Refitted / rebuilt volume ratio per kind, smallest and largest over the times.
@@ -826,19 +926,22 @@ private:
                 hi[kk] = std::max(hi[kk], r);
             }
         std::vector<std::string> cap2 = {
-            "AABB refit: union of the children's boxes, exact for the old groups: refitted / rebuilt volume " + fmt(lo[0]) + " .. " + fmt(hi[0]) + ".",
+            "AABB refit: union of the children's boxes, exact for the old groups: refitted / rebuilt volume " +
+                fmt(lo[0]) + " .. " + fmt(hi[0]) + ".",
             "OBB refit: the flat sheet's axes, new extents: refitted / rebuilt " + fmt(lo[1]) + " .. " + fmt(hi[1]) +
                 ". Refitting is one bottom-up pass; rebuilding a full build per frame."};
-        out.frames.push_back(Frame{"volume",
-                                   "total box volume, refitted vs rebuilt",
-                                   composeGrid(*ctx.gl, C, ss_, common_.title, {drawBarChart(*ctx.gl, C.panelWidth(), C.panelHeight(), ss_, bc)}, {}, cap2)});
+        out.frames.push_back(
+            Frame{"volume", "total box volume, refitted vs rebuilt",
+                  composeGrid(*ctx.gl, C, ss_, common_.title,
+                              {drawBarChart(*ctx.gl, C.panelWidth(), C.panelHeight(), ss_, bc)}, {}, cap2)});
     }
 
     // ---- build_methods --------------------------------------------------------------------------
     void runBuildMethods(const RunContext& ctx, DemoOutput& out) const {
         const MeshSpec& m = meshes[0];
         const BvhBuildMethod methods[2] = {BvhBuildMethod::TopDownMedian, BvhBuildMethod::BottomUp};
-        const Bvh trees[2] = {buildChecked(m.mesh, build.bvKind, methods[0]), buildChecked(m.mesh, build.bvKind, methods[1])};
+        const Bvh trees[2] = {buildChecked(m.mesh, build.bvKind, methods[0]),
+                              buildChecked(m.mesh, build.bvKind, methods[1])};
         const int maxLevel = *std::max_element(levels.begin(), levels.end());
         out.trace = {{"mesh", m.kind}, {"trees", {treeJson(trees[0], maxLevel + 2), treeJson(trees[1], maxLevel + 2)}}};
         if (!ctx.gl) return;
@@ -848,37 +951,43 @@ private:
         Vec3 center;
         double radius;
         sphereOverTopLevel(mv, trees, m.pose, center, radius);
-        const Camera cam = common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+        const Camera cam = common_.camera ? *common_.camera
+                                          : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
         std::vector<Image> panels;
         for (int k = 0; k < 2; ++k) {
             for (int level : levels) {
                 const std::vector<int> nodes = levelNodes(trees[k], level);
-                panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes, levelColor(level), cam,
-                                            std::string(k == 0 ? "Top-down" : "Bottom-up") + ", level " + std::to_string(level),
-                                            std::to_string(nodes.size()) + " boxes, volume " + fmt(sumVolume(trees[k], nodes))));
+                panels.push_back(
+                    boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes, levelColor(level),
+                               cam, std::string(k == 0 ? "Top-down" : "Bottom-up") + ", level " + std::to_string(level),
+                               std::to_string(nodes.size()) + " boxes, volume " + fmt(sumVolume(trees[k], nodes))));
             }
             TreeDiagramInput tin = treeOf(trees[k], treeDepth);
-            tin.heading = std::string(k == 0 ? "Top-down" : "Bottom-up") + " tree, height " + std::to_string(trees[k].height());
+            tin.heading =
+                std::string(k == 0 ? "Top-down" : "Bottom-up") + " tree, height " + std::to_string(trees[k].height());
             tin.sub = std::to_string(trees[k].nodes.size()) + " nodes, total volume " + fmt(totalVolume(trees[k]));
             tin.levelLabels = false;
             for (const BvhNode& n : trees[k].nodes) {
                 const bool shown = std::find(levels.begin(), levels.end(), n.depth) != levels.end();
-                tin.look.push_back(shown ? TreeNodeLook{levelColor(n.depth), 4.0f, false} : TreeNodeLook{roleColor(Role::Muted), 2.5f, false});
+                tin.look.push_back(shown ? TreeNodeLook{levelColor(n.depth), 4.0f, false}
+                                         : TreeNodeLook{roleColor(Role::Muted), 2.5f, false});
             }
             panels.push_back(drawTreeDiagram(*ctx.gl, L.panelWidth(), L.panelHeight(), ss_, tin));
         }
         std::vector<LegendItem> legend;
-        for (int level : levels) legend.push_back({LegendItem::Swatch::Line, levelColor(level), "level " + std::to_string(level)});
+        for (int level : levels)
+            legend.push_back({LegendItem::Swatch::Line, levelColor(level), "level " + std::to_string(level)});
         std::vector<std::string> caption;
         if (!common_.caption.empty()) caption.push_back(common_.caption);
-        caption.push_back("Top-down splits at the median centroid on the longest axis; bottom-up merges the pair with the smallest union box (Walter et al. 2008).");
+        caption.push_back(
+            "Top-down splits at the median centroid on the longest axis; bottom-up merges the pair with the smallest "
+            "union box (Walter et al. 2008).");
         std::string vols = "Summed volume top-down / bottom-up:";
         for (int level : levels)
-            vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) + " / " +
-                    fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
+            vols += "  level " + std::to_string(level) + " " + fmt(sumVolume(trees[0], levelNodes(trees[0], level))) +
+                    " / " + fmt(sumVolume(trees[1], levelNodes(trees[1], level)));
         caption.push_back(vols + ";  all nodes " + fmt(totalVolume(trees[0])) + " / " + fmt(totalVolume(trees[1])));
-        out.frames.push_back(Frame{"methods",
-                                   "top-down vs bottom-up",
+        out.frames.push_back(Frame{"methods", "top-down vs bottom-up",
                                    composeGrid(*ctx.gl, L, ss_, common_.title, panels, legend, caption)});
     }
 };
@@ -887,13 +996,15 @@ class BvhDemo final : public Demo {
 public:
     std::string name() const override { return "bvh"; }
     std::string description() const override {
-        return "bounding-volume hierarchies: levels and tree, AABB vs OBB trees on a torus, dual traversal step by step, refitting";
+        return "bounding-volume hierarchies: levels and tree, AABB vs OBB trees on a torus, dual traversal step by "
+               "step, refitting";
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
         SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
         auto s = std::make_unique<BvhScene>(std::move(common));
-        const std::string fig = r.get("figure").asEnum({"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods"});
+        const std::string fig =
+            r.get("figure").asEnum({"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods"});
         s->figure = fig == "hierarchy_levels" ? Figure::Levels
                     : fig == "aabb_vs_obb"    ? Figure::AabbVsObb
                     : fig == "dual_traversal" ? Figure::DualTraversal
@@ -903,13 +1014,16 @@ public:
         if (!ms.isArray() || ms.size() < 1 || ms.size() > 2) ms.fail("expected [mesh] or [meshA, meshB]");
         for (const JsonNode& m : ms.items()) s->meshes.push_back(parseMesh(m));
         if (s->figure == Figure::DualTraversal && s->meshes.size() != 2) ms.fail("dual_traversal needs two meshes");
-        if (s->figure == Figure::Refit && s->meshes[0].kind != "sheet") ms.fail("refit deforms a sheet: use {\"sheet\": {...}}");
+        if (s->figure == Figure::Refit && s->meshes[0].kind != "sheet")
+            ms.fail("refit deforms a sheet: use {\"sheet\": {...}}");
         for (std::size_t i = 0; i < s->meshes.size(); ++i)
             if (s->meshes[i].mesh.triangleCount() > 20000) ms.at(i).fail("at most 20000 triangles in a figure");
         if (auto b = r.find("bv")) s->build.bvKind = b->asEnum({"aabb", "obb"}) == "aabb" ? BvKind::Aabb : BvKind::Obb;
         if (auto m = r.find("method")) {
             const std::string v = m->asEnum({"top_down_median", "top_down_sah", "bottom_up"});
-            s->build.method = v == "top_down_median" ? BvhBuildMethod::TopDownMedian : v == "top_down_sah" ? BvhBuildMethod::TopDownSah : BvhBuildMethod::BottomUp;
+            s->build.method = v == "top_down_median" ? BvhBuildMethod::TopDownMedian
+                              : v == "top_down_sah"  ? BvhBuildMethod::TopDownSah
+                                                     : BvhBuildMethod::BottomUp;
         }
         if (auto n = r.find("max_leaf_triangles")) s->build.maxLeafTriangles = n->asInt(1, 64);
         if (auto l = r.find("levels")) {
@@ -929,7 +1043,8 @@ public:
         }
         if (auto d = r.find("deformation")) {
             ObjectReader dr(*d);
-            s->deformation = dr.get("kind").asEnum({"roll", "twist"}) == "roll" ? Deformation::Roll : Deformation::Twist;
+            s->deformation =
+                dr.get("kind").asEnum({"roll", "twist"}) == "roll" ? Deformation::Roll : Deformation::Twist;
             if (auto a = dr.find("angle")) {
                 s->deformAngle = a->asNumber();
                 if (std::abs(s->deformAngle) > 3600) a->fail("expected an angle in [-3600, 3600] degrees");
@@ -945,7 +1060,8 @@ public:
             dr.finish();
         }
         r.finish();
-        if (s->common().image.width < 480 || s->common().image.height < 360) r.node().fail("bvh frames need an image of at least 480 x 360");
+        if (s->common().image.width < 480 || s->common().image.height < 360)
+            r.node().fail("bvh frames need an image of at least 480 x 360");
         return s;
     }
 };

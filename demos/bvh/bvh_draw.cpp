@@ -33,14 +33,15 @@ Obb obbFromAabb(const Aabb& box) {
 
 Color levelColor(int depth) {
     // Okabe–Ito without the blue of the mesh: vermillion, green, purple, orange, sky blue, yellow.
-    static const Color kLevel[6] = {{0.84f, 0.37f, 0.0f, 1}, {0.0f, 0.62f, 0.45f, 1}, {0.80f, 0.47f, 0.65f, 1},
+    static const Color kLevel[6] = {{0.84f, 0.37f, 0.0f, 1}, {0.0f, 0.62f, 0.45f, 1},  {0.80f, 0.47f, 0.65f, 1},
                                     {0.90f, 0.62f, 0.0f, 1}, {0.34f, 0.71f, 0.91f, 1}, {0.75f, 0.70f, 0.10f, 1}};
     return kLevel[((depth % 6) + 6) % 6];
 }
 
 namespace {
 // Box edges: corner pairs differing in one bit.
-constexpr int kEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+constexpr int kEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                               {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
 // Box faces (quads) as corner indices.
 constexpr int kFaces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
 }  // namespace
@@ -97,7 +98,8 @@ void drawTriangleSubset(Canvas& canvas, const MeshView& mesh, const std::vector<
     for (std::size_t k = 0; k + 2 < v.size(); k += 3) canvas.drawPolyline({v[k], v[k + 1], v[k + 2]}, true, s);
 }
 
-void meshSphere(const std::vector<const MeshView*>& meshes, Vec3& center, double& radius, const std::vector<Vec3>& extra) {
+void meshSphere(const std::vector<const MeshView*>& meshes, Vec3& center, double& radius,
+                const std::vector<Vec3>& extra) {
     std::vector<const Vec3*> pts;
     for (const MeshView* m : meshes)
         for (const Vec3& p : m->vertices) pts.push_back(&p);
@@ -157,7 +159,8 @@ Image drawTreeDiagram(GlContext& gl, int W, int H, int ss, const TreeDiagramInpu
         for (int d = 0; d <= deepest; ++d) {
             const bool lit = std::find(in.litLevels.begin(), in.litLevels.end(), d) != in.litLevels.end();
             c.drawTextPx(10, top + d * dy, "level " + std::to_string(d),
-                         TextStyle{13.0f, lit ? roleColor(Role::Ink) : roleColor(Role::Muted).scaled(0.8f), Anchor::Left, true, lit});
+                         TextStyle{13.0f, lit ? roleColor(Role::Ink) : roleColor(Role::Muted).scaled(0.8f),
+                                   Anchor::Left, true, lit});
         }
     const LineStyle edge = lineStyle(Role::Muted, 1.2f);
     std::vector<char> litEdge(n, 0);
@@ -198,7 +201,9 @@ void drawHeading(Canvas& canvas, const std::string& heading, const std::string& 
     if (!heading.empty())
         canvas.drawTextPx(12, 8, heading, TextStyle{18.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     if (!sub.empty())
-        canvas.drawTextPx(12, 33, sub, TextStyle{15.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.3f), Anchor::TopLeft, true, false});
+        canvas.drawTextPx(
+            12, 33, sub,
+            TextStyle{15.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.3f), Anchor::TopLeft, true, false});
 }
 
 void drawFooter(Canvas& canvas, const std::vector<std::string>& lines, const Color& color) {
@@ -225,8 +230,9 @@ Camera sphereCamera(const Vec3& center, double radius, const Vec3& view, int wid
     return cam;
 }
 
-Image composeGrid(GlContext& gl, const GridLayout& L, int ss, const std::string& title, const std::vector<Image>& panels,
-                  const std::vector<LegendItem>& legend, const std::vector<std::string>& captionLines) {
+Image composeGrid(GlContext& gl, const GridLayout& L, int ss, const std::string& title,
+                  const std::vector<Image>& panels, const std::vector<LegendItem>& legend,
+                  const std::vector<std::string>& captionLines) {
     Canvas c(gl, canvasOptions(L.width, L.height, ss), Camera::pixels(L.width, L.height));
     auto P = [&](double x, double yDown) { return Vec3(x, L.height - yDown, 0); };
     c.drawTextPx(16, 9, title, TextStyle{23.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
@@ -246,7 +252,9 @@ Image composeGrid(GlContext& gl, const GridLayout& L, int ss, const std::string&
                     c.drawLine(P(x, y), P(x + 24, y), s);
                     break;
                 }
-                case LegendItem::Swatch::Dot: c.drawPoint(P(x + 12, y), 5.0f, it.color, true, 1.0f, roleColor(Role::Ink)); break;
+                case LegendItem::Swatch::Dot:
+                    c.drawPoint(P(x + 12, y), 5.0f, it.color, true, 1.0f, roleColor(Role::Ink));
+                    break;
                 case LegendItem::Swatch::Fill:
                     c.drawPolygon({P(x + 3, y - 7), P(x + 21, y - 7), P(x + 21, y + 7), P(x + 3, y + 7)}, it.color);
                     break;
@@ -267,8 +275,10 @@ Image composeGrid(GlContext& gl, const GridLayout& L, int ss, const std::string&
     }
     // 1-pixel rules between panels.
     const Color m = roleColor(Role::Muted);
-    for (int col = 1; col < L.columns; ++col) paintRect(frame, L.columnX(col) - 1, L.titleBand, 1, int(gridBottom) - L.titleBand, m);
-    for (int row = 1; row < L.rows; ++row) paintRect(frame, 0, L.titleBand + row * L.panelHeight() - 1, L.columnX(L.columns), 1, m);
+    for (int col = 1; col < L.columns; ++col)
+        paintRect(frame, L.columnX(col) - 1, L.titleBand, 1, int(gridBottom) - L.titleBand, m);
+    for (int row = 1; row < L.rows; ++row)
+        paintRect(frame, 0, L.titleBand + row * L.panelHeight() - 1, L.columnX(L.columns), 1, m);
     return frame;
 }
 

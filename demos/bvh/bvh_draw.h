@@ -42,15 +42,16 @@ void drawTriangleSubset(render::Canvas& canvas, const MeshView& mesh, const std:
                         const render::Color& fill, const render::Color& outline, float outlineWidth, bool lit = true);
 
 /// Bounding sphere of a mesh's vertices (and optional extra points).
-void meshSphere(const std::vector<const MeshView*>& meshes, Vec3& center, double& radius, const std::vector<Vec3>& extra = {});
+void meshSphere(const std::vector<const MeshView*>& meshes, Vec3& center, double& radius,
+                const std::vector<Vec3>& extra = {});
 
 // ---- tree diagram (pixel space)
 
 /// How a node of the diagram is drawn.
 struct TreeNodeLook {
     render::Color color;
-    float radius = 4.0f;   // px
-    bool ring = false;     // black outline ring (the current node)
+    float radius = 4.0f;  // px
+    bool ring = false;    // black outline ring (the current node)
 };
 
 /// A binary tree to draw: children[i] = {left, right} (both −1 for a leaf), node 0 the root.
@@ -61,13 +62,14 @@ struct TreeDiagramInput {
     std::vector<TreeNodeLook> look;  // per node; empty: every node muted
     int maxDepth = 5;
     std::string heading, sub;
-    bool levelLabels = true;         // "level 0", "level 1", ... at the left
-    std::vector<int> litLevels;      // levels whose row label is highlighted
+    bool levelLabels = true;     // "level 0", "level 1", ... at the left
+    std::vector<int> litLevels;  // levels whose row label is highlighted
     /// Edges from parent to these nodes drawn thick in their node colour (e.g. the traversal path).
     std::vector<int> litEdges;
 };
 /// Draws the diagram into a W × H image (background, heading top-left).
-render::Image drawTreeDiagram(render::GlContext& gl, int width, int height, int supersample, const TreeDiagramInput& in);
+render::Image drawTreeDiagram(render::GlContext& gl, int width, int height, int supersample,
+                              const TreeDiagramInput& in);
 
 // ---- a grouped bar chart (pixel space)
 
@@ -81,7 +83,7 @@ struct BarChartInput {
     std::vector<std::string> groups;  // labels under the groups
     std::vector<BarSeries> series;
     std::string valueFormat = "%.3g";  // printf format of the value printed over each bar ("": none)
-    bool logY = false;                  // log10 axis (values <= 0 drawn at the floor)
+    bool logY = false;                 // log10 axis (values <= 0 drawn at the floor)
 };
 render::Image drawBarChart(render::GlContext& gl, int width, int height, int supersample, const BarChartInput& in);
 
@@ -101,12 +103,10 @@ struct GridLayout {
     int width = 1024, height = 768;
     int columns = 2, rows = 1;
     int titleBand = 40;
-    int legendBand = 30;     // 0: no legend row
+    int legendBand = 30;  // 0: no legend row
     int captionBand = 76;
     std::vector<int> columnWidths;  // empty: width / columns each
-    int panelWidth(int column = 0) const {
-        return columnWidths.empty() ? width / columns : columnWidths[column];
-    }
+    int panelWidth(int column = 0) const { return columnWidths.empty() ? width / columns : columnWidths[column]; }
     int columnX(int column) const {
         int x = 0;
         for (int k = 0; k < column; ++k) x += panelWidth(k);

@@ -16,7 +16,18 @@
 namespace cdlab::demos {
 
 const std::vector<const Demo*>& allDemos() {
-    static const std::vector<const Demo*> demos = {&voronoiDemo(), &gjkDemo(), &epaDemo(), &vclipDemo(), &linCannyDemo(), &polyhedronPlaneDemo(), &dropDemo(), &accuracyDemo(), &spacePartitionDemo(), &boundingVolumesDemo(), &bvhDemo(), &sweepAndPruneDemo()};
+    static const std::vector<const Demo*> demos = {&voronoiDemo(),
+                                                   &gjkDemo(),
+                                                   &epaDemo(),
+                                                   &vclipDemo(),
+                                                   &linCannyDemo(),
+                                                   &polyhedronPlaneDemo(),
+                                                   &dropDemo(),
+                                                   &accuracyDemo(),
+                                                   &spacePartitionDemo(),
+                                                   &boundingVolumesDemo(),
+                                                   &bvhDemo(),
+                                                   &sweepAndPruneDemo()};
     return demos;
 }
 

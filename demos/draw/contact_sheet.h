@@ -10,9 +10,9 @@
 namespace cdlab::demos {
 
 struct ContactSheetOptions {
-    int cellWidth = 384;     // each frame is box-downsampled to fit this width
-    int columns = 0;         // 0: ceil(sqrt(n))
-    std::string title;       // drawn above the grid
+    int cellWidth = 384;  // each frame is box-downsampled to fit this width
+    int columns = 0;      // 0: ceil(sqrt(n))
+    std::string title;    // drawn above the grid
 };
 
 /// Lays frames out left to right, top to bottom, each with its caption underneath.

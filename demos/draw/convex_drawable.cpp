@@ -36,14 +36,14 @@ std::vector<Vec3> sampleDirections(bool planar, int n) {
     return out;
 }
 
-
 ConvexDrawable drawableFromPoints(const std::vector<Vec3>& points, bool planar, bool polytopeEdges) {
     ConvexDrawable d;
     d.planar = planar;
     if (planar) {
         d.outline = hull2d(points);
         d.vertices = d.outline;
-        for (std::size_t i = 0; i < d.outline.size(); ++i) d.edges.emplace_back(int(i), int((i + 1) % d.outline.size()));
+        for (std::size_t i = 0; i < d.outline.size(); ++i)
+            d.edges.emplace_back(int(i), int((i + 1) % d.outline.size()));
         d.valid = d.outline.size() >= 3;
     } else {
         HullResult h = convexHull(points);
@@ -67,7 +67,8 @@ ConvexDrawable drawableFromPoints(const std::vector<Vec3>& points, bool planar, 
 
 // Andrew's monotone chain; drops collinear points. Counter-clockwise.
 std::vector<Vec3> hull2d(std::vector<Vec3> p) {
-    std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+    std::sort(p.begin(), p.end(),
+              [](const Vec3& a, const Vec3& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
     p.erase(std::unique(p.begin(), p.end()), p.end());
     if (p.size() < 3) return p;
     auto cross = [](const Vec3& o, const Vec3& a, const Vec3& b) {
@@ -105,7 +106,8 @@ ConvexDrawable shapeDrawable(const SceneShape& shape) {
     if (shape.isPolytope()) {
         points = shape.worldVertices();
     } else {
-        for (const Vec3& d : sampleDirections(shape.planar, shape.planar ? 160 : 900)) points.push_back(shape.support(d));
+        for (const Vec3& d : sampleDirections(shape.planar, shape.planar ? 160 : 900))
+            points.push_back(shape.support(d));
     }
     return drawableFromPoints(points, shape.planar, shape.isPolytope());
 }
@@ -117,13 +119,15 @@ ConvexDrawable minkowskiDrawable(const SceneShape& a, const SceneShape& b, bool*
         for (const Vec3& p : a.worldVertices())
             for (const Vec3& q : b.worldVertices()) points.push_back(p - q);
     } else {
-        for (const Vec3& d : sampleDirections(a.planar, a.planar ? 360 : 1500)) points.push_back(a.support(d) - b.support(-d));
+        for (const Vec3& d : sampleDirections(a.planar, a.planar ? 360 : 1500))
+            points.push_back(a.support(d) - b.support(-d));
     }
     if (exact) *exact = polytopes;
     return drawableFromPoints(points, a.planar, polytopes);
 }
 
-void drawBody(Canvas& canvas, const ConvexDrawable& body, const Color& fill, float alpha, const Color& edge, float edgeWidth) {
+void drawBody(Canvas& canvas, const ConvexDrawable& body, const Color& fill, float alpha, const Color& edge,
+              float edgeWidth) {
     if (!body.valid) return;
     LineStyle ls;
     ls.widthPx = edgeWidth;
@@ -150,7 +154,8 @@ void drawOrigin(Canvas& canvas, double size, bool planar) {
     canvas.drawText(Vec3::Zero(), "O", ts);
 }
 
-void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text, TextStyle style, double px) {
+void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text, TextStyle style,
+                   double px) {
     Eigen::Vector2d pa, pf;
     Eigen::Vector2d dir(0.7071, -0.7071);  // up and to the right when there is no better direction
     if (canvas.project(at, pa) && canvas.project(from, pf) && (pa - pf).norm() > 1.0) dir = (pa - pf).normalized();

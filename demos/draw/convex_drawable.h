@@ -21,11 +21,11 @@ std::vector<Vec3> hull2d(std::vector<Vec3> points);
 struct ConvexDrawable {
     bool planar = false;
     std::vector<Vec3> vertices;
-    std::vector<Eigen::Vector3i> triangles;   // 3D
-    std::vector<std::pair<int, int>> edges;   // 3D polytopes: hull edges; 2D: the outline loop
-    std::vector<Vec3> outline;                // 2D: CCW polygon
+    std::vector<Eigen::Vector3i> triangles;  // 3D
+    std::vector<std::pair<int, int>> edges;  // 3D polytopes: hull edges; 2D: the outline loop
+    std::vector<Vec3> outline;               // 2D: CCW polygon
     Vec3 center = Vec3::Zero();
-    double radius = 0.0;                      // bounding sphere about center
+    double radius = 0.0;  // bounding sphere about center
     bool valid = false;
 };
 

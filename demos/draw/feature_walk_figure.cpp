@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/convex_hull.h"
-#include "demos/scene/scene_limits.h"
-#include "demos/draw/figure_canvas.h"
-#include "demos/draw/figure_style.h"
+#include "core/geometry/polyhedron_presets.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/feature_walk_figure.h"
+#include "demos/draw/figure_canvas.h"
+#include "demos/draw/figure_style.h"
+#include "demos/scene/scene_limits.h"
 
 namespace cdlab::demos::walkfigure {
 
@@ -22,8 +22,9 @@ Color clipColor() { return roleColor(Role::Direction); }
 Body parseBody(const JsonNode& node) {
     ObjectReader r(node);
     if (!node.isObject() || node.raw().size() != 1)
-        node.fail("expected an object with one key: tetrahedron, box, octahedron, icosahedron, dodecahedron, prism, disk, "
-                  "geodesic_sphere or hull");
+        node.fail(
+            "expected an object with one key: tetrahedron, box, octahedron, icosahedron, dodecahedron, prism, disk, "
+            "geodesic_sphere or hull");
     const std::string kind = node.raw().begin().key();
     JsonNode spec = r.get(kind);
     ObjectReader s(spec);
@@ -32,8 +33,8 @@ Body parseBody(const JsonNode& node) {
     ConvexPolyhedron mesh;
     if (kind == "tetrahedron" || kind == "octahedron" || kind == "icosahedron" || kind == "dodecahedron") {
         const double radius = s.find("radius") ? sceneSize(s.get("radius")) : 1.0;
-        mesh = kind == "tetrahedron"  ? presets::tetrahedron(radius)
-               : kind == "octahedron" ? presets::octahedron(radius)
+        mesh = kind == "tetrahedron"   ? presets::tetrahedron(radius)
+               : kind == "octahedron"  ? presets::octahedron(radius)
                : kind == "icosahedron" ? presets::icosahedron(radius)
                                        : presets::dodecahedron(radius);
     } else if (kind == "box") {
@@ -53,7 +54,8 @@ Body parseBody(const JsonNode& node) {
         if (!h.ok()) spec.fail("the hull of these vertices is not a solid polyhedron");
         mesh = h.polyhedron;
     } else {
-        node.fail("unknown body kind '" + kind + "' (tetrahedron, box, octahedron, icosahedron, dodecahedron, prism, disk, "
+        node.fail("unknown body kind '" + kind +
+                  "' (tetrahedron, box, octahedron, icosahedron, dodecahedron, prism, disk, "
                   "geodesic_sphere, hull)");
     }
     if (auto p = s.find("position")) body.pose.position = sceneVec3(*p);
@@ -61,7 +63,8 @@ Body parseBody(const JsonNode& node) {
     s.finish();
     r.finish();
     VClipBuild build = buildVClipPolyhedron(mesh);
-    if (!build.ok()) spec.fail(std::string("V-Clip cannot use this body: ") + nameOf(build.status) + ": " + build.message);
+    if (!build.ok())
+        spec.fail(std::string("V-Clip cannot use this body: ") + nameOf(build.status) + ": " + build.message);
     body.regions = std::move(build.polyhedron);
     return body;
 }
@@ -111,8 +114,8 @@ Vec3 featureCenter(const std::vector<Vec3>& g) {
     return g.empty() ? c : Vec3(c / double(g.size()));
 }
 
-void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const Color& color, const std::string& label, const Vec3& awayFrom,
-                 bool labels) {
+void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const Color& color, const std::string& label,
+                 const Vec3& awayFrom, bool labels) {
     if (g.empty()) return;
     if (g.size() == 1) {
         canvas.drawPoint(g[0], 9.0f, color, true, 2.0f, roleColor(Role::Ink));
@@ -175,13 +178,16 @@ RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFe
     return out;
 }
 
-Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const std::string& title, const std::string& sceneCaption,
-                   const Image& main, const Image& diagram, const Image& plot, const std::vector<std::string>& captionLines) {
+Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const std::string& title,
+                   const std::string& sceneCaption, const Image& main, const Image& diagram, const Image& plot,
+                   const std::vector<std::string>& captionLines) {
     Canvas canvas(gl, canvasOptions(layout.width, layout.height, supersample), Camera::twoD(0, 0, 1));
     canvas.drawTextPx(16, 8, title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     double y = layout.height - layout.captionBand + 5;
     if (!sceneCaption.empty())
-        canvas.drawTextPx(16, y, sceneCaption, TextStyle{16.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.55f), Anchor::TopLeft, false, false});
+        canvas.drawTextPx(
+            16, y, sceneCaption,
+            TextStyle{16.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.55f), Anchor::TopLeft, false, false});
     y += 25.0;
     for (const std::string& line : captionLines) {
         canvas.drawTextPx(16, y, line, TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
@@ -194,7 +200,8 @@ Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const s
     // 2-pixel rules between the panels.
     const Color m = roleColor(Role::Muted);
     paintRect(frame, layout.mainWidth() - 1, layout.titleBand, 2, layout.panelHeight(), m);
-    paintRect(frame, layout.mainWidth(), layout.titleBand + layout.diagramHeight() - 1, layout.width - layout.mainWidth(), 2, m);
+    paintRect(frame, layout.mainWidth(), layout.titleBand + layout.diagramHeight() - 1,
+              layout.width - layout.mainWidth(), 2, m);
     return frame;
 }
 

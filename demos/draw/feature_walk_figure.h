@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/geometry/polyhedron.h"
 #include "core/feature_walk/vclip.h"
+#include "core/geometry/polyhedron.h"
 #include "demos/scene/demo.h"
 #include "demos/scene/json_reader.h"
 #include "demos/scene/scene_limits.h"
@@ -62,13 +62,14 @@ struct Layout {
 };
 
 render::Image composeFrame(render::GlContext& gl, const Layout& layout, int supersample, const std::string& title,
-                           const std::string& sceneCaption, const render::Image& main, const render::Image& diagram, const render::Image& plot,
-                           const std::vector<std::string>& captionLines);
+                           const std::string& sceneCaption, const render::Image& main, const render::Image& diagram,
+                           const render::Image& plot, const std::vector<std::string>& captionLines);
 
 // ---- the 3D panel pieces (vclip_demo_draw.cpp)
 
 /// A body placed at `pose`, translucent, with its edges.
-void drawPolyhedron(render::Canvas& canvas, const Body& body, const Transform& pose, const render::Color& fill, float alpha);
+void drawPolyhedron(render::Canvas& canvas, const Body& body, const Transform& pose, const render::Color& fill,
+                    float alpha);
 /// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; labelled
 /// with `label` pushed away from `awayFrom`.
 void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, const render::Color& color,
@@ -87,8 +88,8 @@ void sceneSphere(const std::vector<const Body*>& bodies, Vec3& center, double& r
 /// tested (index, signed distance, positive inside); the face plane itself is reported as index -1.
 struct RegionCheck {
     struct Test {
-        int plane = -1;      // index into body.regions.planes(); -1 = the face's own plane
-        double distance = 0; // positive inside
+        int plane = -1;       // index into body.regions.planes(); -1 = the face's own plane
+        double distance = 0;  // positive inside
     };
     std::vector<Test> tests;
     double minDistance = 0;  // smallest signed distance (the margin of the check)
@@ -100,10 +101,10 @@ RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFe
 /// What the diagram lights: the current state, the transition just taken (from -> to, -1 = none),
 /// how often each state was visited so far, and a terminal note ("DONE", "penetration").
 struct DiagramInput {
-    int current = -1;             // VClipState as int, -1 none
-    int from = -1, to = -1;       // transition taken by this step's update (to may equal from: self loop)
+    int current = -1;        // VClipState as int, -1 none
+    int from = -1, to = -1;  // transition taken by this step's update (to may equal from: self loop)
     int visits[5] = {0, 0, 0, 0, 0};
-    std::string terminal;         // drawn under the current state
+    std::string terminal;  // drawn under the current state
     std::string heading = "V-Clip states";
 };
 render::Image drawStateDiagram(render::GlContext& gl, int width, int height, int supersample, const DiagramInput& in);
@@ -118,7 +119,7 @@ struct PlotSeries {
 struct PlotInput {
     std::string heading, xLabel;
     std::vector<PlotSeries> series;
-    double marker = -1;   // x of a vertical "now" marker (< 0: none)
+    double marker = -1;  // x of a vertical "now" marker (< 0: none)
     std::vector<std::pair<render::Color, std::string>> legend;
     bool integerY = false;
 };

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/feature_walk_figure.h"
 
 namespace cdlab::demos::walkfigure {
 
@@ -66,7 +66,8 @@ Image drawStateDiagram(GlContext& gl, int W, int H, int ss, const DiagramInput& 
         LineStyle ls = lineStyle(on ? Role::Highlight : Role::Muted, on ? 4.0f : 1.8f);
         c.drawPolyline(std::vector<Vec3>(arc.begin(), arc.end() - 1), false, ls);
         c.drawArrow(arc[arc.size() - 2], arc.back(), ls);
-        c.drawText(cen + Vec3(30, kNodeRadius + 18, 0), "local min", TextStyle{13.0f, ink.mixed(roleColor(Role::Muted), 0.3f), Anchor::Left, true, false});
+        c.drawText(cen + Vec3(30, kNodeRadius + 18, 0), "local min",
+                   TextStyle{13.0f, ink.mixed(roleColor(Role::Muted), 0.3f), Anchor::Left, true, false});
     }
     // A transition outside the paper's diagram (should not happen): drawn straight so it is seen.
     if (!drawnTaken) {
@@ -75,12 +76,17 @@ Image drawStateDiagram(GlContext& gl, int W, int H, int ss, const DiagramInput& 
     }
     for (int s = 0; s < 5; ++s) {
         const bool cur = s == in.current;
-        const Color fill = cur ? lit : in.visits[s] > 0 ? lit.mixed(roleColor(Role::Background), 0.78f) : roleColor(Role::Background);
+        const Color fill = cur                ? lit
+                           : in.visits[s] > 0 ? lit.mixed(roleColor(Role::Background), 0.78f)
+                                              : roleColor(Role::Background);
         c.drawPoint(node(s), float(kNodeRadius), fill, true, cur ? 3.0f : 1.8f, ink);
         const Color text = cur ? roleColor(Role::Background) : ink;
         const bool counted = in.visits[s] > 0;
-        c.drawText(node(s) + Vec3(0, counted ? 5 : 0, 0), kStateName[s], TextStyle{16.0f, text, Anchor::Center, false, true});
-        if (counted) c.drawText(node(s) + Vec3(0, -10, 0), "×" + std::to_string(in.visits[s]), TextStyle{12.0f, text, Anchor::Center, false, false});
+        c.drawText(node(s) + Vec3(0, counted ? 5 : 0, 0), kStateName[s],
+                   TextStyle{16.0f, text, Anchor::Center, false, true});
+        if (counted)
+            c.drawText(node(s) + Vec3(0, -10, 0), "×" + std::to_string(in.visits[s]),
+                       TextStyle{12.0f, text, Anchor::Center, false, false});
     }
     c.drawTextPx(12, 8, in.heading, TextStyle{18.0f, ink, Anchor::TopLeft, true, true});
     if (!in.terminal.empty())
@@ -124,13 +130,17 @@ Image drawPlot(GlContext& gl, int W, int H, int ss, const PlotInput& in) {
     // Round tick values: 1, 2 or 5 times a power of ten, about four intervals.
     const double raw = (ymax - ymin) / 4.0;
     const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-    const double step = std::max(in.integerY ? 1.0 : 0.0, raw / mag <= 1.0 ? mag : raw / mag <= 2.0 ? 2 * mag : raw / mag <= 5.0 ? 5 * mag : 10 * mag);
+    const double step = std::max(in.integerY ? 1.0 : 0.0, raw / mag <= 1.0   ? mag
+                                                          : raw / mag <= 2.0 ? 2 * mag
+                                                          : raw / mag <= 5.0 ? 5 * mag
+                                                                             : 10 * mag);
     for (double v = std::ceil(ymin / step) * step; v <= ymax + 1e-9 * step; v += step) {
         if (std::abs(v) < 1e-9 * step) v = 0;
         if (v > ymin) c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 0.8f, true));
         c.drawText(P(x0 - 6, Y(v)), formatNumber(v), ytick);
     }
-    if (in.marker >= 0) c.drawLine(P(X(in.marker), yBot), P(X(in.marker), yTop), lineStyle(Role::Highlight, 1.5f, true));
+    if (in.marker >= 0)
+        c.drawLine(P(X(in.marker), yBot), P(X(in.marker), yTop), lineStyle(Role::Highlight, 1.5f, true));
     for (const auto& s : in.series) {
         std::vector<Vec3> pts;
         for (std::size_t i = 0; i < s.x.size(); ++i) pts.push_back(P(X(s.x[i]), Y(s.y[i])));
@@ -138,7 +148,8 @@ Image drawPlot(GlContext& gl, int W, int H, int ss, const PlotInput& in) {
             const double bw = std::max(2.0, 0.6 * (X(1) - X(0)));
             for (std::size_t i = 0; i < pts.size(); ++i) {
                 const double cx = pts[i].x();
-                c.drawPolygon({P(cx - bw / 2, yBot), P(cx + bw / 2, yBot), Vec3(cx + bw / 2, pts[i].y(), 0), Vec3(cx - bw / 2, pts[i].y(), 0)},
+                c.drawPolygon({P(cx - bw / 2, yBot), P(cx + bw / 2, yBot), Vec3(cx + bw / 2, pts[i].y(), 0),
+                               Vec3(cx - bw / 2, pts[i].y(), 0)},
                               i < s.pointColors.size() ? s.pointColors[i] : s.lineColor);
             }
             continue;

@@ -23,7 +23,8 @@ Camera panelCamera(bool planar, const Vec3& center, double radius, const Vec3& v
 void drawPanelHeading(Canvas& canvas, const std::string& heading, const std::string& sub) {
     canvas.drawTextPx(14, 10, heading, TextStyle{20.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     if (!sub.empty())
-        canvas.drawTextPx(14, 38, sub, TextStyle{17.0f, roleColor(Role::Highlight).scaled(0.8f), Anchor::TopLeft, true, true});
+        canvas.drawTextPx(14, 38, sub,
+                          TextStyle{17.0f, roleColor(Role::Highlight).scaled(0.8f), Anchor::TopLeft, true, true});
 }
 
 Image composeTwoPanel(GlContext& gl, const TwoPanelLayout& layout, int supersample, const std::string& title,

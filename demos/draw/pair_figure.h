@@ -22,7 +22,8 @@ struct TwoPanelLayout {
 };
 
 /// Camera for a panel: 2D (fits the sphere in the panel) or a perspective look-at from `view`.
-render::Camera panelCamera(bool planar, const Vec3& center, double radius, const Vec3& view, const TwoPanelLayout& layout);
+render::Camera panelCamera(bool planar, const Vec3& center, double radius, const Vec3& view,
+                           const TwoPanelLayout& layout);
 
 /// Panel heading (top left, bold) and an optional second line underneath.
 void drawPanelHeading(render::Canvas& canvas, const std::string& heading, const std::string& sub);

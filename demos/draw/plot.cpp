@@ -15,14 +15,13 @@ using render::Canvas;
 using render::Color;
 using render::LineStyle;
 using render::Role;
-using render::TextStyle;
 using render::roleColor;
+using render::TextStyle;
 
 namespace {
 
 /// "10⁻¹²" with Unicode superscripts (DejaVu Sans has them).
-std::string decadeLabel(int k)
-{
+std::string decadeLabel(int k) {
     if (k == 0) return "1";
     if (k == 1) return "10";
     static const char* sup[10] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
@@ -48,8 +47,7 @@ struct Frame {
     double py(double y) const { return y1 - (ay.unit(y) - ay.lo) / (ay.hi - ay.lo) * (y1 - y0); }
 };
 
-Axis fitAxis(std::vector<double> values, bool log, double floor)
-{
+Axis fitAxis(std::vector<double> values, bool log, double floor) {
     Axis a;
     a.log = log;
     a.floor = floor;
@@ -75,10 +73,8 @@ Axis fitAxis(std::vector<double> values, bool log, double floor)
     return a;
 }
 
-
 /// Vertices of marker `shape` (0 disc: none, 1 square, 2 triangle, 3 diamond) of radius r at (x, y).
-std::vector<Eigen::Vector3d> markerPolygon(int shape, double x, double y, double r)
-{
+std::vector<Eigen::Vector3d> markerPolygon(int shape, double x, double y, double r) {
     std::vector<Eigen::Vector3d> v;
     if (shape == 1) {
         const double s = 0.85 * r;
@@ -94,15 +90,12 @@ std::vector<Eigen::Vector3d> markerPolygon(int shape, double x, double y, double
 class PlotCanvas {
 public:
     PlotCanvas(render::GlContext& gl, const PlotOptions& o)
-        : o_(o), c_(gl, canvasOptions(o.width, o.height, 1), render::Camera::pixels(o.width, o.height))
-    {
-    }
+        : o_(o), c_(gl, canvasOptions(o.width, o.height, 1), render::Camera::pixels(o.width, o.height)) {}
     // Pixel (x right, y down) to the 2D camera's world (y up).
     Eigen::Vector3d P(double x, double y) const { return {x, o_.height - y, 0}; }
     Canvas& canvas() { return c_; }
 
-    void marker(int style, double x, double y, double r, float alpha)
-    {
+    void marker(int style, double x, double y, double r, float alpha) {
         const Color color = render::categorical(style).withAlpha(alpha);
         const int shape = style % 4;
         if (shape == 0) {
@@ -119,8 +112,7 @@ public:
     }
 
     /// Axes, ticks, tick labels, axis labels, title, subtitle.
-    void axes(const Frame& f)
-    {
+    void axes(const Frame& f) {
         const LineStyle axis = lineStyle(Role::Ink, 1.5f, false, true);
         const LineStyle grid = lineStyle(Role::Muted, 1.0f, true, false);
         LineStyle faint = grid;
@@ -174,13 +166,13 @@ public:
         c_.drawPolyline({P(f.x0, f.y0), P(f.x1, f.y0), P(f.x1, f.y1), P(f.x0, f.y1)}, true, axis);
         const TextStyle label{17.0f, roleColor(Role::Ink), Anchor::Top, false, true};
         c_.drawTextPx(0.5 * (f.x0 + f.x1), f.y1 + 36, o_.xLabel, label);
-        c_.drawTextPx(f.x0 - 8, f.y0 - 10, o_.yLabel, TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
+        c_.drawTextPx(f.x0 - 8, f.y0 - 10, o_.yLabel,
+                      TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
         drawTitleAndCaption(c_, o_.title, o_.subtitle);
     }
 
     /// Legend box in the upper right corner of the plot area.
-    void legend(const Frame& f, const std::vector<std::pair<std::string, int>>& entries, bool steps)
-    {
+    void legend(const Frame& f, const std::vector<std::pair<std::string, int>>& entries, bool steps) {
         if (entries.empty()) return;
         const TextStyle text{15.0f, roleColor(Role::Ink), Anchor::Left, false, false};
         double w = 0;
@@ -214,8 +206,7 @@ private:
 };
 
 /// Plot area: room on the left for tick labels, on the right for the legend (outside the data).
-Frame plotFrame(const PlotOptions& o)
-{
+Frame plotFrame(const PlotOptions& o) {
     Frame f;
     f.x0 = 100;
     f.x1 = o.width - o.legendWidth - 40;
@@ -226,8 +217,7 @@ Frame plotFrame(const PlotOptions& o)
 
 }  // namespace
 
-render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const std::vector<PlotSeries>& series)
-{
+render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const std::vector<PlotSeries>& series) {
     PlotCanvas pc(gl, o);
     Frame f = plotFrame(o);
     std::vector<double> xs, ys;
@@ -241,7 +231,8 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     for (const auto& [value, text] : o.hLines) {
         const double y = f.py(value);
         c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), lineStyle(Role::Highlight, 2.0f, true, false));
-        c.drawTextPx(f.x0 + 8, y - 4, text, TextStyle{14.0f, roleColor(Role::Highlight), Anchor::BottomLeft, true, false});
+        c.drawTextPx(f.x0 + 8, y - 4, text,
+                     TextStyle{14.0f, roleColor(Role::Highlight), Anchor::BottomLeft, true, false});
     }
     // Many points: smaller, translucent markers so that dense clouds stay readable.
     size_t total = 0;
@@ -273,8 +264,7 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
 }
 
 render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
-                                  const std::vector<std::pair<std::string, std::vector<double>>>& series)
-{
+                                  const std::vector<std::pair<std::string, std::vector<double>>>& series) {
     PlotCanvas pc(gl, o);
     Frame f = plotFrame(o);
     double maxValue = o.xFloor * 10;

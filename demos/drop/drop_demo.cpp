@@ -17,13 +17,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/geometry/polyhedron_presets.h"
 #include "core/dynamics/simulation.h"
+#include "core/geometry/polyhedron_presets.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
-#include "demos/draw/convex_drawable.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -92,8 +92,10 @@ public:
             c_.drawText(P(x0_ - 8, y), "1e" + std::to_string(e), ytick_);
         }
         timeAxis(pY0, true);
-        c_.drawText(P(0.5 * (x0_ + x1_), pY0 - 34), "time (s); orange ticks: the frames", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Top, false, true});
-        c_.drawText(P(x0_, pY1 + 12), "deepest vertex below the ground (log scale; ≤ 1e-10 drawn at the bottom)", heading_);
+        c_.drawText(P(0.5 * (x0_ + x1_), pY0 - 34), "time (s); orange ticks: the frames",
+                    TextStyle{16.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+        c_.drawText(P(x0_, pY1 + 12), "deepest vertex below the ground (log scale; ≤ 1e-10 drawn at the bottom)",
+                    heading_);
         std::vector<Vec3> before, after;
         for (const SimulationStep& s : tr_.steps) {
             before.push_back(P(X(s.time), YP(s.penetrationBeforeCorrection)));
@@ -146,9 +148,14 @@ private:
 
 class DropScene final : public PreparedScene {
 public:
-    DropScene(SceneCommon common, DropInput input, SimulationOptions options, std::string body, int frameEvery, Vec3 view)
-        : PreparedScene(std::move(common)), input_(std::move(input)), options_(options), body_(std::move(body)),
-          frameEvery_(frameEvery), view_(view) {}
+    DropScene(SceneCommon common, DropInput input, SimulationOptions options, std::string body, int frameEvery,
+              Vec3 view)
+        : PreparedScene(std::move(common)),
+          input_(std::move(input)),
+          options_(options),
+          body_(std::move(body)),
+          frameEvery_(frameEvery),
+          view_(view) {}
 
     DemoOutput execute(const RunContext& ctx) const override {
         SimulationTrace tr;
@@ -213,12 +220,21 @@ private:
             return t;
         }
         Json inertia = Json::array();
-        for (int i = 0; i < 3; ++i) inertia.push_back(Json::array({r.mass.inertia(i, 0), r.mass.inertia(i, 1), r.mass.inertia(i, 2)}));
-        t["mass_properties"] = {{"volume", r.mass.volume}, {"mass", r.mass.mass}, {"center_of_mass", vec3Json(r.mass.centerOfMass)},
-                                {"inertia", inertia}, {"frame", "shape frame; inertia about the centre of mass"}};
-        t["options"] = {{"time_step", options_.timeStep}, {"steps", options_.steps}, {"restitution", options_.solver.restitution},
-                        {"friction", options_.solver.friction}, {"restitution_threshold", options_.solver.restitutionThreshold},
-                        {"iterations", options_.solver.iterations}, {"slop", options_.slop}, {"gravity", vec3Json(input_.gravity)},
+        for (int i = 0; i < 3; ++i)
+            inertia.push_back(Json::array({r.mass.inertia(i, 0), r.mass.inertia(i, 1), r.mass.inertia(i, 2)}));
+        t["mass_properties"] = {{"volume", r.mass.volume},
+                                {"mass", r.mass.mass},
+                                {"center_of_mass", vec3Json(r.mass.centerOfMass)},
+                                {"inertia", inertia},
+                                {"frame", "shape frame; inertia about the centre of mass"}};
+        t["options"] = {{"time_step", options_.timeStep},
+                        {"steps", options_.steps},
+                        {"restitution", options_.solver.restitution},
+                        {"friction", options_.solver.friction},
+                        {"restitution_threshold", options_.solver.restitutionThreshold},
+                        {"iterations", options_.solver.iterations},
+                        {"slop", options_.slop},
+                        {"gravity", vec3Json(input_.gravity)},
                         {"max_contact_points", options_.maxContactPoints}};
         t["summary"] = {{"rest_time", r.restTime},
                         {"max_penetration", r.maxPenetration},
@@ -257,8 +273,8 @@ private:
         return t;
     }
 
-    Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius, const SimulationResult& r,
-                    const SimulationTrace& tr, int k, int index) const {
+    Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius,
+                    const SimulationResult& r, const SimulationTrace& tr, int k, int index) const {
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         const SimulationStep& s = tr.steps[k];
         const double rho = r.boundingRadius;
@@ -268,9 +284,11 @@ private:
         if (common_.hasLayer("ground")) {
             const double half = 1.6 * radius;
             const Vec3 g(center.x(), center.y(), 0.0);
-            c.drawPolygon({g + Vec3(-half, -half, 0), g + Vec3(half, -half, 0), g + Vec3(half, half, 0), g + Vec3(-half, half, 0)},
+            c.drawPolygon({g + Vec3(-half, -half, 0), g + Vec3(half, -half, 0), g + Vec3(half, half, 0),
+                           g + Vec3(-half, half, 0)},
                           roleColor(Role::Muted).withAlpha(0.22f));
-            const double step = std::pow(10.0, std::floor(std::log10(half))) * (half / std::pow(10.0, std::floor(std::log10(half))) > 4 ? 1.0 : 0.5);
+            const double step = std::pow(10.0, std::floor(std::log10(half))) *
+                                (half / std::pow(10.0, std::floor(std::log10(half))) > 4 ? 1.0 : 0.5);
             LineStyle grid = lineStyle(Role::Muted, 1.0f);
             grid.color = roleColor(Role::Muted).withAlpha(0.6f);
             for (double x = std::ceil((g.x() - half) / step) * step; x <= g.x() + half; x += step)
@@ -321,7 +339,8 @@ private:
             }
             if (labels && !s.contacts.empty()) {
                 const ContactImpulse& first = s.contacts.front();
-                drawLabelAway(c, first.point + s.normal * 0.45 * rho, first.point, "n", labelStyle(Role::Direction, 20.0f), 10.0);
+                drawLabelAway(c, first.point + s.normal * 0.45 * rho, first.point, "n",
+                              labelStyle(Role::Direction, 20.0f), 10.0);
             }
         }
         if (labels) {
@@ -329,8 +348,10 @@ private:
             const double x = c.width() - 18.0;
             double y = 18.0;
             const auto item = [&](const std::string& text, Role role) {
-                c.drawTextPx(x, y, text, TextStyle{16.0f, role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role),
-                                                   Anchor::TopRight, true, true});
+                c.drawTextPx(
+                    x, y, text,
+                    TextStyle{16.0f, role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role),
+                              Anchor::TopRight, true, true});
                 y += 22.0;
             };
             if (common_.hasLayer("contacts")) {
@@ -342,11 +363,13 @@ private:
         }
         // Two caption lines: the contacts of the step, then energy and depth.
         char line1[200], line2[200];
-        std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s", s.time, s.step, int(s.contacts.size()),
-                      s.contacts.size() == 1 ? "" : "s", pushing, bounces ? (", " + std::to_string(bounces) + " bouncing").c_str() : "");
-        std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground", s.energy, s.kinetic,
-                      s.potential, s.maxPenetration);
-        c.drawTextPx(18.0, c.height() - 18.0 - 26.0, line1, TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+        std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s", s.time, s.step,
+                      int(s.contacts.size()), s.contacts.size() == 1 ? "" : "s", pushing,
+                      bounces ? (", " + std::to_string(bounces) + " bouncing").c_str() : "");
+        std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground",
+                      s.energy, s.kinetic, s.potential, s.maxPenetration);
+        c.drawTextPx(18.0, c.height() - 18.0 - 26.0, line1,
+                     TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
         drawTitleAndCaption(c, common_.title, line2);
         char name[32];
         std::snprintf(name, sizeof name, "frame_%02d", index);
@@ -357,7 +380,8 @@ private:
     }
 
     // Energy (top) and penetration on a log scale (bottom) against time, drawn in pixel units.
-    Frame drawPlot(GlContext& gl, int ss, const SimulationResult& r, const SimulationTrace& tr, const std::vector<int>& frameSteps) const {
+    Frame drawPlot(GlContext& gl, int ss, const SimulationResult& r, const SimulationTrace& tr,
+                   const std::vector<int>& frameSteps) const {
         const int W = common_.image.width, H = common_.image.height;
         Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));  // world = pixels, y up
         TimePlot plot(c, tr, frameSteps, W, H);
@@ -366,10 +390,12 @@ private:
 
         char cap[300];
         if (r.restTime >= 0)
-            std::snprintf(cap, sizeof cap, "at rest from t = %.3g s; max depth %.2g (slop %.2g); max energy rise per step %.2g J", r.restTime,
-                          r.maxPenetration, options_.slop, r.maxEnergyIncrease);
+            std::snprintf(cap, sizeof cap,
+                          "at rest from t = %.3g s; max depth %.2g (slop %.2g); max energy rise per step %.2g J",
+                          r.restTime, r.maxPenetration, options_.slop, r.maxEnergyIncrease);
         else
-            std::snprintf(cap, sizeof cap, "still moving at the end; max depth %.2g (slop %.2g); max energy rise per step %.2g J",
+            std::snprintf(cap, sizeof cap,
+                          "still moving at the end; max depth %.2g (slop %.2g); max energy rise per step %.2g J",
                           r.maxPenetration, options_.slop, r.maxEnergyIncrease);
         drawTitleAndCaption(c, common_.title + ": energy and penetration", cap);
         return Frame{"energy", "energy and penetration vs time", c.readPixels()};
@@ -380,7 +406,8 @@ class DropDemo final : public Demo {
 public:
     std::string name() const override { return "drop"; }
     std::string description() const override {
-        return "rigid body dropped with spin onto a plane: mass properties, impulses with restitution and friction, energy and penetration";
+        return "rigid body dropped with spin onto a plane: mass properties, impulses with restitution and friction, "
+               "energy and penetration";
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
@@ -415,7 +442,8 @@ public:
         if (auto d = r.find("density")) in.density = atMost(*d, d->asPositive(), kMaxDensity, "density");
         if (auto p = r.find("position")) in.pose.position = sceneVec3(*p);
         if (auto q = r.find("rotation")) in.pose.rotation = q->asQuat();
-        if (auto v = r.find("velocity")) in.linearVelocity = sceneVec3(*v), atMost(*v, in.linearVelocity.norm(), kMaxSpeed, "|velocity|");
+        if (auto v = r.find("velocity"))
+            in.linearVelocity = sceneVec3(*v), atMost(*v, in.linearVelocity.norm(), kMaxSpeed, "|velocity|");
         if (auto w = r.find("angular_velocity"))
             in.angularVelocity = sceneVec3(*w), atMost(*w, in.angularVelocity.norm(), kMaxSpeed, "|angular_velocity|");
         in.ground = Plane{Vec3::UnitZ(), 0.0};
@@ -438,24 +466,27 @@ public:
         }
         const double steps = std::round(duration / o.timeStep);
         if (!(steps >= 1 && steps <= 20000))  // the frames, the energy plot and the trace hold every step
-            (r.has("simulation") ? r.get("simulation") : r.node()).fail("duration / time_step must give 1..20000 steps");
+            (r.has("simulation") ? r.get("simulation") : r.node())
+                .fail("duration / time_step must give 1..20000 steps");
         o.steps = int(steps);
         int frameEvery = std::max(1, o.steps / 11);
         if (auto k = r.find("frame_every")) frameEvery = k->asInt(1, 20000);
         if (o.steps / frameEvery + 1 > kMaxFrames)
-            r.node().fail("frame_every " + std::to_string(frameEvery) + " gives " + std::to_string(o.steps / frameEvery + 1) +
-                          " frames; at most " + std::to_string(kMaxFrames));
+            r.node().fail("frame_every " + std::to_string(frameEvery) + " gives " +
+                          std::to_string(o.steps / frameEvery + 1) + " frames; at most " + std::to_string(kMaxFrames));
         Vec3 view(1.0, -1.6, 0.8);
         if (auto v = r.find("view")) {
             view = sceneVec3(*v);
             if (!(view.norm() > 0)) v->fail("view direction must be non-zero");
         }
         r.finish();
-        if (common.image.width < 480 || common.image.height < 360) r.node().fail("drop frames need an image of at least 480 x 360");
+        if (common.image.width < 480 || common.image.height < 360)
+            r.node().fail("drop frames need an image of at least 480 x 360");
         // The body must start above the ground (lowest vertex at z >= 0).
         double lowest = INFINITY;
         for (const Vec3& v : in.shape.positions()) lowest = std::min(lowest, in.pose.apply(v).z());
-        if (!(lowest >= 0)) r.node().fail("the body starts below the ground (lowest vertex z = " + formatNumber(lowest) + ")");
+        if (!(lowest >= 0))
+            r.node().fail("the body starts below the ground (lowest vertex z = " + formatNumber(lowest) + ")");
         return std::make_unique<DropScene>(std::move(common), std::move(in), o, bodyName, frameEvery, view);
     }
 };

@@ -25,13 +25,13 @@ namespace cdlab {
 /// One iteration: the polygon before expansion (CCW, z = 0) and what the iteration did.
 struct Epa2dStep {
     int iteration = 0;
-    std::vector<Vec3> vertices;      ///< polygon, counter-clockwise; edge i runs i -> i+1
+    std::vector<Vec3> vertices;  ///< polygon, counter-clockwise; edge i runs i -> i+1
     int closestEdge = -1;
     Vec3 closestNormal = Vec3::Zero();  ///< outward unit normal of the closest edge
     double closestDistance = 0.0;       ///< its distance from the origin (lower bound)
     Vec3 closestPoint = Vec3::Zero();
     Vec3 support = Vec3::Zero(), supportA = Vec3::Zero(), supportB = Vec3::Zero();
-    std::vector<int> removedEdges;   ///< edges visible from the support point (replaced)
+    std::vector<int> removedEdges;         ///< edges visible from the support point (replaced)
     std::array<int, 2> horizon{{-1, -1}};  ///< the two kept vertices that get connected to w
     double lowerBound = 0.0, upperBound = 0.0;
     bool terminated = false;
@@ -88,7 +88,8 @@ Epa2dResult epaPenetration2d(const A& shapeA, const B& shapeB, const GjkSimplex&
     if (p.empty()) return stop(EpaTermination::InvalidInput);
     double scale = 0.0;
     for (const V& q : p) scale = std::max(scale, q.w.norm());
-    if (trace) trace->start = p.size() == 3 ? "triangle from GJK" : p.size() == 2 ? "segment blown up" : "point blown up";
+    if (trace)
+        trace->start = p.size() == 3 ? "triangle from GJK" : p.size() == 2 ? "segment blown up" : "point blown up";
     r.pointA = p[0].a;
     r.pointB = p[0].b;
     // Blow-up: a point gets the support along +x, a segment the support along its normal; a

@@ -15,12 +15,12 @@
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
-#include "demos/epa/epa_2d.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
+#include "demos/epa/epa_2d.h"
 #include "demos/scene/pair_scene.h"
 #include "render/canvas.h"
 
@@ -34,7 +34,8 @@ using namespace render;
 // that marks w and the faces it removes.
 Color closestColor() { return categorical(3); }
 
-const std::vector<std::string> kLayers = {"minkowski", "polytope", "closest", "support", "horizon", "witness", "labels", "plot"};
+const std::vector<std::string> kLayers = {"minkowski", "polytope", "closest", "support",
+                                          "horizon",   "witness",  "labels",  "plot"};
 
 /// One EPA iteration in a dimension-free form: faces are vertex-id lists (3 in 3D, 2 in 2D).
 struct PolyStep {
@@ -45,9 +46,9 @@ struct PolyStep {
     Vec3 normal = Vec3::Zero(), closestPoint = Vec3::Zero();
     double distance = 0.0;
     Vec3 support = Vec3::Zero(), supportA = Vec3::Zero(), supportB = Vec3::Zero();
-    std::vector<int> removed;                     // indices into faces
-    std::vector<std::array<int, 2>> horizonEdges; // 3D: vertex-id edges
-    std::vector<int> horizonVertices;             // 2D: the two kept ends
+    std::vector<int> removed;                      // indices into faces
+    std::vector<std::array<int, 2>> horizonEdges;  // 3D: vertex-id edges
+    std::vector<int> horizonVertices;              // 2D: the two kept ends
     double lower = 0.0, upper = 0.0;
     bool terminated = false;
 };
@@ -93,7 +94,8 @@ public:
 
         const int ss = runSupersample(common_, ctx);
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
-        for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames)) out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
+        for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames))
+            out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -1));
         if (common_.hasLayer("plot") && !run.steps.empty()) out.frames.push_back(drawPlot(*ctx.gl, ss, run));
         addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "EPA", out);
@@ -192,8 +194,11 @@ private:
         t["method"] = pair_.dimension == 3 ? "core epaPenetration (3D)" : "epaPenetration2d (expanding polygon)";
         Json gs = Json::array();
         for (int i = 0; i < run.gjk.simplex.count; ++i) gs.push_back(vec3Json(run.gjk.simplex.vertex[i].w));
-        t["gjk"] = {{"status", nameOf(run.gjk.status)}, {"termination", nameOf(run.gjk.termination)},
-                    {"iterations", run.gjk.iterations}, {"distance", run.gjk.distance}, {"simplex", gs}};
+        t["gjk"] = {{"status", nameOf(run.gjk.status)},
+                    {"termination", nameOf(run.gjk.termination)},
+                    {"iterations", run.gjk.iterations},
+                    {"distance", run.gjk.distance},
+                    {"simplex", gs}};
         t["status"] = nameOf(run.status);
         t["termination"] = nameOf(run.termination);
         t["start"] = run.start;
@@ -241,16 +246,13 @@ private:
             cs.drawPolygon(s.vertices, roleColor(Role::Simplex).withAlpha(0.30f));
             for (std::size_t k = 0; k < s.faces.size(); ++k) {
                 const Vec3 &p = s.vertices[s.faces[k][0]], &q = s.vertices[s.faces[k][1]];
-                if (showStep && int(k) == s.closestFace && common_.hasLayer("closest"))
-                    {
+                if (showStep && int(k) == s.closestFace && common_.hasLayer("closest")) {
                     LineStyle ls = lineStyle(Role::Ink, 7.0f, false, true);
                     ls.color = closestColor().scaled(0.85f);
                     cs.drawLine(p, q, ls);
-                }
-                else if (removed[k] && common_.hasLayer("horizon"))
+                } else if (removed[k] && common_.hasLayer("horizon"))
                     cs.drawLine(p, q, lineStyle(Role::Support, 4.0f, true, true));
-                else
-                    cs.drawLine(p, q, lineStyle(Role::Simplex, 3.0f, false, true));
+                else cs.drawLine(p, q, lineStyle(Role::Simplex, 3.0f, false, true));
                 if (removed[k] && int(k) == s.closestFace && common_.hasLayer("horizon"))
                     cs.drawLine(p, q, lineStyle(Role::Support, 2.0f, true, true));
             }
@@ -276,12 +278,15 @@ private:
                 for (int e = 0; e < 3; ++e)
                     if (f[e] < f[(e + 1) % 3]) cs.drawLine(s.vertices[f[e]], s.vertices[f[(e + 1) % 3]], edge);
             if (showStep && common_.hasLayer("horizon"))
-                for (const auto& e : s.horizonEdges) cs.drawLine(s.vertices[e[0]], s.vertices[e[1]], lineStyle(Role::Direction, 5.0f, false, true));
+                for (const auto& e : s.horizonEdges)
+                    cs.drawLine(s.vertices[e[0]], s.vertices[e[1]], lineStyle(Role::Direction, 5.0f, false, true));
         }
         if (showStep && common_.hasLayer("closest")) {
             cs.drawLine(Vec3::Zero(), s.closestPoint, lineStyle(Role::Ink, 2.0f, true, true));
             cs.drawPoint(s.closestPoint, 7.0f, closestColor(), true, 1.5f, roleColor(Role::Ink));
-            if (labels) drawLabelAway(cs, s.closestPoint, Vec3::Zero(), "closest", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 10.0);
+            if (labels)
+                drawLabelAway(cs, s.closestPoint, Vec3::Zero(), "closest",
+                              TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 10.0);
         }
         if (showStep && common_.hasLayer("support")) {
             const double h = s.normal.dot(s.support);
@@ -301,8 +306,10 @@ private:
         const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
 
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
-        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeA).scaled(0.6f), 2.0f);
-        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeB).scaled(0.6f), 2.0f);
+        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeA).scaled(0.6f),
+                 2.0f);
+        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeB).scaled(0.6f),
+                 2.0f);
         if (labels) {
             world.drawText(d.a.center, "A", labelStyle(Role::ShapeA, 26.0f));
             world.drawText(d.b.center, "B", labelStyle(Role::ShapeB, 26.0f));
@@ -322,7 +329,8 @@ private:
             if (penetrating && run.depth > 0)
                 world.drawArrow(run.pointB, run.pointA, lineStyle(Role::Result, 3.5f, false, true));
             else if (penetrating)
-                world.drawArrow(run.pointA, run.pointA + run.normal * 0.3 * d.wRadius, lineStyle(Role::Direction, 3.0f, false, true));
+                world.drawArrow(run.pointA, run.pointA + run.normal * 0.3 * d.wRadius,
+                                lineStyle(Role::Direction, 3.0f, false, true));
             if (labels) {
                 TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
                 const bool apart = (run.pointA - run.pointB).norm() > 1e-3 * d.wRadius;
@@ -330,12 +338,18 @@ private:
                 drawLabelAway(world, run.pointB, apart ? run.pointA : d.b.center, "p_B", ts);
             }
         }
-        drawPanelHeading(world, "World space", isResult ? (run.status == EpaStatus::Separated ? "separated: closest points"
-                                                                                             : "witness points, p_A − p_B = depth · n")
-                                                        : s ? "support points of the new vertex" : "");
+        drawPanelHeading(world, "World space",
+                         isResult ? (run.status == EpaStatus::Separated ? "separated: closest points"
+                                                                        : "witness points, p_A − p_B = depth · n")
+                         : s      ? "support points of the new vertex"
+                                  : "");
 
-        Canvas cs(gl, po, common_.camera && !d.planar ? *common_.camera : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
-        if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.18f : 0.12f, roleColor(Role::Minkowski).scaled(0.75f), 1.0f);
+        Canvas cs(gl, po,
+                  common_.camera && !d.planar ? *common_.camera
+                                              : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+        if (d.c.valid)
+            drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.18f : 0.12f,
+                     roleColor(Role::Minkowski).scaled(0.75f), 1.0f);
         drawOrigin(cs, 0.06 * d.cRadius, d.planar);
         std::string sub;
         if (isGjk) {
@@ -343,59 +357,75 @@ private:
             for (int i = 0; i < run.gjk.simplex.count; ++i) w.push_back(run.gjk.simplex.vertex[i].w);
             if (w.size() == 3) cs.drawPolygon(w, roleColor(Role::Simplex).withAlpha(0.35f));
             if (w.size() == 4)
-                cs.drawMesh(w, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
+                cs.drawMesh(w,
+                            {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2),
+                             Eigen::Vector3i(1, 2, 3)},
                             roleColor(Role::Simplex).withAlpha(0.3f), true);
             for (std::size_t i = 0; i < w.size(); ++i) {
-                for (std::size_t j = i + 1; j < w.size(); ++j) cs.drawLine(w[i], w[j], lineStyle(Role::Simplex, 4.0f, false, true));
+                for (std::size_t j = i + 1; j < w.size(); ++j)
+                    cs.drawLine(w[i], w[j], lineStyle(Role::Simplex, 4.0f, false, true));
                 cs.drawPoint(w[i], 8.0f, roleColor(Role::Simplex), true, 1.5f, roleColor(Role::Ink));
-                if (labels) drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)), labelStyle(Role::Ink, 20.0f), 12.0);
+                if (labels)
+                    drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)), labelStyle(Role::Ink, 20.0f),
+                                  12.0);
             }
             sub = "GJK's terminal simplex (" + std::to_string(w.size()) + " vertices): " + nameOf(run.gjk.status);
         } else if (s) {
             drawPolytope(cs, d, *s, true);
-            sub = "closest " + std::string(d.planar ? "edge" : "face") + " (yellow) at distance " + formatNumber(s->distance) +
-                  "; " + std::to_string(s->removed.size()) + (d.planar ? " edge(s)" : " face(s)") + " visible from w (red)";
-            if (s->terminated) sub = "converged: the closest " + std::string(d.planar ? "edge" : "face") + " is on the boundary";
+            sub = "closest " + std::string(d.planar ? "edge" : "face") + " (yellow) at distance " +
+                  formatNumber(s->distance) + "; " + std::to_string(s->removed.size()) +
+                  (d.planar ? " edge(s)" : " face(s)") + " visible from w (red)";
+            if (s->terminated)
+                sub = "converged: the closest " + std::string(d.planar ? "edge" : "face") + " is on the boundary";
         } else {
             if (!run.steps.empty()) drawPolytope(cs, d, run.steps.back(), false);
             if (penetrating && run.depth > 0) {
                 const Vec3 pv = run.depth * run.normal;
                 cs.drawArrow(Vec3::Zero(), pv, lineStyle(Role::Result, 4.0f, false, true));
-                if (labels) drawLabelAway(cs, pv, Vec3::Zero(), "depth · n", TextStyle{18.0f, roleColor(Role::Result).scaled(0.7f), Anchor::Center, true, true}, 8.0);
+                if (labels)
+                    drawLabelAway(cs, pv, Vec3::Zero(), "depth · n",
+                                  TextStyle{18.0f, roleColor(Role::Result).scaled(0.7f), Anchor::Center, true, true},
+                                  8.0);
             } else if (penetrating) {
                 cs.drawArrow(Vec3::Zero(), run.normal * 0.3 * d.cRadius, lineStyle(Role::Direction, 3.0f, false, true));
             }
             sub = run.status == EpaStatus::Separated ? "GJK: the origin is outside A − B (no penetration)"
-                  : run.depth > 0 ? "penetration vector: origin to the nearest boundary point"
-                                  : "origin on the boundary: depth 0, contact normal n";
+                  : run.depth > 0                    ? "penetration vector: origin to the nearest boundary point"
+                                                     : "origin on the boundary: depth 0, contact normal n";
         }
-        drawPanelHeading(cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""), sub);
+        drawPanelHeading(
+            cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""), sub);
 
         std::vector<std::string> lines;
         Frame f;
         if (isGjk) {
-            lines.push_back("GJK: " + std::string(nameOf(run.gjk.status)) + " after " + std::to_string(run.gjk.iterations) +
-                            " iterations (" + nameOf(run.gjk.termination) + ")" +
-                            (run.gjk.intersect ? "; EPA starts from this simplex (" + run.start + ")" : ", distance " + formatNumber(run.gjk.distance)));
-            lines.push_back("EPA grows a polytope inside A − B around the origin until its face nearest the origin lies on the boundary.");
+            lines.push_back("GJK: " + std::string(nameOf(run.gjk.status)) + " after " +
+                            std::to_string(run.gjk.iterations) + " iterations (" + nameOf(run.gjk.termination) + ")" +
+                            (run.gjk.intersect ? "; EPA starts from this simplex (" + run.start + ")"
+                                               : ", distance " + formatNumber(run.gjk.distance)));
+            lines.push_back(
+                "EPA grows a polytope inside A − B around the origin until its face nearest the origin lies on the "
+                "boundary.");
             f.name = "gjk";
-            f.caption = std::string("GJK: ") + nameOf(run.gjk.status) + ", " + std::to_string(run.gjk.simplex.count) + "-vertex simplex";
+            f.caption = std::string("GJK: ") + nameOf(run.gjk.status) + ", " + std::to_string(run.gjk.simplex.count) +
+                        "-vertex simplex";
         } else if (s) {
             const double h = s->normal.dot(s->support);
             lines.push_back("EPA iteration " + std::to_string(s->iteration) + ": " + std::to_string(s->faces.size()) +
-                            (d.planar ? " edges" : " faces") + ", closest at distance " + formatNumber(s->distance) + ", n = " +
-                            formatPoint(s->normal) + ", w = s_C(n) = " + formatPoint(s->support));
-            lines.push_back("bounds " + formatNumber(s->lower) + " ≤ depth ≤ " + formatNumber(s->upper) + ";  test n·w − d = " +
-                            formatNumber(h - s->distance) + (s->terminated ? "  → stop: " + std::string(nameOf(run.termination))
-                                                                           : "  → remove the visible " + std::string(d.planar ? "edges" : "faces") +
-                                                                                 ", connect the horizon to w"));
+                            (d.planar ? " edges" : " faces") + ", closest at distance " + formatNumber(s->distance) +
+                            ", n = " + formatPoint(s->normal) + ", w = s_C(n) = " + formatPoint(s->support));
+            lines.push_back("bounds " + formatNumber(s->lower) + " ≤ depth ≤ " + formatNumber(s->upper) +
+                            ";  test n·w − d = " + formatNumber(h - s->distance) +
+                            (s->terminated ? "  → stop: " + std::string(nameOf(run.termination))
+                                           : "  → remove the visible " + std::string(d.planar ? "edges" : "faces") +
+                                                 ", connect the horizon to w"));
             f.name = stepFrameName(s->iteration);
-            f.caption = "it " + std::to_string(s->iteration) + ": d = " + formatNumber(s->distance) + ", gap " + formatNumber(h - s->distance) +
-                        (s->terminated ? " (stop)" : "");
+            f.caption = "it " + std::to_string(s->iteration) + ": d = " + formatNumber(s->distance) + ", gap " +
+                        formatNumber(h - s->distance) + (s->terminated ? " (stop)" : "");
         } else {
             lines.push_back(std::string("Result: ") + nameOf(run.status) + " (" + nameOf(run.termination) + ") after " +
-                            std::to_string(run.iterations) + " EPA iterations: depth " + formatNumber(run.depth) + ", normal " +
-                            formatPoint(run.normal));
+                            std::to_string(run.iterations) + " EPA iterations: depth " + formatNumber(run.depth) +
+                            ", normal " + formatPoint(run.normal));
             lines.push_back("p_A = " + formatPoint(run.pointA) + ",  p_B = " + formatPoint(run.pointB) + ";  bounds " +
                             formatNumber(run.lower) + " ≤ depth ≤ " + formatNumber(run.upper));
             f.name = "result";
@@ -438,8 +468,10 @@ private:
             c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 1.0f, true));
             c.drawText(P(x0 - 10, Y(v)), formatNumber(v), ytick);
         }
-        c.drawText(P(0.5 * (x0 + x1), y0 - 40), "EPA iteration", TextStyle{17.0f, roleColor(Role::Ink), Anchor::Top, false, true});
-        c.drawText(P(x0, y1 + 14), "penetration depth bounds", TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
+        c.drawText(P(0.5 * (x0 + x1), y0 - 40), "EPA iteration",
+                   TextStyle{17.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+        c.drawText(P(x0, y1 + 14), "penetration depth bounds",
+                   TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
         std::vector<Vec3> lower, upper;
         for (const PolyStep& s : run.steps) {
             lower.push_back(P(X(s.iteration), Y(s.lower)));
@@ -452,11 +484,14 @@ private:
         // Legend, top right.
         const double lx = x1 - 330, ly = y1 - 10;
         c.drawLine(P(lx, ly), P(lx + 40, ly), lineStyle(Role::ShapeB, 3.0f));
-        c.drawText(P(lx + 50, ly), "upper bound min n·s_C(n)", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+        c.drawText(P(lx + 50, ly), "upper bound min n·s_C(n)",
+                   TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
         c.drawLine(P(lx, ly - 28), P(lx + 40, ly - 28), lineStyle(Role::ShapeA, 3.0f));
-        c.drawText(P(lx + 50, ly - 28), "lower bound: closest face distance", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+        c.drawText(P(lx + 50, ly - 28), "lower bound: closest face distance",
+                   TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
         drawTitleAndCaption(c, common_.title + ": depth bounds per iteration",
-                            "final depth " + formatNumber(run.depth) + " (" + nameOf(run.termination) + "); the gap closes as the polytope reaches the boundary of A − B");
+                            "final depth " + formatNumber(run.depth) + " (" + nameOf(run.termination) +
+                                "); the gap closes as the polytope reaches the boundary of A − B");
         return Frame{"bounds", "depth bounds vs iteration", c.readPixels()};
     }
 };
@@ -465,7 +500,8 @@ class EpaDemo final : public Demo {
 public:
     std::string name() const override { return "epa"; }
     std::string description() const override {
-        return "EPA step by step after GJK: expanding polytope, closest face, horizon, penetration vector, depth bounds; 3D and 2D";
+        return "EPA step by step after GJK: expanding polytope, closest face, horizon, penetration vector, depth "
+               "bounds; 3D and 2D";
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));

@@ -15,9 +15,9 @@
 
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
 #include "demos/scene/pair_scene.h"
@@ -145,8 +145,10 @@ private:
                      const GjkTraceStep* s, const GjkResult& r) const {
         const bool labels = common_.hasLayer("labels");
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
-        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeA).scaled(0.6f), 2.0f);
-        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeB).scaled(0.6f), 2.0f);
+        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeA).scaled(0.6f),
+                 2.0f);
+        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeB).scaled(0.6f),
+                 2.0f);
         if (labels) {
             world.drawText(d.a.center, "A", labelStyle(Role::ShapeA, 26.0f));
             world.drawText(d.b.center, "B", labelStyle(Role::ShapeB, 26.0f));
@@ -182,9 +184,12 @@ private:
                              const GjkTrace& trace, const GjkTraceStep* s, const GjkResult& r) const {
         const bool labels = common_.hasLayer("labels");
         const bool touching = r.status == GjkStatus::Intersecting;
-        Canvas cs(gl, po, common_.camera && !d.planar ? *common_.camera
-                                                : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
-        if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.22f : 0.18f, roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
+        Canvas cs(gl, po,
+                  common_.camera && !d.planar ? *common_.camera
+                                              : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+        if (d.c.valid)
+            drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.22f : 0.18f,
+                     roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
         drawOrigin(cs, 0.06 * d.cRadius, d.planar);
 
         // The simplex: W ∪ {w} dashed, the kept sub-simplex solid and filled.
@@ -224,15 +229,16 @@ private:
         }
         std::string sub;
         if (s) {
-            sub = "kept: region " + slotLetters(s->keptSlots) + " (" + regionKind(std::size_t(s->keptCount()), pair_.dimension) + ")";
+            sub = "kept: region " + slotLetters(s->keptSlots) + " (" +
+                  regionKind(std::size_t(s->keptCount()), pair_.dimension) + ")";
             // Converged / duplicate support: the loop stopped before reducing W ∪ {w}.
             if (s->terminated && trace.termination != GjkTermination::OriginInSimplex)
                 sub = std::string("loop ends here (") + nameOf(trace.termination) + "): simplex not reduced";
         } else {
             sub = touching ? "origin inside the simplex: intersecting" : "final simplex";
         }
-        drawPanelHeading(cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""),
-                         sub);
+        drawPanelHeading(
+            cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""), sub);
 
         return cs.readPixels();
     }
@@ -241,19 +247,23 @@ private:
     void drawSimplex(Canvas& cs, const Drawing& d, const GjkTraceStep* s, const std::vector<Vec3>& w,
                      const std::vector<int>& kept, bool labels) const {
         for (std::size_t i = 0; i < w.size(); ++i)
-            for (std::size_t j = i + 1; j < w.size(); ++j) cs.drawLine(w[i], w[j], lineStyle(Role::Muted, 2.0f, true, true));
+            for (std::size_t j = i + 1; j < w.size(); ++j)
+                cs.drawLine(w[i], w[j], lineStyle(Role::Muted, 2.0f, true, true));
         std::vector<Vec3> kv;
         for (int k : kept) kv.push_back(w[k]);
         if (kv.size() == 3) cs.drawPolygon(kv, roleColor(Role::Simplex).withAlpha(0.35f));
         if (kv.size() == 4)
-            cs.drawMesh(kv, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
+            cs.drawMesh(kv,
+                        {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2),
+                         Eigen::Vector3i(1, 2, 3)},
                         roleColor(Role::Simplex).withAlpha(0.3f), true);
         for (std::size_t i = 0; i < kv.size(); ++i)
-            for (std::size_t j = i + 1; j < kv.size(); ++j) cs.drawLine(kv[i], kv[j], lineStyle(Role::Simplex, 4.0f, false, true));
+            for (std::size_t j = i + 1; j < kv.size(); ++j)
+                cs.drawLine(kv[i], kv[j], lineStyle(Role::Simplex, 4.0f, false, true));
         for (std::size_t i = 0; i < w.size(); ++i) {
             const bool isKept = std::find(kept.begin(), kept.end(), int(i)) != kept.end();
-            cs.drawPoint(w[i], isKept ? 8.0f : 6.0f, isKept ? roleColor(Role::Simplex) : roleColor(Role::Muted), true, 1.5f,
-                         roleColor(Role::Ink));
+            cs.drawPoint(w[i], isKept ? 8.0f : 6.0f, isKept ? roleColor(Role::Simplex) : roleColor(Role::Muted), true,
+                         1.5f, roleColor(Role::Ink));
             if (labels) {
                 TextStyle ts{20.0f, roleColor(Role::Ink), Anchor::Center, true, true};
                 const bool isNew = s && int(i) + 1 == s->simplexCount && s->simplex[i].w == s->support.w;
@@ -270,21 +280,23 @@ private:
         if (s) {
             const double vv = s->upperBound * s->upperBound;
             std::string stop = s->terminated ? std::string("stop: ") + nameOf(trace.termination) : "continue";
-            lines.push_back("Iteration " + std::to_string(s->iteration) + ": w = s_A(d) − s_B(−d) = " + formatPoint(s->support.w) +
-                            ", simplex {" + std::string("ABCD").substr(0, s->simplexCount) + "} → region " + slotLetters(s->keptSlots) +
-                            ", |v| = " + formatNumber(s->v.norm()));
+            lines.push_back("Iteration " + std::to_string(s->iteration) + ": w = s_A(d) − s_B(−d) = " +
+                            formatPoint(s->support.w) + ", simplex {" + std::string("ABCD").substr(0, s->simplexCount) +
+                            "} → region " + slotLetters(s->keptSlots) + ", |v| = " + formatNumber(s->v.norm()));
             lines.push_back("bounds " + formatNumber(s->lowerBound) + " ≤ distance ≤ " + formatNumber(s->upperBound) +
-                            ";  test |v|² − v·w = " + formatNumber(s->gapTest) + (s->gapTest <= options_.relativeTolerance * vv ? " ≤ " : " > ") +
+                            ";  test |v|² − v·w = " + formatNumber(s->gapTest) +
+                            (s->gapTest <= options_.relativeTolerance * vv ? " ≤ " : " > ") +
                             "ε|v|² = " + formatNumber(options_.relativeTolerance * vv) + ":  " + stop);
             f.name = stepFrameName(s->iteration);
-            f.caption = "it " + std::to_string(s->iteration) + ": region " + slotLetters(s->keptSlots) + ", |v| " + formatNumber(s->v.norm()) +
-                        (s->terminated ? " (stop)" : "");
+            f.caption = "it " + std::to_string(s->iteration) + ": region " + slotLetters(s->keptSlots) + ", |v| " +
+                        formatNumber(s->v.norm()) + (s->terminated ? " (stop)" : "");
         } else {
             lines.push_back(std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.iterations) +
                             " iterations (" + nameOf(r.termination) + "), distance " + formatNumber(r.distance));
-            lines.push_back(touching ? "the terminal simplex contains the origin: feed it to EPA for the penetration depth"
-                                     : "p_A = " + formatPoint(r.pointA) + ",  p_B = " + formatPoint(r.pointB) +
-                                           ",  bounds " + formatNumber(r.lowerBound) + " ≤ d ≤ " + formatNumber(r.upperBound));
+            lines.push_back(
+                touching ? "the terminal simplex contains the origin: feed it to EPA for the penetration depth"
+                         : "p_A = " + formatPoint(r.pointA) + ",  p_B = " + formatPoint(r.pointB) + ",  bounds " +
+                               formatNumber(r.lowerBound) + " ≤ d ≤ " + formatNumber(r.upperBound));
             f.name = "result";
             f.caption = std::string("result: ") + nameOf(r.status) + ", distance " + formatNumber(r.distance);
         }
@@ -296,7 +308,8 @@ class GjkDemo final : public Demo {
 public:
     std::string name() const override { return "gjk"; }
     std::string description() const override {
-        return "GJK step by step: world space and configuration space (A − B, simplex, direction, support point), 3D and 2D";
+        return "GJK step by step: world space and configuration space (A − B, simplex, direction, support point), 3D "
+               "and 2D";
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));

@@ -96,8 +96,7 @@ class FolderLock {
 public:
     explicit FolderLock(const fs::path& dir) : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
         if (fd_ >= 0)
-            while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
-            }
+            while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {}
     }
     ~FolderLock() {
         if (fd_ >= 0) ::close(fd_);  // closing releases the lock
@@ -117,14 +116,16 @@ std::vector<std::string> previouslyWritten(const fs::path& dir) {
     try {
         return readFigureManifest(file).files;
     } catch (const InputError& e) {
-        std::cerr << "cdlab figures: " << e.what() << " (not used: no earlier file is deleted; a new manifest replaces it)\n";
+        std::cerr << "cdlab figures: " << e.what()
+                  << " (not used: no earlier file is deleted; a new manifest replaces it)\n";
         return {};
     }
 }
 
 // Files of an earlier run that this run did not write (e.g. fewer steps now). Names come from the
 // previous manifest and are plain names (readFigureManifest checks), so this never leaves `dir`.
-void removeStale(const fs::path& dir, const std::vector<std::string>& previous, const std::vector<std::string>& written) {
+void removeStale(const fs::path& dir, const std::vector<std::string>& previous,
+                 const std::vector<std::string>& written) {
     std::error_code ec;
     for (const std::string& name : previous)
         if (std::find(written.begin(), written.end(), name) == written.end() &&
@@ -237,7 +238,8 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         std::error_code ec;
         fs::create_directories(o.outDir, ec);
         if (ec) {
-            std::cerr << "cdlab figures: cannot create the output folder '" << o.outDir << "': " << ec.message() << "\n";
+            std::cerr << "cdlab figures: cannot create the output folder '" << o.outDir << "': " << ec.message()
+                      << "\n";
             return 2;
         }
     }
@@ -288,19 +290,21 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
             frames += int(out.frames.size());
 
             if (o.profile) {
-                const double build = stats.buildSeconds - before.buildSeconds, draw = stats.drawSeconds - before.drawSeconds,
+                const double build = stats.buildSeconds - before.buildSeconds,
+                             draw = stats.drawSeconds - before.drawSeconds,
                              readback = stats.readbackSeconds - before.readbackSeconds;
                 std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames; algorithm " << ms(algorithm)
-                          << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices " << ms(build)
-                          << ", GL " << ms(draw) << "), read-back " << ms(readback) << ", PNG encoding + writes "
-                          << ms(writeSeconds);
+                          << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices "
+                          << ms(build) << ", GL " << ms(draw) << "), read-back " << ms(readback)
+                          << ", PNG encoding + writes " << ms(writeSeconds);
                 if (!out.skipped.empty()) {
                     std::cerr << "; skipped:";
                     for (const auto& s : out.skipped) std::cerr << " " << s << ";";
                 }
                 std::cerr << "\n";
             } else if (o.verbose) {
-                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << ms(runSeconds + writeSeconds) << "\n";
+                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << ms(runSeconds + writeSeconds)
+                          << "\n";
             }
         } catch (const InputError& e) {
             const std::string what = e.what();

@@ -4,9 +4,9 @@
 #include <iostream>
 #include <sstream>
 
+#include "demos/harness/scene_runner.h"
 #include "demos/scene/json_reader.h"
 #include "demos/scene/scene.h"
-#include "demos/harness/scene_runner.h"
 #include "render/compare.h"
 #include "render/image.h"
 
@@ -43,7 +43,8 @@ FigureManifest readFigureManifest(const fs::path& file) {
 }
 
 std::string figureManifestText(const FigureManifest& m) {
-    Json j = {{"key", m.key}, {"title", m.title}, {"caption", m.caption}, {"frames", Json::array()}, {"files", m.files}};
+    Json j = {
+        {"key", m.key}, {"title", m.title}, {"caption", m.caption}, {"frames", Json::array()}, {"files", m.files}};
     for (const auto& f : m.frames) j["frames"].push_back({{"name", f.name}, {"caption", f.caption}});
     return j.dump(1) + "\n";
 }
@@ -72,7 +73,8 @@ void writeGallery(const std::string& outDir) {
     for (const auto& path : manifests) {
         try {
             FigureManifest m = readFigureManifest(path);
-            std::string id = path.parent_path().parent_path().filename().string() + "/" + path.parent_path().filename().string();
+            std::string id =
+                path.parent_path().parent_path().filename().string() + "/" + path.parent_path().filename().string();
             h << "<a href=\"#" << htmlEscape(id) << "\">" << htmlEscape(id) << "</a>\n";
             scenes.emplace_back(std::move(id), std::move(m));
         } catch (const InputError& e) {
@@ -81,8 +83,8 @@ void writeGallery(const std::string& outDir) {
     }
     h << "</nav>\n";
     for (const auto& [id, m] : scenes) {
-        h << "<section id=\"" << htmlEscape(id) << "\"><h2>" << htmlEscape(m.title.empty() ? id : m.title) << " <small>("
-          << htmlEscape(id) << ")</small></h2>\n";
+        h << "<section id=\"" << htmlEscape(id) << "\"><h2>" << htmlEscape(m.title.empty() ? id : m.title)
+          << " <small>(" << htmlEscape(id) << ")</small></h2>\n";
         if (!m.caption.empty()) h << "<p>" << htmlEscape(m.caption) << "</p>\n";
         for (const auto& f : m.frames) {
             std::string src = id + "/" + f.name + ".png";

@@ -13,13 +13,13 @@ namespace cdlab::demos {
 /// `files` is the only list of files cdlab may later delete there.
 struct FigureManifest {
     struct FrameEntry {
-        std::string name;     // file stem of <name>.png
+        std::string name;  // file stem of <name>.png
         std::string caption;
     };
-    std::string key;                  // cache key (scene bytes, options, executable)
+    std::string key;  // cache key (scene bytes, options, executable)
     std::string title, caption;
     std::vector<FrameEntry> frames;
-    std::vector<std::string> files;   // every file written: plain names (no '/', not "..")
+    std::vector<std::string> files;  // every file written: plain names (no '/', not "..")
 };
 
 /// Reads a manifest written by `cdlab figures`. Anything else — not JSON, another layout, a file

@@ -37,7 +37,8 @@ bool isPlainRelativePath(const std::string& rel) {
     std::size_t start = 0;
     for (;;) {
         const std::size_t slash = rel.find('/', start);
-        if (!isPlainName(rel.substr(start, slash == std::string::npos ? std::string::npos : slash - start))) return false;
+        if (!isPlainName(rel.substr(start, slash == std::string::npos ? std::string::npos : slash - start)))
+            return false;
         if (slash == std::string::npos) return true;
         start = slash + 1;
     }
@@ -79,7 +80,8 @@ public:
             for (std::size_t slash = rel.find('/'); slash != std::string::npos; slash = rel.find('/', slash + 1)) {
                 const std::string folder = rel.substr(0, slash);
                 std::error_code ec;
-                if (std::find(folders_.begin(), folders_.end(), folder) == folders_.end() && !fs::exists(root_ / folder, ec))
+                if (std::find(folders_.begin(), folders_.end(), folder) == folders_.end() &&
+                    !fs::exists(root_ / folder, ec))
                     folders_.push_back(folder);
             }
             if (std::find(files_.begin(), files_.end(), rel) == files_.end()) files_.push_back(rel);
@@ -92,7 +94,8 @@ public:
 
 private:
     // "" when the list reads; else what is wrong (with its line number).
-    static std::string readList(const fs::path& list, std::vector<std::string>& files, std::vector<std::string>& folders) {
+    static std::string readList(const fs::path& list, std::vector<std::string>& files,
+                                std::vector<std::string>& folders) {
         std::string text, problem;
         if (!render::readFileBounded(list.string(), kMaxJsonFileBytes, "a report list", text, problem)) return problem;
         std::istringstream in(text);
@@ -100,9 +103,11 @@ private:
         if (!std::getline(in, line) || line != kReportHeader) return "line 1: not a cdlab report list";
         for (int n = 2; std::getline(in, line); ++n) {
             const std::size_t space = line.find(' ');
-            const std::string kind = line.substr(0, space), rel = space == std::string::npos ? "" : line.substr(space + 1);
+            const std::string kind = line.substr(0, space),
+                              rel = space == std::string::npos ? "" : line.substr(space + 1);
             if ((kind != "file" && kind != "folder") || !isPlainRelativePath(rel))
-                return "line " + std::to_string(n) + ": " + Json(line).dump(-1, ' ', false, Json::error_handler_t::replace) +
+                return "line " + std::to_string(n) + ": " +
+                       Json(line).dump(-1, ' ', false, Json::error_handler_t::replace) +
                        " is not \"file <path>\" or \"folder <path>\" with a plain relative path";
             (kind == "file" ? files : folders).push_back(rel);
         }
@@ -131,7 +136,6 @@ std::string goldenProblem(const fs::path& golden, bool exists, const Compare& co
         return e.what();
     }
 }
-
 
 struct GoldenRun {
     const RunnerOptions& options;
@@ -278,7 +282,10 @@ int runGolden(const RunnerOptions& o) {
         std::cerr << "cdlab golden: no scene matches\n";
         return 2;
     }
-    GoldenRun run{o, ReportFolder(o.reportDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/build/golden-report" : o.reportDir), {}};
+    GoldenRun run{
+        o,
+        ReportFolder(o.reportDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/build/golden-report" : o.reportDir),
+        {}};
     run.report.removePrevious();
 
     std::unique_ptr<render::GlContext> gl = createContext(o.verbose);  // one context for the whole run

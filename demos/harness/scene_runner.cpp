@@ -21,8 +21,9 @@ std::unique_ptr<render::GlContext> createContext(bool verbose) {
     auto t0 = Clock::now();
     auto gl = render::GlContext::create();
     if (verbose)
-        std::cerr << "GL_RENDERER: " << gl->glRenderer() << "\nGL_VERSION: " << gl->glVersion() << "\nEGL platform: "
-                  << gl->eglPlatform() << " (context created in " << int(secondsSince(t0) * 1000) << " ms)\n";
+        std::cerr << "GL_RENDERER: " << gl->glRenderer() << "\nGL_VERSION: " << gl->glVersion()
+                  << "\nEGL platform: " << gl->eglPlatform() << " (context created in " << int(secondsSince(t0) * 1000)
+                  << " ms)\n";
     return gl;
 }
 
@@ -44,11 +45,11 @@ std::vector<std::string> selectScenes(const RunnerOptions& o) {
     return out;
 }
 
-
 fs::path sceneOutputDir(const fs::path& root, const std::string& demo, const std::string& name) {
     for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"demo", demo}, {"scene", name}})
         if (!isPlainName(value))
-            throw InputError(std::string(what) + " name " + Json(value).dump(-1, ' ', false, Json::error_handler_t::replace) +
+            throw InputError(std::string(what) + " name " +
+                             Json(value).dump(-1, ' ', false, Json::error_handler_t::replace) +
                              " cannot name an output folder (allowed: letters, digits, '_', '-', '.'; not '.' first)");
     return root / demo / name;
 }

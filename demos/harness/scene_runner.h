@@ -14,19 +14,19 @@
 namespace cdlab::demos {
 
 struct RunnerOptions {
-    std::string goldenDir;             // scenes + goldens (default <source>/golden)
+    std::string goldenDir;  // scenes + goldens (default <source>/golden)
     std::string outDir = "out/figures";
-    std::string pattern;               // glob on "demo/scene" (empty: all)
-    std::string demo;                  // only this demo's scenes (empty: all)
-    std::string reportDir;             // golden: where failures go (default build/golden-report)
-    std::string update;                // golden: "" (never), "failing" (failing or missing), "all"
-    int scale = 0;                     // > 0 overrides every scene's supersampling
-    bool steps = false;                // force per-step frames
-    bool verbose = false;              // print GL_RENDERER / GL_VERSION and per-scene timings
-    bool list = false;                 // list scenes and exit
-    bool noRender = false;             // numeric only: no GL context, traces only
-    bool force = false;                // figures: re-render scenes whose cache key matches
-    bool profile = false;              // figures: per-scene time in algorithm, drawing, read-back, PNG
+    std::string pattern;    // glob on "demo/scene" (empty: all)
+    std::string demo;       // only this demo's scenes (empty: all)
+    std::string reportDir;  // golden: where failures go (default build/golden-report)
+    std::string update;     // golden: "" (never), "failing" (failing or missing), "all"
+    int scale = 0;          // > 0 overrides every scene's supersampling
+    bool steps = false;     // force per-step frames
+    bool verbose = false;   // print GL_RENDERER / GL_VERSION and per-scene timings
+    bool list = false;      // list scenes and exit
+    bool noRender = false;  // numeric only: no GL context, traces only
+    bool force = false;     // figures: re-render scenes whose cache key matches
+    bool profile = false;   // figures: per-scene time in algorithm, drawing, read-back, PNG
 };
 
 int runFigures(const RunnerOptions& options);

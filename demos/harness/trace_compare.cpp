@@ -69,7 +69,8 @@ std::string TraceComparison::summary() const {
         if (!maxNumberDiffPath.empty()) s << " at " << maxNumberDiffPath;
         s << ")";
     } else {
-        s << mismatchCount << " trace mismatch(es); first: " << mismatches.front().path << ": " << mismatches.front().what;
+        s << mismatchCount << " trace mismatch(es); first: " << mismatches.front().path << ": "
+          << mismatches.front().what;
     }
     return s.str();
 }

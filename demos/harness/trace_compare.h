@@ -17,10 +17,10 @@ struct TraceMismatch {
 struct TraceComparison {
     std::vector<TraceMismatch> mismatches;  // the first few only
     std::size_t mismatchCount = 0;
-    double maxNumberDiff = 0;               // largest |a - e| among numbers
+    double maxNumberDiff = 0;  // largest |a - e| among numbers
     std::string maxNumberDiffPath;
     bool passed() const { return mismatchCount == 0; }
-    std::string summary() const;            // one line
+    std::string summary() const;  // one line
 };
 
 TraceComparison compareTraces(const Json& actual, const Json& expected, double absolute, double relative);

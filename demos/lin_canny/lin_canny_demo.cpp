@@ -21,18 +21,18 @@
 #include <cmath>
 #include <optional>
 
-#include "core/gjk_epa/gjk.h"
 #include "core/feature_walk/lin_canny.h"
-#include "core/geometry/shapes.h"
 #include "core/feature_walk/vclip.h"
+#include "core/geometry/shapes.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/scene_limits.h"
-#include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
-#include "demos/draw/feature_walk_figure.h"
+#include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -85,7 +85,8 @@ Image drawWalkList(GlContext& gl, int W, int H, int ss, const std::string& headi
     c.drawTextPx(12, 8, heading, TextStyle{17.0f, ink, Anchor::TopLeft, true, true});
     double top = 32;
     if (!sub.empty()) {
-        c.drawTextPx(12, top, sub, TextStyle{13.0f, ink.mixed(roleColor(Role::Muted), 0.4f), Anchor::TopLeft, false, false});
+        c.drawTextPx(12, top, sub,
+                     TextStyle{13.0f, ink.mixed(roleColor(Role::Muted), 0.4f), Anchor::TopLeft, false, false});
         top += 20;
     }
     const double rowH = 17;
@@ -105,17 +106,23 @@ Image drawWalkList(GlContext& gl, int W, int H, int ss, const std::string& headi
         const double x = 12 + col * (W - 12) / double(columns), y = top + row * rowH;
         const int i = shown[k];
         if (i < 0) {
-            c.drawTextPx(x, y, "… " + std::to_string(n - capacity + 1) + " more …", TextStyle{13.0f, roleColor(Role::Muted).scaled(0.7f), Anchor::TopLeft, false, false});
+            c.drawTextPx(x, y, "… " + std::to_string(n - capacity + 1) + " more …",
+                         TextStyle{13.0f, roleColor(Role::Muted).scaled(0.7f), Anchor::TopLeft, false, false});
             continue;
         }
         const bool now = i == current;
-        c.drawTextPx(x, y, (now ? "> " : "   ") + rows[i].text, TextStyle{13.0f, now ? roleColor(Role::Highlight).scaled(0.8f) : rows[i].color, Anchor::TopLeft, false, now});
+        c.drawTextPx(x, y, (now ? "> " : "   ") + rows[i].text,
+                     TextStyle{13.0f, now ? roleColor(Role::Highlight).scaled(0.8f) : rows[i].color, Anchor::TopLeft,
+                               false, now});
     }
     return c.readPixels();
 }
 
 Color changeColor(int change, bool localMinimum) {
-    return localMinimum ? clipColor() : change < 0 ? satisfiedColor() : change == 0 ? roleColor(Role::Muted) : violatedColor();
+    return localMinimum  ? clipColor()
+           : change < 0  ? satisfiedColor()
+           : change == 0 ? roleColor(Role::Muted)
+                         : violatedColor();
 }
 
 /// Pair distance per update of a walk: x = update count, y = distance of the pair after it.
@@ -166,7 +173,8 @@ public:
             return out;
         }
         if (common_.steps || ctx.stepsOverride)
-            for (int i : framedSteps(int(r.lcTrace.steps.size()), s_.maxStepFrames)) out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, i));
+            for (int i : framedSteps(int(r.lcTrace.steps.size()), s_.maxStepFrames))
+                out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, i));
         out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, -1));
         std::vector<const Frame*> animated;
         for (const Frame& f : out.frames) animated.push_back(&f);
@@ -209,8 +217,13 @@ private:
         for (const LinCannyTraceStep& st : r.lcTrace.steps) {
             Json planes = Json::array();
             for (const VClipPlaneTest& p : st.planes)
-                planes.push_back({{"region_body", p.regionBody}, {"owner", featureJson(p.owner)}, {"neighbor", featureJson(p.neighbor)},
-                                  {"plane", p.plane}, {"signed_distance", p.signedDistance}, {"violated", p.violated}, {"maximal", p.maximal}});
+                planes.push_back({{"region_body", p.regionBody},
+                                  {"owner", featureJson(p.owner)},
+                                  {"neighbor", featureJson(p.neighbor)},
+                                  {"plane", p.plane},
+                                  {"signed_distance", p.signedDistance},
+                                  {"violated", p.violated},
+                                  {"maximal", p.maximal}});
             steps.push_back({{"step", st.step},
                              {"state", nameOf(st.state)},
                              {"feature_a", featureJson(st.featureA)},
@@ -338,10 +351,13 @@ private:
     std::vector<ListRow> lcRows(const LinCannyTrace& tr) const {
         std::vector<ListRow> rows;
         for (const LinCannyTraceStep& st : tr.steps) {
-            std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " + formatNumber(st.distanceBefore);
-            if (st.updatedBody >= 0) t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + nameOf(st.from) + "→" + nameOf(st.to);
+            std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " +
+                            formatNumber(st.distanceBefore);
+            if (st.updatedBody >= 0)
+                t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + nameOf(st.from) + "→" + nameOf(st.to);
             else t += std::string("  ") + nameOf(st.kind);
-            rows.push_back({t, st.updatedBody >= 0 ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f) : roleColor(Role::Ink)});
+            rows.push_back({t, st.updatedBody >= 0 ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f)
+                                                   : roleColor(Role::Ink)});
         }
         return rows;
     }
@@ -349,11 +365,14 @@ private:
     std::vector<ListRow> vcRows(const VClipTrace& tr) const {
         std::vector<ListRow> rows;
         for (const VClipTraceStep& st : tr.steps) {
-            std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " + formatNumber(st.distanceBefore);
+            std::string t = std::to_string(st.step) + "  " + pairText(st.featureA, st.featureB) + "  " +
+                            formatNumber(st.distanceBefore);
             if (st.kind == VClipStepKind::Update && st.updatedBody >= 0)
                 t += std::string("  ") + (st.updatedBody == 0 ? "A " : "B ") + nameOf(st.from) + "→" + nameOf(st.to);
             else t += std::string("  ") + nameOf(st.kind);
-            rows.push_back({t, st.kind == VClipStepKind::Update ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f) : roleColor(Role::Ink)});
+            rows.push_back({t, st.kind == VClipStepKind::Update
+                                   ? changeColor(st.distanceChange, st.localMinimum).scaled(0.75f)
+                                   : roleColor(Role::Ink)});
         }
         return rows;
     }
@@ -361,7 +380,8 @@ private:
     std::string verdict(const LinCannyResult& r) const {
         if (r.status == LinCannyStatus::Separated) return "Separated, distance " + formatNumber(r.distance);
         if (r.status == LinCannyStatus::Penetrating) return std::string("Penetrating (") + nameOf(r.penetration) + ")";
-        if (r.status == LinCannyStatus::CycleDetected) return "CycleDetected (cycle of " + std::to_string(r.cycleLength) + " pairs)";
+        if (r.status == LinCannyStatus::CycleDetected)
+            return "CycleDetected (cycle of " + std::to_string(r.cycleLength) + " pairs)";
         return nameOf(r.status);
     }
     std::string verdict(const VClipResult& r) const {
@@ -369,7 +389,9 @@ private:
         if (r.status == VClipStatus::Penetrating) return std::string("Penetrating (") + nameOf(r.penetration) + ")";
         return nameOf(r.status);
     }
-    std::string gjkText(const GjkResult& g) const { return g.intersect ? std::string("intersecting") : formatNumber(g.distance); }
+    std::string gjkText(const GjkResult& g) const {
+        return g.intersect ? std::string("intersecting") : formatNumber(g.distance);
+    }
 
     Frame drawStepFrame(GlContext& gl, int ss, const Runs& run, int index) const {
         const Layout L = layout();
@@ -397,57 +419,81 @@ private:
                 }
             if (common_.hasLayer("closest")) drawClosest(c, st->closestA, st->closestB, false);
             if (common_.hasLayer("update") && st->updatedBody >= 0) {
-                const std::vector<Vec3> gTo = featureGeometry(body(st->updatedBody).regions, pose(st->updatedBody), st->to);
-                const Vec3 from = featureCenter(st->updatedBody == 0 ? st->featureAWorld : st->featureBWorld), to = featureCenter(gTo);
+                const std::vector<Vec3> gTo =
+                    featureGeometry(body(st->updatedBody).regions, pose(st->updatedBody), st->to);
+                const Vec3 from = featureCenter(st->updatedBody == 0 ? st->featureAWorld : st->featureBWorld),
+                           to = featureCenter(gTo);
                 if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, lineStyle(Role::Ink, 4.0f, false, true));
                 drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f), "", from, false);
                 if (labels)
-                    drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody), TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
+                    drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
+                                  TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
             }
             heading = "Step " + std::to_string(st->step) + ": pair " + nameOf(st->state);
-            sub = std::to_string(st->planes.size()) + " applicability test(s), " + std::to_string(violatedCount) + " violated (red)";
+            sub = std::to_string(st->planes.size()) + " applicability test(s), " + std::to_string(violatedCount) +
+                  " violated (red)";
             if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
-            lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
-                            featureLabel(st->featureB, 1) + ", closest points at distance " + formatNumber(st->distanceBefore) + ";  rule: " + st->rule);
+            lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) +
+                            "): " + featureLabel(st->featureA, 0) + " vs " + featureLabel(st->featureB, 1) +
+                            ", closest points at distance " + formatNumber(st->distanceBefore) +
+                            ";  rule: " + st->rule);
             const VClipPlaneTest* worst = nullptr;
             for (const VClipPlaneTest& p : st->planes)
-                if (!worst || (p.maximal && !worst->maximal) || (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance)) worst = &p;
+                if (!worst || (p.maximal && !worst->maximal) ||
+                    (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance))
+                    worst = &p;
             if (!worst) lines.push_back("no plane test");
             else
-                lines.push_back(std::string(worst->regionBody == 0 ? "p_B" : "p_A") + " against VR(" + featureLabel(worst->owner, worst->regionBody) +
-                                "): " + (worst->maximal ? "most violated" : worst->violated ? "violated" : "closest") + " plane " +
-                                (worst->plane < 0 ? std::string("(the face plane)") : "| " + nameOf(worst->neighbor)) + " at signed distance " +
-                                formatNumber(worst->signedDistance) +
-                                (!worst->violated ? " ≥ 0" : worst->signedDistance < 0 ? " < 0" : " ≥ 0, violated only by the forced negative tolerance"));
+                lines.push_back(std::string(worst->regionBody == 0 ? "p_B" : "p_A") + " against VR(" +
+                                featureLabel(worst->owner, worst->regionBody) + "): " +
+                                (worst->maximal    ? "most violated"
+                                 : worst->violated ? "violated"
+                                                   : "closest") +
+                                " plane " +
+                                (worst->plane < 0 ? std::string("(the face plane)") : "| " + nameOf(worst->neighbor)) +
+                                " at signed distance " + formatNumber(worst->signedDistance) +
+                                (!worst->violated            ? " ≥ 0"
+                                 : worst->signedDistance < 0 ? " < 0"
+                                                             : " ≥ 0, violated only by the forced negative tolerance"));
             if (st->updatedBody >= 0)
-                lines.push_back(std::string("update ") + (st->updatedBody == 0 ? "A: " : "B: ") + nameOf(st->from) + " → " + nameOf(st->to) +
-                                ";  pair distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
-                                (st->localMinimum ? " (local-minimum face jump)" : st->distanceChange < 0 ? " (decreased)" : st->distanceChange == 0 ? " (equal)" : " (INCREASED)"));
+                lines.push_back(std::string("update ") + (st->updatedBody == 0 ? "A: " : "B: ") + nameOf(st->from) +
+                                " → " + nameOf(st->to) + ";  pair distance " + formatNumber(st->distanceBefore) +
+                                " → " + formatNumber(st->distanceAfter) +
+                                (st->localMinimum          ? " (local-minimum face jump)"
+                                 : st->distanceChange < 0  ? " (decreased)"
+                                 : st->distanceChange == 0 ? " (equal)"
+                                                           : " (INCREASED)"));
             else if (st->kind == VClipStepKind::Done)
-                lines.push_back("DONE: each closest point lies in the other feature's Voronoi region (Lin & Canny, Thm. 1)");
-            else
-                lines.push_back(std::string(nameOf(st->kind)) + ": " + verdict(r));
+                lines.push_back(
+                    "DONE: each closest point lies in the other feature's Voronoi region (Lin & Canny, Thm. 1)");
+            else lines.push_back(std::string(nameOf(st->kind)) + ": " + verdict(r));
             f.name = stepFrameName(st->step);
-            f.caption = "step " + std::to_string(st->step) + " " + nameOf(st->state) + ": " +
-                        (st->updatedBody >= 0 ? nameOf(st->from) + " → " + nameOf(st->to) : std::string(nameOf(st->kind)));
+            f.caption =
+                "step " + std::to_string(st->step) + " " + nameOf(st->state) + ": " +
+                (st->updatedBody >= 0 ? nameOf(st->from) + " → " + nameOf(st->to) : std::string(nameOf(st->kind)));
         } else {
             const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
             const std::vector<Vec3> gb = featureGeometry(s_.b.regions, s_.b.pose, r.featureB);
             drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroid(1), labels);
             drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroid(0), labels);
-            if (common_.hasLayer("closest") && r.status != LinCannyStatus::CycleDetected) drawClosest(c, r.pointA, r.pointB, true);
+            if (common_.hasLayer("closest") && r.status != LinCannyStatus::CycleDetected)
+                drawClosest(c, r.pointA, r.pointB, true);
             heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
-            sub = r.status == LinCannyStatus::Separated ? "closest features and points" : r.status == LinCannyStatus::CycleDetected ? "the pair where the cycle was detected" : "";
-            lines.push_back("Lin–Canny: " + verdict(r) + ", features " + featureLabel(r.featureA, 0) + " and " + featureLabel(r.featureB, 1) +
-                            ", " + std::to_string(r.steps) + " update(s)");
-            lines.push_back("V-Clip on the same pair and seed: " + verdict(run.vc) + ", features " + featureLabel(run.vc.featureA, 0) + " and " +
-                            featureLabel(run.vc.featureB, 1) + ", " + std::to_string(run.vc.steps) + " update(s);  GJK: " + gjkText(run.gjk));
+            sub = r.status == LinCannyStatus::Separated       ? "closest features and points"
+                  : r.status == LinCannyStatus::CycleDetected ? "the pair where the cycle was detected"
+                                                              : "";
+            lines.push_back("Lin–Canny: " + verdict(r) + ", features " + featureLabel(r.featureA, 0) + " and " +
+                            featureLabel(r.featureB, 1) + ", " + std::to_string(r.steps) + " update(s)");
+            lines.push_back("V-Clip on the same pair and seed: " + verdict(run.vc) + ", features " +
+                            featureLabel(run.vc.featureA, 0) + " and " + featureLabel(run.vc.featureB, 1) + ", " +
+                            std::to_string(run.vc.steps) + " update(s);  GJK: " + gjkText(run.gjk));
             if (forced())
-                lines.push_back("cycle FORCED with a negative applicability tolerance (" + formatNumber(s_.options.applicability) +
+                lines.push_back("cycle FORCED with a negative applicability tolerance (" +
+                                formatNumber(s_.options.applicability) +
                                 " × scale): boundary points violate both regions; not a natural cycle");
             else if (r.status == LinCannyStatus::Separated)
-                lines.push_back("|Lin–Canny − GJK| = " + formatNumber(std::abs(r.distance - run.gjk.distance)) + ",  |Lin–Canny − V-Clip| = " +
-                                formatNumber(std::abs(r.distance - run.vc.distance)));
+                lines.push_back("|Lin–Canny − GJK| = " + formatNumber(std::abs(r.distance - run.gjk.distance)) +
+                                ",  |Lin–Canny − V-Clip| = " + formatNumber(std::abs(r.distance - run.vc.distance)));
             f.name = "result";
             f.caption = std::string("result: ") + verdict(r);
         }
@@ -456,9 +502,12 @@ private:
 
         const int cur = st ? index : int(tr.steps.size()) - 1;
         std::string listSub = forced() ? "cycle forced (negative tolerance)" : "";
-        if (r.status == LinCannyStatus::CycleDetected) listSub = "the last " + std::to_string(r.cycleLength) + " rows repeat" + (forced() ? " (forced)" : "");
-        const Image list = common_.hasLayer("list") ? drawWalkList(gl, L.columnWidth, L.diagramHeight(), ss, "Pairs visited (A·B, distance)", listSub, lcRows(tr), cur)
-                                                    : blank(L.columnWidth, L.diagramHeight());
+        if (r.status == LinCannyStatus::CycleDetected)
+            listSub = "the last " + std::to_string(r.cycleLength) + " rows repeat" + (forced() ? " (forced)" : "");
+        const Image list = common_.hasLayer("list")
+                               ? drawWalkList(gl, L.columnWidth, L.diagramHeight(), ss, "Pairs visited (A·B, distance)",
+                                              listSub, lcRows(tr), cur)
+                               : blank(L.columnWidth, L.diagramHeight());
         Image plot = blank(L.columnWidth, L.plotHeight());
         if (common_.hasLayer("plot")) {
             PlotInput pin;
@@ -467,9 +516,11 @@ private:
             pin.series.push_back(distanceSeries(tr, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f)));
             pin.marker = st ? index : -1;
             pin.legend = {{satisfiedColor(), "decrease"}, {roleColor(Role::Muted), "equal"}};
-            if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const LinCannyTraceStep& s) { return s.distanceChange > 0 && !s.localMinimum; }))
+            if (std::any_of(tr.steps.begin(), tr.steps.end(),
+                            [](const LinCannyTraceStep& s) { return s.distanceChange > 0 && !s.localMinimum; }))
                 pin.legend.push_back({violatedColor(), "increase"});
-            if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const LinCannyTraceStep& s) { return s.localMinimum; }))
+            if (std::any_of(tr.steps.begin(), tr.steps.end(),
+                            [](const LinCannyTraceStep& s) { return s.localMinimum; }))
                 pin.legend.push_back({clipColor(), "local-min jump"});
             plot = drawPlot(gl, L.columnWidth, L.plotHeight(), ss, pin);
         }
@@ -479,14 +530,17 @@ private:
 
     /// One walk in 3D: the bodies, the path of the closest points over the steps, the final features.
     template <class Trace>
-    Image walkPanel(GlContext& gl, int w, int h, int ss, const Trace& tr, const VClipFeature& fa, const VClipFeature& fb, const Vec3& pa,
-                    const Vec3& pb, bool closest, const std::string& heading, const std::string& sub) const {
+    Image walkPanel(GlContext& gl, int w, int h, int ss, const Trace& tr, const VClipFeature& fa,
+                    const VClipFeature& fb, const Vec3& pa, const Vec3& pb, bool closest, const std::string& heading,
+                    const std::string& sub) const {
         Canvas c(gl, canvasOptions(w, h, ss));
         setupPanel(c, 0.28, 0.80);
         drawBodies(c, true);
         const bool labels = common_.hasLayer("labels");
-        drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureColor(0), featureLabel(fa, 0), centroid(1), labels);
-        drawFeature(c, featureGeometry(s_.b.regions, s_.b.pose, fb), featureColor(1), featureLabel(fb, 1), centroid(0), labels);
+        drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureColor(0), featureLabel(fa, 0), centroid(1),
+                    labels);
+        drawFeature(c, featureGeometry(s_.b.regions, s_.b.pose, fb), featureColor(1), featureLabel(fb, 1), centroid(0),
+                    labels);
         std::vector<Vec3> pathA, pathB;
         for (const auto& st : tr.steps) {
             pathA.push_back(st.closestA);
@@ -509,13 +563,19 @@ private:
         const int titleBand = 40, captionBand = 80, half = W / 2;
         const int panelH = H - titleBand - captionBand;
         const int top3d = panelH * 55 / 100, listH = panelH * 21 / 100, plotH = panelH - top3d - listH;
-        const Image vc3 = walkPanel(gl, half, top3d, ss, r.vcTrace, r.vc.featureA, r.vc.featureB, r.vc.pointA, r.vc.pointB,
-                                    r.vc.status == VClipStatus::Separated, "V-Clip: " + std::to_string(r.vc.steps) + " update(s)", verdict(r.vc));
-        const Image lc3 = walkPanel(gl, W - half, top3d, ss, r.lcTrace, r.lc.featureA, r.lc.featureB, r.lc.pointA, r.lc.pointB,
-                                    r.lc.status == LinCannyStatus::Separated, "Lin–Canny: " + std::to_string(r.lc.steps) + " update(s)", verdict(r.lc));
+        const Image vc3 = walkPanel(gl, half, top3d, ss, r.vcTrace, r.vc.featureA, r.vc.featureB, r.vc.pointA,
+                                    r.vc.pointB, r.vc.status == VClipStatus::Separated,
+                                    "V-Clip: " + std::to_string(r.vc.steps) + " update(s)", verdict(r.vc));
+        const Image lc3 = walkPanel(gl, W - half, top3d, ss, r.lcTrace, r.lc.featureA, r.lc.featureB, r.lc.pointA,
+                                    r.lc.pointB, r.lc.status == LinCannyStatus::Separated,
+                                    "Lin–Canny: " + std::to_string(r.lc.steps) + " update(s)", verdict(r.lc));
         const bool lists = common_.hasLayer("list");
-        const Image vcl = lists ? drawWalkList(gl, half, listH, ss, "V-Clip pairs (A·B, distance)", "", vcRows(r.vcTrace), -1) : blank(half, listH);
-        const Image lcl = lists ? drawWalkList(gl, W - half, listH, ss, "Lin–Canny pairs (A·B, distance)", "", lcRows(r.lcTrace), -1) : blank(W - half, listH);
+        const Image vcl =
+            lists ? drawWalkList(gl, half, listH, ss, "V-Clip pairs (A·B, distance)", "", vcRows(r.vcTrace), -1)
+                  : blank(half, listH);
+        const Image lcl =
+            lists ? drawWalkList(gl, W - half, listH, ss, "Lin–Canny pairs (A·B, distance)", "", lcRows(r.lcTrace), -1)
+                  : blank(W - half, listH);
         Image plot = blank(W, plotH);
         if (common_.hasLayer("plot")) {
             PlotInput pin;
@@ -533,14 +593,18 @@ private:
         canvas.drawTextPx(16, 8, common_.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
         double y = H - captionBand + 5;
         const Color soft = roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.55f);
-        if (!common_.caption.empty()) canvas.drawTextPx(16, y, common_.caption, TextStyle{16.0f, soft, Anchor::TopLeft, false, false});
+        if (!common_.caption.empty())
+            canvas.drawTextPx(16, y, common_.caption, TextStyle{16.0f, soft, Anchor::TopLeft, false, false});
         y += 25;
         canvas.drawTextPx(16, y,
-                          "Same seed " + pairText(r.seed.a, r.seed.b) + ":  V-Clip " + verdict(r.vc) + " in " + std::to_string(r.vc.steps) +
-                              " update(s);  Lin–Canny " + verdict(r.lc) + " in " + std::to_string(r.lc.steps) + " update(s);  GJK " + gjkText(r.gjk),
+                          "Same seed " + pairText(r.seed.a, r.seed.b) + ":  V-Clip " + verdict(r.vc) + " in " +
+                              std::to_string(r.vc.steps) + " update(s);  Lin–Canny " + verdict(r.lc) + " in " +
+                              std::to_string(r.lc.steps) + " update(s);  GJK " + gjkText(r.gjk),
                           TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
         y += 25;
-        canvas.drawTextPx(16, y, "Dots: the pair's closest points at each step. V-Clip tests edges by clipping them; Lin–Canny tests the pair's closest points only.",
+        canvas.drawTextPx(16, y,
+                          "Dots: the pair's closest points at each step. V-Clip tests edges by clipping them; "
+                          "Lin–Canny tests the pair's closest points only.",
                           TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
         Image frame = canvas.readPixels();
         blit(frame, vc3, 0, titleBand);
@@ -553,8 +617,10 @@ private:
         paintRect(frame, half - 1, titleBand, 2, top3d + listH, m);
         paintRect(frame, 0, titleBand + top3d - 1, W, 2, m);
         paintRect(frame, 0, titleBand + top3d + listH - 1, W, 2, m);
-        return Frame{"side_by_side", "V-Clip " + std::to_string(r.vc.steps) + " vs Lin–Canny " + std::to_string(r.lc.steps) + " update(s)",
-                     std::move(frame)};
+        return Frame{
+            "side_by_side",
+            "V-Clip " + std::to_string(r.vc.steps) + " vs Lin–Canny " + std::to_string(r.lc.steps) + " update(s)",
+            std::move(frame)};
     }
 };
 
@@ -562,7 +628,8 @@ class LinCannyDemo final : public Demo {
 public:
     std::string name() const override { return "lin_canny"; }
     std::string description() const override {
-        return "Lin–Canny step by step: applicability tests, closest points of the feature pair, the walk beside V-Clip, a (forced) cycle";
+        return "Lin–Canny step by step: applicability tests, closest points of the feature pair, the walk beside "
+               "V-Clip, a (forced) cycle";
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
@@ -578,13 +645,17 @@ public:
         }
         if (auto t = r.find("applicability")) {
             s.options.applicability = t->asNumber();
-            if (!std::isfinite(s.options.applicability) || std::abs(s.options.applicability) > 0.5) t->fail("expected a number in [-0.5, 0.5]");
+            if (!std::isfinite(s.options.applicability) || std::abs(s.options.applicability) > 0.5)
+                t->fail("expected a number in [-0.5, 0.5]");
         }
         s.options.insideTest = r.boolOr("inside_test", false);
         r.finish();
         if (s.options.applicability < 0 && s.mode != Mode::Cycling)
-            r.node().fail("a negative \"applicability\" forces cycles: only with \"mode\": \"cycling\", whose frames say it is forced");
-        if (common.image.width < 800 || common.image.height < 600 || common.image.width > 2048 || common.image.height > 1536)
+            r.node().fail(
+                "a negative \"applicability\" forces cycles: only with \"mode\": \"cycling\", whose frames say it is "
+                "forced");
+        if (common.image.width < 800 || common.image.height < 600 || common.image.width > 2048 ||
+            common.image.height > 1536)
             r.node().fail("lin_canny frames need an image between 800 x 600 and 2048 x 1536");
         return std::make_unique<LinCannyScene>(std::move(common), std::move(s));
     }

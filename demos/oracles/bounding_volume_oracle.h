@@ -28,9 +28,7 @@ struct V {
     LD operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
 };
 inline LD dot(const V& a, const V& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V cross(const V& a, const V& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+inline V cross(const V& a, const V& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline LD norm(const V& a) { return std::sqrt(dot(a, a)); }
 
 /// Distance from p to segment ab in long double.
@@ -51,8 +49,7 @@ inline Eigen::Quaterniond randomRotation(std::mt19937& rng) {
 }
 
 /// Points uniform in [-1, 1]^3 times scale, rotated, plus offset.
-inline std::vector<Vec3> randomCloud(std::mt19937& rng, int n, const Vec3& stretch, double scale,
-                                     const Vec3& offset) {
+inline std::vector<Vec3> randomCloud(std::mt19937& rng, int n, const Vec3& stretch, double scale, const Vec3& offset) {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     const Eigen::Quaterniond q = randomRotation(rng);
     std::vector<Vec3> pts;

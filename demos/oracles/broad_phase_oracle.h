@@ -77,8 +77,10 @@ struct Motion {
         m.extent = extent;
         for (int i = 0; i < n; ++i) {
             m.center.push_back(Vec3(uniform(rng, 0, extent), uniform(rng, 0, extent), uniform(rng, 0, extent)));
-            m.half.push_back(Vec3(uniform(rng, minHalf, maxHalf), uniform(rng, minHalf, maxHalf), uniform(rng, minHalf, maxHalf)));
-            m.velocity.push_back(Vec3(uniform(rng, -speed, speed), uniform(rng, -speed, speed), uniform(rng, -speed, speed)));
+            m.half.push_back(
+                Vec3(uniform(rng, minHalf, maxHalf), uniform(rng, minHalf, maxHalf), uniform(rng, minHalf, maxHalf)));
+            m.velocity.push_back(
+                Vec3(uniform(rng, -speed, speed), uniform(rng, -speed, speed), uniform(rng, -speed, speed)));
         }
         return m;
     }

@@ -13,8 +13,8 @@
 
 #include <Eigen/Core>
 
-#include "core/closest/closest_point.h"
 #include "core/base/types.h"
+#include "core/closest/closest_point.h"
 
 namespace oracle {
 
@@ -135,7 +135,7 @@ inline BigInt toBig(double x, int K) {
     int e;
     const double f = std::frexp(std::abs(x), &e);
     const uint64_t m = static_cast<uint64_t>(std::ldexp(f, 53));  // |x| = m 2^(e-53)
-    return BigInt::fromParts(m, e - 53 + K, x < 0);  // requires e - 53 + K >= 0 (K from exponentNeeded)
+    return BigInt::fromParts(m, e - 53 + K, x < 0);               // requires e - 53 + K >= 0 (K from exponentNeeded)
 }
 struct BigVec {
     BigInt v[3];
@@ -162,9 +162,7 @@ inline BigInt dot(const BigVec& a, const BigVec& b, const BigVec& c, const BigVe
     for (int i = 0; i < 3; ++i) s = s + (b.v[i] - a.v[i]) * (d.v[i] - c.v[i]);
     return s;
 }
-inline BigVec sub(const BigVec& a, const BigVec& b) {
-    return {{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2]}};
-}
+inline BigVec sub(const BigVec& a, const BigVec& b) { return {{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2]}}; }
 inline BigVec cross(const BigVec& a, const BigVec& b) {
     return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0]}};
 }
@@ -231,7 +229,8 @@ inline cdlab::TetrahedronRegion exactTetrahedronRegion(const Vec3& p, const std:
         if (in) return static_cast<cdlab::TetrahedronRegion>(x);
     }
     // edges: perpendicular part of p-x: xp*|e|^2 - e (e.xp); test . (z - x) <= 0 for both others
-    static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+    static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                         {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
     for (int e = 0; e < 6; ++e) {
         const int x = kEdges[e][0], y = kEdges[e][1];
         const BigVec E = sub(V[y], V[x]), XP = sub(P, V[x]);
@@ -286,7 +285,8 @@ inline long double triangleDistance2(const Vec3& pd, const Vec3& ad, const Vec3&
     const LVec n = (b - a).cross(c - a);
     const long double n2 = n.squaredNorm();
     if (n2 > 0) {
-        const long double u = n.dot((b - p).cross(c - p)), v = n.dot((c - p).cross(a - p)), w = n.dot((a - p).cross(b - p));
+        const long double u = n.dot((b - p).cross(c - p)), v = n.dot((c - p).cross(a - p)),
+                          w = n.dot((a - p).cross(b - p));
         if (u >= 0 && v >= 0 && w >= 0) {
             const long double h = n.dot(p - a);
             best = std::min(best, h * h / n2);

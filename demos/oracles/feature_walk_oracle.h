@@ -9,8 +9,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/geometry/polyhedron.h"
 #include "core/base/types.h"
+#include "core/geometry/polyhedron.h"
 
 namespace cdlab::test {
 
@@ -44,8 +44,8 @@ inline LD pointTriangle2(const LVec& p, const LVec& a, const LVec& b, const LVec
     const LD nn = n.norm2();
     if (nn > 0) {
         // Inside the prism over the triangle: the plane distance.
-        const bool inside = (b - a).cross(p - a).dot(n) >= 0 && (c - b).cross(p - b).dot(n) >= 0 &&
-                            (a - c).cross(p - c).dot(n) >= 0;
+        const bool inside =
+            (b - a).cross(p - a).dot(n) >= 0 && (c - b).cross(p - b).dot(n) >= 0 && (a - c).cross(p - c).dot(n) >= 0;
         if (inside) {
             const LD h = (p - a).dot(n);
             return h * h / nn;
@@ -57,7 +57,8 @@ inline LD pointTriangle2(const LVec& p, const LVec& a, const LVec& b, const LVec
 /// Squared distance between segments ab and cd: the best endpoint-to-segment pair, or the
 /// closest points of the two lines when both fall inside their segments.
 inline LD segmentSegment2(const LVec& a, const LVec& b, const LVec& c, const LVec& d) {
-    LD best = std::min({pointSegment2(a, c, d), pointSegment2(b, c, d), pointSegment2(c, a, b), pointSegment2(d, a, b)});
+    LD best =
+        std::min({pointSegment2(a, c, d), pointSegment2(b, c, d), pointSegment2(c, a, b), pointSegment2(d, a, b)});
     const LVec u = b - a, v = d - c, w = a - c;
     const LD uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
     const LD den = uu * vv - uv * uv;
@@ -91,8 +92,8 @@ inline std::vector<LVec> worldVertices(const ConvexPolyhedron& p, const Transfor
         LVec w;
         LD c[3];
         for (int i = 0; i < 3; ++i)
-            c[i] = static_cast<LD>(r(i, 0)) * v.x() + static_cast<LD>(r(i, 1)) * v.y() + static_cast<LD>(r(i, 2)) * v.z() +
-                   static_cast<LD>(pose.position[i]);
+            c[i] = static_cast<LD>(r(i, 0)) * v.x() + static_cast<LD>(r(i, 1)) * v.y() +
+                   static_cast<LD>(r(i, 2)) * v.z() + static_cast<LD>(pose.position[i]);
         out.push_back({c[0], c[1], c[2]});
     }
     return out;
@@ -204,7 +205,8 @@ inline OracleDistance oracleDistance(const ConvexPolyhedron& a, const Transform&
         const OracleFeature ea = oracleFeature(a, wa, 1, i);
         const Ball bea = ball(ea);
         for (size_t j = 0; j < eb.size(); ++j)
-            if (!far(bea, beb[j])) best = std::min(best, segmentSegment2(ea.pts[0], ea.pts[1], eb[j].pts[0], eb[j].pts[1]));
+            if (!far(bea, beb[j]))
+                best = std::min(best, segmentSegment2(ea.pts[0], ea.pts[1], eb[j].pts[0], eb[j].pts[1]));
         for (size_t k = 0; k < fb.size() && best > 0; ++k)
             if (!far(bea, bb[k]) && featureDistance2(ea, fb[k]) == 0) best = 0;
     }

@@ -48,8 +48,7 @@ inline LD distPointTriangle(const V3& p, const V3& a, const V3& b, const V3& c) 
     if (n2 > 0) {
         const LD h = dot(p - a, n) / n2;
         const V3 q = p - n * h;
-        const LD wa = dot(cross(b - q, c - q), n), wb = dot(cross(c - q, a - q), n),
-                 wc = dot(cross(a - q, b - q), n);
+        const LD wa = dot(cross(b - q, c - q), n), wb = dot(cross(c - q, a - q), n), wc = dot(cross(a - q, b - q), n);
         if (wa >= 0 && wb >= 0 && wc >= 0) best = std::min(best, std::abs(h) * std::sqrt(n2));
     }
     return best;
@@ -71,7 +70,8 @@ LD minimizeConvex(F f, int iterations = 100) {
     LD lo = 0, hi = 1;
     for (int i = 0; i < iterations; ++i) {
         const LD m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-        if (f(m1) <= f(m2)) hi = m2; else lo = m1;
+        if (f(m1) <= f(m2)) hi = m2;
+        else lo = m1;
     }
     return std::min({f(lo), f(hi), f(0), f(1)});
 }
@@ -87,7 +87,8 @@ LD firstInside(F inside, LD sMax, int samples = 4000) {
             LD lo = sMax * (i - 1) / samples, hi = s;
             for (int k = 0; k < 80; ++k) {
                 const LD m = (lo + hi) / 2;
-                if (inside(m)) hi = m; else lo = m;
+                if (inside(m)) hi = m;
+                else lo = m;
             }
             return hi;
         }
@@ -97,9 +98,8 @@ LD firstInside(F inside, LD sMax, int samples = 4000) {
 
 /// The 6 vertex orderings of a triangle.
 inline std::array<cdlab::Triangle, 6> orderings(const cdlab::Triangle& t) {
-    return {cdlab::Triangle{t.a, t.b, t.c}, cdlab::Triangle{t.b, t.c, t.a},
-            cdlab::Triangle{t.c, t.a, t.b}, cdlab::Triangle{t.a, t.c, t.b},
-            cdlab::Triangle{t.c, t.b, t.a}, cdlab::Triangle{t.b, t.a, t.c}};
+    return {cdlab::Triangle{t.a, t.b, t.c}, cdlab::Triangle{t.b, t.c, t.a}, cdlab::Triangle{t.c, t.a, t.b},
+            cdlab::Triangle{t.a, t.c, t.b}, cdlab::Triangle{t.c, t.b, t.a}, cdlab::Triangle{t.b, t.a, t.c}};
 }
 
 struct Rng {
@@ -110,7 +110,8 @@ struct Rng {
     cdlab::Vec3 vec(double lo, double hi) { return {uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)}; }
     cdlab::Vec3 unit() {
         cdlab::Vec3 v;
-        do v = vec(-1, 1); while (v.squaredNorm() > 1 || v.squaredNorm() < 1e-4);
+        do v = vec(-1, 1);
+        while (v.squaredNorm() > 1 || v.squaredNorm() < 1e-4);
         return v.normalized();
     }
     cdlab::Quat rotation() {

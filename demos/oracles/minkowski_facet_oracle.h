@@ -1,6 +1,6 @@
 // Test-only support mappings and brute-force oracles for the GJK / EPA tests.
-// The oracles share NO code with core/gjk_epa/gjk.h, core/gjk_epa/epa.h or core/gjk_epa/simplex_solver.h: they enumerate
-// the facets of the Minkowski difference {a_i - b_j} by triples in long double.
+// The oracles share NO code with core/gjk_epa/gjk.h, core/gjk_epa/epa.h or core/gjk_epa/simplex_solver.h: they
+// enumerate the facets of the Minkowski difference {a_i - b_j} by triples in long double.
 #pragma once
 
 #include <algorithm>
@@ -18,8 +18,7 @@ namespace cdlab::test {
 /// Convex hull of a vertex list; linear-scan support, first maximum wins on ties.
 struct PolytopeShape {
     std::vector<Vec3> vertices;
-    Vec3 support(const Vec3& d) const
-    {
+    Vec3 support(const Vec3& d) const {
         int best = 0;
         double bestDot = vertices[0].dot(d);
         for (int i = 1; i < static_cast<int>(vertices.size()); ++i) {
@@ -36,8 +35,7 @@ struct PolytopeShape {
 struct SphereShape {
     Vec3 center;
     double radius;
-    Vec3 support(const Vec3& d) const
-    {
+    Vec3 support(const Vec3& d) const {
         const double n = d.norm();
         return n > 0.0 ? Vec3(center + (radius / n) * d) : center;
     }
@@ -47,14 +45,12 @@ struct SphereShape {
 struct BoxShape {
     Vec3 center;
     Vec3 half;
-    Vec3 support(const Vec3& d) const
-    {
+    Vec3 support(const Vec3& d) const {
         return Vec3(center.x() + (d.x() >= 0.0 ? half.x() : -half.x()),
                     center.y() + (d.y() >= 0.0 ? half.y() : -half.y()),
                     center.z() + (d.z() >= 0.0 ? half.z() : -half.z()));
     }
-    std::vector<Vec3> corners() const
-    {
+    std::vector<Vec3> corners() const {
         std::vector<Vec3> c;
         for (int i = 0; i < 8; ++i)
             c.push_back(center + Vec3((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
@@ -76,8 +72,7 @@ struct SegmentShape {
 // ---- Random polytopes -------------------------------------------------------------------------
 
 /// n points on a randomly rotated ellipsoid with radii size * (0.3..1), centered at `center`.
-inline std::vector<Vec3> randomPolytope(std::mt19937_64& rng, int n, double size, const Vec3& center)
-{
+inline std::vector<Vec3> randomPolytope(std::mt19937_64& rng, int n, double size, const Vec3& center) {
     std::normal_distribution<double> gauss(0.0, 1.0);
     std::uniform_real_distribution<double> radius(0.3, 1.0);
     const Vec3 radii(radius(rng), radius(rng), radius(rng));
@@ -92,8 +87,7 @@ inline std::vector<Vec3> randomPolytope(std::mt19937_64& rng, int n, double size
     return v;
 }
 
-inline Vec3 randomUnit(std::mt19937_64& rng)
-{
+inline Vec3 randomUnit(std::mt19937_64& rng) {
     std::normal_distribution<double> gauss(0.0, 1.0);
     Vec3 u(gauss(rng), gauss(rng), gauss(rng));
     return u.normalized();
@@ -106,16 +100,15 @@ using long_double::toL;
 using long_double::triangleDistanceL;
 
 struct HullOracle {
-    bool inside = false;      ///< origin strictly inside conv{a_i - b_j}
-    long double distance = 0; ///< origin to hull when outside
-    long double depth = 0;    ///< origin to hull boundary when inside
+    bool inside = false;         ///< origin strictly inside conv{a_i - b_j}
+    long double distance = 0;    ///< origin to hull when outside
+    long double depth = 0;       ///< origin to hull boundary when inside
     LVec normal = LVec::Zero();  ///< outward unit normal of the nearest facet when inside
     int facets = 0;
 };
 
 /// Facet enumeration by triples: (i, j, k) spans a facet plane iff every point lies on one side.
-inline HullOracle hullOracle(const std::vector<Vec3>& a, const std::vector<Vec3>& b)
-{
+inline HullOracle hullOracle(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     std::vector<LVec> p;
     long double scale = 0;
     for (const Vec3& x : a)
@@ -162,8 +155,7 @@ inline HullOracle hullOracle(const std::vector<Vec3>& a, const std::vector<Vec3>
 
 /// Support function of A - B, h(n) = max_i a_i·n - min_j b_j·n, in long double. Both sides are
 /// taken relative to a_0 so that a 1e6 offset does not swamp a 1e-3 shape.
-inline long double supportValueL(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n)
-{
+inline long double supportValueL(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n) {
     const LVec nl = toL(n);
     const LVec ref = toL(a[0]);
     long double ha = -INFINITY, hb = INFINITY;

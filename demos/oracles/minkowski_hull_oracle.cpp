@@ -11,17 +11,16 @@ namespace cdlab::demos {
 namespace {
 
 using long_double::LVec;
-using long_double::toL;
 using long_double::polygonDistanceL;
 using long_double::segmentDistanceL;
+using long_double::toL;
 using long_double::triangleDistanceL;
 
 // |segment pq - segment rs|: t -> |p + t (q - p) - segment rs| is convex (the distance to a
 // convex set along a line), so a ternary search on [0, 1] finds its minimum; 90 steps shrink the
 // interval by (2/3)^90 ~ 1e-16 relative. No 2x2 solve: for nearly parallel segments its
 // determinant a c - b^2 cancels catastrophically, while the search only evaluates distances.
-long double segmentSegmentDistance(const LVec& p, const LVec& q, const LVec& r, const LVec& s)
-{
+long double segmentSegmentDistance(const LVec& p, const LVec& q, const LVec& r, const LVec& s) {
     auto f = [&](long double t) {
         const LVec x = p + t * (q - p);
         return segmentDistanceL(r - x, s - x);
@@ -37,8 +36,7 @@ long double segmentSegmentDistance(const LVec& p, const LVec& q, const LVec& r, 
 
 }  // namespace
 
-double oracleDistanceBruteForce(const std::vector<Vec3>& a, const std::vector<Vec3>& b)
-{
+double oracleDistanceBruteForce(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     std::vector<LVec> la, lb;
     for (const Vec3& x : a) la.push_back(toL(x));
     for (const Vec3& x : b) lb.push_back(toL(x));
@@ -49,7 +47,8 @@ double oracleDistanceBruteForce(const std::vector<Vec3>& a, const std::vector<Ve
         for (const LVec& x : pts)
             for (size_t i = 0; i < n; ++i)
                 for (size_t j = i; j < n; ++j)
-                    for (size_t k = j; k < n; ++k) best = std::min(best, triangleDistanceL(tri[i] - x, tri[j] - x, tri[k] - x));
+                    for (size_t k = j; k < n; ++k)
+                        best = std::min(best, triangleDistanceL(tri[i] - x, tri[j] - x, tri[k] - x));
     };
     pointTriangles(la, lb);
     pointTriangles(lb, la);
@@ -61,8 +60,7 @@ double oracleDistanceBruteForce(const std::vector<Vec3>& a, const std::vector<Ve
     return static_cast<double>(best);
 }
 
-MinkowskiOracle minkowskiOracle(const std::vector<Vec3>& a, const std::vector<Vec3>& b)
-{
+MinkowskiOracle minkowskiOracle(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     MinkowskiOracle o;
     std::vector<Vec3> points;
     points.reserve(a.size() * b.size());
@@ -110,19 +108,16 @@ MinkowskiOracle minkowskiOracle(const std::vector<Vec3>& a, const std::vector<Ve
     return o;
 }
 
-double oracleSegmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s)
-{
+double oracleSegmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
     return static_cast<double>(segmentSegmentDistance(toL(p), toL(q), toL(r), toL(s)));
 }
 
-double oracleDistanceToTriangle(const Vec3& p, const Triangle& t)
-{
+double oracleDistanceToTriangle(const Vec3& p, const Triangle& t) {
     const LVec q = toL(p);
     return static_cast<double>(triangleDistanceL(toL(t.a) - q, toL(t.b) - q, toL(t.c) - q));
 }
 
-double oracleDistanceToTetrahedron(const Vec3& p, const Tetrahedron& t)
-{
+double oracleDistanceToTetrahedron(const Vec3& p, const Tetrahedron& t) {
     const LVec q = toL(p);
     const LVec v[4] = {toL(t.a) - q, toL(t.b) - q, toL(t.c) - q, toL(t.d) - q};
     // Inside iff the origin is on the inner side of all four faces (signed volumes, long double).
@@ -131,8 +126,8 @@ double oracleDistanceToTetrahedron(const Vec3& p, const Tetrahedron& t)
     };
     const long double total = vol(v[0], v[1], v[2], v[3]);
     const LVec o = LVec::Zero();
-    const long double s[4] = {vol(o, v[1], v[2], v[3]), vol(v[0], o, v[2], v[3]),
-                              vol(v[0], v[1], o, v[3]), vol(v[0], v[1], v[2], o)};
+    const long double s[4] = {vol(o, v[1], v[2], v[3]), vol(v[0], o, v[2], v[3]), vol(v[0], v[1], o, v[3]),
+                              vol(v[0], v[1], v[2], o)};
     if (total != 0 && std::all_of(s, s + 4, [&](long double x) { return x * total >= 0; })) return 0.0;
     return static_cast<double>(std::min({triangleDistanceL(v[1], v[2], v[3]), triangleDistanceL(v[0], v[2], v[3]),
                                          triangleDistanceL(v[0], v[1], v[3]), triangleDistanceL(v[0], v[1], v[2])}));

@@ -16,12 +16,12 @@
 namespace cdlab::demos {
 
 struct MinkowskiOracle {
-    bool ok = false;          ///< false: the hull failed (degenerate input); nothing else meaningful
-    bool inside = false;      ///< origin strictly inside conv{a_i - b_j}: the sets overlap
-    double distance = 0.0;    ///< origin to the hull (0 when inside), world units
-    double depth = 0.0;       ///< inside: origin to the hull boundary (min face offset)
+    bool ok = false;             ///< false: the hull failed (degenerate input); nothing else meaningful
+    bool inside = false;         ///< origin strictly inside conv{a_i - b_j}: the sets overlap
+    double distance = 0.0;       ///< origin to the hull (0 when inside), world units
+    double depth = 0.0;          ///< inside: origin to the hull boundary (min face offset)
     Vec3 normal = Vec3::Zero();  ///< inside: outward unit normal of the nearest face
-    int faces = 0;            ///< hull faces examined
+    int faces = 0;               ///< hull faces examined
 };
 
 /// Oracle for two convex polytopes given by their world-frame vertices.

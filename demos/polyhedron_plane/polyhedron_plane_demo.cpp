@@ -16,14 +16,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/closest/feature_distance.h"
 #include "core/contact/contact_plane.h"
 #include "core/contact/contact_sat.h"
-#include "core/closest/feature_distance.h"
 #include "core/geometry/polyhedron_presets.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
-#include "demos/draw/convex_drawable.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -49,7 +49,8 @@ struct Posed {
 };
 
 ConvexPolyhedron readBody(const JsonNode& b, std::string& name) {
-    if (!b.isObject() || b.raw().size() != 1) b.fail("expected {\"box\": {...}}, {\"tetrahedron\": {...}}, {\"icosahedron\": {...}} or {\"prism\": {...}}");
+    if (!b.isObject() || b.raw().size() != 1)
+        b.fail("expected {\"box\": {...}}, {\"tetrahedron\": {...}}, {\"icosahedron\": {...}} or {\"prism\": {...}}");
     name = b.raw().begin().key();
     ObjectReader r(JsonNode(b.raw().begin().value(), b.path() + "." + name, b.source()));
     ConvexPolyhedron m;
@@ -78,7 +79,8 @@ Transform readPose(ObjectReader& r) {
 }
 
 FeatureGeometry readFeature(const JsonNode& n) {
-    if (!n.isObject() || n.raw().size() != 1) n.fail("expected {\"vertex\": p}, {\"edge\": [p, q]} or {\"face\": [p, ...]}");
+    if (!n.isObject() || n.raw().size() != 1)
+        n.fail("expected {\"vertex\": p}, {\"edge\": [p, q]} or {\"face\": [p, ...]}");
     const std::string key = n.raw().begin().key();
     const JsonNode v(n.raw().begin().value(), n.path() + "." + key, n.source());
     FeatureGeometry f;
@@ -137,14 +139,16 @@ struct Legend {
     }
 };
 
-Frame finish(Canvas& c, const std::string& name, const std::string& title, const std::string& caption, const std::string& shortCaption) {
+Frame finish(Canvas& c, const std::string& name, const std::string& title, const std::string& caption,
+             const std::string& shortCaption) {
     drawTitleAndCaption(c, title, caption);
     return Frame{name, shortCaption, c.readPixels()};
 }
 
 Json pointsJson(const std::vector<ContactPoint>& pts) {
     Json a = Json::array();
-    for (const ContactPoint& p : pts) a.push_back({{"point_a", vec3Json(p.pointA)}, {"point_b", vec3Json(p.pointB)}, {"depth", p.depth}});
+    for (const ContactPoint& p : pts)
+        a.push_back({{"point_a", vec3Json(p.pointA)}, {"point_b", vec3Json(p.pointB)}, {"depth", p.depth}});
     return a;
 }
 
@@ -153,14 +157,14 @@ Json pointsJson(const std::vector<ContactPoint>& pts) {
 class ContactScene final : public PreparedScene {
 public:
     std::string mode;
-    Posed body;                       // plane mode
+    Posed body;  // plane mode
     std::vector<Transform> poses;
     std::vector<std::string> poseLabels;
     Plane plane{Vec3::UnitZ(), 0.0};
     int maxPoints = 4;
     std::vector<std::pair<FeatureGeometry, FeatureGeometry>> pairs;  // features mode
     std::vector<std::string> pairLabels;
-    Posed a, b;                       // sat mode
+    Posed a, b;  // sat mode
     Vec3 view{1.0, -1.6, 0.8};
 
     explicit ContactScene(SceneCommon common) : PreparedScene(std::move(common)) {}
@@ -186,12 +190,19 @@ private:
             opt.maxPoints = maxPoints;
             results.push_back(contactPolyhedronPlane(body.mesh, poses[i], plane, opt, &traces[i]));
             const PlaneContactResult& r = results.back();
-            Json fr = {{"label", poseLabels[i]}, {"status", nameOf(r.status)}, {"signed_distance", r.signedDistance},
-                       {"depth", r.depth}, {"normal", vec3Json(r.normal)}, {"feature", featureLabel(r.feature)},
-                       {"vertex_signed_distances", traces[i].vertexDistances}, {"crossings", traces[i].crossings.size()},
-                       {"polygon", pointsJson(r.polygon)}, {"manifold", pointsJson(r.manifold)}};
+            Json fr = {{"label", poseLabels[i]},
+                       {"status", nameOf(r.status)},
+                       {"signed_distance", r.signedDistance},
+                       {"depth", r.depth},
+                       {"normal", vec3Json(r.normal)},
+                       {"feature", featureLabel(r.feature)},
+                       {"vertex_signed_distances", traces[i].vertexDistances},
+                       {"crossings", traces[i].crossings.size()},
+                       {"polygon", pointsJson(r.polygon)},
+                       {"manifold", pointsJson(r.manifold)}};
             Json red = Json::array();
-            for (const auto& s : traces[i].reduction) red.push_back({{"rule", s.rule}, {"candidate", s.chosen}, {"score", s.score}});
+            for (const auto& s : traces[i].reduction)
+                red.push_back({{"rule", s.rule}, {"candidate", s.chosen}, {"score", s.score}});
             fr["reduction"] = red;
             frames.push_back(fr);
         }
@@ -199,7 +210,8 @@ private:
         if (!ctx.gl) return;
 
         const PlaneView v = planeView();
-        for (size_t i = 0; i < poses.size(); ++i) out.frames.push_back(planeFrame(*ctx.gl, ss, v, i, results[i], traces[i]));
+        for (size_t i = 0; i < poses.size(); ++i)
+            out.frames.push_back(planeFrame(*ctx.gl, ss, v, i, results[i], traces[i]));
     }
 
     // The plane (unit normal n, offset d) and one camera for all poses: the bodies and the plane patch under them.
@@ -229,7 +241,8 @@ private:
     }
 
     // Pose i against the plane: the contact polygon, manifold and normals, or the closest feature.
-    Frame planeFrame(GlContext& gl, int ss, const PlaneView& v, size_t i, const PlaneContactResult& r, const PlaneContactTrace& tr) const {
+    Frame planeFrame(GlContext& gl, int ss, const PlaneView& v, size_t i, const PlaneContactResult& r,
+                     const PlaneContactTrace& tr) const {
         const Vec3& n = v.n;
         const double d = v.d, radius = v.radius, rho = v.radius;
         const Vec3& center = v.center;
@@ -239,23 +252,32 @@ private:
             const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
             const Vec3 g = center - (n.dot(center) - d) * n;
             const double h = 1.5 * radius;
-            c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, roleColor(Role::Muted).withAlpha(0.25f));
-            c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true, lineStyle(Role::Muted, 1.5f));
-            if (labels) c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d", TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
+            c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w},
+                          roleColor(Role::Muted).withAlpha(0.25f));
+            c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true,
+                           lineStyle(Role::Muted, 1.5f));
+            if (labels)
+                c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d",
+                           TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
         }
         Posed pb = body;
         pb.pose = poses[i];
-        drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA), r.colliding() ? 0.55f : 0.75f);
+        drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA),
+                  r.colliding() ? 0.55f : 0.75f);
         Legend lg{c};
-        if (labels) lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated", r.colliding() ? Role::Highlight : Role::ShapeA);
+        if (labels)
+            lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated",
+                    r.colliding() ? Role::Highlight : Role::ShapeA);
         if (r.colliding()) {
             // Vertices below the plane and the crossing points.
             if (common_.hasLayer("polygon")) {
                 std::vector<Vec3> outline;
                 for (const ContactPoint& p : r.polygon) outline.push_back(p.pointB);
                 if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Result).withAlpha(0.28f));
-                if (outline.size() >= 2) c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
-                for (const auto& x : tr.crossings) c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
+                if (outline.size() >= 2)
+                    c.drawPolyline(outline, outline.size() >= 3, lineStyle(Role::Result, 3.0f, false, true));
+                for (const auto& x : tr.crossings)
+                    c.drawPoint(x.point, 4.0f, roleColor(Role::Background), true, 1.5f, roleColor(Role::Ink));
                 if (labels) {
                     lg.item("contact polygon (on the plane)", Role::Result);
                     lg.item("○ edge–plane crossings", Role::Ink);
@@ -267,14 +289,17 @@ private:
                     c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
                     c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
                     c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
-                    if (labels && (k == 0 || p.depth > 0)) drawLabelAway(c, p.pointA, centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
-                                              (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
+                    if (labels && (k == 0 || p.depth > 0))
+                        drawLabelAway(c, p.pointA,
+                                      centroid({r.manifold.front().pointA, p.pointA}) + 0.3 * rho * r.normal,
+                                      (k == 0 ? "deepest " : "") + fmt(p.depth), labelStyle(Role::Result, 16.0f), 14.0);
                 }
                 if (labels) lg.item("manifold points, with depth", Role::Result);
             }
             if (common_.hasLayer("normals")) {
                 for (const ContactPoint& p : r.manifold)
-                    c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal, lineStyle(Role::Direction, 3.0f, false, true));
+                    c.drawArrow(p.pointB, p.pointB - 0.35 * rho * r.normal,
+                                lineStyle(Role::Direction, 3.0f, false, true));
                 if (labels) lg.item("→ plane normal n (pushes the body out)", Role::Direction);
             }
         } else if (common_.hasLayer("contacts")) {
@@ -285,22 +310,26 @@ private:
                 c.drawPoint(r.featurePointsOnPlane[k], 4.0f, roleColor(Role::Ink), true);
             }
             if (r.featurePoints.size() >= 2)
-                c.drawPolyline(r.featurePoints, r.featurePoints.size() >= 3, lineStyle(Role::Result, 4.0f, false, true));
+                c.drawPolyline(r.featurePoints, r.featurePoints.size() >= 3,
+                               lineStyle(Role::Result, 4.0f, false, true));
             if (labels) {
-                drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center, "distance " + fmt(r.signedDistance),
-                              labelStyle(Role::Result, 17.0f), 18.0);
+                drawLabelAway(c, 0.5 * (r.featurePoints[0] + r.featurePointsOnPlane[0]), center,
+                              "distance " + fmt(r.signedDistance), labelStyle(Role::Result, 17.0f), 18.0);
                 lg.item("closest feature and its projection", Role::Result);
             }
         }
         char cap[400];
         if (r.colliding())
-            std::snprintf(cap, sizeof cap, "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
+            std::snprintf(cap, sizeof cap,
+                          "%s: %s, depth %s at %s %s; polygon of %d (%d crossings) → %d manifold points",
                           poseLabels[i].c_str(), nameOf(r.status), fmt(r.depth).c_str(), nameOf(r.feature.type),
-                          featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()), int(r.manifold.size()));
+                          featureLabel(r.feature).c_str(), int(r.polygon.size()), int(tr.crossings.size()),
+                          int(r.manifold.size()));
         else
-            std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)", poseLabels[i].c_str(),
-                          fmt(r.signedDistance).c_str(), nameOf(r.feature.type), featureLabel(r.feature).c_str(),
-                          int(r.featurePoints.size()), r.featurePoints.size() == 1 ? "" : "s");
+            std::snprintf(cap, sizeof cap, "%s: separated, distance %s; closest feature %s %s (%d point%s)",
+                          poseLabels[i].c_str(), fmt(r.signedDistance).c_str(), nameOf(r.feature.type),
+                          featureLabel(r.feature).c_str(), int(r.featurePoints.size()),
+                          r.featurePoints.size() == 1 ? "" : "s");
         char name[32];
         std::snprintf(name, sizeof name, "pose_%02d", int(i));
         return finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status));
@@ -313,9 +342,15 @@ private:
         for (size_t i = 0; i < pairs.size(); ++i) {
             results.push_back(featureDistance(pairs[i].first, pairs[i].second));
             const FeatureDistanceResult& r = results.back();
-            frames.push_back({{"label", pairLabels[i]}, {"type", nameOf(r.type)}, {"distance", r.distance},
-                              {"point_a", vec3Json(r.pointA)}, {"point_b", vec3Json(r.pointB)}, {"normal", vec3Json(r.normal)},
-                              {"normal_rule", r.normalRule}, {"normal_unstable", r.normalUnstable}, {"parallel", r.parallel}});
+            frames.push_back({{"label", pairLabels[i]},
+                              {"type", nameOf(r.type)},
+                              {"distance", r.distance},
+                              {"point_a", vec3Json(r.pointA)},
+                              {"point_b", vec3Json(r.pointB)},
+                              {"normal", vec3Json(r.normal)},
+                              {"normal_rule", r.normalRule},
+                              {"normal_unstable", r.normalUnstable},
+                              {"parallel", r.parallel}});
         }
         out.trace = {{"mode", "features"}, {"frames", frames}};
         if (!ctx.gl) return;
@@ -327,7 +362,8 @@ private:
             double radius;
             boundingSphere(all, center, radius);
             radius = std::max(radius, 0.6);
-            const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.25, view, Vec3::UnitZ());
+            const Camera cam =
+                common_.camera ? *common_.camera : framingCamera(center, radius * 1.25, view, Vec3::UnitZ());
             Canvas c(*ctx.gl, sceneCanvasOptions(common_, ss), cam);
             const bool labels = common_.hasLayer("labels");
             const auto drawFeature = [&](const FeatureGeometry& f, Role role, const std::string& tag) {
@@ -338,9 +374,11 @@ private:
                 } else if (f.type == FeatureType::Edge) {
                     c.drawLine(f.points[0], f.points[1], lineStyle(role, 6.0f, false, true));
                 }
-                for (const Vec3& p : f.points) c.drawPoint(p, f.type == FeatureType::Vertex ? 8.0f : 4.0f, col, true, 1.5f, roleColor(Role::Ink));
+                for (const Vec3& p : f.points)
+                    c.drawPoint(p, f.type == FeatureType::Vertex ? 8.0f : 4.0f, col, true, 1.5f, roleColor(Role::Ink));
                 // Edges are labelled a fifth of the way along (their midpoint is often the closest point).
-                const Vec3 at = f.type == FeatureType::Edge ? Vec3(f.points[0] + 0.2 * (f.points[1] - f.points[0])) : centroid(f.points);
+                const Vec3 at = f.type == FeatureType::Edge ? Vec3(f.points[0] + 0.2 * (f.points[1] - f.points[0]))
+                                                            : centroid(f.points);
                 if (labels) drawLabelAway(c, at, center, tag + " " + nameOf(f.type), labelStyle(role, 20.0f), 30.0);
             };
             drawFeature(pairs[i].first, Role::ShapeA, "A:");
@@ -355,8 +393,11 @@ private:
                 }
             }
             if (common_.hasLayer("normals") && r.normalDefined) {
-                c.drawArrow(r.pointA, r.pointA + 0.45 * radius * r.normal, lineStyle(Role::Direction, 3.5f, false, true));
-                if (labels) c.drawText(r.pointA + 0.5 * radius * r.normal, "n", TextStyle{20.0f, roleColor(Role::Direction), Anchor::Left, true, true, {8, 0}});
+                c.drawArrow(r.pointA, r.pointA + 0.45 * radius * r.normal,
+                            lineStyle(Role::Direction, 3.5f, false, true));
+                if (labels)
+                    c.drawText(r.pointA + 0.5 * radius * r.normal, "n",
+                               TextStyle{20.0f, roleColor(Role::Direction), Anchor::Left, true, true, {8, 0}});
             }
             Legend lg{c};
             if (labels) {
@@ -367,14 +408,18 @@ private:
             }
             std::string flags;
             if (r.parallel) flags += "; parallel: one of many closest pairs";
-            if (r.normalUnstable) flags += r.normalDefined ? "; normal UNSTABLE (features almost touch)" : "; no normal (points coincide)";
+            if (r.normalUnstable)
+                flags +=
+                    r.normalDefined ? "; normal UNSTABLE (features almost touch)" : "; no normal (points coincide)";
             char cap[400];
             std::snprintf(cap, sizeof cap, "%s: distance %s, normal from %s%s", nameOf(r.type), fmt(r.distance).c_str(),
                           r.normalRule, flags.c_str());
             char name[32];
             std::snprintf(name, sizeof name, "pair_%02d", int(i));
-            const std::string title = common_.title + ": " + nameOf(r.type) + (pairLabels[i].empty() ? "" : " (" + pairLabels[i] + ")");
-            out.frames.push_back(finish(c, name, title, cap, std::string(nameOf(r.type)) + ", distance " + fmt(r.distance)));
+            const std::string title =
+                common_.title + ": " + nameOf(r.type) + (pairLabels[i].empty() ? "" : " (" + pairLabels[i] + ")");
+            out.frames.push_back(
+                finish(c, name, title, cap, std::string(nameOf(r.type)) + ", distance " + fmt(r.distance)));
         }
     }
 
@@ -396,14 +441,31 @@ private:
     static Json satTrace(const SatContactResult& r, const SatContactTrace& tr) {
         Json axes = Json::array();
         for (const SatAxisRecord& x : tr.axes)
-            axes.push_back({{"kind", nameOf(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vec3Json(x.axis)}, {"separation", x.separation}});
+            axes.push_back({{"kind", nameOf(x.kind)},
+                            {"a", x.indexA},
+                            {"b", x.indexB},
+                            {"axis", vec3Json(x.axis)},
+                            {"separation", x.separation}});
         Json clips = Json::array();
-        for (const SatClipStep& s : tr.clipSteps) clips.push_back({{"reference_edge", s.referenceEdge}, {"before", s.before.size()}, {"after", s.after.size()}});
-        return {{"mode", "sat"}, {"status", nameOf(r.status)}, {"separation", r.separation}, {"depth", r.depth},
-                {"normal", vec3Json(r.normal)}, {"axis_kind", nameOf(r.axisKind)}, {"axes", axes},
-                {"edge_pairs", tr.edgePairsTotal}, {"edge_pairs_pruned", tr.edgePairsPruned}, {"edge_pairs_parallel", tr.edgePairsParallel},
-                {"chosen", tr.chosen}, {"reference_on_a", tr.referenceOnA}, {"reference_face", tr.referenceFace},
-                {"incident_face", tr.incidentFace}, {"clip_steps", clips}, {"manifold", pointsJson(r.manifold)}};
+        for (const SatClipStep& s : tr.clipSteps)
+            clips.push_back(
+                {{"reference_edge", s.referenceEdge}, {"before", s.before.size()}, {"after", s.after.size()}});
+        return {{"mode", "sat"},
+                {"status", nameOf(r.status)},
+                {"separation", r.separation},
+                {"depth", r.depth},
+                {"normal", vec3Json(r.normal)},
+                {"axis_kind", nameOf(r.axisKind)},
+                {"axes", axes},
+                {"edge_pairs", tr.edgePairsTotal},
+                {"edge_pairs_pruned", tr.edgePairsPruned},
+                {"edge_pairs_parallel", tr.edgePairsParallel},
+                {"chosen", tr.chosen},
+                {"reference_on_a", tr.referenceOnA},
+                {"reference_face", tr.referenceFace},
+                {"incident_face", tr.incidentFace},
+                {"clip_steps", clips},
+                {"manifold", pointsJson(r.manifold)}};
     }
 
     // The body that holds the reference face and the one that holds the incident face, with their colours.
@@ -429,8 +491,9 @@ private:
         const auto [ref, inc, refRole, incRole] = clipSides(tr);
         char counts[200];
         std::snprintf(counts, sizeof counts, "axes: %d+%d faces, %d/%d edge pairs (%d Gauss-map pruned, %d parallel)",
-                      a.mesh.faceCount(), b.mesh.faceCount(), int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(),
-                      tr.edgePairsTotal, tr.edgePairsPruned, tr.edgePairsParallel);
+                      a.mesh.faceCount(), b.mesh.faceCount(),
+                      int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(), tr.edgePairsTotal,
+                      tr.edgePairsPruned, tr.edgePairsParallel);
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ());
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         drawPosed(c, a, roleColor(Role::ShapeA), 0.35f);
@@ -454,8 +517,10 @@ private:
         } else if (r.colliding() && !r.manifold.empty()) {
             const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
             const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
-            c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)), lineStyle(Role::ShapeA, 6.0f, false, true));
-            c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)), lineStyle(Role::ShapeB, 6.0f, false, true));
+            c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)),
+                       lineStyle(Role::ShapeA, 6.0f, false, true));
+            c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)),
+                       lineStyle(Role::ShapeB, 6.0f, false, true));
             axisFrom = r.manifold[0].pointA;
             if (labels) lg.item("edges of the edge–edge axis", Role::Ink);
         }
@@ -480,7 +545,8 @@ private:
             std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", nameOf(r.axisKind),
                           fmt(r.depth).c_str(), int(r.manifold.size()), r.manifold.size() == 1 ? "" : "s", counts);
         else
-            std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(), nameOf(r.axisKind), counts);
+            std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(),
+                          nameOf(r.axisKind), counts);
         return finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind));
     }
 
@@ -501,12 +567,14 @@ private:
         c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
         c.drawPolyline(facePolygon(inc, tr.incidentFace), true, lineStyle(incRole, 4.0f, true, true));
         for (size_t k = 0; k + 1 < tr.clipSteps.size(); ++k)
-            if (tr.clipSteps[k].after.size() >= 2) c.drawPolyline(tr.clipSteps[k].after, true, lineStyle(Role::Muted, 1.5f, true, true));
+            if (tr.clipSteps[k].after.size() >= 2)
+                c.drawPolyline(tr.clipSteps[k].after, true, lineStyle(Role::Muted, 1.5f, true, true));
         if (!tr.clipSteps.empty() && tr.clipSteps.back().after.size() >= 3) {
             c.drawPolygon(tr.clipSteps.back().after, roleColor(Role::Result).withAlpha(0.3f));
             c.drawPolyline(tr.clipSteps.back().after, true, lineStyle(Role::Result, 3.0f, false, true));
         }
-        for (const ContactPoint& p : tr.clipped) c.drawPoint(tr.referenceOnA ? p.pointB : p.pointA, 4.0f, roleColor(Role::Ink), true);
+        for (const ContactPoint& p : tr.clipped)
+            c.drawPoint(tr.referenceOnA ? p.pointB : p.pointA, 4.0f, roleColor(Role::Ink), true);
         for (const ContactPoint& p : r.manifold) {
             const Vec3 q = tr.referenceOnA ? p.pointB : p.pointA;
             c.drawPoint(q, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
@@ -520,9 +588,11 @@ private:
             lg.item("clipped polygon; kept points, depth", Role::Result);
         }
         char cap[300];
-        std::snprintf(cap, sizeof cap, "Sutherland–Hodgman: %d side planes clip the incident face to %d points; %d below the reference face → %d kept",
-                      int(tr.clipSteps.size()), tr.clipSteps.empty() ? 0 : int(tr.clipSteps.back().after.size()), int(tr.clipped.size()),
-                      int(r.manifold.size()));
+        std::snprintf(cap, sizeof cap,
+                      "Sutherland–Hodgman: %d side planes clip the incident face to %d points; %d below the reference "
+                      "face → %d kept",
+                      int(tr.clipSteps.size()), tr.clipSteps.empty() ? 0 : int(tr.clipSteps.back().after.size()),
+                      int(tr.clipped.size()), int(r.manifold.size()));
         return finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping");
     }
 };
@@ -547,7 +617,8 @@ public:
             scene->body.mesh = readBody(r.get("body"), scene->body.name);
             const JsonNode ps = r.get("poses");
             const std::vector<JsonNode> items = ps.items();
-            if (items.empty() || int(items.size()) > kMaxFrames) ps.fail("1 to " + std::to_string(kMaxFrames) + " poses");
+            if (items.empty() || int(items.size()) > kMaxFrames)
+                ps.fail("1 to " + std::to_string(kMaxFrames) + " poses");
             for (const JsonNode& it : items) {
                 ObjectReader pr(it);
                 scene->poses.push_back(readPose(pr));
@@ -566,7 +637,8 @@ public:
         } else if (scene->mode == "features") {
             const JsonNode ps = r.get("pairs");
             const std::vector<JsonNode> items = ps.items();
-            if (items.empty() || int(items.size()) > kMaxFrames) ps.fail("1 to " + std::to_string(kMaxFrames) + " pairs");
+            if (items.empty() || int(items.size()) > kMaxFrames)
+                ps.fail("1 to " + std::to_string(kMaxFrames) + " pairs");
             for (const JsonNode& it : items) {
                 ObjectReader pr(it);
                 scene->pairs.emplace_back(readFeature(pr.get("a")), readFeature(pr.get("b")));

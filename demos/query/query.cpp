@@ -72,7 +72,8 @@ LineRead readLine(std::streambuf& in, std::string& line, std::size_t limit) {
     bool any = false, tooLong = false;
     for (;;) {
         const int c = in.sbumpc();
-        if (c == std::char_traits<char>::eof()) return !any ? LineRead::End : tooLong ? LineRead::TooLong : LineRead::Line;
+        if (c == std::char_traits<char>::eof())
+            return !any ? LineRead::End : tooLong ? LineRead::TooLong : LineRead::Line;
         any = true;
         if (c == '\n') return tooLong ? LineRead::TooLong : LineRead::Line;
         if (line.size() < limit) line.push_back(char(c));

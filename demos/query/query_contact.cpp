@@ -26,8 +26,8 @@
 #include "core/contact/contact_plane.h"
 #include "core/contact/contact_sat.h"
 #include "core/geometry/convex_hull.h"
-#include "core/gjk_epa/gjk.h"
 #include "core/geometry/shapes.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
 #include "demos/query/query_mass.h"
@@ -103,8 +103,8 @@ Json pointsJson(const std::vector<ContactPoint>& pts, bool swap, const LocalFram
 
 // Polytope (body) vs plane; bodyIsA says which side of the query the body is on. `touch` is the
 // touching rule's tolerance (local units): s_min > touch is separated, as for the distance op.
-Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxPoints, bool wantTrace,
-               double touch, const LocalFrame& frame) {
+Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxPoints, bool wantTrace, double touch,
+               const LocalFrame& frame) {
     PlaneContactTrace trace;
     PlaneContactOptions opt;
     opt.maxPoints = maxPoints;
@@ -121,14 +121,21 @@ Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxP
     const Json bodyFeature = featureJson(body, r.feature), planeFeature = {{"type", "plane"}};
     Json out;
     if (colliding) {
-        out = {{"colliding", true}, {"depth", frame.length(r.depth)}, {"normal", vecJson(n)},
+        out = {{"colliding", true},
+               {"depth", frame.length(r.depth)},
+               {"normal", vecJson(n)},
                {"points", pointsJson(r.manifold, !bodyIsA, frame)}};
     } else {
         std::vector<ContactPoint> closest;
-        for (size_t i = 0; i < r.featurePoints.size(); ++i) closest.push_back({r.featurePoints[i], r.featurePointsOnPlane[i], 0.0});
+        for (size_t i = 0; i < r.featurePoints.size(); ++i)
+            closest.push_back({r.featurePoints[i], r.featurePointsOnPlane[i], 0.0});
         Json pairs = Json::array();
-        for (const Json& p : pointsJson(closest, !bodyIsA, frame)) pairs.push_back({{"point_a", p["point_a"]}, {"point_b", p["point_b"]}});
-        out = {{"colliding", false}, {"distance", frame.length(r.signedDistance)}, {"normal", vecJson(n)}, {"closest", pairs}};
+        for (const Json& p : pointsJson(closest, !bodyIsA, frame))
+            pairs.push_back({{"point_a", p["point_a"]}, {"point_b", p["point_b"]}});
+        out = {{"colliding", false},
+               {"distance", frame.length(r.signedDistance)},
+               {"normal", vecJson(n)},
+               {"closest", pairs}};
     }
     out["feature_a"] = bodyIsA ? bodyFeature : planeFeature;
     out["feature_b"] = bodyIsA ? planeFeature : bodyFeature;
@@ -137,9 +144,9 @@ Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxP
         for (double s : trace.vertexDistances) depths.push_back(frame.length(s));
         Json steps = Json::array();
         for (const auto& st : trace.reduction) steps.push_back({{"rule", st.rule}, {"candidate", st.chosen}});
-        out["trace"] = {{"algorithm", "polytope-plane"}, {"vertex_signed_distances", depths},
+        out["trace"] = {{"algorithm", "polytope-plane"},       {"vertex_signed_distances", depths},
                         {"crossings", trace.crossings.size()}, {"candidates", trace.candidates.size()},
-                        {"polygon", trace.hull.size()}, {"reduction", steps}};
+                        {"polygon", trace.hull.size()},        {"reduction", steps}};
     }
     return out;
 }
@@ -147,12 +154,20 @@ Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxP
 Json satTraceJson(const SatContactTrace& trace, const LocalFrame& frame) {
     Json axes = Json::array();
     for (const SatAxisRecord& x : trace.axes)
-        axes.push_back({{"kind", nameOf(x.kind)}, {"a", x.indexA}, {"b", x.indexB}, {"axis", vecJson(x.axis)},
+        axes.push_back({{"kind", nameOf(x.kind)},
+                        {"a", x.indexA},
+                        {"b", x.indexB},
+                        {"axis", vecJson(x.axis)},
                         {"separation", frame.length(x.separation)}});
-    return {{"algorithm", "sat"}, {"axes", axes}, {"edge_pairs", trace.edgePairsTotal},
-            {"edge_pairs_pruned", trace.edgePairsPruned}, {"edge_pairs_parallel", trace.edgePairsParallel},
-            {"chosen", trace.chosen}, {"reference_on_a", trace.referenceOnA},
-            {"clip_steps", trace.clipSteps.size()}, {"clipped_points", trace.clipped.size()}};
+    return {{"algorithm", "sat"},
+            {"axes", axes},
+            {"edge_pairs", trace.edgePairsTotal},
+            {"edge_pairs_pruned", trace.edgePairsPruned},
+            {"edge_pairs_parallel", trace.edgePairsParallel},
+            {"chosen", trace.chosen},
+            {"reference_on_a", trace.referenceOnA},
+            {"clip_steps", trace.clipSteps.size()},
+            {"clipped_points", trace.clipped.size()}};
 }
 
 // Separated polytopes: the distance and closest points by GJK; the features are the support sets
@@ -160,8 +175,11 @@ Json satTraceJson(const SatContactTrace& trace, const LocalFrame& frame) {
 Json separatedBodies(const Body& a, const Body& b, const GjkResult& g, const LocalFrame& frame) {
     const Vec3 n = g.separatingAxis;
     Json pair = {{"point_a", vecJson(frame.toWorld(g.pointA))}, {"point_b", vecJson(frame.toWorld(g.pointB))}};
-    return {{"colliding", false}, {"distance", frame.length(g.distance)}, {"normal", vecJson(n)},
-            {"closest", Json::array({pair})}, {"feature_a", featureJson(a, supportFeature(a, n))},
+    return {{"colliding", false},
+            {"distance", frame.length(g.distance)},
+            {"normal", vecJson(n)},
+            {"closest", Json::array({pair})},
+            {"feature_a", featureJson(a, supportFeature(a, n))},
             {"feature_b", featureJson(b, supportFeature(b, -n))}};
 }
 
@@ -183,9 +201,13 @@ Json bodyBody(const Body& a, const Body& b, int maxPoints, bool wantTrace, doubl
         opt.tolerance = std::max(touch, r.separation);
         r = contactPolyhedra(a.mesh, Transform{}, b.mesh, Transform{}, opt, wantTrace ? &trace : nullptr);
     }
-    Json out = colliding ? Json{{"colliding", true}, {"depth", frame.length(r.depth)}, {"normal", vecJson(r.normal)},
-                                {"points", pointsJson(r.manifold, false, frame)}, {"axis", nameOf(r.axisKind)},
-                                {"feature_a", featureJson(a, r.featureA)}, {"feature_b", featureJson(b, r.featureB)}}
+    Json out = colliding ? Json{{"colliding", true},
+                                {"depth", frame.length(r.depth)},
+                                {"normal", vecJson(r.normal)},
+                                {"points", pointsJson(r.manifold, false, frame)},
+                                {"axis", nameOf(r.axisKind)},
+                                {"feature_a", featureJson(a, r.featureA)},
+                                {"feature_b", featureJson(b, r.featureB)}}
                          : separatedBodies(a, b, g, frame);
     if (wantTrace) out["trace"] = satTraceJson(trace, frame);
     return out;
@@ -211,13 +233,16 @@ Json contactQuery(ObjectReader& r) {
     if (auto m = r.find("max_points")) maxPoints = m->asInt(1, 64);
     const bool wantTrace = r.boolOr("trace", false);
     r.finish();
-    const auto solid = [](const QueryShape& s) { return s.kind == Kind::Polytope || s.kind == Kind::Aabb || s.kind == Kind::Obb; };
+    const auto solid = [](const QueryShape& s) {
+        return s.kind == Kind::Polytope || s.kind == Kind::Aabb || s.kind == Kind::Obb;
+    };
     for (const auto& [s, node] : {std::pair{&a, &an}, std::pair{&b, &bn}}) {
         if (!solid(*s) && s->kind != Kind::Plane)
             node->fail(std::string("contact supports polytope, aabb, obb and plane shapes, not ") + nameOf(s->kind));
         requireHullVerticesWithinLimit(s->vertices.size(), "contact", *node);
     }
-    if (a.kind == Kind::Plane && b.kind == Kind::Plane) bn.fail("contact needs at least one polytope (two planes given)");
+    if (a.kind == Kind::Plane && b.kind == Kind::Plane)
+        bn.fail("contact needs at least one polytope (two planes given)");
 
     // The touching rule's tolerance, from the shapes as given (world units).
     const QueryShape& plane = a.kind == Kind::Plane ? a : b;
@@ -233,7 +258,8 @@ Json contactQuery(ObjectReader& r) {
     toLocal(a, frame);
     toLocal(b, frame);
     if (plane.kind == Kind::Plane && !std::isfinite((a.kind == Kind::Plane ? a : b).offset))
-        (a.kind == Kind::Plane ? an : bn).fail("the plane is farther from the body than double precision spans (offset / body size above ~1e308)");
+        (a.kind == Kind::Plane ? an : bn)
+            .fail("the plane is farther from the body than double precision spans (offset / body size above ~1e308)");
     touch = std::ldexp(touch, frame.k);
     Json out;
     if (b.kind == Kind::Plane) out = bodyPlane(makeBody(a, an), b, true, maxPoints, wantTrace, touch, frame);

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "core/geometry/convex_hull.h"
 #include "core/feature_walk/lin_canny.h"
 #include "core/feature_walk/vclip.h"
+#include "core/geometry/convex_hull.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
 #include "demos/query/query_tolerance.h"
@@ -23,7 +23,8 @@ using Kind = QueryShape::Kind;
 // `origin` (its first vertex, normalised), or a clear error at its node. Far from the world
 // origin (offsets 1e4 x the size) the body frame keeps the plane offsets small: v - origin is
 // exact for the shape's own vertices (Sterbenz), so the distance loses no digits to the offset.
-VClipPolyhedron polyhedronOf(const QueryShape& s, int k, const JsonNode& node, Vec3& origin, const std::string& method) {
+VClipPolyhedron polyhedronOf(const QueryShape& s, int k, const JsonNode& node, Vec3& origin,
+                             const std::string& method) {
     if (s.kind != Kind::Polytope && s.kind != Kind::Aabb && s.kind != Kind::Obb)
         node.fail("method '" + method + "' needs polyhedra (polytope, aabb, obb), got " + nameOf(s.kind));
     requireHullVerticesWithinLimit(s.vertices.size(), method.c_str(), node);

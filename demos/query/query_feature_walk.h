@@ -4,14 +4,14 @@
 
 #include <string>
 
-#include "demos/scene/json_reader.h"
 #include "demos/query/query_shapes.h"
+#include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {
 
 /// Answers `op` ("distance" or "penetration") with `method` ("vclip" or "lin_canny") for the
 /// parsed shapes a and b (their JSON nodes name errors). Throws InputError.
-Json answerFeatureWalkQuery(const std::string& op, const std::string& method, const QueryShape& a,
-                            const QueryShape& b, const JsonNode& aNode, const JsonNode& bNode, bool wantTrace);
+Json answerFeatureWalkQuery(const std::string& op, const std::string& method, const QueryShape& a, const QueryShape& b,
+                            const JsonNode& aNode, const JsonNode& bNode, bool wantTrace);
 
 }  // namespace cdlab::demos

@@ -38,7 +38,8 @@ Json answerMassPropertiesQuery(ObjectReader& r) {
     for (const Vec3& v : shape.vertices) unit.push_back(scaled(v - origin, -k));
 
     const HullResult hull = convexHull(unit);
-    if (hull.status != HullStatus::Ok) a.fail(std::string("the polytope's hull is ") + nameOf(hull.status) + ": no volume");
+    if (hull.status != HullStatus::Ok)
+        a.fail(std::string("the polytope's hull is ") + nameOf(hull.status) + ": no volume");
     const MassProperties mp = computeMassProperties(hull.polyhedron, {.density = density});
     if (!mp.ok()) a.fail(std::string("mass properties: ") + nameOf(mp.status) + ": " + mp.message);
 
@@ -54,11 +55,9 @@ Json answerMassPropertiesQuery(ObjectReader& r) {
         a.fail("volume, mass or inertia leaves the range of double precision at this scale (" +
                std::string(!representable(volume) || !representable(mass) ? "volume or mass" : "inertia") + ")");
     Json inertia = Json::array();
-    for (int i = 0; i < 3; ++i) inertia.push_back(Json::array({cleanZero(I(i, 0)), cleanZero(I(i, 1)), cleanZero(I(i, 2))}));
-    return {{"volume", volume},
-            {"mass", mass},
-            {"center_of_mass", vecJson(c)},
-            {"inertia", inertia}};
+    for (int i = 0; i < 3; ++i)
+        inertia.push_back(Json::array({cleanZero(I(i, 0)), cleanZero(I(i, 1)), cleanZero(I(i, 2))}));
+    return {{"volume", volume}, {"mass", mass}, {"center_of_mass", vecJson(c)}, {"inertia", inertia}};
 }
 
 }  // namespace cdlab::demos

@@ -14,15 +14,15 @@
 #include <limits>
 #include <vector>
 
+#include "core/base/primitives.h"
+#include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
-#include "core/base/primitives.h"
 #include "core/overlap/sat_tests.h"
-#include "core/geometry/shapes.h"
+#include "demos/query/query_feature_walk.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_shapes.h"
 #include "demos/query/query_tolerance.h"
-#include "demos/query/query_feature_walk.h"
 
 namespace cdlab::demos {
 
@@ -46,9 +46,15 @@ Json gjkTraceJson(const GjkTrace& t) {
     for (const GjkTraceStep& s : t.steps) {
         Json simplex = Json::array();
         for (int i = 0; i < s.simplexCount; ++i) simplex.push_back(vecJson(s.simplex[i].w));
-        steps.push_back({{"iteration", s.iteration}, {"simplex", simplex}, {"direction", vecJson(s.direction)},
-                         {"support", vecJson(s.support.w)}, {"region", slotLetters(s.keptSlots)}, {"v", vecJson(s.v)},
-                         {"lower_bound", s.lowerBound}, {"upper_bound", s.upperBound}, {"terminated", s.terminated}});
+        steps.push_back({{"iteration", s.iteration},
+                         {"simplex", simplex},
+                         {"direction", vecJson(s.direction)},
+                         {"support", vecJson(s.support.w)},
+                         {"region", slotLetters(s.keptSlots)},
+                         {"v", vecJson(s.v)},
+                         {"lower_bound", s.lowerBound},
+                         {"upper_bound", s.upperBound},
+                         {"terminated", s.terminated}});
     }
     return {{"algorithm", "gjk"}, {"termination", nameOf(t.termination)}, {"steps", steps}};
 }
@@ -56,10 +62,15 @@ Json gjkTraceJson(const GjkTrace& t) {
 Json epaTraceJson(const EpaTrace& t) {
     Json steps = Json::array();
     for (const EpaTraceStep& s : t.steps)
-        steps.push_back({{"iteration", s.iteration}, {"vertices", s.vertices.size()}, {"faces", s.faces.size()},
-                         {"closest_normal", vecJson(s.closestNormal)}, {"closest_distance", s.closestDistance},
-                         {"support", vecJson(s.support)}, {"removed_faces", s.removedFaces.size()},
-                         {"horizon_edges", s.horizon.size()}, {"lower_bound", s.lowerBound},
+        steps.push_back({{"iteration", s.iteration},
+                         {"vertices", s.vertices.size()},
+                         {"faces", s.faces.size()},
+                         {"closest_normal", vecJson(s.closestNormal)},
+                         {"closest_distance", s.closestDistance},
+                         {"support", vecJson(s.support)},
+                         {"removed_faces", s.removedFaces.size()},
+                         {"horizon_edges", s.horizon.size()},
+                         {"lower_bound", s.lowerBound},
                          {"upper_bound", s.upperBound}});
     return {{"algorithm", "epa"}, {"start", t.start}, {"termination", nameOf(t.termination)}, {"steps", steps}};
 }
@@ -151,9 +162,9 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
 // Planes: the signed distances of a bounded shape to the plane span [lo, hi] (closed form).
 
 struct PlaneSpan {
-    double lo, hi;       // min / max of (n·x - d)/|n| over the shape
+    double lo, hi;             // min / max of (n·x - d)/|n| over the shape
     Vec3 lowPoint, highPoint;  // shape points attaining them
-    double touch;        // the touching tolerance of this plane and shape
+    double touch;              // the touching tolerance of this plane and shape
 };
 
 // n̂·x = d̂ with |n̂| = 1 (the parser keeps |normal| in [0.5, sqrt 3], so this neither under- nor overflows).
@@ -168,7 +179,8 @@ UnitPlane unitPlane(const QueryShape& plane) {
 
 PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
     const auto [n, d] = unitPlane(plane);
-    PlaneSpan span{INFINITY, -INFINITY, Vec3::Zero(), Vec3::Zero(), planeTouchTolerance(d, largestCoordinate(s) + s.radius)};
+    PlaneSpan span{INFINITY, -INFINITY, Vec3::Zero(), Vec3::Zero(),
+                   planeTouchTolerance(d, largestCoordinate(s) + s.radius)};
     for (const Vec3& v : s.vertices) {
         double x = n.dot(v) - d;
         if (x < span.lo) span.lo = x, span.lowPoint = v;
@@ -217,7 +229,9 @@ PairAnswer planePlane(const QueryShape& a, const QueryShape& b, bool wantDepth) 
     // Parallel to rounding: |na x nb| below ~10 ulps.
     if (na.cross(nb).norm() > 1e-15) {
         ans.intersect = true;
-        if (wantDepth) throw InputError("query: penetration of two non-parallel planes is unbounded (no translation separates them)");
+        if (wantDepth)
+            throw InputError(
+                "query: penetration of two non-parallel planes is unbounded (no translation separates them)");
         return ans;
     }
     const double sign = na.dot(nb) > 0 ? 1.0 : -1.0;
@@ -300,7 +314,9 @@ PairAnswer rayRay(const QueryShape& a, const QueryShape& b) {
         double t = std::max(0.0, d.dot(p - o) / d.squaredNorm());
         return Vec3(o + t * d);
     };
-    struct Cand { Vec3 pa, pb; };  // relative to oa
+    struct Cand {
+        Vec3 pa, pb;
+    };  // relative to oa
     std::vector<Cand> cands;
     const double A = a.direction.squaredNorm(), B = a.direction.dot(b.direction), C = b.direction.squaredNorm();
     const double D = a.direction.dot(r), E = b.direction.dot(r);
@@ -319,7 +335,8 @@ PairAnswer rayRay(const QueryShape& a, const QueryShape& b) {
     ans.pointA = a.origin + best->pa;
     ans.pointB = a.origin + best->pb;
     const double dist = (best->pa - best->pb).norm();
-    const double extent = std::max({r.cwiseAbs().maxCoeff(), best->pa.cwiseAbs().maxCoeff(), best->pb.cwiseAbs().maxCoeff()});
+    const double extent =
+        std::max({r.cwiseAbs().maxCoeff(), best->pa.cwiseAbs().maxCoeff(), best->pb.cwiseAbs().maxCoeff()});
     if (dist > kTouchRelative * extent) {  // the touching rule (query_tolerance.h)
         ans.distance = dist;
         ans.normal = (best->pb - best->pa) / dist;
@@ -398,8 +415,10 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
             const auto world = [k](double x) { return cleanZero(std::ldexp(x, -k)); };
             Json axes = Json::array();
             for (const SatAxisStep& st : trace.steps)
-                axes.push_back({{"axis", vecJson(st.axis)}, {"a", {world(st.minA), world(st.maxA)}},
-                                {"b", {world(st.minB), world(st.maxB)}}, {"separating", st.separating}});
+                axes.push_back({{"axis", vecJson(st.axis)},
+                                {"a", {world(st.minA), world(st.maxA)}},
+                                {"b", {world(st.minB), world(st.maxB)}},
+                                {"separating", st.separating}});
             out["trace"] = {{"algorithm", "sat"}, {"axes", axes}};
         }
         return out;
@@ -419,17 +438,28 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
         out = {{"intersect", ans.intersect}};
     } else if (op == "distance") {
         if (ans.intersect) out = {{"intersect", true}, {"distance", 0.0}};
-        else out = {{"intersect", false}, {"distance", ans.distance}, {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+        else
+            out = {{"intersect", false},
+                   {"distance", ans.distance},
+                   {"point_a", vecJson(ans.pointA)},
+                   {"point_b", vecJson(ans.pointB)}};
     } else {  // penetration
         if (ans.intersect)
-            out = {{"intersect", true}, {"depth", ans.depth}, {"normal", vecJson(ans.normal)},
-                   {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+            out = {{"intersect", true},
+                   {"depth", ans.depth},
+                   {"normal", vecJson(ans.normal)},
+                   {"point_a", vecJson(ans.pointA)},
+                   {"point_b", vecJson(ans.pointB)}};
         else
-            out = {{"intersect", false}, {"distance", ans.distance}, {"normal", vecJson(ans.normal)},
-                   {"point_a", vecJson(ans.pointA)}, {"point_b", vecJson(ans.pointB)}};
+            out = {{"intersect", false},
+                   {"distance", ans.distance},
+                   {"normal", vecJson(ans.normal)},
+                   {"point_a", vecJson(ans.pointA)},
+                   {"point_b", vecJson(ans.pointB)}};
     }
     // Trace coordinates are those of the normalised problem: world = unit * trace value.
-    if (wantTrace && !ans.trace.is_null()) out["trace"] = {{"unit", std::ldexp(1.0, -k - ans.traceExponent)}, {"algorithms", ans.trace}};
+    if (wantTrace && !ans.trace.is_null())
+        out["trace"] = {{"unit", std::ldexp(1.0, -k - ans.traceExponent)}, {"algorithms", ans.trace}};
     return out;
 }
 

@@ -37,8 +37,10 @@ int largestExponent(const Vec3& v) {
 
 QueryShape parseQueryShape(const JsonNode& node) {
     if (!node.isObject() || node.raw().size() != 1)
-        node.fail("expected a shape: an object with exactly one key (point, segment, ray, triangle, sphere, aabb, obb, "
-                  "capsule, polytope, plane), got " + JsonNode::describe(node.raw()));
+        node.fail(
+            "expected a shape: an object with exactly one key (point, segment, ray, triangle, sphere, aabb, obb, "
+            "capsule, polytope, plane), got " +
+            JsonNode::describe(node.raw()));
     const std::string key = node.raw().begin().key();
     const JsonNode body(node.raw().begin().value(), node.path() + "." + key, node.source());
     QueryShape s;
@@ -105,7 +107,8 @@ QueryShape parseQueryShape(const JsonNode& node) {
         ObjectReader r(body);
         JsonNode vn = r.get("vertices");
         std::vector<Vec3> body_vertices = vn.asVec3List();
-        if (body_vertices.size() < 4) vn.fail("a polytope needs at least 4 vertices, got " + std::to_string(body_vertices.size()));
+        if (body_vertices.size() < 4)
+            vn.fail("a polytope needs at least 4 vertices, got " + std::to_string(body_vertices.size()));
         Transform t;
         if (auto p = r.find("position")) t.position = p->asVec3();
         if (auto q = r.find("rotation")) t.rotation = q->asQuat();
@@ -129,7 +132,8 @@ QueryShape parseQueryShape(const JsonNode& node) {
         if (!std::isfinite(s.offset))
             on.fail("the plane's distance from the origin, offset / |normal|, overflows double precision");
     } else {
-        node.fail("unknown shape '" + key + "' (expected point, segment, ray, triangle, sphere, aabb, obb, capsule, "
+        node.fail("unknown shape '" + key +
+                  "' (expected point, segment, ray, triangle, sphere, aabb, obb, capsule, "
                   "polytope or plane)");
     }
     for (const Vec3& v : s.vertices)
@@ -137,7 +141,9 @@ QueryShape parseQueryShape(const JsonNode& node) {
     return s;
 }
 
-Vec3 scaled(const Vec3& v, int k) { return v.unaryExpr([k](double x) { return std::ldexp(x, k); }); }
+Vec3 scaled(const Vec3& v, int k) {
+    return v.unaryExpr([k](double x) { return std::ldexp(x, k); });
+}
 
 int normalisingExponent(const QueryShape& a, const QueryShape& b) {
     double m = 0;

@@ -51,10 +51,12 @@ std::optional<NonFinite> firstNonFinite(const Json& value, const std::string& pa
 void requireFiniteOutput(const SceneCommon& scene, const DemoOutput& out, const std::vector<std::string>& drawnTexts) {
     const std::string why = " (the scene's numbers overflow double precision: see the limits in docs/scenes.md)";
     if (auto bad = firstNonFinite(out.trace, "$"))
-        throw InputError(scene.file + ": trace " + bad->path + " is " + (std::isnan(bad->value) ? "NaN" : "infinite") + why);
+        throw InputError(scene.file + ": trace " + bad->path + " is " + (std::isnan(bad->value) ? "NaN" : "infinite") +
+                         why);
     for (const Frame& f : out.frames)
         if (printsNonFinite(f.caption))
-            throw InputError(scene.file + ": frame '" + f.name + "': caption \"" + f.caption + "\" prints a NaN or an infinity" + why);
+            throw InputError(scene.file + ": frame '" + f.name + "': caption \"" + f.caption +
+                             "\" prints a NaN or an infinity" + why);
     for (const std::string& text : drawnTexts)
         if (printsNonFinite(text))
             throw InputError(scene.file + ": a frame's text \"" + text + "\" prints a NaN or an infinity" + why);

@@ -1,6 +1,6 @@
-// The interface every demo implements (the catalogue of all demos is demos/catalog/catalog.h). A demo reads its scene keys (prepare: validation only,
-// errors before any output), then runs its core algorithm once and draws only what the scene's
-// layers ask for (run). Numeric-only runs pass no GL context: nothing is drawn.
+// The interface every demo implements (the catalogue of all demos is demos/catalog/catalog.h). A demo reads its scene
+// keys (prepare: validation only, errors before any output), then runs its core algorithm once and draws only what the
+// scene's layers ask for (run). Numeric-only runs pass no GL context: nothing is drawn.
 #pragma once
 
 #include <memory>
@@ -23,9 +23,10 @@ struct Frame {
 
 struct DemoOutput {
     std::vector<Frame> frames;
-    Json trace = Json::object();  // the algorithm's results per step (numbers compared with a tolerance)
+    Json trace = Json::object();       // the algorithm's results per step (numbers compared with a tolerance)
     std::vector<std::string> skipped;  // what the scene did not need and was not computed (for --profile)
-    std::vector<std::pair<std::string, std::string>> files;  // name -> bytes (e.g. "animation.gif"); not golden-compared
+    std::vector<std::pair<std::string, std::string>>
+        files;  // name -> bytes (e.g. "animation.gif"); not golden-compared
 };
 
 struct RunContext {
@@ -56,11 +57,10 @@ void requireFiniteOutput(const SceneCommon& scene, const DemoOutput& out, const 
 class Demo {
 public:
     virtual ~Demo() = default;
-    virtual std::string name() const = 0;          // "voronoi_triangle" (= golden/ folder, = demo_<name> executable)
-    virtual std::string description() const = 0;   // one line
+    virtual std::string name() const = 0;         // "voronoi_triangle" (= golden/ folder, = demo_<name> executable)
+    virtual std::string description() const = 0;  // one line
     /// Reads the scene (common keys + this demo's keys), validates everything, computes nothing heavy.
     virtual std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const = 0;
 };
-
 
 }  // namespace cdlab::demos

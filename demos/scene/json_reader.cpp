@@ -206,7 +206,8 @@ Vec3 JsonNode::asVec3() const {
 }
 
 Quat JsonNode::asQuat() const {
-    if (!value_->is_array() || value_->size() != 4) fail("expected a quaternion [w, x, y, z], got " + describe(*value_));
+    if (!value_->is_array() || value_->size() != 4)
+        fail("expected a quaternion [w, x, y, z], got " + describe(*value_));
     Quat q(at(0).asNumber(), at(1).asNumber(), at(2).asNumber(), at(3).asNumber());
     double n = q.norm();
     // Non-unit quaternions are normalised (documented); a zero or overflowing one has no rotation.
@@ -218,7 +219,8 @@ Quat JsonNode::asQuat() const {
 std::vector<Vec3> JsonNode::asVec3List(std::size_t minCount) const {
     std::vector<Vec3> out;
     for (const JsonNode& item : items()) out.push_back(item.asVec3());
-    if (out.size() < minCount) fail("expected at least " + std::to_string(minCount) + " points, got " + std::to_string(out.size()));
+    if (out.size() < minCount)
+        fail("expected at least " + std::to_string(minCount) + " points, got " + std::to_string(out.size()));
     return out;
 }
 
@@ -232,7 +234,9 @@ bool ObjectReader::has(const std::string& key) const {
 }
 
 static std::string childPath(const std::string& parent, const std::string& key) {
-    bool plain = !key.empty() && key.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") == std::string::npos;
+    bool plain =
+        !key.empty() &&
+        key.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") == std::string::npos;
     return plain ? parent + "." + key : parent + "[" + Json(key).dump() + "]";
 }
 

@@ -52,17 +52,17 @@ public:
     bool isObject() const { return value_->is_object(); }
     bool isArray() const { return value_->is_array(); }
 
-    double asNumber() const;        // finite number
-    double asPositive() const;      // finite, > 0
-    double asNonNegative() const;   // finite, >= 0
+    double asNumber() const;       // finite number
+    double asPositive() const;     // finite, > 0
+    double asNonNegative() const;  // finite, >= 0
     int asInt(int lo, int hi) const;
     bool asBool() const;
     std::string asString() const;
     std::string asEnum(const std::vector<std::string>& allowed) const;
-    Vec3 asVec3() const;            // [x, y, z]
-    Quat asQuat() const;            // [w, x, y, z], non-zero; normalised
+    Vec3 asVec3() const;  // [x, y, z]
+    Quat asQuat() const;  // [w, x, y, z], non-zero; normalised
     std::vector<Vec3> asVec3List(std::size_t minCount = 0) const;
-    std::size_t size() const;       // array length (fails on non-arrays)
+    std::size_t size() const;  // array length (fails on non-arrays)
     JsonNode at(std::size_t index) const;
     std::vector<JsonNode> items() const;  // array elements (fails on non-arrays)
 
@@ -79,8 +79,8 @@ class ObjectReader {
 public:
     explicit ObjectReader(const JsonNode& node);
     bool has(const std::string& key) const;
-    JsonNode get(const std::string& key);                   // required
-    std::optional<JsonNode> find(const std::string& key);   // optional (null counts as absent)
+    JsonNode get(const std::string& key);                  // required
+    std::optional<JsonNode> find(const std::string& key);  // optional (null counts as absent)
     double number(const std::string& key) { return get(key).asNumber(); }
     double numberOr(const std::string& key, double fallback);
     bool boolOr(const std::string& key, bool fallback);

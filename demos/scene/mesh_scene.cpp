@@ -7,8 +7,7 @@
 namespace cdlab::demos {
 
 bool readMeshGenerator(const std::string& kind, const JsonNode& body, ObjectReader& r, const MeshTessellation& defaults,
-                       TriangleMesh& mesh)
-{
+                       TriangleMesh& mesh) {
     if (kind == "torus") {
         const double R = r.find("major_radius") ? sceneSize(r.get("major_radius")) : 1.0;
         const double rr = r.find("minor_radius") ? sceneSize(r.get("minor_radius")) : 0.35;

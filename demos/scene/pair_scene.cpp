@@ -134,8 +134,9 @@ PairScene readPairScene(ObjectReader& r) {
     s.a = parseSceneShape(shapes.at(0), s.dimension == 2);
     s.b = parseSceneShape(shapes.at(1), s.dimension == 2);
     if (s.a.isPolytope() && s.b.isPolytope())
-        requireAtMost(shapes, double(s.a.worldVertices().size()) * double(s.b.worldVertices().size()), kMaxMinkowskiPoints,
-                      "vertices of A x vertices of B", "the Minkowski-difference view builds the hull of every difference");
+        requireAtMost(shapes, double(s.a.worldVertices().size()) * double(s.b.worldVertices().size()),
+                      kMaxMinkowskiPoints, "vertices of A x vertices of B",
+                      "the Minkowski-difference view builds the hull of every difference");
     if (auto v = r.find("view")) {
         if (s.dimension == 2) v->fail("'view' is for 3D scenes");
         s.view = sceneVec3(*v);

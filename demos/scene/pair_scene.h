@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/geometry/shapes.h"
 #include "core/base/types.h"
+#include "core/geometry/shapes.h"
 #include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {
@@ -16,12 +16,12 @@ namespace cdlab::demos {
 struct SceneShape {
     enum class Kind { Box, Sphere, Cylinder, Cone, Polytope };
     Kind kind = Kind::Box;
-    bool planar = false;           ///< 2D scene: the shape lies in z = 0 (box: a rectangle, sphere: a disc)
-    Transform pose;                ///< body -> world
+    bool planar = false;  ///< 2D scene: the shape lies in z = 0 (box: a rectangle, sphere: a disc)
+    Transform pose;       ///< body -> world
     Vec3 halfExtents = Vec3::Ones();
     double radius = 0.5;
     double halfHeight = 0.5;
-    PolytopeShape polytope;        ///< Polytope kind: body-frame vertices
+    PolytopeShape polytope;  ///< Polytope kind: body-frame vertices
 
     /// World-frame support point (core/base/support.h concept).
     Vec3 support(const Vec3& d) const;

@@ -28,9 +28,9 @@ struct GoldenTolerance {
 
 /// The keys every scene has.
 struct SceneCommon {
-    std::string file;   // path of the scene JSON
-    std::string demo;   // "voronoi_triangle", ...
-    std::string name;   // file stem: "regions"
+    std::string file;  // path of the scene JSON
+    std::string demo;  // "voronoi_triangle", ...
+    std::string name;  // file stem: "regions"
     std::string title;
     std::string caption;
     ImageSettings image;

@@ -20,10 +20,10 @@
 #include <map>
 #include <random>
 
-#include "core/spatial/bsp_tree.h"
-#include "core/spatial/kd_tree.h"
 #include "core/broadphase/octree.h"
 #include "core/broadphase/uniform_grid.h"
+#include "core/spatial/bsp_tree.h"
+#include "core/spatial/kd_tree.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
@@ -100,7 +100,8 @@ void addWalls(const std::vector<Vec3>& poly, std::vector<BspPolygon>& walls) {
     for (std::size_t i = 0; i < poly.size(); ++i) {
         const Vec3& a = poly[i];
         const Vec3& b = poly[(i + 1) % poly.size()];
-        walls.push_back({{Vec3(a.x(), a.y(), -1), Vec3(b.x(), b.y(), -1), Vec3(b.x(), b.y(), 1), Vec3(a.x(), a.y(), 1)}});
+        walls.push_back(
+            {{Vec3(a.x(), a.y(), -1), Vec3(b.x(), b.y(), -1), Vec3(b.x(), b.y(), 1), Vec3(a.x(), a.y(), 1)}});
     }
 }
 
@@ -212,15 +213,16 @@ private:
         else c.drawLine(at + P(cell.min.x(), node.split), at + P(cell.max.x(), node.split), s);
     }
     // Every BSP plane as the part of its line inside the node's region, by depth (width scaled by `widthScale`).
-    static void drawBspSplits(Canvas& c, const BspTree& tree, const std::vector<std::vector<Vec3>>& regions, const Vec3& at,
-                              float widthScale) {
+    static void drawBspSplits(Canvas& c, const BspTree& tree, const std::vector<std::vector<Vec3>>& regions,
+                              const Vec3& at, float widthScale) {
         const int maxDepth = tree.stats().depth;
         for (std::size_t i = 0; i < tree.nodes().size(); ++i) {
             const BspNode& node = tree.nodes()[i];
             Vec3 p, q;
             if (node.kind == BspNodeKind::Inner &&
                 lineInPolygon(regions[i], P(node.plane.normal.x(), node.plane.normal.y()), node.plane.offset, p, q))
-                c.drawLine(at + p, at + q, LineStyle{widthScale * depthWidth(node.depth), depthColor(node.depth, maxDepth)});
+                c.drawLine(at + p, at + q,
+                           LineStyle{widthScale * depthWidth(node.depth), depthColor(node.depth, maxDepth)});
         }
     }
     // The wall fragments seen from the top; the pieces of walls that a plane cut in two are highlighted.
@@ -228,7 +230,8 @@ private:
         for (const BspFragment& f : tree.fragments()) {
             Vec3 p, q;
             fragmentSegment(f, p, q);
-            c.drawLine(at + p, at + q, lineStyle(f.split ? Role::Highlight : Role::Ink, f.split ? splitWidth : wallWidth, false, true));
+            c.drawLine(at + p, at + q,
+                       lineStyle(f.split ? Role::Highlight : Role::Ink, f.split ? splitWidth : wallWidth, false, true));
         }
     }
 
@@ -307,17 +310,29 @@ private:
         Json t = Json::object();
         t["objects"] = n;
         t["brute_force_tests"] = std::int64_t(n) * (n - 1) / 2;
-        t["grid"] = {{"cell_size", gridCell}, {"status", int(gr.status)}, {"entries", gr.entries},
-                     {"pair_tests", gr.pairTests}, {"pairs", gr.pairs}};
+        t["grid"] = {{"cell_size", gridCell},
+                     {"status", int(gr.status)},
+                     {"entries", gr.entries},
+                     {"pair_tests", gr.pairTests},
+                     {"pairs", gr.pairs}};
         Json depthCounts = Json::array();
         for (int c : os.objectsPerDepth) depthCounts.push_back(c);
-        t["octree"] = {{"nodes", os.nodeCount},      {"leaves", os.leafCount},   {"depth", os.maxDepthReached},
-                       {"objects_at_root", os.objectsAtRoot}, {"objects_per_depth", depthCounts},
-                       {"pair_tests", st.octreeTests}, {"pairs", int(st.octreePairs.size())}};
+        t["octree"] = {{"nodes", os.nodeCount},
+                       {"leaves", os.leafCount},
+                       {"depth", os.maxDepthReached},
+                       {"objects_at_root", os.objectsAtRoot},
+                       {"objects_per_depth", depthCounts},
+                       {"pair_tests", st.octreeTests},
+                       {"pairs", int(st.octreePairs.size())}};
         t["kd_tree"] = {{"nodes", int(kt.nodes().size())}, {"leaves", kt.leafCount()}, {"depth", kt.depth()}};
-        t["bsp"] = {{"polygons", int(st.walls.size())}, {"nodes", bs.nodeCount}, {"inner", bs.innerCount},
-                    {"solid_leaves", bs.solidLeaves}, {"empty_leaves", bs.emptyLeaves}, {"depth", bs.depth},
-                    {"splits", bs.splits}, {"fragments", bs.fragmentCount}};
+        t["bsp"] = {{"polygons", int(st.walls.size())},
+                    {"nodes", bs.nodeCount},
+                    {"inner", bs.innerCount},
+                    {"solid_leaves", bs.solidLeaves},
+                    {"empty_leaves", bs.emptyLeaves},
+                    {"depth", bs.depth},
+                    {"splits", bs.splits},
+                    {"fragments", bs.fragmentCount}};
         return t;
     }
 
@@ -330,8 +345,13 @@ private:
         const Vec3 middle = region.min + P(0.5 * (2 * W + gap), 0.5 * W - 0.5 * (W + gap));
         // Room above for the title and two heading lines per row, below for the caption.
         canvas.setCamera(Camera::twoD(middle.x(), middle.y() + 0.02 * W, (2 * W + gap) * 1.26));
-        PanelView v{canvas, Aabb{region.min, region.min + P(W, W)}, W, std::vector<bool>(boxes.size(), false),
-                    common_.hasLayer("objects"), common_.hasLayer("cells"), common_.hasLayer("splits")};
+        PanelView v{canvas,
+                    Aabb{region.min, region.min + P(W, W)},
+                    W,
+                    std::vector<bool>(boxes.size(), false),
+                    common_.hasLayer("objects"),
+                    common_.hasLayer("cells"),
+                    common_.hasLayer("splits")};
         for (const auto& p : st.octreePairs) v.paired[std::size_t(p.first)] = v.paired[std::size_t(p.second)] = true;
         drawGridPanel(v, offsets[0], st);
         drawOctreePanel(v, offsets[1], st);
@@ -345,7 +365,8 @@ private:
         for (int i = 0; i < int(boxes.size()); ++i) {
             fillRect(v.canvas, boxes[std::size_t(i)], at, fill(i).withAlpha(alpha));
             outlineRect(v.canvas, boxes[std::size_t(i)], at,
-                        lineStyle(v.paired[std::size_t(i)] ? Role::Highlight : Role::Ink, v.paired[std::size_t(i)] ? 2.2f : 1.4f));
+                        lineStyle(v.paired[std::size_t(i)] ? Role::Highlight : Role::Ink,
+                                  v.paired[std::size_t(i)] ? 2.2f : 1.4f));
         }
     }
 
@@ -371,11 +392,12 @@ private:
             for (double y = std::ceil(frame.min.y() / gridCell) * gridCell; y <= frame.max.y(); y += gridCell)
                 canvas.drawLine(at + P(frame.min.x(), y), at + P(frame.max.x(), y), gl);
         }
-        drawBoxes(v, at, [](int) { return roleColor(Role::ShapeA); }, 0.30f);
+        drawBoxes(
+            v, at, [](int) { return roleColor(Role::ShapeA); }, 0.30f);
         outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
         heading(canvas, at + P(frame.min.x(), frame.max.y()), "Uniform grid, cell h = " + formatNumber(gridCell),
-                std::to_string(st.grid.entries) + " box-cell entries, " + std::to_string(st.grid.pairTests) + " tests, " +
-                    std::to_string(st.grid.pairs) + " pairs");
+                std::to_string(st.grid.entries) + " box-cell entries, " + std::to_string(st.grid.pairTests) +
+                    " tests, " + std::to_string(st.grid.pairs) + " pairs");
     }
 
     // 2. Octree (quadtree from the top): node cells, boxes coloured by the depth they sit at.
@@ -386,8 +408,10 @@ private:
         const OctreeStats& os = st.octreeStats;
         if (v.cells)
             for (const OctreeNode& node : ot.nodes())
-                outlineRect(canvas, node.cell, at, LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
-        drawBoxes(v, at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
+                outlineRect(canvas, node.cell, at,
+                            LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
+        drawBoxes(
+            v, at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
         outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
         heading(canvas, at + P(frame.min.x(), frame.max.y()),
                 "Octree (seen as a quadtree), " + std::to_string(os.nodeCount) + " nodes",
@@ -398,9 +422,11 @@ private:
             for (int d = 0; d <= os.maxDepthReached; ++d) {
                 const Vec3 p = at + P(frame.max.x(), frame.max.y()) + P(0.02 * v.W, -0.045 * v.W * (d + 0.5));
                 canvas.drawPoint(p, 6.0f, octreeDepthColor(d).withAlpha(0.8f));
-                canvas.drawText(p, (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
-                                       std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
-                                TextStyle{14.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
+                canvas.drawText(
+                    p,
+                    (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
+                        std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
+                    TextStyle{14.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
             }
         }
     }
@@ -409,7 +435,8 @@ private:
     void drawKdPanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const {
         Canvas& canvas = v.canvas;
         const KdTree& kt = st.kdTree;
-        drawBoxes(v, at, [](int) { return roleColor(Role::Muted); }, 0.18f);
+        drawBoxes(
+            v, at, [](int) { return roleColor(Role::Muted); }, 0.18f);
         if (v.splits)
             for (std::size_t id = 0; id < kt.nodes().size(); ++id) {
                 const KdNode& node = kt.nodes()[id];
@@ -418,7 +445,8 @@ private:
                 drawKdSplit(canvas, node, kdCellInFrame(kt, int(id), v.frame), at, s);
             }
         if (v.drawObjects)
-            for (const Vec3& c : st.centres) canvas.drawPoint(at + c, 4.5f, roleColor(Role::Query), true, 1.0f, roleColor(Role::Ink));
+            for (const Vec3& c : st.centres)
+                canvas.drawPoint(at + c, 4.5f, roleColor(Role::Query), true, 1.0f, roleColor(Role::Ink));
         outlineRect(canvas, v.frame, at, lineStyle(Role::Ink, 1.5f));
         heading(canvas, at + P(v.frame.min.x(), v.frame.max.y()),
                 "k-d tree of the box centres, depth " + std::to_string(kt.depth()),
@@ -480,7 +508,8 @@ private:
         const Vec3 offsets[2] = {P(0, 0), P(W + gap, 0)};
         const Vec3 middle = region.min + P(0.5 * (2 * W + gap), 0.5 * W);
         const double aspect = double(common_.image.width) / double(common_.image.height);
-        canvas.setCamera(Camera::twoD(middle.x(), middle.y() + 0.03 * W, std::max(W * 1.45, (2 * W + gap) * 1.05 / aspect)));
+        canvas.setCamera(
+            Camera::twoD(middle.x(), middle.y() + 0.03 * W, std::max(W * 1.45, (2 * W + gap) * 1.05 / aspect)));
         const Aabb frame{region.min, region.min + P(W, W)};
         const auto& nodes = kt.nodes();
 
@@ -489,13 +518,15 @@ private:
             if (common_.hasLayer("cells")) {
                 for (int id : t.pruned) fillRect(canvas, cellOf(id), at, roleColor(Role::Muted).withAlpha(0.30f));
                 for (int id : t.visited)
-                    if (nodes[std::size_t(id)].isLeaf()) fillRect(canvas, cellOf(id), at, roleColor(Role::Highlight).withAlpha(0.22f));
+                    if (nodes[std::size_t(id)].isLeaf())
+                        fillRect(canvas, cellOf(id), at, roleColor(Role::Highlight).withAlpha(0.22f));
             }
             if (common_.hasLayer("splits"))
                 for (std::size_t id = 0; id < nodes.size(); ++id) {
                     const KdNode& node = nodes[id];
                     if (node.isLeaf()) continue;
-                    drawKdSplit(canvas, node, cellOf(int(id)), at, LineStyle{depthWidth(node.depth), depthColor(node.depth, kt.depth())});
+                    drawKdSplit(canvas, node, cellOf(int(id)), at,
+                                LineStyle{depthWidth(node.depth), depthColor(node.depth, kt.depth())});
                 }
             if (common_.hasLayer("objects"))
                 for (const Vec3& p : points) canvas.drawPoint(at + p, 4.0f, roleColor(Role::Ink), true, 0.0f);
@@ -508,15 +539,19 @@ private:
             const Vec3 at = offsets[0];
             const double r = std::sqrt(nearest.distanceSquared);
             std::vector<Vec3> circle;
-            for (int k = 0; k < 96; ++k) circle.push_back(at + query + r * P(std::cos(2 * M_PI * k / 96), std::sin(2 * M_PI * k / 96)));
+            for (int k = 0; k < 96; ++k)
+                circle.push_back(at + query + r * P(std::cos(2 * M_PI * k / 96), std::sin(2 * M_PI * k / 96)));
             canvas.drawPolyline(circle, true, lineStyle(Role::Result, 2.0f, true, true));
             // Improvements of the best point, in order: the search narrows.
             for (std::size_t k = 0; k + 1 < nt.bestSoFar.size(); ++k)
                 canvas.drawPoint(at + points[std::size_t(nt.bestSoFar[k])], 7.0f, roleColor(Role::Simplex), true, 1.5f);
-            canvas.drawLine(at + query, at + points[std::size_t(nearest.index)], lineStyle(Role::Result, 3.0f, false, true));
+            canvas.drawLine(at + query, at + points[std::size_t(nearest.index)],
+                            lineStyle(Role::Result, 3.0f, false, true));
             canvas.drawPoint(at + points[std::size_t(nearest.index)], 8.0f, roleColor(Role::Result), true, 2.0f);
             canvas.drawPoint(at + query, 9.0f, roleColor(Role::Query), true, 2.0f);
-            if (common_.hasLayer("labels")) canvas.drawText(at + query, "q", TextStyle{20.0f, roleColor(Role::Ink), Anchor::Left, true, true, {10, 0}});
+            if (common_.hasLayer("labels"))
+                canvas.drawText(at + query, "q",
+                                TextStyle{20.0f, roleColor(Role::Ink), Anchor::Left, true, true, {10, 0}});
         }
         heading(canvas, offsets[0] + P(frame.min.x(), frame.max.y()), "Nearest neighbour of q",
                 std::to_string(nt.distanceTests) + " of " + std::to_string(points.size()) + " points tested, " +
@@ -561,16 +596,25 @@ private:
         out.trace["fragments"] = bs.fragmentCount;
         Json steps = Json::array();
         for (const BspSplitStep& s : trace.steps)
-            steps.push_back({{"node", s.node}, {"depth", s.depth}, {"splitter", s.splitter}, {"front", s.front},
-                             {"back", s.back}, {"coplanar", s.coplanar}, {"straddling", s.straddling}, {"score", s.score}});
+            steps.push_back({{"node", s.node},
+                             {"depth", s.depth},
+                             {"splitter", s.splitter},
+                             {"front", s.front},
+                             {"back", s.back},
+                             {"coplanar", s.coplanar},
+                             {"straddling", s.straddling},
+                             {"score", s.score}});
         out.trace["steps"] = steps;
         Json qs = Json::array();
         for (std::size_t i = 0; i < queries.size(); ++i)
             qs.push_back({{"point", vec2Json(queries[i])}, {"class", kClass[int(classes[i])]}});
         out.trace["queries"] = qs;
         if (hasSegment)
-            out.trace["segment"] = {{"from", vec2Json(segment.a)}, {"to", vec2Json(segment.b)}, {"hit", ray.hit},
-                                    {"t", ray.t}, {"point", vec2Json(ray.point)}};
+            out.trace["segment"] = {{"from", vec2Json(segment.a)},
+                                    {"to", vec2Json(segment.b)},
+                                    {"hit", ray.hit},
+                                    {"t", ray.t},
+                                    {"point", vec2Json(ray.point)}};
         if (!ctx.gl) {
             out.skipped.push_back("all drawing (no GL context)");
             return out;
@@ -595,7 +639,8 @@ private:
             for (std::size_t i = 0; i < nodes.size(); ++i) {
                 if (nodes[i].kind == BspNodeKind::Inner || regions[i].size() < 3) continue;
                 const bool solid = nodes[i].kind == BspNodeKind::SolidLeaf;
-                canvas.drawPolygon(regions[i], solid ? roleColor(Role::ShapeA).withAlpha(0.38f) : roleColor(Role::Background));
+                canvas.drawPolygon(regions[i],
+                                   solid ? roleColor(Role::ShapeA).withAlpha(0.38f) : roleColor(Role::Background));
             }
         if (common_.hasLayer("splits")) drawBspSplits(canvas, bt, regions, Vec3::Zero(), 1.0f);
         if (common_.hasLayer("objects")) drawBspFragments(canvas, bt, Vec3::Zero(), 4.0f, 4.0f);
@@ -615,7 +660,8 @@ private:
                                                                          : Role::Simplex;
                 canvas.drawPoint(queries[i], 8.0f, roleColor(role), true, 2.0f);
                 if (labels)
-                    canvas.drawText(queries[i], kClass[int(classes[i])], TextStyle{15.0f, roleColor(Role::Ink), Anchor::Left, true, false, {10, 0}});
+                    canvas.drawText(queries[i], kClass[int(classes[i])],
+                                    TextStyle{15.0f, roleColor(Role::Ink), Anchor::Left, true, false, {10, 0}});
             }
             if (hasSegment) {
                 canvas.drawArrow(segment.a, segment.b, lineStyle(Role::Direction, 2.5f, true, true));
@@ -628,9 +674,10 @@ private:
             }
         }
         heading(canvas, P(frame.min.x(), frame.max.y()), "Splits and leaf regions (top view)",
-                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + (bs.splits == 1 ? " edge" : " edges") +
-                    " cut (orange pieces), solid leaves blue");
-        if (common_.hasLayer("tree")) drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);
+                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
+                    (bs.splits == 1 ? " edge" : " edges") + " cut (orange pieces), solid leaves blue");
+        if (common_.hasLayer("tree"))
+            drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);
         out.frames.push_back(titledFrame(canvas, "bsp_shape"));
         return out;
     }
@@ -664,8 +711,10 @@ private:
             const BspNode& n = nodes[i];
             const Vec3 p = pos(int(i));
             if (n.kind == BspNodeKind::Inner) {
-                canvas.drawPoint(p, 11.0f, depthColor(n.depth, depth).mixed(roleColor(Role::Background), 0.35f), true, 1.5f);
-                canvas.drawText(p, "e" + std::to_string(n.splitter), TextStyle{12.0f, roleColor(Role::Ink), Anchor::Center, false, true});
+                canvas.drawPoint(p, 11.0f, depthColor(n.depth, depth).mixed(roleColor(Role::Background), 0.35f), true,
+                                 1.5f);
+                canvas.drawText(p, "e" + std::to_string(n.splitter),
+                                TextStyle{12.0f, roleColor(Role::Ink), Anchor::Center, false, true});
             } else {
                 const bool solid = n.kind == BspNodeKind::SolidLeaf;
                 canvas.drawPoint(p, 6.0f, solid ? roleColor(Role::ShapeA) : roleColor(Role::Background), true, 1.5f);
@@ -731,7 +780,8 @@ public:
         }
         if (auto k = r.find("kd")) {
             ObjectReader kr(*k);
-            if (auto v = kr.find("rule")) s->kd.rule = v->asEnum({"cycle", "widest"}) == "cycle" ? KdSplitRule::Cycle : KdSplitRule::WidestAxis;
+            if (auto v = kr.find("rule"))
+                s->kd.rule = v->asEnum({"cycle", "widest"}) == "cycle" ? KdSplitRule::Cycle : KdSplitRule::WidestAxis;
             if (auto v = kr.find("leaf")) s->kd.leaf = v->asInt(1, 1000);
             kr.finish();
         }
@@ -762,16 +812,20 @@ public:
             Aabb all = s->region;
             for (const Aabb& b : s->boxes) all.min = all.min.cwiseMin(b.min), all.max = all.max.cwiseMax(b.max);
             const Vec3 extent = all.max - all.min;
-            const double cells = (std::floor(extent.x() / s->gridCell) + 2) * (std::floor(extent.y() / s->gridCell) + 2);
-            requireAtMost(g ? *g : r.node(), cells, kMaxGridCells, "the number of grid cells over the region and the boxes",
+            const double cells =
+                (std::floor(extent.x() / s->gridCell) + 2) * (std::floor(extent.y() / s->gridCell) + 2);
+            requireAtMost(g ? *g : r.node(), cells, kMaxGridCells,
+                          "the number of grid cells over the region and the boxes",
                           "the grid panel draws every cell row and column");
         } else if (s->figure == "kd_query") {
             if (auto p = r.find("points")) {
-                requireAtMost(*p, double(p->size()), kMaxPartitionItems, "the number of points", "one drawn point each");
+                requireAtMost(*p, double(p->size()), kMaxPartitionItems, "the number of points",
+                              "one drawn point each");
                 for (const JsonNode& item : p->items()) s->points.push_back(readPoint2(item));
             }
             for (int i = 0; i < count; ++i)
-                s->points.push_back(P(rng.uniform(s->region.min.x(), s->region.max.x()), rng.uniform(s->region.min.y(), s->region.max.y())));
+                s->points.push_back(P(rng.uniform(s->region.min.x(), s->region.max.x()),
+                                      rng.uniform(s->region.min.y(), s->region.max.y())));
             if (s->points.empty()) r.node().fail("kd_query: expected 'points' or 'random'");
             s->query = readPoint2(r.get("query"));
             s->range = readRect(r.get("range"));
@@ -783,7 +837,8 @@ public:
             for (const JsonNode& item : polygon.items()) s->polygon.push_back(readPoint2(item));
             if (s->polygon.size() < 3) r.get("polygon").fail("expected at least 3 vertices (counter-clockwise)");
             if (auto q = r.find("queries")) {
-                requireAtMost(*q, double(q->size()), kMaxPartitionItems, "the number of query points", "one drawn point each");
+                requireAtMost(*q, double(q->size()), kMaxPartitionItems, "the number of query points",
+                              "one drawn point each");
                 for (const JsonNode& item : q->items()) s->queries.push_back(readPoint2(item));
             }
             if (auto g = r.find("segment")) {

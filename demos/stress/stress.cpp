@@ -21,17 +21,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/primitives.h"
 #include "core/closest/closest_point.h"
 #include "core/geometry/convex_hull.h"
+#include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
-#include "core/base/primitives.h"
 #include "core/overlap/sat_tests.h"
-#include "core/geometry/shapes.h"
 #include "demos/bench/bench_measure.h"
-#include "demos/oracles/minkowski_hull_oracle.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
+#include "demos/oracles/minkowski_hull_oracle.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 // The exact (BigInt) Ericson region of the closest-point tests: header-only, independent of core.
@@ -71,9 +71,9 @@ constexpr double kFloatU = 0x1p-24;
 // ---- Cases ---------------------------------------------------------------------------------------
 
 struct PolyCase {
-    std::vector<Vec3> va, vb;  // world frame
-    bool raw = false;          // PolytopeShape over the raw list (duplicates kept), no hull
-    bool floatRounded = false; // the algorithms see the vertices rounded to float
+    std::vector<Vec3> va, vb;   // world frame
+    bool raw = false;           // PolytopeShape over the raw list (duplicates kept), no hull
+    bool floatRounded = false;  // the algorithms see the vertices rounded to float
     double param = 0;
 };
 
@@ -98,23 +98,24 @@ struct Family {
     std::function<void(std::mt19937_64&, TriCase&)> tri;
 };
 
-double uniform(std::mt19937_64& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-double logUniform(std::mt19937_64& rng, double lo, double hi) { return std::pow(10.0, uniform(rng, std::log10(lo), std::log10(hi))); }
+double uniform(std::mt19937_64& rng, double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+double logUniform(std::mt19937_64& rng, double lo, double hi) {
+    return std::pow(10.0, uniform(rng, std::log10(lo), std::log10(hi)));
+}
 
-std::vector<Vec3> scaled(std::vector<Vec3> v, double s, const Vec3& shift = Vec3::Zero())
-{
+std::vector<Vec3> scaled(std::vector<Vec3> v, double s, const Vec3& shift = Vec3::Zero()) {
     for (Vec3& x : v) x = s * x + shift;
     return v;
 }
 
-Vec3 perpendicular(const Vec3& u)
-{
+Vec3 perpendicular(const Vec3& u) {
     const Vec3 t = std::abs(u.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
     return u.cross(t).normalized();
 }
 
-int argExtreme(const std::vector<Vec3>& v, const Vec3& d)
-{
+int argExtreme(const std::vector<Vec3>& v, const Vec3& d) {
     int best = 0;
     for (int i = 1; i < static_cast<int>(v.size()); ++i)
         if (v[i].dot(d) > v[best].dot(d)) best = i;
@@ -125,8 +126,7 @@ int argExtreme(const std::vector<Vec3>& v, const Vec3& d)
 /// along u: the distance is then exactly `gap` for gap >= 0 (that pair is at distance gap, and
 /// the planes u·x = h_A(u) and u·x = h_A(u) + gap separate). gap == 0 copies the vertex bit for
 /// bit: exact touching.
-void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, double gap)
-{
+void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, double gap) {
     const int ia = argExtreme(va, u), ib = argExtreme(vb, -u);
     const Vec3 shift = va[ia] - vb[ib] + gap * u;
     for (Vec3& x : vb) x += shift;
@@ -135,8 +135,7 @@ void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, dou
 
 // Polytope pairs: scale, offset, gap, penetration, slivers, parallel edges, duplicates, rotations,
 // float rounding.
-void addPolytopeFamilies(std::vector<Family>& f)
-{
+void addPolytopeFamilies(std::vector<Family>& f) {
     auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
         f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}});
     };
@@ -235,43 +234,51 @@ void addPolytopeFamilies(std::vector<Family>& f)
 }
 
 // Box pairs: axis-aligned with support ties, and random rotations.
-void addBoxFamilies(std::vector<Family>& f)
-{
-    f.push_back({"axis-aligned boxes (support ties)", "|gap| / size", Kind::Box, {}, [](std::mt19937_64& rng, BoxCase& c) {
-        // Face / edge / corner contact of axis-aligned boxes (all supports tie on whole faces),
-        // coplanar side faces where the extents match, gaps 0 or +-1e-12..1e-3.
-        const double s = logUniform(rng, 1e-3, 1e3);
-        const double ext[3] = {0.5, 1.0, 2.0};
-        auto pick = [&] { return s * ext[rng() % 3]; };
-        c.a.shape.halfExtents = Vec3(pick(), pick(), pick());
-        c.b.shape.halfExtents = Vec3(pick(), pick(), pick());
-        const int mode = std::uniform_int_distribution<int>(0, 5)(rng);
-        const double g = mode == 0 ? 0.0 : logUniform(rng, 1e-12, 1e-3) * (mode % 2 ? 1 : -1);
-        Vec3 centre;
-        const int contactAxes = 1 + static_cast<int>(rng() % 3);  // face, edge, corner
-        for (int i = 0; i < 3; ++i) {
-            const double sign = rng() % 2 ? 1.0 : -1.0;
-            const double touch = c.a.shape.halfExtents[i] + c.b.shape.halfExtents[i];
-            centre[i] = i < contactAxes ? sign * (touch + g * s) : (rng() % 2 ? 0.0 : sign * 0.25 * touch);
-        }
-        c.b.transform.position = centre;
-        c.param = std::abs(g);
-    }, {}});
-    f.push_back({"OBB random rotations", "centre distance / size", Kind::Box, {}, [](std::mt19937_64& rng, BoxCase& c) {
-        const double s = logUniform(rng, 1e-3, 1e3);
-        c.a.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
-        c.b.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
-        c.a.transform.rotation = randomRotation(rng);
-        c.b.transform.rotation = randomRotation(rng);
-        const double d = uniform(rng, 0.0, 2.5);
-        c.b.transform.position = s * d * randomUnit(rng);
-        c.param = d;
-    }, {}});
+void addBoxFamilies(std::vector<Family>& f) {
+    f.push_back({"axis-aligned boxes (support ties)",
+                 "|gap| / size",
+                 Kind::Box,
+                 {},
+                 [](std::mt19937_64& rng, BoxCase& c) {
+                     // Face / edge / corner contact of axis-aligned boxes (all supports tie on whole faces),
+                     // coplanar side faces where the extents match, gaps 0 or +-1e-12..1e-3.
+                     const double s = logUniform(rng, 1e-3, 1e3);
+                     const double ext[3] = {0.5, 1.0, 2.0};
+                     auto pick = [&] { return s * ext[rng() % 3]; };
+                     c.a.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     c.b.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     const int mode = std::uniform_int_distribution<int>(0, 5)(rng);
+                     const double g = mode == 0 ? 0.0 : logUniform(rng, 1e-12, 1e-3) * (mode % 2 ? 1 : -1);
+                     Vec3 centre;
+                     const int contactAxes = 1 + static_cast<int>(rng() % 3);  // face, edge, corner
+                     for (int i = 0; i < 3; ++i) {
+                         const double sign = rng() % 2 ? 1.0 : -1.0;
+                         const double touch = c.a.shape.halfExtents[i] + c.b.shape.halfExtents[i];
+                         centre[i] = i < contactAxes ? sign * (touch + g * s) : (rng() % 2 ? 0.0 : sign * 0.25 * touch);
+                     }
+                     c.b.transform.position = centre;
+                     c.param = std::abs(g);
+                 },
+                 {}});
+    f.push_back({"OBB random rotations",
+                 "centre distance / size",
+                 Kind::Box,
+                 {},
+                 [](std::mt19937_64& rng, BoxCase& c) {
+                     const double s = logUniform(rng, 1e-3, 1e3);
+                     c.a.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
+                     c.b.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
+                     c.a.transform.rotation = randomRotation(rng);
+                     c.b.transform.rotation = randomRotation(rng);
+                     const double d = uniform(rng, 0.0, 2.5);
+                     c.b.transform.position = s * d * randomUnit(rng);
+                     c.param = d;
+                 },
+                 {}});
 }
 
 // Point vs triangle: near-boundary points, slivers and needles, far offsets.
-void addTriangleFamilies(std::vector<Family>& f)
-{
+void addTriangleFamilies(std::vector<Family>& f) {
     auto tri = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, TriCase&)> g) {
         f.push_back({std::move(name), std::move(param), Kind::Tri, {}, {}, std::move(g)});
     };
@@ -288,7 +295,7 @@ void addTriangleFamilies(std::vector<Family>& f)
     tri("triangle: slivers and needles", "thickness / size", [](std::mt19937_64& rng, TriCase& c) {
         const double t = logUniform(rng, 1e-12, 1e-2);
         const Vec3 a = randomUnit(rng), b = -a, u = perpendicular(a);
-        c.t = rng() % 2 ? Triangle{a, b, uniform(rng, -0.9, 0.9) * a + t * u}  // sliver: c near ab
+        c.t = rng() % 2 ? Triangle{a, b, uniform(rng, -0.9, 0.9) * a + t * u}         // sliver: c near ab
                         : Triangle{a, a + t * u, a + t * perpendicular(u.cross(a))};  // needle-ish: short ac, ab
         c.p = uniform(rng, 0.0, 1.5) * randomUnit(rng);
         c.param = t;
@@ -302,8 +309,7 @@ void addTriangleFamilies(std::vector<Family>& f)
     });
 }
 
-std::vector<Family> families()
-{
+std::vector<Family> families() {
     std::vector<Family> f;
     addPolytopeFamilies(f);
     addBoxFamilies(f);
@@ -313,8 +319,7 @@ std::vector<Family> families()
 
 // ---- Reproducers ------------------------------------------------------------------------------
 
-std::string num(double x)
-{
+std::string num(double x) {
     if (!std::isfinite(x)) return "null";
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.17g", x);
@@ -323,15 +328,13 @@ std::string num(double x)
 
 std::string vec(const Vec3& v) { return "[" + num(v.x()) + "," + num(v.y()) + "," + num(v.z()) + "]"; }
 
-std::string polytopeJson(const std::vector<Vec3>& v)
-{
+std::string polytopeJson(const std::vector<Vec3>& v) {
     std::string s = "{\"polytope\":{\"vertices\":[";
     for (size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + vec(v[i]);
     return s + "],\"position\":[0,0,0],\"rotation\":[1,0,0,0]}}";
 }
 
-std::string obbJson(const Transformed<BoxShape>& b)
-{
+std::string obbJson(const Transformed<BoxShape>& b) {
     const Quat& q = b.transform.rotation;
     return "{\"obb\":{\"center\":" + vec(b.transform.position) + ",\"half_extents\":" + vec(b.shape.halfExtents) +
            ",\"rotation\":[" + num(q.w()) + "," + num(q.x()) + "," + num(q.y()) + "," + num(q.z()) + "]}}";
@@ -342,8 +345,8 @@ std::string jsonString(const std::string& s) { return nlohmann::json(s).dump(); 
 // ---- The engine ---------------------------------------------------------------------------------
 
 struct Check {
-    double error = 0;       // relative to L (booleans: 0 / 1)
-    double tolerance = 0;   // same unit
+    double error = 0;      // relative to L (booleans: 0 / 1)
+    double tolerance = 0;  // same unit
     int iterations = 0;
     bool capHit = false;
     double expected = 0, got = 0;  // for the reproducer's id
@@ -354,8 +357,7 @@ public:
     Engine(const StressOptions& options, StressReport& report) : options_(options), report_(report) {}
 
     void record(const std::string& family, const std::string& check, const std::string& toleranceText, bool info,
-                double param, const Check& c, const std::function<std::string()>& query, int index)
-    {
+                double param, const Check& c, const std::function<std::string()>& query, int index) {
         const auto key = family + "\n" + check;
         auto it = index_.find(key);
         if (it == index_.end()) {
@@ -391,8 +393,7 @@ public:
         report_.failureLines.push_back(line);
     }
 
-    double tampered(const std::string& check, double value) const
-    {
+    double tampered(const std::string& check, double value) const {
         if (options_.tamper) options_.tamper(check, value);
         return value;
     }
@@ -403,23 +404,20 @@ private:
     std::map<std::string, size_t> index_;
 };
 
-double maxAbs(const std::vector<Vec3>& v)
-{
+double maxAbs(const std::vector<Vec3>& v) {
     double m = 0;
     for (const Vec3& x : v) m = std::max(m, x.cwiseAbs().maxCoeff());
     return m;
 }
 
-double maxNorm(const std::vector<Vec3>& v)
-{
+double maxNorm(const std::vector<Vec3>& v) {
     double m = 0;
     for (const Vec3& x : v) m = std::max(m, x.norm());
     return m;
 }
 
 /// h_{A-B}(n) = max_i a_i·n - min_j b_j·n, brute force in long double.
-double supportOfDifference(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n)
-{
+double supportOfDifference(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n) {
     const Eigen::Matrix<long double, 3, 1> m = n.cast<long double>();
     long double ha = -INFINITY, hb = INFINITY;
     for (const Vec3& x : a) ha = std::max(ha, x.cast<long double>().dot(m));
@@ -427,24 +425,21 @@ double supportOfDifference(const std::vector<Vec3>& a, const std::vector<Vec3>& 
     return static_cast<double>(ha - hb);
 }
 
-PolytopeShape polytopeOf(const std::vector<Vec3>& v, bool raw)
-{
+PolytopeShape polytopeOf(const std::vector<Vec3>& v, bool raw) {
     if (raw) return PolytopeShape(v);
     const HullResult h = convexHull(v);
     return h.ok() ? PolytopeShape(h.polyhedron) : PolytopeShape(v);
 }
 
-std::vector<Vec3> toFloat(std::vector<Vec3> v)
-{
+std::vector<Vec3> toFloat(std::vector<Vec3> v) {
     for (Vec3& x : v) x = x.cast<float>().cast<double>();
     return v;
 }
 
 /// GJK distance (SV, Johnson), GJK intersect, EPA depth and normal of two vertex sets.
-void checkPair(Engine& e, const std::string& family, int index, const std::vector<Vec3>& va, const std::vector<Vec3>& vb,
-               const PolytopeShape& a, const PolytopeShape& b, const std::vector<Vec3>& algoA,
-               const std::vector<Vec3>& algoB, bool floatRounded, double param)
-{
+void checkPair(Engine& e, const std::string& family, int index, const std::vector<Vec3>& va,
+               const std::vector<Vec3>& vb, const PolytopeShape& a, const PolytopeShape& b,
+               const std::vector<Vec3>& algoA, const std::vector<Vec3>& algoB, bool floatRounded, double param) {
     const MinkowskiOracle o = minkowskiOracle(va, vb);
     const double L = std::max(centroidRadius(va), centroidRadius(vb));
     const double M = std::max(maxAbs(va), maxAbs(vb));
@@ -454,14 +449,16 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
     const std::string queryA = polytopeJson(algoA), queryB = polytopeJson(algoB);
     auto pairQuery = [&](const char* op, const char* method) {
         return [=, &queryA, &queryB] {
-            return std::string("{\"op\":\"") + op + "\"" + (method ? std::string(",\"method\":\"") + method + "\"" : "") +
-                   ",\"a\":" + queryA + ",\"b\":" + queryB + "}";
+            return std::string("{\"op\":\"") + op + "\"" +
+                   (method ? std::string(",\"method\":\"") + method + "\"" : "") + ",\"a\":" + queryA +
+                   ",\"b\":" + queryB + "}";
         };
     };
     Check oc;
     oc.error = o.ok ? 0.0 : 1.0;  // informational: pairs the oracle could not judge
     oc.tolerance = 0.5;
-    e.record(family, "oracle hull", "hull failed", true, param, oc, [] { return std::string(); }, index);
+    e.record(
+        family, "oracle hull", "hull failed", true, param, oc, [] { return std::string(); }, index);
     if (!o.ok) return;
     const double dTol = kDistanceTol + 8 * kU * M / L + extra;
     double trueDistance = o.inside ? 0.0 : o.distance;
@@ -474,8 +471,8 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
         h.got = o.distance;
         h.error = std::abs(o.distance - bruteForce) / L;
         h.tolerance = dTol;
-        e.record(family, "hull oracle = brute force", "1e-12 L + 8uM", true, param, h,
-                 [] { return std::string(); }, index);
+        e.record(
+            family, "hull oracle = brute force", "1e-12 L + 8uM", true, param, h, [] { return std::string(); }, index);
         trueDistance = bruteForce;
     }
     for (const SimplexSolver solver : {SimplexSolver::SignedVolumes, SimplexSolver::Johnson}) {
@@ -533,8 +530,7 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
              pairQuery("penetration", nullptr), index);
 }
 
-void runPoly(Engine& e, const Family& f, int index, PolyCase& c)
-{
+void runPoly(Engine& e, const Family& f, int index, PolyCase& c) {
     const std::vector<Vec3> algoA = c.floatRounded ? toFloat(c.va) : c.va;
     const std::vector<Vec3> algoB = c.floatRounded ? toFloat(c.vb) : c.vb;
     const PolytopeShape a = polytopeOf(algoA, c.raw), b = polytopeOf(algoB, c.raw);
@@ -542,17 +538,16 @@ void runPoly(Engine& e, const Family& f, int index, PolyCase& c)
     // V-Clip slot: when core/feature_walk/vclip.h lands, add "vclip_distance" = the same oracle here.
 }
 
-std::vector<Vec3> boxCorners(const Transformed<BoxShape>& box)
-{
+std::vector<Vec3> boxCorners(const Transformed<BoxShape>& box) {
     std::vector<Vec3> v;
     const Vec3& h = box.shape.halfExtents;
     for (int i = 0; i < 8; ++i)
-        v.push_back(box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
+        v.push_back(
+            box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
     return v;
 }
 
-void runBox(Engine& e, const Family& f, int index, BoxCase& c)
-{
+void runBox(Engine& e, const Family& f, int index, BoxCase& c) {
     const std::vector<Vec3> va = boxCorners(c.a), vb = boxCorners(c.b);
     const MinkowskiOracle o = minkowskiOracle(va, vb);
     const double L = std::max(c.a.shape.halfExtents.norm(), c.b.shape.halfExtents.norm());
@@ -569,8 +564,9 @@ void runBox(Engine& e, const Family& f, int index, BoxCase& c)
         k.tolerance = kDistanceTol + 8 * kU * M / L;
         k.iterations = g.iterations;
         k.capHit = g.termination == GjkTermination::MaxIterations;
-        e.record(f.name, "gjk_distance", "1e-12 L + 8uM", false, c.param, k,
-                 [&] { return "{\"op\":\"distance\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; }, index);
+        e.record(
+            f.name, "gjk_distance", "1e-12 L + 8uM", false, c.param, k,
+            [&] { return "{\"op\":\"distance\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; }, index);
     }
     const double margin = (o.inside ? o.depth : o.distance) / L;
     const bool gjkHit = e.tampered("gjk_intersect", gjkIntersect(c.a, c.b) ? 1.0 : 0.0) != 0.0;
@@ -580,8 +576,9 @@ void runBox(Engine& e, const Family& f, int index, BoxCase& c)
         k.expected = o.inside;
         k.error = gjkHit != o.inside && margin > kBooleanBand + 8 * kU * M / L ? 1.0 : 0.0;
         k.tolerance = 0.5;
-        e.record(f.name, "gjk_intersect", "exact outside 1e-12 L of touching", false, c.param, k,
-                 [&] { return "{\"op\":\"intersect\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; }, index);
+        e.record(
+            f.name, "gjk_intersect", "exact outside 1e-12 L of touching", false, c.param, k,
+            [&] { return "{\"op\":\"intersect\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; }, index);
     }
     {
         // SAT = GJK = the oracle. SAT may say "overlap" for a pair separated by less than its
@@ -596,10 +593,14 @@ void runBox(Engine& e, const Family& f, int index, BoxCase& c)
         k.expected = o.inside;
         k.error = satHit != o.inside && margin > band ? 1.0 : 0.0;
         k.tolerance = 0.5;
-        e.record(f.name, "sat_obb_obb = oracle (= GJK)", "exact outside 1e-8 L (sep.) / 1e-12 L (overlap)", false,
-                 c.param, k,
-                 [&] { return "{\"op\":\"intersect\",\"method\":\"sat\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; },
-                 index);
+        e.record(
+            f.name, "sat_obb_obb = oracle (= GJK)", "exact outside 1e-8 L (sep.) / 1e-12 L (overlap)", false, c.param,
+            k,
+            [&] {
+                return "{\"op\":\"intersect\",\"method\":\"sat\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) +
+                       "}";
+            },
+            index);
     }
     if (!o.inside) return;
     EpaResult r = penetration(c.a, c.b);
@@ -621,8 +622,7 @@ void runBox(Engine& e, const Family& f, int index, BoxCase& c)
     e.record(f.name, "epa_normal |h(n)-depth|", "1e-10 L + 8uM", false, c.param, n, query, index);
 }
 
-void runTri(Engine& e, const Family& f, int index, TriCase& c)
-{
+void runTri(Engine& e, const Family& f, int index, TriCase& c) {
     const ClosestPointOnTriangleResult r = closestPointOnTriangle(c.p, c.t);
     const double L = std::max({(c.t.b - c.t.a).norm(), (c.t.c - c.t.b).norm(), (c.t.a - c.t.c).norm()});
     const double M = std::max({c.p.cwiseAbs().maxCoeff(), c.t.a.cwiseAbs().maxCoeff(), c.t.b.cwiseAbs().maxCoeff(),
@@ -656,8 +656,7 @@ void runTri(Engine& e, const Family& f, int index, TriCase& c)
 
 }  // namespace
 
-StressReport runStressSuite(const StressOptions& options)
-{
+StressReport runStressSuite(const StressOptions& options) {
     StressReport report;
     Engine engine(options, report);
     const std::vector<Family> fam = families();
@@ -669,41 +668,43 @@ StressReport runStressSuite(const StressOptions& options)
     constexpr int kBatch = 10;
     const bool trace = std::getenv("CDLAB_STRESS_TRACE") != nullptr;
     for (;;) {
-        const bool minimumDone = std::all_of(done.begin(), done.end(), [&](int n) { return n >= options.minCasesPerFamily; });
+        const bool minimumDone =
+            std::all_of(done.begin(), done.end(), [&](int n) { return n >= options.minCasesPerFamily; });
         if (minimumDone && elapsed() >= options.seconds) break;
         for (size_t fi = 0; fi < fam.size(); ++fi) {
             const Family& f = fam[fi];
             for (int k = 0; k < kBatch; ++k) {
                 const int i = done[fi]++;
                 // Case i of family fi depends on (seed, fi, i) only.
-                std::seed_seq seq{static_cast<std::uint32_t>(options.seed), static_cast<std::uint32_t>(options.seed >> 32),
-                                  static_cast<std::uint32_t>(fi), static_cast<std::uint32_t>(i)};
+                std::seed_seq seq{static_cast<std::uint32_t>(options.seed),
+                                  static_cast<std::uint32_t>(options.seed >> 32), static_cast<std::uint32_t>(fi),
+                                  static_cast<std::uint32_t>(i)};
                 std::mt19937_64 rng(seq);
                 // A crash (not a failed check) leaves no report: CDLAB_STRESS_TRACE=1 names each
                 // case before it runs, so the last line names the crashing one.
                 if (trace) std::fprintf(stderr, "cdlab stress: %s #%d\n", f.name.c_str(), i);
                 switch (f.kind) {
-                case Kind::Poly: {
-                    PolyCase c;
-                    f.poly(rng, c);
-                    if (trace)
-                        std::fprintf(stderr, "{\"op\":\"distance\",\"a\":%s,\"b\":%s}\n", polytopeJson(c.va).c_str(),
-                                     polytopeJson(c.vb).c_str());
-                    runPoly(engine, f, i, c);
-                    break;
-                }
-                case Kind::Box: {
-                    BoxCase c;
-                    f.box(rng, c);
-                    runBox(engine, f, i, c);
-                    break;
-                }
-                case Kind::Tri: {
-                    TriCase c;
-                    f.tri(rng, c);
-                    runTri(engine, f, i, c);
-                    break;
-                }
+                    case Kind::Poly: {
+                        PolyCase c;
+                        f.poly(rng, c);
+                        if (trace)
+                            std::fprintf(stderr, "{\"op\":\"distance\",\"a\":%s,\"b\":%s}\n",
+                                         polytopeJson(c.va).c_str(), polytopeJson(c.vb).c_str());
+                        runPoly(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Box: {
+                        BoxCase c;
+                        f.box(rng, c);
+                        runBox(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Tri: {
+                        TriCase c;
+                        f.tri(rng, c);
+                        runTri(engine, f, i, c);
+                        break;
+                    }
                 }
             }
         }
@@ -727,8 +728,7 @@ StressReport runStressSuite(const StressOptions& options)
     return report;
 }
 
-std::string stressTable(const StressReport& report)
-{
+std::string stressTable(const StressReport& report) {
     std::ostringstream out;
     char line[512];
     std::snprintf(line, sizeof line, "%-34s %-30s %7s %6s %9s %9s %9s %6s  %s\n", "family", "check", "cases", "fail",
@@ -749,8 +749,7 @@ std::string stressTable(const StressReport& report)
 
 namespace {
 
-nlohmann::json reportJson(const StressReport& r, const StressOptions& o)
-{
+nlohmann::json reportJson(const StressReport& r, const StressOptions& o) {
     nlohmann::json j;
     j["seconds"] = r.seconds;
     j["seed"] = o.seed;
@@ -758,29 +757,30 @@ nlohmann::json reportJson(const StressReport& r, const StressOptions& o)
     j["checks"] = r.totalCases;
     j["failures"] = r.totalFailures;
     j["ok"] = r.ok();
-    j["size_definition"] = "L: larger circumradius of the two shapes about their vertex centroids (triangle: longest edge); "
-                           "M: largest |coordinate|; u = 2^-53";
+    j["size_definition"] =
+        "L: larger circumradius of the two shapes about their vertex centroids (triangle: longest edge); "
+        "M: largest |coordinate|; u = 2^-53";
     for (const StressCell& c : r.cells) {
-        j["cells"].push_back({{"family", c.family},
-                              {"check", c.check},
-                              {"informational", c.informational},
-                              {"cases", c.cases},
-                              {"failures", c.failures},
-                              {"failure_rate", c.cases ? double(c.failures) / c.cases : 0.0},
-                              {"worst_error", std::isfinite(c.worstError) ? nlohmann::json(c.worstError) : nlohmann::json("inf")},
-                              {"worst_error_over_tolerance",
-                               std::isfinite(c.worstRatio) ? nlohmann::json(c.worstRatio) : nlohmann::json("inf")},
-                              {"tolerance", c.tolerance},
-                              {"max_iterations", c.maxIterations},
-                              {"iteration_cap_hits", c.iterationCapHits}});
+        j["cells"].push_back(
+            {{"family", c.family},
+             {"check", c.check},
+             {"informational", c.informational},
+             {"cases", c.cases},
+             {"failures", c.failures},
+             {"failure_rate", c.cases ? double(c.failures) / c.cases : 0.0},
+             {"worst_error", std::isfinite(c.worstError) ? nlohmann::json(c.worstError) : nlohmann::json("inf")},
+             {"worst_error_over_tolerance",
+              std::isfinite(c.worstRatio) ? nlohmann::json(c.worstRatio) : nlohmann::json("inf")},
+             {"tolerance", c.tolerance},
+             {"max_iterations", c.maxIterations},
+             {"iteration_cap_hits", c.iterationCapHits}});
     }
     return j;
 }
 
 /// Error-vs-parameter figures: one per family with iterative checks, one series per check.
 /// False when a figure could not be written (reported); no GL context means no figures, not an error.
-bool writeFigures(const StressReport& r, const std::string& outDir)
-{
+bool writeFigures(const StressReport& r, const std::string& outDir) {
     std::unique_ptr<render::GlContext> gl;
     try {
         gl = render::GlContext::create();
@@ -795,15 +795,25 @@ bool writeFigures(const StressReport& r, const std::string& outDir)
         std::vector<std::string> checks;
     };
     const std::vector<Figure> figures = {
-        {"error_vs_thickness_slivers.png", "slivers and needles", "GJK distance error on slivers: signed volumes vs Johnson",
+        {"error_vs_thickness_slivers.png",
+         "slivers and needles",
+         "GJK distance error on slivers: signed volumes vs Johnson",
          {"gjk_distance", "gjk_distance Johnson"}},
-        {"error_vs_scale.png", "scale 1e-6..1e6", "Error relative to size vs scale (8-vertex polytopes)",
+        {"error_vs_scale.png",
+         "scale 1e-6..1e6",
+         "Error relative to size vs scale (8-vertex polytopes)",
          {"gjk_distance", "gjk_distance Johnson", "epa_depth"}},
-        {"error_vs_offset.png", "offset 1e3..1e9", "Error relative to size vs distance from the origin",
+        {"error_vs_offset.png",
+         "offset 1e3..1e9",
+         "Error relative to size vs distance from the origin",
          {"gjk_distance", "gjk_distance Johnson", "epa_depth"}},
-        {"error_vs_gap.png", "gap 1e-12..1e-3, touching", "Error relative to size vs gap (separated and overlapping)",
+        {"error_vs_gap.png",
+         "gap 1e-12..1e-3, touching",
+         "Error relative to size vs gap (separated and overlapping)",
          {"gjk_distance", "gjk_distance Johnson", "epa_depth", "epa_normal |h(n)-depth|"}},
-        {"error_vs_angle_parallel_edges.png", "nearly parallel edges", "Error vs angle between nearly parallel edges",
+        {"error_vs_angle_parallel_edges.png",
+         "nearly parallel edges",
+         "Error vs angle between nearly parallel edges",
          {"gjk_distance", "gjk_distance Johnson", "epa_depth"}},
     };
     const std::vector<std::string> families = [&] {
@@ -828,10 +838,10 @@ bool writeFigures(const StressReport& r, const std::string& outDir)
             for (const StressCell& c : r.cells) {
                 if (c.family != fig.family || c.check != check) continue;
                 PlotSeries s;
-                s.label = check == "gjk_distance" ? "GJK distance, signed volumes"
+                s.label = check == "gjk_distance"           ? "GJK distance, signed volumes"
                           : check == "gjk_distance Johnson" ? "GJK distance, Johnson"
-                          : check == "epa_depth" ? "EPA depth"
-                                                 : "EPA normal |h(n) - depth|";
+                          : check == "epa_depth"            ? "EPA depth"
+                                                            : "EPA normal |h(n) - depth|";
                 s.style = k++;
                 for (const auto& [x, y] : c.samples)
                     if (x > 0 && std::isfinite(y)) s.points.emplace_back(x, y);
@@ -853,8 +863,7 @@ bool writeFigures(const StressReport& r, const std::string& outDir)
     return written;
 }
 
-int usage(int status)
-{
+int usage(int status) {
     std::cerr << "usage: cdlab stress [--seconds N] [--quick] [--seed S] [--out DIR] [--no-figures]\n"
                  "  families of hard inputs checked against independent oracles; writes DIR/stress.json,\n"
                  "  DIR/failures.jsonl (one `cdlab query` line per failure) and error-vs-parameter figures\n"
@@ -865,8 +874,7 @@ int usage(int status)
 
 }  // namespace
 
-int runStress(int argc, char** argv)
-{
+int runStress(int argc, char** argv) {
     StressOptions options;
     options.progress = true;
     std::string outDir = "out/stress";
@@ -916,7 +924,8 @@ int runStress(int argc, char** argv)
         return 2;
     }
     if (figures && !writeFigures(report, outDir)) return 2;
-    std::cerr << "cdlab stress: wrote " << outDir << "/stress.json, failures.jsonl" << (figures ? " and figures" : "") << "\n";
+    std::cerr << "cdlab stress: wrote " << outDir << "/stress.json, failures.jsonl" << (figures ? " and figures" : "")
+              << "\n";
     return report.ok() ? 0 : 1;
 }
 

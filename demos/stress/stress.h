@@ -18,11 +18,11 @@
 namespace cdlab::demos {
 
 struct StressOptions {
-    double seconds = 20.0;        ///< time budget; every family runs at least minCasesPerFamily
+    double seconds = 20.0;  ///< time budget; every family runs at least minCasesPerFamily
     int minCasesPerFamily = 50;
-    std::uint64_t seed = 1;       ///< case i of family f draws from seed, f, i only (replayable)
-    bool progress = false;        ///< progress lines on stderr
-    int maxFailureLines = 2000;   ///< reproducers kept (failures are all counted)
+    std::uint64_t seed = 1;      ///< case i of family f draws from seed, f, i only (replayable)
+    bool progress = false;       ///< progress lines on stderr
+    int maxFailureLines = 2000;  ///< reproducers kept (failures are all counted)
     /// Test hook: called with (check name, answer) before each answer is checked, e.g. to corrupt
     /// it and see the check fire. nullptr in normal runs.
     std::function<void(const std::string& check, double& value)> tamper;
@@ -31,13 +31,13 @@ struct StressOptions {
 /// One (family, check) cell of the report.
 struct StressCell {
     std::string family, check;
-    bool informational = false;   ///< reported, not judged (e.g. Johnson's sub-algorithm)
-    int cases = 0;                ///< answers checked
-    int failures = 0;             ///< error > tolerance, NaN, or iteration cap reached
-    double worstError = 0.0;      ///< largest error (relative to the problem size; booleans: 1)
-    double worstRatio = 0.0;      ///< largest error / tolerance (> 1: failure)
-    std::string tolerance;        ///< the tolerance as stated in the report
-    int maxIterations = 0;        ///< largest iteration count of one query (0: not iterative)
+    bool informational = false;  ///< reported, not judged (e.g. Johnson's sub-algorithm)
+    int cases = 0;               ///< answers checked
+    int failures = 0;            ///< error > tolerance, NaN, or iteration cap reached
+    double worstError = 0.0;     ///< largest error (relative to the problem size; booleans: 1)
+    double worstRatio = 0.0;     ///< largest error / tolerance (> 1: failure)
+    std::string tolerance;       ///< the tolerance as stated in the report
+    int maxIterations = 0;       ///< largest iteration count of one query (0: not iterative)
     int iterationCapHits = 0;
     /// (family parameter, error) per case, for the error-vs-parameter figures (capped in size).
     std::vector<std::pair<double, double>> samples;
@@ -45,7 +45,7 @@ struct StressCell {
 
 struct StressReport {
     std::vector<StressCell> cells;
-    std::vector<std::string> failureLines;  ///< `cdlab query` reproducers (JSON Lines)
+    std::vector<std::string> failureLines;     ///< `cdlab query` reproducers (JSON Lines)
     std::vector<std::string> familyParameter;  ///< per family: what the sample parameter is
     double seconds = 0.0;
     int totalCases = 0, totalFailures = 0;  ///< over judged cells

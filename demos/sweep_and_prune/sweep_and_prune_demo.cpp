@@ -63,7 +63,8 @@ std::string pairName(const BoxPair& p) { return boxName(p.a) + boxName(p.b); }
 std::string pairList(const std::vector<BoxPair>& pairs) {
     if (pairs.empty()) return "none";
     std::string s;
-    for (const BoxPair& p : pairs) s += (s.empty() ? "" : "  ") + std::string("{") + boxName(p.a) + "," + boxName(p.b) + "}";
+    for (const BoxPair& p : pairs)
+        s += (s.empty() ? "" : "  ") + std::string("{") + boxName(p.a) + "," + boxName(p.b) + "}";
     return s;
 }
 
@@ -98,7 +99,8 @@ std::vector<FrameData> simulate(const Settings& s) {
 std::string swapLine(const SapSwap& s) {
     std::string line = std::string(kAxisName[s.axis]) + ": " + endName(s.movingObject, s.movingIsMax) + " jumps over " +
                        endName(s.passedObject, s.passedIsMax) + ": ";
-    const std::string ab = boxName(std::min(s.movingObject, s.passedObject)) + boxName(std::max(s.movingObject, s.passedObject));
+    const std::string ab =
+        boxName(std::min(s.movingObject, s.passedObject)) + boxName(std::max(s.movingObject, s.passedObject));
     if (s.movingIsMax == s.passedIsMax) return line + "same kind, no overlap change";
     if (!s.movingIsMax) {
         line += ab + " start overlapping on " + kAxisName[s.axis];
@@ -122,7 +124,8 @@ public:
             return out;
         }
         const int ss = runSupersample(common_, ctx);
-        for (std::size_t f = 0; f < frames.size(); ++f) out.frames.push_back(drawFrame(*ctx.gl, ss, frames, static_cast<int>(f)));
+        for (std::size_t f = 0; f < frames.size(); ++f)
+            out.frames.push_back(drawFrame(*ctx.gl, ss, frames, static_cast<int>(f)));
         return out;
     }
 
@@ -134,7 +137,8 @@ private:
         Json names = Json::array();
         for (std::size_t i = 0; i < s_.boxes.size(); ++i) names.push_back(boxName(static_cast<int>(i)));
         t["boxes"] = names;
-        t["tie_rule"] = "at equal coordinates a min endpoint sorts before a max endpoint (closed boxes: touching overlaps)";
+        t["tie_rule"] =
+            "at equal coordinates a min endpoint sorts before a max endpoint (closed boxes: touching overlaps)";
         Json fs = Json::array();
         std::int64_t totalSwaps = 0;
         for (std::size_t f = 0; f < frames.size(); ++f) {
@@ -208,14 +212,18 @@ private:
         for (std::size_t i = 0; i < d.boxes.size(); ++i) {
             const Aabb& b = d.boxes[i];
             std::vector<Eigen::Vector3d> v(8);
-            for (int k = 0; k < 8; ++k) v[k] = Vec3(k & 1 ? b.max.x() : b.min.x(), k & 2 ? b.max.y() : b.min.y(), k & 4 ? b.max.z() : b.min.z());
-            const std::vector<Eigen::Vector3i> tris = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                                                       {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+            for (int k = 0; k < 8; ++k)
+                v[k] =
+                    Vec3(k & 1 ? b.max.x() : b.min.x(), k & 2 ? b.max.y() : b.min.y(), k & 4 ? b.max.z() : b.min.z());
+            const std::vector<Eigen::Vector3i> tris = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6},
+                                                       {0, 1, 4}, {1, 5, 4}, {2, 6, 3}, {3, 6, 7},
+                                                       {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
             const Color col = categorical(static_cast<int>(i));
             c.drawMesh(v, tris, col.withAlpha(0.35f), true);
             const LineStyle edge = paired[i] ? LineStyle{3.0f, roleColor(Role::Highlight), 0.0f, false}
                                              : LineStyle{1.5f, col.scaled(0.7f), 0.0f, false};
-            const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+            const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                      {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
             for (const auto& e : edges) c.drawLine(v[e[0]], v[e[1]], edge);
             TextStyle ts = labelStyle(Role::Ink, 18.0f);
             ts.color = col.scaled(0.6f);
@@ -260,8 +268,9 @@ private:
                 line("then one sweep along x pairing boxes that overlap on y and z", body, 26);
             } else {
                 line("Frame " + std::to_string(f) + ": boxes moved; insertion sort repairs each axis", head);
-                line("swaps: x " + std::to_string(d.result.swapsPerAxis[0]) + ", y " + std::to_string(d.result.swapsPerAxis[1]) +
-                         ", z " + std::to_string(d.result.swapsPerAxis[2]) + "  (= inversions of the old order)",
+                line("swaps: x " + std::to_string(d.result.swapsPerAxis[0]) + ", y " +
+                         std::to_string(d.result.swapsPerAxis[1]) + ", z " + std::to_string(d.result.swapsPerAxis[2]) +
+                         "  (= inversions of the old order)",
                      body, 26);
                 // At most 6 lines: every swap that added or removed a pair, then the others in order.
                 const int maxLines = 6;
@@ -282,7 +291,8 @@ private:
                 const int shown = kept;
                 if (d.trace.swaps.empty()) line("no swaps: every order still holds, no pair changes", body);
                 if (static_cast<int>(d.trace.swaps.size()) > shown)
-                    line("... and " + std::to_string(d.trace.swaps.size() - shown) + " more swaps (no pair change)", body);
+                    line("... and " + std::to_string(d.trace.swaps.size() - shown) + " more swaps (no pair change)",
+                         body);
                 y += 6;
             }
             TextStyle pairsStyle = head;
@@ -305,7 +315,8 @@ private:
                 const Eigen::Vector2d q = o + 22.0 * dir[k];
                 c.drawArrow(P(o.x(), o.y()), P(q.x(), q.y()), lineStyle(Role::Ink, 2.0f, false, true));
                 const Eigen::Vector2d t = o + 33.0 * dir[k];
-                c.drawTextPx(t.x(), t.y(), kAxisName[k], TextStyle{15.0f, roleColor(Role::Ink), Anchor::Center, false, true});
+                c.drawTextPx(t.x(), t.y(), kAxisName[k],
+                             TextStyle{15.0f, roleColor(Role::Ink), Anchor::Center, false, true});
             }
         }
         drawTitleAndCaption(c, common_.title + " — frame " + std::to_string(f), common_.caption);
@@ -340,8 +351,8 @@ private:
 
     // Left: each box's interval on axis k as a bar (moved endpoints marked), the ties, and the number line.
     template <class ToWorld>
-    void drawIntervals(Canvas& c, const ToWorld& P, const std::vector<FrameData>& frames, int f, int k, const TextStyle& small, int n,
-                       const std::vector<char>& moved) const {
+    void drawIntervals(Canvas& c, const ToWorld& P, const std::vector<FrameData>& frames, int f, int k,
+                       const TextStyle& small, int n, const std::vector<char>& moved) const {
         const FrameData& d = frames[f];
         const double y0 = kPanelY + k * kPanelH;
         // Fixed range over all frames so the motion reads from frame to frame.
@@ -371,7 +382,8 @@ private:
             for (int e = 0; e < 2; ++e)
                 if (moved[2 * i + e]) {
                     const double x = e ? xb : xa;
-                    c.drawLine(P(x, yc - hh - 2), P(x, yc + hh + 2), LineStyle{3.0f, roleColor(Role::Highlight), 0.0f, true});
+                    c.drawLine(P(x, yc - hh - 2), P(x, yc + hh + 2),
+                               LineStyle{3.0f, roleColor(Role::Highlight), 0.0f, true});
                 }
         }
         // Ties: a max of one box at the same coordinate as the min of another (touching intervals),
@@ -384,10 +396,8 @@ private:
                     const double v = d.boxes[i].max[k];
                     auto it = std::find_if(ties.begin(), ties.end(), [&](const auto& t) { return t.first == v; });
                     const std::string what = endName(j, false) + " before " + endName(i, true);
-                    if (it == ties.end())
-                        ties.emplace_back(v, "tie: " + what);
-                    else
-                        it->second += ", " + what;
+                    if (it == ties.end()) ties.emplace_back(v, "tie: " + what);
+                    else it->second += ", " + what;
                 }
         for (const auto& [v, label] : ties) {
             const double x = X(v);
@@ -426,7 +436,8 @@ private:
         TextStyle hdr = small;
         hdr.sizePx = 12.0f;
         hdr.color = roleColor(Role::Muted).scaled(0.7f);
-        c.drawTextPx(kOrderX0 - 8, yBefore, f == 0 ? "by id" : "before", TextStyle{12.0f, hdr.color, Anchor::Right, false, false});
+        c.drawTextPx(kOrderX0 - 8, yBefore, f == 0 ? "by id" : "before",
+                     TextStyle{12.0f, hdr.color, Anchor::Right, false, false});
         c.drawTextPx(kOrderX0 - 8, yAfter, "after", TextStyle{12.0f, hdr.color, Anchor::Right, false, false});
         std::vector<int> oldRank(m, 0);
         for (int r = 0; r < m; ++r) oldRank[d.before[k][r].tag] = r;
@@ -436,9 +447,10 @@ private:
             const bool changed = r0 != r;
             const Eigen::Vector3d a = P(slotX(r0), yBefore + 10), b = P(slotX(r), yAfter - 10);
             if (changed)
-                c.drawArrow(a, b, LineStyle{2.5f, f == 0 ? roleColor(Role::Muted).scaled(0.8f) : roleColor(Role::Highlight), 0.0f, true});
-            else
-                c.drawLine(a, b, LineStyle{1.0f, roleColor(Role::Muted), 0.0f, true});
+                c.drawArrow(a, b,
+                            LineStyle{2.5f, f == 0 ? roleColor(Role::Muted).scaled(0.8f) : roleColor(Role::Highlight),
+                                      0.0f, true});
+            else c.drawLine(a, b, LineStyle{1.0f, roleColor(Role::Muted), 0.0f, true});
         }
         auto token = [&](double x, double y, const SapEndpoint& e, bool hot) {
             TextStyle t = hot ? smallBold : small;

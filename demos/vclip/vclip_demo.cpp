@@ -18,17 +18,17 @@
 #include <cmath>
 #include <optional>
 
-#include "core/gjk_epa/gjk.h"
-#include "core/geometry/shapes.h"
 #include "core/feature_walk/vclip.h"
+#include "core/geometry/shapes.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
-#include "demos/scene/scene_limits.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/draw/convex_drawable.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
-#include "demos/draw/feature_walk_figure.h"
+#include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -38,7 +38,8 @@ namespace {
 using namespace render;
 using namespace walkfigure;
 
-const std::vector<std::string> kLayers = {"planes", "clip", "derivative", "update", "closest", "labels", "diagram", "plot"};
+const std::vector<std::string> kLayers = {"planes",  "clip",   "derivative", "update",
+                                          "closest", "labels", "diagram",    "plot"};
 
 /// A coherent motion: B's pose at call k is its scene pose turned by k * orbitDegrees about the
 /// axis through `center` and spun by k * spinDegrees about its own body axis.
@@ -169,16 +170,27 @@ private:
     Json stepJson(const VClipTraceStep& st) const {
         Json planes = Json::array();
         for (const VClipPlaneTest& p : st.planes)
-            planes.push_back({{"region_body", p.regionBody}, {"owner", featureJson(p.owner)}, {"neighbor", featureJson(p.neighbor)},
-                              {"plane", p.plane}, {"signed_distance", p.signedDistance}, {"violated", p.violated},
+            planes.push_back({{"region_body", p.regionBody},
+                              {"owner", featureJson(p.owner)},
+                              {"neighbor", featureJson(p.neighbor)},
+                              {"plane", p.plane},
+                              {"signed_distance", p.signedDistance},
+                              {"violated", p.violated},
                               {"maximal", p.maximal}});
         Json clips = Json::array();
         for (const VClipClip& c : st.clips)
-            clips.push_back({{"edge_body", c.edgeBody}, {"edge", featureJson(c.edge)}, {"region", featureJson(c.region)},
-                             {"lambda_min", c.lambdaMin}, {"lambda_max", c.lambdaMax}, {"n_min", featureJson(c.neighborMin)},
-                             {"n_max", featureJson(c.neighborMax)}, {"simply_excluded", c.simplyExcluded},
-                             {"compound_excluded", c.compoundExcluded}, {"excluded_by", featureJson(c.excludedBy)},
-                             {"derivative_min", c.derivativeMin}, {"derivative_max", c.derivativeMax}});
+            clips.push_back({{"edge_body", c.edgeBody},
+                             {"edge", featureJson(c.edge)},
+                             {"region", featureJson(c.region)},
+                             {"lambda_min", c.lambdaMin},
+                             {"lambda_max", c.lambdaMax},
+                             {"n_min", featureJson(c.neighborMin)},
+                             {"n_max", featureJson(c.neighborMax)},
+                             {"simply_excluded", c.simplyExcluded},
+                             {"compound_excluded", c.compoundExcluded},
+                             {"excluded_by", featureJson(c.excludedBy)},
+                             {"derivative_min", c.derivativeMin},
+                             {"derivative_max", c.derivativeMax}});
         return {{"step", st.step},
                 {"state", nameOf(st.state)},
                 {"feature_a", featureJson(st.featureA)},
@@ -212,16 +224,21 @@ private:
                   {"gjk_intersect", c.gjk.intersect}};
         if (c.result.status == VClipStatus::Separated) {
             j["theorem1_a_in_region_b"] = checkInRegion(s_.b, c.poseB, c.result.featureB, c.result.pointA).minDistance;
-            j["theorem1_b_in_region_a"] = checkInRegion(s_.a, s_.a.pose, c.result.featureA, c.result.pointB).minDistance;
+            j["theorem1_b_in_region_a"] =
+                checkInRegion(s_.a, s_.a.pose, c.result.featureA, c.result.pointB).minDistance;
         }
         return j;
     }
 
     Json traceJson(const std::vector<Call>& calls) const {
         Json t;
-        t["bodies"] = {{{"kind", s_.a.kind}, {"vertices", s_.a.regions.mesh().vertexCount()}, {"edges", s_.a.regions.mesh().edgeCount()},
+        t["bodies"] = {{{"kind", s_.a.kind},
+                        {"vertices", s_.a.regions.mesh().vertexCount()},
+                        {"edges", s_.a.regions.mesh().edgeCount()},
                         {"faces", s_.a.regions.mesh().faceCount()}},
-                       {{"kind", s_.b.kind}, {"vertices", s_.b.regions.mesh().vertexCount()}, {"edges", s_.b.regions.mesh().edgeCount()},
+                       {{"kind", s_.b.kind},
+                        {"vertices", s_.b.regions.mesh().vertexCount()},
+                        {"edges", s_.b.regions.mesh().edgeCount()},
                         {"faces", s_.b.regions.mesh().faceCount()}}};
         if (!s_.motion) {
             const Call& c = calls.front();
@@ -288,7 +305,9 @@ private:
     Vec3 centroidA() const { return s_.a.pose.apply(s_.a.regions.mesh().centroid()); }
     Vec3 centroidB(const Transform& poseB) const { return poseB.apply(s_.b.regions.mesh().centroid()); }
 
-    Color featureColor(int bodyIndex) const { return roleColor(bodyIndex == 0 ? Role::ShapeA : Role::ShapeB).scaled(0.8f); }
+    Color featureColor(int bodyIndex) const {
+        return roleColor(bodyIndex == 0 ? Role::ShapeA : Role::ShapeB).scaled(0.8f);
+    }
 
     void drawClosest(Canvas& c, const Vec3& pa, const Vec3& pb, bool named) const {
         const bool labels = common_.hasLayer("labels");
@@ -307,8 +326,9 @@ private:
     }
 
     // A Voronoi-plane patch and the tested point's offset from it.
-    void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& poseB, int plane, const VClipFeature& owner, const Vec3& tested,
-                       double signedDistance, const Vec3& normalIntoOwner, bool violated, bool maximal) const {
+    void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& poseB, int plane, const VClipFeature& owner,
+                       const Vec3& tested, double signedDistance, const Vec3& normalIntoOwner, bool violated,
+                       bool maximal) const {
         // plane < 0: the trace's face-plane test of handleLocalMin (owner = the face the vertex is
         // farthest above): drawn as that face, enlarged a little about its centre.
         const Transform& pose = &regionBody == &s_.a ? s_.a.pose : poseB;
@@ -342,7 +362,8 @@ private:
         const bool labels = common_.hasLayer("labels");
         if (excluded) {
             if (labels)
-                drawLabelAway(c, 0.5 * (cl.tail + cl.head), center_, cl.simplyExcluded ? "simply excluded" : "compound excluded",
+                drawLabelAway(c, 0.5 * (cl.tail + cl.head), center_,
+                              cl.simplyExcluded ? "simply excluded" : "compound excluded",
                               TextStyle{15.0f, violatedColor().scaled(0.8f), Anchor::Center, true, true}, 10.0);
             return;
         }
@@ -362,8 +383,9 @@ private:
                     const Vec3 tip = p - double(sign) * dir * 0.22 * radius_;
                     c.drawArrow(p, tip, lineStyle(Role::Support, 3.0f, false, true));
                     if (labels)
-                        drawLabelAway(c, tip, p, std::string("D′") + (sign > 0 ? " > 0" : " < 0"),
-                                      TextStyle{14.0f, roleColor(Role::Support).scaled(0.75f), Anchor::Center, true, true}, 6.0);
+                        drawLabelAway(
+                            c, tip, p, std::string("D′") + (sign > 0 ? " > 0" : " < 0"),
+                            TextStyle{14.0f, roleColor(Role::Support).scaled(0.75f), Anchor::Center, true, true}, 6.0);
                 } else {
                     c.drawPoint(p, 7.0f, roleColor(Role::Support), true, 1.2f, roleColor(Role::Ink));
                 }
@@ -420,7 +442,8 @@ private:
         if (common_.hasLayer("planes"))
             for (const VClipPlaneTest& p : st->planes) {
                 if (st->planes.size() > 8 && !p.violated && !p.maximal) continue;
-                drawPlaneTest(c, body(p.regionBody), call.poseB, p.plane, p.owner, p.testedPoint, p.signedDistance, p.planeNormal, p.violated, p.maximal);
+                drawPlaneTest(c, body(p.regionBody), call.poseB, p.plane, p.owner, p.testedPoint, p.signedDistance,
+                              p.planeNormal, p.violated, p.maximal);
                 ++shown;
             }
         if (common_.hasLayer("clip"))
@@ -439,14 +462,17 @@ private:
                               TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
         }
         heading = "Step " + std::to_string(st->step) + ": state " + nameOf(st->state);
-        const bool faceSearch = std::any_of(st->planes.begin(), st->planes.end(), [](const VClipPlaneTest& p) { return p.plane < 0; });
-        sub = std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated (red)";
+        const bool faceSearch =
+            std::any_of(st->planes.begin(), st->planes.end(), [](const VClipPlaneTest& p) { return p.plane < 0; });
+        sub =
+            std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated (red)";
         if (faceSearch) sub = "local minimum: red = the face plane V is farthest above";
         if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
         if (!st->clips.empty()) sub += "; " + std::to_string(st->clips.size()) + " clip(s)";
 
-        lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) + "): " + featureLabel(st->featureA, 0) + " vs " +
-                        featureLabel(st->featureB, 1) + ";  rule: " + st->rule);
+        lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) +
+                        "): " + featureLabel(st->featureA, 0) + " vs " + featureLabel(st->featureB, 1) +
+                        ";  rule: " + st->rule);
         std::string l2;
         for (const VClipClip& cl : st->clips) {
             if (!l2.empty()) l2 += ";  ";
@@ -454,29 +480,41 @@ private:
             if (cl.simplyExcluded) l2 += "simply excluded by " + nameOf(cl.excludedBy);
             else if (cl.compoundExcluded) l2 += "compound excluded";
             else
-                l2 += "λ ∈ [" + formatNumber(cl.lambdaMin) + ", " + formatNumber(cl.lambdaMax) + "], N = " + nameOf(cl.neighborMin) + ", " +
-                      nameOf(cl.neighborMax) + ", D′ signs " + signName(cl.derivativeMin) + " " + signName(cl.derivativeMax);
+                l2 += "λ ∈ [" + formatNumber(cl.lambdaMin) + ", " + formatNumber(cl.lambdaMax) +
+                      "], N = " + nameOf(cl.neighborMin) + ", " + nameOf(cl.neighborMax) + ", D′ signs " +
+                      signName(cl.derivativeMin) + " " + signName(cl.derivativeMax);
         }
         if (l2.empty()) {
             const VClipPlaneTest* worst = nullptr;
             for (const VClipPlaneTest& p : st->planes)
-                if (!worst || (p.maximal && !worst->maximal) || (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance)) worst = &p;
+                if (!worst || (p.maximal && !worst->maximal) ||
+                    (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance))
+                    worst = &p;
             if (!worst) l2 = "no plane test";
             else if (worst->plane < 0)
-                l2 = "handleLocalMin: V lies on or behind " + nameOf(st->featureB.type == VClipFeatureType::Face ? st->featureB : st->featureA) +
-                     "'s plane; the face it is farthest above is " + nameOf(worst->owner) + " (height " + formatNumber(worst->signedDistance) + ")";
+                l2 = "handleLocalMin: V lies on or behind " +
+                     nameOf(st->featureB.type == VClipFeatureType::Face ? st->featureB : st->featureA) +
+                     "'s plane; the face it is farthest above is " + nameOf(worst->owner) + " (height " +
+                     formatNumber(worst->signedDistance) + ")";
             else
-                l2 = std::string(worst->maximal ? "maximally violated" : worst->violated ? "most violated" : "closest") + " plane: VR(" +
-                     nameOf(worst->owner) + ") | " + nameOf(worst->neighbor) + " at signed distance " + formatNumber(worst->signedDistance);
+                l2 = std::string(worst->maximal    ? "maximally violated"
+                                 : worst->violated ? "most violated"
+                                                   : "closest") +
+                     " plane: VR(" + nameOf(worst->owner) + ") | " + nameOf(worst->neighbor) + " at signed distance " +
+                     formatNumber(worst->signedDistance);
         }
         lines.push_back(l2);
         std::string l3;
         if (st->kind == VClipStepKind::Update) {
-            l3 = "update " + updateText(*st) + ";  distance " + formatNumber(st->distanceBefore) + " → " + formatNumber(st->distanceAfter) +
-                 (st->localMinimum ? " (handleLocalMin: the face the vertex is farthest above)"
-                  : st->distanceChange < 0 ? " (decreased: dimension up)" : st->distanceChange == 0 ? " (equal: dimension down)" : " (increased)");
+            l3 = "update " + updateText(*st) + ";  distance " + formatNumber(st->distanceBefore) + " → " +
+                 formatNumber(st->distanceAfter) +
+                 (st->localMinimum          ? " (handleLocalMin: the face the vertex is farthest above)"
+                  : st->distanceChange < 0  ? " (decreased: dimension up)"
+                  : st->distanceChange == 0 ? " (equal: dimension down)"
+                                            : " (increased)");
         } else if (st->kind == VClipStepKind::Done) {
-            l3 = "DONE: each closest point lies in the other feature's Voronoi region; distance " + formatNumber(st->distanceBefore);
+            l3 = "DONE: each closest point lies in the other feature's Voronoi region; distance " +
+                 formatNumber(st->distanceBefore);
         } else if (st->kind == VClipStepKind::Penetration) {
             l3 = std::string("penetration found (") + nameOf(r.penetration) + ")";
         } else {
@@ -508,34 +546,42 @@ private:
                 for (const auto& t : inB.tests)
                     if (t.plane >= 0 && inB.tests.size() <= 9)
                         drawPlaneTest(c, s_.b, call.poseB, t.plane, r.featureB, r.pointA, t.distance,
-                                      call.poseB.rotate(s_.b.regions.plane(t.plane).normal * (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
+                                      call.poseB.rotate(s_.b.regions.plane(t.plane).normal *
+                                                        (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
                                       t.distance < 0, false);
                 for (const auto& t : inA.tests)
                     if (t.plane >= 0 && inA.tests.size() <= 9)
                         drawPlaneTest(c, s_.a, call.poseB, t.plane, r.featureA, r.pointB, t.distance,
-                                      s_.a.pose.rotate(s_.a.regions.plane(t.plane).normal * (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
+                                      s_.a.pose.rotate(s_.a.regions.plane(t.plane).normal *
+                                                       (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
                                       t.distance < 0, false);
             }
-            auto verdict = [](const RegionCheck& k) { return k.minDistance >= -1e-12 ? " ≥ 0: inside" : " < 0: OUTSIDE"; };
-            l2 = "Theorem 1: p_A ∈ VR(" + featureLabel(r.featureB, 1) + "): " + std::to_string(inB.tests.size()) + " planes, min " +
-                 formatNumber(inB.minDistance) + verdict(inB) + ";  p_B ∈ VR(" + featureLabel(r.featureA, 0) + "): " +
-                 std::to_string(inA.tests.size()) + " planes, min " + formatNumber(inA.minDistance) + verdict(inA);
+            auto verdict = [](const RegionCheck& k) {
+                return k.minDistance >= -1e-12 ? " ≥ 0: inside" : " < 0: OUTSIDE";
+            };
+            l2 = "Theorem 1: p_A ∈ VR(" + featureLabel(r.featureB, 1) + "): " + std::to_string(inB.tests.size()) +
+                 " planes, min " + formatNumber(inB.minDistance) + verdict(inB) + ";  p_B ∈ VR(" +
+                 featureLabel(r.featureA, 0) + "): " + std::to_string(inA.tests.size()) + " planes, min " +
+                 formatNumber(inA.minDistance) + verdict(inA);
         } else {
-            l2 = std::string("verdict: ") + nameOf(r.penetration) + ", common point " + formatPoint(r.pointA) + " (distance 0)";
+            l2 = std::string("verdict: ") + nameOf(r.penetration) + ", common point " + formatPoint(r.pointA) +
+                 " (distance 0)";
         }
         if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
         heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
         sub = separated ? "closest points; green: region planes they satisfy"
                         : std::string("penetration: ") + nameOf(r.penetration);
-        lines.push_back(std::string("Result: ") + nameOf(r.status) + (separated ? ", closest features " : ", found at features ") +
-                        featureLabel(r.featureA, 0) + " and " +
-                        featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
+        lines.push_back(std::string("Result: ") + nameOf(r.status) +
+                        (separated ? ", closest features " : ", found at features ") + featureLabel(r.featureA, 0) +
+                        " and " + featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
                         (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
         lines.push_back(l2);
-        lines.push_back(separated ? "so no other feature pair is closer (Mirtich 1998, Thm. 1): p_A = " + formatPoint(r.pointA) +
-                                        ", p_B = " + formatPoint(r.pointB)
-                                  : "the bodies intersect: V-Clip stops with this feature pair (a depth needs EPA or another method)" +
-                                        (r.message.empty() ? std::string() : "; " + r.message));
+        lines.push_back(
+            separated
+                ? "so no other feature pair is closer (Mirtich 1998, Thm. 1): p_A = " + formatPoint(r.pointA) +
+                      ", p_B = " + formatPoint(r.pointB)
+                : "the bodies intersect: V-Clip stops with this feature pair (a depth needs EPA or another method)" +
+                      (r.message.empty() ? std::string() : "; " + r.message));
         f.name = "result";
         f.caption = std::string("result: ") + nameOf(r.status) + ", distance " + formatNumber(r.distance);
     }
@@ -553,11 +599,17 @@ private:
             din.from = stateIndex(st->state);
             din.to = stateIndex(tr.steps[index + 1].state);
         }
-        if (st) din.terminal = st->kind == VClipStepKind::Update ? "update → " + std::string(index + 1 < int(tr.steps.size()) ? nameOf(tr.steps[index + 1].state) : "?")
-                               : st->kind == VClipStepKind::Done ? "DONE" : nameOf(st->kind);
-        else din.terminal = std::string(nameOf(r.status)) + ": " + std::to_string(tr.steps.size()) + " states, " + std::to_string(r.steps) + " update(s)";
+        if (st)
+            din.terminal =
+                st->kind == VClipStepKind::Update
+                    ? "update → " +
+                          std::string(index + 1 < int(tr.steps.size()) ? nameOf(tr.steps[index + 1].state) : "?")
+                : st->kind == VClipStepKind::Done ? "DONE"
+                                                  : nameOf(st->kind);
+        else
+            din.terminal = std::string(nameOf(r.status)) + ": " + std::to_string(tr.steps.size()) + " states, " +
+                           std::to_string(r.steps) + " update(s)";
         return drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din);
-
     }
 
     // The inter-feature distance per update, coloured by what the update did.
@@ -577,8 +629,10 @@ private:
             if (s.kind != VClipStepKind::Update) continue;
             sd.x.push_back(s.step + 1);
             sd.y.push_back(s.distanceAfter);
-            sd.pointColors.push_back(s.localMinimum ? clipColor()
-                                     : s.distanceChange < 0 ? satisfiedColor() : s.distanceChange == 0 ? roleColor(Role::Muted) : violatedColor());
+            sd.pointColors.push_back(s.localMinimum          ? clipColor()
+                                     : s.distanceChange < 0  ? satisfiedColor()
+                                     : s.distanceChange == 0 ? roleColor(Role::Muted)
+                                                             : violatedColor());
         }
         pin.series.push_back(sd);
         pin.marker = st ? index : -1;
@@ -606,14 +660,19 @@ private:
         std::vector<Vec3> path;
         for (const Call& cc : calls) path.push_back(cc.poseB.apply(s_.b.regions.mesh().centroid()));
         c.drawPolyline(path, false, lineStyle(Role::Muted, 1.5f, true, false));
-        if (k > 0) c.drawPolyline(std::vector<Vec3>(path.begin(), path.begin() + k + 1), false, lineStyle(Role::ShapeB, 2.0f, false, false));
+        if (k > 0)
+            c.drawPolyline(std::vector<Vec3>(path.begin(), path.begin() + k + 1), false,
+                           lineStyle(Role::ShapeB, 2.0f, false, false));
         const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
         const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
         drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroidB(call.poseB), labels);
         drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
         if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
-        drawPanelHeading(c, "Call " + std::to_string(k) + " of " + std::to_string(calls.size()) + ": " + std::to_string(r.steps) + " update(s)",
-                         std::string(k == 0 ? "first call, seeded with " : "warm start from ") + nameOf(call.seed.a) + ", " + nameOf(call.seed.b));
+        drawPanelHeading(c,
+                         "Call " + std::to_string(k) + " of " + std::to_string(calls.size()) + ": " +
+                             std::to_string(r.steps) + " update(s)",
+                         std::string(k == 0 ? "first call, seeded with " : "warm start from ") + nameOf(call.seed.a) +
+                             ", " + nameOf(call.seed.b));
         const Image main = c.readPixels();
 
         DiagramInput din;
@@ -626,7 +685,9 @@ private:
         }
         din.heading = "States of this call";
         din.terminal = std::string(nameOf(r.status)) + " after " + std::to_string(r.steps) + " update(s)";
-        const Image diagram = common_.hasLayer("diagram") ? drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din) : blank(L.columnWidth, L.diagramHeight());
+        const Image diagram = common_.hasLayer("diagram")
+                                  ? drawStateDiagram(gl, L.columnWidth, L.diagramHeight(), ss, din)
+                                  : blank(L.columnWidth, L.diagramHeight());
 
         Image plot = blank(L.columnWidth, L.plotHeight());
         if (common_.hasLayer("plot")) {
@@ -654,24 +715,31 @@ private:
             ps.series = {s};
             ps.marker = k;
             const int h1 = L.plotHeight() / 2;
-            plot = stackVertically(drawPlot(gl, L.columnWidth, h1, ss, pd), drawPlot(gl, L.columnWidth, L.plotHeight() - h1, ss, ps));
+            plot = stackVertically(drawPlot(gl, L.columnWidth, h1, ss, pd),
+                                   drawPlot(gl, L.columnWidth, L.plotHeight() - h1, ss, ps));
         }
         std::vector<std::string> lines;
         std::string states;
-        for (const VClipTraceStep& s : call.trace.steps) states += std::string(states.empty() ? "" : " → ") + nameOf(s.state);
-        lines.push_back("Call " + std::to_string(k) + ": " + nameOf(r.status) + ", features " + featureLabel(r.featureA, 0) + ", " +
-                        featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK " +
+        for (const VClipTraceStep& s : call.trace.steps)
+            states += std::string(states.empty() ? "" : " → ") + nameOf(s.state);
+        lines.push_back("Call " + std::to_string(k) + ": " + nameOf(r.status) + ", features " +
+                        featureLabel(r.featureA, 0) + ", " + featureLabel(r.featureB, 1) + ", distance " +
+                        formatNumber(r.distance) + "  (GJK " +
                         (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
-        lines.push_back(std::string(k == 0 ? "first call, seeded with " : "started from the previous call's pair ") + nameOf(call.seed.a) + ", " + nameOf(call.seed.b) + "; states: " + states);
+        lines.push_back(std::string(k == 0 ? "first call, seeded with " : "started from the previous call's pair ") +
+                        nameOf(call.seed.a) + ", " + nameOf(call.seed.b) + "; states: " + states);
         int total = 0;
         for (const Call& cc : calls) total += cc.result.steps;
-        lines.push_back("B orbits " + formatNumber(s_.motion->orbitDegrees) + "° and spins " + formatNumber(s_.motion->spinDegrees) +
-                        "° per call; coherence: " + formatNumber(double(total) / calls.size()) + " updates per call on average over " +
-                        std::to_string(calls.size()) + " calls");
+        lines.push_back("B orbits " + formatNumber(s_.motion->orbitDegrees) + "° and spins " +
+                        formatNumber(s_.motion->spinDegrees) +
+                        "° per call; coherence: " + formatNumber(double(total) / calls.size()) +
+                        " updates per call on average over " + std::to_string(calls.size()) + " calls");
         char name[32];
         std::snprintf(name, sizeof name, "call_%02d", k);
-        return Frame{name, "call " + std::to_string(k) + ": " + std::to_string(r.steps) + " update(s), d " + formatNumber(r.distance),
-                     composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, lines)};
+        return Frame{
+            name,
+            "call " + std::to_string(k) + ": " + std::to_string(r.steps) + " update(s), d " + formatNumber(r.distance),
+            composeFrame(gl, L, ss, common_.title, common_.caption, main, diagram, plot, lines)};
     }
 };
 
@@ -679,7 +747,8 @@ class VclipDemo final : public Demo {
 public:
     std::string name() const override { return "vclip"; }
     std::string description() const override {
-        return "V-Clip step by step: closest features of two polyhedra, Voronoi planes, edge clipping, the five states, coherence";
+        return "V-Clip step by step: closest features of two polyhedra, Voronoi planes, edge clipping, the five "
+               "states, coherence";
     }
     std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
         ObjectReader r(JsonNode(json, "$", file));
@@ -703,11 +772,13 @@ public:
             if (auto n = mr.find("spin_degrees")) mo.spinDegrees = degreesPerCall(*n);
             if (auto n = mr.find("drawn_frames")) mo.drawnFrames = n->asInt(1, 60);
             mr.finish();
-            if (mo.orbitAxis.squaredNorm() == 0 || mo.spinAxis.squaredNorm() == 0) m->fail("motion axes must be non-zero");
+            if (mo.orbitAxis.squaredNorm() == 0 || mo.spinAxis.squaredNorm() == 0)
+                m->fail("motion axes must be non-zero");
             s.motion = mo;
         }
         r.finish();
-        if (common.image.width < 800 || common.image.height < 600 || common.image.width > 2048 || common.image.height > 1536)
+        if (common.image.width < 800 || common.image.height < 600 || common.image.width > 2048 ||
+            common.image.height > 1536)
             r.node().fail("vclip frames need an image between 800 x 600 and 2048 x 1536");
         return std::make_unique<VclipScene>(std::move(common), std::move(s));
     }

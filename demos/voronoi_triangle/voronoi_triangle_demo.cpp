@@ -49,9 +49,13 @@ Json testsJson(const std::vector<Test>& tests) {
     for (const auto& t : tests) {
         Json terms = Json::array();
         for (int i = 0; i < t.termCount; ++i)
-            terms.push_back({{"name", t.terms[i].name}, {"formula", t.terms[i].formula}, {"sign", t.terms[i].sign},
+            terms.push_back({{"name", t.terms[i].name},
+                             {"formula", t.terms[i].formula},
+                             {"sign", t.terms[i].sign},
                              {"exact_fallback", t.terms[i].exactFallback}});
-        out.push_back({{"candidate", nameOf(t.candidate)}, {"condition", t.condition}, {"terms", terms},
+        out.push_back({{"candidate", nameOf(t.candidate)},
+                       {"condition", t.condition},
+                       {"terms", terms},
                        {"accepted", t.accepted}});
     }
     return out;
@@ -62,9 +66,12 @@ template <class Result, class Tests>
 Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
     Json weights = Json::array();
     for (int i = 0; i < r.barycentric.size(); ++i) weights.push_back(r.barycentric[i]);
-    return {{"point", vecJson(point)},         {"region", nameOf(r.region)},
-            {"closest", vecJson(r.point)},     {"barycentric", weights},
-            {"distance", std::sqrt(r.distanceSquared)}, {"degenerate", r.status != SimplexStatus::Regular},
+    return {{"point", vecJson(point)},
+            {"region", nameOf(r.region)},
+            {"closest", vecJson(r.point)},
+            {"barycentric", weights},
+            {"distance", std::sqrt(r.distanceSquared)},
+            {"degenerate", r.status != SimplexStatus::Regular},
             {"tests", testsJson(tests)}};
 }
 
@@ -117,10 +124,13 @@ Vec3 polygonCentroid(const std::vector<Vec3>& poly) {
 
 class VoronoiScene final : public PreparedScene {
 public:
-    VoronoiScene(SceneCommon common, std::vector<Vec3> simplex, std::vector<Vec3> queries, std::vector<std::string> views,
-                 double margin)
-        : PreparedScene(std::move(common)), simplex_(std::move(simplex)), queries_(std::move(queries)),
-          views_(std::move(views)), margin_(margin) {}
+    VoronoiScene(SceneCommon common, std::vector<Vec3> simplex, std::vector<Vec3> queries,
+                 std::vector<std::string> views, double margin)
+        : PreparedScene(std::move(common)),
+          simplex_(std::move(simplex)),
+          queries_(std::move(queries)),
+          views_(std::move(views)),
+          margin_(margin) {}
 
     DemoOutput execute(const RunContext& ctx) const override {
         return simplex_.size() == 3 ? runTriangle(ctx) : runTetrahedron(ctx);
@@ -144,8 +154,8 @@ private:
 
     DemoOutput runTriangle(const RunContext& ctx) const {
         const Triangle tri{simplex_[0], simplex_[1], simplex_[2]};
-        const auto results =
-            runQueries<TriangleQuery>(queries_, [&](const Vec3& q, auto* trace) { closestPointOnTriangle(q, tri, trace); });
+        const auto results = runQueries<TriangleQuery>(
+            queries_, [&](const Vec3& q, auto* trace) { closestPointOnTriangle(q, tri, trace); });
         DemoOutput out;
         out.trace["simplex"] = "triangle";
         out.trace["vertices"] = {vecJson(tri.a), vecJson(tri.b), vecJson(tri.c)};
@@ -158,13 +168,12 @@ private:
         TriangleVoronoiDiagram diagram;
         if (common_.hasLayer("regions") || common_.hasLayer("boundaries"))
             diagram = triangleVoronoiRegions({tri, margin(), margin() * 0.6});
-        else
-            out.skipped.push_back("region geometry (no 'regions' or 'boundaries' layer)");
+        else out.skipped.push_back("region geometry (no 'regions' or 'boundaries' layer)");
         for (const std::string& view : views_)
             out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1));
-        if (common_.steps || ctx.stepsOverride) addSteps(out, ctx, [&](int i) {
-            return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i);
-        });
+        if (common_.steps || ctx.stepsOverride)
+            addSteps(out, ctx,
+                     [&](int i) { return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i); });
         else out.skipped.push_back("per-step frames and contact sheet (steps off)");
         return out;
     }
@@ -195,8 +204,9 @@ private:
         return framingCamera(center(), radius * 1.1, n * 1.1 - up * 1.4 + u * 0.7, n, true);
     }
 
-    Frame drawTriangleFrame(GlContext& gl, const RunContext& ctx, const Triangle& tri, const TriangleVoronoiDiagram& diagram,
-                            const std::vector<TriangleQuery>& results, const std::string& view, int focus) const {
+    Frame drawTriangleFrame(GlContext& gl, const RunContext& ctx, const Triangle& tri,
+                            const TriangleVoronoiDiagram& diagram, const std::vector<TriangleQuery>& results,
+                            const std::string& view, int focus) const {
         Canvas canvas(gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
         canvas.setCamera(triangleCamera(tri, diagram, view));
         const bool is3d = view == "3d";
@@ -217,7 +227,8 @@ private:
             }
         }
         // The triangle itself.
-        canvas.drawPolygon({tri.a, tri.b, tri.c}, roleColor(Role::Background).mixed(roleColor(Role::ShapeA), 0.25f), is3d);
+        canvas.drawPolygon({tri.a, tri.b, tri.c}, roleColor(Role::Background).mixed(roleColor(Role::ShapeA), 0.25f),
+                           is3d);
         canvas.drawPolyline({tri.a, tri.b, tri.c}, true, lineStyle(Role::Ink, 3.5f));
 
         const bool labels = common_.hasLayer("labels");
@@ -227,7 +238,8 @@ private:
             const Vec3 corners[3] = {tri.a, tri.b, tri.c};
             for (int i = 0; i < 3; ++i) {
                 Vec3 away = corners[i] - c;
-                Vec3 at = corners[i] + (away.squaredNorm() > 0 ? Vec3(away.normalized()) : Vec3::Zero()) * size() * 0.09;
+                Vec3 at =
+                    corners[i] + (away.squaredNorm() > 0 ? Vec3(away.normalized()) : Vec3::Zero()) * size() * 0.09;
                 canvas.drawText(at, names[i], labelStyle(Role::Ink, 28.0f));
             }
             if (diagram.valid && common_.hasLayer("regions") && !is3d)
@@ -236,8 +248,9 @@ private:
                     Vec3 at = polygonCentroid(region.vertices);
                     if (region.region == TriangleRegion::ABC) at = c;
                     else at = c + (at - c) * 0.85;  // pull labels of unbounded regions inwards, off the frame edge
-                    canvas.drawText(at, std::string("region ") + nameOf(region.region),
-                                    TextStyle{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true});
+                    canvas.drawText(
+                        at, std::string("region ") + nameOf(region.region),
+                        TextStyle{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true});
                 }
         }
         for (std::size_t i = 0; i < results.size(); ++i) {
@@ -273,8 +286,8 @@ private:
 
     DemoOutput runTetrahedron(const RunContext& ctx) const {
         const Tetrahedron tet{simplex_[0], simplex_[1], simplex_[2], simplex_[3]};
-        const auto results =
-            runQueries<TetrahedronQuery>(queries_, [&](const Vec3& q, auto* trace) { closestPointOnTetrahedron(q, tet, trace); });
+        const auto results = runQueries<TetrahedronQuery>(
+            queries_, [&](const Vec3& q, auto* trace) { closestPointOnTetrahedron(q, tet, trace); });
         DemoOutput out;
         out.trace["simplex"] = "tetrahedron";
         out.trace["vertices"] = {vecJson(tet.a), vecJson(tet.b), vecJson(tet.c), vecJson(tet.d)};
@@ -287,8 +300,7 @@ private:
         TetrahedronVoronoiDiagram diagram;
         if ((common_.steps || ctx.stepsOverride) && (common_.hasLayer("regions") || common_.hasLayer("boundaries")))
             diagram = tetrahedronVoronoiRegions({tet, margin_ > 0 ? margin_ : 0.5 * size()});
-        else
-            out.skipped.push_back("region geometry (not drawn without steps and a 'regions'/'boundaries' layer)");
+        else out.skipped.push_back("region geometry (not drawn without steps and a 'regions'/'boundaries' layer)");
         out.frames.push_back(drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, -1));
         if (common_.steps || ctx.stepsOverride)
             addSteps(out, ctx, [&](int i) { return drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, i); });
@@ -304,8 +316,10 @@ private:
                                         : framingCamera(center(), radius, Vec3(1.0, 0.75, 1.6), Vec3::UnitY(), true));
         const Vec3 v[4] = {tet.a, tet.b, tet.c, tet.d};
         const std::vector<Vec3> verts(v, v + 4);
-        canvas.drawMesh(verts, {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
-                        roleColor(Role::ShapeA).withAlpha(0.28f), true);
+        canvas.drawMesh(
+            verts,
+            {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
+            roleColor(Role::ShapeA).withAlpha(0.28f), true);
         for (int i = 0; i < 4; ++i)
             for (int j = i + 1; j < 4; ++j) canvas.drawLine(v[i], v[j], lineStyle(Role::Ink, 3.0f));
 
@@ -317,7 +331,8 @@ private:
             for (int r = 0; r < 15; ++r) {
                 if (!shown[r] || r == int(TetrahedronRegion::ABCD)) continue;
                 for (const auto& face : diagram.regions[r].faces)
-                    if (face.size() >= 3) canvas.drawPolygon(face, tetraRegionColor(TetrahedronRegion(r)).withAlpha(0.13f));
+                    if (face.size() >= 3)
+                        canvas.drawPolygon(face, tetraRegionColor(TetrahedronRegion(r)).withAlpha(0.13f));
             }
         if (diagram.valid && common_.hasLayer("boundaries"))
             for (int r = 0; r < 15; ++r) {
@@ -354,7 +369,12 @@ private:
         const char* kinds[4] = {"vertex region", "edge region", "face region", "inside"};
         for (int k = 0; k < 4; ++k) {
             double y = 70 + 28 * k;
-            TextStyle ts{18.0f, tetraRegionColor(TetrahedronRegion(k == 0 ? 0 : k == 1 ? 4 : k == 2 ? 10 : 14)).scaled(0.8f),
+            TextStyle ts{18.0f,
+                         tetraRegionColor(TetrahedronRegion(k == 0   ? 0
+                                                            : k == 1 ? 4
+                                                            : k == 2 ? 10
+                                                                     : 14))
+                             .scaled(0.8f),
                          Anchor::Left, true, true};
             canvas.drawTextPx(22, y, kinds[k], ts);
         }
@@ -400,7 +420,8 @@ public:
         SceneCommon common = readSceneCommon(r, file, kLayers, kLayers);
         std::vector<Vec3> simplex;
         std::vector<std::string> views;
-        if (r.has("triangle") == r.has("tetrahedron")) r.node().fail("expected exactly one of 'triangle' or 'tetrahedron'");
+        if (r.has("triangle") == r.has("tetrahedron"))
+            r.node().fail("expected exactly one of 'triangle' or 'tetrahedron'");
         if (r.has("triangle")) {
             JsonNode t = r.get("triangle");
             if (t.size() != 3) t.fail("expected [a, b, c]");
@@ -424,8 +445,8 @@ public:
         double margin = 0;
         if (auto m = r.find("margin")) margin = sceneSize(*m);
         r.finish();
-        return std::make_unique<VoronoiScene>(std::move(common), std::move(simplex), std::move(queries), std::move(views),
-                                              margin);
+        return std::make_unique<VoronoiScene>(std::move(common), std::move(simplex), std::move(queries),
+                                              std::move(views), margin);
     }
 };
 

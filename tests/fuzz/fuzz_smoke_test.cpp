@@ -30,52 +30,56 @@ const std::uint8_t* bytes(const std::string& s) { return reinterpret_cast<const 
 }  // namespace
 
 TEST_SUITE("fuzz") {
+    TEST_CASE("query answers keep the contract on mutated queries") {
+        std::vector<std::string> seeds = readSeedLines(CDLAB_SOURCE_DIR "/tests/fuzz/seeds/queries.jsonl");
+        REQUIRE(seeds.size() >= 20);
+        MutationFuzzer fuzzer(seeds, 0xC0FFEE);
+        const Budget b = budget(100'000);
+        const std::size_t runs =
+            fuzzer.run([](const std::string& s) { fuzzQuery(bytes(s), s.size()); }, b.executions, b.seconds);
+        MESSAGE("query: " << runs << " executions");
+        CHECK(runs > seeds.size());
+    }
 
-TEST_CASE("query answers keep the contract on mutated queries") {
-    std::vector<std::string> seeds = readSeedLines(CDLAB_SOURCE_DIR "/tests/fuzz/seeds/queries.jsonl");
-    REQUIRE(seeds.size() >= 20);
-    MutationFuzzer fuzzer(seeds, 0xC0FFEE);
-    const Budget b = budget(100'000);
-    const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzQuery(bytes(s), s.size()); }, b.executions, b.seconds);
-    MESSAGE("query: " << runs << " executions");
-    CHECK(runs > seeds.size());
-}
+    TEST_CASE("scene loading keeps the contract on mutated scenes") {
+        std::vector<std::string> seeds =
+            readSceneSeeds(CDLAB_SOURCE_DIR "/golden", CDLAB_SOURCE_DIR "/tests/fuzz/seeds/scenes");
+        REQUIRE(seeds.size() >= 10);
+        MutationFuzzer fuzzer(seeds, 0xBADC0DE, 16384);
+        const Budget b = budget(5'000);
+        const std::size_t runs =
+            fuzzer.run([](const std::string& s) { fuzzScene(bytes(s), s.size()); }, b.executions, b.seconds);
+        MESSAGE("scene: " << runs << " executions");
+        CHECK(runs > seeds.size());
+    }
 
-TEST_CASE("scene loading keeps the contract on mutated scenes") {
-    std::vector<std::string> seeds = readSceneSeeds(CDLAB_SOURCE_DIR "/golden", CDLAB_SOURCE_DIR "/tests/fuzz/seeds/scenes");
-    REQUIRE(seeds.size() >= 10);
-    MutationFuzzer fuzzer(seeds, 0xBADC0DE, 16384);
-    const Budget b = budget(5'000);
-    const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzScene(bytes(s), s.size()); }, b.executions, b.seconds);
-    MESSAGE("scene: " << runs << " executions");
-    CHECK(runs > seeds.size());
-}
+    TEST_CASE("drawing mutated scenes at a small size keeps the contract") {
+        // The other targets never reach the drawing path; this one draws (96² pixels, one GL context).
+        std::vector<std::string> seeds =
+            readSceneSeeds(CDLAB_SOURCE_DIR "/golden", CDLAB_SOURCE_DIR "/tests/fuzz/seeds/scenes");
+        MutationFuzzer fuzzer(seeds, 0xD2A3, 16384);
+        const Budget b = budget(150);
+        const std::size_t runs =
+            fuzzer.run([](const std::string& s) { fuzzRender(bytes(s), s.size()); }, b.executions, b.seconds);
+        MESSAGE("render: " << runs << " executions");
+        CHECK(runs > seeds.size());
+    }
 
-TEST_CASE("drawing mutated scenes at a small size keeps the contract") {
-    // The other targets never reach the drawing path; this one draws (96² pixels, one GL context).
-    std::vector<std::string> seeds = readSceneSeeds(CDLAB_SOURCE_DIR "/golden", CDLAB_SOURCE_DIR "/tests/fuzz/seeds/scenes");
-    MutationFuzzer fuzzer(seeds, 0xD2A3, 16384);
-    const Budget b = budget(150);
-    const std::size_t runs = fuzzer.run([](const std::string& s) { fuzzRender(bytes(s), s.size()); }, b.executions, b.seconds);
-    MESSAGE("render: " << runs << " executions");
-    CHECK(runs > seeds.size());
-}
+    TEST_CASE("the answer contract rejects what it should") {
+        CHECK(queryAnswerViolation(R"({"id":1,"intersect":false,"distance":2.5,"normal":[0,0,1]})") == "");
+        CHECK(queryAnswerViolation(R"({"id":1,"error":"query: $.a: expected an object"})") == "");
+        CHECK(queryAnswerViolation(R"({"id":1,"distance":null})") != "");       // NaN printed as null
+        CHECK(queryAnswerViolation(R"({"id":1,"point_a":[0,null,0]})") != "");  // NaN in a vector
+        CHECK(queryAnswerViolation(R"({"id":1,"distance":-1})") != "");
+        CHECK(queryAnswerViolation(R"({"id":1,"normal":[0,0,2]})") != "");
+        CHECK(queryAnswerViolation(R"({"id":1,"error":"internal error: boom"})") != "");
+        CHECK(queryAnswerViolation(R"({"distance":1,"id":1})") != "");  // id must come first
+        CHECK(queryAnswerViolation("{\"id\":1,") != "");
+    }
 
-TEST_CASE("the answer contract rejects what it should") {
-    CHECK(queryAnswerViolation(R"({"id":1,"intersect":false,"distance":2.5,"normal":[0,0,1]})") == "");
-    CHECK(queryAnswerViolation(R"({"id":1,"error":"query: $.a: expected an object"})") == "");
-    CHECK(queryAnswerViolation(R"({"id":1,"distance":null})") != "");              // NaN printed as null
-    CHECK(queryAnswerViolation(R"({"id":1,"point_a":[0,null,0]})") != "");         // NaN in a vector
-    CHECK(queryAnswerViolation(R"({"id":1,"distance":-1})") != "");
-    CHECK(queryAnswerViolation(R"({"id":1,"normal":[0,0,2]})") != "");
-    CHECK(queryAnswerViolation(R"({"id":1,"error":"internal error: boom"})") != "");
-    CHECK(queryAnswerViolation(R"({"distance":1,"id":1})") != "");                 // id must come first
-    CHECK(queryAnswerViolation("{\"id\":1,") != "");
-}
-
-TEST_CASE("mutation is deterministic for a seed") {
-    MutationFuzzer a({"{\"op\":\"distance\",\"a\":[1,2,3]}"}, 42), b({"{\"op\":\"distance\",\"a\":[1,2,3]}"}, 42);
-    for (int i = 0; i < 100; ++i) CHECK(a.next() == b.next());
-}
+    TEST_CASE("mutation is deterministic for a seed") {
+        MutationFuzzer a({"{\"op\":\"distance\",\"a\":[1,2,3]}"}, 42), b({"{\"op\":\"distance\",\"a\":[1,2,3]}"}, 42);
+        for (int i = 0; i < 100; ++i) CHECK(a.next() == b.next());
+    }
 
 }  // TEST_SUITE

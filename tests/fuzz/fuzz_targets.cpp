@@ -46,7 +46,8 @@ std::string queryAnswerViolation(const std::string& line) {
         if (v.is_null()) return false;
         if (v.is_array())
             for (const Json& x : v)
-                if (x.is_null() || (x.is_array() && std::any_of(x.begin(), x.end(), [](const Json& y) { return y.is_null(); })))
+                if (x.is_null() ||
+                    (x.is_array() && std::any_of(x.begin(), x.end(), [](const Json& y) { return y.is_null(); })))
                     return false;
         return true;
     };
@@ -54,7 +55,8 @@ std::string queryAnswerViolation(const std::string& line) {
         if (it.key() != "id" && it.key() != "trace" && !finite(it.value()))
             return "non-finite value in '" + it.key() + "': " + line;
     for (const char* key : {"distance", "depth"})
-        if (a.contains(key) && !(a[key].is_number() && a[key].get<double>() >= 0)) return std::string(key) + " < 0: " + line;
+        if (a.contains(key) && !(a[key].is_number() && a[key].get<double>() >= 0))
+            return std::string(key) + " < 0: " + line;
     if (a.contains("normal") && a["normal"].is_array() && a["normal"].size() == 3) {
         double n2 = 0;
         for (const Json& c : a["normal"]) n2 += c.get<double>() * c.get<double>();
@@ -139,14 +141,13 @@ void fuzzRender(const std::uint8_t* data, std::size_t size) {
     // accepts is used.
     demos::Json json = demos::Json::parse(input);
     std::unique_ptr<demos::PreparedScene> scene;
-    for (const auto& [w, h] : {std::pair{kFuzzImageSide, kFuzzImageSide}, std::pair{480, 360}, std::pair{800, 600},
-                               std::pair{1024, 768}}) {
+    for (const auto& [w, h] :
+         {std::pair{kFuzzImageSide, kFuzzImageSide}, std::pair{480, 360}, std::pair{800, 600}, std::pair{1024, 768}}) {
         json["image"] = {{"width", w}, {"height", h}, {"scale", 1}};
         try {
             scene = demos::prepareScene(json, "fuzz.json");
             break;
-        } catch (const demos::InputError&) {
-        }
+        } catch (const demos::InputError&) {}
     }
     if (!scene) return;  // refused at every size: an input error (the strict load above accepted it)
     demos::RunContext ctx;

@@ -23,8 +23,8 @@ void fuzzScene(const std::uint8_t* data, std::size_t size);
 /// Scene drawing, bounded: the bytes are a scene file. It loads (or fails as fuzzScene requires),
 /// and a scene that loads is drawn with one GL context for the whole run at a small image size
 /// (kFuzzImageSide² pixels, or the smallest layout the demo accepts up to 1024 x 768; scale 1), so
-/// that every input's cost stays bounded. Every frame must then be a whole image, and any error an input error naming the source:
-/// a GL error, a crash or another exception is a contract violation.
+/// that every input's cost stays bounded. Every frame must then be a whole image, and any error an input error naming
+/// the source: a GL error, a crash or another exception is a contract violation.
 void fuzzRender(const std::uint8_t* data, std::size_t size);
 constexpr int kFuzzImageSide = 96;
 

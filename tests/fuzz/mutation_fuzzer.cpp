@@ -13,16 +13,48 @@ namespace cdlab::fuzz {
 namespace {
 
 // Values at the edges of what the parsers and the geometry must handle.
-const std::vector<std::string> kNumbers = {"0",     "-0",      "-0.0",   "1",        "-1",      "0.5",
-                                           "1e308", "-1e308",  "1e-308", "4.9e-324", "1e400",   "-1e400",
-                                           "1e-12", "1e12",    "NaN",    "Infinity", "2e9",     "9007199254740993",
-                                           "1e+",   "0.1e-3",  "123456789012345678901234567890"};
+const std::vector<std::string> kNumbers = {"0",        "-0",     "-0.0",
+                                           "1",        "-1",     "0.5",
+                                           "1e308",    "-1e308", "1e-308",
+                                           "4.9e-324", "1e400",  "-1e400",
+                                           "1e-12",    "1e12",   "NaN",
+                                           "Infinity", "2e9",    "9007199254740993",
+                                           "1e+",      "0.1e-3", "123456789012345678901234567890"};
 // JSON grammar pieces and the format's keys, so mutations stay near valid inputs.
-const std::vector<std::string> kTokens = {
-    "{", "}", "[", "]", ",", ":", "\"", "null", "true", "false", "[]", "{}", "[0,0,0]", "[1,0,0,0]", "[0,0,0,0]",
-    "\"op\":", "\"a\":", "\"b\":", "\"id\":", "\"method\":", "\"trace\":true", "\"radius\":", "\"vertices\":",
-    "\"rotation\":", "\"steps\":true", "\"layers\":[]", "\"demo\":", "\\u0000", "\\ud800", "\xff", "\xc3\x28",
-    "\n", "{\"point\":[0,0,0]}", "{\"sphere\":{\"center\":[0,0,0],\"radius\":0}}"};
+const std::vector<std::string> kTokens = {"{",
+                                          "}",
+                                          "[",
+                                          "]",
+                                          ",",
+                                          ":",
+                                          "\"",
+                                          "null",
+                                          "true",
+                                          "false",
+                                          "[]",
+                                          "{}",
+                                          "[0,0,0]",
+                                          "[1,0,0,0]",
+                                          "[0,0,0,0]",
+                                          "\"op\":",
+                                          "\"a\":",
+                                          "\"b\":",
+                                          "\"id\":",
+                                          "\"method\":",
+                                          "\"trace\":true",
+                                          "\"radius\":",
+                                          "\"vertices\":",
+                                          "\"rotation\":",
+                                          "\"steps\":true",
+                                          "\"layers\":[]",
+                                          "\"demo\":",
+                                          "\\u0000",
+                                          "\\ud800",
+                                          "\xff",
+                                          "\xc3\x28",
+                                          "\n",
+                                          "{\"point\":[0,0,0]}",
+                                          "{\"sphere\":{\"center\":[0,0,0],\"radius\":0}}"};
 
 }  // namespace
 

@@ -25,7 +25,8 @@ public:
     /// The budget is a count, not a time, so a run tests the same inputs on any machine and in any
     /// build (a sanitizer build is ~10x slower). With CDLAB_FUZZ_LAST=path in the environment each
     /// input is written to that file before it runs: a crash leaves its reproducer there.
-    std::size_t run(const std::function<void(const std::string&)>& target, std::size_t maxExecutions, double seconds = 0);
+    std::size_t run(const std::function<void(const std::string&)>& target, std::size_t maxExecutions,
+                    double seconds = 0);
 
 private:
     void mutate(std::string& s);

@@ -19,11 +19,20 @@ namespace fs = std::filesystem;
 namespace {
 
 // Core's folders from the bottom up: a folder may include its own and every folder before it.
-const std::vector<std::string> kCoreLayers = {"base",         "geometry", "closest", "overlap", "gjk_epa",  "feature_walk",
-                                              "contact",      "bounding", "bvh",     "broadphase", "spatial", "dynamics"};
-const std::vector<std::string> kDemoFolders = {"voronoi_triangle", "gjk",   "epa",      "vclip",           "lin_canny",
-                                               "polyhedron_plane", "drop",  "accuracy", "space_partition", "bounding_volumes",
-                                               "bvh",              "sweep_and_prune"};
+const std::vector<std::string> kCoreLayers = {"base",    "geometry", "closest", "overlap",    "gjk_epa", "feature_walk",
+                                              "contact", "bounding", "bvh",     "broadphase", "spatial", "dynamics"};
+const std::vector<std::string> kDemoFolders = {"voronoi_triangle",
+                                               "gjk",
+                                               "epa",
+                                               "vclip",
+                                               "lin_canny",
+                                               "polyhedron_plane",
+                                               "drop",
+                                               "accuracy",
+                                               "space_partition",
+                                               "bounding_volumes",
+                                               "bvh",
+                                               "sweep_and_prune"};
 // Shared demos/ folders a demo may use.
 const std::vector<std::string> kSharedForDemos = {"scene", "draw", "measure", "oracles"};
 
@@ -41,7 +50,9 @@ std::vector<std::string> split(const std::string& path) {
     return parts;
 }
 
-bool contains(const std::vector<std::string>& v, const std::string& x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+bool contains(const std::vector<std::string>& v, const std::string& x) {
+    return std::find(v.begin(), v.end(), x) != v.end();
+}
 
 std::vector<Include> includesUnder(const fs::path& root, const std::string& top) {
     std::vector<Include> out;
@@ -73,7 +84,9 @@ std::string violation(const Include& inc) {
     if (from[0] == "core") {
         if (to[0] != "core") return "core includes " + to[0] + "/";
         if (from.size() < 3 || to.size() < 3) return "a core file outside core's folders";
-        const auto layer = [](const std::string& f) { return std::find(kCoreLayers.begin(), kCoreLayers.end(), f) - kCoreLayers.begin(); };
+        const auto layer = [](const std::string& f) {
+            return std::find(kCoreLayers.begin(), kCoreLayers.end(), f) - kCoreLayers.begin();
+        };
         if (layer(from[1]) == std::ptrdiff_t(kCoreLayers.size()) || layer(to[1]) == std::ptrdiff_t(kCoreLayers.size()))
             return "a core folder that is not in the layer list";
         if (layer(to[1]) > layer(from[1])) return "core/" + from[1] + " reaches up into core/" + to[1];
@@ -87,7 +100,8 @@ std::string violation(const Include& inc) {
         if (contains(kDemoFolders, dst) && dst != src && src != "catalog" && !mainFile)
             return "demos/" + src + " reaches into the demo folder demos/" + dst;
         if (contains(kDemoFolders, src) && dst != src && !contains(kSharedForDemos, dst))
-            return "the demo folder demos/" + src + " includes demos/" + dst + " (a demo uses only scene, draw, measure, oracles)";
+            return "the demo folder demos/" + src + " includes demos/" + dst +
+                   " (a demo uses only scene, draw, measure, oracles)";
     }
     return "";
 }

@@ -68,31 +68,31 @@ TEST_SUITE("render/canvas") {
         const Image im = c.readPixels();
         REQUIRE(im.width == 200);
         REQUIRE(im.height == 200);
-        CHECK(delta(im, 2, 2, kWhite) == 0);                                 // background
-        CHECK(delta(im, 50, 50, roleColor(Role::ShapeA)) <= 1);              // square, upper left
-        CHECK(delta(im, 50, 150, kWhite) == 0);                              // nothing lower left
-        CHECK(delta(im, 21, 21, roleColor(Role::ShapeA)) <= 1);              // just inside the corner (-3.95, 3.95)
-        CHECK(delta(im, 19, 19, kWhite) == 0);                               // just outside
-        CHECK(delta(im, 100, 156, roleColor(Role::Ink)) <= 1);               // thick line, top row
-        CHECK(delta(im, 100, 163, roleColor(Role::Ink)) <= 1);               // bottom row
-        CHECK(delta(im, 100, 166, kWhite) == 0);                             // 6.5 px from the axis
+        CHECK(delta(im, 2, 2, kWhite) == 0);                     // background
+        CHECK(delta(im, 50, 50, roleColor(Role::ShapeA)) <= 1);  // square, upper left
+        CHECK(delta(im, 50, 150, kWhite) == 0);                  // nothing lower left
+        CHECK(delta(im, 21, 21, roleColor(Role::ShapeA)) <= 1);  // just inside the corner (-3.95, 3.95)
+        CHECK(delta(im, 19, 19, kWhite) == 0);                   // just outside
+        CHECK(delta(im, 100, 156, roleColor(Role::Ink)) <= 1);   // thick line, top row
+        CHECK(delta(im, 100, 163, roleColor(Role::Ink)) <= 1);   // bottom row
+        CHECK(delta(im, 100, 166, kWhite) == 0);                 // 6.5 px from the axis
         CHECK(delta(im, 100, 153, kWhite) == 0);
-        CHECK(delta(im, 100, 164, kWhite) == 0);                             // exactly 8 rows: 156..163
+        CHECK(delta(im, 100, 164, kWhite) == 0);  // exactly 8 rows: 156..163
         CHECK(delta(im, 100, 155, kWhite) == 0);
-        CHECK(delta(im, 150, 50, roleColor(Role::Result)) <= 1);             // point centre: fill
-        CHECK(delta(im, 158, 50, roleColor(Role::Ink)) <= 1);                // 8.5 px: the outline ring
-        CHECK(delta(im, 150, 41, roleColor(Role::Ink)) <= 1);                // ring above the centre
-        const int rim = delta(im, 159, 50, kWhite);                          // 9.5 px: the ring, AA edge near
+        CHECK(delta(im, 150, 50, roleColor(Role::Result)) <= 1);  // point centre: fill
+        CHECK(delta(im, 158, 50, roleColor(Role::Ink)) <= 1);     // 8.5 px: the outline ring
+        CHECK(delta(im, 150, 41, roleColor(Role::Ink)) <= 1);     // ring above the centre
+        const int rim = delta(im, 159, 50, kWhite);               // 9.5 px: the ring, AA edge near
         CHECK(rim > 150);
-        CHECK(delta(im, 163, 50, kWhite) == 0);                              // outside the disc
-        CHECK(delta(im, 115, 90, roleColor(Role::Direction)) <= 1);          // inside the first dash
-        CHECK(delta(im, 125, 90, kWhite) == 0);                              // in the first gap
-        CHECK(delta(im, 135, 90, roleColor(Role::Direction)) <= 1);          // second dash
-        CHECK(delta(im, 40, 120, roleColor(Role::Support)) <= 1);            // arrow shaft at y = -1
-        CHECK(delta(im, 72, 120, roleColor(Role::Support)) <= 1);            // head, 8 px before the tip (x = 80)
-        CHECK(delta(im, 72, 124, kWhite) == 0);                              // the head is narrow there
-        CHECK(delta(im, 66, 116, roleColor(Role::Support)) <= 1);            // wider further back
-        CHECK(delta(im, 84, 120, kWhite) == 0);                              // nothing past the tip
+        CHECK(delta(im, 163, 50, kWhite) == 0);                      // outside the disc
+        CHECK(delta(im, 115, 90, roleColor(Role::Direction)) <= 1);  // inside the first dash
+        CHECK(delta(im, 125, 90, kWhite) == 0);                      // in the first gap
+        CHECK(delta(im, 135, 90, roleColor(Role::Direction)) <= 1);  // second dash
+        CHECK(delta(im, 40, 120, roleColor(Role::Support)) <= 1);    // arrow shaft at y = -1
+        CHECK(delta(im, 72, 120, roleColor(Role::Support)) <= 1);    // head, 8 px before the tip (x = 80)
+        CHECK(delta(im, 72, 124, kWhite) == 0);                      // the head is narrow there
+        CHECK(delta(im, 66, 116, roleColor(Role::Support)) <= 1);    // wider further back
+        CHECK(delta(im, 84, 120, kWhite) == 0);                      // nothing past the tip
     }
 
     TEST_CASE("the same commands give the same pixels, in one canvas and in a new one") {
@@ -146,7 +146,7 @@ TEST_SUITE("render/canvas") {
         onTop.onTop = true;
         c.drawLine({-0.8, 0.5, -1}, {0.8, 0.5, -1}, hidden);  // behind the square
         c.drawLine({-0.8, -0.5, -1}, {0.8, -0.5, -1}, onTop);
-        c.drawLine({-0.8, 0, 0.5}, {0.8, 0, 0.5}, hidden);  // in front of it
+        c.drawLine({-0.8, 0, 0.5}, {0.8, 0, 0.5}, hidden);                   // in front of it
         c.drawPoint({0.5, 0.25, -1}, 6, roleColor(Role::Result), false, 0);  // hidden
         c.drawPoint({-0.5, 0.25, -1}, 6, roleColor(Role::Result), true, 0);  // on top
         const Image im = c.readPixels();
@@ -272,7 +272,7 @@ TEST_SUITE("render/canvas") {
         const double nan = std::numeric_limits<double>::quiet_NaN();
         c.drawMesh({{0, 0, 0}, {nan, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}, roleColor(Role::ShapeA));
         c.drawMesh({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}, {{0, 1, 2}}, roleColor(Role::ShapeA));  // zero area
-        c.drawLine({0, 0, 0}, {0, 0, 0}, {4, roleColor(Role::Ink)});  // zero length: a dot
+        c.drawLine({0, 0, 0}, {0, 0, 0}, {4, roleColor(Role::Ink)});                          // zero length: a dot
         c.drawLine({0, 0, 0}, {nan, 0, 0}, {4, roleColor(Role::Ink)});
         c.drawLine({0, 0, 0}, {0, 0, 100}, {4, roleColor(Role::Ink)});  // through the eye plane
         c.drawArrow({1, 1, 1}, {1, 1, 1}, {4, roleColor(Role::Ink)});
@@ -294,8 +294,8 @@ TEST_SUITE("render/canvas") {
         const char* dir = std::getenv("CDLAB_SAMPLE_DIR");
         if (!dir) return;
         const double t = (1 + std::sqrt(5.0)) / 2;
-        std::vector<Vector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+        std::vector<Vector3d> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
         for (auto& p : v) p.normalize();
         const std::vector<Vector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                          {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},

@@ -64,8 +64,8 @@ TEST_SUITE("render/compare") {
         CHECK(r.maxDelta == 255);
         CHECK(r.maxDeltaX == 2);
         CHECK(r.maxDeltaY == 1);
-        CHECK(r.rms == doctest::Approx(255.0 / 8.0));                   // sqrt(255^2 / 64)
-        CHECK(r.psnr == doctest::Approx(10.0 * std::log10(64.0)));      // 255^2 / mse = 64
+        CHECK(r.rms == doctest::Approx(255.0 / 8.0));               // sqrt(255^2 / 64)
+        CHECK(r.psnr == doctest::Approx(10.0 * std::log10(64.0)));  // 255^2 / mse = 64
         const std::string s = r.summary();
         for (const char* part : {"FAIL", "1 of 16", "max delta 255 at (2,1)", "RMS", "PSNR", "tolerance"})
             CHECK_MESSAGE(s.find(part) != std::string::npos, s);
@@ -82,7 +82,7 @@ TEST_SUITE("render/compare") {
         CHECK(r1.diffPixels == 5);
         CHECK(compareImages(b, a, {1, 5, 0.0}).passed);
         CHECK_FALSE(compareImages(b, a, {1, 4, 0.0}).passed);
-        CHECK(compareImages(b, a, {1, 0, 5.0 / 2000.0}).passed);   // 5 of 2000 pixels
+        CHECK(compareImages(b, a, {1, 0, 5.0 / 2000.0}).passed);  // 5 of 2000 pixels
         CHECK_FALSE(compareImages(b, a, {1, 0, 4.0 / 2000.0}).passed);
         CHECK(compareImages(b, a, {1, 5, 0.0}).summary().find("PASS fuzzy") != std::string::npos);
     }

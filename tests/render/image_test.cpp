@@ -61,7 +61,7 @@ std::string errorOf(auto&& f) {
 
 TEST_SUITE("render/image") {
     TEST_CASE("PNG round trip keeps every byte, alpha included, and encodes deterministically") {
-        const Image im = noise(37, 23, 7);  // odd sizes: no row padding assumptions
+        const Image im = noise(37, 23, 7);                                     // odd sizes: no row padding assumptions
         const std::string path = (tempDir() / "round" / "trip.png").string();  // parent created on demand
         writePngAtomic(path, im);
         const Image back = readPng(path);

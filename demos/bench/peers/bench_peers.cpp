@@ -25,15 +25,13 @@ struct CcdObject {
     Vec3 center = Vec3::Zero();
 };
 
-void ccdSupport(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out)
-{
+void ccdSupport(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
     const auto* o = static_cast<const CcdObject*>(obj);
     const Vec3 p = o->shape->support(Vec3(ccdVec3X(dir), ccdVec3Y(dir), ccdVec3Z(dir)));
     ccdVec3Set(out, p.x(), p.y(), p.z());
 }
 
-void ccdCenter(const void* obj, ccd_vec3_t* center)
-{
+void ccdCenter(const void* obj, ccd_vec3_t* center) {
     const auto* o = static_cast<const CcdObject*>(obj);
     ccdVec3Set(center, o->center.x(), o->center.y(), o->center.z());
 }
@@ -43,8 +41,7 @@ struct CcdSet {
     ccd_t ccd;
 };
 
-std::shared_ptr<CcdSet> makeCcdSet(const std::vector<PeerPair>& pairs)
-{
+std::shared_ptr<CcdSet> makeCcdSet(const std::vector<PeerPair>& pairs) {
     auto set = std::make_shared<CcdSet>();
     auto centroid = [](const std::vector<Vec3>& v) {
         Vec3 c = Vec3::Zero();
@@ -70,8 +67,7 @@ struct BulletSet {
     std::vector<std::unique_ptr<btConvexHullShape>> a, b;
 };
 
-std::unique_ptr<btConvexHullShape> bulletHull(const std::vector<Vec3>& v)
-{
+std::unique_ptr<btConvexHullShape> bulletHull(const std::vector<Vec3>& v) {
     auto hull = std::make_unique<btConvexHullShape>();
     for (const Vec3& x : v) hull->addPoint(btVector3(x.x(), x.y(), x.z()), false);
     hull->recalcLocalAabb();
@@ -79,8 +75,7 @@ std::unique_ptr<btConvexHullShape> bulletHull(const std::vector<Vec3>& v)
     return hull;
 }
 
-std::shared_ptr<BulletSet> makeBulletSet(const std::vector<PeerPair>& pairs)
-{
+std::shared_ptr<BulletSet> makeBulletSet(const std::vector<PeerPair>& pairs) {
     auto set = std::make_shared<BulletSet>();
     for (const PeerPair& p : pairs) {
         set->a.push_back(bulletHull(*p.va));
@@ -92,8 +87,7 @@ std::shared_ptr<BulletSet> makeBulletSet(const std::vector<PeerPair>& pairs)
 
 }  // namespace
 
-std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, const std::string& query)
-{
+std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, const std::string& query) {
     std::vector<PeerRunner> runners;
 #if CDLAB_HAVE_CCD
     {
@@ -109,13 +103,15 @@ std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, cons
             runners.push_back({"libccd GJK+EPA", [set](int i) {
                                    ccd_real_t depth = 0;
                                    ccd_vec3_t dir, pos;
-                                   const int r = ccdGJKPenetration(&set->a[i], &set->b[i], &set->ccd, &depth, &dir, &pos);
+                                   const int r =
+                                       ccdGJKPenetration(&set->a[i], &set->b[i], &set->ccd, &depth, &dir, &pos);
                                    return PeerAnswer{r == 0 ? double(depth) : 0.0, 0};
                                }});
             runners.push_back({"libccd MPR", [set](int i) {
                                    ccd_real_t depth = 0;
                                    ccd_vec3_t dir, pos;
-                                   const int r = ccdMPRPenetration(&set->a[i], &set->b[i], &set->ccd, &depth, &dir, &pos);
+                                   const int r =
+                                       ccdMPRPenetration(&set->a[i], &set->b[i], &set->ccd, &depth, &dir, &pos);
                                    return PeerAnswer{r == 0 ? double(depth) : 0.0, 0};
                                }});
         }
@@ -135,8 +131,8 @@ std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, cons
         } else if (query == "epa_depth") {
             runners.push_back({"Bullet GJK+EPA (double)", [set, identity](int i) {
                                    btGjkEpaSolver2::sResults r;
-                                   const bool hit = btGjkEpaSolver2::Penetration(set->a[i].get(), identity, set->b[i].get(),
-                                                                                identity, btVector3(1, 0, 0), r);
+                                   const bool hit = btGjkEpaSolver2::Penetration(
+                                       set->a[i].get(), identity, set->b[i].get(), identity, btVector3(1, 0, 0), r);
                                    return PeerAnswer{hit ? -double(r.distance) : 0.0, 0};  // distance = -depth
                                }});
         }

@@ -79,131 +79,134 @@ void checkAgainstBruteForce(const std::vector<Aabb>& boxes, const OctreeOptions&
 }  // namespace
 
 TEST_SUITE("octree") {
+    TEST_CASE("random boxes: pairs and queries equal brute force, classic and loose") {
+        std::mt19937 rng(7);
+        for (double looseness : {1.0, 2.0, 1.5})
+            for (int leaf : {1, 4}) {
+                OctreeOptions o;
+                o.looseness = looseness;
+                o.maxObjectsPerLeaf = leaf;
+                checkAgainstBruteForce(randomBoxes(rng, 300, 100.0, 8.0, Vec3::Zero(), false), o, rng);
+            }
+    }
 
-TEST_CASE("random boxes: pairs and queries equal brute force, classic and loose") {
-    std::mt19937 rng(7);
-    for (double looseness : {1.0, 2.0, 1.5})
-        for (int leaf : {1, 4}) {
+    TEST_CASE("integer coordinates: touching boxes and boxes on split planes are pairs") {
+        // Integer boxes in [0, 16]^3: the root midpoint and the cell midpoints are integers, so
+        // many boxes touch each other exactly and end exactly on split planes.
+        std::mt19937 rng(11);
+        for (double looseness : {1.0, 2.0}) {
             OctreeOptions o;
             o.looseness = looseness;
-            o.maxObjectsPerLeaf = leaf;
-            checkAgainstBruteForce(randomBoxes(rng, 300, 100.0, 8.0, Vec3::Zero(), false), o, rng);
+            o.maxObjectsPerLeaf = 2;
+            o.useRootBounds = true;
+            o.rootBounds = {Vec3::Zero(), Vec3::Constant(16.0)};
+            checkAgainstBruteForce(randomBoxes(rng, 250, 16.0, 3.0, Vec3::Zero(), true), o, rng);
         }
-}
-
-TEST_CASE("integer coordinates: touching boxes and boxes on split planes are pairs") {
-    // Integer boxes in [0, 16]^3: the root midpoint and the cell midpoints are integers, so
-    // many boxes touch each other exactly and end exactly on split planes.
-    std::mt19937 rng(11);
-    for (double looseness : {1.0, 2.0}) {
+        // A hand-made case: two unit boxes touching on the root's split plane x = 8.
+        const std::vector<Aabb> two = {{Vec3(7, 1, 1), Vec3(8, 2, 2)},
+                                       {Vec3(8, 1, 1), Vec3(9, 2, 2)},
+                                       {Vec3(1, 1, 1), Vec3(2, 2, 2)},
+                                       {Vec3(14, 14, 14), Vec3(15, 15, 15)}};
         OctreeOptions o;
-        o.looseness = looseness;
-        o.maxObjectsPerLeaf = 2;
+        o.maxObjectsPerLeaf = 0;
         o.useRootBounds = true;
         o.rootBounds = {Vec3::Zero(), Vec3::Constant(16.0)};
-        checkAgainstBruteForce(randomBoxes(rng, 250, 16.0, 3.0, Vec3::Zero(), true), o, rng);
+        Octree tree;
+        tree.build(two, o);
+        CHECK(tree.overlappingPairs() == Pairs{{0, 1}});
+        CHECK(tree.nodeOf(0) == 0);  // touches x = 8: stays in the root
+        CHECK(tree.nodes()[std::size_t(tree.nodeOf(2))].depth ==
+              2);  // [1, 2] touches the plane x = 2 of the cell [0, 4]
     }
-    // A hand-made case: two unit boxes touching on the root's split plane x = 8.
-    const std::vector<Aabb> two = {{Vec3(7, 1, 1), Vec3(8, 2, 2)}, {Vec3(8, 1, 1), Vec3(9, 2, 2)},
-                                   {Vec3(1, 1, 1), Vec3(2, 2, 2)}, {Vec3(14, 14, 14), Vec3(15, 15, 15)}};
-    OctreeOptions o;
-    o.maxObjectsPerLeaf = 0;
-    o.useRootBounds = true;
-    o.rootBounds = {Vec3::Zero(), Vec3::Constant(16.0)};
-    Octree tree;
-    tree.build(two, o);
-    CHECK(tree.overlappingPairs() == Pairs{{0, 1}});
-    CHECK(tree.nodeOf(0) == 0);  // touches x = 8: stays in the root
-    CHECK(tree.nodes()[std::size_t(tree.nodeOf(2))].depth == 2);  // [1, 2] touches the plane x = 2 of the cell [0, 4]
-}
 
-TEST_CASE("zero-size boxes, duplicates and all objects on one point terminate") {
-    std::mt19937 rng(3);
-    std::vector<Aabb> boxes = randomBoxes(rng, 100, 10.0, 0.0, Vec3::Zero(), false);  // points
-    for (int i = 0; i < 20; ++i) boxes.push_back(boxes[std::size_t(i)]);               // duplicates
-    checkAgainstBruteForce(boxes, {}, rng);
-    // 50 copies of one point: every pair overlaps, the depth limit stops the splitting.
-    std::vector<Aabb> same(50, Aabb{Vec3(1, 2, 3), Vec3(1, 2, 3)});
-    Octree tree;
-    OctreeOptions o;
-    o.maxDepth = 30;
-    tree.build(same, o);
-    CHECK(tree.overlappingPairs().size() == 50u * 49u / 2u);
-    CHECK(tree.stats().nodeCount <= 31);
-}
+    TEST_CASE("zero-size boxes, duplicates and all objects on one point terminate") {
+        std::mt19937 rng(3);
+        std::vector<Aabb> boxes = randomBoxes(rng, 100, 10.0, 0.0, Vec3::Zero(), false);  // points
+        for (int i = 0; i < 20; ++i) boxes.push_back(boxes[std::size_t(i)]);              // duplicates
+        checkAgainstBruteForce(boxes, {}, rng);
+        // 50 copies of one point: every pair overlaps, the depth limit stops the splitting.
+        std::vector<Aabb> same(50, Aabb{Vec3(1, 2, 3), Vec3(1, 2, 3)});
+        Octree tree;
+        OctreeOptions o;
+        o.maxDepth = 30;
+        tree.build(same, o);
+        CHECK(tree.overlappingPairs().size() == 50u * 49u / 2u);
+        CHECK(tree.stats().nodeCount <= 31);
+    }
 
-TEST_CASE("large offsets and scales") {
-    std::mt19937 rng(5);
-    for (double offset : {1e4, 1e6})
-        for (double scale : {1e-3, 1.0, 1e3}) {
+    TEST_CASE("large offsets and scales") {
+        std::mt19937 rng(5);
+        for (double offset : {1e4, 1e6})
+            for (double scale : {1e-3, 1.0, 1e3}) {
+                OctreeOptions o;
+                o.maxObjectsPerLeaf = 3;
+                checkAgainstBruteForce(
+                    randomBoxes(rng, 150, 10.0 * scale, scale, Vec3(offset, -offset, 0.5 * offset), false), o, rng);
+                o.looseness = 2.0;
+                checkAgainstBruteForce(randomBoxes(rng, 150, 10.0 * scale, scale, Vec3(-offset, offset, offset), false),
+                                       o, rng);
+            }
+    }
+
+    TEST_CASE("boxes larger than or outside a given root stay in the root, pairs stay exact") {
+        std::mt19937 rng(9);
+        std::vector<Aabb> boxes = randomBoxes(rng, 120, 10.0, 2.0, Vec3::Zero(), false);
+        boxes.push_back({Vec3::Constant(-50), Vec3::Constant(50)});  // contains the root
+        boxes.push_back({Vec3(20, 20, 20), Vec3(21, 21, 21)});       // outside the root
+        boxes.push_back({Vec3(9, 9, 9), Vec3(30, 9.5, 9.5)});        // sticks out of the root
+        for (double looseness : {1.0, 2.0}) {
             OctreeOptions o;
-            o.maxObjectsPerLeaf = 3;
-            checkAgainstBruteForce(randomBoxes(rng, 150, 10.0 * scale, scale, Vec3(offset, -offset, 0.5 * offset), false), o,
-                                   rng);
-            o.looseness = 2.0;
-            checkAgainstBruteForce(randomBoxes(rng, 150, 10.0 * scale, scale, Vec3(-offset, offset, offset), false), o, rng);
+            o.looseness = looseness;
+            o.maxObjectsPerLeaf = 2;
+            o.useRootBounds = true;
+            o.rootBounds = {Vec3::Zero(), Vec3::Constant(10.0)};
+            checkAgainstBruteForce(boxes, o, rng);
+            Octree tree;
+            tree.build(boxes, o);
+            CHECK(tree.nodeOf(120) == 0);
+            CHECK(tree.nodeOf(121) == 0);
+            CHECK(tree.nodeOf(122) == 0);
         }
-}
-
-TEST_CASE("boxes larger than or outside a given root stay in the root, pairs stay exact") {
-    std::mt19937 rng(9);
-    std::vector<Aabb> boxes = randomBoxes(rng, 120, 10.0, 2.0, Vec3::Zero(), false);
-    boxes.push_back({Vec3::Constant(-50), Vec3::Constant(50)});   // contains the root
-    boxes.push_back({Vec3(20, 20, 20), Vec3(21, 21, 21)});        // outside the root
-    boxes.push_back({Vec3(9, 9, 9), Vec3(30, 9.5, 9.5)});         // sticks out of the root
-    for (double looseness : {1.0, 2.0}) {
-        OctreeOptions o;
-        o.looseness = looseness;
-        o.maxObjectsPerLeaf = 2;
-        o.useRootBounds = true;
-        o.rootBounds = {Vec3::Zero(), Vec3::Constant(10.0)};
-        checkAgainstBruteForce(boxes, o, rng);
-        Octree tree;
-        tree.build(boxes, o);
-        CHECK(tree.nodeOf(120) == 0);
-        CHECK(tree.nodeOf(121) == 0);
-        CHECK(tree.nodeOf(122) == 0);
     }
-}
 
-TEST_CASE("invalid boxes are rejected with a status, never paired") {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)},
-                               {Vec3(nan, 0, 0), Vec3(1, 1, 1)},
-                               {Vec3(0.5, 0.5, 0.5), Vec3(2, 2, 2)},
-                               {Vec3(1, 1, 1), Vec3(0, 0, 0)},  // min > max: empty
-                               {Vec3(0, 0, 0), Vec3(INFINITY, 1, 1)}};
-    Octree tree;
-    tree.build(boxes);
-    CHECK(tree.status() == OctreeStatus::SomeRejected);
-    CHECK(tree.rejected() == std::vector<int>{1, 3, 4});
-    CHECK(tree.overlappingPairs() == Pairs{{0, 2}});
-    CHECK(tree.query({Vec3::Constant(nan), Vec3::Constant(1)}).empty());
-    Octree empty;
-    empty.build({});
-    CHECK(empty.status() == OctreeStatus::Empty);
-    CHECK(empty.overlappingPairs().empty());
-    CHECK(empty.query({Vec3::Zero(), Vec3::Ones()}).empty());
-}
-
-TEST_CASE("the pair query does fewer tests than brute force on spread-out boxes; trace matches nodes") {
-    std::mt19937 rng(13);
-    const std::vector<Aabb> boxes = randomBoxes(rng, 1000, 100.0, 1.0, Vec3::Zero(), false);
-    for (double looseness : {1.0, 2.0}) {
+    TEST_CASE("invalid boxes are rejected with a status, never paired") {
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)},
+                                   {Vec3(nan, 0, 0), Vec3(1, 1, 1)},
+                                   {Vec3(0.5, 0.5, 0.5), Vec3(2, 2, 2)},
+                                   {Vec3(1, 1, 1), Vec3(0, 0, 0)},  // min > max: empty
+                                   {Vec3(0, 0, 0), Vec3(INFINITY, 1, 1)}};
         Octree tree;
-        OctreeTrace trace;
-        OctreeOptions o;
-        o.looseness = looseness;
-        tree.build(boxes, o, &trace);
-        std::int64_t tests = 0;
-        CHECK(tree.overlappingPairs(&tests) == bruteForcePairs(boxes));
-        CHECK(tests < 1000 * 999 / 2 / 10);
-        CHECK(trace.steps.size() == tree.nodes().size());
-        const OctreeStats s = tree.stats();
-        int total = 0;
-        for (int c : s.objectsPerDepth) total += c;
-        CHECK(total == 1000);
+        tree.build(boxes);
+        CHECK(tree.status() == OctreeStatus::SomeRejected);
+        CHECK(tree.rejected() == std::vector<int>{1, 3, 4});
+        CHECK(tree.overlappingPairs() == Pairs{{0, 2}});
+        CHECK(tree.query({Vec3::Constant(nan), Vec3::Constant(1)}).empty());
+        Octree empty;
+        empty.build({});
+        CHECK(empty.status() == OctreeStatus::Empty);
+        CHECK(empty.overlappingPairs().empty());
+        CHECK(empty.query({Vec3::Zero(), Vec3::Ones()}).empty());
     }
-}
+
+    TEST_CASE("the pair query does fewer tests than brute force on spread-out boxes; trace matches nodes") {
+        std::mt19937 rng(13);
+        const std::vector<Aabb> boxes = randomBoxes(rng, 1000, 100.0, 1.0, Vec3::Zero(), false);
+        for (double looseness : {1.0, 2.0}) {
+            Octree tree;
+            OctreeTrace trace;
+            OctreeOptions o;
+            o.looseness = looseness;
+            tree.build(boxes, o, &trace);
+            std::int64_t tests = 0;
+            CHECK(tree.overlappingPairs(&tests) == bruteForcePairs(boxes));
+            CHECK(tests < 1000 * 999 / 2 / 10);
+            CHECK(trace.steps.size() == tree.nodes().size());
+            const OctreeStats s = tree.stats();
+            int total = 0;
+            for (int c : s.objectsPerDepth) total += c;
+            CHECK(total == 1000);
+        }
+    }
 
 }  // TEST_SUITE

@@ -7,8 +7,8 @@
 #include <limits>
 #include <set>
 
-#include "demos/oracles/broad_phase_oracle.h"
 #include "core/broadphase/sweep_and_prune.h"
+#include "demos/oracles/broad_phase_oracle.h"
 
 using namespace cdlab;
 using broad_oracle::bruteForcePairs;
@@ -41,7 +41,8 @@ void updateAndCheck(SweepAndPrune& sap, const std::vector<Aabb>& boxes, bool che
         for (std::size_t i = 0; i < e.size(); ++i) {
             CHECK(sap.rank(k, e[i].object(), e[i].isMax()) == static_cast<int>(i));
             if (i > 0)
-                CHECK((e[i - 1].value < e[i].value || (e[i - 1].value == e[i].value && !(e[i - 1].isMax() && !e[i].isMax()))));
+                CHECK((e[i - 1].value < e[i].value ||
+                       (e[i - 1].value == e[i].value && !(e[i - 1].isMax() && !e[i].isMax()))));
         }
         CHECK(trace.swapsPerAxis[k] == r.swapsPerAxis[k]);
         if (checkInversions) CHECK(r.swapsPerAxis[k] == expectedSwaps[k]);
@@ -88,199 +89,200 @@ void buildAndCheck(SweepAndPrune& sap, const std::vector<Aabb>& boxes) {
 }  // namespace
 
 TEST_SUITE("sweep_and_prune") {
-
-TEST_CASE("coherent random motion: pairs equal brute force after every frame, swaps = inversions") {
-    for (std::uint64_t seed = 1; seed <= 30; ++seed) {
-        std::mt19937_64 rng(seed);
-        const int n = 20 + static_cast<int>(rng() % 60);
-        auto m = broad_oracle::Motion::random(rng, n, 10.0, 0.2, 1.5, 0.15);
-        SweepAndPrune sap;
-        buildAndCheck(sap, m.boxes());
-        for (int f = 0; f < 40; ++f) {
-            m.step();
-            updateAndCheck(sap, m.boxes(), seed <= 8);
+    TEST_CASE("coherent random motion: pairs equal brute force after every frame, swaps = inversions") {
+        for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+            std::mt19937_64 rng(seed);
+            const int n = 20 + static_cast<int>(rng() % 60);
+            auto m = broad_oracle::Motion::random(rng, n, 10.0, 0.2, 1.5, 0.15);
+            SweepAndPrune sap;
+            buildAndCheck(sap, m.boxes());
+            for (int f = 0; f < 40; ++f) {
+                m.step();
+                updateAndCheck(sap, m.boxes(), seed <= 8);
+            }
         }
     }
-}
 
-TEST_CASE("integer coordinates: exact ties, touching faces, zero-size and identical boxes") {
-    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-        std::mt19937_64 rng(seed + 100);
-        const int n = 10 + static_cast<int>(rng() % 30);
-        std::vector<Aabb> boxes;
-        for (int i = 0; i < n; ++i) boxes.push_back(broad_oracle::integerBox(rng, 6, seed % 3 == 0 ? 0 : 2));
-        for (int i = 0; i < n / 4; ++i) boxes.push_back(boxes[rng() % boxes.size()]);  // identical copies
+    TEST_CASE("integer coordinates: exact ties, touching faces, zero-size and identical boxes") {
+        for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+            std::mt19937_64 rng(seed + 100);
+            const int n = 10 + static_cast<int>(rng() % 30);
+            std::vector<Aabb> boxes;
+            for (int i = 0; i < n; ++i) boxes.push_back(broad_oracle::integerBox(rng, 6, seed % 3 == 0 ? 0 : 2));
+            for (int i = 0; i < n / 4; ++i) boxes.push_back(boxes[rng() % boxes.size()]);  // identical copies
+            SweepAndPrune sap;
+            buildAndCheck(sap, boxes);
+            for (int f = 0; f < 30; ++f) {
+                // Integer steps of -1, 0, +1 per axis: every frame is full of exact ties.
+                for (Aabb& b : boxes) {
+                    const Vec3 d(static_cast<double>(rng() % 3) - 1.0, static_cast<double>(rng() % 3) - 1.0,
+                                 static_cast<double>(rng() % 3) - 1.0);
+                    b.min += d;
+                    b.max += d;
+                }
+                updateAndCheck(sap, boxes, true);
+            }
+        }
+    }
+
+    TEST_CASE("touching boxes overlap (closed), a gap of one ulp separates") {
+        std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(1, 0, 0), Vec3(2, 1, 1)}};
         SweepAndPrune sap;
         buildAndCheck(sap, boxes);
-        for (int f = 0; f < 30; ++f) {
-            // Integer steps of -1, 0, +1 per axis: every frame is full of exact ties.
-            for (Aabb& b : boxes) {
-                const Vec3 d(static_cast<double>(rng() % 3) - 1.0, static_cast<double>(rng() % 3) - 1.0,
-                             static_cast<double>(rng() % 3) - 1.0);
-                b.min += d;
-                b.max += d;
+        CHECK(sap.pairs().size() == 1);
+        const double gap = std::nextafter(1.0, 2.0);
+        boxes[1] = {Vec3(gap, 0, 0), Vec3(2, 1, 1)};
+        updateAndCheck(sap, boxes, true);
+        CHECK(sap.pairs().empty());
+        boxes[1] = {Vec3(1, 0, 0), Vec3(2, 1, 1)};
+        updateAndCheck(sap, boxes, true);
+        CHECK(sap.reported(0, 1));
+        // Touching on y and z edges too (corner contact), and a point box on a face.
+        boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(1, 1, 1), Vec3(2, 2, 2)}};
+        updateAndCheck(sap, boxes, true);
+        CHECK(sap.reported(0, 1));
+        boxes[1] = {Vec3(1, 0.5, 0.5), Vec3(1, 0.5, 0.5)};
+        updateAndCheck(sap, boxes, true);
+        CHECK(sap.reported(0, 1));
+    }
+
+    TEST_CASE("huge offsets (1e6) and tiny sizes (1e-6 .. 1e-3)") {
+        for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+            std::mt19937_64 rng(seed + 300);
+            const double scale = seed % 2 ? 1e-3 : 1e-6;
+            auto m = broad_oracle::Motion::random(rng, 50, 10 * scale, 0.2 * scale, 1.5 * scale, 0.2 * scale);
+            const Vec3 offset(1e6, -1e6, 3e6);
+            SweepAndPrune sap;
+            buildAndCheck(sap, m.boxes(offset));
+            for (int f = 0; f < 30; ++f) {
+                m.step();
+                updateAndCheck(sap, m.boxes(offset), seed <= 4);
             }
-            updateAndCheck(sap, boxes, true);
         }
     }
-}
 
-TEST_CASE("touching boxes overlap (closed), a gap of one ulp separates") {
-    std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(1, 0, 0), Vec3(2, 1, 1)}};
-    SweepAndPrune sap;
-    buildAndCheck(sap, boxes);
-    CHECK(sap.pairs().size() == 1);
-    const double gap = std::nextafter(1.0, 2.0);
-    boxes[1] = {Vec3(gap, 0, 0), Vec3(2, 1, 1)};
-    updateAndCheck(sap, boxes, true);
-    CHECK(sap.pairs().empty());
-    boxes[1] = {Vec3(1, 0, 0), Vec3(2, 1, 1)};
-    updateAndCheck(sap, boxes, true);
-    CHECK(sap.reported(0, 1));
-    // Touching on y and z edges too (corner contact), and a point box on a face.
-    boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(1, 1, 1), Vec3(2, 2, 2)}};
-    updateAndCheck(sap, boxes, true);
-    CHECK(sap.reported(0, 1));
-    boxes[1] = {Vec3(1, 0.5, 0.5), Vec3(1, 0.5, 0.5)};
-    updateAndCheck(sap, boxes, true);
-    CHECK(sap.reported(0, 1));
-}
-
-TEST_CASE("huge offsets (1e6) and tiny sizes (1e-6 .. 1e-3)") {
-    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-        std::mt19937_64 rng(seed + 300);
-        const double scale = seed % 2 ? 1e-3 : 1e-6;
-        auto m = broad_oracle::Motion::random(rng, 50, 10 * scale, 0.2 * scale, 1.5 * scale, 0.2 * scale);
-        const Vec3 offset(1e6, -1e6, 3e6);
-        SweepAndPrune sap;
-        buildAndCheck(sap, m.boxes(offset));
-        for (int f = 0; f < 30; ++f) {
-            m.step();
-            updateAndCheck(sap, m.boxes(offset), seed <= 4);
+    TEST_CASE("teleports: incoherent jumps still give exact pairs and swaps = inversions") {
+        for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+            std::mt19937_64 rng(seed + 400);
+            auto m = broad_oracle::Motion::random(rng, 60, 8.0, 0.3, 1.2, 0.1);
+            SweepAndPrune sap;
+            buildAndCheck(sap, m.boxes());
+            for (int f = 0; f < 20; ++f) {
+                m.step();
+                if (f % 3 == 0)  // teleport a third of the boxes anywhere
+                    for (std::size_t i = 0; i < m.center.size(); i += 3)
+                        m.center[i] = Vec3(broad_oracle::uniform(rng, 0, 8), broad_oracle::uniform(rng, 0, 8),
+                                           broad_oracle::uniform(rng, 0, 8));
+                if (f == 10)  // everything reversed: the most swaps
+                    for (Vec3& c : m.center) c = Vec3(8, 8, 8) - c;
+                updateAndCheck(sap, m.boxes(), true);
+            }
         }
     }
-}
 
-TEST_CASE("teleports: incoherent jumps still give exact pairs and swaps = inversions") {
-    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-        std::mt19937_64 rng(seed + 400);
-        auto m = broad_oracle::Motion::random(rng, 60, 8.0, 0.3, 1.2, 0.1);
-        SweepAndPrune sap;
-        buildAndCheck(sap, m.boxes());
-        for (int f = 0; f < 20; ++f) {
-            m.step();
-            if (f % 3 == 0)  // teleport a third of the boxes anywhere
-                for (std::size_t i = 0; i < m.center.size(); i += 3)
-                    m.center[i] = Vec3(broad_oracle::uniform(rng, 0, 8), broad_oracle::uniform(rng, 0, 8),
-                                       broad_oracle::uniform(rng, 0, 8));
-            if (f == 10)  // everything reversed: the most swaps
-                for (Vec3& c : m.center) c = Vec3(8, 8, 8) - c;
-            updateAndCheck(sap, m.boxes(), true);
-        }
-    }
-}
-
-TEST_CASE("add and remove mid-sequence; ids are stable") {
-    for (std::uint64_t seed = 1; seed <= 15; ++seed) {
-        std::mt19937_64 rng(seed + 500);
-        auto m = broad_oracle::Motion::random(rng, 30, 8.0, 0.3, 1.2, 0.1);
-        SweepAndPrune sap;
-        buildAndCheck(sap, m.boxes());
-        std::vector<char> alive(30, 1);
-        for (int f = 0; f < 40; ++f) {
-            m.step();
-            // A random removal or addition, checked on its own before the update.
-            if (rng() % 2 && sap.objectCount() > 2) {
-                int id;
-                do id = static_cast<int>(rng() % sap.idCapacity());
-                while (!alive[id]);
-                SapTrace t;
-                const std::vector<IdPair> beforePairs = sortedPairs(sap.pairs());
-                REQUIRE(sap.remove(id, &t).status == SapStatus::Ok);
-                alive[id] = 0;
-                for (const BoxPair& p : t.removed) CHECK((p.a == id || p.b == id));
-                int had = 0;
-                for (const IdPair& p : beforePairs) had += (p.a == id || p.b == id);
-                CHECK(static_cast<int>(t.removed.size()) == had);
-                CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(stored(sap), &alive));
-            } else {
-                const Aabb nb{Vec3(broad_oracle::uniform(rng, 0, 8), broad_oracle::uniform(rng, 0, 8), broad_oracle::uniform(rng, 0, 8)),
-                              Vec3::Zero()};
-                Aabb box = nb;
-                box.max = box.min + Vec3(1, 1, 1);
-                const SapResult r = sap.add(box);
-                REQUIRE(r.status == SapStatus::Ok);
-                const int id = r.object;
-                if (id >= static_cast<int>(m.center.size())) {
-                    m.center.push_back(Vec3::Zero());
-                    m.half.push_back(Vec3::Zero());
-                    m.velocity.push_back(Vec3::Zero());
-                    alive.push_back(0);
+    TEST_CASE("add and remove mid-sequence; ids are stable") {
+        for (std::uint64_t seed = 1; seed <= 15; ++seed) {
+            std::mt19937_64 rng(seed + 500);
+            auto m = broad_oracle::Motion::random(rng, 30, 8.0, 0.3, 1.2, 0.1);
+            SweepAndPrune sap;
+            buildAndCheck(sap, m.boxes());
+            std::vector<char> alive(30, 1);
+            for (int f = 0; f < 40; ++f) {
+                m.step();
+                // A random removal or addition, checked on its own before the update.
+                if (rng() % 2 && sap.objectCount() > 2) {
+                    int id;
+                    do id = static_cast<int>(rng() % sap.idCapacity());
+                    while (!alive[id]);
+                    SapTrace t;
+                    const std::vector<IdPair> beforePairs = sortedPairs(sap.pairs());
+                    REQUIRE(sap.remove(id, &t).status == SapStatus::Ok);
+                    alive[id] = 0;
+                    for (const BoxPair& p : t.removed) CHECK((p.a == id || p.b == id));
+                    int had = 0;
+                    for (const IdPair& p : beforePairs) had += (p.a == id || p.b == id);
+                    CHECK(static_cast<int>(t.removed.size()) == had);
+                    CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(stored(sap), &alive));
+                } else {
+                    const Aabb nb{Vec3(broad_oracle::uniform(rng, 0, 8), broad_oracle::uniform(rng, 0, 8),
+                                       broad_oracle::uniform(rng, 0, 8)),
+                                  Vec3::Zero()};
+                    Aabb box = nb;
+                    box.max = box.min + Vec3(1, 1, 1);
+                    const SapResult r = sap.add(box);
+                    REQUIRE(r.status == SapStatus::Ok);
+                    const int id = r.object;
+                    if (id >= static_cast<int>(m.center.size())) {
+                        m.center.push_back(Vec3::Zero());
+                        m.half.push_back(Vec3::Zero());
+                        m.velocity.push_back(Vec3::Zero());
+                        alive.push_back(0);
+                    }
+                    CHECK(!alive[id]);  // a fresh or a freed id
+                    alive[id] = 1;
+                    m.center[id] = box.min + Vec3(0.5, 0.5, 0.5);
+                    m.half[id] = Vec3(0.5, 0.5, 0.5);
+                    m.velocity[id] = Vec3(0.05, -0.03, 0.02);
+                    CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(stored(sap), &alive));
                 }
-                CHECK(!alive[id]);  // a fresh or a freed id
-                alive[id] = 1;
-                m.center[id] = box.min + Vec3(0.5, 0.5, 0.5);
-                m.half[id] = Vec3(0.5, 0.5, 0.5);
-                m.velocity[id] = Vec3(0.05, -0.03, 0.02);
-                CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(stored(sap), &alive));
+                updateAndCheck(sap, m.boxes(), false, &alive);
+                CHECK(sap.objectCount() == static_cast<int>(std::count(alive.begin(), alive.end(), 1)));
             }
-            updateAndCheck(sap, m.boxes(), false, &alive);
-            CHECK(sap.objectCount() == static_cast<int>(std::count(alive.begin(), alive.end(), 1)));
         }
     }
-}
 
-TEST_CASE("NaN, inf, empty boxes and a wrong count are rejected and change nothing") {
-    std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(0.5, 0.5, 0.5), Vec3(2, 2, 2)}, {Vec3(5, 5, 5), Vec3(6, 6, 6)}};
-    SweepAndPrune sap;
-    buildAndCheck(sap, boxes);
-    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-    std::vector<Aabb> bad = boxes;
-    bad[2].min.y() = nan;
-    SapResult r = sap.update(bad);
-    CHECK(r.status == SapStatus::NonFiniteBox);
-    CHECK(r.object == 2);
-    bad = boxes;
-    bad[1].max.z() = inf;
-    CHECK(sap.update(bad).status == SapStatus::NonFiniteBox);
-    bad = boxes;
-    bad[0].min.x() = 2;  // min > max
-    r = sap.update(bad);
-    CHECK(r.status == SapStatus::EmptyBox);
-    CHECK(r.object == 0);
-    CHECK(sap.update(std::vector<Aabb>(2)).status == SapStatus::WrongBoxCount);
-    CHECK(sap.add(Aabb{Vec3(0, 0, 0), Vec3(nan, 1, 1)}).status == SapStatus::NonFiniteBox);
-    CHECK(sap.add(Aabb{Vec3(0, 0, 0), Vec3(-1, 1, 1)}).status == SapStatus::EmptyBox);
-    CHECK(sap.remove(7).status == SapStatus::UnknownId);
-    CHECK(sap.build({boxes[0], Aabb{Vec3(0, 0, 0), Vec3(-inf, 0, 0)}}).status == SapStatus::NonFiniteBox);
-    // State untouched: the next valid update still matches brute force.
-    CHECK(sap.objectCount() == 3);
-    updateAndCheck(sap, boxes, true);
-    CHECK(sap.pairs().size() == 1);
-}
-
-TEST_CASE("counters accumulate; a still frame swaps nothing") {
-    std::mt19937_64 rng(7);
-    auto m = broad_oracle::Motion::random(rng, 40, 6.0, 0.3, 1.0, 0.1);
-    SweepAndPrune sap;
-    sap.reserve(40, 200);
-    buildAndCheck(sap, m.boxes());
-    std::int64_t swaps = 0, added = 0, removed = 0;
-    for (int f = 0; f < 10; ++f) {
-        m.step();
-        const SapResult r = sap.update(m.boxes());
-        swaps += r.swaps;
-        added += r.pairsAdded;
-        removed += r.pairsRemoved;
+    TEST_CASE("NaN, inf, empty boxes and a wrong count are rejected and change nothing") {
+        std::vector<Aabb> boxes = {
+            {Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(0.5, 0.5, 0.5), Vec3(2, 2, 2)}, {Vec3(5, 5, 5), Vec3(6, 6, 6)}};
+        SweepAndPrune sap;
+        buildAndCheck(sap, boxes);
+        const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+        std::vector<Aabb> bad = boxes;
+        bad[2].min.y() = nan;
+        SapResult r = sap.update(bad);
+        CHECK(r.status == SapStatus::NonFiniteBox);
+        CHECK(r.object == 2);
+        bad = boxes;
+        bad[1].max.z() = inf;
+        CHECK(sap.update(bad).status == SapStatus::NonFiniteBox);
+        bad = boxes;
+        bad[0].min.x() = 2;  // min > max
+        r = sap.update(bad);
+        CHECK(r.status == SapStatus::EmptyBox);
+        CHECK(r.object == 0);
+        CHECK(sap.update(std::vector<Aabb>(2)).status == SapStatus::WrongBoxCount);
+        CHECK(sap.add(Aabb{Vec3(0, 0, 0), Vec3(nan, 1, 1)}).status == SapStatus::NonFiniteBox);
+        CHECK(sap.add(Aabb{Vec3(0, 0, 0), Vec3(-1, 1, 1)}).status == SapStatus::EmptyBox);
+        CHECK(sap.remove(7).status == SapStatus::UnknownId);
+        CHECK(sap.build({boxes[0], Aabb{Vec3(0, 0, 0), Vec3(-inf, 0, 0)}}).status == SapStatus::NonFiniteBox);
+        // State untouched: the next valid update still matches brute force.
+        CHECK(sap.objectCount() == 3);
+        updateAndCheck(sap, boxes, true);
+        CHECK(sap.pairs().size() == 1);
     }
-    CHECK(sap.counters().updates == 10);
-    CHECK(sap.counters().swaps == swaps);
-    // build() reset the counters and reported the initial pairs as added.
-    CHECK(sap.counters().pairsAdded - sap.counters().pairsRemoved == static_cast<std::int64_t>(sap.pairs().size()));
-    CHECK(sap.counters().pairsRemoved == removed);
-    const SapResult still = sap.update(m.boxes());
-    CHECK(still.swaps == 0);
-    CHECK(still.pairsAdded + still.pairsRemoved == 0);
-}
+
+    TEST_CASE("counters accumulate; a still frame swaps nothing") {
+        std::mt19937_64 rng(7);
+        auto m = broad_oracle::Motion::random(rng, 40, 6.0, 0.3, 1.0, 0.1);
+        SweepAndPrune sap;
+        sap.reserve(40, 200);
+        buildAndCheck(sap, m.boxes());
+        std::int64_t swaps = 0, added = 0, removed = 0;
+        for (int f = 0; f < 10; ++f) {
+            m.step();
+            const SapResult r = sap.update(m.boxes());
+            swaps += r.swaps;
+            added += r.pairsAdded;
+            removed += r.pairsRemoved;
+        }
+        CHECK(sap.counters().updates == 10);
+        CHECK(sap.counters().swaps == swaps);
+        // build() reset the counters and reported the initial pairs as added.
+        CHECK(sap.counters().pairsAdded - sap.counters().pairsRemoved == static_cast<std::int64_t>(sap.pairs().size()));
+        CHECK(sap.counters().pairsRemoved == removed);
+        const SapResult still = sap.update(m.boxes());
+        CHECK(still.swaps == 0);
+        CHECK(still.pairsAdded + still.pairsRemoved == 0);
+    }
 
 }  // TEST_SUITE

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "demos/oracles/broad_phase_oracle.h"
 #include "core/broadphase/uniform_grid.h"
+#include "demos/oracles/broad_phase_oracle.h"
 
 using namespace cdlab;
 using broad_oracle::bruteForcePairs;
@@ -30,76 +30,75 @@ void check(UniformGrid& grid, const std::vector<Aabb>& boxes, double h) {
 }  // namespace
 
 TEST_SUITE("uniform_grid") {
-
-TEST_CASE("random coherent motion: each overlapping pair exactly once, for several cell sizes") {
-    UniformGrid grid;  // reused across frames, as per-frame rebuilding does
-    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-        std::mt19937_64 rng(seed);
-        auto m = broad_oracle::Motion::random(rng, 30 + static_cast<int>(rng() % 60), 10.0, 0.2, 1.5, 0.2);
-        for (int f = 0; f < 20; ++f) {
-            m.step();
-            for (double h : {0.37, 1.0, 2.5, 20.0}) check(grid, m.boxes(), h);
+    TEST_CASE("random coherent motion: each overlapping pair exactly once, for several cell sizes") {
+        UniformGrid grid;  // reused across frames, as per-frame rebuilding does
+        for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+            std::mt19937_64 rng(seed);
+            auto m = broad_oracle::Motion::random(rng, 30 + static_cast<int>(rng() % 60), 10.0, 0.2, 1.5, 0.2);
+            for (int f = 0; f < 20; ++f) {
+                m.step();
+                for (double h : {0.37, 1.0, 2.5, 20.0}) check(grid, m.boxes(), h);
+            }
         }
     }
-}
 
-TEST_CASE("integer boxes on cell boundaries: ties, touching faces, zero-size and identical boxes") {
-    UniformGrid grid;
-    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-        std::mt19937_64 rng(seed + 100);
-        std::vector<Aabb> boxes;
-        const int n = 10 + static_cast<int>(rng() % 40);
-        for (int i = 0; i < n; ++i) boxes.push_back(broad_oracle::integerBox(rng, 6, seed % 3 == 0 ? 0 : 3));
-        for (int i = 0; i < n / 4; ++i) boxes.push_back(boxes[rng() % boxes.size()]);
-        for (double h : {0.5, 1.0, 2.0, 3.0}) check(grid, boxes, h);
-        // Negative coordinates: floor, not truncation, decides the cell.
-        for (Aabb& b : boxes) b.min -= Vec3(3, 3, 3), b.max -= Vec3(3, 3, 3);
-        for (double h : {1.0, 2.0}) check(grid, boxes, h);
+    TEST_CASE("integer boxes on cell boundaries: ties, touching faces, zero-size and identical boxes") {
+        UniformGrid grid;
+        for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+            std::mt19937_64 rng(seed + 100);
+            std::vector<Aabb> boxes;
+            const int n = 10 + static_cast<int>(rng() % 40);
+            for (int i = 0; i < n; ++i) boxes.push_back(broad_oracle::integerBox(rng, 6, seed % 3 == 0 ? 0 : 3));
+            for (int i = 0; i < n / 4; ++i) boxes.push_back(boxes[rng() % boxes.size()]);
+            for (double h : {0.5, 1.0, 2.0, 3.0}) check(grid, boxes, h);
+            // Negative coordinates: floor, not truncation, decides the cell.
+            for (Aabb& b : boxes) b.min -= Vec3(3, 3, 3), b.max -= Vec3(3, 3, 3);
+            for (double h : {1.0, 2.0}) check(grid, boxes, h);
+        }
+        // Two boxes touching exactly on a cell boundary: one pair, reported once.
+        check(grid, {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(1, 0, 0), Vec3(2, 1, 1)}}, 1.0);
+        check(grid, {{Vec3(0, 0, 0), Vec3(2, 2, 2)}, {Vec3(2, 2, 2), Vec3(2, 2, 2)}}, 1.0);
     }
-    // Two boxes touching exactly on a cell boundary: one pair, reported once.
-    check(grid, {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(1, 0, 0), Vec3(2, 1, 1)}}, 1.0);
-    check(grid, {{Vec3(0, 0, 0), Vec3(2, 2, 2)}, {Vec3(2, 2, 2), Vec3(2, 2, 2)}}, 1.0);
-}
 
-TEST_CASE("huge offsets (1e6) and tiny sizes (1e-6 .. 1e-3)") {
-    UniformGrid grid;
-    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-        std::mt19937_64 rng(seed + 300);
-        const double scale = seed % 2 ? 1e-3 : 1e-6;
-        auto m = broad_oracle::Motion::random(rng, 60, 10 * scale, 0.2 * scale, 1.5 * scale, 0.2 * scale);
-        const Vec3 offset(1e6, -1e6, 3e6);
-        for (int f = 0; f < 10; ++f) {
-            m.step();
-            for (double h : {1.0 * scale, 3.0 * scale}) check(grid, m.boxes(offset), h);
+    TEST_CASE("huge offsets (1e6) and tiny sizes (1e-6 .. 1e-3)") {
+        UniformGrid grid;
+        for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+            std::mt19937_64 rng(seed + 300);
+            const double scale = seed % 2 ? 1e-3 : 1e-6;
+            auto m = broad_oracle::Motion::random(rng, 60, 10 * scale, 0.2 * scale, 1.5 * scale, 0.2 * scale);
+            const Vec3 offset(1e6, -1e6, 3e6);
+            for (int f = 0; f < 10; ++f) {
+                m.step();
+                for (double h : {1.0 * scale, 3.0 * scale}) check(grid, m.boxes(offset), h);
+            }
         }
     }
-}
 
-TEST_CASE("bad input: NaN, inf, empty boxes, bad cell size, too many cells") {
-    UniformGrid grid;
-    UniformGridOptions o;
-    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-    std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(0, 0, 0), Vec3(1, nan, 1)}};
-    UniformGridResult r = grid.build(boxes, o);
-    CHECK(r.status == GridStatus::NonFiniteBox);
-    CHECK(r.object == 1);
-    boxes[1] = {Vec3(0, 0, -inf), Vec3(1, 1, 1)};
-    CHECK(grid.build(boxes, o).status == GridStatus::NonFiniteBox);
-    boxes[1] = {Vec3(0, 2, 0), Vec3(1, 1, 1)};
-    CHECK(grid.build(boxes, o).status == GridStatus::EmptyBox);
-    boxes[1] = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
-    for (double h : {0.0, -1.0, nan, inf}) {
-        o.cellSize = h;
-        CHECK(grid.build(boxes, o).status == GridStatus::BadCellSize);
+    TEST_CASE("bad input: NaN, inf, empty boxes, bad cell size, too many cells") {
+        UniformGrid grid;
+        UniformGridOptions o;
+        const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+        std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(0, 0, 0), Vec3(1, nan, 1)}};
+        UniformGridResult r = grid.build(boxes, o);
+        CHECK(r.status == GridStatus::NonFiniteBox);
+        CHECK(r.object == 1);
+        boxes[1] = {Vec3(0, 0, -inf), Vec3(1, 1, 1)};
+        CHECK(grid.build(boxes, o).status == GridStatus::NonFiniteBox);
+        boxes[1] = {Vec3(0, 2, 0), Vec3(1, 1, 1)};
+        CHECK(grid.build(boxes, o).status == GridStatus::EmptyBox);
+        boxes[1] = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
+        for (double h : {0.0, -1.0, nan, inf}) {
+            o.cellSize = h;
+            CHECK(grid.build(boxes, o).status == GridStatus::BadCellSize);
+        }
+        o.cellSize = 1e-3;  // 1001^3 cells for a unit box
+        r = grid.build(boxes, o);
+        CHECK(r.status == GridStatus::TooManyCells);
+        o.cellSize = 1e-300;  // cell indices beyond 2^53
+        CHECK(grid.build({{Vec3(1, 1, 1), Vec3(1, 1, 1)}}, o).status == GridStatus::TooManyCells);
+        o.cellSize = 1.0;
+        check(grid, boxes, 1.0);
+        CHECK(grid.pairs().size() == 1);
     }
-    o.cellSize = 1e-3;  // 1001^3 cells for a unit box
-    r = grid.build(boxes, o);
-    CHECK(r.status == GridStatus::TooManyCells);
-    o.cellSize = 1e-300;  // cell indices beyond 2^53
-    CHECK(grid.build({{Vec3(1, 1, 1), Vec3(1, 1, 1)}}, o).status == GridStatus::TooManyCells);
-    o.cellSize = 1.0;
-    check(grid, boxes, 1.0);
-    CHECK(grid.pairs().size() == 1);
-}
 
 }  // TEST_SUITE

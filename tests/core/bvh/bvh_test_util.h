@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/bvh/bvh.h"
-#include "core/overlap/intersect_ray.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/overlap/intersect_ray.h"
 #include "core/overlap/triangle_triangle.h"
 
 namespace bvhtest {

@@ -10,8 +10,8 @@
 #include <random>
 
 #include "core/closest/edge_pair_distance.h"
-#include "core/gjk_epa/gjk.h"
 #include "core/geometry/shapes.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/oracles/closest_oracle.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
 
@@ -19,13 +19,11 @@ using namespace cdlab;
 
 namespace {
 
-double logUniform(std::mt19937_64& rng, double lo, double hi)
-{
+double logUniform(std::mt19937_64& rng, double lo, double hi) {
     return std::exp(std::uniform_real_distribution<double>(std::log(lo), std::log(hi))(rng));
 }
 
-Vec3 perpendicularUnit(const Vec3& e)
-{
+Vec3 perpendicularUnit(const Vec3& e) {
     const Vec3 t = std::abs(e.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
     return e.cross(t).normalized();
 }
@@ -36,8 +34,7 @@ struct CrossedEdges {
     double gap;
 };
 
-CrossedEdges crossedEdges(std::mt19937_64& rng, double angle, double gap, const Vec3& at)
-{
+CrossedEdges crossedEdges(std::mt19937_64& rng, double angle, double gap, const Vec3& at) {
     CrossedEdges c;
     c.e = test::randomUnit(rng);
     c.n = perpendicularUnit(c.e);
@@ -54,8 +51,7 @@ CrossedEdges crossedEdges(std::mt19937_64& rng, double angle, double gap, const 
 
 // Long double segment-segment distance by the boundary cases plus the interior critical point
 // found by exact-in-long-double 2x2 solve; only used on well-conditioned (angle > 0.1) pairs.
-long double pointSegmentLd(const Vec3& x, const Vec3& p, const Vec3& q)
-{
+long double pointSegmentLd(const Vec3& x, const Vec3& p, const Vec3& q) {
     long double d[3], w[3], dd = 0, wd = 0;
     for (int i = 0; i < 3; ++i) {
         d[i] = static_cast<long double>(q[i]) - p[i];
@@ -70,8 +66,7 @@ long double pointSegmentLd(const Vec3& x, const Vec3& p, const Vec3& q)
     return std::sqrt(s);
 }
 
-long double segmentSegmentLd(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1)
-{
+long double segmentSegmentLd(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
     long double best = std::min({pointSegmentLd(a0, b0, b1), pointSegmentLd(a1, b0, b1), pointSegmentLd(b0, a0, a1),
                                  pointSegmentLd(b1, a0, a1)});
     long double d1[3], d2[3], r[3];
@@ -106,8 +101,7 @@ long double segmentSegmentLd(const Vec3& a0, const Vec3& a1, const Vec3& b0, con
 /// Rounding of the constructed points moves the distance by at most their displacement: b0 and
 /// b1 take four rounded operations per coordinate (at + shift e - e2 + gap n), a0 and a1 one;
 /// 8 u of the largest coordinate per point covers both (sqrt 3 for the three coordinates).
-double constructionSlack(const CrossedEdges& c)
-{
+double constructionSlack(const CrossedEdges& c) {
     double m = 0;
     for (const Vec3* p : {&c.a0, &c.a1, &c.b0, &c.b1}) m = std::max(m, p->cwiseAbs().maxCoeff());
     return 8 * DBL_EPSILON * m * std::sqrt(3.0) * 2;  // two points per edge may move apart
@@ -115,10 +109,8 @@ double constructionSlack(const CrossedEdges& c)
 
 }  // namespace
 
-TEST_SUITE("edge pair distance")
-{
-    TEST_CASE("crossed edges: the gap along n at every angle, offset and scale")
-    {
+TEST_SUITE("edge pair distance") {
+    TEST_CASE("crossed edges: the gap along n at every angle, offset and scale") {
         std::mt19937_64 rng(7);
         for (int i = 0; i < 2000; ++i) {
             const double angle = logUniform(rng, 1e-12, 1.5);
@@ -142,15 +134,14 @@ TEST_SUITE("edge pair distance")
         }
     }
 
-    TEST_CASE("well-conditioned random pairs and end point cases: long double oracle")
-    {
+    TEST_CASE("well-conditioned random pairs and end point cases: long double oracle") {
         std::mt19937_64 rng(11);
         std::uniform_real_distribution<double> u(-1, 1);
         for (int i = 0; i < 5000; ++i) {
             const Vec3 a0(u(rng), u(rng), u(rng)), a1(u(rng), u(rng), u(rng));
             Vec3 b0(u(rng), u(rng), u(rng)), b1(u(rng), u(rng), u(rng));
-            if (i % 10 == 0) b1 = b0;  // a point
-            if (i % 10 == 1) b0 = a1;  // shared end point
+            if (i % 10 == 0) b1 = b0;                    // a point
+            if (i % 10 == 1) b0 = a1;                    // shared end point
             if (i % 10 == 2) b1 = a0 + 0.5 * (a1 - a0);  // touching at an interior point
             const EdgePairDistance r = edgePairDistance(a0, a1, b0, b1);
             REQUIRE(r.ok);
@@ -160,8 +151,7 @@ TEST_SUITE("edge pair distance")
         }
     }
 
-    TEST_CASE("degenerate input: NaN refused, coincident points give zero")
-    {
+    TEST_CASE("degenerate input: NaN refused, coincident points give zero") {
         const Vec3 z = Vec3::Zero(), x = Vec3::UnitX();
         CHECK_FALSE(edgePairDistance(Vec3(NAN, 0, 0), x, z, x).ok);
         CHECK_FALSE(edgePairDistance(z, x, Vec3(INFINITY, 0, 0), x).ok);
@@ -172,13 +162,13 @@ TEST_SUITE("edge pair distance")
         REQUIRE(parallel.ok);
         CHECK(parallel.distance == doctest::Approx(1.0).epsilon(1e-15));
         CHECK_FALSE(linePairSeparation(z, x, Vec3(0.5, 1, 0), Vec3(3, 1, 0)).ok);  // parallel lines
-        const EdgePairDistance tiny = edgePairDistance(1e-300 * x, 2e-300 * x, Vec3(0, 1e-300, 0), Vec3(0, 1e-300, 1e-300));
+        const EdgePairDistance tiny =
+            edgePairDistance(1e-300 * x, 2e-300 * x, Vec3(0, 1e-300, 0), Vec3(0, 1e-300, 1e-300));
         REQUIRE(tiny.ok);
         CHECK(tiny.distance == doctest::Approx(std::sqrt(2.0) * 1e-300).epsilon(1e-14));
     }
 
-    TEST_CASE("point vs triangle: long double oracle, and slivers with the height known by construction")
-    {
+    TEST_CASE("point vs triangle: long double oracle, and slivers with the height known by construction") {
         std::mt19937_64 rng(13);
         std::uniform_real_distribution<double> u(-1, 1);
         for (int i = 0; i < 5000; ++i) {
@@ -211,8 +201,7 @@ TEST_SUITE("edge pair distance")
         }
     }
 
-    TEST_CASE("GJK on wedges with nearly parallel ridges: distance = gap to rounding")
-    {
+    TEST_CASE("GJK on wedges with nearly parallel ridges: distance = gap to rounding") {
         // The stress family "nearly parallel edges": two thin wedges whose ridges cross at
         // 1e-10..1e-1 rad, `gap` apart along n. Before edge-pair refinement GJK erred by up to
         // ~5e-9 here; now the distance must be the gap to rounding of the input.

@@ -34,7 +34,8 @@ std::vector<LVec> samples(const FeatureGeometry& f, int n, long double& h) {
     for (size_t k = 1; k + 1 < f.points.size(); ++k) {
         const LVec b = toL(f.points[k]), c = toL(f.points[k + 1]);
         for (int i = 0; i <= n; ++i)
-            for (int j = 0; i + j <= n; ++j) s.push_back(o + (b - o) * ((long double)i / n) + (c - o) * ((long double)j / n));
+            for (int j = 0; i + j <= n; ++j)
+                s.push_back(o + (b - o) * ((long double)i / n) + (c - o) * ((long double)j / n));
         h = std::max({h, (b - o).norm() / n, (c - o).norm() / n, (c - b).norm() / n});
     }
     return s;
@@ -68,122 +69,128 @@ FeatureGeometry randomFeature(std::mt19937_64& rng, FeatureType t, const Vec3& c
 }  // namespace
 
 TEST_SUITE("feature_distance") {
-
-TEST_CASE("all six pair types vs dense sampling (long double), offsets and scales") {
-    std::mt19937_64 rng(3);
-    const FeatureType types[] = {FeatureType::Vertex, FeatureType::Edge, FeatureType::Face};
-    for (double scale : {1e-3, 1.0, 1e3}) {
-        for (double offset : {0.0, 1e4, 1e6}) {
-            for (FeatureType ta : types) {
-                for (FeatureType tb : types) {
-                    for (int k = 0; k < 6; ++k) {
-                        const Vec3 base = Vec3(1, -2, 3).normalized() * offset;
-                        const FeatureGeometry a = randomFeature(rng, ta, base, scale);
-                        const FeatureGeometry b = randomFeature(rng, tb, base + rnd(rng, 1.5 * scale), scale);
-                        const FeatureDistanceResult r = featureDistance(a, b);
-                        REQUIRE(r.valid);
-                        long double ha, hb;
-                        const int n = (ta == FeatureType::Face && tb == FeatureType::Face) ? 24 : 60;
-                        const auto sa = samples(a, n, ha), sb = samples(b, n, hb);
-                        long double best = INFINITY;
-                        for (const LVec& p : sa)
-                            for (const LVec& q : sb) best = std::min(best, (p - q).norm());
-                        CAPTURE(nameOf(r.type));
-                        CAPTURE(scale);
-                        CAPTURE(offset);
-                        const double round = 1e-12 * (scale + offset);
-                        // Sampled points are feature points: the true minimum is no larger...
-                        CHECK(r.distance <= (double)best + round);
-                        // ...and the true closest pair is within ha + hb of a sampled pair.
-                        CHECK(r.distance >= (double)(best - ha - hb) - round);
-                        CHECK(std::abs((r.pointA - r.pointB).norm() - r.distance) <= round);
-                        if (r.normalDefined) CHECK(std::abs(r.normal.norm() - 1) < 1e-12);
+    TEST_CASE("all six pair types vs dense sampling (long double), offsets and scales") {
+        std::mt19937_64 rng(3);
+        const FeatureType types[] = {FeatureType::Vertex, FeatureType::Edge, FeatureType::Face};
+        for (double scale : {1e-3, 1.0, 1e3}) {
+            for (double offset : {0.0, 1e4, 1e6}) {
+                for (FeatureType ta : types) {
+                    for (FeatureType tb : types) {
+                        for (int k = 0; k < 6; ++k) {
+                            const Vec3 base = Vec3(1, -2, 3).normalized() * offset;
+                            const FeatureGeometry a = randomFeature(rng, ta, base, scale);
+                            const FeatureGeometry b = randomFeature(rng, tb, base + rnd(rng, 1.5 * scale), scale);
+                            const FeatureDistanceResult r = featureDistance(a, b);
+                            REQUIRE(r.valid);
+                            long double ha, hb;
+                            const int n = (ta == FeatureType::Face && tb == FeatureType::Face) ? 24 : 60;
+                            const auto sa = samples(a, n, ha), sb = samples(b, n, hb);
+                            long double best = INFINITY;
+                            for (const LVec& p : sa)
+                                for (const LVec& q : sb) best = std::min(best, (p - q).norm());
+                            CAPTURE(nameOf(r.type));
+                            CAPTURE(scale);
+                            CAPTURE(offset);
+                            const double round = 1e-12 * (scale + offset);
+                            // Sampled points are feature points: the true minimum is no larger...
+                            CHECK(r.distance <= (double)best + round);
+                            // ...and the true closest pair is within ha + hb of a sampled pair.
+                            CHECK(r.distance >= (double)(best - ha - hb) - round);
+                            CHECK(std::abs((r.pointA - r.pointB).norm() - r.distance) <= round);
+                            if (r.normalDefined) CHECK(std::abs(r.normal.norm() - 1) < 1e-12);
+                        }
                     }
                 }
             }
         }
     }
-}
 
-TEST_CASE("exact small cases and the normal rule") {
-    const std::vector<Vec3> square = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0), Vec3(0, 2, 0)};
-    // V–F above the interior: projection, normal = -(B's outward normal) = from A toward B.
-    FeatureDistanceResult r = featureDistance({FeatureType::Vertex, {Vec3(1, 1, 3)}}, {FeatureType::Face, square});
-    CHECK(r.type == ContactType::VF);
-    CHECK(r.distance == 3.0);
-    CHECK(r.pointB == Vec3(1, 1, 0));
-    CHECK(r.normal == Vec3(0, 0, -1));
-    CHECK(std::string(r.normalRule) == "face B");
-    // F–V (face first): A's outward normal.
-    r = featureDistance({FeatureType::Face, square}, {FeatureType::Vertex, {Vec3(1, 1, 3)}});
-    CHECK(r.normal == Vec3(0, 0, 1));
-    CHECK(r.pointA == Vec3(1, 1, 0));
-    // V–F outside the face: nearest boundary point.
-    r = featureDistance({FeatureType::Vertex, {Vec3(3, 1, 0)}}, {FeatureType::Face, square});
-    CHECK(r.distance == 1.0);
-    // E–F piercing: distance 0 at the crossing.
-    r = featureDistance({FeatureType::Edge, {Vec3(0.5, 0.5, -1), Vec3(0.5, 0.5, 1)}}, {FeatureType::Face, square});
-    CHECK(r.type == ContactType::EF);
-    CHECK(r.distance == 0.0);
-    CHECK(r.pointA == Vec3(0.5, 0.5, 0));
-    // E–F parallel above the face: continuum, flagged.
-    r = featureDistance({FeatureType::Edge, {Vec3(0.5, 0.5, 1), Vec3(1.5, 0.5, 1)}}, {FeatureType::Face, square});
-    CHECK(r.distance == 1.0);
-    CHECK(r.parallel);
-    // F–F stacked: parallel, distance = gap, normal = A's face normal.
-    std::vector<Vec3> top = square;
-    for (Vec3& p : top) p.z() = 0.5;
-    std::reverse(top.begin(), top.end());  // outward normal -z
-    r = featureDistance({FeatureType::Face, top}, {FeatureType::Face, square});
-    CHECK(r.type == ContactType::FF);
-    CHECK(r.distance == 0.5);
-    CHECK(r.parallel);
-    CHECK(r.normal == Vec3(0, 0, -1));
-    // F–F crossing: 0.
-    r = featureDistance({FeatureType::Face, {Vec3(1, 1, -1), Vec3(1, 1, 1), Vec3(1, 3, 0)}}, {FeatureType::Face, square});
-    CHECK(r.distance == 0.0);
-    // E–E skew: closest points line, stable.
-    r = featureDistance({FeatureType::Edge, {Vec3(-1, 0, 0), Vec3(1, 0, 0)}}, {FeatureType::Edge, {Vec3(0, -1, 2), Vec3(0, 1, 2)}});
-    CHECK(r.type == ContactType::EE);
-    CHECK(r.distance == 2.0);
-    CHECK(r.normal == Vec3(0, 0, 1));
-    CHECK(!r.normalUnstable);
-    // E–E crossing exactly: cross product fallback, flagged unstable.
-    r = featureDistance({FeatureType::Edge, {Vec3(-1, 0, 0), Vec3(1, 0, 0)}}, {FeatureType::Edge, {Vec3(0, -1, 0), Vec3(0, 1, 0)}});
-    CHECK(r.distance == 0.0);
-    CHECK(r.normalUnstable);
-    CHECK(std::string(r.normalRule) == "edge cross product");
-    CHECK(std::abs(r.normal.z()) == 1.0);
-    // E–E parallel overlapping / disjoint.
-    r = featureDistance({FeatureType::Edge, {Vec3(0, 0, 0), Vec3(2, 0, 0)}}, {FeatureType::Edge, {Vec3(1, 1, 0), Vec3(3, 1, 0)}});
-    CHECK(r.parallel);
-    CHECK(r.distance == doctest::Approx(1.0));
-    CHECK(r.normal.isApprox(Vec3(0, 1, 0)));
-    r = featureDistance({FeatureType::Edge, {Vec3(0, 0, 0), Vec3(2, 0, 0)}}, {FeatureType::Edge, {Vec3(5, 0, 0), Vec3(3, 0, 0)}});
-    CHECK(r.distance == doctest::Approx(1.0));
-    CHECK(r.pointA == Vec3(2, 0, 0));
-    CHECK(r.pointB == Vec3(3, 0, 0));
-    // V–V coincident: no normal.
-    r = featureDistance({FeatureType::Vertex, {Vec3(1, 2, 3)}}, {FeatureType::Vertex, {Vec3(1, 2, 3)}});
-    CHECK(r.type == ContactType::VV);
-    CHECK(!r.normalDefined);
-    CHECK(r.normalUnstable);
-    // V–E nearly touching: defined but unstable.
-    r = featureDistance({FeatureType::Vertex, {Vec3(0.5, 1e-12, 0)}}, {FeatureType::Edge, {Vec3(0, 0, 0), Vec3(1, 0, 0)}});
-    CHECK(r.type == ContactType::VE);
-    CHECK(r.normalDefined);
-    CHECK(r.normalUnstable);
-}
+    TEST_CASE("exact small cases and the normal rule") {
+        const std::vector<Vec3> square = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0), Vec3(0, 2, 0)};
+        // V–F above the interior: projection, normal = -(B's outward normal) = from A toward B.
+        FeatureDistanceResult r = featureDistance({FeatureType::Vertex, {Vec3(1, 1, 3)}}, {FeatureType::Face, square});
+        CHECK(r.type == ContactType::VF);
+        CHECK(r.distance == 3.0);
+        CHECK(r.pointB == Vec3(1, 1, 0));
+        CHECK(r.normal == Vec3(0, 0, -1));
+        CHECK(std::string(r.normalRule) == "face B");
+        // F–V (face first): A's outward normal.
+        r = featureDistance({FeatureType::Face, square}, {FeatureType::Vertex, {Vec3(1, 1, 3)}});
+        CHECK(r.normal == Vec3(0, 0, 1));
+        CHECK(r.pointA == Vec3(1, 1, 0));
+        // V–F outside the face: nearest boundary point.
+        r = featureDistance({FeatureType::Vertex, {Vec3(3, 1, 0)}}, {FeatureType::Face, square});
+        CHECK(r.distance == 1.0);
+        // E–F piercing: distance 0 at the crossing.
+        r = featureDistance({FeatureType::Edge, {Vec3(0.5, 0.5, -1), Vec3(0.5, 0.5, 1)}}, {FeatureType::Face, square});
+        CHECK(r.type == ContactType::EF);
+        CHECK(r.distance == 0.0);
+        CHECK(r.pointA == Vec3(0.5, 0.5, 0));
+        // E–F parallel above the face: continuum, flagged.
+        r = featureDistance({FeatureType::Edge, {Vec3(0.5, 0.5, 1), Vec3(1.5, 0.5, 1)}}, {FeatureType::Face, square});
+        CHECK(r.distance == 1.0);
+        CHECK(r.parallel);
+        // F–F stacked: parallel, distance = gap, normal = A's face normal.
+        std::vector<Vec3> top = square;
+        for (Vec3& p : top) p.z() = 0.5;
+        std::reverse(top.begin(), top.end());  // outward normal -z
+        r = featureDistance({FeatureType::Face, top}, {FeatureType::Face, square});
+        CHECK(r.type == ContactType::FF);
+        CHECK(r.distance == 0.5);
+        CHECK(r.parallel);
+        CHECK(r.normal == Vec3(0, 0, -1));
+        // F–F crossing: 0.
+        r = featureDistance({FeatureType::Face, {Vec3(1, 1, -1), Vec3(1, 1, 1), Vec3(1, 3, 0)}},
+                            {FeatureType::Face, square});
+        CHECK(r.distance == 0.0);
+        // E–E skew: closest points line, stable.
+        r = featureDistance({FeatureType::Edge, {Vec3(-1, 0, 0), Vec3(1, 0, 0)}},
+                            {FeatureType::Edge, {Vec3(0, -1, 2), Vec3(0, 1, 2)}});
+        CHECK(r.type == ContactType::EE);
+        CHECK(r.distance == 2.0);
+        CHECK(r.normal == Vec3(0, 0, 1));
+        CHECK(!r.normalUnstable);
+        // E–E crossing exactly: cross product fallback, flagged unstable.
+        r = featureDistance({FeatureType::Edge, {Vec3(-1, 0, 0), Vec3(1, 0, 0)}},
+                            {FeatureType::Edge, {Vec3(0, -1, 0), Vec3(0, 1, 0)}});
+        CHECK(r.distance == 0.0);
+        CHECK(r.normalUnstable);
+        CHECK(std::string(r.normalRule) == "edge cross product");
+        CHECK(std::abs(r.normal.z()) == 1.0);
+        // E–E parallel overlapping / disjoint.
+        r = featureDistance({FeatureType::Edge, {Vec3(0, 0, 0), Vec3(2, 0, 0)}},
+                            {FeatureType::Edge, {Vec3(1, 1, 0), Vec3(3, 1, 0)}});
+        CHECK(r.parallel);
+        CHECK(r.distance == doctest::Approx(1.0));
+        CHECK(r.normal.isApprox(Vec3(0, 1, 0)));
+        r = featureDistance({FeatureType::Edge, {Vec3(0, 0, 0), Vec3(2, 0, 0)}},
+                            {FeatureType::Edge, {Vec3(5, 0, 0), Vec3(3, 0, 0)}});
+        CHECK(r.distance == doctest::Approx(1.0));
+        CHECK(r.pointA == Vec3(2, 0, 0));
+        CHECK(r.pointB == Vec3(3, 0, 0));
+        // V–V coincident: no normal.
+        r = featureDistance({FeatureType::Vertex, {Vec3(1, 2, 3)}}, {FeatureType::Vertex, {Vec3(1, 2, 3)}});
+        CHECK(r.type == ContactType::VV);
+        CHECK(!r.normalDefined);
+        CHECK(r.normalUnstable);
+        // V–E nearly touching: defined but unstable.
+        r = featureDistance({FeatureType::Vertex, {Vec3(0.5, 1e-12, 0)}},
+                            {FeatureType::Edge, {Vec3(0, 0, 0), Vec3(1, 0, 0)}});
+        CHECK(r.type == ContactType::VE);
+        CHECK(r.normalDefined);
+        CHECK(r.normalUnstable);
+    }
 
-TEST_CASE("invalid features") {
-    CHECK(!featureDistance({FeatureType::Edge, {Vec3::Zero()}}, {FeatureType::Vertex, {Vec3::Zero()}}).valid);
-    CHECK(!featureDistance({FeatureType::Vertex, {Vec3(NAN, 0, 0)}}, {FeatureType::Vertex, {Vec3::Zero()}}).valid);
-    CHECK(!featureDistance({FeatureType::Face, {Vec3::Zero(), Vec3::UnitX()}}, {FeatureType::Vertex, {Vec3::Zero()}}).valid);
-    // Zero-area face: answered as its boundary polyline.
-    const FeatureDistanceResult r = featureDistance({FeatureType::Vertex, {Vec3(1, 1, 0)}},
-                                                    {FeatureType::Face, {Vec3::Zero(), Vec3::UnitX(), Vec3(2, 0, 0)}});
-    CHECK(r.valid);
-    CHECK(r.distance == doctest::Approx(1.0));
-}
-
+    TEST_CASE("invalid features") {
+        CHECK(!featureDistance({FeatureType::Edge, {Vec3::Zero()}}, {FeatureType::Vertex, {Vec3::Zero()}}).valid);
+        CHECK(!featureDistance({FeatureType::Vertex, {Vec3(NAN, 0, 0)}}, {FeatureType::Vertex, {Vec3::Zero()}}).valid);
+        CHECK(
+            !featureDistance({FeatureType::Face, {Vec3::Zero(), Vec3::UnitX()}}, {FeatureType::Vertex, {Vec3::Zero()}})
+                 .valid);
+        // Zero-area face: answered as its boundary polyline.
+        const FeatureDistanceResult r = featureDistance(
+            {FeatureType::Vertex, {Vec3(1, 1, 0)}}, {FeatureType::Face, {Vec3::Zero(), Vec3::UnitX(), Vec3(2, 0, 0)}});
+        CHECK(r.valid);
+        CHECK(r.distance == doctest::Approx(1.0));
+    }
 }

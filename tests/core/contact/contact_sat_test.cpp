@@ -8,9 +8,9 @@
 #include <random>
 
 #include "core/contact/contact_sat.h"
-#include "core/gjk_epa/epa.h"
 #include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/shapes.h"
+#include "core/gjk_epa/epa.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
 
 using namespace cdlab;
@@ -32,7 +32,8 @@ bool insideBody(const ConvexPolyhedron& b, const Transform& t, const Vec3& x, do
 
 // Brute-force SAT: every face normal of both and every edge cross product (no pruning), both
 // orientations, separation = gap of the projection intervals. Long double, relative to a_0.
-long double bruteSatSeparation(const ConvexPolyhedron& ma, const Transform& ta, const ConvexPolyhedron& mb, const Transform& tb) {
+long double bruteSatSeparation(const ConvexPolyhedron& ma, const Transform& ta, const ConvexPolyhedron& mb,
+                               const Transform& tb) {
     const std::vector<Vec3> a = world(ma, ta), b = world(mb, tb);
     std::vector<Vec3> axes;
     for (int f = 0; f < ma.faceCount(); ++f) axes.push_back(ta.rotate(ma.face(f).normal));
@@ -61,111 +62,113 @@ Transform randomPose(std::mt19937_64& rng, const Vec3& center, double spread) {
 }  // namespace
 
 TEST_SUITE("contact_sat") {
-
-TEST_CASE("stacked boxes: face contact, 4 points of equal depth; touching") {
-    for (double scale : {1e-3, 1.0, 1e3}) {
-        for (double offset : {0.0, 1e4, 1e6}) {
-            const ConvexPolyhedron ground = presets::box(Vec3(2, 2, 0.5) * scale);
-            const ConvexPolyhedron cube = presets::box(Vec3(0.5, 0.5, 0.5) * scale);
-            Transform tg, tc;
-            tg.position = Vec3(offset, offset, -offset);
-            tc.position = tg.position + Vec3(0.1, -0.2, 0.99) * scale;  // 1% of the cube sunk
-            tc.rotation = Quat(Eigen::AngleAxisd(0.4, Vec3::UnitZ()));
-            SatContactTrace tr;
-            const SatContactResult r = contactPolyhedra(ground, tg, cube, tc, {}, &tr);
-            CAPTURE(scale);
-            CAPTURE(offset);
-            REQUIRE(r.status == SatContactStatus::Penetrating);
-            CHECK(r.normal.isApprox(Vec3(0, 0, 1), 1e-12));
-            CHECK(r.depth == doctest::Approx(0.01 * scale).epsilon(1e-6));
-            CHECK(r.axisKind == SatAxisKind::FaceA);
-            REQUIRE(r.manifold.size() == 4);
-            for (const ContactPoint& c : r.manifold) {
-                CHECK(c.depth == doctest::Approx(0.01 * scale).epsilon(1e-6));
-                CHECK((c.pointA - c.pointB - c.depth * r.normal).norm() <= 1e-9 * (scale + offset));
+    TEST_CASE("stacked boxes: face contact, 4 points of equal depth; touching") {
+        for (double scale : {1e-3, 1.0, 1e3}) {
+            for (double offset : {0.0, 1e4, 1e6}) {
+                const ConvexPolyhedron ground = presets::box(Vec3(2, 2, 0.5) * scale);
+                const ConvexPolyhedron cube = presets::box(Vec3(0.5, 0.5, 0.5) * scale);
+                Transform tg, tc;
+                tg.position = Vec3(offset, offset, -offset);
+                tc.position = tg.position + Vec3(0.1, -0.2, 0.99) * scale;  // 1% of the cube sunk
+                tc.rotation = Quat(Eigen::AngleAxisd(0.4, Vec3::UnitZ()));
+                SatContactTrace tr;
+                const SatContactResult r = contactPolyhedra(ground, tg, cube, tc, {}, &tr);
+                CAPTURE(scale);
+                CAPTURE(offset);
+                REQUIRE(r.status == SatContactStatus::Penetrating);
+                CHECK(r.normal.isApprox(Vec3(0, 0, 1), 1e-12));
+                CHECK(r.depth == doctest::Approx(0.01 * scale).epsilon(1e-6));
+                CHECK(r.axisKind == SatAxisKind::FaceA);
+                REQUIRE(r.manifold.size() == 4);
+                for (const ContactPoint& c : r.manifold) {
+                    CHECK(c.depth == doctest::Approx(0.01 * scale).epsilon(1e-6));
+                    CHECK((c.pointA - c.pointB - c.depth * r.normal).norm() <= 1e-9 * (scale + offset));
+                }
+                CHECK(tr.edgePairsPruned + tr.edgePairsParallel + (int)tr.axes.size() - ground.faceCount() -
+                          cube.faceCount() ==
+                      tr.edgePairsTotal);
+                tc.position.z() = tg.position.z() + 1.0 * scale;
+                const SatContactResult t = contactPolyhedra(ground, tg, cube, tc);
+                CHECK(t.status == SatContactStatus::Touching);
+                CHECK(t.manifold.size() == 4);
             }
-            CHECK(tr.edgePairsPruned + tr.edgePairsParallel + (int)tr.axes.size() - ground.faceCount() - cube.faceCount() ==
-                  tr.edgePairsTotal);
-            tc.position.z() = tg.position.z() + 1.0 * scale;
-            const SatContactResult t = contactPolyhedra(ground, tg, cube, tc);
-            CHECK(t.status == SatContactStatus::Touching);
-            CHECK(t.manifold.size() == 4);
         }
     }
-}
 
-TEST_CASE("crossed edges: edge-edge axis, one point") {
-    const ConvexPolyhedron box = presets::box(Vec3(2, 0.5, 0.5));
-    Transform ta, tb;
-    ta.rotation = Quat(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitX()));
-    tb.rotation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ())) * Quat(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitX()));
-    tb.position = Vec3(0, 0, std::sqrt(2.0) - 0.01);
-    const SatContactResult r = contactPolyhedra(box, ta, box, tb);
-    REQUIRE(r.status == SatContactStatus::Penetrating);
-    CHECK(r.axisKind == SatAxisKind::EdgeEdge);
-    CHECK(r.featureA.type == FeatureType::Edge);
-    REQUIRE(r.manifold.size() == 1);
-    CHECK(r.depth == doctest::Approx(0.01).epsilon(1e-9));
-    CHECK(r.normal.isApprox(Vec3(0, 0, 1), 1e-12));
-    CHECK(r.manifold[0].pointA.isApprox(Vec3(0, 0, std::sqrt(0.5)), 1e-12));
-}
+    TEST_CASE("crossed edges: edge-edge axis, one point") {
+        const ConvexPolyhedron box = presets::box(Vec3(2, 0.5, 0.5));
+        Transform ta, tb;
+        ta.rotation = Quat(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitX()));
+        tb.rotation =
+            Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ())) * Quat(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitX()));
+        tb.position = Vec3(0, 0, std::sqrt(2.0) - 0.01);
+        const SatContactResult r = contactPolyhedra(box, ta, box, tb);
+        REQUIRE(r.status == SatContactStatus::Penetrating);
+        CHECK(r.axisKind == SatAxisKind::EdgeEdge);
+        CHECK(r.featureA.type == FeatureType::Edge);
+        REQUIRE(r.manifold.size() == 1);
+        CHECK(r.depth == doctest::Approx(0.01).epsilon(1e-9));
+        CHECK(r.normal.isApprox(Vec3(0, 0, 1), 1e-12));
+        CHECK(r.manifold[0].pointA.isApprox(Vec3(0, 0, std::sqrt(0.5)), 1e-12));
+    }
 
-TEST_CASE("random pairs: SAT depth = Minkowski facet oracle = EPA; pruning loses nothing") {
-    std::mt19937_64 rng(5);
-    const ConvexPolyhedron bodies[] = {presets::box(Vec3(0.6, 0.4, 0.3)), presets::tetrahedron(0.7), presets::octahedron(0.6),
-                                       presets::prism(5, 0.5, 0.3), presets::randomHull(9, 21)};
-    int penetrating = 0, separated = 0;
-    for (double offset : {0.0, 1e5}) {
-        for (const ConvexPolyhedron& a : bodies) {
-            for (const ConvexPolyhedron& b : bodies) {
-                for (int k = 0; k < 8; ++k) {
-                    const Vec3 c = Vec3::Constant(offset);
-                    const Transform ta = randomPose(rng, c, 0.0), tb = randomPose(rng, c, 0.45);
-                    SatContactTrace tr;
-                    const SatContactResult r = contactPolyhedra(a, ta, b, tb, {}, &tr);
-                    const std::vector<Vec3> wa = world(a, ta), wb = world(b, tb);
-                    const test::HullOracle o = test::hullOracle(wa, wb);
-                    const long double brute = bruteSatSeparation(a, ta, b, tb);
-                    const double tol = 1e-11 * (1 + offset);
-                    if (o.inside) {
-                        ++penetrating;
-                        CHECK(r.colliding());
-                        CHECK(-r.separation == doctest::Approx((double)o.depth).epsilon(1e-9).scale(tol));
-                        CHECK(std::abs(r.separation - (double)brute) <= tol);
-                        CHECK(r.depth >= -r.separation - tol);
-                        CHECK(r.depth <= -r.separation * 1.02 + 3 * r.tolerance + tol);
-                        const EpaResult e = penetration(PolytopeShape(wa), PolytopeShape(wb));
-                        if (e.status == EpaStatus::Penetrating) CHECK(std::abs(e.depth + r.separation) <= 1e-9 + tol);
-                        REQUIRE(!r.manifold.empty());
-                        CHECK(r.manifold.size() <= 4);
-                        for (const ContactPoint& p : r.manifold) {
-                            CHECK(insideBody(a, ta, p.pointA, 1e-9 + tol));
-                            CHECK(insideBody(b, tb, p.pointB, 1e-9 + tol));
-                            CHECK(p.depth <= r.depth + 1e-12 + tol);
+    TEST_CASE("random pairs: SAT depth = Minkowski facet oracle = EPA; pruning loses nothing") {
+        std::mt19937_64 rng(5);
+        const ConvexPolyhedron bodies[] = {presets::box(Vec3(0.6, 0.4, 0.3)), presets::tetrahedron(0.7),
+                                           presets::octahedron(0.6), presets::prism(5, 0.5, 0.3),
+                                           presets::randomHull(9, 21)};
+        int penetrating = 0, separated = 0;
+        for (double offset : {0.0, 1e5}) {
+            for (const ConvexPolyhedron& a : bodies) {
+                for (const ConvexPolyhedron& b : bodies) {
+                    for (int k = 0; k < 8; ++k) {
+                        const Vec3 c = Vec3::Constant(offset);
+                        const Transform ta = randomPose(rng, c, 0.0), tb = randomPose(rng, c, 0.45);
+                        SatContactTrace tr;
+                        const SatContactResult r = contactPolyhedra(a, ta, b, tb, {}, &tr);
+                        const std::vector<Vec3> wa = world(a, ta), wb = world(b, tb);
+                        const test::HullOracle o = test::hullOracle(wa, wb);
+                        const long double brute = bruteSatSeparation(a, ta, b, tb);
+                        const double tol = 1e-11 * (1 + offset);
+                        if (o.inside) {
+                            ++penetrating;
+                            CHECK(r.colliding());
+                            CHECK(-r.separation == doctest::Approx((double)o.depth).epsilon(1e-9).scale(tol));
+                            CHECK(std::abs(r.separation - (double)brute) <= tol);
+                            CHECK(r.depth >= -r.separation - tol);
+                            CHECK(r.depth <= -r.separation * 1.02 + 3 * r.tolerance + tol);
+                            const EpaResult e = penetration(PolytopeShape(wa), PolytopeShape(wb));
+                            if (e.status == EpaStatus::Penetrating)
+                                CHECK(std::abs(e.depth + r.separation) <= 1e-9 + tol);
+                            REQUIRE(!r.manifold.empty());
+                            CHECK(r.manifold.size() <= 4);
+                            for (const ContactPoint& p : r.manifold) {
+                                CHECK(insideBody(a, ta, p.pointA, 1e-9 + tol));
+                                CHECK(insideBody(b, tb, p.pointB, 1e-9 + tol));
+                                CHECK(p.depth <= r.depth + 1e-12 + tol);
+                            }
+                        } else if (o.distance > 1e-9) {
+                            ++separated;
+                            CHECK(r.status == SatContactStatus::Separated);
+                            CHECK(r.separation <= (double)o.distance + tol);  // a lower bound of the distance
+                            CHECK(r.manifold.empty());
                         }
-                    } else if (o.distance > 1e-9) {
-                        ++separated;
-                        CHECK(r.status == SatContactStatus::Separated);
-                        CHECK(r.separation <= (double)o.distance + tol);  // a lower bound of the distance
-                        CHECK(r.manifold.empty());
                     }
                 }
             }
         }
+        CHECK(penetrating > 60);
+        CHECK(separated > 60);
     }
-    CHECK(penetrating > 60);
-    CHECK(separated > 60);
-}
 
-TEST_CASE("invalid input") {
-    const ConvexPolyhedron box = presets::box(Vec3(1, 1, 1));
-    Transform t, bad;
-    bad.position.y() = NAN;
-    CHECK(contactPolyhedra(box, t, box, bad).status == SatContactStatus::InvalidInput);
-    CHECK(contactPolyhedra(ConvexPolyhedron{}, t, box, t).status == SatContactStatus::InvalidInput);
-    bad = Transform{};
-    bad.rotation = Quat(0, 0, 0, 0);
-    CHECK(contactPolyhedra(box, bad, box, t).status == SatContactStatus::InvalidInput);
-}
-
+    TEST_CASE("invalid input") {
+        const ConvexPolyhedron box = presets::box(Vec3(1, 1, 1));
+        Transform t, bad;
+        bad.position.y() = NAN;
+        CHECK(contactPolyhedra(box, t, box, bad).status == SatContactStatus::InvalidInput);
+        CHECK(contactPolyhedra(ConvexPolyhedron{}, t, box, t).status == SatContactStatus::InvalidInput);
+        bad = Transform{};
+        bad.rotation = Quat(0, 0, 0, 0);
+        CHECK(contactPolyhedra(box, bad, box, t).status == SatContactStatus::InvalidInput);
+    }
 }

@@ -59,7 +59,8 @@ TEST_SUITE("impulse_solver") {
         const Vec3 n = Vec3(0.1, 0.2, 1.0).normalized();
         const Vec3 p = b.position + Vec3(0.3, -0.4, -1.2);
         const Vec3 rnBody = q.conjugate() * (p - b.position).cross(n);
-        const double k = 1.0 / (1.0 / 6.0 + rnBody.x() * rnBody.x() / 6.5 + rnBody.y() * rnBody.y() / 5.0 + rnBody.z() * rnBody.z() / 2.5);
+        const double k = 1.0 / (1.0 / 6.0 + rnBody.x() * rnBody.x() / 6.5 + rnBody.y() * rnBody.y() / 5.0 +
+                                rnBody.z() * rnBody.z() / 2.5);
         const double vn = b.velocityAt(p).dot(n);
         ImpulseSolverOptions o;
         o.restitution = 0.5;

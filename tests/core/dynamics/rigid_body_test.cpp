@@ -42,9 +42,10 @@ TEST_SUITE("rigid_body") {
         Mat3 nanI = I;
         nanI(1, 2) = kNaN;
         CHECK(makeDynamicBody(1.0, nanI, {}).status == RigidBodyStatus::NonFinite);
-        CHECK(makeDynamicBody(1.0, Vec3(1, 1, 0).asDiagonal(), {}).status == RigidBodyStatus::BadInertia);   // singular
-        CHECK(makeDynamicBody(1.0, Vec3(1, -1, 1).asDiagonal(), {}).status == RigidBodyStatus::BadInertia);  // indefinite
-        CHECK(makeDynamicBody(1.0, Vec3(1, 1, 3).asDiagonal(), {}).status == RigidBodyStatus::BadInertia);   // 1 + 1 < 3
+        CHECK(makeDynamicBody(1.0, Vec3(1, 1, 0).asDiagonal(), {}).status == RigidBodyStatus::BadInertia);  // singular
+        CHECK(makeDynamicBody(1.0, Vec3(1, -1, 1).asDiagonal(), {}).status ==
+              RigidBodyStatus::BadInertia);  // indefinite
+        CHECK(makeDynamicBody(1.0, Vec3(1, 1, 3).asDiagonal(), {}).status == RigidBodyStatus::BadInertia);  // 1 + 1 < 3
         Mat3 asym = I;
         asym(0, 1) = 0.1;
         CHECK(makeDynamicBody(1.0, asym, {}).status == RigidBodyStatus::BadInertia);
@@ -101,7 +102,9 @@ TEST_SUITE("rigid_body") {
         CHECK((b.body.angularVelocity - w).norm() < 1e-12);
     }
 
-    TEST_CASE("asymmetric top: rotational energy never rises, |L| drifts only at first order; principal-axis spin is steady") {
+    TEST_CASE(
+        "asymmetric top: rotational energy never rises, |L| drifts only at first order; principal-axis spin is "
+        "steady") {
         RigidBody b = boxBody(Transform{Vec3::Zero(), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 1).normalized()))});
         b.angularVelocity = Vec3(0.5, 3.0, -1.0);
         const Vec3 L0 = b.inertiaWorld() * b.angularVelocity;
@@ -116,7 +119,8 @@ TEST_SUITE("rigid_body") {
         }
         // First-order method over ~4 s: world angular momentum and energy within a few percent.
         const Vec3 L = b.inertiaWorld() * b.angularVelocity;
-        MESSAGE("asymmetric top after 1000 steps: |ΔL|/|L| " << (L - L0).norm() / L0.norm() << ", ΔE/E " << (previous - E0) / E0);
+        MESSAGE("asymmetric top after 1000 steps: |ΔL|/|L| " << (L - L0).norm() / L0.norm() << ", ΔE/E "
+                                                             << (previous - E0) / E0);
         CHECK((L - L0).norm() < 0.02 * L0.norm());  // measured 0.6 %
         CHECK(previous > 0.97 * E0);                // measured −1.3 %
         CHECK(std::abs(b.orientation.norm() - 1.0) < 1e-15 * 10);
@@ -128,7 +132,8 @@ TEST_SUITE("rigid_body") {
             integratePosition(p, 1.0 / 240.0);
         }
         CHECK((p.angularVelocity - Vec3(0, 0, 2.0)).norm() < 1e-12);
-        // The hand check of one gyroscopic step: ω' solves I (ω' − ω) + dt ω' × I ω' ≈ 0 (to O(dt²) after one Newton step).
+        // The hand check of one gyroscopic step: ω' solves I (ω' − ω) + dt ω' × I ω' ≈ 0 (to O(dt²) after one Newton
+        // step).
         RigidBody q = boxBody();
         q.angularVelocity = Vec3(1.0, 2.0, 0.5);
         const Vec3 w = q.angularVelocity;

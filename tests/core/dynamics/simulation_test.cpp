@@ -8,8 +8,8 @@
 #include <limits>
 #include <string>
 
-#include "core/geometry/polyhedron_presets.h"
 #include "core/dynamics/simulation.h"
+#include "core/geometry/polyhedron_presets.h"
 
 using namespace cdlab;
 
@@ -17,10 +17,10 @@ namespace {
 
 DropInput dropOf(const std::string& which, double spin) {
     DropInput in;
-    in.shape = which == "box"   ? presets::box(Vec3(0.5, 0.3, 0.2))
-             : which == "cube"  ? presets::box(Vec3(0.3, 0.3, 0.3))
-             : which == "tetra" ? presets::tetrahedron(0.5)
-                                : presets::icosahedron(0.5);
+    in.shape = which == "box"     ? presets::box(Vec3(0.5, 0.3, 0.2))
+               : which == "cube"  ? presets::box(Vec3(0.3, 0.3, 0.3))
+               : which == "tetra" ? presets::tetrahedron(0.5)
+                                  : presets::icosahedron(0.5);
     in.pose.position = Vec3(0.1, -0.2, 1.5);
     in.pose.rotation = Quat(Eigen::AngleAxisd(0.6, Vec3(1, 1, 0).normalized()));
     in.linearVelocity = Vec3(0.5, 0, 0);
@@ -38,67 +38,74 @@ double lowestHeight(const SimulationResult& r, const SimulationStep& s, const Ve
 }  // namespace
 
 TEST_SUITE("simulation") {
-    TEST_CASE("box, cube, tetrahedron, icosahedron with spin: no vertex deeper than slop, energy never rises, comes to rest") {
+    TEST_CASE(
+        "box, cube, tetrahedron, icosahedron with spin: no vertex deeper than slop, energy never rises, comes to "
+        "rest") {
         for (const std::string name : {"box", "cube", "tetra", "ico"})
-            for (double e : {0.0, 0.5, 1.0}) for (double mu : {0.0, 0.5}) {
-                DropInput in = dropOf(name, 1.0);
-                SimulationOptions o;
-                o.steps = 1440;  // 6 s
-                o.solver.restitution = e;
-                o.solver.friction = mu;
-                SimulationTrace tr;
-                const SimulationResult r = simulateDrop(in, o, &tr);
-                INFO(name << " e = " << e << " mu = " << mu << " " << r.message);
-                REQUIRE(r.ok());
-                REQUIRE(tr.steps.size() == 1441);
-                const double m = r.mass.mass, g = 9.81;
-                // Energy: E_k <= E_{k-1} + tol_k with
-                //   m |g| correction_k   the potential energy the position correction adds (recorded),
-                //   1e-9 E_0             rounding,
-                //   1e-4 m |g|² dt²      the PGS residual of resting contacts: 16 sweeps leave an upward
-                //                        normal velocity of up to ~1e-5 g dt (measured 4.6e-7 m/s on a face),
-                //                        lifting the body by that times dt,
-                //   3 m |g| dt |v_n⁻|    in a step with a bounce: first-order time stepping across an impact
-                //                        (the step's gravity increment g dt is reflected with the velocity and
-                //                        the position update uses the reflected velocity: 2 m |g| |v_n| dt for a
-                //                        point mass at e = 1; measured up to 1.98 m |g| dt |v_n|).
-                // Free rotation cannot add energy (implicit gyroscopic step), friction only removes it.
-                const double E0 = tr.steps[0].energy;
-                double worst = 0;
-                for (std::size_t k = 1; k < tr.steps.size(); ++k) {
-                    const SimulationStep& s = tr.steps[k];
-                    // Hand energy from the state.
-                    const Mat3 R = s.orientation.toRotationMatrix();
-                    const double ke = 0.5 * m * s.linearVelocity.squaredNorm() +
-                                      0.5 * s.angularVelocity.dot(R * r.mass.inertia * R.transpose() * s.angularVelocity);
-                    CHECK(s.energy == doctest::Approx(ke + m * g * s.position.z()).epsilon(1e-12));
-                    double impact = 0;
-                    for (const ContactImpulse& c : s.contacts)
-                        if (c.bounce) impact = std::max(impact, -c.normalVelocityBefore);
-                    const double dt = o.timeStep;
-                    const double rise = s.energy - tr.steps[k - 1].energy - m * g * s.correction - 1e-9 * E0 - 1e-4 * m * g * g * dt * dt;
-                    if (impact > 0) worst = std::max(worst, rise / (m * g * dt * impact));
-                    CHECK(rise <= 3 * m * g * dt * impact);
-                    CHECK(lowestHeight(r, s, Vec3::UnitZ(), 0.0) >= -o.slop * (1 + 1e-9));
+            for (double e : {0.0, 0.5, 1.0})
+                for (double mu : {0.0, 0.5}) {
+                    DropInput in = dropOf(name, 1.0);
+                    SimulationOptions o;
+                    o.steps = 1440;  // 6 s
+                    o.solver.restitution = e;
+                    o.solver.friction = mu;
+                    SimulationTrace tr;
+                    const SimulationResult r = simulateDrop(in, o, &tr);
+                    INFO(name << " e = " << e << " mu = " << mu << " " << r.message);
+                    REQUIRE(r.ok());
+                    REQUIRE(tr.steps.size() == 1441);
+                    const double m = r.mass.mass, g = 9.81;
+                    // Energy: E_k <= E_{k-1} + tol_k with
+                    //   m |g| correction_k   the potential energy the position correction adds (recorded),
+                    //   1e-9 E_0             rounding,
+                    //   1e-4 m |g|² dt²      the PGS residual of resting contacts: 16 sweeps leave an upward
+                    //                        normal velocity of up to ~1e-5 g dt (measured 4.6e-7 m/s on a face),
+                    //                        lifting the body by that times dt,
+                    //   3 m |g| dt |v_n⁻|    in a step with a bounce: first-order time stepping across an impact
+                    //                        (the step's gravity increment g dt is reflected with the velocity and
+                    //                        the position update uses the reflected velocity: 2 m |g| |v_n| dt for a
+                    //                        point mass at e = 1; measured up to 1.98 m |g| dt |v_n|).
+                    // Free rotation cannot add energy (implicit gyroscopic step), friction only removes it.
+                    const double E0 = tr.steps[0].energy;
+                    double worst = 0;
+                    for (std::size_t k = 1; k < tr.steps.size(); ++k) {
+                        const SimulationStep& s = tr.steps[k];
+                        // Hand energy from the state.
+                        const Mat3 R = s.orientation.toRotationMatrix();
+                        const double ke =
+                            0.5 * m * s.linearVelocity.squaredNorm() +
+                            0.5 * s.angularVelocity.dot(R * r.mass.inertia * R.transpose() * s.angularVelocity);
+                        CHECK(s.energy == doctest::Approx(ke + m * g * s.position.z()).epsilon(1e-12));
+                        double impact = 0;
+                        for (const ContactImpulse& c : s.contacts)
+                            if (c.bounce) impact = std::max(impact, -c.normalVelocityBefore);
+                        const double dt = o.timeStep;
+                        const double rise = s.energy - tr.steps[k - 1].energy - m * g * s.correction - 1e-9 * E0 -
+                                            1e-4 * m * g * g * dt * dt;
+                        if (impact > 0) worst = std::max(worst, rise / (m * g * dt * impact));
+                        CHECK(rise <= 3 * m * g * dt * impact);
+                        CHECK(lowestHeight(r, s, Vec3::UnitZ(), 0.0) >= -o.slop * (1 + 1e-9));
+                    }
+                    MESSAGE(name << " e=" << e << " mu=" << mu << ": rest " << r.restTime << " s, max penetration "
+                                 << r.maxPenetration << ", before correction " << r.maxPenetrationBeforeCorrection
+                                 << ", worst rise / (m g dt |v_n|) " << worst);
+                    if (mu > 0 && e < 1) {  // friction stops sliding and spinning about the normal
+                        CHECK(r.restTime > 0.3);
+                        CHECK(r.restTime < 5.0);
+                        CHECK(r.body.kineticEnergy() < 1e-6 * E0);
+                    }
                 }
-                MESSAGE(name << " e=" << e << " mu=" << mu << ": rest " << r.restTime << " s, max penetration " << r.maxPenetration
-                             << ", before correction " << r.maxPenetrationBeforeCorrection << ", worst rise / (m g dt |v_n|) " << worst);
-                if (mu > 0 && e < 1) {  // friction stops sliding and spinning about the normal
-                    CHECK(r.restTime > 0.3);
-                    CHECK(r.restTime < 5.0);
-                    CHECK(r.body.kineticEnergy() < 1e-6 * E0);
-                }
-            }
     }
 
-    TEST_CASE("free fall in closed form, then v⁺ = −e v⁻ at the first bounce (face-down cube, vertex-down tetrahedron)") {
+    TEST_CASE(
+        "free fall in closed form, then v⁺ = −e v⁻ at the first bounce (face-down cube, vertex-down tetrahedron)") {
         for (const std::string name : {"cube", "tetra"})
             for (double e : {0.0, 0.4, 0.9}) {
                 DropInput in = dropOf(name, 0.0);
                 in.linearVelocity = Vec3::Zero();
                 // Cube face down; tetrahedron vertex (1,1,1)/√3 pointing straight down.
                 in.pose.rotation = name == "cube" ? Quat::Identity()
-                                                               : Quat::FromTwoVectors(Vec3(1, 1, 1).normalized(), -Vec3::UnitZ());
+                                                  : Quat::FromTwoVectors(Vec3(1, 1, 1).normalized(), -Vec3::UnitZ());
                 SimulationOptions o;
                 o.steps = 300;
                 o.solver.restitution = e;
@@ -108,12 +115,14 @@ TEST_SUITE("simulation") {
                 const double dt = o.timeStep, g = 9.81;
                 int first = -1;
                 for (std::size_t k = 1; k < tr.steps.size() && first < 0; ++k)
-                    if (!tr.steps[k].contacts.empty() && tr.steps[k].contacts[0].normalImpulse > 0) first = static_cast<int>(k);
+                    if (!tr.steps[k].contacts.empty() && tr.steps[k].contacts[0].normalImpulse > 0)
+                        first = static_cast<int>(k);
                 INFO(name << " e = " << e);
                 REQUIRE(first > 1);
                 // Before: z_k = z_0 − g dt² k(k+1)/2 (semi-implicit recursion).
                 const int k = first - 1;
-                CHECK(tr.steps[k].position.z() == doctest::Approx(tr.steps[0].position.z() - g * dt * dt * k * (k + 1) / 2).epsilon(1e-12));
+                CHECK(tr.steps[k].position.z() ==
+                      doctest::Approx(tr.steps[0].position.z() - g * dt * dt * k * (k + 1) / 2).epsilon(1e-12));
                 const double vBefore = tr.steps[k].linearVelocity.z() - g * dt;  // after gravity, before impulses
                 CHECK(tr.steps[first].linearVelocity.z() == doctest::Approx(-e * vBefore).epsilon(1e-6));
                 // Symmetric landing: no spin, up to the 16-sweep PGS residual on the 4-point face (measured 4e-6).

@@ -9,11 +9,11 @@
 #include <sstream>
 #include <tuple>
 
+#include "core/feature_walk/vclip.h"
 #include "core/geometry/convex_hull.h"
-#include "core/gjk_epa/gjk.h"
 #include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/shapes.h"
-#include "core/feature_walk/vclip.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/oracles/feature_walk_oracle.h"
 #include "tests/core/feature_walk/walk_test_bodies.h"
 
@@ -45,8 +45,8 @@ VClipResult checkQuery(const VClipPolyhedron& A, const Transform& pa, const VCli
     // No feature pair repeats.
     std::set<std::tuple<int, int, int, int>> seen;
     for (const VClipTraceStep& s : trace.steps) {
-        const auto key = std::make_tuple(static_cast<int>(s.featureA.type), s.featureA.index, static_cast<int>(s.featureB.type),
-                                         s.featureB.index);
+        const auto key = std::make_tuple(static_cast<int>(s.featureA.type), s.featureA.index,
+                                         static_cast<int>(s.featureB.type), s.featureB.index);
         CHECK_MESSAGE(seen.insert(key).second, "pair repeated at step ", s.step);
         CHECK((!(s.featureA.type == VClipFeatureType::Face && s.featureB.type == VClipFeatureType::Face)));
     }
@@ -120,8 +120,10 @@ VClipResult checkQuery(const VClipPolyhedron& A, const Transform& pa, const VCli
             const VClipFeature f = body == 0 ? r.featureA : r.featureB;
             const Vec3 x = T.applyInverse(body == 0 ? r.pointB : r.pointA);  // the OTHER body's witness
             std::vector<int> planes;
-            if (f.type == VClipFeatureType::Vertex) planes.assign(P.vertexPlanes(f.index).begin(), P.vertexPlanes(f.index).end());
-            if (f.type == VClipFeatureType::Face) planes.assign(P.facePlanes(f.index).begin(), P.facePlanes(f.index).end());
+            if (f.type == VClipFeatureType::Vertex)
+                planes.assign(P.vertexPlanes(f.index).begin(), P.vertexPlanes(f.index).end());
+            if (f.type == VClipFeatureType::Face)
+                planes.assign(P.facePlanes(f.index).begin(), P.facePlanes(f.index).end());
             if (f.type == VClipFeatureType::Edge)
                 for (int k = 0; k < 4; ++k) planes.push_back(4 * f.index + k);
             for (int i : planes) CHECK(P.regionDistance(i, f, x) >= -tol);
@@ -144,9 +146,15 @@ GjkResult gjkOf(const ConvexPolyhedron& a, const Transform& pa, const ConvexPoly
 }
 
 std::vector<ConvexPolyhedron> smallShapes() {
-    return {presets::tetrahedron(1.0),      presets::box(Vec3(1.0, 0.7, 0.4)), presets::octahedron(0.9),
-            presets::icosahedron(1.1),      presets::dodecahedron(1.0),        presets::prism(7, 0.8, 0.5),
-            presets::disk(12, 1.0),         presets::randomHull(24, 7),        presets::randomHull(40, 11, presets::RandomHullKind::InBall)};
+    return {presets::tetrahedron(1.0),
+            presets::box(Vec3(1.0, 0.7, 0.4)),
+            presets::octahedron(0.9),
+            presets::icosahedron(1.1),
+            presets::dodecahedron(1.0),
+            presets::prism(7, 0.8, 0.5),
+            presets::disk(12, 1.0),
+            presets::randomHull(24, 7),
+            presets::randomHull(40, 11, presets::RandomHullKind::InBall)};
 }
 
 }  // namespace
@@ -247,8 +255,10 @@ TEST_SUITE("vclip") {
         presets::SplitMix64 rng(12345);
         CheckStats stats;
         for (int q = 0; q < 400; ++q) {
-            const int i = static_cast<int>(rng.next() % shapes.size()), j = static_cast<int>(rng.next() % shapes.size());
-            const Transform pa = pose(Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)), randomRotation(rng));
+            const int i = static_cast<int>(rng.next() % shapes.size()),
+                      j = static_cast<int>(rng.next() % shapes.size());
+            const Transform pa =
+                pose(Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)), randomRotation(rng));
             const Transform pb = pose(pa.position + 2.6 * rng.inUnitBall(), randomRotation(rng));
             CAPTURE(q);
             CAPTURE(i);
@@ -261,9 +271,10 @@ TEST_SUITE("vclip") {
             }
             if (g.status == GjkStatus::Intersecting) CHECK(r.intersect);
         }
-        MESSAGE("random: ", stats.queries, " queries, ", stats.separated, " separated, ", stats.penetrating, " penetrating, ",
-                stats.dimUp, " dimension-up (", stats.dimUpEqual, " of them E-E edge -> face at equal distance) and ", stats.dimDown,
-                " dimension-down updates, ", stats.localMin, " local minima");
+        MESSAGE("random: ", stats.queries, " queries, ", stats.separated, " separated, ", stats.penetrating,
+                " penetrating, ", stats.dimUp, " dimension-up (", stats.dimUpEqual,
+                " of them E-E edge -> face at equal distance) and ", stats.dimDown, " dimension-down updates, ",
+                stats.localMin, " local minima");
         CHECK(stats.separated > 50);
         CHECK(stats.penetrating > 50);
     }
@@ -294,7 +305,8 @@ TEST_SUITE("vclip") {
                         const VClipResult r = vclip(A, pa, B, pb, &cache);
                         CAPTURE(nameOf(fa));
                         CAPTURE(nameOf(fb));
-                        REQUIRE_MESSAGE((r.status == VClipStatus::Separated || r.status == VClipStatus::Penetrating), r.message);
+                        REQUIRE_MESSAGE((r.status == VClipStatus::Separated || r.status == VClipStatus::Penetrating),
+                                        r.message);
                         CHECK(r.intersect == o.intersect);
                         if (!o.intersect) CHECK(std::abs(r.distance - static_cast<double>(o.distance)) <= 1e-12);
                         ++count;
@@ -302,7 +314,8 @@ TEST_SUITE("vclip") {
                 CHECK(count == A.featureCount() * B.featureCount());
                 // Traced invariants from a handful of seeds.
                 for (int k = 0; k < 20; ++k) {
-                    VClipCache cache{seedsOf(A)[rng.next() % A.featureCount()], seedsOf(B)[rng.next() % B.featureCount()]};
+                    VClipCache cache{seedsOf(A)[rng.next() % A.featureCount()],
+                                     seedsOf(B)[rng.next() % B.featureCount()]};
                     checkQuery(A, pa, B, pb, &cache);
                 }
             }
@@ -352,7 +365,8 @@ TEST_SUITE("vclip") {
         // A scaled copy strictly inside: no edge crosses a face, the local minimum finds it.
         const VClipPolyhedron ico = build(presets::icosahedron(1.0)), small = build(presets::icosahedron(0.3));
         for (int k = 0; k < 10; ++k) {
-            const Transform pa = pose(Vec3::Zero(), randomRotation(rng)), pb = pose(0.2 * rng.inUnitBall(), randomRotation(rng));
+            const Transform pa = pose(Vec3::Zero(), randomRotation(rng)),
+                            pb = pose(0.2 * rng.inUnitBall(), randomRotation(rng));
             const VClipResult r = checkQuery(ico, pa, small, pb, nullptr);
             CHECK(r.status == VClipStatus::Penetrating);
             CHECK((r.penetration == VClipPenetration::LocalMinimum));
@@ -402,12 +416,14 @@ TEST_SUITE("vclip") {
     TEST_CASE("adversarial: 1e4 and 1e6 world offsets, 1e-3 and 1e3 scales") {
         presets::SplitMix64 rng(77);
         for (double scale : {1e-3, 1.0, 1e3}) {
-            const ConvexPolyhedron sa = presets::dodecahedron(scale), sb = presets::randomHull(30, 3, presets::RandomHullKind::OnSphere, scale);
+            const ConvexPolyhedron sa = presets::dodecahedron(scale),
+                                   sb = presets::randomHull(30, 3, presets::RandomHullKind::OnSphere, scale);
             const VClipPolyhedron A = build(sa), B = build(sb);
             for (double offset : {0.0, 1e4, 1e6}) {
                 for (int k = 0; k < 6; ++k) {
                     const Vec3 o(offset, -offset, 0.5 * offset);
-                    const Transform pa = pose(o, randomRotation(rng)), pb = pose(o + 2.3 * scale * rng.onUnitSphere(), randomRotation(rng));
+                    const Transform pa = pose(o, randomRotation(rng)),
+                                    pb = pose(o + 2.3 * scale * rng.onUnitSphere(), randomRotation(rng));
                     CAPTURE(scale);
                     CAPTURE(offset);
                     // Pose rounding at the offset is ~ulp(offset): the tolerance follows it.
@@ -428,7 +444,8 @@ TEST_SUITE("vclip") {
     TEST_CASE("642-vertex geodesic sphere with large rotations per call, warm-started") {
         const ConvexPolyhedron sg = presets::geodesicSphere(3, 1.0);
         REQUIRE(sg.vertexCount() == 642);
-        const VClipPolyhedron G = build(sg), D = build(presets::disk(60, 1.0)), C = build(presets::box(Vec3(0.5, 0.5, 0.5)));
+        const VClipPolyhedron G = build(sg), D = build(presets::disk(60, 1.0)),
+                              C = build(presets::box(Vec3(0.5, 0.5, 0.5)));
         presets::SplitMix64 rng(2024);
         VClipCache cacheG, cacheD, cacheC;
         CheckStats stats;
@@ -438,18 +455,20 @@ TEST_SUITE("vclip") {
             CAPTURE(k);
             // The oracle is O(E^2) on the sphere: a few queries against it, GJK for the rest.
             checkQuery(G, pa, G, pb, &cacheG, &stats, k < 2);
-            for (auto [P, cache, shape] : {std::tuple{&D, &cacheD, presets::disk(60, 1.0)}, std::tuple{&C, &cacheC, presets::box(Vec3(0.5, 0.5, 0.5))}}) {
+            for (auto [P, cache, shape] : {std::tuple{&D, &cacheD, presets::disk(60, 1.0)},
+                                           std::tuple{&C, &cacheC, presets::box(Vec3(0.5, 0.5, 0.5))}}) {
                 const VClipResult r = checkQuery(G, pa, *P, pb, cache, &stats, k < 6);
                 const GjkResult g = gjkOf(sg, pa, shape, pb);
-                if (g.status == GjkStatus::Separated && g.distance > 1e-9) CHECK(std::abs(r.distance - g.distance) <= 1e-9);
+                if (g.status == GjkStatus::Separated && g.distance > 1e-9)
+                    CHECK(std::abs(r.distance - g.distance) <= 1e-9);
                 if (g.status == GjkStatus::Intersecting) CHECK(r.intersect);
             }
             const VClipResult r = vclip(G, pa, G, pb, &cacheG);
             const GjkResult g = gjkOf(sg, pa, sg, pb);
             if (g.status == GjkStatus::Separated && g.distance > 1e-9) CHECK(std::abs(r.distance - g.distance) <= 1e-9);
         }
-        MESSAGE("geodesic: ", stats.queries, " queries, mean ", double(stats.steps) / stats.queries, " steps, ", stats.dimUpEqual,
-                " of ", stats.dimUp, " dimension-up updates at equal distance");
+        MESSAGE("geodesic: ", stats.queries, " queries, mean ", double(stats.steps) / stats.queries, " steps, ",
+                stats.dimUpEqual, " of ", stats.dimUp, " dimension-up updates at equal distance");
     }
 
     TEST_CASE("coherence: small relative motions finish in a few steps from the cached pair") {
@@ -459,7 +478,8 @@ TEST_SUITE("vclip") {
         for (int k = 0; k < 360; ++k) {
             const double a = k * M_PI / 180;
             const Transform pa = pose(Vec3::Zero(), Quat(Eigen::AngleAxisd(a, Vec3(0.2, 1, 0.1).normalized())));
-            const Transform pb = pose(Vec3(2.2 * std::cos(0.5 * a), 0.3, 2.2 * std::sin(0.5 * a)), Quat(Eigen::AngleAxisd(-a, Vec3::UnitX())));
+            const Transform pb = pose(Vec3(2.2 * std::cos(0.5 * a), 0.3, 2.2 * std::sin(0.5 * a)),
+                                      Quat(Eigen::AngleAxisd(-a, Vec3::UnitX())));
             const VClipResult r = checkQuery(ico, pa, box, pb, &cache, nullptr, k % 30 == 0);
             if (k > 0) {
                 total += r.steps;

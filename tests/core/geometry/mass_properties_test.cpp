@@ -60,8 +60,10 @@ LongMass quadratureOracle(const ConvexPolyhedron& P) {
             L e[3][3];
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j) e[i][j] = t[i + 1][j] - t[0][j];
-            const L vol = (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6;
+            const L vol =
+                (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                 e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+                6;
             M.V += vol;
             for (int q = 0; q < 4; ++q) {
                 std::array<L, 3> x{};
@@ -165,7 +167,8 @@ TEST_SUITE("mass_properties") {
         const Vec3 c1(1, 0.5, 0.5), c2(0.5, 1.5, 0.5);
         const Vec3 c = (2 * c1 + 1 * c2) / 3;
         CHECK((m.centerOfMass - c).norm() < 1e-15 * 10);
-        const Mat3 I = inertiaAboutPoint(boxInertia(2, Vec3(2, 1, 1)), 2, c1, c) + inertiaAboutPoint(boxInertia(1, Vec3(1, 1, 1)), 1, c2, c);
+        const Mat3 I = inertiaAboutPoint(boxInertia(2, Vec3(2, 1, 1)), 2, c1, c) +
+                       inertiaAboutPoint(boxInertia(1, Vec3(1, 1, 1)), 1, c2, c);
         CHECK(relErr(m.inertia, I) < 1e-14);
     }
 
@@ -175,7 +178,7 @@ TEST_SUITE("mass_properties") {
         const Mat3 I = inertiaAboutPoint(boxInertia(mass, Vec3(a, b, c)), mass, Vec3(a, b, c) / 2, Vec3::Zero());
         Mat3 hand;
         hand << mass * (b * b + c * c) / 3, -mass * a * b / 4, -mass * a * c / 4,  //
-            -mass * a * b / 4, mass * (a * a + c * c) / 3, -mass * b * c / 4,       //
+            -mass * a * b / 4, mass * (a * a + c * c) / 3, -mass * b * c / 4,      //
             -mass * a * c / 4, -mass * b * c / 4, mass * (a * a + b * b) / 3;
         CHECK(relErr(I, hand) < 1e-15);
     }
@@ -187,7 +190,8 @@ TEST_SUITE("mass_properties") {
             REQUIRE(h.status == HullStatus::Ok);
             for (double offset : {0.0, 1e5}) {
                 std::vector<Vec3> moved;
-                for (const Vec3& v : h.polyhedron.positions()) moved.push_back(q * v + Vec3(offset, 2 * offset, -offset));
+                for (const Vec3& v : h.polyhedron.positions())
+                    moved.push_back(q * v + Vec3(offset, 2 * offset, -offset));
                 const PolyhedronBuild pb = ConvexPolyhedron::fromFaces(moved, [&] {
                     std::vector<std::vector<int>> f;
                     for (int i = 0; i < h.polyhedron.faceCount(); ++i) f.push_back(h.polyhedron.faceVertices(i));
@@ -198,7 +202,8 @@ TEST_SUITE("mass_properties") {
                 REQUIRE(m.ok());
                 const LongMass o = quadratureOracle(pb.polyhedron);
                 Vec3 c;
-                for (int j = 0; j < 3; ++j) c[j] = static_cast<double>(o.first[j] / o.V + static_cast<long double>(o.origin[j]));
+                for (int j = 0; j < 3; ++j)
+                    c[j] = static_cast<double>(o.first[j] / o.V + static_cast<long double>(o.origin[j]));
                 Mat3 I;
                 for (int j = 0; j < 3; ++j)
                     for (int l = 0; l < 3; ++l) {
@@ -238,7 +243,8 @@ TEST_SUITE("mass_properties") {
         CHECK(computeMassProperties(inf, f).status == MassStatus::NonFinite);
         CHECK(computeMassProperties(p, f, {.density = 0.0}).status == MassStatus::NonPositiveDensity);
         CHECK(computeMassProperties(p, f, {.density = -1.0}).status == MassStatus::NonPositiveDensity);
-        CHECK(computeMassProperties(p, f, {.density = std::numeric_limits<double>::quiet_NaN()}).status == MassStatus::NonFinite);
+        CHECK(computeMassProperties(p, f, {.density = std::numeric_limits<double>::quiet_NaN()}).status ==
+              MassStatus::NonFinite);
 
         auto open = f;
         open.pop_back();
@@ -254,7 +260,8 @@ TEST_SUITE("mass_properties") {
         for (Vec3& v : flat) v.z() = 0;
         CHECK(computeMassProperties(flat, f).status == MassStatus::Degenerate);
         const std::vector<Vec3> tet = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};  // coplanar tetrahedron
-        CHECK(computeMassProperties(tet, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}).status == MassStatus::Degenerate);
+        CHECK(computeMassProperties(tet, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}).status ==
+              MassStatus::Degenerate);
 
         auto bent = p;
         bent[7] += Vec3(0.0, 0.0, 1e-3);  // the top face's corner lifts off its plane

@@ -15,8 +15,7 @@ using namespace cdlab::test;
 
 namespace {
 
-void checkFinite(const EpaResult& r)
-{
+void checkFinite(const EpaResult& r) {
     CHECK(std::isfinite(r.depth));
     CHECK(r.normal.allFinite());
     CHECK(r.pointA.allFinite());
@@ -26,20 +25,16 @@ void checkFinite(const EpaResult& r)
 
 }  // namespace
 
-TEST_SUITE("epa")
-{
-    TEST_CASE("axis-aligned boxes: depth is the smallest overlap, normal the exact axis")
-    {
+TEST_SUITE("epa") {
+    TEST_CASE("axis-aligned boxes: depth is the smallest overlap, normal the exact axis") {
         // Support ties on every axis-aligned direction put coplanar faces on the polytope.
         struct Case {
             Vec3 center;  // of B; A is [-1,1] x [-2,2] x [-3,3]
             double depth;
             Vec3 normal;
         } cases[] = {
-            {Vec3(1.5, 0.0, 0.0), 0.5, Vec3(1, 0, 0)},
-            {Vec3(-1.75, 0.5, 0.5), 0.25, Vec3(-1, 0, 0)},
-            {Vec3(0.2, 2.9, 0.1), 0.1, Vec3(0, 1, 0)},
-            {Vec3(0.0, 0.0, -3.5), 0.5, Vec3(0, 0, -1)},
+            {Vec3(1.5, 0.0, 0.0), 0.5, Vec3(1, 0, 0)}, {Vec3(-1.75, 0.5, 0.5), 0.25, Vec3(-1, 0, 0)},
+            {Vec3(0.2, 2.9, 0.1), 0.1, Vec3(0, 1, 0)}, {Vec3(0.0, 0.0, -3.5), 0.5, Vec3(0, 0, -1)},
             {Vec3(0.0, 0.0, 0.0), 2.0, Vec3(1, 0, 0)},  // concentric: x and -x tie at depth 2
         };
         for (const Case& c : cases) {
@@ -67,8 +62,7 @@ TEST_SUITE("epa")
         }
     }
 
-    TEST_CASE("touching boxes and flat contacts: depth 0, valid unit normal, never NaN")
-    {
+    TEST_CASE("touching boxes and flat contacts: depth 0, valid unit normal, never NaN") {
         BoxShape a{Vec3(0, 0, 0), Vec3(1, 1, 1)};
         for (const Vec3& c : {Vec3(2, 0.3, 0.1), Vec3(2, 2, 0), Vec3(2, 2, 2), Vec3(0, -2, 0.5)}) {
             BoxShape b{c, Vec3(1, 1, 1)};
@@ -105,8 +99,7 @@ TEST_SUITE("epa")
         CHECK(std::abs(r.normal.z()) == doctest::Approx(1.0));
     }
 
-    TEST_CASE("degenerate start simplices are blown up: point, segment, triangle")
-    {
+    TEST_CASE("degenerate start simplices are blown up: point, segment, triangle") {
         BoxShape a{Vec3(0, 0, 0), Vec3(1, 1, 1)};
         PointShape inside{Vec3(0.25, 0.5, -0.125)};  // nearest face +y at 0.5
         PolytopeShape pa{a.corners()};
@@ -146,8 +139,7 @@ TEST_SUITE("epa")
         CHECK(r.termination == EpaTermination::InvalidInput);
     }
 
-    TEST_CASE("spheres: analytic depth (EPA on smooth shapes converges slowly)")
-    {
+    TEST_CASE("spheres: analytic depth (EPA on smooth shapes converges slowly)") {
         for (double size : {1e-3, 1.0, 1e3}) {
             SphereShape a{Vec3(0, 0, 0), size};
             const Vec3 dir = Vec3(0.3, -0.2, 0.9).normalized();
@@ -162,8 +154,7 @@ TEST_SUITE("epa")
         }
     }
 
-    TEST_CASE("flat, elongated and deeply penetrating boxes")
-    {
+    TEST_CASE("flat, elongated and deeply penetrating boxes") {
         BoxShape plank{Vec3(0, 0, 0), Vec3(1000, 1, 1e-3)};
         BoxShape needle{Vec3(3, 0.2, 0), Vec3(1e-3, 1e-3, 500)};  // pierces the plank along z
         EpaResult r = penetration(plank, needle);
@@ -178,8 +169,7 @@ TEST_SUITE("epa")
         CHECK(std::abs(std::abs(r.normal.z()) - 1) <= 1e-12);
     }
 
-    TEST_CASE("random polytope pairs vs long double facet-enumeration oracle")
-    {
+    TEST_CASE("random polytope pairs vs long double facet-enumeration oracle") {
         std::mt19937_64 rng(4321);
         std::uniform_int_distribution<int> count(8, 10);
         std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -223,8 +213,7 @@ TEST_SUITE("epa")
         CHECK(maxWitnessErr <= 1.0);
     }
 
-    TEST_CASE("trace: polytope stays a closed convex surface, horizon is one loop")
-    {
+    TEST_CASE("trace: polytope stays a closed convex surface, horizon is one loop") {
         std::mt19937_64 rng(99);
         PolytopeShape a{randomPolytope(rng, 24, 1.0, Vec3::Zero())};
         PolytopeShape b{randomPolytope(rng, 24, 1.0, Vec3(0.4, 0.1, 0.0))};
@@ -243,7 +232,8 @@ TEST_SUITE("epa")
             CHECK(static_cast<int>(s.faces.size()) == 2 * v - 4);
             // every face is a supporting plane of the polytope (convexity, up to rounding)
             for (const auto& f : s.faces) {
-                const Vec3 n = (s.vertices[f[1]] - s.vertices[f[0]]).cross(s.vertices[f[2]] - s.vertices[f[0]]).normalized();
+                const Vec3 n =
+                    (s.vertices[f[1]] - s.vertices[f[0]]).cross(s.vertices[f[2]] - s.vertices[f[0]]).normalized();
                 for (int k = 0; k < static_cast<int>(s.vertices.size()); ++k)
                     if (used[k]) CHECK(n.dot(s.vertices[k] - s.vertices[f[0]]) <= 1e-12);
             }

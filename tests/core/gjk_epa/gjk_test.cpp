@@ -17,8 +17,7 @@ namespace {
 
 constexpr SimplexSolver kSolvers[] = {SimplexSolver::SignedVolumes, SimplexSolver::Johnson};
 
-GjkOptions withSolver(SimplexSolver s)
-{
+GjkOptions withSolver(SimplexSolver s) {
     GjkOptions o;
     o.solver = s;
     return o;
@@ -26,10 +25,8 @@ GjkOptions withSolver(SimplexSolver s)
 
 }  // namespace
 
-TEST_SUITE("gjk")
-{
-    TEST_CASE("spheres: exact distance, witness points and axis at every scale and offset")
-    {
+TEST_SUITE("gjk") {
+    TEST_CASE("spheres: exact distance, witness points and axis at every scale and offset") {
         for (SimplexSolver solver : kSolvers) {
             for (double size : {1e-3, 1.0, 1e3}) {
                 for (double offset : {0.0, 1e4, 1e6}) {
@@ -46,7 +43,8 @@ TEST_SUITE("gjk")
                     // plus the rounding of the centers at the offset.
                     const double slack = 1e-12 * expected + 16 * DBL_EPSILON * offset;
                     CHECK(std::abs(r.distance - expected) <= slack);
-                    CHECK((r.pointA - (o + 0.7 * size * dir)).norm() <= (1e-6 + std::sqrt(64 * DBL_EPSILON * offset / size)) * size);
+                    CHECK((r.pointA - (o + 0.7 * size * dir)).norm() <=
+                          (1e-6 + std::sqrt(64 * DBL_EPSILON * offset / size)) * size);
                     // A sphere stored at offset 1e6 is only round to ulp(1e6) ~ 1e-10: the axis
                     // is then known to ~sqrt(noise / size).
                     const double noise = 64 * DBL_EPSILON * offset / size;
@@ -57,8 +55,7 @@ TEST_SUITE("gjk")
         }
     }
 
-    TEST_CASE("axis-aligned boxes: face, edge and vertex closest features")
-    {
+    TEST_CASE("axis-aligned boxes: face, edge and vertex closest features") {
         BoxShape a{Vec3(0, 0, 0), Vec3(1, 2, 3)};
         struct Case {
             Vec3 center;
@@ -92,8 +89,7 @@ TEST_SUITE("gjk")
         }
     }
 
-    TEST_CASE("points and segments: degenerate shapes")
-    {
+    TEST_CASE("points and segments: degenerate shapes") {
         for (SimplexSolver solver : kSolvers) {
             const GjkOptions opt = withSolver(solver);
             PointShape p{Vec3(1, 2, 3)};
@@ -130,8 +126,7 @@ TEST_SUITE("gjk")
         }
     }
 
-    TEST_CASE("random polytope pairs vs long double facet-enumeration oracle")
-    {
+    TEST_CASE("random polytope pairs vs long double facet-enumeration oracle") {
         std::mt19937_64 rng(1234);
         std::uniform_int_distribution<int> count(8, 10);
         std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -184,8 +179,7 @@ TEST_SUITE("gjk")
         }
     }
 
-    TEST_CASE("every vertex ordering gives the same distance")
-    {
+    TEST_CASE("every vertex ordering gives the same distance") {
         std::mt19937_64 rng(77);
         PolytopeShape a{randomPolytope(rng, 5, 1.0, Vec3::Zero())};
         PolytopeShape b{randomPolytope(rng, 4, 1.0, Vec3(2.2, 0.3, -0.1))};
@@ -204,8 +198,7 @@ TEST_SUITE("gjk")
         CHECK(n == 120);
     }
 
-    TEST_CASE("warm start from a previous simplex: same answer, no more iterations")
-    {
+    TEST_CASE("warm start from a previous simplex: same answer, no more iterations") {
         std::mt19937_64 rng(5);
         for (int trial = 0; trial < 20; ++trial) {
             PolytopeShape a{randomPolytope(rng, 32, 1.0, Vec3::Zero())};
@@ -225,8 +218,7 @@ TEST_SUITE("gjk")
         }
     }
 
-    TEST_CASE("termination: never NaN, never a hang, every reason reported")
-    {
+    TEST_CASE("termination: never NaN, never a hang, every reason reported") {
         // NaN shape -> InvalidInput
         PointShape nan{Vec3(NAN, 0, 0)};
         PointShape p{Vec3(0, 0, 0)};
@@ -257,8 +249,7 @@ TEST_SUITE("gjk")
         CHECK(partial.termination == GjkTermination::SeparatingAxis);
     }
 
-    TEST_CASE("trace records every iteration with bounds, regions and weights")
-    {
+    TEST_CASE("trace records every iteration with bounds, regions and weights") {
         std::mt19937_64 rng(9);
         PolytopeShape a{randomPolytope(rng, 16, 1.0, Vec3::Zero())};
         PolytopeShape b{randomPolytope(rng, 16, 1.0, Vec3(2.0, 1.0, 0.0))};

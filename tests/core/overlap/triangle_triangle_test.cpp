@@ -59,83 +59,86 @@ void checkAllOrders(const Triangle& s, const Triangle& t, bool expected) {
 }  // namespace
 
 TEST_SUITE("triangle_triangle") {
-TEST_CASE("random triangles against the long double crossing oracle; segment lies on both") {
-    oracle::Rng rng(1);
-    int hits = 0, misses = 0;
-    for (double offset : {0.0, 1e4}) {
-        for (int n = 0; n < 3000; ++n) {
-            const Vec3 sft = Vec3::Constant(offset);
-            const Vec3 c1 = rng.vec(-0.5, 0.5) + sft, c2 = rng.vec(-0.5, 0.5) + sft;
-            const Triangle s{c1 + rng.vec(-1, 1), c1 + rng.vec(-1, 1), c1 + rng.vec(-1, 1)};
-            const Triangle t{c2 + rng.vec(-1, 1), c2 + rng.vec(-1, 1), c2 + rng.vec(-1, 1)};
-            const int expected = oracleTriTri(s, t);
-            if (expected == 0) continue;
-            const TriangleTriangleResult r = intersectTriangleTriangle(s, t);
-            REQUIRE(r.hit == (expected > 0));
-            REQUIRE(intersectTriangleTriangle(t, s).hit == r.hit);
-            if (!r.hit) { ++misses; continue; }
-            ++hits;
-            REQUIRE(r.hasSegment);
-            for (const Vec3& x : {r.segmentStart, r.segmentEnd, Vec3(0.5 * (r.segmentStart + r.segmentEnd))}) {
-                CHECK(oracle::distPointTriangle(V3(x), V3(s.a), V3(s.b), V3(s.c)) < 1e-9 * (1 + offset));
-                CHECK(oracle::distPointTriangle(V3(x), V3(t.a), V3(t.b), V3(t.c)) < 1e-9 * (1 + offset));
+    TEST_CASE("random triangles against the long double crossing oracle; segment lies on both") {
+        oracle::Rng rng(1);
+        int hits = 0, misses = 0;
+        for (double offset : {0.0, 1e4}) {
+            for (int n = 0; n < 3000; ++n) {
+                const Vec3 sft = Vec3::Constant(offset);
+                const Vec3 c1 = rng.vec(-0.5, 0.5) + sft, c2 = rng.vec(-0.5, 0.5) + sft;
+                const Triangle s{c1 + rng.vec(-1, 1), c1 + rng.vec(-1, 1), c1 + rng.vec(-1, 1)};
+                const Triangle t{c2 + rng.vec(-1, 1), c2 + rng.vec(-1, 1), c2 + rng.vec(-1, 1)};
+                const int expected = oracleTriTri(s, t);
+                if (expected == 0) continue;
+                const TriangleTriangleResult r = intersectTriangleTriangle(s, t);
+                REQUIRE(r.hit == (expected > 0));
+                REQUIRE(intersectTriangleTriangle(t, s).hit == r.hit);
+                if (!r.hit) {
+                    ++misses;
+                    continue;
+                }
+                ++hits;
+                REQUIRE(r.hasSegment);
+                for (const Vec3& x : {r.segmentStart, r.segmentEnd, Vec3(0.5 * (r.segmentStart + r.segmentEnd))}) {
+                    CHECK(oracle::distPointTriangle(V3(x), V3(s.a), V3(s.b), V3(s.c)) < 1e-9 * (1 + offset));
+                    CHECK(oracle::distPointTriangle(V3(x), V3(t.a), V3(t.b), V3(t.c)) < 1e-9 * (1 + offset));
+                }
             }
         }
+        CHECK(hits > 300);
+        CHECK(misses > 300);
     }
-    CHECK(hits > 300);
-    CHECK(misses > 300);
-}
 
-TEST_CASE("exact touching cases and one-ulp misses, all vertex orders, offsets") {
-    for (double off : {0.0, 1e4, 1e6}) {
-        const Vec3 o = Vec3::Constant(off);
-        const Triangle base{Vec3(0, 0, 0) + o, Vec3(4, 0, 0) + o, Vec3(0, 4, 0) + o};
-        // About one ulp at this offset (at 0: 2^-50, two ulps of the coordinates in [2, 4)).
-        const double up = off == 0.0 ? 0x1p-50 : std::nextafter(off, 2 * off) - off;
-        // Vertex touching the face from above.
-        checkAllOrders(base, {Vec3(1, 1, 0) + o, Vec3(1, 2, 3) + o, Vec3(2, 1, 3) + o}, true);
-        checkAllOrders(base, {Vec3(1, 1, up) + o, Vec3(1, 2, 3) + o, Vec3(2, 1, 3) + o}, false);
-        // Edge crossing an edge (x = 2 crossing the hypotenuse x + y = 4 at (2, 2, 0)).
-        checkAllOrders(base, {Vec3(2, 2, 0) + o, Vec3(3, 3, 2) + o, Vec3(1, 1, 2) + o}, true);
-        checkAllOrders(base, {Vec3(2, 2, up) + o, Vec3(3, 3, 2) + o, Vec3(1, 1, 2) + o}, false);
-        // Vertex on vertex.
-        checkAllOrders(base, {Vec3(4, 0, 0) + o, Vec3(5, 1, 1) + o, Vec3(5, -1, 1) + o}, true);
-        // Piercing.
-        checkAllOrders(base, {Vec3(1, 1, -1) + o, Vec3(1, 1, 1) + o, Vec3(2, 5, 0) + o}, true);
-        // Coplanar: overlapping, sharing an edge, touching at a vertex, apart.
-        checkAllOrders(base, {Vec3(1, 1, 0) + o, Vec3(5, 1, 0) + o, Vec3(1, 5, 0) + o}, true);
-        checkAllOrders(base, {Vec3(4, 0, 0) + o, Vec3(0, 4, 0) + o, Vec3(4, 4, 0) + o}, true);
-        checkAllOrders(base, {Vec3(2, 2, 0) + o, Vec3(4, 2, 0) + o, Vec3(2, 4, 0) + o}, true);
-        checkAllOrders(base, {Vec3(2, 2 + 2 * up, 0) + o, Vec3(4, 2, 0) + o, Vec3(2, 4, 0) + o}, false);
-        checkAllOrders(base, {Vec3(2, 2 - 2 * up, 0) + o, Vec3(4, 2, 0) + o, Vec3(2, 4, 0) + o}, true);
-        checkAllOrders(base, {Vec3(2 + 1e-9, 2 + 1e-9, 0) + o, Vec3(4, 4, 0) + o, Vec3(2, 5, 0) + o}, false);
-        checkAllOrders(base, {Vec3(1, 1, 0) + o, Vec3(2, 1, 0) + o, Vec3(1, 2, 0) + o}, true);  // contained
+    TEST_CASE("exact touching cases and one-ulp misses, all vertex orders, offsets") {
+        for (double off : {0.0, 1e4, 1e6}) {
+            const Vec3 o = Vec3::Constant(off);
+            const Triangle base{Vec3(0, 0, 0) + o, Vec3(4, 0, 0) + o, Vec3(0, 4, 0) + o};
+            // About one ulp at this offset (at 0: 2^-50, two ulps of the coordinates in [2, 4)).
+            const double up = off == 0.0 ? 0x1p-50 : std::nextafter(off, 2 * off) - off;
+            // Vertex touching the face from above.
+            checkAllOrders(base, {Vec3(1, 1, 0) + o, Vec3(1, 2, 3) + o, Vec3(2, 1, 3) + o}, true);
+            checkAllOrders(base, {Vec3(1, 1, up) + o, Vec3(1, 2, 3) + o, Vec3(2, 1, 3) + o}, false);
+            // Edge crossing an edge (x = 2 crossing the hypotenuse x + y = 4 at (2, 2, 0)).
+            checkAllOrders(base, {Vec3(2, 2, 0) + o, Vec3(3, 3, 2) + o, Vec3(1, 1, 2) + o}, true);
+            checkAllOrders(base, {Vec3(2, 2, up) + o, Vec3(3, 3, 2) + o, Vec3(1, 1, 2) + o}, false);
+            // Vertex on vertex.
+            checkAllOrders(base, {Vec3(4, 0, 0) + o, Vec3(5, 1, 1) + o, Vec3(5, -1, 1) + o}, true);
+            // Piercing.
+            checkAllOrders(base, {Vec3(1, 1, -1) + o, Vec3(1, 1, 1) + o, Vec3(2, 5, 0) + o}, true);
+            // Coplanar: overlapping, sharing an edge, touching at a vertex, apart.
+            checkAllOrders(base, {Vec3(1, 1, 0) + o, Vec3(5, 1, 0) + o, Vec3(1, 5, 0) + o}, true);
+            checkAllOrders(base, {Vec3(4, 0, 0) + o, Vec3(0, 4, 0) + o, Vec3(4, 4, 0) + o}, true);
+            checkAllOrders(base, {Vec3(2, 2, 0) + o, Vec3(4, 2, 0) + o, Vec3(2, 4, 0) + o}, true);
+            checkAllOrders(base, {Vec3(2, 2 + 2 * up, 0) + o, Vec3(4, 2, 0) + o, Vec3(2, 4, 0) + o}, false);
+            checkAllOrders(base, {Vec3(2, 2 - 2 * up, 0) + o, Vec3(4, 2, 0) + o, Vec3(2, 4, 0) + o}, true);
+            checkAllOrders(base, {Vec3(2 + 1e-9, 2 + 1e-9, 0) + o, Vec3(4, 4, 0) + o, Vec3(2, 5, 0) + o}, false);
+            checkAllOrders(base, {Vec3(1, 1, 0) + o, Vec3(2, 1, 0) + o, Vec3(1, 2, 0) + o}, true);  // contained
+        }
+        // The reported segment for a clean crossing.
+        const Triangle s{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0)};
+        const TriangleTriangleResult r = intersectTriangleTriangle(s, {Vec3(1, 1, -1), Vec3(1, 1, 1), Vec3(1, 3, 0)});
+        REQUIRE(r.hasSegment);
+        const Vec3 lo = r.segmentStart.cwiseMin(r.segmentEnd), hi = r.segmentStart.cwiseMax(r.segmentEnd);
+        CHECK((lo - Vec3(1, 1, 0)).norm() < 1e-12);
+        CHECK((hi - Vec3(1, 3, 0)).norm() < 1e-12);
+        // Coplanar hit: no segment.
+        const TriangleTriangleResult c = intersectTriangleTriangle(s, {Vec3(1, 1, 0), Vec3(5, 1, 0), Vec3(1, 5, 0)});
+        CHECK(c.coplanar);
+        CHECK_FALSE(c.hasSegment);
+        // Touching at one point: start == end.
+        const TriangleTriangleResult p = intersectTriangleTriangle(s, {Vec3(1, 1, 0), Vec3(1, 2, 3), Vec3(2, 1, 3)});
+        CHECK((p.segmentStart - Vec3(1, 1, 0)).norm() < 1e-15);
+        CHECK((p.segmentEnd - Vec3(1, 1, 0)).norm() < 1e-15);
     }
-    // The reported segment for a clean crossing.
-    const Triangle s{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0)};
-    const TriangleTriangleResult r = intersectTriangleTriangle(s, {Vec3(1, 1, -1), Vec3(1, 1, 1), Vec3(1, 3, 0)});
-    REQUIRE(r.hasSegment);
-    const Vec3 lo = r.segmentStart.cwiseMin(r.segmentEnd), hi = r.segmentStart.cwiseMax(r.segmentEnd);
-    CHECK((lo - Vec3(1, 1, 0)).norm() < 1e-12);
-    CHECK((hi - Vec3(1, 3, 0)).norm() < 1e-12);
-    // Coplanar hit: no segment.
-    const TriangleTriangleResult c = intersectTriangleTriangle(s, {Vec3(1, 1, 0), Vec3(5, 1, 0), Vec3(1, 5, 0)});
-    CHECK(c.coplanar);
-    CHECK_FALSE(c.hasSegment);
-    // Touching at one point: start == end.
-    const TriangleTriangleResult p = intersectTriangleTriangle(s, {Vec3(1, 1, 0), Vec3(1, 2, 3), Vec3(2, 1, 3)});
-    CHECK((p.segmentStart - Vec3(1, 1, 0)).norm() < 1e-15);
-    CHECK((p.segmentEnd - Vec3(1, 1, 0)).norm() < 1e-15);
-}
 
-TEST_CASE("parallel planes and degenerate input") {
-    const Triangle s{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0)};
-    CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(0, 0, 1e-300), Vec3(4, 0, 1e-300), Vec3(0, 4, 1e-300)}).hit);
-    // Zero-area triangles give no hit (documented), even when they cross.
-    CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(1, 1, -1), Vec3(1, 1, 1), Vec3(1, 1, 2)}).hit);
-    CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)}).hit);
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(nan, 1, -1), Vec3(1, 1, 1), Vec3(2, 1, 2)}).hit);
-    CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(INFINITY, 1, -1), Vec3(1, 1, 1), Vec3(2, 1, 2)}).hit);
-}
+    TEST_CASE("parallel planes and degenerate input") {
+        const Triangle s{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0)};
+        CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(0, 0, 1e-300), Vec3(4, 0, 1e-300), Vec3(0, 4, 1e-300)}).hit);
+        // Zero-area triangles give no hit (documented), even when they cross.
+        CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(1, 1, -1), Vec3(1, 1, 1), Vec3(1, 1, 2)}).hit);
+        CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)}).hit);
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(nan, 1, -1), Vec3(1, 1, 1), Vec3(2, 1, 2)}).hit);
+        CHECK_FALSE(intersectTriangleTriangle(s, {Vec3(INFINITY, 1, -1), Vec3(1, 1, 1), Vec3(2, 1, 2)}).hit);
+    }
 }

@@ -88,7 +88,8 @@ long double windingNumber(const std::vector<BspPolygon>& polys, const Vec3& p) {
     long double total = 0;
     for (const BspPolygon& poly : polys)
         for (std::size_t k = 1; k + 1 < poly.vertices.size(); ++k) {
-            const LVec a = L(poly.vertices[0]) - L(p), b = L(poly.vertices[k]) - L(p), c = L(poly.vertices[k + 1]) - L(p);
+            const LVec a = L(poly.vertices[0]) - L(p), b = L(poly.vertices[k]) - L(p),
+                       c = L(poly.vertices[k + 1]) - L(p);
             const long double la = a.norm(), lb = b.norm(), lc = c.norm();
             const long double num = a.dot(b.cross(c));
             const long double den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
@@ -104,7 +105,8 @@ long double distanceToTriangle(const LVec& p, const LVec& a, const LVec& b, cons
     const long double nn = n.squaredNorm();
     // Inside the prism over the triangle: plane distance.
     const LVec q = p - n * (n.dot(p - a) / nn);
-    const long double w0 = (b - q).cross(c - q).dot(n), w1 = (c - q).cross(a - q).dot(n), w2 = (a - q).cross(b - q).dot(n);
+    const long double w0 = (b - q).cross(c - q).dot(n), w1 = (c - q).cross(a - q).dot(n),
+                      w2 = (a - q).cross(b - q).dot(n);
     if (w0 >= 0 && w1 >= 0 && w2 >= 0) return (p - q).norm();
     auto seg = [&](const LVec& s, const LVec& t) {
         const LVec d = t - s;
@@ -118,7 +120,8 @@ long double distanceToMesh(const std::vector<BspPolygon>& polys, const Vec3& p) 
     long double best = INFINITY;
     for (const BspPolygon& poly : polys)
         for (std::size_t k = 1; k + 1 < poly.vertices.size(); ++k)
-            best = std::min(best, distanceToTriangle(L(p), L(poly.vertices[0]), L(poly.vertices[k]), L(poly.vertices[k + 1])));
+            best = std::min(
+                best, distanceToTriangle(L(p), L(poly.vertices[0]), L(poly.vertices[k]), L(poly.vertices[k + 1])));
     return best;
 }
 
@@ -230,155 +233,157 @@ void checkMesh(const std::vector<BspPolygon>& polys, std::mt19937& rng, double m
 }  // namespace
 
 TEST_SUITE("bsp_tree") {
-
-TEST_CASE("convex cube: face-plane oracle, every placement and scale") {
-    std::mt19937 rng(1);
-    const Quat q = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
-    for (double scale : {1e-3, 1.0, 1e3})
-        for (double offset : {0.0, 1e4, 1e6}) {
-            const std::vector<BspPolygon> polys = transformed(cube(), scale, Vec3(offset, -2 * offset, 0.5 * offset), q);
-            BspTree tree;
-            tree.build(polys);
-            CHECK(tree.stats().splits == 0);
-            CHECK(tree.stats().innerCount == 6);
-            std::uniform_real_distribution<double> u(-2.0, 2.0);
-            for (int k = 0; k < 300; ++k) {
-                const Vec3 local(u(rng), u(rng), u(rng));
-                const double m = local.cwiseAbs().maxCoeff();
-                if (std::abs(m - 1.0) < 0.01) continue;  // margin from the surface
-                const Vec3 p = q * (scale * local) + Vec3(offset, -2 * offset, 0.5 * offset);
-                // Oracle: inside iff behind every face plane (long double, from the mesh's vertices).
-                bool in = true;
-                for (const BspPolygon& f : polys) {
-                    const LVec n = (L(f.vertices[1]) - L(f.vertices[0])).cross(L(f.vertices[2]) - L(f.vertices[0]));
-                    in = in && n.dot(L(p) - L(f.vertices[0])) < 0;
+    TEST_CASE("convex cube: face-plane oracle, every placement and scale") {
+        std::mt19937 rng(1);
+        const Quat q = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+        for (double scale : {1e-3, 1.0, 1e3})
+            for (double offset : {0.0, 1e4, 1e6}) {
+                const std::vector<BspPolygon> polys =
+                    transformed(cube(), scale, Vec3(offset, -2 * offset, 0.5 * offset), q);
+                BspTree tree;
+                tree.build(polys);
+                CHECK(tree.stats().splits == 0);
+                CHECK(tree.stats().innerCount == 6);
+                std::uniform_real_distribution<double> u(-2.0, 2.0);
+                for (int k = 0; k < 300; ++k) {
+                    const Vec3 local(u(rng), u(rng), u(rng));
+                    const double m = local.cwiseAbs().maxCoeff();
+                    if (std::abs(m - 1.0) < 0.01) continue;  // margin from the surface
+                    const Vec3 p = q * (scale * local) + Vec3(offset, -2 * offset, 0.5 * offset);
+                    // Oracle: inside iff behind every face plane (long double, from the mesh's vertices).
+                    bool in = true;
+                    for (const BspPolygon& f : polys) {
+                        const LVec n = (L(f.vertices[1]) - L(f.vertices[0])).cross(L(f.vertices[2]) - L(f.vertices[0]));
+                        in = in && n.dot(L(p) - L(f.vertices[0])) < 0;
+                    }
+                    CHECK(tree.classifyPoint(p) == (in ? BspPointClass::Inside : BspPointClass::Outside));
                 }
-                CHECK(tree.classifyPoint(p) == (in ? BspPointClass::Inside : BspPointClass::Outside));
+                // Points on a face and on an edge are on the boundary.
+                CHECK(tree.classifyPoint(q * (scale * Vec3(1, 0.3, -0.2)) + Vec3(offset, -2 * offset, 0.5 * offset)) ==
+                      BspPointClass::OnBoundary);
+                CHECK(tree.classifyPoint(q * (scale * Vec3(1, 1, 0.5)) + Vec3(offset, -2 * offset, 0.5 * offset)) ==
+                      BspPointClass::OnBoundary);
             }
-            // Points on a face and on an edge are on the boundary.
-            CHECK(tree.classifyPoint(q * (scale * Vec3(1, 0.3, -0.2)) + Vec3(offset, -2 * offset, 0.5 * offset)) ==
-                  BspPointClass::OnBoundary);
-            CHECK(tree.classifyPoint(q * (scale * Vec3(1, 1, 0.5)) + Vec3(offset, -2 * offset, 0.5 * offset)) ==
-                  BspPointClass::OnBoundary);
+        checkMesh(cube(), rng, 0.01);
+    }
+
+    TEST_CASE("vertex orderings: cyclic shifts change nothing, reversal gives the complement") {
+        std::mt19937 rng(2);
+        const std::vector<BspPolygon> base = lShape();
+        for (int shift = 1; shift < 4; ++shift) {
+            std::vector<BspPolygon> shifted = base;
+            for (BspPolygon& p : shifted) std::rotate(p.vertices.begin(), p.vertices.begin() + shift, p.vertices.end());
+            checkMesh(shifted, rng, 0.02);
         }
-    checkMesh(cube(), rng, 0.01);
-}
-
-TEST_CASE("vertex orderings: cyclic shifts change nothing, reversal gives the complement") {
-    std::mt19937 rng(2);
-    const std::vector<BspPolygon> base = lShape();
-    for (int shift = 1; shift < 4; ++shift) {
-        std::vector<BspPolygon> shifted = base;
-        for (BspPolygon& p : shifted) std::rotate(p.vertices.begin(), p.vertices.begin() + shift, p.vertices.end());
-        checkMesh(shifted, rng, 0.02);
+        std::vector<BspPolygon> reversed = base;
+        for (BspPolygon& p : reversed) std::reverse(p.vertices.begin(), p.vertices.end());
+        BspTree a, b;
+        a.build(base);
+        b.build(reversed);
+        for (const Vec3& p : samplePoints(base, rng, 200, 0.02)) {
+            const BspPointClass ca = a.classifyPoint(p), cb = b.classifyPoint(p);
+            CHECK(ca != BspPointClass::OnBoundary);
+            CHECK(cb == (ca == BspPointClass::Inside ? BspPointClass::Outside : BspPointClass::Inside));
+        }
     }
-    std::vector<BspPolygon> reversed = base;
-    for (BspPolygon& p : reversed) std::reverse(p.vertices.begin(), p.vertices.end());
-    BspTree a, b;
-    a.build(base);
-    b.build(reversed);
-    for (const Vec3& p : samplePoints(base, rng, 200, 0.02)) {
-        const BspPointClass ca = a.classifyPoint(p), cb = b.classifyPoint(p);
-        CHECK(ca != BspPointClass::OnBoundary);
-        CHECK(cb == (ca == BspPointClass::Inside ? BspPointClass::Outside : BspPointClass::Inside));
+
+    TEST_CASE("non-convex L-shaped prism: winding number, ray-triangle oracle, areas; offsets and scales") {
+        std::mt19937 rng(3);
+        const Quat q = Quat(Eigen::AngleAxisd(0.4, Vec3(-1, 2, 0.5).normalized()));
+        for (double scale : {1e-3, 1.0, 1e3})
+            for (double offset : {0.0, 1e6})
+                checkMesh(transformed(lShape(), scale, Vec3::Constant(offset), q), rng, 0.02 * scale);
     }
-}
 
-TEST_CASE("non-convex L-shaped prism: winding number, ray-triangle oracle, areas; offsets and scales") {
-    std::mt19937 rng(3);
-    const Quat q = Quat(Eigen::AngleAxisd(0.4, Vec3(-1, 2, 0.5).normalized()));
-    for (double scale : {1e-3, 1.0, 1e3})
-        for (double offset : {0.0, 1e6}) checkMesh(transformed(lShape(), scale, Vec3::Constant(offset), q), rng, 0.02 * scale);
-}
-
-TEST_CASE("non-convex torus (320 triangles): classification, segments, split areas") {
-    std::mt19937 rng(4);
-    const std::vector<BspPolygon> t = torus(2.0, 0.7, 16, 10);
-    checkMesh(t, rng, 0.02);
-    BspOptions balanced;
-    balanced.splitWeight = 0.2;  // favour balance over fewer splits
-    balanced.maxCandidates = 16;
-    checkMesh(t, rng, 0.02, balanced);
-    checkMesh(transformed(t, 10.0, Vec3(1e4, 1e4, -1e4), Quat::Identity()), rng, 0.2);
-    BspTree tree;
-    tree.build(t);
-    MESSAGE("torus: nodes " << tree.stats().nodeCount << ", depth " << tree.stats().depth << ", splits "
-                            << tree.stats().splits << ", fragments " << tree.stats().fragmentCount);
-}
-
-TEST_CASE("split weight trades splits against balance") {
-    const std::vector<BspPolygon> t = torus(2.0, 0.7, 12, 8);
-    BspTree fewSplits, balanced;
-    BspOptions a, b;
-    a.splitWeight = 1.0;
-    b.splitWeight = 0.0;
-    fewSplits.build(t, a);
-    balanced.build(t, b);
-    CHECK(fewSplits.stats().splits < balanced.stats().splits);
-    CHECK(balanced.stats().depth < fewSplits.stats().depth);
-}
-
-TEST_CASE("degenerate input: empty, NaN, zero-area and short polygons, duplicates, coplanar splits") {
-    BspTree tree;
-    tree.build({});
-    CHECK(tree.status() == BspStatus::Empty);
-    CHECK(tree.classifyPoint(Vec3::Zero()) == BspPointClass::Outside);
-    CHECK(!tree.segmentQuery({Vec3::Zero(), Vec3::Ones()}).hit);
-
-    std::vector<BspPolygon> bad = cube();
-    bad[2].vertices[1].y() = std::numeric_limits<double>::quiet_NaN();
-    tree.build(bad);
-    CHECK(tree.status() == BspStatus::InvalidInput);
-    CHECK(tree.classifyPoint(Vec3::Zero()) == BspPointClass::Outside);
-
-    std::mt19937 rng(5);
-    std::vector<BspPolygon> withJunk = cube();
-    withJunk.push_back({{Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2)}});  // collinear: zero area
-    withJunk.push_back({{Vec3(0, 0, 0), Vec3(1, 0, 0)}});                 // two vertices
-    withJunk.push_back({{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 0)}});  // one point
-    tree.build(withJunk);
-    CHECK(tree.status() == BspStatus::SomeDegenerate);
-    CHECK(tree.classifyPoint(Vec3(0.5, 0.5, 0.5)) == BspPointClass::Inside);
-    CHECK(tree.classifyPoint(Vec3(1.5, 0.5, 0.5)) == BspPointClass::Outside);
-    tree.build({withJunk.back()});
-    CHECK(tree.status() == BspStatus::SomeDegenerate);
-    CHECK(tree.classifyPoint(Vec3::Zero()) == BspPointClass::Outside);
-
-    // Each cube face as two coplanar triangles, plus duplicated faces: same solid.
-    std::vector<BspPolygon> tris;
-    for (const BspPolygon& f : cube()) {
-        tris.push_back({{f.vertices[0], f.vertices[1], f.vertices[2]}});
-        tris.push_back({{f.vertices[0], f.vertices[2], f.vertices[3]}});
-        tris.push_back(tris.back());
+    TEST_CASE("non-convex torus (320 triangles): classification, segments, split areas") {
+        std::mt19937 rng(4);
+        const std::vector<BspPolygon> t = torus(2.0, 0.7, 16, 10);
+        checkMesh(t, rng, 0.02);
+        BspOptions balanced;
+        balanced.splitWeight = 0.2;  // favour balance over fewer splits
+        balanced.maxCandidates = 16;
+        checkMesh(t, rng, 0.02, balanced);
+        checkMesh(transformed(t, 10.0, Vec3(1e4, 1e4, -1e4), Quat::Identity()), rng, 0.2);
+        BspTree tree;
+        tree.build(t);
+        MESSAGE("torus: nodes " << tree.stats().nodeCount << ", depth " << tree.stats().depth << ", splits "
+                                << tree.stats().splits << ", fragments " << tree.stats().fragmentCount);
     }
-    tree.build(tris);
-    CHECK(tree.status() == BspStatus::Ok);
-    CHECK(tree.stats().innerCount == 6);
-    CHECK(tree.fragments().size() == 18u);
-    for (const Vec3& p : samplePoints(cube(), rng, 100, 0.01))
-        CHECK(tree.classifyPoint(p) == (p.cwiseAbs().maxCoeff() < 1 ? BspPointClass::Inside : BspPointClass::Outside));
 
-    // Segments lying in a face plane touch the closed solid; degenerate segment is a point query.
-    tree.build(cube());
-    const BspRayResult along = tree.segmentQuery({Vec3(-3, 0.2, 1), Vec3(3, 0.2, 1)});
-    CHECK(along.hit);
-    CHECK(std::abs(along.t - 2.0 / 6.0) < 1e-9);
-    CHECK(tree.segmentQuery({Vec3(0.2, 0.2, 0.2), Vec3(0.2, 0.2, 0.2)}).startsInside);
-    CHECK(!tree.segmentQuery({Vec3(2, 2, 2), Vec3(2, 2, 2)}).hit);
-    CHECK(!tree.segmentQuery({Vec3(-3, 0.2, 1.5), Vec3(3, 0.2, 1.5)}).hit);
-    CHECK(!tree.rayQuery({Vec3(0, 0, 0), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0)}).hit);
-    // Ray from outside, through the cube: enters at x = -1.
-    const BspRayResult ray = tree.rayQuery({Vec3(-5, 0.1, 0.2), Vec3(2, 0, 0)});
-    CHECK(ray.hit);
-    CHECK(std::abs(ray.t - 2.0) < 1e-12);
-    CHECK(std::abs(ray.point.x() + 1.0) < 1e-12);
+    TEST_CASE("split weight trades splits against balance") {
+        const std::vector<BspPolygon> t = torus(2.0, 0.7, 12, 8);
+        BspTree fewSplits, balanced;
+        BspOptions a, b;
+        a.splitWeight = 1.0;
+        b.splitWeight = 0.0;
+        fewSplits.build(t, a);
+        balanced.build(t, b);
+        CHECK(fewSplits.stats().splits < balanced.stats().splits);
+        CHECK(balanced.stats().depth < fewSplits.stats().depth);
+    }
 
-    // Depth limit: a clear status and no crash.
-    BspOptions shallow;
-    shallow.maxDepth = 2;
-    tree.build(torus(2.0, 0.7, 8, 6), shallow);
-    CHECK(tree.status() == BspStatus::DepthLimit);
-    CHECK(tree.stats().depth <= 2);
-}
+    TEST_CASE("degenerate input: empty, NaN, zero-area and short polygons, duplicates, coplanar splits") {
+        BspTree tree;
+        tree.build({});
+        CHECK(tree.status() == BspStatus::Empty);
+        CHECK(tree.classifyPoint(Vec3::Zero()) == BspPointClass::Outside);
+        CHECK(!tree.segmentQuery({Vec3::Zero(), Vec3::Ones()}).hit);
+
+        std::vector<BspPolygon> bad = cube();
+        bad[2].vertices[1].y() = std::numeric_limits<double>::quiet_NaN();
+        tree.build(bad);
+        CHECK(tree.status() == BspStatus::InvalidInput);
+        CHECK(tree.classifyPoint(Vec3::Zero()) == BspPointClass::Outside);
+
+        std::mt19937 rng(5);
+        std::vector<BspPolygon> withJunk = cube();
+        withJunk.push_back({{Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2)}});  // collinear: zero area
+        withJunk.push_back({{Vec3(0, 0, 0), Vec3(1, 0, 0)}});                 // two vertices
+        withJunk.push_back({{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 0)}});  // one point
+        tree.build(withJunk);
+        CHECK(tree.status() == BspStatus::SomeDegenerate);
+        CHECK(tree.classifyPoint(Vec3(0.5, 0.5, 0.5)) == BspPointClass::Inside);
+        CHECK(tree.classifyPoint(Vec3(1.5, 0.5, 0.5)) == BspPointClass::Outside);
+        tree.build({withJunk.back()});
+        CHECK(tree.status() == BspStatus::SomeDegenerate);
+        CHECK(tree.classifyPoint(Vec3::Zero()) == BspPointClass::Outside);
+
+        // Each cube face as two coplanar triangles, plus duplicated faces: same solid.
+        std::vector<BspPolygon> tris;
+        for (const BspPolygon& f : cube()) {
+            tris.push_back({{f.vertices[0], f.vertices[1], f.vertices[2]}});
+            tris.push_back({{f.vertices[0], f.vertices[2], f.vertices[3]}});
+            tris.push_back(tris.back());
+        }
+        tree.build(tris);
+        CHECK(tree.status() == BspStatus::Ok);
+        CHECK(tree.stats().innerCount == 6);
+        CHECK(tree.fragments().size() == 18u);
+        for (const Vec3& p : samplePoints(cube(), rng, 100, 0.01))
+            CHECK(tree.classifyPoint(p) ==
+                  (p.cwiseAbs().maxCoeff() < 1 ? BspPointClass::Inside : BspPointClass::Outside));
+
+        // Segments lying in a face plane touch the closed solid; degenerate segment is a point query.
+        tree.build(cube());
+        const BspRayResult along = tree.segmentQuery({Vec3(-3, 0.2, 1), Vec3(3, 0.2, 1)});
+        CHECK(along.hit);
+        CHECK(std::abs(along.t - 2.0 / 6.0) < 1e-9);
+        CHECK(tree.segmentQuery({Vec3(0.2, 0.2, 0.2), Vec3(0.2, 0.2, 0.2)}).startsInside);
+        CHECK(!tree.segmentQuery({Vec3(2, 2, 2), Vec3(2, 2, 2)}).hit);
+        CHECK(!tree.segmentQuery({Vec3(-3, 0.2, 1.5), Vec3(3, 0.2, 1.5)}).hit);
+        CHECK(!tree.rayQuery({Vec3(0, 0, 0), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0)}).hit);
+        // Ray from outside, through the cube: enters at x = -1.
+        const BspRayResult ray = tree.rayQuery({Vec3(-5, 0.1, 0.2), Vec3(2, 0, 0)});
+        CHECK(ray.hit);
+        CHECK(std::abs(ray.t - 2.0) < 1e-12);
+        CHECK(std::abs(ray.point.x() + 1.0) < 1e-12);
+
+        // Depth limit: a clear status and no crash.
+        BspOptions shallow;
+        shallow.maxDepth = 2;
+        tree.build(torus(2.0, 0.7, 8, 6), shallow);
+        CHECK(tree.status() == BspStatus::DepthLimit);
+        CHECK(tree.stats().depth <= 2);
+    }
 
 }  // TEST_SUITE

@@ -29,7 +29,8 @@ pid_t startFigures(const fs::path& out) {
     const pid_t pid = fork();
     if (pid == 0) {
         std::string o = out.string();
-        std::vector<std::string> args = {"cdlab", "figures", "--scene", "voronoi_triangle/regions", "--force", "--out", o};
+        std::vector<std::string> args = {"cdlab",   "figures", "--scene", "voronoi_triangle/regions",
+                                         "--force", "--out",   o};
         std::vector<char*> argv;
         for (auto& a : args) argv.push_back(a.data());
         // No output from the child: the parent's doctest report stays readable.

@@ -2,8 +2,8 @@
 // load: the screenshot shows the figure's region colours, not broken-image icons.
 #include <doctest/doctest.h>
 
-#include <cstdlib>
 #include <unistd.h>
+#include <cstdlib>
 
 #include <filesystem>
 #include <fstream>
@@ -37,9 +37,9 @@ TEST_CASE("gallery index.html renders in headless chromium with its images") {
     std::string cmd = std::string("timeout 120 ") + chromium +
                       " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
                       " --disable-background-networking --disable-component-update --disable-sync"
-                      " --user-data-dir=" + (root / "profile").string() +
-                      " --window-size=900,700 --screenshot=" + shot.string() + " file://" + index.string() +
-                      " >" + (root / "chromium.log").string() + " 2>&1";
+                      " --user-data-dir=" +
+                      (root / "profile").string() + " --window-size=900,700 --screenshot=" + shot.string() +
+                      " file://" + index.string() + " >" + (root / "chromium.log").string() + " 2>&1";
     REQUIRE_MESSAGE(std::system(cmd.c_str()) == 0, "chromium failed: see " << (root / "chromium.log").string());
     REQUIRE(fs::exists(shot));
     cdlab::render::Image img = cdlab::render::readPng(shot.string());

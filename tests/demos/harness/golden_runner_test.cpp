@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "demos/scene/json_reader.h"
 #include "demos/harness/scene_runner.h"
+#include "demos/scene/json_reader.h"
 #include "render/image.h"
 
 using namespace cdlab::demos;

@@ -16,8 +16,7 @@ using namespace cdlab::demos;
 namespace {
 
 std::vector<Vec3> boxCorners(const Vec3& center, const Vec3& half, const Quat& q = Quat::Identity(),
-                             const Vec3& offset = Vec3::Zero())
-{
+                             const Vec3& offset = Vec3::Zero()) {
     std::vector<Vec3> c;
     for (int i = 0; i < 8; ++i)
         c.push_back(offset + q * (center + Vec3((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
@@ -34,10 +33,8 @@ struct BoxCase {
 
 }  // namespace
 
-TEST_SUITE("bench oracle")
-{
-    TEST_CASE("the two Minkowski oracles agree: hull of the differences vs facet enumeration by triples")
-    {
+TEST_SUITE("bench oracle") {
+    TEST_CASE("the two Minkowski oracles agree: hull of the differences vs facet enumeration by triples") {
         // Two independent ways to the same answer (the bench's builds core's hull of {a_i - b_j}; the
         // tests' enumerates facet planes by triples and uses no core algorithm): distance, inside
         // and depth agree on random 6-vertex pairs, separated and overlapping.
@@ -63,17 +60,16 @@ TEST_SUITE("bench oracle")
         CHECK(overlapping > 30);
     }
 
-    TEST_CASE("boxes: face, edge, vertex distance and overlap depth, under rotations and offsets")
-    {
+    TEST_CASE("boxes: face, edge, vertex distance and overlap depth, under rotations and offsets") {
         const Vec3 halfA(1.0, 2.0, 3.0);
         const Vec3 halfB(0.5, 0.5, 0.5);
         // Gaps per axis: |c| - (hA + hB) = (c - 1.5, c - 2.5, c - 3.5).
         const BoxCase cases[] = {
-            {Vec3(4.0, 0.3, -0.2), 2.5, 0.0, Vec3::Zero()},                          // face x
-            {Vec3(3.0, 4.0, 0.0), std::sqrt(2 * 1.5 * 1.5), 0.0, Vec3::Zero()},       // edge xy
-            {Vec3(3.0, 4.0, 5.0), std::sqrt(3 * 1.5 * 1.5), 0.0, Vec3::Zero()},       // vertex
-            {Vec3(1.2, 0.0, 0.0), 0.0, 0.3, Vec3(1, 0, 0)},                          // overlap 0.3 along x
-            {Vec3(0.0, -2.25, 0.5), 0.0, 0.25, Vec3(0, -1, 0)},                        // overlap 0.25 along y
+            {Vec3(4.0, 0.3, -0.2), 2.5, 0.0, Vec3::Zero()},                      // face x
+            {Vec3(3.0, 4.0, 0.0), std::sqrt(2 * 1.5 * 1.5), 0.0, Vec3::Zero()},  // edge xy
+            {Vec3(3.0, 4.0, 5.0), std::sqrt(3 * 1.5 * 1.5), 0.0, Vec3::Zero()},  // vertex
+            {Vec3(1.2, 0.0, 0.0), 0.0, 0.3, Vec3(1, 0, 0)},                      // overlap 0.3 along x
+            {Vec3(0.0, -2.25, 0.5), 0.0, 0.25, Vec3(0, -1, 0)},                  // overlap 0.25 along y
         };
         std::mt19937_64 rng(7);
         std::normal_distribution<double> g(0.0, 1.0);
@@ -87,8 +83,8 @@ TEST_SUITE("bench oracle")
             for (const BoxCase& k : cases) {
                 CAPTURE(trial);
                 CAPTURE(k.centerB.transpose());
-                const MinkowskiOracle o =
-                    minkowskiOracle(boxCorners(Vec3::Zero(), halfA, q, offset), boxCorners(k.centerB, halfB, q, offset));
+                const MinkowskiOracle o = minkowskiOracle(boxCorners(Vec3::Zero(), halfA, q, offset),
+                                                          boxCorners(k.centerB, halfB, q, offset));
                 REQUIRE(o.ok);
                 const double tol = trial == 3 ? 1e-11 : 1e-13;  // 1e3 offset: corners rounded to ~1e-13
                 CHECK(o.inside == (k.depth > 0));
@@ -103,17 +99,15 @@ TEST_SUITE("bench oracle")
         }
     }
 
-    TEST_CASE("touching boxes: distance 0, not inside")
-    {
-        const MinkowskiOracle o =
-            minkowskiOracle(boxCorners(Vec3::Zero(), Vec3(1, 1, 1)), boxCorners(Vec3(2.0, 0.25, 0.0), Vec3(1, 0.5, 0.5)));
+    TEST_CASE("touching boxes: distance 0, not inside") {
+        const MinkowskiOracle o = minkowskiOracle(boxCorners(Vec3::Zero(), Vec3(1, 1, 1)),
+                                                  boxCorners(Vec3(2.0, 0.25, 0.0), Vec3(1, 0.5, 0.5)));
         REQUIRE(o.ok);
         CHECK_FALSE(o.inside);
         CHECK(o.distance <= 1e-15);
     }
 
-    TEST_CASE("sphere-like point clouds: distance between the analytic sphere bounds")
-    {
+    TEST_CASE("sphere-like point clouds: distance between the analytic sphere bounds") {
         // Points on two unit spheres (in convex position): their hull lies inside the balls and
         // contains the inscribed polytope, so the distance is at least the ball distance and
         // approaches it as the sampling gets dense (here 400 points: within 2%).
@@ -134,16 +128,15 @@ TEST_SUITE("bench oracle")
         CHECK(std::abs(o.distance - (cb.norm() - 2.0)) <= 1e-12);
     }
 
-    TEST_CASE("point vs triangle and tetrahedron: closed-form distances")
-    {
+    TEST_CASE("point vs triangle and tetrahedron: closed-form distances") {
         const Triangle t{Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 2, 0)};
-        CHECK(oracleDistanceToTriangle(Vec3(0.5, 0.5, 3.0), t) == doctest::Approx(3.0).epsilon(1e-15));  // face
-        CHECK(oracleDistanceToTriangle(Vec3(1.0, -2.0, 0.0), t) == doctest::Approx(2.0).epsilon(1e-15));  // edge
+        CHECK(oracleDistanceToTriangle(Vec3(0.5, 0.5, 3.0), t) == doctest::Approx(3.0).epsilon(1e-15));    // face
+        CHECK(oracleDistanceToTriangle(Vec3(1.0, -2.0, 0.0), t) == doctest::Approx(2.0).epsilon(1e-15));   // edge
         CHECK(oracleDistanceToTriangle(Vec3(-3.0, -4.0, 0.0), t) == doctest::Approx(5.0).epsilon(1e-15));  // vertex
         CHECK(oracleDistanceToTriangle(Vec3(2.0, 2.0, 0.0), t) == doctest::Approx(std::sqrt(2.0)).epsilon(1e-15));
         const Tetrahedron k{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-        CHECK(oracleDistanceToTetrahedron(Vec3(0.1, 0.1, 0.1), k) == 0.0);                                      // inside
-        CHECK(oracleDistanceToTetrahedron(Vec3(0.2, 0.2, -1.0), k) == doctest::Approx(1.0).epsilon(1e-15));    // face z=0
+        CHECK(oracleDistanceToTetrahedron(Vec3(0.1, 0.1, 0.1), k) == 0.0);                                   // inside
+        CHECK(oracleDistanceToTetrahedron(Vec3(0.2, 0.2, -1.0), k) == doctest::Approx(1.0).epsilon(1e-15));  // face z=0
         CHECK(oracleDistanceToTetrahedron(Vec3(1, 1, 1), k) == doctest::Approx(2.0 / std::sqrt(3.0)).epsilon(1e-15));
         CHECK(oracleDistanceToTetrahedron(Vec3(-1, -1, -1), k) == doctest::Approx(std::sqrt(3.0)).epsilon(1e-15));
     }

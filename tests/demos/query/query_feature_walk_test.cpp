@@ -7,8 +7,8 @@
 
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/polyhedron_presets.h"
-#include "demos/query/query.h"
 #include "demos/oracles/feature_walk_oracle.h"
+#include "demos/query/query.h"
 
 using cdlab::Vec3;
 using cdlab::demos::answerQuery;
@@ -62,10 +62,12 @@ TEST_SUITE("query_vclip") {
                 // An aabb against an obb.
                 const Vec3 h = size * Vec3(0.5, 0.3, 0.7);
                 a = {{"aabb", {{"min", vec(ca - h)}, {"max", vec(ca + h)}}}};
-                for (int i = 0; i < 8; ++i) va.push_back(ca + Vec3(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z()));
+                for (int i = 0; i < 8; ++i)
+                    va.push_back(ca + Vec3(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z()));
                 const cdlab::Quat q = cdlab::Quat(0.9, 0.1, -0.3, 0.2).normalized();
                 const Vec3 e = size * Vec3(0.4, 0.6, 0.2);
-                b = {{"obb", {{"center", vec(cb)}, {"half_extents", vec(e)}, {"rotation", {q.w(), q.x(), q.y(), q.z()}}}}};
+                b = {{"obb",
+                      {{"center", vec(cb)}, {"half_extents", vec(e)}, {"rotation", {q.w(), q.x(), q.y(), q.z()}}}}};
                 for (int i = 0; i < 8; ++i)
                     vb.push_back(q * Vec3(i & 1 ? e.x() : -e.x(), i & 2 ? e.y() : -e.y(), i & 4 ? e.z() : -e.z()) + cb);
             } else {
@@ -92,8 +94,10 @@ TEST_SUITE("query_vclip") {
                 const double d = v["distance"].get<double>();
                 CHECK(std::abs(d - od) <= 1e-10 * size);
                 CHECK(std::abs(d - g["distance"].get<double>()) <= 1e-10 * size);
-                const Vec3 pa(v["point_a"][0].get<double>(), v["point_a"][1].get<double>(), v["point_a"][2].get<double>());
-                const Vec3 pb(v["point_b"][0].get<double>(), v["point_b"][1].get<double>(), v["point_b"][2].get<double>());
+                const Vec3 pa(v["point_a"][0].get<double>(), v["point_a"][1].get<double>(),
+                              v["point_a"][2].get<double>());
+                const Vec3 pb(v["point_b"][0].get<double>(), v["point_b"][1].get<double>(),
+                              v["point_b"][2].get<double>());
                 CHECK(std::abs((pb - pa).norm() - d) <= 1e-10 * size + 1e-15 * offset);
             }
         }
@@ -169,6 +173,7 @@ TEST_SUITE("query_vclip") {
         const Json r = ask({{"op", "distance"}, {"method", "vclip"}, {"a", polytope(as)}, {"b", polytope(bs)}});
         const Json g = ask({{"op", "distance"}, {"a", polytope(as)}, {"b", polytope(bs)}});
         REQUIRE_MESSAGE(!r.contains("error"), r.dump());
-        CHECK(std::abs(r["distance"].get<double>() - g["distance"].get<double>()) <= 1e-12 * g["distance"].get<double>());
+        CHECK(std::abs(r["distance"].get<double>() - g["distance"].get<double>()) <=
+              1e-12 * g["distance"].get<double>());
     }
 }

@@ -27,15 +27,17 @@ std::string boxQuery(double h, const std::string& extra) {
     std::string v;
     for (int i = 0; i < 8; ++i) {
         char buf[128];
-        std::snprintf(buf, sizeof buf, "%s[%.17g,%.17g,%.17g]", i ? "," : "", (i & 1) ? h : -h, (i & 2) ? 2 * h : -2 * h,
-                      (i & 4) ? 3 * h : -3 * h);
+        std::snprintf(buf, sizeof buf, "%s[%.17g,%.17g,%.17g]", i ? "," : "", (i & 1) ? h : -h,
+                      (i & 2) ? 2 * h : -2 * h, (i & 4) ? 3 * h : -3 * h);
         v += buf;
     }
     return R"({"op":"mass_properties","a":{"polytope":{"vertices":[)" + v + "]" + extra + "}}}";
 }
 
 // Adds a top-level member to a query text ending in '}'.
-std::string withTop(const std::string& q, const std::string& member) { return q.substr(0, q.size() - 1) + "," + member + "}"; }
+std::string withTop(const std::string& q, const std::string& member) {
+    return q.substr(0, q.size() - 1) + "," + member + "}";
+}
 
 }  // namespace
 
@@ -56,7 +58,8 @@ TEST_SUITE("query_mass") {
 
     TEST_CASE("rotation: world-frame tensor R I Rᵀ; density scales mass and inertia") {
         // 90° about z ([w,x,y,z] = [cos 45°, 0, 0, sin 45°]) swaps the x and y moments.
-        const Json a = ask(withTop(boxQuery(1.0, R"(,"rotation":[0.70710678118654752,0,0,0.70710678118654752])"), R"("density":2.5)"));
+        const Json a = ask(
+            withTop(boxQuery(1.0, R"(,"rotation":[0.70710678118654752,0,0,0.70710678118654752])"), R"("density":2.5)"));
         const double m = 48 * 2.5;
         CHECK(a["mass"].get<double>() == doctest::Approx(m).epsilon(1e-14));
         CHECK(a["inertia"][0][0].get<double>() == doctest::Approx(m * (4 + 36) / 12).epsilon(1e-13));
@@ -71,10 +74,12 @@ TEST_SUITE("query_mass") {
     }
 
     TEST_CASE("regular tetrahedron (even-parity cube corners): I = m L²/20 on every axis") {
-        const Json a = ask(R"({"op":"mass_properties","a":{"polytope":{"vertices":[[1,1,1],[1,-1,-1],[-1,1,-1],[-1,-1,1]]}}})");
+        const Json a =
+            ask(R"({"op":"mass_properties","a":{"polytope":{"vertices":[[1,1,1],[1,-1,-1],[-1,1,-1],[-1,-1,1]]}}})");
         const double L2 = 8.0, V = 8.0 / 3.0;  // edge 2√2; V = L³/(6√2) = 8/3
         CHECK(a["volume"].get<double>() == doctest::Approx(V).epsilon(1e-14));
-        for (int i = 0; i < 3; ++i) CHECK(a["inertia"][i][i].get<double>() == doctest::Approx(V * L2 / 20).epsilon(1e-14));
+        for (int i = 0; i < 3; ++i)
+            CHECK(a["inertia"][i][i].get<double>() == doctest::Approx(V * L2 / 20).epsilon(1e-14));
     }
 
     TEST_CASE("scales 1e-45 and 1e45 are exact powers of two away: answers scale by k³ and k⁵") {
@@ -82,13 +87,16 @@ TEST_SUITE("query_mass") {
         for (double s : {0x1p-150, 0x1p-40, 0x1p40, 0x1p150}) {
             const Json a = ask(boxQuery(s, ""));
             CHECK(a["volume"].get<double>() == doctest::Approx(one["volume"].get<double>() * s * s * s).epsilon(1e-14));
-            CHECK(a["inertia"][2][2].get<double>() == doctest::Approx(one["inertia"][2][2].get<double>() * s * s * s * s * s).epsilon(1e-13));
+            CHECK(a["inertia"][2][2].get<double>() ==
+                  doctest::Approx(one["inertia"][2][2].get<double>() * s * s * s * s * s).epsilon(1e-13));
         }
     }
 
     TEST_CASE("errors: not a polytope, coplanar vertices, density <= 0, unknown key, overflow") {
         CHECK_THROWS_AS(ask(R"({"op":"mass_properties","a":{"sphere":{"center":[0,0,0],"radius":1}}})"), InputError);
-        CHECK_THROWS_AS(ask(R"({"op":"mass_properties","a":{"polytope":{"vertices":[[0,0,0],[1,0,0],[0,1,0],[1,1,0]]}}})"), InputError);
+        CHECK_THROWS_AS(
+            ask(R"({"op":"mass_properties","a":{"polytope":{"vertices":[[0,0,0],[1,0,0],[0,1,0],[1,1,0]]}}})"),
+            InputError);
         CHECK_THROWS_AS(ask(withTop(boxQuery(1.0, ""), R"("density":0)")), InputError);
         CHECK_THROWS_AS(ask(withTop(boxQuery(1.0, ""), R"("density":-1)")), InputError);
         CHECK_THROWS_AS(ask(withTop(boxQuery(1.0, ""), R"("colour":1)")), InputError);
@@ -97,6 +105,6 @@ TEST_SUITE("query_mass") {
         // Regression (hostile input, round two): a 1e-100 cube answered inertia [[0,0,0],...]
         // without an error — its inertia, ~1e-500, underflows although its volume does not.
         CHECK_THROWS_WITH_AS(ask(boxQuery(0x1p-300, "")), doctest::Contains("inertia"), InputError);
-        CHECK_THROWS_AS(ask(boxQuery(0x1p300, "")), InputError);   // inertia 2^1500 overflows
+        CHECK_THROWS_AS(ask(boxQuery(0x1p300, "")), InputError);  // inertia 2^1500 overflows
     }
 }

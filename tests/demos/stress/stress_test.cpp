@@ -14,8 +14,7 @@ using namespace cdlab::demos;
 
 namespace {
 
-StressOptions quickOptions(double seconds, int minCases)
-{
+StressOptions quickOptions(double seconds, int minCases) {
     StressOptions o;
     o.seconds = seconds;
     o.minCasesPerFamily = minCases;
@@ -31,10 +30,8 @@ constexpr double kKnownParallelEdgeLimit = 1e-6;
 
 }  // namespace
 
-TEST_SUITE("stress")
-{
-    TEST_CASE("bounded run: every family runs, no NaN, no iteration cap, all judged checks pass")
-    {
+TEST_SUITE("stress") {
+    TEST_CASE("bounded run: every family runs, no NaN, no iteration cap, all judged checks pass") {
         const StressReport r = runStressSuite(quickOptions(1.5, 40));
         const std::string table = stressTable(r);
         CAPTURE(table);  // printed only when a check below fails
@@ -58,8 +55,7 @@ TEST_SUITE("stress")
         CHECK(r.totalCases > 1000);
     }
 
-    TEST_CASE("a distance off by 1e-9 relative is flagged, and each reproducer replays")
-    {
+    TEST_CASE("a distance off by 1e-9 relative is flagged, and each reproducer replays") {
         StressOptions o = quickOptions(0.0, 10);
         o.tamper = [](const std::string& check, double& value) {
             if (check == "gjk_distance") value *= 1.0 + 1e-9;
@@ -79,8 +75,7 @@ TEST_SUITE("stress")
         }
     }
 
-    TEST_CASE("a flipped SAT answer, a wrong region and a NaN depth are flagged")
-    {
+    TEST_CASE("a flipped SAT answer, a wrong region and a NaN depth are flagged") {
         StressOptions o = quickOptions(0.0, 20);
         o.tamper = [](const std::string& check, double& value) {
             if (check == "sat_obb_obb") value = 1.0 - value;
@@ -100,8 +95,7 @@ TEST_SUITE("stress")
         CHECK_FALSE(r.ok());
     }
 
-    TEST_CASE("deterministic: the same seed gives the same report")
-    {
+    TEST_CASE("deterministic: the same seed gives the same report") {
         const StressOptions o = quickOptions(0.0, 10);
         const StressReport a = runStressSuite(o), b = runStressSuite(o);
         REQUIRE(a.cells.size() == b.cells.size());
