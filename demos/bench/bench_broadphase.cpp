@@ -137,6 +137,52 @@ double meanObjectDepth(const Octree& tree) {
 }
 
 /// octFrames: frames (after the warm-up) on which the octrees run; bruteFrames likewise.
+// One frame of both octrees, rebuilt from scratch (tight: looseness 1, loose: 2), timed apart.
+struct OctreeFrame {
+    double octMs = 0.0, looseMs = 0.0;
+    std::int64_t octTests = 0, looseTests = 0;
+    bool ok = true;  ///< both builds succeeded
+};
+
+OctreeFrame octreeFrame(const std::vector<Aabb>& boxes, Octree& octree, Octree& loose,
+                        std::vector<std::pair<int, int>>& octPairs, std::vector<std::pair<int, int>>& loosePairs) {
+    const OctreeOptions octOptions = octreeOptions(1.0), looseOptions = octreeOptions(2.0);
+    OctreeFrame o;
+    double t0 = cpuMs();
+    octree.build(boxes, octOptions);
+    octPairs = octree.overlappingPairs(&o.octTests);
+    o.octMs = msSince(t0);
+    t0 = cpuMs();
+    loose.build(boxes, looseOptions);
+    loosePairs = loose.overlappingPairs(&o.looseTests);
+    o.looseMs = msSince(t0);
+    o.ok = octree.status() == OctreeStatus::Ok && loose.status() == OctreeStatus::Ok;
+    return o;
+}
+
+// The same boxes with velocities scaled so that the endpoint gaps crossed per frame stay constant
+// (projected endpoint density grows as n / side = n^(2/3)): SAP's s = O(n) regime.
+void measureSlowSap(int n, int frames, int warmup, std::vector<Aabb>& boxes, Result& r) {
+    Motion slow(n, 1000 + static_cast<std::uint64_t>(n), kSpeed * std::pow(100.0 / n, 2.0 / 3.0));
+    slow.step(boxes);
+    SweepAndPrune sapSlow;
+    sapSlow.reserve(n, n);
+    sapSlow.build(boxes);
+    std::vector<double> sapT;
+    double swaps = 0;
+    for (int f = 0; f < warmup + frames; ++f) {
+        slow.step(boxes);
+        const double t0 = cpuMs();
+        const SapResult s = sapSlow.update(boxes);
+        const double t = msSince(t0);
+        if (f < warmup) continue;
+        sapT.push_back(t);
+        swaps += static_cast<double>(s.swaps);
+    }
+    r.slowSapMs = median(sapT);
+    r.slowSwaps = swaps / frames;
+}
+
 Result measure(int n, int frames, int bruteFrames, int octFrames) {
     Result r;
     r.n = n;
@@ -153,7 +199,6 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
     UniformGridOptions go;
     go.cellSize = 1.5;  // the largest box size: each box touches at most 8 cells
     Octree octree, loose;
-    const OctreeOptions octOptions = octreeOptions(1.0), looseOptions = octreeOptions(2.0);
     std::vector<std::pair<int, int>> octPairs, loosePairs;
     std::vector<BoxPair> brute;
     brute.reserve(n);
@@ -173,23 +218,14 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
         // Octrees, rebuilt from scratch every frame like the grid (the warm-up frames always run).
         const bool octFrame = f - warmup < octFrames;
         if (octFrame) {
-            std::int64_t tests = 0, looseTestCount = 0;
-            t0 = cpuMs();
-            octree.build(boxes, octOptions);
-            octPairs = octree.overlappingPairs(&tests);
-            const double tOct = msSince(t0);
-            t0 = cpuMs();
-            loose.build(boxes, looseOptions);
-            loosePairs = loose.overlappingPairs(&looseTestCount);
-            const double tLoose = msSince(t0);
-            if (octree.status() != OctreeStatus::Ok || loose.status() != OctreeStatus::Ok ||
-                octPairs.size() != sap.pairs().size() || loosePairs.size() != sap.pairs().size())
+            const OctreeFrame o = octreeFrame(boxes, octree, loose, octPairs, loosePairs);
+            if (!o.ok || octPairs.size() != sap.pairs().size() || loosePairs.size() != sap.pairs().size())
                 r.agree = false;
             if (f >= warmup) {
-                octT.push_back(tOct);
-                looseT.push_back(tLoose);
-                r.octTests += static_cast<double>(tests);
-                r.looseTests += static_cast<double>(looseTestCount);
+                octT.push_back(o.octMs);
+                looseT.push_back(o.looseMs);
+                r.octTests += static_cast<double>(o.octTests);
+                r.looseTests += static_cast<double>(o.looseTests);
                 r.octRoot += octree.stats().objectsAtRoot;
                 r.looseRoot += loose.stats().objectsAtRoot;
                 r.octDepth += meanObjectDepth(octree);
@@ -227,26 +263,7 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
         for (double* x : {&r.octTests, &r.looseTests, &r.octRoot, &r.looseRoot, &r.octDepth, &r.looseDepth})
             *x /= r.octFrames;
     }
-    // The same boxes with velocities scaled so that the endpoint gaps crossed per frame stay constant
-    // (projected endpoint density grows as n / side = n^(2/3)): SAP's s = O(n) regime.
-    Motion slow(n, 1000 + static_cast<std::uint64_t>(n), kSpeed * std::pow(100.0 / n, 2.0 / 3.0));
-    slow.step(boxes);
-    SweepAndPrune sapSlow;
-    sapSlow.reserve(n, n);
-    sapSlow.build(boxes);
-    sapT.clear();
-    swaps = 0;
-    for (int f = 0; f < warmup + frames; ++f) {
-        slow.step(boxes);
-        t0 = cpuMs();
-        const SapResult s = sapSlow.update(boxes);
-        const double t = msSince(t0);
-        if (f < warmup) continue;
-        sapT.push_back(t);
-        swaps += static_cast<double>(s.swaps);
-    }
-    r.slowSapMs = median(sapT);
-    r.slowSwaps = swaps / frames;
+    measureSlowSap(n, frames, warmup, boxes, r);
     return r;
 }
 

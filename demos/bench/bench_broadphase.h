@@ -1,4 +1,4 @@
-// Broad phase benchmark (issue 9): sweep and prune update time per frame vs n (100 .. 100k boxes in
+// Broad phase benchmark: sweep and prune update time per frame vs n (100 .. 100k boxes in
 // coherent motion) beside a brute-force O(n^2) pair loop, a hashed uniform grid and two octrees
 // (classic and loose, core/broadphase/octree.h), all rebuilt every frame, on the same frames. Shows SAP's
 // O(n + s + k) per frame (s swaps, k pairs) on a log-log plot with O(n) and O(n^2) reference

@@ -1,4 +1,4 @@
-// BVH benchmark (issue 9): build time (top-down median, binned SAH, bottom-up agglomerative where
+// BVH benchmark: build time (top-down median, binned SAH, bottom-up agglomerative where
 // feasible) and query time (mesh vs mesh, mesh vs ray) against the triangle count (1k .. 1M; quick
 // mode up to 100k), AABB vs OBB trees, refit vs rebuild after a deformation, on torus meshes
 // (core/geometry/triangle_mesh.h torusMesh, R = 1, r = 0.3).

@@ -9,36 +9,20 @@
 #include <vector>
 
 #include "core/base/types.h"
+#include "demos/oracles/intersection_oracles.h"
 
 namespace bvoracle {
 
-using LD = long double;
+// The long double vector kit (V3, dot, cross, norm, distPointSegment) is the intersection oracles'.
+using oracle::LD;
+using V = oracle::V3;
 using cdlab::Mat3;
 using cdlab::Triangle;
 using cdlab::Vec3;
-
-struct V {
-    LD x = 0, y = 0, z = 0;
-    V() = default;
-    V(LD a, LD b, LD c) : x(a), y(b), z(c) {}
-    explicit V(const Vec3& v) : x(v.x()), y(v.y()), z(v.z()) {}
-    V operator+(const V& o) const { return {x + o.x, y + o.y, z + o.z}; }
-    V operator-(const V& o) const { return {x - o.x, y - o.y, z - o.z}; }
-    V operator*(LD s) const { return {x * s, y * s, z * s}; }
-    LD operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-};
-inline LD dot(const V& a, const V& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V cross(const V& a, const V& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-inline LD norm(const V& a) { return std::sqrt(dot(a, a)); }
-
-/// Distance from p to segment ab in long double.
-inline LD distPointSegment(const V& p, const V& a, const V& b) {
-    const V ab = b - a;
-    const LD l2 = dot(ab, ab);
-    LD t = l2 > 0 ? dot(p - a, ab) / l2 : 0;
-    t = std::clamp<LD>(t, 0, 1);
-    return norm(p - (a + ab * t));
-}
+using oracle::cross;
+using oracle::distPointSegment;
+using oracle::dot;
+using oracle::norm;
 
 /// Random unit quaternion (uniform enough for tests).
 inline Eigen::Quaterniond randomRotation(std::mt19937& rng) {

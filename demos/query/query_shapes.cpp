@@ -33,6 +33,12 @@ int largestExponent(const Vec3& v) {
     return e;
 }
 
+// Corner i (bit k of i picks hi over lo on axis k) of the box [lo, hi]: the aabb's eight vertices, and
+// the obb's in its own frame with lo = -half extents.
+Vec3 boxCorner(int i, const Vec3& lo, const Vec3& hi) {
+    return Vec3(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+}
+
 }  // namespace
 
 QueryShape parseQueryShape(const JsonNode& node) {
@@ -79,8 +85,7 @@ QueryShape parseQueryShape(const JsonNode& node) {
         Vec3 hi = maxNode.asVec3();
         r.finish();
         if ((hi.array() < lo.array()).any()) maxNode.fail("aabb max is below min on some axis");
-        for (int i = 0; i < 8; ++i)
-            s.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+        for (int i = 0; i < 8; ++i) s.vertices.push_back(boxCorner(i, lo, hi));
     } else if (key == "obb") {
         s.kind = K::Obb;
         ObjectReader r(body);
@@ -92,10 +97,7 @@ QueryShape parseQueryShape(const JsonNode& node) {
         if (auto rot = r.find("rotation")) q = rot->asQuat();
         r.finish();
         Mat3 R = q.toRotationMatrix();
-        for (int i = 0; i < 8; ++i) {
-            Vec3 u((i & 1 ? 1 : -1) * e.x(), (i & 2 ? 1 : -1) * e.y(), (i & 4 ? 1 : -1) * e.z());
-            s.vertices.push_back(R * u + c);
-        }
+        for (int i = 0; i < 8; ++i) s.vertices.push_back(R * boxCorner(i, Vec3(-e), e) + c);
     } else if (key == "capsule") {
         s.kind = K::Capsule;
         ObjectReader r(body);

@@ -93,18 +93,28 @@ void fuzzQuery(const std::uint8_t* data, std::size_t size) {
         contractViolation(std::to_string(count) + " answers for " + std::to_string(expected) + " lines", input);
 }
 
-void fuzzScene(const std::uint8_t* data, std::size_t size) {
-    const std::string input(reinterpret_cast<const char*>(data), size);
-    std::unique_ptr<demos::PreparedScene> scene;
+namespace {
+
+// The strict loader's contract: a scene, or an InputError that names the source (then nullptr);
+// any other exception is a violation.
+std::unique_ptr<demos::PreparedScene> loadFuzzScene(const std::string& input) {
     try {
-        scene = demos::loadSceneText(input, "fuzz.json");
+        return demos::loadSceneText(input, "fuzz.json");
     } catch (const demos::InputError& e) {
         if (std::string_view(e.what()).rfind("fuzz.json: ", 0) != 0)
             contractViolation(std::string("input error does not name the source: ") + e.what(), input);
-        return;
+        return nullptr;
     } catch (const std::exception& e) {
         contractViolation(std::string("scene loading threw a non-input error: ") + e.what(), input);
     }
+}
+
+}  // namespace
+
+void fuzzScene(const std::uint8_t* data, std::size_t size) {
+    const std::string input(reinterpret_cast<const char*>(data), size);
+    std::unique_ptr<demos::PreparedScene> scene = loadFuzzScene(input);
+    if (!scene) return;
     try {
         scene->run(demos::RunContext{});  // numeric only: no GL context, nothing drawn
     } catch (const demos::InputError&) {
@@ -127,15 +137,7 @@ render::GlContext& fuzzContext() {
 void fuzzRender(const std::uint8_t* data, std::size_t size) {
     const std::string input(reinterpret_cast<const char*>(data), size);
     // The strict loader first (its contract is fuzzScene's); only scenes it accepts are drawn.
-    try {
-        demos::loadSceneText(input, "fuzz.json");
-    } catch (const demos::InputError& e) {
-        if (std::string_view(e.what()).rfind("fuzz.json: ", 0) != 0)
-            contractViolation(std::string("input error does not name the source: ") + e.what(), input);
-        return;
-    } catch (const std::exception& e) {
-        contractViolation(std::string("scene loading threw a non-input error: ") + e.what(), input);
-    }
+    if (!loadFuzzScene(input)) return;
     // The same scene at a small size — the bound on the work of one input. Some demos have a fixed
     // or a minimum layout (sweep_and_prune 1024 x 768, vclip 800 x 600): the first size the demo
     // accepts is used.
