@@ -26,8 +26,9 @@
 //    there take exactly the path they always took.
 //  - Otherwise (e.g. 0.2 next to 1e85, both scaled by 2^-283: a degree-4 product is then about
 //    2^-1136, below the smallest subnormal, and twoProduct returns 0 + 0 for a nonzero product,
-//    a zero sign) BigDyadic decides: about 1-6 us more for the two queries of issue 22, about
-//    40 us for a whole closest-point query whose coordinates spread over the entire range.
+//    a zero sign) BigDyadic decides: about 1-6 us more for the two mixed-magnitude closest-point reproducers
+//    (tests/core/closest/closest_mixed_magnitude_test.cpp), about 40 us for a whole closest-point query whose
+//    coordinates spread over the entire range.
 // Non-finite inputs do not crash or loop; their sign is meaningless.
 #pragma once
 

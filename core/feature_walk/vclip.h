@@ -176,7 +176,8 @@ struct VClipCache {
 };
 
 struct VClipOptions {
-    /// Update cap; <= 0 means the bound (VA+EA+FA)(VB+EB+FB): the number of feature pairs.
+    /// Update cap; <= 0 means (VA+EA+FA)(VB+EB+FB), the number of feature pairs (a walk that never repeats a pair ends
+    /// within it).
     int maxSteps = 0;
     /// Stop with CycleDetected when a feature pair repeats (Brent's cycle detection: O(1) per step,
     /// found within ~2x the steps of the first repeat). Guards rounding; never fires in the tests.

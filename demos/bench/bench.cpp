@@ -717,12 +717,12 @@ int runBench(int argc, char** argv) {
     // A section whose pair sets disagree with brute force makes the run fail (exit 1) after
     // everything is written: the tables say where ("MISMATCH").
     bool pairMismatch = false;
-    std::ostringstream bvhTable;  // BVH build / query / refit (issue 9), figures bvh_*.png
+    std::ostringstream bvhTable;  // BVH build / query / refit, figures bvh_*.png
     if (runs("bvh")) {
         std::cerr << "cdlab bench: BVH build / query / refit\n";
         pairMismatch |= runBvhBench(quick, outDir, bvhTable) != 0;
     }
-    std::ostringstream broadphaseTable;  // SAP vs grid vs octrees vs brute force (issue 9), broadphase_*.png
+    std::ostringstream broadphaseTable;  // SAP vs grid vs octrees vs brute force, broadphase_*.png
     if (runs("broadphase")) {
         std::cerr << "cdlab bench: broad phase (sweep and prune, grid, octrees, brute force)\n";
         pairMismatch |= runBroadphaseBench(quick, outDir, broadphaseTable) != 0;

@@ -1,4 +1,4 @@
-// V-Clip against GJK under frame coherence (issue 6): cold and warm-started queries on a cube,
+// V-Clip against GJK under frame coherence: cold and warm-started queries on a cube,
 // an icosahedron, a 60-gon disk and a 642-vertex geodesic sphere, at 0, 1, 5, 10 and 25 degrees
 // of relative rotation per call.
 #pragma once

@@ -1,4 +1,4 @@
-// Exact regions and closest points for EVERY finite double input (issue 22, "closest_point_triangle
+// Exact regions and closest points for EVERY finite double input (hostile input, "closest_point_triangle
 // with mixed magnitudes"): coordinates from 2^-1074 (subnormal) to 2^1023 mixed within one query,
 // exact boundary cases scaled by wildly different powers of two. Truth: the independent BigInt
 // oracle (demos/oracles/closest_oracle.h), never the code under test.
@@ -211,7 +211,7 @@ BigInt scaledValue(const exact::BigDyadic& x, int K) {
 }  // namespace
 
 TEST_SUITE("closest_mixed_magnitude") {
-    TEST_CASE("regression: the two closest_point_triangle queries of issue 22") {
+    TEST_CASE("regression: the two mixed-magnitude closest_point_triangle queries") {
         // printf '%s\n' '{"id":1,"op":"closest_point_triangle","point":[0.2,0.2,1e85],
         //   "triangle":[[0,0,0],[1,0,0],[0,1,0]]}' | cdlab query   -> region AB (exact: ABC)
         // '{"op":"closest_point_triangle","point":[0.5,-1e-80,0],"triangle":[[0,0,0],[1,0,0],[0,1,1e200]]}'
@@ -463,7 +463,7 @@ TEST_SUITE("closest_mixed_magnitude") {
                 const AxisScaledGrid grid(rng);
                 t = {grid.point(rng), grid.point(rng), grid.point(rng)};
                 p = grid.point(rng);
-            } else if (kind == 2) {  // a small triangle and a far point, or the reverse (the issue's shapes)
+            } else if (kind == 2) {  // a small triangle and a far point, or the reverse (the reproducers' shapes)
                 const AxisScaledGrid grid(rng), far(rng);
                 t = {grid.point(rng), grid.point(rng), grid.point(rng)};
                 p = far.point(rng);
