@@ -353,9 +353,8 @@ public:
         return "GJK distance error vs scale, offset and edge angle: signed volumes vs Johnson against a long double "
                "oracle";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {480, 360}, "plots"}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         Settings s;
         s.sweep = r.get("sweep").asEnum(kSweeps);
         if (s.sweep == "offset") s.kFrom = 0, s.kTo = 9;
@@ -370,8 +369,6 @@ public:
         if (auto seed = r.find("seed")) s.seed = static_cast<std::uint64_t>(seed->asInt(0, 1 << 30));
         if (auto f = r.find("figure")) s.figure = f->asEnum({"plot", "histogram"});
         r.finish();
-        if (common.image.width < 480 || common.image.height < 360)
-            r.node().fail("accuracy plots need an image of at least 480 x 360");
         return std::make_unique<AccuracyScene>(std::move(common), s);
     }
 };

@@ -447,9 +447,8 @@ public:
         return "bounding volumes fitted to one shape: Ritter / Welzl spheres, AABB, covariance OBB, k-DOPs, LSS, RSS, "
                "with tightness";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {320, 240}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         const JsonNode shapeNode = r.get("shape");
         ShapeSpec shape = parseShape(shapeNode);
         if (auto p = r.find("position")) shape.pose.position = sceneVec3(*p);
@@ -470,8 +469,6 @@ public:
         if (auto v = r.find("view")) view = sceneVec3(*v);
         if (!(view.norm() > 0)) r.node().fail("view must be a non-zero direction");
         r.finish();
-        if (common.image.width < 320 || common.image.height < 240)
-            r.node().fail("bounding_volumes frames need an image of at least 320 x 240");
         return std::make_unique<BoundingVolumesScene>(std::move(common), std::move(shape), std::move(volumes), columns,
                                                       view);
     }

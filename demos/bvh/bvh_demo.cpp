@@ -999,9 +999,8 @@ public:
         return "bounding-volume hierarchies: levels and tree, AABB vs OBB trees on a torus, dual traversal step by "
                "step, refitting";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {480, 360}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<BvhScene>(std::move(common));
         const std::string fig =
             r.get("figure").asEnum({"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods"});
@@ -1060,8 +1059,6 @@ public:
             dr.finish();
         }
         r.finish();
-        if (s->common().image.width < 480 || s->common().image.height < 360)
-            r.node().fail("bvh frames need an image of at least 480 x 360");
         return s;
     }
 };

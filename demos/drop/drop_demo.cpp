@@ -409,9 +409,8 @@ public:
         return "rigid body dropped with spin onto a plane: mass properties, impulses with restitution and friction, "
                "energy and penetration";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{960, 720});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{960, 720}, {480, 360}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         DropInput in;
         std::string bodyName;
         {
@@ -480,8 +479,6 @@ public:
             if (!(view.norm() > 0)) v->fail("view direction must be non-zero");
         }
         r.finish();
-        if (common.image.width < 480 || common.image.height < 360)
-            r.node().fail("drop frames need an image of at least 480 x 360");
         // The body must start above the ground (lowest vertex at z >= 0).
         double lowest = INFINITY;
         for (const Vec3& v : in.shape.positions()) lowest = std::min(lowest, in.pose.apply(v).z());

@@ -503,9 +503,8 @@ public:
         return "EPA step by step after GJK: expanding polytope, closest face, horizon, penetration vector, depth "
                "bounds; 3D and 2D";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1280, 640});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1280, 640}, {320, 240}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         PairScene pair = readPairScene(r);
         EpaOptions options;
         if (auto m = r.find("method")) {
@@ -516,8 +515,6 @@ public:
             mr.finish();
         }
         r.finish();
-        if (common.image.width < 320 || common.image.height < 240)
-            r.node().fail("epa frames need an image of at least 320 x 240");
         return std::make_unique<EpaScene>(std::move(common), std::move(pair), options);
     }
 };

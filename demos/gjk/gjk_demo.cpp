@@ -311,9 +311,8 @@ public:
         return "GJK step by step: world space and configuration space (A − B, simplex, direction, support point), 3D "
                "and 2D";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1280, 640});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1280, 640}, {320, 240}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         PairScene pair = readPairScene(r);
         GjkOptions options;
         if (auto m = r.find("method")) {
@@ -326,8 +325,6 @@ public:
             mr.finish();
         }
         r.finish();
-        if (common.image.width < 320 || common.image.height < 240)
-            r.node().fail("gjk frames need an image of at least 320 x 240");
         return std::make_unique<GjkScene>(std::move(common), std::move(pair), options);
     }
 };

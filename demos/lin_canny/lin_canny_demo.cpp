@@ -631,9 +631,8 @@ public:
         return "Lin–Canny step by step: applicability tests, closest points of the feature pair, the walk beside "
                "V-Clip, a (forced) cycle";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {800, 600, 2048, 1536}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         Settings s;
         readWalkSceneKeys(r, s);
         if (auto m = r.find("mode")) {
@@ -654,9 +653,6 @@ public:
             r.node().fail(
                 "a negative \"applicability\" forces cycles: only with \"mode\": \"cycling\", whose frames say it is "
                 "forced");
-        if (common.image.width < 800 || common.image.height < 600 || common.image.width > 2048 ||
-            common.image.height > 1536)
-            r.node().fail("lin_canny frames need an image between 800 x 600 and 2048 x 1536");
         return std::make_unique<LinCannyScene>(std::move(common), std::move(s));
     }
 };

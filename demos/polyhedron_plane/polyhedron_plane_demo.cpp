@@ -603,9 +603,8 @@ public:
     std::string description() const override {
         return "contact model: polyhedron vs plane manifolds, the six feature-pair contact types, SAT face clipping";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{960, 720});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{960, 720}, {}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto scene = std::make_unique<ContactScene>(std::move(common));
         scene->mode = "plane";
         if (auto m = r.find("mode")) scene->mode = m->asEnum({"plane", "features", "sat"});

@@ -69,4 +69,34 @@ DemoOutput PreparedScene::run(const RunContext& context) const {
     return out;
 }
 
+namespace {
+
+// "gjk frames need an image of at least 320 x 240"; a range with one size is a fixed layout.
+void requireImageSize(const ObjectReader& scene, const SceneCommon& common, const SceneFormat& format) {
+    const ImageSizeRange& range = format.imageSize;
+    const int w = common.image.width, h = common.image.height;
+    const bool bounded = range.maxWidth > 0 && range.maxHeight > 0;
+    if (w >= range.minWidth && h >= range.minHeight && (!bounded || (w <= range.maxWidth && h <= range.maxHeight)))
+        return;
+    const auto size = [](int width, int height) { return std::to_string(width) + " x " + std::to_string(height); };
+    const std::string what = common.demo + " " + format.imageNoun;
+    if (bounded && range.minWidth == range.maxWidth && range.minHeight == range.maxHeight)
+        scene.node().fail(what + " have a fixed layout: image must be " + size(range.minWidth, range.minHeight));
+    if (bounded)
+        scene.node().fail(what + " need an image between " + size(range.minWidth, range.minHeight) + " and " +
+                          size(range.maxWidth, range.maxHeight));
+    scene.node().fail(what + " need an image of at least " + size(range.minWidth, range.minHeight));
+}
+
+}  // namespace
+
+std::unique_ptr<PreparedScene> Demo::prepare(const Json& json, const std::string& file) const {
+    ObjectReader reader(JsonNode(json, "$", file));
+    const SceneFormat format = sceneFormat();
+    std::unique_ptr<PreparedScene> scene =
+        readScene(reader, readSceneCommon(reader, file, format.layers, format.layers, format.defaultImage));
+    requireImageSize(reader, scene->common(), format);
+    return scene;
+}
+
 }  // namespace cdlab::demos

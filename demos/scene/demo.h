@@ -54,13 +54,36 @@ protected:
 /// The check PreparedScene::run applies, on its own (throws InputError naming `scene.file`).
 void requireFiniteOutput(const SceneCommon& scene, const DemoOutput& out, const std::vector<std::string>& drawnTexts);
 
+/// The image sizes a demo's layout can draw; 0 means no bound.
+struct ImageSizeRange {
+    int minWidth = 0, minHeight = 0;
+    int maxWidth = 0, maxHeight = 0;
+};
+
+/// What a demo's scenes hold besides their own keys: the layers a scene may ask for (all of them by
+/// default), the image size where the scene gives none, the sizes the layout can draw and what the
+/// demo calls its images in the error that refuses one ("frames", "plots").
+struct SceneFormat {
+    std::vector<std::string> layers;
+    ImageSettings defaultImage;
+    ImageSizeRange imageSize;
+    std::string imageNoun = "frames";
+};
+
 class Demo {
 public:
     virtual ~Demo() = default;
     virtual std::string name() const = 0;         // "voronoi_triangle" (= golden/ folder, = demo_<name> executable)
     virtual std::string description() const = 0;  // one line
-    /// Reads the scene (common keys + this demo's keys), validates everything, computes nothing heavy.
-    virtual std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const = 0;
+    /// Reads the scene (the common keys, then this demo's keys), validates everything, computes
+    /// nothing heavy; the image size is checked last, against sceneFormat().imageSize.
+    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const;
+
+protected:
+    virtual SceneFormat sceneFormat() const = 0;
+    /// Reads this demo's keys from the scene object (the common ones are in `common`) and calls
+    /// scene.finish(), so that a key nobody reads is an error.
+    virtual std::unique_ptr<PreparedScene> readScene(ObjectReader& scene, SceneCommon common) const = 0;
 };
 
 }  // namespace cdlab::demos

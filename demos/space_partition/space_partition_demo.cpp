@@ -746,9 +746,8 @@ public:
     std::string description() const override {
         return "uniform grid, octree, k-d tree and BSP tree on the same boxes (top views); k-d queries; solid-leaf BSP";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<SpaceScene>(std::move(common));
         s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape"});
         if (auto g = r.find("region")) s->region = readRect(*g);

@@ -473,9 +473,8 @@ public:
     std::string description() const override {
         return "sweep and prune: endpoint lists on x, y, z, insertion-sort swaps and the pair set, frame by frame";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{kW, kH});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{kW, kH}, {kW, kH, kW, kH}, "figures"}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         Settings s;
         const JsonNode boxes = r.get("boxes");
         if (boxes.size() < 2 || boxes.size() > 7) boxes.fail("expected 2 to 7 boxes (named A..G)");
@@ -495,8 +494,6 @@ public:
             if (!(s.view.norm() > 0)) v->fail("view direction must be non-zero");
         }
         r.finish();
-        if (common.image.width != kW || common.image.height != kH)
-            r.node().fail("sweep_and_prune figures have a fixed layout: image must be 1024 x 768");
         return std::make_unique<SapScene>(std::move(common), std::move(s));
     }
 };

@@ -750,9 +750,8 @@ public:
         return "V-Clip step by step: closest features of two polyhedra, Voronoi planes, edge clipping, the five "
                "states, coherence";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers, ImageSettings{1024, 768});
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {800, 600, 2048, 1536}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         Settings s;
         readWalkSceneKeys(r, s);
         if (auto m = r.find("motion")) {
@@ -777,9 +776,6 @@ public:
             s.motion = mo;
         }
         r.finish();
-        if (common.image.width < 800 || common.image.height < 600 || common.image.width > 2048 ||
-            common.image.height > 1536)
-            r.node().fail("vclip frames need an image between 800 x 600 and 2048 x 1536");
         return std::make_unique<VclipScene>(std::move(common), std::move(s));
     }
 };

@@ -415,9 +415,8 @@ public:
     std::string description() const override {
         return "point vs triangle (7 Voronoi regions) and point vs tetrahedron (15), closest points";
     }
-    std::unique_ptr<PreparedScene> prepare(const Json& json, const std::string& file) const override {
-        ObjectReader r(JsonNode(json, "$", file));
-        SceneCommon common = readSceneCommon(r, file, kLayers, kLayers);
+    SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{}, {}}; }
+    std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         std::vector<Vec3> simplex;
         std::vector<std::string> views;
         if (r.has("triangle") == r.has("tetrahedron"))
