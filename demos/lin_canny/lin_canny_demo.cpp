@@ -28,6 +28,7 @@
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/feature_walk_figure.h"
+#include "demos/draw/feature_walk_trace_json.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
@@ -65,8 +66,6 @@ struct Runs {
     VClipTrace vcTrace;
     GjkResult gjk;
 };
-
-Json featureJson(const VClipFeature& f) { return nameOf(f); }
 
 std::string pairText(const VClipFeature& a, const VClipFeature& b) { return nameOf(a) + "·" + nameOf(b); }
 
@@ -214,48 +213,15 @@ private:
 
     Json traceJson(const Runs& r) const {
         Json steps = Json::array();
-        for (const LinCannyTraceStep& st : r.lcTrace.steps) {
-            Json planes = Json::array();
-            for (const VClipPlaneTest& p : st.planes)
-                planes.push_back({{"region_body", p.regionBody},
-                                  {"owner", featureJson(p.owner)},
-                                  {"neighbor", featureJson(p.neighbor)},
-                                  {"plane", p.plane},
-                                  {"signed_distance", p.signedDistance},
-                                  {"violated", p.violated},
-                                  {"maximal", p.maximal}});
-            steps.push_back({{"step", st.step},
-                             {"state", nameOf(st.state)},
-                             {"feature_a", featureJson(st.featureA)},
-                             {"feature_b", featureJson(st.featureB)},
-                             {"kind", nameOf(st.kind)},
-                             {"updated_body", st.updatedBody},
-                             {"from", featureJson(st.from)},
-                             {"to", featureJson(st.to)},
-                             {"rule", st.rule},
-                             {"local_minimum", st.localMinimum},
-                             {"distance_before", st.distanceBefore},
-                             {"distance_after", st.distanceAfter},
-                             {"distance_change", st.distanceChange},
-                             {"closest_a", vec3Json(st.closestA)},
-                             {"closest_b", vec3Json(st.closestB)},
-                             {"planes", planes}});
-        }
+        for (const LinCannyTraceStep& st : r.lcTrace.steps) steps.push_back(walkStepJson(st));
         Json vcPairs = Json::array();
         for (const VClipTraceStep& st : r.vcTrace.steps) vcPairs.push_back(pairText(st.featureA, st.featureB));
-        return {{"lin_canny",
-                 {{"status", nameOf(r.lc.status)},
-                  {"penetration", nameOf(r.lc.penetration)},
-                  {"distance", r.lc.distance},
-                  {"point_a", vec3Json(r.lc.pointA)},
-                  {"point_b", vec3Json(r.lc.pointB)},
-                  {"feature_a", featureJson(r.lc.featureA)},
-                  {"feature_b", featureJson(r.lc.featureB)},
-                  {"steps", r.lc.steps},
-                  {"cycle_length", r.lc.cycleLength},
-                  {"applicability", s_.options.applicability},
-                  {"inside_test", s_.options.insideTest},
-                  {"trace", steps}}},
+        Json lc = walkResultJson(r.lc);
+        lc["cycle_length"] = r.lc.cycleLength;
+        lc["applicability"] = s_.options.applicability;
+        lc["inside_test"] = s_.options.insideTest;
+        lc["trace"] = steps;
+        return {{"lin_canny", lc},
                 {"vclip",
                  {{"status", nameOf(r.vc.status)},
                   {"penetration", nameOf(r.vc.penetration)},

@@ -24,6 +24,7 @@
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/feature_walk_figure.h"
+#include "demos/draw/feature_walk_trace_json.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
@@ -70,8 +71,6 @@ struct Call {
     VClipTrace trace;
     GjkResult gjk;
 };
-
-Json featureJson(const VClipFeature& f) { return nameOf(f); }
 
 int stateIndex(VClipState s) { return static_cast<int>(s); }
 
@@ -168,15 +167,6 @@ private:
     // ------------------------------------------------------------------------------- trace JSON
 
     Json stepJson(const VClipTraceStep& st) const {
-        Json planes = Json::array();
-        for (const VClipPlaneTest& p : st.planes)
-            planes.push_back({{"region_body", p.regionBody},
-                              {"owner", featureJson(p.owner)},
-                              {"neighbor", featureJson(p.neighbor)},
-                              {"plane", p.plane},
-                              {"signed_distance", p.signedDistance},
-                              {"violated", p.violated},
-                              {"maximal", p.maximal}});
         Json clips = Json::array();
         for (const VClipClip& c : st.clips)
             clips.push_back({{"edge_body", c.edgeBody},
@@ -191,37 +181,16 @@ private:
                              {"excluded_by", featureJson(c.excludedBy)},
                              {"derivative_min", c.derivativeMin},
                              {"derivative_max", c.derivativeMax}});
-        return {{"step", st.step},
-                {"state", nameOf(st.state)},
-                {"feature_a", featureJson(st.featureA)},
-                {"feature_b", featureJson(st.featureB)},
-                {"kind", nameOf(st.kind)},
-                {"updated_body", st.updatedBody},
-                {"from", featureJson(st.from)},
-                {"to", featureJson(st.to)},
-                {"rule", st.rule},
-                {"local_minimum", st.localMinimum},
-                {"distance_before", st.distanceBefore},
-                {"distance_after", st.distanceAfter},
-                {"distance_change", st.distanceChange},
-                {"closest_a", vec3Json(st.closestA)},
-                {"closest_b", vec3Json(st.closestB)},
-                {"planes", planes},
-                {"clips", clips}};
+        Json j = walkStepJson(st);
+        j["clips"] = clips;
+        return j;
     }
 
     Json resultJson(const Call& c) const {
-        Json j = {{"status", nameOf(c.result.status)},
-                  {"penetration", nameOf(c.result.penetration)},
-                  {"distance", c.result.distance},
-                  {"point_a", vec3Json(c.result.pointA)},
-                  {"point_b", vec3Json(c.result.pointB)},
-                  {"feature_a", featureJson(c.result.featureA)},
-                  {"feature_b", featureJson(c.result.featureB)},
-                  {"seed", {featureJson(c.seed.a), featureJson(c.seed.b)}},
-                  {"steps", c.result.steps},
-                  {"gjk_distance", c.gjk.distance},
-                  {"gjk_intersect", c.gjk.intersect}};
+        Json j = walkResultJson(c.result);
+        j["seed"] = {featureJson(c.seed.a), featureJson(c.seed.b)};
+        j["gjk_distance"] = c.gjk.distance;
+        j["gjk_intersect"] = c.gjk.intersect;
         if (c.result.status == VClipStatus::Separated) {
             j["theorem1_a_in_region_b"] = checkInRegion(s_.b, c.poseB, c.result.featureB, c.result.pointA).minDistance;
             j["theorem1_b_in_region_a"] =
