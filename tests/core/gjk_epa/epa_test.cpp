@@ -9,6 +9,7 @@
 
 #include "core/gjk_epa/epa.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
+#include "tests/core/gjk_epa/trace_test_support.h"
 
 using namespace cdlab;
 using namespace cdlab::test;
@@ -214,14 +215,10 @@ TEST_SUITE("epa") {
     }
 
     TEST_CASE("trace: polytope stays a closed convex surface, horizon is one loop") {
-        std::mt19937_64 rng(99);
-        PolytopeShape a{randomPolytope(rng, 24, 1.0, Vec3::Zero())};
-        PolytopeShape b{randomPolytope(rng, 24, 1.0, Vec3(0.4, 0.1, 0.0))};
+        const auto [a, b] = randomPolytopePair(99, 24, Vec3(0.4, 0.1, 0.0));
         EpaTrace trace;
         const EpaResult r = penetration(a, b, {}, &trace);
-        REQUIRE(static_cast<int>(trace.steps.size()) == r.iterations);
-        CHECK(trace.termination == r.termination);
-        CHECK(trace.steps.back().terminated);
+        checkTraceEndsLikeResult(trace, r);
         for (const EpaTraceStep& s : trace.steps) {
             // Euler: a closed triangulated sphere has F = 2V' - 4 (V' = vertices in use)
             std::vector<int> used(s.vertices.size(), 0);

@@ -9,6 +9,7 @@
 
 #include "core/gjk_epa/gjk.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
+#include "tests/core/gjk_epa/trace_test_support.h"
 
 using namespace cdlab;
 using namespace cdlab::test;
@@ -250,14 +251,10 @@ TEST_SUITE("gjk") {
     }
 
     TEST_CASE("trace records every iteration with bounds, regions and weights") {
-        std::mt19937_64 rng(9);
-        PolytopeShape a{randomPolytope(rng, 16, 1.0, Vec3::Zero())};
-        PolytopeShape b{randomPolytope(rng, 16, 1.0, Vec3(2.0, 1.0, 0.0))};
+        const auto [a, b] = randomPolytopePair(9, 16, Vec3(2.0, 1.0, 0.0));
         GjkTrace trace;
         const GjkResult r = gjkDistance(a, b, {}, &trace);
-        REQUIRE(static_cast<int>(trace.steps.size()) == r.iterations);
-        CHECK(trace.termination == r.termination);
-        CHECK(trace.steps.back().terminated);
+        checkTraceEndsLikeResult(trace, r);
         double previousUpper = INFINITY;
         for (const GjkTraceStep& s : trace.steps) {
             CHECK(s.lowerBound <= r.distance * (1 + 1e-12));
