@@ -254,27 +254,19 @@ std::vector<int> ConvexPolyhedron::faceVertices(int f) const {
 }
 
 std::vector<int> ConvexPolyhedron::vertexHalfEdges(int v) const {
-    std::vector<int> out;
-    forEachVertexHalfEdge(v, [&](int h) { out.push_back(h); });
-    return out;
+    return aroundVertex(v, [&](int h) { return h; });
 }
 
 std::vector<int> ConvexPolyhedron::vertexFaces(int v) const {
-    std::vector<int> out;
-    forEachVertexHalfEdge(v, [&](int h) { out.push_back(halfEdges_[h].face); });
-    return out;
+    return aroundVertex(v, [&](int h) { return halfEdges_[h].face; });
 }
 
 std::vector<int> ConvexPolyhedron::vertexNeighbors(int v) const {
-    std::vector<int> out;
-    forEachVertexHalfEdge(v, [&](int h) { out.push_back(halfEdgeDestination(h)); });
-    return out;
+    return aroundVertex(v, [&](int h) { return halfEdgeDestination(h); });
 }
 
 std::vector<int> ConvexPolyhedron::vertexEdges(int v) const {
-    std::vector<int> out;
-    forEachVertexHalfEdge(v, [&](int h) { out.push_back(halfEdges_[h].edge); });
-    return out;
+    return aroundVertex(v, [&](int h) { return halfEdges_[h].edge; });
 }
 
 double ConvexPolyhedron::volume() const {

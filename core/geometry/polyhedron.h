@@ -193,6 +193,14 @@ public:
     PolyhedronCheck checkLinks() const;
 
 private:
+    /// map(h) for each outgoing half-edge h of v, counter-clockwise.
+    template <class Map>
+    std::vector<int> aroundVertex(int v, Map&& map) const {
+        std::vector<int> out;
+        forEachVertexHalfEdge(v, [&](int h) { out.push_back(map(h)); });
+        return out;
+    }
+
     PolyhedronCheck checkFaceGeometry(int f, double tolerance) const;
     PolyhedronCheck checkSolidConvexity(double tolerance) const;
     std::vector<Vertex> vertices_;

@@ -205,10 +205,7 @@ public:
         const Sweep sw = runSweep(s_);
         DemoOutput out;
         out.trace = traceJson(sw);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         PlotOptions po;
         po.title = common_.title;
         po.subtitle = common_.caption;

@@ -341,10 +341,7 @@ public:
         }
         t["volumes"] = vs;
         out.trace = t;
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         out.frames.push_back(drawFrame(*ctx.gl, ctx, pts, hull.polyhedron, fitted, hullVolume));
         return out;
     }

@@ -162,10 +162,7 @@ public:
         const SimulationResult r = simulateDrop(input_, options_, &tr);
         DemoOutput out;
         out.trace = traceJson(r, tr);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         if (!r.ok()) return out;  // prepare() validated the inputs; nothing to draw otherwise
         const int ss = runSupersample(common_, ctx);
 

@@ -79,10 +79,7 @@ public:
         const EpaRun run = compute();
         DemoOutput out;
         out.trace = traceJson(run);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
 
         std::vector<Vec3> cpts;
         for (const PolyStep& s : run.steps) {

@@ -59,10 +59,7 @@ public:
         const GjkResult r = gjkDistance(pair_.a, pair_.b, options_, &trace);
         DemoOutput out;
         out.trace = traceJson(r, trace);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
 
         // Configuration-space framing: A − B (or the simplices, without it) and the origin.
         std::vector<Vec3> cpts;

@@ -156,10 +156,7 @@ public:
         const Runs r = compute();
         DemoOutput out;
         out.trace = traceJson(r);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         const int ss = runSupersample(common_, ctx);
         std::vector<Vec3> pts;
         for (const Vec3& p : s_.a.regions.mesh().positions()) pts.push_back(s_.a.pose.apply(p));

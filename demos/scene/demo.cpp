@@ -62,6 +62,12 @@ void requireFiniteOutput(const SceneCommon& scene, const DemoOutput& out, const 
             throw InputError(scene.file + ": a frame's text \"" + text + "\" prints a NaN or an infinity" + why);
 }
 
+bool numericOnly(const RunContext& context, DemoOutput& out) {
+    if (context.gl) return false;
+    out.skipped.push_back("all drawing (no GL context)");
+    return true;
+}
+
 DemoOutput PreparedScene::run(const RunContext& context) const {
     render::drawnTextLog().clear();
     DemoOutput out = execute(context);

@@ -51,6 +51,9 @@ protected:
     SceneCommon common_;
 };
 
+/// True for a numeric-only run (no GL context): nothing is drawn, and out.skipped says so.
+bool numericOnly(const RunContext& context, DemoOutput& out);
+
 /// The check PreparedScene::run applies, on its own (throws InputError naming `scene.file`).
 void requireFiniteOutput(const SceneCommon& scene, const DemoOutput& out, const std::vector<std::string>& drawnTexts);
 

@@ -266,10 +266,7 @@ private:
         PanelStructures st;
         buildPanelStructures(st);
         out.trace = panelsTrace(st);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         out.frames.push_back(drawPanels(*ctx.gl, runSupersample(common_, ctx), st));
         return out;
     }
@@ -497,10 +494,7 @@ private:
                               {"point_tests", rt.distanceTests},
                               {"nodes_visited", int(rt.visited.size())},
                               {"subtrees_pruned", int(rt.pruned.size())}};
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
         const Vec3 size = region.max - region.min;
         const double W = std::max(size.x(), size.y());
@@ -615,10 +609,7 @@ private:
                                     {"hit", ray.hit},
                                     {"t", ray.t},
                                     {"point", vec2Json(ray.point)}};
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
         // Shape panel on the left (square), tree diagram on the right.
         Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);

@@ -119,10 +119,7 @@ public:
         const std::vector<FrameData> frames = simulate(s_);
         DemoOutput out;
         out.trace = traceJson(frames);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         const int ss = runSupersample(common_, ctx);
         for (std::size_t f = 0; f < frames.size(); ++f)
             out.frames.push_back(drawFrame(*ctx.gl, ss, frames, static_cast<int>(f)));

@@ -99,10 +99,7 @@ public:
         std::vector<Call> calls = compute();
         DemoOutput out;
         out.trace = traceJson(calls);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         const int ss = runSupersample(common_, ctx);
         // Framing: every pose of B with A.
         std::vector<Vec3> pts;

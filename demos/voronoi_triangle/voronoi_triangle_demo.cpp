@@ -160,10 +160,7 @@ private:
         out.trace["simplex"] = "triangle";
         out.trace["vertices"] = {vecJson(tri.a), vecJson(tri.b), vecJson(tri.c)};
         out.trace["queries"] = queriesJson(results);
-        if (!ctx.gl) {  // numeric only
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         // Region geometry only when something draws it.
         TriangleVoronoiDiagram diagram;
         if (common_.hasLayer("regions") || common_.hasLayer("boundaries"))
@@ -292,10 +289,7 @@ private:
         out.trace["simplex"] = "tetrahedron";
         out.trace["vertices"] = {vecJson(tet.a), vecJson(tet.b), vecJson(tet.c), vecJson(tet.d)};
         out.trace["queries"] = queriesJson(results);
-        if (!ctx.gl) {
-            out.skipped.push_back("all drawing (no GL context)");
-            return out;
-        }
+        if (numericOnly(ctx, out)) return out;
         // The 15 region geometries are drawn only in step frames (one region each).
         TetrahedronVoronoiDiagram diagram;
         if ((common_.steps || ctx.stepsOverride) && (common_.hasLayer("regions") || common_.hasLayer("boundaries")))
