@@ -117,7 +117,23 @@ private:
             run.pointB = run.gjk.pointB;
             return run;
         }
-        // The 3D and the 2D EPA report the same outcome fields.
+        // The 3D and the 2D EPA record the same fields of a step...
+        const auto commonStep = [](const auto& s) {
+            PolyStep p;
+            p.iteration = s.iteration;
+            p.vertices = s.vertices;
+            p.normal = s.closestNormal;
+            p.closestPoint = s.closestPoint;
+            p.distance = s.closestDistance;
+            p.support = s.support;
+            p.supportA = s.supportA;
+            p.supportB = s.supportB;
+            p.lower = s.lowerBound;
+            p.upper = s.upperBound;
+            p.terminated = s.terminated;
+            return p;
+        };
+        // ...and of the outcome.
         const auto copyOutcome = [](EpaRun& out, const auto& r, const std::string& start) {
             out.status = r.status;
             out.termination = r.termination;
@@ -135,25 +151,14 @@ private:
             const EpaResult r = epaPenetration(pair_.a, pair_.b, run.gjk.simplex, options_, &t);
             copyOutcome(run, r, t.start);
             for (const EpaTraceStep& s : t.steps) {
-                PolyStep p;
-                p.iteration = s.iteration;
-                p.vertices = s.vertices;
+                PolyStep p = commonStep(s);
                 p.faces = faceList(s.faces);
                 p.closestFace = s.closestFace;
-                p.normal = s.closestNormal;
-                p.closestPoint = s.closestPoint;
-                p.distance = s.closestDistance;
-                p.support = s.support;
-                p.supportA = s.supportA;
-                p.supportB = s.supportB;
                 // Removed faces come as vertex triples: find them among the live faces.
                 for (const auto& rf : s.removedFaces)
                     for (std::size_t k = 0; k < s.faces.size(); ++k)
                         if (s.faces[k] == rf) p.removed.push_back(int(k));
                 p.horizonEdges = s.horizon;
-                p.lower = s.lowerBound;
-                p.upper = s.upperBound;
-                p.terminated = s.terminated;
                 run.steps.push_back(std::move(p));
             }
         } else {
@@ -161,23 +166,12 @@ private:
             const Epa2dResult r = epaPenetration2d(pair_.a, pair_.b, run.gjk.simplex, options_, &t);
             copyOutcome(run, r, t.start);
             for (const Epa2dStep& s : t.steps) {
-                PolyStep p;
-                p.iteration = s.iteration;
-                p.vertices = s.vertices;
+                PolyStep p = commonStep(s);
                 const int n = int(s.vertices.size());
                 for (int i = 0; i < n; ++i) p.faces.push_back({i, (i + 1) % n});
                 p.closestFace = s.closestEdge;
-                p.normal = s.closestNormal;
-                p.closestPoint = s.closestPoint;
-                p.distance = s.closestDistance;
-                p.support = s.support;
-                p.supportA = s.supportA;
-                p.supportB = s.supportB;
                 p.removed = s.removedEdges;
                 if (s.horizon[0] >= 0) p.horizonVertices = {s.horizon[0], s.horizon[1]};
-                p.lower = s.lowerBound;
-                p.upper = s.upperBound;
-                p.terminated = s.terminated;
                 run.steps.push_back(std::move(p));
             }
         }
