@@ -6,38 +6,7 @@
 
 namespace cdlab::exact {
 
-namespace {
-
-// Dekker's splitter 2^27 + 1: a = hi + lo with hi, lo of at most 26 significant bits each,
-// so hi*hi, hi*lo, lo*lo are exact (Shewchuk Thm. 17).
-constexpr double kSplitter = 134217729.0;
-
-void split(double a, double& hi, double& lo) {
-    const double c = kSplitter * a;
-    const double big = c - a;
-    hi = c - big;
-    lo = a - hi;
-}
-
-// sum + error == a + b exactly, valid when |a| >= |b| (or a == 0) (Shewchuk Thm. 6).
-void fastTwoSum(double a, double b, double& sum, double& error) {
-    sum = a + b;
-    const double bVirtual = sum - a;
-    error = b - bVirtual;
-}
-
-}  // namespace
-
-void twoProduct(double a, double b, double& product, double& error) {
-    product = a * b;
-    double aHi, aLo, bHi, bLo;
-    split(a, aHi, aLo);
-    split(b, bHi, bLo);
-    const double err1 = product - aHi * bHi;
-    const double err2 = err1 - aLo * bHi;
-    const double err3 = err2 - aHi * bLo;
-    error = aLo * bLo - err3;
-}
+using dd::fastTwoSum;
 
 int Expansion::sign() const {
     if (components_.empty()) return 0;

@@ -40,21 +40,15 @@
 #include <vector>
 
 #include "core/base/big_dyadic.h"
+#include "core/base/double_double.h"
 #include "core/base/types.h"
 
 namespace cdlab::exact {
 
-/// Error-free sum: sum + error == a + b exactly, sum = fl(a + b) (Knuth; Shewchuk Thm. 7).
-inline void twoSum(double a, double b, double& sum, double& error) {
-    sum = a + b;
-    const double bVirtual = sum - a;
-    const double aVirtual = sum - bVirtual;
-    error = (a - aVirtual) + (b - bVirtual);
-}
-
-/// Error-free product: product + error == a * b exactly, product = fl(a * b)
-/// (Dekker's split; Shewchuk Thm. 18). Requires |a|, |b| < 2^996 and no underflow.
-void twoProduct(double a, double b, double& product, double& error);
+// The error-free transformations (sum + error == a + b, product + error == a * b exactly;
+// twoProduct requires |a|, |b| < 2^996 and no underflow) are double_double.h's.
+using dd::twoProduct;
+using dd::twoSum;
 
 /// Exact real number as a floating-point expansion: the sum of its components, which are
 /// nonoverlapping, sorted by increasing magnitude and never zero (the empty expansion is 0).
