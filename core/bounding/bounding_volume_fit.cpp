@@ -87,6 +87,22 @@ Obb boxFromAxes(const Mat3& axes, const Vec3& ref, ForEachPoint forEachPoint) {
     return box;
 }
 
+// The box along the principal axes of `covariance`, the covariance of the points about
+// ref + meanLocal; records what it used in the trace.
+template <class ForEachPoint>
+Obb boxFromCovariance(ObbFitMethod method, const Mat3& covariance, const Vec3& ref, const Vec3& meanLocal,
+                      ForEachPoint forEachPoint, ObbFitTrace* trace) {
+    Vec3 eigenvalues;
+    const Mat3 axes = principalAxes(covariance, eigenvalues);
+    if (trace) {
+        trace->method = method;
+        trace->mean = ref + meanLocal;
+        trace->covariance = covariance;
+        trace->eigenvalues = eigenvalues;
+    }
+    return boxFromAxes(axes, ref, forEachPoint);
+}
+
 bool finite(const Triangle& t) { return t.a.allFinite() && t.b.allFinite() && t.c.allFinite(); }
 
 // Point-covariance OBB over the finite points delivered by forEachPoint (count n, bounds box).
@@ -114,15 +130,7 @@ Obb pointCovarianceObb(const Aabb& bounds, int n, ForEachPoint forEachPoint, Obb
         covariance += d * d.transpose();
     });
     covariance /= n;
-    Vec3 eigenvalues;
-    const Mat3 axes = principalAxes(covariance, eigenvalues);
-    if (trace) {
-        trace->method = ObbFitMethod::PointCovariance;
-        trace->mean = ref + meanLocal;
-        trace->covariance = covariance;
-        trace->eigenvalues = eigenvalues;
-    }
-    return boxFromAxes(axes, ref, forEachPoint);
+    return boxFromCovariance(ObbFitMethod::PointCovariance, covariance, ref, meanLocal, forEachPoint, trace);
 }
 
 }  // namespace
@@ -220,16 +228,8 @@ Obb fitObbTriangles(std::span<const Triangle> triangles, ObbFitTrace* trace) {
     const Vec3 meanLocal = firstMoment / totalArea;
     Mat3 covariance = secondMoment / totalArea - meanLocal * meanLocal.transpose();
     covariance = 0.5 * (covariance + covariance.transpose()).eval();  // exact symmetry
-    Vec3 eigenvalues;
-    const Mat3 axes = principalAxes(covariance, eigenvalues);
-    if (trace) {
-        trace->method = ObbFitMethod::TriangleCovariance;
-        trace->mean = ref + meanLocal;
-        trace->covariance = covariance;
-        trace->eigenvalues = eigenvalues;
-        trace->totalArea = totalArea;
-    }
-    return boxFromAxes(axes, ref, forEachVertex);
+    if (trace) trace->totalArea = totalArea;
+    return boxFromCovariance(ObbFitMethod::TriangleCovariance, covariance, ref, meanLocal, forEachVertex, trace);
 }
 
 double volume(const Aabb& box) {

@@ -45,18 +45,24 @@ void pullInEnds(double& lo, double& hi) {
     if (lo > hi) lo = hi = 0.5 * (lo + hi);
 }
 
-}  // namespace
-
-Sphere fitPss(std::span<const Vec3> points) { return fitSphereWelzl(points); }
-
-Capsule fitLss(std::span<const Vec3> points, SweptSphereFitTrace* trace) {
-    ObbFitTrace cov;
+// The covariance box both swept-sphere fits start from (its fit in `cov`), recorded in the trace.
+Obb principalBox(std::span<const Vec3> points, ObbFitTrace& cov, SweptSphereFitTrace* trace) {
     const Obb box = fitObbCovariance(points, &cov);
     if (trace) {
         *trace = SweptSphereFitTrace{};
         trace->principalBox = box;
         trace->covariance = cov;
     }
+    return box;
+}
+
+}  // namespace
+
+Sphere fitPss(std::span<const Vec3> points) { return fitSphereWelzl(points); }
+
+Capsule fitLss(std::span<const Vec3> points, SweptSphereFitTrace* trace) {
+    ObbFitTrace cov;
+    const Obb box = principalBox(points, cov, trace);
     if (cov.method == ObbFitMethod::Empty) return Capsule{Vec3::Constant(kNaN), Vec3::Constant(kNaN), -1.0};
     const std::vector<Vec3> u = localCoordinates(points, box);
     // Minimum circle of the points projected across the major axis (Welzl on coplanar points).
@@ -86,12 +92,7 @@ Capsule fitLss(std::span<const Vec3> points, SweptSphereFitTrace* trace) {
 
 Rss fitRss(std::span<const Vec3> points, SweptSphereFitTrace* trace) {
     ObbFitTrace cov;
-    const Obb box = fitObbCovariance(points, &cov);
-    if (trace) {
-        *trace = SweptSphereFitTrace{};
-        trace->principalBox = box;
-        trace->covariance = cov;
-    }
+    const Obb box = principalBox(points, cov, trace);
     if (cov.method == ObbFitMethod::Empty) return Rss{Vec3::Constant(kNaN), Mat3::Identity(), Vec2::Zero(), -1.0};
     const std::vector<Vec3> u = localCoordinates(points, box);
     // Thickness along the minor axis (column 2) gives the radius and the rectangle's plane.

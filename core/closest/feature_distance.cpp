@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/closest/closest_point.h"
 
@@ -40,14 +41,20 @@ double featureScale(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     return (hi - lo).norm();
 }
 
+// The polygon's unit normal (Newell's), or nothing for a zero-area polygon.
+std::optional<Vec3> polygonUnitNormal(const std::vector<Vec3>& poly) {
+    const Vec3 nn = newellNormal(poly);
+    const double len = nn.norm();
+    if (!(len > 0.0)) return std::nullopt;
+    return Vec3(nn / len);
+}
+
 }  // namespace
 
 PointPolygonResult closestPointOnPolygon(const Vec3& p, const std::vector<Vec3>& poly) {
     PointPolygonResult r;
-    const Vec3 nn = newellNormal(poly);
-    const double len = nn.norm();
-    if (len > 0.0) {
-        const Vec3 n = nn / len;
+    if (const std::optional<Vec3> unitNormal = polygonUnitNormal(poly)) {
+        const Vec3& n = *unitNormal;
         const Vec3 q = p - n.dot(p - poly[0]) * n;  // projection onto the plane
         bool inside = true;
         const size_t k = poly.size();
@@ -71,10 +78,8 @@ PointPolygonResult closestPointOnPolygon(const Vec3& p, const std::vector<Vec3>&
 
 FeaturePairPoints closestPointsSegmentPolygon(const Segment& s, const std::vector<Vec3>& poly) {
     FeaturePairPoints r;
-    const Vec3 nn = newellNormal(poly);
-    const double len = nn.norm();
-    if (len > 0.0) {
-        const Vec3 n = nn / len;
+    if (const std::optional<Vec3> unitNormal = polygonUnitNormal(poly)) {
+        const Vec3& n = *unitNormal;
         const double sa = n.dot(s.a - poly[0]), sb = n.dot(s.b - poly[0]);
         // Plane crossing inside the polygon: distance 0 (both sides strictly, else an endpoint
         // on the plane is handled by the endpoint candidates below).
