@@ -269,42 +269,41 @@ std::vector<int> ConvexPolyhedron::vertexEdges(int v) const {
     return aroundVertex(v, [&](int h) { return halfEdges_[h].edge; });
 }
 
-double ConvexPolyhedron::volume() const {
-    if (vertices_.empty()) return 0.0;
+Vec3 ConvexPolyhedron::vertexMean() const {
     Vec3 o = Vec3::Zero();
     for (const auto& v : vertices_) o += v.position;
-    o /= static_cast<double>(vertices_.size());
-    double sum = 0.0;
+    return o / static_cast<double>(vertices_.size());
+}
+
+template <class Fn>
+void ConvexPolyhedron::forEachFanTetrahedron(const Vec3& o, Fn&& fn) const {
     for (int f = 0; f < faceCount(); ++f) {
         const int h0 = faces_[f].halfEdge;
         const Vec3 a = position(halfEdges_[h0].origin) - o;
-        for (int h = halfEdges_[h0].next; halfEdges_[h].next != h0; h = halfEdges_[h].next) {
-            const Vec3 b = position(halfEdges_[h].origin) - o;
-            const Vec3 c = position(halfEdgeDestination(h)) - o;
-            sum += a.dot(b.cross(c));  // 6 x signed volume of tetrahedron (o, a, b, c)
-        }
+        for (int h = halfEdges_[h0].next; halfEdges_[h].next != h0; h = halfEdges_[h].next)
+            fn(a, Vec3(position(halfEdges_[h].origin) - o), Vec3(position(halfEdgeDestination(h)) - o));
     }
+}
+
+double ConvexPolyhedron::volume() const {
+    if (vertices_.empty()) return 0.0;
+    double sum = 0.0;
+    forEachFanTetrahedron(vertexMean(), [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+        sum += a.dot(b.cross(c));  // 6 x signed volume of tetrahedron (o, a, b, c)
+    });
     return sum / 6.0;
 }
 
 Vec3 ConvexPolyhedron::centroid() const {
     if (vertices_.empty()) return Vec3::Zero();
-    Vec3 o = Vec3::Zero();
-    for (const auto& v : vertices_) o += v.position;
-    o /= static_cast<double>(vertices_.size());
+    const Vec3 o = vertexMean();
     double total = 0.0;
     Vec3 moment = Vec3::Zero();
-    for (int f = 0; f < faceCount(); ++f) {
-        const int h0 = faces_[f].halfEdge;
-        const Vec3 a = position(halfEdges_[h0].origin) - o;
-        for (int h = halfEdges_[h0].next; halfEdges_[h].next != h0; h = halfEdges_[h].next) {
-            const Vec3 b = position(halfEdges_[h].origin) - o;
-            const Vec3 c = position(halfEdgeDestination(h)) - o;
-            const double v6 = a.dot(b.cross(c));
-            total += v6;
-            moment += v6 * (a + b + c) / 4.0;  // tetrahedron (0, a, b, c) centroid
-        }
-    }
+    forEachFanTetrahedron(o, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+        const double v6 = a.dot(b.cross(c));
+        total += v6;
+        moment += v6 * (a + b + c) / 4.0;  // tetrahedron (0, a, b, c) centroid
+    });
     if (!(total > 0.0)) return o;
     return o + moment / total;
 }

@@ -201,6 +201,12 @@ private:
         return out;
     }
 
+    /// Mean of the vertex positions (not empty).
+    Vec3 vertexMean() const;
+    /// fn(a, b, c) for each tetrahedron (o, a, b, c) of the faces' fans, coordinates relative to o
+    /// (the vertex mean, for accuracy at large offsets).
+    template <class Fn>
+    void forEachFanTetrahedron(const Vec3& o, Fn&& fn) const;
     PolyhedronCheck checkFaceGeometry(int f, double tolerance) const;
     PolyhedronCheck checkSolidConvexity(double tolerance) const;
     std::vector<Vertex> vertices_;
