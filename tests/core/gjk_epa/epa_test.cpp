@@ -9,7 +9,7 @@
 
 #include "core/gjk_epa/epa.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
-#include "tests/core/gjk_epa/trace_test_support.h"
+#include "tests/core/gjk_epa/gjk_epa_test_support.h"
 
 using namespace cdlab;
 using namespace cdlab::test;
@@ -176,12 +176,8 @@ TEST_SUITE("epa") {
         std::uniform_real_distribution<double> unit(0.0, 1.0);
         double maxDepthErr = 0, maxNormalErr = 0, maxWitnessErr = 0;
         int tested = 0, wrong = 0;
-        const double sizes[] = {1e-3, 1.0, 1e3};
-        const double offsets[] = {0.0, 1e3, 1e6};
         for (int trial = 0; trial < 90; ++trial) {
-            const double size = sizes[trial % 3];
-            const double offset = offsets[(trial / 3) % 3];
-            const Vec3 o = offset * randomUnit(rng);
+            const auto [size, offset, o] = sweepTrial(trial, rng);
             const Vec3 sep = size * 1.2 * unit(rng) * randomUnit(rng);  // mostly overlapping
             PolytopeShape a{randomPolytope(rng, count(rng), size, o)};
             PolytopeShape b{randomPolytope(rng, count(rng), size, o + sep)};

@@ -9,7 +9,7 @@
 
 #include "core/gjk_epa/gjk.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
-#include "tests/core/gjk_epa/trace_test_support.h"
+#include "tests/core/gjk_epa/gjk_epa_test_support.h"
 
 using namespace cdlab;
 using namespace cdlab::test;
@@ -134,12 +134,8 @@ TEST_SUITE("gjk") {
         for (SimplexSolver solver : kSolvers) {
             double maxDistErr = 0, maxAxisErr = 0, maxWitnessErr = 0;
             int separated = 0, intersecting = 0, wrong = 0;
-            const double sizes[] = {1e-3, 1.0, 1e3};
-            const double offsets[] = {0.0, 1e3, 1e6};
             for (int trial = 0; trial < 90; ++trial) {
-                const double size = sizes[trial % 3];
-                const double offset = offsets[(trial / 3) % 3];
-                const Vec3 o = offset * randomUnit(rng);
+                const auto [size, offset, o] = sweepTrial(trial, rng);
                 const Vec3 sep = size * (0.2 + 2.0 * unit(rng)) * randomUnit(rng);
                 PolytopeShape a{randomPolytope(rng, count(rng), size, o)};
                 PolytopeShape b{randomPolytope(rng, count(rng), size, o + sep)};
