@@ -291,12 +291,24 @@ private:
     Frame drawFrame(GlContext& gl, int ss, const Drawing& d, const EpaRun& run, int index) const {
         const TwoPanelLayout layout{common_.image.width, common_.image.height};
         const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), ss);
-        const bool labels = common_.hasLayer("labels");
         const bool isGjk = index == -2, isResult = index == -1;
         const PolyStep* s = index >= 0 ? &run.steps[index] : nullptr;
-        const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
-
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
+        drawWorldPanel(world, d, run, s, isResult);
+        Canvas cs(gl, po,
+                  common_.camera && !d.planar ? *common_.camera
+                                              : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+        drawConfigurationPanel(cs, d, run, s, isGjk);
+        Frame f;
+        const std::vector<std::string> lines = describeFrame(d, run, s, isGjk, f);
+        f.image = composeTwoPanel(gl, layout, ss, common_.title, world.readPixels(), cs.readPixels(), lines);
+        return f;
+    }
+
+    // World space: the bodies, this step's support points or the result's witness points.
+    void drawWorldPanel(Canvas& world, const Drawing& d, const EpaRun& run, const PolyStep* s, bool isResult) const {
+        const bool labels = common_.hasLayer("labels");
+        const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
         drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeA).scaled(0.6f),
                  2.0f);
         drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeB).scaled(0.6f),
@@ -334,10 +346,12 @@ private:
                                                                         : "witness points, p_A − p_B = depth · n")
                          : s      ? "support points of the new vertex"
                                   : "");
+    }
 
-        Canvas cs(gl, po,
-                  common_.camera && !d.planar ? *common_.camera
-                                              : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+    // Configuration space: A − B with GJK's simplex, this step's polytope or the penetration vector.
+    void drawConfigurationPanel(Canvas& cs, const Drawing& d, const EpaRun& run, const PolyStep* s, bool isGjk) const {
+        const bool labels = common_.hasLayer("labels");
+        const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
         if (d.c.valid)
             drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.18f : 0.12f,
                      roleColor(Role::Minkowski).scaled(0.75f), 1.0f);
@@ -386,9 +400,12 @@ private:
         }
         drawPanelHeading(
             cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""), sub);
+    }
 
+    // The caption lines under the panels; names the frame.
+    std::vector<std::string> describeFrame(const Drawing& d, const EpaRun& run, const PolyStep* s, bool isGjk,
+                                           Frame& f) const {
         std::vector<std::string> lines;
-        Frame f;
         if (isGjk) {
             lines.push_back("GJK: " + std::string(nameOf(run.gjk.status)) + " after " +
                             std::to_string(run.gjk.iterations) + " iterations (" + nameOf(run.gjk.termination) + ")" +
@@ -422,8 +439,7 @@ private:
             f.name = "result";
             f.caption = std::string("result: ") + nameOf(run.status) + ", depth " + formatNumber(run.depth);
         }
-        f.image = composeTwoPanel(gl, layout, ss, common_.title, world.readPixels(), cs.readPixels(), lines);
-        return f;
+        return lines;
     }
 
     // Lower and upper depth bounds against the iteration, drawn with the 2D canvas in pixel units.

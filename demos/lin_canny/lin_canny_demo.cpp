@@ -358,109 +358,21 @@ private:
 
     Frame drawStepFrame(GlContext& gl, int ss, const Runs& run, int index) const {
         const Layout L = layout();
-        const bool labels = common_.hasLayer("labels");
         const LinCannyTrace& tr = run.lcTrace;
         const LinCannyResult& r = run.lc;
         const LinCannyTraceStep* st = index >= 0 ? &tr.steps[index] : nullptr;
         Canvas c(gl, canvasOptions(L.mainWidth(), L.panelHeight(), ss));
         setupPanel(c, 0.12, 0.92);
         drawBodies(c, true);
-        std::string heading, sub;
-        std::vector<std::string> lines;
         Frame f;
+        std::vector<std::string> lines;
         if (st) {
-            drawFeature(c, st->featureAWorld, featureColor(0), featureLabel(st->featureA, 0), centroid(1), labels);
-            drawFeature(c, st->featureBWorld, featureColor(1), featureLabel(st->featureB, 1), centroid(0), labels);
-            int violatedCount = 0, shown = 0;
-            for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
-            if (common_.hasLayer("planes"))
-                for (const VClipPlaneTest& p : st->planes) {
-                    // With many planes (a many-sided face) only the violated ones and the maximal one are drawn.
-                    if (st->planes.size() > 8 && !p.violated && !p.maximal) continue;
-                    drawPlaneTest(c, p);
-                    ++shown;
-                }
-            if (common_.hasLayer("closest")) drawClosest(c, st->closestA, st->closestB, false);
-            if (common_.hasLayer("update") && st->updatedBody >= 0) {
-                const std::vector<Vec3> gTo =
-                    featureGeometry(body(st->updatedBody).regions, pose(st->updatedBody), st->to);
-                const Vec3 from = featureCenter(st->updatedBody == 0 ? st->featureAWorld : st->featureBWorld),
-                           to = featureCenter(gTo);
-                if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, lineStyle(Role::Ink, 4.0f, false, true));
-                drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f), "", from, false);
-                if (labels)
-                    drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
-                                  TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
-            }
-            heading = "Step " + std::to_string(st->step) + ": pair " + nameOf(st->state);
-            sub = std::to_string(st->planes.size()) + " applicability test(s), " + std::to_string(violatedCount) +
-                  " violated (red)";
-            if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
-            lines.push_back("Step " + std::to_string(st->step) + " (" + nameOf(st->state) +
-                            "): " + featureLabel(st->featureA, 0) + " vs " + featureLabel(st->featureB, 1) +
-                            ", closest points at distance " + formatNumber(st->distanceBefore) +
-                            ";  rule: " + st->rule);
-            const VClipPlaneTest* worst = nullptr;
-            for (const VClipPlaneTest& p : st->planes)
-                if (!worst || (p.maximal && !worst->maximal) ||
-                    (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance))
-                    worst = &p;
-            if (!worst) lines.push_back("no plane test");
-            else
-                lines.push_back(std::string(worst->regionBody == 0 ? "p_B" : "p_A") + " against VR(" +
-                                featureLabel(worst->owner, worst->regionBody) + "): " +
-                                (worst->maximal    ? "most violated"
-                                 : worst->violated ? "violated"
-                                                   : "closest") +
-                                " plane " +
-                                (worst->plane < 0 ? std::string("(the face plane)") : "| " + nameOf(worst->neighbor)) +
-                                " at signed distance " + formatNumber(worst->signedDistance) +
-                                (!worst->violated            ? " ≥ 0"
-                                 : worst->signedDistance < 0 ? " < 0"
-                                                             : " ≥ 0, violated only by the forced negative tolerance"));
-            if (st->updatedBody >= 0)
-                lines.push_back(std::string("update ") + (st->updatedBody == 0 ? "A: " : "B: ") + nameOf(st->from) +
-                                " → " + nameOf(st->to) + ";  pair distance " + formatNumber(st->distanceBefore) +
-                                " → " + formatNumber(st->distanceAfter) +
-                                (st->localMinimum          ? " (local-minimum face jump)"
-                                 : st->distanceChange < 0  ? " (decreased)"
-                                 : st->distanceChange == 0 ? " (equal)"
-                                                           : " (INCREASED)"));
-            else if (st->kind == VClipStepKind::Done)
-                lines.push_back(
-                    "DONE: each closest point lies in the other feature's Voronoi region (Lin & Canny, Thm. 1)");
-            else lines.push_back(std::string(nameOf(st->kind)) + ": " + verdict(r));
-            f.name = stepFrameName(st->step);
-            f.caption =
-                "step " + std::to_string(st->step) + " " + nameOf(st->state) + ": " +
-                (st->updatedBody >= 0 ? nameOf(st->from) + " → " + nameOf(st->to) : std::string(nameOf(st->kind)));
+            const int shown = drawStep(c, *st);
+            lines = describeStep(c, *st, r, shown, f);
         } else {
-            const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
-            const std::vector<Vec3> gb = featureGeometry(s_.b.regions, s_.b.pose, r.featureB);
-            drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroid(1), labels);
-            drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroid(0), labels);
-            if (common_.hasLayer("closest") && r.status != LinCannyStatus::CycleDetected)
-                drawClosest(c, r.pointA, r.pointB, true);
-            heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
-            sub = r.status == LinCannyStatus::Separated       ? "closest features and points"
-                  : r.status == LinCannyStatus::CycleDetected ? "the pair where the cycle was detected"
-                                                              : "";
-            lines.push_back("Lin–Canny: " + verdict(r) + ", features " + featureLabel(r.featureA, 0) + " and " +
-                            featureLabel(r.featureB, 1) + ", " + std::to_string(r.steps) + " update(s)");
-            lines.push_back("V-Clip on the same pair and seed: " + verdict(run.vc) + ", features " +
-                            featureLabel(run.vc.featureA, 0) + " and " + featureLabel(run.vc.featureB, 1) + ", " +
-                            std::to_string(run.vc.steps) + " update(s);  GJK: " + gjkText(run.gjk));
-            if (forced())
-                lines.push_back("cycle FORCED with a negative applicability tolerance (" +
-                                formatNumber(s_.options.applicability) +
-                                " × scale): boundary points violate both regions; not a natural cycle");
-            else if (r.status == LinCannyStatus::Separated)
-                lines.push_back("|Lin–Canny − GJK| = " + formatNumber(std::abs(r.distance - run.gjk.distance)) +
-                                ",  |Lin–Canny − V-Clip| = " + formatNumber(std::abs(r.distance - run.vc.distance)));
-            f.name = "result";
-            f.caption = std::string("result: ") + verdict(r);
+            drawResult(c, r);
+            lines = describeResult(c, run, f);
         }
-        drawPanelHeading(c, heading, sub);
         const Image main = c.readPixels();
 
         const int cur = st ? index : int(tr.steps.size()) - 1;
@@ -471,24 +383,146 @@ private:
                                ? drawWalkList(gl, L.columnWidth, L.diagramHeight(), ss, "Pairs visited (A·B, distance)",
                                               listSub, lcRows(tr), cur)
                                : blank(L.columnWidth, L.diagramHeight());
-        Image plot = blank(L.columnWidth, L.plotHeight());
-        if (common_.hasLayer("plot")) {
-            PlotInput pin;
-            pin.heading = "Pair distance";
-            pin.xLabel = "update";
-            pin.series.push_back(distanceSeries(tr, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f)));
-            pin.marker = st ? index : -1;
-            pin.legend = {{satisfiedColor(), "decrease"}, {roleColor(Role::Muted), "equal"}};
-            if (std::any_of(tr.steps.begin(), tr.steps.end(),
-                            [](const LinCannyTraceStep& s) { return s.distanceChange > 0 && !s.localMinimum; }))
-                pin.legend.push_back({violatedColor(), "increase"});
-            if (std::any_of(tr.steps.begin(), tr.steps.end(),
-                            [](const LinCannyTraceStep& s) { return s.localMinimum; }))
-                pin.legend.push_back({clipColor(), "local-min jump"});
-            plot = drawPlot(gl, L.columnWidth, L.plotHeight(), ss, pin);
-        }
+        const Image plot = common_.hasLayer("plot") ? drawDistancePlot(gl, ss, tr, st ? index : -1)
+                                                    : blank(L.columnWidth, L.plotHeight());
         f.image = composeFrame(gl, L, ss, common_.title, common_.caption, main, list, plot, lines);
         return f;
+    }
+
+    /// A step in the 3D panel: the pair's features, the plane tests, the closest points, the update.
+    /// Returns how many plane tests were drawn.
+    int drawStep(Canvas& c, const LinCannyTraceStep& step) const {
+        const bool labels = common_.hasLayer("labels");
+        drawFeature(c, step.featureAWorld, featureColor(0), featureLabel(step.featureA, 0), centroid(1), labels);
+        drawFeature(c, step.featureBWorld, featureColor(1), featureLabel(step.featureB, 1), centroid(0), labels);
+        int shown = 0;
+        if (common_.hasLayer("planes"))
+            for (const VClipPlaneTest& p : step.planes) {
+                // With many planes (a many-sided face) only the violated ones and the maximal one are drawn.
+                if (step.planes.size() > 8 && !p.violated && !p.maximal) continue;
+                drawPlaneTest(c, p);
+                ++shown;
+            }
+        if (common_.hasLayer("closest")) drawClosest(c, step.closestA, step.closestB, false);
+        if (common_.hasLayer("update") && step.updatedBody >= 0) {
+            const std::vector<Vec3> gTo =
+                featureGeometry(body(step.updatedBody).regions, pose(step.updatedBody), step.to);
+            const Vec3 from = featureCenter(step.updatedBody == 0 ? step.featureAWorld : step.featureBWorld),
+                       to = featureCenter(gTo);
+            if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, lineStyle(Role::Ink, 4.0f, false, true));
+            drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(step.updatedBody), 0.5f), "", from, false);
+            if (labels)
+                drawLabelAway(c, to, from, "new " + featureLabel(step.to, step.updatedBody),
+                              TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
+        }
+        return shown;
+    }
+
+    /// The 3D panel's heading and the caption lines of a step; names the frame.
+    std::vector<std::string> describeStep(Canvas& c, const LinCannyTraceStep& step, const LinCannyResult& r, int shown,
+                                          Frame& f) const {
+        int violatedCount = 0;
+        for (const VClipPlaneTest& p : step.planes) violatedCount += p.violated;
+        std::string heading, sub;
+        std::vector<std::string> lines;
+        heading = "Step " + std::to_string(step.step) + ": pair " + nameOf(step.state);
+        sub = std::to_string(step.planes.size()) + " applicability test(s), " + std::to_string(violatedCount) +
+              " violated (red)";
+        if (int(step.planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
+        lines.push_back("Step " + std::to_string(step.step) + " (" + nameOf(step.state) +
+                        "): " + featureLabel(step.featureA, 0) + " vs " + featureLabel(step.featureB, 1) +
+                        ", closest points at distance " + formatNumber(step.distanceBefore) + ";  rule: " + step.rule);
+        const VClipPlaneTest* worst = nullptr;
+        for (const VClipPlaneTest& p : step.planes)
+            if (!worst || (p.maximal && !worst->maximal) ||
+                (p.maximal == worst->maximal && p.signedDistance < worst->signedDistance))
+                worst = &p;
+        if (!worst) lines.push_back("no plane test");
+        else
+            lines.push_back(std::string(worst->regionBody == 0 ? "p_B" : "p_A") + " against VR(" +
+                            featureLabel(worst->owner, worst->regionBody) + "): " +
+                            (worst->maximal    ? "most violated"
+                             : worst->violated ? "violated"
+                                               : "closest") +
+                            " plane " +
+                            (worst->plane < 0 ? std::string("(the face plane)") : "| " + nameOf(worst->neighbor)) +
+                            " at signed distance " + formatNumber(worst->signedDistance) +
+                            (!worst->violated            ? " ≥ 0"
+                             : worst->signedDistance < 0 ? " < 0"
+                                                         : " ≥ 0, violated only by the forced negative tolerance"));
+        if (step.updatedBody >= 0)
+            lines.push_back(std::string("update ") + (step.updatedBody == 0 ? "A: " : "B: ") + nameOf(step.from) +
+                            " → " + nameOf(step.to) + ";  pair distance " + formatNumber(step.distanceBefore) + " → " +
+                            formatNumber(step.distanceAfter) +
+                            (step.localMinimum          ? " (local-minimum face jump)"
+                             : step.distanceChange < 0  ? " (decreased)"
+                             : step.distanceChange == 0 ? " (equal)"
+                                                        : " (INCREASED)"));
+        else if (step.kind == VClipStepKind::Done)
+            lines.push_back(
+                "DONE: each closest point lies in the other feature's Voronoi region (Lin & Canny, Thm. 1)");
+        else lines.push_back(std::string(nameOf(step.kind)) + ": " + verdict(r));
+        f.name = stepFrameName(step.step);
+        f.caption =
+            "step " + std::to_string(step.step) + " " + nameOf(step.state) + ": " +
+            (step.updatedBody >= 0 ? nameOf(step.from) + " → " + nameOf(step.to) : std::string(nameOf(step.kind)));
+        drawPanelHeading(c, heading, sub);
+        return lines;
+    }
+
+    /// The result in the 3D panel: the final features and closest points.
+    void drawResult(Canvas& c, const LinCannyResult& r) const {
+        const bool labels = common_.hasLayer("labels");
+        const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
+        const std::vector<Vec3> gb = featureGeometry(s_.b.regions, s_.b.pose, r.featureB);
+        drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroid(1), labels);
+        drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroid(0), labels);
+        if (common_.hasLayer("closest") && r.status != LinCannyStatus::CycleDetected)
+            drawClosest(c, r.pointA, r.pointB, true);
+    }
+
+    /// The 3D panel's heading and the caption lines of the result, beside V-Clip and GJK; names the frame.
+    std::vector<std::string> describeResult(Canvas& c, const Runs& run, Frame& f) const {
+        const LinCannyResult& r = run.lc;
+        std::string heading, sub;
+        std::vector<std::string> lines;
+        heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
+        sub = r.status == LinCannyStatus::Separated       ? "closest features and points"
+              : r.status == LinCannyStatus::CycleDetected ? "the pair where the cycle was detected"
+                                                          : "";
+        lines.push_back("Lin–Canny: " + verdict(r) + ", features " + featureLabel(r.featureA, 0) + " and " +
+                        featureLabel(r.featureB, 1) + ", " + std::to_string(r.steps) + " update(s)");
+        lines.push_back("V-Clip on the same pair and seed: " + verdict(run.vc) + ", features " +
+                        featureLabel(run.vc.featureA, 0) + " and " + featureLabel(run.vc.featureB, 1) + ", " +
+                        std::to_string(run.vc.steps) + " update(s);  GJK: " + gjkText(run.gjk));
+        if (forced())
+            lines.push_back("cycle FORCED with a negative applicability tolerance (" +
+                            formatNumber(s_.options.applicability) +
+                            " × scale): boundary points violate both regions; not a natural cycle");
+        else if (r.status == LinCannyStatus::Separated)
+            lines.push_back("|Lin–Canny − GJK| = " + formatNumber(std::abs(r.distance - run.gjk.distance)) +
+                            ",  |Lin–Canny − V-Clip| = " + formatNumber(std::abs(r.distance - run.vc.distance)));
+        f.name = "result";
+        f.caption = std::string("result: ") + verdict(r);
+        drawPanelHeading(c, heading, sub);
+        return lines;
+    }
+
+    /// The pair distance against the update, `marker` the current step (-1: none).
+    Image drawDistancePlot(GlContext& gl, int ss, const LinCannyTrace& tr, int marker) const {
+        const Layout L = layout();
+        PlotInput pin;
+        pin.heading = "Pair distance";
+        pin.xLabel = "update";
+        pin.series.push_back(distanceSeries(tr, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f)));
+        pin.marker = marker;
+        pin.legend = {{satisfiedColor(), "decrease"}, {roleColor(Role::Muted), "equal"}};
+        if (std::any_of(tr.steps.begin(), tr.steps.end(),
+                        [](const LinCannyTraceStep& s) { return s.distanceChange > 0 && !s.localMinimum; }))
+            pin.legend.push_back({violatedColor(), "increase"});
+        if (std::any_of(tr.steps.begin(), tr.steps.end(), [](const LinCannyTraceStep& s) { return s.localMinimum; }))
+            pin.legend.push_back({clipColor(), "local-min jump"});
+        return drawPlot(gl, L.columnWidth, L.plotHeight(), ss, pin);
     }
 
     /// One walk in 3D: the bodies, the path of the closest points over the steps, the final features.
