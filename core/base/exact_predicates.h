@@ -41,6 +41,7 @@
 
 #include "core/base/big_dyadic.h"
 #include "core/base/double_double.h"
+#include "core/base/tolerances.h"
 #include "core/base/types.h"
 
 namespace cdlab::exact {
@@ -98,7 +99,7 @@ namespace detail {
 // bound survives the roundings of its own computation; the final product with kInflate
 // (1 + 2^-48) covers the few roundings in summing the error terms. Both are deliberately
 // generous: a looser bound only sends a few more near-zero cases to the exact path.
-inline constexpr double kRounding = 0x1p-52;
+inline constexpr double kRounding = kMachineEpsilon;
 inline constexpr double kInflate = 1.0 + 0x1p-48;
 // Absolute error allowance for products that underflow: each of the (at most five) products in
 // operator* loses at most half the smallest subnormal 2^-1075 when it underflows.

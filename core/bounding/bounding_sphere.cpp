@@ -9,12 +9,13 @@
 
 #include <Eigen/Dense>
 
+#include "core/base/tolerances.h"
+
 namespace cdlab {
 
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // A point counts as outside the current ball when |p - c|^2 > r^2 (1 + kOutsideRel). WHY: the
 // support points of a computed ball lie on its boundary only to rounding (relative ~1e-15 for a
@@ -70,7 +71,7 @@ Sphere finish(const LocalPoints& lp, const Vec3& center) {
     const double r = std::sqrt(r2);
     // center == 0: ref + center is ref exactly, nothing to pad (a single point keeps radius 0).
     const double magnitude = center.isZero(0.0) ? 0.0 : lp.ref.cwiseAbs().maxCoeff() + center.cwiseAbs().maxCoeff();
-    return Sphere{lp.ref + center, r * (1.0 + 4.0 * kEps) + 4.0 * kEps * magnitude};
+    return Sphere{lp.ref + center, r * (1.0 + 4.0 * kMachineEpsilon) + 4.0 * kMachineEpsilon * magnitude};
 }
 
 // Smallest ball with every support point on its boundary: its center lies in their affine hull,

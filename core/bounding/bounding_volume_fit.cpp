@@ -7,13 +7,14 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/base/tolerances.h"
+
 namespace cdlab {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // A triangle whose |e1 x e2| is below this fraction of |e1| |e2| (sine of its angle < 1e-12)
 // has an area that is rounding noise of the cross product (about a few eps |e1| |e2|), so its
@@ -83,7 +84,7 @@ Obb boxFromAxes(const Mat3& axes, const Vec3& ref, ForEachPoint forEachPoint) {
     box.axes = axes;
     box.center = ref + axes * mid;
     const double magnitude = ref.cwiseAbs().maxCoeff() + std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-    box.halfExtents = (0.5 * (hi - lo)).array() + kExtentPadUlps * kEps * magnitude;
+    box.halfExtents = (0.5 * (hi - lo)).array() + kExtentPadUlps * kMachineEpsilon * magnitude;
     return box;
 }
 

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/tolerances.h"
 #include "core/geometry/convex_hull.h"
 
 namespace cdlab {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // Ericson §4.6: the 13 directions, axes first, then the 4 cube diagonals, then the 6 edge
 // diagonals (see the table in kdop.h).
@@ -38,7 +38,7 @@ const std::array<Vec3, K / 2>& directionsOf() {
 // coordinates: each addition rounds by at most half an ulp of the partial sum, so the computed
 // value is within 2 eps (|x| + |y| + |z|) of the exact one. Widening by that keeps every point
 // inside in exact arithmetic too. The axis slabs are exact (no arithmetic) and get no pad.
-double roundingPad(const Vec3& p) { return 2.0 * kEps * p.cwiseAbs().sum(); }
+double roundingPad(const Vec3& p) { return 2.0 * kMachineEpsilon * p.cwiseAbs().sum(); }
 
 template <int K, class ForEach>
 Kdop<K> fit(ForEach forEach) {

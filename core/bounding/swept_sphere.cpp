@@ -6,6 +6,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/base/tolerances.h"
 #include "core/bounding/bounding_sphere.h"
 
 namespace cdlab {
@@ -13,14 +14,13 @@ namespace cdlab {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kPi = std::numbers::pi;
 
 // Radius pad after the final max-distance pass. The caller's containment test recomputes the
 // distance to the stored core in double, with rounding of a few eps times the numbers involved:
 // the distance itself (relative) and the coordinates p - core (absolute, eps * |p|_inf, which
 // dominates at large offsets). 8 eps of each covers both with a margin.
-double padded(double r, double magnitude) { return r * (1.0 + 8.0 * kEps) + 8.0 * kEps * magnitude; }
+double padded(double r, double magnitude) { return r * (1.0 + 8.0 * kMachineEpsilon) + 8.0 * kMachineEpsilon * magnitude; }
 
 double magnitudeOf(std::span<const Vec3> points) {
     double m = 0.0;

@@ -1,9 +1,10 @@
 #include "core/geometry/mass_properties.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <utility>
+
+#include "core/base/tolerances.h"
 
 namespace cdlab {
 
@@ -84,7 +85,7 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
     const double maxCoord = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
     // See MassPropertiesOptions::planarTolerance; the second term is the rounding of coordinates of
     // magnitude maxCoord (a few ulps each) so that far-away solids are not called non-planar.
-    const double planeTol = options.planarTolerance * diagonal + 64.0 * DBL_EPSILON * maxCoord;
+    const double planeTol = options.planarTolerance * diagonal + ulps(64.0, maxCoord);
 
     double six = 0.0;            // Σ D      = 6 V
     Vec3 first = Vec3::Zero();   // Σ D (a+b+c) = 24 ∫x

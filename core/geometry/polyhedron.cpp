@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <unordered_map>
+
+#include "core/base/tolerances.h"
 
 namespace cdlab {
 
@@ -339,7 +340,7 @@ Vec3 ConvexPolyhedron::boundsMax() const {
 double ConvexPolyhedron::scaleTolerance() const {
     const Vec3 lo = boundsMin(), hi = boundsMax();
     const double maxAbs = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-    return 65536.0 * DBL_EPSILON * (maxAbs + (hi - lo).norm());
+    return ulps(65536.0, maxAbs + (hi - lo).norm());
 }
 
 PolyhedronCheck ConvexPolyhedron::validate(double tolerance) const {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/base/tolerances.h"
+
 namespace cdlab {
 
 namespace {
@@ -124,7 +126,7 @@ void BspTree::build(const std::vector<BspPolygon>& polygons, const BspOptions& o
         // vertices themselves are rounded to that, so a small polygon far from the origin is
         // non-planar by ~1 ulp (1e6 offset: 1e-10) whatever its size.
         const double maxAbs = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-        thickness_ = options_.planeThickness * size + 8.0 * std::numeric_limits<double>::epsilon() * maxAbs;
+        thickness_ = options_.planeThickness * size + ulps(8.0, maxAbs);
         work.eps = thickness_;
         for (std::size_t i = 0; i < polygons.size(); ++i) {
             Fragment f;

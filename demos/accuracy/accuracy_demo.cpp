@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <random>
 
+#include "core/base/tolerances.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/plot.h"
@@ -238,7 +239,7 @@ public:
             po.xLabel = xLabelOf(s_.sweep);
             po.yLabel = "|d - d*| / size (0 drawn at 1e-18)";
             po.hLines.push_back({kStressTolerance, "1e-12: cdlab stress tolerance"});
-            po.hLines.push_back({0x1p-53, "u = 1.1e-16 (double rounding)"});
+            po.hLines.push_back({kUnitRoundoff, "u = 1.1e-16 (double rounding)"});
             PlotSeries svMed{"signed volumes, median", 0, true, true, {}, {}};
             PlotSeries svMax{"signed volumes, max", 4, true, true, {}, {}};
             PlotSeries joMed{"Johnson, median", 1, true, true, {}, {}};

@@ -6,6 +6,7 @@
 
 #include <limits>
 
+#include "core/base/tolerances.h"
 #include "core/bounding/bounding_sphere.h"
 #include "core/overlap/intersect_sphere.h"
 #include "demos/oracles/bounding_volume_oracle.h"
@@ -17,7 +18,6 @@ using bvoracle::V;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 struct LBall {
     V c;
@@ -110,7 +110,7 @@ void checkWelzl(const std::vector<Vec3>& pts) {
     const Sphere w = fitSphereWelzl(pts, &trace);
     const Sphere r = fitSphereRitter(pts);
     const LBall o = bruteForceBall(pts);
-    const double tol = 1e-9 * double(o.r) + 16.0 * kEps * bvoracle::magnitude(pts);
+    const double tol = 1e-9 * double(o.r) + 16.0 * kMachineEpsilon * bvoracle::magnitude(pts);
     CHECK(std::abs(w.radius - double(o.r)) <= tol);
     CHECK(r.radius >= double(o.r) - tol);
     checkContains(w, pts);
@@ -134,7 +134,7 @@ TEST_SUITE("bounding_sphere") {
                         WelzlTrace trace;
                         const Sphere w = fitSphereWelzl(pts, &trace);
                         const LBall o = bruteForceBall(pts);
-                        const double tol = 1e-9 * double(o.r) + 16.0 * kEps * bvoracle::magnitude(pts);
+                        const double tol = 1e-9 * double(o.r) + 16.0 * kMachineEpsilon * bvoracle::magnitude(pts);
                         CHECK(std::abs(w.radius - double(o.r)) <= tol);
                         CHECK(fitSphereRitter(pts).radius >= double(o.r) - tol);
                         checkContains(w, pts);

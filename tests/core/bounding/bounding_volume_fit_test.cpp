@@ -5,6 +5,7 @@
 
 #include <limits>
 
+#include "core/base/tolerances.h"
 #include "core/bounding/bounding_volume_fit.h"
 #include "core/overlap/sat_tests.h"
 #include "demos/oracles/bounding_volume_oracle.h"
@@ -52,7 +53,7 @@ LD det(const Mat3& a) {
 // DOUBLE box by at most a few eps * magnitude. 64 eps * magnitude is a margin over that and
 // still ~1e-13 relative: a real containment bug (a wrong extent, a missed point) is far larger.
 double containTol(const std::vector<Vec3>& pts) {
-    return 64.0 * std::numeric_limits<double>::epsilon() * bvoracle::magnitude(pts);
+    return 64.0 * kMachineEpsilon * bvoracle::magnitude(pts);
 }
 
 void checkAxes(const Obb& box) {
@@ -144,13 +145,13 @@ TEST_SUITE("bounding_volume_fit") {
                     // double); at offset 1e6 and scale 1e-3 that is 3.6e-9 on a 4e-4 half extent,
                     // a relative 1e-5. Allow twice the three pads' relative sum, plus 1e-9 for
                     // the eigenvector rounding.
-                    const double pad = 16.0 * std::numeric_limits<double>::epsilon() * bvoracle::magnitude(pts);
+                    const double pad = 16.0 * kMachineEpsilon * bvoracle::magnitude(pts);
                     const double volTol = 1e-9 + 2.0 * (pad / h.x() + pad / h.y() + pad / h.z());
                     CHECK(volume(box) / truth == doctest::Approx(1.0).epsilon(volTol));
                     // Major axis along the box's long side (up to sign).
                     CHECK(std::abs(box.axes.col(0).dot(q * Vec3::UnitX())) == doctest::Approx(1.0).epsilon(1e-9));
                     CHECK((box.center - off).norm() <=
-                          1e-9 * scale + 64.0 * std::numeric_limits<double>::epsilon() * offset);
+                          1e-9 * scale + 64.0 * kMachineEpsilon * offset);
                 }
             }
         }

@@ -10,6 +10,7 @@
 
 #include <limits>
 
+#include "core/base/tolerances.h"
 #include "core/bounding/kdop.h"
 #include "demos/oracles/bounding_volume_oracle.h"
 
@@ -123,7 +124,7 @@ TEST_SUITE("kdop") {
                         lo = std::min(lo, bvoracle::dot(V(dirs[i]), V(p)));
                         hi = std::max(hi, bvoracle::dot(V(dirs[i]), V(p)));
                     }
-                    const LD slack = 8 * std::numeric_limits<double>::epsilon() * 3 * (offset + 3 * scale);
+                    const LD slack = 8 * kMachineEpsilon * 3 * (offset + 3 * scale);
                     CHECK(LD(dop.min[i]) >= lo - slack);
                     CHECK(LD(dop.max[i]) <= hi + slack);
                 }

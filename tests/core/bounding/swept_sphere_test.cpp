@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/base/tolerances.h"
 #include "core/bounding/bounding_sphere.h"
 #include "core/bounding/swept_sphere.h"
 #include "demos/oracles/bounding_volume_oracle.h"
@@ -18,7 +19,6 @@ using bvoracle::V;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kPi = std::numbers::pi;
 
 // Distance from p to the RSS's rectangle in long double: coordinates along the stored axes.
@@ -37,7 +37,7 @@ LD capsuleDistance(const Capsule& c, const Vec3& p) { return bvoracle::distPoint
 // evaluation; the long double evaluation differs from double by less than that, and the stored
 // axes are orthonormal to ~1e-15 (an extra eps-level relative error on |p - center|).
 // 4 eps * magnitude on top is a margin, still 1e-15 relative.
-LD tol(const std::vector<Vec3>& pts) { return 4 * kEps * bvoracle::magnitude(pts); }
+LD tol(const std::vector<Vec3>& pts) { return 4 * kMachineEpsilon * bvoracle::magnitude(pts); }
 
 // Points on the surface of a capsule along x (half length h, radius r), rotated and offset:
 // rings of 12 evenly spaced points across the axis (on the cylinder and on the caps) and the two

@@ -5,10 +5,10 @@
 // minimisation over the boundary cases for well-conditioned random pairs.
 #include <doctest/doctest.h>
 
-#include <cfloat>
 #include <cmath>
 #include <random>
 
+#include "core/base/tolerances.h"
 #include "core/closest/edge_pair_distance.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
@@ -104,7 +104,7 @@ long double segmentSegmentLd(const Vec3& a0, const Vec3& a1, const Vec3& b0, con
 double constructionSlack(const CrossedEdges& c) {
     double m = 0;
     for (const Vec3* p : {&c.a0, &c.a1, &c.b0, &c.b1}) m = std::max(m, p->cwiseAbs().maxCoeff());
-    return 8 * DBL_EPSILON * m * std::sqrt(3.0) * 2;  // two points per edge may move apart
+    return 8 * kMachineEpsilon * m * std::sqrt(3.0) * 2;  // two points per edge may move apart
 }
 
 }  // namespace
@@ -124,12 +124,12 @@ TEST_SUITE("edge pair distance") {
             CAPTURE(gap);
             CAPTURE(offset);
             REQUIRE(r.ok);
-            const double slack = k * constructionSlack(c) + 4 * DBL_EPSILON * k * std::abs(gap);
+            const double slack = k * constructionSlack(c) + 4 * kMachineEpsilon * k * std::abs(gap);
             CHECK(std::abs(r.distance - k * std::abs(gap)) <= slack);
             // Witnesses: on their segments and distance apart.
-            CHECK(std::abs((r.pointB - r.pointA).norm() - r.distance) <= slack + 8 * DBL_EPSILON * k * (offset + 2));
+            CHECK(std::abs((r.pointB - r.pointA).norm() - r.distance) <= slack + 8 * kMachineEpsilon * k * (offset + 2));
             // The axis of the ROUNDED edges differs from n by ~ulp(coordinates) / angle.
-            const double axisSlack = 1e-12 + 16 * DBL_EPSILON * (offset + 2) / angle;
+            const double axisSlack = 1e-12 + 16 * kMachineEpsilon * (offset + 2) / angle;
             if (r.distance > 1e3 * slack) CHECK(std::abs(r.axis.dot(c.n) * (gap > 0 ? 1 : -1) - 1) <= axisSlack);
         }
     }
@@ -197,7 +197,7 @@ TEST_SUITE("edge pair distance") {
             // most their displacement.
             CAPTURE(width);
             CAPTURE(h);
-            CHECK(std::abs(r.distance - h) <= 32 * DBL_EPSILON * c + 4 * DBL_EPSILON * h);
+            CHECK(std::abs(r.distance - h) <= 32 * kMachineEpsilon * c + 4 * kMachineEpsilon * h);
         }
     }
 

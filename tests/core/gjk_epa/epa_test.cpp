@@ -3,10 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <cfloat>
 #include <random>
 #include <sstream>
 
+#include "core/base/tolerances.h"
 #include "core/gjk_epa/epa.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
 #include "tests/core/gjk_epa/gjk_epa_test_support.h"
@@ -52,7 +52,7 @@ TEST_SUITE("epa") {
                     CHECK(r.status == EpaStatus::Penetrating);
                     const double expected = c.depth * scale;
                     // exact up to the rounding of the box corners at the offset
-                    const double slack = 1e-13 * expected + 8 * DBL_EPSILON * offset;
+                    const double slack = 1e-13 * expected + 8 * kMachineEpsilon * offset;
                     CHECK(std::abs(r.depth - expected) <= slack);
                     if (c.center.norm() > 0) CHECK((r.normal - c.normal).norm() <= 1e-12 + slack / scale);
                     // translating B by depth * normal separates to touching
@@ -197,7 +197,7 @@ TEST_SUITE("epa") {
             const double h = static_cast<double>(supportValueL(a.vertices, b.vertices, r.normal));
             maxNormalErr = std::max(maxNormalErr, std::abs(h - r.depth) / r.depth);
             const Vec3 diff = r.pointA - r.pointB - r.depth * r.normal;
-            maxWitnessErr = std::max(maxWitnessErr, diff.norm() / (1e-12 * d + 16 * DBL_EPSILON * (offset + size)));
+            maxWitnessErr = std::max(maxWitnessErr, diff.norm() / (1e-12 * d + 16 * kMachineEpsilon * (offset + size)));
         }
         std::ostringstream msg;
         msg << "EPA: " << tested << " penetrating pairs, max rel depth error " << maxDepthErr

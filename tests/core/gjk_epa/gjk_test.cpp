@@ -3,10 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <cfloat>
 #include <random>
 #include <sstream>
 
+#include "core/base/tolerances.h"
 #include "core/gjk_epa/gjk.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
 #include "tests/core/gjk_epa/gjk_epa_test_support.h"
@@ -42,13 +42,13 @@ TEST_SUITE("gjk") {
                     const double expected = 0.8 * size;
                     // Spheres converge geometrically: the tolerance is GJK's relative tolerance
                     // plus the rounding of the centers at the offset.
-                    const double slack = 1e-12 * expected + 16 * DBL_EPSILON * offset;
+                    const double slack = 1e-12 * expected + 16 * kMachineEpsilon * offset;
                     CHECK(std::abs(r.distance - expected) <= slack);
                     CHECK((r.pointA - (o + 0.7 * size * dir)).norm() <=
-                          (1e-6 + std::sqrt(64 * DBL_EPSILON * offset / size)) * size);
+                          (1e-6 + std::sqrt(64 * kMachineEpsilon * offset / size)) * size);
                     // A sphere stored at offset 1e6 is only round to ulp(1e6) ~ 1e-10: the axis
                     // is then known to ~sqrt(noise / size).
-                    const double noise = 64 * DBL_EPSILON * offset / size;
+                    const double noise = 64 * kMachineEpsilon * offset / size;
                     CHECK((r.separatingAxis - dir).norm() <= 1e-6 + std::sqrt(noise));
                     CHECK(r.lowerBound <= r.distance * (1 + 1e-13) + slack);
                 }
@@ -161,7 +161,7 @@ TEST_SUITE("gjk") {
                 maxAxisErr = std::max(maxAxisErr, std::abs(gap - d) / d);
                 // witness points are doubles at the offset: allow their own rounding
                 const double wErr = std::abs((r.pointA - r.pointB).norm() - d);
-                maxWitnessErr = std::max(maxWitnessErr, wErr / (1e-12 * d + 16 * DBL_EPSILON * (offset + size)));
+                maxWitnessErr = std::max(maxWitnessErr, wErr / (1e-12 * d + 16 * kMachineEpsilon * (offset + size)));
             }
             std::ostringstream msg;
             msg << nameOf(solver) << ": separated " << separated << ", intersecting " << intersecting
