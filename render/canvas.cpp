@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <variant>
 
 #include <Eigen/Geometry>
 
 #include "render/gl_internal.h"
+#include "render/label_placement.h"
 
 namespace cdlab::render {
 
@@ -49,6 +51,7 @@ struct LineCmd {
     std::vector<Vector3d> points;  // closed polylines repeat the first point at the end
     LineStyle style;
     bool arrow;
+    bool pixelSpace = false;  // points are output pixels (x, y, 0): leader lines of placed labels
 };
 struct PointCmd {
     Vector3d p;
@@ -162,6 +165,10 @@ struct Canvas::Impl {
     std::vector<MeshCmd> meshes;
     std::vector<std::variant<LineCmd, PointCmd>> overlays;
     std::vector<TextCmd> texts;
+    // Per frame, from layoutTexts(): where each text goes (its offset after placement; none: not
+    // drawn) and the leader lines of labels moved away from their points.
+    std::vector<std::optional<Vector2d>> textOffsets;
+    std::vector<LineCmd> leaders;
     RenderTarget target;
     bool haveTarget = false;
     int samples = 1;
@@ -193,6 +200,14 @@ struct Canvas::Impl {
         return std::isfinite(a.squaredNorm()) && std::isfinite(b.squaredNorm()) && a.w() > 0 && b.w() > 0;
     }
 
+    /// Output-pixel position of a world point; false behind the eye.
+    bool toPixels(const Vector3d& p, Vector2d& px) const {
+        const Vector4d c = clip(p);
+        if (!(c.w() > 0) || !(c.z() >= -c.w()) || !c.allFinite()) return false;
+        px = screen(c).head<2>() / ss;
+        return px.allFinite();
+    }
+    FigureLayout layoutTexts();
     void buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>& translucent);
     void addCapsule(std::vector<Vertex>& out, const Vector3d& a, const Vector3d& b, double halfW, double dash,
                     double phase, const Color& color);
@@ -201,6 +216,109 @@ struct Canvas::Impl {
 };
 
 // ---------------------------------------------------------------------------------------------
+
+// Every text's box in output pixels: fixed texts where they were asked for, point labels
+// (TextStyle::place) through placeLabel around their points, in drawing order, each one an
+// obstacle for the next. Fills textOffsets and leaders for the build steps.
+FigureLayout Canvas::Impl::layoutTexts() {
+    FigureLayout layout;
+    const Box panel{0, 0, double(options.width), double(options.height)};
+    layout.panels.push_back(panel);
+    textOffsets.assign(texts.size(), std::nullopt);
+    leaders.clear();
+
+    PlacementObstacles obstacles;
+    obstacles.panel = panel;
+    for (const auto& item : overlays) {
+        if (const auto* pt = std::get_if<PointCmd>(&item)) {
+            Vector2d c;
+            const double r = std::max(0.0f, pt->radiusPx);
+            if (r <= 0 || !toPixels(pt->p, c)) continue;
+            const Box box{c.x() - r, c.y() - r, c.x() + r, c.y() + r};
+            layout.markers.push_back({box, -1});
+            obstacles.boxes.push_back(box);
+        } else {
+            const LineCmd& line = std::get<LineCmd>(item);
+            if (line.style.widthPx < 3.0f) continue;  // thin lines: a label may cross them (halo)
+            for (std::size_t i = 0; i + 1 < line.points.size(); ++i) {
+                Vector2d a, b;
+                if (toPixels(line.points[i], a) && toPixels(line.points[i + 1], b))
+                    obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx});
+            }
+        }
+    }
+    // Where a text is asked to be: its anchor point (output px) and its box's size.
+    struct Asked {
+        bool visible = false;
+        Vector2d anchor, size;
+        double lineHeight = 0;
+    };
+    std::vector<Asked> asked(texts.size());
+    for (std::size_t i = 0; i < texts.size(); ++i) {
+        const TextCmd& t = texts[i];
+        Asked& a = asked[i];
+        if (!(t.style.sizePx > 0) || t.text.empty()) continue;
+        if (t.world) a.visible = toPixels(t.at, a.anchor);
+        else a.anchor = t.px, a.visible = t.px.allFinite();
+        const TextLayout L = layoutText(context.impl().font(t.style.bold), t.text, t.style.sizePx);
+        a.size = Vector2d(L.width, L.height);
+        a.lineHeight = t.style.sizePx;
+    }
+    const auto record = [&](std::size_t i, const Box& box) {
+        const TextCmd& t = texts[i];
+        std::optional<Vector2d> anchor;
+        if (t.world) anchor = asked[i].anchor;
+        layout.labels.push_back({t.text, box, anchor, asked[i].lineHeight});
+        obstacles.boxes.push_back(box);
+    };
+    for (std::size_t i = 0; i < texts.size(); ++i) {  // fixed texts first: the labels go around them
+        if (texts[i].style.place) continue;
+        textOffsets[i] = texts[i].style.offsetPx;
+        if (!asked[i].visible) continue;
+        const Vector2d at = asked[i].anchor + texts[i].style.offsetPx;
+        double align = 0;
+        const Vector2d o = boxOrigin(texts[i].style.anchor, at.x(), at.y(), asked[i].size.x(), asked[i].size.y(), align);
+        record(i, Box{o.x(), o.y(), o.x() + asked[i].size.x(), o.y() + asked[i].size.y()});
+    }
+    for (std::size_t i = 0; i < texts.size(); ++i) {
+        const TextCmd& t = texts[i];
+        if (!t.style.place || !asked[i].visible) continue;
+        PlacementRequest request;
+        request.anchor = asked[i].anchor;
+        request.size = asked[i].size;
+        request.preferred = t.style.offsetPx;
+        const Vector2d dir = t.style.offsetPx.norm() > 0 ? Vector2d(t.style.offsetPx.normalized()) : Vector2d(0, 0);
+        const double halfAlong = 0.5 * std::abs(dir.x()) * request.size.x() + 0.5 * std::abs(dir.y()) * request.size.y();
+        request.gap = std::max(4.0, t.style.offsetPx.norm() - halfAlong);
+        const Placement p = placeLabel(request, obstacles);
+        if (!p.placed) {
+            layout.unplaced.push_back(t.text);
+            continue;
+        }
+        textOffsets[i] = p.box.center() - request.anchor;
+        record(i, p.box);
+        if (p.leader) {  // from the point to the nearest point of the box, stopping 2 px short
+            const Vector2d near(std::clamp(request.anchor.x(), p.box.x0, p.box.x1),
+                                std::clamp(request.anchor.y(), p.box.y0, p.box.y1));
+            const Vector2d d = near - request.anchor;
+            const Vector2d end = d.norm() > 4 ? Vector2d(near - 2.0 * d.normalized()) : near;
+            LineStyle style{1.5f, t.style.color.withAlpha(0.8f), 0.0f, true};
+            leaders.push_back(LineCmd{{Vector3d(request.anchor.x(), request.anchor.y(), 0), Vector3d(end.x(), end.y(), 0)},
+                                      style, false, true});
+        }
+    }
+    // A marker is named by the label whose point is inside it (the nearest to its centre).
+    for (LayoutMarker& m : layout.markers) {
+        double best = INFINITY;
+        for (std::size_t i = 0; i < layout.labels.size(); ++i) {
+            const auto& a = layout.labels[i].anchor;
+            if (!a || !m.box.contains(*a)) continue;
+            const double d = (*a - m.box.center()).norm();
+            if (d < best) best = d, m.label = int(i);
+        }
+    }
+    return layout;
+}
 
 void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>& translucent) {
     // Camera frame for the light: a key light from the upper left, in front of the scene, so
@@ -282,7 +400,9 @@ void Canvas::Impl::addCapsule(std::vector<Vertex>& out, const Vector3d& a, const
 
 void Canvas::Impl::buildOverlays(std::vector<Vertex>& out) {
     const double s = ss;
-    for (const auto& item : overlays) {
+    std::vector<std::variant<LineCmd, PointCmd>> all = overlays;
+    all.insert(all.end(), leaders.begin(), leaders.end());
+    for (const auto& item : all) {
         if (const auto* line = std::get_if<LineCmd>(&item)) {
             const LineStyle& st = line->style;
             const double halfW = 0.5 * std::max(0.0f, st.widthPx) * s;
@@ -291,9 +411,15 @@ void Canvas::Impl::buildOverlays(std::vector<Vertex>& out) {
             double phase = 0;
             const std::size_t nSeg = line->points.size() < 2 ? 0 : line->points.size() - 1;
             for (std::size_t i = 0; i < nSeg; ++i) {
-                Vector4d ca = clip(line->points[i]), cb = clip(line->points[i + 1]);
-                if (!clipNear(ca, cb)) continue;
-                Vector3d a = screen(ca), b = screen(cb);
+                Vector3d a, b;
+                if (line->pixelSpace) {
+                    a = Vector3d(line->points[i].x() * s, line->points[i].y() * s, -1.0);
+                    b = Vector3d(line->points[i + 1].x() * s, line->points[i + 1].y() * s, -1.0);
+                } else {
+                    Vector4d ca = clip(line->points[i]), cb = clip(line->points[i + 1]);
+                    if (!clipNear(ca, cb)) continue;
+                    a = screen(ca), b = screen(cb);
+                }
                 if (st.onTop || !is3D()) a.z() = b.z() = -1.0;  // nearest depth: always passes
                 const bool isHead = line->arrow && i + 1 == nSeg;
                 if (!isHead) {
@@ -356,7 +482,9 @@ void Canvas::Impl::buildOverlays(std::vector<Vertex>& out) {
 void Canvas::Impl::buildText(std::vector<Vertex>& out, std::vector<std::pair<GLuint, std::pair<int, int>>>& runs,
                              int base) {
     GlContext::Impl& gl = context.impl();
-    for (const TextCmd& t : texts) {
+    for (std::size_t ti = 0; ti < texts.size(); ++ti) {
+        const TextCmd& t = texts[ti];
+        if (!textOffsets[ti]) continue;  // a label the placement step could not place
         Vector2d at;
         if (t.world) {
             const Vector4d c = clip(t.at);
@@ -365,14 +493,15 @@ void Canvas::Impl::buildText(std::vector<Vertex>& out, std::vector<std::pair<GLu
         } else {
             at = t.px * ss;
         }
-        at += t.style.offsetPx * ss;
+        at += *textOffsets[ti] * ss;
         if (!at.allFinite() || !(t.style.sizePx > 0)) continue;
         const int pixelSize = std::max(1, int(std::lround(t.style.sizePx * ss)));
         GlyphAtlas& atlas = gl.atlas(t.style.bold, pixelSize);
         const FontFace& face = gl.font(t.style.bold);
         const TextLayout L = layoutText(face, t.text, pixelSize);
         double align = 0;
-        const Vector2d origin = boxOrigin(t.style.anchor, at.x(), at.y(), L.width, L.height, align);
+        const Vector2d origin =
+            boxOrigin(t.style.place ? Anchor::Center : t.style.anchor, at.x(), at.y(), L.width, L.height, align);
 
         const int first = int(out.size());
         auto emitGlyphs = [&](double dx, double dy, const Color& color) {
@@ -561,6 +690,7 @@ Image Canvas::readPixels() {
     }
     m.samples = m.target.samples;
     m.viewProjection = m.camera.viewProjection(double(m.options.width) / m.options.height);
+    FigureLayout layout = m.layoutTexts();  // places the point labels: before any vertex is built
 
     // Build every vertex for the frame, in drawing order.
     std::vector<Vertex> opaque, translucent, overlay, text;
@@ -651,6 +781,7 @@ Image Canvas::readPixels() {
         std::copy_n(rows.data() + std::size_t(m.rh - 1 - y) * stride, stride,
                     raw.rgba.data() + std::size_t(y) * stride);
     Image out = m.ss > 1 ? downsample(raw, m.ss) : raw;
+    out.layout = std::move(layout);
     stats.readbackSeconds += secondsSince(t0);
     ++stats.frames;
     return out;

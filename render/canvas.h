@@ -12,6 +12,7 @@
 
 #include "render/camera.h"
 #include "render/color.h"
+#include "render/figure_layout.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 
@@ -40,6 +41,10 @@ struct TextStyle {
     bool halo = true;                // background-coloured outline for legibility over shapes
     bool bold = false;
     Eigen::Vector2d offsetPx{0, 0};  // moves the text by output pixels (x right, y down), e.g. off a point
+    /// A point label: readPixels() places it (render/label_placement.h) around its point, off the other
+    /// labels, markers and thick lines, preferring the side offsetPx points to; one that fits nowhere
+    /// is not drawn and is listed in the layout's `unplaced`.
+    bool place = false;
 };
 
 /// Not thread-safe; a Canvas must not outlive its GlContext. Cheap to create: GL objects
@@ -96,7 +101,8 @@ public:
     /// Width and height in output pixels that drawTextPx would use.
     Eigen::Vector2d measureText(const std::string& text, const TextStyle& style) const;
 
-    /// Renders every recorded command, resolves MSAA and supersampling, reads back RGBA8.
+    /// Renders every recorded command, resolves MSAA and supersampling, reads back RGBA8, with the
+    /// picture's layout (every text box, marker and the panel; output pixels) in Image::layout.
     /// The command list is kept; calling again re-renders identically.
     Image readPixels();
     /// Forgets recorded commands (camera and background stay).

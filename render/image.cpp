@@ -241,12 +241,14 @@ Image downsample(const Image& image, int factor) {
             for (int c = 0; c < 4; ++c)
                 q[c] = std::uint8_t((sum[c] + unsigned(n) / 2) / unsigned(n));  // round to nearest
         }
+    out.layout = image.layout.scaled(1.0 / factor);
     return out;
 }
 
 void blit(Image& dst, const Image& src, int x, int y) {
     const int x0 = std::max(0, x), y0 = std::max(0, y);
     const int x1 = std::min(dst.width, x + src.width), y1 = std::min(dst.height, y + src.height);
+    dst.layout.append(src.layout, x, y);
     if (x0 >= x1) return;
     for (int row = y0; row < y1; ++row)
         std::memcpy(dst.pixel(x0, row), src.pixel(x0 - x, row - y), std::size_t(x1 - x0) * 4);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/color.h"
+#include "render/figure_layout.h"
 
 namespace cdlab::render {
 
@@ -17,6 +18,7 @@ struct Image {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> rgba;  // width * height * 4 bytes
+    FigureLayout layout;             // where its text and markers are (empty for a decoded PNG)
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * h * 4, 0) {}
@@ -76,10 +78,11 @@ private:
     std::vector<Staged> staged_;
 };
 
-/// Box-filter downsample by an integer factor (supersampling resolve for --scale).
+/// Box-filter downsample by an integer factor (supersampling resolve for --scale); the layout
+/// shrinks with it.
 Image downsample(const Image& image, int factor);
 
-/// Pastes src into dst with its top-left corner at (x, y), clipped.
+/// Pastes src into dst with its top-left corner at (x, y), clipped; src's layout joins dst's.
 void blit(Image& dst, const Image& src, int x, int y);
 
 /// `top` over `bottom`, left-aligned, in a picture as wide as the wider one (the rest transparent black).

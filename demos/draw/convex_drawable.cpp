@@ -163,7 +163,8 @@ void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::
     const Eigen::Vector2d box = canvas.measureText(text, style);
     // Push the box centre out so its nearest edge is px away from the point.
     const double reach = px + 0.5 * std::abs(dir.x()) * box.x() + 0.5 * std::abs(dir.y()) * box.y();
-    style.offsetPx = dir * reach;
+    style.offsetPx = dir * reach;  // the preferred side; the placement step moves it off anything in the way
+    style.place = true;
     canvas.drawText(at, text, style);
 }
 

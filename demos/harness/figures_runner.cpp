@@ -27,6 +27,7 @@
 
 #include "demos/catalog/catalog.h"
 #include "demos/harness/gallery.h"
+#include "demos/harness/layout_json.h"
 #include "demos/harness/scene_runner.h"
 #include "render/canvas.h"
 #include "render/image.h"
@@ -156,7 +157,7 @@ void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCo
         const std::string name = plainOutputName(fr.name + ".png");
         files.addPng((dir / name).string(), fr.image);
         manifest.files.push_back(name);
-        manifest.frames.push_back({fr.name, fr.caption});
+        manifest.frames.push_back({fr.name, fr.caption, layoutJson(fr.image)});
     }
     for (const auto& [name, bytes] : out.files) {
         files.addFile((dir / plainOutputName(name)).string(), bytes);

@@ -34,7 +34,7 @@ FigureManifest readFigureManifest(const fs::path& file) {
     for (const JsonNode& f : r.get("frames").items()) {
         ObjectReader fr(f);
         std::string name = plainFileName(fr.get("name"));
-        m.frames.push_back({name, fr.get("caption").asString()});
+        m.frames.push_back({name, fr.get("caption").asString(), fr.find("layout") ? fr.get("layout").raw() : Json()});
         fr.finish();
     }
     for (const JsonNode& f : r.get("files").items()) m.files.push_back(plainFileName(f));
@@ -45,7 +45,11 @@ FigureManifest readFigureManifest(const fs::path& file) {
 std::string figureManifestText(const FigureManifest& m) {
     Json j = {
         {"key", m.key}, {"title", m.title}, {"caption", m.caption}, {"frames", Json::array()}, {"files", m.files}};
-    for (const auto& f : m.frames) j["frames"].push_back({{"name", f.name}, {"caption", f.caption}});
+    for (const auto& f : m.frames) {
+        Json entry = {{"name", f.name}, {"caption", f.caption}};
+        if (!f.layout.is_null()) entry["layout"] = f.layout;
+        j["frames"].push_back(std::move(entry));
+    }
     return j.dump(1) + "\n";
 }
 

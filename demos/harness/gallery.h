@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "demos/scene/json_reader.h"
+
 namespace cdlab::demos {
 
 /// <out>/<demo>/<scene>/manifest.json: the cache key and what a figures run wrote into the folder.
@@ -15,6 +17,7 @@ struct FigureManifest {
     struct FrameEntry {
         std::string name;  // file stem of <name>.png
         std::string caption;
+        Json layout;  // the frame's text and markers (layoutJson); null when not recorded
     };
     std::string key;  // cache key (scene bytes, options, executable)
     std::string title, caption;

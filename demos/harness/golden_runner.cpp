@@ -9,12 +9,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <fstream>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "demos/catalog/catalog.h"
 #include "demos/harness/trace_compare.h"
 #include "render/compare.h"
+#include "render/legibility.h"
 #include "render/image.h"
 
 namespace cdlab::demos {
@@ -30,6 +33,8 @@ namespace {
 // are listed before their files are written, so a run killed half-way is still cleaned up. (A
 // text list, not JSON: a report folder inside golden/ must not look like a scene file.)
 constexpr const char* kReportList = "cdlab-report.txt";
+// Frames ("demo/scene/frame") that are known not to pass the legibility check yet, one per line.
+constexpr const char* kLegibilityKnownFile = "legibility_known.txt";
 constexpr const char* kReportHeader = "# cdlab golden --report: what this report wrote (the next run deletes it)";
 
 // A path relative to the report folder whose every component is a plain name.
@@ -175,7 +180,18 @@ struct GoldenRun {
         return true;
     }
 
+    // Legibility: frames listed in golden/legibility_known.txt still have problems (the list may
+    // only shrink: a listed frame that is clean fails too, until its line is removed).
+    std::set<std::string> knownIllegible{};
+    int knownFrames = 0;
+    struct Offender {
+        std::string frame;
+        render::LegibilityProblem problem;
+    };
+    std::vector<Offender> offenders{};
+
     void runScene(const std::string& file, const RunContext& ctx);
+    void checkLegibility(const SceneCommon& sc, const Frame& fr);
     void checkFrame(const SceneCommon& sc, const Frame& fr, const fs::path& goldenDir);
     void checkTrace(const SceneCommon& sc, const Json& trace, const fs::path& goldenDir);
     void reportFrame(const SceneCommon& sc, const Frame& fr, const fs::path& goldenPng, bool exists,
@@ -190,7 +206,10 @@ void GoldenRun::runScene(const std::string& file, const RunContext& ctx) {
         const fs::path goldenDir = sceneOutputDir(fs::path(file).parent_path().parent_path(),
                                                   fs::path(file).parent_path().filename().string(), sc.name);
         DemoOutput out = scene->run(ctx);
-        for (const Frame& fr : out.frames) checkFrame(sc, fr, goldenDir);
+        for (const Frame& fr : out.frames) {
+            checkFrame(sc, fr, goldenDir);
+            checkLegibility(sc, fr);
+        }
         checkTrace(sc, out.trace, goldenDir);
     } catch (const InputError& e) {
         const std::string what = e.what();
@@ -221,6 +240,31 @@ void GoldenRun::checkFrame(const SceneCommon& sc, const Frame& fr, const fs::pat
     if (!exists) problem += " (create it with: ./cdlab test --update-golden)";
     fail(id + ": " + problem);
     reportFrame(sc, fr, goldenPng, exists, problem);
+}
+
+// The frame's recorded layout against render/legibility.h's rules.
+void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
+    if (fr.image.width == 0) return;
+    ++checked;
+    const std::string id = sceneId(sc) + "/" + fr.name;
+    const std::vector<render::LegibilityProblem> problems =
+        render::checkLegibility(fr.image.layout, fr.image.width, fr.image.height);
+    for (const render::LegibilityProblem& p : problems) offenders.push_back({id, p});
+    const bool known = knownIllegible.count(id) != 0;
+    if (problems.empty()) {
+        if (known) fail(id + ": legible now: remove its line from " + kLegibilityKnownFile);
+        return;
+    }
+    if (known) {
+        ++knownFrames;
+        return;
+    }
+    const render::LegibilityProblem& worst = problems.front();
+    fail(id + ": not slide-legible, " + std::to_string(problems.size()) + " problem(s); worst: " + nameOf(worst.kind) +
+         ": \"" + worst.text + "\" " + worst.detail);
+    for (std::size_t i = 1; i < problems.size() && i < 6; ++i)
+        std::cout << "     " << nameOf(problems[i].kind) << ": \"" << problems[i].text << "\" " << problems[i].detail
+                  << "\n";
 }
 
 // actual / expected / diff PNGs of a failed frame into the report folder.
@@ -288,6 +332,12 @@ int runGolden(const RunnerOptions& o) {
         {}};
     run.report.removePrevious();
 
+    {
+        std::ifstream known(fs::path(o.goldenDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/golden" : o.goldenDir) /
+                            kLegibilityKnownFile);
+        for (std::string line; std::getline(known, line);)
+            if (!line.empty() && line[0] != '#') run.knownIllegible.insert(line);
+    }
     std::unique_ptr<render::GlContext> gl = createContext(o.verbose);  // one context for the whole run
     const RunContext ctx{gl.get(), 0, false};
     for (const auto& file : files) run.runScene(file, ctx);
@@ -300,6 +350,17 @@ int runGolden(const RunnerOptions& o) {
             std::cout << "report: " << page << "\n";
         } catch (const std::exception& e) {
             run.writeError("report: " + std::string(e.what()));
+        }
+    }
+    if (!run.offenders.empty()) {
+        std::stable_sort(run.offenders.begin(), run.offenders.end(), [](const auto& a, const auto& b) {
+            return a.problem.severity > b.problem.severity;
+        });
+        std::cout << "legibility: " << run.offenders.size() << " problem(s), " << run.knownFrames
+                  << " frame(s) listed in " << kLegibilityKnownFile << "; worst:\n";
+        for (std::size_t i = 0; i < run.offenders.size() && i < 12; ++i) {
+            const auto& [frame, p] = run.offenders[i];
+            std::cout << "  " << frame << ": " << nameOf(p.kind) << ": \"" << p.text << "\" " << p.detail << "\n";
         }
     }
     std::cout << "golden: " << run.checked - run.failed - run.updated << " passed, " << run.failed << " failed";

@@ -10,6 +10,7 @@
 
 #include "render/canvas.h"
 #include "render/compare.h"
+#include "render/legibility.h"
 
 using namespace cdlab::render;
 using Eigen::Vector2d;
@@ -353,5 +354,44 @@ TEST_SUITE("render/canvas") {
         c2.drawText({1, 1, 0}, "support s = (1, 1)", {18, roleColor(Role::Ink), Anchor::Left});
         c2.drawTextPx(10, 10, "2D · first row on top", {22, roleColor(Role::Ink), Anchor::TopLeft, true, true});
         writePngAtomic(std::string(dir) + "/sample_2d.png", c2.readPixels());
+    }
+}
+
+TEST_SUITE("canvas layout") {
+    TEST_CASE("readPixels records text boxes, markers and who names them; placed labels go around the rest") {
+        Canvas c(context(), CanvasOptions{200, 200, 1, 4});
+        c.setCamera(Camera::twoD(0, 0, 10));
+        c.setBackground(kWhite);
+        c.drawPoint(Vector3d(0, 0, 0), 6.0f, Color{0, 0, 0, 1});
+        TextStyle fixed{16.0f, Color{0, 0, 0, 1}, Anchor::Left, false, false};
+        fixed.offsetPx = Vector2d(8, 0);
+        c.drawText(Vector3d(0, 0, 0), "fixed", fixed);  // right of the point
+        TextStyle placed{16.0f, Color{0, 0, 0, 1}};
+        placed.offsetPx = Vector2d(20, 0);  // asks for the same side
+        placed.place = true;
+        c.drawText(Vector3d(0, 0, 0), "moved", placed);
+        c.drawTextPx(4, 4, "title", TextStyle{16.0f, Color{0, 0, 0, 1}, Anchor::TopLeft, false, false});
+        const Image im = c.readPixels();
+        const FigureLayout& l = im.layout;
+        REQUIRE(l.panels.size() == 1);
+        CHECK(l.panels[0].x1 == 200);
+        REQUIRE(l.labels.size() == 3);
+        REQUIRE(l.markers.size() == 1);
+        CHECK(l.markers[0].box.center().x() == doctest::Approx(100));
+        CHECK(l.markers[0].box.width() == doctest::Approx(12));
+        const LayoutLabel* fixedLabel = nullptr;
+        const LayoutLabel* moved = nullptr;
+        const LayoutLabel* title = nullptr;
+        for (const LayoutLabel& lab : l.labels)
+            (lab.text == "fixed" ? fixedLabel : lab.text == "moved" ? moved : title) = &lab;
+        REQUIRE((fixedLabel && moved && title));
+        CHECK(fixedLabel->box.x0 == doctest::Approx(108));
+        CHECK(fixedLabel->box.height() == doctest::Approx(16));
+        CHECK(fixedLabel->anchor.has_value());
+        CHECK_FALSE(title->anchor.has_value());
+        CHECK(moved->box.overlapArea(fixedLabel->box) == 0);
+        CHECK(moved->box.overlapArea(l.markers[0].box) == 0);
+        CHECK(l.markers[0].label >= 0);
+        CHECK(checkLegibility(l, 200, 200).empty());
     }
 }

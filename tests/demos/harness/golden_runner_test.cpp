@@ -23,7 +23,8 @@ fs::path makeGoldenDir() {
     std::ofstream(root / "voronoi_triangle" / "small.json") << R"({
       "demo": "voronoi_triangle", "title": "small", "image": {"width": 256, "height": 256},
       "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[-0.5, -0.5, 0.2], [1.0, 0.5, 0.5]],
-      "views": ["plane"]})";
+      "views": ["plane"],
+      "layers": ["regions", "boundaries", "closest", "queries"]})";
     return root;
 }
 
@@ -70,5 +71,27 @@ TEST_CASE("golden runner: creates, passes, and rejects perturbed or broken golde
     t["queries"][0]["distance"] = t["queries"][0]["distance"].get<double>() + 1e-6;
     std::ofstream(trace, std::ios::trunc) << t.dump(1);
     CHECK(runGolden(options(root)) == 1);
+    fs::remove_all(root);
+}
+
+TEST_CASE("golden runner: an illegible frame fails; legibility_known.txt lists it and may only shrink") {
+    fs::path root = makeGoldenDir();
+    // The same figure with its labels: at 256 px the region names pile onto the query points.
+    std::ofstream(root / "voronoi_triangle" / "small.json") << R"({
+      "demo": "voronoi_triangle", "title": "small", "image": {"width": 256, "height": 256},
+      "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[-0.5, -0.5, 0.2], [1.0, 0.5, 0.5]],
+      "views": ["plane"]})";
+    CHECK(runGolden(options(root, "failing")) == 1);  // goldens written, the legibility check still fails
+    CHECK(runGolden(options(root)) == 1);
+    std::ofstream(root / "legibility_known.txt") << "# known\nvoronoi_triangle/small/plane\n";
+    CHECK(runGolden(options(root)) == 0);
+    // Once the frame is legible (no labels drawn), its line must go.
+    std::ofstream(root / "voronoi_triangle" / "small.json") << R"({
+      "demo": "voronoi_triangle", "title": "small", "image": {"width": 256, "height": 256},
+      "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[-0.5, -0.5, 0.2], [1.0, 0.5, 0.5]],
+      "views": ["plane"], "layers": ["regions", "boundaries", "closest", "queries"]})";
+    CHECK(runGolden(options(root, "failing")) == 1);
+    std::ofstream(root / "legibility_known.txt") << "# known\n";
+    CHECK(runGolden(options(root)) == 0);
     fs::remove_all(root);
 }

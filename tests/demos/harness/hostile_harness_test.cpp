@@ -48,7 +48,8 @@ void writeScene(const fs::path& file, bool steps = false) {
     fs::create_directories(file.parent_path());
     std::ofstream(file) << R"({"demo": "voronoi_triangle", "image": {"width": 256, "height": 256},
       "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[-0.5, -0.5, 0.2], [1.0, 0.5, 0.5]],
-      "views": ["plane"], "steps": )"
+      "views": ["plane"],
+      "layers": ["regions", "boundaries", "closest", "queries"], "steps": )"
                         << (steps ? "true" : "false") << "}";
 }
 

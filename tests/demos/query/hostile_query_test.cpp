@@ -223,7 +223,8 @@ TEST_SUITE("hostile input") {
         fs::create_directories(root / "voronoi_triangle");
         std::ofstream(root / "voronoi_triangle" / "small.json") << R"({
       "demo": "voronoi_triangle", "image": {"width": 128, "height": 128},
-      "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[1.0, 0.5, 0.5]], "views": ["plane"]})";
+      "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[1.0, 0.5, 0.5]], "views": ["plane"],
+      "layers": ["regions", "boundaries", "closest", "queries"]})";
         RunnerOptions o;
         o.goldenDir = root.string();
         o.reportDir = (root / "report").string();

@@ -1,0 +1,43 @@
+#include "render/figure_layout.h"
+
+#include <algorithm>
+
+namespace cdlab::render {
+
+double Box::overlapArea(const Box& o) const {
+    const double w = std::min(x1, o.x1) - std::max(x0, o.x0);
+    const double h = std::min(y1, o.y1) - std::max(y0, o.y0);
+    return w > 0 && h > 0 ? w * h : 0.0;
+}
+
+bool Box::contains(const Box& o, double slack) const {
+    return o.x0 >= x0 - slack && o.y0 >= y0 - slack && o.x1 <= x1 + slack && o.y1 <= y1 + slack;
+}
+
+void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
+    const int base = int(labels.size());
+    for (const Box& p : other.panels) panels.push_back(p.translated(dx, dy));
+    for (const LayoutLabel& l : other.labels) {
+        LayoutLabel moved = l;
+        moved.box = l.box.translated(dx, dy);
+        if (l.anchor) moved.anchor = *l.anchor + Eigen::Vector2d(dx, dy);
+        labels.push_back(std::move(moved));
+    }
+    for (const LayoutMarker& m : other.markers)
+        markers.push_back({m.box.translated(dx, dy), m.label >= 0 ? m.label + base : -1});
+    unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
+}
+
+FigureLayout FigureLayout::scaled(double s) const {
+    FigureLayout out = *this;
+    for (Box& p : out.panels) p = p.scaled(s);
+    for (LayoutLabel& l : out.labels) {
+        l.box = l.box.scaled(s);
+        if (l.anchor) l.anchor = *l.anchor * s;
+        l.lineHeight *= s;
+    }
+    for (LayoutMarker& m : out.markers) m.box = m.box.scaled(s);
+    return out;
+}
+
+}  // namespace cdlab::render

@@ -1,0 +1,59 @@
+// Where a figure's text and markers are, in pixels of the picture (origin top-left): what the
+// legibility check (render/legibility.h) reads and what manifest.json records for every frame.
+// A Canvas fills it in readPixels(); blit / stackVertically / downsample carry it along, so a
+// composed frame knows every label of every panel pasted into it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace cdlab::render {
+
+/// Axis-aligned pixel rectangle [x0, x1] x [y0, y1].
+struct Box {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+    double width() const { return x1 - x0; }
+    double height() const { return y1 - y0; }
+    Eigen::Vector2d center() const { return {0.5 * (x0 + x1), 0.5 * (y0 + y1)}; }
+    /// Area of the intersection (0 when they only touch).
+    double overlapArea(const Box& o) const;
+    /// True when `o` lies inside this box, up to `slack` pixels on each side.
+    bool contains(const Box& o, double slack = 0) const;
+    bool contains(const Eigen::Vector2d& p) const { return p.x() >= x0 && p.x() <= x1 && p.y() >= y0 && p.y() <= y1; }
+    Box translated(double dx, double dy) const { return {x0 + dx, y0 + dy, x1 + dx, y1 + dy}; }
+    Box scaled(double s) const { return {x0 * s, y0 * s, x1 * s, y1 * s}; }
+};
+
+/// A text as drawn: its box spans the font's line height (ascent to descent) of every line and
+/// the text's advance width; `anchor` is the point it names (null for titles and captions).
+struct LayoutLabel {
+    std::string text;
+    Box box;
+    std::optional<Eigen::Vector2d> anchor;
+    double lineHeight = 0;  // one line's height, px
+};
+
+/// A drawn point marker (its disc's bounding box); `label` indexes the label that names it, or -1.
+struct LayoutMarker {
+    Box box;
+    int label = -1;
+};
+
+struct FigureLayout {
+    std::vector<Box> panels;  // the canvases a frame was composed from, outermost first
+    std::vector<LayoutLabel> labels;
+    std::vector<LayoutMarker> markers;
+    /// Labels the placement step could not put anywhere free: reported here, not drawn.
+    std::vector<std::string> unplaced;
+
+    /// Adds `other`, moved by (dx, dy) (marker label indices follow their labels).
+    void append(const FigureLayout& other, double dx, double dy);
+    /// Every coordinate times s (a picture resized by s).
+    FigureLayout scaled(double s) const;
+};
+
+}  // namespace cdlab::render

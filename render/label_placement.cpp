@@ -1,0 +1,106 @@
+#include "render/label_placement.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace cdlab::render {
+
+namespace {
+
+using Eigen::Vector2d;
+
+double pointSegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
+    const Vector2d ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    return (a + t * ab - p).norm();
+}
+
+double pointBoxDistance(const Vector2d& p, const Box& b) {
+    const double dx = std::max({b.x0 - p.x(), 0.0, p.x() - b.x1});
+    const double dy = std::max({b.y0 - p.y(), 0.0, p.y() - b.y1});
+    return std::hypot(dx, dy);
+}
+
+// Liang–Barsky: does segment ab enter the box?
+bool segmentHitsBox(const Vector2d& a, const Vector2d& b, const Box& box) {
+    double t0 = 0, t1 = 1;
+    const Vector2d d = b - a;
+    const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+    const double q[4] = {a.x() - box.x0, box.x1 - a.x(), a.y() - box.y0, box.y1 - a.y()};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0) {
+            if (q[i] < 0) return false;
+        } else {
+            const double t = q[i] / p[i];
+            if (p[i] < 0) t0 = std::max(t0, t);
+            else t1 = std::min(t1, t);
+            if (t0 > t1) return false;
+        }
+    }
+    return true;
+}
+
+// A box of `size` whose nearest edge is `gap` px from the anchor in direction `dir` (unit).
+Box boxAt(const Vector2d& anchor, const Vector2d& size, const Vector2d& dir, double gap) {
+    const double reach = gap + 0.5 * std::abs(dir.x()) * size.x() + 0.5 * std::abs(dir.y()) * size.y();
+    const Vector2d c = anchor + dir * reach;
+    return {c.x() - 0.5 * size.x(), c.y() - 0.5 * size.y(), c.x() + 0.5 * size.x(), c.y() + 0.5 * size.y()};
+}
+
+// The preferred direction, then the eight compass directions by their angle from it.
+std::vector<Vector2d> candidateDirections(Vector2d preferred) {
+    if (!(preferred.norm() > 1e-9) || !preferred.allFinite()) preferred = Vector2d(1, -1);
+    preferred.normalize();
+    std::vector<Vector2d> dirs;
+    for (int k = 0; k < 8; ++k) {
+        const double angle = k * M_PI / 4;
+        dirs.emplace_back(std::cos(angle), std::sin(angle));
+    }
+    std::stable_sort(dirs.begin(), dirs.end(),
+                     [&](const Vector2d& x, const Vector2d& y) { return x.dot(preferred) > y.dot(preferred); });
+    dirs.insert(dirs.begin(), preferred);
+    return dirs;
+}
+
+}  // namespace
+
+double segmentBoxDistance(const Vector2d& a, const Vector2d& b, const Box& box) {
+    if (segmentHitsBox(a, b, box)) return 0.0;
+    double d = std::min(pointBoxDistance(a, box), pointBoxDistance(b, box));
+    const std::array<Vector2d, 4> corners = {Vector2d(box.x0, box.y0), Vector2d(box.x1, box.y0),
+                                             Vector2d(box.x1, box.y1), Vector2d(box.x0, box.y1)};
+    for (const Vector2d& c : corners) d = std::min(d, pointSegmentDistance(c, a, b));
+    return d;
+}
+
+Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& obstacles) {
+    const Box inner{obstacles.panel.x0 + obstacles.margin, obstacles.panel.y0 + obstacles.margin,
+                    obstacles.panel.x1 - obstacles.margin, obstacles.panel.y1 - obstacles.margin};
+    const auto free = [&](const Box& b) {
+        if (!inner.contains(b)) return false;
+        for (const Box& o : obstacles.boxes)
+            if (b.overlapArea(o) > 0) return false;
+        return true;
+    };
+    const auto offLines = [&](const Box& b) {
+        for (const PlacementObstacles::Line& l : obstacles.lines)
+            if (segmentBoxDistance(l.a, l.b, b) < l.halfWidth + 1.0) return false;
+        return true;
+    };
+    const std::vector<Vector2d> dirs = candidateDirections(request.preferred);
+    // Rings: next to the anchor, then farther out (with a leader line back to the anchor).
+    const double rings[3] = {1.0, 2.5, 4.5};
+    Placement touchingLines;
+    for (int ring = 0; ring < 3; ++ring)
+        for (const Vector2d& d : dirs) {
+            const Box b = boxAt(request.anchor, request.size, d, request.gap * rings[ring] + (ring ? 8.0 : 0.0));
+            if (!free(b)) continue;
+            if (offLines(b)) return {true, b, ring > 0};
+            if (!touchingLines.placed) touchingLines = {true, b, ring > 0};
+        }
+    return touchingLines;
+}
+
+}  // namespace cdlab::render

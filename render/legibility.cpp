@@ -1,0 +1,86 @@
+#include "render/legibility.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace cdlab::render {
+
+const char* nameOf(LegibilityKind kind) {
+    switch (kind) {
+        case LegibilityKind::LabelsOverlap: return "labels overlap";
+        case LegibilityKind::LabelOnMarker: return "label on a marker it does not name";
+        case LegibilityKind::LabelOutsidePanel: return "label outside its panel";
+        case LegibilityKind::TextTooSmall: return "text too small";
+        case LegibilityKind::Unplaced: return "label could not be placed";
+    }
+    return "?";
+}
+
+namespace {
+
+std::string boxText(const Box& b) {
+    char s[96];
+    std::snprintf(s, sizeof s, "[%.0f, %.0f, %.0f, %.0f]", b.x0, b.y0, b.x1, b.y1);
+    return s;
+}
+
+// The panel a label belongs to: the smallest one holding its anchor (or its box centre).
+const Box* homePanel(const FigureLayout& layout, const LayoutLabel& label) {
+    const Eigen::Vector2d p = label.anchor ? *label.anchor : label.box.center();
+    const Box* best = nullptr;
+    for (const Box& panel : layout.panels)
+        if (panel.contains(p) && (!best || panel.width() * panel.height() < best->width() * best->height()))
+            best = &panel;
+    return best;
+}
+
+// How far `inner` sticks out of `outer`, px (0 when inside).
+double outside(const Box& outer, const Box& inner) {
+    return std::max({0.0, outer.x0 - inner.x0, outer.y0 - inner.y0, inner.x1 - outer.x1, inner.y1 - outer.y1});
+}
+
+}  // namespace
+
+std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int width, int height) {
+    std::vector<LegibilityProblem> out;
+    const std::vector<LayoutLabel>& labels = layout.labels;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        for (std::size_t j = i + 1; j < labels.size(); ++j) {
+            const double area = labels[i].box.overlapArea(labels[j].box);
+            if (area > kOverlapSlackArea)
+                out.push_back({LegibilityKind::LabelsOverlap, labels[i].text, "\"" + labels[j].text + "\"", area});
+        }
+    for (const LayoutMarker& m : layout.markers)
+        for (std::size_t i = 0; i < labels.size(); ++i) {
+            if (m.label == int(i)) continue;
+            const double area = labels[i].box.overlapArea(m.box);
+            if (area > kOverlapSlackArea)
+                out.push_back({LegibilityKind::LabelOnMarker, labels[i].text,
+                               "marker " + boxText(m.box) +
+                                   (m.label >= 0 ? " (named \"" + labels[std::size_t(m.label)].text + "\")" : ""),
+                               area});
+        }
+    const Box image{0, 0, double(width), double(height)};
+    for (const LayoutLabel& l : labels) {
+        const Box* panel = homePanel(layout, l);
+        const Box& home = panel ? *panel : image;
+        const double off = std::max(outside(home, l.box), outside(image, l.box));
+        if (off > 0.5)
+            out.push_back({LegibilityKind::LabelOutsidePanel, l.text,
+                           "box " + boxText(l.box) + " vs panel " + boxText(home), off});
+        const double minimum = kMinLineHeightFraction * height;
+        if (l.lineHeight < minimum) {
+            char s[96];
+            std::snprintf(s, sizeof s, "line height %.1f px < %.1f px", l.lineHeight, minimum);
+            out.push_back({LegibilityKind::TextTooSmall, l.text, s, minimum - l.lineHeight});
+        }
+    }
+    for (const std::string& t : layout.unplaced)
+        out.push_back({LegibilityKind::Unplaced, t, "no free position around its anchor", 1e9});
+    std::stable_sort(out.begin(), out.end(),
+                     [](const LegibilityProblem& a, const LegibilityProblem& b) { return a.severity > b.severity; });
+    return out;
+}
+
+}  // namespace cdlab::render

@@ -1,0 +1,134 @@
+// The legibility rules (render/legibility.h) and the label placement step (render/label_placement.h)
+// on hand-made layouts: each rule fires on the case it names and on nothing else.
+#include <doctest/doctest.h>
+
+#include "render/image.h"
+#include "render/label_placement.h"
+#include "render/legibility.h"
+
+using namespace cdlab::render;
+using Eigen::Vector2d;
+
+namespace {
+
+LayoutLabel label(const std::string& text, Box box, std::optional<Vector2d> anchor = std::nullopt,
+                  double lineHeight = 20) {
+    return {text, box, anchor, lineHeight};
+}
+
+int count(const std::vector<LegibilityProblem>& problems, LegibilityKind kind) {
+    int n = 0;
+    for (const auto& p : problems) n += p.kind == kind;
+    return n;
+}
+
+}  // namespace
+
+TEST_SUITE("legibility") {
+    TEST_CASE("a clean layout has no problem") {
+        FigureLayout l;
+        l.panels = {{0, 0, 400, 300}};
+        l.labels = {label("A", {10, 10, 30, 30}, Vector2d(5, 5)), label("B", {50, 10, 70, 30})};
+        l.markers = {{{0, 0, 10, 10}, 0}};
+        CHECK(checkLegibility(l, 400, 300).empty());
+    }
+
+    TEST_CASE("each rule fires on its own case") {
+        FigureLayout l;
+        l.panels = {{0, 0, 400, 300}, {200, 0, 400, 300}};
+        l.labels = {label("A", {10, 10, 40, 30}), label("B", {30, 20, 60, 40}),  // overlap
+                    label("q", {100, 100, 120, 120}, Vector2d(90, 90)),          // on a marker
+                    label("far", {190, 50, 230, 70}, Vector2d(210, 60)),         // leaves right panel
+                    label("tiny", {10, 200, 40, 204}, std::nullopt, 4)};         // 4 px < 4.5 px
+        l.markers = {{{105, 105, 115, 115}, -1}};
+        l.unplaced = {"lost"};
+        const auto problems = checkLegibility(l, 400, 300);
+        CHECK(count(problems, LegibilityKind::LabelsOverlap) == 1);
+        CHECK(count(problems, LegibilityKind::LabelOnMarker) == 1);
+        CHECK(count(problems, LegibilityKind::LabelOutsidePanel) == 1);
+        CHECK(count(problems, LegibilityKind::TextTooSmall) == 1);
+        CHECK(count(problems, LegibilityKind::Unplaced) == 1);
+        CHECK(problems.front().kind == LegibilityKind::Unplaced);  // worst first
+    }
+
+    TEST_CASE("a label may cover the marker it names, touching boxes are no overlap") {
+        FigureLayout l;
+        l.panels = {{0, 0, 100, 100}};
+        l.labels = {label("p", {10, 10, 30, 30}, Vector2d(20, 20)), label("q", {30, 10, 50, 30})};
+        l.markers = {{{15, 15, 25, 25}, 0}};
+        CHECK(checkLegibility(l, 100, 100).empty());
+    }
+
+    TEST_CASE("blit and downsample carry the layout") {
+        Image panel(100, 50);
+        panel.layout.panels = {{0, 0, 100, 50}};
+        panel.layout.labels = {label("A", {10, 10, 30, 30}, Vector2d(5, 5))};
+        panel.layout.markers = {{{0, 0, 10, 10}, 0}};
+        Image page(300, 100);
+        blit(page, panel, 200, 40);
+        REQUIRE(page.layout.labels.size() == 1);
+        CHECK(page.layout.labels[0].box.x0 == 210);
+        CHECK(page.layout.labels[0].box.y1 == 70);
+        CHECK(page.layout.panels[0].x0 == 200);
+        CHECK(page.layout.markers[0].label == 0);
+        blit(page, panel, 0, 0);
+        CHECK(page.layout.markers[1].label == 1);  // re-based on the second label
+        const Image half = downsample(page, 2);
+        CHECK(half.layout.labels[0].box.x0 == 105);
+        CHECK(half.layout.labels[0].lineHeight == 10);
+    }
+}
+
+TEST_SUITE("label placement") {
+    PlacementObstacles open() {
+        PlacementObstacles o;
+        o.panel = {0, 0, 200, 200};
+        return o;
+    }
+
+    TEST_CASE("the preferred side when it is free") {
+        const PlacementRequest r{Vector2d(100, 100), Vector2d(20, 10), Vector2d(1, 0), 6};
+        const Placement p = placeLabel(r, open());
+        REQUIRE(p.placed);
+        CHECK(p.box.x0 == doctest::Approx(106));
+        CHECK(p.box.center().y() == doctest::Approx(100));
+        CHECK_FALSE(p.leader);
+    }
+
+    TEST_CASE("around a label in the way, never over it") {
+        PlacementObstacles o = open();
+        o.boxes.push_back({100, 90, 140, 110});  // right of the point
+        const PlacementRequest r{Vector2d(100, 100), Vector2d(20, 10), Vector2d(1, 0), 6};
+        const Placement p = placeLabel(r, o);
+        REQUIRE(p.placed);
+        CHECK(p.box.overlapArea(o.boxes[0]) == 0);
+        CHECK(o.panel.contains(p.box));
+    }
+
+    TEST_CASE("off thick lines when it can, with a leader line when it moves out") {
+        PlacementObstacles o = open();
+        // A ring of boxes around the point leaves only the far positions.
+        for (int k = 0; k < 8; ++k) {
+            const double a = k * M_PI / 4;
+            const Vector2d c = Vector2d(100, 100) + 22 * Vector2d(std::cos(a), std::sin(a));
+            o.boxes.push_back({c.x() - 12, c.y() - 8, c.x() + 12, c.y() + 8});
+        }
+        const PlacementRequest r{Vector2d(100, 100), Vector2d(20, 10), Vector2d(1, 0), 6};
+        const Placement p = placeLabel(r, o);
+        REQUIRE(p.placed);
+        CHECK(p.leader);
+        for (const Box& b : o.boxes) CHECK(p.box.overlapArea(b) == 0);
+        PlacementObstacles lines = open();
+        lines.lines.push_back({Vector2d(100, 100), Vector2d(180, 100), 3});  // a thick line to the right
+        const Placement q = placeLabel(r, lines);
+        REQUIRE(q.placed);
+        CHECK(segmentBoxDistance(lines.lines[0].a, lines.lines[0].b, q.box) >= 4);
+    }
+
+    TEST_CASE("no room: not placed") {
+        PlacementObstacles o = open();
+        o.boxes.push_back({0, 0, 200, 200});
+        const Placement p = placeLabel({Vector2d(100, 100), Vector2d(20, 10), Vector2d(1, 0), 6}, o);
+        CHECK_FALSE(p.placed);
+    }
+}
