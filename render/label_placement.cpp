@@ -89,6 +89,12 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             if (segmentBoxDistance(l.a, l.b, b) < l.halfWidth + 1.0) return false;
         return true;
     };
+    // No preferred side (a name that belongs on its point, such as a body's): on the point if free.
+    if (!(request.preferred.norm() > 1e-9)) {
+        const Box centered{request.anchor.x() - 0.5 * request.size.x(), request.anchor.y() - 0.5 * request.size.y(),
+                           request.anchor.x() + 0.5 * request.size.x(), request.anchor.y() + 0.5 * request.size.y()};
+        if (free(centered) && offLines(centered)) return {true, centered, false};
+    }
     const std::vector<Vector2d> dirs = candidateDirections(request.preferred);
     // Rings: next to the anchor, then farther out (with a leader line back to the anchor).
     const double rings[3] = {1.0, 2.5, 4.5};

@@ -29,7 +29,7 @@ struct PlacementObstacles {
 struct PlacementRequest {
     Eigen::Vector2d anchor;     // the point the label names, px
     Eigen::Vector2d size;       // the text box, px
-    Eigen::Vector2d preferred;  // preferred direction from the anchor (any length; zero: up-right)
+    Eigen::Vector2d preferred;  // preferred direction from the anchor (any length; zero: on the point, else up-right)
     double gap = 6.0;           // px between the anchor and the nearest edge of the box
 };
 

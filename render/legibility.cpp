@@ -53,7 +53,8 @@ std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int w
         }
     for (const LayoutMarker& m : layout.markers)
         for (std::size_t i = 0; i < labels.size(); ++i) {
-            if (m.label == int(i)) continue;
+            // Every label whose point is on the marker is about it (a node's name and its count).
+            if (m.label == int(i) || (labels[i].anchor && m.box.contains(*labels[i].anchor))) continue;
             const double area = labels[i].box.overlapArea(m.box);
             if (area > kOverlapSlackArea)
                 out.push_back({LegibilityKind::LabelOnMarker, labels[i].text,

@@ -11,7 +11,7 @@ namespace cdlab::render {
 
 enum class LegibilityKind {
     LabelsOverlap,      // two labels' boxes overlap
-    LabelOnMarker,      // a label covers a marker it does not name
+    LabelOnMarker,      // a label covers a marker it does not name (its point is elsewhere)
     LabelOutsidePanel,  // a label leaves its panel (the innermost one holding its anchor) or the image
     TextTooSmall,       // a line height under kMinLineHeightFraction of the image height
     Unplaced,           // the placement step found no free position (the label was not drawn)

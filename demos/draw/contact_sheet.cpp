@@ -25,12 +25,21 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
         cellW = std::max(cellW, cells.back().width);
         cellH = std::max(cellH, cells.back().height);
     }
-    const int pad = 12, captionH = 44, titleH = o.title.empty() ? 0 : 48;
+    // Captions stay legible on a slide: at least 1.6 % of the sheet's height (the legibility
+    // check asks for 1.5 %), 15 px at the least.
+    const int pad = 12, titleH = o.title.empty() ? 0 : 48;
+    int captionH = 44;
+    float captionPx = 15.0f;
+    for (int pass = 0; pass < 2; ++pass) {
+        const int h = titleH + rows * (cellH + captionH + pad) + pad;
+        captionPx = std::max(15.0f, float(std::ceil(0.016 * h)));
+        captionH = int(std::ceil(captionPx * 2.9));
+    }
     const int width = columns * (cellW + pad) + pad;
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
 
     Canvas canvas(gl, canvasOptions(width, height, 1), Camera::twoD(0, 0, 1));
-    TextStyle caption{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
+    TextStyle caption{captionPx, roleColor(Role::Ink), Anchor::Top, false, false};
     if (!o.title.empty())
         canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::Top, false, true});
     for (int i = 0; i < n; ++i) {
@@ -42,6 +51,10 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     for (int i = 0; i < n; ++i) {
         int x = pad + (i % columns) * (cellW + pad);
         int y = titleH + pad + (i / columns) * (cellH + captionH + pad);
+        // A thumbnail is a picture of its frame: its own text is detail left to the frame (which
+        // the check covers at full size); on the sheet it is one panel, named by its caption.
+        cells[i].layout = FigureLayout{};
+        cells[i].layout.panels.push_back({0, 0, double(cells[i].width), double(cells[i].height)});
         blit(sheet, cells[i], x, y);
     }
     return sheet;

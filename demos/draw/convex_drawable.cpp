@@ -151,6 +151,7 @@ void drawOrigin(Canvas& canvas, double size, bool planar) {
     TextStyle ts = labelStyle(Role::Origin, 20.0f);
     ts.anchor = Anchor::TopRight;
     ts.offsetPx = Eigen::Vector2d(-6, 6);
+    ts.place = true;
     canvas.drawText(Vec3::Zero(), "O", ts);
 }
 
@@ -166,6 +167,13 @@ void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::
     style.offsetPx = dir * reach;  // the preferred side; the placement step moves it off anything in the way
     style.place = true;
     canvas.drawText(at, text, style);
+}
+
+
+void drawBodyName(Canvas& canvas, const Vec3& at, const std::string& name, Role role) {
+    TextStyle style = labelStyle(role, 26.0f);
+    style.place = true;  // on its point when free, else beside it
+    canvas.drawText(at, name, style);
 }
 
 }  // namespace cdlab::demos

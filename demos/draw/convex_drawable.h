@@ -47,6 +47,8 @@ void drawOrigin(render::Canvas& canvas, double size, bool planar);
 
 /// Text next to `at`, pushed `px` output pixels away from `from` on screen (so labels fan out
 /// from a centre instead of piling onto the point they name).
+/// A body's name ("A", "B") at its centre, or beside it when a marker or label is there.
+void drawBodyName(render::Canvas& canvas, const Vec3& at, const std::string& name, render::Role role);
 void drawLabelAway(render::Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text,
                    render::TextStyle style, double px = 16.0);
 

@@ -147,8 +147,8 @@ private:
         drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeB).scaled(0.6f),
                  2.0f);
         if (labels) {
-            world.drawText(d.a.center, "A", labelStyle(Role::ShapeA, 26.0f));
-            world.drawText(d.b.center, "B", labelStyle(Role::ShapeB, 26.0f));
+            drawBodyName(world, d.a.center, "A", Role::ShapeA);
+            drawBodyName(world, d.b.center, "B", Role::ShapeB);
         }
         const Vec3 pa = s ? s->pointA : r.pointA, pb = s ? s->pointB : r.pointB;
         if (common_.hasLayer("witness")) {

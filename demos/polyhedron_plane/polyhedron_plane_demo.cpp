@@ -240,6 +240,35 @@ private:
         return {n, d, center, radius, cam};
     }
 
+    // Where the plane's name goes: the point of the drawn patch (centre g, half size h along u and
+    // w) that is well inside the picture and farthest from the body's on-screen bounds, so the
+    // name sits on the plane, not on the body (text is drawn over everything).
+    Vec3 planeLabelPoint(const Canvas& c, const Vec3& g, const Vec3& u, const Vec3& w, double h,
+                         const Transform& pose) const {
+        render::Box bodyBounds{INFINITY, INFINITY, -INFINITY, -INFINITY};
+        for (const Vec3& p : body.mesh.positions()) {
+            Eigen::Vector2d px;
+            if (!c.project(pose.apply(p), px)) continue;
+            bodyBounds = {std::min(bodyBounds.x0, px.x()), std::min(bodyBounds.y0, px.y()),
+                          std::max(bodyBounds.x1, px.x()), std::max(bodyBounds.y1, px.y())};
+        }
+        Vec3 best = g;
+        double bestClearance = -1;
+        for (int a = -4; a <= 4; ++a)
+            for (int b = -4; b <= 4; ++b) {
+                const Vec3 q = g + (0.2 * a) * h * u + (0.2 * b) * h * w;
+                Eigen::Vector2d px;
+                if (!c.project(q, px) || px.x() < 90 || px.y() < 110 || px.x() > c.width() - 90 ||
+                    px.y() > c.height() - 70)
+                    continue;
+                const double dx = std::max({bodyBounds.x0 - px.x(), 0.0, px.x() - bodyBounds.x1});
+                const double dy = std::max({bodyBounds.y0 - px.y(), 0.0, px.y() - bodyBounds.y1});
+                const double clearance = std::min(std::hypot(dx, dy), 120.0);  // far enough is enough
+                if (clearance > bestClearance + 1e-9) best = q, bestClearance = clearance;
+            }
+        return best;
+    }
+
     // Pose i against the plane: the contact polygon, manifold and normals, or the closest feature.
     Frame planeFrame(GlContext& gl, int ss, const PlaneView& v, size_t i, const PlaneContactResult& r,
                      const PlaneContactTrace& tr) const {
@@ -256,9 +285,11 @@ private:
                           roleColor(Role::Muted).withAlpha(0.25f));
             c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true,
                            lineStyle(Role::Muted, 1.5f));
-            if (labels)
-                c.drawText(g + 0.9 * h * u - 0.9 * h * w, "plane n·x = d",
-                           TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, false});
+            if (labels) {
+                TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::Center, true, false};
+                ts.place = true;
+                c.drawText(planeLabelPoint(c, g, u, w, h, poses[i]), "plane n·x = d", ts);
+            }
         }
         Posed pb = body;
         pb.pose = poses[i];
