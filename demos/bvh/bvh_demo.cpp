@@ -520,8 +520,8 @@ private:
             splitPairs(q[1].pairs, ha, hb);
             drawTriangleSubset(c, mv, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
             drawTriangleSubset(c, ov, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.2f, false);
-            drawHeading(c, "The query: A vs B",
-                        std::to_string(q[1].pairs.size()) + " intersecting triangle pairs (red)");
+            drawHeading(c, "The query: A vs B", std::to_string(q[1].pairs.size()) + " intersecting triangle pairs");
+            if (common_.hasLayer("labels")) drawKey(c, 12, 56, {{roleColor(Role::Highlight), "intersecting triangles"}});
             panels.push_back(c.readPixels());
             BarChartInput cc;
             cc.heading = "Cost of the same query";
@@ -678,7 +678,8 @@ private:
         drawTriangleSubset(c, va, ha, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
         drawTriangleSubset(c, vb, hb, roleColor(Role::Highlight), roleColor(Role::Ink), 1.5f, false);
         drawHeading(c, "Result: " + std::to_string(r.pairs.size()) + " intersecting triangle pairs",
-                    std::to_string(ha.size()) + " triangles of A, " + std::to_string(hb.size()) + " of B (red)");
+                    std::to_string(ha.size()) + " triangles of A, " + std::to_string(hb.size()) + " of B");
+        if (common_.hasLayer("labels")) drawKey(c, 12, 56, {{roleColor(Role::Highlight), "intersecting triangles"}});
         const Image main = c.readPixels();
         BarChartInput cc;
         cc.heading = "Work done";

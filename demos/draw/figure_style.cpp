@@ -54,4 +54,16 @@ Camera framingCamera(const Vec3& center, double radius, const Vec3& viewDirectio
     return cam;
 }
 
+void drawKey(Canvas& canvas, double x, double y, const std::vector<KeyItem>& items, float sizePx) {
+    const TextStyle text{sizePx, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+    for (const KeyItem& item : items) {
+        const TextStyle swatch{sizePx * 1.2f, item.color.withAlpha(1.0f), Anchor::TopLeft, false, false};
+        const std::string square = "\u25A0";  // ■
+        canvas.drawTextPx(x, y - 0.15 * sizePx, square, swatch);
+        x += canvas.measureText(square, swatch).x() + 5;
+        canvas.drawTextPx(x, y, item.text, text);
+        x += canvas.measureText(item.text, text).x() + 16;
+    }
+}
+
 }  // namespace cdlab::demos

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/base/types.h"
 #include "render/canvas.h"
@@ -10,6 +11,15 @@ namespace cdlab::demos {
 
 /// Title (bold, top left) and caption (bottom left) of a figure, in pixels, on top of everything.
 void drawTitleAndCaption(render::Canvas& canvas, const std::string& title, const std::string& caption);
+
+/// One entry of a drawn key: a swatch of `color` and what that colour means.
+struct KeyItem {
+    render::Color color;
+    std::string text;
+};
+/// A key in one row from pixel (x, y) (top left): a colour swatch, then its meaning, for each item.
+/// Figures name roles in their text and show the colour here, never a colour word.
+void drawKey(render::Canvas& canvas, double x, double y, const std::vector<KeyItem>& items, float sizePx = 15.0f);
 
 render::LineStyle lineStyle(render::Role role, float widthPx, bool dashed = false, bool onTop = false);
 render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold = true);

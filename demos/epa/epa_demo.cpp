@@ -371,15 +371,19 @@ private:
                     cs.drawLine(w[i], w[j], lineStyle(Role::Simplex, 4.0f, false, true));
                 cs.drawPoint(w[i], 8.0f, roleColor(Role::Simplex), true, 1.5f, roleColor(Role::Ink));
                 if (labels)
-                    drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)), labelStyle(Role::Ink, 20.0f),
+                    drawLabelAway(cs, w[i], d.cCenter, "w" + std::to_string(i), labelStyle(Role::Ink, 20.0f),
                                   12.0);
             }
             sub = "GJK's terminal simplex (" + std::to_string(w.size()) + " vertices): " + nameOf(run.gjk.status);
         } else if (s) {
             drawPolytope(cs, d, *s, true);
-            sub = "closest " + std::string(d.planar ? "edge" : "face") + " (yellow) at distance " +
-                  formatNumber(s->distance) + "; " + std::to_string(s->removed.size()) +
-                  (d.planar ? " edge(s)" : " face(s)") + " visible from w (red)";
+            sub = "closest " + std::string(d.planar ? "edge" : "face") + " at distance " + formatNumber(s->distance) +
+                  "; " + std::to_string(s->removed.size()) + (d.planar ? " edge(s)" : " face(s)") + " visible from w";
+            if (common_.hasLayer("labels"))
+                drawKey(cs, 14, 64,
+                        {{closestColor(), std::string("closest ") + (d.planar ? "edge" : "face")},
+                         {roleColor(Role::Support), "visible from w (removed)"},
+                         {roleColor(Role::Direction), "horizon"}});
             if (s->terminated)
                 sub = "converged: the closest " + std::string(d.planar ? "edge" : "face") + " is on the boundary";
         } else {

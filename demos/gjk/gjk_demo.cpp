@@ -49,6 +49,16 @@ std::vector<int> keptSlotIndices(std::uint8_t slots) {
     return out;
 }
 
+// The figures name the simplex vertices by their slot, w0..w3 (A and B are the bodies).
+std::string slotName(int slot) { return "w" + std::to_string(slot); }
+
+// The kept slots as the figures name them: 0b1011 -> "w0w1w3" (a region of the simplex).
+std::string slotNames(std::uint8_t slots) {
+    std::string names;
+    for (int i : keptSlotIndices(slots)) names += slotName(i);
+    return names;
+}
+
 class GjkScene final : public PreparedScene {
 public:
     GjkScene(SceneCommon common, PairScene pair, GjkOptions options)
@@ -171,7 +181,10 @@ private:
                 drawLabelAway(world, s->support.b, d.b.center, "s_B(−d)", ts);
             }
         }
-        drawPanelHeading(world, "World space", s ? "witness points of the kept simplex" : "closest points");
+        drawPanelHeading(world, "World space",
+                         s                                    ? "witness points of the kept simplex"
+                         : r.status == GjkStatus::Intersecting ? "intersecting: a common point, no closest points"
+                                                               : "closest points");
 
         return world.readPixels();
     }
@@ -192,16 +205,23 @@ private:
         // The simplex: W ∪ {w} dashed, the kept sub-simplex solid and filled.
         std::vector<Vec3> w;
         std::vector<int> kept;
+        std::vector<std::string> names;
         if (s) {
-            for (int i = 0; i < s->simplexCount; ++i) w.push_back(s->simplex[i].w);
+            for (int i = 0; i < s->simplexCount; ++i) w.push_back(s->simplex[i].w), names.push_back(slotName(i));
             kept = keptSlotIndices(s->keptSlots);
         } else {
+            // The result's simplex is compacted: name each vertex by its slot in the last step.
+            const GjkTraceStep* last = trace.steps.empty() ? nullptr : &trace.steps.back();
             for (int i = 0; i < r.simplex.count; ++i) {
                 w.push_back(r.simplex.vertex[i].w);
                 kept.push_back(i);
+                int slot = i;
+                for (int j = 0; last && j < last->simplexCount; ++j)
+                    if (last->simplex[j].w == r.simplex.vertex[i].w) slot = j;
+                names.push_back(slotName(slot));
             }
         }
-        if (common_.hasLayer("simplex")) drawSimplex(cs, d, s, w, kept, labels);
+        if (common_.hasLayer("simplex")) drawSimplex(cs, d, s, w, names, kept, labels);
         const double arrowLen = 0.35 * d.cRadius;
         if (s && common_.hasLayer("direction") && s->direction.norm() > 0) {
             const Vec3 tip = s->direction.normalized() * arrowLen;
@@ -226,7 +246,7 @@ private:
         }
         std::string sub;
         if (s) {
-            sub = "kept: region " + slotLetters(s->keptSlots) + " (" +
+            sub = "kept: region " + slotNames(s->keptSlots) + " (" +
                   regionKind(std::size_t(s->keptCount()), pair_.dimension) + ")";
             // Converged / duplicate support: the loop stopped before reducing W ∪ {w}.
             if (s->terminated && trace.termination != GjkTermination::OriginInSimplex)
@@ -242,7 +262,7 @@ private:
 
     // The simplex: W ∪ {w} dashed, the kept sub-simplex solid and filled, the vertices named.
     void drawSimplex(Canvas& cs, const Drawing& d, const GjkTraceStep* s, const std::vector<Vec3>& w,
-                     const std::vector<int>& kept, bool labels) const {
+                     const std::vector<std::string>& names, const std::vector<int>& kept, bool labels) const {
         for (std::size_t i = 0; i < w.size(); ++i)
             for (std::size_t j = i + 1; j < w.size(); ++j)
                 cs.drawLine(w[i], w[j], lineStyle(Role::Muted, 2.0f, true, true));
@@ -264,7 +284,7 @@ private:
             if (labels) {
                 TextStyle ts{20.0f, roleColor(Role::Ink), Anchor::Center, true, true};
                 const bool isNew = s && int(i) + 1 == s->simplexCount && s->simplex[i].w == s->support.w;
-                drawLabelAway(cs, w[i], d.cCenter, std::string(1, char('A' + i)) + (isNew ? " = w" : ""), ts, 12.0);
+                drawLabelAway(cs, w[i], d.cCenter, names[i] + (isNew ? " = w" : ""), ts, 12.0);
             }
         }
     }
@@ -278,14 +298,14 @@ private:
             const double vv = s->upperBound * s->upperBound;
             std::string stop = s->terminated ? std::string("stop: ") + nameOf(trace.termination) : "continue";
             lines.push_back("Iteration " + std::to_string(s->iteration) + ": w = s_A(d) − s_B(−d) = " +
-                            formatPoint(s->support.w) + ", simplex {" + std::string("ABCD").substr(0, s->simplexCount) +
-                            "} → region " + slotLetters(s->keptSlots) + ", |v| = " + formatNumber(s->v.norm()));
+                            formatPoint(s->support.w) + ", simplex {" + slotNames(std::uint8_t((1u << s->simplexCount) - 1)) +
+                            "} → region " + slotNames(s->keptSlots) + ", |v| = " + formatNumber(s->v.norm()));
             lines.push_back("bounds " + formatNumber(s->lowerBound) + " ≤ distance ≤ " + formatNumber(s->upperBound) +
                             ";  test |v|² − v·w = " + formatNumber(s->gapTest) +
                             (s->gapTest <= options_.relativeTolerance * vv ? " ≤ " : " > ") +
                             "ε|v|² = " + formatNumber(options_.relativeTolerance * vv) + ":  " + stop);
             f.name = stepFrameName(s->iteration);
-            f.caption = "it " + std::to_string(s->iteration) + ": region " + slotLetters(s->keptSlots) + ", |v| " +
+            f.caption = "it " + std::to_string(s->iteration) + ": region " + slotNames(s->keptSlots) + ", |v| " +
                         formatNumber(s->v.norm()) + (s->terminated ? " (stop)" : "");
         } else {
             lines.push_back(std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.iterations) +

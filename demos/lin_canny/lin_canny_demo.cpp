@@ -427,7 +427,9 @@ private:
         std::vector<std::string> lines;
         heading = "Step " + std::to_string(step.step) + ": pair " + nameOf(step.state);
         sub = std::to_string(step.planes.size()) + " applicability test(s), " + std::to_string(violatedCount) +
-              " violated (red)";
+              " violated";
+        if (common_.hasLayer("labels") && shown > 0)
+            drawKey(c, 14, 64, {{violatedColor(), "violated plane"}, {satisfiedColor(), "satisfied plane"}});
         if (int(step.planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
         lines.push_back("Step " + std::to_string(step.step) + " (" + nameOf(step.state) +
                         "): " + featureLabel(step.featureA, 0) + " vs " + featureLabel(step.featureB, 1) +

@@ -191,6 +191,11 @@ private:
         c.drawText(topLeft, text, TextStyle{20.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, true, {0, -24}});
         c.drawText(topLeft, sub, TextStyle{16.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false, {0, -5}});
     }
+    // A colour key just under a panel whose bottom-left corner is `bottomLeft` (world).
+    static void keyBelow(Canvas& c, const Vec3& bottomLeft, const std::vector<KeyItem>& items) {
+        Eigen::Vector2d px;
+        if (c.project(bottomLeft, px)) drawKey(c, px.x(), px.y() + 8, items);
+    }
     // The title and caption drawn over a finished figure, which is named `name` and captioned by the title.
     Frame titledFrame(Canvas& canvas, const std::string& name) const {
         drawTitleAndCaption(canvas, common_.title, common_.caption);
@@ -467,7 +472,9 @@ private:
         heading(canvas, at + P(v.frame.min.x(), v.frame.max.y()),
                 "BSP tree of the box walls, depth " + std::to_string(bs.depth),
                 std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
-                    " walls cut in two (orange pieces)");
+                    " walls cut in two");
+        if (common_.hasLayer("labels"))
+            keyBelow(canvas, at + v.frame.min, {{roleColor(Role::Highlight), "a wall cut in two"}});
     }
 
     // ----------------------------------------------------------------------------- kd_query
@@ -549,7 +556,12 @@ private:
         }
         heading(canvas, offsets[0] + P(frame.min.x(), frame.max.y()), "Nearest neighbour of q",
                 std::to_string(nt.distanceTests) + " of " + std::to_string(points.size()) + " points tested, " +
-                    std::to_string(nt.pruned.size()) + " subtrees pruned (grey); green: earlier bests");
+                    std::to_string(nt.pruned.size()) + " subtrees pruned");
+        if (common_.hasLayer("labels"))
+            keyBelow(canvas, offsets[0] + frame.min,
+                     {{roleColor(Role::Highlight).mixed(roleColor(Role::Background), 0.6f), "leaf searched"},
+                      {roleColor(Role::Muted), "subtree pruned"},
+                      {roleColor(Role::Simplex), "earlier best"}});
         // Right: range query.
         drawTree(offsets[1], rt);
         if (common_.hasLayer("queries")) {
@@ -560,7 +572,12 @@ private:
         }
         heading(canvas, offsets[1] + P(frame.min.x(), frame.max.y()), "Range query (box)",
                 std::to_string(hits.size()) + " hits, " + std::to_string(rt.distanceTests) + " points tested, " +
-                    std::to_string(rt.pruned.size()) + " subtrees pruned (grey)");
+                    std::to_string(rt.pruned.size()) + " subtrees pruned");
+        if (common_.hasLayer("labels"))
+            keyBelow(canvas, offsets[1] + frame.min,
+                     {{roleColor(Role::Highlight).mixed(roleColor(Role::Background), 0.6f), "leaf searched"},
+                      {roleColor(Role::Muted), "subtree pruned"},
+                      {roleColor(Role::Result), "hit"}});
         out.frames.push_back(titledFrame(canvas, "kd_query"));
         return out;
     }
@@ -666,7 +683,9 @@ private:
         }
         heading(canvas, P(frame.min.x(), frame.max.y()), "Splits and leaf regions (top view)",
                 std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
-                    (bs.splits == 1 ? " edge" : " edges") + " cut (orange pieces), solid leaves blue");
+                    (bs.splits == 1 ? " edge" : " edges") + " cut");
+        if (common_.hasLayer("labels"))
+            keyBelow(canvas, frame.min, {{roleColor(Role::Highlight), "an edge cut in two"}});
         if (common_.hasLayer("tree"))
             drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);
         out.frames.push_back(titledFrame(canvas, "bsp_shape"));
@@ -708,12 +727,14 @@ private:
                                 TextStyle{12.0f, roleColor(Role::Ink), Anchor::Center, false, true});
             } else {
                 const bool solid = n.kind == BspNodeKind::SolidLeaf;
-                canvas.drawPoint(p, 6.0f, solid ? roleColor(Role::ShapeA) : roleColor(Role::Background), true, 1.5f);
+                canvas.drawPoint(p, 6.0f, solid ? roleColor(Role::ShapeA) : roleColor(Role::Muted), true, 1.5f);
             }
         }
-        canvas.drawText(corner, "leaves: blue dot = solid (inside), white = empty (outside)",
-                        TextStyle{15.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
-        heading(canvas, corner + P(0, h), "The tree", "edge name = splitting line; grey: front child, dashed: back");
+        Eigen::Vector2d px;
+        if (canvas.project(corner, px))
+            drawKey(canvas, px.x(), px.y() - 18,
+                    {{roleColor(Role::ShapeA), "solid leaf (inside)"}, {roleColor(Role::Muted), "empty leaf (outside)"}});
+        heading(canvas, corner + P(0, h), "The tree", "edge name = splitting line; solid: front child, dashed: back");
     }
 };
 

@@ -430,9 +430,10 @@ private:
         heading = "Step " + std::to_string(st->step) + ": state " + nameOf(st->state);
         const bool faceSearch =
             std::any_of(st->planes.begin(), st->planes.end(), [](const VClipPlaneTest& p) { return p.plane < 0; });
-        sub =
-            std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated (red)";
-        if (faceSearch) sub = "local minimum: red = the face plane V is farthest above";
+        sub = std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated";
+        if (faceSearch) sub = "local minimum: violated = face plane V is farthest above";
+        if (labels && shown > 0)
+            drawKey(c, 14, 64, {{violatedColor(), "violated plane"}, {satisfiedColor(), "satisfied plane"}});
         if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
         if (!st->clips.empty()) sub += "; " + std::to_string(st->clips.size()) + " clip(s)";
 
