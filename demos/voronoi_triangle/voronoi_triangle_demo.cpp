@@ -15,6 +15,7 @@
 #include "core/closest/closest_point.h"
 #include "core/closest/voronoi_regions.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
@@ -102,7 +103,20 @@ std::string focusCaption(int i, const Vec3& point, const Result& r) {
            formatPoint(r.point) + ", distance " + formatNumber(std::sqrt(r.distanceSquared));
 }
 
-Color regionColor(int regionIndex) { return categorical(regionIndex); }
+// Neighbouring regions get far-apart hues (A next to AB and CA, B next to AB and BC, ABC next to
+// the three edge regions), indexed by TriangleRegion: A, B, C, AB, BC, CA, ABC.
+// A query point's name: right of the point when free, else where the placement step finds room.
+TextStyle queryLabelStyle() {
+    TextStyle ts{18.0f, roleColor(Role::Ink), Anchor::Center, true, false};
+    ts.offsetPx = Eigen::Vector2d(24, 0);
+    ts.place = true;
+    return ts;
+}
+
+Color regionColor(int regionIndex) {
+    static constexpr int kHue[7] = {0, 3, 2, 1, 6, 4, 5};  // orange, yellow, green, sky, purple, blue, vermillion
+    return categorical(kHue[std::clamp(regionIndex, 0, 6)]);
+}
 
 // Tetrahedron regions are coloured by the dimension of their feature (vertex, edge, face, inside).
 int tetraFeatureDimension(TetrahedronRegion r) {
@@ -223,9 +237,10 @@ private:
                 }
             }
         }
-        // The triangle itself.
-        canvas.drawPolygon({tri.a, tri.b, tri.c}, roleColor(Role::Background).mixed(roleColor(Role::ShapeA), 0.25f),
-                           is3d);
+        // The triangle itself (in the plane view with regions it is region ABC, already tinted).
+        if (!(diagram.valid && common_.hasLayer("regions") && !is3d))
+            canvas.drawPolygon({tri.a, tri.b, tri.c}, roleColor(Role::Background).mixed(roleColor(Role::ShapeA), 0.25f),
+                               is3d);
         canvas.drawPolyline({tri.a, tri.b, tri.c}, true, lineStyle(Role::Ink, 3.5f));
 
         const bool labels = common_.hasLayer("labels");
@@ -233,21 +248,17 @@ private:
             const Vec3 c = center();
             const char* names[3] = {"A", "B", "C"};
             const Vec3 corners[3] = {tri.a, tri.b, tri.c};
-            for (int i = 0; i < 3; ++i) {
-                Vec3 away = corners[i] - c;
-                Vec3 at =
-                    corners[i] + (away.squaredNorm() > 0 ? Vec3(away.normalized()) : Vec3::Zero()) * size() * 0.09;
-                canvas.drawText(at, names[i], labelStyle(Role::Ink, 28.0f));
-            }
+            for (int i = 0; i < 3; ++i)  // outside the triangle, off the query and closest points
+                drawLabelAway(canvas, corners[i], c, names[i], labelStyle(Role::Ink, 28.0f), 10.0);
             if (diagram.valid && common_.hasLayer("regions") && !is3d)
                 for (const auto& region : diagram.regions) {
                     if (region.vertices.empty()) continue;
                     Vec3 at = polygonCentroid(region.vertices);
                     if (region.region == TriangleRegion::ABC) at = c;
                     else at = c + (at - c) * 0.85;  // pull labels of unbounded regions inwards, off the frame edge
-                    canvas.drawText(
-                        at, std::string("region ") + nameOf(region.region),
-                        TextStyle{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true});
+                    TextStyle ts{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true};
+                    ts.place = true;  // on the region's centre, or beside it when a query point is there
+                    canvas.drawText(at, std::string("region ") + nameOf(region.region), ts);
                 }
         }
         for (std::size_t i = 0; i < results.size(); ++i) {
@@ -264,8 +275,7 @@ private:
                 canvas.drawPoint(results[i].point, focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
                                  faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
                 if (labels && !faded)
-                    canvas.drawText(results[i].point + Vec3(0, 0, 0), "  q" + std::to_string(i + 1),
-                                    TextStyle{18.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+                    canvas.drawText(results[i].point, "q" + std::to_string(i + 1), queryLabelStyle());
             }
         }
         std::string caption = common_.caption;
@@ -337,10 +347,8 @@ private:
         const bool labels = common_.hasLayer("labels");
         if (labels) {
             const char* names[4] = {"A", "B", "C", "D"};
-            for (int i = 0; i < 4; ++i) {
-                Vec3 away = v[i] - center();
-                canvas.drawText(v[i] + away.normalized() * size() * 0.12, names[i], labelStyle(Role::Ink, 28.0f));
-            }
+            for (int i = 0; i < 4; ++i)
+                drawLabelAway(canvas, v[i], center(), names[i], labelStyle(Role::Ink, 28.0f), 12.0);
         }
         for (std::size_t i = 0; i < results.size(); ++i) {
             const auto& r = results[i].trace.result;
@@ -355,8 +363,8 @@ private:
                 canvas.drawPoint(results[i].point, focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
                                  faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
                 if (labels && !faded)
-                    canvas.drawText(results[i].point, "  q" + std::to_string(i + 1) + ": " + nameOf(r.region),
-                                    TextStyle{18.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+                    canvas.drawText(results[i].point, "q" + std::to_string(i + 1) + ": " + nameOf(r.region),
+                                    queryLabelStyle());
             }
         }
         // Legend: colour by feature dimension.
