@@ -19,7 +19,7 @@ struct KeyItem {
 };
 /// A key in one row from pixel (x, y) (top left): a colour swatch, then its meaning, for each item.
 /// Figures name roles in their text and show the colour here, never a colour word.
-void drawKey(render::Canvas& canvas, double x, double y, const std::vector<KeyItem>& items, float sizePx = 15.0f);
+void drawKey(render::Canvas& canvas, double x, double y, const std::vector<KeyItem>& items, float sizePx = 16.0f);
 
 render::LineStyle lineStyle(render::Role role, float widthPx, bool dashed = false, bool onTop = false);
 render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold = true);

@@ -231,8 +231,12 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     for (const auto& [value, text] : o.hLines) {
         const double y = f.py(value);
         c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), lineStyle(Role::Highlight, 2.0f, true, false));
-        c.drawTextPx(f.x0 + 8, y - 4, text,
-                     TextStyle{14.0f, roleColor(Role::Highlight), Anchor::BottomLeft, true, false});
+        // Named above the line's left end, or where the placement step finds room off the data.
+        TextStyle ts{16.0f, roleColor(Role::Highlight), Anchor::Center, true, false};
+        ts.place = true;
+        ts.offsetPx = Eigen::Vector2d(0, -12);
+        const double halfWidth = 0.5 * c.measureText(text, ts).x();
+        c.drawText(pc.P(f.x0 + 8 + halfWidth, y), text, ts);
     }
     // Many points: smaller, translucent markers so that dense clouds stay readable.
     size_t total = 0;

@@ -9,9 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <fstream>
 #include <optional>
-#include <set>
 #include <sstream>
 
 #include "demos/catalog/catalog.h"
@@ -33,8 +31,6 @@ namespace {
 // are listed before their files are written, so a run killed half-way is still cleaned up. (A
 // text list, not JSON: a report folder inside golden/ must not look like a scene file.)
 constexpr const char* kReportList = "cdlab-report.txt";
-// Frames ("demo/scene/frame") that are known not to pass the legibility check yet, one per line.
-constexpr const char* kLegibilityKnownFile = "legibility_known.txt";
 constexpr const char* kReportHeader = "# cdlab golden --report: what this report wrote (the next run deletes it)";
 
 // A path relative to the report folder whose every component is a plain name.
@@ -180,10 +176,7 @@ struct GoldenRun {
         return true;
     }
 
-    // Legibility: frames listed in golden/legibility_known.txt still have problems (the list may
-    // only shrink: a listed frame that is clean fails too, until its line is removed).
-    std::set<std::string> knownIllegible{};
-    int knownFrames = 0;
+    // Legibility problems of every frame, for the summary of the worst.
     struct Offender {
         std::string frame;
         render::LegibilityProblem problem;
@@ -250,15 +243,7 @@ void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
     const std::vector<render::LegibilityProblem> problems =
         render::checkLegibility(fr.image.layout, fr.image.width, fr.image.height);
     for (const render::LegibilityProblem& p : problems) offenders.push_back({id, p});
-    const bool known = knownIllegible.count(id) != 0;
-    if (problems.empty()) {
-        if (known) fail(id + ": legible now: remove its line from " + kLegibilityKnownFile);
-        return;
-    }
-    if (known) {
-        ++knownFrames;
-        return;
-    }
+    if (problems.empty()) return;
     const render::LegibilityProblem& worst = problems.front();
     fail(id + ": not slide-legible, " + std::to_string(problems.size()) + " problem(s); worst: " + nameOf(worst.kind) +
          ": \"" + worst.text + "\" " + worst.detail);
@@ -332,12 +317,6 @@ int runGolden(const RunnerOptions& o) {
         {}};
     run.report.removePrevious();
 
-    {
-        std::ifstream known(fs::path(o.goldenDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/golden" : o.goldenDir) /
-                            kLegibilityKnownFile);
-        for (std::string line; std::getline(known, line);)
-            if (!line.empty() && line[0] != '#') run.knownIllegible.insert(line);
-    }
     std::unique_ptr<render::GlContext> gl = createContext(o.verbose);  // one context for the whole run
     const RunContext ctx{gl.get(), 0, false};
     for (const auto& file : files) run.runScene(file, ctx);
@@ -356,8 +335,7 @@ int runGolden(const RunnerOptions& o) {
         std::stable_sort(run.offenders.begin(), run.offenders.end(), [](const auto& a, const auto& b) {
             return a.problem.severity > b.problem.severity;
         });
-        std::cout << "legibility: " << run.offenders.size() << " problem(s), " << run.knownFrames
-                  << " frame(s) listed in " << kLegibilityKnownFile << "; worst:\n";
+        std::cout << "legibility: " << run.offenders.size() << " problem(s); worst:\n";
         for (std::size_t i = 0; i < run.offenders.size() && i < 12; ++i) {
             const auto& [frame, p] = run.offenders[i];
             std::cout << "  " << frame << ": " << nameOf(p.kind) << ": \"" << p.text << "\" " << p.detail << "\n";

@@ -428,7 +428,7 @@ private:
                     p,
                     (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
                         std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
-                    TextStyle{14.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
+                    TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
             }
         }
     }
@@ -658,8 +658,10 @@ private:
             for (std::size_t i = 0; i < polygon.size(); ++i) {
                 const Vec3 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
                 const Vec3 out2 = Vec3(b.y() - a.y(), a.x() - b.x(), 0).normalized();
-                canvas.drawText(0.5 * (a + b) + out2 * 0.045 * W, "e" + std::to_string(i),
-                                TextStyle{15.0f, roleColor(Role::Ink), Anchor::Center, true, true});
+                TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                ts.place = true;  // outside the edge's midpoint, off the query points
+                ts.offsetPx = Eigen::Vector2d(out2.x(), -out2.y()) * 18.0;
+                canvas.drawText(0.5 * (a + b), "e" + std::to_string(i), ts);
             }
         if (common_.hasLayer("queries")) {
             for (std::size_t i = 0; i < queries.size(); ++i) {
