@@ -49,6 +49,45 @@ std::optional<Vec3> polygonUnitNormal(const std::vector<Vec3>& poly) {
     return Vec3(nn / len);
 }
 
+// The sub-feature of `f` that holds its closest point p, seen along `toOther` (the unit direction
+// from p to the other feature's closest point; zero when they meet): a face counts only when
+// toOther is along its normal (else p is on its boundary: that edge or corner), an edge only when
+// toOther is across it (else p is an endpoint: that vertex). This also keeps the features of a
+// parallel pair, whose closest points are one of many. `tol`: length below rounding (1e-12 of the
+// pair's size); `slope`: the sine below which two directions count as parallel.
+FeatureGeometry realizedFeature(const FeatureGeometry& f, const Vec3& p, const Vec3& toOther, double tol,
+                                double slope) {
+    if (f.type == FeatureType::Vertex) return f;
+    const bool meet = toOther.isZero(0.0);
+    if (f.type == FeatureType::Edge) {
+        const Vec3 u = (f.points[1] - f.points[0]).normalized();
+        if (!meet && std::abs(u.dot(toOther)) <= slope) return f;  // across the edge
+        for (const Vec3& q : f.points)
+            if ((p - q).norm() <= tol) return {FeatureType::Vertex, {q}};
+        return f;
+    }
+    const std::optional<Vec3> n = polygonUnitNormal(f.points);
+    if (n && !meet && (toOther - n->dot(toOther) * *n).norm() <= slope) return f;  // along the normal
+    for (const Vec3& q : f.points)
+        if ((p - q).norm() <= tol) return {FeatureType::Vertex, {q}};
+    for (size_t i = 0; i < f.points.size(); ++i) {
+        const Segment side{f.points[i], f.points[(i + 1) % f.points.size()]};
+        if (closestPointOnSegment(p, side).distanceSquared <= tol * tol) {
+            const FeatureGeometry edge{FeatureType::Edge, {side.a, side.b}};
+            return realizedFeature(edge, p, toOther, tol, slope);
+        }
+    }
+    return f;  // the features meet inside the face
+}
+
+ContactType contactType(FeatureType a, FeatureType b) {
+    const auto dim = [](FeatureType t) { return t == FeatureType::Vertex ? 1 : t == FeatureType::Edge ? 2 : 3; };
+    const int lo = std::min(dim(a), dim(b)), hi = std::max(dim(a), dim(b));
+    return lo == 1   ? (hi == 1 ? ContactType::VV : hi == 2 ? ContactType::VE : ContactType::VF)
+           : lo == 2 ? (hi == 2 ? ContactType::EE : ContactType::EF)
+                     : ContactType::FF;
+}
+
 }  // namespace
 
 PointPolygonResult closestPointOnPolygon(const Vec3& p, const std::vector<Vec3>& poly) {
@@ -148,12 +187,6 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
     }
     r.valid = true;
     const int da = expected(a.type), db = expected(b.type);
-    const int lo = std::min(da, db), hi = std::max(da, db);
-    r.type = lo == 1   ? (hi == 1   ? ContactType::VV
-                          : hi == 2 ? ContactType::VE
-                                    : ContactType::VF)
-             : lo == 2 ? (hi == 2 ? ContactType::EE : ContactType::EF)
-                       : ContactType::FF;
 
     // Closest points: dispatch on (dim A, dim B), swapping the roles back when B is the lower one.
     FeaturePairPoints c;
@@ -187,23 +220,35 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
     r.pointB = c.pointB;
     r.distance = (c.pointB - c.pointA).norm();
     r.parallel = c.parallel;
+    const double size = featureScale(a.points, b.points);
+
+    // The features that hold the closest points (the pair type is decided by where the closest
+    // points lie, not by the features asked about). 1e-12 of the size is far above the points'
+    // rounding and far below any modelled feature.
+    const Vec3 toB = r.distance > 0.0 ? Vec3((r.pointB - r.pointA) / r.distance) : Vec3::Zero();
+    const double tol = 1e-12 * size;
+    const double slope = 1e-9 + (r.distance > 0.0 ? tol / r.distance : 0.0);  // the direction's own rounding
+    const FeatureGeometry fa = realizedFeature(a, r.pointA, toB, tol, slope);
+    const FeatureGeometry fb = realizedFeature(b, r.pointB, -toB, tol, slope);
+    r.realizedA = fa.type;
+    r.realizedB = fb.type;
+    r.type = contactType(fa.type, fb.type);
 
     // Contact normal rule.
-    if (a.type == FeatureType::Face) {
-        r.normal = newellNormal(a.points).normalized();  // A's outward normal points toward B
+    if (fa.type == FeatureType::Face) {
+        r.normal = newellNormal(fa.points).normalized();  // A's outward normal points toward B
         r.normalRule = "face A";
         r.normalDefined = true;
         return r;
     }
-    if (b.type == FeatureType::Face) {
-        r.normal = -newellNormal(b.points).normalized();  // B's outward normal points toward A
+    if (fb.type == FeatureType::Face) {
+        r.normal = -newellNormal(fb.points).normalized();  // B's outward normal points toward A
         r.normalRule = "face B";
         r.normalDefined = true;
         return r;
     }
     // V–V, V–E, E–E: the closest-point line. Below 1e-9 of the size the direction carries fewer
     // than ~7 correct digits (the points have ~1e-16 relative rounding each): flagged unstable.
-    const double size = featureScale(a.points, b.points);
     r.normalUnstable = r.distance <= 1e-9 * size;
     if (r.distance > 0.0) {
         r.normal = (r.pointB - r.pointA) / r.distance;
@@ -212,9 +257,9 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
         return r;
     }
     if (r.type == ContactType::EE) {
-        const Vec3 x = (a.points[1] - a.points[0]).cross(b.points[1] - b.points[0]);
+        const Vec3 x = (fa.points[1] - fa.points[0]).cross(fb.points[1] - fb.points[0]);
         if (x.norm() > 0.0) {
-            const Vec3 toB = 0.5 * (b.points[0] + b.points[1]) - 0.5 * (a.points[0] + a.points[1]);
+            const Vec3 toB = 0.5 * (fb.points[0] + fb.points[1]) - 0.5 * (fa.points[0] + fa.points[1]);
             r.normal = (x.dot(toB) < 0.0 ? Vec3(-x) : x).normalized();
             r.normalRule = "edge cross product";
             r.normalDefined = true;

@@ -54,7 +54,13 @@ struct FeatureGeometry {
 struct FeatureDistanceResult {
     bool valid = false;  ///< false: wrong point count or non-finite input (see message)
     std::string message;
+    /// The pair's type by the features that hold the closest points: a face whose closest point is
+    /// on its boundary counts as that edge (or corner), an edge whose closest point is an endpoint
+    /// as that vertex; so type, normal rule and closest points always agree. A parallel pair (a
+    /// continuum of closest pairs) keeps the given features' type.
     ContactType type = ContactType::VV;
+    FeatureType realizedA = FeatureType::Vertex;  ///< the sub-feature of A holding pointA
+    FeatureType realizedB = FeatureType::Vertex;
     double distance = 0.0;       ///< |pointA - pointB|, world units (0: the features meet)
     Vec3 pointA = Vec3::Zero();  ///< closest point on feature A
     Vec3 pointB = Vec3::Zero();  ///< closest point on feature B

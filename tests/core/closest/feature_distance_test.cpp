@@ -181,6 +181,82 @@ TEST_SUITE("feature_distance") {
         CHECK(r.normalUnstable);
     }
 
+    TEST_CASE("the type and normal follow the features that hold the closest points") {
+        // Reproducer (polyhedron_plane/contact_types pair 04): an edge under a face, its highest
+        // point outside the face's side x = 0.5. The closest pair is edge–edge (p_B on that side),
+        // so the normal is the closest-point line, not the face normal.
+        const std::vector<Vec3> face = {Vec3(-0.5, -0.5, 0.5), Vec3(-0.5, 0.5, 0.5), Vec3(0.5, 0.5, 0.5),
+                                        Vec3(0.5, -0.5, 0.5)};
+        FeatureDistanceResult r = featureDistance({FeatureType::Edge, {Vec3(-0.4, 0.3, 0.0), Vec3(0.7, -0.2, 0.15)}},
+                                                  {FeatureType::Face, face});
+        CHECK(r.type == ContactType::EE);
+        CHECK(r.realizedB == FeatureType::Edge);
+        CHECK(r.pointB.x() == doctest::Approx(0.5));
+        CHECK(std::string(r.normalRule) == "closest points");
+        CHECK((r.normal - (r.pointB - r.pointA) / r.distance).norm() <= 1e-15);
+        // Under the face's interior a sloping edge is closest at its upper endpoint: vertex–face;
+        // only an edge parallel to the face is edge–face (one of a continuum of closest pairs).
+        r = featureDistance({FeatureType::Edge, {Vec3(-0.4, 0.3, 0.0), Vec3(0.3, -0.2, 0.15)}},
+                            {FeatureType::Face, face});
+        CHECK(r.type == ContactType::VF);
+        CHECK(r.pointA == Vec3(0.3, -0.2, 0.15));
+        r = featureDistance({FeatureType::Edge, {Vec3(-0.4, 0.3, 0.1), Vec3(0.3, -0.2, 0.1)}},
+                            {FeatureType::Face, face});
+        CHECK(r.type == ContactType::EF);
+        CHECK(std::string(r.normalRule) == "face B");
+        CHECK(r.distance == doctest::Approx(0.4));
+        // A vertex beside a face: vertex–edge; beyond its corner: vertex–vertex.
+        const std::vector<Vec3> square = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0), Vec3(0, 2, 0)};
+        r = featureDistance({FeatureType::Vertex, {Vec3(3, 1, 1)}}, {FeatureType::Face, square});
+        CHECK(r.type == ContactType::VE);
+        r = featureDistance({FeatureType::Vertex, {Vec3(3, 3, 1)}}, {FeatureType::Face, square});
+        CHECK(r.type == ContactType::VV);
+        CHECK(r.pointB == Vec3(2, 2, 0));
+        // Edges whose closest points are endpoints: vertex–edge, vertex–vertex.
+        r = featureDistance({FeatureType::Edge, {Vec3(0, 0, 0), Vec3(1, 0, 0)}},
+                            {FeatureType::Edge, {Vec3(2, -1, 1), Vec3(2, 1, 1)}});
+        CHECK(r.type == ContactType::VE);
+        r = featureDistance({FeatureType::Edge, {Vec3(0, 0, 0), Vec3(1, 0, 0)}},
+                            {FeatureType::Edge, {Vec3(2, 0, 0), Vec3(3, 1, 0)}});
+        CHECK(r.type == ContactType::VV);
+        // Parallel pairs keep their features: stacked faces, an edge above a face.
+        std::vector<Vec3> top = square;
+        for (Vec3& p : top) p.z() = 0.5;
+        std::reverse(top.begin(), top.end());
+        CHECK(featureDistance({FeatureType::Face, top}, {FeatureType::Face, square}).type == ContactType::FF);
+        CHECK(featureDistance({FeatureType::Edge, {Vec3(0.5, 0.5, 1), Vec3(1.5, 0.5, 1)}}, {FeatureType::Face, square})
+                  .type == ContactType::EF);
+    }
+
+    TEST_CASE("random pairs: the normal is the closest-point direction whenever the features are apart") {
+        // The property the contact_types figure broke: for every pair at a distance, the contact
+        // normal is parallel to p_B - p_A (a face's normal only when the closest points lie along it).
+        std::mt19937_64 rng(77);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        const auto point = [&] { return Vec3(u(rng), u(rng), u(rng)); };
+        int checked = 0;
+        for (int trial = 0; trial < 3000; ++trial) {
+            const FeatureType ta = FeatureType(1 + trial % 3), tb = FeatureType(1 + (trial / 3) % 3);
+            const auto feature = [&](FeatureType t, const Vec3& offset) {
+                FeatureGeometry f{t, {}};
+                if (t == FeatureType::Vertex) f.points = {offset + point()};
+                else if (t == FeatureType::Edge) f.points = {offset + point(), offset + point()};
+                else {  // a random triangle
+                    f.points = {offset + point(), offset + point(), offset + point()};
+                }
+                return f;
+            };
+            const FeatureGeometry a = feature(ta, Vec3::Zero()), b = feature(tb, Vec3(0, 0, 1.5));
+            const FeatureDistanceResult r = featureDistance(a, b);
+            REQUIRE(r.valid);
+            if (r.distance < 1e-6 || r.parallel || !r.normalDefined) continue;
+            CAPTURE(trial);
+            CHECK(std::abs(r.normal.dot((r.pointB - r.pointA) / r.distance)) >= 1 - 1e-9);
+            ++checked;
+        }
+        CHECK(checked > 2000);
+    }
+
     TEST_CASE("invalid features") {
         CHECK(!featureDistance({FeatureType::Edge, {Vec3::Zero()}}, {FeatureType::Vertex, {Vec3::Zero()}}).valid);
         CHECK(!featureDistance({FeatureType::Vertex, {Vec3(NAN, 0, 0)}}, {FeatureType::Vertex, {Vec3::Zero()}}).valid);
