@@ -1,6 +1,7 @@
 #include "demos/draw/convex_drawable.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 
 #include "core/geometry/convex_hull.h"
@@ -138,7 +139,44 @@ void drawBody(Canvas& canvas, const ConvexDrawable& body, const Color& fill, flo
         return;
     }
     canvas.drawMesh(body.vertices, body.triangles, fill.withAlpha(alpha), true);
-    for (const auto& [i, j] : body.edges) canvas.drawLine(body.vertices[i], body.vertices[j], ls);
+    // Outward normals of the triangles at each edge (oriented away from the centre).
+    std::map<std::pair<int, int>, std::vector<Vec3>> normalsAt;
+    for (const Eigen::Vector3i& t : body.triangles) {
+        const Vec3 &a = body.vertices[std::size_t(t[0])], &b = body.vertices[std::size_t(t[1])],
+                   &c = body.vertices[std::size_t(t[2])];
+        Vec3 n = (b - a).cross(c - a);
+        if (n.dot((a + b + c) / 3.0 - body.center) < 0) n = -n;
+        for (int k = 0; k < 3; ++k) {
+            const int u = t[k], v = t[(k + 1) % 3];
+            normalsAt[{std::min(u, v), std::max(u, v)}].push_back(n);
+        }
+    }
+    for (const auto& [i, j] : body.edges) {
+        const auto it = normalsAt.find({std::min(i, j), std::max(i, j)});
+        const Vec3 &p = body.vertices[std::size_t(i)], &q = body.vertices[std::size_t(j)];
+        const bool twoFaces = it != normalsAt.end() && it->second.size() == 2;
+        canvas.drawLine(p, q,
+                        twoFaces ? edgeStyleSeen(canvas.camera(), 0.5 * (p + q), it->second[0], it->second[1], ls)
+                                 : ls);
+    }
+}
+
+bool facesCamera(const Camera& camera, const Vec3& point, const Vec3& normal) {
+    switch (camera.projection) {
+        case Camera::Projection::TwoD: return true;
+        case Camera::Projection::Orthographic: return normal.dot(camera.viewDirection()) > 0;
+        case Camera::Projection::Perspective: return normal.dot(camera.eye - point) > 0;
+    }
+    return true;
+}
+
+LineStyle edgeStyleSeen(const Camera& camera, const Vec3& midpoint, const Vec3& n1, const Vec3& n2, LineStyle visible) {
+    if (facesCamera(camera, midpoint, n1) || facesCamera(camera, midpoint, n2)) return visible;
+    LineStyle hidden = visible;
+    hidden.color = visible.color.mixed(roleColor(Role::Background), 0.45f);
+    hidden.dashPx = 5.0f;
+    hidden.widthPx = std::max(1.0f, 0.8f * visible.widthPx);
+    return hidden;
 }
 
 void drawOrigin(Canvas& canvas, double size, bool planar) {

@@ -42,6 +42,14 @@ void boundingSphere(const std::vector<Vec3>& points, Vec3& center, double& radiu
 void drawBody(render::Canvas& canvas, const ConvexDrawable& body, const render::Color& fill, float alpha,
               const render::Color& edge, float edgeWidth);
 
+/// True when the face through `point` with outward `normal` is turned towards the camera.
+bool facesCamera(const render::Camera& camera, const Vec3& point, const Vec3& normal);
+/// How an edge of a convex body is drawn: `visible` on the side the camera sees, dashed and faded
+/// when both faces meeting at it (outward normals n1, n2) are turned away, i.e. behind the body, so
+/// a translucent body reads in depth instead of flipping like a Necker cube.
+render::LineStyle edgeStyleSeen(const render::Camera& camera, const Vec3& midpoint, const Vec3& n1, const Vec3& n2,
+                                render::LineStyle visible);
+
 /// Draws the little "O" origin marker with a cross.
 void drawOrigin(render::Canvas& canvas, double size, bool planar);
 

@@ -104,7 +104,10 @@ void drawPolyhedron(Canvas& canvas, const Body& body, const Transform& pose, con
     ls.color = fill.scaled(0.6f);
     for (int e = 0; e < m.edgeCount(); ++e) {
         const auto [i, j] = m.edgeVertices(e);
-        canvas.drawLine(verts[i], verts[j], ls);
+        const auto [f1, f2] = m.edgeFaces(e);
+        canvas.drawLine(verts[i], verts[j],
+                        edgeStyleSeen(canvas.camera(), 0.5 * (verts[i] + verts[j]), pose.rotate(m.plane(f1).normal),
+                                      pose.rotate(m.plane(f2).normal), ls));
     }
 }
 

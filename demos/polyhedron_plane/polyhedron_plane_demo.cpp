@@ -113,7 +113,10 @@ void drawPosed(Canvas& c, const Posed& b, const Color& fill, float alpha) {
     edge.color = fill.scaled(0.55f);
     for (int e = 0; e < b.mesh.edgeCount(); ++e) {
         const auto [u, v] = b.mesh.edgeVertices(e);
-        c.drawLine(w[u], w[v], edge);
+        const auto [f1, f2] = b.mesh.edgeFaces(e);
+        c.drawLine(w[u], w[v],
+                   edgeStyleSeen(c.camera(), 0.5 * (w[u] + w[v]), b.pose.rotate(b.mesh.plane(f1).normal),
+                                 b.pose.rotate(b.mesh.plane(f2).normal), edge));
     }
 }
 

@@ -324,8 +324,20 @@ private:
             verts,
             {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)},
             roleColor(Role::ShapeA).withAlpha(0.28f), true);
+        // Edge ij joins the faces opposite the other two vertices k and l; behind the body it is dashed.
+        const auto outward = [&](int i, int j, int l, int k) {  // face ijl, opposite vertex k
+            const Vec3 n = (v[j] - v[i]).cross(v[l] - v[i]);
+            return n.dot(v[k] - v[i]) > 0 ? Vec3(-n) : n;
+        };
         for (int i = 0; i < 4; ++i)
-            for (int j = i + 1; j < 4; ++j) canvas.drawLine(v[i], v[j], lineStyle(Role::Ink, 3.0f));
+            for (int j = i + 1; j < 4; ++j) {
+                int k = 0;
+                while (k == i || k == j) ++k;
+                const int l = 6 - i - j - k;
+                canvas.drawLine(v[i], v[j],
+                                edgeStyleSeen(canvas.camera(), 0.5 * (v[i] + v[j]), outward(i, j, l, k),
+                                              outward(i, j, k, l), lineStyle(Role::Ink, 3.0f)));
+            }
 
         // In a step frame, the focused point's region: its clipped boundary faces, faintly (all 15
         // at once would hide the tetrahedron).
