@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "demos/draw/figure_canvas.h"
 #include "render/canvas.h"
@@ -25,23 +27,56 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
         cellW = std::max(cellW, cells.back().width);
         cellH = std::max(cellH, cells.back().height);
     }
-    // Captions stay legible on a slide: at least 1.6 % of the sheet's height (the legibility
-    // check asks for 1.5 %), 15 px at the least.
-    const int pad = 12, titleH = o.title.empty() ? 0 : 48;
-    int captionH = 44;
-    float captionPx = 15.0f;
-    for (int pass = 0; pass < 2; ++pass) {
-        const int h = titleH + rows * (cellH + captionH + pad) + pad;
-        captionPx = std::max(15.0f, float(std::ceil(0.016 * h)));
-        captionH = int(std::ceil(captionPx * 2.9));
-    }
+    const int pad = 12;
     const int width = columns * (cellW + pad) + pad;
+    // The scene caption under the title, wrapped to the sheet's width; it and the frames' captions
+    // stay legible on a slide: at least 1.6 % of the sheet's height (the legibility check asks for
+    // 1.5 %), 15 / 16 px at the least. The height depends on the sizes: settle them in a few passes.
+    const Canvas measure(gl, canvasOptions(16, 16, 1));
+    const auto wrap = [&](const TextStyle& style) {
+        std::vector<std::string> lines;
+        std::string line;
+        for (std::size_t at = 0; !o.caption.empty() && at <= o.caption.size();) {
+            const std::size_t space = std::min(o.caption.find(' ', at), o.caption.size());
+            const std::string word = o.caption.substr(at, space - at);
+            const std::string longer = line.empty() ? word : line + " " + word;
+            if (!line.empty() && measure.measureText(longer, style).x() > width - 2 * pad) {
+                lines.push_back(line);
+                line = word;
+            } else {
+                line = longer;
+            }
+            at = space + 1;
+        }
+        if (!line.empty()) lines.push_back(line);
+        return lines;
+    };
+    TextStyle sceneCaption{16.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f), Anchor::Top, false, false};
+    std::vector<std::string> captionLines;
+    int titleH = 0, captionH = 44;
+    float captionPx = 15.0f;
+    for (int pass = 0; pass < 4; ++pass) {
+        captionLines = wrap(sceneCaption);
+        const double lineH = std::ceil(sceneCaption.sizePx * 1.6);
+        titleH = (o.title.empty() ? 0 : 48) + int(lineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
+        const int h = titleH + rows * (cellH + captionH + pad) + pad;
+        const float legible = float(std::ceil(0.016 * h));
+        captionPx = std::max(15.0f, legible);
+        captionH = int(std::ceil(captionPx * 2.9));
+        sceneCaption.sizePx = std::max(16.0f, legible);
+    }
+    captionLines = wrap(sceneCaption);
+    const double sceneLineH = std::ceil(sceneCaption.sizePx * 1.6);
+    titleH = (o.title.empty() ? 0 : 48) + int(sceneLineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
 
     Canvas canvas(gl, canvasOptions(width, height, 1), Camera::twoD(0, 0, 1));
     TextStyle caption{captionPx, roleColor(Role::Ink), Anchor::Top, false, false};
     if (!o.title.empty())
         canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+    for (std::size_t k = 0; k < captionLines.size(); ++k)
+        canvas.drawTextPx(width / 2.0, pad + (o.title.empty() ? 0 : 34) + sceneLineH * double(k), captionLines[k],
+                          sceneCaption);
     for (int i = 0; i < n; ++i) {
         int x = pad + (i % columns) * (cellW + pad);
         int y = titleH + pad + (i / columns) * (cellH + captionH + pad);

@@ -13,6 +13,7 @@ struct ContactSheetOptions {
     int cellWidth = 384;  // each frame is box-downsampled to fit this width
     int columns = 0;      // 0: ceil(sqrt(n))
     std::string title;    // drawn above the grid
+    std::string caption;  // the scene's caption, under the title
 };
 
 /// Lays frames out left to right, top to bottom, each with its caption underneath.

@@ -27,12 +27,25 @@ void drawPanelHeading(Canvas& canvas, const std::string& heading, const std::str
                           TextStyle{17.0f, roleColor(Role::Highlight).scaled(0.8f), Anchor::TopLeft, true, true});
 }
 
+TwoPanelLayout twoPanelLayout(int width, int height, const std::string& sceneCaption) {
+    TwoPanelLayout layout{width, height};
+    if (!sceneCaption.empty()) layout.captionBand += 25;
+    return layout;
+}
+
 Image composeTwoPanel(GlContext& gl, const TwoPanelLayout& layout, int supersample, const std::string& title,
-                      const Image& left, const Image& right, const std::vector<std::string>& captionLines) {
+                      const std::string& sceneCaption, const Image& left, const Image& right,
+                      const std::vector<std::string>& captionLines) {
     Canvas canvas(gl, canvasOptions(layout.width, layout.height, supersample), Camera::twoD(0, 0, 1));
     canvas.drawTextPx(18, 10, title, TextStyle{24.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     const double lineH = 25.0;
     double y = layout.height - layout.captionBand + 8;
+    if (!sceneCaption.empty()) {  // the scene's caption first, in a quieter ink, as on every frame
+        canvas.drawTextPx(18, y, sceneCaption,
+                          TextStyle{17.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f), Anchor::TopLeft,
+                                    false, false});
+        y += lineH;
+    }
     for (const std::string& line : captionLines) {
         canvas.drawTextPx(18, y, line, TextStyle{17.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
         y += lineH;

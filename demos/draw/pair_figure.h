@@ -20,6 +20,8 @@ struct TwoPanelLayout {
     int panelWidth() const { return width / 2; }
     int panelHeight() const { return height - titleBand - captionBand; }
 };
+/// The layout of a width x height frame; a scene caption takes one more line under the panels.
+TwoPanelLayout twoPanelLayout(int width, int height, const std::string& sceneCaption);
 
 /// Camera for a panel: 2D (fits the sphere in the panel) or a perspective look-at from `view`.
 render::Camera panelCamera(bool planar, const Vec3& center, double radius, const Vec3& view,
@@ -30,8 +32,8 @@ void drawPanelHeading(render::Canvas& canvas, const std::string& heading, const 
 
 /// Assembles the frame: title (top), left and right panels, up to two caption lines (bottom).
 render::Image composeTwoPanel(render::GlContext& gl, const TwoPanelLayout& layout, int supersample,
-                              const std::string& title, const render::Image& left, const render::Image& right,
-                              const std::vector<std::string>& captionLines);
+                              const std::string& title, const std::string& sceneCaption, const render::Image& left,
+                              const render::Image& right, const std::vector<std::string>& captionLines);
 
 /// What every GJK and EPA frame draws from: both bodies, A − B (only when `drawMinkowski`), and
 /// the framing spheres of the world panel and of the configuration-space panel.

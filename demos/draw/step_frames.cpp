@@ -42,6 +42,7 @@ void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, cons
     if (gif) addGif(out, all, 1);
     if (common.steps || ctx.stepsOverride) {
         ContactSheetOptions o;
+        o.caption = common.caption;
         o.title = common.title + ": " + algorithm + ", one iteration per frame";
         o.cellWidth = 320;
         o.columns = std::min<int>(3, int(all.size()));

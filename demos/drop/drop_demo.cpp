@@ -189,6 +189,7 @@ public:
         const bool wantSheet = common_.steps || ctx.stepsOverride;
         if (wantSheet) {
             ContactSheetOptions o;
+            o.caption = common_.caption;
             o.title = common_.title + ": every " + std::to_string(frameEvery_) + " steps (" +
                       formatNumber(frameEvery_ * options_.timeStep) + " s)";
             o.cellWidth = 300;

@@ -91,8 +91,10 @@ public:
 
         const int ss = runSupersample(common_, ctx);
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
-        for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames))
-            out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
+        if (common_.steps || ctx.stepsOverride)  // "steps": false: GJK's simplex, the result, the bounds
+            for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames))
+                out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
+        else out.skipped.push_back("step frames (\"steps\": false)");
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -1));
         if (common_.hasLayer("plot") && !run.steps.empty()) out.frames.push_back(drawPlot(*ctx.gl, ss, run));
         addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "EPA", out);
@@ -289,7 +291,7 @@ private:
     }
 
     Frame drawFrame(GlContext& gl, int ss, const Drawing& d, const EpaRun& run, int index) const {
-        const TwoPanelLayout layout{common_.image.width, common_.image.height};
+        const TwoPanelLayout layout = twoPanelLayout(common_.image.width, common_.image.height, common_.caption);
         const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), ss);
         const bool isGjk = index == -2, isResult = index == -1;
         const PolyStep* s = index >= 0 ? &run.steps[index] : nullptr;
@@ -301,7 +303,7 @@ private:
         drawConfigurationPanel(cs, d, run, s, isGjk);
         Frame f;
         const std::vector<std::string> lines = describeFrame(d, run, s, isGjk, f);
-        f.image = composeTwoPanel(gl, layout, ss, common_.title, world.readPixels(), cs.readPixels(), lines);
+        f.image = composeTwoPanel(gl, layout, ss, common_.title, common_.caption, world.readPixels(), cs.readPixels(), lines);
         return f;
     }
 

@@ -178,6 +178,7 @@ public:
         else if (s_.gif) out.skipped.push_back("animation.gif (a single frame)");
         if ((common_.steps || ctx.stepsOverride) && animated.size() > 1) {
             ContactSheetOptions o;
+            o.caption = common_.caption;
             o.title = "Lin–Canny, one update per frame";
             const bool many = animated.size() > 6;
             o.cellWidth = common_.image.width / (many ? 5 : 4) + 1;

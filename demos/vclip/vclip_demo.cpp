@@ -129,6 +129,7 @@ public:
         if ((common_.steps || ctx.stepsOverride) && animated.size() > 1) {
             // At most 1024 x 768: 3 columns of quarter-size frames, or 4 of fifth-size beyond six frames.
             ContactSheetOptions o;
+            o.caption = common_.caption;
             o.title = s_.motion ? "One warm-started V-Clip call per frame" : "V-Clip, one update per frame";
             const bool many = animated.size() > 6;
             o.cellWidth = common_.image.width / (many ? 5 : 4) + 1;

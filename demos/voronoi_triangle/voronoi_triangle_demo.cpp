@@ -418,6 +418,7 @@ private:
         std::vector<const Frame*> steps;
         for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
         ContactSheetOptions o;
+        o.caption = common_.caption;
         o.title = common_.title + ": one query point per frame";
         out.frames.push_back(contactSheetFrame(*ctx.gl, steps, common_.title, o));
     }
