@@ -56,6 +56,15 @@ struct FrameData {
 };
 
 std::string boxName(int id) { return std::string(1, static_cast<char>('A' + id)); }
+
+// Box A and box B wear the bodies' colours of every other demo; the rest the other hues in turn.
+Color boxColor(int id) {
+    if (id == 0) return roleColor(Role::ShapeA);
+    if (id == 1) return roleColor(Role::ShapeB);
+    // Not vermillion: it marks the pairs found.
+    static constexpr int kOthers[4] = {2, 3, 1, 6};  // bluish green, yellow, sky blue, reddish purple
+    return categorical(kOthers[(id - 2) % 4]);
+}
 /// "[A" for a min endpoint, "A]" for a max endpoint.
 std::string endName(int id, bool isMax) { return isMax ? boxName(id) + "]" : "[" + boxName(id); }
 std::string pairName(const BoxPair& p) { return boxName(p.a) + boxName(p.b); }
@@ -215,7 +224,7 @@ private:
             const std::vector<Eigen::Vector3i> tris = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6},
                                                        {0, 1, 4}, {1, 5, 4}, {2, 6, 3}, {3, 6, 7},
                                                        {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-            const Color col = categorical(static_cast<int>(i));
+            const Color col = boxColor(static_cast<int>(i));
             c.drawMesh(v, tris, col.withAlpha(0.35f), true);
             const LineStyle edge = paired[i] ? LineStyle{3.0f, roleColor(Role::Highlight), 0.0f, false}
                                              : LineStyle{1.5f, col.scaled(0.7f), 0.0f, false};
@@ -366,7 +375,7 @@ private:
             const double yc = y0 + 6 + (i + 0.5) * rowH;
             const double xa = X(b.min[k]), xb = std::max(X(b.max[k]), xa + 2.0);
             const double hh = 0.36 * rowH;
-            const Color col = categorical(i);
+            const Color col = boxColor(i);
             c.drawPolygon({P(xa, yc - hh), P(xb, yc - hh), P(xb, yc + hh), P(xa, yc + hh)}, col.withAlpha(0.85f));
             c.drawPolyline({P(xa, yc - hh), P(xb, yc - hh), P(xb, yc + hh), P(xa, yc + hh)}, true,
                            LineStyle{1.0f, col.scaled(0.6f), 0.0f, true});
@@ -454,7 +463,7 @@ private:
             t.anchor = Anchor::Center;
             t.sizePx = 14.0f;
             t.bold = true;
-            t.color = hot ? roleColor(Role::Highlight) : categorical(e.object()).scaled(0.6f);
+            t.color = hot ? roleColor(Role::Highlight) : boxColor(e.object()).scaled(0.6f);
             c.drawTextPx(x, y, endName(e.object(), e.isMax()), t);
         };
         for (int r = 0; r < m; ++r) {
