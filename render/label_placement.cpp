@@ -42,10 +42,12 @@ bool segmentHitsBox(const Vector2d& a, const Vector2d& b, const Box& box) {
     return true;
 }
 
-// A box of `size` whose nearest edge is `gap` px from the anchor in direction `dir` (unit).
+// A box of `size` beside the anchor on the side `dir` (unit) points to, `gap` px away: centred
+// on the anchor's row or column for a (nearly) axial direction, else with its nearest corner at
+// the anchor (Imhof's corner positions), so a wide label never drifts far from its point.
 Box boxAt(const Vector2d& anchor, const Vector2d& size, const Vector2d& dir, double gap) {
-    const double reach = gap + 0.5 * std::abs(dir.x()) * size.x() + 0.5 * std::abs(dir.y()) * size.y();
-    const Vector2d c = anchor + dir * reach;
+    const auto side = [](double d) { return d > 0.2 ? 1.0 : d < -0.2 ? -1.0 : 0.0; };
+    const Vector2d c = anchor + dir * gap + Vector2d(side(dir.x()) * 0.5 * size.x(), side(dir.y()) * 0.5 * size.y());
     return {c.x() - 0.5 * size.x(), c.y() - 0.5 * size.y(), c.x() + 0.5 * size.x(), c.y() + 0.5 * size.y()};
 }
 

@@ -172,29 +172,36 @@ public:
     }
 
     /// Legend box in the upper right corner of the plot area.
-    void legend(const Frame& f, const std::vector<std::pair<std::string, int>>& entries, bool steps) {
+    /// What a legend row shows: the series' colour (style) with its marker and/or its line.
+    struct LegendEntry {
+        std::string label;
+        int style = 0;
+        bool line = false, markers = true;
+    };
+    void legend(const Frame& f, const std::vector<LegendEntry>& entries, bool steps) {
         if (entries.empty()) return;
         const TextStyle text{15.0f, roleColor(Role::Ink), Anchor::Left, false, false};
         double w = 0;
-        for (const auto& e : entries) w = std::max(w, c_.measureText(e.first, text).x());
+        for (const auto& e : entries) w = std::max(w, c_.measureText(e.label, text).x());
         const double rowH = 24, boxW = std::min(w + 58, o_.width - f.x1 - 24), boxH = rowH * entries.size() + 12;
         const double bx = f.x1 + 16, by = f.y0;
+        // Opaque: a translucent box is drawn after every opaque mesh and would cover the swatches.
         c_.drawPolygon({P(bx, by), P(bx + boxW, by), P(bx + boxW, by + boxH), P(bx, by + boxH)},
-                       roleColor(Role::Background).withAlpha(0.92f));
+                       roleColor(Role::Background));
         c_.drawPolyline({P(bx, by), P(bx + boxW, by), P(bx + boxW, by + boxH), P(bx, by + boxH)}, true,
                         lineStyle(Role::Muted, 1.0f, false, true));
         for (size_t i = 0; i < entries.size(); ++i) {
             const double y = by + 6 + rowH * (i + 0.5);
-            if (steps) {
+            const LegendEntry& e = entries[i];
+            if (steps || e.line) {  // the series is drawn as a line: so is its swatch
                 LineStyle s;
-                s.widthPx = 3.0f;
-                s.color = render::categorical(entries[i].second);
+                s.widthPx = steps ? 3.0f : 2.0f;
+                s.color = render::categorical(e.style);
                 s.onTop = true;
                 c_.drawLine(P(bx + 10, y), P(bx + 40, y), s);
-            } else {
-                marker(entries[i].second, bx + 25, y, 6.0, 1.0f);
             }
-            c_.drawTextPx(bx + 50, y, entries[i].first, text);
+            if (!steps && e.markers) marker(e.style, bx + 25, y, 6.0, 1.0f);
+            c_.drawTextPx(bx + 50, y, e.label, text);
         }
     }
 
@@ -230,7 +237,8 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     Canvas& c = pc.canvas();
     for (const auto& [value, text] : o.hLines) {
         const double y = f.py(value);
-        c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), lineStyle(Role::Highlight, 2.0f, true, false));
+        // 3 px: thick enough to be an obstacle to the placement step, so its name stays off it.
+        c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), lineStyle(Role::Highlight, 3.0f, true, false));
         // Named above the line's left end, or where the placement step finds room off the data.
         TextStyle ts{16.0f, roleColor(Role::Highlight), Anchor::Center, true, false};
         ts.place = true;
@@ -243,9 +251,9 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     for (const PlotSeries& s : series) total += s.points.size();
     const double r = total > 2000 ? 3.0 : total > 300 ? 4.5 : 7.0;
     const float alpha = total > 2000 ? 0.55f : 0.9f;
-    std::vector<std::pair<std::string, int>> entries;
+    std::vector<PlotCanvas::LegendEntry> entries;
     for (const PlotSeries& s : series) {
-        entries.emplace_back(s.label, s.style);
+        entries.push_back({s.label, s.style, s.line && s.points.size() > 1, s.markers});
         if (s.line && s.points.size() > 1) {
             std::vector<Eigen::Vector3d> line;
             for (const auto& [x, y] : s.points) line.push_back(pc.P(f.px(x), f.py(y)));
@@ -302,10 +310,10 @@ render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
     f.ay.hi = std::max(0.05, std::min(1.0, top * 1.15));
     pc.axes(f);
     Canvas& c = pc.canvas();
-    std::vector<std::pair<std::string, int>> entries;
+    std::vector<PlotCanvas::LegendEntry> entries;
     for (size_t si = 0; si < series.size(); ++si) {
         const int style = static_cast<int>(si);
-        entries.emplace_back(series[si].first, style);
+        entries.push_back({series[si].first, style, true, false});
         // Step outline with a translucent fill, slightly offset per series so equal bins stay visible.
         const double dx = 2.0 * si;
         std::vector<Eigen::Vector3d> outline;
