@@ -23,7 +23,9 @@
 #include "core/bvh/bvh.h"
 #include "core/bvh/mesh_collision.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/overlap/sat_tests.h"
 #include "demos/bvh/bvh_draw.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/step_frames.h"
@@ -108,6 +110,32 @@ MeshView meshView(const TriangleMesh& m, const Transform& pose) {
     for (const Vec3& p : m.vertices) v.vertices.push_back(pose.apply(p));
     for (const auto& t : m.triangles) v.triangles.emplace_back(t[0], t[1], t[2]);
     return v;
+}
+
+// The axis that separates two disjoint boxes, drawn through A's centre with both boxes'
+// projections on it (Ericson §4.4.1: 15 candidate axes): the gap between the two bars is why
+// the pair is pruned, even where the boxes overlap on screen. Returns the axis' name.
+std::string drawSeparatingAxis(Canvas& c, const Obb& a, const Obb& b, bool labels) {
+    const SatResult sat = testObbObb(a, b);
+    if (sat.hit) return "";
+    const SatAxisStep& s = sat.separatingAxis;
+    const double len = s.axis.norm();
+    if (!(len > 0)) return "";
+    const Vec3 u = s.axis / len;
+    const auto at = [&](double t) { return Vec3(a.center + u * (t / len)); };
+    const double lo = std::min(s.minA, s.minB), hi = std::max(s.maxA, s.maxB), pad = 0.1 * (hi - lo);
+    c.drawLine(at(lo - pad), at(hi + pad), lineStyle(Role::Ink, 1.5f, true, true));
+    c.drawLine(at(s.minA), at(s.maxA), lineStyle(Role::ShapeA, 6.0f, false, true));
+    c.drawLine(at(s.minB), at(s.maxB), lineStyle(Role::ShapeB, 6.0f, false, true));
+    const std::string name = s.kind == SatAxisKind::FaceA   ? "a face normal of A's box"
+                             : s.kind == SatAxisKind::FaceB ? "a face normal of B's box"
+                                                            : "an edge of A's box × an edge of B's";
+    if (labels) {
+        TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::Center, true, false};
+        drawLabelAway(c, at(s.maxA < s.minB ? 0.5 * (s.maxA + s.minB) : 0.5 * (s.maxB + s.minA)), a.center,
+                      "gap on the separating axis", ts, 14.0);
+    }
+    return name;
 }
 
 Obb worldBox(const Obb& b, const Transform& pose) {
@@ -729,7 +757,11 @@ private:
             drawBoxFill(c, b, roleColor(role).withAlpha(0.07f));
             drawBoxWire(c, b, lineStyle(role, 3.0f, !s.overlap, true));
         }
-        // A leaf pair: its triangle tests follow in the trace; the hits in red.
+        std::string axisName;
+        if (!s.overlap)
+            axisName = drawSeparatingAxis(c, worldBox(ta.box(s.nodeA), ma.pose), worldBox(tb.box(s.nodeB), mb.pose),
+                                          labels());
+        // A leaf pair: its triangle tests follow in the trace; the hits highlighted.
         std::string triNote;
         if (leafTest) {
             std::vector<int> ha, hb;
@@ -749,8 +781,12 @@ private:
                       (hit == 1 ? " hit" : " hits");
         }
         const std::string pair = "pair (A" + std::to_string(s.nodeA) + ", B" + std::to_string(s.nodeB) + ")";
-        drawHeading(c, "Step " + std::to_string(k + 1) + " of " + std::to_string(bv.size()) + ": " + pair,
-                    std::string(s.overlap ? "boxes overlap" : "boxes disjoint") + " → " + nameOf(s.action) +
+        // Steps count from 0, as in the trace, the scene's step_frames and the file names (step_04).
+        drawHeading(c, "Step " + std::to_string(k) + " (of 0–" + std::to_string(bv.size() - 1) + "): " + pair,
+                    std::string(s.overlap             ? "boxes overlap"
+                                : axisName.empty() ? "boxes disjoint"
+                                                   : "boxes disjoint along " + axisName) +
+                        " → " + nameOf(s.action) +
                         (triNote.empty() ? "" : ": " + triNote));
         if (labels()) {
             drawFooter(c,
@@ -796,7 +832,7 @@ private:
         if (s.action == BvhTraversalAction::LeafTest)
             rule = "leaf pair: test every triangle of A's leaf against every triangle of B's leaf (exact test)";
         caption.push_back(rule);
-        return Frame{stepFrameName(k), "step " + std::to_string(k + 1) + ": " + pair + " " + nameOf(s.action),
+        return Frame{stepFrameName(k), "step " + std::to_string(k) + ": " + pair + " " + nameOf(s.action),
                      composeGrid(gl, L, ss_, common_.title, {main, trees}, legend, caption)};
     }
 
