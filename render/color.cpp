@@ -29,6 +29,9 @@ Color roleColor(Role role) {
         case Role::Highlight: return kVermillion;
         case Role::Query: return kBlack;
         case Role::Result: return kVermillion;
+        // Wine: darker than vermillion and orange (told apart by lightness too, for colour-blind
+        // readers), used only for the outline of intersecting bodies.
+        case Role::Colliding: return {0.55f, 0.07f, 0.30f, 1};
     }
     return kBlack;
 }

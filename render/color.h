@@ -31,6 +31,7 @@ enum class Role {
     Highlight,   // the thing the caption talks about
     Query,       // query points
     Result,      // closest points, witnesses, answers
+    Colliding,   // bodies that intersect (their outlines), never a point or a pair
 };
 
 Color roleColor(Role role);

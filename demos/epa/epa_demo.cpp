@@ -303,7 +303,8 @@ private:
         drawConfigurationPanel(cs, d, run, s, isGjk);
         Frame f;
         const std::vector<std::string> lines = describeFrame(d, run, s, isGjk, f);
-        f.image = composeTwoPanel(gl, layout, ss, common_.title, common_.caption, world.readPixels(), cs.readPixels(), lines);
+        f.image =
+            composeTwoPanel(gl, layout, ss, common_.title, common_.caption, world.readPixels(), cs.readPixels(), lines);
         return f;
     }
 
@@ -311,14 +312,18 @@ private:
     void drawWorldPanel(Canvas& world, const Drawing& d, const EpaRun& run, const PolyStep* s, bool isResult) const {
         const bool labels = common_.hasLayer("labels");
         const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
-        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeA).scaled(0.6f),
-                 2.0f);
-        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f, roleColor(Role::ShapeB).scaled(0.6f),
-                 2.0f);
+        const bool colliding = penetrating;  // the bodies intersect: their outlines say so
+        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f,
+                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.6f),
+                 colliding ? 3.5f : 2.0f);
+        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f,
+                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeB).scaled(0.6f),
+                 colliding ? 3.5f : 2.0f);
         if (labels) {
             drawBodyName(world, d.a.center, "A", Role::ShapeA);
             drawBodyName(world, d.b.center, "B", Role::ShapeB);
         }
+        if (colliding && labels) drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
         if (s && common_.hasLayer("support")) {
             world.drawPoint(s->supportA, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
             world.drawPoint(s->supportB, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
@@ -373,8 +378,7 @@ private:
                     cs.drawLine(w[i], w[j], lineStyle(Role::Simplex, 4.0f, false, true));
                 cs.drawPoint(w[i], 8.0f, roleColor(Role::Simplex), true, 1.5f, roleColor(Role::Ink));
                 if (labels)
-                    drawLabelAway(cs, w[i], d.cCenter, "w" + std::to_string(i), labelStyle(Role::Ink, 20.0f),
-                                  12.0);
+                    drawLabelAway(cs, w[i], d.cCenter, "w" + std::to_string(i), labelStyle(Role::Ink, 20.0f), 12.0);
             }
             sub = "GJK's terminal simplex (" + std::to_string(w.size()) + " vertices): " + nameOf(run.gjk.status);
         } else if (s) {

@@ -154,14 +154,18 @@ private:
                      const GjkTraceStep* s, const GjkResult& r) const {
         const bool labels = common_.hasLayer("labels");
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
-        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeA).scaled(0.6f),
-                 2.0f);
-        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f, roleColor(Role::ShapeB).scaled(0.6f),
-                 2.0f);
+        const bool colliding = r.status == GjkStatus::Intersecting;  // the bodies intersect: their outlines say so
+        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f,
+                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.6f),
+                 colliding ? 3.5f : 2.0f);
+        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f,
+                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeB).scaled(0.6f),
+                 colliding ? 3.5f : 2.0f);
         if (labels) {
             drawBodyName(world, d.a.center, "A", Role::ShapeA);
             drawBodyName(world, d.b.center, "B", Role::ShapeB);
         }
+        if (colliding && labels) drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
         const Vec3 pa = s ? s->pointA : r.pointA, pb = s ? s->pointB : r.pointB;
         if (common_.hasLayer("witness")) {
             world.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
@@ -184,7 +188,7 @@ private:
             }
         }
         drawPanelHeading(world, "World space",
-                         s                                    ? "witness points of the kept simplex"
+                         s                                     ? "witness points of the kept simplex"
                          : r.status == GjkStatus::Intersecting ? "intersecting: a common point, no closest points"
                                                                : "closest points");
 
@@ -299,9 +303,10 @@ private:
         if (s) {
             const double vv = s->upperBound * s->upperBound;
             std::string stop = s->terminated ? std::string("stop: ") + nameOf(trace.termination) : "continue";
-            lines.push_back("Iteration " + std::to_string(s->iteration) + ": w = s_A(d) − s_B(−d) = " +
-                            formatPoint(s->support.w) + ", simplex {" + slotNames(std::uint8_t((1u << s->simplexCount) - 1)) +
-                            "} → region " + slotNames(s->keptSlots) + ", |v| = " + formatNumber(s->v.norm()));
+            lines.push_back("Iteration " + std::to_string(s->iteration) +
+                            ": w = s_A(d) − s_B(−d) = " + formatPoint(s->support.w) + ", simplex {" +
+                            slotNames(std::uint8_t((1u << s->simplexCount) - 1)) + "} → region " +
+                            slotNames(s->keptSlots) + ", |v| = " + formatNumber(s->v.norm()));
             lines.push_back("bounds " + formatNumber(s->lowerBound) + " ≤ distance ≤ " + formatNumber(s->upperBound) +
                             ";  test |v|² − v·w = " + formatNumber(s->gapTest) +
                             (s->gapTest <= options_.relativeTolerance * vv ? " ≤ " : " > ") +

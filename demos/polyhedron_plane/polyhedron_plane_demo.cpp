@@ -105,12 +105,13 @@ std::vector<Eigen::Vector3i> triangles(const ConvexPolyhedron& m) {
     return t;
 }
 
-void drawPosed(Canvas& c, const Posed& b, const Color& fill, float alpha) {
+// A colliding body keeps its colour; its outline says it collides (Role::Colliding, thicker).
+void drawPosed(Canvas& c, const Posed& b, const Color& fill, float alpha, bool colliding = false) {
     const std::vector<Vec3> w = b.world();
     c.drawMesh(w, triangles(b.mesh), fill.withAlpha(alpha), true);
     LineStyle edge;
-    edge.widthPx = 2.0f;
-    edge.color = fill.scaled(0.55f);
+    edge.widthPx = colliding ? 3.5f : 2.0f;
+    edge.color = colliding ? roleColor(Role::Colliding) : fill.scaled(0.55f);
     for (int e = 0; e < b.mesh.edgeCount(); ++e) {
         const auto [u, v] = b.mesh.edgeVertices(e);
         const auto [f1, f2] = b.mesh.edgeFaces(e);
@@ -296,12 +297,11 @@ private:
         }
         Posed pb = body;
         pb.pose = poses[i];
-        drawPosed(c, pb, r.colliding() ? roleColor(Role::Highlight) : roleColor(Role::ShapeA),
-                  r.colliding() ? 0.55f : 0.75f);
+        drawPosed(c, pb, roleColor(Role::ShapeA), r.colliding() ? 0.45f : 0.75f, r.colliding());
         Legend lg{c};
         if (labels)
-            lg.item(r.colliding() ? "body colliding (highlighted)" : "body separated",
-                    r.colliding() ? Role::Highlight : Role::ShapeA);
+            lg.item(r.colliding() ? "body colliding (outline)" : "body separated",
+                    r.colliding() ? Role::Colliding : Role::ShapeA);
         if (r.colliding()) {
             // Vertices below the plane and the crossing points.
             if (common_.hasLayer("polygon")) {
@@ -530,12 +530,13 @@ private:
                       tr.edgePairsPruned, tr.edgePairsParallel);
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ());
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
-        drawPosed(c, a, roleColor(Role::ShapeA), 0.35f);
-        drawPosed(c, b, roleColor(Role::ShapeB), 0.35f);
+        drawPosed(c, a, roleColor(Role::ShapeA), 0.35f, r.colliding());
+        drawPosed(c, b, roleColor(Role::ShapeB), 0.35f, r.colliding());
         Legend lg{c};
         if (labels) {
             lg.item("body A", Role::ShapeA);
             lg.item("body B", Role::ShapeB);
+            if (r.colliding()) lg.item("colliding (outlines)", Role::Colliding);
         }
         Vec3 axisFrom = center;
         if (faceContact) {
