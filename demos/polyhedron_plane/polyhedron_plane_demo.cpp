@@ -562,8 +562,10 @@ private:
         if (common_.hasLayer("normals")) {
             c.drawArrow(axisFrom, axisFrom + 0.6 * radius * r.normal, lineStyle(Role::Direction, 4.0f, false, true));
             if (labels) {
+                TextStyle ts{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}};
+                ts.place = true;  // beside the arrow's tip, off the key in the corner
                 c.drawText(axisFrom + 0.62 * radius * r.normal, std::string("SAT axis (") + nameOf(r.axisKind) + ")",
-                           TextStyle{18.0f, roleColor(Role::Direction), Anchor::Left, true, true, {10, 0}});
+                           ts);
                 lg.item("→ axis of least penetration", Role::Direction);
             }
         }
