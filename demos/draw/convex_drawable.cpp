@@ -214,4 +214,18 @@ void drawBodyName(Canvas& canvas, const Vec3& at, const std::string& name, Role 
     canvas.drawText(at, name, style);
 }
 
+std::pair<Vec3, Vec3> bodyNamePoints(const ConvexDrawable& a, const ConvexDrawable& b) {
+    const double apart = (a.center - b.center).norm();
+    if (!(apart < 0.5 * (a.radius + b.radius))) return {a.center, b.center};
+    const bool aLarger = a.radius >= b.radius;
+    const ConvexDrawable& big = aLarger ? a : b;
+    const ConvexDrawable& small = aLarger ? b : a;
+    // Past the small body's far side, still well inside the big one's bounding sphere; straight
+    // "up" in the body frame when the centres coincide.
+    const Vec3 away = apart > 1e-12 * big.radius ? Vec3((big.center - small.center) / apart) : Vec3::UnitZ();
+    const double reach = std::min(0.75 * big.radius, small.radius + 0.3 * big.radius);
+    const Vec3 moved = small.center + away * reach;
+    return aLarger ? std::pair{moved, b.center} : std::pair{a.center, moved};
+}
+
 }  // namespace cdlab::demos

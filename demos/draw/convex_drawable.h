@@ -57,6 +57,10 @@ void drawOrigin(render::Canvas& canvas, double size, bool planar);
 /// from a centre instead of piling onto the point they name).
 /// A body's name ("A", "B") at its centre, or beside it when a marker or label is there.
 void drawBodyName(render::Canvas& canvas, const Vec3& at, const std::string& name, render::Role role);
+/// Where the names of two bodies go: their centres, except that when the centres are close
+/// (one body deep inside the other) the larger body's name moves away from the smaller one, onto
+/// a part of it the other does not cover.
+std::pair<Vec3, Vec3> bodyNamePoints(const ConvexDrawable& a, const ConvexDrawable& b);
 void drawLabelAway(render::Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text,
                    render::TextStyle style, double px = 16.0);
 

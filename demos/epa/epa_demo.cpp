@@ -320,8 +320,9 @@ private:
                  colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeB).scaled(0.6f),
                  colliding ? 3.5f : 2.0f);
         if (labels) {
-            drawBodyName(world, d.a.center, "A", Role::ShapeA);
-            drawBodyName(world, d.b.center, "B", Role::ShapeB);
+            const auto [nameA, nameB] = bodyNamePoints(d.a, d.b);
+            drawBodyName(world, nameA, "A", Role::ShapeA);
+            drawBodyName(world, nameB, "B", Role::ShapeB);
         }
         if (colliding && labels) drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
         if (s && common_.hasLayer("support")) {
