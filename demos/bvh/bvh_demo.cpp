@@ -529,7 +529,7 @@ private:
             bc.series.push_back(s);
         }
         for (int level = 0; level <= maxLevel; ++level) bc.groups.push_back(std::to_string(level));
-        bc.valueFormat = "";
+        bc.valueFormat = "";  // too many bars for a number on each: the chart gets a value axis
         panels.push_back(drawBarChart(gl, L.panelWidth(), L.panelHeight(), ss_, bc));
         std::vector<std::string> caption;
         if (q) {

@@ -292,7 +292,9 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
     Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));
     auto P = [&](double x, double yDown) { return Vec3(x, H - yDown, 0); };
     drawHeading(c, in.heading, in.sub);
-    const double left = 24, right = 16, legendTop = in.sub.empty() ? 40 : 62, bottom = 40;
+    // Without a number on each bar a linear chart gets a value axis on the left.
+    const bool valueAxis = in.valueFormat.empty() && !in.logY;
+    const double left = valueAxis ? 56 : 24, right = 16, legendTop = in.sub.empty() ? 40 : 62, bottom = 40;
     const double top = legendTop + 18.0 * double(in.series.size()) + 22;
     const int groups = int(in.groups.size()), ns = int(in.series.size());
     if (groups == 0 || ns == 0) return c.readPixels();
@@ -313,6 +315,19 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
     };
     const double plotH = H - top - bottom, groupW = (W - left - right) / groups, barW = 0.8 * groupW / ns;
     c.drawLine(P(left - 4, H - bottom), P(W - right, H - bottom), lineStyle(Role::Ink, 1.5f));
+    if (valueAxis) {  // ticks at 2, 5 or 10 x 10^k, at most five of them
+        const double raw = hi / 4, decade = std::pow(10.0, std::floor(std::log10(raw)));
+        const double tickStep = raw / decade < 2 ? 2 * decade : raw / decade < 5 ? 5 * decade : 10 * decade;
+        c.drawLine(P(left - 4, H - bottom), P(left - 4, top), lineStyle(Role::Ink, 1.5f));
+        for (double v = 0; v <= hi * (1 + 1e-9); v += tickStep) {
+            const double y = H - bottom - frac(v) * plotH;
+            c.drawLine(P(left - 8, y), P(left - 4, y), lineStyle(Role::Ink, 1.5f));
+            c.drawLine(P(left - 4, y), P(W - right, y), lineStyle(Role::Muted, 1.0f, true));
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%g", v);
+            c.drawTextPx(left - 11, y, buf, TextStyle{13.0f, roleColor(Role::Ink), Anchor::Right, true, false});
+        }
+    }
     const TextStyle value{12.0f, roleColor(Role::Ink), Anchor::Bottom, true, false};
     for (int g = 0; g < groups; ++g) {
         const double gx = left + g * groupW + 0.1 * groupW;
