@@ -96,6 +96,49 @@ Json queriesJson(const std::vector<Query>& results) {
     return qs;
 }
 
+// Ericson's region tests of a query in the order made, one entry each: the candidate, every
+// term evaluated with its double value and its exact sign, and the outcome
+// ("AB: vc = -0.5 < 0, d1 = 2 > 0, d3 = -1 < 0 → yes").
+template <class Tests>
+std::vector<std::string> regionTestEntries(const Tests& tests) {
+    std::vector<std::string> out;
+    for (const auto& t : tests) {
+        std::string e = std::string(nameOf(t.candidate)) + ": ";
+        for (int k = 0; k < t.termCount; ++k) {
+            const PredicateSign& p = t.terms[std::size_t(k)];
+            e += std::string(k ? ", " : "") + p.name + " = " + formatNumber(p.value) +
+                 (p.sign > 0 ? " > 0" : p.sign < 0 ? " < 0" : " = 0") + (p.exactFallback ? " (exact)" : "");
+        }
+        if (t.termCount == 0) e += "otherwise";
+        out.push_back(e + (t.accepted ? " → yes" : " → no"));
+    }
+    return out;
+}
+
+// The region tests written as a block whose last line ends at pixel row `bottom` (above the
+// caption), entries joined and wrapped to `width`: the step frame's account of how the region
+// was found.
+void drawRegionTests(Canvas& canvas, double x, double bottom, double width, const std::vector<std::string>& entries) {
+    const TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+    const double lineH = 22;
+    std::vector<std::string> lines;
+    std::string line;
+    for (const std::string& e : entries) {
+        const std::string longer = line.empty() ? e : line + ";   " + e;
+        if (!line.empty() && canvas.measureText(longer, ts).x() > width) {
+            lines.push_back(line);
+            line = e;
+        } else {
+            line = longer;
+        }
+    }
+    if (!line.empty()) lines.push_back(line);
+    double y = bottom - lineH * double(lines.size() + 1);
+    canvas.drawTextPx(x, y, "Region tests in Ericson's order:",
+                      TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+    for (const std::string& l : lines) canvas.drawTextPx(x, y += lineH, l, ts);
+}
+
 // Caption of the step frame of query i.
 template <class Result>
 std::string focusCaption(int i, const Vec3& point, const Result& r) {
@@ -280,6 +323,9 @@ private:
         }
         std::string caption = common_.caption;
         if (focus >= 0) caption = focusCaption(focus, results[focus].point, results[focus].trace.result);
+        if (focus >= 0 && labels)
+            drawRegionTests(canvas, 18, canvas.height() - 44, canvas.width() - 36,
+                            regionTestEntries(results[focus].trace.tests));
         drawTitleAndCaption(canvas, common_.title + (is3d ? " (3D)" : ""), caption);
         Frame f;
         f.name = focus >= 0 ? stepName(focus) : view;
@@ -315,7 +361,8 @@ private:
                                const TetrahedronVoronoiDiagram& diagram, const std::vector<TetrahedronQuery>& results,
                                int focus) const {
         Canvas canvas(gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
-        double radius = size() + 0.6 * margin();
+        // A step frame frames the scene wider: its region tests need the bottom of the picture.
+        double radius = (size() + 0.6 * margin()) * (focus >= 0 ? 1.35 : 1.0);
         canvas.setCamera(common_.camera ? *common_.camera
                                         : framingCamera(center(), radius, Vec3(1.0, 0.75, 1.6), Vec3::UnitY(), true));
         const Vec3 v[4] = {tet.a, tet.b, tet.c, tet.d};
@@ -394,6 +441,9 @@ private:
         }
         std::string caption = common_.caption;
         if (focus >= 0) caption = focusCaption(focus, results[focus].point, results[focus].trace.result);
+        if (focus >= 0 && labels)
+            drawRegionTests(canvas, 18, canvas.height() - 44, canvas.width() - 36,
+                            regionTestEntries(results[focus].trace.tests));
         drawTitleAndCaption(canvas, common_.title, caption);
         Frame f;
         f.name = focus >= 0 ? stepName(focus) : "3d";
