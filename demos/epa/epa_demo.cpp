@@ -324,7 +324,9 @@ private:
             drawBodyName(world, nameA, "A", Role::ShapeA);
             drawBodyName(world, nameB, "B", Role::ShapeB);
         }
-        if (colliding && labels) drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
+        // The key only where outlines are drawn (polytopes, 2D shapes; curved 3D bodies have none).
+        if (colliding && labels && (d.planar || !d.a.edges.empty() || !d.b.edges.empty()))
+            drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
         if (s && common_.hasLayer("support")) {
             world.drawPoint(s->supportA, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
             world.drawPoint(s->supportB, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
@@ -387,7 +389,7 @@ private:
             sub = "closest " + std::string(d.planar ? "edge" : "face") + " at distance " + formatNumber(s->distance) +
                   "; " + std::to_string(s->removed.size()) + (d.planar ? " edge(s)" : " face(s)") + " visible from w";
             if (common_.hasLayer("labels"))
-                drawKey(cs, 14, 64,
+                drawKey(cs, 14, cs.height() - 28,  // at the bottom: the polytope fills the top
                         {{closestColor(), std::string("closest ") + (d.planar ? "edge" : "face")},
                          {roleColor(Role::Support), "visible from w (removed)"},
                          {roleColor(Role::Direction), "horizon"}});

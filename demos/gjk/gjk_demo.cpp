@@ -166,7 +166,9 @@ private:
             drawBodyName(world, nameA, "A", Role::ShapeA);
             drawBodyName(world, nameB, "B", Role::ShapeB);
         }
-        if (colliding && labels) drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
+        // The key only where outlines are drawn (polytopes, 2D shapes; curved 3D bodies have none).
+        if (colliding && labels && (d.planar || !d.a.edges.empty() || !d.b.edges.empty()))
+            drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
         const Vec3 pa = s ? s->pointA : r.pointA, pb = s ? s->pointB : r.pointB;
         if (common_.hasLayer("witness")) {
             world.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
