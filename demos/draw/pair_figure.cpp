@@ -75,4 +75,18 @@ PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vect
     return d;
 }
 
+void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels) {
+    const float alpha = d.planar ? 0.35f : alpha3d;
+    for (const auto& [body, role] : {std::pair{&d.a, Role::ShapeA}, std::pair{&d.b, Role::ShapeB}})
+        drawBody(world, *body, roleColor(role), alpha,
+                 colliding ? roleColor(Role::Colliding) : roleColor(role).scaled(0.6f), colliding ? 3.5f : 2.0f);
+    if (!labels) return;
+    const auto [nameA, nameB] = bodyNamePoints(d.a, d.b);
+    drawBodyName(world, nameA, "A", Role::ShapeA);
+    drawBodyName(world, nameB, "B", Role::ShapeB);
+    // The key only where outlines are drawn (polytopes, 2D shapes; curved 3D bodies have none).
+    if (colliding && (d.planar || !d.a.edges.empty() || !d.b.edges.empty()))
+        drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
+}
+
 }  // namespace cdlab::demos

@@ -49,4 +49,8 @@ struct PairDrawing {
 PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vector<Vec3> csPoints,
                             std::vector<std::string>& skipped);
 
+/// The two bodies in world space, translucent (`alpha3d` in 3D), named when `labels`; when they
+/// intersect their outlines take Role::Colliding, with a key where outlines are drawn.
+void drawPairBodies(render::Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels);
+
 }  // namespace cdlab::demos

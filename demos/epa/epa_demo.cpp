@@ -312,21 +312,7 @@ private:
     void drawWorldPanel(Canvas& world, const Drawing& d, const EpaRun& run, const PolyStep* s, bool isResult) const {
         const bool labels = common_.hasLayer("labels");
         const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
-        const bool colliding = penetrating;  // the bodies intersect: their outlines say so
-        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.4f,
-                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.6f),
-                 colliding ? 3.5f : 2.0f);
-        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.4f,
-                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeB).scaled(0.6f),
-                 colliding ? 3.5f : 2.0f);
-        if (labels) {
-            const auto [nameA, nameB] = bodyNamePoints(d.a, d.b);
-            drawBodyName(world, nameA, "A", Role::ShapeA);
-            drawBodyName(world, nameB, "B", Role::ShapeB);
-        }
-        // The key only where outlines are drawn (polytopes, 2D shapes; curved 3D bodies have none).
-        if (colliding && labels && (d.planar || !d.a.edges.empty() || !d.b.edges.empty()))
-            drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
+        drawPairBodies(world, d, 0.4f, penetrating, labels);  // outlined as colliding when they intersect
         if (s && common_.hasLayer("support")) {
             world.drawPoint(s->supportA, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
             world.drawPoint(s->supportB, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));

@@ -154,21 +154,7 @@ private:
                      const GjkTraceStep* s, const GjkResult& r) const {
         const bool labels = common_.hasLayer("labels");
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
-        const bool colliding = r.status == GjkStatus::Intersecting;  // the bodies intersect: their outlines say so
-        drawBody(world, d.a, roleColor(Role::ShapeA), d.planar ? 0.35f : 0.45f,
-                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.6f),
-                 colliding ? 3.5f : 2.0f);
-        drawBody(world, d.b, roleColor(Role::ShapeB), d.planar ? 0.35f : 0.45f,
-                 colliding ? roleColor(Role::Colliding) : roleColor(Role::ShapeB).scaled(0.6f),
-                 colliding ? 3.5f : 2.0f);
-        if (labels) {
-            const auto [nameA, nameB] = bodyNamePoints(d.a, d.b);
-            drawBodyName(world, nameA, "A", Role::ShapeA);
-            drawBodyName(world, nameB, "B", Role::ShapeB);
-        }
-        // The key only where outlines are drawn (polytopes, 2D shapes; curved 3D bodies have none).
-        if (colliding && labels && (d.planar || !d.a.edges.empty() || !d.b.edges.empty()))
-            drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
+        drawPairBodies(world, d, 0.45f, r.status == GjkStatus::Intersecting, labels);  // outlined as colliding when they intersect
         const Vec3 pa = s ? s->pointA : r.pointA, pb = s ? s->pointB : r.pointB;
         if (common_.hasLayer("witness")) {
             world.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
