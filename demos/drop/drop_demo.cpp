@@ -316,8 +316,11 @@ private:
             for (std::size_t i = 1; i + 1 < fv.size(); ++i) tris.emplace_back(fv[0], fv[i], fv[i + 1]);
         }
         c.drawMesh(wv, tris, roleColor(Role::ShapeA), true);
-        LineStyle edge = lineStyle(Role::ShapeA, 2.0f);
-        edge.color = roleColor(Role::ShapeA).scaled(0.5f);
+        // In contact with the ground (some contact pushing): outlined in the colliding role.
+        bool touching = false;
+        for (const ContactImpulse& ct : s.contacts) touching = touching || ct.normalImpulse > 0;
+        LineStyle edge = lineStyle(Role::ShapeA, touching ? 3.5f : 2.0f);
+        edge.color = touching ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.5f);
         for (int e = 0; e < r.shape.edgeCount(); ++e) {
             const auto [a, b] = r.shape.edgeVertices(e);
             c.drawLine(wv[a], wv[b], edge);
@@ -358,6 +361,7 @@ private:
                 item("arrow: ground normal n", Role::Direction);
             }
             if (common_.hasLayer("trail")) item("dashed: centre-of-mass path", Role::Ink);
+            if (touching) item("outline: body in contact with the ground", Role::Colliding);
         }
         // Two caption lines: the contacts of the step, then energy and depth.
         char line1[200], line2[200];
