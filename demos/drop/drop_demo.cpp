@@ -23,6 +23,7 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/step_frames.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 
@@ -149,13 +150,14 @@ private:
 class DropScene final : public PreparedScene {
 public:
     DropScene(SceneCommon common, DropInput input, SimulationOptions options, std::string body, int frameEvery,
-              Vec3 view)
+              Vec3 view, bool gif)
         : PreparedScene(std::move(common)),
           input_(std::move(input)),
           options_(options),
           body_(std::move(body)),
           frameEvery_(frameEvery),
-          view_(view) {}
+          view_(view),
+          gif_(gif) {}
 
     DemoOutput execute(const RunContext& ctx) const override {
         SimulationTrace tr;
@@ -185,6 +187,7 @@ public:
             out.frames.push_back(drawFrame(*ctx.gl, ss, cam, center, radius, r, tr, frameSteps[i], int(i)));
         std::vector<const Frame*> stepFrames;
         for (const Frame& f : out.frames) stepFrames.push_back(&f);
+        if (gif_) addGif(out, stepFrames, 1);
         Frame sheet;
         const bool wantSheet = common_.steps || ctx.stepsOverride;
         if (wantSheet) {
@@ -208,6 +211,7 @@ private:
     std::string body_;
     int frameEvery_;
     Vec3 view_;
+    bool gif_;  // also write animation.gif of the frames, like the other stepping demos
 
     Json traceJson(const SimulationResult& r, const SimulationTrace& tr) const {
         Json t;
@@ -480,13 +484,14 @@ public:
             view = sceneVec3(*v);
             if (!(view.norm() > 0)) v->fail("view direction must be non-zero");
         }
+        const bool gif = r.boolOr("gif", true);
         r.finish();
         // The body must start above the ground (lowest vertex at z >= 0).
         double lowest = INFINITY;
         for (const Vec3& v : in.shape.positions()) lowest = std::min(lowest, in.pose.apply(v).z());
         if (!(lowest >= 0))
             r.node().fail("the body starts below the ground (lowest vertex z = " + formatNumber(lowest) + ")");
-        return std::make_unique<DropScene>(std::move(common), std::move(in), o, bodyName, frameEvery, view);
+        return std::make_unique<DropScene>(std::move(common), std::move(in), o, bodyName, frameEvery, view, gif);
     }
 };
 
