@@ -80,9 +80,12 @@ FeatureGeometry realizedFeature(const FeatureGeometry& f, const Vec3& p, const V
     return f;  // the features meet inside the face
 }
 
+// 1 for a vertex, 2 for an edge, 3 for a face: its point count, except that a face has >= 3.
+int featureDimension(FeatureType t) { return t == FeatureType::Vertex ? 1 : t == FeatureType::Edge ? 2 : 3; }
+
 ContactType contactType(FeatureType a, FeatureType b) {
-    const auto dim = [](FeatureType t) { return t == FeatureType::Vertex ? 1 : t == FeatureType::Edge ? 2 : 3; };
-    const int lo = std::min(dim(a), dim(b)), hi = std::max(dim(a), dim(b));
+    const int lo = std::min(featureDimension(a), featureDimension(b));
+    const int hi = std::max(featureDimension(a), featureDimension(b));
     return lo == 1   ? (hi == 1 ? ContactType::VV : hi == 2 ? ContactType::VE : ContactType::VF)
            : lo == 2 ? (hi == 2 ? ContactType::EE : ContactType::EF)
                      : ContactType::FF;
@@ -175,10 +178,9 @@ FeaturePairPoints closestPointsPolygonPolygon(const std::vector<Vec3>& a, const 
 
 FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeometry& b) {
     FeatureDistanceResult r;
-    const auto expected = [](FeatureType t) { return t == FeatureType::Vertex ? 1 : t == FeatureType::Edge ? 2 : 3; };
     for (const FeatureGeometry* f : {&a, &b}) {
         if (f->type == FeatureType::None) r.message = "feature type None";
-        else if (f->type == FeatureType::Face ? f->points.size() < 3 : f->points.size() != size_t(expected(f->type)))
+        else if (f->type == FeatureType::Face ? f->points.size() < 3 : f->points.size() != size_t(featureDimension(f->type)))
             r.message = std::string("wrong point count for a ") + nameOf(f->type);
         else
             for (const Vec3& p : f->points)
@@ -186,7 +188,7 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
         if (!r.message.empty()) return r;
     }
     r.valid = true;
-    const int da = expected(a.type), db = expected(b.type);
+    const int da = featureDimension(a.type), db = featureDimension(b.type);
 
     // Closest points: dispatch on (dim A, dim B), swapping the roles back when B is the lower one.
     FeaturePairPoints c;
