@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "demos/draw/figure_canvas.h"
+#include "demos/draw/figure_style.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -33,41 +34,30 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     // stay legible on a slide: at least 1.6 % of the sheet's height (the legibility check asks for
     // 1.5 %), 15 / 16 px at the least. The height depends on the sizes: settle them in a few passes.
     const Canvas measure(gl, canvasOptions(16, 16, 1));
-    const auto wrap = [&](const TextStyle& style) {
-        std::vector<std::string> lines;
-        std::string line;
-        for (std::size_t at = 0; !o.caption.empty() && at <= o.caption.size();) {
-            const std::size_t space = std::min(o.caption.find(' ', at), o.caption.size());
-            const std::string word = o.caption.substr(at, space - at);
-            const std::string longer = line.empty() ? word : line + " " + word;
-            if (!line.empty() && measure.measureText(longer, style).x() > width - 2 * pad) {
-                lines.push_back(line);
-                line = word;
-            } else {
-                line = longer;
-            }
-            at = space + 1;
-        }
-        if (!line.empty()) lines.push_back(line);
-        return lines;
-    };
+    std::vector<std::string> words;
+    for (std::size_t at = 0; !o.caption.empty() && at <= o.caption.size();) {
+        const std::size_t space = std::min(o.caption.find(' ', at), o.caption.size());
+        words.push_back(o.caption.substr(at, space - at));
+        at = space + 1;
+    }
     TextStyle sceneCaption{16.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f), Anchor::Top, false, false};
     std::vector<std::string> captionLines;
+    double sceneLineH = 0;
     int titleH = 0, captionH = 44;
     float captionPx = 15.0f;
-    for (int pass = 0; pass < 4; ++pass) {
-        captionLines = wrap(sceneCaption);
-        const double lineH = std::ceil(sceneCaption.sizePx * 1.6);
-        titleH = (o.title.empty() ? 0 : 48) + int(lineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
-        const int h = titleH + rows * (cellH + captionH + pad) + pad;
-        const float legible = float(std::ceil(0.016 * h));
+    // Sizes only grow with the height they give, so this settles in a pass or two.
+    for (int pass = 0; pass < 8; ++pass) {
+        captionLines = wrapPieces(measure, words, " ", sceneCaption, width - 2 * pad);
+        sceneLineH = std::ceil(sceneCaption.sizePx * 1.6);
+        titleH =
+            (o.title.empty() ? 0 : 48) + int(sceneLineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
+        const float legible = float(std::ceil(0.016 * (titleH + rows * (cellH + captionH + pad) + pad)));
+        if (std::max(15.0f, legible) == captionPx && std::max(16.0f, legible) == sceneCaption.sizePx)
+            break;  // settled: the sizes fit the height they give
         captionPx = std::max(15.0f, legible);
         captionH = int(std::ceil(captionPx * 2.9));
         sceneCaption.sizePx = std::max(16.0f, legible);
     }
-    captionLines = wrap(sceneCaption);
-    const double sceneLineH = std::ceil(sceneCaption.sizePx * 1.6);
-    titleH = (o.title.empty() ? 0 : 48) + int(sceneLineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
 
     Canvas canvas(gl, canvasOptions(width, height, 1), Camera::twoD(0, 0, 1));

@@ -66,4 +66,21 @@ void drawKey(Canvas& canvas, double x, double y, const std::vector<KeyItem>& ite
     }
 }
 
+std::vector<std::string> wrapPieces(const Canvas& measure, const std::vector<std::string>& pieces,
+                                    const std::string& separator, const TextStyle& style, double width) {
+    std::vector<std::string> lines;
+    std::string line;
+    for (const std::string& piece : pieces) {
+        const std::string longer = line.empty() ? piece : line + separator + piece;
+        if (!line.empty() && measure.measureText(longer, style).x() > width) {
+            lines.push_back(line);
+            line = piece;
+        } else {
+            line = longer;
+        }
+    }
+    if (!line.empty()) lines.push_back(line);
+    return lines;
+}
+
 }  // namespace cdlab::demos

@@ -21,6 +21,11 @@ struct KeyItem {
 /// Figures name roles in their text and show the colour here, never a colour word.
 void drawKey(render::Canvas& canvas, double x, double y, const std::vector<KeyItem>& items, float sizePx = 16.0f);
 
+/// Greedy line filling: `pieces` joined by `separator`, a new line whenever the next piece would
+/// make the line wider than `width` px in `style` (a piece wider than that gets a line of its own).
+std::vector<std::string> wrapPieces(const render::Canvas& measure, const std::vector<std::string>& pieces,
+                                    const std::string& separator, const render::TextStyle& style, double width);
+
 render::LineStyle lineStyle(render::Role role, float widthPx, bool dashed = false, bool onTop = false);
 render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold = true);
 

@@ -107,7 +107,10 @@ std::vector<std::string> regionTestEntries(const Tests& tests) {
         for (int k = 0; k < t.termCount; ++k) {
             const PredicateSign& p = t.terms[std::size_t(k)];
             e += std::string(k ? ", " : "") + p.name + " = " + formatNumber(p.value) +
-                 (p.sign > 0 ? " > 0" : p.sign < 0 ? " < 0" : " = 0") + (p.exactFallback ? " (exact)" : "");
+                 (p.sign > 0   ? " > 0"
+                  : p.sign < 0 ? " < 0"
+                               : " = 0") +
+                 (p.exactFallback ? " (exact)" : "");
         }
         if (t.termCount == 0) e += "otherwise";
         out.push_back(e + (t.accepted ? " → yes" : " → no"));
@@ -121,21 +124,10 @@ std::vector<std::string> regionTestEntries(const Tests& tests) {
 void drawRegionTests(Canvas& canvas, double x, double bottom, double width, const std::vector<std::string>& entries) {
     const TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
     const double lineH = 22;
-    std::vector<std::string> lines;
-    std::string line;
-    for (const std::string& e : entries) {
-        const std::string longer = line.empty() ? e : line + ";   " + e;
-        if (!line.empty() && canvas.measureText(longer, ts).x() > width) {
-            lines.push_back(line);
-            line = e;
-        } else {
-            line = longer;
-        }
-    }
-    if (!line.empty()) lines.push_back(line);
+    const std::vector<std::string> lines = wrapPieces(canvas, entries, ";   ", ts, width);
     double y = bottom - lineH * double(lines.size() + 1);
-    canvas.drawTextPx(x, y, "Region tests in Ericson's order:",
-                      TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+    canvas.drawTextPx(
+        x, y, "Region tests in Ericson's order:", TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     for (const std::string& l : lines) canvas.drawTextPx(x, y += lineH, l, ts);
 }
 
@@ -317,8 +309,7 @@ private:
             if (common_.hasLayer("queries")) {
                 canvas.drawPoint(results[i].point, focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
                                  faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
-                if (labels && !faded)
-                    canvas.drawText(results[i].point, "q" + std::to_string(i + 1), queryLabelStyle());
+                if (labels && !faded) canvas.drawText(results[i].point, "q" + std::to_string(i + 1), queryLabelStyle());
             }
         }
         std::string caption = common_.caption;
