@@ -211,7 +211,9 @@ struct Canvas::Impl {
     void buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>& translucent);
     void addCapsule(std::vector<Vertex>& out, const Vector3d& a, const Vector3d& b, double halfW, double dash,
                     double phase, const Color& color);
-    void buildOverlays(std::vector<Vertex>& out);
+    void buildOverlays(std::vector<Vertex>& out);  // lines, points, then the leader lines
+    void buildLine(std::vector<Vertex>& out, const LineCmd& line);
+    void buildPoint(std::vector<Vertex>& out, const PointCmd& point);
     void buildText(std::vector<Vertex>& out, std::vector<std::pair<GLuint, std::pair<int, int>>>& runs, int base);
 };
 
@@ -277,7 +279,8 @@ FigureLayout Canvas::Impl::layoutTexts() {
         if (!asked[i].visible) continue;
         const Vector2d at = asked[i].anchor + texts[i].style.offsetPx;
         double align = 0;
-        const Vector2d o = boxOrigin(texts[i].style.anchor, at.x(), at.y(), asked[i].size.x(), asked[i].size.y(), align);
+        const Vector2d o =
+            boxOrigin(texts[i].style.anchor, at.x(), at.y(), asked[i].size.x(), asked[i].size.y(), align);
         record(i, Box{o.x(), o.y(), o.x() + asked[i].size.x(), o.y() + asked[i].size.y()});
     }
     for (std::size_t i = 0; i < texts.size(); ++i) {
@@ -288,7 +291,8 @@ FigureLayout Canvas::Impl::layoutTexts() {
         request.size = asked[i].size;
         request.preferred = t.style.offsetPx;
         const Vector2d dir = t.style.offsetPx.norm() > 0 ? Vector2d(t.style.offsetPx.normalized()) : Vector2d(0, 0);
-        const double halfAlong = 0.5 * std::abs(dir.x()) * request.size.x() + 0.5 * std::abs(dir.y()) * request.size.y();
+        const double halfAlong =
+            0.5 * std::abs(dir.x()) * request.size.x() + 0.5 * std::abs(dir.y()) * request.size.y();
         request.gap = std::max(4.0, t.style.offsetPx.norm() - halfAlong);
         const Placement p = placeLabel(request, obstacles);
         if (!p.placed) {
@@ -303,8 +307,11 @@ FigureLayout Canvas::Impl::layoutTexts() {
             const Vector2d d = near - request.anchor;
             const Vector2d end = d.norm() > 4 ? Vector2d(near - 2.0 * d.normalized()) : near;
             LineStyle style{1.5f, t.style.color.withAlpha(0.8f), 0.0f, true};
-            leaders.push_back(LineCmd{{Vector3d(request.anchor.x(), request.anchor.y(), 0), Vector3d(end.x(), end.y(), 0)},
-                                      style, false, true});
+            leaders.push_back(
+                LineCmd{{Vector3d(request.anchor.x(), request.anchor.y(), 0), Vector3d(end.x(), end.y(), 0)},
+                        style,
+                        false,
+                        true});
         }
     }
     // A marker is named by the label whose point is inside it (the nearest to its centre).
@@ -399,84 +406,88 @@ void Canvas::Impl::addCapsule(std::vector<Vertex>& out, const Vector3d& a, const
 }
 
 void Canvas::Impl::buildOverlays(std::vector<Vertex>& out) {
+    for (const auto& item : overlays) {
+        if (const auto* line = std::get_if<LineCmd>(&item)) buildLine(out, *line);
+        else buildPoint(out, std::get<PointCmd>(item));
+    }
+    for (const LineCmd& leader : leaders) buildLine(out, leader);
+}
+
+void Canvas::Impl::buildLine(std::vector<Vertex>& out, const LineCmd& line) {
     const double s = ss;
-    std::vector<std::variant<LineCmd, PointCmd>> all = overlays;
-    all.insert(all.end(), leaders.begin(), leaders.end());
-    for (const auto& item : all) {
-        if (const auto* line = std::get_if<LineCmd>(&item)) {
-            const LineStyle& st = line->style;
-            const double halfW = 0.5 * std::max(0.0f, st.widthPx) * s;
-            const double dash = std::max(0.0f, st.dashPx) * s;
-            if (halfW <= 0) continue;
-            double phase = 0;
-            const std::size_t nSeg = line->points.size() < 2 ? 0 : line->points.size() - 1;
-            for (std::size_t i = 0; i < nSeg; ++i) {
-                Vector3d a, b;
-                if (line->pixelSpace) {
-                    a = Vector3d(line->points[i].x() * s, line->points[i].y() * s, -1.0);
-                    b = Vector3d(line->points[i + 1].x() * s, line->points[i + 1].y() * s, -1.0);
-                } else {
-                    Vector4d ca = clip(line->points[i]), cb = clip(line->points[i + 1]);
-                    if (!clipNear(ca, cb)) continue;
-                    a = screen(ca), b = screen(cb);
-                }
-                if (st.onTop || !is3D()) a.z() = b.z() = -1.0;  // nearest depth: always passes
-                const bool isHead = line->arrow && i + 1 == nSeg;
-                if (!isHead) {
-                    addCapsule(out, a, b, halfW, dash, phase, st.color);
-                    phase += (b - a).head<2>().norm();
-                    continue;
-                }
-                // Arrow: the shaft stops inside the head; the head is a triangle in screen space
-                // sized from the line width (output px: length 4w + 6, width 2.5w + 5).
-                Vector2d d = (b - a).head<2>();
-                const double len = d.norm();
-                if (!(len > 1e-9)) continue;  // no direction: nothing meaningful to draw
-                d /= len;
-                double headLen = (4.0 * st.widthPx + 6.0) * s, headHalf = 0.5 * (2.5 * st.widthPx + 5.0) * s;
-                if (headLen > 0.6 * len) {  // short arrow: shrink the head, keep its shape
-                    const double k = 0.6 * len / headLen;
-                    headLen *= k, headHalf *= k;
-                }
-                const double shaftLen = len - 0.7 * headLen;
-                const Vector3d shaftEnd = a + (b - a) * (shaftLen / len);
-                addCapsule(out, a, shaftEnd, halfW, dash, phase, st.color);
-                const Vector2d n(-d.y(), d.x());
-                const Vector2d tip = b.head<2>(), base = tip - d * headLen;
-                const double zBase = b.z() + (a.z() - b.z()) * (headLen / len);
-                const Vector2d pts[3] = {tip, base + n * headHalf, base - n * headHalf};
-                for (int k = 0; k < 3; ++k) {
-                    Vertex v;
-                    pixelVertex(v, pts[k].x(), pts[k].y(), k == 0 ? b.z() : zBase);
-                    setColor(v.color, st.color);
-                    set4(v.color2, 0, 0, 0, 0);
-                    set4(v.local, 0, 0, 0, 0);
-                    set4(v.param, kFlat, 0, 0, 0);
-                    out.push_back(v);
-                }
-            }
+    const LineStyle& st = line.style;
+    const double halfW = 0.5 * std::max(0.0f, st.widthPx) * s;
+    const double dash = std::max(0.0f, st.dashPx) * s;
+    if (halfW <= 0) return;
+    double phase = 0;
+    const std::size_t nSeg = line.points.size() < 2 ? 0 : line.points.size() - 1;
+    for (std::size_t i = 0; i < nSeg; ++i) {
+        Vector3d a, b;
+        if (line.pixelSpace) {
+            a = Vector3d(line.points[i].x() * s, line.points[i].y() * s, -1.0);
+            b = Vector3d(line.points[i + 1].x() * s, line.points[i + 1].y() * s, -1.0);
         } else {
-            const PointCmd& pt = std::get<PointCmd>(item);
-            const Vector4d c = clip(pt.p);
-            if (!(c.w() > 0) || !(c.z() >= -c.w()) || !c.allFinite()) continue;  // behind the eye
-            Vector3d p = screen(c);
-            if (pt.onTop || !is3D()) p.z() = -1.0;
-            const double radius = std::max(0.0f, pt.radiusPx) * s, outline = std::max(0.0f, pt.outlinePx) * s;
-            if (radius <= 0) continue;
-            const double e = radius + 1.0;
-            const double cs[4][2] = {{-e, -e}, {e, -e}, {e, e}, {-e, e}};
-            Vertex q[4];
-            for (int k = 0; k < 4; ++k) {
-                pixelVertex(q[k], p.x() + cs[k][0], p.y() + cs[k][1], p.z());
-                setColor(q[k].color, pt.color);
-                setColor(q[k].color2, pt.outline);
-                set4(q[k].local, cs[k][0], cs[k][1], 0, 0);
-                set4(q[k].param, kDisc, radius, std::min(outline, radius), 0);
-            }
-            const Vertex quad[6] = {q[0], q[1], q[2], q[0], q[2], q[3]};
-            out.insert(out.end(), quad, quad + 6);
+            Vector4d ca = clip(line.points[i]), cb = clip(line.points[i + 1]);
+            if (!clipNear(ca, cb)) continue;
+            a = screen(ca), b = screen(cb);
+        }
+        if (st.onTop || !is3D()) a.z() = b.z() = -1.0;  // nearest depth: always passes
+        const bool isHead = line.arrow && i + 1 == nSeg;
+        if (!isHead) {
+            addCapsule(out, a, b, halfW, dash, phase, st.color);
+            phase += (b - a).head<2>().norm();
+            continue;
+        }
+        // Arrow: the shaft stops inside the head; the head is a triangle in screen space
+        // sized from the line width (output px: length 4w + 6, width 2.5w + 5).
+        Vector2d d = (b - a).head<2>();
+        const double len = d.norm();
+        if (!(len > 1e-9)) continue;  // no direction: nothing meaningful to draw
+        d /= len;
+        double headLen = (4.0 * st.widthPx + 6.0) * s, headHalf = 0.5 * (2.5 * st.widthPx + 5.0) * s;
+        if (headLen > 0.6 * len) {  // short arrow: shrink the head, keep its shape
+            const double k = 0.6 * len / headLen;
+            headLen *= k, headHalf *= k;
+        }
+        const double shaftLen = len - 0.7 * headLen;
+        const Vector3d shaftEnd = a + (b - a) * (shaftLen / len);
+        addCapsule(out, a, shaftEnd, halfW, dash, phase, st.color);
+        const Vector2d n(-d.y(), d.x());
+        const Vector2d tip = b.head<2>(), base = tip - d * headLen;
+        const double zBase = b.z() + (a.z() - b.z()) * (headLen / len);
+        const Vector2d pts[3] = {tip, base + n * headHalf, base - n * headHalf};
+        for (int k = 0; k < 3; ++k) {
+            Vertex v;
+            pixelVertex(v, pts[k].x(), pts[k].y(), k == 0 ? b.z() : zBase);
+            setColor(v.color, st.color);
+            set4(v.color2, 0, 0, 0, 0);
+            set4(v.local, 0, 0, 0, 0);
+            set4(v.param, kFlat, 0, 0, 0);
+            out.push_back(v);
         }
     }
+}
+
+void Canvas::Impl::buildPoint(std::vector<Vertex>& out, const PointCmd& pt) {
+    const double s = ss;
+    const Vector4d c = clip(pt.p);
+    if (!(c.w() > 0) || !(c.z() >= -c.w()) || !c.allFinite()) return;  // behind the eye
+    Vector3d p = screen(c);
+    if (pt.onTop || !is3D()) p.z() = -1.0;
+    const double radius = std::max(0.0f, pt.radiusPx) * s, outline = std::max(0.0f, pt.outlinePx) * s;
+    if (radius <= 0) return;
+    const double e = radius + 1.0;
+    const double cs[4][2] = {{-e, -e}, {e, -e}, {e, e}, {-e, e}};
+    Vertex q[4];
+    for (int k = 0; k < 4; ++k) {
+        pixelVertex(q[k], p.x() + cs[k][0], p.y() + cs[k][1], p.z());
+        setColor(q[k].color, pt.color);
+        setColor(q[k].color2, pt.outline);
+        set4(q[k].local, cs[k][0], cs[k][1], 0, 0);
+        set4(q[k].param, kDisc, radius, std::min(outline, radius), 0);
+    }
+    const Vertex quad[6] = {q[0], q[1], q[2], q[0], q[2], q[3]};
+    out.insert(out.end(), quad, quad + 6);
 }
 
 void Canvas::Impl::buildText(std::vector<Vertex>& out, std::vector<std::pair<GLuint, std::pair<int, int>>>& runs,
