@@ -471,8 +471,7 @@ private:
         outlineRect(canvas, v.frame, at, lineStyle(Role::Ink, 1.5f));
         heading(canvas, at + P(v.frame.min.x(), v.frame.max.y()),
                 "BSP tree of the box walls, depth " + std::to_string(bs.depth),
-                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
-                    " walls cut in two");
+                std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + " walls cut in two");
         if (common_.hasLayer("labels"))
             keyBelow(canvas, at + v.frame.min, {{roleColor(Role::Highlight), "a wall cut in two"}});
     }
@@ -557,11 +556,15 @@ private:
         heading(canvas, offsets[0] + P(frame.min.x(), frame.max.y()), "Nearest neighbour of q",
                 std::to_string(nt.distanceTests) + " of " + std::to_string(points.size()) + " points tested, " +
                     std::to_string(nt.pruned.size()) + " subtrees pruned");
+        // Under each panel: the two cell tints drawTree paints, then what the query's points mean.
+        const auto keyWith = [&](const KeyItem& points) {
+            return std::vector<KeyItem>{
+                {roleColor(Role::Highlight).mixed(roleColor(Role::Background), 0.6f), "leaf searched"},
+                {roleColor(Role::Muted), "subtree pruned"},
+                points};
+        };
         if (common_.hasLayer("labels"))
-            keyBelow(canvas, offsets[0] + frame.min,
-                     {{roleColor(Role::Highlight).mixed(roleColor(Role::Background), 0.6f), "leaf searched"},
-                      {roleColor(Role::Muted), "subtree pruned"},
-                      {roleColor(Role::Simplex), "earlier best"}});
+            keyBelow(canvas, offsets[0] + frame.min, keyWith({roleColor(Role::Simplex), "earlier best"}));
         // Right: range query.
         drawTree(offsets[1], rt);
         if (common_.hasLayer("queries")) {
@@ -574,10 +577,7 @@ private:
                 std::to_string(hits.size()) + " hits, " + std::to_string(rt.distanceTests) + " points tested, " +
                     std::to_string(rt.pruned.size()) + " subtrees pruned");
         if (common_.hasLayer("labels"))
-            keyBelow(canvas, offsets[1] + frame.min,
-                     {{roleColor(Role::Highlight).mixed(roleColor(Role::Background), 0.6f), "leaf searched"},
-                      {roleColor(Role::Muted), "subtree pruned"},
-                      {roleColor(Role::Result), "hit"}});
+            keyBelow(canvas, offsets[1] + frame.min, keyWith({roleColor(Role::Result), "hit"}));
         out.frames.push_back(titledFrame(canvas, "kd_query"));
         return out;
     }
@@ -734,8 +734,9 @@ private:
         }
         Eigen::Vector2d px;
         if (canvas.project(corner, px))
-            drawKey(canvas, px.x(), px.y() - 18,
-                    {{roleColor(Role::ShapeA), "solid leaf (inside)"}, {roleColor(Role::Muted), "empty leaf (outside)"}});
+            drawKey(
+                canvas, px.x(), px.y() - 18,
+                {{roleColor(Role::ShapeA), "solid leaf (inside)"}, {roleColor(Role::Muted), "empty leaf (outside)"}});
         heading(canvas, corner + P(0, h), "The tree", "edge name = splitting line; solid: front child, dashed: back");
     }
 };
