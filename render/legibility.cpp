@@ -42,6 +42,10 @@ double outside(const Box& outer, const Box& inner) {
 
 }  // namespace
 
+std::string describe(const LegibilityProblem& p) {
+    return std::string(nameOf(p.kind)) + ": \"" + p.text + "\" " + p.detail;
+}
+
 std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int width, int height) {
     std::vector<LegibilityProblem> out;
     const std::vector<LayoutLabel>& labels = layout.labels;

@@ -30,6 +30,9 @@ struct LegibilityProblem {
     double severity;     // overlap area px², distance outside px, or px missing from the line height
 };
 
+/// One line for a report: `rule: "text" detail`.
+std::string describe(const LegibilityProblem& problem);
+
 /// Every problem of a picture of width x height with this layout, worst first.
 std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int width, int height);
 

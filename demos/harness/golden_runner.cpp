@@ -15,8 +15,8 @@
 #include "demos/catalog/catalog.h"
 #include "demos/harness/trace_compare.h"
 #include "render/compare.h"
-#include "render/legibility.h"
 #include "render/image.h"
+#include "render/legibility.h"
 
 namespace cdlab::demos {
 
@@ -244,12 +244,10 @@ void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
         render::checkLegibility(fr.image.layout, fr.image.width, fr.image.height);
     for (const render::LegibilityProblem& p : problems) offenders.push_back({id, p});
     if (problems.empty()) return;
-    const render::LegibilityProblem& worst = problems.front();
-    fail(id + ": not slide-legible, " + std::to_string(problems.size()) + " problem(s); worst: " + nameOf(worst.kind) +
-         ": \"" + worst.text + "\" " + worst.detail);
+    fail(id + ": not slide-legible, " + std::to_string(problems.size()) +
+         " problem(s); worst: " + render::describe(problems.front()));
     for (std::size_t i = 1; i < problems.size() && i < 6; ++i)
-        std::cout << "     " << nameOf(problems[i].kind) << ": \"" << problems[i].text << "\" " << problems[i].detail
-                  << "\n";
+        std::cout << "     " << render::describe(problems[i]) << "\n";
 }
 
 // actual / expected / diff PNGs of a failed frame into the report folder.
@@ -332,13 +330,11 @@ int runGolden(const RunnerOptions& o) {
         }
     }
     if (!run.offenders.empty()) {
-        std::stable_sort(run.offenders.begin(), run.offenders.end(), [](const auto& a, const auto& b) {
-            return a.problem.severity > b.problem.severity;
-        });
+        std::stable_sort(run.offenders.begin(), run.offenders.end(),
+                         [](const auto& a, const auto& b) { return a.problem.severity > b.problem.severity; });
         std::cout << "legibility: " << run.offenders.size() << " problem(s); worst:\n";
         for (std::size_t i = 0; i < run.offenders.size() && i < 12; ++i) {
-            const auto& [frame, p] = run.offenders[i];
-            std::cout << "  " << frame << ": " << nameOf(p.kind) << ": \"" << p.text << "\" " << p.detail << "\n";
+            std::cout << "  " << run.offenders[i].frame << ": " << render::describe(run.offenders[i].problem) << "\n";
         }
     }
     std::cout << "golden: " << run.checked - run.failed - run.updated << " passed, " << run.failed << " failed";
