@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/closest/closest_point.h"
+#include "demos/query/query_cast.h"
 #include "demos/query/query_contact.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
@@ -46,10 +47,12 @@ Json answerQuery(const std::string& line) {
         ObjectReader r(root);
         r.ignore("id");
         std::string op = r.get("op").asEnum(
-            {"closest_point_triangle", "intersect", "distance", "penetration", "contact", "mass_properties"});
+            {"closest_point_triangle", "intersect", "distance", "penetration", "contact", "mass_properties", "raycast",
+             "time_of_impact"});
         Json result;
         if (op == "closest_point_triangle") result = closestPointTriangle(r);
         else if (op == "contact" || op == "mass_properties") result = answerContactQuery(op, r);
+        else if (op == "raycast" || op == "time_of_impact") result = answerCastQuery(op, r);
         else result = answerShapeQuery(op, r);
         answer["id"] = id;
         for (auto it = result.begin(); it != result.end(); ++it) answer[it.key()] = it.value();

@@ -21,6 +21,7 @@
 #include "core/overlap/sat_tests.h"
 #include "demos/query/query_feature_walk.h"
 #include "demos/query/query_json.h"
+#include "demos/query/query_plane.h"
 #include "demos/query/query_shapes.h"
 #include "demos/query/query_tolerance.h"
 
@@ -160,38 +161,6 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
 
 // ---------------------------------------------------------------------------------------------
 // Planes: the signed distances of a bounded shape to the plane span [lo, hi] (closed form).
-
-struct PlaneSpan {
-    double lo, hi;             // min / max of (n·x - d)/|n| over the shape
-    Vec3 lowPoint, highPoint;  // shape points attaining them
-    double touch;              // the touching tolerance of this plane and shape
-};
-
-// n̂·x = d̂ with |n̂| = 1 (the parser keeps |normal| in [0.5, sqrt 3], so this neither under- nor overflows).
-struct UnitPlane {
-    Vec3 n;
-    double d;
-};
-UnitPlane unitPlane(const QueryShape& plane) {
-    const double m = plane.normal.norm();
-    return {plane.normal / m, plane.offset / m};
-}
-
-PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
-    const auto [n, d] = unitPlane(plane);
-    PlaneSpan span{INFINITY, -INFINITY, Vec3::Zero(), Vec3::Zero(),
-                   planeTouchTolerance(d, largestCoordinate(s) + s.radius)};
-    for (const Vec3& v : s.vertices) {
-        double x = n.dot(v) - d;
-        if (x < span.lo) span.lo = x, span.lowPoint = v;
-        if (x > span.hi) span.hi = x, span.highPoint = v;
-    }
-    span.lo -= s.radius;
-    span.hi += s.radius;
-    span.lowPoint -= s.radius * n;
-    span.highPoint += s.radius * n;
-    return span;
-}
 
 // a = plane, b = bounded shape. Normal convention: translating b by depth * normal separates.
 PairAnswer planeBounded(const QueryShape& plane, const QueryShape& s) {

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Core's folders from the bottom up: a folder may include its own and every folder before it.
-const std::vector<std::string> kCoreLayers = {"base",    "geometry", "closest", "overlap",    "gjk_epa", "feature_walk",
+const std::vector<std::string> kCoreLayers = {"base",    "geometry", "closest", "overlap", "gjk_epa", "cast", "feature_walk",
                                               "contact", "bounding", "bvh",     "broadphase", "spatial", "dynamics"};
 const std::vector<std::string> kDemoFolders = {"voronoi_triangle",
                                                "gjk",
