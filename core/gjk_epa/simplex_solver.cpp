@@ -43,6 +43,12 @@ void s1d(const Vec3* w, int i, int j, SimplexClosest& c) {
     // (cancellation in w_i·t), but it only slides v along the segment, which changes |v| to second
     // order. Taking lambda_i = 1 - lambda_j keeps v on the line; normalizing two separately
     // computed weights would not (it scales v by 1 + O(eps |w| / |t|)).
+    //
+    //
+    // v = w_i + lambda_j t has an error of ~eps |w_i|. When |v| is far below |w_i| and the projection
+    // lies nearer w_j, v is stepped back from w_j instead (error ~eps |w_j|): a segment 1e9 long
+    // passing 1e-9 beside the origin otherwise lost v's component along t, the next support tied with
+    // an old one, and GJK stopped 0.7 short on a segment through a unit box.
     const double lj = numJ / tt;
     c.count = 2;
     c.index[0] = i;
@@ -50,6 +56,7 @@ void s1d(const Vec3* w, int i, int j, SimplexClosest& c) {
     c.lambda[0] = 1.0 - lj;
     c.lambda[1] = lj;
     c.v = p + lj * t;
+    if (lj > 0.5 && c.v.squaredNorm() < 1e-6 * p.squaredNorm()) c.v = q - (numI / tt) * t;
 }
 
 void keepNearest(SimplexClosest& best, const SimplexClosest& candidate, bool& have) {

@@ -116,6 +116,19 @@ TEST_SUITE("query") {
         CHECK(far["t"].get<double>() == 1e9 - 1);
     }
 
+    TEST_CASE("distance: a segment 1e9 .. 1e15 long through a unit box intersects it, and misses it beside") {
+        // GJK's segment step from the far end erased v's component along the segment (0.7 short).
+        const Json box = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
+        for (double far : {1e9, 1e12, 1e15}) {
+            CAPTURE(far);
+            CHECK(ask({{"op", "intersect"}, {"a", {{"segment", {{far, 0.5, 0.5}, {-1, 0.5, 0.5}}}}}, {"b", box}})["intersect"] ==
+                  true);
+            if (far > 1e12) continue;  // 0.5 is below the touching rule's 1e-13 of a 1e15-long extent
+            const Json beside = ask({{"op", "distance"}, {"a", {{"segment", {{far, 1.5, 0.5}, {-1, 1.5, 0.5}}}}}, {"b", box}});
+            CHECK(beside["distance"].get<double>() == doctest::Approx(0.5).epsilon(1e-12));
+        }
+    }
+
     TEST_CASE("raycast: the hit verdict is the intersect op's on the segment up to max_t") {
         std::uint64_t state = 99;
         const auto uniform = [&]() {
