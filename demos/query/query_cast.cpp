@@ -46,14 +46,15 @@ Json castTraceJson(const ConvexCastTrace& trace, double tScale, double lengthSca
             if (pairedWith > 0) vertices.push_back({c.index[i] / pairedWith, c.index[i] % pairedWith});
             else vertices.push_back(c.index[i]);
         }
-        candidates.push_back({{"feature", nameOf(c.feature)}, {"vertices", vertices}, {"t", c.t * tScale}});
+        if (std::isfinite(c.t * tScale))
+            candidates.push_back({{"feature", nameOf(c.feature)}, {"vertices", vertices}, {"t", c.t * tScale}});
     }
-    return {{"algorithm", "ray_cast"},
-            {"core_dimension", trace.coreDimension},
-            {"core_vertices", trace.coreVertices},
-            {"t_end", trace.tEnd * tScale},
-            {"gap", trace.gap * lengthScale},
-            {"candidates", candidates}};
+    Json out = {{"algorithm", "ray_cast"}, {"core_dimension", trace.coreDimension}, {"core_vertices", trace.coreVertices}};
+    // A window or gap that overflows in the query's units (a direction of 1e-300) is left out, never null.
+    if (std::isfinite(trace.tEnd * tScale)) out["t_end"] = trace.tEnd * tScale;
+    if (std::isfinite(trace.gap * lengthScale)) out["gap"] = trace.gap * lengthScale;
+    out["candidates"] = candidates;
+    return out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -136,6 +137,7 @@ Json answerRaycast(ObjectReader& r) {
         out = {{"hit", true}, {"t", cleanZero(t)}, {"point", vecJson(point)}, {"normal", vecJson(ans.normal)}};
     }
     if (wantTrace) out["trace"] = ans.trace;
+    requireFiniteAnswer(out);
     return out;
 }
 
@@ -251,6 +253,7 @@ Json answerCastQuery(const std::string& op, ObjectReader& r) {
                {"point_b", vecJson(pb)}};
     }
     if (wantTrace) out["trace"] = ans.trace;
+    requireFiniteAnswer(out);
     return out;
 }
 
