@@ -1,14 +1,74 @@
 #include "core/contact/contact_manifold.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace cdlab {
+
+namespace {
+
+// Points at depth 0 (where an edge crosses the plane or the reference face's side) that lie within
+// the deepest depth, in the plane, of a submerged point are the rim of that corner, on edges leaving
+// it steeper than 45° (a cone of half-angle up to 45° on its apex: its crossings ring the apex). They
+// add no support a solver can use and are dropped before the rules. Touching contacts (every depth
+// 0) keep theirs.
+std::vector<int> supportingPoints(const std::vector<ContactPoint>& polygon, const std::vector<Vec3>& q) {
+    double deepest = 0.0;
+    for (const ContactPoint& c : polygon) deepest = std::max(deepest, c.depth);
+    const double surface = 1e-9 * deepest;  // at the surface, up to rounding of the depths
+    std::vector<int> kept;
+    for (int i = 0; i < static_cast<int>(polygon.size()); ++i) {
+        bool rim = false;
+        if (polygon[i].depth <= surface)
+            for (int j = 0; j < static_cast<int>(polygon.size()) && !rim; ++j)
+                rim = polygon[j].depth > surface && (q[i] - q[j]).norm() <= deepest;
+        if (!rim) kept.push_back(i);
+    }
+    return kept;
+}
+
+// Twice the area a point q adds to the convex polygon `hull` (counter-clockwise about the normal):
+// the largest triangle it forms with an edge it lies outside of; 0 inside or on the polygon.
+double addedArea(const std::vector<Vec3>& q, const std::vector<int>& hull, int i, const Vec3& normal) {
+    double best = 0.0;
+    for (size_t e = 0; e < hull.size(); ++e) {
+        const Vec3& a = q[hull[e]];
+        const Vec3& b = q[hull[(e + 1) % hull.size()]];
+        best = std::max(best, -(b - a).cross(q[i] - a).dot(normal));
+    }
+    return best;
+}
+
+// The kept points' convex hull in the plane, counter-clockwise about the normal (Andrew's monotone
+// chain in a plane basis).
+std::vector<int> planeHull(const std::vector<Vec3>& q, std::vector<int> points, const Vec3& normal) {
+    const Vec3 u = normal.unitOrthogonal(), w = normal.cross(u);
+    const auto key = [&](int i) { return std::pair<double, double>(u.dot(q[i] - q[points[0]]), w.dot(q[i] - q[points[0]])); };
+    const std::vector<int> input = points;
+    std::sort(points.begin(), points.end(), [&](int a, int b) { return key(a) < key(b); });
+    const auto turn = [&](int o, int a, int b) { return (q[a] - q[o]).cross(q[b] - q[o]).dot(normal); };
+    std::vector<int> h(2 * points.size());
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && turn(h[k - 2], h[k - 1], points[i]) <= 0) --k;
+        h[k++] = points[i];
+    }
+    for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && turn(h[k - 2], h[k - 1], points[i]) <= 0) --k;
+        h[k++] = points[i];
+    }
+    h.resize(k > 1 ? k - 1 : k);
+    return h.size() >= 3 ? h : input;
+}
+
+}  // namespace
 
 std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, const Vec3& normal, int maxPoints,
                                       std::vector<ManifoldReductionStep>* steps) {
     const int n = static_cast<int>(polygon.size());
     std::vector<int> keep;
-    if (maxPoints <= 0 || maxPoints >= n) {  // keep all, the deepest first
+    if (maxPoints <= 0) {  // keep all, the deepest first
         int deepest = 0;
         for (int i = 1; i < n; ++i)
             if (polygon[i].depth > polygon[deepest].depth) deepest = i;
@@ -21,6 +81,16 @@ std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, 
     // the normal component so tilted reference surfaces measure in-plane spread only).
     std::vector<Vec3> q(n);
     for (int i = 0; i < n; ++i) q[i] = polygon[i].pointB - normal.dot(polygon[i].pointB - polygon[0].pointB) * normal;
+    const std::vector<int> candidates = supportingPoints(polygon, q);
+    if (maxPoints >= static_cast<int>(candidates.size())) {  // keep them all, the deepest first
+        int deepest = candidates.empty() ? -1 : candidates[0];
+        for (int i : candidates)
+            if (polygon[i].depth > polygon[deepest].depth) deepest = i;
+        if (deepest >= 0) keep.push_back(deepest);
+        for (int i : candidates)
+            if (i != deepest) keep.push_back(i);
+        return keep;
+    }
     const auto record = [&](const char* rule, int i, double score) {
         keep.push_back(i);
         if (steps) steps->push_back({rule, i, score});
@@ -31,56 +101,63 @@ std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, 
         return false;
     };
 
+    // Each rule below picks among the submerged points first and turns to the depth-0 ones only when
+    // no submerged point scores: a crossing never displaces a full-depth corner.
+    double deepestDepth = 0.0;
+    for (int i : candidates) deepestDepth = std::max(deepestDepth, polygon[i].depth);
+    const auto submerged = [&](int i) { return polygon[i].depth > 1e-9 * deepestDepth; };
+    const auto pick = [&](const auto& score, double& bestScore) {
+        for (bool tier : {true, false}) {
+            int chosen = -1;
+            bestScore = 0.0;
+            for (int i : candidates) {
+                if (taken(i) || submerged(i) != tier) continue;
+                const double sc = score(i);
+                if (sc > bestScore) chosen = i, bestScore = sc;
+            }
+            if (chosen >= 0) return chosen;
+        }
+        return -1;
+    };
+
     // 1. deepest point (first of ties).
-    int best = 0;
-    for (int i = 1; i < n; ++i)
+    int best = candidates[0];
+    for (int i : candidates)
         if (polygon[i].depth > polygon[best].depth) best = i;
     record("deepest", best, polygon[best].depth);
     if (maxPoints == 1) return keep;
 
     // 2. farthest from it in the plane.
     const int p0 = keep[0];
-    best = -1;
     double bestScore = 0.0;
-    for (int i = 0; i < n; ++i) {
-        const double d = (q[i] - q[p0]).norm();
-        if (!taken(i) && d > bestScore) best = i, bestScore = d;
-    }
+    best = pick([&](int i) { return (q[i] - q[p0]).norm(); }, bestScore);
     if (best < 0) return keep;  // every point coincides with the deepest one
     record("farthest", best, bestScore);
     if (maxPoints == 2) return keep;
 
     // 3. largest triangle with the first two: |(q1 - q0) x (qi - q0) · normal| (twice the area).
     const int p1 = keep[1];
-    best = -1;
-    bestScore = 0.0;
-    double bestSigned = 0.0;
-    for (int i = 0; i < n; ++i) {
-        const double a = (q[p1] - q[p0]).cross(q[i] - q[p0]).dot(normal);
-        if (!taken(i) && std::abs(a) > bestScore) best = i, bestScore = std::abs(a), bestSigned = a;
-    }
+    const auto signedArea = [&](int i) { return (q[p1] - q[p0]).cross(q[i] - q[p0]).dot(normal); };
+    best = pick([&](int i) { return std::abs(signedArea(i)); }, bestScore);
     if (best < 0) return keep;  // collinear
+    const double bestSigned = signedArea(best);
     record("max-area triangle", best, bestScore);
     if (maxPoints == 3) return keep;
 
     // 4. The point adding the most area: for a counter-clockwise triangle (t0, t1, t2) about the
     //    normal, a point outside edge (tj, tk) adds the area of triangle (tj, q, tk) =
     //    -signedArea(tj, tk, q); take the largest over the three edges.
-    int t[3] = {p0, p1, keep[2]};
-    if (bestSigned < 0) std::swap(t[1], t[2]);
-    best = -1;
-    bestScore = 0.0;
-    for (int i = 0; i < n; ++i) {
-        if (taken(i)) continue;
-        for (int e = 0; e < 3; ++e) {
-            const Vec3& a = q[t[e]];
-            const Vec3& b = q[t[(e + 1) % 3]];
-            const double added = -(b - a).cross(q[i] - a).dot(normal);
-            if (added > bestScore) best = i, bestScore = added;
-        }
+    // 5. and on, while maxPoints allows: the same rule on the hull of the points kept so far, so that
+    //    asking for more points never returns fewer, and every corner comes back once maxPoints
+    //    reaches their count (a corner is outside the hull of the others until it is kept).
+    std::vector<int> hull = {p0, p1, keep[2]};
+    if (bestSigned < 0) std::swap(hull[1], hull[2]);
+    while (static_cast<int>(keep.size()) < maxPoints) {
+        best = pick([&](int i) { return addedArea(q, hull, i, normal); }, bestScore);
+        if (best < 0) break;  // every other point inside the hull of the kept ones
+        record(keep.size() == 3 ? "max-area quad" : "max-area polygon", best, bestScore);
+        hull = planeHull(q, keep, normal);
     }
-    if (best < 0) return keep;  // every other point inside the triangle
-    record("max-area quad", best, bestScore);
     return keep;
 }
 

@@ -4,11 +4,15 @@
 //
 // Reduction (as engines do it: D. Gregorius, "Robust Contact Creation for Physics Simulations",
 // GDC 2015; Bullet btPersistentManifold::sortCachedPoints keeps the largest-area quad likewise):
+//   0. points at depth 0 (edge crossings) within the deepest depth, in the plane, of a submerged
+//      point are dropped: they are the rim of that corner and would displace full-depth corners;
 //   1. the deepest point (largest depth; ties: first in input order),
 //   2. the point farthest from it (measured in the contact plane),
 //   3. the point that makes the triangle with 1 and 2 of largest area,
 //   4. the point that adds the most area to that triangle (largest area of the triangle it
-//      forms with the triangle edge it lies outside of).
+//      forms with the hull edge it lies outside of), and 5, 6, ... the same on the hull of the
+//      points kept so far while maxPoints allows: more points never gives fewer, and maxPoints at
+//      or above the polygon's corner count gives every corner.
 // Every distance and area is measured after projection onto the plane ⟂ normal, so depth
 // differences do not count as "spread".
 #pragma once
@@ -39,8 +43,8 @@ struct ManifoldReductionStep {
 };
 
 /// Indices (into `polygon`: the contact points, any order; interior points allowed) of at most
-/// maxPoints points chosen by the rules of the file comment, in the order chosen. maxPoints <= 0
-/// or >= polygon.size() keeps every point (the deepest first, then input order; no steps). A rule whose best score is 0
+/// maxPoints points chosen by the rules of the file comment, in the order chosen. maxPoints <= 0 keeps
+/// every point; maxPoints >= the count left by rule 0 keeps those (the deepest first, then input order; no steps). A rule whose best score is 0
 /// (all remaining points coincide with or are collinear with the chosen ones) stops the reduction early. normal: unit,
 /// any sign.
 std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, const Vec3& normal, int maxPoints,

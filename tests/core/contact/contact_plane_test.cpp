@@ -206,9 +206,15 @@ TEST_SUITE("contact_plane") {
         REQUIRE(tr.vertexDistances.size() == 8);
         CHECK(tr.crossings.size() == 4);  // two bottom-face edges, two side edges... crossing the plane
         for (const auto& c : tr.crossings) CHECK(std::abs(c.point.z()) < 1e-15);
-        CHECK(tr.reduction.size() == 4);
-        CHECK(std::string(tr.reduction[0].rule) == "deepest");
-        CHECK(r.manifold.size() == 4);
+        // The two side-edge crossings lie 0.108 beside the submerged bottom corners (depth 0.351):
+        // the rim of those corners, dropped (contact_manifold.h rule 0); the two bottom-face
+        // crossings 1.13 away stay. Four points left for four asked: kept without reduction steps.
+        CHECK(tr.reduction.empty());
+        REQUIRE(r.manifold.size() == 4);
+        CHECK(r.manifold[0].depth == doctest::Approx(std::cos(0.3) + std::sin(0.3) - 0.9));
+        int submerged = 0;
+        for (const ContactPoint& c : r.manifold) submerged += c.depth > 0.3;
+        CHECK(submerged == 2);
         CHECK(r.polygon.size() == 4);
     }
 
@@ -232,5 +238,60 @@ TEST_SUITE("contact_plane") {
         CHECK(contactPolyhedronPlane(box, ok, Plane{Vec3(0, 0, 1e-300), 0.0}).status ==
               PlaneContactStatus::Penetrating);
         CHECK(contactPolyhedronPlane(box, ok, Plane{Vec3(0, 0, 1e300), 0.0}).depth == 1.0);
+    }
+}
+
+// Issue 21 §2: which points a manifold keeps (core/contact/contact_manifold.h, rules 0-5).
+TEST_SUITE("contact_plane manifold rules") {
+    TEST_CASE("asking for more points never returns fewer; every corner once maxPoints reaches their count") {
+        // A hexagonal prism standing on the plane, sunk 0.01: six submerged corners, all at one depth.
+        const ConvexPolyhedron hex = presets::prism(6, 1.0, 0.5);  // axis y
+        Transform t;
+        t.rotation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));  // axis y -> z: standing on a cap
+        t.position = Vec3(0.3, -0.2, 0.49);
+        size_t previous = 0;
+        for (int k = 1; k <= 8; ++k) {
+            PlaneContactOptions o;
+            o.maxPoints = k;
+            const PlaneContactResult r = contactPolyhedronPlane(hex, t, Plane{Vec3::UnitZ(), 0.0}, o);
+            CAPTURE(k);
+            CHECK(r.manifold.size() == size_t(std::min(k, 6)));
+            CHECK(r.manifold.size() >= previous);
+            previous = r.manifold.size();
+            for (const ContactPoint& c : r.manifold) CHECK(c.depth == doctest::Approx(0.01));
+        }
+    }
+
+    TEST_CASE("depth-0 crossings beside a submerged corner never displace it") {
+        // The hexagonal prism lying on a side edge, sunk 0.001 (axis y; vertex 0's edge turned down).
+        const ConvexPolyhedron hex = presets::prism(6, 1.0, 0.5);
+        Transform side;
+        side.rotation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()));  // (1, y, 0) -> (0, y, -1)
+        side.position = Vec3(0, 0, 1.0 - 0.001);
+        const PlaneContactResult r = contactPolyhedronPlane(hex, side, Plane{Vec3::UnitZ(), 0.0});
+        REQUIRE(r.status == PlaneContactStatus::Penetrating);
+        int full = 0;
+        for (const ContactPoint& c : r.manifold) full += c.depth == doctest::Approx(0.001);
+        CHECK(full == 2);  // both ends of the bottom edge, not one end and a crossing 0.0017 away
+        REQUIRE(r.manifold.size() >= 2);
+        CHECK(r.manifold[0].depth == doctest::Approx(0.001));  // the submerged points come first
+        CHECK(r.manifold[1].depth == doctest::Approx(0.001));
+        // A cone (a 32-sided pyramid) on its apex: the apex alone, not the apex and its rim crossings.
+        std::vector<Vec3> v = {Vec3(0, 0, 0)};
+        for (const Vec3& p : presets::regularPolygon(32, 0.5)) v.push_back(p + Vec3(0, 0, 1));
+        std::vector<std::vector<int>> faces;
+        std::vector<int> top;
+        for (int i = 0; i < 32; ++i) {
+            faces.push_back({0, 1 + (i + 1) % 32, 1 + i});
+            top.push_back(1 + i);
+        }
+        faces.push_back(top);
+        const PolyhedronBuild cone = ConvexPolyhedron::fromFaces(v, faces);
+        REQUIRE(cone.polyhedron.faceCount() == 33);
+        Transform apexDown;
+        apexDown.position = Vec3(0, 0, -0.001);
+        const PlaneContactResult c = contactPolyhedronPlane(cone.polyhedron, apexDown, Plane{Vec3::UnitZ(), 0.0});
+        REQUIRE(c.manifold.size() == 1);
+        CHECK(c.manifold[0].depth == doctest::Approx(0.001));
     }
 }
