@@ -334,6 +334,28 @@ void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& optio
     if (h <= refined.depth + ulps(32, m)) r = refined;  // 32 ulps = 64 unit roundoffs
 }
 
+/// A degenerate start (a zero-volume polytope, or a blow-up direction that underflowed: a start
+/// segment 1e-160 long, cores 1e300 long and 1 wide) leaves no trustworthy face: the answer is then
+/// the direction of least support overlap n·s_A(n) − n·s_B(−n) among the normal it had (when unit)
+/// and the six coordinate axes, with that overlap as the depth — a unit normal and a depth that
+/// separates (an upper bound of the least one), never "touching" for shapes that overlap.
+template <class A, class B>
+void epaSupportFallback(const A& shapeA, const B& shapeB, EpaResult& r) {
+    double best = INFINITY;
+    const bool haveNormal = std::abs(r.normal.squaredNorm() - 1.0) <= 1e-9;
+    for (int i = haveNormal ? -1 : 0; i < 6; ++i) {
+        const Vec3 n = i < 0 ? r.normal : Vec3((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2));
+        const Vec3 sb = shapeB.support(Vec3(-n));
+        const double overlap = n.dot(shapeA.support(n)) - n.dot(sb);
+        if (overlap < best) best = overlap, r.normal = n, r.pointB = sb;
+    }
+    r.depth = std::max(best, 0.0);
+    r.pointA = r.pointB + r.depth * r.normal;
+    r.lowerBound = 0.0;
+    r.upperBound = r.depth;
+    r.status = r.depth > 0 ? EpaStatus::Penetrating : EpaStatus::Touching;
+}
+
 }  // namespace detail
 
 /// Penetration depth of intersecting shapes A and B (world frame, world units) starting from
@@ -357,6 +379,9 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
         record.termination(why);
         r.vertexCount = poly.vertexCount;
         r.faceCount = poly.liveCount;
+        if (why == EpaTermination::Degenerate ||
+            (why != EpaTermination::InvalidInput && !(std::abs(r.normal.squaredNorm() - 1.0) <= 1e-9)))
+            detail::epaSupportFallback(shapeA, shapeB, r);
         return r;
     };
 

@@ -129,27 +129,13 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
         EpaResult e = epaPenetration(ca, cb, g.simplex, EpaOptions{}, wantTrace ? &etrace : nullptr);
         if (e.status == EpaStatus::InvalidInput) throw InputError("query: penetration failed: invalid support points");
         if (wantTrace) ans.trace.push_back(epaTraceJson(etrace));
-        if (std::abs(e.normal.squaredNorm() - 1) < 1e-9) {
-            ans.depth = unscale(e.depth) + radii;
-            ans.normal = e.normal;
-            // Deepest points of the cores, pushed out by the radii along the normal.
-            ans.pointA = unscaleVec(e.pointA) + a.radius * ans.normal;
-            ans.pointB = unscaleVec(e.pointB) - b.radius * ans.normal;
-        } else {
-            // EPA found no valid normal: the cores span ~1e300 in one direction and ~1 in
-            // another, so after normalisation their small features are subnormal (found by
-            // fuzzing). Defined fallback: the coordinate axis of least overlap, with its exact
-            // support-function overlap h_A(n) + h_B(-n) — a valid normal and a depth that separates.
-            double best = std::numeric_limits<double>::infinity();
-            for (int i = 0; i < 6; ++i) {
-                const Vec3 n = (i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2);
-                const double overlap = n.dot(ca.support(n)) - n.dot(cb.support(-n));
-                if (overlap < best) best = overlap, ans.normal = n, ans.pointB = unscaleVec(cb.support(-n));
-            }
-            ans.depth = std::max(unscale(best), 0.0) + radii;
-            ans.pointB -= b.radius * ans.normal;
-            ans.pointA = ans.pointB + ans.depth * ans.normal;
-        }
+        // Core's EPA always gives a unit normal (a degenerate start falls back to the axis of least
+        // overlap inside epaPenetration).
+        ans.depth = unscale(e.depth) + radii;
+        ans.normal = e.normal;
+        // Deepest points of the cores, pushed out by the radii along the normal.
+        ans.pointA = unscaleVec(e.pointA) + a.radius * ans.normal;
+        ans.pointB = unscaleVec(e.pointB) - b.radius * ans.normal;
         ans.hasWitness = true;
         return ans;
     }

@@ -263,3 +263,28 @@ TEST_CASE("the EPA face graph stays consistent through expansion, and the check 
     poly.face[f].adjEdge[0] = (poly.face[f].adjEdge[0] + 1) % 3;
     CHECK_FALSE(poly.adjacencyConsistent());
 }
+
+TEST_CASE("EPA: a degenerate start gives a unit normal and a depth that separates, never touching for overlap") {
+    // Two boxes overlapping by 0.25 along x, started from a segment through the origin 2e-150 .. 2e-161
+    // long: the blow-up direction perpendicular to it is computed from squared norms near underflow
+    // (|n|² − 1 up to 2.4e-4 at 1e-161) and the start polytope has no volume. It came back as
+    // "touching" with depth 0 and that non-unit normal.
+    const BoxShape a{Vec3(0, 0, 0), Vec3(1, 1, 1)}, b{Vec3(1.75, 0.5, 0), Vec3(1, 1, 1)};
+    for (double e : {1e-150, 1e-155, 1e-158, 1e-160, 1e-161}) {
+        CAPTURE(e);
+        GjkSimplex start;
+        start.count = 2;
+        const Vec3 p = a.support(Vec3(1, 1, 1));  // the origin lies inside the segment w0 w1
+        start.vertex[0] = {Vec3(-e, 0, 0), p, p + Vec3(e, 0, 0), Vec3::UnitX()};
+        start.vertex[1] = {Vec3(e, 0, 0), p, p - Vec3(e, 0, 0), Vec3::UnitX()};
+        const EpaResult r = epaPenetration(a, b, start);
+        REQUIRE(r.status != EpaStatus::InvalidInput);
+        CHECK(r.normal.squaredNorm() == doctest::Approx(1.0).epsilon(1e-15));
+        // The answer separates: translating b by depth * normal leaves the supports touching.
+        const double gap = r.normal.dot(b.support(Vec3(-r.normal))) + r.depth - r.normal.dot(a.support(r.normal));
+        CHECK(std::abs(gap) < 1e-12);
+        CHECK(r.depth == doctest::Approx(0.25));  // x is the direction of least overlap
+        CHECK(r.status == EpaStatus::Penetrating);
+        CHECK((r.pointA - r.pointB - r.depth * r.normal).norm() < 1e-12);
+    }
+}
