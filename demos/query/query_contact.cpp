@@ -1,7 +1,8 @@
 // The "contact" op of `cdlab query` (README "cdlab query"): the contact manifold of a polytope
 // (polytope / aabb / obb) against a plane (core/contact/contact_plane.h) or another polytope (SAT with
-// face clipping, core/contact/contact_sat.h); separated pairs answer the distance (GJK) and the closest
-// features. "mass_properties" is answered by demos/query/query_mass.h.
+// face clipping, core/contact/contact_sat.h), and of a sphere or capsule against any of them (below,
+// "Spheres and capsules"); separated pairs answer the distance (GJK) and the closest features.
+// "mass_properties" is answered by demos/query/query_mass.h.
 //
 // Answer conventions (the same as "penetration"): normal n is a unit vector from A toward B;
 // translating b by depth·n leaves the shapes touching; each contact point has point_a − point_b =
@@ -31,6 +32,7 @@
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
 #include "demos/query/query_mass.h"
+#include "demos/query/query_ops.h"
 #include "demos/query/query_shapes.h"
 #include "demos/query/query_tolerance.h"
 
@@ -213,6 +215,151 @@ Json bodyBody(const Body& a, const Body& b, int maxPoints, bool wantTrace, doubl
     return out;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Spheres and capsules (a point or segment core ⊕ ball(r)), in the query's units (issue 21 §2):
+//   sphere – anything: one point, the penetration op's deepest pair (a plane: the solid half-space);
+//   capsule – plane: each end of the segment whose sphere reaches the half-space (up to two points);
+//   capsule – polytope: when the contact normal is a face normal of the polytope, the segment clipped
+//     to that face's side planes, each clipped end whose sphere reaches the face a point (a capsule
+//     lying on a face: both ends); otherwise one point;
+//   capsule – sphere or capsule: one point.
+// Features: a sphere is its centre, {"type":"vertex","vertices":[0]}; a capsule the end(s) or the
+// segment holding its contact points ([0] = a, [1] = b).
+
+bool rounded(const QueryShape& s) { return s.kind == Kind::Sphere || s.kind == Kind::Capsule; }
+
+// The core feature of a sphere or capsule under the core points `at` (one or two).
+Json roundedFeature(const QueryShape& s, const std::vector<Vec3>& at) {
+    if (s.kind == Kind::Sphere) return {{"type", "vertex"}, {"vertices", {0}}};
+    const Vec3 a = s.vertices[0], ab = s.vertices[1] - a;
+    const double len2 = ab.squaredNorm();
+    bool end0 = false, end1 = false, inside = false;
+    for (const Vec3& p : at) {
+        const double t = len2 > 0 ? (p - a).dot(ab) / len2 : 0.0;
+        if (t <= 1e-9) end0 = true;
+        else if (t >= 1 - 1e-9) end1 = true;
+        else inside = true;
+    }
+    if (inside || (end0 && end1)) return {{"type", "edge"}, {"vertices", {0, 1}}};
+    return {{"type", "vertex"}, {"vertices", {end1 ? 1 : 0}}};
+}
+
+Json pointJson(const Vec3& pa, const Vec3& pb, double depth) {
+    return {{"point_a", vecJson(pa)}, {"point_b", vecJson(pb)}, {"depth", cleanZero(depth)}};
+}
+
+// Contact points of the rounded shape `s` (side A when sIsA) with the answer's normal n (A toward B).
+struct RoundedPoint {
+    Vec3 onS, onOther;  // on the rounded shape, on the other shape
+    double depth;
+    Vec3 core;  // the core point under onS
+};
+
+Json roundedAnswer(bool colliding, double distanceOrDepth, const Vec3& n, std::vector<RoundedPoint> pts, bool sIsA,
+                   const Json& sFeature, const Json& otherFeature, int maxPoints) {
+    std::stable_sort(pts.begin(), pts.end(), [](const RoundedPoint& x, const RoundedPoint& y) { return x.depth > y.depth; });
+    if (static_cast<int>(pts.size()) > maxPoints) pts.resize(maxPoints);
+    Json points = Json::array();
+    for (const RoundedPoint& p : pts) {
+        const Vec3 pa = sIsA ? p.onS : p.onOther, pb = sIsA ? p.onOther : p.onS;
+        if (colliding) points.push_back(pointJson(pa, pb, p.depth));
+        else points.push_back({{"point_a", vecJson(pa)}, {"point_b", vecJson(pb)}});
+    }
+    Json out = colliding ? Json{{"colliding", true}, {"depth", cleanZero(distanceOrDepth)}, {"normal", vecJson(n)}, {"points", points}}
+                         : Json{{"colliding", false}, {"distance", distanceOrDepth}, {"normal", vecJson(n)}, {"closest", points}};
+    out["feature_a"] = sIsA ? sFeature : otherFeature;
+    out["feature_b"] = sIsA ? otherFeature : sFeature;
+    return out;
+}
+
+// A sphere or capsule s against the solid half-space n̂·x <= d̂ of `plane`.
+Json roundedPlane(const QueryShape& s, const QueryShape& plane, bool sIsA, int maxPoints) {
+    const double m = plane.normal.norm();
+    const Vec3 nh = plane.normal / m;
+    const double dh = plane.offset / m;
+    const double touch = planeTouchTolerance(dh, largestCoordinate(s) + s.radius);
+    std::vector<RoundedPoint> ends;
+    double lowest = INFINITY;
+    for (const Vec3& p : s.vertices) {
+        const double center = nh.dot(p) - dh, gap = center - s.radius;  // the end sphere's lowest point
+        lowest = std::min(lowest, gap);
+        ends.push_back({p - s.radius * nh, p - center * nh, -gap, p});
+    }
+    const bool colliding = lowest <= touch;
+    std::vector<RoundedPoint> pts;
+    for (const RoundedPoint& e : ends)
+        if (colliding ? -e.depth <= touch : -e.depth <= lowest + touch) pts.push_back(e);
+    for (RoundedPoint& p : pts) p.depth = std::max(p.depth, 0.0);
+    if (pts.size() == 2 && (pts[0].core - pts[1].core).norm() == 0) pts.pop_back();  // a zero-length capsule
+    std::vector<Vec3> cores;
+    for (const RoundedPoint& p : pts) cores.push_back(p.core);
+    const Vec3 n = sIsA ? Vec3(-nh) : nh;  // from a toward b: the body toward the half-space, or back
+    return roundedAnswer(colliding, colliding ? std::max(-lowest, 0.0) : lowest, n, pts, sIsA, roundedFeature(s, cores),
+                         {{"type", "plane"}}, maxPoints);
+}
+
+// The capsule's segment clipped to the side planes of `face` of the polytope, each clipped end whose
+// sphere reaches the face (within `touch`) a contact point. Empty when none does.
+std::vector<RoundedPoint> capsuleOnFace(const QueryShape& capsule, const Body& body, int face, double touch) {
+    const ConvexPolyhedron& mesh = body.mesh;
+    const Vec3 nf = mesh.face(face).normal;
+    const double df = mesh.face(face).offset;
+    const Vec3 p0 = capsule.vertices[0], p1 = capsule.vertices[1];
+    double t0 = 0.0, t1 = 1.0;
+    const std::vector<int> loop = mesh.faceVertices(face);
+    for (size_t k = 0; k < loop.size(); ++k) {
+        const Vec3 v = mesh.position(loop[k]), w = mesh.position(loop[(k + 1) % loop.size()]);
+        const Vec3 side = (w - v).cross(nf);  // outward in the face's plane (counter-clockwise from outside)
+        const double s0 = side.dot(p0 - v), s1 = side.dot(p1 - v);
+        if (s0 > 0 && s1 > 0) return {};
+        if (s0 > 0) t0 = std::max(t0, s0 / (s0 - s1));
+        if (s1 > 0) t1 = std::min(t1, s0 / (s0 - s1));
+    }
+    if (t0 > t1) return {};
+    std::vector<RoundedPoint> pts;
+    for (double t : {t0, t1}) {
+        const Vec3 q = p0 + t * (p1 - p0);
+        const double center = nf.dot(q) - df, gap = center - capsule.radius;
+        if (gap <= touch) pts.push_back({q - capsule.radius * nf, q - center * nf, std::max(-gap, 0.0), q});
+        if (t0 == t1) break;
+    }
+    return pts;
+}
+
+// A sphere or capsule s against a bounded shape `other` (polytope, aabb, obb, sphere, capsule).
+Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int maxPoints, const JsonNode& otherNode) {
+    const ShapePairAnswer ans = sIsA ? penetrationOf(s, other) : penetrationOf(other, s);
+    const double touch = touchTolerance(s, other);
+    const bool colliding = ans.intersect || ans.distance <= touch;
+    const Vec3 fromS = sIsA ? ans.normal : Vec3(-ans.normal);  // from s toward the other shape
+    const Vec3 onS = sIsA ? ans.pointA : ans.pointB, onOther = sIsA ? ans.pointB : ans.pointA;
+    std::vector<RoundedPoint> pts = {{onS, onOther, colliding ? ans.depth : 0.0, Vec3(onS - s.radius * fromS)}};
+    Json otherFeature;
+    if (rounded(other)) {
+        otherFeature = roundedFeature(other, {Vec3(onOther + other.radius * fromS)});
+    } else {
+        const Body body = makeBody(other, otherNode);
+        int face = -1;
+        double best = 1.0 - 1e-9;  // the normal is this face's, to rounding
+        for (int f = 0; f < body.mesh.faceCount(); ++f) {
+            const double c = -body.mesh.face(f).normal.dot(fromS);
+            if (c >= best) best = c, face = f;
+        }
+        if (colliding && s.kind == Kind::Capsule && face >= 0) {
+            std::vector<RoundedPoint> clipped = capsuleOnFace(s, body, face, touch);
+            if (!clipped.empty()) pts = clipped;
+        }
+        otherFeature = face >= 0 ? featureJson(body, {FeatureType::Face, face})
+                                 : featureJson(body, supportFeature(body, Vec3(-fromS)));
+    }
+    std::vector<Vec3> cores;
+    for (const RoundedPoint& p : pts) cores.push_back(p.core);
+    double depth = 0.0;
+    for (const RoundedPoint& p : pts) depth = std::max(depth, p.depth);
+    return roundedAnswer(colliding, colliding ? std::max(depth, ans.depth) : ans.distance, ans.normal, pts, sIsA,
+                         roundedFeature(s, cores), otherFeature, maxPoints);
+}
+
 // The local frame of a contact query: the first body's first vertex as origin, and the power of two
 // that brings the bodies' largest local coordinate into [0.5, 1). A plane does not set the scale:
 // a unit box against a plane at offset 1e300 keeps its size (its depth is then ~1e300 local units).
@@ -237,12 +384,23 @@ Json contactQuery(ObjectReader& r) {
         return s.kind == Kind::Polytope || s.kind == Kind::Aabb || s.kind == Kind::Obb;
     };
     for (const auto& [s, node] : {std::pair{&a, &an}, std::pair{&b, &bn}}) {
-        if (!solid(*s) && s->kind != Kind::Plane)
-            node->fail(std::string("contact supports polytope, aabb, obb and plane shapes, not ") + nameOf(s->kind));
+        if (!solid(*s) && !rounded(*s) && s->kind != Kind::Plane)
+            node->fail(std::string("contact supports polytope, aabb, obb, sphere, capsule and plane shapes, not ") +
+                       nameOf(s->kind));
         requireHullVerticesWithinLimit(s->vertices.size(), "contact", *node);
     }
     if (a.kind == Kind::Plane && b.kind == Kind::Plane)
-        bn.fail("contact needs at least one polytope (two planes given)");
+        bn.fail("contact needs at least one bounded shape (two planes given)");
+    if (rounded(a) || rounded(b)) {
+        Json out;
+        if (a.kind == Kind::Plane) out = roundedPlane(b, a, false, maxPoints);
+        else if (b.kind == Kind::Plane) out = roundedPlane(a, b, true, maxPoints);
+        else if (rounded(a)) out = roundedBounded(a, b, true, maxPoints, bn);
+        else out = roundedBounded(b, a, false, maxPoints, an);
+        if (wantTrace) out["trace"] = {{"algorithm", "rounded"}};
+        requireFiniteAnswer(out);
+        return out;
+    }
 
     // The touching rule's tolerance, from the shapes as given (world units).
     const QueryShape& plane = a.kind == Kind::Plane ? a : b;

@@ -340,7 +340,27 @@ Obb toObb(const QueryShape& s) {
     return Obb{c, half, axes};
 }
 
+// Back to the query's units from the normalised problem (lengths times 2^-k, exact).
+void unscaleAnswer(PairAnswer& ans, int k) {
+    const auto unscale = [k](double x) { return std::ldexp(x, -k); };
+    ans.distance = unscale(ans.distance);
+    ans.depth = unscale(ans.depth);
+    ans.pointA = ans.pointA.unaryExpr(unscale);
+    ans.pointB = ans.pointB.unaryExpr(unscale);
+    if (!std::isfinite(ans.distance) || !std::isfinite(ans.depth) || !ans.pointA.allFinite() || !ans.pointB.allFinite())
+        throw InputError("query: the answer overflows double precision (coordinates too large)");
+}
+
 }  // namespace
+
+ShapePairAnswer penetrationOf(QueryShape a, QueryShape b) {
+    const int k = normalisingExponent(a, b);
+    scaleShape(a, k);
+    scaleShape(b, k);
+    PairAnswer ans = solvePair(a, b, true, false);
+    unscaleAnswer(ans, k);
+    return {ans.intersect, ans.distance, ans.depth, ans.normal, ans.pointA, ans.pointB};
+}
 
 Json answerShapeQuery(const std::string& op, ObjectReader& r) {
     JsonNode an = r.get("a"), bn = r.get("b");
@@ -381,13 +401,7 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
 
     const bool wantDepth = op == "penetration";
     PairAnswer ans = solvePair(a, b, wantDepth, wantTrace);
-    const auto unscale = [k](double x) { return std::ldexp(x, -k); };
-    ans.distance = unscale(ans.distance);
-    ans.depth = unscale(ans.depth);
-    ans.pointA = ans.pointA.unaryExpr(unscale);
-    ans.pointB = ans.pointB.unaryExpr(unscale);
-    if (!std::isfinite(ans.distance) || !std::isfinite(ans.depth) || !ans.pointA.allFinite() || !ans.pointB.allFinite())
-        throw InputError("query: the answer overflows double precision (coordinates too large)");
+    unscaleAnswer(ans, k);
     Json out;
     if (op == "intersect") {
         out = {{"intersect", ans.intersect}};

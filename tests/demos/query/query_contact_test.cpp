@@ -249,7 +249,7 @@ TEST_SUITE("query_contact") {
 
     TEST_CASE("errors: unsupported shapes, two planes, zero normal, flat polytope") {
         const Json box = {{"aabb", {{"min", {-1, -1, -1}}, {"max", {1, 1, 1}}}}};
-        CHECK(query({{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}}, box).contains("error"));
+        CHECK(query({{"segment", {{0, 0, 0}, {1, 0, 0}}}}, box).contains("error"));  // spheres and capsules are taken
         const Json plane = {{"plane", {{"normal", {0, 0, 1}}, {"offset", 0}}}};
         CHECK(query(plane, plane).contains("error"));
         CHECK(query(box, {{"plane", {{"normal", {0, 0, 0}}, {"offset", 0}}}}).contains("error"));
