@@ -3,8 +3,11 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
+#include <string>
 #include <vector>
 
+#include "demos/app/usage_text.h"  // generated from demos/app/usage.txt
 #include "demos/bench/bench.h"
 #include "demos/catalog/catalog.h"
 #include "demos/harness/scene_runner.h"
@@ -17,20 +20,29 @@ namespace cdlab::demos {
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: cdlab <command> [options]\n"
-    "  figures   render every demo scene into out/figures/<demo>/<scene>/\n"
-    "            [--scene PATTERN] [--list] [--scale N] [--steps] [--out DIR] [--no-render] [--verbose]\n"
-    "            [--force] (re-render unchanged scenes) [--profile] (time per scene and stage)\n"
-    "  golden    compare every scene with its goldens (what ctest runs)\n"
-    "            [--scene PATTERN] [--report DIR] [--update failing|all] [--verbose]\n"
-    "            (CDLAB_UPDATE_GOLDEN=1 or =all also updates)\n"
-    "  query     JSON Lines queries on stdin, one JSON answer per line on stdout (see README)\n"
-    "  bench     time per query against error; BVH and broad phase [--quick] [--only queries,vclip,bvh,broadphase]\n"
-    "  stress    numerical-stability families against independent oracles [--seconds N] (see README)\n"
-    "  demos     list the demos\n"
-    "exit status: 0 ok, 1 test/comparison failure or failed queries, 2 usage or input error,\n"
-    "             or an output that cannot be written\n";
+const char* const kUsage = kUsageText;
+
+// The usage line and one command's block of the usage text (its line and the indented lines under
+// it), as ./cdlab prints it for `./cdlab <cmd> --help`; empty when the text has no such command.
+std::string usageOf(const std::string& cmd) {
+    std::istringstream in(kUsageText);
+    std::string line, out;
+    bool on = false;
+    std::getline(in, line);  // the general usage line
+    while (std::getline(in, line)) {
+        if (line.rfind("  ", 0) == 0 && line.size() > 2 && line[2] != ' ')
+            on = line.compare(2, cmd.size() + 1, cmd + " ") == 0;
+        else if (!line.empty() && line[0] != ' ') on = false;
+        if (on) out += line + "\n";
+    }
+    return out.empty() ? out : "usage: cdlab " + cmd + " [options]\n" + out;
+}
+
+bool wantsHelp(int argc, char** argv, int first) {
+    for (int i = first; i < argc; ++i)
+        if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
+    return false;
+}
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -101,6 +113,11 @@ int cdlabMain(int argc, char** argv) {
             std::cout << kUsage;
             return 0;
         }
+        if (wantsHelp(argc, argv, 2)) {  // `cdlab <cmd> --help`: that command's usage, nothing run
+            const std::string usage = usageOf(cmd);
+            std::cout << (usage.empty() ? std::string(kUsage) : usage);
+            return 0;
+        }
         if (cmd == "figures") return runFigures(parseRunnerOptions(argc, argv, 2, nullptr));
         if (cmd == "golden") {
             RunnerOptions o = parseRunnerOptions(argc, argv, 2, nullptr);
@@ -128,6 +145,16 @@ int cdlabMain(int argc, char** argv) {
 int demoMain(const std::string& demo, int argc, char** argv) {
     std::string program = "demo_" + demo;
     return guarded(program.c_str(), [&]() -> int {
+        if (wantsHelp(argc, argv, 1)) {
+            std::cout << "usage: " << program << " [scene.json ...] [options]\n"
+                      << "  renders the " << demo << " demo's golden scenes (or the scene files given) into out/figures/\n"
+                      << "  options (as for figures):\n";
+            std::istringstream figures(usageOf("figures"));
+            std::string line;
+            while (std::getline(figures, line))
+                if (line.rfind("            ", 0) == 0) std::cout << line << "\n";
+            return 0;
+        }
         std::vector<std::string> files;
         RunnerOptions o = parseRunnerOptions(argc, argv, 1, &files);
         o.demo = demo;
