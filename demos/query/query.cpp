@@ -35,6 +35,15 @@ Json closestPointTriangle(ObjectReader& r) {
     return {{"point", vecJson(res.point)}, {"region", nameOf(res.region)}};
 }
 
+// The id of a line the strict reader refused (a duplicate key, say) when a lenient parse can read
+// it, so that its error answer can still be matched to the query.
+Json lenientId(const std::string& line, const Json& id) {
+    if (!id.is_null()) return id;
+    const Json lenient = Json::parse(line, nullptr, false);
+    if (lenient.is_object() && lenient.contains("id")) return lenient["id"];
+    return id;
+}
+
 }  // namespace
 
 Json answerQuery(const std::string& line) {
@@ -57,9 +66,23 @@ Json answerQuery(const std::string& line) {
         answer["id"] = id;
         for (auto it = result.begin(); it != result.end(); ++it) answer[it.key()] = it.value();
     } catch (const InputError& e) {
-        answer = {{"id", id}, {"error", e.what()}};
+        answer = {{"id", lenientId(line, id)}, {"error", e.what()}};
     } catch (const std::exception& e) {
-        answer = {{"id", id}, {"error", std::string("internal error: ") + e.what()}};
+        answer = {{"id", lenientId(line, id)}, {"error", std::string("internal error: ") + e.what()}};
+    }
+    return answer;
+}
+
+Json answerQuery(const std::string& line, std::size_t lineNumber) {
+    Json answer = answerQuery(line);
+    if (answer.contains("error")) {
+        // "query: $.a: ..." -> "query: line 7: $.a: ...": the answer names the line it answers.
+        std::string text = answer["error"].get<std::string>();
+        const std::string prefix = "query: ";
+        const std::string where = "line " + std::to_string(lineNumber) + ": ";
+        if (text.rfind(prefix, 0) == 0) text.insert(prefix.size(), where);
+        else text = prefix + where + text;
+        answer["error"] = text;
     }
     return answer;
 }
@@ -111,7 +134,7 @@ int runQueries(std::istream& in, std::ostream& out) {
             continue;
         }
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        Json a = answerQuery(line);
+        Json a = answerQuery(line, lineNumber);
         if (a.contains("error")) failed = true;
         writeAnswer(out, std::move(a));
     }
