@@ -1,5 +1,5 @@
-// RGBA8 images and PNG I/O (stb_image / stb_image_write; exactly one TU, stb_impl.cpp,
-// defines the implementations).
+// RGBA8 images and PNG I/O (decoding: stb_image, its one implementation TU is stb_impl.cpp;
+// encoding: libpng at its fast setting).
 #pragma once
 
 #include <cstddef>
