@@ -44,29 +44,31 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     std::vector<std::string> captionLines;
     double sceneLineH = 0;
     int titleH = 0, captionH = 44;
-    float captionPx = 15.0f;
+    float captionPx = 15.0f, titlePx = 22.0f;  // the title grows too on a tall sheet (15 frames)
+    const auto titleBlock = [&]() { return o.title.empty() ? 0 : int(std::ceil(titlePx * 48.0 / 22.0)); };
     // Sizes only grow with the height they give, so this settles in a pass or two.
     for (int pass = 0; pass < 8; ++pass) {
         captionLines = wrapPieces(measure, words, " ", sceneCaption, width - 2 * pad);
         sceneLineH = std::ceil(sceneCaption.sizePx * 1.6);
-        titleH =
-            (o.title.empty() ? 0 : 48) + int(sceneLineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
+        titleH = titleBlock() + int(sceneLineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
         const float legible = float(std::ceil(0.016 * (titleH + rows * (cellH + captionH + pad) + pad)));
-        if (std::max(15.0f, legible) == captionPx && std::max(16.0f, legible) == sceneCaption.sizePx)
+        if (std::max(15.0f, legible) == captionPx && std::max(16.0f, legible) == sceneCaption.sizePx &&
+            std::max(22.0f, legible) == titlePx)
             break;  // settled: the sizes fit the height they give
         captionPx = std::max(15.0f, legible);
         captionH = int(std::ceil(captionPx * 2.9));
         sceneCaption.sizePx = std::max(16.0f, legible);
+        titlePx = std::max(22.0f, legible);
     }
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
 
     Canvas canvas(gl, canvasOptions(width, height, 1), Camera::twoD(0, 0, 1));
     TextStyle caption{captionPx, roleColor(Role::Ink), Anchor::Top, false, false};
     if (!o.title.empty())
-        canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::Top, false, true});
+        canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{titlePx, roleColor(Role::Ink), Anchor::Top, false, true});
+    const double captionTop = pad + (o.title.empty() ? 0 : std::ceil(titlePx * 34.0 / 22.0));
     for (std::size_t k = 0; k < captionLines.size(); ++k)
-        canvas.drawTextPx(width / 2.0, pad + (o.title.empty() ? 0 : 34) + sceneLineH * double(k), captionLines[k],
-                          sceneCaption);
+        canvas.drawTextPx(width / 2.0, captionTop + sceneLineH * double(k), captionLines[k], sceneCaption);
     for (int i = 0; i < n; ++i) {
         int x = pad + (i % columns) * (cellW + pad);
         int y = titleH + pad + (i / columns) * (cellH + captionH + pad);
