@@ -138,8 +138,11 @@ void writeHtmlReport(const std::string& path, const std::vector<ReportEntry>& en
         ".missing{width:200px;height:120px;border:1px dashed #c00;color:#c00;display:flex;align-items:center;"
         "justify-content:center}\n"
         "</style>\n</head>\n<body>\n";
+    std::size_t images = 0;
+    for (const ReportEntry& e : entries) images += !e.actualPng.empty();
     html += "<h1>cdlab golden-image report</h1>\n<p>" + std::to_string(entries.size()) +
-            (entries.size() == 1 ? " failure" : " failures") + ".</p>\n";
+            (entries.size() == 1 ? " failure" : " failures") + " (" + std::to_string(images) + " of images, " +
+            std::to_string(entries.size() - images) + " of traces or legibility).</p>\n";
     auto figure = [](const std::string& src, const char* caption) {
         std::string f = "<figure>";
         if (src.empty()) f += "<div class=\"missing\">none</div>";
@@ -149,9 +152,11 @@ void writeHtmlReport(const std::string& path, const std::vector<ReportEntry>& en
         return f + "<figcaption>" + caption + "</figcaption></figure>";
     };
     for (const ReportEntry& e : entries) {
-        html += "<section>\n<h2>" + htmlEscape(e.name) + "</h2>\n<p class=\"summary\">" + htmlEscape(e.summary) +
-                "</p>\n<div class=\"row\">" + figure(e.actualPng, "actual") + figure(e.expectedPng, "expected") +
-                figure(e.diffPng, "diff") + "</div>\n</section>\n";
+        html += "<section>\n<h2>" + htmlEscape(e.name) + "</h2>\n<p class=\"summary\">" + htmlEscape(e.summary) + "</p>\n";
+        if (!e.actualPng.empty())  // a trace or legibility failure has no pictures, only its text
+            html += "<div class=\"row\">" + figure(e.actualPng, "actual") + figure(e.expectedPng, "expected") +
+                    figure(e.diffPng, "diff") + "</div>\n";
+        html += "</section>\n";
     }
     html += "</body>\n</html>\n";
     writeFileAtomic(path, html);

@@ -43,7 +43,7 @@ Image diffImage(const Image& actual, const Image& expected, int gain = 16);
 
 struct ReportEntry {
     std::string name;         // e.g. "voronoi_triangle/regions"
-    std::string actualPng;    // paths relative to the report's folder
+    std::string actualPng;    // paths relative to the report's folder; empty: a trace or legibility failure
     std::string expectedPng;  // may be empty when the golden is missing
     std::string diffPng;      // may be empty
     std::string summary;      // CompareResult::summary() or the reason

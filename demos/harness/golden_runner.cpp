@@ -138,6 +138,11 @@ std::string goldenProblem(const fs::path& golden, bool exists, const Compare& co
     }
 }
 
+// What to run to create a scene's missing goldens: that scene only, not the whole suite.
+std::string createHint(const SceneCommon& sc) {
+    return " (create it with: ./cdlab golden --scene " + sceneId(sc) + " --update failing)";
+}
+
 struct GoldenRun {
     const RunnerOptions& options;
     ReportFolder report;
@@ -230,7 +235,7 @@ void GoldenRun::checkFrame(const SceneCommon& sc, const Frame& fr, const fs::pat
         std::cout << "PASS " << id << ": " << cmp.summary() << "\n";
         return;
     }
-    if (!exists) problem += " (create it with: ./cdlab test --update-golden)";
+    if (!exists) problem += createHint(sc);
     fail(id + ": " + problem);
     reportFrame(sc, fr, goldenPng, exists, problem);
 }
@@ -246,8 +251,12 @@ void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
     if (problems.empty()) return;
     fail(id + ": not slide-legible, " + std::to_string(problems.size()) +
          " problem(s); worst: " + render::describe(problems.front()));
-    for (std::size_t i = 1; i < problems.size() && i < 6; ++i)
+    std::string details = "not slide-legible: " + render::describe(problems.front());
+    for (std::size_t i = 1; i < problems.size() && i < 6; ++i) {
         std::cout << "     " << render::describe(problems[i]) << "\n";
+        details += "\n" + render::describe(problems[i]);
+    }
+    entries.push_back({id, "", "", "", details});
 }
 
 // actual / expected / diff PNGs of a failed frame into the report folder.
@@ -296,9 +305,13 @@ void GoldenRun::checkTrace(const SceneCommon& sc, const Json& trace, const fs::p
         std::cout << "PASS " << id << ": " << tc.summary() << "\n";
         return;
     }
-    fail(id + ": " + problem + (exists ? "" : " (create it with: ./cdlab test --update-golden)"));
-    for (std::size_t i = 1; i < tc.mismatches.size(); ++i)
+    fail(id + ": " + problem + (exists ? "" : createHint(sc)));
+    std::string details = problem + (exists ? "" : createHint(sc));
+    for (std::size_t i = 1; i < tc.mismatches.size(); ++i) {
         std::cout << "     " << tc.mismatches[i].path << ": " << tc.mismatches[i].what << "\n";
+        details += "\n" + tc.mismatches[i].path + ": " + tc.mismatches[i].what;
+    }
+    entries.push_back({id, "", "", "", details});  // the report lists trace failures too
 }
 
 }  // namespace

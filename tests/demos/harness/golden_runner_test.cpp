@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <iostream>
 #include <sstream>
 
@@ -73,6 +74,12 @@ TEST_CASE("golden runner: creates, passes, and rejects perturbed or broken golde
     t["queries"][0]["distance"] = t["queries"][0]["distance"].get<double>() + 1e-6;
     std::ofstream(trace, std::ios::trunc) << t.dump(1);
     CHECK(runGolden(options(root)) == 1);
+    // ... and the HTML report says so (it listed image failures only): the entry, with the path.
+    std::ifstream html(root / "report" / "index.html");
+    const std::string report((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+    CHECK(report.find("voronoi_triangle/small/trace.json") != std::string::npos);
+    CHECK(report.find("$.queries[0].distance") != std::string::npos);
+    CHECK(report.find("1 failure (0 of images, 1 of traces or legibility)") != std::string::npos);
     fs::remove_all(root);
 }
 
