@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The core as a library (issue 19 §3): `cmake --install` of this build into a temporary prefix, then
+# a consumer project built against it with find_package(cdlab) that must print the right distance;
+# the same consumer compiled with add_subdirectory(path/to/cdlab/core) from the source tree; and a
+# core-only configure of the repository that looks for nothing but Eigen. Usage: consumer_test.sh REPO_ROOT BUILD_DIR
+set -eu
+root="$1"; build="$2"
+tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
+cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
+test -f "$tmp/prefix/include/cdlab/core/gjk_epa/gjk.h"
+test -f "$tmp/prefix/lib/cmake/cdlab/cdlabConfig.cmake"
+cmake -S "$root/tests/install/consumer" -B "$tmp/installed" -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
+cmake --build "$tmp/installed" -j 2 >/dev/null
+"$tmp/installed/consumer"
+# add_subdirectory(core): configure, and compile the consumer's source against the core target's
+# include directory and flags (linking it would rebuild all of core: the installed variant links).
+cmake -S "$root/tests/install/consumer" -B "$tmp/subdir" -DCDLAB_CORE_DIR="$root/core" >/dev/null
+make -C "$tmp/subdir" --no-print-directory main.cpp.o >/dev/null
+# A core-only configure of the repository (demos and tests off) asks for Eigen alone.
+cmake -S "$root" -B "$tmp/core-only" -DCDLAB_BUILD_DEMOS=OFF -DCDLAB_BUILD_TESTS=OFF >"$tmp/core-only.log"
+if grep -E -i "EGL|GIF|nlohmann|doctest|PNG|OpenGL" "$tmp/core-only.log"; then
+    echo "FAIL the core-only configure looked for more than Eigen"; exit 1
+fi
+echo "install: the find_package(cdlab) consumer builds and runs; add_subdirectory(core) compiles; core-only configure needs Eigen alone"
