@@ -67,6 +67,13 @@ RunnerOptions parseRunnerOptions(int argc, char** argv, int first, std::vector<s
         else if (a == "--no-render") o.noRender = true;
         else if (a == "--force") o.force = true;
         else if (a == "--profile") o.profile = true;
+        else if (a == "--frame") {  // render: NAME or a glob, several separated by commas
+            std::string v = value(i), item;
+            std::istringstream list(v);
+            while (std::getline(list, item, ','))
+                if (!item.empty()) o.frames.push_back(item);
+            if (o.frames.empty()) throw UsageError("--frame needs a frame name (or a glob such as 'step_0*')");
+        }
         else if (a == "--update") {
             o.update = value(i);
             if (o.update != "failing" && o.update != "all") throw UsageError("--update takes 'failing' or 'all'");
@@ -103,6 +110,28 @@ int guarded(const char* program, F&& body) {
     }
 }
 
+// `cdlab render FILE.json... [--out DIR] [--frame NAME] [--scale N]` or `--template DEMO`.
+int runRender(int argc, char** argv) {
+    for (int i = 2; i < argc; ++i)
+        if (std::strcmp(argv[i], "--template") == 0) {
+            if (i + 1 >= argc) throw UsageError("--template needs a demo name (cdlab demos lists them)");
+            if (argc != 4) throw UsageError("--template DEMO takes no other argument");
+            std::cout << sceneTemplate(argv[i + 1], RunnerOptions{});
+            return 0;
+        }
+    std::vector<std::string> files;
+    bool explicitOut = false;
+    for (int i = 2; i < argc; ++i) explicitOut = explicitOut || std::strcmp(argv[i], "--out") == 0;
+    RunnerOptions o = parseRunnerOptions(argc, argv, 2, &files);
+    if (files.empty()) throw UsageError("render needs a scene file (or --template DEMO for a starter)");
+    if (!o.pattern.empty() || o.list || !o.update.empty() || !o.reportDir.empty())
+        throw UsageError("render takes scene files, --out, --frame, --scale, --steps, --force, --verbose, --profile");
+    if (!explicitOut) o.outDir = "out/render";
+    o.perFileOutput = true;
+    o.outIsFolder = explicitOut && files.size() == 1;
+    return renderSceneFiles(files, o);
+}
+
 }  // namespace
 
 int cdlabMain(int argc, char** argv) {
@@ -119,6 +148,7 @@ int cdlabMain(int argc, char** argv) {
             return 0;
         }
         if (cmd == "figures") return runFigures(parseRunnerOptions(argc, argv, 2, nullptr));
+        if (cmd == "render") return runRender(argc, argv);
         if (cmd == "golden") {
             RunnerOptions o = parseRunnerOptions(argc, argv, 2, nullptr);
             if (o.update.empty()) {

@@ -12,6 +12,7 @@
 // are staged and renamed together under an flock() on the scene folder, so two runs into one
 // out/ both succeed and a failed scene keeps its previous complete files.
 #include <fcntl.h>
+#include <fnmatch.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -65,6 +66,7 @@ std::uint64_t executableHash() {
 std::string cacheKey(const std::string& sceneBytes, const RunnerOptions& o) {
     std::uint64_t h = fnv1a(sceneBytes, executableHash());
     h = fnv1a("scale=" + std::to_string(o.scale) + ";steps=" + std::to_string(o.steps), h);
+    for (const std::string& f : o.frames) h = fnv1a(";frame=" + f, h);
     char buf[20];
     std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
     return buf;
@@ -144,7 +146,27 @@ std::string plainOutputName(const std::string& name) {
 // Writes one scene's output: everything staged first, then renamed in place; stale files of the
 // previous run go next, the manifest last (so a run killed half-way leaves a manifest that still
 // lists every file a later run may clean up).
-void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCommon& sc, const DemoOutput& out) {
+bool frameSelected(const std::string& name, const std::vector<std::string>& globs) {
+    if (globs.empty()) return true;
+    return std::any_of(globs.begin(), globs.end(),
+                       [&](const std::string& g) { return fnmatch(g.c_str(), name.c_str(), 0) == 0; });
+}
+
+// --frame: the frames chosen must exist (the error lists the scene's frame names).
+void requireSelectedFrames(const DemoOutput& out, const std::vector<std::string>& globs) {
+    if (globs.empty()) return;
+    std::string names;
+    for (const Frame& fr : out.frames) {
+        if (frameSelected(fr.name, globs)) return;
+        names += (names.empty() ? "" : ", ") + fr.name;
+    }
+    std::string asked;
+    for (const std::string& g : globs) asked += (asked.empty() ? "" : ", ") + g;
+    throw InputError("--frame " + asked + " matches no frame of this scene (frames: " + names + ")");
+}
+
+void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCommon& sc, const DemoOutput& out,
+                      const std::vector<std::string>& frameGlobs) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + ec.message());
@@ -154,12 +176,14 @@ void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCo
     render::FileSetWriter files;
     FigureManifest manifest{key, sc.title, sc.caption, {}, {}};
     for (const Frame& fr : out.frames) {
+        if (!frameSelected(fr.name, frameGlobs)) continue;
         const std::string name = plainOutputName(fr.name + ".png");
         files.addPng((dir / name).string(), fr.image);
         manifest.files.push_back(name);
         manifest.frames.push_back({fr.name, fr.caption, layoutJson(fr.image)});
     }
     for (const auto& [name, bytes] : out.files) {
+        if (!frameGlobs.empty()) break;  // a chosen subset of frames: no sheets, GIFs or plots
         files.addFile((dir / plainOutputName(name)).string(), bytes);
         manifest.files.push_back(name);
     }
@@ -180,6 +204,27 @@ struct SceneJob {
     bool todo = true;
 };
 
+// `cdlab render`: <out>/<file stem>, or --out itself for one file; never inside golden/ (goldens
+// change only through `cdlab golden --update`).
+fs::path renderOutputDir(const std::string& file, const RunnerOptions& o) {
+    fs::path dir = o.outDir;
+    if (!o.outIsFolder) {
+        const std::string stem = fs::path(file).stem().string();
+        if (!isPlainName(stem))
+            throw InputError("the file name " + Json(stem).dump(-1, ' ', false, Json::error_handler_t::replace) +
+                             " cannot name an output folder: give one with --out DIR");
+        dir /= stem;
+    }
+    const fs::path golden =
+        fs::weakly_canonical(o.goldenDir.empty() ? fs::path(CDLAB_SOURCE_DIR) / "golden" : fs::path(o.goldenDir));
+    const fs::path target = fs::weakly_canonical(fs::absolute(dir));
+    const auto [g, t] = std::mismatch(golden.begin(), golden.end(), target.begin(), target.end());
+    if (g == golden.end())
+        throw InputError("output folder '" + dir.string() +
+                         "' is inside golden/: render never writes there (goldens change with cdlab golden --update)");
+    return dir;
+}
+
 // Reads and checks one scene file; throws InputError naming it.
 SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
     SceneJob job;
@@ -191,7 +236,7 @@ SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
         throw InputError(file + ": $.demo: this scene is for demo '" + sc.demo + "', not '" + o.demo + "'");
     if (!o.noRender) checkImageBudget(sc, o.scale);  // --scale multiplies the pixels the scene asked for
     try {
-        job.dir = sceneOutputDir(o.outDir, sc.demo, sc.name);
+        job.dir = o.perFileOutput ? renderOutputDir(file, o) : sceneOutputDir(o.outDir, sc.demo, sc.name);
     } catch (const InputError& e) {
         throw InputError(file + ": " + e.what());
     }
@@ -214,7 +259,7 @@ bool validateAll(const std::vector<std::string>& files, const RunnerOptions& o, 
         }
     }
     if (bad)
-        std::cerr << "cdlab figures: " << bad << " of " << files.size() << " scene" << (files.size() == 1 ? "" : "s")
+        std::cerr << (o.perFileOutput ? "cdlab render: " : "cdlab figures: ") << bad << " of " << files.size() << " scene" << (files.size() == 1 ? "" : "s")
                   << (bad == 1 ? " is" : " are") << " invalid; nothing written\n";
     return bad == 0;
 }
@@ -283,12 +328,14 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
             auto ts = Clock::now();
             DemoOutput out = job.scene->run(ctx);
             const double runSeconds = secondsSince(ts);
+            requireSelectedFrames(out, o.frames);
 
             auto tw = Clock::now();
-            writeSceneFolder(job.dir, job.key, sc, out);
+            writeSceneFolder(job.dir, job.key, sc, out, o.frames);
             const double writeSeconds = secondsSince(tw);
             ++rendered;
-            frames += int(out.frames.size());
+            for (const Frame& fr : out.frames) frames += frameSelected(fr.name, o.frames);
+            if (o.perFileOutput) std::cerr << (tty ? "\n" : "") << job.file << " -> " << job.dir.string() << "/\n";
 
             if (o.profile) {
                 const double build = stats.buildSeconds - before.buildSeconds,
@@ -320,6 +367,13 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         }
     }
     if (tty && !o.verbose && !o.profile) std::cerr << "\n";
+    if (o.perFileOutput) {
+        std::cerr << "cdlab render: " << jobs.size() << " scene" << (jobs.size() == 1 ? "" : "s") << " (" << rendered
+                  << " rendered, " << jobs.size() - rendered - failed << " unchanged";
+        if (failed) std::cerr << ", " << failed << " failed";
+        std::cerr << "), " << frames << " frames in " << secondsSince(t0) << " s\n";
+        return failed ? 2 : 0;
+    }
     {
         FolderLock lock(o.outDir);
         writeGallery(o.outDir);

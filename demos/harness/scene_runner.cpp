@@ -5,7 +5,9 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
+#include "demos/catalog/catalog.h"
 #include "demos/scene/scene.h"
 
 namespace cdlab::demos {
@@ -43,6 +45,39 @@ std::vector<std::string> selectScenes(const RunnerOptions& o) {
         out.push_back(file);
     }
     return out;
+}
+
+std::string sceneTemplate(const std::string& demo, const RunnerOptions& o) {
+    RunnerOptions only = o;
+    only.demo = demo;
+    only.pattern.clear();
+    const std::vector<std::string> files = selectScenes(only);
+    if (files.empty()) {
+        std::string names;
+        for (const Demo* d : allDemos()) names += std::string(names.empty() ? "" : ", ") + d->name();
+        throw InputError("render --template: unknown demo '" + demo + "' (demos: " + names + ")");
+    }
+    // The file as written (its layout reads better than a re-dump), less its one-line "golden"
+    // entry: the golden comparison's tolerances mean nothing outside golden/. A file laid out
+    // otherwise is re-dumped from its parse.
+    const std::string text = readJsonText(files.front());
+    Json scene = parseJson(text, files.front());
+    scene.erase("golden");
+    std::istringstream in(text);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);)
+        if (line.find("\"golden\"") == std::string::npos) lines.push_back(line);
+    std::string out;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        std::string line = lines[i];
+        // The entry before a removed last entry loses its comma.
+        if (i + 1 < lines.size() && lines[i + 1].find_first_not_of(" ") < lines[i + 1].size() &&
+            lines[i + 1][lines[i + 1].find_first_not_of(" ")] == '}' && !line.empty() && line.back() == ',')
+            line.pop_back();
+        out += line + "\n";
+    }
+    const Json reparsed = Json::parse(out, nullptr, false);
+    return reparsed == scene ? out : scene.dump(2) + "\n";
 }
 
 fs::path sceneOutputDir(const fs::path& root, const std::string& demo, const std::string& name) {

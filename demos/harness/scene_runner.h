@@ -27,12 +27,20 @@ struct RunnerOptions {
     bool noRender = false;  // numeric only: no GL context, traces only
     bool force = false;     // figures: re-render scenes whose cache key matches
     bool profile = false;   // figures: per-scene time in algorithm, drawing, read-back, PNG
+    // render (any scene file anywhere): output in <outDir>/<file stem>/, or in outDir itself when
+    // outIsFolder (one file and an explicit --out); never under golden/; no gallery page.
+    bool perFileOutput = false;
+    bool outIsFolder = false;
+    std::vector<std::string> frames;  // render: write only frames whose name matches one of these globs
 };
 
 int runFigures(const RunnerOptions& options);
 /// Renders the given scene files (all validated first; with options.demo set, each must belong to it).
 int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions& options);
 int runGolden(const RunnerOptions& options);
+/// `cdlab render --template DEMO`: a scene file for the demo that renders as it is, to copy and edit
+/// (the demo's first golden scene without its golden tolerances). Throws InputError for an unknown demo.
+std::string sceneTemplate(const std::string& demo, const RunnerOptions& options);
 
 /// The one GL context of a run (prints GL_RENDERER / GL_VERSION when verbose). Throws render::GlError.
 std::unique_ptr<render::GlContext> createContext(bool verbose);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "core/base/primitives.h"
@@ -19,6 +20,7 @@
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/overlap/sat_tests.h"
+#include "demos/query/query_compound.h"
 #include "demos/query/query_feature_walk.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_plane.h"
@@ -353,17 +355,20 @@ void unscaleAnswer(PairAnswer& ans, int k) {
 
 }  // namespace
 
-ShapePairAnswer penetrationOf(QueryShape a, QueryShape b) {
+ShapePairAnswer penetrationOf(QueryShape a, QueryShape b) { return shapePairAnswer(std::move(a), std::move(b), true); }
+
+ShapePairAnswer shapePairAnswer(QueryShape a, QueryShape b, bool wantDepth) {
     const int k = normalisingExponent(a, b);
     scaleShape(a, k);
     scaleShape(b, k);
-    PairAnswer ans = solvePair(a, b, true, false);
+    PairAnswer ans = solvePair(a, b, wantDepth, false);
     unscaleAnswer(ans, k);
     return {ans.intersect, ans.distance, ans.depth, ans.normal, ans.pointA, ans.pointB};
 }
 
 Json answerShapeQuery(const std::string& op, ObjectReader& r) {
     JsonNode an = r.get("a"), bn = r.get("b");
+    if (isCompoundOrMesh(an) || isCompoundOrMesh(bn)) return answerCompoundQuery(op, r, an, bn);
     QueryShape a = parseQueryShape(an), b = parseQueryShape(bn);
     std::string method = "gjk";
     if (auto m = r.find("method")) {

@@ -20,5 +20,8 @@ struct ShapePairAnswer {
     Vec3 normal = Vec3::UnitX(), pointA = Vec3::Zero(), pointB = Vec3::Zero();
 };
 ShapePairAnswer penetrationOf(QueryShape a, QueryShape b);
+/// The same answer for any two shapes (normalised by a power of two first, as every op is); with
+/// wantDepth false an overlapping pair answers only `intersect` (no EPA run).
+ShapePairAnswer shapePairAnswer(QueryShape a, QueryShape b, bool wantDepth);
 
 }  // namespace cdlab::demos

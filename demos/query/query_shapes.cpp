@@ -133,6 +133,8 @@ QueryShape parseQueryShape(const JsonNode& node) {
         s.offset = std::ldexp(s.offset, k);
         if (!std::isfinite(s.offset))
             on.fail("the plane's distance from the origin, offset / |normal|, overflows double precision");
+    } else if (key == "compound" || key == "mesh") {
+        node.fail("a " + key + " is taken by the intersect, distance and penetration ops only");
     } else {
         node.fail("unknown shape '" + key +
                   "' (expected point, segment, ray, triangle, sphere, aabb, obb, capsule, "
