@@ -10,6 +10,7 @@
 #include "demos/app/usage_text.h"  // generated from demos/app/usage.txt
 #include "demos/bench/bench.h"
 #include "demos/catalog/catalog.h"
+#include "demos/check/check.h"
 #include "demos/harness/scene_runner.h"
 #include "demos/query/query.h"
 #include "demos/stress/stress.h"
@@ -161,6 +162,18 @@ int cdlabMain(int argc, char** argv) {
         if (cmd == "query") {
             if (argc > 2) throw UsageError("query takes no arguments: it reads JSON Lines on stdin");
             return runQueries(std::cin, std::cout);
+        }
+        if (cmd == "check") {
+            CheckOptions co;
+            for (int i = 2; i < argc; ++i) {
+                const std::string a = argv[i];
+                if (a == "--tolerance" && i + 1 < argc) {
+                    char* end = nullptr;
+                    co.tolerance = std::strtod(argv[++i], &end);
+                    if (!end || *end || !(co.tolerance > 0)) throw UsageError("--tolerance takes a positive number");
+                } else throw UsageError("check: unknown argument " + a + " (it reads JSON Lines on stdin)");
+            }
+            return runCheck(std::cin, std::cout, co);
         }
         if (cmd == "bench") return runBench(argc - 1, argv + 1);
         if (cmd == "stress") return runStress(argc - 1, argv + 1);

@@ -1,0 +1,42 @@
+// `cdlab check`: your implementation's answers (and, optionally, your GJK trace) against cdlab's,
+// one JSON Lines query at a time (README, "cdlab check").
+//
+// A line is a `cdlab query` line plus "answer" (your answer, the same keys as cdlab's), optionally
+// "tolerance" (this line's, relative to the shapes' size) and "trace" (yours: an object, not the
+// query's `"trace": true`). cdlab answers the query and compares: verdicts exactly; numbers
+// within the tolerance; and where an answer is not unique (witness points, normals at an edge,
+// the region of a point on a region boundary, a support point among ties) yours is checked for
+// being *a* right answer — a point on its shape, a normal whose support gap is the depth — not for
+// being cdlab's.
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "demos/scene/json_reader.h"
+
+namespace cdlab::demos {
+
+struct CheckOptions {
+    /// Relative to the size of the problem L (the largest extent of the shapes, at least their
+    /// coordinates' rounding): numbers may differ by tolerance * L. cdlab itself meets 1e-12 L on
+    /// distances and 1e-10 L on depths (README "cdlab stress"); 1e-9 leaves your double code room.
+    double tolerance = 1e-9;
+};
+
+struct CheckResult {
+    Json id;
+    bool pass = false;
+    std::vector<std::string> reasons;  ///< why it failed, in plain words (empty when it passed)
+};
+
+/// Checks one line (lineNumber counts from 1 and names the line in errors).
+CheckResult checkLine(const std::string& line, std::size_t lineNumber, const CheckOptions& options);
+
+/// Reads lines until EOF and prints one verdict line each, then "N passed, M failed". Returns 0
+/// when every line passed, 1 otherwise. Blank lines are skipped.
+int runCheck(std::istream& in, std::ostream& out, const CheckOptions& options);
+
+}  // namespace cdlab::demos

@@ -1,0 +1,117 @@
+// `cdlab check`: right answers pass (including the ones that differ from cdlab's only where the
+// answer is not unique: other witness points on a face pair, a region tie at a vertex, a tied
+// support point), and each kind of wrong answer fails with its reason in words; a planted GJK
+// trace divergence is reported at its iteration.
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+
+#include "demos/check/check.h"
+
+using namespace cdlab::demos;
+
+namespace {
+
+CheckResult check(const Json& line) { return checkLine(line.dump(), 1, CheckOptions{}); }
+
+std::string reasons(const CheckResult& r) {
+    std::string s;
+    for (const std::string& x : r.reasons) s += x + "; ";
+    return s;
+}
+
+const Json kBoxA = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
+const Json kBoxB = {{"aabb", {{"min", {2, 0, 0}}, {"max", {3, 1, 1}}}}};
+
+Json distanceLine(const Json& answer) { return {{"id", 1}, {"op", "distance"}, {"a", kBoxA}, {"b", kBoxB}, {"answer", answer}}; }
+
+// A − B = [-3, -1] x [-1, 1] x [-1, 1]: a GJK run from direction +x.
+Json gjkTrace(bool plantedDivergence) {
+    Json steps = Json::array();
+    steps.push_back({{"direction", {1, 0, 0}}, {"support", {-1, 1, 1}}, {"simplex", {{-1, 1, 1}}}});
+    // Iteration 1: the segment's nearest point to the origin is its midpoint (-1, 0, 0): both
+    // ends stay. The planted divergence keeps only the new point.
+    Json kept = plantedDivergence ? Json{{-1, -1, -1}} : Json{{-1, 1, 1}, {-1, -1, -1}};
+    steps.push_back({{"direction", {1, -1, -1}}, {"support", {{"a", {1, 0, 0}}, {"b", {2, 1, 1}}}}, {"simplex", kept}});
+    // Iteration 2: along +x every point of the face x = -1 is extreme; (-1, 1, -1) is a tie.
+    steps.push_back({{"direction", {1, 0, 0}}, {"support", {-1, 1, -1}}});
+    return {{"algorithm", "gjk"}, {"steps", steps}};
+}
+
+}  // namespace
+
+TEST_CASE("check: right answers pass, also where they are not cdlab's") {
+    CHECK(check(distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}})).pass);
+    // Other witness points on the same face pair: as right.
+    const CheckResult other =
+        check(distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.3, 0.9}}, {"point_b", {2, 0.3, 0.9}}}));
+    CHECK_MESSAGE(other.pass, reasons(other));
+    // A point exactly at vertex A: region A or AB both name it.
+    for (const char* region : {"A", "AB", "CA"}) {
+        const Json line = {{"op", "closest_point_triangle"}, {"point", {-1, -1, 0}}, {"triangle", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                           {"answer", {{"point", {0, 0, 0}}, {"region", region}}}};
+        CHECK_MESSAGE(check(line).pass, region);
+    }
+    // Penetration along another axis of least overlap (a tie): valid.
+    const Json cube = {{"aabb", {{"min", {0, 0, 0}}, {"max", {2, 2, 2}}}}};
+    const Json corner = {{"aabb", {{"min", {1.5, 1.5, -1}}, {"max", {3, 3, 3}}}}};
+    for (const Json& n : {Json{1, 0, 0}, Json{0, 1, 0}}) {
+        const Json pa = n[0] == 1 ? Json{2, 1.75, 1} : Json{1.75, 2, 1};
+        const Json pb = n[0] == 1 ? Json{1.5, 1.75, 1} : Json{1.75, 1.5, 1};
+        const Json line = {{"op", "penetration"}, {"a", cube}, {"b", corner},
+                           {"answer", {{"intersect", true}, {"depth", 0.5}, {"normal", n}, {"point_a", pa}, {"point_b", pb}}}};
+        const CheckResult r = check(line);
+        CHECK_MESSAGE(r.pass, reasons(r));
+    }
+}
+
+TEST_CASE("check: wrong answers fail with the reason in words") {
+    CheckResult r = check(distanceLine({{"intersect", true}}));
+    CHECK(reasons(r).find("verdict differs") != std::string::npos);
+    r = check(distanceLine({{"intersect", false}, {"distance", 1.001}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2.001, 0.5, 0.5}}}));
+    CHECK(reasons(r).find("distance off by 0.001") != std::string::npos);
+    CHECK(reasons(r).find("point_b is not on shape b") == std::string::npos);
+    r = check(distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1.2, 0.5, 0.5}}, {"point_b", {2.2, 0.5, 0.5}}}));
+    CHECK(reasons(r).find("point_a is not on shape a: 0.2 from it") != std::string::npos);
+    const Json cube = {{"aabb", {{"min", {0, 0, 0}}, {"max", {2, 2, 2}}}}};
+    const Json slab = {{"aabb", {{"min", {1.5, 0.5, 0.5}}, {"max", {3, 1.5, 1.5}}}}};
+    r = check({{"op", "penetration"}, {"a", cube}, {"b", slab},
+               {"answer", {{"intersect", true}, {"depth", 0.5}, {"normal", {0, 1, 0}}, {"point_a", {2, 1, 1}}, {"point_b", {2, 0.5, 1}}}}});
+    CHECK(reasons(r).find("normal not a valid separating direction") != std::string::npos);
+    r = check({{"op", "closest_point_triangle"}, {"point", {0.2, -1, 0}}, {"triangle", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+               {"answer", {{"point", {0.2, 0, 0}}, {"region", "A"}}}});
+    CHECK(reasons(r).find("region differs: yours A, cdlab's AB") != std::string::npos);
+    // A tolerance per line loosens it.
+    Json loose = distanceLine({{"intersect", false}, {"distance", 1.001}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2.001, 0.5, 0.5}}});
+    loose["tolerance"] = 1e-2;
+    CHECK(check(loose).pass);
+}
+
+TEST_CASE("check: a GJK trace is checked step by step; a tie is not a divergence, a planted one is found") {
+    Json line = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    line["trace"] = gjkTrace(false);
+    CheckResult r = check(line);
+    CHECK_MESSAGE(r.pass, reasons(r));
+    line["trace"] = gjkTrace(true);
+    r = check(line);
+    CHECK(reasons(r).find("iteration 1: wrong sub-simplex kept") != std::string::npos);
+    // A support point that is not extreme along its direction.
+    Json bad = gjkTrace(false);
+    bad["steps"][2]["support"] = {-2, 1, -1};
+    line["trace"] = bad;
+    CHECK(reasons(check(line)).find("iteration 2: different support point for the same direction") != std::string::npos);
+}
+
+TEST_CASE("check: the summary line and the exit status") {
+    std::istringstream in(
+        distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}}).dump() +
+        "\n\n" + distanceLine({{"intersect", true}}).dump() + "\nnot json\n");
+    std::ostringstream out;
+    CHECK(runCheck(in, out, CheckOptions{}) == 1);
+    const std::string text = out.str();
+    CHECK(text.find("line 1 (id 1): pass") != std::string::npos);
+    CHECK(text.find("line 3 (id 1): FAIL: verdict differs") != std::string::npos);
+    CHECK(text.find("line 4: FAIL") != std::string::npos);
+    CHECK(text.find("1 passed, 2 failed\n") != std::string::npos);
+}
