@@ -572,6 +572,8 @@ Canvas::Canvas(GlContext& context, const CanvasOptions& options) : impl_(nullptr
                                     std::to_string(options.height));
     if (options.supersample < 1 || options.supersample > 16)
         throw std::invalid_argument("Canvas: supersample must be 1..16, got " + std::to_string(options.supersample));
+    if (options.scale < 1 || options.scale > 16)
+        throw std::invalid_argument("Canvas: scale must be 1..16, got " + std::to_string(options.scale));
     impl_ = new Impl(context, options);
     impl_->samples = std::clamp(options.msaaSamples, 1, std::max(1, context.maxSamples()));
 }
@@ -689,7 +691,7 @@ Image Canvas::readPixels() {
     GlContext::Impl& gl = m.context.impl();
     gl.makeCurrent();
     gl.ensureDrawResources();
-    m.ss = m.options.supersample;
+    m.ss = m.options.supersample * m.options.scale;  // every pixel size is multiplied by this
     m.rw = m.options.width * m.ss;
     m.rh = m.options.height * m.ss;
     const int requested = std::clamp(m.options.msaaSamples, 1, std::max(1, gl.maxSamples));
@@ -791,8 +793,10 @@ Image Canvas::readPixels() {
     for (int y = 0; y < m.rh; ++y)
         std::copy_n(rows.data() + std::size_t(m.rh - 1 - y) * stride, stride,
                     raw.rgba.data() + std::size_t(y) * stride);
-    Image out = m.ss > 1 ? downsample(raw, m.ss) : raw;
-    out.layout = std::move(layout);
+    const int resolve = m.options.supersample;
+    Image out = resolve > 1 ? downsample(raw, resolve) : std::move(raw);
+    out.layout = m.options.scale > 1 ? layout.scaled(m.options.scale) : std::move(layout);  // in output pixels
+    out.scale = m.options.scale;
     stats.readbackSeconds += secondsSince(t0);
     ++stats.frames;
     return out;

@@ -244,10 +244,13 @@ Image downsample(const Image& image, int factor) {
                 q[c] = std::uint8_t((sum[c] + unsigned(n) / 2) / unsigned(n));  // round to nearest
         }
     out.layout = image.layout.scaled(1.0 / factor);
+    out.scale = image.scale;
     return out;
 }
 
 void blit(Image& dst, const Image& src, int x, int y) {
+    x *= dst.scale;
+    y *= dst.scale;
     const int x0 = std::max(0, x), y0 = std::max(0, y);
     const int x1 = std::min(dst.width, x + src.width), y1 = std::min(dst.height, y + src.height);
     dst.layout.append(src.layout, x, y);
@@ -259,13 +262,15 @@ void blit(Image& dst, const Image& src, int x, int y) {
 Image stackVertically(const Image& top, const Image& bottom) {
     Image out(std::max(top.width, bottom.width), top.height + bottom.height);
     blit(out, top, 0, 0);
-    blit(out, bottom, 0, top.height);
+    blit(out, bottom, 0, top.height);  // out.scale is 1 here: pixels
+    out.scale = top.scale;
     return out;
 }
 
 void paintRect(Image& image, int x, int y, int w, int h, const Color& color) {
     auto byte = [](float channel) { return std::uint8_t(std::lround(std::clamp(channel, 0.0f, 1.0f) * 255)); };
     const std::uint8_t rgba[4] = {byte(color.r), byte(color.g), byte(color.b), 255};
+    x *= image.scale, y *= image.scale, w *= image.scale, h *= image.scale;
     const int x0 = std::max(0, x), y0 = std::max(0, y);
     const int x1 = std::min(image.width, x + w), y1 = std::min(image.height, y + h);
     for (int row = y0; row < y1; ++row)

@@ -18,10 +18,20 @@ struct Image {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> rgba;  // width * height * 4 bytes
-    FigureLayout layout;             // where its text and markers are (empty for a decoded PNG)
+    FigureLayout layout;             // where its text and markers are, in its pixels (empty for a decoded PNG)
+    /// Pixels per layout unit: a figure drawn at `--scale 2` (a print figure) has twice the pixels
+    /// of the same figure at scale 1 in each direction; the code that composes it places panels in
+    /// layout units (blit, paintRect), the same at every scale.
+    int scale = 1;
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * h * 4, 0) {}
+    /// A blank w x h picture in layout units: (w * scale) x (h * scale) pixels.
+    static Image blank(int w, int h, int scale) {
+        Image im(w * scale, h * scale);
+        im.scale = scale;
+        return im;
+    }
     std::uint8_t* pixel(int x, int y) { return &rgba[(std::size_t(y) * width + x) * 4]; }
     const std::uint8_t* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
 };
@@ -78,18 +88,21 @@ private:
     std::vector<Staged> staged_;
 };
 
-/// Box-filter downsample by an integer factor (supersampling resolve for --scale); the layout
-/// shrinks with it.
+/// Box-filter downsample by an integer factor (a supersampling resolve, a contact sheet's
+/// thumbnail); the layout shrinks with it; the scale is kept (the thumbnail of a 2x frame goes
+/// into a 2x sheet).
 Image downsample(const Image& image, int factor);
 
-/// Pastes src into dst with its top-left corner at (x, y), clipped; src's layout joins dst's.
+/// Pastes src into dst with its top-left corner at (x, y) in dst's layout units (pixels times
+/// dst.scale), clipped; src's layout joins dst's.
 void blit(Image& dst, const Image& src, int x, int y);
 
 /// `top` over `bottom`, left-aligned, in a picture as wide as the wider one (the rest transparent black).
 Image stackVertically(const Image& top, const Image& bottom);
 
-/// Paints the w x h rectangle whose top-left corner is (x, y) in `color` (channels clamped to 0..1, opaque),
-/// clipped: the rules drawn between panels once they are blitted into a page.
+/// Paints the w x h rectangle whose top-left corner is (x, y), in layout units (times image.scale),
+/// in `color` (channels clamped to 0..1, opaque), clipped: the rules drawn between panels once
+/// they are blitted into a page.
 void paintRect(Image& image, int x, int y, int w, int h, const Color& color);
 
 /// 64-bit FNV-1a of width, height and pixels: the exact-match fingerprint of decoded pixels.

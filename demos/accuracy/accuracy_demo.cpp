@@ -29,6 +29,7 @@
 #include "core/base/tolerances.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
+#include "demos/draw/figure_canvas.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
 #include "demos/oracles/minkowski_hull_oracle.h"
@@ -212,6 +213,7 @@ public:
         po.subtitle = common_.caption;
         po.width = common_.image.width;
         po.height = common_.image.height;
+        po.scale = figureScale(common_, ctx);
         po.legendWidth = 250;
         po.xFloor = po.yFloor = kErrorFloor;
         Frame f;

@@ -354,7 +354,7 @@ private:
 
     Frame drawFrame(GlContext& gl, const RunContext& ctx, const std::vector<Vec3>& pts, const ConvexPolyhedron& hull,
                     const std::vector<FittedBv>& fitted, double hullVolume) const {
-        const int ss = runSupersample(common_, ctx);
+        const int ss = figureScale(common_, ctx);
         const int W = common_.image.width, H = common_.image.height;
         const int n = int(fitted.size());
         const int cols = std::min(columns_, n), rows = (n + cols - 1) / cols;

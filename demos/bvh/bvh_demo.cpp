@@ -268,7 +268,7 @@ public:
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
-        ss_ = runSupersample(common_, ctx);
+        ss_ = figureScale(common_, ctx);
         switch (figure) {
             case Figure::Levels: runLevels(ctx, out); break;
             case Figure::AabbVsObb: runAabbVsObb(ctx, out); break;
@@ -384,7 +384,8 @@ private:
                                             " box" + (nodes.size() == 1 ? "" : "es"),
                                         "total volume " + fmt(v) + " (" + pct(v / rootVolume) + " of the root)"));
         }
-        while (int(panels.size()) < L.columns * L.rows - 1) panels.push_back(Image(L.panelWidth(), L.panelHeight()));
+        while (int(panels.size()) < L.columns * L.rows - 1)
+            panels.push_back(Image::blank(L.panelWidth(), L.panelHeight(), ss_));
         if (common_.hasLayer("tree")) {
             TreeDiagramInput tin = treeOf(bvh, treeDepth);
             tin.heading = "The tree (" + std::to_string(bvh.nodes.size()) + " nodes, height " +

@@ -68,7 +68,7 @@ struct TreeDiagramInput {
     std::vector<int> litEdges;
 };
 /// Draws the diagram into a W × H image (background, heading top-left).
-render::Image drawTreeDiagram(render::GlContext& gl, int width, int height, int supersample,
+render::Image drawTreeDiagram(render::GlContext& gl, int width, int height, int scale,
                               const TreeDiagramInput& in);
 
 // ---- a grouped bar chart (pixel space)
@@ -85,7 +85,7 @@ struct BarChartInput {
     std::string valueFormat = "%.3g";  // printf format of the value printed over each bar ("": none)
     bool logY = false;                 // log10 axis (values <= 0 drawn at the floor)
 };
-render::Image drawBarChart(render::GlContext& gl, int width, int height, int supersample, const BarChartInput& in);
+render::Image drawBarChart(render::GlContext& gl, int width, int height, int scale, const BarChartInput& in);
 
 // ---- legends and frames
 
@@ -115,7 +115,7 @@ struct GridLayout {
     int panelHeight() const { return (height - titleBand - legendBand - captionBand) / rows; }
 };
 
-render::Image composeGrid(render::GlContext& gl, const GridLayout& layout, int supersample, const std::string& title,
+render::Image composeGrid(render::GlContext& gl, const GridLayout& layout, int scale, const std::string& title,
                           const std::vector<render::Image>& panels, const std::vector<LegendItem>& legend,
                           const std::vector<std::string>& captionLines);
 

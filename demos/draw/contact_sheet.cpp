@@ -19,14 +19,17 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     const int columns = o.columns > 0 ? o.columns : int(std::ceil(std::sqrt(double(n))));
     const int rows = (n + columns - 1) / columns;
 
-    // Integer box downsampling keeps every cell a faithful average of its frame.
+    // Integer box downsampling keeps every cell a faithful average of its frame. Sizes are in
+    // layout units: a sheet of 2x (print) frames is the 2x picture of the 1x sheet.
+    const int scale = frames.front()->image.scale;
     std::vector<Image> cells;
     int cellW = 0, cellH = 0;
     for (const Frame* f : frames) {
-        int factor = std::max(1, (f->image.width + o.cellWidth - 1) / o.cellWidth);
+        const int layoutWidth = f->image.width / f->image.scale;
+        int factor = std::max(1, (layoutWidth + o.cellWidth - 1) / o.cellWidth);
         cells.push_back(factor > 1 ? downsample(f->image, factor) : f->image);
-        cellW = std::max(cellW, cells.back().width);
-        cellH = std::max(cellH, cells.back().height);
+        cellW = std::max(cellW, cells.back().width / scale);
+        cellH = std::max(cellH, cells.back().height / scale);
     }
     const int pad = 12;
     const int width = columns * (cellW + pad) + pad;
@@ -62,7 +65,7 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     }
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
 
-    Canvas canvas(gl, canvasOptions(width, height, 1), Camera::twoD(0, 0, 1));
+    Canvas canvas(gl, canvasOptions(width, height, scale), Camera::twoD(0, 0, 1));
     TextStyle caption{captionPx, roleColor(Role::Ink), Anchor::Top, false, false};
     if (!o.title.empty())
         canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{titlePx, roleColor(Role::Ink), Anchor::Top, false, true});

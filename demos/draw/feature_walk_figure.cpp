@@ -181,10 +181,10 @@ RegionCheck checkInRegion(const Body& body, const Transform& pose, const VClipFe
     return out;
 }
 
-Image composeFrame(GlContext& gl, const Layout& layout, int supersample, const std::string& title,
+Image composeFrame(GlContext& gl, const Layout& layout, int scale, const std::string& title,
                    const std::string& sceneCaption, const Image& main, const Image& diagram, const Image& plot,
                    const std::vector<std::string>& captionLines) {
-    Canvas canvas(gl, canvasOptions(layout.width, layout.height, supersample), Camera::twoD(0, 0, 1));
+    Canvas canvas(gl, canvasOptions(layout.width, layout.height, scale), Camera::twoD(0, 0, 1));
     canvas.drawTextPx(16, 8, title, TextStyle{22.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     double y = layout.height - layout.captionBand + 5;
     if (!sceneCaption.empty())

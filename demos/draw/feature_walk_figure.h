@@ -61,7 +61,7 @@ struct Layout {
     int plotHeight() const { return panelHeight() - diagramHeight(); }
 };
 
-render::Image composeFrame(render::GlContext& gl, const Layout& layout, int supersample, const std::string& title,
+render::Image composeFrame(render::GlContext& gl, const Layout& layout, int scale, const std::string& title,
                            const std::string& sceneCaption, const render::Image& main, const render::Image& diagram,
                            const render::Image& plot, const std::vector<std::string>& captionLines);
 
@@ -107,7 +107,7 @@ struct DiagramInput {
     std::string terminal;  // drawn under the current state
     std::string heading = "V-Clip states";
 };
-render::Image drawStateDiagram(render::GlContext& gl, int width, int height, int supersample, const DiagramInput& in);
+render::Image drawStateDiagram(render::GlContext& gl, int width, int height, int scale, const DiagramInput& in);
 
 /// One curve of a small plot: x, y points with a per-point colour.
 struct PlotSeries {
@@ -124,7 +124,7 @@ struct PlotInput {
     bool integerY = false;
 };
 /// A line / bar chart in pixel space.
-render::Image drawPlot(render::GlContext& gl, int width, int height, int supersample, const PlotInput& in);
+render::Image drawPlot(render::GlContext& gl, int width, int height, int scale, const PlotInput& in);
 
 /// Colours of the walk.
 render::Color violatedColor();   // red: violated plane / excluded part

@@ -5,20 +5,20 @@
 
 namespace cdlab::demos {
 
-int runSupersample(const SceneCommon& scene, const RunContext& context) {
+int figureScale(const SceneCommon& scene, const RunContext& context) {
     return context.scaleOverride > 0 ? context.scaleOverride : scene.image.scale;
 }
 
-render::CanvasOptions canvasOptions(int width, int height, int supersample) {
+render::CanvasOptions canvasOptions(int width, int height, int scale) {
     render::CanvasOptions o;
     o.width = width;
     o.height = height;
-    o.supersample = supersample;
+    o.scale = scale;
     return o;
 }
 
-render::CanvasOptions sceneCanvasOptions(const SceneCommon& scene, int supersample) {
-    return canvasOptions(scene.image.width, scene.image.height, supersample);
+render::CanvasOptions sceneCanvasOptions(const SceneCommon& scene, int scale) {
+    return canvasOptions(scene.image.width, scene.image.height, scale);
 }
 
 }  // namespace cdlab::demos

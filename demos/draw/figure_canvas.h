@@ -8,13 +8,15 @@ namespace cdlab::demos {
 struct SceneCommon;
 struct RunContext;
 
-/// The supersampling factor of a run: the command line's --scale when given, else the scene's "image.scale".
-int runSupersample(const SceneCommon& scene, const RunContext& context);
+/// The print scale of a run: the command line's --scale when given, else the scene's "image.scale"
+/// (a 2x figure has twice the pixels, text and line widths of the 1x one, and looks the same).
+int figureScale(const SceneCommon& scene, const RunContext& context);
 
-/// Options of a width x height canvas (output pixels) rendered `supersample` times larger.
-render::CanvasOptions canvasOptions(int width, int height, int supersample);
+/// Options of a width x height canvas (layout units: the pixels of the scale-1 figure) whose picture
+/// is `scale` times larger in pixels, text and lines included.
+render::CanvasOptions canvasOptions(int width, int height, int scale);
 
 /// Options of a canvas as large as the scene's image.
-render::CanvasOptions sceneCanvasOptions(const SceneCommon& scene, int supersample);
+render::CanvasOptions sceneCanvasOptions(const SceneCommon& scene, int scale);
 
 }  // namespace cdlab::demos

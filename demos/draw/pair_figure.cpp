@@ -33,10 +33,10 @@ TwoPanelLayout twoPanelLayout(int width, int height, const std::string& sceneCap
     return layout;
 }
 
-Image composeTwoPanel(GlContext& gl, const TwoPanelLayout& layout, int supersample, const std::string& title,
+Image composeTwoPanel(GlContext& gl, const TwoPanelLayout& layout, int scale, const std::string& title,
                       const std::string& sceneCaption, const Image& left, const Image& right,
                       const std::vector<std::string>& captionLines) {
-    Canvas canvas(gl, canvasOptions(layout.width, layout.height, supersample), Camera::twoD(0, 0, 1));
+    Canvas canvas(gl, canvasOptions(layout.width, layout.height, scale), Camera::twoD(0, 0, 1));
     canvas.drawTextPx(18, 10, title, TextStyle{24.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     const double lineH = 25.0;
     double y = layout.height - layout.captionBand + 8;

@@ -31,7 +31,7 @@ render::Camera panelCamera(bool planar, const Vec3& center, double radius, const
 void drawPanelHeading(render::Canvas& canvas, const std::string& heading, const std::string& sub);
 
 /// Assembles the frame: title (top), left and right panels, up to two caption lines (bottom).
-render::Image composeTwoPanel(render::GlContext& gl, const TwoPanelLayout& layout, int supersample,
+render::Image composeTwoPanel(render::GlContext& gl, const TwoPanelLayout& layout, int scale,
                               const std::string& title, const std::string& sceneCaption, const render::Image& left,
                               const render::Image& right, const std::vector<std::string>& captionLines);
 

@@ -90,7 +90,7 @@ std::vector<Eigen::Vector3d> markerPolygon(int shape, double x, double y, double
 class PlotCanvas {
 public:
     PlotCanvas(render::GlContext& gl, const PlotOptions& o)
-        : o_(o), c_(gl, canvasOptions(o.width, o.height, 1), render::Camera::pixels(o.width, o.height)) {}
+        : o_(o), c_(gl, canvasOptions(o.width, o.height, o.scale), render::Camera::pixels(o.width, o.height)) {}
     // Pixel (x right, y down) to the 2D camera's world (y up).
     Eigen::Vector3d P(double x, double y) const { return {x, o_.height - y, 0}; }
     Canvas& canvas() { return c_; }

@@ -15,7 +15,8 @@ namespace cdlab::demos {
 
 struct PlotOptions {
     std::string title, subtitle, xLabel, yLabel;
-    int width = 1280, height = 768;  ///< output pixels
+    int width = 1280, height = 768;  ///< layout units (output pixels at scale 1)
+    int scale = 1;                   ///< print scale: pixels, text and lines times this
     int legendWidth = 300;           ///< pixels right of the plot area for the legend
     /// Values <= floor (and 0) are drawn at the floor on a log axis (errors of exactly 0).
     double xFloor = 1e-18, yFloor = 1e-18;

@@ -166,7 +166,7 @@ public:
         out.trace = traceJson(r, tr);
         if (numericOnly(ctx, out)) return out;
         if (!r.ok()) return out;  // prepare() validated the inputs; nothing to draw otherwise
-        const int ss = runSupersample(common_, ctx);
+        const int ss = figureScale(common_, ctx);
 
         // One camera for every frame: the bounding sphere of the body along its whole path.
         std::vector<Vec3> path;

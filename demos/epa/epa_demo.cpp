@@ -89,7 +89,7 @@ public:
         for (int i = 0; i < run.gjk.simplex.count; ++i) cpts.push_back(run.gjk.simplex.vertex[i].w);
         const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
-        const int ss = runSupersample(common_, ctx);
+        const int ss = figureScale(common_, ctx);
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
         if (common_.steps || ctx.stepsOverride)  // "steps": false: GJK's simplex, the result, the bounds
             for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames))

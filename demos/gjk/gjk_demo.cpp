@@ -79,12 +79,12 @@ public:
         }
         const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
-        const int supersample = runSupersample(common_, ctx);
+        const int scale = figureScale(common_, ctx);
         if (common_.steps || ctx.stepsOverride)  // "steps": false draws the result frame only
             for (int i : framedSteps(int(trace.steps.size()), pair_.maxStepFrames))
-                out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, i, r));
+                out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, i, r));
         else out.skipped.push_back("step frames (\"steps\": false)");
-        out.frames.push_back(drawStep(*ctx.gl, supersample, d, trace, -1, r));
+        out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, -1, r));
         addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "GJK", out);
         return out;
     }
@@ -136,16 +136,16 @@ private:
         return t;
     }
 
-    Frame drawStep(GlContext& gl, int supersample, const Drawing& d, const GjkTrace& trace, int index,
+    Frame drawStep(GlContext& gl, int scale, const Drawing& d, const GjkTrace& trace, int index,
                    const GjkResult& r) const {
         const TwoPanelLayout layout = twoPanelLayout(common_.image.width, common_.image.height, common_.caption);
-        const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), supersample);
+        const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), scale);
         const GjkTraceStep* s = index >= 0 ? &trace.steps[index] : nullptr;
         const Image world = worldPanel(gl, po, layout, d, s, r);
         const Image configuration = configurationPanel(gl, po, layout, d, trace, s, r);
         Frame f;
         const std::vector<std::string> lines = captionLines(trace, s, r, f);
-        f.image = composeTwoPanel(gl, layout, supersample, common_.title, common_.caption, world, configuration, lines);
+        f.image = composeTwoPanel(gl, layout, scale, common_.title, common_.caption, world, configuration, lines);
         return f;
     }
 

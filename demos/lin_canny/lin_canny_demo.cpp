@@ -157,7 +157,7 @@ public:
         DemoOutput out;
         out.trace = traceJson(r);
         if (numericOnly(ctx, out)) return out;
-        const int ss = runSupersample(common_, ctx);
+        const int ss = figureScale(common_, ctx);
         std::vector<Vec3> pts;
         for (const Vec3& p : s_.a.regions.mesh().positions()) pts.push_back(s_.a.pose.apply(p));
         for (const Vec3& p : s_.b.regions.mesh().positions()) pts.push_back(s_.b.pose.apply(p));

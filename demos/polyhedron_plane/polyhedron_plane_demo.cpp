@@ -175,7 +175,7 @@ public:
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
-        const int ss = runSupersample(common_, ctx);
+        const int ss = figureScale(common_, ctx);
         if (mode == "plane") runPlane(ctx, ss, out);
         else if (mode == "features") runFeatures(ctx, ss, out);
         else runSat(ctx, ss, out);

@@ -272,7 +272,7 @@ private:
         buildPanelStructures(st);
         out.trace = panelsTrace(st);
         if (numericOnly(ctx, out)) return out;
-        out.frames.push_back(drawPanels(*ctx.gl, runSupersample(common_, ctx), st));
+        out.frames.push_back(drawPanels(*ctx.gl, figureScale(common_, ctx), st));
         return out;
     }
 
@@ -501,7 +501,7 @@ private:
                               {"nodes_visited", int(rt.visited.size())},
                               {"subtrees_pruned", int(rt.pruned.size())}};
         if (numericOnly(ctx, out)) return out;
-        Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
+        Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
         const Vec3 size = region.max - region.min;
         const double W = std::max(size.x(), size.y());
         const double gap = 0.12 * W;
@@ -627,7 +627,7 @@ private:
                                     {"t", ray.t},
                                     {"point", vec2Json(ray.point)}};
         if (numericOnly(ctx, out)) return out;
-        Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
+        Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
         // Shape panel on the left (square), tree diagram on the right.
         Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
         for (const Vec3& v : polygon) {

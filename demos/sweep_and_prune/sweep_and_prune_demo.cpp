@@ -129,7 +129,7 @@ public:
         DemoOutput out;
         out.trace = traceJson(frames);
         if (numericOnly(ctx, out)) return out;
-        const int ss = runSupersample(common_, ctx);
+        const int ss = figureScale(common_, ctx);
         for (std::size_t f = 0; f < frames.size(); ++f)
             out.frames.push_back(drawFrame(*ctx.gl, ss, frames, static_cast<int>(f)));
         return out;

@@ -100,7 +100,7 @@ public:
         DemoOutput out;
         out.trace = traceJson(calls);
         if (numericOnly(ctx, out)) return out;
-        const int ss = runSupersample(common_, ctx);
+        const int ss = figureScale(common_, ctx);
         // Framing: every pose of B with A.
         std::vector<Vec3> pts;
         for (const Vec3& p : s_.a.regions.mesh().positions()) pts.push_back(s_.a.pose.apply(p));

@@ -253,7 +253,7 @@ private:
     Frame drawTriangleFrame(GlContext& gl, const RunContext& ctx, const Triangle& tri,
                             const TriangleVoronoiDiagram& diagram, const std::vector<TriangleQuery>& results,
                             const std::string& view, int focus) const {
-        Canvas canvas(gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
+        Canvas canvas(gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
         canvas.setCamera(triangleCamera(tri, diagram, view));
         const bool is3d = view == "3d";
 
@@ -351,7 +351,7 @@ private:
     Frame drawTetrahedronFrame(GlContext& gl, const RunContext& ctx, const Tetrahedron& tet,
                                const TetrahedronVoronoiDiagram& diagram, const std::vector<TetrahedronQuery>& results,
                                int focus) const {
-        Canvas canvas(gl, sceneCanvasOptions(common_, runSupersample(common_, ctx)));
+        Canvas canvas(gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
         // A step frame frames the scene wider: its region tests need the bottom of the picture.
         double radius = (size() + 0.6 * margin()) * (focus >= 0 ? 1.35 : 1.0);
         canvas.setCamera(common_.camera ? *common_.camera

@@ -4,12 +4,14 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "demos/catalog/catalog.h"
 #include "demos/harness/scene_runner.h"
+#include "render/image.h"
 
 namespace fs = std::filesystem;
 using namespace cdlab::demos;
@@ -86,4 +88,33 @@ TEST_CASE("render: never writes inside golden/") {
     CHECK(renderSceneFiles({file}, renderOptions(fs::path(CDLAB_SOURCE_DIR) / "golden", false)) == 2);
     CHECK_FALSE(fs::exists(golden / "pair"));
     CHECK(fs::last_write_time(golden) == before);
+}
+
+TEST_CASE("render: --scale 2 is the same figure at twice the pixels (text, lines and layout scaled)") {
+    TempFolder t;
+    const std::string file = write(t.root / "pair.json", sceneTemplate("gjk", RunnerOptions{}));
+    RunnerOptions one = renderOptions(t.root / "one", true), two = renderOptions(t.root / "two", true);
+    two.scale = 2;
+    REQUIRE(renderSceneFiles({file}, one) == 0);
+    REQUIRE(renderSceneFiles({file}, two) == 0);
+    for (const char* frame : {"step_01.png", "result.png", "contact_sheet.png"}) {
+        const cdlab::render::Image a = cdlab::render::readPng((t.root / "one" / frame).string());
+        const cdlab::render::Image b = cdlab::render::readPng((t.root / "two" / frame).string());
+        CHECK_MESSAGE(b.width == 2 * a.width, frame);
+        CHECK_MESSAGE(b.height == 2 * a.height, frame);
+    }
+    // Every label's box in the manifest is twice the scale-1 box (the same layout, not a new one).
+    const Json m1 = Json::parse(std::ifstream(t.root / "one" / "manifest.json"));
+    const Json m2 = Json::parse(std::ifstream(t.root / "two" / "manifest.json"));
+    REQUIRE(m1["frames"].size() == m2["frames"].size());
+    int labels = 0;
+    for (std::size_t f = 0; f < m1["frames"].size(); ++f) {
+        const Json& l1 = m1["frames"][f]["layout"]["labels"];
+        const Json& l2 = m2["frames"][f]["layout"]["labels"];
+        REQUIRE(l1.size() == l2.size());
+        for (std::size_t i = 0; i < l1.size(); ++i, ++labels)
+            for (int k = 0; k < 4; ++k)
+                CHECK(std::abs(l2[i]["box"][k].get<double>() - 2 * l1[i]["box"][k].get<double>()) <= 0.5);
+    }
+    CHECK(labels > 20);
 }
