@@ -21,10 +21,10 @@ namespace cdlab::render {
 struct CanvasOptions {
     int width = 1024;  // output size in pixels
     int height = 1024;
-    int scale = 1;        // a print figure: width*scale x height*scale pixels, text, lines and points scaled
-                          // with it; every coordinate of the API stays in units of the scale-1 figure
     int supersample = 1;  // render at s times the output size, box-filter down (anti-aliasing)
     int msaaSamples = 4;  // 4x MSAA (llvmpipe supports 4, not 8); clamped to GL_MAX_SAMPLES
+    int scale = 1;        // a print figure: width*scale x height*scale pixels, text, lines and points scaled
+                          // with it; every coordinate of the API stays in units of the scale-1 figure
 };
 
 struct LineStyle {

@@ -232,6 +232,30 @@ TEST_SUITE("render/canvas") {
         CHECK(compareImages(b, a, {64, 0, 0.01}).passed);  // same picture, edges differ a little
     }
 
+    TEST_CASE("scale: a print figure is the same picture at twice the pixels, its layout twice as large") {
+        CanvasOptions o1{200, 200, 1, 4}, o2{200, 200, 1, 4};
+        o2.scale = 2;
+        Canvas s1(context(), o1), s2(context(), o2);
+        for (Canvas* c : {&s1, &s2}) {
+            scene2d(*c);
+            c->drawTextPx(20, 120, "label", TextStyle{18, roleColor(Role::Ink), Anchor::TopLeft, false, false});
+        }
+        CHECK(s2.width() == 200);  // the drawing API stays in scale-1 units
+        const Image a = s1.readPixels(), b = s2.readPixels();
+        REQUIRE(b.width == 400);
+        REQUIRE(b.height == 400);
+        CHECK(b.scale == 2);
+        // The same colours at the same places (pixel (x, y) of a is pixel (2x, 2y) of b).
+        CHECK(delta(b, 100, 100, roleColor(Role::ShapeA)) <= 1);
+        CHECK(delta(b, 200, 316, roleColor(Role::Ink)) <= 1);
+        CHECK(delta(b, 300, 100, roleColor(Role::Result)) <= 1);
+        CHECK(compareImages(downsample(b, 2), a, {64, 0, 0.02}).passed);
+        REQUIRE(a.layout.labels.size() == b.layout.labels.size());
+        REQUIRE(!a.layout.labels.empty());
+        for (std::size_t i = 0; i < a.layout.labels.size(); ++i)
+            CHECK(b.layout.labels[i].box.x1 == doctest::Approx(2 * a.layout.labels[i].box.x1));
+    }
+
     TEST_CASE("text: ink inside the measured box, none outside it") {
         Canvas c(context(), {320, 120, 1, 4});
         c.setCamera(Camera::twoD(0, 0, 10));
