@@ -28,6 +28,7 @@
 
 #include "core/base/support.h"
 #include "core/base/tolerances.h"
+#include "core/geometry/polyhedron.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/gjk_epa/simplex_solver.h"
 
@@ -310,6 +311,81 @@ EpaTermination epaExpandLoop(const Support& support, const EpaOptions& options, 
     return EpaTermination::MaxIterations;
 }
 
+/// True when face f is a sliver (|e1 x e2| < 1e-3 |e1| |e2|): its normal, from rounded
+/// differences, errs by more than 1e3 u.
+inline bool epaIsSliver(const EpaPolytope& poly, int f) {
+    const EpaFace& F = poly.face[f];
+    const Vec3 e1 = poly.vertex[F.v[1]].w - poly.vertex[F.v[0]].w, e2 = poly.vertex[F.v[2]].w - poly.vertex[F.v[0]].w;
+    return e1.cross(e2).squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
+}
+
+/// An uncertified sliver answer (nearly parallel edges whose faces of A − B EPA's rounded
+/// polytope may miss altogether): every edge of A and edge of B among the points of the faces
+/// within `near` of the origin, as lines in double-double arithmetic (linePairSeparation); where
+/// the feet lie inside both edges and both edges are extreme along the lines' normal n (oriented
+/// out of A − B), the parallelogram they span is a face of A − B at depth (pointA − pointB)·n:
+/// an exact support value, never below the penetration depth. The least one replaces r when smaller.
+template <class A, class B>
+void epaCrossedEdgePairs(const A& shapeA, const B& shapeB, const EpaPolytope& poly, double near, EpaResult& r) {
+    constexpr int kMax = 8;  // distinct points per shape (a sliver's neighbourhood has 2..4)
+    Vec3 a[kMax], b[kMax];
+    int na = 0, nb = 0;
+    for (int g = 0; g < poly.faceEnd; ++g) {
+        if (!poly.face[g].live || !(poly.face[g].distance <= near)) continue;
+        for (int k = 0; k < 3; ++k) {
+            const EpaVertex& v = poly.vertex[poly.face[g].v[k]];
+            if (na < kMax && std::find(a, a + na, v.a) == a + na) a[na++] = v.a;
+            if (nb < kMax && std::find(b, b + nb, v.b) == b + nb) b[nb++] = v.b;
+        }
+    }
+    // A candidate plane of A − B with unit normal n (out of A − B) through pointA − pointB: kept
+    // when both shapes' supports certify it and it is nearer than the answer so far.
+    const auto offer = [&](const Vec3& n, double depth, const Vec3& pointA, const Vec3& pointB) {
+        if (!(depth >= 0.0 && depth < r.depth) || !n.allFinite()) return;
+        const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
+        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), pointA.cwiseAbs().maxCoeff(),
+                                   pointB.cwiseAbs().maxCoeff()});
+        if (!((sa - pointA).dot(n) <= ulps(32, m) && (pointB - sb).dot(n) <= ulps(32, m))) return;
+        r.depth = r.lowerBound = r.upperBound = depth;
+        r.normal = n;
+        r.pointA = pointA;
+        r.pointB = pointB;
+        r.edgePairRefined = true;
+    };
+    // Edge of A against edge of B: the lines' common perpendicular.
+    for (int i = 0; i < na; ++i)
+        for (int j = i + 1; j < na; ++j)
+            for (int k = 0; k < nb; ++k)
+                for (int l = k + 1; l < nb; ++l) {
+                    const LinePairSeparation p = linePairSeparation(a[i], a[j], b[k], b[l]);
+                    if (!p.ok || !(p.s > 1e-9 && p.s < 1 - 1e-9 && p.t > 1e-9 && p.t < 1 - 1e-9)) continue;
+                    const double sign = p.separation <= 0.0 ? 1.0 : -1.0;  // n out of A − B: (pA − pB)·n >= 0
+                    offer(sign * p.normal, -sign * p.separation, p.pointA, p.pointB);
+                }
+    // A point of one shape against a (sliver) face of the other: the face normal from
+    // accurateCross (a few ulps in direction whatever the sliver's width).
+    const auto faceCandidates = [&](const Vec3* face, int nf, const Vec3* pts, int np, bool faceOfA) {
+        for (int i = 0; i < nf; ++i)
+            for (int j = i + 1; j < nf; ++j)
+                for (int k = j + 1; k < nf; ++k) {
+                    const Vec3 c = accurateCross(face[i], face[j], face[k]);
+                    const double len = c.norm();
+                    if (!(len > 0.0)) continue;
+                    for (int q = 0; q < np; ++q) {
+                        // w = a − b on the plane; n out of A − B: w·n >= 0.
+                        const Vec3 w = faceOfA ? Vec3(face[i] - pts[q]) : Vec3(pts[q] - face[i]);
+                        Vec3 n = c / len;
+                        if (w.dot(n) < 0.0) n = -n;
+                        const double depth = w.dot(n);
+                        if (faceOfA) offer(n, depth, Vec3(pts[q] + depth * n), pts[q]);
+                        else offer(n, depth, pts[q], Vec3(pts[q] - depth * n));
+                    }
+                }
+    };
+    faceCandidates(a, na, b, nb, true);
+    faceCandidates(b, nb, a, na, false);
+}
+
 /// The answer from the polytope's face f: depth (clamped at 0: the origin may sit a rounding
 /// error outside), normal and witnesses; with options.refineEdgePairs, a face spanning two edges
 /// is replaced by the edges' common perpendicular when the supports certify that plane as a face
@@ -325,13 +401,33 @@ void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& optio
     r.upperBound = upper;
     poly.witness(f, r.depth, r.pointA, r.pointB);
     if (!options.refineEdgePairs) return;
-    EpaResult refined = r;
-    if (!epaRefineEdgePair(poly, f, refined)) return;
-    const Vec3& n = refined.normal;
-    const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
-    const double h = n.dot(sa) - n.dot(sb);
-    const double m = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
-    if (h <= refined.depth + ulps(32, m)) r = refined;  // 32 ulps = 64 unit roundoffs
+    // A face certified as a face of A − B: its refined depth is exact, and no face of A − B is
+    // nearer than the penetration depth, so the least certified depth is never below it.
+    const auto certified = [&](int g, EpaResult& out) {
+        out = r;
+        if (!epaRefineEdgePair(poly, g, out)) return false;
+        const Vec3& n = out.normal;
+        const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
+        const double h = n.dot(sa) - n.dot(sb);
+        const double m = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
+        return h <= out.depth + ulps(32, m);  // 32 ulps = 64 unit roundoffs
+    };
+    EpaResult refined;
+    if (certified(f, refined)) r = refined;
+    // Nearly parallel edges make sliver faces whose rounded distances err by ~u scale / angle: the
+    // nearest face by the rounded distances may not be the nearest one. Every face within that
+    // error of it (up to 1e-6 scale: angles down to ~1e-10) is refined too; the least certified wins.
+    // Slivers near the answer (nearly parallel edges): the nearest face of A − B may be missing from
+    // the polytope altogether (EPA stops on a duplicate support first); then it is sought among
+    // the near faces' points.
+    const double slack = 1e-6 * poly.scale;
+    bool sliverNear = epaIsSliver(poly, f);
+    for (int g = 0; g < poly.faceEnd; ++g) {
+        if (g == f || !poly.face[g].live || !(poly.face[g].distance <= F.distance + slack)) continue;
+        if (certified(g, refined) && refined.depth < r.depth) r = refined;
+        sliverNear = sliverNear || epaIsSliver(poly, g);
+    }
+    if (sliverNear) epaCrossedEdgePairs(shapeA, shapeB, poly, F.distance + slack, r);
 }
 
 /// A degenerate start (a zero-volume polytope, or a blow-up direction that underflowed: a start
@@ -442,6 +538,18 @@ EpaResult penetration(const A& shapeA, const B& shapeB, const EpaOptions& option
         r.normal = g.separatingAxis;
         r.pointA = g.pointA;
         r.pointB = g.pointB;
+        if (trace) trace->termination = r.termination;
+        return r;
+    }
+    if (g.edgePairCrossed) {  // a shallow crossing of nearly parallel edges, decided exactly by GJK
+        EpaResult r;
+        r.status = EpaStatus::Penetrating;
+        r.termination = EpaTermination::Converged;
+        r.depth = r.lowerBound = r.upperBound = g.crossedDepth;
+        r.normal = g.crossedNormal;
+        r.pointA = g.pointA;
+        r.pointB = g.pointB;
+        r.edgePairRefined = true;
         if (trace) trace->termination = r.termination;
         return r;
     }

@@ -104,13 +104,19 @@ bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r) {
     return e1.cross(e2).squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
 }
 
-int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out) {
-    Vec3 a[4], b[4];
-    int na = 0, nb = 0;
+int gjkSimplexShapePoints(const GjkSimplex& s, Vec3* a, int& na, Vec3* b, int& nb) {
+    na = nb = 0;
     for (int i = 0; i < s.count; ++i) {
         if (std::find(a, a + na, s.vertex[i].a) == a + na) a[na++] = s.vertex[i].a;
         if (std::find(b, b + nb, s.vertex[i].b) == b + nb) b[nb++] = s.vertex[i].b;
     }
+    return na + nb;
+}
+
+int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out) {
+    Vec3 a[4], b[4];
+    int na = 0, nb = 0;
+    gjkSimplexShapePoints(s, a, na, b, nb);
     int n = 0;
     for (int i = 0; i < na; ++i)
         for (int j = i + 1; j < na; ++j)

@@ -92,6 +92,13 @@ struct GjkResult {
     double lowerBound = 0.0;       ///< max over iterations of v·w / |v| (distance >= this)
     double upperBound = 0.0;       ///< |v| (distance <= this)
     bool edgePairRefined = false;  ///< distance and witnesses from the edge pair (see options)
+    /// Intersecting by a crossed edge pair (detail::gjkDecideCrossedEdges): GJK's sliver simplex
+    /// said "apart" but the pair's face of A − B has the origin behind it. Its depth (world units),
+    /// normal (unit, from A toward B) and deepest points (pointA − pointB = depth · normal) are
+    /// the penetration: EPA need not run.
+    bool edgePairCrossed = false;
+    double crossedDepth = 0.0;
+    Vec3 crossedNormal = Vec3::Zero();
 };
 
 /// One GJK iteration as plain data (for demos / debugging). Simplex slots are named A, B, C, D.
@@ -195,6 +202,55 @@ void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, G
     }
 }
 
+/// Edge pairs among a simplex's points: distinct points of A (at most 3) and of B.
+int gjkSimplexShapePoints(const GjkSimplex& s, Vec3* a, int& na, Vec3* b, int& nb);
+
+/// A doubtful separated answer that no edge pair certified (gjkRefineEdgePairs) may be a shallow
+/// penetration: two nearly parallel edges whose ridges cross by less than the rounding of GJK's
+/// sliver simplex (~u L / angle). For each edge of A and edge of B among the simplex's points
+/// whose lines' common perpendicular has its feet inside both edges, and along whose normal n
+/// (oriented like GJK's axis, from A toward B) both edges are extreme in their shapes — so the
+/// parallelogram edge_a ⊕ (−edge_b) is a face of A − B and the origin projects inside it — the side
+/// of the origin is decided from the lines' separation in double-double arithmetic
+/// (core/closest/edge_pair_distance.h): behind the face by more than rounding, the shapes
+/// intersect, by that depth along n (the nearest face of A − B: the others are a body's size away).
+template <class A, class B>
+void gjkDecideCrossedEdges(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
+    if (r.intersect || r.edgePairRefined || !gjkNeedsEdgePairs(s, r)) return;
+    Vec3 a[4], b[4];
+    int na = 0, nb = 0;
+    gjkSimplexShapePoints(s, a, na, b, nb);
+    for (int i = 0; i < na; ++i)
+        for (int j = i + 1; j < na; ++j)
+            for (int k = 0; k < nb; ++k)
+                for (int l = k + 1; l < nb; ++l) {
+                    const LinePairSeparation p = linePairSeparation(a[i], a[j], b[k], b[l]);
+                    // Feet strictly inside both edges: the origin projects into the face's interior.
+                    if (!p.ok || !(p.s > 1e-9 && p.s < 1 - 1e-9 && p.t > 1e-9 && p.t < 1 - 1e-9)) continue;
+                    const double sign = p.normal.dot(r.separatingAxis) >= 0.0 ? 1.0 : -1.0;
+                    const Vec3 n = sign * p.normal;
+                    const double separation = sign * p.separation;  // (pointB - pointA) . n
+                    const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
+                    const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(),
+                                               p.pointA.cwiseAbs().maxCoeff(), p.pointB.cwiseAbs().maxCoeff()});
+                    const double tol = ulps(32, m);
+                    // Both edges extreme along n: the face supports A − B there.
+                    if (!((sa - p.pointA).dot(n) <= tol && (p.pointB - sb).dot(n) <= tol)) continue;
+                    if (!(separation < -tol)) continue;  // not behind the face beyond rounding
+                    r.status = GjkStatus::Intersecting;
+                    r.intersect = true;
+                    r.distance = 0.0;
+                    r.upperBound = 0.0;
+                    r.separatingAxis.setZero();
+                    r.pointA = p.pointA;
+                    r.pointB = p.pointB;
+                    r.edgePairCrossed = true;
+                    r.crossedDepth = -separation;
+                    r.crossedNormal = n;
+                    return;
+                }
+}
+
 /// Support of `shape` along d, through the shape's hinted overload support(d, hint) when it has
 /// one (PolytopeShape: hill climbing restarts at the previous answer, see core/geometry/shapes.h).
 template <class S>
@@ -274,7 +330,10 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
             if (n.dot(v) > 0.5 * r.distance) r.separatingAxis = -n;  // sanity: same side
         }
     }
-    if (options.refineEdgePairs && s.count >= 2) gjkRefineEdgePairs(shapeA, shapeB, s, r);
+    if (options.refineEdgePairs && s.count >= 2) {
+        gjkRefineEdgePairs(shapeA, shapeB, s, r);
+        gjkDecideCrossedEdges(shapeA, shapeB, s, r);
+    }
 }
 
 /// The initial simplex in s with its closest point c: the warm start's directions re-evaluated

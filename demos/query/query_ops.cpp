@@ -122,6 +122,16 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
     }
     ans.intersect = true;
     if (!wantDepth) return ans;
+    if (g.edgePairCrossed) {
+        // Nearly parallel edges crossing by less than GJK's sliver rounding, decided exactly in
+        // core (gjkDecideCrossedEdges): the face of A − B they span is the nearest one.
+        ans.depth = unscale(g.crossedDepth) + radii;
+        ans.normal = g.crossedNormal;
+        ans.pointA = coreA + a.radius * ans.normal;
+        ans.pointB = coreB - b.radius * ans.normal;
+        ans.hasWitness = true;
+        return ans;
+    }
     if (!g.intersect && coreDistance > coreTouch) {
         // Cores apart, rounded shapes overlapping (or touching): the core axis is the normal.
         ans.depth = std::max(radii - coreDistance, 0.0);
