@@ -1,6 +1,9 @@
-// The static figure gallery: out/figures/index.html, one section per scene with its frames and
-// captions, relative image links only (opens offline, no scripts); and the per-scene manifest
-// that `cdlab figures` writes and the gallery reads.
+// The static figure gallery, a place to pick slides from: out/figures/index.html, a grid by demo
+// of each scene's key frame (its result, else its contact sheet), each linking to the scene's own
+// page out/figures/<demo>/<scene>.html with every frame at full size in order, its caption,
+// previous / next links to step through the frames and the scenes, and links to the PNGs, GIF and
+// trace; relative links only (opens offline, no scripts). Also the per-scene manifest that
+// `cdlab figures` writes and the gallery reads.
 #pragma once
 
 #include <filesystem>
@@ -31,7 +34,8 @@ FigureManifest readFigureManifest(const std::filesystem::path& file);
 /// The manifest's JSON text (readFigureManifest reads it back).
 std::string figureManifestText(const FigureManifest& manifest);
 
-/// Scans <outDir>/<demo>/<scene>/manifest.json and writes <outDir>/index.html atomically. A
+/// Scans <outDir>/<demo>/<scene>/manifest.json and writes <outDir>/index.html and the scene pages
+/// <outDir>/<demo>/<scene>.html atomically. A
 /// manifest that does not read is reported on stderr with its path and left out of the page.
 void writeGallery(const std::string& outDir);
 
