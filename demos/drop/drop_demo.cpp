@@ -2,8 +2,8 @@
 // (state, manifold with impulses, energies, penetration); this file only chooses frames and draws.
 //
 // Scene keys (besides the common ones):
-//   "body": {"box": {"half_extents": [x, y, z]}} | {"tetrahedron": {"circumradius": r}}
-//           | {"icosahedron": {"circumradius": r}}
+//   "body": any body of demos/scene/body_scene.h: box, tetrahedron, icosahedron, prism, or a
+//           {"polytope": {"vertices": [...]}} of your own (its hull, recentred at its centre of mass)
 //   "density", "position", "rotation" [w,x,y,z], "velocity", "angular_velocity" (world, rad/s),
 //   "gravity" (m/s² along −z; the ground is the plane z = 0),
 //   "simulation": {"time_step", "duration", "restitution", "friction", "restitution_threshold",
@@ -19,6 +19,7 @@
 
 #include "core/dynamics/simulation.h"
 #include "core/geometry/polyhedron_presets.h"
+#include "demos/scene/body_scene.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
@@ -419,24 +420,7 @@ public:
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         DropInput in;
         std::string bodyName;
-        {
-            const JsonNode b = r.get("body");
-            if (!b.isObject() || b.raw().size() != 1)
-                b.fail("expected {\"box\": {...}}, {\"tetrahedron\": {...}} or {\"icosahedron\": {...}}");
-            bodyName = b.raw().begin().key();
-            ObjectReader br(JsonNode(b.raw().begin().value(), b.path() + "." + bodyName, b.source()));
-            if (bodyName == "box") {
-                const JsonNode h = br.get("half_extents");
-                const Vec3 he = sceneSizes(h);
-                in.shape = presets::box(he);
-            } else if (bodyName == "tetrahedron" || bodyName == "icosahedron") {
-                const double rad = sceneSize(br.get("circumradius"));
-                in.shape = bodyName == "tetrahedron" ? presets::tetrahedron(rad) : presets::icosahedron(rad);
-            } else {
-                b.fail("unknown body '" + bodyName + "' (expected box, tetrahedron or icosahedron)");
-            }
-            br.finish();
-        }
+        in.shape = readConvexBody(r.get("body"), bodyName);
         // Physical ranges well beyond any teaching scene, and far inside what the energies (~ m v², in
         // double) and the impulse solver can hold: density up to 10^6 (osmium is 2.2·10^4), speeds
         // up to 10^3 m/s and rad/s, gravity up to 10^3 m/s² (100 g).

@@ -20,6 +20,7 @@
 #include "core/contact/contact_plane.h"
 #include "core/contact/contact_sat.h"
 #include "core/geometry/polyhedron_presets.h"
+#include "demos/scene/body_scene.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
@@ -48,28 +49,7 @@ struct Posed {
     }
 };
 
-ConvexPolyhedron readBody(const JsonNode& b, std::string& name) {
-    if (!b.isObject() || b.raw().size() != 1)
-        b.fail("expected {\"box\": {...}}, {\"tetrahedron\": {...}}, {\"icosahedron\": {...}} or {\"prism\": {...}}");
-    name = b.raw().begin().key();
-    ObjectReader r(JsonNode(b.raw().begin().value(), b.path() + "." + name, b.source()));
-    ConvexPolyhedron m;
-    if (name == "box") {
-        const JsonNode h = r.get("half_extents");
-        m = presets::box(sceneSizes(h));
-    } else if (name == "tetrahedron" || name == "icosahedron") {
-        const double rad = sceneSize(r.get("circumradius"));
-        m = name == "tetrahedron" ? presets::tetrahedron(rad) : presets::icosahedron(rad);
-    } else if (name == "prism") {
-        const int n = r.get("sides").asInt(3, 64);
-        const double rad = sceneSize(r.get("radius")), hh = sceneSize(r.get("half_height"));
-        m = presets::prism(n, rad, hh);
-    } else {
-        b.fail("unknown body '" + name + "' (expected box, tetrahedron, icosahedron or prism)");
-    }
-    r.finish();
-    return m;
-}
+ConvexPolyhedron readBody(const JsonNode& b, std::string& name) { return readConvexBody(b, name); }
 
 Transform readPose(ObjectReader& r) {
     Transform t;
