@@ -27,12 +27,37 @@ Json closestPointTriangle(ObjectReader& r) {
     JsonNode t = r.get("triangle");
     if (t.size() != 3) t.fail("expected [a, b, c]");
     std::vector<Vec3> v = t.asVec3List();
+    const bool wantTrace = r.boolOr("trace", false);
     r.finish();
     // Core decides the region exactly and rounds the point once for every finite input
     // (core/base/exact_predicates.h); scaling the query by a power of two would flush coordinates of
     // 1e-300 beside 1e300 to zero.
-    const ClosestPointOnTriangleResult res = closestPointOnTriangle(p, Triangle{v[0], v[1], v[2]});
-    return {{"point", vecJson(res.point)}, {"region", nameOf(res.region)}};
+    ClosestPointTrace trace;
+    const ClosestPointOnTriangleResult res =
+        closestPointOnTriangle(p, Triangle{v[0], v[1], v[2]}, wantTrace ? &trace : nullptr);
+    Json out = {{"point", vecJson(res.point)}, {"region", nameOf(res.region)}};
+    if (wantTrace) {
+        // Ericson's region tests in his order (§5.1.5), each term with its value in plain double
+        // arithmetic and the sign of its exact value (the one the decision used).
+        Json tests = Json::array();
+        for (const auto& test : trace.tests) {
+            Json terms = Json::array();
+            for (int i = 0; i < test.termCount; ++i) {
+                const PredicateSign& term = test.terms[std::size_t(i)];
+                terms.push_back({{"name", term.name},
+                                 {"formula", term.formula},
+                                 {"value", cleanZero(term.value)},
+                                 {"sign", term.sign},
+                                 {"exact_fallback", term.exactFallback}});
+            }
+            tests.push_back({{"region", nameOf(test.candidate)},
+                             {"condition", test.condition},
+                             {"terms", terms},
+                             {"accepted", test.accepted}});
+        }
+        out["trace"] = {{"algorithm", "ericson_regions"}, {"tests", tests}};
+    }
+    return out;
 }
 
 // The id of a line the strict reader refused (a duplicate key, say) when a lenient parse can read

@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -53,6 +55,8 @@ Json gjkTraceJson(const GjkTrace& t) {
                          {"simplex", simplex},
                          {"direction", vecJson(s.direction)},
                          {"support", vecJson(s.support.w)},
+                         {"support_a", vecJson(s.support.a)},
+                         {"support_b", vecJson(s.support.b)},
                          {"region", slotLetters(s.keptSlots)},
                          {"v", vecJson(s.v)},
                          {"lower_bound", s.lowerBound},
@@ -78,6 +82,22 @@ Json epaTraceJson(const EpaTrace& t) {
     return {{"algorithm", "epa"}, {"start", t.start}, {"termination", nameOf(t.termination)}, {"steps", steps}};
 }
 
+// Multiplies every length of a GJK / EPA trace (points, directions, bounds, distances) by `unit`:
+// the algorithms ran on the query scaled by a power of two, the trace is given in world units.
+void toWorldUnits(Json& algorithms, double unit) {
+    static const char* const kLengths[] = {"simplex",     "direction",   "support",         "support_a", "support_b",
+                                           "v",           "lower_bound", "upper_bound",     "closest_distance"};
+    const std::function<void(Json&)> scale = [&](Json& j) {
+        if (j.is_number()) j = cleanZero(j.get<double>() * unit);
+        else if (j.is_array())
+            for (Json& x : j) scale(x);
+    };
+    for (Json& algorithm : algorithms)
+        for (Json& step : algorithm["steps"])
+            for (const char* key : kLengths)
+                if (step.contains(key)) scale(step[key]);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bounded pairs: GJK / EPA on the cores, radii in closed form.
 
@@ -88,7 +108,9 @@ std::vector<Vec3> scaledPoints(const std::vector<Vec3>& points, int k) {
     return out;
 }
 
-PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
+// initial: GJK's first search direction (the query's "initial_direction"), else its default start.
+PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace,
+                       const Vec3* initial = nullptr) {
     // The cores get their own exact power-of-two scaling: the query as a whole is normalised by
     // its largest coordinate or radius, and a radius 1e300 times the core size would leave the
     // cores at 1e-300, where GJK's squared norms underflow (found by fuzzing). Core results are
@@ -106,7 +128,14 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
     PairAnswer ans;
     ans.traceExponent = kc;
     GjkTrace gtrace;
-    GjkResult g = gjkDistance(ca, cb, GjkOptions{}, wantTrace ? &gtrace : nullptr);
+    GjkOptions gjkOptions;
+    GjkSimplex start;  // one vertex: its direction is re-evaluated as the first support (a warm start)
+    if (initial) {
+        start.count = 1;
+        start.vertex[0].direction = *initial;
+        gjkOptions.warmStart = &start;
+    }
+    GjkResult g = gjkDistance(ca, cb, gjkOptions, wantTrace ? &gtrace : nullptr);
     if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
     if (wantTrace) ans.trace = Json::array({gjkTraceJson(gtrace)});
     const double coreDistance = unscale(g.distance);
@@ -323,8 +352,9 @@ PairAnswer swapped(PairAnswer x) {
     return x;
 }
 
-PairAnswer solvePair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace) {
-    if (a.bounded() && b.bounded()) return boundedPair(a, b, wantDepth, wantTrace);
+PairAnswer solvePair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace,
+                     const Vec3* initial = nullptr) {
+    if (a.bounded() && b.bounded()) return boundedPair(a, b, wantDepth, wantTrace, initial);
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return planePlane(a, b, wantDepth);
     if (a.kind == Kind::Plane && b.bounded()) return planeBounded(a, b);
     if (b.kind == Kind::Plane && a.bounded()) return swapped(planeBounded(b, a));
@@ -350,6 +380,13 @@ Obb toObb(const QueryShape& s) {
         axes.col(i) = half[i] > 0 ? Vec3(e / half[i]) : Vec3::Unit(i);
     }
     return Obb{c, half, axes};
+}
+
+// The exponent e of the largest |coordinate| of v (v = f 2^e, f in [0.5, 1)).
+int largestExponentOf(const Vec3& v) {
+    int e = 0;
+    std::frexp(v.cwiseAbs().maxCoeff(), &e);
+    return e;
 }
 
 // Back to the query's units from the normalised problem (lengths times 2^-k, exact).
@@ -386,6 +423,15 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
         if (method == "sat" && !(isBox(a) && isBox(b))) m->fail("method 'sat' needs two boxes (aabb or obb)");
     }
     const bool wantTrace = r.boolOr("trace", false);
+    std::optional<Vec3> initial;
+    if (auto d = r.find("initial_direction")) {
+        // GJK's first support direction, so that a student's run can be compared from step 1.
+        initial = d->asVec3();
+        if (initial->isZero(0.0)) d->fail("initial_direction must be non-zero");
+        if (method != "gjk") d->fail("initial_direction is GJK's; method '" + method + "' has no such start");
+        if (!(a.bounded() && b.bounded())) d->fail("initial_direction needs two bounded shapes (GJK runs on them)");
+        *initial = scaled(*initial, -largestExponentOf(*initial));  // the same direction, no overflow
+    }
     r.finish();
 
     if (method == "vclip" || method == "lin_canny") return answerFeatureWalkQuery(op, method, a, b, an, bn, wantTrace);
@@ -415,7 +461,7 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
     }
 
     const bool wantDepth = op == "penetration";
-    PairAnswer ans = solvePair(a, b, wantDepth, wantTrace);
+    PairAnswer ans = solvePair(a, b, wantDepth, wantTrace, initial ? &*initial : nullptr);
     unscaleAnswer(ans, k);
     Json out;
     if (op == "intersect") {
@@ -441,9 +487,12 @@ Json answerShapeQuery(const std::string& op, ObjectReader& r) {
                    {"point_a", vecJson(ans.pointA)},
                    {"point_b", vecJson(ans.pointB)}};
     }
-    // Trace coordinates are those of the normalised problem: world = unit * trace value.
-    if (wantTrace && !ans.trace.is_null())
-        out["trace"] = {{"unit", std::ldexp(1.0, -k - ans.traceExponent)}, {"algorithms", ans.trace}};
+    // The algorithms ran on the query scaled by a power of two (exact); the trace is in world units
+    // (of the cores: spheres and capsules without their radii), "unit" 1 = world = unit * value.
+    if (wantTrace && !ans.trace.is_null()) {
+        toWorldUnits(ans.trace, std::ldexp(1.0, -k - ans.traceExponent));
+        out["trace"] = {{"unit", 1.0}, {"algorithms", ans.trace}};
+    }
     return out;
 }
 
