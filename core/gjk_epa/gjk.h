@@ -24,6 +24,7 @@
 #include "core/base/support.h"
 #include "core/base/tolerances.h"
 #include "core/closest/edge_pair_distance.h"
+#include "core/geometry/polyhedron.h"
 #include "core/gjk_epa/simplex_solver.h"
 
 namespace cdlab {
@@ -169,9 +170,12 @@ bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r);
 /// Every two points of A with every two points of B among the simplex's vertices, as accurate
 /// segment-segment distances (core/closest/edge_pair_distance.h), or the point-triangle distance when
 /// the simplex has one point of one shape and three of the other; sorted by distance, returns
-/// the count (<= 9). Each is a distance between subsets of A and B: an upper bound of the true
+/// the count (<= kGjkMaxEdgePairCandidates). Each is a distance between subsets of A and B: an upper bound of the true
 /// distance.
 int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
+/// Room for gjkEdgePairCandidates' answer on any simplex: a tetrahedron of 4 + 4 distinct points
+/// gives 6 x 6 edge pairs (a triangle at most 9 + 1).
+constexpr int kGjkMaxEdgePairCandidates = 40;
 
 /// Replace a doubtful separated answer (gjkNeedsEdgePairs) by the smallest edge-pair distance
 /// that the supports certify: with axis d of that pair, d . (s_B(-d) - s_A(d)) is a lower bound
@@ -215,40 +219,114 @@ int gjkSimplexShapePoints(const GjkSimplex& s, Vec3* a, int& na, Vec3* b, int& n
 /// (core/closest/edge_pair_distance.h): behind the face by more than rounding, the shapes
 /// intersect, by that depth along n (the nearest face of A − B: the others are a body's size away).
 template <class A, class B>
-void gjkDecideCrossedEdges(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
-    if (r.intersect || r.edgePairRefined || !gjkNeedsEdgePairs(s, r)) return;
-    Vec3 a[4], b[4];
-    int na = 0, nb = 0;
-    gjkSimplexShapePoints(s, a, na, b, nb);
+bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, const Vec3* b, int nb, GjkResult& r) {
+    // Decided: intersecting, the face through pointA - pointB with normal n (out of A − B) at depth.
+    const auto decide = [&](const Vec3& n, const Vec3& pointA, const Vec3& pointB) {
+        const double separation = n.dot(pointB - pointA);
+        const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
+        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), pointA.cwiseAbs().maxCoeff(),
+                                   pointB.cwiseAbs().maxCoeff()});
+        const double tol = ulps(32, m);
+        // Both features extreme along n (the face supports A − B), the origin behind it.
+        if (!((sa - pointA).dot(n) <= tol && (pointB - sb).dot(n) <= tol) || !(separation < -tol)) return false;
+        r.status = GjkStatus::Intersecting;
+        r.intersect = true;
+        r.distance = 0.0;
+        r.upperBound = 0.0;
+        r.separatingAxis.setZero();
+        r.pointA = pointA;
+        r.pointB = pointB;
+        r.edgePairCrossed = true;
+        r.crossedDepth = -separation;
+        r.crossedNormal = n;
+        return true;
+    };
+    // Edge of A against edge of B: the lines' common perpendicular, feet strictly inside both edges
+    // (the origin projects into the face's interior).
     for (int i = 0; i < na; ++i)
         for (int j = i + 1; j < na; ++j)
             for (int k = 0; k < nb; ++k)
                 for (int l = k + 1; l < nb; ++l) {
                     const LinePairSeparation p = linePairSeparation(a[i], a[j], b[k], b[l]);
-                    // Feet strictly inside both edges: the origin projects into the face's interior.
                     if (!p.ok || !(p.s > 1e-9 && p.s < 1 - 1e-9 && p.t > 1e-9 && p.t < 1 - 1e-9)) continue;
-                    const double sign = p.normal.dot(r.separatingAxis) >= 0.0 ? 1.0 : -1.0;
-                    const Vec3 n = sign * p.normal;
-                    const double separation = sign * p.separation;  // (pointB - pointA) . n
-                    const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
-                    const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(),
-                                               p.pointA.cwiseAbs().maxCoeff(), p.pointB.cwiseAbs().maxCoeff()});
-                    const double tol = ulps(32, m);
-                    // Both edges extreme along n: the face supports A − B there.
-                    if (!((sa - p.pointA).dot(n) <= tol && (p.pointB - sb).dot(n) <= tol)) continue;
-                    if (!(separation < -tol)) continue;  // not behind the face beyond rounding
-                    r.status = GjkStatus::Intersecting;
-                    r.intersect = true;
-                    r.distance = 0.0;
-                    r.upperBound = 0.0;
-                    r.separatingAxis.setZero();
-                    r.pointA = p.pointA;
-                    r.pointB = p.pointB;
-                    r.edgePairCrossed = true;
-                    r.crossedDepth = -separation;
-                    r.crossedNormal = n;
-                    return;
+                    // The orientation out of A − B is the one along which both edges are extreme
+                    // (decide checks it): GJK's axis from a sliver may point either way.
+                    if (decide(p.normal, p.pointA, p.pointB) || decide(Vec3(-p.normal), p.pointA, p.pointB))
+                        return true;
                 }
+    // A point of one shape against a (sliver) face of the other, the face normal from accurateCross;
+    // the origin projects inside the face of A − B when the point projects inside the face.
+    const auto pointFace = [&](const Vec3& f0, const Vec3& f1, const Vec3& f2, const Vec3& point, bool faceOfA) {
+        const Vec3 c = accurateCross(f0, f1, f2);
+        const double len = c.norm();
+        if (!(len > 0.0)) return false;
+        const Vec3 n = c / len;
+        const Vec3 q = point - n * n.dot(point - f0);  // the point projected on the face's plane
+        const Vec3 f[3] = {f0, f1, f2};
+        for (int e = 0; e < 3; ++e)
+            if (accurateCross(f[e], f[(e + 1) % 3], q).dot(c) < 0.0) return false;
+        // Either orientation: decide keeps the one along which both features are extreme.
+        return faceOfA ? decide(n, q, point) || decide(Vec3(-n), q, point)
+                       : decide(n, point, q) || decide(Vec3(-n), point, q);
+    };
+    for (int i = 0; i < na; ++i)
+        for (int j = i + 1; j < na; ++j)
+            for (int k = j + 1; k < na; ++k)
+                for (int q = 0; q < nb; ++q)
+                    if (pointFace(a[i], a[j], a[k], b[q], true)) return true;
+    for (int i = 0; i < nb; ++i)
+        for (int j = i + 1; j < nb; ++j)
+            for (int k = j + 1; k < nb; ++k)
+                for (int q = 0; q < na; ++q)
+                    if (pointFace(b[i], b[j], b[k], a[q], false)) return true;
+    return false;
+}
+
+template <class A, class B>
+void gjkDecideCrossedEdges(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
+    if (r.intersect || r.edgePairRefined || !gjkNeedsEdgePairs(s, r)) return;
+    Vec3 a[8], b[8];
+    int na = 0, nb = 0;
+    gjkSimplexShapePoints(s, a, na, b, nb);
+    gjkCrossedAmong(shapeA, shapeB, a, na, b, nb, r);
+}
+
+/// The converse: GJK stopped with the origin in a flat terminal simplex (a sliver tetrahedron or
+/// triangle of nearly parallel edges, whose rounded volume can put the origin inside) although a
+/// feature pair of its points certifies a positive distance (gjkRefineEdgePairs' certificate: the
+/// supports along the pair's axis are that distance apart, up to rounding): the shapes are apart.
+template <class A, class B>
+void gjkDecideFlatIntersection(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
+    if (!r.intersect || s.count < 3) return;
+    const Vec3 e1 = s.vertex[1].w - s.vertex[0].w, e2 = s.vertex[2].w - s.vertex[0].w;
+    const Vec3 n = e1.cross(e2);
+    bool flat = n.squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
+    if (s.count == 4) {
+        const Vec3 e3 = s.vertex[3].w - s.vertex[0].w;
+        flat = flat || std::abs(n.dot(e3)) < 1e-3 * std::sqrt(e1.squaredNorm() * e2.squaredNorm() * e3.squaredNorm());
+    }
+    if (!flat) return;
+    EdgePairDistance candidate[kGjkMaxEdgePairCandidates];
+    const int count = gjkEdgePairCandidates(s, candidate);
+    for (int i = count - 1; i >= 0; --i) {  // the largest certified distance: a separating axis
+        const EdgePairDistance& e = candidate[i];
+        if (!(e.distance > 0.0)) continue;
+        const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
+        const double lower = e.axis.dot(sb) - e.axis.dot(sa);
+        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), e.pointA.cwiseAbs().maxCoeff(),
+                                   e.pointB.cwiseAbs().maxCoeff()});
+        if (!(lower >= e.distance - ulps(32, m)) || !(lower > ulps(64, m))) continue;
+        r.status = GjkStatus::Separated;
+        r.intersect = false;
+        r.distance = e.distance;
+        r.upperBound = e.distance;
+        r.lowerBound = std::min(lower, e.distance);
+        r.pointA = e.pointA;
+        r.pointB = e.pointB;
+        r.separatingAxis = e.axis;
+        r.edgePairRefined = true;
+        return;
+    }
 }
 
 /// Support of `shape` along d, through the shape's hinted overload support(d, hint) when it has
@@ -312,6 +390,7 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
         r.distance = 0.0;
         r.upperBound = 0.0;
         r.separatingAxis.setZero();
+        if (options.refineEdgePairs) gjkDecideFlatIntersection(shapeA, shapeB, s, r);
         return;
     }
     r.status = GjkStatus::Separated;
@@ -332,7 +411,9 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
     }
     if (options.refineEdgePairs && s.count >= 2) {
         gjkRefineEdgePairs(shapeA, shapeB, s, r);
-        gjkDecideCrossedEdges(shapeA, shapeB, s, r);
+        // A boolean query's separating axis (v·w > 0) is a proof of separation: a penetration of
+        // depth δ would make v·w <= -δ |v|, far beyond rounding. Only the other stops are doubtful.
+        if (why != GjkTermination::SeparatingAxis) gjkDecideCrossedEdges(shapeA, shapeB, s, r);
     }
 }
 
