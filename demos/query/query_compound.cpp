@@ -26,6 +26,8 @@ struct Body {
     std::vector<QueryShape> boundary;   // a compound's shapes, a mesh's triangles, or the one shape
     std::vector<QueryShape> pieces;     // convex pieces (a mesh's: its BSP cells, built on demand)
     std::optional<TriangleMesh> mesh;   // world frame, outward-facing
+    TriangleMesh unitMesh;              // the mesh times 2^unitExponent: size ~1 (containment tests)
+    int unitExponent = 0;
     std::optional<JsonNode> node;
 };
 
@@ -45,7 +47,7 @@ std::string edgeText(const std::array<int, 2>& e) {
 
 // {"vertices", "triangles"[, "position", "rotation"]}: the world-frame mesh, checked closed and
 // consistently oriented; an inward-facing mesh is turned outward (it bounds the same solid).
-TriangleMesh parseMesh(const JsonNode& body) {
+TriangleMesh parseMesh(const JsonNode& body, TriangleMesh& unit, int& unitExponent) {
     ObjectReader r(body);
     JsonNode vn = r.get("vertices");
     const std::vector<Vec3> local = vn.asVec3List();
@@ -89,13 +91,22 @@ TriangleMesh parseMesh(const JsonNode& body) {
     }
     Vec3 lo = mesh.vertices[0], hi = lo;
     for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-    const double size = (hi - lo).maxCoeff();
-    const double volume = signedVolume(mesh);
-    // Rounding of the volume sum is ~1e-16 size^3 per triangle; a solid is far above that.
+    // The volume of the mesh scaled by a power of two to a size of ~1 (exact): 1e-300 or 1e300
+    // meshes neither underflow nor overflow the cubes. Rounding of the sum is ~1e-16 per triangle;
+    // a solid is far above 1e-12.
+    int e = 0;
+    std::frexp(std::max((hi - lo).maxCoeff(), (0.5 * (hi + lo)).cwiseAbs().maxCoeff()), &e);
+    unitExponent = -e;
+    unit = mesh;
+    for (Vec3& v : unit.vertices) v = scaled(v, -e);
+    const double size = std::ldexp((hi - lo).maxCoeff(), -e);
+    const double volume = signedVolume(unit);
     if (!(std::abs(volume) > 1e-12 * size * size * size))
         tn.fail("the mesh encloses no volume (all its triangles are flat against each other)");
-    if (volume < 0)
+    if (volume < 0) {
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+        unit.triangles = mesh.triangles;
+    }
     return mesh;
 }
 
@@ -111,7 +122,7 @@ Body parseBody(const JsonNode& node) {
     const JsonNode inner(node.raw().begin().value(), node.path() + "." + key, node.source());
     if (key == "mesh") {
         body.kind = "mesh";
-        body.mesh = parseMesh(inner);
+        body.mesh = parseMesh(inner, body.unitMesh, body.unitExponent);
         for (int t = 0; t < body.mesh->triangleCount(); ++t) body.boundary.push_back(triangleShape(body.mesh->triangle(t)));
         return body;
     }
@@ -141,11 +152,13 @@ void ensurePieces(Body& body) {
     // Scoring every triangle at every node is quadratic; 32 evenly spaced candidates (Ericson §8.3.2)
     // give as many pieces on a torus (4273 vs 4210 of 10 000 triangles) in a tenth of the time (0.3 s).
     options.maxCandidates = 32;
-    const ConvexDecomposition d = decomposeIntoConvexPieces(*body.mesh, options);
+    // On the mesh scaled to size ~1 (exact), so that 1e-300 or 1e300 meshes neither underflow nor
+    // overflow the cells' volumes; the corners are scaled back.
+    const ConvexDecomposition d = decomposeIntoConvexPieces(body.unitMesh, options);
     for (const std::vector<Vec3>& corners : d.pieces) {
         QueryShape s;
         s.kind = Kind::Polytope;
-        s.vertices = corners;
+        for (const Vec3& c : corners) s.vertices.push_back(scaled(c, -body.unitExponent));
         body.pieces.push_back(std::move(s));
     }
 }
@@ -174,7 +187,7 @@ std::vector<Box> boxesOf(const std::vector<QueryShape>& shapes) {
 }
 
 // A lower bound on the distance of two shapes: the distance of their boxes.
-double boxGap(const Box& a, const Box& b) { return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0).norm(); }
+double boxGap(const Box& a, const Box& b) { return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0).stableNorm(); }
 
 // Box gaps at or below this may still be touching pairs: far above the rounding of the gap and of
 // the touching rule (1e-13 of the pair's extent, query_tolerance.h).
@@ -221,13 +234,15 @@ PairPick firstIntersecting(const std::vector<QueryShape>& a, const std::vector<Q
 
 // A point of every piece of `inner` (its core's first point, a ray's origin; planes have none): a
 // piece that meets no boundary piece of the mesh lies wholly inside or outside it.
-bool meshHoldsAPiece(const TriangleMesh& mesh, const Body& inner) {
+bool meshHoldsAPiece(const Body& outer, const Body& inner) {
     const std::size_t count = inner.mesh ? std::min<std::size_t>(1, inner.boundary.size()) : inner.boundary.size();
     for (std::size_t k = 0; k < count; ++k) {
         const QueryShape& s = inner.boundary[k];
         if (s.kind == Kind::Plane) continue;
         const Vec3 p = s.kind == Kind::Ray ? s.origin : s.vertices[0];
-        if (std::abs(windingNumber(mesh, p)) > 0.5) return true;
+        // On the mesh scaled to size ~1 (exact): tiny or huge coordinates neither underflow nor
+        // overflow the solid angles.
+        if (std::abs(windingNumber(outer.unitMesh, scaled(p, outer.unitExponent))) > 0.5) return true;
     }
     return false;
 }
@@ -302,7 +317,7 @@ Json answerCompoundQuery(const std::string& op, ObjectReader& r, const JsonNode&
     // Intersect: a pair of boundary pieces meets, or a mesh holds a piece of the other body.
     PairPick hit = firstIntersecting(a.boundary, b.boundary);
     long long tested = hit.tested;
-    const bool intersect = hit.found || (a.mesh && meshHoldsAPiece(*a.mesh, b)) || (b.mesh && meshHoldsAPiece(*b.mesh, a));
+    const bool intersect = hit.found || (a.mesh && meshHoldsAPiece(a, b)) || (b.mesh && meshHoldsAPiece(b, a));
     Json out;
     if (op == "intersect") {
         out = {{"intersect", intersect}};

@@ -184,6 +184,21 @@ TEST_SUITE("query") {
         CHECK((vec(m["point_a"]) - vec(m["point_b"]) - depth * vec(m["normal"])).norm() < 1e-12);
     }
 
+    TEST_CASE("mesh: answers scale with the input (1e-300 .. 1e300, powers of two exact)") {
+        for (const double k : {std::ldexp(1.0, -1000), std::ldexp(1.0, 1000)}) {
+            Json l = lMesh();
+            for (auto& v : l["mesh"]["vertices"])
+                for (auto& x : v) x = x.get<double>() * k;
+            const Json inside = sphere(Vec3(0.5, 0.5, 0.5) * k, 0.1 * k), notch = sphere(Vec3(1.6, 1.6, 0.5) * k, 0.2 * k);
+            CHECK(ask(query("intersect", l, inside))["intersect"] == true);
+            const Json d = ask(query("distance", l, notch));
+            CHECK(d["distance"].get<double>() == doctest::Approx(0.4 * k).epsilon(1e-13));
+            const Json p = ask(query("penetration", l, sphere(Vec3(0.5, 0.5, 1.05) * k, 0.2 * k)));
+            REQUIRE(p.contains("depth"));
+            CHECK(p["depth"].get<double>() == doctest::Approx(0.15 * k).epsilon(1e-12));
+        }
+    }
+
     TEST_CASE("compound and mesh: one-line errors with the JSON path") {
         const auto error = [](const Json& q) {
             const Json a = ask(q);
