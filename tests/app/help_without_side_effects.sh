@@ -11,7 +11,7 @@ for tool in apt-get cmake sudo dpkg-query ctest make; do
     printf '#!/bin/sh\necho "%s was called" >&2\nexit 99\n' "$tool" > "$tmp/bin/$tool"; chmod +x "$tmp/bin/$tool"
 done
 fail=0
-for cmd in figures render test golden query bench stress fuzz demos; do
+for cmd in figures render test golden query check bench stress fuzz demos; do
     for flag in --help -h; do
         out="$(CDLAB_BUILD_DIR="$tmp/build" PATH="$tmp/bin:$PATH" "$root/cdlab" "$cmd" "$flag" 2>"$tmp/err")"; rc=$?
         if [ $rc -ne 0 ] || [ -s "$tmp/err" ] || ! grep -q "^usage: ./cdlab $cmd" <<<"$out" || ! grep -q "^  $cmd " <<<"$out"; then
