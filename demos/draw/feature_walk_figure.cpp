@@ -2,6 +2,7 @@
 // and the Theorem-1 check. Drawing geometry only; the walk's numbers come from core/feature_walk/vclip.h.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/polyhedron_presets.h"
@@ -9,6 +10,7 @@
 #include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/scene/body_scene.h"
 #include "demos/scene/scene_limits.h"
 
 namespace cdlab::demos::walkfigure {
@@ -32,7 +34,8 @@ Body parseBody(const JsonNode& node) {
     body.kind = kind;
     ConvexPolyhedron mesh;
     if (kind == "tetrahedron" || kind == "octahedron" || kind == "icosahedron" || kind == "dodecahedron") {
-        const double radius = s.find("radius") ? sceneSize(s.get("radius")) : 1.0;
+        const std::optional<JsonNode> r = findEither(s, "radius", "circumradius");
+        const double radius = r ? sceneSize(*r) : 1.0;
         mesh = kind == "tetrahedron"   ? presets::tetrahedron(radius)
                : kind == "octahedron"  ? presets::octahedron(radius)
                : kind == "icosahedron" ? presets::icosahedron(radius)
@@ -41,13 +44,13 @@ Body parseBody(const JsonNode& node) {
         const Vec3 h = sceneSizes(s.get("half_extents"));
         mesh = presets::box(h);
     } else if (kind == "prism" || kind == "disk") {
-        const int n = s.get("n").asInt(3, 200);
+        const int n = getEither(s, "n", "sides").asInt(3, 200);
         const double radius = sceneSize(s.get("radius"));
         if (kind == "prism") mesh = presets::prism(n, radius, sceneSize(s.get("half_height")));
         else mesh = presets::disk(n, radius, s.find("half_thickness") ? sceneSize(s.get("half_thickness")) : -1.0);
     } else if (kind == "geodesic_sphere") {
         mesh = presets::geodesicSphere(s.get("level").asInt(0, 3), s.find("radius") ? sceneSize(s.get("radius")) : 1.0);
-    } else if (kind == "hull") {
+    } else if (kind == "hull" || kind == "polytope") {
         // The walk's step bound and the brute-force checks are quadratic in the feature count.
         const std::vector<Vec3> points = sceneVec3List(s.get("vertices"), 4, kMaxShapeVertices);
         HullResult h = convexHull(points);

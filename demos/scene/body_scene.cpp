@@ -31,6 +31,17 @@ ConvexPolyhedron userPolytope(const JsonNode& vn) {
 
 }  // namespace
 
+std::optional<JsonNode> findEither(ObjectReader& r, const char* key, const char* synonym) {
+    std::optional<JsonNode> a = r.find(key), b = r.find(synonym);
+    if (a && b) b->fail(std::string("give either \"") + key + "\" or \"" + synonym + "\" (the same), not both");
+    return a ? a : b;
+}
+
+JsonNode getEither(ObjectReader& r, const char* key, const char* synonym) {
+    if (std::optional<JsonNode> n = findEither(r, key, synonym)) return *n;
+    r.node().fail(std::string("missing \"") + key + "\" (or its synonym \"" + synonym + "\")");
+}
+
 ConvexPolyhedron readConvexBody(const JsonNode& b, std::string& name) {
     if (!b.isObject() || b.raw().size() != 1) b.fail(std::string("expected ") + kBodies);
     name = b.raw().begin().key();
@@ -44,17 +55,21 @@ ConvexPolyhedron readConvexBody(const JsonNode& b, std::string& name) {
     ConvexPolyhedron m;
     if (name == "box") {
         m = presets::box(sceneSizes(r.get("half_extents")));
-    } else if (name == "tetrahedron" || name == "icosahedron") {
-        const double rad = sceneSize(r.get("circumradius"));
-        m = name == "tetrahedron" ? presets::tetrahedron(rad) : presets::icosahedron(rad);
+    } else if (name == "tetrahedron" || name == "octahedron" || name == "icosahedron" || name == "dodecahedron") {
+        const double rad = sceneSize(getEither(r, "circumradius", "radius"));
+        m = name == "tetrahedron"   ? presets::tetrahedron(rad)
+            : name == "octahedron"  ? presets::octahedron(rad)
+            : name == "icosahedron" ? presets::icosahedron(rad)
+                                    : presets::dodecahedron(rad);
     } else if (name == "prism") {
-        const int n = r.get("sides").asInt(3, 64);
+        const int n = getEither(r, "sides", "n").asInt(3, 64);
         const double rad = sceneSize(r.get("radius")), hh = sceneSize(r.get("half_height"));
         m = presets::prism(n, rad, hh);
-    } else if (name == "polytope") {
+    } else if (name == "polytope" || name == "hull") {
         m = userPolytope(r.get("vertices"));
     } else {
-        b.fail("unknown body '" + name + "' (expected box, tetrahedron, icosahedron, prism or polytope)");
+        b.fail("unknown body '" + name +
+               "' (expected box, tetrahedron, octahedron, icosahedron, dodecahedron, prism or polytope)");
     }
     r.finish();
     return m;

@@ -3,6 +3,7 @@
 // both demos (docs/scenes.md, "Bodies").
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/geometry/polyhedron.h"
@@ -16,5 +17,12 @@ namespace cdlab::demos {
 /// the body's pose places that centre, as for the presets). `name` gets the key. Errors name the
 /// JSON path; a pose key inside the body says that it belongs beside "body".
 ConvexPolyhedron readConvexBody(const JsonNode& body, std::string& name);
+
+/// The scenes' one vocabulary takes either of two synonymous keys — a preset's "radius" or
+/// "circumradius" (the same length), a prism's "sides" or "n", a hull's "polytope" or "hull" —
+/// not both (an error at the second).
+std::optional<JsonNode> findEither(ObjectReader& reader, const char* key, const char* synonym);
+/// The same, required: an error naming both keys when neither is there.
+JsonNode getEither(ObjectReader& reader, const char* key, const char* synonym);
 
 }  // namespace cdlab::demos

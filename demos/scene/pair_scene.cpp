@@ -106,7 +106,7 @@ SceneShape parseSceneShape(const JsonNode& node, bool planar) {
             s.kind = key == "cylinder" ? SceneShape::Kind::Cylinder : SceneShape::Kind::Cone;
             s.radius = sceneSize(r.get("radius"));
             s.halfHeight = sceneSize(r.get("half_height"));
-        } else if (key == "polytope") {
+        } else if (key == "polytope" || key == "hull") {  // one vocabulary: the feature-walk scenes' "hull"
             s.kind = SceneShape::Kind::Polytope;
             JsonNode vn = r.get("vertices");
             requireShapeVertices(vn);

@@ -47,6 +47,20 @@ TEST_CASE("body: a user's polytope is its hull, recentred at its centre of mass"
     CHECK(body({{"box", {{"half_extents", {1, 2, 3}}}}}).vertexCount() == 8);
 }
 
+TEST_CASE("body: one vocabulary: radius or circumradius, sides or n, polytope or hull") {
+    CHECK(body({{"icosahedron", {{"radius", 0.5}}}}).vertexCount() == 12);
+    CHECK(body({{"icosahedron", {{"circumradius", 0.5}}}}).vertexCount() == 12);
+    CHECK(body({{"dodecahedron", {{"radius", 0.5}}}}).vertexCount() == 20);
+    CHECK(body({{"prism", {{"n", 5}, {"radius", 0.5}, {"half_height", 0.2}}}}).vertexCount() == 10);
+    Json hull = kWedge;
+    hull["hull"] = hull["polytope"];
+    hull.erase("polytope");
+    CHECK(body(hull).vertexCount() == 6);
+    CHECK(error({{"tetrahedron", {{"radius", 0.5}, {"circumradius", 0.5}}}}).find("not both") != std::string::npos);
+    CHECK(error({{"tetrahedron", Json::object()}}).find("missing \"circumradius\" (or its synonym \"radius\")") !=
+          std::string::npos);
+}
+
 TEST_CASE("body: errors name the path and say where a pose belongs") {
     CHECK(error({{"polytope", {{"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}}}}}).find("span no volume") !=
           std::string::npos);
@@ -55,7 +69,7 @@ TEST_CASE("body: errors name the path and say where a pose belongs") {
     const std::string e = error(posed);
     CHECK(e.find("$.body.polytope.position") != std::string::npos);
     CHECK(e.find("beside \"body\"") != std::string::npos);
-    CHECK(error({{"cylinder", {{"radius", 1}}}}).find("expected box, tetrahedron, icosahedron, prism or polytope") !=
+    CHECK(error({{"cylinder", {{"radius", 1}}}}).find("expected box, tetrahedron, octahedron, icosahedron, dodecahedron, prism or polytope") !=
           std::string::npos);
 }
 
