@@ -10,7 +10,8 @@
 //                  "iterations", "slop"},
 //   "frame_every" (steps between frames), "view" (camera direction, z up).
 // Layers: "ground", "shadow", "trail", "contacts", "labels", "plot".
-// Frames: frame_NN (every frame_every steps from step 0), "energy" (plot), with "steps" a contact sheet.
+// Frames: frame_NN (every frame_every steps from step 0, and the first step of each impact, captioned
+// with the normal velocity before and after it), "energy" (plot), with "steps" a contact sheet.
 #include "demos/drop/drop_demo.h"
 
 #include <algorithm>
@@ -182,8 +183,7 @@ public:
         radius += r.boundingRadius;
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius, view_, Vec3::UnitZ());
 
-        std::vector<int> frameSteps;
-        for (int k = 0; k < int(tr.steps.size()); k += frameEvery_) frameSteps.push_back(k);
+        const std::vector<int> frameSteps = chooseFrameSteps(tr);
         for (std::size_t i = 0; i < frameSteps.size(); ++i)
             out.frames.push_back(drawFrame(*ctx.gl, ss, cam, center, radius, r, tr, frameSteps[i], int(i)));
         std::vector<const Frame*> stepFrames;
@@ -195,7 +195,7 @@ public:
             ContactSheetOptions o;
             o.caption = common_.caption;
             o.title = common_.title + ": every " + std::to_string(frameEvery_) + " steps (" +
-                      formatNumber(frameEvery_ * options_.timeStep) + " s)";
+                      formatNumber(frameEvery_ * options_.timeStep) + " s) and at each impact";
             o.cellWidth = 300;
             o.columns = 4;
             sheet = contactSheetFrame(*ctx.gl, stepFrames, common_.title, o);
@@ -274,6 +274,27 @@ private:
         }
         t["steps"] = steps;
         return t;
+    }
+
+    // The first step of an impact: a contact bounces (the restitution rule applied) where the step
+    // before had none. Regular frames every frame_every steps miss them (a bounce lasts a step).
+    static bool impactAt(const SimulationTrace& tr, int k) {
+        const auto bounces = [&](int i) {
+            return std::any_of(tr.steps[std::size_t(i)].contacts.begin(), tr.steps[std::size_t(i)].contacts.end(),
+                               [](const ContactImpulse& c) { return c.bounce && c.normalImpulse > 0.0; });
+        };
+        return k > 0 && bounces(k) && !bounces(k - 1);
+    }
+
+    // Frames: every frame_every steps from step 0, and the first step of each impact (the first
+    // ones, up to kMaxFrames in all), in time order.
+    std::vector<int> chooseFrameSteps(const SimulationTrace& tr) const {
+        std::vector<int> steps;
+        for (int k = 0; k < int(tr.steps.size()); k += frameEvery_) steps.push_back(k);
+        for (int k = 1; k < int(tr.steps.size()) && int(steps.size()) < kMaxFrames; ++k)
+            if (impactAt(tr, k) && std::find(steps.begin(), steps.end(), k) == steps.end()) steps.push_back(k);
+        std::sort(steps.begin(), steps.end());
+        return steps;
     }
 
     Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius,
@@ -380,9 +401,18 @@ private:
         drawTitleAndCaption(c, common_.title, line2);
         char name[32];
         std::snprintf(name, sizeof name, "frame_%02d", index);
-        char cap[160];
+        char cap[200];
         std::snprintf(cap, sizeof cap, "t = %.2f s: %d contact%s, E = %.3g J", s.time, int(s.contacts.size()),
                       s.contacts.size() == 1 ? "" : "s", s.energy);
+        if (impactAt(tr, k)) {
+            // The impact's fastest approaching point: its normal velocity before and after the
+            // step's impulses (restitution: after ≈ −e · before).
+            const ContactImpulse* fastest = &s.contacts.front();
+            for (const ContactImpulse& ct : s.contacts)
+                if (ct.normalVelocityBefore < fastest->normalVelocityBefore) fastest = &ct;
+            std::snprintf(cap, sizeof cap, "%.2f s impact: vₙ %.2f → %.2f", s.time, fastest->normalVelocityBefore,
+                          fastest->normalVelocityAfter);
+        }
         return Frame{name, cap, c.readPixels()};
     }
 
