@@ -465,11 +465,16 @@ CheckResult checkLine(const std::string& line, std::size_t lineNumber, const Che
     size.add(q);
     const double tol = size.tolerance(relative);
     const std::string op = q.value("op", "");
-    Checker c(q, mine, theirs, tol);
-    c.run(op);
-    r.reasons = c.reasons;
-    if (trace && r.reasons.empty() && (op == "intersect" || op == "distance" || op == "penetration"))
-        checkGjkTrace(q, *trace, tol, r.reasons);
+    try {
+        Checker c(q, mine, theirs, tol);
+        c.run(op);
+        r.reasons = c.reasons;
+        if (trace && r.reasons.empty() && (op == "intersect" || op == "distance" || op == "penetration"))
+            checkGjkTrace(q, *trace, tol, r.reasons);
+    } catch (const std::exception& e) {  // a key of yours with another type than cdlab's answer has
+        r.reasons.push_back(std::string("your answer or trace could not be read (a key of the wrong type?): ") +
+                            e.what());
+    }
     r.pass = r.reasons.empty();
     return r;
 }

@@ -103,6 +103,18 @@ TEST_CASE("check: a GJK trace is checked step by step; a tie is not a divergence
     CHECK(reasons(check(line)).find("iteration 2: different support point for the same direction") != std::string::npos);
 }
 
+TEST_CASE("check: an answer with keys of the wrong type fails that line only") {
+    const Json cube = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
+    const Json line = {{"op", "raycast"}, {"ray", {{"origin", {-1, 0.5, 0.5}}, {"direction", {1, 0, 0}}}}, {"shape", cube},
+                       {"answer", {{"hit", true}, {"t", 1.0}, {"point", {0, 0.5, 0.5}}, {"inside", "no"}}}};
+    const CheckResult r = check(line);
+    CHECK_FALSE(r.pass);
+    CHECK(reasons(r).find("could not be read") != std::string::npos);
+    Json trace = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    trace["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {-1, 1, 1}}, {"simplex", "x"}}}}};
+    CHECK_FALSE(check(trace).pass);
+}
+
 TEST_CASE("check: the summary line and the exit status") {
     std::istringstream in(
         distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}}).dump() +
