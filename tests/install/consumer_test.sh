@@ -9,7 +9,12 @@ tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
 test -f "$tmp/prefix/include/cdlab/core/gjk_epa/gjk.h"
 test -f "$tmp/prefix/lib/cmake/cdlab/cdlabConfig.cmake"
-cmake -S "$root/tests/install/consumer" -B "$tmp/installed" -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
+# A core built with ASan + UBSan (./cdlab test --sanitize) needs the sanitizer runtimes in whatever
+# links it: the consumer of that installed library links them too.
+link_flags=""
+grep -q '^CDLAB_SANITIZE:BOOL=ON$' "$build/CMakeCache.txt" && link_flags="-fsanitize=address,undefined"
+cmake -S "$root/tests/install/consumer" -B "$tmp/installed" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
+      -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >/dev/null
 cmake --build "$tmp/installed" -j 2 >/dev/null
 "$tmp/installed/consumer"
 # add_subdirectory(core): configure, and compile the consumer's source against the core target's
