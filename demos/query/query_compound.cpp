@@ -215,20 +215,27 @@ struct PairPick {
     long long tested = 0;
 };
 
-// The first pair of boundary pieces that intersects (touching counts).
-PairPick firstIntersecting(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b) {
+// Visits the pairs whose boxes are within the touching margin, in order, with their answer
+// (`wantDepth` as in shapePairAnswer); the visit returns false to stop. Counts the pairs tested.
+template <class Visit>
+void forEachNearPair(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b, bool wantDepth,
+                     PairPick& pick, Visit&& visit) {
     const std::vector<Box> ba = boxesOf(a), bb = boxesOf(b);
-    PairPick pick;
     for (std::size_t i = 0; i < a.size(); ++i)
         for (std::size_t j = 0; j < b.size(); ++j) {
             if (boxGap(ba[i], bb[j]) > cullMargin(ba[i], bb[j])) continue;
             ++pick.tested;
-            const ShapePairAnswer ans = shapePairAnswer(a[i], b[j], false);
-            if (ans.intersect) {
-                pick.found = true, pick.i = int(i), pick.j = int(j), pick.answer = ans;
-                return pick;
-            }
+            if (!visit(int(i), int(j), shapePairAnswer(a[i], b[j], wantDepth))) return;
         }
+}
+
+// The first pair of boundary pieces that intersects (touching counts).
+PairPick firstIntersecting(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b) {
+    PairPick pick;
+    forEachNearPair(a, b, false, pick, [&](int i, int j, const ShapePairAnswer& ans) {
+        if (ans.intersect) pick.found = true, pick.i = i, pick.j = j, pick.answer = ans;
+        return !pick.found;
+    });
     return pick;
 }
 
@@ -275,16 +282,12 @@ PairPick closestPair(const std::vector<QueryShape>& a, const std::vector<QuerySh
 
 // The deepest overlapping pair of convex pieces.
 PairPick deepestPair(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b) {
-    const std::vector<Box> ba = boxesOf(a), bb = boxesOf(b);
     PairPick pick;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        for (std::size_t j = 0; j < b.size(); ++j) {
-            if (boxGap(ba[i], bb[j]) > cullMargin(ba[i], bb[j])) continue;
-            ++pick.tested;
-            const ShapePairAnswer ans = shapePairAnswer(a[i], b[j], true);
-            if (ans.intersect && (!pick.found || ans.depth > pick.answer.depth))
-                pick.found = true, pick.i = int(i), pick.j = int(j), pick.answer = ans;
-        }
+    forEachNearPair(a, b, true, pick, [&](int i, int j, const ShapePairAnswer& ans) {
+        if (ans.intersect && (!pick.found || ans.depth > pick.answer.depth))
+            pick.found = true, pick.i = i, pick.j = j, pick.answer = ans;
+        return true;
+    });
     return pick;
 }
 
