@@ -2,22 +2,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory_resource>
 #include <utility>
+
+#include "core/base/stack_arena.h"
 
 namespace cdlab {
 
 namespace {
+
+using Indices = std::pmr::vector<int>;
+using Points = std::pmr::vector<Vec3>;
 
 // Points at depth 0 (where an edge crosses the plane or the reference face's side) that lie within
 // the deepest depth, in the plane, of a submerged point are the rim of that corner, on edges leaving
 // it steeper than 45° (a cone of half-angle up to 45° on its apex: its crossings ring the apex). They
 // add no support a solver can use and are dropped before the rules. Touching contacts (every depth
 // 0) keep theirs.
-std::vector<int> supportingPoints(const std::vector<ContactPoint>& polygon, const std::vector<Vec3>& q) {
+void supportingPoints(std::span<const ContactPoint> polygon, const Points& q, Indices& kept) {
     double deepest = 0.0;
     for (const ContactPoint& c : polygon) deepest = std::max(deepest, c.depth);
     const double surface = 1e-9 * deepest;  // at the surface, up to rounding of the depths
-    std::vector<int> kept;
     for (int i = 0; i < static_cast<int>(polygon.size()); ++i) {
         bool rim = false;
         if (polygon[i].depth <= surface)
@@ -25,12 +30,18 @@ std::vector<int> supportingPoints(const std::vector<ContactPoint>& polygon, cons
                 rim = polygon[j].depth > surface && (q[i] - q[j]).norm() <= deepest;
         if (!rim) kept.push_back(i);
     }
-    return kept;
 }
+
+// A score replaces the best so far only when larger by more than rounding (1e-9 relative): exact
+// ties are common (a clipped rectangle has parallel sides, so two points make the same triangle
+// with the first two; a face-on box has four corners at one depth), and the first in input order
+// must win them whatever the rounding, or the manifold flickers between frames and between two
+// computations of the same contact (the box fast path and the general SAT).
+bool clearlyGreater(double score, double best) { return score > best + 1e-9 * std::abs(best); }
 
 // Twice the area a point q adds to the convex polygon `hull` (counter-clockwise about the normal):
 // the largest triangle it forms with an edge it lies outside of; 0 inside or on the polygon.
-double addedArea(const std::vector<Vec3>& q, const std::vector<int>& hull, int i, const Vec3& normal) {
+double addedArea(const Points& q, const Indices& hull, int i, const Vec3& normal) {
     double best = 0.0;
     for (size_t e = 0; e < hull.size(); ++e) {
         const Vec3& a = q[hull[e]];
@@ -41,14 +52,15 @@ double addedArea(const std::vector<Vec3>& q, const std::vector<int>& hull, int i
 }
 
 // The kept points' convex hull in the plane, counter-clockwise about the normal (Andrew's monotone
-// chain in a plane basis).
-std::vector<int> planeHull(const std::vector<Vec3>& q, std::vector<int> points, const Vec3& normal) {
+// chain in a plane basis), written to `h` (the kept points as given when fewer than 3 are on it).
+void planeHull(const Points& q, const ContactIndices& kept, const Vec3& normal, Indices& h) {
     const Vec3 u = normal.unitOrthogonal(), w = normal.cross(u);
-    const auto key = [&](int i) { return std::pair<double, double>(u.dot(q[i] - q[points[0]]), w.dot(q[i] - q[points[0]])); };
-    const std::vector<int> input = points;
+    const Vec3& o = q[kept[0]];
+    const auto key = [&](int i) { return std::pair<double, double>(u.dot(q[i] - o), w.dot(q[i] - o)); };
+    ContactIndices points = kept;
     std::sort(points.begin(), points.end(), [&](int a, int b) { return key(a) < key(b); });
     const auto turn = [&](int o, int a, int b) { return (q[a] - q[o]).cross(q[b] - q[o]).dot(normal); };
-    std::vector<int> h(2 * points.size());
+    h.assign(2 * points.size(), 0);
     size_t k = 0;
     for (size_t i = 0; i < points.size(); ++i) {
         while (k >= 2 && turn(h[k - 2], h[k - 1], points[i]) <= 0) --k;
@@ -59,47 +71,50 @@ std::vector<int> planeHull(const std::vector<Vec3>& q, std::vector<int> points, 
         h[k++] = points[i];
     }
     h.resize(k > 1 ? k - 1 : k);
-    return h.size() >= 3 ? h : input;
+    if (h.size() < 3) h.assign(kept.begin(), kept.end());
+}
+
+// The deepest of `indices` first (first of ties), then the others in input order.
+template <class Range>
+ContactIndices deepestFirst(std::span<const ContactPoint> polygon, const Range& indices) {
+    ContactIndices keep;
+    if (indices.empty()) return keep;
+    int deepest = *indices.begin();
+    for (int i : indices)
+        if (clearlyGreater(polygon[i].depth, polygon[deepest].depth)) deepest = i;
+    keep.push_back(deepest);
+    for (int i : indices)
+        if (i != deepest) keep.push_back(i);
+    return keep;
 }
 
 }  // namespace
 
-std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, const Vec3& normal, int maxPoints,
-                                      std::vector<ManifoldReductionStep>* steps) {
+ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
+                                    std::vector<ManifoldReductionStep>* steps) {
     const int n = static_cast<int>(polygon.size());
-    std::vector<int> keep;
-    if (maxPoints <= 0) {  // keep all, the deepest first
-        int deepest = 0;
-        for (int i = 1; i < n; ++i)
-            if (polygon[i].depth > polygon[deepest].depth) deepest = i;
-        if (n > 0) keep.push_back(deepest);
-        for (int i = 0; i < n; ++i)
-            if (i != deepest) keep.push_back(i);
-        return keep;
+    if (maxPoints <= 0 && n <= kMaxContactPoints) {  // every point, rim included, the deepest first
+        ContactIndices all;
+        for (int i = 0; i < n; ++i) all.push_back(i);
+        return deepestFirst(polygon, all);
     }
+    if (maxPoints <= 0 || maxPoints > kMaxContactPoints) maxPoints = kMaxContactPoints;
+    StackArena<4096> arena;
     // Positions projected onto the plane ⟂ normal (pointB lies on B's surface: use it, then drop
     // the normal component so tilted reference surfaces measure in-plane spread only).
-    std::vector<Vec3> q(n);
+    Points q(n, arena.resource());
     for (int i = 0; i < n; ++i) q[i] = polygon[i].pointB - normal.dot(polygon[i].pointB - polygon[0].pointB) * normal;
-    const std::vector<int> candidates = supportingPoints(polygon, q);
-    if (maxPoints >= static_cast<int>(candidates.size())) {  // keep them all, the deepest first
-        int deepest = candidates.empty() ? -1 : candidates[0];
-        for (int i : candidates)
-            if (polygon[i].depth > polygon[deepest].depth) deepest = i;
-        if (deepest >= 0) keep.push_back(deepest);
-        for (int i : candidates)
-            if (i != deepest) keep.push_back(i);
-        return keep;
-    }
+    Indices candidates(arena.resource());
+    candidates.reserve(n);
+    supportingPoints(polygon, q, candidates);
+    if (maxPoints >= static_cast<int>(candidates.size())) return deepestFirst(polygon, candidates);
+
+    ContactIndices keep;
     const auto record = [&](const char* rule, int i, double score) {
         keep.push_back(i);
         if (steps) steps->push_back({rule, i, score});
     };
-    const auto taken = [&](int i) {
-        for (int k : keep)
-            if (k == i) return true;
-        return false;
-    };
+    const auto taken = [&](int i) { return std::find(keep.begin(), keep.end(), i) != keep.end(); };
 
     // Each rule below picks among the submerged points first and turns to the depth-0 ones only when
     // no submerged point scores: a crossing never displaces a full-depth corner.
@@ -113,7 +128,7 @@ std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, 
             for (int i : candidates) {
                 if (taken(i) || submerged(i) != tier) continue;
                 const double sc = score(i);
-                if (sc > bestScore) chosen = i, bestScore = sc;
+                if (clearlyGreater(sc, bestScore)) chosen = i, bestScore = sc;
             }
             if (chosen >= 0) return chosen;
         }
@@ -123,7 +138,7 @@ std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, 
     // 1. deepest point (first of ties).
     int best = candidates[0];
     for (int i : candidates)
-        if (polygon[i].depth > polygon[best].depth) best = i;
+        if (clearlyGreater(polygon[i].depth, polygon[best].depth)) best = i;
     record("deepest", best, polygon[best].depth);
     if (maxPoints == 1) return keep;
 
@@ -150,13 +165,15 @@ std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, 
     // 5. and on, while maxPoints allows: the same rule on the hull of the points kept so far, so that
     //    asking for more points never returns fewer, and every corner comes back once maxPoints
     //    reaches their count (a corner is outside the hull of the others until it is kept).
-    std::vector<int> hull = {p0, p1, keep[2]};
+    Indices hull(arena.resource());
+    hull.reserve(2 * kMaxContactPoints);
+    hull.assign({p0, p1, keep[2]});
     if (bestSigned < 0) std::swap(hull[1], hull[2]);
     while (static_cast<int>(keep.size()) < maxPoints) {
         best = pick([&](int i) { return addedArea(q, hull, i, normal); }, bestScore);
         if (best < 0) break;  // every other point inside the hull of the kept ones
         record(keep.size() == 3 ? "max-area quad" : "max-area polygon", best, bestScore);
-        hull = planeHull(q, keep, normal);
+        if (static_cast<int>(keep.size()) < maxPoints) planeHull(q, keep, normal, hull);  // for the next pick
     }
     return keep;
 }

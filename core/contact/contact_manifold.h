@@ -6,7 +6,7 @@
 // GDC 2015; Bullet btPersistentManifold::sortCachedPoints keeps the largest-area quad likewise):
 //   0. points at depth 0 (edge crossings) within the deepest depth, in the plane, of a submerged
 //      point are dropped: they are the rim of that corner and would displace full-depth corners;
-//   1. the deepest point (largest depth; ties: first in input order),
+//   1. the deepest point (largest depth; ties, to 1e-9 relative as in every rule: first in input order),
 //   2. the point farthest from it (measured in the contact plane),
 //   3. the point that makes the triangle with 1 and 2 of largest area,
 //   4. the point that adds the most area to that triangle (largest area of the triangle it
@@ -17,9 +17,10 @@
 // differences do not count as "spread".
 #pragma once
 
-#include <string>
+#include <span>
 #include <vector>
 
+#include "core/base/fixed_capacity_vector.h"
 #include "core/base/types.h"
 #include "core/geometry/polyhedron_feature.h"
 
@@ -34,6 +35,12 @@ struct ContactPoint {
     double depth = 0.0;  ///< penetration along the normal, >= 0 (0: on the surface of B)
 };
 
+/// The most points a manifold holds (a larger contact polygon is reduced to this many by the rules
+/// above). Inline storage: a manifold needs no heap.
+inline constexpr int kMaxContactPoints = 64;
+using ContactManifold = FixedCapacityVector<ContactPoint, kMaxContactPoints>;
+using ContactIndices = FixedCapacityVector<int, kMaxContactPoints>;
+
 /// One step of reduceContactPolygon: which rule chose which polygon point and its score
 /// (rule 1: depth; 2: distance; 3: twice the triangle area; 4: twice the added area).
 struct ManifoldReductionStep {
@@ -44,10 +51,13 @@ struct ManifoldReductionStep {
 
 /// Indices (into `polygon`: the contact points, any order; interior points allowed) of at most
 /// maxPoints points chosen by the rules of the file comment, in the order chosen. maxPoints <= 0 keeps
-/// every point; maxPoints >= the count left by rule 0 keeps those (the deepest first, then input order; no steps). A rule whose best score is 0
-/// (all remaining points coincide with or are collinear with the chosen ones) stops the reduction early. normal: unit,
-/// any sign.
-std::vector<int> reduceContactPolygon(const std::vector<ContactPoint>& polygon, const Vec3& normal, int maxPoints,
-                                      std::vector<ManifoldReductionStep>* steps = nullptr);
+/// every point (the deepest first) up to kMaxContactPoints; beyond that, and for maxPoints above
+/// kMaxContactPoints, the rules reduce to kMaxContactPoints. maxPoints >= the count left by rule 0 keeps those
+/// (the deepest first, then input order; no steps). A rule whose best score is 0 (all remaining
+/// points coincide with or are collinear with the chosen ones) stops the reduction early. normal:
+/// unit, any sign. No heap allocation for polygons up to ~100 points (stack scratch), nor with
+/// steps == nullptr.
+ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
+                                    std::vector<ManifoldReductionStep>* steps = nullptr);
 
 }  // namespace cdlab

@@ -1,6 +1,7 @@
 #include "core/contact/contact_plane.h"
 
 #include "core/base/tolerances.h"
+#include "core/contact/contact_stages.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -19,27 +20,6 @@ const char* nameOf(PlaneContactStatus status) {
 }
 
 namespace {
-
-// Unit plane (n̂, d̂) from n · x = d without overflow / underflow: divide by the largest |n_i|
-// first. Empty string on success, else why the plane is invalid.
-std::string unitPlane(const Plane& plane, Vec3& n, double& d) {
-    const double m = plane.normal.cwiseAbs().maxCoeff();
-    if (!std::isfinite(m) || !std::isfinite(plane.offset)) return "plane normal or offset is not finite";
-    if (!(m > 0.0)) return "plane normal is zero";
-    const Vec3 s = plane.normal / m;
-    const double len = s.norm();
-    n = s / len;
-    d = (plane.offset / m) / len;
-    return {};
-}
-
-// A pose is usable when finite and its quaternion is unit to ~1e-6 (a typo-level error, not
-// rounding drift, which stays ~1e-15 per multiplication).
-std::string checkPose(const Transform& pose) {
-    if (!pose.position.allFinite() || !pose.rotation.coeffs().allFinite()) return "pose is not finite";
-    if (std::abs(pose.rotation.squaredNorm() - 1.0) > 1e-6) return "pose rotation is not a unit quaternion";
-    return {};
-}
 
 bool adjacent(const ConvexPolyhedron& body, int u, int v, int& edge) {
     bool found = false;
@@ -180,14 +160,13 @@ std::vector<int> contactManifold(const std::vector<ContactPoint>& cand, const Ve
     int deepest = 0;
     for (size_t i = 1; i < cand.size(); ++i)
         if (cand[i].depth > cand[deepest].depth) deepest = static_cast<int>(i);
-    std::vector<int> chosen;
-    if (options.maxPoints > 0) {
-        chosen = reduceContactPolygon(cand, n, options.maxPoints, traced ? &steps : nullptr);
+    if (options.maxPoints > 0 || hull.size() >= size_t(kMaxContactPoints)) {
+        for (int i : reduceContactPolygon(cand, n, options.maxPoints, traced ? &steps : nullptr))
+            r.manifold.push_back(cand[i]);
     } else {
-        chosen = hull;
-        if (std::find(hull.begin(), hull.end(), deepest) == hull.end()) chosen.push_back(deepest);
+        for (int i : hull) r.manifold.push_back(cand[i]);
+        if (std::find(hull.begin(), hull.end(), deepest) == hull.end()) r.manifold.push_back(cand[deepest]);
     }
-    for (int i : chosen) r.manifold.push_back(cand[i]);
 
     return hull;
 }
@@ -202,7 +181,7 @@ bool intersectPolyhedronPlane(const ConvexPolyhedron& body, const Transform& pos
 bool intersectPolytopePlane(const PolytopeShape& body, const Transform& pose, const Plane& plane, int* hint) {
     Vec3 n;
     double d;
-    if (body.vertexCount() == 0 || !unitPlane(plane, n, d).empty() || !checkPose(pose).empty()) return false;
+    if (body.vertexCount() == 0 || *detail::unitPlane(plane, n, d) || *detail::poseProblem(pose)) return false;
     const Vec3 dir = pose.rotateInverse(-n);  // body-frame direction of the lowest point
     const int i = hint ? body.supportIndex(dir, *hint) : body.supportIndex(dir);
     if (hint) *hint = i;
@@ -212,7 +191,7 @@ bool intersectPolytopePlane(const PolytopeShape& body, const Transform& pose, co
 double signedDistancePolyhedronPlane(const ConvexPolyhedron& body, const Transform& pose, const Plane& plane) {
     Vec3 n;
     double d;
-    if (body.empty() || !unitPlane(plane, n, d).empty() || !checkPose(pose).empty()) return NAN;
+    if (body.empty() || *detail::unitPlane(plane, n, d) || *detail::poseProblem(pose)) return NAN;
     double s = INFINITY;
     for (const auto& v : body.vertices()) s = std::min(s, n.dot(pose.apply(v.position)) - d);
     return s;
@@ -223,8 +202,8 @@ PlaneContactResult contactPolyhedronPlane(const ConvexPolyhedron& body, const Tr
     PlaneContactResult r;
     Vec3 n;
     double d = 0.0;
-    r.message = body.empty() ? "empty polyhedron" : unitPlane(plane, n, d);
-    if (r.message.empty()) r.message = checkPose(pose);
+    r.message = body.empty() ? "empty polyhedron" : detail::unitPlane(plane, n, d);
+    if (r.message.empty()) r.message = detail::poseProblem(pose);
     if (r.message.empty() && !std::isfinite(options.tolerance)) r.message = "tolerance is not finite";
     if (!r.message.empty()) {
         r.status = PlaneContactStatus::InvalidInput;

@@ -69,8 +69,9 @@ struct PlaneContactResult {
     std::vector<Vec3> featurePoints;         ///< its vertices, world frame (face: counter-clockwise from outside)
     std::vector<Vec3> featurePointsOnPlane;  ///< their projections on the plane (closest points of the plane)
     std::vector<ContactPoint> polygon;       ///< colliding: full contact polygon (see file comment), CCW about n̂
-    std::vector<ContactPoint> manifold;      ///< colliding: <= maxPoints points, deepest first (maxPoints <= 0:
-                                             ///< the polygon, plus the deepest point if it projects inside it)
+    ContactManifold manifold;                ///< colliding: <= maxPoints points, deepest first (maxPoints <= 0:
+                                             ///< the polygon, plus the deepest point if it projects inside it,
+                                             ///< reduced to kMaxContactPoints when larger)
 
     bool colliding() const {
         return status == PlaneContactStatus::Touching || status == PlaneContactStatus::Penetrating;

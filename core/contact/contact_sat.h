@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/sat_axis_kind.h"
 #include "core/base/types.h"
 #include "core/contact/contact_manifold.h"
 #include "core/geometry/polyhedron.h"
@@ -44,7 +45,6 @@ enum class SatContactStatus {
 };
 const char* nameOf(SatContactStatus status);
 
-enum class SatAxisKind { FaceA, FaceB, EdgeEdge };
 /// "face A", "face B", "edge-edge".
 const char* nameOf(SatAxisKind kind);
 
@@ -55,7 +55,7 @@ struct SatContactOptions {
     /// by faceBiasRelative * |best| + faceBiasAbsolute (order: face A, face B, edges).
     double faceBiasRelative = 0.02;
     double faceBiasAbsolute = 0.0;  ///< world units; < 0 not allowed (treated as 0)
-    int maxPoints = 4;              ///< manifold size (<= 0: every clipped point)
+    int maxPoints = 4;              ///< manifold size (<= 0: every clipped point, up to kMaxContactPoints)
 };
 
 struct SatContactResult {
@@ -66,7 +66,7 @@ struct SatContactResult {
     Vec3 normal = Vec3::UnitX();  ///< unit, from A toward B (chosen axis)
     SatAxisKind axisKind = SatAxisKind::FaceA;
     FeatureRef featureA, featureB;       ///< face: reference / incident face; edge-edge: the two edges
-    std::vector<ContactPoint> manifold;  ///< colliding: <= maxPoints points, deepest first
+    ContactManifold manifold;            ///< colliding: <= maxPoints points, deepest first
     double tolerance = 0.0;
     bool colliding() const { return status == SatContactStatus::Touching || status == SatContactStatus::Penetrating; }
 };

@@ -16,16 +16,9 @@
 #include <vector>
 
 #include "core/base/primitives.h"
+#include "core/base/sat_axis_kind.h"
 
 namespace cdlab {
-
-/// Which candidate axis a SAT step tested.
-enum class SatAxisKind {
-    FaceA,     ///< face normal indexA of shape A (the box)
-    FaceB,     ///< face normal indexB of shape B (OBB-OBB only)
-    EdgeEdge,  ///< cross product of A's edge direction indexA and B's edge direction indexB
-    Normal,    ///< the triangle's normal (triangle-AABB only)
-};
 
 /// One candidate axis, recorded for demos. Projections are onto the (not normalized) world axis,
 /// measured from the box A's center: A covers [minA, maxA], B covers [minB, maxB].

@@ -30,6 +30,8 @@
 #include "core/gjk_epa/gjk.h"
 #include "core/overlap/sat_tests.h"
 #include "demos/bench/bench_broadphase.h"
+#include "demos/bench/bench_contact.h"
+#include "demos/bench/bench_inputs.h"
 #include "demos/bench/bench_bvh.h"
 #include "demos/bench/bench_lin_canny.h"
 #include "demos/bench/bench_measure.h"
@@ -45,93 +47,6 @@ namespace cdlab::demos {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// A pair of convex vertex sets in world frame with their support mappings and oracle.
-struct PolyPair {
-    std::vector<Vec3> va, vb;
-    PolytopeShape a, b;
-    MinkowskiOracle oracle;
-};
-
-PolytopeShape polytopeOf(const std::vector<Vec3>& v) {
-    const HullResult h = convexHull(v);
-    return h.ok() ? PolytopeShape(h.polyhedron) : PolytopeShape(v);
-}
-
-/// `count` pairs of n-vertex polytopes, B's centre at `offset` (in units of the size, ~1) along a
-/// random direction. offset 2.2 > 1 + 1: always separated; 0.4: nearly always overlapping.
-std::vector<PolyPair> polyPairs(int n, int count, double offset, std::uint64_t seed, double moveBy = 0.0) {
-    std::mt19937_64 rng(seed);
-    std::vector<PolyPair> pairs;
-    for (int i = 0; i < count; ++i) {
-        PolyPair p;
-        p.va = ellipsoidPoints(rng, n);
-        p.vb = ellipsoidPoints(rng, n);
-        const Vec3 shift = offset * randomUnit(rng);
-        for (Vec3& x : p.vb) x += shift;
-        pairs.push_back(std::move(p));
-    }
-    if (moveBy > 0.0) {  // warm-start set: the same pairs moved slightly (next frame)
-        std::mt19937_64 move(seed ^ 0x5DEECE66Dull);
-        for (PolyPair& p : pairs) {
-            const Vec3 d = moveBy * randomUnit(move);
-            for (Vec3& x : p.vb) x += d;
-        }
-    }
-    for (PolyPair& p : pairs) {
-        p.a = polytopeOf(p.va);
-        p.b = polytopeOf(p.vb);
-        p.oracle = minkowskiOracle(p.va, p.vb);
-    }
-    return pairs;
-}
-
-/// Oriented boxes: half extents in [0.2, 1], random rotation, centre offset along a random
-/// direction; `touching` puts two axis-aligned boxes face to face (distance exactly 0).
-struct BoxPair {
-    Transformed<BoxShape> a, b;
-    std::vector<Vec3> va, vb;
-    MinkowskiOracle oracle;
-    Obb obbA, obbB;
-};
-
-std::vector<Vec3> corners(const Transformed<BoxShape>& box) {
-    std::vector<Vec3> c;
-    const Vec3& h = box.shape.halfExtents;
-    for (int i = 0; i < 8; ++i)
-        c.push_back(
-            box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
-    return c;
-}
-
-std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> half(0.2, 1.0), lateral(-0.3, 0.3);
-    std::vector<BoxPair> pairs;
-    for (int i = 0; i < count; ++i) {
-        BoxPair p;
-        p.a.shape.halfExtents = Vec3(half(rng), half(rng), half(rng));
-        p.b.shape.halfExtents = Vec3(half(rng), half(rng), half(rng));
-        if (touching) {
-            // Face x = +h_a of A against face x = -h_b of B, lateral shift inside both faces:
-            // exact in binary (sums of doubles of similar size, then compared by the oracle).
-            p.b.transform.position =
-                Vec3(p.a.shape.halfExtents.x() + p.b.shape.halfExtents.x(), lateral(rng) * p.a.shape.halfExtents.y(),
-                     lateral(rng) * p.a.shape.halfExtents.z());
-        } else {
-            p.a.transform.rotation = randomRotation(rng);
-            p.b.transform.rotation = randomRotation(rng);
-            p.b.transform.position = offset * randomUnit(rng);
-        }
-        p.va = corners(p.a);
-        p.vb = corners(p.b);
-        p.oracle = minkowskiOracle(p.va, p.vb);
-        p.obbA = Obb{p.a.transform.position, p.a.shape.halfExtents, p.a.transform.rotation.toRotationMatrix()};
-        p.obbB = Obb{p.b.transform.position, p.b.shape.halfExtents, p.b.transform.rotation.toRotationMatrix()};
-        pairs.push_back(std::move(p));
-    }
-    return pairs;
-}
 
 struct SpherePair {
     Transformed<SphereShape> a, b;
@@ -633,13 +548,14 @@ void runQueryRows(const Settings& settings, std::vector<Row>& rows) {
 }
 
 /// The sections of `cdlab bench`, in the order they run (--only picks some).
-constexpr const char* kSections[] = {"queries", "vclip", "bvh", "broadphase"};
+constexpr const char* kSections[] = {"queries", "contact", "vclip", "bvh", "broadphase"};
 
 int usage() {
     std::cerr << "usage: cdlab bench [--quick] [--out DIR] [--only SECTION[,SECTION...]]\n"
                  "  time per query (median / min / max over repetitions) and error against independent\n"
                  "  oracles for closest point, GJK intersect / distance, GJK+EPA, SAT OBB-OBB.\n"
-                 "  Sections (default: all): queries (those rows), vclip (Lin-Canny and V-Clip vs warm GJK),\n"
+                 "  Sections (default: all): queries (those rows), contact (box-box, box-plane and hull-hull\n"
+                 "  manifolds beside Bullet's box-box detector and hull clipping), vclip (Lin-Canny and V-Clip vs warm GJK),\n"
                  "  bvh (BVH build / query / refit), broadphase (SAP, uniform grid, octrees, brute force).\n"
                  "  Writes DIR/bench.json and DIR/bench.md (default DIR: out/bench).\n";
     return 2;
@@ -703,6 +619,7 @@ int runBench(int argc, char** argv) {
     }
 
     if (runs("queries")) runQueryRows(settings, rows);
+    if (runs("contact")) benchContacts(settings, rows);
 
     // ---- feature walks: Lin–Canny beside V-Clip and warm GJK over coherence levels ---------------
     std::ostringstream vclipTable;

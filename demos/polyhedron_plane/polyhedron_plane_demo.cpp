@@ -129,7 +129,7 @@ Frame finish(Canvas& c, const std::string& name, const std::string& title, const
     return Frame{name, shortCaption, c.readPixels()};
 }
 
-Json pointsJson(const std::vector<ContactPoint>& pts) {
+Json pointsJson(std::span<const ContactPoint> pts) {
     Json a = Json::array();
     for (const ContactPoint& p : pts)
         a.push_back({{"point_a", vec3Json(p.pointA)}, {"point_b", vec3Json(p.pointB)}, {"depth", p.depth}});

@@ -94,7 +94,7 @@ FeatureRef supportFeature(const Body& b, const Vec3& d) {
     return r.feature;
 }
 
-Json pointsJson(const std::vector<ContactPoint>& pts, bool swap, const LocalFrame& frame) {
+Json pointsJson(std::span<const ContactPoint> pts, bool swap, const LocalFrame& frame) {
     Json out = Json::array();
     for (const ContactPoint& c : pts) {
         const Vec3 pa = frame.toWorld(swap ? c.pointB : c.pointA), pb = frame.toWorld(swap ? c.pointA : c.pointB);

@@ -2,6 +2,7 @@
 // (double precision) are installed: CDLAB_HAVE_CCD, CDLAB_HAVE_BULLET.
 #include "demos/bench/peers/bench_peers.h"
 
+#include <algorithm>
 #include <memory>
 
 #if CDLAB_HAVE_CCD
@@ -9,7 +10,11 @@
 #include <ccd/vec3.h>
 #endif
 #if CDLAB_HAVE_BULLET
+#include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btConvexPolyhedron.h>
+#include <BulletCollision/NarrowPhaseCollision/btPolyhedralContactClipping.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 #endif
@@ -83,6 +88,65 @@ std::shared_ptr<BulletSet> makeBulletSet(const std::vector<PeerPair>& pairs) {
     }
     return set;
 }
+
+// Collects Bullet's contact points: the deepest penetration (Bullet reports depth < 0 when
+// penetrating) and the count.
+struct DeepestPoint : btDiscreteCollisionDetectorInterface::Result {
+    double deepest = 0.0;
+    int points = 0;
+    void setShapeIdentifiersA(int, int) override {}
+    void setShapeIdentifiersB(int, int) override {}
+    void addContactPoint(const btVector3&, const btVector3&, btScalar depth) override {
+        ++points;
+        deepest = std::max(deepest, -double(depth));
+    }
+};
+
+btTransform bulletTransform(const Transform& t) {
+    return btTransform(btQuaternion(t.rotation.x(), t.rotation.y(), t.rotation.z(), t.rotation.w()),
+                       btVector3(t.position.x(), t.position.y(), t.position.z()));
+}
+
+// Shapes with their polyhedral features (faces, for the clipping), margin 0 (the exact body),
+// and the clipping's vertex buffers, reused between calls as btConvexConvexAlgorithm does.
+struct BulletContactSet {
+    std::vector<std::unique_ptr<btPolyhedralConvexShape>> a, b;
+    std::vector<btTransform> ta, tb;
+    btVertexArray buffer1, buffer2;
+};
+
+std::unique_ptr<btPolyhedralConvexShape> bulletContactShape(const ContactPeerPair& p, bool first) {
+    std::unique_ptr<btPolyhedralConvexShape> shape;
+    const std::vector<Vec3>* hull = first ? p.hullA : p.hullB;
+    if (hull) {
+        auto h = std::make_unique<btConvexHullShape>();
+        for (const Vec3& x : *hull) h->addPoint(btVector3(x.x(), x.y(), x.z()), false);
+        h->recalcLocalAabb();
+        shape = std::move(h);
+    } else {
+        const Vec3& e = first ? p.halfA : p.halfB;
+        shape = std::make_unique<btBoxShape>(btVector3(e.x(), e.y(), e.z()));
+    }
+    shape->setMargin(0.0);  // btBoxShape keeps its outer extents: the same box
+    shape->initializePolyhedralFeatures();
+    return shape;
+}
+
+// Bullet's general path (btConvexConvexAlgorithm with polyhedral features): the separating axis
+// over face normals and edge pairs, then the incident face clipped against the reference hull.
+PeerAnswer bulletClipping(BulletContactSet& s, int i) {
+    DeepestPoint out;
+    btVector3 sep;
+    const btConvexPolyhedron& pa = *s.a[i]->getConvexPolyhedron();
+    const btConvexPolyhedron& pb = *s.b[i]->getConvexPolyhedron();
+    if (btPolyhedralContactClipping::findSeparatingAxis(pa, pb, s.ta[i], s.tb[i], sep, out)) {
+        s.buffer1.resize(0);
+        s.buffer2.resize(0);
+        btPolyhedralContactClipping::clipHullAgainstHull(sep, pa, pb, s.ta[i], s.tb[i], -1e30, 0.0, s.buffer1,
+                                                         s.buffer2, out);
+    }
+    return PeerAnswer{out.deepest, out.points};
+}
 #endif
 
 }  // namespace
@@ -137,6 +201,36 @@ std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, cons
                                }});
         }
     }
+#endif
+    (void)pairs;
+    (void)query;
+    return runners;
+}
+
+std::vector<PeerRunner> makeContactPeerRunners(const std::vector<ContactPeerPair>& pairs, const std::string& query) {
+    std::vector<PeerRunner> runners;
+#if CDLAB_HAVE_BULLET
+    auto set = std::make_shared<BulletContactSet>();
+    for (const ContactPeerPair& p : pairs) {
+        set->a.push_back(bulletContactShape(p, true));
+        set->b.push_back(bulletContactShape(p, false));
+        set->ta.push_back(bulletTransform(p.ta));
+        set->tb.push_back(bulletTransform(p.tb));
+    }
+    if (query == "box_box") {
+        runners.push_back({"Bullet btBoxBoxDetector", [set](int i) {
+                               btBoxBoxDetector detector(static_cast<const btBoxShape*>(set->a[i].get()),
+                                                         static_cast<const btBoxShape*>(set->b[i].get()));
+                               btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+                               input.m_transformA = set->ta[i];
+                               input.m_transformB = set->tb[i];
+                               DeepestPoint out;
+                               detector.getClosestPoints(input, out, nullptr);
+                               return PeerAnswer{out.deepest, out.points};
+                           }});
+    }
+    if (query == "box_box" || query == "hull_hull")
+        runners.push_back({"Bullet hull clipping", [set](int i) { return bulletClipping(*set, i); }});
 #endif
     (void)pairs;
     (void)query;

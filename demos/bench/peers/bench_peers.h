@@ -38,4 +38,18 @@ struct PeerRunner {
 /// Bullet uses btConvexHullShape on the same vertices with margin 0 (its own vertex loop).
 std::vector<PeerRunner> makePeerRunners(const std::vector<PeerPair>& pairs, const std::string& query);
 
+/// One pair for the contact-manifold rows: boxes (half extents, world poses) or hulls (world-frame
+/// vertices, identity poses).
+struct ContactPeerPair {
+    Vec3 halfA = Vec3::Zero(), halfB = Vec3::Zero();
+    Transform ta, tb;
+    const std::vector<Vec3>* hullA = nullptr;
+    const std::vector<Vec3>* hullB = nullptr;
+};
+
+/// Peer runners for the contact rows: "box_box" (Bullet's btBoxBoxDetector, and its general hull
+/// clipping btPolyhedralContactClipping on the same boxes) and "hull_hull" (the hull clipping).
+/// Answer: the deepest reported penetration (0 when no contact), iterations = contact points.
+std::vector<PeerRunner> makeContactPeerRunners(const std::vector<ContactPeerPair>& pairs, const std::string& query);
+
 }  // namespace cdlab::demos

@@ -1,0 +1,234 @@
+#include "core/contact/contact_box.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/base/stack_arena.h"
+#include "core/base/tolerances.h"
+#include "core/closest/closest_point.h"
+#include "core/contact/contact_stages.h"
+
+namespace cdlab {
+
+namespace {
+
+// presets::box numbering (tests/core/contact/contact_box_test.cpp compares these with the preset):
+// corner k has bit i set when it lies on the + side of axis i; face f = 2 i (+ side) or 2 i + 1
+// (- side) of axis i, corners counter-clockwise from outside; edges in the preset's order.
+constexpr int kFaceCorners[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
+constexpr int kEdgeCorners[12][2] = {{1, 3}, {3, 7}, {7, 5}, {5, 1}, {0, 4}, {4, 6},
+                                     {6, 2}, {2, 0}, {6, 7}, {3, 2}, {0, 1}, {5, 4}};
+
+int edgeOf(int u, int v) {
+    for (int e = 0; e < 12; ++e)
+        if ((kEdgeCorners[e][0] == u && kEdgeCorners[e][1] == v) || (kEdgeCorners[e][0] == v && kEdgeCorners[e][1] == u))
+            return e;
+    return -1;
+}
+
+bool validExtents(const Vec3& h) { return h.allFinite() && h.minCoeff() > 0.0; }
+
+// A box in world orientation, positions relative to a common origin.
+struct PosedBox {
+    std::array<Vec3, 3> axis;  // unit axes (the rotation's columns)
+    Vec3 h;                    // half extents
+    Vec3 center;
+    std::array<Vec3, 8> corner;
+
+    PosedBox(const Vec3& halfExtents, const Transform& t, const Vec3& origin) : h(halfExtents) {
+        const Mat3 r = t.rotation.toRotationMatrix();
+        center = t.position - origin;  // exact when t.position == origin
+        for (int i = 0; i < 3; ++i) axis[i] = r.col(i);
+        const Vec3 ex = h.x() * axis[0], ey = h.y() * axis[1], ez = h.z() * axis[2];
+        for (int k = 0; k < 8; ++k)
+            corner[k] = center + ((k & 1) ? ex : Vec3(-ex)) + ((k & 2) ? ey : Vec3(-ey)) + ((k & 4) ? ez : Vec3(-ez));
+    }
+    Vec3 faceNormal(int f) const { return (f & 1) ? Vec3(-axis[f / 2]) : axis[f / 2]; }
+    // The corner with bit i set where u · axis_i >= 0 (extreme along u), bit `free` cleared.
+    int extremeCorner(const Vec3& u, int free) const {
+        int k = 0;
+        for (int i = 0; i < 3; ++i)
+            if (i != free && u.dot(axis[i]) >= 0.0) k |= 1 << i;
+        return k;
+    }
+    // The edge along axis i extreme along u.
+    int extremeEdge(const Vec3& u, int i) const {
+        const int k = extremeCorner(u, i);
+        return edgeOf(k, k | (1 << i));
+    }
+    void facePolygon(int f, std::array<Vec3, 4>& p) const {
+        for (int j = 0; j < 4; ++j) p[j] = corner[kFaceCorners[f][j]];
+    }
+};
+
+// Steps 1 and 2 of contactPolyhedra on two boxes, in A's frame (Ericson §4.4.1): C = R_A^T R_B
+// holds B's axes in A's frame, tA = R_A^T t, tB = R_B^T t. Face axes of A, then of B, then the nine
+// edge pairs, in that order (the trace numbering of contactPolyhedra's face axes). For
+// L = a_i x b_j (i1, i2 and j1, j2 the other two axes, cyclic): |L| = |(C(i1,j), C(i2,j))|,
+// L · t = C(i1,j) tA(i2) - C(i2,j) tA(i1), rA(L) = hA(i1) |C(i2,j)| + hA(i2) |C(i1,j)|,
+// rB(L) = hB(j1) |C(i,j2)| + hB(j2) |C(i,j1)|.
+detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
+    detail::SatBestAxes best;
+    const Vec3 t = B.center - A.center;
+    Mat3 C;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) C(i, j) = A.axis[i].dot(B.axis[j]);
+    const Mat3 absC = C.cwiseAbs();
+    const Vec3 tA(A.axis[0].dot(t), A.axis[1].dot(t), A.axis[2].dot(t));
+    const Vec3 tB(B.axis[0].dot(t), B.axis[1].dot(t), B.axis[2].dot(t));
+    const Vec3 &ha = A.h, &hb = B.h;
+    int tested = 0;
+    for (int f = 0; f < 6; ++f, ++tested) {  // A's face f: plane n · x = n · c_A + hA_i
+        const int i = f / 2;
+        const double sep = ((f & 1) ? -tA(i) : tA(i)) - ha(i) - hb.dot(absC.row(i));
+        if (sep > best.faceA.separation) best.faceA = {SatAxisKind::FaceA, f, -1, A.faceNormal(f), sep}, best.faceAIndex = tested;
+    }
+    for (int f = 0; f < 6; ++f, ++tested) {  // B's face f, axis A→B = -n
+        const int j = f / 2;
+        const double sep = ((f & 1) ? tB(j) : -tB(j)) - hb(j) - ha.dot(absC.col(j));
+        if (sep > best.faceB.separation)
+            best.faceB = {SatAxisKind::FaceB, -1, f, Vec3(-B.faceNormal(f)), sep}, best.faceBIndex = tested;
+    }
+    int edgeI = -1, edgeJ = -1;
+    for (int i = 0; i < 3; ++i) {
+        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+        for (int j = 0; j < 3; ++j) {
+            const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            const double len = std::sqrt(C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j));  // entries <= 1: no overflow
+            if (!(len > 1e-9)) continue;  // parallel edges: a face axis (contactPolyhedra's test)
+            const double proj = C(i1, j) * tA(i2) - C(i2, j) * tA(i1);
+            const double rA = ha(i1) * absC(i2, j) + ha(i2) * absC(i1, j);
+            const double rB = hb(j1) * absC(i, j2) + hb(j2) * absC(i, j1);
+            const double sep = (std::abs(proj) - rA - rB) / len;  // oriented toward B: sign of proj
+            if (sep > best.edge.separation) best.edge.separation = sep, best.edgeIndex = tested, edgeI = i, edgeJ = j;
+            ++tested;
+        }
+    }
+    if (edgeI >= 0) {  // the winning pair's world axis and the two edges extreme along it
+        Vec3 u = A.axis[edgeI].cross(B.axis[edgeJ]).normalized();
+        if (u.dot(t) < 0.0) u = -u;
+        best.edge.axis = u;
+        best.edge.indexA = A.extremeEdge(u, edgeI);
+        best.edge.indexB = B.extremeEdge(-u, edgeJ);
+    }
+    return best;
+}
+
+}  // namespace
+
+SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& hb, const Transform& tb,
+                               const SatContactOptions& options) {
+    SatContactResult r;
+    if (!validExtents(ha)) r.message = "A: box half extents must be finite and > 0";
+    else if (!validExtents(hb)) r.message = "B: box half extents must be finite and > 0";
+    else if (const std::string m = detail::poseProblem(ta); !m.empty()) r.message = "A: " + m;
+    else if (const std::string m2 = detail::poseProblem(tb); !m2.empty()) r.message = "B: " + m2;
+    if (!r.message.empty()) {
+        r.separation = r.depth = NAN;
+        return r;
+    }
+    const Vec3 origin = ta.position;
+    const PosedBox A(ha, ta, origin), B(hb, tb, origin);
+    double maxCoord = 0.0;
+    for (const Vec3& p : B.corner) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
+    maxCoord += origin.cwiseAbs().maxCoeff();
+    r.tolerance = detail::satTolerance(options, 2.0 * std::max(ha.norm(), hb.norm()), maxCoord);
+    const double tol = r.tolerance;
+
+    const detail::SatChosenAxis c = detail::chooseSatAxis(queryBoxAxes(A, B), tol, options);
+    const SatAxisRecord& best = c.best;
+    r.separation = c.maxSep;
+    r.normal = best.axis;
+    r.axisKind = best.kind;
+    r.depth = std::max(0.0, -best.separation);
+    r.status = c.maxSep > tol     ? SatContactStatus::Separated
+               : c.maxSep >= -tol ? SatContactStatus::Touching
+                                  : SatContactStatus::Penetrating;
+    if (best.kind == SatAxisKind::EdgeEdge) {
+        r.featureA = {FeatureType::Edge, best.indexA};
+        r.featureB = {FeatureType::Edge, best.indexB};
+        if (r.status == SatContactStatus::Separated) return r;
+        const Segment ea{A.corner[kEdgeCorners[best.indexA][0]], A.corner[kEdgeCorners[best.indexA][1]]};
+        const Segment eb{B.corner[kEdgeCorners[best.indexB][0]], B.corner[kEdgeCorners[best.indexB][1]]};
+        const SegmentSegmentResult cp = closestPointsSegmentSegment(ea, eb);
+        r.manifold.push_back({cp.pointOnFirst + origin, cp.pointOnSecond + origin, r.depth});
+        return r;
+    }
+    const bool refOnA = best.kind == SatAxisKind::FaceA;
+    const int rf = refOnA ? best.indexA : best.indexB;
+    if (r.status == SatContactStatus::Separated) {
+        (refOnA ? r.featureA : r.featureB) = {FeatureType::Face, rf};
+        return r;
+    }
+    const PosedBox& R = refOnA ? A : B;
+    const PosedBox& I = refOnA ? B : A;
+    const Vec3 nr = R.faceNormal(rf);
+    int inc = 0;  // the incident face: the most anti-parallel to nr (first of ties, as contactPolyhedra)
+    for (int f = 1; f < 6; ++f)
+        if (I.faceNormal(f).dot(nr) < I.faceNormal(inc).dot(nr)) inc = f;
+    std::array<Vec3, 4> refPoly, incPoly;
+    R.facePolygon(rf, refPoly);
+    I.facePolygon(inc, incPoly);
+    StackArena<2048> arena;
+    detail::clipIncidentFace(refPoly, nr, nr.dot(R.center) + R.h[rf / 2], incPoly, I.corner, refOnA, origin, tol,
+                             options, r, nullptr, arena.resource());
+    r.featureA = {FeatureType::Face, refOnA ? rf : inc};
+    r.featureB = {FeatureType::Face, refOnA ? inc : rf};
+    return r;
+}
+
+BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plane& plane,
+                                const PlaneContactOptions& options) {
+    BoxPlaneContact r;
+    Vec3 n;
+    double d = 0.0;
+    r.message = validExtents(h) ? detail::unitPlane(plane, n, d) : "box half extents must be finite and > 0";
+    if (!*r.message) r.message = detail::poseProblem(pose);
+    if (!*r.message && !std::isfinite(options.tolerance)) r.message = "tolerance is not finite";
+    if (*r.message) {
+        r.signedDistance = NAN;
+        return r;
+    }
+    r.normal = -n;
+    // Signed corner distances from three dot products: s_k = (n̂ · c - d̂) ± hx (n̂ · x̂) ± ...
+    const PosedBox box(h, pose, Vec3::Zero());
+    const double s0 = n.dot(box.center) - d;
+    const Vec3 lever(h.x() * n.dot(box.axis[0]), h.y() * n.dot(box.axis[1]), h.z() * n.dot(box.axis[2]));
+    std::array<double, 8> s;
+    double maxCoord = std::abs(d);
+    for (int k = 0; k < 8; ++k) {
+        s[k] = s0 + ((k & 1) ? lever.x() : -lever.x()) + ((k & 2) ? lever.y() : -lever.y()) +
+               ((k & 4) ? lever.z() : -lever.z());
+        maxCoord = std::max(maxCoord, box.corner[k].cwiseAbs().maxCoeff());
+        if (r.deepestVertex < 0 || s[k] < s[r.deepestVertex]) r.deepestVertex = k;
+    }
+    r.tolerance = options.tolerance >= 0.0 ? options.tolerance
+                                           : options.relativeTolerance * 2.0 * h.norm() + ulps(64, maxCoord);
+    const double tol = r.tolerance;
+    const double sLow = s[r.deepestVertex];
+    r.signedDistance = sLow;
+    r.depth = std::max(0.0, -sLow);
+    r.status = sLow > tol     ? PlaneContactStatus::Separated
+               : sLow >= -tol ? PlaneContactStatus::Touching
+                              : PlaneContactStatus::Penetrating;
+    if (!r.colliding()) return r;
+
+    // Candidates: submerged corners, then the edges crossing the plane (depth 0), as
+    // contactPolyhedronPlane orders them.
+    FixedCapacityVector<ContactPoint, 20> cand;
+    for (int k = 0; k < 8; ++k)
+        if (s[k] <= tol) cand.push_back({box.corner[k], box.corner[k] - s[k] * n, std::max(0.0, -s[k])});
+    for (const auto& edge : kEdgeCorners) {
+        int u = edge[0], v = edge[1];
+        if (s[u] > s[v]) std::swap(u, v);
+        if (!(s[u] < -tol && s[v] > tol)) continue;
+        const double t = s[u] / (s[u] - s[v]);  // both beyond tol: no division by ~0
+        const Vec3 p = box.corner[u] + t * (box.corner[v] - box.corner[u]);
+        cand.push_back({p, p - (n.dot(p) - d) * n, 0.0});
+    }
+    for (int i : reduceContactPolygon(cand, n, options.maxPoints)) r.manifold.push_back(cand[i]);
+    return r;
+}
+
+}  // namespace cdlab

@@ -1,0 +1,127 @@
+#include "core/contact/contact_stages.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/base/tolerances.h"
+
+namespace cdlab::detail {
+
+namespace {
+
+using Polygon = std::pmr::vector<Vec3>;
+
+// Sutherland–Hodgman against one plane (Ericson §8.3.4): keep n · x <= d.
+void clipPolygon(const Polygon& poly, const Vec3& n, double d, Polygon& out) {
+    out.clear();
+    const size_t k = poly.size();
+    for (size_t i = 0; i < k; ++i) {
+        const Vec3& p = poly[i];
+        const Vec3& q = poly[(i + 1) % k];
+        const double sp = n.dot(p) - d, sq = n.dot(q) - d;
+        if (sp <= 0.0) out.push_back(p);
+        if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0)) out.push_back(p + (sp / (sp - sq)) * (q - p));
+    }
+}
+
+// A contact point from a point p of the incident body and its projection onRef on the reference
+// plane, in the A/B convention (pointA belongs to A).
+ContactPoint incidentPoint(const Vec3& p, const Vec3& onRef, double depth, bool referenceOnA, const Vec3& origin) {
+    return referenceOnA ? ContactPoint{onRef + origin, p + origin, depth} : ContactPoint{p + origin, onRef + origin, depth};
+}
+
+}  // namespace
+
+const char* poseProblem(const Transform& pose) {
+    if (!pose.position.allFinite() || !pose.rotation.coeffs().allFinite()) return "pose is not finite";
+    if (std::abs(pose.rotation.squaredNorm() - 1.0) > 1e-6) return "pose rotation is not a unit quaternion";
+    return "";
+}
+
+const char* unitPlane(const Plane& plane, Vec3& n, double& d) {
+    const double m = plane.normal.cwiseAbs().maxCoeff();
+    if (!std::isfinite(m) || !std::isfinite(plane.offset)) return "plane normal or offset is not finite";
+    if (!(m > 0.0)) return "plane normal is zero";
+    const Vec3 s = plane.normal / m;
+    const double len = s.norm();
+    n = s / len;
+    d = (plane.offset / m) / len;
+    return "";
+}
+
+double satTolerance(const SatContactOptions& options, double size, double maxCoord) {
+    return options.tolerance >= 0.0 ? options.tolerance : 1e-9 * size + ulps(64, maxCoord);
+}
+
+SatChosenAxis chooseSatAxis(const SatBestAxes& b, double tol, const SatContactOptions& options) {
+    SatChosenAxis c;
+    const double maxSep = c.maxSep = std::max({b.faceA.separation, b.faceB.separation, b.edge.separation});
+    c.best = b.faceA;
+    c.chosen = b.faceAIndex;
+    if (maxSep > tol) {  // separated: the axis of largest separation, no preference needed
+        if (b.faceB.separation == maxSep) c.best = b.faceB, c.chosen = b.faceBIndex;
+        if (b.edge.separation == maxSep && c.best.separation != maxSep) c.best = b.edge, c.chosen = b.edgeIndex;
+    } else {
+        const double biasAbs = std::max(0.0, options.faceBiasAbsolute);
+        const auto better = [&](const SatAxisRecord& x) {
+            return x.separation >
+                   c.best.separation + options.faceBiasRelative * std::abs(c.best.separation) + biasAbs + tol;
+        };
+        if (b.faceB.indexB >= 0 && better(b.faceB)) c.best = b.faceB, c.chosen = b.faceBIndex;
+        if (b.edge.indexA >= 0 && better(b.edge)) c.best = b.edge, c.chosen = b.edgeIndex;
+    }
+    return c;
+}
+
+void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dRef, std::span<const Vec3> incident,
+                      std::span<const Vec3> incidentVertices, bool referenceOnA, const Vec3& origin, double tol,
+                      const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
+                      std::pmr::memory_resource* memory) {
+    if (trace) {
+        trace->referenceOnA = referenceOnA;
+        for (const Vec3& p : reference) trace->referencePolygon.push_back(p + origin);
+        for (const Vec3& p : incident) trace->incidentPolygon.push_back(p + origin);
+    }
+    // Clipping by k side planes adds at most one point per plane.
+    const size_t capacity = incident.size() + reference.size();
+    Polygon poly(memory), next(memory);
+    poly.reserve(capacity);
+    next.reserve(capacity);
+    poly.assign(incident.begin(), incident.end());
+    // Side planes of the reference face: edge e_i = r_{i+1} - r_i (CCW about nr), outward
+    // normal e_i x nr.
+    for (size_t i = 0; i < reference.size() && !poly.empty(); ++i) {
+        const Vec3 e = reference[(i + 1) % reference.size()] - reference[i];
+        const Vec3 sn = e.cross(nr).normalized();
+        const double sd = sn.dot(reference[i]);
+        clipPolygon(poly, sn, sd, next);
+        if (trace) {
+            SatClipStep step{static_cast<int>(i), sn, sd + sn.dot(origin), {}, {}};
+            for (const Vec3& p : poly) step.before.push_back(p + origin);
+            for (const Vec3& p : next) step.after.push_back(p + origin);
+            trace->clipSteps.push_back(step);
+        }
+        std::swap(poly, next);
+    }
+    // Keep the points behind the reference plane: depth = -(nr · p - d).
+    std::pmr::vector<ContactPoint> pts(memory);
+    pts.reserve(std::max<size_t>(poly.size(), 1));
+    for (const Vec3& p : poly) {
+        const double s = nr.dot(p) - dRef;
+        if (s <= tol) pts.push_back(incidentPoint(p, p - s * nr, std::max(0.0, -s), referenceOnA, origin));
+    }
+    if (pts.empty()) {
+        size_t v = 0;
+        for (size_t i = 1; i < incidentVertices.size(); ++i)
+            if (nr.dot(incidentVertices[i]) < nr.dot(incidentVertices[v])) v = i;
+        const Vec3& p = incidentVertices[v];
+        const double s = nr.dot(p) - dRef;
+        pts.push_back(incidentPoint(p, p - s * nr, std::max(0.0, -s), referenceOnA, origin));
+    }
+    std::vector<ManifoldReductionStep>* steps = trace ? &trace->reduction : nullptr;
+    for (int i : reduceContactPolygon(pts, nr, options.maxPoints, steps)) r.manifold.push_back(pts[i]);
+    if (trace) trace->clipped.assign(pts.begin(), pts.end());
+}
+
+}  // namespace cdlab::detail
