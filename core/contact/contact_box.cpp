@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <memory_resource>
 
-#include "core/base/stack_arena.h"
 #include "core/base/tolerances.h"
 #include "core/closest/closest_point.h"
 #include "core/contact/contact_stages.h"
@@ -122,8 +123,8 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
     SatContactResult r;
     if (!validExtents(ha)) r.message = "A: box half extents must be finite and > 0";
     else if (!validExtents(hb)) r.message = "B: box half extents must be finite and > 0";
-    else if (const std::string m = detail::poseProblem(ta); !m.empty()) r.message = "A: " + m;
-    else if (const std::string m2 = detail::poseProblem(tb); !m2.empty()) r.message = "B: " + m2;
+    else if (const char* m = detail::poseProblem(ta); *m) r.message = std::string("A: ") + m;
+    else if (const char* m2 = detail::poseProblem(tb); *m2) r.message = std::string("B: ") + m2;
     if (!r.message.empty()) {
         r.separation = r.depth = NAN;
         return r;
@@ -170,9 +171,18 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
     std::array<Vec3, 4> refPoly, incPoly;
     R.facePolygon(rf, refPoly);
     I.facePolygon(inc, incPoly);
-    StackArena<2048> arena;
+    // Side planes of the reference face: edge k runs along box axis m (its corners differ in bit
+    // m only), so |e x nr| = |e| = 2 h_m and no square root is needed.
+    std::array<Plane, 4> sides;
+    for (int k = 0; k < 4; ++k) {
+        const int c0 = kFaceCorners[rf][k], c1 = kFaceCorners[rf][(k + 1) % 4];
+        const int m = std::countr_zero(static_cast<unsigned>(c0 ^ c1));
+        const Vec3 sn = (refPoly[(k + 1) % 4] - refPoly[k]).cross(nr) / (2.0 * R.h[m]);
+        sides[k] = Plane{sn, sn.dot(refPoly[k])};
+    }
+    // Quads clip to at most 8 points: the inline buffers of clipIncidentFace, never the resource.
     detail::clipIncidentFace(refPoly, nr, nr.dot(R.center) + R.h[rf / 2], incPoly, I.corner, refOnA, origin, tol,
-                             options, r, nullptr, arena.resource());
+                             options, r, nullptr, std::pmr::null_memory_resource(), sides);
     r.featureA = {FeatureType::Face, refOnA ? rf : inc};
     r.featureB = {FeatureType::Face, refOnA ? inc : rf};
     return r;
@@ -191,15 +201,14 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
         return r;
     }
     r.normal = -n;
-    // Signed corner distances from three dot products: s_k = (n̂ · c - d̂) ± hx (n̂ · x̂) ± ...
+    // Signed corner distances s_k = n̂ · x_k - d̂, from the world corners as the general function
+    // computes them (a form with three dot products, n̂ · c ± hx n̂ · x̂ ± ..., loses ~1e-14 of a
+    // shallow depth to cancellation).
     const PosedBox box(h, pose, Vec3::Zero());
-    const double s0 = n.dot(box.center) - d;
-    const Vec3 lever(h.x() * n.dot(box.axis[0]), h.y() * n.dot(box.axis[1]), h.z() * n.dot(box.axis[2]));
     std::array<double, 8> s;
     double maxCoord = std::abs(d);
     for (int k = 0; k < 8; ++k) {
-        s[k] = s0 + ((k & 1) ? lever.x() : -lever.x()) + ((k & 2) ? lever.y() : -lever.y()) +
-               ((k & 4) ? lever.z() : -lever.z());
+        s[k] = n.dot(box.corner[k]) - d;
         maxCoord = std::max(maxCoord, box.corner[k].cwiseAbs().maxCoeff());
         if (r.deepestVertex < 0 || s[k] < s[r.deepestVertex]) r.deepestVertex = k;
     }

@@ -15,9 +15,9 @@
 // (core/contact/contact_stages.h). Exact depths: the depth is the chosen axis's overlap, with no
 // fudge term (Bullet's btBoxBoxDetector inflates edge–edge depths).
 //
-// Box–plane: the corners' signed distances are n̂ · c - d̂ ± hx (n̂ · x̂) ± hy (n̂ · ŷ) ± hz (n̂ · ẑ),
-// three dot products for all eight; submerged corners, edge crossings and the reduction as
-// contactPolyhedronPlane.
+// Box–plane: the eight corners from the rotation's columns (c ± hx x̂ ± hy ŷ ± hz ẑ), their signed
+// distances, submerged corners, edge crossings and the reduction as contactPolyhedronPlane, in
+// fixed buffers.
 //
 // Corners, edges and faces are numbered as presets::box (core/geometry/polyhedron_presets.h): corner
 // k has bit 0 = +x, bit 1 = +y, bit 2 = +z; faces +x, -x, +y, -y, +z, -z. Features therefore name

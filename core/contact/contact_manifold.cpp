@@ -11,14 +11,15 @@ namespace cdlab {
 
 namespace {
 
-using Indices = std::pmr::vector<int>;
-using Points = std::pmr::vector<Vec3>;
+// The scratch containers are template parameters: FixedCapacityVector for polygons up to
+// kMaxContactPoints points (no allocator at all), std::pmr::vector on a stack arena beyond.
 
 // Points at depth 0 (where an edge crosses the plane or the reference face's side) that lie within
 // the deepest depth, in the plane, of a submerged point are the rim of that corner, on edges leaving
 // it steeper than 45° (a cone of half-angle up to 45° on its apex: its crossings ring the apex). They
 // add no support a solver can use and are dropped before the rules. Touching contacts (every depth
 // 0) keep theirs.
+template <class Points, class Indices>
 void supportingPoints(std::span<const ContactPoint> polygon, const Points& q, Indices& kept) {
     double deepest = 0.0;
     for (const ContactPoint& c : polygon) deepest = std::max(deepest, c.depth);
@@ -27,7 +28,7 @@ void supportingPoints(std::span<const ContactPoint> polygon, const Points& q, In
         bool rim = false;
         if (polygon[i].depth <= surface)
             for (int j = 0; j < static_cast<int>(polygon.size()) && !rim; ++j)
-                rim = polygon[j].depth > surface && (q[i] - q[j]).norm() <= deepest;
+                rim = polygon[j].depth > surface && (q[i] - q[j]).squaredNorm() <= deepest * deepest;
         if (!rim) kept.push_back(i);
     }
 }
@@ -41,6 +42,7 @@ bool clearlyGreater(double score, double best) { return score > best + 1e-9 * st
 
 // Twice the area a point q adds to the convex polygon `hull` (counter-clockwise about the normal):
 // the largest triangle it forms with an edge it lies outside of; 0 inside or on the polygon.
+template <class Points, class Indices>
 double addedArea(const Points& q, const Indices& hull, int i, const Vec3& normal) {
     double best = 0.0;
     for (size_t e = 0; e < hull.size(); ++e) {
@@ -53,6 +55,7 @@ double addedArea(const Points& q, const Indices& hull, int i, const Vec3& normal
 
 // The kept points' convex hull in the plane, counter-clockwise about the normal (Andrew's monotone
 // chain in a plane basis), written to `h` (the kept points as given when fewer than 3 are on it).
+template <class Points, class Indices>
 void planeHull(const Points& q, const ContactIndices& kept, const Vec3& normal, Indices& h) {
     const Vec3 u = normal.unitOrthogonal(), w = normal.cross(u);
     const Vec3& o = q[kept[0]];
@@ -60,18 +63,20 @@ void planeHull(const Points& q, const ContactIndices& kept, const Vec3& normal, 
     ContactIndices points = kept;
     std::sort(points.begin(), points.end(), [&](int a, int b) { return key(a) < key(b); });
     const auto turn = [&](int o, int a, int b) { return (q[a] - q[o]).cross(q[b] - q[o]).dot(normal); };
-    h.assign(2 * points.size(), 0);
-    size_t k = 0;
+    h.clear();
     for (size_t i = 0; i < points.size(); ++i) {
-        while (k >= 2 && turn(h[k - 2], h[k - 1], points[i]) <= 0) --k;
-        h[k++] = points[i];
+        while (h.size() >= 2 && turn(h[h.size() - 2], h.back(), points[i]) <= 0) h.pop_back();
+        h.push_back(points[i]);
     }
-    for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-        while (k >= lower && turn(h[k - 2], h[k - 1], points[i]) <= 0) --k;
-        h[k++] = points[i];
+    for (size_t i = points.size() - 1, lower = h.size() + 1; i-- > 0;) {
+        while (h.size() >= lower && turn(h[h.size() - 2], h.back(), points[i]) <= 0) h.pop_back();
+        h.push_back(points[i]);
     }
-    h.resize(k > 1 ? k - 1 : k);
-    if (h.size() < 3) h.assign(kept.begin(), kept.end());
+    if (h.size() > 1) h.pop_back();  // the last point repeats the first
+    if (h.size() < 3) {
+        h.clear();
+        for (int k : kept) h.push_back(k);
+    }
 }
 
 // The deepest of `indices` first (first of ties), then the others in input order.
@@ -88,24 +93,15 @@ ContactIndices deepestFirst(std::span<const ContactPoint> polygon, const Range& 
     return keep;
 }
 
-}  // namespace
-
-ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
-                                    std::vector<ManifoldReductionStep>* steps) {
+// The rules of the file comment, after the maxPoints <= 0 case; scratch in q, candidates, hull (empty).
+template <class Points, class Candidates, class Hull>
+ContactIndices reduceWith(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
+                          std::vector<ManifoldReductionStep>* steps, Points& q, Candidates& candidates, Hull& hull) {
     const int n = static_cast<int>(polygon.size());
-    if (maxPoints <= 0 && n <= kMaxContactPoints) {  // every point, rim included, the deepest first
-        ContactIndices all;
-        for (int i = 0; i < n; ++i) all.push_back(i);
-        return deepestFirst(polygon, all);
-    }
-    if (maxPoints <= 0 || maxPoints > kMaxContactPoints) maxPoints = kMaxContactPoints;
-    StackArena<4096> arena;
     // Positions projected onto the plane ⟂ normal (pointB lies on B's surface: use it, then drop
     // the normal component so tilted reference surfaces measure in-plane spread only).
-    Points q(n, arena.resource());
-    for (int i = 0; i < n; ++i) q[i] = polygon[i].pointB - normal.dot(polygon[i].pointB - polygon[0].pointB) * normal;
-    Indices candidates(arena.resource());
-    candidates.reserve(n);
+    for (int i = 0; i < n; ++i)
+        q.push_back(polygon[i].pointB - normal.dot(polygon[i].pointB - polygon[0].pointB) * normal);
     supportingPoints(polygon, q, candidates);
     if (maxPoints >= static_cast<int>(candidates.size())) return deepestFirst(polygon, candidates);
 
@@ -145,9 +141,9 @@ ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const
     // 2. farthest from it in the plane.
     const int p0 = keep[0];
     double bestScore = 0.0;
-    best = pick([&](int i) { return (q[i] - q[p0]).norm(); }, bestScore);
+    best = pick([&](int i) { return (q[i] - q[p0]).squaredNorm(); }, bestScore);  // no sqrt per point
     if (best < 0) return keep;  // every point coincides with the deepest one
-    record("farthest", best, bestScore);
+    record("farthest", best, std::sqrt(bestScore));
     if (maxPoints == 2) return keep;
 
     // 3. largest triangle with the first two: |(q1 - q0) x (qi - q0) · normal| (twice the area).
@@ -165,10 +161,9 @@ ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const
     // 5. and on, while maxPoints allows: the same rule on the hull of the points kept so far, so that
     //    asking for more points never returns fewer, and every corner comes back once maxPoints
     //    reaches their count (a corner is outside the hull of the others until it is kept).
-    Indices hull(arena.resource());
-    hull.reserve(2 * kMaxContactPoints);
-    hull.assign({p0, p1, keep[2]});
-    if (bestSigned < 0) std::swap(hull[1], hull[2]);
+    hull.push_back(p0);
+    hull.push_back(bestSigned < 0 ? keep[2] : p1);
+    hull.push_back(bestSigned < 0 ? p1 : keep[2]);
     while (static_cast<int>(keep.size()) < maxPoints) {
         best = pick([&](int i) { return addedArea(q, hull, i, normal); }, bestScore);
         if (best < 0) break;  // every other point inside the hull of the kept ones
@@ -176,6 +171,32 @@ ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const
         if (static_cast<int>(keep.size()) < maxPoints) planeHull(q, keep, normal, hull);  // for the next pick
     }
     return keep;
+}
+
+}  // namespace
+
+ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
+                                    std::vector<ManifoldReductionStep>* steps) {
+    const int n = static_cast<int>(polygon.size());
+    if (maxPoints <= 0 && n <= kMaxContactPoints) {  // every point, rim included, the deepest first
+        ContactIndices all;
+        for (int i = 0; i < n; ++i) all.push_back(i);
+        return deepestFirst(polygon, all);
+    }
+    if (maxPoints <= 0 || maxPoints > kMaxContactPoints) maxPoints = kMaxContactPoints;
+    if (n <= kMaxContactPoints) {
+        FixedCapacityVector<Vec3, kMaxContactPoints> q;
+        FixedCapacityVector<int, kMaxContactPoints> candidates;
+        FixedCapacityVector<int, 2 * kMaxContactPoints + 2> hull;
+        return reduceWith(polygon, normal, maxPoints, steps, q, candidates, hull);
+    }
+    StackArena<4096> arena;
+    std::pmr::vector<Vec3> q(arena.resource());
+    std::pmr::vector<int> candidates(arena.resource()), hull(arena.resource());
+    q.reserve(n);
+    candidates.reserve(n);
+    hull.reserve(2 * kMaxContactPoints + 2);
+    return reduceWith(polygon, normal, maxPoints, steps, q, candidates, hull);
 }
 
 }  // namespace cdlab

@@ -42,21 +42,32 @@ struct Posed {
     std::pmr::vector<Vec3> x;    // vertices
     std::pmr::vector<Vec3> n;    // face normals (unit)
     std::pmr::vector<double> d;  // face offsets: n · x = d
+    // Per edge: its vertices and faces, and the arc of its Gauss map (the two face normals as the
+    // arc test takes them, and their cross product), read |E_A| x |E_B| times by the edge query.
+    struct Edge {
+        int v0, v1, f1, f2;
+        Vec3 from, to, cross;
+    };
+    std::pmr::vector<Edge> edges;
     Vec3 center = Vec3::Zero();  // vertex mean (inside: convex)
 
-    Posed(const ConvexPolyhedron& m, const Transform& t, const Vec3& origin, std::pmr::memory_resource* memory)
-        : mesh(&m), x(memory), n(memory), d(memory) {
+    // sign: +1 for A (arc from n_f1 to n_f2), -1 for B (the negated normals: B's Gauss map is
+    // reflected in A - B).
+    Posed(const ConvexPolyhedron& m, const Transform& t, const Vec3& origin, double sign, std::pmr::memory_resource* memory)
+        : mesh(&m), x(memory), n(memory), d(memory), edges(memory) {
         x.reserve(m.vertexCount());
         n.reserve(m.faceCount());
         d.reserve(m.faceCount());
+        edges.reserve(m.edgeCount());
+        const Mat3 r = t.rotation.toRotationMatrix();
         const Vec3 shift = t.position - origin;  // exact when t.position == origin
         for (const auto& v : m.vertices()) {
-            x.push_back(t.rotation * v.position + shift);
+            x.push_back(r * v.position + shift);
             center += x.back();
         }
         center /= double(x.size());
         for (int f = 0; f < m.faceCount(); ++f) {
-            n.push_back(t.rotation * m.face(f).normal);
+            n.push_back(r * m.face(f).normal);
             // Offset at the face's vertex mean (as the mesh does): rounding averages out.
             Vec3 c = Vec3::Zero();
             int k = 0;
@@ -65,6 +76,12 @@ struct Posed {
                 ++k;
             });
             d.push_back(n.back().dot(c / double(k)));
+        }
+        for (int e = 0; e < m.edgeCount(); ++e) {
+            const auto [v0, v1] = m.edgeVertices(e);
+            const auto [f1, f2] = m.edgeFaces(e);
+            const Vec3 from = sign * n[f1], to = sign * n[f2];
+            edges.push_back({v0, v1, f1, f2, from, to, to.cross(from)});
         }
     }
     // min over vertices of dir · x (the support value in -dir, negated).
@@ -79,11 +96,14 @@ struct Posed {
     }
 };
 
-// Gregorius' arc test (file comment): do the Gauss-map arcs a→b and c→d intersect?
-bool isMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-    const Vec3 bxa = b.cross(a), dxc = d.cross(c);
-    const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
-    return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
+// Gregorius' arc test (file comment): do the Gauss-map arcs a→b (of A's edge, b x a given) and
+// c→d (of B's edge, negated normals, d x c given) intersect?
+bool isMinkowskiFace(const Posed::Edge& ea, const Posed::Edge& eb) {
+    const Vec3 &a = ea.from, &b = ea.to, &bxa = ea.cross, &c = eb.from, &d = eb.to, &dxc = eb.cross;
+    const double cba = c.dot(bxa), dba = d.dot(bxa);
+    if (!(cba * dba < 0.0)) return false;  // the plane of arc a→b does not separate c and d
+    const double adc = a.dot(dxc), bdc = b.dot(dxc);
+    return adc * bdc < 0.0 && cba * bdc > 0.0;
 }
 
 // The best axis of each family and its index in the test order; every axis tested when traced.
@@ -117,18 +137,17 @@ void queryFaceAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyh
 // axis their cross product, oriented away from A.
 void queryEdgeAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
                    SatQuery& q) {
-    for (int ea = 0; ea < ma.edgeCount(); ++ea) {
-        const auto [a0, a1] = ma.edgeVertices(ea);
-        const auto [fa1, fa2] = ma.edgeFaces(ea);
-        const Vec3 da = A.x[a1] - A.x[a0];
-        for (int eb = 0; eb < mb.edgeCount(); ++eb) {
-            const auto [fb1, fb2] = mb.edgeFaces(eb);
-            if (!isMinkowskiFace(A.n[fa1], A.n[fa2], -B.n[fb1], -B.n[fb2])) {
+    (void)ma, (void)mb;
+    for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
+        const Posed::Edge& edgeA = A.edges[ea];
+        const Vec3 da = A.x[edgeA.v1] - A.x[edgeA.v0];
+        for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
+            const Posed::Edge& edgeB = B.edges[eb];
+            if (!isMinkowskiFace(edgeA, edgeB)) {
                 ++q.pruned;
                 continue;
             }
-            const auto [b0, b1] = mb.edgeVertices(eb);
-            const Vec3 db = B.x[b1] - B.x[b0];
+            const Vec3 db = B.x[edgeB.v1] - B.x[edgeB.v0];
             Vec3 axis = da.cross(db);
             // Parallel edges (sin of the angle below 1e-9: the cross product is rounding noise);
             // their separating direction is a face normal, tested in step 1.
@@ -138,8 +157,8 @@ void queryEdgeAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyh
                 continue;
             }
             axis /= len;
-            if (axis.dot(A.x[a0] - A.center) < 0.0) axis = -axis;  // away from A
-            const SatAxisRecord rec{SatAxisKind::EdgeEdge, ea, eb, axis, axis.dot(B.x[b0] - A.x[a0])};
+            if (axis.dot(A.x[edgeA.v0] - A.center) < 0.0) axis = -axis;  // away from A
+            const SatAxisRecord rec{SatAxisKind::EdgeEdge, ea, eb, axis, axis.dot(B.x[edgeB.v0] - A.x[edgeA.v0])};
             if (rec.separation > q.best.edge.separation) q.best.edge = rec, q.best.edgeIndex = q.tested;
             q.count(rec);
         }
@@ -200,9 +219,9 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     }
     if (trace) *trace = SatContactTrace{};
     const Vec3 origin = ta.position;
-    // Scratch for both posed bodies and the clipping: 64-vertex hulls (~124 faces) fit.
-    StackArena<16384> arena;
-    const Posed A(ma, ta, origin, arena.resource()), B(mb, tb, origin, arena.resource());
+    // Scratch for both posed bodies and the clipping: 64-vertex hulls (~124 faces, ~186 edges) fit.
+    StackArena<49152> arena;
+    const Posed A(ma, ta, origin, 1.0, arena.resource()), B(mb, tb, origin, -1.0, arena.resource());
     double maxCoord = 0.0;
     for (const Vec3& p : B.x) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
     maxCoord += origin.cwiseAbs().maxCoeff();

@@ -10,10 +10,10 @@ namespace cdlab::detail {
 
 namespace {
 
-using Polygon = std::pmr::vector<Vec3>;
-
-// Sutherland–Hodgman against one plane (Ericson §8.3.4): keep n · x <= d.
-void clipPolygon(const Polygon& poly, const Vec3& n, double d, Polygon& out) {
+// Sutherland–Hodgman against one plane (Ericson §8.3.4): keep n · x <= d. Buffer: a
+// FixedCapacityVector for small polygons, a std::pmr::vector otherwise.
+template <class Buffer>
+void clipPolygon(const Buffer& poly, const Vec3& n, double d, Buffer& out) {
     out.clear();
     const size_t k = poly.size();
     for (size_t i = 0; i < k; ++i) {
@@ -74,40 +74,47 @@ SatChosenAxis chooseSatAxis(const SatBestAxes& b, double tol, const SatContactOp
     return c;
 }
 
-void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dRef, std::span<const Vec3> incident,
-                      std::span<const Vec3> incidentVertices, bool referenceOnA, const Vec3& origin, double tol,
-                      const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
-                      std::pmr::memory_resource* memory) {
+namespace {
+
+// clipIncidentFace with its polygons in `poly` / `next` and the kept points in `pts` (empty, with
+// room for incident.size() + reference.size() points).
+template <class Polygon, class Points>
+void clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> reference, const Vec3& nr,
+              double dRef, std::span<const Vec3> incident, std::span<const Vec3> incidentVertices, bool referenceOnA,
+              const Vec3& origin, double tol, const SatContactOptions& options, SatContactResult& r,
+              SatContactTrace* trace, std::span<const Plane> sidePlanes) {
     if (trace) {
         trace->referenceOnA = referenceOnA;
         for (const Vec3& p : reference) trace->referencePolygon.push_back(p + origin);
         for (const Vec3& p : incident) trace->incidentPolygon.push_back(p + origin);
     }
-    // Clipping by k side planes adds at most one point per plane.
-    const size_t capacity = incident.size() + reference.size();
-    Polygon poly(memory), next(memory);
-    poly.reserve(capacity);
-    next.reserve(capacity);
-    poly.assign(incident.begin(), incident.end());
+    for (const Vec3& p : incident) poly.push_back(p);
+    Polygon* in = &poly;
+    Polygon* out = &next;
     // Side planes of the reference face: edge e_i = r_{i+1} - r_i (CCW about nr), outward
     // normal e_i x nr.
-    for (size_t i = 0; i < reference.size() && !poly.empty(); ++i) {
-        const Vec3 e = reference[(i + 1) % reference.size()] - reference[i];
-        const Vec3 sn = e.cross(nr).normalized();
-        const double sd = sn.dot(reference[i]);
-        clipPolygon(poly, sn, sd, next);
+    for (size_t i = 0; i < reference.size() && !in->empty(); ++i) {
+        Vec3 sn;
+        double sd;
+        if (sidePlanes.size() == reference.size()) {
+            sn = sidePlanes[i].normal;
+            sd = sidePlanes[i].offset;
+        } else {
+            const Vec3 e = reference[(i + 1) % reference.size()] - reference[i];
+            sn = e.cross(nr).normalized();
+            sd = sn.dot(reference[i]);
+        }
+        clipPolygon(*in, sn, sd, *out);
         if (trace) {
             SatClipStep step{static_cast<int>(i), sn, sd + sn.dot(origin), {}, {}};
-            for (const Vec3& p : poly) step.before.push_back(p + origin);
-            for (const Vec3& p : next) step.after.push_back(p + origin);
+            for (const Vec3& p : *in) step.before.push_back(p + origin);
+            for (const Vec3& p : *out) step.after.push_back(p + origin);
             trace->clipSteps.push_back(step);
         }
-        std::swap(poly, next);
+        std::swap(in, out);
     }
     // Keep the points behind the reference plane: depth = -(nr · p - d).
-    std::pmr::vector<ContactPoint> pts(memory);
-    pts.reserve(std::max<size_t>(poly.size(), 1));
-    for (const Vec3& p : poly) {
+    for (const Vec3& p : *in) {
         const double s = nr.dot(p) - dRef;
         if (s <= tol) pts.push_back(incidentPoint(p, p - s * nr, std::max(0.0, -s), referenceOnA, origin));
     }
@@ -120,8 +127,34 @@ void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dR
         pts.push_back(incidentPoint(p, p - s * nr, std::max(0.0, -s), referenceOnA, origin));
     }
     std::vector<ManifoldReductionStep>* steps = trace ? &trace->reduction : nullptr;
-    for (int i : reduceContactPolygon(pts, nr, options.maxPoints, steps)) r.manifold.push_back(pts[i]);
-    if (trace) trace->clipped.assign(pts.begin(), pts.end());
+    const std::span<const ContactPoint> kept(pts.data(), pts.size());
+    for (int i : reduceContactPolygon(kept, nr, options.maxPoints, steps)) r.manifold.push_back(kept[i]);
+    if (trace) trace->clipped.assign(kept.begin(), kept.end());
+}
+
+}  // namespace
+
+void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dRef, std::span<const Vec3> incident,
+                      std::span<const Vec3> incidentVertices, bool referenceOnA, const Vec3& origin, double tol,
+                      const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
+                      std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes) {
+    // Clipping by k side planes adds at most one point per plane.
+    const size_t capacity = incident.size() + reference.size();
+    constexpr int kInline = 24;  // box faces (8), hull triangles and quads: no allocator at all
+    if (capacity <= size_t(kInline)) {
+        FixedCapacityVector<Vec3, kInline> poly, next;
+        FixedCapacityVector<ContactPoint, kInline> pts;
+        clipWith(poly, next, pts, reference, nr, dRef, incident, incidentVertices, referenceOnA, origin, tol, options,
+                 r, trace, sidePlanes);
+        return;
+    }
+    std::pmr::vector<Vec3> poly(memory), next(memory);
+    std::pmr::vector<ContactPoint> pts(memory);
+    poly.reserve(capacity);
+    next.reserve(capacity);
+    pts.reserve(capacity);
+    clipWith(poly, next, pts, reference, nr, dRef, incident, incidentVertices, referenceOnA, origin, tol, options, r,
+             trace, sidePlanes);
 }
 
 }  // namespace cdlab::detail

@@ -50,9 +50,11 @@ SatChosenAxis chooseSatAxis(const SatBestAxes& best, double tol, const SatContac
 /// clipping leaves nothing (the incident face only grazes the reference prism within rounding),
 /// the incident body's deepest vertex (of incidentVertices) along -nr stands in. Records the
 /// reference / incident polygons, clip steps, clipped points and reduction in the trace.
+/// sidePlanes: the side plane of each reference edge (unit normal e_i x nr / |e_i x nr|, offset
+/// through r_i) when the caller knows them cheaply (a box face); empty: computed here.
 void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dRef, std::span<const Vec3> incident,
                       std::span<const Vec3> incidentVertices, bool referenceOnA, const Vec3& origin, double tol,
                       const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
-                      std::pmr::memory_resource* memory);
+                      std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes = {});
 
 }  // namespace cdlab::detail

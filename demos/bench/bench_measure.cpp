@@ -43,6 +43,7 @@ Row measure(const Settings& settings, std::string query, std::string input, std:
     if (count <= 0) return row;  // empty input set (e.g. no penetrating pair): an empty row
     std::vector<Answer> answers(count);
     std::vector<double> ns;
+    for (int i = 0; i < count; ++i) answers[i] = run(i);  // warm-up pass (caches, predictors, clock): untimed
     for (int r = 0; r < row.reps; ++r) {
         const auto t0 = Clock::now();
         for (int i = 0; i < count; ++i) answers[i] = run(i);

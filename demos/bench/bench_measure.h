@@ -1,8 +1,9 @@
 // The measuring machinery of `cdlab bench` (demos/bench/bench.cpp), public so that other bench
 // sections (V-Clip, contact) and `cdlab stress` produce the same rows from the same inputs.
 //
-// Timing: a configuration runs over its whole input set `reps` times; one repetition gives one
-// time per query (total / count); a Row keeps the median and the min / max over the repetitions.
+// Timing: after one untimed warm-up pass, a configuration runs over its whole input set `reps`
+// times; one repetition gives one time per query (total / count); a Row keeps the median and the
+// min / max over the repetitions.
 // Error: relative, |x - x*| / |x*| on the distance or depth (for touching sets, whose oracle answer
 // is 0, |x| / size); for boolean queries 1 per wrong answer (the mean is the fraction wrong).
 #pragma once
