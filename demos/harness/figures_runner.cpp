@@ -23,10 +23,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <utility>
 
 #include "demos/catalog/catalog.h"
+#include "demos/harness/background_writer.h"
 #include "demos/harness/gallery.h"
 #include "demos/harness/layout_json.h"
 #include "demos/harness/scene_runner.h"
@@ -304,6 +306,7 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
 
     auto t0 = Clock::now();
     int frames = 0, rendered = 0, failed = 0;
+    BackgroundWriter writer(!o.profile);  // declared after the jobs: joined before they go
     const bool tty = isatty(fileno(stderr)) && !std::getenv("CI");
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         const SceneJob& job = jobs[i];
@@ -330,28 +333,38 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
             const double runSeconds = secondsSince(ts);
             requireSelectedFrames(out, o.frames);
 
+            // The PNG encoding and writes go to the writer thread while this one draws the next
+            // scene (when profiling, here and now, so each phase is timed alone).
+            auto done = std::make_shared<DemoOutput>(std::move(out));
             auto tw = Clock::now();
-            writeSceneFolder(job.dir, job.key, sc, out, o.frames);
+            writer.submit([&job, &sc, &o, done] {
+                WriteReport report;
+                try {
+                    writeSceneFolder(job.dir, job.key, sc, *done, o.frames);
+                    for (const Frame& fr : done->frames) report.frames += frameSelected(fr.name, o.frames);
+                    if (o.perFileOutput) report.note = job.file + " -> " + job.dir.string() + "/";
+                } catch (const std::exception& e) {  // write errors, std::bad_alloc, ...
+                    report.error = job.file + ": " + e.what();
+                }
+                return report;
+            });
             const double writeSeconds = secondsSince(tw);
-            ++rendered;
-            for (const Frame& fr : out.frames) frames += frameSelected(fr.name, o.frames);
-            if (o.perFileOutput) std::cerr << (tty ? "\n" : "") << job.file << " -> " << job.dir.string() << "/\n";
 
             if (o.profile) {
                 const double build = stats.buildSeconds - before.buildSeconds,
                              draw = stats.drawSeconds - before.drawSeconds,
                              readback = stats.readbackSeconds - before.readbackSeconds;
-                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames; algorithm " << ms(algorithm)
+                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames; algorithm " << ms(algorithm)
                           << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices "
                           << ms(build) << ", GL " << ms(draw) << "), read-back " << ms(readback)
                           << ", PNG encoding + writes " << ms(writeSeconds);
-                if (!out.skipped.empty()) {
+                if (!done->skipped.empty()) {
                     std::cerr << "; skipped:";
-                    for (const auto& s : out.skipped) std::cerr << " " << s << ";";
+                    for (const auto& s : done->skipped) std::cerr << " " << s << ";";
                 }
                 std::cerr << "\n";
             } else if (o.verbose) {
-                std::cerr << sceneId(sc) << ": " << out.frames.size() << " frames in " << ms(runSeconds + writeSeconds)
+                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames drawn in " << ms(runSeconds)
                           << "\n";
             }
         } catch (const InputError& e) {
@@ -365,6 +378,16 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
             std::cerr << (tty ? "\n" : "") << job.file << ": " << e.what() << "\n";
             ++failed;
         }
+    }
+    for (const WriteReport& report : writer.finish()) {
+        if (!report.error.empty()) {
+            std::cerr << (tty ? "\n" : "") << report.error << "\n";
+            ++failed;
+            continue;
+        }
+        ++rendered;
+        frames += report.frames;
+        if (!report.note.empty()) std::cerr << (tty ? "\n" : "") << report.note << "\n";
     }
     if (tty && !o.verbose && !o.profile) std::cerr << "\n";
     if (o.perFileOutput) {
