@@ -171,6 +171,8 @@ int cdlabMain(int argc, char** argv) {
                     char* end = nullptr;
                     co.tolerance = std::strtod(argv[++i], &end);
                     if (!end || *end || !(co.tolerance > 0)) throw UsageError("--tolerance takes a positive number");
+                } else if (a == "--figures" && i + 1 < argc) {
+                    co.figuresDir = argv[++i];
                 } else throw UsageError("check: unknown argument " + a + " (it reads JSON Lines on stdin)");
             }
             return runCheck(std::cin, std::cout, co);

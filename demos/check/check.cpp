@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 
+#include "demos/check/check_figure.h"
+#include "demos/harness/scene_runner.h"
 #include "demos/query/query.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_shapes.h"
@@ -461,6 +465,9 @@ CheckResult checkLine(const std::string& line, std::size_t lineNumber, const Che
         q.erase("trace");
     }
     const Json theirs = answerQuery(q.dump(), lineNumber);
+    r.query = q;
+    r.yours = mine;
+    r.cdlab = theirs;
     Size size;
     size.add(q);
     const double tol = size.tolerance(relative);
@@ -479,9 +486,33 @@ CheckResult checkLine(const std::string& line, std::size_t lineNumber, const Che
     return r;
 }
 
+namespace {
+
+// --figures: the failing line's figure, or why it has none; the GL context is made on first use.
+std::string figureFor(const CheckResult& r, std::size_t lineNumber, const CheckOptions& options,
+                      std::unique_ptr<render::GlContext>& gl) {
+    if (r.query.is_null()) return "no figure: the line could not be read";
+    try {
+        std::filesystem::create_directories(options.figuresDir);
+        if (!gl) gl = createContext(false);
+        const std::string path =
+            (std::filesystem::path(options.figuresDir) / ("line_" + std::to_string(lineNumber) + ".png")).string();
+        std::string title = "line " + std::to_string(lineNumber);
+        if (!r.id.is_null()) title += " (id " + r.id.dump(-1, ' ', false, Json::error_handler_t::replace) + ")";
+        const std::string why = writeCheckFigure(*gl, r.query, r.cdlab, r.yours, title + ": " + r.query.value("op", ""),
+                                                 r.reasons, path);
+        return why.empty() ? "figure " + path : why;
+    } catch (const std::exception& e) {
+        return std::string("no figure: ") + e.what();
+    }
+}
+
+}  // namespace
+
 int runCheck(std::istream& in, std::ostream& out, const CheckOptions& options) {
     std::string line;
     std::size_t lineNumber = 0, passed = 0, failed = 0;
+    std::unique_ptr<render::GlContext> gl;  // --figures only
     while (std::getline(in, line)) {
         ++lineNumber;
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -494,6 +525,7 @@ int runCheck(std::istream& in, std::ostream& out, const CheckOptions& options) {
         } else {
             out << ": FAIL";
             for (std::size_t i = 0; i < r.reasons.size(); ++i) out << (i ? "; " : ": ") << r.reasons[i];
+            if (!options.figuresDir.empty()) out << " [" << figureFor(r, lineNumber, options, gl) << "]";
             out << "\n";
             ++failed;
         }

@@ -24,12 +24,16 @@ struct CheckOptions {
     /// coordinates' rounding): numbers may differ by tolerance * L. cdlab itself meets 1e-12 L on
     /// distances and 1e-10 L on depths (README "cdlab stress"); 1e-9 leaves your double code room.
     double tolerance = 1e-9;
+    /// Non-empty: each failing line of two convex shapes gets a figure DIR/line_<n>.png
+    /// (demos/check/check_figure.h), named at the end of its verdict line.
+    std::string figuresDir;
 };
 
 struct CheckResult {
     Json id;
     bool pass = false;
     std::vector<std::string> reasons;  ///< why it failed, in plain words (empty when it passed)
+    Json query, yours, cdlab;          ///< the line's query (without answer), the two answers (when read)
 };
 
 /// Checks one line (lineNumber counts from 1 and names the line in errors).

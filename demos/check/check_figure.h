@@ -1,0 +1,21 @@
+// `cdlab check --figures DIR`: a figure for a failing line of two convex bounded shapes (intersect,
+// distance, penetration, contact): world space twice, cdlab's answer on the left and yours on the
+// right (witness points, the normal, contact points), the reasons underneath.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "demos/scene/json_reader.h"
+#include "render/gl_context.h"
+
+namespace cdlab::demos {
+
+/// Writes the figure of one failing line to `path` (PNG, atomic) and returns "", or returns why
+/// there is none (an op or a shape the figure does not draw: it draws polytopes, aabbs, obbs and
+/// spheres). query: the line without "answer"; cdlab / yours: the two answers.
+std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Json& cdlab, const Json& yours,
+                             const std::string& title, const std::vector<std::string>& reasons,
+                             const std::string& path);
+
+}  // namespace cdlab::demos

@@ -1,0 +1,55 @@
+// `cdlab check --figures DIR` (demos/check/check_figure.h): a failing line of two convex shapes gets
+// DIR/line_<n>.png with cdlab's answer and yours side by side, named on its verdict line; a passing
+// line gets none; a line whose shapes the figure does not draw says so and writes nothing.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "demos/check/check.h"
+#include "render/image.h"
+
+using namespace cdlab;
+using namespace cdlab::demos;
+
+TEST_CASE("check --figures: one figure per failing line, cdlab's answer beside yours") {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_figures_test";
+    std::filesystem::remove_all(dir);
+    std::istringstream in(
+        R"({"op":"distance","a":{"obb":{"center":[0,0,0],"half_extents":[1,0.5,0.5]}},"b":{"polytope":{"vertices":[[2.5,0,0],[3.5,0.3,0],[3,1,0.2],[3,0.4,1]]}},"answer":{"intersect":false,"distance":1.2,"point_a":[1.2,0,0],"point_b":[2.5,0,0]}})"
+        "\n"
+        R"({"op":"intersect","a":{"sphere":{"center":[0,0,0],"radius":1}},"b":{"sphere":{"center":[3,0,0],"radius":1}},"answer":{"intersect":false}})"
+        "\n"
+        R"({"op":"distance","a":{"capsule":{"a":[0,0,0],"b":[1,0,0],"radius":0.2}},"b":{"sphere":{"center":[3,0,0],"radius":1}},"answer":{"intersect":false,"distance":5,"point_a":[1.2,0,0],"point_b":[2,0,0]}})"
+        "\n");
+    std::ostringstream out;
+    CheckOptions options;
+    options.figuresDir = dir.string();
+    CHECK(runCheck(in, out, options) == 1);
+    std::istringstream lines(out.str());
+    std::string l1, l2, l3;
+    std::getline(lines, l1);
+    std::getline(lines, l2);
+    std::getline(lines, l3);
+    const std::string figure = (dir / "line_1.png").string();
+    CHECK(l1.find("FAIL: distance off by") != std::string::npos);
+    CHECK(l1.find("[figure " + figure + "]") != std::string::npos);
+    CHECK(l2 == "line 2: pass");
+    CHECK(l3.find("[no figure: it draws polytopes, aabbs, obbs and spheres]") != std::string::npos);
+    CHECK(!std::filesystem::exists(dir / "line_2.png"));
+    CHECK(!std::filesystem::exists(dir / "line_3.png"));
+
+    const render::Image image = render::readPng(figure);
+    REQUIRE(image.width == 1280);
+    REQUIRE(image.height == 640);
+    // The two panels draw the same bodies with different witness points: below the headings
+    // (y >= 120) and above the caption (y < 560) the halves differ.
+    long differing = 0;
+    for (int y = 120; y < 560; ++y)
+        for (int x = 0; x < image.width / 2; ++x)
+            for (int c = 0; c < 3; ++c)
+                differing += image.rgba[(std::size_t(y) * image.width + x) * 4 + c] !=
+                             image.rgba[(std::size_t(y) * image.width + x + image.width / 2) * 4 + c];
+    CHECK(differing > 100);
+    std::filesystem::remove_all(dir);
+}
