@@ -377,7 +377,8 @@ std::optional<double> originDistance(const std::vector<Vec3>& pts) {
 // divergences): the support point is extreme along your direction (h_{A−B}(d)); the simplex kept
 // holds the point of the simplex nearest the origin; the next direction points from that point
 // toward the origin. The first step that breaks one is reported.
-void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons) {
+void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
+                   int& divergence) {
     const Json* steps = trace.is_object() && trace.contains("steps") ? &trace["steps"] : trace.is_array() ? &trace : nullptr;
     if (!steps || !steps->is_array()) return reasons.push_back("trace: expected {\"steps\": [...]} (docs/check.md)");
     std::vector<Vec3> kept;
@@ -385,6 +386,7 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector
     for (std::size_t k = 0; k < steps->size(); ++k) {
         const Json& s = (*steps)[k];
         const std::string at = "trace: iteration " + std::to_string(k) + ": ";
+        divergence = static_cast<int>(k);  // where a failure returns below
         if (!s.is_object() || !s.contains("direction") || !isVec(s["direction"]) || !s.contains("support") ||
             !(isVec(s["support"]) || (s["support"].is_object() && s["support"].contains("a"))))
             return reasons.push_back(at + "expected \"direction\" [x,y,z] and \"support\" (a point of A − B, or {\"a\", \"b\"})");
@@ -430,6 +432,7 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector
             closest = a.value("intersect", true) ? Vec3::Zero() : vec(a["point_b"]);
         }
     }
+    divergence = -1;  // every step follows the rules
 }
 
 }  // namespace
@@ -477,7 +480,8 @@ CheckResult checkLine(const std::string& line, std::size_t lineNumber, const Che
         c.run(op);
         r.reasons = c.reasons;
         if (trace && r.reasons.empty() && (op == "intersect" || op == "distance" || op == "penetration"))
-            checkGjkTrace(q, *trace, tol, r.reasons);
+            checkGjkTrace(q, *trace, tol, r.reasons, r.traceDivergence);
+        if (trace) r.trace = *trace;
     } catch (const std::exception& e) {  // a key of yours with another type than cdlab's answer has
         r.reasons.push_back(std::string("your answer or trace could not be read (a key of the wrong type?): ") +
                             e.what());
@@ -499,8 +503,14 @@ std::string figureFor(const CheckResult& r, std::size_t lineNumber, const CheckO
             (std::filesystem::path(options.figuresDir) / ("line_" + std::to_string(lineNumber) + ".png")).string();
         std::string title = "line " + std::to_string(lineNumber);
         if (!r.id.is_null()) title += " (id " + r.id.dump(-1, ' ', false, Json::error_handler_t::replace) + ")";
-        const std::string why = writeCheckFigure(*gl, r.query, r.cdlab, r.yours, title + ": " + r.query.value("op", ""),
-                                                 r.reasons, path);
+        const std::string why =
+            r.traceDivergence >= 0
+                ? writeTraceStepFigure(*gl, r.query, r.trace, r.traceDivergence,
+                                       title + ": " + r.query.value("op", "") + ", GJK iteration " +
+                                           std::to_string(r.traceDivergence),
+                                       r.reasons, path)
+                : writeCheckFigure(*gl, r.query, r.cdlab, r.yours, title + ": " + r.query.value("op", ""), r.reasons,
+                                   path);
         return why.empty() ? "figure " + path : why;
     } catch (const std::exception& e) {
         return std::string("no figure: ") + e.what();

@@ -34,6 +34,8 @@ struct CheckResult {
     bool pass = false;
     std::vector<std::string> reasons;  ///< why it failed, in plain words (empty when it passed)
     Json query, yours, cdlab;          ///< the line's query (without answer), the two answers (when read)
+    Json trace;                        ///< your trace (null when none)
+    int traceDivergence = -1;          ///< the index of the first step of your trace that breaks a rule
 };
 
 /// Checks one line (lineNumber counts from 1 and names the line in errors).

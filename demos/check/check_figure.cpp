@@ -6,6 +6,7 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
+#include "demos/query/query.h"
 #include "demos/query/query_shapes.h"
 #include "render/canvas.h"
 #include "render/image.h"
@@ -98,7 +99,127 @@ std::string summary(const Json& answer) {
     return s.empty() ? answer.dump().substr(0, 60) : s;
 }
 
+// One GJK step as drawn: the simplex kept, the support point, the search direction.
+struct StepPicture {
+    std::vector<Vec3> simplex;
+    Vec3 support = Vec3::Zero(), direction = Vec3::Zero();
+};
+
+// Step `k` of a trace ({"steps": [...]} or the array; support a point of A − B or {"a", "b"}), or
+// nothing when it is missing or malformed.
+std::optional<StepPicture> stepOf(const Json& trace, int k) {
+    const Json* steps = trace.is_object() && trace.contains("steps") ? &trace["steps"] : trace.is_array() ? &trace : nullptr;
+    if (!steps || !steps->is_array() || k < 0 || k >= static_cast<int>(steps->size())) return std::nullopt;
+    const Json& s = (*steps)[std::size_t(k)];
+    if (!s.is_object() || !isVec(s.value("direction", Json()))) return std::nullopt;
+    StepPicture p;
+    p.direction = vec(s["direction"]);
+    const Json support = s.value("support", Json());
+    if (isVec(support)) p.support = vec(support);
+    else if (support.is_object() && isVec(support.value("a", Json())) && isVec(support.value("b", Json())))
+        p.support = vec(support["a"]) - vec(support["b"]);
+    else return std::nullopt;
+    if (s.contains("simplex") && s["simplex"].is_array())
+        for (const Json& v : s["simplex"])
+            if (isVec(v)) p.simplex.push_back(vec(v));
+    return p;
+}
+
+// Configuration space at one step: A − B, the origin, the simplex (w0.., edges), the support point
+// w and the direction d from the origin.
+void drawStep(Canvas& cs, const PairDrawing& d, const StepPicture& s) {
+    if (d.c.valid)
+        drawBody(cs, d.c, roleColor(Role::Minkowski), 0.18f, roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
+    drawOrigin(cs, 0.06 * d.cRadius, false);
+    const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+    Vec3 mid = Vec3::Zero();
+    for (const Vec3& p : s.simplex) mid += p / double(s.simplex.size());
+    for (std::size_t i = 0; i < s.simplex.size(); ++i)
+        for (std::size_t j = i + 1; j < s.simplex.size(); ++j)
+            cs.drawLine(s.simplex[i], s.simplex[j], lineStyle(Role::Simplex, 3.0f, false, true));
+    // The support point w: its own marker, or the name of the simplex point it became.
+    bool supportKept = false;
+    for (std::size_t i = 0; i < s.simplex.size(); ++i) {
+        const bool isSupport = (s.simplex[i] - s.support).norm() <= 1e-12 * d.cRadius;
+        supportKept = supportKept || isSupport;
+        cs.drawPoint(s.simplex[i], 7.0f, roleColor(isSupport ? Role::Support : Role::Simplex), true, 1.5f,
+                     roleColor(Role::Ink));
+        drawLabelAway(cs, s.simplex[i], s.simplex.size() > 1 ? mid : Vec3::Zero(),
+                      "w" + std::to_string(i) + (isSupport ? " = w" : ""), ts);
+    }
+    if (!supportKept) {
+        cs.drawPoint(s.support, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+        drawLabelAway(cs, s.support, mid, "w", ts);
+    }
+    if (s.direction.norm() > 0) {
+        const Vec3 tip = 0.45 * d.cRadius * s.direction.normalized();
+        cs.drawArrow(Vec3::Zero(), tip, lineStyle(Role::Direction, 3.0f, false, true));
+        drawLabelAway(cs, tip, Vec3::Zero(), "d", ts, 10.0);
+    }
+}
+
 }  // namespace
+
+std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& yourTrace, int step,
+                                 const std::string& title, const std::vector<std::string>& reasons,
+                                 const std::string& path) {
+    if (!query.contains("a") || !query.contains("b")) return "no figure: the query has no shapes a and b";
+    const std::optional<SceneShape> a = drawableShape(query["a"], "$.a"), b = drawableShape(query["b"], "$.b");
+    if (!a || !b || a->kind != SceneShape::Kind::Polytope || b->kind != SceneShape::Kind::Polytope)
+        return "no figure: trace steps are drawn for polytopes, aabbs and obbs";
+    const std::optional<StepPicture> mine = stepOf(yourTrace, step);
+    if (!mine) return "no figure: your step " + std::to_string(step) + " could not be read";
+    Json q = query;
+    q["trace"] = true;
+    const Json answer = answerQuery(q.dump());
+    // cdlab's trace starts at its first iteration, with the first support (along the initial
+    // direction) already in the simplex. A trace of yours whose step 0 keeps one point lists
+    // that first support as a step of its own: cdlab's then gets one too, so step k is step k.
+    std::optional<StepPicture> theirs;
+    if (answer.contains("trace") && answer["trace"].contains("algorithms"))
+        for (const Json& alg : answer["trace"]["algorithms"]) {
+            if (alg.value("algorithm", "") != "gjk" || !alg.contains("steps") || alg["steps"].empty()) continue;
+            Json steps = alg["steps"];
+            const std::optional<StepPicture> first = stepOf(yourTrace, 0);
+            const Json& start = steps[0].value("simplex", Json::array());
+            if (first && first->simplex.size() == 1 && !start.empty() && isVec(start[0])) {
+                const Json d = isVec(query.value("initial_direction", Json())) ? query["initial_direction"] : start[0];
+                steps.insert(steps.begin(), Json{{"direction", d}, {"support", start[0]}, {"simplex", {start[0]}}});
+            }
+            theirs = stepOf(Json{{"steps", steps}}, step);
+        }
+    PairScene pair;
+    pair.a = *a;
+    pair.b = *b;
+    std::vector<Vec3> frame = mine->simplex;
+    frame.push_back(mine->support);
+    if (theirs) {
+        frame.insert(frame.end(), theirs->simplex.begin(), theirs->simplex.end());
+        frame.push_back(theirs->support);
+    }
+    std::vector<std::string> skipped;
+    const PairDrawing d = makePairDrawing(pair, true, frame, skipped);
+    std::vector<std::string> lines;
+    for (const std::string& r : reasons) {
+        if (lines.size() == 2) break;
+        lines.push_back(r.size() > 110 ? r.substr(0, 107) + "..." : r);
+    }
+    const TwoPanelLayout layout = twoPanelLayout(1280, 640, "");
+    const render::CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), 1);
+    const auto panel = [&](const std::optional<StepPicture>& s, const std::string& heading) {
+        Canvas cs(gl, po, panelCamera(false, d.cCenter, d.cRadius, pair.view, layout));
+        if (s) drawStep(cs, d, *s);
+        drawPanelHeading(cs, heading,
+                         s ? std::to_string(s->simplex.size()) + (s->simplex.size() == 1 ? " point" : " points") +
+                                 " kept after the support w along d"
+                           : "cdlab's GJK stopped before this step");
+        return cs.readPixels();
+    };
+    const std::string k = std::to_string(step);
+    const render::Image left = panel(theirs, "cdlab's step " + k), right = panel(mine, "your step " + k);
+    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, lines));
+    return "";
+}
 
 std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Json& cdlab, const Json& yours,
                              const std::string& title, const std::vector<std::string>& reasons,

@@ -18,4 +18,12 @@ std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Jso
                              const std::string& title, const std::vector<std::string>& reasons,
                              const std::string& path);
 
+/// For a GJK trace of yours whose step `step` (0-based) breaks a rule: configuration space twice,
+/// A − B and the origin with cdlab's step beside yours (simplex kept, support point, search
+/// direction). Polytope, aabb and obb shapes only (cdlab's GJK runs on a sphere's centre). Returns ""
+/// when written, else why there is no figure.
+std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& yourTrace, int step,
+                                 const std::string& title, const std::vector<std::string>& reasons,
+                                 const std::string& path);
+
 }  // namespace cdlab::demos

@@ -1,12 +1,14 @@
 // `cdlab check --figures DIR` (demos/check/check_figure.h): a failing line of two convex shapes gets
 // DIR/line_<n>.png with cdlab's answer and yours side by side, named on its verdict line; a passing
-// line gets none; a line whose shapes the figure does not draw says so and writes nothing.
+// line gets none; a line whose shapes the figure does not draw says so and writes nothing; a trace
+// that breaks a rule at step k gets the configuration space at step k, cdlab's beside yours.
 #include <doctest/doctest.h>
 
 #include <filesystem>
 #include <sstream>
 
 #include "demos/check/check.h"
+#include "demos/query/query.h"
 #include "render/image.h"
 
 using namespace cdlab;
@@ -51,5 +53,47 @@ TEST_CASE("check --figures: one figure per failing line, cdlab's answer beside y
                 differing += image.rgba[(std::size_t(y) * image.width + x) * 4 + c] !=
                              image.rgba[(std::size_t(y) * image.width + x + image.width / 2) * 4 + c];
     CHECK(differing > 100);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("check --figures: a trace that breaks a rule at step k gets cdlab's step k beside yours") {
+    // Your trace: cdlab's own run written in the check schema (a first step keeping the first
+    // support alone), then step 2 planted to keep only its point farthest from the origin.
+    const Json query = Json::parse(
+        R"({"op":"distance","a":{"obb":{"center":[0,0,0],"half_extents":[1,0.5,0.5],"rotation":[0.92,0,0.38,0]}},)"
+        R"("b":{"polytope":{"vertices":[[2.5,0,0],[3.5,0.3,0],[3,1,0.2],[3,0.4,1]]}},"initial_direction":[-1,0.2,0.1]})");
+    Json traced = query;
+    traced["trace"] = true;
+    const Json answer = answerQuery(traced.dump());
+    const Json& cdlabSteps = answer["trace"]["algorithms"][0]["steps"];
+    REQUIRE(cdlabSteps.size() >= 2);
+    const Json first = cdlabSteps[0]["simplex"][0];
+    Json steps = Json::array({{{"direction", query["initial_direction"]}, {"support", first}, {"simplex", {first}}}});
+    for (const Json& s : cdlabSteps)
+        steps.push_back({{"direction", s["direction"]},
+                         {"support", {{"a", s["support_a"]}, {"b", s["support_b"]}}},
+                         {"simplex", s["simplex"]}});
+    Json farthest = steps[2]["simplex"][0];
+    for (const Json& p : steps[2]["simplex"])
+        if (Vec3(p[0], p[1], p[2]).norm() > Vec3(farthest[0], farthest[1], farthest[2]).norm()) farthest = p;
+    steps[2]["simplex"] = Json::array({farthest});
+    Json line = query;
+    line["answer"] = {{"intersect", answer["intersect"]},
+                      {"distance", answer["distance"]},
+                      {"point_a", answer["point_a"]},
+                      {"point_b", answer["point_b"]}};
+    line["trace"] = {{"algorithm", "gjk"}, {"steps", steps}};
+
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_trace_figure_test";
+    std::filesystem::remove_all(dir);
+    std::istringstream in(line.dump() + "\n");
+    std::ostringstream out;
+    CheckOptions options;
+    options.figuresDir = dir.string();
+    CHECK(runCheck(in, out, options) == 1);
+    CHECK(out.str().find("FAIL: trace: iteration 2: wrong sub-simplex kept") != std::string::npos);
+    CHECK(out.str().find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
+    const render::Image image = render::readPng((dir / "line_1.png").string());
+    CHECK(image.width == 1280);
     std::filesystem::remove_all(dir);
 }
