@@ -10,6 +10,8 @@
 #include <optional>
 
 #include "demos/check/check_figure.h"
+#include "demos/check/check_values.h"
+#include "demos/check/trace_check.h"
 #include "demos/harness/scene_runner.h"
 #include "demos/query/query.h"
 #include "demos/query/query_json.h"
@@ -20,94 +22,6 @@ namespace cdlab::demos {
 namespace {
 
 constexpr double kUnitNormal = 1e-6;  // |n| may differ from 1 by this (a normalised double is ~1e-16 off)
-
-// A difference or a tolerance: three digits say enough.
-std::string num(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", x);
-    return buf;
-}
-
-// A value: enough digits to show where two answers part.
-std::string value(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.12g", x);
-    return buf;
-}
-
-bool isVec(const Json& j) {
-    return j.is_array() && j.size() == 3 && std::all_of(j.begin(), j.end(), [](const Json& x) { return x.is_number(); });
-}
-
-Vec3 vec(const Json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
-
-// The size of the problem: the extent of every point of the query's shapes (radii count twice),
-// and their largest coordinate (whose rounding no answer can beat).
-struct Size {
-    Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-    double radius = 0, largest = 0;
-    void add(const Json& j, const std::string& key = "") {
-        if (isVec(j)) {
-            const Vec3 p = vec(j);
-            lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-            largest = std::max(largest, p.cwiseAbs().maxCoeff());
-        } else if (j.is_object()) {
-            for (auto it = j.begin(); it != j.end(); ++it)
-                if (it.key() != "answer" && it.key() != "trace") add(it.value(), it.key());
-        } else if (j.is_array()) {
-            for (const Json& x : j) add(x);
-        } else if (j.is_number() && key == "radius") {
-            radius = std::max(radius, std::abs(j.get<double>()));
-        }
-    }
-    double tolerance(double relative) const {
-        const double extent = lo.allFinite() && hi.allFinite() ? (hi - lo).maxCoeff() : 0.0;
-        const double L = std::max(extent + 2 * radius, std::numeric_limits<double>::min());
-        return relative * L + 16 * std::numeric_limits<double>::epsilon() * largest;
-    }
-};
-
-// Support value h_S(n) = max over S of x·n for the query's shapes (a compound: its pieces; a mesh:
-// its vertices); nothing for unbounded shapes or what cannot be read.
-std::optional<double> support(const Json& shape, const Vec3& n) {
-    try {
-        if (shape.is_object() && shape.size() == 1 && shape.contains("compound")) {
-            std::optional<double> best;
-            for (const Json& piece : shape["compound"]) {
-                const std::optional<double> h = support(piece, n);
-                if (!h) return std::nullopt;
-                best = best ? std::max(*best, *h) : *h;
-            }
-            return best;
-        }
-        if (shape.is_object() && shape.size() == 1 && shape.contains("mesh")) {
-            const Json& m = shape["mesh"];
-            Transform pose;
-            if (m.contains("position")) pose.position = vec(m["position"]);
-            if (m.contains("rotation")) {
-                const Json& q = m["rotation"];
-                pose.rotation = Quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>()).normalized();
-            }
-            double best = -INFINITY;
-            for (const Json& v : m["vertices"]) best = std::max(best, pose.apply(vec(v)).dot(n));
-            return best;
-        }
-        const QueryShape s = parseQueryShape(JsonNode(shape, "$", "check"));
-        if (!s.bounded()) return std::nullopt;
-        double best = -INFINITY;
-        for (const Vec3& v : s.vertices) best = std::max(best, v.dot(n));
-        return best + s.radius * n.norm();
-    } catch (const std::exception&) {
-        return std::nullopt;
-    }
-}
-
-// Distance from a point to a query shape, by cdlab's own distance op (0 inside).
-std::optional<double> distanceTo(const Vec3& p, const Json& shape) {
-    const Json a = answerQuery(Json{{"op", "distance"}, {"a", {{"point", vecJson(p)}}}, {"b", shape}}.dump());
-    if (a.contains("error") || !a.contains("distance")) return std::nullopt;
-    return a["distance"].get<double>();
-}
 
 class Checker {
 public:
@@ -359,82 +273,6 @@ private:
     }
 };
 
-// Distance from the origin to the convex hull of up to four points (cdlab's distance op).
-std::optional<double> originDistance(const std::vector<Vec3>& pts) {
-    Json shape;
-    if (pts.size() == 1) shape = {{"point", vecJson(pts[0])}};
-    else if (pts.size() == 2) shape = {{"segment", {vecJson(pts[0]), vecJson(pts[1])}}};
-    else if (pts.size() == 3) shape = {{"triangle", {vecJson(pts[0]), vecJson(pts[1]), vecJson(pts[2])}}};
-    else {
-        Json v = Json::array();
-        for (const Vec3& p : pts) v.push_back(vecJson(p));
-        shape = {{"polytope", {{"vertices", v}}}};
-    }
-    return distanceTo(Vec3::Zero(), shape);
-}
-
-// Your GJK trace, step by step, against the rule every step must follow (so ties are not
-// divergences): the support point is extreme along your direction (h_{A−B}(d)); the simplex kept
-// holds the point of the simplex nearest the origin; the next direction points from that point
-// toward the origin. The first step that breaks one is reported.
-void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
-                   int& divergence) {
-    const Json* steps = trace.is_object() && trace.contains("steps") ? &trace["steps"] : trace.is_array() ? &trace : nullptr;
-    if (!steps || !steps->is_array()) return reasons.push_back("trace: expected {\"steps\": [...]} (docs/check.md)");
-    std::vector<Vec3> kept;
-    std::optional<Vec3> closest;
-    for (std::size_t k = 0; k < steps->size(); ++k) {
-        const Json& s = (*steps)[k];
-        const std::string at = "trace: iteration " + std::to_string(k) + ": ";
-        divergence = static_cast<int>(k);  // where a failure returns below
-        if (!s.is_object() || !s.contains("direction") || !isVec(s["direction"]) || !s.contains("support") ||
-            !(isVec(s["support"]) || (s["support"].is_object() && s["support"].contains("a"))))
-            return reasons.push_back(at + "expected \"direction\" [x,y,z] and \"support\" (a point of A − B, or {\"a\", \"b\"})");
-        const Vec3 d = vec(s["direction"]);
-        const Vec3 w = isVec(s["support"]) ? vec(s["support"]) : Vec3(vec(s["support"]["a"]) - vec(s["support"]["b"]));
-        if (closest && closest->norm() > tol) {
-            const Vec3 toward = -closest->normalized();
-            if (d.norm() == 0 || (d.normalized() - toward).norm() > 1e-6)
-                return reasons.push_back(at + "the search direction does not point from the simplex's closest point " +
-                                         "toward the origin");
-        }
-        const std::optional<double> ha = support(query["a"], d), hb = support(query["b"], -d);
-        if (ha && hb && !(w.dot(d) >= *ha + *hb - tol * std::max(d.norm(), 1.0)))
-            return reasons.push_back(at + "different support point for the same direction: yours reaches " + value(w.dot(d)) +
-                                     " along it, A − B reaches " + value(*ha + *hb));
-        std::vector<Vec3> all = kept;
-        all.push_back(w);
-        if (!s.contains("simplex")) {
-            kept = all;
-            continue;
-        }
-        std::vector<Vec3> next;
-        for (const Json& p : s["simplex"]) {
-            if (!isVec(p)) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
-            next.push_back(vec(p));
-            if (std::none_of(all.begin(), all.end(), [&](const Vec3& y) { return (y - next.back()).norm() <= tol; }))
-                return reasons.push_back(at + "the simplex keeps a point that was not in it");
-        }
-        if (next.empty() || next.size() > 4) return reasons.push_back(at + "the simplex kept has 1 to 4 points");
-        const std::optional<double> best = originDistance(all.size() <= 4 ? all : next), mineD = originDistance(next);
-        if (best && mineD && !(*mineD <= *best + tol))
-            return reasons.push_back(at + "wrong sub-simplex kept: its nearest point is " + num(*mineD) +
-                                     " from the origin, the simplex's is " + num(*best));
-        kept = next;
-        // The closest point of the kept simplex, for the next direction: by the distance op's witness.
-        Json shape;
-        if (next.size() == 1) closest = next[0];
-        else {
-            Json v = Json::array();
-            for (const Vec3& p : next) v.push_back(vecJson(p));
-            shape = next.size() == 2 ? Json{{"segment", v}} : next.size() == 3 ? Json{{"triangle", v}} : Json{{"polytope", {{"vertices", v}}}};
-            const Json a = answerQuery(Json{{"op", "distance"}, {"a", {{"point", {0, 0, 0}}}}, {"b", shape}}.dump());
-            closest = a.value("intersect", true) ? Vec3::Zero() : vec(a["point_b"]);
-        }
-    }
-    divergence = -1;  // every step follows the rules
-}
-
 }  // namespace
 
 CheckResult checkLine(const std::string& line, std::size_t lineNumber, const CheckOptions& options) {
@@ -479,8 +317,7 @@ CheckResult checkLine(const std::string& line, std::size_t lineNumber, const Che
         Checker c(q, mine, theirs, tol);
         c.run(op);
         r.reasons = c.reasons;
-        if (trace && r.reasons.empty() && (op == "intersect" || op == "distance" || op == "penetration"))
-            checkGjkTrace(q, *trace, tol, r.reasons, r.traceDivergence);
+        if (trace && r.reasons.empty()) checkTrace(op, q, *trace, tol, r.reasons, r.traceDivergence, r.traceAlgorithm);
         if (trace) r.trace = *trace;
     } catch (const std::exception& e) {  // a key of yours with another type than cdlab's answer has
         r.reasons.push_back(std::string("your answer or trace could not be read (a key of the wrong type?): ") +
@@ -504,7 +341,7 @@ std::string figureFor(const CheckResult& r, std::size_t lineNumber, const CheckO
         std::string title = "line " + std::to_string(lineNumber);
         if (!r.id.is_null()) title += " (id " + r.id.dump(-1, ' ', false, Json::error_handler_t::replace) + ")";
         const std::string why =
-            r.traceDivergence >= 0
+            r.traceDivergence >= 0 && r.traceAlgorithm == "gjk"
                 ? writeTraceStepFigure(*gl, r.query, r.trace, r.traceDivergence,
                                        title + ": " + r.query.value("op", "") + ", GJK iteration " +
                                            std::to_string(r.traceDivergence),

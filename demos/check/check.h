@@ -36,6 +36,7 @@ struct CheckResult {
     Json query, yours, cdlab;          ///< the line's query (without answer), the two answers (when read)
     Json trace;                        ///< your trace (null when none)
     int traceDivergence = -1;          ///< the index of the first step of your trace that breaks a rule
+    std::string traceAlgorithm;        ///< the algorithm of that trace ("gjk", "epa", "ericson_regions")
 };
 
 /// Checks one line (lineNumber counts from 1 and names the line in errors).

@@ -4,6 +4,7 @@
 // trace divergence is reported at its iteration.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -126,4 +127,78 @@ TEST_CASE("check: the summary line and the exit status") {
     CHECK(text.find("line 3 (id 1): FAIL: verdict differs") != std::string::npos);
     CHECK(text.find("line 4: FAIL") != std::string::npos);
     CHECK(text.find("1 passed, 2 failed\n") != std::string::npos);
+}
+
+// EPA on two cubes overlapping by 0.25 along x: A − B = [-1.75, 0.25] x [-1, 1] x [-1, 1], depth 0.25.
+TEST_CASE("check: an EPA trace: each step's support is extreme, the closest face never nearer, never beyond the depth") {
+    const Json a = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
+    const Json b = {{"aabb", {{"min", {0.75, 0, 0}}, {"max", {1.75, 1, 1}}}}};
+    const Json answer = {{"intersect", true}, {"depth", 0.25}, {"normal", {1, 0, 0}}, {"point_a", {1, 0.5, 0.5}},
+                         {"point_b", {0.75, 0.5, 0.5}}};
+    const auto line = [&](const Json& steps) {
+        return Json{{"op", "penetration"}, {"a", a}, {"b", b}, {"answer", answer},
+                    {"trace", {{"algorithm", "epa"}, {"steps", steps}}}};
+    };
+    const double s = 1 / std::sqrt(3.0);
+    // A face with normal (1,1,1)/√3 at distance 0.1, then the face x = 0.25 (the depth): the
+    // supports are extreme ((0.25, 1, 1) along the diagonal; any point of the face along +x).
+    Json steps = {{{"normal", {s, s, s}}, {"distance", 0.1}, {"support", {0.25, 1, 1}}},
+                  {{"normal", {1, 0, 0}}, {"distance", 0.25}, {"support", {0.25, -0.3, 0.7}}}};
+    CHECK(check(line(steps)).pass);
+    Json wrongSupport = steps;
+    wrongSupport[1]["support"] = {0.2, 0, 0};
+    CheckResult r = check(line(wrongSupport));
+    CHECK(reasons(r).find("iteration 1: different support point") != std::string::npos);
+    CHECK(r.traceDivergence == 1);
+    Json beyond = steps;
+    beyond[1]["distance"] = 0.3;
+    CHECK(reasons(check(line(beyond))).find("iteration 1: the face is 0.3 from the origin, beyond the depth") !=
+          std::string::npos);
+    Json nearer = steps;
+    nearer[0]["distance"] = 0.2;
+    nearer[1]["distance"] = 0.15;
+    nearer[1]["normal"] = {s, s, s};
+    nearer[1]["support"] = {0.25, 1, 1};
+    CHECK(reasons(check(line(nearer))).find("iteration 1: the closest face came nearer") != std::string::npos);
+    Json notClosest = steps;
+    notClosest[1]["polytope"] = {{{0.1, -1, -1}, {0.1, 1, -1}, {0.1, 0, 1}}, {{0.25, -1, -1}, {0.25, 1, -1}, {0.25, 0, 1}}};
+    CHECK(reasons(check(line(notClosest))).find("not the closest face of your polytope") != std::string::npos);
+}
+
+TEST_CASE("check: Voronoi-region tests: values by Ericson's formulas, decisions by the conditions, ties either way") {
+    const Json triangle = {{0, 0, 0}, {4, 0, 0}, {1.2, 3, 0}};
+    const auto line = [&](const Json& point, const Json& answer, const Json& tests) {
+        return Json{{"op", "closest_point_triangle"}, {"point", point}, {"triangle", triangle}, {"answer", answer},
+                    {"trace", {{"algorithm", "ericson_regions"}, {"tests", tests}}}};
+    };
+    // p = (2, -1, 0.5): d1 = 8, d2 = -0.6 (A rejected), d3 = -8, d4 = -5.4 (B rejected), vc = -48 (AB).
+    const Json answer = {{"point", {2, 0, 0}}, {"region", "AB"}, {"barycentric", {0.5, 0.5, 0}}, {"distance", std::sqrt(1.25)}};
+    const Json tests = {
+        {{"region", "A"}, {"terms", {{{"name", "d1"}, {"value", 8}}, {{"name", "d2"}, {"value", -0.6}}}}, {"accepted", false}},
+        {{"region", "B"}, {"terms", {{{"name", "d3"}, {"value", -8}}, {{"name", "d4"}, {"value", -5.4}}}}, {"accepted", false}},
+        {{"region", "AB"}, {"terms", {{{"name", "vc"}, {"value", -48}}}}, {"accepted", true}}};
+    const Json p = {2, -1, 0.5};
+    CHECK(check(line(p, answer, tests)).pass);
+    Json wrongValue = tests;
+    wrongValue[2]["terms"][0]["value"] = -47;
+    CheckResult r = check(line(p, answer, wrongValue));
+    CHECK(reasons(r).find("test 2 (AB): vc = -47, but it is -48") != std::string::npos);
+    CHECK(r.traceDivergence == 2);
+    Json flipped = tests;
+    flipped[1]["accepted"] = true;
+    CHECK(reasons(check(line(p, answer, flipped))).find("test 1 (B): accepted, but the point lies outside") !=
+          std::string::npos);
+    Json rejected = tests;
+    rejected[2]["accepted"] = false;
+    CHECK(reasons(check(line(p, answer, rejected))).find("test 2 (AB): rejected, but the point lies in this region") !=
+          std::string::npos);
+    // q = (0, -1, 0) lies on the boundary of A and AB (d1 = 0; d2 = -3, d3 = -16, vc = -48): rejecting
+    // A and taking AB is a tie.
+    const Json q = {0, -1, 0};
+    const Json tieAnswer = {{"point", {0, 0, 0}}, {"region", "AB"}, {"barycentric", {1, 0, 0}}, {"distance", 1}};
+    const Json tie = {
+        {{"region", "A"}, {"terms", {{{"name", "d1"}, {"value", 0}}, {{"name", "d2"}, {"value", -3}}}}, {"accepted", false}},
+        {{"region", "B"}, {"terms", {{{"name", "d3"}, {"value", -16}}}}, {"accepted", false}},
+        {{"region", "AB"}, {"terms", {{{"name", "vc"}, {"value", -48}}}}, {"accepted", true}}};
+    CHECK(check(line(q, tieAnswer, tie)).pass);
 }

@@ -1,0 +1,287 @@
+#include "demos/check/trace_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "demos/check/check_values.h"
+#include "demos/query/query.h"
+#include "demos/query/query_json.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+// Distance from the origin to the convex hull of up to four points (cdlab's distance op).
+std::optional<double> originDistance(const std::vector<Vec3>& pts) {
+    Json shape;
+    if (pts.size() == 1) shape = {{"point", vecJson(pts[0])}};
+    else if (pts.size() == 2) shape = {{"segment", {vecJson(pts[0]), vecJson(pts[1])}}};
+    else if (pts.size() == 3) shape = {{"triangle", {vecJson(pts[0]), vecJson(pts[1]), vecJson(pts[2])}}};
+    else {
+        Json v = Json::array();
+        for (const Vec3& p : pts) v.push_back(vecJson(p));
+        shape = {{"polytope", {{"vertices", v}}}};
+    }
+    return distanceTo(Vec3::Zero(), shape);
+}
+
+// Your GJK trace, step by step, against the rule every step must follow (so ties are not
+// divergences): the support point is extreme along your direction (h_{A−B}(d)); the simplex kept
+// holds the point of the simplex nearest the origin; the next direction points from that point
+// toward the origin. The first step that breaks one is reported.
+void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
+                   int& divergence) {
+    const Json* steps = trace.is_object() && trace.contains("steps") ? &trace["steps"] : trace.is_array() ? &trace : nullptr;
+    if (!steps || !steps->is_array()) return reasons.push_back("trace: expected {\"steps\": [...]} (docs/check.md)");
+    std::vector<Vec3> kept;
+    std::optional<Vec3> closest;
+    for (std::size_t k = 0; k < steps->size(); ++k) {
+        const Json& s = (*steps)[k];
+        const std::string at = "trace: iteration " + std::to_string(k) + ": ";
+        divergence = static_cast<int>(k);  // where a failure returns below
+        if (!s.is_object() || !s.contains("direction") || !isVec(s["direction"]) || !s.contains("support") ||
+            !(isVec(s["support"]) || (s["support"].is_object() && s["support"].contains("a"))))
+            return reasons.push_back(at + "expected \"direction\" [x,y,z] and \"support\" (a point of A − B, or {\"a\", \"b\"})");
+        const Vec3 d = vec(s["direction"]);
+        const Vec3 w = isVec(s["support"]) ? vec(s["support"]) : Vec3(vec(s["support"]["a"]) - vec(s["support"]["b"]));
+        if (closest && closest->norm() > tol) {
+            const Vec3 toward = -closest->normalized();
+            if (d.norm() == 0 || (d.normalized() - toward).norm() > 1e-6)
+                return reasons.push_back(at + "the search direction does not point from the simplex's closest point " +
+                                         "toward the origin");
+        }
+        const std::optional<double> ha = support(query["a"], d), hb = support(query["b"], -d);
+        if (ha && hb && !(w.dot(d) >= *ha + *hb - tol * std::max(d.norm(), 1.0)))
+            return reasons.push_back(at + "different support point for the same direction: yours reaches " + value(w.dot(d)) +
+                                     " along it, A − B reaches " + value(*ha + *hb));
+        std::vector<Vec3> all = kept;
+        all.push_back(w);
+        if (!s.contains("simplex")) {
+            kept = all;
+            continue;
+        }
+        std::vector<Vec3> next;
+        for (const Json& p : s["simplex"]) {
+            if (!isVec(p)) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
+            next.push_back(vec(p));
+            if (std::none_of(all.begin(), all.end(), [&](const Vec3& y) { return (y - next.back()).norm() <= tol; }))
+                return reasons.push_back(at + "the simplex keeps a point that was not in it");
+        }
+        if (next.empty() || next.size() > 4) return reasons.push_back(at + "the simplex kept has 1 to 4 points");
+        const std::optional<double> best = originDistance(all.size() <= 4 ? all : next), mineD = originDistance(next);
+        if (best && mineD && !(*mineD <= *best + tol))
+            return reasons.push_back(at + "wrong sub-simplex kept: its nearest point is " + num(*mineD) +
+                                     " from the origin, the simplex's is " + num(*best));
+        kept = next;
+        // The closest point of the kept simplex, for the next direction: by the distance op's witness.
+        Json shape;
+        if (next.size() == 1) closest = next[0];
+        else {
+            Json v = Json::array();
+            for (const Vec3& p : next) v.push_back(vecJson(p));
+            shape = next.size() == 2 ? Json{{"segment", v}} : next.size() == 3 ? Json{{"triangle", v}} : Json{{"polytope", {{"vertices", v}}}};
+            const Json a = answerQuery(Json{{"op", "distance"}, {"a", {{"point", {0, 0, 0}}}}, {"b", shape}}.dump());
+            closest = a.value("intersect", true) ? Vec3::Zero() : vec(a["point_b"]);
+        }
+    }
+    divergence = -1;  // every step follows the rules
+}
+
+
+// The steps of a trace: {"steps": [...]} or the array itself.
+const Json* stepsOf(const Json& trace) {
+    if (trace.is_object() && trace.contains("steps") && trace["steps"].is_array()) return &trace["steps"];
+    return trace.is_array() ? &trace : nullptr;
+}
+
+// A support point given as a point of A − B or as the pair {"a", "b"}.
+std::optional<Vec3> supportPoint(const Json& s) {
+    if (isVec(s)) return vec(s);
+    if (s.is_object() && s.contains("a") && s.contains("b") && isVec(s["a"]) && isVec(s["b"]))
+        return Vec3(vec(s["a"]) - vec(s["b"]));
+    return std::nullopt;
+}
+
+// Your EPA steps: each expands the closest face of a polytope inside A − B (unit normal n, distance
+// d) by the support point along n. Rules: n unit; the support extreme along n; d never above the
+// penetration depth (the polytope lies inside A − B) and never below the previous step's d (the
+// polytope only grows); with your "polytope" (its triangles), the face is its closest one.
+void checkEpaTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
+                   int& divergence) {
+    const Json* steps = stepsOf(trace);
+    if (!steps) return reasons.push_back("trace (epa): expected {\"steps\": [...]} (docs/check.md)");
+    const Json answer =
+        answerQuery(Json{{"op", "penetration"}, {"a", query["a"]}, {"b", query["b"]}}.dump());
+    // cdlab's depth (NaN: none, e.g. the shapes do not overlap).
+    const double depth = answer.contains("depth") && answer["depth"].is_number() ? answer["depth"].get<double>() : NAN;
+    double previous = -INFINITY;
+    for (std::size_t k = 0; k < steps->size(); ++k) {
+        divergence = static_cast<int>(k);
+        const Json& s = (*steps)[k];
+        const std::string at = "trace (epa): iteration " + std::to_string(k) + ": ";
+        const Json n = s.is_object() ? s.value("normal", s.value("closest_normal", Json())) : Json();
+        const Json d = s.is_object() ? s.value("distance", s.value("closest_distance", Json())) : Json();
+        const std::optional<Vec3> w = s.is_object() ? supportPoint(s.value("support", Json())) : std::nullopt;
+        if (!isVec(n) || !d.is_number() || !w)
+            return reasons.push_back(at + "expected \"normal\" [x,y,z], \"distance\" and \"support\"");
+        const Vec3 normal = vec(n);
+        const double dist = d.get<double>();
+        if (!(std::abs(normal.norm() - 1) <= 1e-6)) return reasons.push_back(at + "the face normal is not unit");
+        const std::optional<double> ha = support(query["a"], normal), hb = support(query["b"], -normal);
+        if (ha && hb && !(w->dot(normal) >= *ha + *hb - tol))
+            return reasons.push_back(at + "different support point for the face's normal: yours reaches " +
+                                     value(w->dot(normal)) + " along it, A − B reaches " + value(*ha + *hb));
+        if (dist > depth + tol)  // false for a NaN depth
+            return reasons.push_back(at + "the face is " + value(dist) + " from the origin, beyond the depth " +
+                                     value(depth) + ": your polytope is not inside A − B");
+        if (dist < previous - tol)
+            return reasons.push_back(at + "the closest face came nearer (" + value(previous) + " → " + value(dist) +
+                                     "): the polytope only grows, so its closest face cannot");
+        previous = dist;
+        if (s.contains("polytope") && s["polytope"].is_array()) {
+            double nearest = INFINITY;
+            for (const Json& f : s["polytope"]) {
+                if (!f.is_array() || f.size() != 3 || !isVec(f[0]) || !isVec(f[1]) || !isVec(f[2]))
+                    return reasons.push_back(at + "polytope: expected triangles [[x,y,z] x 3]");
+                const Vec3 p0 = vec(f[0]), e = (vec(f[1]) - p0).cross(vec(f[2]) - p0);
+                if (e.norm() > 0) nearest = std::min(nearest, std::abs(e.normalized().dot(p0)));
+            }
+            if (nearest < dist - tol)
+                return reasons.push_back(at + "not the closest face of your polytope: a face lies " + value(nearest) +
+                                         " from the origin, yours " + value(dist));
+        }
+    }
+    divergence = -1;
+}
+
+// Ericson's region tests for the closest point of a triangle to p (Real-Time Collision Detection
+// §5.1.5): the values d1..d6, va, vb, vc and each region's condition.
+struct RegionTerms {
+    double d1, d2, d3, d4, d5, d6, va, vb, vc;
+    double scale;  // |ab|·|ap|-sized: the magnitude of a d term
+};
+
+RegionTerms regionTerms(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
+    const Vec3 ab = b - a, ac = c - a;
+    RegionTerms t{};
+    t.d1 = ab.dot(p - a), t.d2 = ac.dot(p - a), t.d3 = ab.dot(p - b), t.d4 = ac.dot(p - b);
+    t.d5 = ab.dot(p - c), t.d6 = ac.dot(p - c);
+    t.va = t.d3 * t.d6 - t.d5 * t.d4, t.vb = t.d5 * t.d2 - t.d1 * t.d6, t.vc = t.d1 * t.d4 - t.d3 * t.d2;
+    const double L = std::max({ab.norm(), ac.norm(), (p - a).norm(), (p - b).norm(), (p - c).norm()});
+    t.scale = L * L;
+    return t;
+}
+
+std::optional<double> termValue(const RegionTerms& t, const std::string& name) {
+    if (name == "d1") return t.d1;
+    if (name == "d2") return t.d2;
+    if (name == "d3") return t.d3;
+    if (name == "d4") return t.d4;
+    if (name == "d5") return t.d5;
+    if (name == "d6") return t.d6;
+    if (name == "va") return t.va;
+    if (name == "vb") return t.vb;
+    if (name == "vc") return t.vc;
+    return std::nullopt;
+}
+
+// A region's condition as sign tests x >= 0 (or x <= 0): 1 holds, -1 fails, 0 undecided (some x
+// within `eps` of 0 that could flip it: a point on the region's boundary).
+int regionCondition(const std::string& region, const RegionTerms& t, double eps2, double eps4) {
+    struct Sign {
+        double x;
+        bool nonNegative;
+        double eps;
+    };
+    std::vector<Sign> s;
+    if (region == "A") s = {{t.d1, false, eps2}, {t.d2, false, eps2}};
+    else if (region == "B") s = {{t.d3, true, eps2}, {t.d4 - t.d3, false, eps2}};
+    else if (region == "AB") s = {{t.vc, false, eps4}, {t.d1, true, eps2}, {t.d3, false, eps2}};
+    else if (region == "C") s = {{t.d6, true, eps2}, {t.d5 - t.d6, false, eps2}};
+    else if (region == "AC" || region == "CA") s = {{t.vb, false, eps4}, {t.d2, true, eps2}, {t.d6, false, eps2}};
+    else if (region == "BC") s = {{t.va, false, eps4}, {t.d4 - t.d3, true, eps2}, {t.d5 - t.d6, true, eps2}};
+    else if (region == "ABC") return 1;
+    else return -2;  // not a region name
+    bool undecided = false;
+    for (const Sign& c : s) {
+        const double v = c.nonNegative ? c.x : -c.x;  // holds when v >= 0
+        if (v < -c.eps) return -1;
+        if (v <= c.eps) undecided = true;
+    }
+    return undecided ? 0 : 1;
+}
+
+// Your region tests for closest_point_triangle: {"tests": [{"region": R, "terms": [{"name", "value"}],
+// "accepted": bool}, ...]} in the order you made them. Each value must be the term's value (by
+// Ericson's formulas) and each decision the condition's, except where the point lies on the region's
+// boundary (a term within the tolerance of 0): either decision passes there.
+void checkRegionTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
+                      int& divergence) {
+    const Json* tests = trace.is_object() && trace.contains("tests") && trace["tests"].is_array() ? &trace["tests"] : nullptr;
+    if (!tests) return reasons.push_back("trace (regions): expected {\"tests\": [...]} (docs/check.md)");
+    if (!isVec(query.value("point", Json())) || !query.contains("triangle") || query["triangle"].size() != 3)
+        return reasons.push_back("trace (regions): the query needs \"point\" and \"triangle\"");
+    const Json& tri = query["triangle"];
+    const RegionTerms t = regionTerms(vec(tri[0]), vec(tri[1]), vec(tri[2]), vec(query["point"]));
+    const double L = std::sqrt(t.scale);
+    const double rel = std::max(tol / std::max(L, 1e-300), 1e-12);  // your tolerance, relative
+    const double eps2 = rel * t.scale, eps4 = rel * t.scale * t.scale;
+    for (std::size_t k = 0; k < tests->size(); ++k) {
+        divergence = static_cast<int>(k);
+        const Json& test = (*tests)[k];
+        const std::string region = test.is_object() ? test.value("region", "") : "";
+        const std::string at = "trace (regions): test " + std::to_string(k) + " (" + region + "): ";
+        const int holds = regionCondition(region, t, eps2, eps4);
+        if (holds == -2) return reasons.push_back(at + "not a region of the triangle (A, B, C, AB, BC, AC, ABC)");
+        if (test.contains("terms") && test["terms"].is_array())
+            for (const Json& term : test["terms"]) {
+                const std::string name = term.is_object() ? term.value("name", "") : "";
+                const std::optional<double> expected = termValue(t, name);
+                if (!expected || !term.contains("value") || !term["value"].is_number())
+                    return reasons.push_back(at + "a term needs \"name\" (d1..d6, va, vb, vc) and \"value\"");
+                const double eps = name[0] == 'v' ? eps4 : eps2;
+                const double mine = term["value"].get<double>();
+                if (!(std::abs(mine - *expected) <= eps + 1e-12 * std::abs(*expected)))
+                    return reasons.push_back(at + name + " = " + value(mine) + ", but it is " + value(*expected));
+            }
+        if (!test.contains("accepted") || !test["accepted"].is_boolean())
+            return reasons.push_back(at + "expected \"accepted\": true or false");
+        const bool accepted = test["accepted"].get<bool>();
+        if (holds == 1 && !accepted) return reasons.push_back(at + "rejected, but the point lies in this region");
+        if (holds == -1 && accepted) return reasons.push_back(at + "accepted, but the point lies outside this region");
+        if (accepted) break;  // the region found: later tests are not made
+    }
+    divergence = -1;
+}
+
+}  // namespace
+
+void checkTrace(const std::string& op, const Json& query, const Json& trace, double tol,
+                std::vector<std::string>& reasons, int& divergence, std::string& algorithm) {
+    if (trace.is_object() && trace.contains("algorithms") && trace["algorithms"].is_array()) {
+        for (const Json& one : trace["algorithms"]) {
+            checkTrace(op, query, one, tol, reasons, divergence, algorithm);
+            if (!reasons.empty()) return;
+        }
+        return;
+    }
+    algorithm = trace.is_object() ? trace.value("algorithm", std::string()) : std::string();
+    if (algorithm.empty()) algorithm = op == "closest_point_triangle" ? "ericson_regions" : "gjk";
+    if (algorithm == "ericson_regions") {
+        if (op != "closest_point_triangle")
+            return reasons.push_back("trace: region tests are checked for closest_point_triangle");
+        return checkRegionTrace(query, trace, tol, reasons, divergence);
+    }
+    if (op != "intersect" && op != "distance" && op != "penetration")
+        return reasons.push_back("trace: " + algorithm + " traces are checked for intersect, distance and penetration");
+    if (algorithm == "epa") {
+        if (op != "penetration") return reasons.push_back("trace: EPA steps are checked for penetration");
+        return checkEpaTrace(query, trace, tol, reasons, divergence);
+    }
+    if (algorithm != "gjk")
+        return reasons.push_back("trace: unknown algorithm '" + algorithm + "' (gjk, epa, ericson_regions)");
+    checkGjkTrace(query, trace, tol, reasons, divergence);
+}
+
+}  // namespace cdlab::demos
