@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+
+#include "demos/scene/body_scene.h"
 
 namespace cdlab::demos {
 
@@ -45,7 +48,7 @@ QueryShape parseQueryShape(const JsonNode& node) {
     if (!node.isObject() || node.raw().size() != 1)
         node.fail(
             "expected a shape: an object with exactly one key (point, segment, ray, triangle, sphere, aabb, obb, "
-            "capsule, polytope, plane), got " +
+            "box, capsule, polytope, hull, plane), got " +
             JsonNode::describe(node.raw()));
     const std::string key = node.raw().begin().key();
     const JsonNode body(node.raw().begin().value(), node.path() + "." + key, node.source());
@@ -74,7 +77,7 @@ QueryShape parseQueryShape(const JsonNode& node) {
     } else if (key == "sphere") {
         s.kind = K::Sphere;
         ObjectReader r(body);
-        s.vertices = {r.get("center").asVec3()};
+        s.vertices = {getEither(r, "center", "position").asVec3()};  // the demos' pose key too
         s.radius = readRadius(r);
         r.finish();
     } else if (key == "aabb") {
@@ -86,10 +89,14 @@ QueryShape parseQueryShape(const JsonNode& node) {
         r.finish();
         if ((hi.array() < lo.array()).any()) maxNode.fail("aabb max is below min on some axis");
         for (int i = 0; i < 8; ++i) s.vertices.push_back(boxCorner(i, lo, hi));
-    } else if (key == "obb") {
+    } else if (key == "obb" || key == "box") {
+        // "box" is the demos' word for the same shape (half extents about its position, rotated);
+        // its position defaults to the origin as in the scenes.
         s.kind = K::Obb;
         ObjectReader r(body);
-        Vec3 c = r.get("center").asVec3();
+        const std::optional<JsonNode> cn = findEither(r, "center", "position");
+        if (!cn && key == "obb") r.get("center");  // the obb's error: its center is required
+        Vec3 c = cn ? cn->asVec3() : Vec3::Zero();
         JsonNode en = r.get("half_extents");
         Vec3 e = en.asVec3();
         if ((e.array() < 0).any()) en.fail("half extents must be non-negative");
@@ -104,7 +111,7 @@ QueryShape parseQueryShape(const JsonNode& node) {
         s.vertices = {r.get("a").asVec3(), r.get("b").asVec3()};
         s.radius = readRadius(r);
         r.finish();
-    } else if (key == "polytope") {
+    } else if (key == "polytope" || key == "hull") {  // "hull": the feature-walk scenes' word
         s.kind = K::Polytope;
         ObjectReader r(body);
         JsonNode vn = r.get("vertices");
@@ -137,8 +144,8 @@ QueryShape parseQueryShape(const JsonNode& node) {
         node.fail("a " + key + " is taken by the intersect, distance and penetration ops only");
     } else {
         node.fail("unknown shape '" + key +
-                  "' (expected point, segment, ray, triangle, sphere, aabb, obb, capsule, "
-                  "polytope or plane)");
+                  "' (expected point, segment, ray, triangle, sphere, aabb, obb, box, capsule, "
+                  "polytope, hull or plane)");
     }
     for (const Vec3& v : s.vertices)
         if (!v.allFinite()) node.fail("shape coordinates overflow after transformation");

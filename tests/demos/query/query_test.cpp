@@ -118,6 +118,29 @@ TEST_SUITE("query") {
         CHECK(t["intersect"] == true);
     }
 
+    TEST_CASE("the scenes' words: box, hull and position give the same answers as obb, polytope and center") {
+        const Json obb = {{"obb", {{"center", {0.2, 0.1, 0}}, {"half_extents", {1, 0.5, 0.25}}, {"rotation", {0.9, 0.1, 0.3, 0.2}}}}};
+        const Json box = {{"box", {{"position", {0.2, 0.1, 0}}, {"half_extents", {1, 0.5, 0.25}}, {"rotation", {0.9, 0.1, 0.3, 0.2}}}}};
+        const Json vertices = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+        const Json poly = {{"polytope", {{"vertices", vertices}, {"position", {1.5, 0, 0}}}}};
+        const Json hull = {{"hull", {{"vertices", vertices}, {"position", {1.5, 0, 0}}}}};
+        for (const char* op : {"distance", "penetration", "contact"})
+            CHECK(ask({{"op", op}, {"a", box}, {"b", hull}}) == ask({{"op", op}, {"a", obb}, {"b", poly}}));
+        CHECK(ask({{"op", "distance"}, {"a", {{"sphere", {{"position", {0, 0, 3}}, {"radius", 1}}}}}, {"b", box}}) ==
+              ask({{"op", "distance"}, {"a", {{"sphere", {{"center", {0, 0, 3}}, {"radius", 1}}}}}, {"b", obb}}));
+        // A box's position defaults to the origin; an obb's center is required; not both keys.
+        const Json point = {{"point", {3, 0, 0}}};
+        const Json unitBox = {{"box", {{"half_extents", {1, 1, 1}}}}};
+        const Json noCenter = {{"obb", {{"half_extents", {1, 1, 1}}}}};
+        const Json both = {{"sphere", {{"center", {0, 0, 0}}, {"position", {0, 0, 0}}, {"radius", 1}}}};
+        const Json atOrigin = ask({{"op", "distance"}, {"a", unitBox}, {"b", point}});
+        CHECK(atOrigin["distance"] == 2.0);
+        const Json missing = ask({{"op", "distance"}, {"a", noCenter}, {"b", point}});
+        CHECK(missing.value("error", "").find("missing required key 'center'") != std::string::npos);
+        const Json twice = ask({{"op", "distance"}, {"a", both}, {"b", point}});
+        CHECK(twice.contains("error"));
+    }
+
     TEST_CASE("touching and face-to-face boxes: depth 0 or exact overlap, never NaN") {
         Json t = ask(Json::parse(
             R"({"op":"penetration","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[1,0,0],"max":[2,1,1]}}})"));
