@@ -97,12 +97,13 @@ struct Posed {
 };
 
 // Gregorius' arc test (file comment): do the Gauss-map arcs a→b (of A's edge, b x a given) and
-// c→d (of B's edge, negated normals, d x c given) intersect?
-bool isMinkowskiFace(const Posed::Edge& ea, const Posed::Edge& eb) {
-    const Vec3 &a = ea.from, &b = ea.to, &bxa = ea.cross, &c = eb.from, &d = eb.to, &dxc = eb.cross;
-    const double cba = c.dot(bxa), dba = d.dot(bxa);
+// c→d (of B's edge, negated normals, d x c given) intersect? cba = c · (b x a) and dba = d · (b x a)
+// come from `side`, the row of (-n_f) · (b x a) over B's faces f computed once per edge of A: the
+// first test, which rejects most pairs, then costs no arithmetic per pair.
+bool isMinkowskiFace(const Posed::Edge& ea, const Posed::Edge& eb, const double* side) {
+    const double cba = side[eb.f1], dba = side[eb.f2];
     if (!(cba * dba < 0.0)) return false;  // the plane of arc a→b does not separate c and d
-    const double adc = a.dot(dxc), bdc = b.dot(dxc);
+    const double adc = ea.from.dot(eb.cross), bdc = ea.to.dot(eb.cross);
     return adc * bdc < 0.0 && cba * bdc > 0.0;
 }
 
@@ -138,12 +139,17 @@ void queryFaceAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyh
 void queryEdgeAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
                    SatQuery& q) {
     (void)ma, (void)mb;
+    // B's Gauss map as the arcs see it: the negated face normals (bit for bit the arcs' end points).
+    std::pmr::vector<Vec3> negated(B.n.size(), Vec3::Zero(), B.n.get_allocator().resource());
+    std::pmr::vector<double> side(B.n.size(), 0.0, B.n.get_allocator().resource());
+    for (size_t f = 0; f < B.n.size(); ++f) negated[f] = -1.0 * B.n[f];
     for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
         const Posed::Edge& edgeA = A.edges[ea];
         const Vec3 da = A.x[edgeA.v1] - A.x[edgeA.v0];
+        for (size_t f = 0; f < negated.size(); ++f) side[f] = negated[f].dot(edgeA.cross);
         for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
             const Posed::Edge& edgeB = B.edges[eb];
-            if (!isMinkowskiFace(edgeA, edgeB)) {
+            if (!isMinkowskiFace(edgeA, edgeB, side.data())) {
                 ++q.pruned;
                 continue;
             }
@@ -219,8 +225,9 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     }
     if (trace) *trace = SatContactTrace{};
     const Vec3 origin = ta.position;
-    // Scratch for both posed bodies and the clipping: 64-vertex hulls (~124 faces, ~186 edges) fit.
-    StackArena<49152> arena;
+    // Scratch for both posed bodies, the edge query and the clipping: two 64-vertex hulls (~124
+    // faces, ~186 edges each: ~50 KB) fit; larger bodies spill to the heap.
+    StackArena<65536> arena;
     const Posed A(ma, ta, origin, 1.0, arena.resource()), B(mb, tb, origin, -1.0, arena.resource());
     double maxCoord = 0.0;
     for (const Vec3& p : B.x) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
