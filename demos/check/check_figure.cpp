@@ -1,6 +1,7 @@
 #include "demos/check/check_figure.h"
 
 #include <algorithm>
+#include <array>
 
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
@@ -99,11 +100,48 @@ std::string summary(const Json& answer) {
     return s.empty() ? answer.dump().substr(0, 60) : s;
 }
 
-// One GJK step as drawn: the simplex kept, the support point, the search direction.
+// One step as drawn. GJK: the simplex kept, the support point, the search direction. EPA: the face
+// expanded (unit normal `direction`, `distance` from the origin), the support point along it, and
+// the polytope's triangles when the trace gives them.
 struct StepPicture {
     std::vector<Vec3> simplex;
     Vec3 support = Vec3::Zero(), direction = Vec3::Zero();
+    bool epa = false;
+    double distance = 0.0;
+    std::vector<std::array<Vec3, 3>> faces;
 };
+
+// The trace of `algorithm` in yours: the object itself, or the one in "algorithms" with that name.
+Json traceOf(const Json& trace, const std::string& algorithm) {
+    if (trace.is_object() && trace.contains("algorithms") && trace["algorithms"].is_array())
+        for (const Json& one : trace["algorithms"])
+            if (one.is_object() && one.value("algorithm", "") == algorithm) return one;
+    return trace;
+}
+
+// EPA step `k` ({"steps": [...]}; normal / closest_normal, distance / closest_distance, support,
+// optional polytope), or nothing when missing or malformed.
+std::optional<StepPicture> epaStepOf(const Json& trace, int k) {
+    const Json* steps = trace.is_object() && trace.contains("steps") ? &trace["steps"] : trace.is_array() ? &trace : nullptr;
+    if (!steps || !steps->is_array() || k < 0 || k >= static_cast<int>(steps->size())) return std::nullopt;
+    const Json& s = (*steps)[std::size_t(k)];
+    if (!s.is_object()) return std::nullopt;
+    const Json n = s.value("normal", s.value("closest_normal", Json())), d = s.value("distance", s.value("closest_distance", Json()));
+    const Json w = s.value("support", Json());
+    if (!isVec(n) || !d.is_number()) return std::nullopt;
+    StepPicture p;
+    p.epa = true;
+    p.direction = vec(n);
+    p.distance = d.get<double>();
+    if (isVec(w)) p.support = vec(w);
+    else if (w.is_object() && isVec(w.value("a", Json())) && isVec(w.value("b", Json()))) p.support = vec(w["a"]) - vec(w["b"]);
+    else return std::nullopt;
+    if (s.contains("polytope") && s["polytope"].is_array())
+        for (const Json& f : s["polytope"])
+            if (f.is_array() && f.size() == 3 && isVec(f[0]) && isVec(f[1]) && isVec(f[2]))
+                p.faces.push_back({vec(f[0]), vec(f[1]), vec(f[2])});
+    return p;
+}
 
 // Step `k` of a trace ({"steps": [...]} or the array; support a point of A − B or {"a", "b"}), or
 // nothing when it is missing or malformed.
@@ -125,12 +163,28 @@ std::optional<StepPicture> stepOf(const Json& trace, int k) {
     return p;
 }
 
+// EPA at one step: the polytope's edges (when given), the face's nearest point d·n as an arrow from
+// the origin, the support point w along n.
+void drawEpaStep(Canvas& cs, const PairDrawing& d, const StepPicture& s) {
+    const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+    for (const auto& f : s.faces)
+        for (int i = 0; i < 3; ++i) cs.drawLine(f[i], f[(i + 1) % 3], lineStyle(Role::Simplex, 1.5f, false, true));
+    const Vec3 foot = s.distance * s.direction.normalized();
+    cs.drawArrow(Vec3::Zero(), foot, lineStyle(Role::Direction, 3.0f, false, true));
+    drawLabelAway(cs, foot, Vec3::Zero(), "d·n", ts, 12.0);
+    cs.drawLine(foot, s.support, lineStyle(Role::Muted, 2.0f, true, true));
+    cs.drawPoint(s.support, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+    drawLabelAway(cs, s.support, foot, "w", ts);
+    (void)d;
+}
+
 // Configuration space at one step: A − B, the origin, the simplex (w0.., edges), the support point
-// w and the direction d from the origin.
+// w and the direction d from the origin (EPA: drawEpaStep).
 void drawStep(Canvas& cs, const PairDrawing& d, const StepPicture& s) {
     if (d.c.valid)
         drawBody(cs, d.c, roleColor(Role::Minkowski), 0.18f, roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
     drawOrigin(cs, 0.06 * d.cRadius, false);
+    if (s.epa) return drawEpaStep(cs, d, s);
     const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
     Vec3 mid = Vec3::Zero();
     for (const Vec3& p : s.simplex) mid += p / double(s.simplex.size());
@@ -160,14 +214,17 @@ void drawStep(Canvas& cs, const PairDrawing& d, const StepPicture& s) {
 
 }  // namespace
 
-std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& yourTrace, int step,
-                                 const std::string& title, const std::vector<std::string>& reasons,
-                                 const std::string& path) {
+std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& trace,
+                                 const std::string& algorithm, int step, const std::string& title,
+                                 const std::vector<std::string>& reasons, const std::string& path) {
+    if (algorithm != "gjk" && algorithm != "epa") return "no figure for " + algorithm + " traces";
     if (!query.contains("a") || !query.contains("b")) return "no figure: the query has no shapes a and b";
     const std::optional<SceneShape> a = drawableShape(query["a"], "$.a"), b = drawableShape(query["b"], "$.b");
     if (!a || !b || a->kind != SceneShape::Kind::Polytope || b->kind != SceneShape::Kind::Polytope)
         return "no figure: trace steps are drawn for polytopes, aabbs and obbs";
-    const std::optional<StepPicture> mine = stepOf(yourTrace, step);
+    const Json yourTrace = traceOf(trace, algorithm);
+    const bool epa = algorithm == "epa";
+    const std::optional<StepPicture> mine = epa ? epaStepOf(yourTrace, step) : stepOf(yourTrace, step);
     if (!mine) return "no figure: your step " + std::to_string(step) + " could not be read";
     Json q = query;
     q["trace"] = true;
@@ -178,7 +235,11 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     std::optional<StepPicture> theirs;
     if (answer.contains("trace") && answer["trace"].contains("algorithms"))
         for (const Json& alg : answer["trace"]["algorithms"]) {
-            if (alg.value("algorithm", "") != "gjk" || !alg.contains("steps") || alg["steps"].empty()) continue;
+            if (alg.value("algorithm", "") != algorithm || !alg.contains("steps") || alg["steps"].empty()) continue;
+            if (epa) {
+                theirs = epaStepOf(alg, step);
+                continue;
+            }
             Json steps = alg["steps"];
             const std::optional<StepPicture> first = stepOf(yourTrace, 0);
             const Json& start = steps[0].value("simplex", Json::array());
@@ -191,11 +252,12 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     PairScene pair;
     pair.a = *a;
     pair.b = *b;
-    std::vector<Vec3> frame = mine->simplex;
-    frame.push_back(mine->support);
-    if (theirs) {
-        frame.insert(frame.end(), theirs->simplex.begin(), theirs->simplex.end());
-        frame.push_back(theirs->support);
+    std::vector<Vec3> frame;
+    for (const std::optional<StepPicture>* s : {&mine, const_cast<const std::optional<StepPicture>*>(&theirs)}) {
+        if (!*s) continue;
+        frame.insert(frame.end(), (*s)->simplex.begin(), (*s)->simplex.end());
+        frame.push_back((*s)->support);
+        if ((*s)->epa) frame.push_back((*s)->distance * (*s)->direction.normalized());
     }
     std::vector<std::string> skipped;
     const PairDrawing d = makePairDrawing(pair, true, frame, skipped);
@@ -210,9 +272,10 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
         Canvas cs(gl, po, panelCamera(false, d.cCenter, d.cRadius, pair.view, layout));
         if (s) drawStep(cs, d, *s);
         drawPanelHeading(cs, heading,
-                         s ? std::to_string(s->simplex.size()) + (s->simplex.size() == 1 ? " point" : " points") +
-                                 " kept after the support w along d"
-                           : "cdlab's GJK stopped before this step");
+                         !s       ? "cdlab's run stopped before this step"
+                         : s->epa ? "face at d = " + number(s->distance) + " along n, support w"
+                                  : std::to_string(s->simplex.size()) + (s->simplex.size() == 1 ? " point" : " points") +
+                                        " kept after the support w along d");
         return cs.readPixels();
     };
     const std::string k = std::to_string(step);

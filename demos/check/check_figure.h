@@ -18,12 +18,13 @@ std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Jso
                              const std::string& title, const std::vector<std::string>& reasons,
                              const std::string& path);
 
-/// For a GJK trace of yours whose step `step` (0-based) breaks a rule: configuration space twice,
-/// A − B and the origin with cdlab's step beside yours (simplex kept, support point, search
-/// direction). Polytope, aabb and obb shapes only (cdlab's GJK runs on a sphere's centre). Returns ""
-/// when written, else why there is no figure.
-std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& yourTrace, int step,
-                                 const std::string& title, const std::vector<std::string>& reasons,
-                                 const std::string& path);
+/// For a GJK or EPA trace of yours (`algorithm`; `trace` may hold several in "algorithms") whose
+/// step `step` (0-based) breaks a rule: configuration space twice, A − B and the origin with cdlab's
+/// step beside yours (GJK: simplex kept, support point, search direction; EPA: the face's nearest
+/// point d·n, the support point, your polytope's edges when given). Polytope, aabb and obb shapes
+/// only (cdlab's GJK runs on a sphere's centre). Returns "" when written, else why there is none.
+std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& trace,
+                                 const std::string& algorithm, int step, const std::string& title,
+                                 const std::vector<std::string>& reasons, const std::string& path);
 
 }  // namespace cdlab::demos

@@ -4,6 +4,7 @@
 // that breaks a rule at step k gets the configuration space at step k, cdlab's beside yours.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -95,5 +96,29 @@ TEST_CASE("check --figures: a trace that breaks a rule at step k gets cdlab's st
     CHECK(out.str().find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
     const render::Image image = render::readPng((dir / "line_1.png").string());
     CHECK(image.width == 1280);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("check --figures: an EPA trace that breaks a rule at step k gets cdlab's EPA step k beside yours") {
+    // Two cubes overlapping by 0.25 along x; your second step's support is not extreme.
+    const double s = 1 / std::sqrt(3.0);
+    Json line = {{"op", "penetration"},
+                 {"a", {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}}},
+                 {"b", {{"aabb", {{"min", {0.75, 0, 0}}, {"max", {1.75, 1, 1}}}}}},
+                 {"answer", {{"intersect", true}, {"depth", 0.25}, {"normal", {1, 0, 0}}, {"point_a", {1, 0.5, 0.5}},
+                             {"point_b", {0.75, 0.5, 0.5}}}},
+                 {"trace", {{"algorithm", "epa"},
+                            {"steps", {{{"normal", {s, s, s}}, {"distance", 0.1}, {"support", {0.25, 1, 1}}},
+                                       {{"normal", {1, 0, 0}}, {"distance", 0.25}, {"support", {0.2, 0, 0}}}}}}}};
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_epa_figure_test";
+    std::filesystem::remove_all(dir);
+    std::istringstream in(line.dump() + "\n");
+    std::ostringstream out;
+    CheckOptions options;
+    options.figuresDir = dir.string();
+    CHECK(runCheck(in, out, options) == 1);
+    CHECK(out.str().find("trace (epa): iteration 1: different support point") != std::string::npos);
+    CHECK(out.str().find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
+    CHECK(render::readPng((dir / "line_1.png").string()).height == 640);
     std::filesystem::remove_all(dir);
 }
