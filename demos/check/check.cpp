@@ -341,7 +341,9 @@ std::string figureFor(const CheckResult& r, std::size_t lineNumber, const CheckO
         std::string title = "line " + std::to_string(lineNumber);
         if (!r.id.is_null()) title += " (id " + r.id.dump(-1, ' ', false, Json::error_handler_t::replace) + ")";
         const std::string why =
-            r.traceDivergence >= 0 && (r.traceAlgorithm == "gjk" || r.traceAlgorithm == "epa")
+            r.query.value("op", "") == "closest_point_triangle"
+                ? writeRegionFigure(*gl, r.query, r.cdlab, r.yours, title + ": closest_point_triangle", r.reasons, path)
+            : r.traceDivergence >= 0 && (r.traceAlgorithm == "gjk" || r.traceAlgorithm == "epa")
                 ? writeTraceStepFigure(*gl, r.query, r.trace, r.traceAlgorithm, r.traceDivergence,
                                        title + ": " + r.query.value("op", "") + ", " +
                                            (r.traceAlgorithm == "gjk" ? "GJK" : "EPA") + " iteration " +

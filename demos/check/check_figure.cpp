@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "core/closest/voronoi_regions.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
@@ -213,6 +214,71 @@ void drawStep(Canvas& cs, const PairDrawing& d, const StepPicture& s) {
 }
 
 }  // namespace
+
+// The first two reasons, cut to slide-legible caption lines.
+std::vector<std::string> captionOf(const std::vector<std::string>& reasons) {
+    std::vector<std::string> lines;
+    for (const std::string& r : reasons) {
+        if (lines.size() == 2) break;
+        lines.push_back(r.size() > 110 ? r.substr(0, 107) + "..." : r);
+    }
+    return lines;
+}
+
+std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Json& cdlab, const Json& yours,
+                              const std::string& title, const std::vector<std::string>& reasons,
+                              const std::string& path) {
+    const Json& t = query.value("triangle", Json());
+    if (!isVec(query.value("point", Json())) || !t.is_array() || t.size() != 3 || !isVec(t[0]) || !isVec(t[1]) ||
+        !isVec(t[2]))
+        return "no figure: the query needs \"point\" and \"triangle\"";
+    const Triangle tri{vec(t[0]), vec(t[1]), vec(t[2])};
+    const Vec3 p = vec(query["point"]);
+    const double size = std::max({(tri.b - tri.a).norm(), (tri.c - tri.a).norm(), (tri.c - tri.b).norm()});
+    const TriangleVoronoiDiagram diagram = triangleVoronoiRegions({tri, 0.6 * size, 0.3 * size});
+    if (!diagram.valid) return "no figure: the triangle is degenerate";
+    std::vector<Vec3> frame(diagram.rectangle.begin(), diagram.rectangle.end());
+    frame.push_back(p);
+    Vec3 center;
+    double radius;
+    boundingSphere(frame, center, radius);
+    // Nearly face-on from the point's side, tilted so the point's height above the plane shows.
+    const double side = (p - tri.a).dot(diagram.normal) < 0 ? -1.0 : 1.0;
+    const Vec3 view = side * diagram.normal + 0.6 * diagram.axisV;
+    const TwoPanelLayout layout = twoPanelLayout(1280, 640, "");
+    const render::CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), 1);
+    const auto panel = [&](const Json& answer, const std::string& heading) {
+        Canvas cs(gl, po, panelCamera(false, center, radius, view, layout));
+        const std::string region = answer.value("region", std::string());
+        for (const TriangleRegionPolygon& r : diagram.regions) {
+            if (r.vertices.size() < 3) continue;
+            cs.drawPolygon(r.vertices, triangleRegionColor(int(r.region)).withAlpha(0.35f));
+            Vec3 mid = Vec3::Zero();
+            for (const Vec3& v : r.vertices) mid += v / double(r.vertices.size());
+            TextStyle ts{18.0f, triangleRegionColor(int(r.region)).scaled(0.55f), Anchor::Center, true, true};
+            ts.place = true;  // off the point markers and the other names
+            cs.drawText(mid, nameOf(r.region), ts);
+            if (region == nameOf(r.region) || (region == "AC" && r.region == TriangleRegion::CA))
+                cs.drawPolyline(r.vertices, true, lineStyle(Role::Highlight, 3.5f, false, true));
+        }
+        cs.drawPolyline({tri.a, tri.b, tri.c}, true, lineStyle(Role::Ink, 2.5f, false, true));
+        cs.drawPoint(p, 7.0f, roleColor(Role::Query), true, 1.5f, roleColor(Role::Ink));
+        drawLabelAway(cs, p, center, "p", TextStyle{17.0f, roleColor(Role::Ink), Anchor::Center, true, true});
+        if (isVec(answer.value("point", Json()))) {
+            const Vec3 q = vec(answer["point"]);
+            cs.drawLine(p, q, lineStyle(Role::Result, 2.5f, false, true));
+            cs.drawPoint(q, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+            drawLabelAway(cs, q, p, "closest", TextStyle{17.0f, roleColor(Role::Ink), Anchor::Center, true, true});
+        }
+        std::string sub = region.empty() ? "no region" : "region " + region;
+        if (answer.contains("distance")) sub += ", distance " + number(answer["distance"]);
+        drawPanelHeading(cs, heading, sub);
+        return cs.readPixels();
+    };
+    const render::Image left = panel(cdlab, "cdlab's answer"), right = panel(yours, "your answer");
+    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, captionOf(reasons)));
+    return "";
+}
 
 std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& trace,
                                  const std::string& algorithm, int step, const std::string& title,

@@ -18,6 +18,13 @@ std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Jso
                              const std::string& title, const std::vector<std::string>& reasons,
                              const std::string& path);
 
+/// For a failing closest_point_triangle line: the triangle's Voronoi regions in its plane twice,
+/// cdlab's answer left and yours right (the point, the closest point, the region named and
+/// outlined). Returns "" when written, else why there is none.
+std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Json& cdlab, const Json& yours,
+                              const std::string& title, const std::vector<std::string>& reasons,
+                              const std::string& path);
+
 /// For a GJK or EPA trace of yours (`algorithm`; `trace` may hold several in "algorithms") whose
 /// step `step` (0-based) breaks a rule: configuration space twice, A − B and the origin with cdlab's
 /// step beside yours (GJK: simplex kept, support point, search direction; EPA: the face's nearest

@@ -1,5 +1,6 @@
 #include "demos/draw/figure_style.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -81,6 +82,11 @@ std::vector<std::string> wrapPieces(const Canvas& measure, const std::vector<std
     }
     if (!line.empty()) lines.push_back(line);
     return lines;
+}
+
+render::Color triangleRegionColor(int regionIndex) {
+    static constexpr int kHue[7] = {0, 3, 2, 1, 6, 4, 5};  // orange, yellow, green, sky, purple, blue, vermillion
+    return render::categorical(kHue[std::clamp(regionIndex, 0, 6)]);
 }
 
 }  // namespace cdlab::demos

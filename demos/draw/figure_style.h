@@ -29,6 +29,11 @@ std::vector<std::string> wrapPieces(const render::Canvas& measure, const std::ve
 render::LineStyle lineStyle(render::Role role, float widthPx, bool dashed = false, bool onTop = false);
 render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold = true);
 
+/// The colour of a triangle's Voronoi region, indexed by TriangleRegion (A, B, C, AB, BC, CA, ABC):
+/// neighbouring regions get far-apart hues (A next to AB and CA, ..., ABC next to the three edge
+/// regions). The voronoi_triangle figures and `cdlab check --figures` use the same.
+render::Color triangleRegionColor(int regionIndex);
+
 /// "(0.5, -1, 2)" with up to 4 significant digits, for captions.
 std::string formatPoint(const Vec3& p);
 std::string formatNumber(double x);

@@ -138,8 +138,6 @@ std::string focusCaption(int i, const Vec3& point, const Result& r) {
            formatPoint(r.point) + ", distance " + formatNumber(std::sqrt(r.distanceSquared));
 }
 
-// Neighbouring regions get far-apart hues (A next to AB and CA, B next to AB and BC, ABC next to
-// the three edge regions), indexed by TriangleRegion: A, B, C, AB, BC, CA, ABC.
 // A query point's name: right of the point when free, else where the placement step finds room.
 TextStyle queryLabelStyle() {
     TextStyle ts{18.0f, roleColor(Role::Ink), Anchor::Center, true, false};
@@ -148,10 +146,7 @@ TextStyle queryLabelStyle() {
     return ts;
 }
 
-Color regionColor(int regionIndex) {
-    static constexpr int kHue[7] = {0, 3, 2, 1, 6, 4, 5};  // orange, yellow, green, sky, purple, blue, vermillion
-    return categorical(kHue[std::clamp(regionIndex, 0, 6)]);
-}
+Color regionColor(int regionIndex) { return triangleRegionColor(regionIndex); }
 
 // Tetrahedron regions are coloured by the dimension of their feature (vertex, edge, face, inside).
 int tetraFeatureDimension(TetrahedronRegion r) {

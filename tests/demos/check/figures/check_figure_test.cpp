@@ -122,3 +122,28 @@ TEST_CASE("check --figures: an EPA trace that breaks a rule at step k gets cdlab
     CHECK(render::readPng((dir / "line_1.png").string()).height == 640);
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("check --figures: a closest_point_triangle line gets the triangle's regions, cdlab's answer beside yours") {
+    const Json line = {{"op", "closest_point_triangle"},
+                       {"point", {2, -1, 0.5}},
+                       {"triangle", {{0, 0, 0}, {4, 0, 0}, {1.2, 3, 0}}},
+                       {"answer", {{"point", {2, 0, 0}}, {"region", "A"}}}};
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_region_figure_test";
+    std::filesystem::remove_all(dir);
+    std::istringstream in(line.dump() + "\n");
+    std::ostringstream out;
+    CheckOptions options;
+    options.figuresDir = dir.string();
+    CHECK(runCheck(in, out, options) == 1);
+    CHECK(out.str().find("region differs: yours A, cdlab's AB") != std::string::npos);
+    CHECK(out.str().find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
+    // Different regions are outlined: the panels differ below their headings.
+    const render::Image image = render::readPng((dir / "line_1.png").string());
+    REQUIRE(image.width == 1280);
+    long differing = 0;
+    for (int y = 120; y < 560; ++y)
+        for (int x = 0; x < 640; ++x)
+            differing += image.rgba[(std::size_t(y) * 1280 + x) * 4] != image.rgba[(std::size_t(y) * 1280 + x + 640) * 4];
+    CHECK(differing > 100);
+    std::filesystem::remove_all(dir);
+}
