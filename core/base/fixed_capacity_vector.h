@@ -48,8 +48,15 @@ public:
         count_ = static_cast<int>(n);
     }
 
-    T* data() { return std::launder(reinterpret_cast<T*>(storage_)); }
-    const T* data() const { return std::launder(reinterpret_cast<const T*>(storage_)); }
+    // Laundered only when an element lives there ([ptr.launder] needs an object at the address).
+    T* data() {
+        T* p = reinterpret_cast<T*>(storage_);
+        return count_ ? std::launder(p) : p;
+    }
+    const T* data() const {
+        const T* p = reinterpret_cast<const T*>(storage_);
+        return count_ ? std::launder(p) : p;
+    }
     T& operator[](std::size_t i) {
         assert(i < size());
         return data()[i];

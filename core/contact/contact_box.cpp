@@ -28,7 +28,8 @@ int edgeOf(int u, int v) {
     return -1;
 }
 
-bool validExtents(const Vec3& h) { return h.allFinite() && h.minCoeff() > 0.0; }
+// Finite, positive and at most 1e150: beyond, |h| and the separations overflow double precision.
+bool validExtents(const Vec3& h) { return h.allFinite() && h.minCoeff() > 0.0 && h.maxCoeff() <= 1e150; }
 
 // A box in world orientation, positions relative to a common origin.
 struct PosedBox {
@@ -121,8 +122,8 @@ detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
 SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& hb, const Transform& tb,
                                const SatContactOptions& options) {
     SatContactResult r;
-    if (!validExtents(ha)) r.message = "A: box half extents must be finite and > 0";
-    else if (!validExtents(hb)) r.message = "B: box half extents must be finite and > 0";
+    if (!validExtents(ha)) r.message = "A: box half extents must be finite, > 0 and at most 1e150";
+    else if (!validExtents(hb)) r.message = "B: box half extents must be finite, > 0 and at most 1e150";
     else if (const char* m = detail::poseProblem(ta); *m) r.message = std::string("A: ") + m;
     else if (const char* m2 = detail::poseProblem(tb); *m2) r.message = std::string("B: ") + m2;
     if (!r.message.empty()) {
@@ -138,6 +139,11 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
     const double tol = r.tolerance;
 
     const detail::SatChosenAxis c = detail::chooseSatAxis(queryBoxAxes(A, B), tol, options);
+    if (!std::isfinite(tol) || (c.best.indexA < 0 && c.best.indexB < 0)) {  // positions near the double limit
+        r.message = "the boxes' coordinates overflow double precision";
+        r.separation = r.depth = NAN;
+        return r;
+    }
     const SatAxisRecord& best = c.best;
     r.separation = c.maxSep;
     r.normal = best.axis;
@@ -193,7 +199,7 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
     BoxPlaneContact r;
     Vec3 n;
     double d = 0.0;
-    r.message = validExtents(h) ? detail::unitPlane(plane, n, d) : "box half extents must be finite and > 0";
+    r.message = validExtents(h) ? detail::unitPlane(plane, n, d) : "box half extents must be finite, > 0 and at most 1e150";
     if (!*r.message) r.message = detail::poseProblem(pose);
     if (!*r.message && !std::isfinite(options.tolerance)) r.message = "tolerance is not finite";
     if (*r.message) {
@@ -201,9 +207,9 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
         return r;
     }
     r.normal = -n;
-    // Signed corner distances s_k = n̂ · x_k - d̂, from the world corners as the general function
-    // computes them (a form with three dot products, n̂ · c ± hx n̂ · x̂ ± ..., loses ~1e-14 of a
-    // shallow depth to cancellation).
+    // Signed corner distances s_k = n̂ · x_k - d̂ from the world corners c ± hx x̂ ± hy ŷ ± hz ẑ (they
+    // agree with the general function's rotation * v + position to an ulp; a form with three dot
+    // products, n̂ · c ± hx n̂ · x̂ ± ..., loses ~1e-14 of a shallow depth to cancellation).
     const PosedBox box(h, pose, Vec3::Zero());
     std::array<double, 8> s;
     double maxCoord = std::abs(d);
@@ -216,6 +222,12 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
                                            : options.relativeTolerance * 2.0 * h.norm() + ulps(64, maxCoord);
     const double tol = r.tolerance;
     const double sLow = s[r.deepestVertex];
+    if (!std::isfinite(sLow) || !std::isfinite(tol)) {  // a pose or plane near the double limit
+        r.status = PlaneContactStatus::InvalidInput;
+        r.message = "the box's coordinates overflow double precision";
+        r.signedDistance = NAN;
+        return r;
+    }
     r.signedDistance = sLow;
     r.depth = std::max(0.0, -sLow);
     r.status = sLow > tol     ? PlaneContactStatus::Separated

@@ -31,7 +31,7 @@ namespace cdlab {
 
 /// Contact of box A (half extents ha, pose ta) and box B, world frame: as
 /// contactPolyhedra(presets::box(ha), ta, presets::box(hb), tb, options), no heap allocation.
-/// Half extents must be finite and > 0 (else InvalidInput with the reason).
+/// Half extents must be finite, > 0 and at most 1e150 (else InvalidInput with the reason).
 SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& hb, const Transform& tb,
                                const SatContactOptions& options = {});
 

@@ -55,8 +55,8 @@ struct ManifoldReductionStep {
 /// kMaxContactPoints, the rules reduce to kMaxContactPoints. maxPoints >= the count left by rule 0 keeps those
 /// (the deepest first, then input order; no steps). A rule whose best score is 0 (all remaining
 /// points coincide with or are collinear with the chosen ones) stops the reduction early. normal:
-/// unit, any sign. No heap allocation for polygons up to ~100 points (stack scratch), nor with
-/// steps == nullptr.
+/// unit, any sign. No heap allocation when steps == nullptr (the steps are a std::vector) and the
+/// polygon has at most kMaxContactPoints points (inline scratch; a larger one uses a stack arena).
 ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
                                     std::vector<ManifoldReductionStep>* steps = nullptr);
 

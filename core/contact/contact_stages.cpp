@@ -12,17 +12,42 @@ namespace {
 
 // Sutherland–Hodgman against one plane (Ericson §8.3.4): keep n · x <= d. Buffer: a
 // FixedCapacityVector for small polygons, a std::pmr::vector otherwise.
+// Appends p; false when a fixed buffer is full (a std::pmr::vector never is).
+inline bool append(std::pmr::vector<Vec3>& out, const Vec3& p) {
+    out.push_back(p);
+    return true;
+}
+template <int N>
+bool append(FixedCapacityVector<Vec3, N>& out, const Vec3& p) {
+    return out.push_back(p);
+}
+inline bool append(std::pmr::vector<ContactPoint>& out, const ContactPoint& p) {
+    out.push_back(p);
+    return true;
+}
+template <int N>
+bool append(FixedCapacityVector<ContactPoint, N>& out, const ContactPoint& p) {
+    return out.push_back(p);
+}
+
+// Sutherland–Hodgman against one plane (Ericson §8.3.4): keep n · x <= d. Buffer: a
+// FixedCapacityVector for small polygons, a std::pmr::vector otherwise. In exact arithmetic a
+// convex k-gon gains at most one point; with rounding, signs can alternate along an edge lying in
+// the plane and it can gain more: false when a fixed buffer overflows (the caller starts over
+// with growing buffers).
 template <class Buffer>
-void clipPolygon(const Buffer& poly, const Vec3& n, double d, Buffer& out) {
+bool clipPolygon(const Buffer& poly, const Vec3& n, double d, Buffer& out) {
     out.clear();
     const size_t k = poly.size();
     for (size_t i = 0; i < k; ++i) {
         const Vec3& p = poly[i];
         const Vec3& q = poly[(i + 1) % k];
         const double sp = n.dot(p) - d, sq = n.dot(q) - d;
-        if (sp <= 0.0) out.push_back(p);
-        if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0)) out.push_back(p + (sp / (sp - sq)) * (q - p));
+        if (sp <= 0.0 && !append(out, p)) return false;
+        if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0))
+            if (!append(out, Vec3(p + (sp / (sp - sq)) * (q - p)))) return false;
     }
+    return true;
 }
 
 // A contact point from a point p of the incident body and its projection onRef on the reference
@@ -79,7 +104,7 @@ namespace {
 // clipIncidentFace with its polygons in `poly` / `next` and the kept points in `pts` (empty, with
 // room for incident.size() + reference.size() points).
 template <class Polygon, class Points>
-void clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> reference, const Vec3& nr,
+bool clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> reference, const Vec3& nr,
               double dRef, std::span<const Vec3> incident, std::span<const Vec3> incidentVertices, bool referenceOnA,
               const Vec3& origin, double tol, const SatContactOptions& options, SatContactResult& r,
               SatContactTrace* trace, std::span<const Plane> sidePlanes) {
@@ -88,7 +113,8 @@ void clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
         for (const Vec3& p : reference) trace->referencePolygon.push_back(p + origin);
         for (const Vec3& p : incident) trace->incidentPolygon.push_back(p + origin);
     }
-    for (const Vec3& p : incident) poly.push_back(p);
+    for (const Vec3& p : incident)
+        if (!append(poly, p)) return false;
     Polygon* in = &poly;
     Polygon* out = &next;
     // Side planes of the reference face: edge e_i = r_{i+1} - r_i (CCW about nr), outward
@@ -104,7 +130,7 @@ void clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
             sn = e.cross(nr).normalized();
             sd = sn.dot(reference[i]);
         }
-        clipPolygon(*in, sn, sd, *out);
+        if (!clipPolygon(*in, sn, sd, *out)) return false;
         if (trace) {
             SatClipStep step{static_cast<int>(i), sn, sd + sn.dot(origin), {}, {}};
             for (const Vec3& p : *in) step.before.push_back(p + origin);
@@ -116,7 +142,8 @@ void clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
     // Keep the points behind the reference plane: depth = -(nr · p - d).
     for (const Vec3& p : *in) {
         const double s = nr.dot(p) - dRef;
-        if (s <= tol) pts.push_back(incidentPoint(p, p - s * nr, std::max(0.0, -s), referenceOnA, origin));
+        if (s <= tol && !append(pts, incidentPoint(p, p - s * nr, std::max(0.0, -s), referenceOnA, origin)))
+            return false;
     }
     if (pts.empty()) {
         size_t v = 0;
@@ -130,6 +157,7 @@ void clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
     const std::span<const ContactPoint> kept(pts.data(), pts.size());
     for (int i : reduceContactPolygon(kept, nr, options.maxPoints, steps)) r.manifold.push_back(kept[i]);
     if (trace) trace->clipped.assign(kept.begin(), kept.end());
+    return true;
 }
 
 }  // namespace
@@ -138,15 +166,18 @@ void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dR
                       std::span<const Vec3> incidentVertices, bool referenceOnA, const Vec3& origin, double tol,
                       const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
                       std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes) {
-    // Clipping by k side planes adds at most one point per plane.
+    // Clipping by k side planes adds one point per plane in exact arithmetic; the inline buffers
+    // leave room for rounding to add more, and a polygon that still overflows them (nothing is
+    // written to r before the end) is clipped again in growing buffers. Traced runs take those
+    // directly, so no step is recorded twice.
     const size_t capacity = incident.size() + reference.size();
-    constexpr int kInline = 24;  // box faces (8), hull triangles and quads: no allocator at all
-    if (capacity <= size_t(kInline)) {
+    constexpr int kInline = 24;  // box faces (8 at most in exact arithmetic), hull triangles and quads
+    if (!trace && 2 * capacity <= size_t(kInline)) {
         FixedCapacityVector<Vec3, kInline> poly, next;
         FixedCapacityVector<ContactPoint, kInline> pts;
-        clipWith(poly, next, pts, reference, nr, dRef, incident, incidentVertices, referenceOnA, origin, tol, options,
-                 r, trace, sidePlanes);
-        return;
+        if (clipWith(poly, next, pts, reference, nr, dRef, incident, incidentVertices, referenceOnA, origin, tol,
+                     options, r, trace, sidePlanes))
+            return;
     }
     std::pmr::vector<Vec3> poly(memory), next(memory);
     std::pmr::vector<ContactPoint> pts(memory);

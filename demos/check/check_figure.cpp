@@ -115,8 +115,8 @@ struct StepPicture {
 // The trace of `algorithm` in yours: the object itself, or the one in "algorithms" with that name.
 Json traceOf(const Json& trace, const std::string& algorithm) {
     if (trace.is_object() && trace.contains("algorithms") && trace["algorithms"].is_array())
-        for (const Json& one : trace["algorithms"])
-            if (one.is_object() && one.value("algorithm", "") == algorithm) return one;
+        for (const Json& one : trace["algorithms"])  // no "algorithm": GJK, as the check reads it
+            if (one.is_object() && one.value("algorithm", std::string("gjk")) == algorithm) return one;
     return trace;
 }
 

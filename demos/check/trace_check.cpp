@@ -26,25 +26,40 @@ std::optional<double> originDistance(const std::vector<Vec3>& pts) {
     return distanceTo(Vec3::Zero(), shape);
 }
 
+// The steps of a trace: {"steps": [...]} or the array itself.
+const Json* stepsOf(const Json& trace) {
+    if (trace.is_object() && trace.contains("steps") && trace["steps"].is_array()) return &trace["steps"];
+    return trace.is_array() ? &trace : nullptr;
+}
+
+// A support point given as a point of A − B or as the pair {"a", "b"}.
+std::optional<Vec3> supportPoint(const Json& s) {
+    if (isVec(s)) return vec(s);
+    if (s.is_object() && s.contains("a") && s.contains("b") && isVec(s["a"]) && isVec(s["b"]))
+        return Vec3(vec(s["a"]) - vec(s["b"]));
+    return std::nullopt;
+}
+
 // Your GJK trace, step by step, against the rule every step must follow (so ties are not
 // divergences): the support point is extreme along your direction (h_{A−B}(d)); the simplex kept
 // holds the point of the simplex nearest the origin; the next direction points from that point
 // toward the origin. The first step that breaks one is reported.
 void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
                    int& divergence) {
-    const Json* steps = trace.is_object() && trace.contains("steps") ? &trace["steps"] : trace.is_array() ? &trace : nullptr;
-    if (!steps || !steps->is_array()) return reasons.push_back("trace: expected {\"steps\": [...]} (docs/check.md)");
+    if (!query.contains("a") || !query.contains("b")) return reasons.push_back("trace: the query needs a and b");
+    const Json* steps = stepsOf(trace);
+    if (!steps) return reasons.push_back("trace: expected {\"steps\": [...]} (docs/check.md)");
     std::vector<Vec3> kept;
     std::optional<Vec3> closest;
     for (std::size_t k = 0; k < steps->size(); ++k) {
         const Json& s = (*steps)[k];
         const std::string at = "trace: iteration " + std::to_string(k) + ": ";
         divergence = static_cast<int>(k);  // where a failure returns below
-        if (!s.is_object() || !s.contains("direction") || !isVec(s["direction"]) || !s.contains("support") ||
-            !(isVec(s["support"]) || (s["support"].is_object() && s["support"].contains("a"))))
+        const std::optional<Vec3> given = s.is_object() ? supportPoint(s.value("support", Json())) : std::nullopt;
+        if (!s.is_object() || !isVec(s.value("direction", Json())) || !given)
             return reasons.push_back(at + "expected \"direction\" [x,y,z] and \"support\" (a point of A − B, or {\"a\", \"b\"})");
         const Vec3 d = vec(s["direction"]);
-        const Vec3 w = isVec(s["support"]) ? vec(s["support"]) : Vec3(vec(s["support"]["a"]) - vec(s["support"]["b"]));
+        const Vec3 w = *given;
         if (closest && closest->norm() > tol) {
             const Vec3 toward = -closest->normalized();
             if (d.norm() == 0 || (d.normalized() - toward).norm() > 1e-6)
@@ -69,7 +84,7 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector
                 return reasons.push_back(at + "the simplex keeps a point that was not in it");
         }
         if (next.empty() || next.size() > 4) return reasons.push_back(at + "the simplex kept has 1 to 4 points");
-        const std::optional<double> best = originDistance(all.size() <= 4 ? all : next), mineD = originDistance(next);
+        const std::optional<double> best = originDistance(all), mineD = originDistance(next);  // all: up to 5 points
         if (best && mineD && !(*mineD <= *best + tol))
             return reasons.push_back(at + "wrong sub-simplex kept: its nearest point is " + num(*mineD) +
                                      " from the origin, the simplex's is " + num(*best));
@@ -89,26 +104,13 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector
 }
 
 
-// The steps of a trace: {"steps": [...]} or the array itself.
-const Json* stepsOf(const Json& trace) {
-    if (trace.is_object() && trace.contains("steps") && trace["steps"].is_array()) return &trace["steps"];
-    return trace.is_array() ? &trace : nullptr;
-}
-
-// A support point given as a point of A − B or as the pair {"a", "b"}.
-std::optional<Vec3> supportPoint(const Json& s) {
-    if (isVec(s)) return vec(s);
-    if (s.is_object() && s.contains("a") && s.contains("b") && isVec(s["a"]) && isVec(s["b"]))
-        return Vec3(vec(s["a"]) - vec(s["b"]));
-    return std::nullopt;
-}
-
 // Your EPA steps: each expands the closest face of a polytope inside A − B (unit normal n, distance
 // d) by the support point along n. Rules: n unit; the support extreme along n; d never above the
 // penetration depth (the polytope lies inside A − B) and never below the previous step's d (the
 // polytope only grows); with your "polytope" (its triangles), the face is its closest one.
 void checkEpaTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
                    int& divergence) {
+    if (!query.contains("a") || !query.contains("b")) return reasons.push_back("trace (epa): the query needs a and b");
     const Json* steps = stepsOf(trace);
     if (!steps) return reasons.push_back("trace (epa): expected {\"steps\": [...]} (docs/check.md)");
     const Json answer =
@@ -201,7 +203,7 @@ int regionCondition(const std::string& region, const RegionTerms& t, double eps2
     else if (region == "C") s = {{t.d6, true, eps2}, {t.d5 - t.d6, false, eps2}};
     else if (region == "AC" || region == "CA") s = {{t.vb, false, eps4}, {t.d2, true, eps2}, {t.d6, false, eps2}};
     else if (region == "BC") s = {{t.va, false, eps4}, {t.d4 - t.d3, true, eps2}, {t.d5 - t.d6, true, eps2}};
-    else if (region == "ABC") return 1;
+    else if (region == "ABC") s = {{t.va, true, eps4}, {t.vb, true, eps4}, {t.vc, true, eps4}};
     else return -2;  // not a region name
     bool undecided = false;
     for (const Sign& c : s) {
@@ -220,7 +222,9 @@ void checkRegionTrace(const Json& query, const Json& trace, double tol, std::vec
                       int& divergence) {
     const Json* tests = trace.is_object() && trace.contains("tests") && trace["tests"].is_array() ? &trace["tests"] : nullptr;
     if (!tests) return reasons.push_back("trace (regions): expected {\"tests\": [...]} (docs/check.md)");
-    if (!isVec(query.value("point", Json())) || !query.contains("triangle") || query["triangle"].size() != 3)
+    const Json tri0 = query.value("triangle", Json());
+    if (!isVec(query.value("point", Json())) || !tri0.is_array() || tri0.size() != 3 || !isVec(tri0[0]) ||
+        !isVec(tri0[1]) || !isVec(tri0[2]))
         return reasons.push_back("trace (regions): the query needs \"point\" and \"triangle\"");
     const Json& tri = query["triangle"];
     const RegionTerms t = regionTerms(vec(tri[0]), vec(tri[1]), vec(tri[2]), vec(query["point"]));
@@ -250,9 +254,13 @@ void checkRegionTrace(const Json& query, const Json& trace, double tol, std::vec
         const bool accepted = test["accepted"].get<bool>();
         if (holds == 1 && !accepted) return reasons.push_back(at + "rejected, but the point lies in this region");
         if (holds == -1 && accepted) return reasons.push_back(at + "accepted, but the point lies outside this region");
-        if (accepted) break;  // the region found: later tests are not made
+        if (accepted) {  // the region found: later tests are not made
+            divergence = -1;
+            return;
+        }
     }
-    divergence = -1;
+    divergence = static_cast<int>(tests->size());
+    reasons.push_back("trace (regions): no test accepted a region");
 }
 
 }  // namespace

@@ -320,6 +320,7 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         }
         // A scene that fails at run time (or whose files cannot be written) is reported with its
         // file; its folder keeps the previous complete files and the other scenes still render.
+        bool submitted = false;  // from then on the writer's report counts the scene, not this loop
         try {
             double algorithm = 0;
             if (o.profile) {  // the numeric part alone: what the algorithm costs without any drawing
@@ -348,6 +349,7 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
                 }
                 return report;
             });
+            submitted = true;
             const double writeSeconds = secondsSince(tw);
 
             if (o.profile) {
@@ -370,13 +372,13 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         } catch (const InputError& e) {
             const std::string what = e.what();
             std::cerr << (tty ? "\n" : "") << (what.rfind(job.file, 0) == 0 ? what : job.file + ": " + what) << "\n";
-            ++failed;
+            failed += !submitted;
         } catch (const render::GlError& e) {
             std::cerr << (tty ? "\n" : "") << job.file << ": OpenGL: " << e.what() << "\n";
-            ++failed;
-        } catch (const std::exception& e) {  // render::ImageError, write errors, std::bad_alloc, ...
+            failed += !submitted;
+        } catch (const std::exception& e) {  // render::ImageError, std::bad_alloc, ...
             std::cerr << (tty ? "\n" : "") << job.file << ": " << e.what() << "\n";
-            ++failed;
+            failed += !submitted;
         }
     }
     for (const WriteReport& report : writer.finish()) {

@@ -153,8 +153,20 @@ TEST_SUITE("contact_box") {
         CHECK(r.normal.isApprox(Vec3::UnitZ(), 1e-12));
         REQUIRE(r.manifold.size() == 4);
         for (const ContactPoint& p : r.manifold) CHECK(p.depth == doctest::Approx(0.01).epsilon(1e-9));
-        CHECK(contactBoxBox(Vec3(1, 0, 1), tg, cube, tc).message == "A: box half extents must be finite and > 0");
-        CHECK(contactBoxBox(ground, tg, Vec3(1, NAN, 1), tc).message == "B: box half extents must be finite and > 0");
+        CHECK(contactBoxBox(Vec3(1, 0, 1), tg, cube, tc).message == "A: box half extents must be finite, > 0 and at most 1e150");
+        CHECK(contactBoxBox(ground, tg, Vec3(1, NAN, 1), tc).message == "B: box half extents must be finite, > 0 and at most 1e150");
+        // Beyond double precision's range: an error, never an out-of-range face index.
+        CHECK(contactBoxBox(Vec3::Constant(1e200), tg, cube, tc).status == SatContactStatus::InvalidInput);
+        Transform west = tg, east = tc;  // centres 3.4e308 apart: the difference overflows
+        west.position = Vec3(-1.7e308, 0, 0);
+        east.position = Vec3(1.7e308, 0, 0);
+        const SatContactResult huge = contactBoxBox(Vec3::Constant(1e150), west, Vec3::Constant(1e150), east);
+        CHECK(huge.status == SatContactStatus::InvalidInput);
+        CHECK(huge.message == "the boxes' coordinates overflow double precision");
+        Transform corner = tc;  // n · x = 0.6 x + 0.8 y = 2.4e308 overflows
+        corner.position = Vec3(1.7e308, 1.7e308, 0);
+        CHECK(contactBoxPlane(Vec3::Constant(1e150), corner, Plane{Vec3(0.6, 0.8, 0), 0.0}).status ==
+              PlaneContactStatus::InvalidInput);
         tc.rotation.coeffs() *= 2.0;
         const SatContactResult bad = contactBoxBox(ground, tg, cube, tc);
         CHECK(bad.status == SatContactStatus::InvalidInput);
@@ -194,6 +206,6 @@ TEST_SUITE("contact_box") {
         CHECK(std::string(contactBoxPlane(Vec3(1, 1, 1), Transform{}, Plane{Vec3::Zero(), 0.0}).message) ==
               "plane normal is zero");
         CHECK(std::string(contactBoxPlane(Vec3(1, -1, 1), Transform{}, Plane{Vec3::UnitZ(), 0.0}).message) ==
-              "box half extents must be finite and > 0");
+              "box half extents must be finite, > 0 and at most 1e150");
     }
 }

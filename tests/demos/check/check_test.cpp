@@ -202,3 +202,43 @@ TEST_CASE("check: Voronoi-region tests: values by Ericson's formulas, decisions 
         {{"region", "AB"}, {"terms", {{{"name", "vc"}, {"value", -48}}}}, {"accepted", true}}};
     CHECK(check(line(q, tieAnswer, tie)).pass);
 }
+
+TEST_CASE("check: malformed traces fail their line with a reason, never crash") {
+    // A support pair without "b", a support pair of short arrays.
+    Json line = distanceLine({{"intersect", false}, {"distance", 1}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    line["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {{"a", {1, 0, 0}}}}}}}};
+    CHECK(reasons(check(line)).find("iteration 0: expected \"direction\"") != std::string::npos);
+    line["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {{"a", Json::array()}, {"b", {0, 0, 0}}}}}}}};
+    CHECK(!check(line).pass);
+    // A query cdlab answers with an error (b missing): your error answer passes, the trace is not read.
+    const Json broken = {{"op", "penetration"},
+                         {"a", {{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}}},
+                         {"answer", {{"error", "b is missing"}}},
+                         {"trace", {{"algorithm", "epa"}, {"steps", Json::array()}}}};
+    CHECK_NOTHROW(check(broken));
+    const Json brokenTriangle = {{"op", "closest_point_triangle"},
+                                 {"point", {0, 0, 0}},
+                                 {"triangle", {Json::array(), Json::array(), Json::array()}},
+                                 {"answer", {{"error", "bad triangle"}}},
+                                 {"trace", {{"tests", Json::array()}}}};
+    CHECK_NOTHROW(check(brokenTriangle));
+}
+
+TEST_CASE("check: region tests in any order; ABC has its own condition; some test must accept") {
+    const Json triangle = {{0, 0, 0}, {4, 0, 0}, {1.2, 3, 0}};
+    // p = (-1, -1, 0) lies in region A: testing ABC first and rejecting it is right, accepting it wrong.
+    const Json answer = {{"point", {0, 0, 0}}, {"region", "A"}};
+    const auto line = [&](const Json& tests) {
+        return Json{{"op", "closest_point_triangle"}, {"point", {-1, -1, 0}}, {"triangle", triangle}, {"answer", answer},
+                    {"trace", {{"algorithm", "ericson_regions"}, {"tests", tests}}}};
+    };
+    CHECK(check(line({{{"region", "ABC"}, {"accepted", false}}, {{"region", "A"}, {"accepted", true}}})).pass);
+    CHECK(reasons(check(line({{{"region", "ABC"}, {"accepted", true}}})))
+              .find("test 0 (ABC): accepted, but the point lies outside this region") != std::string::npos);
+    CHECK(reasons(check(line({{{"region", "B"}, {"accepted", false}}}))).find("no test accepted a region") !=
+          std::string::npos);
+    // Ericson's "AC" names cdlab's "CA".
+    const Json ac = {{"op", "closest_point_triangle"}, {"point", {0, 2, 0}}, {"triangle", triangle},
+                     {"answer", {{"point", {0.6896551724137931, 1.7241379310344829, 0}}, {"region", "AC"}}}};
+    CHECK(check(ac).pass);
+}
