@@ -18,13 +18,32 @@ thread_local long long g_allocations = 0;
 int* volatile g_sink = nullptr;  // keeps the compiler from eliding the probe allocation
 }
 
-void* operator new(std::size_t n) {
+// Every unaligned form is replaced, so that whatever allocates (std::stable_sort's nothrow
+// temporary buffer included) frees through the same malloc / free pair: under AddressSanitizer,
+// which intercepts the forms left alone, a mixed pair is an alloc-dealloc mismatch.
+namespace {
+void* counted(std::size_t n) noexcept {
     ++g_allocations;
-    if (void* p = std::malloc(n ? n : 1)) return p;
+    return std::malloc(n ? n : 1);
+}
+}  // namespace
+
+void* operator new(std::size_t n) {
+    if (void* p = counted(n)) return p;
     throw std::bad_alloc();
 }
+void* operator new[](std::size_t n) {
+    if (void* p = counted(n)) return p;
+    throw std::bad_alloc();
+}
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted(n); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return counted(n); }
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace cdlab;
 
