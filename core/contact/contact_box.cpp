@@ -145,13 +145,7 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
         return r;
     }
     const SatAxisRecord& best = c.best;
-    r.separation = c.maxSep;
-    r.normal = best.axis;
-    r.axisKind = best.kind;
-    r.depth = std::max(0.0, -best.separation);
-    r.status = c.maxSep > tol     ? SatContactStatus::Separated
-               : c.maxSep >= -tol ? SatContactStatus::Touching
-                                  : SatContactStatus::Penetrating;
+    detail::recordChosenAxis(c, tol, r);
     if (best.kind == SatAxisKind::EdgeEdge) {
         r.featureA = {FeatureType::Edge, best.indexA};
         r.featureB = {FeatureType::Edge, best.indexB};

@@ -136,9 +136,7 @@ void queryFaceAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyh
 
 // 2. Edge pairs that form a face of the Minkowski difference (their Gauss-map arcs cross), the
 // axis their cross product, oriented away from A.
-void queryEdgeAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
-                   SatQuery& q) {
-    (void)ma, (void)mb;
+void queryEdgeAxes(const Posed& A, const Posed& B, SatQuery& q) {
     // B's Gauss map as the arcs see it: the negated face normals (bit for bit the arcs' end points).
     std::pmr::vector<Vec3> negated(B.n.size(), Vec3::Zero(), B.n.get_allocator().resource());
     std::pmr::vector<double> side(B.n.size(), 0.0, B.n.get_allocator().resource());
@@ -239,16 +237,10 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     SatQuery q;
     if (trace) q.axes = &trace->axes;
     queryFaceAxes(ma, A, mb, B, q);
-    queryEdgeAxes(ma, A, mb, B, q);
+    queryEdgeAxes(A, B, q);
     const detail::SatChosenAxis c = detail::chooseSatAxis(q.best, tol, options);
     const SatAxisRecord& best = c.best;
-    r.separation = c.maxSep;
-    r.normal = best.axis;
-    r.axisKind = best.kind;
-    r.depth = std::max(0.0, -best.separation);
-    r.status = c.maxSep > tol     ? SatContactStatus::Separated
-               : c.maxSep >= -tol ? SatContactStatus::Touching
-                                  : SatContactStatus::Penetrating;
+    detail::recordChosenAxis(c, tol, r);
     if (trace) {
         trace->edgePairsTotal = ma.edgeCount() * mb.edgeCount();
         trace->edgePairsPruned = q.pruned;

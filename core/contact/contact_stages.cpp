@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "core/base/tolerances.h"
@@ -10,24 +11,16 @@ namespace cdlab::detail {
 
 namespace {
 
-// Sutherland–Hodgman against one plane (Ericson §8.3.4): keep n · x <= d. Buffer: a
-// FixedCapacityVector for small polygons, a std::pmr::vector otherwise.
-// Appends p; false when a fixed buffer is full (a std::pmr::vector never is).
-inline bool append(std::pmr::vector<Vec3>& out, const Vec3& p) {
-    out.push_back(p);
-    return true;
-}
-template <int N>
-bool append(FixedCapacityVector<Vec3, N>& out, const Vec3& p) {
-    return out.push_back(p);
-}
-inline bool append(std::pmr::vector<ContactPoint>& out, const ContactPoint& p) {
-    out.push_back(p);
-    return true;
-}
-template <int N>
-bool append(FixedCapacityVector<ContactPoint, N>& out, const ContactPoint& p) {
-    return out.push_back(p);
+// Appends x; false when a fixed buffer is full (FixedCapacityVector::push_back refuses), true for
+// a std::pmr::vector (it grows).
+template <class Buffer, class T>
+bool append(Buffer& out, const T& x) {
+    if constexpr (std::is_same_v<decltype(out.push_back(x)), bool>) {
+        return out.push_back(x);
+    } else {
+        out.push_back(x);
+        return true;
+    }
 }
 
 // Sutherland–Hodgman against one plane (Ericson §8.3.4): keep n · x <= d. Buffer: a
@@ -161,6 +154,16 @@ bool clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
 }
 
 }  // namespace
+
+void recordChosenAxis(const SatChosenAxis& c, double tol, SatContactResult& r) {
+    r.separation = c.maxSep;
+    r.normal = c.best.axis;
+    r.axisKind = c.best.kind;
+    r.depth = std::max(0.0, -c.best.separation);
+    r.status = c.maxSep > tol     ? SatContactStatus::Separated
+               : c.maxSep >= -tol ? SatContactStatus::Touching
+                                  : SatContactStatus::Penetrating;
+}
 
 void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dRef, std::span<const Vec3> incident,
                       std::span<const Vec3> incidentVertices, bool referenceOnA, const Vec3& origin, double tol,

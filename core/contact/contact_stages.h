@@ -43,6 +43,10 @@ struct SatChosenAxis {
 /// faces preferred to edges and A's faces to B's unless the other is better by the bias.
 SatChosenAxis chooseSatAxis(const SatBestAxes& best, double tol, const SatContactOptions& options);
 
+/// The chosen axis into the result: separation (the largest over all axes), normal, axis kind,
+/// depth along the axis, and the status by the touching band tol.
+void recordChosenAxis(const SatChosenAxis& c, double tol, SatContactResult& r);
+
 /// Step 4b: the incident polygon clipped by the side planes of the reference polygon (Sutherland–
 /// Hodgman, Ericson §8.3.4), the points behind the reference plane nr · x = dRef (s <= tol) kept
 /// with depth -s and reduced to options.maxPoints into r.manifold. Positions are relative to

@@ -12,6 +12,7 @@
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/polyhedron_presets.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
+#include "tests/core/contact/random_pose.h"
 
 namespace {
 thread_local long long g_allocations = 0;
@@ -56,14 +57,6 @@ long long allocationsOf(F&& f) {
     return g_allocations - before;
 }
 
-Transform pose(std::mt19937_64& rng, double spread) {
-    std::normal_distribution<double> g(0.0, 1.0);
-    Transform t;
-    t.rotation = Quat(g(rng), g(rng), g(rng), g(rng)).normalized();
-    t.position = spread * Vec3(g(rng), g(rng), g(rng));
-    return t;
-}
-
 }  // namespace
 
 TEST_SUITE("contact_allocation") {
@@ -83,7 +76,7 @@ TEST_SUITE("contact_allocation") {
         }
         int collidingBoxes = 0, collidingPlane = 0, collidingHulls = 0;
         for (int k = 0; k < 200; ++k) {
-            const Transform ta = pose(rng, 0.0), tb = pose(rng, 0.8);
+            const Transform ta = test::randomPose(rng, Vec3::Zero(), 0.0), tb = test::randomPose(rng, Vec3::Zero(), 0.8);
             const Plane plane{test::randomUnit(rng), 0.1};
             CHECK(allocationsOf([&] {
                       collidingBoxes += contactBoxBox(Vec3(0.5, 0.4, 0.3), ta, Vec3(0.6, 0.2, 0.4), tb).colliding();

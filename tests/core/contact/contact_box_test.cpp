@@ -11,18 +11,11 @@
 #include "core/contact/contact_box.h"
 #include "core/geometry/polyhedron_presets.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
+#include "tests/core/contact/random_pose.h"
 
 using namespace cdlab;
 
 namespace {
-
-Transform randomPose(std::mt19937_64& rng, const Vec3& center, double spread) {
-    std::normal_distribution<double> g(0.0, 1.0);
-    Transform t;
-    t.rotation = Quat(g(rng), g(rng), g(rng), g(rng)).normalized();
-    t.position = center + spread * Vec3(g(rng), g(rng), g(rng));
-    return t;
-}
 
 Vec3 randomExtents(std::mt19937_64& rng) {
     std::uniform_real_distribution<double> u(0.1, 1.0);
@@ -87,7 +80,7 @@ TEST_SUITE("contact_box") {
             for (int k = 0; k < 1500; ++k) {
                 const Vec3 ha = randomExtents(rng), hb = randomExtents(rng);
                 const Vec3 c = Vec3::Constant(offset);
-                const Transform ta = randomPose(rng, c, 0.0), tb = randomPose(rng, c, 0.8);
+                const Transform ta = test::randomPose(rng, c, 0.0), tb = test::randomPose(rng, c, 0.8);
                 const SatContactResult f = contactBoxBox(ha, ta, hb, tb);
                 const SatContactResult g = contactPolyhedra(presets::box(ha), ta, presets::box(hb), tb);
                 const double tol = 1e-11 * (1.0 + offset);
@@ -117,7 +110,7 @@ TEST_SUITE("contact_box") {
         int penetrating = 0;
         for (int k = 0; k < 300; ++k) {
             const Vec3 ha = randomExtents(rng), hb = randomExtents(rng);
-            const Transform ta = randomPose(rng, Vec3::Zero(), 0.0), tb = randomPose(rng, Vec3::Zero(), 0.6);
+            const Transform ta = test::randomPose(rng, Vec3::Zero(), 0.0), tb = test::randomPose(rng, Vec3::Zero(), 0.6);
             const SatContactResult r = contactBoxBox(ha, ta, hb, tb);
             const test::HullOracle o = test::hullOracle(corners(ha, ta), corners(hb, tb));
             if (o.inside) {
@@ -179,7 +172,7 @@ TEST_SUITE("contact_box") {
         int colliding = 0;
         for (int k = 0; k < 3000; ++k) {
             const Vec3 h = randomExtents(rng);
-            const Transform t = randomPose(rng, Vec3::Zero(), 0.5);
+            const Transform t = test::randomPose(rng, Vec3::Zero(), 0.5);
             const Plane plane{test::randomUnit(rng) * (0.5 + u(rng) * u(rng)), 0.3 * u(rng)};
             PlaneContactOptions options;
             options.maxPoints = 1 + k % 6;

@@ -8,6 +8,7 @@
 
 #include "core/contact/contact_plane.h"
 #include "core/geometry/polyhedron_presets.h"
+#include "tests/core/contact/random_pose.h"
 
 using namespace cdlab;
 
@@ -36,13 +37,8 @@ bool insideBody(const ConvexPolyhedron& b, const Transform& t, const Vec3& x, do
     return true;
 }
 
-Transform randomPose(std::mt19937_64& rng, double offset) {
-    std::normal_distribution<double> g(0.0, 1.0);
-    Transform t;
-    t.rotation = Quat(g(rng), g(rng), g(rng), g(rng)).normalized();
-    t.position = Vec3(g(rng), g(rng), g(rng)) * 0.3 + Vec3::Constant(offset);
-    return t;
-}
+// The same pose as 0.3 · g + offset: a spread of 0.3 about (offset, offset, offset).
+Transform randomPose(std::mt19937_64& rng, double offset) { return test::randomPose(rng, Vec3::Constant(offset), 0.3); }
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
+#include "tests/core/contact/random_pose.h"
 
 using namespace cdlab;
 
@@ -49,14 +50,6 @@ long double bruteSatSeparation(const ConvexPolyhedron& ma, const Transform& ta, 
     for (const Vec3& u : axes)
         for (const Vec3& s : {u, Vec3(-u)}) best = std::max(best, -test::supportValueL(a, b, s));
     return best;
-}
-
-Transform randomPose(std::mt19937_64& rng, const Vec3& center, double spread) {
-    std::normal_distribution<double> g(0.0, 1.0);
-    Transform t;
-    t.rotation = Quat(g(rng), g(rng), g(rng), g(rng)).normalized();
-    t.position = center + spread * Vec3(g(rng), g(rng), g(rng));
-    return t;
 }
 
 }  // namespace
@@ -123,7 +116,7 @@ TEST_SUITE("contact_sat") {
                 for (const ConvexPolyhedron& b : bodies) {
                     for (int k = 0; k < 8; ++k) {
                         const Vec3 c = Vec3::Constant(offset);
-                        const Transform ta = randomPose(rng, c, 0.0), tb = randomPose(rng, c, 0.45);
+                        const Transform ta = test::randomPose(rng, c, 0.0), tb = test::randomPose(rng, c, 0.45);
                         SatContactTrace tr;
                         const SatContactResult r = contactPolyhedra(a, ta, b, tb, {}, &tr);
                         const std::vector<Vec3> wa = world(a, ta), wb = world(b, tb);
