@@ -4,6 +4,7 @@
 #include <array>
 
 #include "core/closest/voronoi_regions.h"
+#include "demos/check/check_values.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
@@ -44,10 +45,26 @@ std::optional<SceneShape> drawableShape(const Json& node, const std::string& pat
     }
 }
 
-bool isVec(const Json& j) {
-    return j.is_array() && j.size() == 3 && std::all_of(j.begin(), j.end(), [](const Json& x) { return x.is_number(); });
+// Shapes a and b of the query as a pair the figures draw (polytopesOnly: the trace figures, whose
+// configuration space is the exact hull of A − B), or nothing with `why` set.
+std::optional<PairScene> drawablePair(const Json& query, bool polytopesOnly, std::string& why) {
+    if (!query.contains("a") || !query.contains("b")) {
+        why = "no figure: the query has no shapes a and b";
+        return std::nullopt;
+    }
+    const std::optional<SceneShape> a = drawableShape(query["a"], "$.a"), b = drawableShape(query["b"], "$.b");
+    const auto polytope = [](const std::optional<SceneShape>& s) { return s->kind == SceneShape::Kind::Polytope; };
+    if (!a || !b || (polytopesOnly && (!polytope(a) || !polytope(b)))) {
+        why = polytopesOnly ? "no figure: trace steps are drawn for polytopes, aabbs and obbs"
+                            : "no figure: it draws polytopes, aabbs, obbs and spheres";
+        return std::nullopt;
+    }
+    PairScene pair;
+    pair.a = *a;
+    pair.b = *b;
+    return pair;
 }
-Vec3 vec(const Json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
+
 
 std::string number(const Json& j) {
     if (!j.is_number()) return j.dump();
@@ -284,10 +301,9 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
                                  const std::string& algorithm, int step, const std::string& title,
                                  const std::vector<std::string>& reasons, const std::string& path) {
     if (algorithm != "gjk" && algorithm != "epa") return "no figure for " + algorithm + " traces";
-    if (!query.contains("a") || !query.contains("b")) return "no figure: the query has no shapes a and b";
-    const std::optional<SceneShape> a = drawableShape(query["a"], "$.a"), b = drawableShape(query["b"], "$.b");
-    if (!a || !b || a->kind != SceneShape::Kind::Polytope || b->kind != SceneShape::Kind::Polytope)
-        return "no figure: trace steps are drawn for polytopes, aabbs and obbs";
+    std::string why;
+    const std::optional<PairScene> pairRead = drawablePair(query, true, why);
+    if (!pairRead) return why;
     const Json yourTrace = traceOf(trace, algorithm);
     const bool epa = algorithm == "epa";
     const std::optional<StepPicture> mine = epa ? epaStepOf(yourTrace, step) : stepOf(yourTrace, step);
@@ -315,9 +331,7 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
             }
             theirs = stepOf(Json{{"steps", steps}}, step);
         }
-    PairScene pair;
-    pair.a = *a;
-    pair.b = *b;
+    const PairScene& pair = *pairRead;
     std::vector<Vec3> frame;
     for (const std::optional<StepPicture>* s : {&mine, const_cast<const std::optional<StepPicture>*>(&theirs)}) {
         if (!*s) continue;
@@ -327,11 +341,6 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     }
     std::vector<std::string> skipped;
     const PairDrawing d = makePairDrawing(pair, true, frame, skipped);
-    std::vector<std::string> lines;
-    for (const std::string& r : reasons) {
-        if (lines.size() == 2) break;
-        lines.push_back(r.size() > 110 ? r.substr(0, 107) + "..." : r);
-    }
     const TwoPanelLayout layout = twoPanelLayout(1280, 640, "");
     const render::CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), 1);
     const auto panel = [&](const std::optional<StepPicture>& s, const std::string& heading) {
@@ -346,7 +355,7 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     };
     const std::string k = std::to_string(step);
     const render::Image left = panel(theirs, "cdlab's step " + k), right = panel(mine, "your step " + k);
-    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, lines));
+    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, captionOf(reasons)));
     return "";
 }
 
@@ -356,21 +365,13 @@ std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Jso
     const std::string op = query.value("op", "");
     if (op != "intersect" && op != "distance" && op != "penetration" && op != "contact")
         return "no figure for op '" + op + "'";
-    if (!query.contains("a") || !query.contains("b")) return "no figure: the query has no shapes a and b";
-    const std::optional<SceneShape> a = drawableShape(query["a"], "$.a"), b = drawableShape(query["b"], "$.b");
-    if (!a || !b) return "no figure: it draws polytopes, aabbs, obbs and spheres";
-    PairScene pair;
-    pair.a = *a;
-    pair.b = *b;
+    std::string why;
+    const std::optional<PairScene> pairRead = drawablePair(query, false, why);
+    if (!pairRead) return why;
+    const PairScene& pair = *pairRead;
     std::vector<std::string> skipped;
     const PairDrawing d = makePairDrawing(pair, false, {}, skipped);
 
-    // The reasons, cut to two caption lines of slide-legible length.
-    std::vector<std::string> lines;
-    for (const std::string& r : reasons) {
-        if (lines.size() == 2) break;
-        lines.push_back(r.size() > 110 ? r.substr(0, 107) + "..." : r);
-    }
     const TwoPanelLayout layout = twoPanelLayout(1280, 640, "");
     const render::CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), 1);
     const bool colliding = cdlab.value("intersect", false) || cdlab.value("colliding", false) ||
@@ -383,7 +384,7 @@ std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Jso
         return world.readPixels();
     };
     const render::Image left = panel(cdlab, "cdlab's answer"), right = panel(yours, "your answer");
-    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, lines));
+    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, captionOf(reasons)));
     return "";
 }
 

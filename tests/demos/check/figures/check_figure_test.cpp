@@ -15,21 +15,54 @@
 using namespace cdlab;
 using namespace cdlab::demos;
 
+namespace {
+
+// `check --figures` over `lines` into a fresh folder under the temp directory.
+struct FigureRun {
+    std::filesystem::path dir;
+    std::string out;  // the verdict lines and the summary
+    int status = 0;
+};
+FigureRun checkWithFigures(const std::string& lines, const std::string& folder) {
+    FigureRun run;
+    run.dir = std::filesystem::temp_directory_path() / folder;
+    std::filesystem::remove_all(run.dir);
+    std::istringstream in(lines);
+    std::ostringstream out;
+    CheckOptions options;
+    options.figuresDir = run.dir.string();
+    run.status = runCheck(in, out, options);
+    run.out = out.str();
+    return run;
+}
+
+// Values that differ between the left and the right panel below the headings (y >= 120) and
+// above the caption (y < 560), over the first `channels` colour channels.
+long panelDifference(const render::Image& image, int channels) {
+    long differing = 0;
+    const int half = image.width / 2;
+    for (int y = 120; y < 560; ++y)
+        for (int x = 0; x < half; ++x)
+            for (int c = 0; c < channels; ++c)
+                differing += image.rgba[(std::size_t(y) * image.width + x) * 4 + c] !=
+                             image.rgba[(std::size_t(y) * image.width + x + half) * 4 + c];
+    return differing;
+}
+
+}  // namespace
+
 TEST_CASE("check --figures: one figure per failing line, cdlab's answer beside yours") {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_figures_test";
-    std::filesystem::remove_all(dir);
-    std::istringstream in(
+    const FigureRun run = checkWithFigures(
         R"({"op":"distance","a":{"obb":{"center":[0,0,0],"half_extents":[1,0.5,0.5]}},"b":{"polytope":{"vertices":[[2.5,0,0],[3.5,0.3,0],[3,1,0.2],[3,0.4,1]]}},"answer":{"intersect":false,"distance":1.2,"point_a":[1.2,0,0],"point_b":[2.5,0,0]}})"
         "\n"
         R"({"op":"intersect","a":{"sphere":{"center":[0,0,0],"radius":1}},"b":{"sphere":{"center":[3,0,0],"radius":1}},"answer":{"intersect":false}})"
         "\n"
         R"({"op":"distance","a":{"capsule":{"a":[0,0,0],"b":[1,0,0],"radius":0.2}},"b":{"sphere":{"center":[3,0,0],"radius":1}},"answer":{"intersect":false,"distance":5,"point_a":[1.2,0,0],"point_b":[2,0,0]}})"
-        "\n");
-    std::ostringstream out;
-    CheckOptions options;
-    options.figuresDir = dir.string();
-    CHECK(runCheck(in, out, options) == 1);
-    std::istringstream lines(out.str());
+        "\n",
+        "cdlab_check_figures_test");
+    const std::filesystem::path& dir = run.dir;
+    CHECK(run.status == 1);
+    std::istringstream lines(run.out);
     std::string l1, l2, l3;
     std::getline(lines, l1);
     std::getline(lines, l2);
@@ -45,15 +78,8 @@ TEST_CASE("check --figures: one figure per failing line, cdlab's answer beside y
     const render::Image image = render::readPng(figure);
     REQUIRE(image.width == 1280);
     REQUIRE(image.height == 640);
-    // The two panels draw the same bodies with different witness points: below the headings
-    // (y >= 120) and above the caption (y < 560) the halves differ.
-    long differing = 0;
-    for (int y = 120; y < 560; ++y)
-        for (int x = 0; x < image.width / 2; ++x)
-            for (int c = 0; c < 3; ++c)
-                differing += image.rgba[(std::size_t(y) * image.width + x) * 4 + c] !=
-                             image.rgba[(std::size_t(y) * image.width + x + image.width / 2) * 4 + c];
-    CHECK(differing > 100);
+    // The two panels draw the same bodies with different witness points: the halves differ.
+    CHECK(panelDifference(image, 3) > 100);
     std::filesystem::remove_all(dir);
 }
 
@@ -85,15 +111,11 @@ TEST_CASE("check --figures: a trace that breaks a rule at step k gets cdlab's st
                       {"point_b", answer["point_b"]}};
     line["trace"] = {{"algorithm", "gjk"}, {"steps", steps}};
 
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_trace_figure_test";
-    std::filesystem::remove_all(dir);
-    std::istringstream in(line.dump() + "\n");
-    std::ostringstream out;
-    CheckOptions options;
-    options.figuresDir = dir.string();
-    CHECK(runCheck(in, out, options) == 1);
-    CHECK(out.str().find("FAIL: trace: iteration 2: wrong sub-simplex kept") != std::string::npos);
-    CHECK(out.str().find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
+    const FigureRun run = checkWithFigures(line.dump() + "\n", "cdlab_check_trace_figure_test");
+    const std::filesystem::path& dir = run.dir;
+    CHECK(run.status == 1);
+    CHECK(run.out.find("FAIL: trace: iteration 2: wrong sub-simplex kept") != std::string::npos);
+    CHECK(run.out.find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
     const render::Image image = render::readPng((dir / "line_1.png").string());
     CHECK(image.width == 1280);
     std::filesystem::remove_all(dir);
@@ -110,15 +132,11 @@ TEST_CASE("check --figures: an EPA trace that breaks a rule at step k gets cdlab
                  {"trace", {{"algorithm", "epa"},
                             {"steps", {{{"normal", {s, s, s}}, {"distance", 0.1}, {"support", {0.25, 1, 1}}},
                                        {{"normal", {1, 0, 0}}, {"distance", 0.25}, {"support", {0.2, 0, 0}}}}}}}};
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_epa_figure_test";
-    std::filesystem::remove_all(dir);
-    std::istringstream in(line.dump() + "\n");
-    std::ostringstream out;
-    CheckOptions options;
-    options.figuresDir = dir.string();
-    CHECK(runCheck(in, out, options) == 1);
-    CHECK(out.str().find("trace (epa): iteration 1: different support point") != std::string::npos);
-    CHECK(out.str().find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
+    const FigureRun run = checkWithFigures(line.dump() + "\n", "cdlab_check_epa_figure_test");
+    const std::filesystem::path& dir = run.dir;
+    CHECK(run.status == 1);
+    CHECK(run.out.find("trace (epa): iteration 1: different support point") != std::string::npos);
+    CHECK(run.out.find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
     CHECK(render::readPng((dir / "line_1.png").string()).height == 640);
     std::filesystem::remove_all(dir);
 }
@@ -128,22 +146,14 @@ TEST_CASE("check --figures: a closest_point_triangle line gets the triangle's re
                        {"point", {2, -1, 0.5}},
                        {"triangle", {{0, 0, 0}, {4, 0, 0}, {1.2, 3, 0}}},
                        {"answer", {{"point", {2, 0, 0}}, {"region", "A"}}}};
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cdlab_check_region_figure_test";
-    std::filesystem::remove_all(dir);
-    std::istringstream in(line.dump() + "\n");
-    std::ostringstream out;
-    CheckOptions options;
-    options.figuresDir = dir.string();
-    CHECK(runCheck(in, out, options) == 1);
-    CHECK(out.str().find("region differs: yours A, cdlab's AB") != std::string::npos);
-    CHECK(out.str().find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
+    const FigureRun run = checkWithFigures(line.dump() + "\n", "cdlab_check_region_figure_test");
+    const std::filesystem::path& dir = run.dir;
+    CHECK(run.status == 1);
+    CHECK(run.out.find("region differs: yours A, cdlab's AB") != std::string::npos);
+    CHECK(run.out.find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
     // Different regions are outlined: the panels differ below their headings.
     const render::Image image = render::readPng((dir / "line_1.png").string());
     REQUIRE(image.width == 1280);
-    long differing = 0;
-    for (int y = 120; y < 560; ++y)
-        for (int x = 0; x < 640; ++x)
-            differing += image.rgba[(std::size_t(y) * 1280 + x) * 4] != image.rgba[(std::size_t(y) * 1280 + x + 640) * 4];
-    CHECK(differing > 100);
+    CHECK(panelDifference(image, 1) > 100);
     std::filesystem::remove_all(dir);
 }
