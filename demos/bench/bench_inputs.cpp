@@ -38,9 +38,7 @@ std::vector<PolyPair> polyPairs(int n, int count, double offset, std::uint64_t s
     return pairs;
 }
 
-namespace {
-
-std::vector<Vec3> corners(const Transformed<BoxShape>& box) {
+std::vector<Vec3> boxCorners(const Transformed<BoxShape>& box) {
     std::vector<Vec3> c;
     const Vec3& h = box.shape.halfExtents;
     for (int i = 0; i < 8; ++i)
@@ -48,8 +46,6 @@ std::vector<Vec3> corners(const Transformed<BoxShape>& box) {
             box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
     return c;
 }
-
-}  // namespace
 
 std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
@@ -70,8 +66,8 @@ std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint
             p.b.transform.rotation = randomRotation(rng);
             p.b.transform.position = offset * randomUnit(rng);
         }
-        p.va = corners(p.a);
-        p.vb = corners(p.b);
+        p.va = boxCorners(p.a);
+        p.vb = boxCorners(p.b);
         p.oracle = minkowskiOracle(p.va, p.vb);
         p.obbA = Obb{p.a.transform.position, p.a.shape.halfExtents, p.a.transform.rotation.toRotationMatrix()};
         p.obbB = Obb{p.b.transform.position, p.b.shape.halfExtents, p.b.transform.rotation.toRotationMatrix()};

@@ -39,4 +39,8 @@ struct BoxPair {
 
 std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed);
 
+/// The eight world corners of a posed box, corner i with bit k of i picking +h_k (also the stress
+/// families' box vertices).
+std::vector<Vec3> boxCorners(const Transformed<BoxShape>& box);
+
 }  // namespace cdlab::demos

@@ -28,6 +28,7 @@
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/overlap/sat_tests.h"
+#include "demos/bench/bench_inputs.h"
 #include "demos/bench/bench_measure.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
@@ -556,15 +557,6 @@ void runPoly(Engine& e, const Family& f, int index, PolyCase& c) {
     const PolytopeShape a = polytopeOf(algoA, c.raw), b = polytopeOf(algoB, c.raw);
     checkPair(e, f.name, index, c.va, c.vb, a, b, algoA, algoB, c.floatRounded, c.param);
     // V-Clip slot: when core/feature_walk/vclip.h lands, add "vclip_distance" = the same oracle here.
-}
-
-std::vector<Vec3> boxCorners(const Transformed<BoxShape>& box) {
-    std::vector<Vec3> v;
-    const Vec3& h = box.shape.halfExtents;
-    for (int i = 0; i < 8; ++i)
-        v.push_back(
-            box.transform.apply(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z())));
-    return v;
 }
 
 void runBox(Engine& e, const Family& f, int index, BoxCase& c) {
