@@ -79,9 +79,7 @@ std::optional<double> support(const Json& shape, const Vec3& n) {
         }
         const QueryShape s = parseQueryShape(JsonNode(shape, "$", "check"));
         if (!s.bounded()) return std::nullopt;
-        double best = -INFINITY;
-        for (const Vec3& v : s.vertices) best = std::max(best, v.dot(n));
-        return best + s.radius * n.norm();
+        return n.dot(supportPoint(s, n));
     } catch (const std::exception&) {
         return std::nullopt;
     }

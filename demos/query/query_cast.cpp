@@ -99,6 +99,7 @@ Json answerRaycast(ObjectReader& r) {
     JsonNode sn = r.get("shape");
     QueryShape shape = parseQueryShape(sn);
     if (shape.kind == Kind::Ray) sn.fail("raycast: the shape cannot be a ray (expected a bounded shape, plane or triangle)");
+    rejectCurved(shape, sn, "raycast");
     double maxT = std::numeric_limits<double>::infinity();
     if (auto m = r.find("max_t")) maxT = m->asNonNegative();
     const bool wantTrace = r.boolOr("trace", false);
@@ -218,7 +219,10 @@ Json answerCastQuery(const std::string& op, ObjectReader& r) {
     JsonNode an = r.get("a"), bn = r.get("b");
     QueryShape a = parseQueryShape(an), b = parseQueryShape(bn);
     for (const auto& [s, node] : {std::pair{&a, &an}, std::pair{&b, &bn}})
+    {
         if (s->kind == Kind::Ray) node->fail("time_of_impact: a ray is not a moving shape (expected a bounded shape or plane)");
+        rejectCurved(*s, *node, "time_of_impact");
+    }
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) bn.fail("time_of_impact: two planes (one shape must be bounded)");
     Vec3 ma = Vec3::Zero(), mb = Vec3::Zero();
     if (auto m = r.find("motion_a")) ma = m->asVec3();

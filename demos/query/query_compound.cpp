@@ -115,6 +115,7 @@ Body parseBody(const JsonNode& node) {
     body.node = node;
     if (!isCompoundOrMesh(node)) {
         body.boundary = {parseQueryShape(node)};
+        rejectCurved(body.boundary.front(), node, "a query with a compound or mesh");
         body.pieces = body.boundary;
         return body;
     }
@@ -135,6 +136,7 @@ Body parseBody(const JsonNode& node) {
                       "cannot be a piece");
         QueryShape s = parseQueryShape(item);
         if (!s.bounded()) item.fail("a compound's pieces are bounded convex shapes (not a plane or a ray)");
+        rejectCurved(s, item, "a compound");
         body.boundary.push_back(std::move(s));
     }
     body.pieces = body.boundary;

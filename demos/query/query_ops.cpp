@@ -14,11 +14,13 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "core/base/primitives.h"
 #include "core/geometry/shapes.h"
+#include "core/gjk_epa/direction_refinement.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/overlap/sat_tests.h"
@@ -108,23 +110,57 @@ std::vector<Vec3> scaledPoints(const std::vector<Vec3>& points, int k) {
     return out;
 }
 
-// initial: GJK's first search direction (the query's "initial_direction"), else its default start.
-PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace,
-                       const Vec3* initial = nullptr) {
-    // The cores get their own exact power-of-two scaling: the query as a whole is normalised by
-    // its largest coordinate or radius, and a radius 1e300 times the core size would leave the
-    // cores at 1e-300, where GJK's squared norms underflow (found by fuzzing). Core results are
-    // scaled back before the radii are added, so the radii never see the core exponent.
-    const double cs = std::max(largestCoordinate(a), largestCoordinate(b));  // of the cores (radii excluded)
-    int kc = 0;
-    if (cs > 0) std::frexp(cs, &kc), kc = -kc;
+CurvedSolid scaledCurved(CurvedSolid c, int k) {
+    c.center = scaled(c.center, k);
+    c.halfHeight = std::ldexp(c.halfHeight, k);
+    c.radius = std::ldexp(c.radius, k);
+    return c;
+}
+
+// A curved core's GJK axis or EPA normal m polished to the minimum of g(m) = h_A(m) + h_B(−m)
+// (core/gjk_epa/direction_refinement.h; value = g: −distance or the depth), with the points that
+// realise it: a side's support point where it is unique (a smooth patch or a vertex), the other's at
+// g along m from it; where neither is unique (a face against a face), GJK's or EPA's points moved
+// onto the two support planes. GJK's simplex on a flat cap is a few rim points, so its witness
+// can sit 1e-8 across the cap even where its distance is exact. Cores scaled to coordinates below 1.
+template <class CoreA, class CoreB>
+void polishCurved(const CoreA& ca, const CoreB& cb, Vec3& m, double& value, Vec3& pointA, Vec3& pointB) {
+    const DirectionRefinement r = refineDirection(ca, cb, m, 1.0);
+    if (r.steps > 0) {
+        m = r.direction;
+        value = r.value;
+    }
+    // Unique: turning the direction by 1e-9 moves the support point by ~1e-9 (times a radius of
+    // curvature below ~2), where a face or a flat cap would let it jump across.
+    const auto unique = [](const auto& shape, const Vec3& d) {
+        const Vec3 s = shape.support(d);
+        const Vec3 t1 = d.unitOrthogonal(), t2 = d.cross(t1);
+        for (const Vec3& t : {t1, Vec3(-t1), t2, Vec3(-t2)})
+            if ((Vec3(shape.support(Vec3((d + 1e-9 * t).normalized()))) - s).norm() > 1e-6) return false;
+        return true;
+    };
+    if (unique(ca, m)) {
+        pointA = ca.support(m);
+        pointB = pointA - value * m;
+    } else if (unique(cb, Vec3(-m))) {
+        pointB = cb.support(Vec3(-m));
+        pointA = pointB + value * m;
+    } else {
+        const Vec3 c = 0.5 * (pointA + pointB);
+        pointA = c + (m.dot(Vec3(ca.support(m))) - m.dot(c)) * m;
+        pointB = pointA - value * m;
+    }
+}
+
+// GJK and EPA on the two cores ca and cb, already scaled by 2^kc (see boundedPair).
+template <class CoreA, class CoreB>
+PairAnswer boundedPairOnCores(const CoreA& ca, const CoreB& cb, int kc, const QueryShape& a, const QueryShape& b,
+                              bool wantDepth, bool wantTrace, const Vec3* initial) {
     const auto unscale = [kc](double x) { return std::ldexp(x, -kc); };
     const auto unscaleVec = [&](const Vec3& v) { return Vec3(v.unaryExpr(unscale)); };
-    // Vertex loop support (first maximal vertex: deterministic ties); non-extreme points are harmless.
-    const PolytopeShape ca(scaledPoints(a.vertices, kc)), cb(scaledPoints(b.vertices, kc));
     const double radii = a.radius + b.radius;
     const double touch = touchTolerance(a, b);  // the touching rule of every op (query_tolerance.h)
-    const double coreTouch = kTouchRelative * minkowskiExtent(a.vertices, b.vertices);  // of the cores alone
+    const double coreTouch = kTouchRelative * minkowskiExtent(boundingPoints(a), boundingPoints(b));  // cores alone
     PairAnswer ans;
     ans.traceExponent = kc;
     GjkTrace gtrace;
@@ -138,6 +174,14 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
     GjkResult g = gjkDistance(ca, cb, gjkOptions, wantTrace ? &gtrace : nullptr);
     if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
     if (wantTrace) ans.trace = Json::array({gjkTraceJson(gtrace)});
+    constexpr bool curved = std::is_same_v<CoreA, CurvedSolid> || std::is_same_v<CoreB, CurvedSolid>;
+    if (curved && !g.intersect) {
+        // GJK stops ~1e-8 short on a smooth patch (its simplex shrinks to nearly equal points).
+        double value = -g.distance;
+        polishCurved(ca, cb, g.separatingAxis, value, g.pointA, g.pointB);
+        g.distance = std::max(-value, 0.0);
+        g.intersect = value >= 0;  // the cores touch: no EPA needed, depth 0 along the axis
+    }
     const double coreDistance = unscale(g.distance);
     const Vec3 coreA = unscaleVec(g.pointA), coreB = unscaleVec(g.pointB);
 
@@ -161,15 +205,24 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
         ans.hasWitness = true;
         return ans;
     }
-    if (!g.intersect && coreDistance > coreTouch) {
+    if ((!g.intersect && coreDistance > coreTouch) || (curved && g.separatingAxis.squaredNorm() > 0)) {
         // Cores apart, rounded shapes overlapping (or touching): the core axis is the normal.
         ans.depth = std::max(radii - coreDistance, 0.0);
         ans.normal = g.separatingAxis;
     } else {
         EpaTrace etrace;
-        EpaResult e = epaPenetration(ca, cb, g.simplex, EpaOptions{}, wantTrace ? &etrace : nullptr);
+        // Curved cores: EPA to 1e-10 and the polish below for the last digits; asked for 1e-13
+        // on a smooth patch, EPA's faces turn to slivers first and the polytope loses its shape.
+        EpaOptions epaOptions;
+        if constexpr (curved) epaOptions.relativeTolerance = 1e-10;
+        EpaResult e = epaPenetration(ca, cb, g.simplex, epaOptions, wantTrace ? &etrace : nullptr);
         if (e.status == EpaStatus::InvalidInput) throw InputError("query: penetration failed: invalid support points");
         if (wantTrace) ans.trace.push_back(epaTraceJson(etrace));
+        if constexpr (curved) {  // EPA's polytope needs ever more faces on a smooth patch
+            double value = e.depth;
+            polishCurved(ca, cb, e.normal, value, e.pointA, e.pointB);
+            e.depth = std::max(value, 0.0);
+        }
         // Core's EPA always gives a unit normal (a degenerate start falls back to the axis of least
         // overlap inside epaPenetration).
         ans.depth = unscale(e.depth) + radii;
@@ -184,6 +237,29 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
     ans.pointB = coreB - b.radius * ans.normal;
     ans.hasWitness = true;
     return ans;
+}
+
+// initial: GJK's first search direction (the query's "initial_direction"), else its default start.
+PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth, bool wantTrace,
+                       const Vec3* initial = nullptr) {
+    // The cores get their own exact power-of-two scaling: the query as a whole is normalised by
+    // its largest coordinate or radius, and a radius 1e300 times the core size would leave the
+    // cores at 1e-300, where GJK's squared norms underflow (found by fuzzing). Core results are
+    // scaled back before the radii are added, so the radii never see the core exponent.
+    const double cs = std::max(largestCoordinate(a), largestCoordinate(b));  // of the cores (radii excluded)
+    int kc = 0;
+    if (cs > 0) std::frexp(cs, &kc), kc = -kc;
+    // A core is its points (vertex loop support, first maximal vertex: deterministic ties;
+    // non-extreme points are harmless) or a cylinder / cone (closed-form support).
+    const auto withCore = [kc](const QueryShape& s, const auto& run) {
+        if (s.isCurved()) return run(scaledCurved(s.curved, kc));
+        return run(PolytopeShape(scaledPoints(s.vertices, kc)));
+    };
+    return withCore(a, [&](const auto& ca) {
+        return withCore(b, [&](const auto& cb) {
+            return boundedPairOnCores(ca, cb, kc, a, b, wantDepth, wantTrace, initial);
+        });
+    });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -260,13 +336,21 @@ QueryShape clipRay(const QueryShape& ray, const QueryShape& s) {
     const double dd = ray.direction.squaredNorm();
     double tFar = 0;
     Vec3 center = Vec3::Zero();
-    for (const Vec3& v : s.vertices) {
+    // A cylinder's or cone's bounding box corners stand for it: both bounds only grow.
+    std::vector<Vec3> points = s.vertices;
+    if (s.isCurved()) {
+        Vec3 lo, hi;
+        s.curved.bounds(lo, hi);
+        points.clear();
+        for (int i = 0; i < 8; ++i) points.push_back(Vec3(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z()));
+    }
+    for (const Vec3& v : points) {
         tFar = std::max(tFar, ray.direction.dot(v - ray.origin) / dd);
         center += v;
     }
-    center /= double(s.vertices.size());
+    center /= double(points.size());
     double diameter = 0;
-    for (const Vec3& v : s.vertices) diameter = std::max(diameter, 2 * (v - center).norm());
+    for (const Vec3& v : points) diameter = std::max(diameter, 2 * (v - center).norm());
     diameter += 2 * s.radius;
     tFar += s.radius / std::sqrt(dd);
     const double tEnd = tFar + 2 * (diameter + 1e-9 * (1 + tFar * std::sqrt(dd))) / std::sqrt(dd);

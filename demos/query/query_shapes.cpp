@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/geometry/shapes.h"
 #include "demos/scene/body_scene.h"
 
 namespace cdlab::demos {
@@ -20,6 +21,8 @@ const char* nameOf(QueryShape::Kind kind) {
         case QueryShape::Kind::Capsule: return "capsule";
         case QueryShape::Kind::Polytope: return "polytope";
         case QueryShape::Kind::Plane: return "plane";
+        case QueryShape::Kind::Cylinder: return "cylinder";
+        case QueryShape::Kind::Cone: return "cone";
     }
     return "?";
 }
@@ -42,13 +45,86 @@ Vec3 boxCorner(int i, const Vec3& lo, const Vec3& hi) {
     return Vec3(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
 }
 
+// {"cylinder": {...}} or {"cone": {...}}: radius, half_height and a pose (center or position,
+// rotation), the scenes' fields; a cylinder may instead give its cap centres "a" and "b" (its axis
+// from a to b), as a capsule gives its segment.
+CurvedSolid parseCurved(const JsonNode& body, bool cone) {
+    ObjectReader r(body);
+    CurvedSolid c;
+    c.cone = cone;
+    c.radius = readRadius(r);
+    if (!cone && (r.find("a") || r.find("b"))) {
+        const JsonNode an = r.get("a"), bn = r.get("b");
+        const Vec3 a = an.asVec3(), b = bn.asVec3();
+        for (const char* key : {"half_height", "center", "position", "rotation"})
+            if (auto extra = r.find(key))
+                extra->fail(std::string("a cylinder given by its cap centres a and b has no ") + key +
+                            " (give either a and b, or half_height with center and rotation)");
+        r.finish();
+        const Vec3 axis = b - a;
+        if (axis.isZero(0.0)) bn.fail("the cylinder's cap centres a and b coincide (its axis has no direction)");
+        const double length = axis.stableNorm();
+        c.center = a + 0.5 * axis;
+        c.halfHeight = 0.5 * length;
+        c.rotation = Quat::FromTwoVectors(Vec3::UnitY(), Vec3(axis / length)).toRotationMatrix();
+    } else {
+        c.halfHeight = r.get("half_height").asNonNegative();
+        if (auto p = findEither(r, "center", "position")) c.center = p->asVec3();
+        if (auto q = r.find("rotation")) c.rotation = q->asQuat().toRotationMatrix();
+        r.finish();
+    }
+    Vec3 lo, hi;
+    c.bounds(lo, hi);
+    if (!lo.allFinite() || !hi.allFinite() || !std::isfinite(c.halfHeight) || !std::isfinite(c.radius))
+        body.fail("shape coordinates overflow after transformation");
+    return c;
+}
+
 }  // namespace
+
+Vec3 CurvedSolid::support(const Vec3& d) const {
+    const Vec3 local = rotation.transpose() * d;
+    const Vec3 s = cone ? ConeShape{halfHeight, radius}.support(local) : CylinderShape{halfHeight, radius}.support(local);
+    return center + rotation * s;
+}
+
+void CurvedSolid::bounds(Vec3& lo, Vec3& hi) const {
+    // A disc of radius r with unit normal u spans r·sqrt(1 − u_i²) on axis i about its centre.
+    const Vec3 u = axis();
+    const Vec3 disc = radius * (Vec3::Ones() - u.cwiseProduct(u)).cwiseMax(0.0).cwiseSqrt();
+    const Vec3 top = center + halfHeight * u, bottom = center - halfHeight * u;
+    lo = bottom - disc;
+    hi = bottom + disc;
+    const Vec3 topReach = cone ? Vec3::Zero() : disc;
+    lo = lo.cwiseMin(top - topReach);
+    hi = hi.cwiseMax(top + topReach);
+}
+
+std::vector<Vec3> boundingPoints(const QueryShape& s) {
+    if (!s.isCurved()) return s.vertices;
+    Vec3 lo, hi;
+    s.curved.bounds(lo, hi);
+    return {lo, hi};
+}
+
+Vec3 supportPoint(const QueryShape& s, const Vec3& d) {
+    if (s.isCurved()) return s.curved.support(d);
+    const Vec3* best = &s.vertices.front();
+    for (const Vec3& v : s.vertices)
+        if (d.dot(v) > d.dot(*best)) best = &v;
+    const double n = d.norm();
+    return n > 0 ? Vec3(*best + s.radius / n * d) : *best;
+}
+
+void rejectCurved(const QueryShape& s, const JsonNode& node, const std::string& what) {
+    if (s.isCurved()) node.fail(what + " does not take a " + nameOf(s.kind) + " (yet)");
+}
 
 QueryShape parseQueryShape(const JsonNode& node) {
     if (!node.isObject() || node.raw().size() != 1)
         node.fail(
             "expected a shape: an object with exactly one key (point, segment, ray, triangle, sphere, aabb, obb, "
-            "box, capsule, polytope, hull, plane), got " +
+            "box, capsule, cylinder, cone, polytope, hull, plane), got " +
             JsonNode::describe(node.raw()));
     const std::string key = node.raw().begin().key();
     const JsonNode body(node.raw().begin().value(), node.path() + "." + key, node.source());
@@ -140,12 +216,15 @@ QueryShape parseQueryShape(const JsonNode& node) {
         s.offset = std::ldexp(s.offset, k);
         if (!std::isfinite(s.offset))
             on.fail("the plane's distance from the origin, offset / |normal|, overflows double precision");
+    } else if (key == "cylinder" || key == "cone") {
+        s.kind = key == "cylinder" ? K::Cylinder : K::Cone;
+        s.curved = parseCurved(body, key == "cone");
     } else if (key == "compound" || key == "mesh") {
         node.fail("a " + key + " is taken by the intersect, distance and penetration ops only");
     } else {
         node.fail("unknown shape '" + key +
                   "' (expected point, segment, ray, triangle, sphere, aabb, obb, box, capsule, "
-                  "polytope, hull or plane)");
+                  "cylinder, cone, polytope, hull or plane)");
     }
     for (const Vec3& v : s.vertices)
         if (!v.allFinite()) node.fail("shape coordinates overflow after transformation");
@@ -159,8 +238,8 @@ Vec3 scaled(const Vec3& v, int k) {
 int normalisingExponent(const QueryShape& a, const QueryShape& b) {
     double m = 0;
     for (const QueryShape* s : {&a, &b}) {
-        for (const Vec3& v : s->vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
-        m = std::max({m, s->radius, s->origin.cwiseAbs().maxCoeff()});
+        for (const Vec3& v : boundingPoints(*s)) m = std::max(m, v.cwiseAbs().maxCoeff());
+        m = std::max({m, s->radius, s->curved.radius, s->curved.halfHeight, s->origin.cwiseAbs().maxCoeff()});
         if (s->kind == QueryShape::Kind::Plane) m = std::max(m, std::abs(s->offset) / s->normal.norm());
     }
     if (m == 0 || !std::isfinite(m)) return 0;
@@ -174,6 +253,9 @@ void scaleShape(QueryShape& s, int k) {
     s.radius = std::ldexp(s.radius, k);
     s.origin = scaled(s.origin, k);
     s.offset = std::ldexp(s.offset, k);  // n·(2^k x) = 2^k d
+    s.curved.center = scaled(s.curved.center, k);
+    s.curved.halfHeight = std::ldexp(s.curved.halfHeight, k);
+    s.curved.radius = std::ldexp(s.curved.radius, k);
 }
 
 }  // namespace cdlab::demos

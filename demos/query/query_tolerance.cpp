@@ -16,7 +16,7 @@ double minkowskiExtent(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 }
 
 double touchTolerance(const QueryShape& a, const QueryShape& b) {
-    return kTouchRelative * (minkowskiExtent(a.vertices, b.vertices) + a.radius + b.radius);
+    return kTouchRelative * (minkowskiExtent(boundingPoints(a), boundingPoints(b)) + a.radius + b.radius);
 }
 
 double planeTouchTolerance(double unitOffset, double magnitude) {
@@ -25,7 +25,7 @@ double planeTouchTolerance(double unitOffset, double magnitude) {
 
 double largestCoordinate(const QueryShape& s) {
     double m = 0.0;
-    for (const Vec3& v : s.vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
+    for (const Vec3& v : boundingPoints(s)) m = std::max(m, v.cwiseAbs().maxCoeff());
     return m;
 }
 

@@ -36,7 +36,7 @@ double touchTolerance(const QueryShape& a, const QueryShape& b);
 /// `magnitude`: n̂·x − d̂ is rounded relative to both.
 double planeTouchTolerance(double unitOffset, double magnitude);
 
-/// Largest |coordinate| of a shape's vertices.
+/// Largest |coordinate| of a shape's vertices (a cylinder's or cone's: of its bounding box).
 double largestCoordinate(const QueryShape& s);
 
 }  // namespace cdlab::demos

@@ -1,0 +1,250 @@
+// Cylinders and cones in `cdlab query` (intersect, distance, penetration), checked against
+// certificates built here from the shapes' own closed forms, sharing no code with the query:
+//   distance d with points p, q: p in A and q in B (membership), |p − q| = d, and the direction
+//     n = (q − p)/d separates by d: min_B n·x − max_A n·x >= d (so no pair is nearer);
+//   depth d with normal n: the overlap along n, max_A n·x − min_B n·x, is d (translating b by d·n
+//     leaves them touching), and no direction overlaps by less (a search over 3000 directions
+//     refined by a shrinking pattern search: the depth is the least overlap over all directions).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "demos/query/query.h"
+#include "demos/scene/json_reader.h"
+
+using namespace cdlab::demos;
+using cdlab::Vec3;
+
+namespace {
+
+// A shape of the test, described by the numbers written into the query.
+struct Solid {
+    enum Kind { Cylinder, Cone, Sphere, Box } kind = Cylinder;
+    Vec3 c = Vec3::Zero();
+    double q[4] = {1, 0, 0, 0};  // w, x, y, z (unit)
+    double h = 0, r = 0;         // half height and radius (box: half extents e)
+    Vec3 e = Vec3::Zero();
+
+    // The body axes, from the quaternion's rotation matrix written out.
+    Vec3 axis(int i) const {
+        const double w = q[0], x = q[1], y = q[2], z = q[3];
+        if (i == 0) return Vec3(1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y));
+        if (i == 1) return Vec3(2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x));
+        return Vec3(2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y));
+    }
+
+    std::string json() const {
+        std::ostringstream s;
+        s.precision(17);
+        const auto v = [&](const Vec3& p) { s << "[" << p.x() << "," << p.y() << "," << p.z() << "]"; };
+        if (kind == Sphere) {
+            s << R"({"sphere":{"center":)";
+            v(c);
+            s << R"(,"radius":)" << r << "}}";
+            return s.str();
+        }
+        s << (kind == Cylinder ? R"({"cylinder":{)" : kind == Cone ? R"({"cone":{)" : R"({"box":{)");
+        if (kind == Box) {
+            s << R"("half_extents":)";
+            v(e);
+        } else {
+            s << R"("radius":)" << r << R"(,"half_height":)" << h;
+        }
+        s << R"(,"position":)";
+        v(c);
+        s << R"(,"rotation":[)" << q[0] << "," << q[1] << "," << q[2] << "," << q[3] << "]}}";
+        return s.str();
+    }
+
+    // max over the solid of n·x.
+    double supportValue(const Vec3& n) const {
+        if (kind == Sphere) return n.dot(c) + r * n.norm();
+        if (kind == Box) {
+            double v = n.dot(c);
+            for (int i = 0; i < 3; ++i) v += e[i] * std::abs(n.dot(axis(i)));
+            return v;
+        }
+        const Vec3 u = axis(1);
+        const double along = n.dot(u);
+        const double across = (n - along * u).norm();  // not sqrt(|n|² − along²): 1e-8 from rounding near the axis
+        if (kind == Cylinder) return n.dot(c) + h * std::abs(along) + r * across;
+        return n.dot(c) + std::max(h * along, -h * along + r * across);  // apex or base rim
+    }
+
+    // Distance of p outside the solid along its axis and across it (0 inside): a membership test.
+    double outside(const Vec3& p) const {
+        if (kind == Sphere) return std::max(0.0, (p - c).norm() - r);
+        if (kind == Box) {
+            double m = 0;
+            for (int i = 0; i < 3; ++i) m = std::max(m, std::abs((p - c).dot(axis(i))) - e[i]);
+            return m;
+        }
+        const Vec3 u = axis(1);
+        const double y = (p - c).dot(u);
+        const double radial = (p - c - y * u).norm();
+        const double rAt = kind == Cylinder ? r : r * (h - y) / (2 * h);  // the cone narrows to its apex
+        return std::max({0.0, std::abs(y) - h, radial - rAt});
+    }
+};
+
+// Least overlap max_A n·x − min_B n·x over unit n: the penetration depth of A and B.
+double leastOverlap(const Solid& a, const Solid& b, const Vec3& hint) {
+    const auto overlap = [&](const Vec3& n) { return a.supportValue(n) + b.supportValue(-n); };
+    Vec3 best = hint.normalized();
+    double bestValue = overlap(best);
+    const int count = 3000;  // a Fibonacci sphere
+    for (int i = 0; i < count; ++i) {
+        const double z = 1 - (2 * i + 1.0) / count, phi = i * 2.399963229728653;
+        const double s = std::sqrt(1 - z * z);
+        const Vec3 n(s * std::cos(phi), s * std::sin(phi), z);
+        if (const double v = overlap(n); v < bestValue) bestValue = v, best = n;
+    }
+    for (double step = 0.05; step > 1e-13; step *= 0.5) {
+        bool improved = true;
+        while (improved) {
+            improved = false;
+            const Vec3 t1 = best.unitOrthogonal(), t2 = best.cross(t1);
+            for (const Vec3& t : {t1, Vec3(-t1), t2, Vec3(-t2), Vec3(t1 + t2), Vec3(-t1 - t2), Vec3(t1 - t2), Vec3(t2 - t1)}) {
+                const Vec3 n = (best + step * t).normalized();
+                if (const double v = overlap(n); v < bestValue) {
+                    bestValue = v, best = n, improved = true;
+                    break;
+                }
+            }
+        }
+    }
+    return bestValue;
+}
+
+Solid randomSolid(std::mt19937_64& rng, Solid::Kind kind, const Vec3& centre) {
+    std::uniform_real_distribution<double> u(-1, 1), size(0.3, 1.5);
+    Solid s;
+    s.kind = kind;
+    s.c = centre;
+    Eigen::Vector4d q(u(rng), u(rng), u(rng), u(rng));
+    q.normalize();
+    for (int i = 0; i < 4; ++i) s.q[i] = q[i];
+    s.h = size(rng);
+    s.r = size(rng);
+    s.e = Vec3(size(rng), size(rng), size(rng));
+    return s;
+}
+
+Json ask(const std::string& op, const Solid& a, const Solid& b) {
+    const Json ans = answerQuery(R"({"op":")" + op + R"(","a":)" + a.json() + R"(,"b":)" + b.json() + "}");
+    REQUIRE_MESSAGE(!ans.contains("error"), ans.dump());
+    return ans;
+}
+
+Vec3 vecOf(const Json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
+
+}  // namespace
+
+TEST_CASE("cylinder and cone: closed-form distances and depths") {
+    const auto one = [](const std::string& line) {
+        const Json a = answerQuery(line);
+        REQUIRE_MESSAGE(!a.contains("error"), a.dump());
+        return a;
+    };
+    // A point beside, above and diagonally off a unit cylinder (radius 1, half height 1).
+    const std::string cyl = R"({"cylinder":{"radius":1,"half_height":1}})";
+    CHECK(one(R"({"op":"distance","a":{"point":[3,0,0]},"b":)" + cyl + "}")["distance"].get<double>() ==
+          doctest::Approx(2).epsilon(1e-14));
+    CHECK(one(R"({"op":"distance","a":{"point":[0,-4,0.5]},"b":)" + cyl + "}")["distance"].get<double>() ==
+          doctest::Approx(3).epsilon(1e-14));
+    CHECK(one(R"({"op":"distance","a":{"point":[2,3,0]},"b":)" + cyl + "}")["distance"].get<double>() ==
+          doctest::Approx(std::sqrt(5.0)).epsilon(1e-13));
+    // A sphere inside the cylinder near its side: depth = r_cyl − radial + r_sphere, pushed radially.
+    Json p = one(R"({"op":"penetration","a":{"sphere":{"center":[0.3,0.2,0.4],"radius":0.25}},"b":)" + cyl + "}");
+    CHECK(p["depth"].get<double>() == doctest::Approx(1 - 0.5 + 0.25).epsilon(1e-13));
+    CHECK((vecOf(p["normal"]) - Vec3(-0.6, 0, -0.8)).norm() < 1e-12);
+    // The same cylinder given by its cap centres, and a cone's apex into a plane below it.
+    CHECK(one(R"({"op":"distance","a":{"point":[3,0,0]},"b":{"cylinder":{"a":[0,-1,0],"b":[0,1,0],"radius":1}}})")
+              ["distance"].get<double>() == doctest::Approx(2).epsilon(1e-14));
+    p = one(R"({"op":"penetration","a":{"cone":{"radius":1,"half_height":1,"rotation":[0,1,0,0]}},)"
+            R"("b":{"plane":{"normal":[0,1,0],"offset":-0.75}}})");  // upside down: apex at y = −1
+    CHECK(p["depth"].get<double>() == doctest::Approx(0.25).epsilon(1e-14));
+    CHECK(one(R"({"op":"intersect","a":{"cone":{"radius":1,"half_height":1}},"b":{"point":[0.5,0,0]}})")["intersect"] ==
+          true);  // the cone's radius at y = 0 is 0.5: on its surface
+    CHECK(one(R"({"op":"intersect","a":{"cone":{"radius":1,"half_height":1}},"b":{"point":[0.5,0.001,0]}})")["intersect"] ==
+          false);
+}
+
+TEST_CASE("cylinder and cone: distances certified by separation on random pairs") {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Solid::Kind kinds[] = {Solid::Cylinder, Solid::Cone, Solid::Sphere, Solid::Box};
+    double worst = 0;
+    int separated = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Solid a = randomSolid(rng, kinds[i % 2], Vec3::Zero());
+        const Solid b = randomSolid(rng, kinds[(i / 2) % 4], 3.5 * Vec3(u(rng), u(rng), u(rng)));
+        const Json ans = ask("distance", a, b);
+        if (ans["intersect"] == true) {
+            // Overlapping: some point lies in both (the penetration's deepest points bound it).
+            CHECK(leastOverlap(a, b, Vec3::UnitX()) >= -1e-12);
+            continue;
+        }
+        ++separated;
+        const double d = ans["distance"].get<double>();
+        const Vec3 p = vecOf(ans["point_a"]), q = vecOf(ans["point_b"]);
+        const Vec3 n = (q - p) / (q - p).norm();
+        const double separation = -b.supportValue(-n) - a.supportValue(n);
+        worst = std::max({worst, a.outside(p), b.outside(q), std::abs((q - p).norm() - d), d - separation});
+        CHECK(a.outside(p) <= 1e-12);
+        CHECK_MESSAGE(b.outside(q) <= 1e-12, a.json() << " " << b.json() << " d=" << d);
+        CHECK(std::abs((q - p).norm() - d) <= 1e-12);
+        CHECK_MESSAGE(d - separation <= 1e-11 * (1 + d), a.json() << " " << b.json() << " ans " << ans.dump());
+    }
+    CHECK(separated > 150);
+    MESSAGE("distance: worst certificate gap " << worst << " over " << separated << " separated pairs");
+}
+
+TEST_CASE("cylinder and cone: depths are the least overlap over all directions") {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Solid::Kind kinds[] = {Solid::Cylinder, Solid::Cone, Solid::Sphere, Solid::Box};
+    double worst = 0;
+    int overlapping = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const Solid a = randomSolid(rng, kinds[i % 2], Vec3::Zero());
+        const Solid b = randomSolid(rng, kinds[(i / 2) % 4], 1.2 * Vec3(u(rng), u(rng), u(rng)));
+        const Json ans = ask("penetration", a, b);
+        if (ans["intersect"] != true) continue;
+        ++overlapping;
+        const double d = ans["depth"].get<double>();
+        const Vec3 n = vecOf(ans["normal"]);
+        CHECK(std::abs(n.norm() - 1) < 1e-14);
+        const double along = a.supportValue(n) + b.supportValue(-n);
+        const double least = leastOverlap(a, b, n);
+        worst = std::max({worst, std::abs(along - d), d - least});
+        CHECK_MESSAGE(std::abs(along - d) <= 1e-9, a.json() << " " << b.json());  // b moved by d·n touches a
+        CHECK_MESSAGE(d - least <= 1e-9, a.json() << " " << b.json() << " ans " << ans.dump());  // and no shorter move separates them
+        const Vec3 pa = vecOf(ans["point_a"]), pb = vecOf(ans["point_b"]);
+        CHECK((pa - pb - d * n).norm() <= 1e-9);
+    }
+    CHECK(overlapping > 100);
+    MESSAGE("penetration: worst gap " << worst << " over " << overlapping << " overlapping pairs");
+}
+
+TEST_CASE("cylinder and cone: bad input and ops that do not take them") {
+    const auto error = [](const std::string& line) {
+        const Json a = answerQuery(line);
+        REQUIRE(a.contains("error"));
+        return a["error"].get<std::string>();
+    };
+    CHECK(error(R"({"op":"distance","a":{"cylinder":{"radius":-1,"half_height":1}},"b":{"point":[0,0,0]}})")
+              .find("$.a.cylinder.radius") != std::string::npos);
+    CHECK(error(R"({"op":"distance","a":{"cylinder":{"a":[1,1,1],"b":[1,1,1],"radius":1}},"b":{"point":[0,0,0]}})")
+              .find("coincide") != std::string::npos);
+    CHECK(error(R"({"op":"distance","a":{"cylinder":{"a":[0,0,0],"b":[1,1,1],"radius":1,"half_height":2}},"b":{"point":[0,0,0]}})")
+              .find("half_height") != std::string::npos);
+    CHECK(error(R"({"op":"distance","a":{"cone":{"radius":1}},"b":{"point":[0,0,0]}})").find("half_height") !=
+          std::string::npos);
+    CHECK(error(R"({"op":"mass_properties","a":{"cone":{"radius":1,"half_height":1}}})").find("cone") !=
+          std::string::npos);
+}
