@@ -29,10 +29,12 @@
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
+#include "demos/query/query_contact_curved.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_limits.h"
 #include "demos/query/query_mass.h"
 #include "demos/query/query_ops.h"
+#include "demos/query/query_plane.h"
 #include "demos/query/query_shapes.h"
 #include "demos/query/query_tolerance.h"
 
@@ -337,6 +339,8 @@ Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int
     Json otherFeature;
     if (rounded(other)) {
         otherFeature = roundedFeature(other, {Vec3(onOther + other.radius * fromS)});
+    } else if (other.isCurved()) {
+        otherFeature = curvedFeature(other.curved, {onOther});
     } else {
         const Body body = makeBody(other, otherNode);
         int face = -1;
@@ -358,6 +362,75 @@ Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int
     for (const RoundedPoint& p : pts) depth = std::max(depth, p.depth);
     return roundedAnswer(colliding, colliding ? std::max(depth, ans.depth) : ans.distance, ans.normal, pts, sIsA,
                          roundedFeature(s, cores), otherFeature, maxPoints);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cylinders and cones (query_contact_curved.h), in the query's units: on the ground plane and on a
+// polytope face that the contact normal is the normal of, their rims clipped to it; against
+// anything else one point, the penetration op's deepest pair. Sphere and capsule against them:
+// the rounded rules above.
+
+std::vector<RoundedPoint> roundedPoints(const std::vector<CurvedContactPoint>& pts) {
+    std::vector<RoundedPoint> out;
+    for (const CurvedContactPoint& p : pts) out.push_back({p.onSolid, p.onFace, p.depth, p.onSolid});
+    return out;
+}
+
+Json curvedFeatureOf(const QueryShape& s, const std::vector<RoundedPoint>& pts) {
+    std::vector<Vec3> at;
+    for (const RoundedPoint& p : pts) at.push_back(p.onS);
+    return curvedFeature(s.curved, at);
+}
+
+// A cylinder or cone s against the solid half-space n̂·x <= d̂ of `plane`.
+Json curvedPlane(const QueryShape& s, const QueryShape& plane, bool sIsA, int maxPoints) {
+    const auto [nh, dh] = unitPlane(plane);
+    const double touch = planeTouchTolerance(dh, largestCoordinate(s));
+    const Vec3 low = s.curved.support(Vec3(-nh));
+    const double lowest = nh.dot(low) - dh;  // signed height of the solid's lowest point
+    const bool colliding = lowest <= touch;
+    std::vector<RoundedPoint> pts = {{low, Vec3(low - lowest * nh), std::max(-lowest, 0.0), low}};
+    if (colliding) {
+        std::vector<RoundedPoint> manifold = roundedPoints(curvedOnFace(s.curved, ReferenceFace{nh, dh, {}}, maxPoints, touch));
+        if (!manifold.empty()) pts = manifold;
+    }
+    const Vec3 n = sIsA ? Vec3(-nh) : nh;  // from a toward b: the body toward the half-space, or back
+    return roundedAnswer(colliding, colliding ? std::max(-lowest, 0.0) : lowest, n, pts, sIsA, curvedFeatureOf(s, pts),
+                         {{"type", "plane"}}, maxPoints);
+}
+
+// A cylinder or cone s against a polytope, aabb, obb, cylinder or cone `other`.
+Json curvedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int maxPoints, const JsonNode& otherNode) {
+    const ShapePairAnswer ans = sIsA ? penetrationOf(s, other) : penetrationOf(other, s);
+    const double touch = touchTolerance(s, other);
+    const bool colliding = ans.intersect || ans.distance <= touch;
+    const Vec3 fromS = sIsA ? ans.normal : Vec3(-ans.normal);  // from s toward the other shape
+    const Vec3 onS = sIsA ? ans.pointA : ans.pointB, onOther = sIsA ? ans.pointB : ans.pointA;
+    std::vector<RoundedPoint> pts = {{onS, onOther, colliding ? ans.depth : 0.0, onS}};
+    Json otherFeature;
+    if (other.isCurved()) {
+        otherFeature = curvedFeature(other.curved, {onOther});
+    } else {
+        const Body body = makeBody(other, otherNode);
+        int face = -1;
+        double best = 1.0 - 1e-9;  // the normal is this face's, to rounding
+        for (int f = 0; f < body.mesh.faceCount(); ++f) {
+            const double c = -body.mesh.face(f).normal.dot(fromS);
+            if (c >= best) best = c, face = f;
+        }
+        if (colliding && face >= 0) {
+            ReferenceFace ref{body.mesh.face(face).normal, body.mesh.face(face).offset, {}};
+            for (int v : body.mesh.faceVertices(face)) ref.corners.push_back(body.mesh.position(v));
+            std::vector<RoundedPoint> manifold = roundedPoints(curvedOnFace(s.curved, ref, maxPoints, touch));
+            if (!manifold.empty()) pts = manifold;
+        }
+        otherFeature = face >= 0 ? featureJson(body, {FeatureType::Face, face})
+                                 : featureJson(body, supportFeature(body, Vec3(-fromS)));
+    }
+    double depth = 0.0;
+    for (const RoundedPoint& p : pts) depth = std::max(depth, p.depth);
+    return roundedAnswer(colliding, colliding ? std::max(depth, ans.depth) : ans.distance, ans.normal, pts, sIsA,
+                         curvedFeatureOf(s, pts), otherFeature, maxPoints);
 }
 
 // The local frame of a contact query: the first body's first vertex as origin, and the power of two
@@ -384,8 +457,9 @@ Json contactQuery(ObjectReader& r) {
         return s.kind == Kind::Polytope || s.kind == Kind::Aabb || s.kind == Kind::Obb;
     };
     for (const auto& [s, node] : {std::pair{&a, &an}, std::pair{&b, &bn}}) {
-        if (!solid(*s) && !rounded(*s) && s->kind != Kind::Plane)
-            node->fail(std::string("contact supports polytope, aabb, obb, sphere, capsule and plane shapes, not ") +
+        if (!solid(*s) && !rounded(*s) && !s->isCurved() && s->kind != Kind::Plane)
+            node->fail(std::string("contact supports polytope, aabb, obb, sphere, capsule, cylinder, cone and plane "
+                                   "shapes, not ") +
                        nameOf(s->kind));
         requireHullVerticesWithinLimit(s->vertices.size(), "contact", *node);
     }
@@ -398,6 +472,16 @@ Json contactQuery(ObjectReader& r) {
         else if (rounded(a)) out = roundedBounded(a, b, true, maxPoints, bn);
         else out = roundedBounded(b, a, false, maxPoints, an);
         if (wantTrace) out["trace"] = {{"algorithm", "rounded"}};
+        requireFiniteAnswer(out);
+        return out;
+    }
+    if (a.isCurved() || b.isCurved()) {
+        Json out;
+        if (a.kind == Kind::Plane) out = curvedPlane(b, a, false, maxPoints);
+        else if (b.kind == Kind::Plane) out = curvedPlane(a, b, true, maxPoints);
+        else if (a.isCurved()) out = curvedBounded(a, b, true, maxPoints, bn);
+        else out = curvedBounded(b, a, false, maxPoints, an);
+        if (wantTrace) out["trace"] = {{"algorithm", "curved"}};
         requireFiniteAnswer(out);
         return out;
     }
