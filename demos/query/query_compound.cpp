@@ -115,7 +115,6 @@ Body parseBody(const JsonNode& node) {
     body.node = node;
     if (!isCompoundOrMesh(node)) {
         body.boundary = {parseQueryShape(node)};
-        rejectCurved(body.boundary.front(), node, "a query with a compound or mesh");
         body.pieces = body.boundary;
         return body;
     }
@@ -136,7 +135,6 @@ Body parseBody(const JsonNode& node) {
                       "cannot be a piece");
         QueryShape s = parseQueryShape(item);
         if (!s.bounded()) item.fail("a compound's pieces are bounded convex shapes (not a plane or a ray)");
-        rejectCurved(s, item, "a compound");
         body.boundary.push_back(std::move(s));
     }
     body.pieces = body.boundary;
@@ -174,6 +172,11 @@ struct Box {
 
 Box boxOf(const QueryShape& s) {
     if (!s.bounded()) return {Vec3::Constant(-INFINITY), Vec3::Constant(INFINITY)};
+    if (s.isCurved()) {
+        Box b;
+        s.curved.bounds(b.lo, b.hi);
+        return b;
+    }
     Box b{s.vertices[0], s.vertices[0]};
     for (const Vec3& v : s.vertices) b.lo = b.lo.cwiseMin(v), b.hi = b.hi.cwiseMax(v);
     b.lo.array() -= s.radius;
@@ -241,14 +244,15 @@ PairPick firstIntersecting(const std::vector<QueryShape>& a, const std::vector<Q
     return pick;
 }
 
-// A point of every piece of `inner` (its core's first point, a ray's origin; planes have none): a
-// piece that meets no boundary piece of the mesh lies wholly inside or outside it.
+// A point of every piece of `inner` (its core's first point, a cylinder's or cone's centre, a ray's
+// origin; planes have none): a piece that meets no boundary piece of the mesh lies wholly inside or
+// outside it.
 bool meshHoldsAPiece(const Body& outer, const Body& inner) {
     const std::size_t count = inner.mesh ? std::min<std::size_t>(1, inner.boundary.size()) : inner.boundary.size();
     for (std::size_t k = 0; k < count; ++k) {
         const QueryShape& s = inner.boundary[k];
         if (s.kind == Kind::Plane) continue;
-        const Vec3 p = s.kind == Kind::Ray ? s.origin : s.vertices[0];
+        const Vec3 p = s.kind == Kind::Ray ? s.origin : s.isCurved() ? s.curved.center : s.vertices[0];
         // On the mesh scaled to size ~1 (exact): tiny or huge coordinates neither underflow nor
         // overflow the solid angles.
         if (std::abs(windingNumber(outer.unitMesh, scaled(p, outer.unitExponent))) > 0.5) return true;

@@ -12,14 +12,66 @@
 
 namespace cdlab::demos {
 
+namespace {
+
+// Volume, mass, centre of mass and world-axis inertia about it as JSON; an error where they leave
+// the range of normal doubles (a 1e-100 body has inertia ~1e-500) — not zeros.
+Json massJson(double volume, double density, const Vec3& center, const Mat3& inertia, const JsonNode& a) {
+    const double mass = density * volume;
+    const auto representable = [](double x) { return std::isfinite(x) && std::abs(x) >= DBL_MIN; };
+    if (!representable(volume) || !representable(mass) || !representable(inertia.trace()) || !inertia.allFinite() ||
+        !center.allFinite())
+        a.fail("volume, mass or inertia leaves the range of double precision at this scale (" +
+               std::string(!representable(volume) || !representable(mass) ? "volume or mass" : "inertia") + ")");
+    Json rows = Json::array();
+    for (int i = 0; i < 3; ++i)
+        rows.push_back(Json::array({cleanZero(inertia(i, 0)), cleanZero(inertia(i, 1)), cleanZero(inertia(i, 2))}));
+    return {{"volume", volume}, {"mass", mass}, {"center_of_mass", vecJson(center)}, {"inertia", rows}};
+}
+
+// Spheres, cylinders and cones in closed form (solid, uniform density; the cone's centroid is a
+// quarter of its height above the base): moments about the centroid in the body axes (y the axis),
+// turned into world axes, R I Rᵀ.
+Json roundMassProperties(const QueryShape& s, double density, const JsonNode& a) {
+    const double pi = 3.14159265358979323846;
+    if (s.kind == QueryShape::Kind::Sphere) {
+        const double r = s.radius, volume = 4.0 / 3.0 * pi * r * r * r;
+        if (!(r > 0)) a.fail("a sphere of radius 0 has no volume");
+        return massJson(volume, density, s.vertices[0], (0.4 * density * volume * r * r) * Mat3::Identity(), a);
+    }
+    const CurvedSolid& c = s.curved;
+    const double r = c.radius, h = c.halfHeight;
+    if (!(r > 0) || !(h > 0)) a.fail(std::string("a flat ") + nameOf(s.kind) + " (radius or half_height 0) has no volume");
+    double volume, axial, across, centroid;
+    if (!c.cone) {
+        volume = 2 * pi * r * r * h;
+        axial = 0.5 * r * r;                  // per unit mass
+        across = r * r / 4 + h * h / 3;       // (3 r² + (2h)²) / 12
+        centroid = 0.0;
+    } else {
+        const double height = 2 * h;
+        volume = pi * r * r * height / 3;
+        axial = 0.3 * r * r;
+        across = 3 * r * r / 20 + 3 * height * height / 80;
+        centroid = -h / 2;  // a quarter of the height above the base at −h
+    }
+    const double mass = density * volume;
+    const Mat3 local = Vec3(mass * across, mass * axial, mass * across).asDiagonal();
+    return massJson(volume, density, Vec3(c.center + centroid * c.axis()), c.rotation * local * c.rotation.transpose(), a);
+}
+
+}  // namespace
+
 Json answerMassPropertiesQuery(ObjectReader& r) {
     const JsonNode a = r.get("a");
     const QueryShape shape = parseQueryShape(a);
     double density = 1.0;
     if (auto d = r.find("density")) density = d->asPositive();
     r.finish();
-    if (shape.kind != QueryShape::Kind::Polytope)
-        a.fail(std::string("mass_properties needs a polytope, got a ") + nameOf(shape.kind));
+    using Kind = QueryShape::Kind;
+    if (shape.kind == Kind::Sphere || shape.isCurved()) return roundMassProperties(shape, density, a);
+    if (shape.kind != Kind::Polytope && shape.kind != Kind::Aabb && shape.kind != Kind::Obb)
+        a.fail(std::string("mass_properties needs a polytope, box, sphere, cylinder or cone, got a ") + nameOf(shape.kind));
 
     requireHullVerticesWithinLimit(shape.vertices.size(), "mass_properties", a);
 
@@ -44,20 +96,9 @@ Json answerMassPropertiesQuery(ObjectReader& r) {
     if (!mp.ok()) a.fail(std::string("mass properties: ") + nameOf(mp.status) + ": " + mp.message);
 
     const double volume = std::ldexp(mp.volume, 3 * k);
-    const double mass = density * volume;
     const Vec3 c = scaled(mp.centerOfMass, k) + origin;
     const Mat3 I = mp.inertia.unaryExpr([k](double x) { return std::ldexp(x, 5 * k); });
-    // The principal moments are about volume * size^2: when their scale leaves the normal range
-    // the unscaled tensor has lost its digits (or overflowed) — an error, not zeros.
-    const double trace = I.trace();
-    const auto representable = [](double x) { return std::isfinite(x) && std::abs(x) >= DBL_MIN; };
-    if (!representable(volume) || !representable(mass) || !representable(trace) || !I.allFinite())
-        a.fail("volume, mass or inertia leaves the range of double precision at this scale (" +
-               std::string(!representable(volume) || !representable(mass) ? "volume or mass" : "inertia") + ")");
-    Json inertia = Json::array();
-    for (int i = 0; i < 3; ++i)
-        inertia.push_back(Json::array({cleanZero(I(i, 0)), cleanZero(I(i, 1)), cleanZero(I(i, 2))}));
-    return {{"volume", volume}, {"mass", mass}, {"center_of_mass", vecJson(c)}, {"inertia", inertia}};
+    return massJson(volume, density, c, I, a);
 }
 
 }  // namespace cdlab::demos

@@ -116,10 +116,6 @@ Vec3 supportPoint(const QueryShape& s, const Vec3& d) {
     return n > 0 ? Vec3(*best + s.radius / n * d) : *best;
 }
 
-void rejectCurved(const QueryShape& s, const JsonNode& node, const std::string& what) {
-    if (s.isCurved()) node.fail(what + " does not take a " + nameOf(s.kind) + " (yet)");
-}
-
 QueryShape parseQueryShape(const JsonNode& node) {
     if (!node.isObject() || node.raw().size() != 1)
         node.fail(

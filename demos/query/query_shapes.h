@@ -48,8 +48,6 @@ std::vector<Vec3> boundingPoints(const QueryShape& s);
 /// The support point of a bounded shape along d (radius included) and its value d·point.
 Vec3 supportPoint(const QueryShape& s, const Vec3& d);
 
-/// Fails at `node` when s is a cylinder or cone, which `what` does not take (yet).
-void rejectCurved(const QueryShape& s, const JsonNode& node, const std::string& what);
 
 const char* nameOf(QueryShape::Kind kind);
 

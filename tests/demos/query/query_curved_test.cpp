@@ -163,6 +163,44 @@ TEST_CASE("cylinder and cone: bad input and ops that do not take them") {
               .find("half_height") != std::string::npos);
     CHECK(error(R"({"op":"distance","a":{"cone":{"radius":1}},"b":{"point":[0,0,0]}})").find("half_height") !=
           std::string::npos);
-    CHECK(error(R"({"op":"mass_properties","a":{"cone":{"radius":1,"half_height":1}}})").find("cone") !=
+    CHECK(error(R"({"op":"mass_properties","a":{"cone":{"radius":1,"half_height":0}}})").find("no volume") !=
           std::string::npos);
+    // In a compound, the nearest piece answers.
+    const Json d = answerQuery(R"({"op":"distance","a":{"compound":[{"cone":{"radius":1,"half_height":1}},)"
+                               R"({"box":{"half_extents":[1,1,1],"position":[5,0,0]}}]},"b":{"point":[0,3,0]}})");
+    CHECK(d["distance"].get<double>() == doctest::Approx(2).epsilon(1e-14));
+}
+
+// A prism of n sides inscribed in the cylinder (or a pyramid in the cone) as a polytope query: the
+// hull-based mass properties, independent of the closed forms, converge to them like 1 − O(1/n²).
+std::string inscribed(bool cone, double r, double h, int n) {
+    std::ostringstream s;
+    s.precision(17);
+    s << R"({"polytope":{"vertices":[)";
+    for (int i = 0; i < n; ++i) {
+        const double phi = 2 * M_PI * i / n;
+        s << (i ? "," : "") << "[" << r * std::cos(phi) << "," << -h << "," << r * std::sin(phi) << "]";
+        if (!cone) s << ",[" << r * std::cos(phi) << "," << h << "," << r * std::sin(phi) << "]";
+    }
+    if (cone) s << ",[0," << h << ",0]";
+    s << R"(],"rotation":[0.9,0.1,0.3,0.2],"position":[1,2,3]}})";
+    return s.str();
+}
+
+TEST_CASE("cylinder and cone: mass properties converge with inscribed polytopes") {
+    for (const bool cone : {false, true}) {
+        const std::string solid = std::string(cone ? R"({"cone":)" : R"({"cylinder":)") +
+                                  R"({"radius":0.7,"half_height":1.3,"rotation":[0.9,0.1,0.3,0.2],"position":[1,2,3]}})";
+        const Json exact = answerQuery(R"({"op":"mass_properties","a":)" + solid + R"(,"density":2.5})");
+        const Json approx = answerQuery(R"({"op":"mass_properties","a":)" + inscribed(cone, 0.7, 1.3, 2048) + R"(,"density":2.5})");
+        REQUIRE_MESSAGE(!exact.contains("error"), exact.dump());
+        REQUIRE_MESSAGE(!approx.contains("error"), approx.dump());
+        // A 2048-gon's area is (1 − 1.6e-6) of the circle's.
+        CHECK(approx["volume"].get<double>() == doctest::Approx(exact["volume"].get<double>()).epsilon(3e-6));
+        CHECK((vecOf(approx["center_of_mass"]) - vecOf(exact["center_of_mass"])).norm() < 1e-9);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                CHECK(approx["inertia"][i][j].get<double>() ==
+                      doctest::Approx(exact["inertia"][i][j].get<double>()).epsilon(5e-6).scale(1));
+    }
 }

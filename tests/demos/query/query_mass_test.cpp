@@ -92,8 +92,19 @@ TEST_SUITE("query_mass") {
         }
     }
 
+    TEST_CASE("a sphere in closed form: 4/3 π r³, 2/5 m r² on every axis") {
+        const Json a = ask(R"({"op":"mass_properties","a":{"sphere":{"center":[1,2,3],"radius":2}},"density":3})");
+        const double volume = 4.0 / 3.0 * M_PI * 8;
+        CHECK(a["volume"].get<double>() == doctest::Approx(volume).epsilon(1e-15));
+        CHECK(a["inertia"][1][1].get<double>() == doctest::Approx(0.4 * 3 * volume * 4).epsilon(1e-15));
+        CHECK(a["inertia"][0][1].get<double>() == 0);
+        CHECK(a["center_of_mass"][2].get<double>() == 3);
+    }
+
     TEST_CASE("errors: not a polytope, coplanar vertices, density <= 0, unknown key, overflow") {
-        CHECK_THROWS_AS(ask(R"({"op":"mass_properties","a":{"sphere":{"center":[0,0,0],"radius":1}}})"), InputError);
+        CHECK_THROWS_AS(ask(R"({"op":"mass_properties","a":{"capsule":{"a":[0,0,0],"b":[0,1,0],"radius":1}}})"),
+                        InputError);
+        CHECK_THROWS_AS(ask(R"({"op":"mass_properties","a":{"sphere":{"center":[0,0,0],"radius":0}}})"), InputError);
         CHECK_THROWS_AS(
             ask(R"({"op":"mass_properties","a":{"polytope":{"vertices":[[0,0,0],[1,0,0],[0,1,0],[1,1,0]]}}})"),
             InputError);
