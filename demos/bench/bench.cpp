@@ -31,6 +31,7 @@
 #include "core/overlap/sat_tests.h"
 #include "demos/bench/bench_broadphase.h"
 #include "demos/bench/bench_contact.h"
+#include "demos/bench/bench_curved.h"
 #include "demos/bench/bench_inputs.h"
 #include "demos/bench/bench_bvh.h"
 #include "demos/bench/bench_lin_canny.h"
@@ -535,7 +536,7 @@ void benchSpheres(const Settings& settings, std::vector<Row>& rows) {
 }
 
 /// The query rows (section "queries"): closest point, GJK distance / intersect, GJK+EPA, SAT on
-/// polytopes, boxes, capsules, float-rounded input and spheres, appended to rows.
+/// polytopes, boxes, capsules, float-rounded input, spheres and cylinders, appended to rows.
 void runQueryRows(const Settings& settings, std::vector<Row>& rows) {
     benchClosestPoint(settings, rows);
     const int nPairs = settings.quick ? 200 : 1000;
@@ -545,6 +546,7 @@ void runQueryRows(const Settings& settings, std::vector<Row>& rows) {
     benchCapsules(settings, rows);
     benchFloatInput(settings, rows);
     benchSpheres(settings, rows);
+    benchCylinders(settings, rows);
 }
 
 /// The sections of `cdlab bench`, in the order they run (--only picks some).
