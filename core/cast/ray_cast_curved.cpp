@@ -33,10 +33,16 @@ struct CurvedFaces {
             cap = {h - std::abs(p.y()), Vec3(0.0, sign, 0.0), p.y() == 0.0 ? 0.0 : -sign * d.y()};
             side = {r - rho, radial, -rhoSlope};
         } else {
-            cap = {p.y() + h, Vec3(0.0, -1.0, 0.0), d.y()};
+            // The base below, and above the plane of the apex (redundant unless r = 0, where the
+            // side alone would admit the whole axis line).
+            const FaceValue base{p.y() + h, Vec3(0.0, -1.0, 0.0), d.y()}, top{h - p.y(), Vec3::UnitY(), -d.y()};
+            cap = top.value < base.value ? top : base;
             const Vec3 n = rho > 0.0 ? Vec3(Vec3(radial.x(), k, radial.z()) / secant) : Vec3::UnitY();  // +y at the apex
             side = {(k * (h - p.y()) - rho) / secant, n, (-k * d.y() - rhoSlope) / secant};
         }
+        // Tied (a rim, the apex): the face the ray crosses, rising fastest — a ray in a cap's
+        // plane enters through the side, with the side's normal.
+        if (std::abs(side.value - cap.value) <= 1e-15 * (h + r)) return side.slope >= cap.slope ? side : cap;
         return side.value < cap.value ? side : cap;
     }
 };

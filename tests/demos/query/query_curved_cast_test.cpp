@@ -157,6 +157,14 @@ TEST_CASE("raycast: grazing rays, rays inside and along the axis") {
     a = cast(R"({"origin":[0,3,0],"direction":[0,-1,0]})", R"({"cone":{"radius":1,"half_height":1}})");
     CHECK(a["t"].get<double>() == doctest::Approx(2).epsilon(1e-15));
     CHECK(vecOf(a["normal"]).dot(Vec3(0, 1, 0)) > 0.4);  // in the apex's normal cone
+    // Degenerate solids: a disc (half height 0) met edge-on enters through its rim with the rim's
+    // in-plane normal; a cone of radius 0 is its axis segment, met at the apex from above.
+    a = cast(R"({"origin":[-3,0,0.1],"direction":[1,0,0]})", R"({"cylinder":{"radius":1,"half_height":0}})");
+    CHECK(a["t"].get<double>() == doctest::Approx(3 - std::sqrt(0.99)).epsilon(1e-14));
+    CHECK(std::abs(vecOf(a["normal"]).y()) < 1e-12);
+    a = cast(R"({"origin":[0,3,0],"direction":[0,-1,0]})", R"({"cone":{"radius":0,"half_height":1}})");
+    CHECK(!a.contains("inside"));
+    CHECK(a["t"].get<double>() == doctest::Approx(2).epsilon(1e-14));
     // max_t stops short of the surface.
     CHECK(cast(R"({"origin":[3,0,0],"direction":[-1,0,0]})", cyl + R"(,"max_t":1.99)")["hit"] == false);
 }
