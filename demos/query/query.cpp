@@ -22,6 +22,29 @@ namespace {
 
 constexpr const char* kSource = "query";
 
+// Ericson's tests of one closest-point query as JSON: each region tried, its condition, its terms
+// (value in double, exact sign) and whether it was accepted.
+template <class Test>
+Json regionTestsJson(const std::vector<Test>& tests) {
+    Json out = Json::array();
+    for (const auto& test : tests) {
+        Json terms = Json::array();
+        for (int i = 0; i < test.termCount; ++i) {
+            const PredicateSign& term = test.terms[std::size_t(i)];
+            terms.push_back({{"name", term.name},
+                             {"formula", term.formula},
+                             {"value", cleanZero(term.value)},
+                             {"sign", term.sign},
+                             {"exact_fallback", term.exactFallback}});
+        }
+        out.push_back({{"region", nameOf(test.candidate)},
+                       {"condition", test.condition},
+                       {"terms", terms},
+                       {"accepted", test.accepted}});
+    }
+    return out;
+}
+
 Json closestPointTriangle(ObjectReader& r) {
     Vec3 p = r.get("point").asVec3();
     JsonNode t = r.get("triangle");
@@ -36,27 +59,26 @@ Json closestPointTriangle(ObjectReader& r) {
     const ClosestPointOnTriangleResult res =
         closestPointOnTriangle(p, Triangle{v[0], v[1], v[2]}, wantTrace ? &trace : nullptr);
     Json out = {{"point", vecJson(res.point)}, {"region", nameOf(res.region)}};
-    if (wantTrace) {
-        // Ericson's region tests in his order (§5.1.5), each term with its value in plain double
-        // arithmetic and the sign of its exact value (the one the decision used).
-        Json tests = Json::array();
-        for (const auto& test : trace.tests) {
-            Json terms = Json::array();
-            for (int i = 0; i < test.termCount; ++i) {
-                const PredicateSign& term = test.terms[std::size_t(i)];
-                terms.push_back({{"name", term.name},
-                                 {"formula", term.formula},
-                                 {"value", cleanZero(term.value)},
-                                 {"sign", term.sign},
-                                 {"exact_fallback", term.exactFallback}});
-            }
-            tests.push_back({{"region", nameOf(test.candidate)},
-                             {"condition", test.condition},
-                             {"terms", terms},
-                             {"accepted", test.accepted}});
-        }
-        out["trace"] = {{"algorithm", "ericson_regions"}, {"tests", tests}};
-    }
+    // Ericson's region tests in his order (§5.1.5), each term with its value in plain double
+    // arithmetic and the sign of its exact value (the one the decision used).
+    if (wantTrace) out["trace"] = {{"algorithm", "ericson_regions"}, {"tests", regionTestsJson(trace.tests)}};
+    return out;
+}
+
+// The point's closest point of the solid tetrahedron and the Voronoi region holding it (Ericson
+// §5.1.6; core decides every region exactly): "ABCD" when the point is inside.
+Json closestPointTetrahedron(ObjectReader& r) {
+    Vec3 p = r.get("point").asVec3();
+    JsonNode t = r.get("tetrahedron");
+    if (t.size() != 4) t.fail("expected [a, b, c, d]");
+    std::vector<Vec3> v = t.asVec3List();
+    const bool wantTrace = r.boolOr("trace", false);
+    r.finish();
+    TetrahedronTrace trace;
+    const ClosestPointOnTetrahedronResult res =
+        closestPointOnTetrahedron(p, Tetrahedron{v[0], v[1], v[2], v[3]}, wantTrace ? &trace : nullptr);
+    Json out = {{"point", vecJson(res.point)}, {"region", nameOf(res.region)}};
+    if (wantTrace) out["trace"] = {{"algorithm", "ericson_regions"}, {"tests", regionTestsJson(trace.tests)}};
     return out;
 }
 
@@ -81,10 +103,11 @@ Json answerQuery(const std::string& line) {
         ObjectReader r(root);
         r.ignore("id");
         std::string op = r.get("op").asEnum(
-            {"closest_point_triangle", "intersect", "distance", "penetration", "contact", "mass_properties", "raycast",
+            {"closest_point_triangle", "closest_point_tetrahedron", "intersect", "distance", "penetration", "contact", "mass_properties", "raycast",
              "time_of_impact"});
         Json result;
         if (op == "closest_point_triangle") result = closestPointTriangle(r);
+        else if (op == "closest_point_tetrahedron") result = closestPointTetrahedron(r);
         else if (op == "contact" || op == "mass_properties") result = answerContactQuery(op, r);
         else if (op == "raycast" || op == "time_of_impact") result = answerCastQuery(op, r);
         else result = answerShapeQuery(op, r);
