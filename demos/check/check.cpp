@@ -39,6 +39,7 @@ public:
         else if (op == "distance") distanceOp();
         else if (op == "penetration") penetrationOp();
         else if (op == "closest_point_triangle") closestPointOp();
+        else if (op == "closest_point_tetrahedron") closestPointTetrahedronOp();
         else if (op == "raycast") raycastOp();
         else if (op == "time_of_impact") timeOfImpactOp();
         else if (op == "contact") contactOp();
@@ -184,6 +185,38 @@ private:
         }
         if (!onFeature || !((*onFeature - vec(theirs_["point"])).norm() <= tol_))
             fail("region differs: yours " + mineR + ", cdlab's " + theirR);
+    }
+
+    // As for the triangle: the point, and the region unless yours names a feature (vertex, edge,
+    // face, or the inside "ABCD"; letters in any order) whose closest point is cdlab's point too.
+    void closestPointTetrahedronOp() {
+        point("point");
+        if (!mine_.contains("region") || !mine_["region"].is_string()) return fail("your answer has no \"region\"");
+        std::string mineR = mine_["region"];
+        std::sort(mineR.begin(), mineR.end());
+        const std::string theirR = theirs_["region"];
+        if (mineR == theirR) return;
+        const Vec3 p = vec(q_["point"]);
+        std::vector<Vec3> feature;
+        for (const char c : mineR) {
+            if (c < 'A' || c > 'D' || (!feature.empty() && mineR[feature.size() - 1] == c))
+                return fail("region \"" + std::string(mine_["region"]) + "\" names no feature of the tetrahedron");
+            feature.push_back(vec(q_["tetrahedron"][c - 'A']));
+        }
+        std::optional<Vec3> onFeature;
+        if (feature.size() == 1) onFeature = feature[0];
+        else if (feature.size() == 2) {
+            const Vec3 a = feature[0], b = feature[1];
+            const double t = std::clamp((p - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.0, 1.0);
+            onFeature = a + t * (b - a);
+        } else if (feature.size() == 3) {
+            const Vec3 n = (feature[1] - feature[0]).cross(feature[2] - feature[0]);
+            if (n.squaredNorm() > 0) onFeature = p - n * (n.dot(p - feature[0]) / n.squaredNorm());
+        } else {
+            onFeature = p;  // inside: the point itself
+        }
+        if (!onFeature || !((*onFeature - vec(theirs_["point"])).norm() <= tol_))
+            fail("region differs: yours " + std::string(mine_["region"]) + ", cdlab's " + theirR);
     }
 
     void raycastOp() {

@@ -89,6 +89,24 @@ TEST_CASE("check: wrong answers fail with the reason in words") {
     CHECK(check(loose).pass);
 }
 
+TEST_CASE("check: closest_point_tetrahedron — letters in any order, a boundary tie passes, a wrong face fails") {
+    const Json tet = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const auto line = [&](const Json& p, const Json& q, const char* region) {
+        return Json{{"op", "closest_point_tetrahedron"}, {"point", p}, {"tetrahedron", tet},
+                    {"answer", {{"point", q}, {"region", region}}}};
+    };
+    const double third = 1.0 / 3.0;
+    CHECK(check(line({2, 2, 2}, {third, third, third}, "DCB")).pass);
+    // Below the middle of edge BC: cdlab says BC; the face ABC holds the same closest point.
+    for (const char* region : {"BC", "ABC"}) {
+        const CheckResult r = check(line({0.5, 0.5, -1}, {0.5, 0.5, 0}, region));
+        CHECK_MESSAGE(r.pass, region << ": " << reasons(r));
+    }
+    const CheckResult wrong = check(line({2, 2, 2}, {third, third, third}, "ABC"));
+    CHECK(reasons(wrong).find("region differs: yours ABC, cdlab's BCD") != std::string::npos);
+    CHECK(check(line({0.1, 0.1, 0.1}, {0.1, 0.1, 0.1}, "ABCD")).pass);
+}
+
 TEST_CASE("check: a GJK trace is checked step by step; a tie is not a divergence, a planted one is found") {
     Json line = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
     line["trace"] = gjkTrace(false);
