@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
+#include "core/closest/closest_point.h"
 #include "demos/check/check_values.h"
 #include "demos/query/query.h"
 #include "demos/query/query_json.h"
@@ -263,6 +266,82 @@ void checkRegionTrace(const Json& query, const Json& trace, double tol, std::vec
     reasons.push_back("trace (regions): no test accepted a region");
 }
 
+// The closest point of tetrahedron feature `region` ("A", "BD", "ACD", "ABCD": letters in order) to p,
+// or nothing when the name is not a feature.
+std::optional<Vec3> tetrahedronFeaturePoint(const std::string& region, const Vec3 v[4], const Vec3& p) {
+    std::vector<Vec3> f;
+    for (std::size_t i = 0; i < region.size(); ++i) {
+        const char c = region[i];
+        if (c < 'A' || c > 'D' || (i > 0 && region[i - 1] >= c)) return std::nullopt;
+        f.push_back(v[c - 'A']);
+    }
+    if (f.size() == 1) return f[0];
+    if (f.size() == 2) {
+        const double t = std::clamp((p - f[0]).dot(f[1] - f[0]) / std::max((f[1] - f[0]).squaredNorm(), 1e-300), 0.0, 1.0);
+        return Vec3(f[0] + t * (f[1] - f[0]));
+    }
+    if (f.size() == 3) return closestPointOnTriangle(p, Triangle{f[0], f[1], f[2]}).point;
+    if (f.size() == 4) return p;  // inside: the point itself
+    return std::nullopt;
+}
+
+// Your region tests for closest_point_tetrahedron, the same schema as the triangle's. A test of
+// region R holds when cdlab's region is R, and may go either way when R's feature holds cdlab's
+// closest point too (p on the boundary between the two regions); a term whose name cdlab's own
+// trace of that region uses (Ericson §5.1.6 as core tests it: "(p-a).(b-a)", ...) must have its value.
+void checkTetrahedronRegionTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
+                                 int& divergence) {
+    const Json* tests = trace.is_object() && trace.contains("tests") && trace["tests"].is_array() ? &trace["tests"] : nullptr;
+    if (!tests) return reasons.push_back("trace (regions): expected {\"tests\": [...]} (docs/check.md)");
+    const Json tet = query.value("tetrahedron", Json());
+    if (!isVec(query.value("point", Json())) || !tet.is_array() || tet.size() != 4 ||
+        !std::all_of(tet.begin(), tet.end(), [](const Json& x) { return isVec(x); }))
+        return reasons.push_back("trace (regions): the query needs \"point\" and \"tetrahedron\"");
+    const Vec3 v[4] = {vec(tet[0]), vec(tet[1]), vec(tet[2]), vec(tet[3])}, p = vec(query["point"]);
+    TetrahedronTrace mine;
+    const ClosestPointOnTetrahedronResult cdlab = closestPointOnTetrahedron(p, Tetrahedron{v[0], v[1], v[2], v[3]}, &mine);
+    double scale = 0;
+    for (const Vec3& x : v) scale = std::max(scale, (x - p).squaredNorm());
+    const double eps = std::max(tol * std::sqrt(scale), 1e-12 * scale);  // of a dot product of two lengths
+    for (std::size_t k = 0; k < tests->size(); ++k) {
+        divergence = static_cast<int>(k);
+        const Json& test = (*tests)[k];
+        std::string region = test.is_object() ? test.value("region", "") : "";
+        std::sort(region.begin(), region.end());
+        const std::string at = "trace (regions): test " + std::to_string(k) + " (" + region + "): ";
+        const std::optional<Vec3> onFeature = tetrahedronFeaturePoint(region, v, p);
+        if (!onFeature) return reasons.push_back(at + "not a region of the tetrahedron (A..D, AB..CD, ABC..BCD, ABCD)");
+        if (test.contains("terms") && test["terms"].is_array())
+            for (const Json& term : test["terms"]) {
+                const std::string name = term.is_object() ? term.value("name", "") : "";
+                if (!term.contains("value") || !term["value"].is_number())
+                    return reasons.push_back(at + "a term needs \"name\" and \"value\"");
+                for (const auto& known : mine.tests) {
+                    if (nameOf(known.candidate) != region) continue;
+                    for (int i = 0; i < known.termCount; ++i)
+                        if (name == known.terms[std::size_t(i)].name) {
+                            const double expected = known.terms[std::size_t(i)].value, yours = term["value"].get<double>();
+                            if (!(std::abs(yours - expected) <= eps + 1e-12 * std::abs(expected)))
+                                return reasons.push_back(at + name + " = " + value(yours) + ", but it is " + value(expected));
+                        }
+                }
+            }
+        if (!test.contains("accepted") || !test["accepted"].is_boolean())
+            return reasons.push_back(at + "expected \"accepted\": true or false");
+        const bool accepted = test["accepted"].get<bool>();
+        const bool holds = region == nameOf(cdlab.region);
+        const bool tie = !holds && (*onFeature - cdlab.point).norm() <= tol;
+        if (holds && !accepted) return reasons.push_back(at + "rejected, but the point lies in this region");
+        if (!holds && !tie && accepted) return reasons.push_back(at + "accepted, but the point lies outside this region");
+        if (accepted) {
+            divergence = -1;
+            return;
+        }
+    }
+    divergence = static_cast<int>(tests->size());
+    reasons.push_back("trace (regions): no test accepted a region");
+}
+
 }  // namespace
 
 void checkTrace(const std::string& op, const Json& query, const Json& trace, double tol,
@@ -275,10 +354,12 @@ void checkTrace(const std::string& op, const Json& query, const Json& trace, dou
         return;
     }
     algorithm = trace.is_object() ? trace.value("algorithm", std::string()) : std::string();
-    if (algorithm.empty()) algorithm = op == "closest_point_triangle" ? "ericson_regions" : "gjk";
+    const bool regionOp = op == "closest_point_triangle" || op == "closest_point_tetrahedron";
+    if (algorithm.empty()) algorithm = regionOp ? "ericson_regions" : "gjk";
     if (algorithm == "ericson_regions") {
-        if (op != "closest_point_triangle")
-            return reasons.push_back("trace: region tests are checked for closest_point_triangle");
+        if (!regionOp)
+            return reasons.push_back("trace: region tests are checked for closest_point_triangle and _tetrahedron");
+        if (op == "closest_point_tetrahedron") return checkTetrahedronRegionTrace(query, trace, tol, reasons, divergence);
         return checkRegionTrace(query, trace, tol, reasons, divergence);
     }
     if (op != "intersect" && op != "distance" && op != "penetration")

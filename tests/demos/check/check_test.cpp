@@ -9,6 +9,7 @@
 #include <string>
 
 #include "demos/check/check.h"
+#include "demos/query/query.h"
 
 using namespace cdlab::demos;
 
@@ -105,6 +106,28 @@ TEST_CASE("check: closest_point_tetrahedron — letters in any order, a boundary
     const CheckResult wrong = check(line({2, 2, 2}, {third, third, third}, "ABC"));
     CHECK(reasons(wrong).find("region differs: yours ABC, cdlab's BCD") != std::string::npos);
     CHECK(check(line({0.1, 0.1, 0.1}, {0.1, 0.1, 0.1}, "ABCD")).pass);
+}
+
+TEST_CASE("check: a closest_point_tetrahedron trace — cdlab's own passes, a wrong value and a wrong decision are found") {
+    const Json query = {{"op", "closest_point_tetrahedron"}, {"point", {0.5, -1, 0.2}},
+                        {"tetrahedron", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, {"trace", true}};
+    const Json cdlab = answerQuery(query.dump());
+    REQUIRE(cdlab["region"] == "ABD");
+    Json line = query;
+    line.erase("trace");
+    line["answer"] = {{"point", cdlab["point"]}, {"region", "ABD"}};
+    line["trace"] = {{"tests", cdlab["trace"]["tests"]}};
+    CheckResult r = check(line);
+    CHECK_MESSAGE(r.pass, reasons(r));
+    Json wrongValue = line;
+    wrongValue["trace"]["tests"][0]["terms"][0]["value"] = 0.7;
+    r = check(wrongValue);
+    CHECK(reasons(r).find("test 0 (A): (p-a).(b-a) = 0.7, but it is 0.5") != std::string::npos);
+    CHECK(r.traceDivergence == 0);
+    Json rejected = line;
+    rejected["trace"]["tests"].back()["accepted"] = false;
+    r = check(rejected);
+    CHECK(reasons(r).find("rejected, but the point lies in this region") != std::string::npos);
 }
 
 TEST_CASE("check: a GJK trace is checked step by step; a tie is not a divergence, a planted one is found") {
