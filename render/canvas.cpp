@@ -5,8 +5,10 @@
 #include "render/canvas.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <variant>
@@ -15,6 +17,7 @@
 
 #include "render/gl_internal.h"
 #include "render/label_placement.h"
+#include "render/legibility.h"
 
 namespace cdlab::render {
 
@@ -271,7 +274,10 @@ FigureLayout Canvas::Impl::layoutTexts() {
         std::optional<Vector2d> anchor;
         if (t.world) anchor = asked[i].anchor;
         layout.labels.push_back({t.text, box, anchor, asked[i].lineHeight});
-        obstacles.boxes.push_back(box);
+        // Kept a space's width clear on either side, so the next label cannot run into it
+        // (the legibility check's rule, render/legibility.h).
+        const double space = kMinGapFraction * asked[i].lineHeight;
+        obstacles.boxes.push_back(Box{box.x0 - space, box.y0, box.x1 + space, box.y1});
     };
     for (std::size_t i = 0; i < texts.size(); ++i) {  // fixed texts first: the labels go around them
         if (texts[i].style.place) continue;
@@ -327,6 +333,53 @@ FigureLayout Canvas::Impl::layoutTexts() {
     return layout;
 }
 
+namespace {
+
+// A translucent triangle and its depth key for the painter's sort.
+struct SortedTriangle {
+    double depth;
+    Vertex v[3];
+};
+
+// The plane of a triangle, quantised (unit normal with its first non-zero coordinate positive, and
+// offset, to 1e-6): the triangles of one polygon face share it.
+using PlaneKey = std::array<long long, 4>;
+PlaneKey planeKey(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+    Vector3d n = (b - a).cross(c - a);
+    if (!(n.norm() > 0)) return {0, 0, 0, 0};
+    n.normalize();
+    for (int i = 0; i < 3; ++i)
+        if (n[i] != 0) {
+            if (n[i] < 0) n = -n;
+            break;
+        }
+    const auto q = [](double x) { return static_cast<long long>(std::llround(x * 1e6)); };
+    return {q(n.x()), q(n.y()), q(n.z()), q(n.dot(a))};
+}
+
+// Gives every triangle of one polygon face (same mesh, same plane) the face's mean depth, so the
+// painter's sort keeps a face's triangles together: sorted one by one, the two triangles of a
+// quad could land on either side of another body's face and blend in different orders, drawing one
+// triangle of the quad darker than the other (a seam along its diagonal). Tried and not kept: the
+// face's farthest corner as the key (drew a large ground first, but put faces of bodies inside one
+// another in the wrong order: measured against a render of 3-px pieces sorted one by one), and
+// pieces cut on a 24-px screen grid keyed by their plane's depth at the cell centre (right order,
+// but the crossing of two faces became a staircase of cells).
+void shareFaceDepths(std::vector<SortedTriangle>& sorted, std::size_t first, const std::vector<PlaneKey>& planes) {
+    std::map<PlaneKey, std::pair<double, int>> faces;
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+        auto& [sum, count] = faces[planes[i]];
+        sum += sorted[first + i].depth;
+        ++count;
+    }
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+        const auto& [sum, count] = faces[planes[i]];
+        sorted[first + i].depth = sum / count;
+    }
+}
+
+}  // namespace
+
 void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>& translucent) {
     // Camera frame for the light: a key light from the upper left, in front of the scene, so
     // faces turned towards the viewer are bright and neighbouring faces differ.
@@ -338,13 +391,11 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
     const Vector3d light = (0.6 * back + 0.65 * upCam - 0.45 * right).normalized();
     const Vector3d eye = is3D() ? camera.eye : Vector3d(camera.target.x(), camera.target.y(), 0);
 
-    struct Sorted {
-        double depth;
-        Vertex v[3];
-    };
-    std::vector<Sorted> sorted;
+    std::vector<SortedTriangle> sorted;
     for (const MeshCmd& m : meshes) {
         const bool isTranslucent = m.color.a < 1.0f;
+        const std::size_t firstOfMesh = sorted.size();
+        std::vector<PlaneKey> planes;  // of each translucent triangle of this mesh
         for (const Eigen::Vector3i& t : m.triangles) {
             const Vector3d& a = m.vertices[std::size_t(t[0])];
             const Vector3d& b = m.vertices[std::size_t(t[1])];
@@ -358,7 +409,7 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
                 const double k = len > 0 ? 0.45 + 0.55 * std::abs(n.dot(light) / len) : 1.0;
                 shade = m.color.scaled(float(k));
             }
-            Sorted s;
+            SortedTriangle s;
             s.depth = -((a + b + c) / 3.0 - eye).dot(back);  // distance in front of the eye
             const Vector3d* corners[3] = {&a, &b, &c};
             for (int i = 0; i < 3; ++i) {
@@ -369,14 +420,20 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
                 set4(s.v[i].local, 0, 0, 0, 0);
                 set4(s.v[i].param, kFlat, 0, 0, 0);
             }
-            if (isTranslucent) sorted.push_back(s);
-            else opaque.insert(opaque.end(), s.v, s.v + 3);
+            if (isTranslucent) {
+                sorted.push_back(s);
+                planes.push_back(planeKey(a, b, c));
+            } else {
+                opaque.insert(opaque.end(), s.v, s.v + 3);
+            }
         }
+        if (isTranslucent) shareFaceDepths(sorted, firstOfMesh, planes);
     }
-    // Back to front by centroid depth (painter's order); stable, so equal depths (every face in
-    // 2D) keep the order they were drawn in.
-    std::stable_sort(sorted.begin(), sorted.end(), [](const Sorted& x, const Sorted& y) { return x.depth > y.depth; });
-    for (const Sorted& s : sorted) translucent.insert(translucent.end(), s.v, s.v + 3);
+    // Back to front by the faces' centroid depths (painter's order); stable, so equal depths
+    // (every face in 2D) keep the order they were drawn in.
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const SortedTriangle& x, const SortedTriangle& y) { return x.depth > y.depth; });
+    for (const SortedTriangle& s : sorted) translucent.insert(translucent.end(), s.v, s.v + 3);
 }
 
 /// Thick line from a to b (render pixels + NDC depth) as one quad: a capsule (round caps)

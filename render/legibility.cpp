@@ -9,6 +9,7 @@ namespace cdlab::render {
 const char* nameOf(LegibilityKind kind) {
     switch (kind) {
         case LegibilityKind::LabelsOverlap: return "labels overlap";
+        case LegibilityKind::LabelsRunTogether: return "labels run together";
         case LegibilityKind::LabelOnMarker: return "label on a marker it does not name";
         case LegibilityKind::LabelOutsidePanel: return "label outside its panel";
         case LegibilityKind::TextTooSmall: return "text too small";
@@ -51,9 +52,22 @@ std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int w
     const std::vector<LayoutLabel>& labels = layout.labels;
     for (std::size_t i = 0; i < labels.size(); ++i)
         for (std::size_t j = i + 1; j < labels.size(); ++j) {
-            const double area = labels[i].box.overlapArea(labels[j].box);
-            if (area > kOverlapSlackArea)
+            const Box &a = labels[i].box, &b = labels[j].box;
+            const double area = a.overlapArea(b);
+            if (area > kOverlapSlackArea) {
                 out.push_back({LegibilityKind::LabelsOverlap, labels[i].text, "\"" + labels[j].text + "\"", area});
+                continue;
+            }
+            // Side by side on one line (sharing half the lower height) with less than a space between.
+            const double shared = std::min(a.y1, b.y1) - std::max(a.y0, b.y0);
+            const double line = std::min(labels[i].lineHeight, labels[j].lineHeight);
+            const double gap = std::max(a.x0, b.x0) - std::min(a.x1, b.x1);
+            if (shared >= 0.5 * std::min(a.height(), b.height()) && gap < kMinGapFraction * line) {
+                char s[64];
+                std::snprintf(s, sizeof s, " %.1f px apart < %.1f px", gap, kMinGapFraction * line);
+                out.push_back({LegibilityKind::LabelsRunTogether, labels[i].text, "\"" + labels[j].text + "\"" + s,
+                               kMinGapFraction * line - gap});
+            }
         }
     for (const LayoutMarker& m : layout.markers)
         for (std::size_t i = 0; i < labels.size(); ++i) {

@@ -236,7 +236,7 @@ private:
             // Identical boxes share a centre: their labels step right so each stays readable.
             int same = 0;
             for (std::size_t j = 0; j < i; ++j) same += (d.boxes[j].min == b.min && d.boxes[j].max == b.max) ? 1 : 0;
-            ts.offsetPx = Eigen::Vector2d(16.0 * same, 0.0);
+            ts.offsetPx = Eigen::Vector2d(22.0 * same, 0.0);  // a letter and a space apart
             c.drawText(0.5 * (b.min + b.max), boxName(static_cast<int>(i)), ts);
         }
         // Screen directions of the world axes, for the triad drawn beside the view.

@@ -54,9 +54,23 @@ TEST_SUITE("legibility") {
     TEST_CASE("a label may cover the marker it names, touching boxes are no overlap") {
         FigureLayout l;
         l.panels = {{0, 0, 100, 100}};
-        l.labels = {label("p", {10, 10, 30, 30}, Vector2d(20, 20)), label("q", {30, 10, 50, 30})};
+        l.labels = {label("p", {10, 10, 30, 30}, Vector2d(20, 20)), label("q", {30, 40, 50, 60})};
         l.markers = {{{15, 15, 25, 25}, 0}};
         CHECK(checkLegibility(l, 100, 100).empty());
+    }
+
+    TEST_CASE("labels side by side need a space between them; stacked lines may touch") {
+        FigureLayout l;
+        l.panels = {{0, 0, 200, 100}};
+        // Line height 20: a gap under 5 px runs the two texts together.
+        l.labels = {label("E = 0.764", {10, 10, 60, 30}), label("Jt = 1.17 s", {62, 12, 110, 32})};
+        auto problems = checkLegibility(l, 200, 100);
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0].kind == LegibilityKind::LabelsRunTogether);
+        l.labels[1].box = {66, 12, 114, 32};  // 6 px: a space's width
+        CHECK(checkLegibility(l, 200, 100).empty());
+        l.labels[1].box = {10, 30, 60, 50};  // the next line, touching: fine
+        CHECK(checkLegibility(l, 200, 100).empty());
     }
 
     TEST_CASE("blit and downsample carry the layout") {
