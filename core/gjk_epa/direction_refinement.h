@@ -11,7 +11,8 @@
 //
 // refineDirection takes such an answer's m and minimises g on the sphere in two stages.
 //  1. A pattern search (Hooke & Jeeves 1961): steps of angle s along ± two tangents and their
-//     diagonals, a step kept when it lowers g beyond rounding, s halved from 1e-3 to 1e-15 rad.
+//     diagonals, a step kept when it lowers g beyond rounding, s halved down to 1e-15 rad when no
+//     step gains and doubled after two that do.
 //     It needs no derivative, so it also walks along a ridge of g — a cylinder's side, where the
 //     support point jumps between the two rims as m crosses the plane normal to the axis — and
 //     pins the direction across the ridge to rounding; but on a smooth patch g is flat at the
@@ -26,6 +27,7 @@
 // beyond rounding from any step and is returned unchanged, steps = 0.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/base/types.h"
@@ -99,9 +101,10 @@ SmoothDirections smoothDirections(const A& a, const B& b, const Vec3& m, double 
 }  // namespace detail
 
 /// Minimises g from the unit direction m; `scale` is the size of A − B (the step of the finite
-/// difference and the rounding floor of g are relative to it).
+/// difference and the rounding floor of g are relative to it). `firstAngle`: the pattern search's
+/// first step, about the error of m (a start far off costs a few doublings more).
 template <class A, class B>
-DirectionRefinement refineDirection(const A& a, const B& b, const Vec3& m, double scale) {
+DirectionRefinement refineDirection(const A& a, const B& b, const Vec3& m, double scale, double firstAngle = 1e-3) {
     DirectionRefinement r;
     r.direction = m.normalized();
     r.value = r.direction.dot(detail::differenceSupport(a, b, r.direction));
@@ -111,24 +114,27 @@ DirectionRefinement refineDirection(const A& a, const B& b, const Vec3& m, doubl
     // rounding (~u/δ) in the curvature; the Newton step only needs it to a few digits.
     const double delta = 1e-6;
     const auto valueAt = [&](const Vec3& n) { return n.dot(detail::differenceSupport(a, b, n)); };
-    for (double angle = 1e-3; angle > 1e-15; angle *= 0.5) {
-        for (int moves = 0; moves < 64; ++moves) {
-            const Vec3 n = r.direction;
-            const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-            bool kept = false;
-            for (const Vec3& t : {t1, Vec3(-t1), t2, Vec3(-t2), Vec3(t1 + t2), Vec3(-t1 - t2), Vec3(t1 - t2), Vec3(t2 - t1)}) {
-                const Vec3 trial = (n + angle * t).normalized();
-                const double value = valueAt(trial);
-                if (value < r.value - floor) {
-                    r.direction = trial;
-                    r.value = value;
-                    ++r.steps;
-                    kept = true;
-                    break;
-                }
+    // Stage 1: from firstAngle, halving when no move gains, doubling after two gains in a row (a
+    // start far from the minimum walks there in a few doublings); a budget bounds the evaluations.
+    double angle = std::clamp(firstAngle, 1e-14, 1e-2);
+    int streak = 0;
+    for (int budget = 4000; angle > 1e-15 && budget > 0; budget -= 8) {
+        const Vec3 n = r.direction;
+        const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+        bool kept = false;
+        for (const Vec3& t : {t1, Vec3(-t1), t2, Vec3(-t2), Vec3(t1 + t2), Vec3(-t1 - t2), Vec3(t1 - t2), Vec3(t2 - t1)}) {
+            const Vec3 trial = (n + angle * t).normalized();
+            const double value = valueAt(trial);
+            if (value < r.value - floor) {
+                r.direction = trial;
+                r.value = value;
+                ++r.steps;
+                kept = true;
+                break;
             }
-            if (!kept) break;
         }
+        if (!kept) angle *= 0.5, streak = 0;
+        else if (++streak >= 2) angle = std::min(2 * angle, 1e-2), streak = 0;
     }
     // Stage 2: Newton on the directions along which g is smooth at m (see SmoothDirections).
     for (int iteration = 0; iteration < 40; ++iteration) {

@@ -69,7 +69,9 @@ void benchCylinders(const Settings& settings, std::vector<Row>& rows) {
         settings, "gjk_distance", "sphere-cylinder separated", "SV + direction polish (query)", n,
         [&](int i) {
             const GjkResult r = gjkDistance(sep[i].centre, sep[i].cylinder);
-            const DirectionRefinement d = refineDirection(sep[i].centre, sep[i].cylinder, r.separatingAxis, scaleOf(sep[i]));
+            const double gap = (r.upperBound - r.lowerBound) / r.upperBound;  // as the query starts it
+            const DirectionRefinement d = refineDirection(sep[i].centre, sep[i].cylinder, r.separatingAxis, scaleOf(sep[i]),
+                                                          std::clamp(4 * std::sqrt(std::max(gap, 0.0)), 1e-10, 1e-3));
             return Answer{-d.value - sep[i].radius, r.iterations + d.steps};
         },
         separatedError));
@@ -86,7 +88,9 @@ void benchCylinders(const Settings& settings, std::vector<Row>& rows) {
         settings, "epa_depth", "sphere in cylinder", "GJK+EPA 1e-10 + polish (query)", n,
         [&](int i) {
             const EpaResult r = penetration(pen[i].centre, pen[i].cylinder, loose);
-            const DirectionRefinement d = refineDirection(pen[i].centre, pen[i].cylinder, r.normal, scaleOf(pen[i]));
+            const double gap = (r.upperBound - r.lowerBound) / r.upperBound;
+            const DirectionRefinement d = refineDirection(pen[i].centre, pen[i].cylinder, r.normal, scaleOf(pen[i]),
+                                                          std::clamp(4 * std::sqrt(std::max(gap, 0.0)), 1e-10, 1e-3));
             return Answer{d.value + pen[i].radius, r.iterations + d.steps};
         },
         depthError));

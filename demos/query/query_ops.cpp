@@ -124,8 +124,12 @@ CurvedSolid scaledCurved(CurvedSolid c, int k) {
 // onto the two support planes. GJK's simplex on a flat cap is a few rim points, so its witness
 // can sit 1e-8 across the cap even where its distance is exact. Cores scaled to coordinates below 1.
 template <class CoreA, class CoreB>
-void polishCurved(const CoreA& ca, const CoreB& cb, Vec3& m, double& value, Vec3& pointA, Vec3& pointB) {
-    const DirectionRefinement r = refineDirection(ca, cb, m, 1.0);
+void polishCurved(const CoreA& ca, const CoreB& cb, Vec3& m, double& value, Vec3& pointA, Vec3& pointB,
+                  double lowerBound, double upperBound) {
+    // The bounds' relative gap ε leaves the direction ~sqrt(ε) off on a smooth patch (g is
+    // quadratic at its minimum): the pattern search starts there.
+    const double gap = upperBound > 0 ? std::max(upperBound - lowerBound, 0.0) / upperBound : 1.0;
+    const DirectionRefinement r = refineDirection(ca, cb, m, 1.0, std::clamp(4 * std::sqrt(gap), 1e-10, 1e-3));
     if (r.steps > 0) {
         m = r.direction;
         value = r.value;
@@ -178,7 +182,7 @@ PairAnswer boundedPairOnCores(const CoreA& ca, const CoreB& cb, int kc, const Qu
     if (curved && !g.intersect) {
         // GJK stops ~1e-8 short on a smooth patch (its simplex shrinks to nearly equal points).
         double value = -g.distance;
-        polishCurved(ca, cb, g.separatingAxis, value, g.pointA, g.pointB);
+        polishCurved(ca, cb, g.separatingAxis, value, g.pointA, g.pointB, g.lowerBound, g.upperBound);
         g.distance = std::max(-value, 0.0);
         g.intersect = value >= 0;  // the cores touch: no EPA needed, depth 0 along the axis
     }
@@ -220,7 +224,7 @@ PairAnswer boundedPairOnCores(const CoreA& ca, const CoreB& cb, int kc, const Qu
         if (wantTrace) ans.trace.push_back(epaTraceJson(etrace));
         if constexpr (curved) {  // EPA's polytope needs ever more faces on a smooth patch
             double value = e.depth;
-            polishCurved(ca, cb, e.normal, value, e.pointA, e.pointB);
+            polishCurved(ca, cb, e.normal, value, e.pointA, e.pointB, e.lowerBound, e.upperBound);
             e.depth = std::max(value, 0.0);
         }
         // Core's EPA always gives a unit normal (a degenerate start falls back to the axis of least
