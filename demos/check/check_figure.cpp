@@ -41,6 +41,14 @@ std::optional<SceneShape> drawableShape(const Json& node, const std::string& pat
             s.kind = SceneShape::Kind::Polytope;
             s.polytope = PolytopeShape(q.vertices);  // world-frame vertices, identity pose
             return s;
+        case QueryShape::Kind::Cylinder:
+        case QueryShape::Kind::Cone:
+            s.kind = q.kind == QueryShape::Kind::Cylinder ? SceneShape::Kind::Cylinder : SceneShape::Kind::Cone;
+            s.radius = q.curved.radius;
+            s.halfHeight = q.curved.halfHeight;
+            s.pose.position = q.curved.center;
+            s.pose.rotation = Quat(q.curved.rotation);
+            return s;
         default: return std::nullopt;
     }
 }
@@ -56,7 +64,7 @@ std::optional<PairScene> drawablePair(const Json& query, bool polytopesOnly, std
     const auto polytope = [](const std::optional<SceneShape>& s) { return s->kind == SceneShape::Kind::Polytope; };
     if (!a || !b || (polytopesOnly && (!polytope(a) || !polytope(b)))) {
         why = polytopesOnly ? "no figure: trace steps are drawn for polytopes, aabbs and obbs"
-                            : "no figure: it draws polytopes, aabbs, obbs and spheres";
+                            : "no figure: it draws polytopes, aabbs, obbs, spheres, cylinders and cones";
         return std::nullopt;
     }
     PairScene pair;

@@ -71,7 +71,7 @@ TEST_CASE("check --figures: one figure per failing line, cdlab's answer beside y
     CHECK(l1.find("FAIL: distance off by") != std::string::npos);
     CHECK(l1.find("[figure " + figure + "]") != std::string::npos);
     CHECK(l2 == "line 2: pass");
-    CHECK(l3.find("[no figure: it draws polytopes, aabbs, obbs and spheres]") != std::string::npos);
+    CHECK(l3.find("[no figure: it draws polytopes, aabbs, obbs, spheres, cylinders and cones]") != std::string::npos);
     CHECK(!std::filesystem::exists(dir / "line_2.png"));
     CHECK(!std::filesystem::exists(dir / "line_3.png"));
 
@@ -81,6 +81,19 @@ TEST_CASE("check --figures: one figure per failing line, cdlab's answer beside y
     // The two panels draw the same bodies with different witness points: the halves differ.
     CHECK(panelDifference(image, 3) > 100);
     std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("check --figures: a cylinder and a cone are drawn as themselves") {
+    const FigureRun run = checkWithFigures(
+        R"({"op":"distance","a":{"cylinder":{"radius":1,"half_height":1,"rotation":[0.9,0.3,0,0.1]}},"b":{"cone":{"radius":0.6,"half_height":0.8,"position":[3,0.5,0]}},"answer":{"intersect":false,"distance":1.0,"point_a":[1,0,0],"point_b":[2,0,0]}})"
+        "\n",
+        "cdlab_check_curved_figure_test");
+    const std::string figure = (run.dir / "line_1.png").string();
+    CHECK(run.out.find("[figure " + figure + "]") != std::string::npos);
+    const render::Image image = render::readPng(figure);
+    REQUIRE(image.width == 1280);
+    CHECK(panelDifference(image, 3) > 100);  // the same bodies, different witness points
+    std::filesystem::remove_all(run.dir);
 }
 
 TEST_CASE("check --figures: a trace that breaks a rule at step k gets cdlab's step k beside yours") {
