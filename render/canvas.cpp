@@ -348,13 +348,17 @@ PlaneKey planeKey(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
     Vector3d n = (b - a).cross(c - a);
     if (!(n.norm() > 0)) return {0, 0, 0, 0};
     n.normalize();
+    const auto q = [](double x) { return static_cast<long long>(std::llround(x * 1e6)); };
+    PlaneKey key{q(n.x()), q(n.y()), q(n.z()), q(n.dot(a))};
+    // The sign from the first non-zero quantised coordinate: a rounding-level 1e-16 in front of a
+    // face's normal must not flip one of its triangles.
     for (int i = 0; i < 3; ++i)
-        if (n[i] != 0) {
-            if (n[i] < 0) n = -n;
+        if (key[std::size_t(i)] != 0) {
+            if (key[std::size_t(i)] < 0)
+                for (long long& k : key) k = -k;
             break;
         }
-    const auto q = [](double x) { return static_cast<long long>(std::llround(x * 1e6)); };
-    return {q(n.x()), q(n.y()), q(n.z()), q(n.dot(a))};
+    return key;
 }
 
 // Gives every triangle of one polygon face (same mesh, same plane) the face's mean depth, so the

@@ -196,6 +196,7 @@ private:
         std::sort(mineR.begin(), mineR.end());
         const std::string theirR = theirs_["region"];
         if (mineR == theirR) return;
+        if (mineR.empty() || mineR.size() > 4) return fail("region \"" + mineR + "\" names no feature of the tetrahedron");
         const Vec3 p = vec(q_["point"]);
         std::vector<Vec3> feature;
         for (const char c : mineR) {

@@ -83,8 +83,8 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     int titleH = 0, captionH = 0;
     float captionPx = 15.0f, titlePx = 22.0f;  // the title grows too on a tall sheet (15 frames)
     const auto titleBlock = [&]() { return o.title.empty() ? 0 : int(std::ceil(titlePx * 48.0 / 22.0)); };
-    // Sizes only grow with the height they give, so this settles in a pass or two.
-    for (int pass = 0; pass < 8; ++pass) {
+    // The layout at the current sizes: wrapped captions, their bands, the title block.
+    const auto layOut = [&] {
         std::size_t mostLines = 1;
         for (std::size_t i = 0; i < frames.size(); ++i) {
             const TextStyle style{captionPx, roleColor(Role::Ink), Anchor::Top, false, false};
@@ -95,7 +95,13 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
         captionLines = wrapPieces(measure, words, " ", sceneCaption, width - 2 * pad);
         sceneLineH = std::ceil(sceneCaption.sizePx * 1.6);
         titleH = titleBlock() + int(sceneLineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
-        const float legible = float(std::ceil(0.016 * (titleH + rows * (cellH + captionH + pad) + pad)));
+    };
+    // Sizes only grow with the height they give, so this settles in a pass or two. Captions that
+    // wrap to more lines as they grow could feed on themselves: sizes stop at 30 px (the check then
+    // names what is too small), and the layout is always redone at the final sizes.
+    for (int pass = 0; pass < 8; ++pass) {
+        layOut();
+        const float legible = std::min(30.0f, float(std::ceil(0.016 * (titleH + rows * (cellH + captionH + pad) + pad))));
         if (std::max(15.0f, legible) == captionPx && std::max(16.0f, legible) == sceneCaption.sizePx &&
             std::max(22.0f, legible) == titlePx)
             break;  // settled: the sizes fit the height they give
@@ -103,6 +109,7 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
         sceneCaption.sizePx = std::max(16.0f, legible);
         titlePx = std::max(22.0f, legible);
     }
+    layOut();
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
 
     Canvas canvas(gl, canvasOptions(width, height, scale), Camera::twoD(0, 0, 1));

@@ -108,17 +108,21 @@ std::vector<CurvedContactPoint> curvedOnFace(const CurvedSolid& s, const Referen
 Json curvedFeature(const CurvedSolid& s, const std::vector<Vec3>& points) {
     const Vec3 u = s.axis();
     const double tol = 1e-9 * std::max({s.halfHeight, s.radius, 1e-300});
-    int top = 0, bottom = 0, apex = 0;
+    int top = 0, bottom = 0, apex = 0, onRim = 0;
     for (const Vec3& p : points) {
         const double y = (p - s.center).dot(u);
+        const double radial = (p - s.center - y * u).norm();
         if (s.cone && (p - (s.center + s.halfHeight * u)).norm() <= tol) ++apex;
         else if (std::abs(y + s.halfHeight) <= tol) ++bottom;
         else if (!s.cone && std::abs(y - s.halfHeight) <= tol) ++top;
+        if (std::abs(radial - s.radius) <= tol) ++onRim;
     }
     const int count = static_cast<int>(points.size());
     if (apex == count) return {{"type", "apex"}};
+    // On one end: its rim when one or two points all lie on the circle, else its cap (three or
+    // more points, or a point inside the disc: a sphere resting on the middle of the cap).
     for (const auto& [onEnd, name] : {std::pair{top, "top"}, std::pair{bottom, "bottom"}})
-        if (onEnd == count) return {{"type", count >= 3 ? "cap" : "rim"}, {"end", name}};
+        if (onEnd == count) return {{"type", count < 3 && onRim == count ? "rim" : "cap"}, {"end", name}};
     return {{"type", "side"}};
 }
 

@@ -10,8 +10,9 @@
 //     the face's to 1e-9), the face's corners inside the cap disc;
 // reduced to max_points by the manifold rules of every contact (core/contact/contact_manifold.h:
 // deepest, farthest, largest triangle, largest quad, then the most added area). Features of a
-// curved solid: {"type":"cap","end":E} (three or more points on one rim), {"type":"side"} (points on
-// both rims, or the apex and the base rim), {"type":"rim","end":E} (one or two points on one rim),
+// curved solid: {"type":"cap","end":E} (three or more points on one end, or any inside its disc),
+// {"type":"side"} (points on both ends, or the apex and the base rim), {"type":"rim","end":E} (one or
+// two points on one rim circle),
 // {"type":"apex"}; E is "top" (the +half_height cap; for "a"/"b" cylinders, b's) or "bottom" (a
 // cone's base).
 #pragma once

@@ -128,6 +128,18 @@ TEST_CASE("check: a closest_point_tetrahedron trace — cdlab's own passes, a wr
     rejected["trace"]["tests"].back()["accepted"] = false;
     r = check(rejected);
     CHECK(reasons(r).find("rejected, but the point lies in this region") != std::string::npos);
+    // p = (0, -1, -1): (p-a).(b-a) = 0 exactly, cdlab says A; a strict test rejects A and accepts AB,
+    // whose nearest point is the same vertex: a tie, not a divergence.
+    const Json tie = {{"op", "closest_point_tetrahedron"}, {"point", {0, -1, -1}},
+                      {"tetrahedron", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
+                      {"answer", {{"point", {0, 0, 0}}, {"region", "AB"}}},
+                      {"trace", {{"tests", {{{"region", "A"}, {"terms", {{{"name", "(p-a).(b-a)"}, {"value", 0.0}}}}, {"accepted", false}},
+                                            {{"region", "AB"}, {"accepted", true}}}}}}};
+    r = check(tie);
+    CHECK_MESSAGE(r.pass, reasons(r));
+    Json empty = line;
+    empty["answer"]["region"] = "";
+    CHECK(reasons(check(empty)).find("names no feature") != std::string::npos);
 }
 
 TEST_CASE("check: a GJK trace is checked step by step; a tie is not a divergence, a planted one is found") {

@@ -97,6 +97,9 @@ TEST_CASE("contact: lying, tilted, a cone on its apex, a cylinder on a box face"
         CHECK(p["depth"].get<double>() == doctest::Approx(0.1).epsilon(1e-13));
     }
     CHECK(ans["feature_b"]["type"] == "face");
+    // A sphere resting on the middle of the top cap: one point, inside the disc: the cap, not the rim.
+    ans = contact(R"({"sphere":{"center":[0.2,1.9,0.1],"radius":1}})", R"({"cylinder":{"radius":1,"half_height":1}})");
+    CHECK(ans["feature_b"]["type"] == "cap");
     // A box resting flat on the cylinder's top cap: the box's four corners over the disc.
     ans = contact(R"({"box":{"half_extents":[0.5,0.5,0.5],"position":[0,1.4,0]}})",
                   R"({"cylinder":{"radius":1,"half_height":1}})");
