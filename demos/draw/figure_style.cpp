@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/legibility.h"
+
 namespace cdlab::demos {
 
 using namespace render;
@@ -61,7 +63,8 @@ void drawKey(Canvas& canvas, double x, double y, const std::vector<KeyItem>& ite
         const TextStyle swatch{sizePx * 1.2f, item.color.withAlpha(1.0f), Anchor::TopLeft, false, false};
         const std::string square = "\u25A0";  // ■
         canvas.drawTextPx(x, y - 0.15 * sizePx, square, swatch);
-        x += canvas.measureText(square, swatch).x() + 5;
+        // The swatch is a label of the key too: a space's width to its text (render/legibility.h).
+        x += canvas.measureText(square, swatch).x() + std::max(5.0, render::kMinGapFraction * sizePx);
         canvas.drawTextPx(x, y, item.text, text);
         x += canvas.measureText(item.text, text).x() + 16;
     }

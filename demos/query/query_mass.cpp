@@ -91,7 +91,7 @@ Json answerMassPropertiesQuery(ObjectReader& r) {
 
     const HullResult hull = convexHull(unit);
     if (hull.status != HullStatus::Ok)
-        a.fail(std::string("the polytope's hull is ") + nameOf(hull.status) + ": no volume");
+        a.fail(std::string("the ") + nameOf(shape.kind) + "'s hull is " + nameOf(hull.status) + ": no volume");
     const MassProperties mp = computeMassProperties(hull.polyhedron, {.density = density});
     if (!mp.ok()) a.fail(std::string("mass properties: ") + nameOf(mp.status) + ": " + mp.message);
 
