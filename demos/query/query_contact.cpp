@@ -328,6 +328,18 @@ std::vector<RoundedPoint> capsuleOnFace(const QueryShape& capsule, const Body& b
     return pts;
 }
 
+// The face of the body whose outward normal is −fromS to rounding (the contact normal from the other
+// shape is this face's normal), or −1.
+int faceFacing(const Body& body, const Vec3& fromS) {
+    int face = -1;
+    double best = 1.0 - 1e-9;
+    for (int f = 0; f < body.mesh.faceCount(); ++f) {
+        const double c = -body.mesh.face(f).normal.dot(fromS);
+        if (c >= best) best = c, face = f;
+    }
+    return face;
+}
+
 // A sphere or capsule s against a bounded shape `other` (polytope, aabb, obb, sphere, capsule).
 Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int maxPoints, const JsonNode& otherNode) {
     const ShapePairAnswer ans = sIsA ? penetrationOf(s, other) : penetrationOf(other, s);
@@ -343,12 +355,7 @@ Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int
         otherFeature = curvedFeature(other.curved, {onOther});
     } else {
         const Body body = makeBody(other, otherNode);
-        int face = -1;
-        double best = 1.0 - 1e-9;  // the normal is this face's, to rounding
-        for (int f = 0; f < body.mesh.faceCount(); ++f) {
-            const double c = -body.mesh.face(f).normal.dot(fromS);
-            if (c >= best) best = c, face = f;
-        }
+        const int face = faceFacing(body, fromS);
         if (colliding && s.kind == Kind::Capsule && face >= 0) {
             std::vector<RoundedPoint> clipped = capsuleOnFace(s, body, face, touch);
             if (!clipped.empty()) pts = clipped;
@@ -412,12 +419,7 @@ Json curvedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int 
         otherFeature = curvedFeature(other.curved, {onOther});
     } else {
         const Body body = makeBody(other, otherNode);
-        int face = -1;
-        double best = 1.0 - 1e-9;  // the normal is this face's, to rounding
-        for (int f = 0; f < body.mesh.faceCount(); ++f) {
-            const double c = -body.mesh.face(f).normal.dot(fromS);
-            if (c >= best) best = c, face = f;
-        }
+        const int face = faceFacing(body, fromS);
         if (colliding && face >= 0) {
             ReferenceFace ref{body.mesh.face(face).normal, body.mesh.face(face).offset, {}};
             for (int v : body.mesh.faceVertices(face)) ref.corners.push_back(body.mesh.position(v));
