@@ -129,7 +129,11 @@ RayHit linePlane(const Vec3& o, const Vec3& d, double tMax, const Plane& plane) 
     return hit;
 }
 
-RayHit lineSphere(const Vec3& o, const Vec3& d, double tMax, const Sphere& s) {
+RayHit lineSphere(const Vec3& o, const Vec3& d, double tMax, const Sphere& s, SphereQuadraticTrace* trace) {
+    using Outcome = SphereQuadraticTrace::Outcome;
+    SphereQuadraticTrace local;
+    SphereQuadraticTrace& q = trace ? *trace : local;
+    q = {};
     RayHit hit;
     if (!o.allFinite() || !d.allFinite() || !s.center.allFinite() || !(s.radius >= 0.0) || !std::isfinite(s.radius))
         return hit;
@@ -138,19 +142,43 @@ RayHit lineSphere(const Vec3& o, const Vec3& d, double tMax, const Sphere& s) {
     const double a = d.dot(d);
     const double b = m.dot(d);
     const double c = m.dot(m) - s.radius * s.radius;
+    q.a = a;
+    q.b = b;
+    q.c = c;
+    q.discriminant = b * b - a * c;
+    if (a > 0.0 && q.discriminant >= 0.0) {  // the line's two crossings, for the figure
+        const double root = std::sqrt(q.discriminant);
+        // The root of larger magnitude without cancellation, the other from the product c / a.
+        const double big = b <= 0.0 ? (-b + root) / a : (-b - root) / a;
+        const double small = big != 0.0 ? c / (a * big) : 0.0;
+        q.rootsValid = true;
+        q.t0 = std::min(big, small);
+        q.t1 = std::max(big, small);
+    }
     if (c <= 0.0) {  // starts inside or on the sphere
+        q.outcome = Outcome::StartsInside;
         hit.hit = true;
         hit.point = o;
         return hit;
     }
-    if (a == 0.0 || b > 0.0) return hit;  // a point outside, or moving away
-    const double disc = b * b - a * c;
-    if (disc < 0.0) return hit;
+    if (a == 0.0 || b > 0.0) {  // a point outside, or moving away
+        q.outcome = a == 0.0 ? Outcome::PointOutside : Outcome::PointsAway;
+        return hit;
+    }
+    const double disc = q.discriminant;
+    if (disc < 0.0) {
+        q.outcome = Outcome::NoRealRoot;
+        return hit;
+    }
     // Smaller root (-b - sqrt(disc)) / a written as c / (-b + sqrt(disc)): -b >= 0 here, so
     // the denominator has no cancellation (the product of the roots is c / a).
     const double den = -b + std::sqrt(disc);
     const double t = den > 0.0 ? c / den : -b / a;
-    if (!(t <= tMax)) return hit;
+    if (!(t <= tMax)) {
+        q.outcome = Outcome::BeyondEnd;
+        return hit;
+    }
+    q.outcome = Outcome::Hit;
     hit.hit = true;
     hit.t = std::max(t, 0.0);
     hit.point = o + hit.t * d;
@@ -168,13 +196,30 @@ RayHit intersectSegmentPlane(const Segment& segment, const Plane& plane) {
     return linePlane(segment.a, segment.b - segment.a, 1.0, plane);
 }
 
-RayHit intersectRaySphere(const Ray& ray, const Sphere& sphere) {
-    if (ray.direction.isZero(0.0)) return {};
-    return lineSphere(ray.origin, ray.direction, kInf, sphere);
+const char* nameOf(SphereQuadraticTrace::Outcome outcome) {
+    using Outcome = SphereQuadraticTrace::Outcome;
+    switch (outcome) {
+        case Outcome::Invalid: return "invalid input";
+        case Outcome::StartsInside: return "starts inside";
+        case Outcome::PointOutside: return "a point outside";
+        case Outcome::PointsAway: return "points away";
+        case Outcome::NoRealRoot: return "no real root";
+        case Outcome::BeyondEnd: return "beyond the end";
+        case Outcome::Hit: return "hit";
+    }
+    return "?";
 }
 
-RayHit intersectSegmentSphere(const Segment& segment, const Sphere& sphere) {
-    return lineSphere(segment.a, segment.b - segment.a, 1.0, sphere);
+RayHit intersectRaySphere(const Ray& ray, const Sphere& sphere, SphereQuadraticTrace* trace) {
+    if (ray.direction.isZero(0.0)) {
+        if (trace) *trace = {};
+        return {};
+    }
+    return lineSphere(ray.origin, ray.direction, kInf, sphere, trace);
+}
+
+RayHit intersectSegmentSphere(const Segment& segment, const Sphere& sphere, SphereQuadraticTrace* trace) {
+    return lineSphere(segment.a, segment.b - segment.a, 1.0, sphere, trace);
 }
 
 RayBoxHit intersectRayAabb(const Ray& ray, const Aabb& box, SlabTrace* trace) {

@@ -32,11 +32,31 @@ RayHit intersectRayPlane(const Ray& ray, const Plane& plane);
 /// Segment against plane (Ericson §5.3.1). A segment lying in the plane hits at t = 0.
 RayHit intersectSegmentPlane(const Segment& segment, const Plane& plane);
 
+/// The quadratic of the ray-sphere test, recorded for demos: |m + t d|^2 = r^2 with m = o - c is
+/// a t^2 + 2 b t + c = 0, a = d.d, b = m.d, c = m.m - r^2, discriminant b^2 - a c.
+struct SphereQuadraticTrace {
+    enum class Outcome {
+        Invalid,       ///< NaN / inf, a negative radius or a zero direction: no test made
+        StartsInside,  ///< c <= 0: the origin is in the closed sphere, t = 0
+        PointOutside,  ///< a = 0 (a zero-length segment) and c > 0: a point outside
+        PointsAway,    ///< b > 0 (origin outside): the ray moves away from the centre
+        NoRealRoot,    ///< discriminant < 0: the line misses the sphere
+        BeyondEnd,     ///< the entry root is past the segment's end (t > 1)
+        Hit,           ///< the smaller root t0 is the first contact
+    };
+    Outcome outcome = Outcome::Invalid;
+    double a = 0.0, b = 0.0, c = 0.0, discriminant = 0.0;
+    /// The line's entry and exit parameters (t0 <= t1), when the discriminant is >= 0.
+    bool rootsValid = false;
+    double t0 = 0.0, t1 = 0.0;
+};
+const char* nameOf(SphereQuadraticTrace::Outcome outcome);
+
 /// Ray against solid sphere (Ericson §5.3.2, direction need not be unit).
-RayHit intersectRaySphere(const Ray& ray, const Sphere& sphere);
+RayHit intersectRaySphere(const Ray& ray, const Sphere& sphere, SphereQuadraticTrace* trace = nullptr);
 
 /// Segment against solid sphere (Ericson §5.3.2 restricted to t in [0, 1]).
-RayHit intersectSegmentSphere(const Segment& segment, const Sphere& sphere);
+RayHit intersectSegmentSphere(const Segment& segment, const Sphere& sphere, SphereQuadraticTrace* trace = nullptr);
 
 /// One slab of the ray-box test, recorded for demos.
 struct SlabStep {

@@ -8,6 +8,7 @@
 #include "demos/gjk/gjk_demo.h"
 #include "demos/lin_canny/lin_canny_demo.h"
 #include "demos/polyhedron_plane/polyhedron_plane_demo.h"
+#include "demos/primitives/primitives_demo.h"
 #include "demos/space_partition/space_partition_demo.h"
 #include "demos/sweep_and_prune/sweep_and_prune_demo.h"
 #include "demos/vclip/vclip_demo.h"
@@ -27,7 +28,8 @@ const std::vector<const Demo*>& allDemos() {
                                                    &spacePartitionDemo(),
                                                    &boundingVolumesDemo(),
                                                    &bvhDemo(),
-                                                   &sweepAndPruneDemo()};
+                                                   &sweepAndPruneDemo(),
+                                                   &primitivesDemo()};
     return demos;
 }
 

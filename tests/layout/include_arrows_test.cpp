@@ -32,7 +32,8 @@ const std::vector<std::string> kDemoFolders = {"voronoi_triangle",
                                                "space_partition",
                                                "bounding_volumes",
                                                "bvh",
-                                               "sweep_and_prune"};
+                                               "sweep_and_prune",
+                                               "primitives"};
 // Shared demos/ folders a demo may use.
 const std::vector<std::string> kSharedForDemos = {"scene", "draw", "measure", "oracles"};
 

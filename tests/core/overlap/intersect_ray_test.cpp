@@ -75,6 +75,45 @@ TEST_SUITE("intersect_ray") {
         CHECK(intersectSegmentSphere({Vec3(-5, 0, 0), Vec3(-1, 0, 0)}, s).t == 1.0);
     }
 
+    TEST_CASE("ray-sphere quadratic trace: the line's two crossings and the outcome") {
+        oracle::Rng rng(11);
+        int both = 0;
+        for (int n = 0; n < 500; ++n) {
+            const Sphere s{rng.vec(-1, 1), rng.uniform(0.2, 2.0)};
+            const Vec3 origin = rng.vec(-5, 5);
+            const Ray ray{origin, (s.center + rng.vec(-1.5, 1.5) * s.radius - origin) * rng.uniform(0.1, 3.0)};
+            SphereQuadraticTrace q;
+            const RayHit hit = intersectRaySphere(ray, s, &q);
+            // Oracle: the line's crossings in long double from the closest approach (a different formula).
+            const V3 o(ray.origin), d(ray.direction), c(s.center);
+            const LD tc = oracle::dot(c - o, d) / oracle::dot(d, d);
+            const LD dmin = oracle::norm(o + d * tc - c);
+            if (std::abs(dmin - s.radius) < 1e-6) continue;
+            REQUIRE(q.rootsValid == (dmin < s.radius));
+            if (q.rootsValid) {
+                ++both;
+                const LD half = std::sqrt(LD(s.radius) * s.radius - dmin * dmin) / oracle::norm(d);
+                CHECK(std::abs(q.t0 - double(tc - half)) < 1e-9 * (1 + std::abs(double(tc))));
+                CHECK(std::abs(q.t1 - double(tc + half)) < 1e-9 * (1 + std::abs(double(tc))));
+            }
+            // The outcome names why: inside (t0 <= 0 <= t1), behind, miss or hit at t0.
+            using O = SphereQuadraticTrace::Outcome;
+            if (q.outcome == O::Hit) CHECK((hit.hit && hit.t == doctest::Approx(q.t0)));
+            if (q.outcome == O::StartsInside) CHECK((hit.hit && hit.t == 0.0 && q.t0 <= 1e-12 && q.t1 >= -1e-12));
+            if (q.outcome == O::PointsAway || q.outcome == O::NoRealRoot) CHECK_FALSE(hit.hit);
+            if (q.outcome == O::PointsAway && q.rootsValid) CHECK(q.t1 < 0);
+        }
+        CHECK(both > 100);
+        SphereQuadraticTrace q;
+        CHECK_FALSE(intersectSegmentSphere({Vec3(-5, 0, 0), Vec3(-2, 0, 0)}, Sphere{Vec3(0, 0, 0), 1.0}, &q).hit);
+        CHECK(q.outcome == SphereQuadraticTrace::Outcome::BeyondEnd);
+        CHECK(q.t0 == doctest::Approx(4.0 / 3.0));
+        CHECK_FALSE(intersectSegmentSphere({Vec3(5, 0, 0), Vec3(5, 0, 0)}, Sphere{Vec3(0, 0, 0), 1.0}, &q).hit);
+        CHECK(q.outcome == SphereQuadraticTrace::Outcome::PointOutside);
+        CHECK_FALSE(intersectRaySphere({Vec3(5, 0, 0), Vec3(0, 0, 0)}, Sphere{Vec3(0, 0, 0), 1.0}, &q).hit);
+        CHECK(q.outcome == SphereQuadraticTrace::Outcome::Invalid);
+    }
+
     TEST_CASE("ray-AABB slabs against sampling, including rays starting inside") {
         oracle::Rng rng(2);
         int hits = 0, insideStarts = 0;

@@ -1,0 +1,71 @@
+#include "demos/primitives/primitive_figures.h"
+
+#include <cmath>
+
+#include "demos/draw/figure_style.h"
+#include "demos/scene/pair_scene.h"
+
+namespace cdlab::demos {
+
+using namespace render;
+
+ConvexDrawable boxDrawable(const Obb& box) {
+    SceneShape s;
+    s.kind = SceneShape::Kind::Box;
+    s.halfExtents = box.halfExtents;
+    s.pose.position = box.center;
+    s.pose.rotation = Quat(box.axes);
+    return shapeDrawable(s);
+}
+
+Camera viewAbove(const std::vector<Vec3>& points, const Vec3& viewDirection, const Vec3& up, double fraction,
+                 int width, int height) {
+    constexpr double kTitleBand = 64;  // pixels: the title's line and a gap under it
+    const Vec3 back = viewDirection.normalized();
+    Vec3 screenUp = up - up.dot(back) * back;
+    screenUp = screenUp.norm() > 1e-12 ? Vec3(screenUp.normalized()) : back.unitOrthogonal();
+    const Vec3 right = screenUp.cross(back);
+    // The points' extents on the screen axes (and along the view, for the clipping planes).
+    Eigen::AlignedBox3d box;
+    for (const Vec3& p : points) box.extend(Vec3(p.dot(right), p.dot(screenUp), p.dot(back)));
+    const Vec3 size = box.sizes().cwiseMax(Vec3::Constant(1e-6 * (1.0 + box.sizes().maxCoeff())));
+    const Vec3 mid = box.center();
+    const Vec3 center = mid.x() * right + mid.y() * screenUp + mid.z() * back;
+    Camera cam = framingCamera(center, 0.5 * size.norm(), back, screenUp, false);
+    // The band for the points: from under the title to `fraction` of the height, with a margin of 10%
+    // above and below (17% left and right: labels run sideways) for the labels and the arrow heads.
+    const double band = std::max(fraction * height - kTitleBand, 0.3 * height);
+    cam.viewHeight = std::max(1.2 * size.y() * height / band, 1.35 * size.x() * height / width);
+    // The points' centre sits in the middle of the band: the view's centre (pixel row height / 2) lies below it.
+    const double bandMiddle = kTitleBand + 0.5 * band;
+    const Vec3 shift = screenUp * (0.5 * height - bandMiddle) / height * cam.viewHeight;
+    cam.target -= shift;
+    cam.eye -= shift;
+    return cam;
+}
+
+double drawNumberBlock(Canvas& canvas, const std::vector<std::string>& lines, double bottomMargin) {
+    const TextStyle ts{kNumberTextPx, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+    // A line breaks only between its ";  "-separated phrases.
+    const std::string sep = ";  ";
+    std::vector<std::string> wrapped;
+    for (const std::string& l : lines) {
+        std::vector<std::string> pieces;
+        std::size_t start = 0;
+        for (std::size_t at; (at = l.find(sep, start)) != std::string::npos; start = at + sep.size())
+            pieces.push_back(l.substr(start, at - start));
+        pieces.push_back(l.substr(start));
+        for (const std::string& w : wrapPieces(canvas, pieces, sep, ts, canvas.width() - 40)) wrapped.push_back(w);
+    }
+    double y = canvas.height() - bottomMargin - kNumberLineHeight * double(wrapped.size());
+    const double top = y;
+    for (const std::string& l : wrapped) {
+        canvas.drawTextPx(20, y, l, ts);
+        y += kNumberLineHeight;
+    }
+    return top;
+}
+
+Json finiteOrNull(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
+
+}  // namespace cdlab::demos

@@ -1,0 +1,51 @@
+// The three families of the primitives demo: what each scene holds once read, and the function
+// that runs it (core test once, its trace as JSON, the figure when a GL context is given).
+#pragma once
+
+#include <vector>
+
+#include "core/base/primitives.h"
+#include "core/base/types.h"
+#include "demos/scene/demo.h"
+
+namespace cdlab::demos {
+
+/// A shape of the primitives demo, in the words of `cdlab query` (README "cdlab query"): sphere
+/// {center | position, radius}, aabb {min, max}, obb / box {center | position, half_extents,
+/// rotation}, segment [p, q], triangle [a, b, c]. World frame.
+struct PrimitiveShape {
+    enum class Kind { Sphere, Aabb, Obb, Segment, Triangle };
+    Kind kind = Kind::Sphere;
+    std::vector<Vec3> vertices;  // sphere: its centre; boxes: the 8 corners; segment, triangle: as given
+    double radius = 0.0;         // sphere
+    Obb box{Vec3::Zero(), Vec3::Zero(), Mat3::Identity()};  // aabb / obb: centre, half extents, axes
+};
+const char* nameOf(PrimitiveShape::Kind kind);
+/// Reads one shape (its kind among `allowed`, else an error naming the kinds in `what`).
+PrimitiveShape readPrimitiveShape(const JsonNode& node, const std::vector<PrimitiveShape::Kind>& allowed,
+                                  const std::string& what);
+
+/// "test": "raycast" — a ray {origin, direction} or a segment [p, q] against a sphere, an aabb,
+/// an obb / box or a triangle (the query's shape words).
+struct RaycastInput {
+    bool segment = false;
+    Vec3 origin = Vec3::Zero();
+    Vec3 direction = Vec3::UnitX();  // segment: q - p (t in [0, 1])
+    PrimitiveShape shape;
+};
+DemoOutput runRaycast(const SceneCommon& scene, const RaycastInput& input, const RunContext& context);
+
+/// "test": "sat" — two shapes: box and box (15 axes), segment and box (6), triangle and aabb (13).
+struct SatInput {
+    PrimitiveShape a, b;
+};
+DemoOutput runSat(const SceneCommon& scene, const SatInput& input, const RunContext& context);
+
+/// "test": "point_in_polygon" — a 2D polygon (any, self-intersecting allowed) and query points.
+struct PointInPolygonInput {
+    std::vector<Vec2> polygon;
+    std::vector<Vec2> queries;
+};
+DemoOutput runPointInPolygon(const SceneCommon& scene, const PointInPolygonInput& input, const RunContext& context);
+
+}  // namespace cdlab::demos

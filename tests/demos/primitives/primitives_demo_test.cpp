@@ -1,0 +1,232 @@
+// The primitives demo draws its figures from the traces checked here: every committed scene of
+// golden/primitives is run numerically (RunContext{} without GL) and its numbers are recomputed
+// here another way — the quadratic's roots from the closest approach, the slab intervals from the
+// box's planes, the SAT intervals by projecting every corner, the point-in-polygon verdicts by an
+// exact quarter-turn winding count — and the reader's errors name the JSON path.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "demos/catalog/catalog.h"
+#include "demos/scene/json_reader.h"
+
+using namespace cdlab;
+using namespace cdlab::demos;
+
+namespace {
+
+Json sceneJson(const std::string& name) {
+    return readJsonFile(std::string(CDLAB_SOURCE_DIR) + "/golden/primitives/" + name + ".json");
+}
+
+Json runScene(const std::string& name) {
+    return loadScene(std::string(CDLAB_SOURCE_DIR) + "/golden/primitives/" + name + ".json")->run(RunContext{}).trace;
+}
+
+Vec3 vec(const Json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
+
+std::string errorOf(const std::string& text) {
+    try {
+        loadSceneText(text, "scene.json");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+Mat3 rotation(const Json& q) {
+    return Quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>()).normalized().toRotationMatrix();
+}
+
+}  // namespace
+
+TEST_SUITE("primitives_demo") {
+    TEST_CASE("ray and segment vs sphere: the roots are the line's crossings, the outcome names the answer") {
+        for (const char* name : {"ray_sphere", "segment_sphere_short"}) {
+            const Json s = sceneJson(name), t = runScene(name);
+            const Vec3 c = vec(s["shape"]["sphere"]["center"]);
+            const double r = s["shape"]["sphere"]["radius"];
+            Vec3 o, d;
+            if (s.contains("ray")) {
+                o = vec(s["ray"]["origin"]);
+                d = vec(s["ray"]["direction"]);
+            } else {
+                o = vec(s["segment"][0]);
+                d = vec(s["segment"][1]) - o;
+            }
+            // Closest approach of the line, then half the chord: t = tc ± sqrt(r² − dist²) / |d|.
+            const double tc = (c - o).dot(d) / d.squaredNorm();
+            const double dist = (o + tc * d - c).norm();
+            REQUIRE(dist < r);
+            const double half = std::sqrt(r * r - dist * dist) / d.norm();
+            const Json& q = t["quadratic"];
+            CHECK(q["roots"][0].get<double>() == doctest::Approx(tc - half).epsilon(1e-12));
+            CHECK(q["roots"][1].get<double>() == doctest::Approx(tc + half).epsilon(1e-12));
+            const bool reaches = tc - half >= 0 && (s.contains("ray") || tc - half <= 1);
+            CHECK(t["hit"].get<bool>() == reaches);
+            CHECK(q["outcome"] == (reaches ? "hit" : "beyond the end"));
+            if (reaches) CHECK(t["t"].get<double>() == doctest::Approx(tc - half).epsilon(1e-12));
+        }
+    }
+
+    TEST_CASE("ray vs AABB: each slab's interval is where the ray is between the slab's two planes") {
+        for (const char* name : {"ray_aabb", "ray_aabb_miss"}) {
+            const Json s = sceneJson(name), t = runScene(name);
+            const Vec3 o = vec(s["ray"]["origin"]), d = vec(s["ray"]["direction"]);
+            const Vec3 lo = vec(s["shape"]["aabb"]["min"]), hi = vec(s["shape"]["aabb"]["max"]);
+            double enter = 0, exit = INFINITY;
+            for (const Json& slab : t["slabs"]) {
+                const int i = slab["axis"];
+                const double a = (lo[i] - o[i]) / d[i], b = (hi[i] - o[i]) / d[i];
+                CHECK(std::min(a, b) == doctest::Approx(std::min(slab["t_near"].get<double>(), slab["t_far"].get<double>())));
+                CHECK(std::max(a, b) == doctest::Approx(std::max(slab["t_near"].get<double>(), slab["t_far"].get<double>())));
+                enter = std::max(enter, std::min(a, b));
+                exit = std::min(exit, std::max(a, b));
+            }
+            CHECK(t["hit"].get<bool>() == (enter <= exit));
+            if (enter <= exit) {
+                CHECK(t["t"].get<double>() == doctest::Approx(enter));
+                CHECK(t["t_exit"].get<double>() == doctest::Approx(exit));
+                // The entry point lies on the box's surface.
+                const Vec3 p = o + enter * d;
+                CHECK(((p - lo).cwiseMin(hi - p)).cwiseAbs().minCoeff() < 1e-12);
+            }
+        }
+    }
+
+    TEST_CASE("ray vs triangle: the weights rebuild the hit point") {
+        const Json s = sceneJson("ray_triangle"), t = runScene("ray_triangle");
+        REQUIRE(t["hit"].get<bool>());
+        const Json& tri = s["shape"]["triangle"];
+        const Vec3 w = vec(t["barycentric"]);
+        const Vec3 p = w.x() * vec(tri[0]) + w.y() * vec(tri[1]) + w.z() * vec(tri[2]);
+        CHECK((p - vec(t["point"])).norm() < 1e-12);
+        CHECK(w.minCoeff() >= 0);
+        CHECK(w.sum() == doctest::Approx(1.0));
+        CHECK((vec(s["ray"]["origin"]) + t["t"].get<double>() * vec(s["ray"]["direction"]) - p).norm() < 1e-12);
+    }
+
+    TEST_CASE("SAT: every listed interval is the projection of the shape's corners, and the verdict follows") {
+        for (const char* name : {"sat_obb_obb", "sat_obb_obb_overlap", "sat_triangle_aabb"}) {
+            const Json s = sceneJson(name), t = runScene(name);
+            // The corners of each shape, and the box's centre (projections are measured from it).
+            auto corners = [](const Json& shape, Vec3* centre) {
+                std::vector<Vec3> v;
+                if (shape.contains("obb")) {
+                    const Json& b = shape["obb"];
+                    const Vec3 c = vec(b["center"]), e = vec(b["half_extents"]);
+                    const Mat3 R = rotation(b["rotation"]);
+                    for (int i = 0; i < 8; ++i)
+                        v.push_back(c + R * Vec3(i & 1 ? e.x() : -e.x(), i & 2 ? e.y() : -e.y(), i & 4 ? e.z() : -e.z()));
+                    if (centre) *centre = c;
+                } else if (shape.contains("aabb")) {
+                    const Vec3 lo = vec(shape["aabb"]["min"]), hi = vec(shape["aabb"]["max"]);
+                    for (int i = 0; i < 8; ++i)
+                        v.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+                    if (centre) *centre = 0.5 * (lo + hi);
+                } else {
+                    for (const Json& p : shape["triangle"]) v.push_back(vec(p));
+                }
+                return v;
+            };
+            const bool boxFirst = !s["a"].contains("triangle");
+            Vec3 centre = Vec3::Zero();
+            const std::vector<Vec3> box = corners(boxFirst ? s["a"] : s["b"], &centre);
+            const std::vector<Vec3> other = corners(boxFirst ? s["b"] : s["a"], nullptr);
+            const std::string boxName = boxFirst ? "A" : "box", otherName = boxFirst ? "B" : "triangle";
+            bool separated = false;
+            double leastOverlap = -INFINITY;
+            for (const Json& axis : t["axes"]) {
+                if (axis["zero_axis"].get<bool>()) continue;
+                const Vec3 u = vec(axis["axis"]);
+                auto interval = [&](const std::vector<Vec3>& pts) {
+                    double lo = INFINITY, hi = -INFINITY;
+                    for (const Vec3& p : pts) {
+                        lo = std::min(lo, (p - centre).dot(u));
+                        hi = std::max(hi, (p - centre).dot(u));
+                    }
+                    return std::pair{lo, hi};
+                };
+                const auto [blo, bhi] = interval(box);
+                const auto [olo, ohi] = interval(other);
+                // Core's intervals carry a 1e-6-relative inflation on cross-product axes (parallel edges).
+                CHECK(axis[boxName][0].get<double>() == doctest::Approx(blo).epsilon(1e-5));
+                CHECK(axis[boxName][1].get<double>() == doctest::Approx(bhi).epsilon(1e-5));
+                CHECK(axis[otherName][0].get<double>() == doctest::Approx(olo).epsilon(1e-5));
+                CHECK(axis[otherName][1].get<double>() == doctest::Approx(ohi).epsilon(1e-5));
+                const double gap = std::max(olo - bhi, blo - ohi);
+                CHECK(axis["separating"].get<bool>() == (gap > 0));
+                separated = separated || gap > 0;
+                leastOverlap = std::max(leastOverlap, gap);
+            }
+            CHECK(t["intersect"].get<bool>() == !separated);
+            if (separated) CHECK(t["axes"].back()["separating"].get<bool>());  // the test stops at the first
+            else CHECK(t["tested_axes"] == t["candidate_axes"]);
+        }
+        CHECK_FALSE(runScene("sat_obb_obb")["intersect"].get<bool>());
+        CHECK(runScene("sat_obb_obb_overlap")["intersect"].get<bool>());
+    }
+
+    TEST_CASE("point in polygon: the verdicts agree with an exact winding count") {
+        for (const char* name : {"point_in_polygon", "point_in_pentagram"}) {
+            const Json s = sceneJson(name), t = runScene(name);
+            std::vector<Vec2> poly;
+            for (const Json& v : s["polygon"]) poly.emplace_back(v[0].get<double>(), v[1].get<double>());
+            for (const Json& q : t["queries"]) {
+                const Vec2 p(q["point"][0].get<double>(), q["point"][1].get<double>());
+                // Signed quarter turns of v - p around p (no angle is computed).
+                auto quadrant = [](const Vec2& v) { return v.x() > 0 && v.y() >= 0 ? 0 : v.x() <= 0 && v.y() > 0 ? 1 : v.x() < 0 && v.y() <= 0 ? 2 : 3; };
+                int turns = 0;
+                for (std::size_t i = 0; i < poly.size(); ++i) {
+                    const Vec2 a = poly[i] - p, b = poly[(i + 1) % poly.size()] - p;
+                    int dq = quadrant(b) - quadrant(a);
+                    if (dq == 3) dq = -1;
+                    if (dq == -3) dq = 1;
+                    if (dq == 2 || dq == -2) dq = a.x() * b.y() - a.y() * b.x() > 0 ? 2 : -2;
+                    turns += dq;
+                }
+                const int winding = turns / 4;
+                CHECK(q["angle_sum"]["winding"].get<int>() == winding);
+                CHECK(q["crossing_number"]["inside"].get<bool>() == (winding % 2 != 0));
+                if (q["same_side"]["inside"].get<bool>()) CHECK(winding != 0);
+            }
+        }
+        // The figures' claims: the notch fools the edge-side test (q2 of the non-convex polygon is
+        // outside by every rule, q1 inside but rejected by an edge), the pentagram's centre is wound twice.
+        const Json notch = runScene("point_in_polygon")["queries"];
+        CHECK_FALSE(notch[0]["same_side"]["inside"].get<bool>());
+        CHECK(notch[0]["crossing_number"]["inside"].get<bool>());
+        const Json star = runScene("point_in_pentagram")["queries"];
+        CHECK(std::abs(star[0]["angle_sum"]["winding"].get<int>()) == 2);
+        CHECK_FALSE(star[0]["crossing_number"]["inside"].get<bool>());
+    }
+
+    TEST_CASE("bad scenes: one error naming the JSON path") {
+        const std::string head = R"({"demo": "primitives", )";
+        CHECK(errorOf(head + R"("test": "raycast", "ray": {"origin": [0,0,0], "direction": [0,0,0]},
+                      "shape": {"sphere": {"center": [0,0,0], "radius": 1}}})")
+                  .find("$.ray.direction") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "raycast", "ray": {"origin": [0,0,0], "direction": [1,0,0]},
+                      "segment": [[0,0,0],[1,0,0]], "shape": {"sphere": {"center": [0,0,0], "radius": 1}}})")
+                  .find("exactly one of 'ray' or 'segment'") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "sat", "a": {"sphere": {"center": [0,0,0], "radius": 1}},
+                      "b": {"aabb": {"min": [0,0,0], "max": [1,1,1]}}})")
+                  .find("$.a") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "sat", "a": {"triangle": [[0,0,0],[1,0,0],[0,1,0]]},
+                      "b": {"obb": {"center": [0,0,0], "half_extents": [1,1,1]}}})")
+                  .find("takes an aabb") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "sat", "a": {"segment": [[0,0,0],[1,0,0]]},
+                      "b": {"triangle": [[0,0,0],[1,0,0],[0,1,0]]}})")
+                  .find("must be a box") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "raycast", "ray": {"origin": [0,0,0], "direction": [1,0,0]},
+                      "shape": {"aabb": {"min": [0,0,0], "max": [1,-1,1]}}})")
+                  .find("$.shape.aabb.max") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "point_in_polygon", "polygon": [[0,0],[1,0]], "queries": [[0,0]]})")
+                  .find("$.polygon") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "point_in_polygon", "polygon": [[0,0],[1,0],[0,1]], "queries": [[0,0]],
+                      "colour": 1})")
+                  .find("colour") != std::string::npos);
+        CHECK(errorOf(head + R"("test": "boxes"})").find("$.test") != std::string::npos);
+    }
+}
