@@ -327,6 +327,30 @@ Image boxPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
                                   : viewAbove(drawn, Vec3(1.0, 0.8, 1.7), Vec3::UnitY(), 1.0, scene.image.width, height));
     drawBody(canvas, boxDrawable(box), roleColor(Role::ShapeA), 0.22f, roleColor(Role::ShapeA).scaled(0.7f), 3.0f);
     drawCast(canvas, in, tEnd, 0.0);
+    if (run.hit && run.box.tExit > run.t) {
+        // Inside the box the cast runs behind its entry face: dashed over the solid line.
+        LineStyle inside = lineStyle(Role::Background, 3.5f, true, true);
+        canvas.drawLine(run.point, in.origin + run.box.tExit * in.direction, inside);
+    }
+    if (!run.hit && scene.hasLayer("labels")) {
+        // Where the running interval and the slab that empties it part: the two values of t that miss.
+        double prevEnter = 0.0, prevExit = in.segment ? 1.0 : kInf;
+        for (const SlabStep& s : run.slabs.steps) {
+            if (s.rejected && !s.parallel) {
+                const double lo = std::min(s.tNear, s.tFar), hi = std::max(s.tNear, s.tFar);
+                const double a = lo > prevExit ? prevExit : hi, b = lo > prevExit ? lo : prevEnter;
+                for (double t : {a, b})
+                    if (std::isfinite(t)) {
+                        const Vec3 p = in.origin + t * in.direction;
+                        canvas.drawPoint(p, 7.0f, roleColor(Role::Direction));
+                        canvas.drawText(p, "t = " + formatNumber(t), pointLabel());
+                    }
+                break;
+            }
+            prevEnter = s.tEnter;
+            prevExit = s.tExit;
+        }
+    }
     if (run.hit && scene.hasLayer("labels")) {
         const Vec3 exit = in.origin + run.box.tExit * in.direction;
         canvas.drawPoint(exit, 7.0f, roleColor(Role::Direction));

@@ -89,7 +89,7 @@ struct SatRun {
     SatResult result;
     std::vector<std::string> names;
     std::vector<AxisRow> rows;  // the tested axes, in order
-    int leastOverlap = -1;      // when nothing separates: the row of least overlap (not a zero axis)
+    int leastOverlap = -1;      // when nothing separates: the row of least depth (the first of equals; not a zero axis)
 };
 
 SatRun runSatTest(const SatInput& in) {
@@ -209,12 +209,18 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
     Eigen::AlignedBox3d frame;
     for (const Vec3& v : vertices) frame.extend(v);
     const double size = frame.diagonal().norm();
-    const Vec3 view(1.0, 0.8, 1.7);
-    // The axis drawn beside the shapes: the row that decides (separating, or least overlap).
+    // The axis drawn beside the shapes: the row that decides (separating, or least depth).
     const AxisRow* shown = !run.result.hit ? &run.rows.back()
                            : run.leastOverlap >= 0 ? &run.rows[std::size_t(run.leastOverlap)]
                                                    : nullptr;
     if (shown && shown->zero) shown = nullptr;
+    // Seen across that axis (it lies in the picture's plane), a gap along it shows as a gap.
+    Vec3 view(1.0, 0.8, 1.7);
+    if (shown) {
+        const Vec3 across = view - view.dot(shown->unit) * shown->unit;
+        if (across.norm() > 0.3 * view.norm()) view = across;
+        else view = shown->unit.unitOrthogonal();
+    }
     const Vec3 origin = run.pair.box->box.center;  // core measures the projections from the box's centre
     AxisLine line;
     std::vector<Vec3> drawn = vertices;
@@ -260,7 +266,7 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
             ts.offsetPx = Eigen::Vector2d(0, 30);
             ts.place = true;
             const std::string what = !run.result.hit ? "separating axis " + shown->name + ": gap " + formatNumber(shown->gap)
-                                                     : "least overlap: " + shown->name + ", overlap " +
+                                                     : "least depth: " + shown->name + ", depth " +
                                                            formatNumber(-shown->gap);
             c.drawText(at(0.5 * (line.lo + line.hi)), what, ts);
         }
@@ -289,7 +295,7 @@ Image satTable(GlContext& gl, const SceneCommon& scene, int scale, int height, c
     const Color deciding = roleColor(Role::Background).mixed(roleColor(Role::Highlight), 0.25f);  // a light band
     c.drawText(P(nameX, top - 0.5 * rowH), "candidate axis", bold);
     c.drawText(P(barX0, top - 0.5 * rowH), "projections on the axis", bold);
-    c.drawText(P(textX, top - 0.5 * rowH), "gap between the intervals", bold);
+    c.drawText(P(textX, top - 0.5 * rowH), "gap, or depth to push them apart", bold);
     for (std::size_t k = 0; k < run.names.size(); ++k) {
         const double y = top - rowH * (double(k) + 1.5);
         if (k >= run.rows.size()) {
@@ -314,9 +320,10 @@ Image satTable(GlContext& gl, const SceneCommon& scene, int scale, int height, c
         auto X = [&](double v) { return barX0 + (v - lo) / span * (barX1 - barX0); };
         c.drawLine(P(X(r.boxLo), y + 5), P(std::max(X(r.boxHi), X(r.boxLo) + 2), y + 5), lineStyle(boxRole, 7.0f));
         c.drawLine(P(X(r.otherLo), y - 5), P(std::max(X(r.otherHi), X(r.otherLo) + 2), y - 5), lineStyle(otherRole, 7.0f));
-        std::string text = r.gap > 0 ? "gap " + formatNumber(r.gap) : "overlap " + formatNumber(-r.gap);
+        // -gap is the shorter push that separates the intervals (not their common length when one holds the other).
+        std::string text = r.gap > 0 ? "gap " + formatNumber(r.gap) : "depth " + formatNumber(-r.gap);
         if (r.separating) text += ": separates, stop";
-        else if (int(k) == run.leastOverlap) text += ": least overlap of all axes";
+        else if (int(k) == run.leastOverlap) text += ": the least depth (first of equals)";
         c.drawText(P(textX, y), text, decisive ? bold : ink);
     }
     drawKey(c, nameX, H - (top - rowH * (double(run.names.size()) + 1.2)),
