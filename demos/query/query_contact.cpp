@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <optional>
 
 #include "core/contact/contact_plane.h"
 #include "core/contact/contact_sat.h"
@@ -340,6 +341,24 @@ int faceFacing(const Body& body, const Vec3& fromS) {
     return face;
 }
 
+// The contact normal (from a toward b) when the points lie on the other body's face: that face's own
+// outward normal, which points from the other body toward s (issue 21 §3: a face's normal from the
+// input, not the rounded answer of EPA, whose direction may differ from it by the faceFacing slack, so
+// that every point keeps point_a − point_b = depth·n exactly as the face gave it).
+Vec3 faceNormalFromTo(const Vec3& outwardOfOther, bool sIsA) { return sIsA ? Vec3(-outwardOfOther) : outwardOfOther; }
+
+// The answer of a rounded or curved pair: on a face, the face's normal and its points' depths; else the
+// penetration op's deepest pair.
+Json onFaceOrDeepest(bool colliding, const ShapePairAnswer& ans, const std::optional<Vec3>& faceNormal,
+                     const std::vector<RoundedPoint>& pts, bool sIsA, const Json& featureS, const Json& featureOther,
+                     int maxPoints) {
+    double depth = 0.0;
+    for (const RoundedPoint& p : pts) depth = std::max(depth, p.depth);
+    if (!colliding) return roundedAnswer(false, ans.distance, ans.normal, pts, sIsA, featureS, featureOther, maxPoints);
+    if (faceNormal) return roundedAnswer(true, depth, *faceNormal, pts, sIsA, featureS, featureOther, maxPoints);
+    return roundedAnswer(true, std::max(depth, ans.depth), ans.normal, pts, sIsA, featureS, featureOther, maxPoints);
+}
+
 // A sphere or capsule s against a bounded shape `other` (polytope, aabb, obb, sphere, capsule).
 Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int maxPoints, const JsonNode& otherNode) {
     const ShapePairAnswer ans = sIsA ? penetrationOf(s, other) : penetrationOf(other, s);
@@ -348,6 +367,7 @@ Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int
     const Vec3 fromS = sIsA ? ans.normal : Vec3(-ans.normal);  // from s toward the other shape
     const Vec3 onS = sIsA ? ans.pointA : ans.pointB, onOther = sIsA ? ans.pointB : ans.pointA;
     std::vector<RoundedPoint> pts = {{onS, onOther, colliding ? ans.depth : 0.0, Vec3(onS - s.radius * fromS)}};
+    std::optional<Vec3> faceNormal;  // set when the points come from the other body's face
     Json otherFeature;
     if (rounded(other)) {
         otherFeature = roundedFeature(other, {Vec3(onOther + other.radius * fromS)});
@@ -358,17 +378,17 @@ Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int
         const int face = faceFacing(body, fromS);
         if (colliding && s.kind == Kind::Capsule && face >= 0) {
             std::vector<RoundedPoint> clipped = capsuleOnFace(s, body, face, touch);
-            if (!clipped.empty()) pts = clipped;
+            if (!clipped.empty()) {
+                pts = clipped;
+                faceNormal = faceNormalFromTo(body.mesh.face(face).normal, sIsA);
+            }
         }
         otherFeature = face >= 0 ? featureJson(body, {FeatureType::Face, face})
                                  : featureJson(body, supportFeature(body, Vec3(-fromS)));
     }
     std::vector<Vec3> cores;
     for (const RoundedPoint& p : pts) cores.push_back(p.core);
-    double depth = 0.0;
-    for (const RoundedPoint& p : pts) depth = std::max(depth, p.depth);
-    return roundedAnswer(colliding, colliding ? std::max(depth, ans.depth) : ans.distance, ans.normal, pts, sIsA,
-                         roundedFeature(s, cores), otherFeature, maxPoints);
+    return onFaceOrDeepest(colliding, ans, faceNormal, pts, sIsA, roundedFeature(s, cores), otherFeature, maxPoints);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -414,6 +434,7 @@ Json curvedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int 
     const Vec3 fromS = sIsA ? ans.normal : Vec3(-ans.normal);  // from s toward the other shape
     const Vec3 onS = sIsA ? ans.pointA : ans.pointB, onOther = sIsA ? ans.pointB : ans.pointA;
     std::vector<RoundedPoint> pts = {{onS, onOther, colliding ? ans.depth : 0.0, onS}};
+    std::optional<Vec3> faceNormal;  // set when the points come from the other body's face
     Json otherFeature;
     if (other.isCurved()) {
         otherFeature = curvedFeature(other.curved, {onOther});
@@ -424,15 +445,15 @@ Json curvedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int 
             ReferenceFace ref{body.mesh.face(face).normal, body.mesh.face(face).offset, {}};
             for (int v : body.mesh.faceVertices(face)) ref.corners.push_back(body.mesh.position(v));
             std::vector<RoundedPoint> manifold = roundedPoints(curvedOnFace(s.curved, ref, maxPoints, touch));
-            if (!manifold.empty()) pts = manifold;
+            if (!manifold.empty()) {
+                pts = manifold;
+                faceNormal = faceNormalFromTo(ref.normal, sIsA);
+            }
         }
         otherFeature = face >= 0 ? featureJson(body, {FeatureType::Face, face})
                                  : featureJson(body, supportFeature(body, Vec3(-fromS)));
     }
-    double depth = 0.0;
-    for (const RoundedPoint& p : pts) depth = std::max(depth, p.depth);
-    return roundedAnswer(colliding, colliding ? std::max(depth, ans.depth) : ans.distance, ans.normal, pts, sIsA,
-                         curvedFeatureOf(s, pts), otherFeature, maxPoints);
+    return onFaceOrDeepest(colliding, ans, faceNormal, pts, sIsA, curvedFeatureOf(s, pts), otherFeature, maxPoints);
 }
 
 // The local frame of a contact query: the first body's first vertex as origin, and the power of two

@@ -57,6 +57,33 @@ struct Candidates {
     }
 };
 
+// The side's deepest generator: the line of the side surface lowest along −n, from the first rim's
+// deepest point to the second's (a cone: to its apex). A cylinder lying on the face touches along it;
+// where it leaves the face across a side plane (at its own depth there: a cylinder overhanging an
+// edge keeps that end), or rises through the face's plane, is a corner of the contact region that no
+// rim holds. None when the axis is along n (a cap faces the face).
+void addDeepestGenerator(const CurvedSolid& s, Candidates& c) {
+    const std::vector<Rim> rims = rimsOf(s);
+    const Rim& rim = rims.front();
+    const Vec3& n = c.face.normal;
+    const double w1 = -n.dot(rim.e1), w2 = -n.dot(rim.e2);
+    if (!(std::hypot(w1, w2) > 1e-9) || !(rim.radius > 0.0)) return;
+    const double deepest = std::atan2(w2, w1);
+    const Vec3 p0 = rim.at(deepest);
+    const Vec3 p1 = s.cone ? Vec3(s.center + s.halfHeight * s.axis()) : rims[1].at(deepest);
+    const auto crossing = [&](double f0, double f1) { return Vec3(p0 + f0 / (f0 - f1) * (p1 - p0)); };
+    for (std::size_t k = 0; k < c.face.corners.size(); ++k) {
+        const Vec3 side = c.side(k);
+        const double f0 = side.dot(p0 - c.face.corners[k]), f1 = side.dot(p1 - c.face.corners[k]);
+        if ((f0 < 0) == (f1 < 0) || f0 == f1) continue;
+        const Vec3 x = crossing(f0, f1);
+        const double depth = c.depthOf(x);
+        if (depth >= -c.touch && c.insideFace(x, k)) c.points.push_back({x, x + depth * n, std::max(depth, 0.0)});
+    }
+    const double g0 = c.depthOf(p0), g1 = c.depthOf(p1);
+    if ((g0 < 0) != (g1 < 0) && g0 != g1) c.add(crossing(g0, g1), true);
+}
+
 }  // namespace
 
 std::vector<CurvedContactPoint> curvedOnFace(const CurvedSolid& s, const ReferenceFace& face, int maxPoints, double touch) {
@@ -86,6 +113,7 @@ std::vector<CurvedContactPoint> curvedOnFace(const CurvedSolid& s, const Referen
         }
     }
     if (s.cone) c.add(s.center + s.halfHeight * s.axis());
+    addDeepestGenerator(s, c);
     // A cap lying flat on the face: the face's corners over the disc touch it too.
     const double along = n.dot(s.axis());
     if (std::abs(along) >= 1 - 1e-9 && !(s.cone && along < 0)) {

@@ -6,6 +6,9 @@
 //   - where a rim circle crosses the face's plane, or (for a face) one of its side planes, the
 //     crossing points, solved on the circle (a cos φ + b sin φ = c);
 //   - the cone's apex when submerged;
+//   - the side's deepest generator line (rim to rim, or base rim to apex) where it crosses the face's
+//     side planes (at its depth there: a cylinder lying across a face's edge keeps both ends of its
+//     contact line) or the face's plane;
 //   - for a face, the samples outside it dropped, and when a cap lies flat on the face (its normal
 //     the face's to 1e-9), the face's corners inside the cap disc;
 // reduced to max_points by the manifold rules of every contact (core/contact/contact_manifold.h:

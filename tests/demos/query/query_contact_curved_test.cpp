@@ -4,9 +4,11 @@
 // the solids' own membership tests (tests/demos/query/curved_solid.h), not the query's code.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "demos/query/query.h"
 #include "tests/demos/query/curved_solid.h"
@@ -97,6 +99,53 @@ TEST_CASE("contact: lying, tilted, a cone on its apex, a cylinder on a box face"
         CHECK(p["depth"].get<double>() == doctest::Approx(0.1).epsilon(1e-13));
     }
     CHECK(ans["feature_b"]["type"] == "face");
+    // Lying across the box's edge x = −0.5 (its side from x = −1 to 1), sunk 0.001: the contact line
+    // clipped to the face, x in [−0.5, 1], both ends at full depth — not the far end alone (which a
+    // solver would tip about). And a cone lying across it: its lowest generator, base rim to apex.
+    for (int maxPoints : {2, 4, 8}) {
+        ans = contact(R"({"cylinder":{"a":[-1,0,0],"b":[1,0,0],"radius":0.5}})",
+                      R"({"aabb":{"min":[-0.5,-2,-3],"max":[3,-0.499,3]}})", maxPoints);
+        checkConvention(ans);
+        CHECK(ans["feature_a"]["type"] == "side");
+        std::vector<double> ends;
+        for (const Json& p : ans["points"])
+            if (std::abs(p["depth"].get<double>() - 0.001) < 1e-12) ends.push_back(vecOf(p["point_a"]).x());
+        std::sort(ends.begin(), ends.end());
+        REQUIRE(ends.size() == 2);
+        CHECK(ends[0] == doctest::Approx(-0.5).epsilon(1e-12));
+        CHECK(ends[1] == doctest::Approx(1.0).epsilon(1e-12));
+    }
+    // A cone lying on a generator (its axis tilted by the half-angle α = atan(0.5 / 2) from the
+    // face), across the box's edge x = 0: the line runs from the base rim (x < 0, off the face) to the
+    // apex; clipped to the face, its ends are the edge point x = 0 and the apex, both at full depth.
+    const double alpha = std::atan(0.25), theta = -M_PI / 2 - alpha;  // about z: +y (apex) to +x, then down by α
+    const Vec3 axis(std::cos(theta + M_PI / 2), std::sin(theta + M_PI / 2), 0);
+    const Vec3 apex = axis;  // the centre is the origin, the apex one half height along the axis
+    const double lineY = apex.y();  // the lowest generator is level: every point of it at the apex's height
+    char cone[200];
+    std::snprintf(cone, sizeof cone, R"({"cone":{"radius":0.5,"half_height":1,"rotation":[%.17g,0,0,%.17g]}})",
+                  std::cos(theta / 2), std::sin(theta / 2));
+    char box[160];
+    std::snprintf(box, sizeof box, R"({"aabb":{"min":[0,-3,-3],"max":[3,%.17g,3]}})", lineY + 0.001);
+    ans = contact(cone, box, 4);
+    checkConvention(ans);
+    CHECK(ans["depth"].get<double>() == doctest::Approx(0.001).epsilon(1e-4));
+    std::vector<double> lineEnds;
+    for (const Json& p : ans["points"]) {
+        CHECK(vecOf(p["point_a"]).x() >= -1e-9);
+        if (std::abs(p["depth"].get<double>() - ans["depth"].get<double>()) < 1e-6) lineEnds.push_back(vecOf(p["point_a"]).x());
+    }
+    std::sort(lineEnds.begin(), lineEnds.end());
+    REQUIRE(lineEnds.size() >= 2);
+    CHECK(std::abs(lineEnds.front()) < 1e-6);                 // where the line leaves the face
+    CHECK(lineEnds.back() == doctest::Approx(apex.x()).epsilon(1e-6));  // the apex
+    // The rotation rounded to 6 digits tilts the line by ~2e-7: the points still come from the face,
+    // so the normal is the face's own — exactly (0, −1, 0) from the cone toward the box — and every
+    // point keeps point_a − point_b = depth·n (EPA's normal, 2e-7 off, broke it by 2e-10).
+    ans = contact(R"({"cone":{"radius":0.5,"half_height":1,"rotation":[0.615412,0,0,-0.788205]}})", box, 4);
+    CHECK(ans["feature_b"]["type"] == "face");
+    CHECK(vecOf(ans["normal"]) == Vec3(0, -1, 0));
+    checkConvention(ans);
     // A sphere resting on the middle of the top cap: one point, inside the disc: the cap, not the rim.
     ans = contact(R"({"sphere":{"center":[0.2,1.9,0.1],"radius":1}})", R"({"cylinder":{"radius":1,"half_height":1}})");
     CHECK(ans["feature_b"]["type"] == "cap");
