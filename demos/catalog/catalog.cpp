@@ -7,6 +7,7 @@
 #include "demos/epa/epa_demo.h"
 #include "demos/gjk/gjk_demo.h"
 #include "demos/lin_canny/lin_canny_demo.h"
+#include "demos/mtd_backtracking/mtd_backtracking_demo.h"
 #include "demos/polyhedron_plane/polyhedron_plane_demo.h"
 #include "demos/primitives/primitives_demo.h"
 #include "demos/space_partition/space_partition_demo.h"
@@ -29,7 +30,8 @@ const std::vector<const Demo*>& allDemos() {
                                                    &boundingVolumesDemo(),
                                                    &bvhDemo(),
                                                    &sweepAndPruneDemo(),
-                                                   &primitivesDemo()};
+                                                   &primitivesDemo(),
+                                                   &mtdBacktrackingDemo()};
     return demos;
 }
 

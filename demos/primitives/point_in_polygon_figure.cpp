@@ -133,11 +133,17 @@ Frame drawFigure(GlContext& gl, const SceneCommon& scene, int scale, const Point
         std::vector<Vec3> outline;
         for (const Vec2& v : in.polygon) outline.push_back(at(v, off));
         c.drawPolyline(outline, true, lineStyle(Role::ShapeA, 3.0f));
+        // The edges' direction (the sides and the angles' signs depend on it): a head mid-edge.
+        for (std::size_t e = 0; e < outline.size(); ++e) {
+            const Vec3 &p = outline[e], &q = outline[(e + 1) % outline.size()];
+            const Vec3 mid = 0.5 * (p + q), half = 11.0 / L.scale * (q - p).normalized();  // 22 px long
+            c.drawArrow(mid - half, mid + half, lineStyle(Role::ShapeA, 3.0f));
+        }
         if (labels)
             for (std::size_t e = 0; e < in.polygon.size() && k == 0; ++e) {
                 // Edge numbers in the first panel: the edge-side test names the edge that rejects.
                 const Vec3 mid = 0.5 * (outline[e] + outline[(e + 1) % outline.size()]);
-                TextStyle ts{16.0f, roleColor(Role::ShapeA).scaled(0.6f), Anchor::Center, true, false};
+                TextStyle ts{18.0f, roleColor(Role::ShapeA).scaled(0.6f), Anchor::Center, true, true};
                 ts.place = true;
                 c.drawText(mid, std::to_string(e + 1), ts);
             }

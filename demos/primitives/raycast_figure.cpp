@@ -212,6 +212,9 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Rayc
                                     ",  t1 = " + formatNumber(q.t1)
                               : ";  < 0: the line misses the sphere"),
         };
+        // The discriminant's meaning: b² − ac = a·(r² − dist²), dist the line's closest approach to C.
+        lines.push_back("b² − a·c = a·(r² − dist²):  the line passes C at dist = " + formatNumber((closest - c0).norm()) +
+                        " (dashed), r = " + formatNumber(r));
         using O = SphereQuadraticTrace::Outcome;
         std::string decision = "decision: ";
         switch (q.outcome) {

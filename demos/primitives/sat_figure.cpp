@@ -177,6 +177,7 @@ Vec3 centreOf(const PrimitiveShape& s) {
 /// screen, below or left of them), on which each shape's projection is an interval.
 struct AxisLine {
     Vec3 base = Vec3::Zero();  // the box's centre moved off the shapes; interval k lies at base + k * unit
+    Vec3 across = Vec3::Zero();  // unit, across the axis: the two intervals sit either side of the line
     double lo = 0, hi = 0;     // the drawn stretch of k
 };
 
@@ -196,6 +197,7 @@ AxisLine placeAxisLine(const AxisRow& row, const Vec3& origin, const std::vector
     for (const Vec3& v : vertices) reach = std::max(reach, (v - origin).dot(off));
     AxisLine line;
     line.base = origin + off * (reach + 0.3 * size);
+    line.across = off;
     const double lo = std::min(row.boxLo, row.otherLo), hi = std::max(row.boxHi, row.otherHi);
     const double pad = 0.2 * std::max(hi - lo, 1e-3 * size);
     line.lo = lo - pad;
@@ -240,8 +242,11 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
     const std::string nameA = run.pair.boxIsA ? run.pair.boxName : run.pair.otherName;
     const std::string nameB = run.pair.boxIsA ? run.pair.otherName : run.pair.boxName;
     if (labels) {
-        drawBodyName(c, centreOf(in.a), nameA, Role::Ink);
-        drawBodyName(c, centreOf(in.b), nameB, Role::Ink);
+        // Two boxes deep in each other: the larger one's name moves onto a part the other leaves free.
+        std::pair<Vec3, Vec3> at{centreOf(in.a), centreOf(in.b)};
+        if (isBox(in.a) && isBox(in.b)) at = bodyNamePoints(boxDrawable(in.a.box), boxDrawable(in.b.box));
+        drawBodyName(c, at.first, nameA, Role::Ink);
+        drawBodyName(c, at.second, nameB, Role::Ink);
     }
     if (shown) {
         const auto at = [&](double k) { return Vec3(line.base + k * shown->unit); };
@@ -259,8 +264,10 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
         }
         const Role boxRole = run.pair.boxIsA ? roleOf[0] : roleOf[1];
         const Role otherRole = run.pair.boxIsA ? roleOf[1] : roleOf[0];
-        c.drawLine(at(shown->boxLo), at(shown->boxHi), lineStyle(boxRole, 9.0f, false, true));
-        c.drawLine(at(shown->otherLo), at(shown->otherHi), lineStyle(otherRole, 9.0f, false, true));
+        // Side by side across the line, so that an overlap shows both bars.
+        const Vec3 apart = 0.012 * size * line.across;
+        c.drawLine(at(shown->boxLo) - apart, at(shown->boxHi) - apart, lineStyle(boxRole, 8.0f, false, true));
+        c.drawLine(at(shown->otherLo) + apart, at(shown->otherHi) + apart, lineStyle(otherRole, 8.0f, false, true));
         if (labels) {
             TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
             ts.offsetPx = Eigen::Vector2d(0, 30);

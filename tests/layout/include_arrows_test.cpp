@@ -33,7 +33,8 @@ const std::vector<std::string> kDemoFolders = {"voronoi_triangle",
                                                "bounding_volumes",
                                                "bvh",
                                                "sweep_and_prune",
-                                               "primitives"};
+                                               "primitives",
+                                               "mtd_backtracking"};
 // Shared demos/ folders a demo may use.
 const std::vector<std::string> kSharedForDemos = {"scene", "draw", "measure", "oracles"};
 

@@ -2,8 +2,9 @@
 // two convex polygons (as prisms much thicker than they are wide, so the 3D distance is the polygons'
 // distance) found by dense sampling of the pose over t and bisection, the distance of two disjoint
 // convex polygons being the least vertex-edge distance both ways and overlap decided by their edge
-// normals (2D SAT), in long double: no GJK in the oracle. Checks: the advancement never passes the
-// first contact, stops within its tolerance of touching, and says "no contact" only when there is none.
+// normals (2D SAT), in long double (demos/oracles/polygon_oracle.h): no GJK in the oracle. Checks:
+// the advancement never passes the first contact, stops within its tolerance of touching, and says
+// "no contact" only when there is none.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -13,15 +14,14 @@
 
 #include "core/cast/conservative_advancement.h"
 #include "core/cast/time_of_impact.h"
+#include "demos/oracles/polygon_oracle.h"
 
 using namespace cdlab;
 
 namespace {
 
-using LD = long double;
-struct P2 {
-    LD x, y;
-};
+using oracle::P2;
+using oracle::polygonDistance;
 
 constexpr double kHalfThickness = 50.0;  // z extent of the prisms: never the closest direction
 
@@ -33,43 +33,9 @@ std::vector<Vec3> prism(const std::vector<Vec2>& polygon) {
 }
 
 std::vector<P2> placed(const std::vector<Vec2>& body, const Transform& pose) {
-    std::vector<P2> out;
-    for (const Vec2& p : body) {
-        const Vec3 w = pose.apply(Vec3(p.x(), p.y(), 0));
-        out.push_back({w.x(), w.y()});
-    }
-    return out;
-}
-
-LD pointSegment(P2 p, P2 a, P2 b) {
-    const LD dx = b.x - a.x, dy = b.y - a.y;
-    LD t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy);
-    t = std::clamp<LD>(t, 0, 1);
-    return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
-}
-
-// Some edge normal of a (counter-clockwise) separates it from b.
-bool separatedBy(const std::vector<P2>& a, const std::vector<P2>& b) {
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        const P2 p = a[i], q = a[(i + 1) % a.size()];
-        bool all = true;
-        for (P2 v : b) all = all && (q.x - p.x) * (v.y - p.y) - (q.y - p.y) * (v.x - p.x) < 0;
-        if (all) return true;
-    }
-    return false;
-}
-
-// Distance of two convex polygons (0 when they overlap).
-LD polygonDistance(const std::vector<P2>& a, const std::vector<P2>& b) {
-    if (!separatedBy(a, b) && !separatedBy(b, a)) return 0;
-    LD d = INFINITY;
-    for (int k = 0; k < 2; ++k) {
-        const auto& u = k ? a : b;
-        const auto& w = k ? b : a;
-        for (P2 p : u)
-            for (std::size_t i = 0; i < w.size(); ++i) d = std::min(d, pointSegment(p, w[i], w[(i + 1) % w.size()]));
-    }
-    return d;
+    std::vector<Vec3> out;
+    for (const Vec2& p : body) out.push_back(pose.apply(Vec3(p.x(), p.y(), 0)));
+    return oracle::polygon2(out);
 }
 
 std::vector<Vec2> regularPolygon(int n, double radius, double phase) {
