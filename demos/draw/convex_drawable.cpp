@@ -102,6 +102,15 @@ void boundingSphere(const std::vector<Vec3>& points, Vec3& center, double& radiu
     for (const Vec3& p : points) radius = std::max(radius, (p - center).norm());
 }
 
+ConvexDrawable boxDrawable(const Obb& box) {
+    SceneShape s;
+    s.kind = SceneShape::Kind::Box;
+    s.halfExtents = box.halfExtents;
+    s.pose.position = box.center;
+    s.pose.rotation = Quat(box.axes);
+    return shapeDrawable(s);
+}
+
 ConvexDrawable shapeDrawable(const SceneShape& shape) {
     std::vector<Vec3> points;
     if (shape.isPolytope()) {

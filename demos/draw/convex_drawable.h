@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/primitives.h"
 #include "core/base/types.h"
 #include "demos/scene/pair_scene.h"
 #include "render/canvas.h"
@@ -31,6 +32,8 @@ struct ConvexDrawable {
 
 /// The shape as drawn: hull of its vertices (polytopes) or of support samples (curved shapes).
 ConvexDrawable shapeDrawable(const SceneShape& shape);
+/// An oriented box as a drawable body (a degenerate box draws nothing).
+ConvexDrawable boxDrawable(const Obb& box);
 /// A - B: hull of {a_i - b_j} when both are polytopes (exact), else of s_A(d) - s_B(-d) over
 /// evenly spread directions d (inscribed in the true set).
 ConvexDrawable minkowskiDrawable(const SceneShape& a, const SceneShape& b, bool* exact = nullptr);

@@ -92,4 +92,9 @@ render::Color triangleRegionColor(int regionIndex) {
     return render::categorical(kHue[std::clamp(regionIndex, 0, 6)]);
 }
 
+render::Color featureDimensionColor(int dimension) {
+    static constexpr int kColor[4] = {0, 4, 2, 6};  // orange, blue, bluish green, reddish purple
+    return render::categorical(kColor[std::clamp(dimension, 0, 3)]);
+}
+
 }  // namespace cdlab::demos

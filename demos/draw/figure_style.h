@@ -33,6 +33,9 @@ render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold 
 /// neighbouring regions get far-apart hues (A next to AB and CA, ..., ABC next to the three edge
 /// regions). The voronoi_triangle figures and `cdlab check --figures` use the same.
 render::Color triangleRegionColor(int regionIndex);
+/// The colour of a Voronoi region by the dimension of its feature (0 vertex, 1 edge, 2 face, 3 the
+/// inside): tetrahedron and box regions, the same four in every figure.
+render::Color featureDimensionColor(int dimension);
 
 /// "(0.5, -1, 2)" with up to 4 significant digits, for captions.
 std::string formatPoint(const Vec3& p);

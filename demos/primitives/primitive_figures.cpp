@@ -3,20 +3,10 @@
 #include <cmath>
 
 #include "demos/draw/figure_style.h"
-#include "demos/scene/pair_scene.h"
 
 namespace cdlab::demos {
 
 using namespace render;
-
-ConvexDrawable boxDrawable(const Obb& box) {
-    SceneShape s;
-    s.kind = SceneShape::Kind::Box;
-    s.halfExtents = box.halfExtents;
-    s.pose.position = box.center;
-    s.pose.rotation = Quat(box.axes);
-    return shapeDrawable(s);
-}
 
 Camera viewAbove(const std::vector<Vec3>& points, const Vec3& viewDirection, const Vec3& up, double fraction,
                  int width, int height) {

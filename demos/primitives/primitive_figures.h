@@ -1,4 +1,4 @@
-// Drawing pieces shared by the primitives demo's figures: boxes as drawable bodies, an orthographic
+// Drawing pieces shared by the primitives demo's figures: an orthographic
 // view that keeps the picture above the block of numbers, the block itself, trace numbers.
 #pragma once
 
@@ -11,9 +11,6 @@
 #include "render/canvas.h"
 
 namespace cdlab::demos {
-
-/// An oriented box as a drawable body (a degenerate box draws nothing).
-ConvexDrawable boxDrawable(const Obb& box);
 
 /// Orthographic view along `viewDirection` of `points` (what is drawn), with `up` up, placed so that
 /// their screen extents fill the picture's top `fraction` (below it: the numbers) under the title's

@@ -2,7 +2,7 @@
 // §5.1.6). All geometry comes from core (closest_point.h, voronoi_regions.h): this file only draws.
 //
 // Scene keys (besides the common ones in scene.h):
-//   "triangle": [a, b, c]  or  "tetrahedron": [a, b, c, d]
+//   "triangle": [a, b, c]  or  "tetrahedron": [a, b, c, d]  or  "box": {"half_extents", "position", "rotation"}
 //   "queries": [[x, y, z], ...]     query points
 //   "views": ["plane", "3d"]        triangle: which overview frames to draw (tetrahedron: "3d" only)
 //   "margin": number                how far the drawn regions extend beyond the simplex (default: its size)
@@ -19,6 +19,7 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
+#include "demos/voronoi_triangle/box_regions.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -153,10 +154,7 @@ int tetraFeatureDimension(TetrahedronRegion r) {
     int i = int(r);
     return i < 4 ? 0 : i < 10 ? 1 : i < 14 ? 2 : 3;
 }
-Color tetraRegionColor(TetrahedronRegion r) {
-    static const int kColor[4] = {0, 4, 2, 6};  // orange, blue, bluish green, reddish purple
-    return categorical(kColor[tetraFeatureDimension(r)]);
-}
+Color tetraRegionColor(TetrahedronRegion r) { return featureDimensionColor(tetraFeatureDimension(r)); }
 
 Vec3 polygonCentroid(const std::vector<Vec3>& poly) {
     Vec3 c = Vec3::Zero();
@@ -460,18 +458,39 @@ private:
     }
 };
 
+// "box": {"half_extents": e, "position": p, "rotation": q} (the scenes' box), its queries and margin.
+std::unique_ptr<PreparedScene> readBox(ObjectReader& r, SceneCommon common) {
+    ObjectReader b(r.get("box"));
+    const Vec3 e = sceneSizes(b.get("half_extents"));
+    Vec3 c = Vec3::Zero();
+    if (auto p = b.find("position")) c = sceneVec3(*p);
+    Quat q = Quat::Identity();
+    if (auto rot = b.find("rotation")) q = rot->asQuat();
+    b.finish();
+    std::vector<Vec3> queries = sceneVec3List(r.get("queries"), 1, kMaxQueryPoints);
+    double margin = 0;
+    if (auto m = r.find("margin")) margin = sceneSize(*m);
+    if (auto v = r.find("views")) {
+        for (const JsonNode& item : v->items()) item.asEnum({"3d"});
+        if (v->size() == 0) v->fail("expected at least one view");
+    }
+    r.finish();
+    return makeBoxRegionsScene(std::move(common), Obb::fromRotation(c, e, q), std::move(queries), margin);
+}
+
 class VoronoiDemo final : public Demo {
 public:
     std::string name() const override { return "voronoi_triangle"; }
     std::string description() const override {
-        return "point vs triangle (7 Voronoi regions) and point vs tetrahedron (15), closest points";
+        return "point vs triangle (7 Voronoi regions), tetrahedron (15) and box (27), closest points";
     }
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{}, {}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         std::vector<Vec3> simplex;
         std::vector<std::string> views;
-        if (r.has("triangle") == r.has("tetrahedron"))
-            r.node().fail("expected exactly one of 'triangle' or 'tetrahedron'");
+        if (int(r.has("triangle")) + int(r.has("tetrahedron")) + int(r.has("box")) != 1)
+            r.node().fail("expected exactly one of 'triangle', 'tetrahedron' or 'box'");
+        if (r.has("box")) return readBox(r, std::move(common));
         if (r.has("triangle")) {
             JsonNode t = r.get("triangle");
             if (t.size() != 3) t.fail("expected [a, b, c]");

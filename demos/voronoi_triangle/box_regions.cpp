@@ -1,0 +1,216 @@
+// Point vs box: the 27 Voronoi regions of a solid box — 8 vertex, 12 edge, 6 face regions and the
+// inside (Ericson, Real-Time Collision Detection §5.1.4). In the box's frame each region is a cell of
+// a 3 × 3 × 3 grid cut by the faces' planes, so a step frame draws the query's cell (clipped to a
+// margin around the box), the feature that holds its closest point, and the three slab tests that
+// chose it. Numbers: core/closest/closest_point_box.h; this file only draws.
+#include "demos/voronoi_triangle/box_regions.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/closest/closest_point_box.h"
+#include "demos/draw/contact_sheet.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/figure_canvas.h"
+#include "demos/draw/figure_style.h"
+#include "render/canvas.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+
+Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+Json queryJson(const Vec3& p, const BoxRegionResult& r) {
+    Json tests = Json::array();
+    for (const BoxAxisTest& t : r.tests)
+        tests.push_back({{"coordinate", t.coordinate}, {"half_extent", t.halfExtent}, {"side", t.side}});
+    return {{"point", vecJson(p)},
+            {"region", regionName(r)},
+            {"dimension", r.dimension},
+            {"closest", vecJson(r.point)},
+            {"distance", r.distance},
+            {"corners", r.corners},
+            {"tests", tests}};
+}
+
+/// The slab tests in words: "u_x = 1.3 > e_x = 1: + side", one piece per axis, then the region.
+std::vector<std::string> testEntries(const BoxRegionResult& r) {
+    std::vector<std::string> out;
+    const char* axes = "xyz";
+    for (int i = 0; i < 3; ++i) {
+        const BoxAxisTest& t = r.tests[std::size_t(i)];
+        const std::string u = std::string("u_") + axes[i] + " = " + formatNumber(t.coordinate);
+        const std::string e = formatNumber(t.halfExtent);
+        if (t.side > 0) out.push_back(u + " > " + e + ": + side");
+        else if (t.side < 0) out.push_back(u + " < −" + e + ": − side");
+        else out.push_back(u + " in [−" + e + ", " + e + "]");
+    }
+    out.push_back("→ " + regionName(r));
+    return out;
+}
+
+/// Box corner k in world (bit i set: the + side of axis i).
+Vec3 corner(const Obb& box, int k, const Vec3& halfExtents) {
+    Vec3 local;
+    for (int i = 0; i < 3; ++i) local[i] = (k >> i) & 1 ? halfExtents[i] : -halfExtents[i];
+    return box.center + box.axes * local;
+}
+
+class BoxRegionsScene final : public PreparedScene {
+public:
+    BoxRegionsScene(SceneCommon common, const Obb& box, std::vector<Vec3> queries, double margin)
+        : PreparedScene(std::move(common)), box_(box), queries_(std::move(queries)), margin_(margin) {}
+
+    DemoOutput execute(const RunContext& ctx) const override {
+        std::vector<BoxRegionResult> results;
+        for (const Vec3& q : queries_) results.push_back(closestPointOnBox(q, box_));
+        DemoOutput out;
+        out.trace["simplex"] = "box";
+        out.trace["center"] = vecJson(box_.center);
+        out.trace["half_extents"] = vecJson(box_.halfExtents);
+        out.trace["axes"] = {vecJson(box_.axes.col(0)), vecJson(box_.axes.col(1)), vecJson(box_.axes.col(2))};
+        Json qs = Json::array();
+        for (std::size_t i = 0; i < queries_.size(); ++i) qs.push_back(queryJson(queries_[i], results[i]));
+        out.trace["queries"] = qs;
+        if (numericOnly(ctx, out)) return out;
+        out.frames.push_back(drawFrame(*ctx.gl, ctx, results, -1));
+        if (common_.steps || ctx.stepsOverride) {
+            const std::size_t first = out.frames.size();
+            for (std::size_t i = 0; i < queries_.size(); ++i) out.frames.push_back(drawFrame(*ctx.gl, ctx, results, int(i)));
+            std::vector<const Frame*> steps;
+            for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
+            ContactSheetOptions o;
+            o.caption = common_.caption;
+            o.title = common_.title + ": one query point per frame";
+            out.frames.push_back(contactSheetFrame(*ctx.gl, steps, common_.title, o));
+        } else {
+            out.skipped.push_back("per-step frames and contact sheet (steps off)");
+        }
+        return out;
+    }
+
+private:
+    Obb box_;
+    std::vector<Vec3> queries_;
+    double margin_;
+
+    double size() const { return box_.halfExtents.norm(); }
+    double margin() const { return margin_ > 0 ? margin_ : 0.6 * box_.halfExtents.maxCoeff(); }
+
+    /// The region's cell in the box frame, clipped to the box grown by the margin (or to the query): on each axis
+    /// [−e − m, −e], [−e, e] or [e, e + m] by the test's side.
+    ConvexDrawable cellOf(const BoxRegionResult& r) const {
+        Vec3 lo, hi;
+        for (int i = 0; i < 3; ++i) {
+            const int side = r.tests[std::size_t(i)].side;
+            // Far enough out to hold the query point itself.
+            const double e = box_.halfExtents[i],
+                         m = std::max(margin(), std::abs(r.tests[std::size_t(i)].coordinate) - e + 0.2 * margin());
+            lo[i] = side > 0 ? e : side < 0 ? -e - m : -e;
+            hi[i] = side > 0 ? e + m : side < 0 ? -e : e;
+        }
+        return boxDrawable(Obb{box_.center + box_.axes * (0.5 * (lo + hi)), 0.5 * (hi - lo), box_.axes});
+    }
+
+    /// The feature holding the closest point, drawn over the box: a vertex, an edge or a face.
+    void drawFeature(Canvas& c, const BoxRegionResult& r) const {
+        const Color color = featureDimensionColor(r.dimension);
+        std::vector<Vec3> pts;
+        for (int k : r.corners) pts.push_back(corner(box_, k, box_.halfExtents));
+        if (pts.size() == 1) c.drawPoint(pts[0], 10.0f, color, true, 2.0f, roleColor(Role::Ink));
+        LineStyle ls = lineStyle(Role::Ink, pts.size() == 2 ? 8.0f : 4.0f, false, true);
+        ls.color = color.scaled(0.75f);
+        if (pts.size() == 2) c.drawLine(pts[0], pts[1], ls);
+        else if (pts.size() == 4) {
+            std::swap(pts[2], pts[3]);  // corners in bit order (00, 01, 10, 11) to a loop
+            c.drawPolygon(pts, color.withAlpha(0.55f));
+            c.drawPolyline(pts, true, ls);
+        }
+    }
+
+    Frame drawFrame(GlContext& gl, const RunContext& ctx, const std::vector<BoxRegionResult>& results, int focus) const {
+        Canvas c(gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
+        double reach = size() + margin();
+        for (const Vec3& q : queries_) reach = std::max(reach, (q - box_.center).norm());
+        // A step frame leaves the bottom to its slab tests: the view is pulled back a little.
+        c.setCamera(common_.camera ? *common_.camera
+                                   : framingCamera(box_.center, reach * (focus >= 0 ? 0.95 : 0.8), Vec3(1.0, 0.75, 1.6),
+                                                   Vec3::UnitY(), true));
+        const bool labels = common_.hasLayer("labels");
+        if (focus >= 0 && common_.hasLayer("regions") && results[std::size_t(focus)].valid) {
+            const BoxRegionResult& r = results[std::size_t(focus)];
+            if (r.dimension < 3)
+                drawBody(c, cellOf(r), featureDimensionColor(r.dimension), 0.16f,
+                         featureDimensionColor(r.dimension).scaled(0.7f), 1.5f);
+        }
+        // The box in neutral grey: the colours are the regions'.
+        drawBody(c, boxDrawable(box_), roleColor(Role::Muted), 0.22f, roleColor(Role::Ink), 3.0f);
+        if (focus >= 0) drawFeature(c, results[std::size_t(focus)]);
+        for (std::size_t i = 0; i < queries_.size(); ++i) {
+            const BoxRegionResult& r = results[i];
+            const bool faded = focus >= 0 && int(i) != focus;
+            Color qc = featureDimensionColor(r.dimension);
+            if (faded) qc = qc.withAlpha(0.25f);
+            if (common_.hasLayer("closest") && !faded && r.dimension < 3) {
+                c.drawLine(queries_[i], r.point, lineStyle(Role::Result, 3.0f, false, true));
+                c.drawPoint(r.point, 6.0f, roleColor(Role::Result));
+            }
+            if (common_.hasLayer("queries")) {
+                c.drawPoint(queries_[i], focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
+                            faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
+                if (labels && !faded) {
+                    TextStyle ts{18.0f, roleColor(Role::Ink), Anchor::Center, true, false};
+                    ts.offsetPx = Eigen::Vector2d(24, 0);
+                    ts.place = true;
+                    c.drawText(queries_[i], "q" + std::to_string(i + 1) + (focus < 0 ? ": " + regionName(r) : ""), ts);
+                }
+            }
+        }
+        // Key: colour by feature dimension, as for the tetrahedron.
+        drawKey(c, 20, 62,
+                {{featureDimensionColor(0), "vertex region"},
+                 {featureDimensionColor(1), "edge region"},
+                 {featureDimensionColor(2), "face region"},
+                 {featureDimensionColor(3), "inside"}},
+                17.0f);
+        std::string caption = common_.caption;
+        if (focus >= 0) {
+            const BoxRegionResult& r = results[std::size_t(focus)];
+            caption = "q" + std::to_string(focus + 1) + " " + formatPoint(queries_[std::size_t(focus)]) + ": " + regionName(r) +
+                      ", closest " + formatPoint(r.point) + ", distance " + formatNumber(r.distance);
+            if (labels) {
+                const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+                const std::vector<std::string> lines = wrapPieces(c, testEntries(r), ";   ", ts, c.width() - 36.0);
+                double y = c.height() - 44 - 24.0 * double(lines.size() + 1);
+                c.drawTextPx(18, y, "Slab tests in the box's frame (u = (q − centre)·axis):",
+                             TextStyle{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+                for (const std::string& l : lines) c.drawTextPx(18, y += 24.0, l, ts);
+            }
+        }
+        drawTitleAndCaption(c, common_.title, caption);
+        Frame f;
+        if (focus >= 0) {
+            char name[16];
+            std::snprintf(name, sizeof name, "step_%02d", focus + 1);
+            f.name = name;
+            f.caption = "q" + std::to_string(focus + 1) + ": " + regionName(results[std::size_t(focus)]);
+        } else {
+            f.name = "3d";
+            f.caption = common_.title;
+        }
+        f.image = c.readPixels();
+        return f;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<PreparedScene> makeBoxRegionsScene(SceneCommon common, const Obb& box, std::vector<Vec3> queries,
+                                                   double margin) {
+    return std::make_unique<BoxRegionsScene>(std::move(common), box, std::move(queries), margin);
+}
+
+}  // namespace cdlab::demos
