@@ -75,6 +75,13 @@ TextStyle noteStyle(float size = 19.0f, bool bold = false) {
     return ts;
 }
 
+/// A label that names a dashed outline: placed off its anchor, with a leader line when it moves.
+TextStyle awayStyle() {
+    TextStyle ts = noteStyle();
+    ts.offsetPx = Eigen::Vector2d(90, 50);
+    return ts;
+}
+
 std::string pose(const Transform& p) {
     return "(" + formatNumber(p.position.x()) + ", " + formatNumber(p.position.y()) + ") at " +
            formatNumber(angleDegrees(p)) + "°";
@@ -112,14 +119,14 @@ Frame mtdFrame(GlContext& gl, const SceneCommon& scene, int scale, const Resolut
     Canvas c(gl, canvasOptions(scene.image.width, scene.image.height, scale));
     c.setCamera(scene.camera ? *scene.camera : frameAbove(framedPoints(in, run), scene.image.width, scene.image.height, 3));
     drawA(c, in, labels);
-    drawB(c, in, run.end, roleColor(Role::ShapeB), true);
     std::vector<std::string> lines;
     if (run.penetrating) {
         drawB(c, in, run.mtd, roleColor(Role::ShapeB), false);
+        drawB(c, in, run.end, roleColor(Role::ShapeB), true);  // dashed, over the fill: where B was
         c.drawArrow(run.pointB, run.pointB + run.depth * run.normal, lineStyle(Role::Result, 4.0f, false, true));
         c.drawPoint(run.pointB, 6.0f, roleColor(Role::Result));
         if (labels) {
-            c.drawText(run.end.position, "B at t = 1", noteStyle());
+            c.drawText(run.end.position, "B at t = 1", awayStyle());
             c.drawText(run.mtd.position, "B + depth·n", noteStyle(19.0f, true));
             TextStyle ts = noteStyle();
             ts.offsetPx = Eigen::Vector2d(0, 28);
@@ -129,8 +136,9 @@ Frame mtdFrame(GlContext& gl, const SceneCommon& scene, int scale, const Resolut
                      formatNumber(run.normal.y()) + ") from A toward B",
                  "B moved by depth·n to " + pose(run.mtd) + ": touching, by the shortest push — across the contact, "
                  "not back along the motion",
-                 "no time is computed: the pose is one B never passed through when n is not along the motion"};
+                 "a push along n, not a step back in time: the pose need not be one B passed through"};
     } else {
+        drawB(c, in, run.end, roleColor(Role::ShapeB), true);
         lines = {"at t = 1 the bodies do not overlap: nothing to correct"};
     }
     if (numbers) drawNumbers(c, lines);
@@ -148,10 +156,10 @@ Frame backtrackFrame(GlContext& gl, const SceneCommon& scene, int scale, const R
     from.position = in.start.position;
     drawB(c, in, from, roleColor(Role::Muted), true);
     drawB(c, in, run.end, roleColor(Role::ShapeB), true);
-    c.drawArrow(from.position, run.end.position, lineStyle(Role::Direction, 2.5f, false, true));
+    c.drawArrow(from.position, run.end.position, lineStyle(Role::Ink, 2.0f, false, true));
     if (labels) {
-        c.drawText(run.end.position, "B at t = 1", noteStyle());
-        c.drawText(from.position, "t = 0, turned as at t = 1", noteStyle());
+        c.drawText(run.end.position, "B at t = 1", awayStyle());
+        c.drawText(from.position, "t = 0, turned as at t = 1", awayStyle());
     }
     std::vector<std::string> lines;
     if (run.backtrackHit && !run.backtrackAtStart) {
@@ -163,7 +171,7 @@ Frame backtrackFrame(GlContext& gl, const SceneCommon& scene, int scale, const R
                      formatNumber(run.backtrackT) + ", normal (" + formatNumber(run.backtrackNormal.x()) + ", " +
                      formatNumber(run.backtrackNormal.y()) + ")",
                  "B backed up by (1 − t)·|linear| = " + formatNumber(back) + " to " + pose(run.backtrack) +
-                     ": a pose on the path, touching",
+                     ": touching, on the straight path with the turn held — not a pose B occupied while turning",
                  "the turn is held at its t = 1 value: exact for a sliding body, not for a spinning one"};
     } else if (run.backtrackAtStart) {
         lines = {"turned as at t = 1, B already overlaps A at t = 0: backtracking along the motion cannot separate them"};
@@ -171,7 +179,7 @@ Frame backtrackFrame(GlContext& gl, const SceneCommon& scene, int scale, const R
         lines = {"the linear cast meets nothing in [0, 1]"};
     }
     if (numbers) drawNumbers(c, lines);
-    return finish(c, scene, scene.title + ": backtracking to the time of impact", "backtrack",
+    return finish(c, scene, scene.title + ": backtracking along the motion (linear cast)", "backtrack",
                   run.backtrackHit ? "backtrack: t = " + formatNumber(run.backtrackT) : "backtrack: no contact");
 }
 
@@ -196,12 +204,13 @@ Frame advanceFrame(GlContext& gl, const SceneCommon& scene, int scale, const Res
                              : frameAbove(framedPoints(in, run), scene.image.width, scene.image.height, int(lines.size())));
     drawA(c, in, labels);
     drawB(c, in, run.end, roleColor(Role::Muted), true);
+    if (labels) c.drawText(run.end.position, "B at t = 1", awayStyle());
     // Each step's pose, fainter for the early ones, with its closest-point segment and distance.
     for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
         const Transform p = poseAt(in.start, in.motion, steps[i].t);
         drawB(c, in, p, roleColor(Role::ShapeB).withAlpha(0.35f + 0.5f * float(i) / float(steps.size())), true);
         c.drawLine(steps[i].pointA, steps[i].pointB, lineStyle(Role::Result, 2.0f, true));
-        if (labels && i < 4) {
+        if (labels && i < 2) {  // later segments are too short to name
             TextStyle ts = noteStyle(17.0f);
             ts.offsetPx = Eigen::Vector2d(0, -18);
             c.drawText(0.5 * (steps[i].pointA + steps[i].pointB), "d" + std::to_string(i + 1), ts);
@@ -231,18 +240,22 @@ Frame compareFrame(GlContext& gl, const SceneCommon& scene, int scale, const Res
                                                                                            AdvancementResult::Outcome::Contact};
     for (int k = 0; k < 3; ++k)
         if (valid[k]) drawB(c, in, *poses[k], colors[k], false);
-    if (labels) c.drawText(run.end.position, "B at t = 1", noteStyle());
-    drawKey(c, 20, kTitleBand - 8,
-            {{colors[0], "MTD (EPA)"}, {colors[1], "backtracking (linear cast)"}, {colors[2], "conservative advancement"}},
-            18.0f);
+    drawB(c, in, run.end, roleColor(Role::Muted), true);  // dashed, over the fills
+    if (labels) c.drawText(run.end.position, "B at t = 1", awayStyle());
+    const char* names[3] = {"MTD (EPA)", "backtracking (linear cast)", "conservative advancement"};
+    std::vector<KeyItem> key;
+    for (int k = 0; k < 3; ++k)  // a correction that gave no pose: its swatch greyed, the key says so
+        key.push_back({valid[k] ? colors[k] : roleColor(Role::Muted), std::string(names[k]) + (valid[k] ? "" : ": none")});
+    drawKey(c, 20, kTitleBand - 8, key, 18.0f);
     if (numbers) {
         std::vector<std::string> lines = {
-            "MTD: " + (valid[0] ? pose(run.mtd) : std::string("—")) + ";   backtracking: " +
-                (valid[1] ? pose(run.backtrack) + ", t = " + formatNumber(run.backtrackT) : std::string("—")),
+            "MTD: " + (valid[0] ? pose(run.mtd) : std::string("none")) + ";   backtracking: " +
+                (valid[1] ? pose(run.backtrack) + ", t = " + formatNumber(run.backtrackT)
+                          : std::string(run.backtrackAtStart ? "none (overlapping already at t = 0)" : "none")),
             "conservative advancement: " + (valid[2] ? pose(run.advanced) + ", t = " + formatNumber(run.advance.t) : std::string("—")) +
                 " (the true motion, turn included)",
             "only conservative advancement gives a pose the body really passes through when it turns;",
-            "the MTD is the cheapest (one EPA) and may push the body sideways, off its path"};
+            "the MTD is the cheapest (one EPA) and pushes along n, whatever the path"};
         drawNumbers(c, lines);
     }
     return finish(c, scene, scene.title + ": the three end poses", "compare", "the three corrections compared");
