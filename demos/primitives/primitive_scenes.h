@@ -12,11 +12,11 @@ namespace cdlab::demos {
 
 /// A shape of the primitives demo, in the words of `cdlab query` (README "cdlab query"): sphere
 /// {center | position, radius}, aabb {min, max}, obb / box {center | position, half_extents,
-/// rotation}, segment [p, q], triangle [a, b, c]. World frame.
+/// rotation}, segment [p, q], triangle [a, b, c], point p, tetrahedron [a, b, c, d]. World frame.
 struct PrimitiveShape {
-    enum class Kind { Sphere, Aabb, Obb, Segment, Triangle };
+    enum class Kind { Sphere, Aabb, Obb, Segment, Triangle, Point, Tetrahedron };
     Kind kind = Kind::Sphere;
-    std::vector<Vec3> vertices;  // sphere: its centre; boxes: the 8 corners; segment, triangle: as given
+    std::vector<Vec3> vertices;  // sphere: its centre; boxes: the 8 corners; point, segment, triangle, tetrahedron: as given
     double radius = 0.0;         // sphere
     Obb box{Vec3::Zero(), Vec3::Zero(), Mat3::Identity()};  // aabb / obb: centre, half extents, axes
 };
@@ -40,6 +40,13 @@ struct SatInput {
     PrimitiveShape a, b;
 };
 DemoOutput runSat(const SceneCommon& scene, const SatInput& input, const RunContext& context);
+
+/// "test": "closest_features" — two simplices (point, segment, triangle, tetrahedron): their closest
+/// feature pair by trying every pair, checked against GJK.
+struct ClosestFeaturesInput {
+    PrimitiveShape a, b;
+};
+DemoOutput runClosestFeatures(const SceneCommon& scene, const ClosestFeaturesInput& input, const RunContext& context);
 
 /// "test": "point_in_polygon" — a 2D polygon (any, self-intersecting allowed) and query points.
 struct PointInPolygonInput {

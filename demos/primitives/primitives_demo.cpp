@@ -2,11 +2,12 @@
 // words of `cdlab query` (README "cdlab query"), with the scenes' coordinate limits.
 //
 // Scene keys (besides the common ones in scene.h):
-//   "test": "raycast" | "sat" | "point_in_polygon"
+//   "test": "raycast" | "sat" | "point_in_polygon" | "closest_features"
 //   raycast:           "ray": {"origin": o, "direction": d} or "segment": [p, q]; "shape": S
 //                      (sphere, aabb, obb / box, triangle)
 //   sat:               "a": S, "b": S (box and box, segment and box, triangle and aabb; either order)
 //   point_in_polygon:  "polygon": [[x, y], ...] (3 or more corners, any polygon), "queries": [[x, y], ...]
+//   closest_features:  "a": S, "b": S (point, segment, triangle, tetrahedron)
 // Layers: "labels" (names and numbers on the picture), "numbers" (the block of numbers under it).
 #include "demos/primitives/primitives_demo.h"
 
@@ -31,11 +32,17 @@ std::vector<Vec3> boxCorners(const Vec3& c, const Vec3& e, const Mat3& R) {
 PrimitiveShape readBody(const std::string& key, const JsonNode& body) {
     using K = PrimitiveShape::Kind;
     PrimitiveShape s;
-    if (key == "segment" || key == "triangle") {
-        const std::size_t n = key == "segment" ? 2 : 3;
+    if (key == "point") {
+        s.kind = K::Point;
+        s.vertices = {sceneVec3(body)};
+        return s;
+    }
+    if (key == "segment" || key == "triangle" || key == "tetrahedron") {
+        const std::size_t n = key == "segment" ? 2 : key == "triangle" ? 3 : 4;
         if (!body.isArray() || body.size() != n)
-            body.fail(std::string("expected ") + (n == 2 ? "[p, q]" : "[a, b, c]") + ", got " + JsonNode::describe(body.raw()));
-        s.kind = n == 2 ? K::Segment : K::Triangle;
+            body.fail(std::string("expected ") + (n == 2 ? "[p, q]" : n == 3 ? "[a, b, c]" : "[a, b, c, d]") + ", got " +
+                      JsonNode::describe(body.raw()));
+        s.kind = n == 2 ? K::Segment : n == 3 ? K::Triangle : K::Tetrahedron;
         s.vertices = sceneVec3List(body, n, n);
         return s;
     }
@@ -77,6 +84,8 @@ const char* nameOf(PrimitiveShape::Kind kind) {
         case PrimitiveShape::Kind::Obb: return "obb";
         case PrimitiveShape::Kind::Segment: return "segment";
         case PrimitiveShape::Kind::Triangle: return "triangle";
+        case PrimitiveShape::Kind::Point: return "point";
+        case PrimitiveShape::Kind::Tetrahedron: return "tetrahedron";
     }
     return "?";
 }
@@ -89,7 +98,8 @@ PrimitiveShape readPrimitiveShape(const JsonNode& node, const std::vector<Primit
     static const std::vector<std::pair<std::string, PrimitiveShape::Kind>> kKeys = {
         {"sphere", PrimitiveShape::Kind::Sphere}, {"aabb", PrimitiveShape::Kind::Aabb},
         {"obb", PrimitiveShape::Kind::Obb},       {"box", PrimitiveShape::Kind::Obb},
-        {"segment", PrimitiveShape::Kind::Segment}, {"triangle", PrimitiveShape::Kind::Triangle}};
+        {"segment", PrimitiveShape::Kind::Segment}, {"triangle", PrimitiveShape::Kind::Triangle},
+        {"point", PrimitiveShape::Kind::Point},     {"tetrahedron", PrimitiveShape::Kind::Tetrahedron}};
     bool ok = false;
     for (const auto& [k, kind] : kKeys)
         if (k == key)
@@ -103,6 +113,7 @@ namespace {
 std::unique_ptr<PreparedScene> readRaycast(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readSat(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readPointInPolygon(ObjectReader& r, SceneCommon common);
+std::unique_ptr<PreparedScene> readClosestFeatures(ObjectReader& r, SceneCommon common);
 
 /// A prepared scene of any family: the input read, the family's run function.
 template <class Input, DemoOutput (*Run)(const SceneCommon&, const Input&, const RunContext&)>
@@ -157,6 +168,17 @@ std::unique_ptr<PreparedScene> readSat(ObjectReader& r, SceneCommon common) {
     return std::make_unique<FamilyScene<SatInput, runSat>>(std::move(common), std::move(in));
 }
 
+std::unique_ptr<PreparedScene> readClosestFeatures(ObjectReader& r, SceneCommon common) {
+    using K = PrimitiveShape::Kind;
+    const std::vector<K> kinds = {K::Point, K::Segment, K::Triangle, K::Tetrahedron};
+    const char* what = "point, segment, triangle or tetrahedron";
+    ClosestFeaturesInput in;
+    in.a = readPrimitiveShape(r.get("a"), kinds, what);
+    in.b = readPrimitiveShape(r.get("b"), kinds, what);
+    r.finish();
+    return std::make_unique<FamilyScene<ClosestFeaturesInput, runClosestFeatures>>(std::move(common), std::move(in));
+}
+
 std::unique_ptr<PreparedScene> readPointInPolygon(ObjectReader& r, SceneCommon common) {
     PointInPolygonInput in;
     JsonNode poly = r.get("polygon");
@@ -183,9 +205,10 @@ public:
         return {kLayers, ImageSettings{1280, 960, 1}, {960, 720, 0, 0}};
     }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
-        const std::string test = r.get("test").asEnum({"raycast", "sat", "point_in_polygon"});
+        const std::string test = r.get("test").asEnum({"raycast", "sat", "point_in_polygon", "closest_features"});
         if (test == "raycast") return readRaycast(r, std::move(common));
         if (test == "sat") return readSat(r, std::move(common));
+        if (test == "closest_features") return readClosestFeatures(r, std::move(common));
         return readPointInPolygon(r, std::move(common));
     }
 };
