@@ -2,7 +2,8 @@
 // §5.1.6). All geometry comes from core (closest_point.h, voronoi_regions.h): this file only draws.
 //
 // Scene keys (besides the common ones in scene.h):
-//   "triangle": [a, b, c]  or  "tetrahedron": [a, b, c, d]  or  "box": {"half_extents", "position", "rotation"}
+//   "triangle": [a, b, c]  or  "tetrahedron": [a, b, c, d]  or  "polygon": [[x, y, z], ...] (convex, planar)
+//   or  "box": {"half_extents", "position", "rotation"}
 //   "queries": [[x, y, z], ...]     query points
 //   "views": ["plane", "3d"]        triangle: which overview frames to draw (tetrahedron: "3d" only)
 //   "margin": number                how far the drawn regions extend beyond the simplex (default: its size)
@@ -20,6 +21,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/voronoi_triangle/box_regions.h"
+#include "demos/voronoi_triangle/polygon_regions.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -478,19 +480,57 @@ std::unique_ptr<PreparedScene> readBox(ObjectReader& r, SceneCommon common) {
     return makeBoxRegionsScene(std::move(common), Obb::fromRotation(c, e, q), std::move(queries), margin);
 }
 
+// "polygon": [[x, y, z], ...] — a convex planar polygon (3 or more corners, either turn), its queries,
+// views and margin.
+std::unique_ptr<PreparedScene> readPolygon(ObjectReader& r, SceneCommon common) {
+    JsonNode pn = r.get("polygon");
+    std::vector<Vec3> polygon = sceneVec3List(pn, 3, kMaxShapeVertices);
+    // Planar and convex, to rounding of its size: every corner on the plane of Newell's normal, every
+    // turn the same way.
+    Vec3 n = Vec3::Zero(), centre = Vec3::Zero();
+    double size = 0;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        n += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+        centre += polygon[i];
+    }
+    centre /= double(polygon.size());
+    for (const Vec3& v : polygon) size = std::max(size, (v - centre).norm());
+    if (!(n.norm() > 1e-12 * size * size)) pn.fail("the corners span no area");
+    n.normalize();
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        if (std::abs((polygon[i] - centre).dot(n)) > 1e-9 * size)
+            pn.at(i).fail("this corner is off the polygon's plane (the corners must lie in one plane)");
+        const Vec3 &a = polygon[i], &b = polygon[(i + 1) % polygon.size()], &c = polygon[(i + 2) % polygon.size()];
+        if ((b - a).cross(c - b).dot(n) < -1e-12 * size * size)
+            pn.at((i + 1) % polygon.size()).fail("the polygon turns the other way at this corner (it must be convex)");
+    }
+    std::vector<Vec3> queries = sceneVec3List(r.get("queries"), 1, kMaxQueryPoints);
+    double margin = 0;
+    if (auto m = r.find("margin")) margin = sceneSize(*m);
+    std::vector<std::string> views = {"plane", "3d"};
+    if (auto v = r.find("views")) {
+        views.clear();
+        for (const JsonNode& item : v->items()) views.push_back(item.asEnum({"plane", "3d"}));
+        if (views.empty()) v->fail("expected at least one view");
+    }
+    r.finish();
+    return makePolygonRegionsScene(std::move(common), std::move(polygon), std::move(queries), margin, std::move(views));
+}
+
 class VoronoiDemo final : public Demo {
 public:
     std::string name() const override { return "voronoi_triangle"; }
     std::string description() const override {
-        return "point vs triangle (7 Voronoi regions), tetrahedron (15) and box (27), closest points";
+        return "point vs triangle (7 Voronoi regions), convex polygon, tetrahedron (15) and box (27), closest points";
     }
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{}, {}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         std::vector<Vec3> simplex;
         std::vector<std::string> views;
-        if (int(r.has("triangle")) + int(r.has("tetrahedron")) + int(r.has("box")) != 1)
-            r.node().fail("expected exactly one of 'triangle', 'tetrahedron' or 'box'");
+        if (int(r.has("triangle")) + int(r.has("tetrahedron")) + int(r.has("box")) + int(r.has("polygon")) != 1)
+            r.node().fail("expected exactly one of 'triangle', 'tetrahedron', 'polygon' or 'box'");
         if (r.has("box")) return readBox(r, std::move(common));
+        if (r.has("polygon")) return readPolygon(r, std::move(common));
         if (r.has("triangle")) {
             JsonNode t = r.get("triangle");
             if (t.size() != 3) t.fail("expected [a, b, c]");

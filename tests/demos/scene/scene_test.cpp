@@ -73,7 +73,7 @@ TEST_SUITE("scene") {
         std::string both = loadError(writeTemp(
             "both.json",
             R"({"demo":"voronoi_triangle","triangle":[[0,0,0],[1,0,0],[0,1,0]],"tetrahedron":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],"queries":[[1,1,1]]})"));
-        CHECK(both.find("exactly one of 'triangle', 'tetrahedron' or 'box'") != std::string::npos);
+        CHECK(both.find("exactly one of 'triangle', 'tetrahedron', 'polygon' or 'box'") != std::string::npos);
 
         std::string layer = loadError(writeTemp(
             "layer.json",
