@@ -112,13 +112,12 @@ double faceVisibility(const PrimitiveShape& s, const Vec3& v) {
 
 /// The view: across the line of the closest points (their gap shows as a gap), turned about that
 /// line to where both simplices show a face best (a triangle seen edge-on reads as a segment).
-Vec3 viewAcross(const ClosestFeaturesInput& in, const SimplexPairResult& r) {
+Vec3 faceOnViewAcross(const ClosestFeaturesInput& in, const SimplexPairResult& r) {
     const Vec3 fallback(1.0, 0.8, 1.7);
     const Vec3 gap = r.pointB - r.pointA;
     if (!r.valid || !(gap.norm() > 0)) return fallback;
     const Vec3 g = gap.normalized();
-    Vec3 u1 = fallback - fallback.dot(g) * g;
-    u1 = u1.norm() > 1e-6 ? Vec3(u1.normalized()) : g.unitOrthogonal();
+    const Vec3 u1 = viewAcross(fallback, g).normalized();
     const Vec3 u2 = g.cross(u1);
     Vec3 best = u1;
     double bestScore = -1.0;
@@ -136,7 +135,7 @@ Frame featuresFrame(GlContext& gl, const SceneCommon& scene, int scale, const Cl
     const SimplexPairResult& r = run.result;
     std::vector<Vec3> drawn = in.a.vertices;
     drawn.insert(drawn.end(), in.b.vertices.begin(), in.b.vertices.end());
-    const Vec3 view = viewAcross(in, r);
+    const Vec3 view = faceOnViewAcross(in, r);
     Canvas c(gl, canvasOptions(scene.image.width, scene.image.height, scale));
     c.setCamera(scene.camera ? *scene.camera : viewAbove(drawn, view, Vec3::UnitY(), 0.72, scene.image.width, scene.image.height));
     drawSimplex(c, in.a, Role::ShapeA);

@@ -34,6 +34,13 @@ Camera viewAbove(const std::vector<Vec3>& points, const Vec3& viewDirection, con
     return cam;
 }
 
+Vec3 viewAcross(const Vec3& preferred, const Vec3& line) {
+    if (!(line.norm() > 0)) return preferred;
+    const Vec3 u = line.normalized();
+    const Vec3 across = preferred - preferred.dot(u) * u;
+    return across.norm() > 0.3 * preferred.norm() ? across : Vec3(u.unitOrthogonal());
+}
+
 double drawNumberBlock(Canvas& canvas, const std::vector<std::string>& lines, double bottomMargin) {
     const TextStyle ts{kNumberTextPx, roleColor(Role::Ink), Anchor::TopLeft, true, false};
     // A line breaks only between its ";  "-separated phrases.

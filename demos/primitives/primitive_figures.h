@@ -18,6 +18,10 @@ namespace cdlab::demos {
 render::Camera viewAbove(const std::vector<Vec3>& points, const Vec3& viewDirection, const Vec3& up, double fraction,
                          int width, int height);
 
+/// `preferred` turned to lie across `line` (a gap, an axis): seen that way, a gap along the line
+/// shows as a gap. A line along `preferred` gives any direction across it.
+Vec3 viewAcross(const Vec3& preferred, const Vec3& line);
+
 /// Lines of numbers, wrapped to the canvas width between their ";  "-separated phrases, whose last line ends `bottomMargin` pixels above the
 /// canvas bottom (under them: the caption). Returns the pixel row of the block's top.
 double drawNumberBlock(render::Canvas& canvas, const std::vector<std::string>& lines, double bottomMargin);

@@ -48,6 +48,13 @@ struct ClosestFeaturesInput {
 };
 DemoOutput runClosestFeatures(const SceneCommon& scene, const ClosestFeaturesInput& input, const RunContext& context);
 
+/// "test": "sphere_overlap" — a sphere against a sphere, an aabb, an obb or a triangle: the other
+/// shape's closest point to the centre against the radius.
+struct SphereOverlapInput {
+    PrimitiveShape sphere, other;
+};
+DemoOutput runSphereOverlap(const SceneCommon& scene, const SphereOverlapInput& input, const RunContext& context);
+
 /// "test": "point_in_polygon" — a 2D polygon (any, self-intersecting allowed) and query points.
 struct PointInPolygonInput {
     std::vector<Vec2> polygon;

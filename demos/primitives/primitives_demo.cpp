@@ -2,12 +2,13 @@
 // words of `cdlab query` (README "cdlab query"), with the scenes' coordinate limits.
 //
 // Scene keys (besides the common ones in scene.h):
-//   "test": "raycast" | "sat" | "point_in_polygon" | "closest_features"
+//   "test": "raycast" | "sat" | "point_in_polygon" | "closest_features" | "sphere_overlap"
 //   raycast:           "ray": {"origin": o, "direction": d} or "segment": [p, q]; "shape": S
 //                      (sphere, aabb, obb / box, triangle)
 //   sat:               "a": S, "b": S (box and box, segment and box, triangle and aabb; either order)
 //   point_in_polygon:  "polygon": [[x, y], ...] (3 or more corners, any polygon), "queries": [[x, y], ...]
 //   closest_features:  "a": S, "b": S (point, segment, triangle, tetrahedron)
+//   sphere_overlap:    "a": {"sphere": ...}, "b": S (sphere, aabb, obb / box, triangle)
 // Layers: "labels" (names and numbers on the picture), "numbers" (the block of numbers under it).
 #include "demos/primitives/primitives_demo.h"
 
@@ -114,6 +115,7 @@ std::unique_ptr<PreparedScene> readRaycast(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readSat(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readPointInPolygon(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readClosestFeatures(ObjectReader& r, SceneCommon common);
+std::unique_ptr<PreparedScene> readSphereOverlap(ObjectReader& r, SceneCommon common);
 
 /// A prepared scene of any family: the input read, the family's run function.
 template <class Input, DemoOutput (*Run)(const SceneCommon&, const Input&, const RunContext&)>
@@ -168,6 +170,15 @@ std::unique_ptr<PreparedScene> readSat(ObjectReader& r, SceneCommon common) {
     return std::make_unique<FamilyScene<SatInput, runSat>>(std::move(common), std::move(in));
 }
 
+std::unique_ptr<PreparedScene> readSphereOverlap(ObjectReader& r, SceneCommon common) {
+    using K = PrimitiveShape::Kind;
+    SphereOverlapInput in;
+    in.sphere = readPrimitiveShape(r.get("a"), {K::Sphere}, "sphere");
+    in.other = readPrimitiveShape(r.get("b"), {K::Sphere, K::Aabb, K::Obb, K::Triangle}, "sphere, aabb, obb / box or triangle");
+    r.finish();
+    return std::make_unique<FamilyScene<SphereOverlapInput, runSphereOverlap>>(std::move(common), std::move(in));
+}
+
 std::unique_ptr<PreparedScene> readClosestFeatures(ObjectReader& r, SceneCommon common) {
     using K = PrimitiveShape::Kind;
     const std::vector<K> kinds = {K::Point, K::Segment, K::Triangle, K::Tetrahedron};
@@ -205,7 +216,9 @@ public:
         return {kLayers, ImageSettings{1280, 960, 1}, {960, 720, 0, 0}};
     }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
-        const std::string test = r.get("test").asEnum({"raycast", "sat", "point_in_polygon", "closest_features"});
+        const std::string test =
+            r.get("test").asEnum({"raycast", "sat", "point_in_polygon", "closest_features", "sphere_overlap"});
+        if (test == "sphere_overlap") return readSphereOverlap(r, std::move(common));
         if (test == "raycast") return readRaycast(r, std::move(common));
         if (test == "sat") return readSat(r, std::move(common));
         if (test == "closest_features") return readClosestFeatures(r, std::move(common));

@@ -217,12 +217,7 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
                                                    : nullptr;
     if (shown && shown->zero) shown = nullptr;
     // Seen across that axis (it lies in the picture's plane), a gap along it shows as a gap.
-    Vec3 view(1.0, 0.8, 1.7);
-    if (shown) {
-        const Vec3 across = view - view.dot(shown->unit) * shown->unit;
-        if (across.norm() > 0.3 * view.norm()) view = across;
-        else view = shown->unit.unitOrthogonal();
-    }
+    const Vec3 view = shown ? viewAcross(Vec3(1.0, 0.8, 1.7), shown->unit) : Vec3(1.0, 0.8, 1.7);
     const Vec3 origin = run.pair.box->box.center;  // core measures the projections from the box's centre
     AxisLine line;
     std::vector<Vec3> drawn = vertices;

@@ -202,6 +202,44 @@ TEST_SUITE("primitives_demo") {
         CHECK_FALSE(star[0]["crossing_number"]["inside"].get<bool>());
     }
 
+    TEST_CASE("sphere vs box and triangle: the closest point and the verdict recomputed") {
+        {
+            const Json s = sceneJson("sphere_obb"), t = runScene("sphere_obb");
+            const Vec3 c = vec(s["a"]["sphere"]["center"]);
+            const double r = s["a"]["sphere"]["radius"];
+            const Json& b = s["b"]["obb"];
+            const Mat3 R = rotation(b["rotation"]);
+            const Vec3 e = vec(b["half_extents"]), centre = vec(b["center"]);
+            // The nearest box point by brute force over a fine grid of the box's surface and inside.
+            double best = INFINITY;
+            const int n = 40;
+            for (int i = 0; i <= n; ++i)
+                for (int j = 0; j <= n; ++j)
+                    for (int k = 0; k <= n; ++k) {
+                        const Vec3 local((2.0 * i / n - 1) * e.x(), (2.0 * j / n - 1) * e.y(), (2.0 * k / n - 1) * e.z());
+                        best = std::min(best, (centre + R * local - c).norm());
+                    }
+            CHECK(t["distance"].get<double>() <= best + 1e-12);
+            CHECK(t["distance"].get<double>() >= best - 0.06);  // the grid's spacing
+            CHECK((vec(t["closest"]) - c).norm() == doctest::Approx(t["distance"].get<double>()));
+            CHECK(t["hit"].get<bool>() == (t["distance"].get<double>() <= r));
+        }
+        {
+            const Json s = sceneJson("sphere_triangle"), t = runScene("sphere_triangle");
+            const Vec3 c = vec(s["a"]["sphere"]["center"]);
+            const Json& tri = s["b"]["triangle"];
+            const Vec3 a = vec(tri[0]), b = vec(tri[1]), d = vec(tri[2]);
+            double best = INFINITY;
+            const int n = 400;
+            for (int i = 0; i <= n; ++i)
+                for (int j = 0; i + j <= n; ++j)
+                    best = std::min(best, (a + (b - a) * (double(i) / n) + (d - a) * (double(j) / n) - c).norm());
+            CHECK(t["distance"].get<double>() <= best + 1e-12);
+            CHECK(t["distance"].get<double>() >= best - 0.01);
+            CHECK(t["hit"].get<bool>() == (t["distance"].get<double>() <= s["a"]["sphere"]["radius"].get<double>()));
+        }
+    }
+
     TEST_CASE("bad scenes: one error naming the JSON path") {
         const std::string head = R"({"demo": "primitives", )";
         CHECK(errorOf(head + R"("test": "raycast", "ray": {"origin": [0,0,0], "direction": [0,0,0]},

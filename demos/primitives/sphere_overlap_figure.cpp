@@ -1,0 +1,187 @@
+// The sphere family of the primitives demo: a sphere against a sphere (Ericson §4.3.1), an AABB or
+// OBB (§5.2.5, §5.2.6: the centre clamped to the box on each axis) or a triangle (§5.2.7: the closest
+// point of the triangle and its Voronoi region) — every test compares the distance from the centre
+// to the other shape's closest point with the radius. Numbers from core; this file draws them.
+#include <algorithm>
+#include <cmath>
+
+#include "core/closest/closest_point.h"
+#include "core/closest/closest_point_box.h"
+#include "core/overlap/intersect_sphere.h"
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/figure_canvas.h"
+#include "demos/draw/figure_style.h"
+#include "demos/primitives/primitive_figures.h"
+#include "demos/primitives/primitive_scenes.h"
+#include "demos/scene/pair_scene.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using namespace render;
+using K = PrimitiveShape::Kind;
+
+struct SphereRun {
+    bool hit = false;
+    Vec3 closest = Vec3::Zero();  // the other shape's point nearest the centre (sphere: its surface point)
+    double distance = 0.0;        // centre to `closest` (sphere–sphere: centre to centre)
+    double reach = 0.0;           // what the distance is compared with: r (or r_a + r_b)
+    BoxRegionResult box;          // aabb / obb: the clamping, axis by axis
+    std::string region;           // triangle: the closest point's region
+};
+
+SphereRun runSphere(const SphereOverlapInput& in) {
+    SphereRun run;
+    const Sphere s{in.sphere.vertices[0], in.sphere.radius};
+    const PrimitiveShape& o = in.other;
+    if (o.kind == K::Sphere) {
+        const SphereSphereResult r = intersectSphereSphere(s, {o.vertices[0], o.radius});
+        run.hit = r.hit;
+        run.distance = r.distance;
+        run.reach = s.radius + o.radius;
+        run.closest = o.vertices[0] - o.radius * r.normal;
+        return run;
+    }
+    run.reach = s.radius;
+    if (o.kind == K::Triangle) {
+        const Triangle t{o.vertices[0], o.vertices[1], o.vertices[2]};
+        const SphereShapeResult r = intersectSphereTriangle(s, t);
+        run.hit = r.hit;
+        run.closest = r.closestPoint;
+        run.distance = std::sqrt(r.distanceSquared);
+        run.region = nameOf(closestPointOnTriangle(s.center, t).region);
+        return run;
+    }
+    // An aabb by its exact corners (min and max are corners 0 and 7), an obb in its own frame.
+    const SphereShapeResult r = o.kind == K::Aabb ? intersectSphereAabb(s, {o.vertices[0], o.vertices[7]})
+                                                  : intersectSphereObb(s, o.box);
+    run.hit = r.hit;
+    run.closest = r.closestPoint;
+    run.distance = std::sqrt(r.distanceSquared);
+    run.box = closestPointOnBox(s.center, o.box);  // the same clamping, with its per-axis tests for the figure
+    return run;
+}
+
+Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+Json sphereJson(const SphereOverlapInput& in, const SphereRun& run) {
+    Json j = {{"test", "sphere_overlap"},
+              {"shape", nameOf(in.other.kind)},
+              {"hit", run.hit},
+              {"closest", vecJson(run.closest)},
+              {"distance", run.distance},
+              {"reach", run.reach},
+              {"gap", run.distance - run.reach}};
+    if (!run.region.empty()) j["region"] = run.region;
+    if (run.box.valid) {
+        Json axes = Json::array();
+        for (const BoxAxisTest& t : run.box.tests)
+            axes.push_back({{"coordinate", t.coordinate}, {"half_extent", t.halfExtent}, {"side", t.side}});
+        j["clamp"] = axes;
+        j["region"] = regionName(run.box);
+    }
+    return j;
+}
+
+void drawOther(Canvas& c, const PrimitiveShape& o) {
+    const Color color = roleColor(Role::ShapeB);
+    if (o.kind == K::Sphere) {
+        SceneShape s;
+        s.kind = SceneShape::Kind::Sphere;
+        s.radius = o.radius;
+        s.pose.position = o.vertices[0];
+        drawBody(c, shapeDrawable(s), color, 0.25f, color.scaled(0.7f), 1.5f);
+    } else if (o.kind == K::Triangle) {
+        c.drawPolygon(o.vertices, color.withAlpha(0.35f), true);
+        c.drawPolyline(o.vertices, true, lineStyle(Role::ShapeB, 3.0f));
+    } else {
+        drawBody(c, boxDrawable(o.box), color, 0.25f, color.scaled(0.7f), 3.0f);
+    }
+}
+
+std::vector<std::string> numberLines(const SphereOverlapInput& in, const SphereRun& run) {
+    std::vector<std::string> lines;
+    const std::string verdict = run.hit ? "overlap (depth " + formatNumber(run.reach - run.distance) + ")"
+                                        : "apart (gap " + formatNumber(run.distance - run.reach) + ")";
+    if (in.other.kind == K::Sphere) {
+        lines.push_back("|c_b − c_a| = " + formatNumber(run.distance) + " against r_a + r_b = " + formatNumber(run.reach) +
+                        " (compared squared, no square root): " + verdict);
+        return lines;
+    }
+    if (run.box.valid) {
+        std::string clamp = "the centre clamped to the box, axis by axis:";
+        const char* axes = "xyz";
+        for (int i = 0; i < 3; ++i) {
+            const BoxAxisTest& t = run.box.tests[std::size_t(i)];
+            clamp += std::string(i ? ";  " : " ") + "u_" + axes[i] + " = " + formatNumber(t.coordinate) + " → " +
+                     formatNumber(std::clamp(t.coordinate, -t.halfExtent, t.halfExtent));
+        }
+        lines.push_back(clamp);
+        lines.push_back("the closest point " + formatPoint(run.closest) + " lies in region " + regionName(run.box));
+    } else {
+        lines.push_back("the triangle's closest point to the centre, " + formatPoint(run.closest) + ", in region " + run.region +
+                        " (Ericson §5.1.5)");
+    }
+    lines.push_back("|c − closest| = " + formatNumber(run.distance) + " against r = " + formatNumber(run.reach) + ": " + verdict);
+    return lines;
+}
+
+Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const SphereOverlapInput& in, const SphereRun& run) {
+    const Vec3 c0 = in.sphere.vertices[0];
+    const double r = in.sphere.radius;
+    std::vector<Vec3> drawn = in.other.vertices;
+    for (int i = 0; i < 3; ++i) {
+        drawn.push_back(c0 + r * Vec3::Unit(i));
+        drawn.push_back(c0 - r * Vec3::Unit(i));
+        if (in.other.kind == K::Sphere) {
+            drawn.push_back(in.other.vertices[0] + in.other.radius * Vec3::Unit(i));
+            drawn.push_back(in.other.vertices[0] - in.other.radius * Vec3::Unit(i));
+        }
+    }
+    Canvas c(gl, canvasOptions(scene.image.width, scene.image.height, scale));
+    c.setCamera(scene.camera ? *scene.camera
+                             : viewAbove(drawn, viewAcross(Vec3(1.0, 0.8, 1.7), run.closest - c0), Vec3::UnitY(), 0.72,
+                                         scene.image.width, scene.image.height));
+    drawOther(c, in.other);
+    SceneShape s;
+    s.kind = SceneShape::Kind::Sphere;
+    s.radius = r;
+    s.pose.position = c0;
+    drawBody(c, shapeDrawable(s), roleColor(Role::ShapeA), run.hit ? 0.35f : 0.25f, roleColor(Role::ShapeA).scaled(0.7f), 1.5f);
+    c.drawPoint(c0, 6.0f, roleColor(Role::Ink));
+    c.drawLine(c0, run.closest, lineStyle(Role::Result, 3.0f, false, true));
+    c.drawPoint(run.closest, 8.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
+    if (scene.hasLayer("labels")) {
+        TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+        ts.place = true;
+        ts.offsetPx = Eigen::Vector2d(0, -24);
+        c.drawText(c0, "c", ts);
+        ts.offsetPx = Eigen::Vector2d(0, 28);
+        c.drawText(run.closest, in.other.kind == K::Sphere ? "c_b" : "closest point", ts);
+    }
+    drawKey(c, 20, 62,
+            {{roleColor(Role::ShapeA), "the sphere"}, {roleColor(Role::ShapeB), std::string("the ") + nameOf(in.other.kind)},
+             {roleColor(Role::Result), in.other.kind == K::Sphere ? "centre to centre" : "centre to closest point"}},
+            17.0f);
+    if (scene.hasLayer("numbers")) drawNumberBlock(c, numberLines(in, run), 52);
+    drawTitleAndCaption(c, scene.title, scene.caption);
+    Frame f;
+    f.name = "test";
+    f.caption = scene.title + (run.hit ? ": overlap" : ": apart");
+    f.image = c.readPixels();
+    return f;
+}
+
+}  // namespace
+
+DemoOutput runSphereOverlap(const SceneCommon& scene, const SphereOverlapInput& in, const RunContext& ctx) {
+    const SphereRun run = runSphere(in);
+    DemoOutput out;
+    out.trace = sphereJson(in, run);
+    if (numericOnly(ctx, out)) return out;
+    out.frames.push_back(sphereFrame(*ctx.gl, scene, figureScale(scene, ctx), in, run));
+    return out;
+}
+
+}  // namespace cdlab::demos
