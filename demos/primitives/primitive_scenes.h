@@ -2,6 +2,7 @@
 // that runs it (core test once, its trace as JSON, the figure when a GL context is given).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/base/primitives.h"
@@ -54,6 +55,22 @@ struct SphereOverlapInput {
     PrimitiveShape sphere, other;
 };
 DemoOutput runSphereOverlap(const SceneCommon& scene, const SphereOverlapInput& input, const RunContext& context);
+
+/// A 2D game object (plane z = 0): point, segment, rectangle {center, half_extents, angle (degrees)},
+/// triangle or circle {center, radius}; a circle is its centre with a radius.
+struct Shape2d {
+    std::string kind;
+    std::vector<Vec3> corners;  // z = 0
+    double radius = 0.0;
+};
+Shape2d readShape2d(const JsonNode& node);
+
+/// "test": "moving_2d" — a 2D object moving by `velocity` over t in [0, 1] against a still one.
+struct Moving2dInput {
+    Shape2d moving, still;
+    Vec3 velocity = Vec3::Zero();
+};
+DemoOutput runMoving2d(const SceneCommon& scene, const Moving2dInput& input, const RunContext& context);
 
 /// "test": "point_in_polygon" — a 2D polygon (any, self-intersecting allowed) and query points.
 struct PointInPolygonInput {

@@ -2,13 +2,15 @@
 // words of `cdlab query` (README "cdlab query"), with the scenes' coordinate limits.
 //
 // Scene keys (besides the common ones in scene.h):
-//   "test": "raycast" | "sat" | "point_in_polygon" | "closest_features" | "sphere_overlap"
+//   "test": "raycast" | "sat" | "point_in_polygon" | "closest_features" | "sphere_overlap" | "moving_2d"
 //   raycast:           "ray": {"origin": o, "direction": d} or "segment": [p, q]; "shape": S
 //                      (sphere, aabb, obb / box, triangle)
 //   sat:               "a": S, "b": S (box and box, segment and box, triangle and aabb; either order)
 //   point_in_polygon:  "polygon": [[x, y], ...] (3 or more corners, any polygon), "queries": [[x, y], ...]
 //   closest_features:  "a": S, "b": S (point, segment, triangle, tetrahedron)
 //   sphere_overlap:    "a": {"sphere": ...}, "b": S (sphere, aabb, obb / box, triangle)
+//   moving_2d:         "moving": S2, "still": S2, "velocity": [vx, vy] (S2: point, segment, rectangle,
+//                      triangle, circle in the plane)
 // Layers: "labels" (names and numbers on the picture), "numbers" (the block of numbers under it).
 #include "demos/primitives/primitives_demo.h"
 
@@ -116,6 +118,7 @@ std::unique_ptr<PreparedScene> readSat(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readPointInPolygon(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readClosestFeatures(ObjectReader& r, SceneCommon common);
 std::unique_ptr<PreparedScene> readSphereOverlap(ObjectReader& r, SceneCommon common);
+std::unique_ptr<PreparedScene> readMoving2d(ObjectReader& r, SceneCommon common);
 
 /// A prepared scene of any family: the input read, the family's run function.
 template <class Input, DemoOutput (*Run)(const SceneCommon&, const Input&, const RunContext&)>
@@ -179,6 +182,15 @@ std::unique_ptr<PreparedScene> readSphereOverlap(ObjectReader& r, SceneCommon co
     return std::make_unique<FamilyScene<SphereOverlapInput, runSphereOverlap>>(std::move(common), std::move(in));
 }
 
+std::unique_ptr<PreparedScene> readMoving2d(ObjectReader& r, SceneCommon common) {
+    Moving2dInput in;
+    in.moving = readShape2d(r.get("moving"));
+    in.still = readShape2d(r.get("still"));
+    in.velocity = sceneVec2(r.get("velocity"));
+    r.finish();
+    return std::make_unique<FamilyScene<Moving2dInput, runMoving2d>>(std::move(common), std::move(in));
+}
+
 std::unique_ptr<PreparedScene> readClosestFeatures(ObjectReader& r, SceneCommon common) {
     using K = PrimitiveShape::Kind;
     const std::vector<K> kinds = {K::Point, K::Segment, K::Triangle, K::Tetrahedron};
@@ -217,7 +229,8 @@ public:
     }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         const std::string test =
-            r.get("test").asEnum({"raycast", "sat", "point_in_polygon", "closest_features", "sphere_overlap"});
+            r.get("test").asEnum({"raycast", "sat", "point_in_polygon", "closest_features", "sphere_overlap", "moving_2d"});
+        if (test == "moving_2d") return readMoving2d(r, std::move(common));
         if (test == "sphere_overlap") return readSphereOverlap(r, std::move(common));
         if (test == "raycast") return readRaycast(r, std::move(common));
         if (test == "sat") return readSat(r, std::move(common));

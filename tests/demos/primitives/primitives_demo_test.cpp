@@ -5,10 +5,12 @@
 // exact quarter-turn winding count — and the reader's errors name the JSON path.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "demos/catalog/catalog.h"
+#include "demos/oracles/polygon_oracle.h"
 #include "demos/scene/json_reader.h"
 
 using namespace cdlab;
@@ -237,6 +239,46 @@ TEST_SUITE("primitives_demo") {
             CHECK(t["distance"].get<double>() <= best + 1e-12);
             CHECK(t["distance"].get<double>() >= best - 0.01);
             CHECK(t["hit"].get<bool>() == (t["distance"].get<double>() <= s["a"]["sphere"]["radius"].get<double>()));
+        }
+    }
+
+    TEST_CASE("moving 2D objects: touching at the time of impact, apart an instant before") {
+        // The triangle against the segment: the polygon oracle's distance (long double, no GJK).
+        {
+            const Json s = sceneJson("moving_triangle_segment"), t = runScene("moving_triangle_segment");
+            REQUIRE(t["hit"].get<bool>());
+            const Vec3 v(s["velocity"][0].get<double>(), s["velocity"][1].get<double>(), 0);
+            auto movedBy = [&](double time) {
+                std::vector<Vec3> tri;
+                for (const Json& p : s["moving"]["triangle"]) tri.push_back(Vec3(p[0].get<double>(), p[1].get<double>(), 0) + time * v);
+                return oracle::polygon2(tri);
+            };
+            // A segment as a two-corner polygon: its edge normals both ways.
+            std::vector<Vec3> seg;
+            for (const Json& p : s["still"]["segment"]) seg.emplace_back(p[0].get<double>(), p[1].get<double>(), 0);
+            const auto S = oracle::polygon2(seg);
+            const double tc = t["t"];
+            CHECK(double(oracle::polygonDistance(S, movedBy(tc))) <= 1e-9);
+            CHECK(oracle::polygonDistance(S, movedBy(tc - 1e-6)) > 0);
+        }
+        // The circle against the rectangle: its centre at distance r from the rectangle at t, more before.
+        {
+            const Json s = sceneJson("moving_circle_rectangle"), t = runScene("moving_circle_rectangle");
+            REQUIRE(t["hit"].get<bool>());
+            const Json& rect = s["still"]["rectangle"];
+            const double a = rect["angle"].get<double>() * M_PI / 180.0;
+            const Vec3 c(rect["center"][0].get<double>(), rect["center"][1].get<double>(), 0);
+            const Vec3 u(std::cos(a), std::sin(a), 0), w(-std::sin(a), std::cos(a), 0);
+            const double hx = rect["half_extents"][0], hy = rect["half_extents"][1];
+            auto distanceToRect = [&](const Vec3& p) {  // clamp in the rectangle's frame
+                const double x = std::clamp((p - c).dot(u), -hx, hx), y = std::clamp((p - c).dot(w), -hy, hy);
+                return (c + x * u + y * w - p).norm();
+            };
+            const Vec3 centre(s["moving"]["circle"]["center"][0].get<double>(), s["moving"]["circle"]["center"][1].get<double>(), 0);
+            const Vec3 v(s["velocity"][0].get<double>(), s["velocity"][1].get<double>(), 0);
+            const double r = s["moving"]["circle"]["radius"], tc = t["t"];
+            CHECK(distanceToRect(centre + tc * v) == doctest::Approx(r).epsilon(1e-9));
+            CHECK(distanceToRect(centre + (tc - 1e-6) * v) > r);
         }
     }
 
