@@ -30,7 +30,9 @@ Transform poseAt(const Transform& start, const RigidMotion& motion, double t);
 
 struct AdvancementOptions {
     double tolerance = 1e-6;  ///< world units: contact once the distance is at most this
-    int maxSteps = 100;
+    /// When the turn dominates μ the steps shrink geometrically near contact (each closes a fraction
+    /// of the gap), so reaching a small tolerance can take hundreds of steps.
+    int maxSteps = 1000;
 };
 
 /// One advancement step, for demos: the state at t and the step it allows.

@@ -1,5 +1,6 @@
 #include "core/closest/closest_point_polygon.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cdlab {
@@ -36,9 +37,15 @@ ClosestPointPolygonResult closestPointOnConvexPolygon(const Vec3& p, std::span<c
         if (!q.allFinite()) return r;
     const Vec3 N = newellNormal(v);
     if (N.isZero(0.0)) return r;
+    const int n = int(v.size());
+    // Strictly convex: every corner turns the same way (no repeated or collinear corners, whose
+    // zero-length or straight edges would make a vertex test pass off its vertex).
+    for (int i = 0; i < n; ++i) {
+        const Vec3 before = v[std::size_t(i)] - v[std::size_t((i + n - 1) % n)], after = v[std::size_t((i + 1) % n)] - v[std::size_t(i)];
+        if (!(before.cross(after).dot(N) > 0)) return r;
+    }
     r.valid = true;
     r.normal = N;
-    const int n = int(v.size());
     // Vertex regions: behind both edges meeting at v_i.
     for (int i = 0; i < n; ++i) {
         const Vec3& vi = v[std::size_t(i)];
@@ -69,8 +76,31 @@ ClosestPointPolygonResult closestPointOnConvexPolygon(const Vec3& p, std::span<c
             return r;
         }
     }
-    // The face: the projection onto the plane, from the nearest corner (fewer cancellations).
-    const Vec3& o = v[0];
+    // The face — unless rounding let a point just outside an edge line slip past both the vertex
+    // and the edge tests (a point on a region boundary): then the nearest clamped edge point.
+    bool inside = true;
+    for (int i = 0; i < n && inside; ++i) {
+        const Vec3& vi = v[std::size_t(i)];
+        inside = (p - vi).dot((v[std::size_t((i + 1) % n)] - vi).cross(N)) <= 0;
+    }
+    if (!inside) {
+        double best = INFINITY;
+        for (int i = 0; i < n; ++i) {
+            const Vec3& vi = v[std::size_t(i)];
+            const Vec3 e = v[std::size_t((i + 1) % n)] - vi;
+            const double t = std::clamp((p - vi).dot(e) / e.dot(e), 0.0, 1.0);
+            const Vec3 q = vi + t * e;
+            if ((p - q).norm() < best) {
+                best = (p - q).norm();
+                r.point = q;
+                r.dimension = t == 0.0 || t == 1.0 ? 0 : 1;
+                r.index = t == 1.0 ? (i + 1) % n : i;
+            }
+        }
+        r.distance = best;
+        return r;
+    }
+    const Vec3& o = v[0];  // the projection onto the plane
     r.point = p - (p - o).dot(N) * N;
     r.distance = std::abs((p - o).dot(N));
     return r;

@@ -7,8 +7,10 @@
 //   edge i:    (p − v_i)·m_i > 0   and  0 < (p − v_i)·e_i < e_i·e_i         (outside the edge line, over it);
 //   face:      otherwise (inside every edge line).
 // Vertices are tested first, then edges (Ericson's order: ties go to the lower dimension). The
-// tests run in doubles (the triangle's exact signs are core/closest/closest_point.h's). Degenerate
-// input (fewer than 3 corners, zero area, NaN / inf): invalid.
+// tests run in doubles (the triangle's exact signs are core/closest/closest_point.h's); a point that
+// rounding lets past every vertex and edge test while outside an edge line gets the nearest edge
+// point. Degenerate input (fewer than 3 corners, zero area, a repeated or collinear corner — every
+// corner must turn — NaN / inf): invalid.
 #pragma once
 
 #include <span>

@@ -85,7 +85,10 @@ SimplexPairResult closestFeaturesOfSimplices(std::span<const Vec3> a, std::span<
     r.pointB = best->pointB;
     r.featureA = best->a;
     r.featureB = best->b;
-    r.intersect = best->distance == 0.0;
+    // Touching within rounding counts as meeting: two segments crossing where no double lies come
+    // out ~1e-17 apart.
+    r.intersect = best->distance <= tie;
+    if (r.intersect) r.distance = 0.0;
     // A tetrahedron holding a vertex of the other: they intersect though no boundary pair may meet.
     for (int k = 0; k < 2 && !r.intersect; ++k) {
         const std::span<const Vec3> outer = k == 0 ? a : b, inner = k == 0 ? b : a;

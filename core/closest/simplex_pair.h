@@ -5,7 +5,8 @@
 // tetrahedron that holds a vertex of the other simplex intersects it although no boundary pair meets
 // (exact orientation tests). The pair reported is the one of least distance, and among pairs within
 // rounding of it (1e-12 of the simplices' size) the one of least total dimension: the features whose
-// relative interiors hold the closest points (a vertex–face pair, not the face's edge–face pair).
+// relative interiors hold the closest points (a vertex–face pair, not the face's edge–face pair). A
+// pair within that rounding of touching counts as intersecting (distance 0).
 // Small and exhaustive on purpose: the reference GJK is checked against in the demos, not a fast path.
 #pragma once
 

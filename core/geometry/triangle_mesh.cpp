@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/orient.h"
+
 namespace cdlab {
 
 namespace {
@@ -141,6 +143,96 @@ TriangleMesh noisyBlobMesh(double radius, double noise, int slices, int stacks, 
         double f = 0.0;
         for (int k = 0; k < kWaves; ++k) f += amp[k] * std::cos(freq[k] * dirs[k].dot(v) + phase[k]);
         v *= radius * (1.0 + noise * f / ampSum);
+    }
+    return mesh;
+}
+
+namespace {
+
+/// Ear clipping of a counter-clockwise simple polygon: triangles of corner indices, empty when
+/// some step finds no ear (the polygon is not simple).
+std::vector<std::array<int, 3>> clipEars(const std::vector<Vec2>& p) {
+    std::vector<int> left(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) left[i] = int(i);
+    std::vector<std::array<int, 3>> out;
+    while (left.size() > 3) {
+        bool clipped = false;
+        for (std::size_t k = 0; k < left.size() && !clipped; ++k) {
+            const int a = left[(k + left.size() - 1) % left.size()], b = left[k], c = left[(k + 1) % left.size()];
+            if (orient2d(p[std::size_t(a)], p[std::size_t(b)], p[std::size_t(c)]) <= 0) continue;  // a reflex corner
+            bool empty = true;  // no other corner inside or on the ear
+            for (int q : left) {
+                if (q == a || q == b || q == c) continue;
+                const Vec2& x = p[std::size_t(q)];
+                if (orient2d(p[std::size_t(a)], p[std::size_t(b)], x) >= 0 && orient2d(p[std::size_t(b)], p[std::size_t(c)], x) >= 0 &&
+                    orient2d(p[std::size_t(c)], p[std::size_t(a)], x) >= 0)
+                    empty = false;
+            }
+            if (!empty) continue;
+            out.push_back({a, b, c});
+            left.erase(left.begin() + std::ptrdiff_t(k));
+            clipped = true;
+        }
+        if (!clipped) return {};
+    }
+    out.push_back({left[0], left[1], left[2]});
+    return out;
+}
+
+/// Closed segments ab and cd share a point (exact orientations; collinear overlaps included).
+bool segmentsMeet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+    const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d), o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+    const auto within = [](const Vec2& p, const Vec2& q, const Vec2& x) {
+        return x.x() >= std::min(p.x(), q.x()) && x.x() <= std::max(p.x(), q.x()) && x.y() >= std::min(p.y(), q.y()) &&
+               x.y() <= std::max(p.y(), q.y());
+    };
+    return (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) || (o3 == 0 && within(c, d, a)) ||
+           (o4 == 0 && within(c, d, b));
+}
+
+/// No two edges that are not neighbours share a point, and neighbours share only their corner.
+bool simplePolygon(const std::vector<Vec2>& p) {
+    const std::size_t n = p.size();
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j) {
+            const bool neighbours = j == i + 1 || (i == 0 && j == n - 1);
+            const Vec2 &a = p[i], &b = p[(i + 1) % n], &c = p[j], &d = p[(j + 1) % n];
+            if (!neighbours) {
+                if (segmentsMeet(a, b, c, d)) return false;
+            } else if (orient2d(a, b, d) == 0 && orient2d(c, d, a) == 0 && (b - a).dot(d - c) < 0) {
+                return false;  // neighbours folding back onto each other
+            }
+        }
+    return true;
+}
+
+}  // namespace
+
+TriangleMesh prismMesh(const std::vector<Vec2>& outline, double height) {
+    TriangleMesh mesh;
+    if (outline.size() < 3 || !(height > 0) || !std::isfinite(height)) return mesh;
+    for (const Vec2& v : outline)
+        if (!v.allFinite()) return mesh;
+    // Counter-clockwise seen from +z (the shoelace sum's sign).
+    std::vector<Vec2> p = outline;
+    double area = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) area += p[i].x() * p[(i + 1) % p.size()].y() - p[(i + 1) % p.size()].x() * p[i].y();
+    if (area < 0) std::reverse(p.begin(), p.end());
+    if (area == 0 || !simplePolygon(p)) return mesh;
+    const std::vector<std::array<int, 3>> cap = clipEars(p);
+    if (cap.empty()) return mesh;
+    const int n = int(p.size());
+    for (const Vec2& v : p) mesh.vertices.emplace_back(v.x(), v.y(), 0.0);
+    for (const Vec2& v : p) mesh.vertices.emplace_back(v.x(), v.y(), height);
+    for (const auto& t : cap) {
+        mesh.triangles.push_back({t[0], t[2], t[1]});              // bottom, facing −z
+        mesh.triangles.push_back({t[0] + n, t[1] + n, t[2] + n});  // top, facing +z
+    }
+    for (int i = 0; i < n; ++i) {  // the sides, facing outward for a counter-clockwise outline
+        const int j = (i + 1) % n;
+        mesh.triangles.push_back({i, j, j + n});
+        mesh.triangles.push_back({i, j + n, i + n});
     }
     return mesh;
 }

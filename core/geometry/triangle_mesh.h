@@ -74,6 +74,13 @@ TriangleMesh ellipsoidMesh(const Vec3& radii, int slices, int stacks);
 /// distributions). The surface stays star-shaped around the origin for noise < 1.
 TriangleMesh noisyBlobMesh(double radius, double noise, int slices, int stacks, std::uint64_t seed);
 
+/// A closed prism: the simple polygon `outline` (either turn; non-convex allowed) in the plane z = 0
+/// extruded to z = height, outward-facing. Its caps are triangulated by ear clipping (Eberly,
+/// "Triangulation by Ear Clipping", 2002; Ericson §12.5.1), each ear decided by exact orientation
+/// tests. Empty when the outline is not simple (two edges that are not neighbours meet — exact
+/// orientations — or it has no area), has fewer than 3 corners, or height <= 0.
+TriangleMesh prismMesh(const std::vector<Vec2>& outline, double height);
+
 /// Deterministic random triangle soup: `count` triangles whose vertices are a random centre in
 /// the cube [-halfSize, halfSize]^3 plus offsets of length <= triangleSize (3 vertices per
 /// triangle, none shared). Seeded by `seed`, platform independent.

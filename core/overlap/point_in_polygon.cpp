@@ -28,20 +28,18 @@ bool onBoundary(std::span<const Vec2> polygon, const Vec2& p) {
     return false;
 }
 
-/// Sign of the polygon's signed area (shoelace sum, the sign decided exactly: the area is the
-/// sum of the fan triangles' orientations, which is exact only for convex fans, so the sum is
-/// taken in doubles and its sign trusted unless it is within rounding of zero).
+/// Sign of the polygon's signed area: the shoelace sum taken about the first corner (so a polygon
+/// far from the origin keeps its digits), trusted unless it is within its rounding bound of zero.
 int orientationOf(std::span<const Vec2> polygon) {
+    const Vec2 o = polygon[0];
     double twiceArea = 0.0, scale = 0.0;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-        const Vec2& a = polygon[i];
-        const Vec2& b = polygon[(i + 1) % polygon.size()];
-        const double term = a.x() * b.y() - a.y() * b.x();
-        twiceArea += term;
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+        const Vec2 a = polygon[i] - o, b = polygon[i + 1] - o;
+        twiceArea += a.x() * b.y() - a.y() * b.x();
         scale += std::abs(a.x() * b.y()) + std::abs(a.y() * b.x());
     }
-    // Each term is rounded by <= 2^-52 relative and the sum by n more roundings.
-    const double bound = double(polygon.size() + 2) * 2.3e-16 * scale;
+    // The differences are rounded by <= 2^-53 relative, each term by a few more, the sum by n more.
+    const double bound = double(polygon.size() + 4) * 2.3e-16 * scale;
     return twiceArea > bound ? 1 : twiceArea < -bound ? -1 : 0;
 }
 

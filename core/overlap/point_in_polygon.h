@@ -5,8 +5,10 @@
 //    number (n atan2 calls: the slow one, and the one that counts windings);
 //  - crossing number: a ray from p toward +x crosses the boundary an odd number of times iff p
 //    is inside (even-odd rule; n cheap edge tests, right for any polygon).
-// Edges run v[i] -> v[i+1 mod n]. Every decision is exact for the double inputs (orient2d of
-// core/base/orient.h); a point on the boundary is reported as such by each test (closed polygon).
+// Edges run v[i] -> v[i+1 mod n]. Every side and crossing decision is exact for the double inputs
+// (orient2d of core/base/orient.h); the polygon's orientation (for the edge-side test) comes from its
+// area in doubles, zero when within rounding of zero. A point on the boundary is reported as such by
+// the angle and crossing tests (closed polygon), and by the edge-side test when it says inside.
 // Degenerate input (fewer than 3 vertices, NaN / inf) gives inside == false, onBoundary == false.
 #pragma once
 

@@ -8,6 +8,7 @@
 #include "demos/gjk/gjk_demo.h"
 #include "demos/lin_canny/lin_canny_demo.h"
 #include "demos/mtd_backtracking/mtd_backtracking_demo.h"
+#include "demos/nonconvex/nonconvex_demo.h"
 #include "demos/polyhedron_plane/polyhedron_plane_demo.h"
 #include "demos/primitives/primitives_demo.h"
 #include "demos/space_partition/space_partition_demo.h"
@@ -31,7 +32,8 @@ const std::vector<const Demo*>& allDemos() {
                                                    &bvhDemo(),
                                                    &sweepAndPruneDemo(),
                                                    &primitivesDemo(),
-                                                   &mtdBacktrackingDemo()};
+                                                   &mtdBacktrackingDemo(),
+                                                   &nonconvexDemo()};
     return demos;
 }
 

@@ -75,13 +75,13 @@ void addDeepestGenerator(const CurvedSolid& s, Candidates& c) {
     for (std::size_t k = 0; k < c.face.corners.size(); ++k) {
         const Vec3 side = c.side(k);
         const double f0 = side.dot(p0 - c.face.corners[k]), f1 = side.dot(p1 - c.face.corners[k]);
-        if ((f0 < 0) == (f1 < 0) || f0 == f1) continue;
+        if ((f0 < 0) == (f1 < 0)) continue;
         const Vec3 x = crossing(f0, f1);
         const double depth = c.depthOf(x);
         if (depth >= -c.touch && c.insideFace(x, k)) c.points.push_back({x, x + depth * n, std::max(depth, 0.0)});
     }
     const double g0 = c.depthOf(p0), g1 = c.depthOf(p1);
-    if ((g0 < 0) != (g1 < 0) && g0 != g1) c.add(crossing(g0, g1), true);
+    if ((g0 < 0) != (g1 < 0)) c.add(crossing(g0, g1), true);
 }
 
 }  // namespace

@@ -501,8 +501,9 @@ std::unique_ptr<PreparedScene> readPolygon(ObjectReader& r, SceneCommon common) 
         if (std::abs((polygon[i] - centre).dot(n)) > 1e-9 * size)
             pn.at(i).fail("this corner is off the polygon's plane (the corners must lie in one plane)");
         const Vec3 &a = polygon[i], &b = polygon[(i + 1) % polygon.size()], &c = polygon[(i + 2) % polygon.size()];
-        if ((b - a).cross(c - b).dot(n) < -1e-12 * size * size)
-            pn.at((i + 1) % polygon.size()).fail("the polygon turns the other way at this corner (it must be convex)");
+        if (!((b - a).cross(c - b).dot(n) > 1e-12 * size * size))
+            pn.at((i + 1) % polygon.size())
+                .fail("the polygon does not turn at this corner (it must be convex, no repeated or collinear corners)");
     }
     std::vector<Vec3> queries = sceneVec3List(r.get("queries"), 1, kMaxQueryPoints);
     double margin = 0;

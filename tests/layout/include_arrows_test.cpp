@@ -34,7 +34,8 @@ const std::vector<std::string> kDemoFolders = {"voronoi_triangle",
                                                "bvh",
                                                "sweep_and_prune",
                                                "primitives",
-                                               "mtd_backtracking"};
+                                               "mtd_backtracking",
+                                               "nonconvex"};
 // Shared demos/ folders a demo may use.
 const std::vector<std::string> kSharedForDemos = {"scene", "draw", "measure", "oracles"};
 

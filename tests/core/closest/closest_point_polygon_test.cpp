@@ -26,13 +26,19 @@ LD pointSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
     return std::sqrt(x * x + y * y + z * z);
 }
 
-LD oracleDistance(const Vec3& p, const std::vector<Vec3>& v, const Vec3& n) {
-    const Vec3 q = p - (p - v[0]).dot(n) * n;  // projection
+/// The projection of p falls in one of the fan triangles (barycentric signs about n).
+bool projectsInside(const Vec3& p, const std::vector<Vec3>& v, const Vec3& n) {
+    const Vec3 q = p - (p - v[0]).dot(n) * n;
     for (std::size_t i = 1; i + 1 < v.size(); ++i) {
         const Vec3 a = v[0], b = v[i], c = v[i + 1];
         const LD w0 = LD((b - q).cross(c - q).dot(n)), w1 = LD((c - q).cross(a - q).dot(n)), w2 = LD((a - q).cross(b - q).dot(n));
-        if (w0 >= 0 && w1 >= 0 && w2 >= 0) return std::abs(LD((p - v[0]).dot(n)));
+        if (w0 >= 0 && w1 >= 0 && w2 >= 0) return true;
     }
+    return false;
+}
+
+LD oracleDistance(const Vec3& p, const std::vector<Vec3>& v, const Vec3& n) {
+    if (projectsInside(p, v, n)) return std::abs(LD((p - v[0]).dot(n)));
     LD best = INFINITY;
     for (std::size_t i = 0; i < v.size(); ++i) best = std::min(best, pointSegment(p, v[i], v[(i + 1) % v.size()]));
     return best;
@@ -62,6 +68,7 @@ TEST_CASE("closest point on a convex polygon in 3D: distance, point and region a
         CHECK(r.distance == doctest::Approx(oracle).epsilon(1e-12));
         CHECK((p - r.point).norm() == doctest::Approx(r.distance).epsilon(1e-12));
         ++byDimension[r.dimension];
+        CHECK((r.dimension == 2) == projectsInside(p, v, R.col(2)));  // the face region: over the polygon
         if (r.dimension == 0) CHECK(r.point == v[std::size_t(r.index)]);
         if (r.dimension == 1) {
             const Vec3 a = v[std::size_t(r.index)], b = v[std::size_t((r.index + 1) % n)];
@@ -90,4 +97,7 @@ TEST_CASE("polygon regions: names, the in-plane diagram, degenerate input") {
     CHECK(d.edgeRegions[0][3] == Vec3(0, -1, 0));  // edge v0v1's strip reaches out along −y
     CHECK_FALSE(closestPointOnConvexPolygon(Vec3::Zero(), std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}).valid);
     CHECK_FALSE(closestPointOnConvexPolygon(Vec3(NAN, 0, 0), square).valid);
+    // A collinear or a repeated corner would let a vertex test pass off its vertex: refused.
+    CHECK_FALSE(closestPointOnConvexPolygon(Vec3(1, 1, 5), std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}).valid);
+    CHECK_FALSE(closestPointOnConvexPolygon(Vec3(1, 0.5, 0), std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}).valid);
 }

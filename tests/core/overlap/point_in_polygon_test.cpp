@@ -165,6 +165,15 @@ TEST_CASE("a ray through a vertex counts it once for a crossing, not at all for 
     CHECK_FALSE(cdlab::crossingNumber(spike, Vec2(1, 3)).inside);
 }
 
+TEST_CASE("a polygon far from the origin keeps its orientation (the area is taken about a corner)") {
+    const std::vector<Vec2> tri = {{1e8, 1e8}, {1e8 + 1, 1e8}, {1e8, 1e8 + 1}};
+    const auto r = cdlab::sameSideOfEveryEdge(tri, Vec2(1e8 + 0.25, 1e8 + 0.25));
+    CHECK(r.orientation == 1);
+    CHECK(r.inside);
+    CHECK(cdlab::crossingNumber(tri, Vec2(1e8 + 0.25, 1e8 + 0.25)).inside);
+    CHECK(cdlab::angleSummation(tri, Vec2(1e8 + 0.25, 1e8 + 0.25)).winding == 1);
+}
+
 TEST_CASE("degenerate polygons and points") {
     const std::vector<Vec2> two = {{0, 0}, {1, 0}};
     CHECK_FALSE(cdlab::crossingNumber(two, Vec2(0.5, 0)).inside);

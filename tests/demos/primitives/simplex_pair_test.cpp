@@ -73,6 +73,10 @@ TEST_CASE("simplex pairs: least dimension among ties, containment, touching, bad
     r = closestFeaturesOfSimplices(std::vector<Vec3>{{0, 0, 0}, {2, 0, 0}}, std::vector<Vec3>{{1, -1, 0}, {1, 1, 0}});
     CHECK(r.intersect);
     CHECK(r.featureA.dimension() + r.featureB.dimension() == 2);  // edge–edge
+    // Segments crossing where no double lies: within rounding of touching, reported as meeting.
+    r = closestFeaturesOfSimplices(std::vector<Vec3>{{0, 0, 0}, {1, 1, 0}}, std::vector<Vec3>{{0, 0.3, 0}, {0.7, 0, 0}});
+    CHECK(r.intersect);
+    CHECK(r.distance == 0);
     CHECK_FALSE(closestFeaturesOfSimplices(std::vector<Vec3>{}, tri).valid);
     CHECK_FALSE(closestFeaturesOfSimplices(std::vector<Vec3>{{NAN, 0, 0}}, tri).valid);
 }

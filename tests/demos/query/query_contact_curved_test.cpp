@@ -115,6 +115,21 @@ TEST_CASE("contact: lying, tilted, a cone on its apex, a cylinder on a box face"
         CHECK(ends[0] == doctest::Approx(-0.5).epsilon(1e-12));
         CHECK(ends[1] == doctest::Approx(1.0).epsilon(1e-12));
     }
+    // The same with the box first: the normal flips (from the box toward the cylinder), the points
+    // keep point_a − point_b = depth·n, both ends of the line still come back.
+    ans = contact(R"({"aabb":{"min":[-0.5,-2,-3],"max":[3,-0.499,3]}})", R"({"cylinder":{"a":[-1,0,0],"b":[1,0,0],"radius":0.5}})", 4);
+    checkConvention(ans);
+    CHECK(vecOf(ans["normal"]) == Vec3(0, 1, 0));
+    CHECK(ans["feature_b"]["type"] == "side");
+    {
+        std::vector<double> ends;
+        for (const Json& p : ans["points"])
+            if (std::abs(p["depth"].get<double>() - 0.001) < 1e-12) ends.push_back(vecOf(p["point_b"]).x());
+        std::sort(ends.begin(), ends.end());
+        REQUIRE(ends.size() == 2);
+        CHECK(ends[0] == doctest::Approx(-0.5).epsilon(1e-12));
+        CHECK(ends[1] == doctest::Approx(1.0).epsilon(1e-12));
+    }
     // A cone lying on a generator (its axis tilted by the half-angle α = atan(0.5 / 2) from the
     // face), across the box's edge x = 0: the line runs from the base rim (x < 0, off the face) to the
     // apex; clipped to the face, its ends are the edge point x = 0 and the apex, both at full depth.

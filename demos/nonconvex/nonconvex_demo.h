@@ -1,0 +1,10 @@
+// demo_nonconvex: non-convex bodies split into convex pieces and collided as pairs of pieces.
+#pragma once
+
+#include "demos/scene/demo.h"
+
+namespace cdlab::demos {
+
+const Demo& nonconvexDemo();
+
+}  // namespace cdlab::demos
