@@ -12,7 +12,7 @@
 //   "a", "b": a body — {"prism": {"outline": [[x, y], ...], "height": h}} (a simple polygon extruded
 //             along z, non-convex allowed) or {"mesh": {"vertices": [...], "triangles": [[i, j, k], ...]}}
 //             (closed, outward or inward facing), each with "position" and "rotation" beside it
-//   "view": [x, y, z]   the direction the camera looks from (default [1, 0.8, 1.7])
+//   "view": [x, y, z]   the direction the camera looks from (default [0.35, -0.55, 1.6]: mostly down z)
 // Layers: "labels", "boxes", "numbers".
 #include "demos/nonconvex/nonconvex_demo.h"
 
@@ -269,18 +269,19 @@ private:
                                                     : nullptr;
         // Pieces: each its own colour in the pieces frame; in the pairs frame the focused pair's two
         // pieces in the bodies' colours, the rest faint.
-        int colour = 0;
         for (int k = 0; k < 2; ++k) {
             const Body& body = k == 0 ? a_ : b_;
             for (std::size_t i = 0; i < body.pieces.size(); ++i) {
-                Color fill = categorical(colour++);
+                // One hue per body in both frames (A's, B's), its pieces told apart by shade.
+                const Color base = roleColor(k == 0 ? Role::ShapeA : Role::ShapeB);
+                Color fill = i % 2 ? base.mixed(roleColor(Role::Background), 0.45f) : base.scaled(1.0f - 0.12f * float(i / 2));
                 float alpha = 0.45f;
                 if (pairsFrame) {
                     const bool mine = focus && (k == 0 ? focus->a : focus->b) == int(i);
                     fill = mine ? roleColor(k == 0 ? Role::ShapeA : Role::ShapeB) : roleColor(Role::Muted);
                     alpha = mine ? 0.55f : 0.15f;
                 }
-                drawBody(c, pieceDrawable(body.pieces[i]), fill, alpha, fill.scaled(0.6f), 1.5f);
+                drawBody(c, pieceDrawable(body.pieces[i]), fill, alpha, base.scaled(0.6f), 1.5f);
                 if (labels && !pairsFrame) {
                     Vec3 centre = Vec3::Zero();
                     for (const Vec3& v : body.pieces[i]) centre += v;
@@ -303,6 +304,12 @@ private:
                 c.drawLine(focus->pointA, focus->pointB, lineStyle(Role::Result, 3.0f, true, true));
                 c.drawPoint(focus->pointA, 7.0f, roleColor(Role::Result));
                 c.drawPoint(focus->pointB, 7.0f, roleColor(Role::Result));
+                if (labels) {
+                    TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                    ts.offsetPx = Eigen::Vector2d(0, -30);
+                    ts.place = true;
+                    c.drawText(0.5 * (focus->pointA + focus->pointB), "distance " + formatNumber(focus->distance), ts);
+                }
             }
         }
         std::vector<std::string> lines;
@@ -333,6 +340,11 @@ private:
                 y += 24;
             }
         }
+        if (!pairsFrame && common_.hasLayer("boxes"))
+            drawKey(c, 20, 62,
+                    {{roleColor(Role::ShapeA), "A's pieces"}, {roleColor(Role::ShapeB), "B's pieces"},
+                     {roleColor(Role::Ink), "a body's box (dashed)"}, {roleColor(Role::Muted), "a piece's box (dashed)"}},
+                    17.0f);
         if (pairsFrame)
             drawKey(c, 20, 62,
                     {{roleColor(Role::ShapeA), "A's piece"}, {roleColor(Role::ShapeB), "B's piece"},
@@ -358,7 +370,7 @@ public:
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         Body a = readBody(r.get("a"));
         Body b = readBody(r.get("b"));
-        Vec3 view(1.0, 0.8, 1.7);
+        Vec3 view(0.35, -0.55, 1.6);  // mostly down the extrusion axis: prisms read as their outlines
         if (auto v = r.find("view")) {
             view = sceneVec3(*v);
             if (view.isZero(0.0)) v->fail("the view direction must be non-zero");

@@ -153,6 +153,13 @@ private:
                 c.drawLine(queries_[i], r.point, lineStyle(Role::Result, 3.0f, false, true));
                 c.drawPoint(r.point, 6.0f, roleColor(Role::Result));
             }
+            if (!plane && !faded) {
+                // In 3D the zones lie in the plane and the points above or below it: a dashed drop line
+                // to each point's foot shows which zone it is over.
+                const Vec3 foot = queries_[i] - (queries_[i] - polygon_[0]).dot(normal) * normal;
+                c.drawLine(queries_[i], foot, lineStyle(Role::Muted, 2.0f, true, true));
+                c.drawPoint(foot, 4.0f, roleColor(Role::Muted));
+            }
             if (common_.hasLayer("queries")) {
                 c.drawPoint(queries_[i], focus == int(i) ? 12.0f : 9.0f, qc, true, 2.0f,
                             faded ? roleColor(Role::Muted) : roleColor(Role::Ink));
