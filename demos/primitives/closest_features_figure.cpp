@@ -115,7 +115,20 @@ double faceVisibility(const PrimitiveShape& s, const Vec3& v) {
 Vec3 faceOnViewAcross(const ClosestFeaturesInput& in, const SimplexPairResult& r) {
     const Vec3 fallback(1.0, 0.8, 1.7);
     const Vec3 gap = r.pointB - r.pointA;
-    if (!r.valid || !(gap.norm() > 0)) return fallback;
+    if (!r.valid) return fallback;
+    if (r.intersect || !(gap.norm() > 0)) {
+        // Touching or crossing: no gap to look across; the direction (of 64 spread over a half
+        // sphere, Fibonacci) from which both show a face best.
+        Vec3 best = fallback;
+        double bestScore = std::min(faceVisibility(in.a, fallback.normalized()), faceVisibility(in.b, fallback.normalized()));
+        for (int k = 0; k < 64; ++k) {
+            const double z = 1.0 - (k + 0.5) / 64.0, rho = std::sqrt(1.0 - z * z), phi = k * 2.399963229728653;
+            const Vec3 v(rho * std::cos(phi), 0.3 + 0.7 * z, rho * std::sin(phi));  // from above the horizon
+            const double score = std::min(faceVisibility(in.a, v.normalized()), faceVisibility(in.b, v.normalized()));
+            if (score > bestScore + 1e-3) bestScore = score, best = v;
+        }
+        return best;
+    }
     const Vec3 g = gap.normalized();
     const Vec3 u1 = viewAcross(fallback, g).normalized();
     const Vec3 u2 = g.cross(u1);
@@ -153,6 +166,7 @@ Frame featuresFrame(GlContext& gl, const SceneCommon& scene, int scale, const Cl
                               14.0);
         }
     }
+    if (r.valid && r.intersect) c.drawPoint(r.pointA, 9.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));  // where they meet
     if (r.valid && !r.intersect) {
         c.drawLine(r.pointA, r.pointB, lineStyle(Role::Result, 3.0f, true, true));
         c.drawPoint(r.pointA, 7.0f, roleColor(Role::Result));
@@ -168,7 +182,7 @@ Frame featuresFrame(GlContext& gl, const SceneCommon& scene, int scale, const Cl
             {{roleColor(Role::ShapeA), "simplex a"},
              {roleColor(Role::ShapeB), "simplex b"},
              {roleColor(Role::Simplex), "the closest features"},
-             {roleColor(Role::Result), "closest points"}},
+             {roleColor(Role::Result), r.intersect ? "a common point" : "closest points"}},
             17.0f);
     if (scene.hasLayer("numbers")) {
         std::vector<std::string> lines;

@@ -82,7 +82,7 @@ TEST_CASE("simplex pairs: least dimension among ties, containment, touching, bad
 }
 
 TEST_CASE("closest_features scenes: GJK agrees with the pair found") {
-    for (const char* name : {"closest_segment_triangle", "closest_tetrahedra"}) {
+    for (const char* name : {"closest_segment_triangle", "closest_tetrahedra", "closest_triangles_crossing"}) {
         const Json t = loadScene(std::string(CDLAB_SOURCE_DIR) + "/golden/primitives/" + name + ".json")->run(RunContext{}).trace;
         CHECK(t["gjk"]["intersect"] == t["intersect"]);
         CHECK(t["gjk"]["difference"].get<double>() <= 1e-12 * (1 + t["distance"].get<double>()));
