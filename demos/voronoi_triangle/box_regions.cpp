@@ -149,6 +149,18 @@ private:
         // The box in neutral grey: the colours are the regions'.
         drawBody(c, boxDrawable(box_), roleColor(Role::Muted), 0.22f, roleColor(Role::Ink), 3.0f);
         if (focus >= 0) drawFeature(c, results[std::size_t(focus)]);
+        if (labels) {
+            // The box's own axes from its centre, so "+x−z" can be read off the picture.
+            const char* names[3] = {"x", "y", "z"};
+            for (int i = 0; i < 3; ++i) {
+                const Vec3 tip = box_.center + box_.axes.col(i) * (box_.halfExtents[i] + 0.45 * margin());
+                c.drawArrow(box_.center, tip, lineStyle(Role::Ink, 2.0f, false, true));
+                TextStyle ts{18.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                ts.offsetPx = Eigen::Vector2d(12, -12);
+                ts.place = true;
+                c.drawText(tip, std::string("+") + names[i], ts);
+            }
+        }
         for (std::size_t i = 0; i < queries_.size(); ++i) {
             const BoxRegionResult& r = results[i];
             const bool faded = focus >= 0 && int(i) != focus;
