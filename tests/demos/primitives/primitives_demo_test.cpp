@@ -97,6 +97,28 @@ TEST_SUITE("primitives_demo") {
         }
     }
 
+    TEST_CASE("segment vs OBB: the slabs are the box's own, in its frame") {
+        const Json s = sceneJson("segment_obb"), t = runScene("segment_obb");
+        const Json& b = s["shape"]["obb"];
+        const Mat3 R = rotation(b["rotation"]);
+        const Vec3 c = vec(b["center"]), e = vec(b["half_extents"]);
+        const Vec3 p = vec(s["segment"][0]), q = vec(s["segment"][1]);
+        const Vec3 u0 = R.transpose() * (p - c), du = R.transpose() * (q - p);
+        double enter = 0, exit = 1;
+        for (const Json& slab : t["slabs"]) {
+            const int i = slab["axis"];
+            const double lo = std::min((-e[i] - u0[i]) / du[i], (e[i] - u0[i]) / du[i]),
+                         hi = std::max((-e[i] - u0[i]) / du[i], (e[i] - u0[i]) / du[i]);
+            CHECK(std::min(slab["t_near"].get<double>(), slab["t_far"].get<double>()) == doctest::Approx(lo).epsilon(1e-12));
+            CHECK(std::max(slab["t_near"].get<double>(), slab["t_far"].get<double>()) == doctest::Approx(hi).epsilon(1e-12));
+            enter = std::max(enter, lo);
+            exit = std::min(exit, hi);
+        }
+        REQUIRE(t["hit"].get<bool>() == (enter <= exit));
+        CHECK(t["t"].get<double>() == doctest::Approx(enter).epsilon(1e-12));
+        CHECK(t["t_exit"].get<double>() == doctest::Approx(exit).epsilon(1e-12));
+    }
+
     TEST_CASE("ray vs triangle: the weights rebuild the hit point") {
         const Json s = sceneJson("ray_triangle"), t = runScene("ray_triangle");
         REQUIRE(t["hit"].get<bool>());
