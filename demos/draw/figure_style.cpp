@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "demos/scene/demo.h"
 #include "render/legibility.h"
 
 namespace cdlab::demos {
@@ -17,6 +18,16 @@ void drawTitleAndCaption(Canvas& canvas, const std::string& title, const std::st
     if (!caption.empty())
         canvas.drawTextPx(margin, canvas.height() - margin, caption,
                           TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+}
+
+Frame finishedFrame(Canvas& canvas, const std::string& title, const std::string& caption, const std::string& name,
+                    const std::string& frameCaption) {
+    drawTitleAndCaption(canvas, title, caption);
+    Frame f;
+    f.name = name;
+    f.caption = frameCaption;
+    f.image = canvas.readPixels();
+    return f;
 }
 
 LineStyle lineStyle(Role role, float widthPx, bool dashed, bool onTop) {
@@ -85,6 +96,16 @@ std::vector<std::string> wrapPieces(const Canvas& measure, const std::vector<std
     }
     if (!line.empty()) lines.push_back(line);
     return lines;
+}
+
+std::vector<std::string> wrapAtSeparator(const Canvas& measure, const std::string& line, const std::string& separator,
+                                         const TextStyle& style, double width) {
+    std::vector<std::string> pieces;
+    std::size_t start = 0;
+    for (std::size_t at; (at = line.find(separator, start)) != std::string::npos; start = at + separator.size())
+        pieces.push_back(line.substr(start, at - start));
+    pieces.push_back(line.substr(start));
+    return wrapPieces(measure, pieces, separator, style, width);
 }
 
 render::Color triangleRegionColor(int regionIndex) {

@@ -9,8 +9,14 @@
 
 namespace cdlab::demos {
 
+struct Frame;  // demos/scene/demo.h
+
 /// Title (bold, top left) and caption (bottom left) of a figure, in pixels, on top of everything.
 void drawTitleAndCaption(render::Canvas& canvas, const std::string& title, const std::string& caption);
+/// The end of a one-canvas figure: its title and caption drawn (drawTitleAndCaption), its pixels
+/// read back into a frame named `name` with the gallery's one-line `frameCaption`.
+Frame finishedFrame(render::Canvas& canvas, const std::string& title, const std::string& caption, const std::string& name,
+                    const std::string& frameCaption);
 
 /// One entry of a drawn key: a swatch of `color` and what that colour means.
 struct KeyItem {
@@ -25,6 +31,10 @@ void drawKey(render::Canvas& canvas, double x, double y, const std::vector<KeyIt
 /// make the line wider than `width` px in `style` (a piece wider than that gets a line of its own).
 std::vector<std::string> wrapPieces(const render::Canvas& measure, const std::vector<std::string>& pieces,
                                     const std::string& separator, const render::TextStyle& style, double width);
+/// `line` broken only at its `separator`s (a number block's "a = 1;  b = 2"), the pieces joined back
+/// by wrapPieces into lines of at most `width`.
+std::vector<std::string> wrapAtSeparator(const render::Canvas& measure, const std::string& line, const std::string& separator,
+                                         const render::TextStyle& style, double width);
 
 render::LineStyle lineStyle(render::Role role, float widthPx, bool dashed = false, bool onTop = false);
 render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold = true);

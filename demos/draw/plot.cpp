@@ -40,7 +40,7 @@ struct Axis {
 };
 
 /// Pixel frame of the plot area (y down) and the mapping from data.
-struct Frame {
+struct PlotArea {
     double x0, x1, y0, y1;  // left, right, top, bottom pixels
     Axis ax, ay;
     double px(double x) const { return x0 + (ax.unit(x) - ax.lo) / (ax.hi - ax.lo) * (x1 - x0); }
@@ -112,7 +112,7 @@ public:
     }
 
     /// Axes, ticks, tick labels, axis labels, title, subtitle.
-    void axes(const Frame& f) {
+    void axes(const PlotArea& f) {
         const LineStyle axis = lineStyle(Role::Ink, 1.5f, false, true);
         const LineStyle grid = lineStyle(Role::Muted, 1.0f, true, false);
         LineStyle faint = grid;
@@ -178,7 +178,7 @@ public:
         int style = 0;
         bool line = false, markers = true;
     };
-    void legend(const Frame& f, const std::vector<LegendEntry>& entries, bool steps) {
+    void legend(const PlotArea& f, const std::vector<LegendEntry>& entries, bool steps) {
         if (entries.empty()) return;
         const TextStyle text{15.0f, roleColor(Role::Ink), Anchor::Left, false, false};
         double w = 0;
@@ -213,8 +213,8 @@ private:
 };
 
 /// Plot area: room on the left for tick labels, on the right for the legend (outside the data).
-Frame plotFrame(const PlotOptions& o) {
-    Frame f;
+PlotArea plotArea(const PlotOptions& o) {
+    PlotArea f;
     f.x0 = 100;
     f.x1 = o.width - o.legendWidth - 40;
     f.y0 = 92;
@@ -226,7 +226,7 @@ Frame plotFrame(const PlotOptions& o) {
 
 render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const std::vector<PlotSeries>& series) {
     PlotCanvas pc(gl, o);
-    Frame f = plotFrame(o);
+    PlotArea f = plotArea(o);
     std::vector<double> xs, ys;
     for (const PlotSeries& s : series)
         for (const auto& [x, y] : s.points) xs.push_back(x), ys.push_back(y);
@@ -278,7 +278,7 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
 render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
                                   const std::vector<std::pair<std::string, std::vector<double>>>& series) {
     PlotCanvas pc(gl, o);
-    Frame f = plotFrame(o);
+    PlotArea f = plotArea(o);
     double maxValue = o.xFloor * 10;
     for (const auto& s : series)
         for (double v : s.second)

@@ -50,4 +50,16 @@ void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, cons
     }
 }
 
+void addQueryFramesAndSheet(GlContext& gl, const SceneCommon& common, int count, const std::function<Frame(int)>& draw,
+                            DemoOutput& out) {
+    const std::size_t first = out.frames.size();
+    for (int i = 0; i < count; ++i) out.frames.push_back(draw(i));
+    std::vector<const Frame*> steps;
+    for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
+    ContactSheetOptions o;
+    o.caption = common.caption;
+    o.title = common.title + ": one query point per frame";
+    out.frames.push_back(contactSheetFrame(gl, steps, common.title, o));
+}
+
 }  // namespace cdlab::demos

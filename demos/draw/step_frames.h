@@ -1,6 +1,7 @@
 // Step frames of the stepping demos: which steps get a frame, their names, and the animated GIF.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,10 @@ void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downsc
 /// iteration per frame".
 void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, const RunContext& ctx, bool gif,
                           const std::string& algorithm, DemoOutput& out);
+
+/// One frame per query point, draw(i) for i in [0, count), then a contact sheet of them titled
+/// "<scene title>: one query point per frame" (the voronoi_triangle scenes' steps).
+void addQueryFramesAndSheet(render::GlContext& gl, const SceneCommon& common, int count,
+                            const std::function<Frame(int)>& draw, DemoOutput& out);
 
 }  // namespace cdlab::demos

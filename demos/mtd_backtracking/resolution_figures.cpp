@@ -87,16 +87,6 @@ std::string pose(const Transform& p) {
            formatNumber(angleDegrees(p)) + "°";
 }
 
-Frame finish(Canvas& canvas, const SceneCommon& scene, const std::string& title, const std::string& name,
-             const std::string& caption) {
-    drawTitleAndCaption(canvas, title, scene.caption);
-    Frame f;
-    f.name = name;
-    f.caption = caption;
-    f.image = canvas.readPixels();
-    return f;
-}
-
 }  // namespace
 
 void drawBodyNameAt(Canvas& canvas, const Vec3& at, const std::string& name) {
@@ -142,7 +132,7 @@ Frame mtdFrame(GlContext& gl, const SceneCommon& scene, int scale, const Resolut
         lines = {"at t = 1 the bodies do not overlap: nothing to correct"};
     }
     if (numbers) drawNumbers(c, lines);
-    return finish(c, scene, scene.title + ": minimum translational distance", "mtd",
+    return finishedFrame(c, scene.title + ": minimum translational distance", scene.caption, "mtd",
                   run.penetrating ? "MTD: depth " + formatNumber(run.depth) : "MTD: no penetration");
 }
 
@@ -179,7 +169,7 @@ Frame backtrackFrame(GlContext& gl, const SceneCommon& scene, int scale, const R
         lines = {"the linear cast meets nothing in [0, 1]"};
     }
     if (numbers) drawNumbers(c, lines);
-    return finish(c, scene, scene.title + ": backtracking along the motion (linear cast)", "backtrack",
+    return finishedFrame(c, scene.title + ": backtracking along the motion (linear cast)", scene.caption, "backtrack",
                   run.backtrackHit ? "backtrack: t = " + formatNumber(run.backtrackT) : "backtrack: no contact");
 }
 
@@ -222,7 +212,7 @@ Frame advanceFrame(GlContext& gl, const SceneCommon& scene, int scale, const Res
         c.drawText(in.start.position, "t = 0", noteStyle());
     }
     if (numbers) drawNumbers(c, lines);
-    return finish(c, scene, scene.title + ": conservative advancement", "advance",
+    return finishedFrame(c, scene.title + ": conservative advancement", scene.caption, "advance",
                   "advance: " + std::string(nameOf(run.advance.outcome)) + " at t = " + formatNumber(run.advance.t) + " in " +
                       std::to_string(run.advance.steps) + " steps");
 }
@@ -258,7 +248,7 @@ Frame compareFrame(GlContext& gl, const SceneCommon& scene, int scale, const Res
             "the MTD is the cheapest (one EPA) and pushes along n, whatever the path"};
         drawNumbers(c, lines);
     }
-    return finish(c, scene, scene.title + ": the three end poses", "compare", "the three corrections compared");
+    return finishedFrame(c, scene.title + ": the three end poses", scene.caption, "compare", "the three corrections compared");
 }
 
 }  // namespace cdlab::demos

@@ -211,14 +211,6 @@ Body readBody(const JsonNode& node) {
 
 // ------------------------------------------------------------------------------------ figures
 
-std::vector<std::string> phrases(const std::string& line) {
-    std::vector<std::string> out;
-    std::size_t start = 0;
-    for (std::size_t at; (at = line.find(";  ", start)) != std::string::npos; start = at + 3) out.push_back(line.substr(start, at - start));
-    out.push_back(line.substr(start));
-    return out;
-}
-
 ConvexDrawable pieceDrawable(const std::vector<Vec3>& corners) {
     SceneShape s;
     s.kind = SceneShape::Kind::Polytope;
@@ -333,7 +325,7 @@ private:
             const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
             std::vector<std::string> wrapped;
             for (const std::string& l : lines)  // a line breaks only between its ";  " phrases
-                for (const std::string& w : wrapPieces(c, phrases(l), ";  ", ts, c.width() - 40.0)) wrapped.push_back(w);
+                for (const std::string& w : wrapAtSeparator(c, l, ";  ", ts, c.width() - 40.0)) wrapped.push_back(w);
             double y = c.height() - 48 - 24.0 * double(wrapped.size());
             for (const std::string& l : wrapped) {
                 c.drawTextPx(20, y, l, ts);

@@ -204,12 +204,7 @@ Frame featuresFrame(GlContext& gl, const SceneCommon& scene, int scale, const Cl
                         (run.gjk.intersect == r.intersect ? ", same verdict" : ", verdicts differ"));
         drawNumberBlock(c, lines, 52);
     }
-    drawTitleAndCaption(c, scene.title, scene.caption);
-    Frame f;
-    f.name = "features";
-    f.caption = scene.title + ": " + featureName(r.featureA, 'a') + " – " + featureName(r.featureB, 'b');
-    f.image = c.readPixels();
-    return f;
+    return finishedFrame(c, scene.title, scene.caption, "features", scene.title + ": " + featureName(r.featureA, 'a') + " – " + featureName(r.featureB, 'b'));
 }
 
 }  // namespace

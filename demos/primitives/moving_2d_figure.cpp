@@ -203,12 +203,7 @@ Frame movingFrame(GlContext& gl, const SceneCommon& scene, int scale, const Movi
              {roleColor(Role::Muted), "at t = 1 (dashed), swept"},
              {roleColor(Role::Direction), "contact normal"}},
             17.0f);
-    drawTitleAndCaption(c, scene.title, scene.caption);
-    Frame f;
-    f.name = "sweep";
-    f.caption = scene.title + (toi.hit ? ": contact at t = " + formatNumber(toi.t) : ": no contact");
-    f.image = c.readPixels();
-    return f;
+    return finishedFrame(c, scene.title, scene.caption, "sweep", scene.title + (toi.hit ? ": contact at t = " + formatNumber(toi.t) : ": no contact"));
 }
 
 }  // namespace

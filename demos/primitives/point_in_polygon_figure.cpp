@@ -176,12 +176,7 @@ Frame drawFigure(GlContext& gl, const SceneCommon& scene, int scale, const Point
                             ";  angles: " + angleText(runs[i]) + ";  " + crossingText(runs[i]));
         drawNumberBlock(c, lines, 52);
     }
-    drawTitleAndCaption(c, scene.title, scene.caption);
-    Frame f;
-    f.name = "tests";
-    f.caption = scene.title;
-    f.image = c.readPixels();
-    return f;
+    return finishedFrame(c, scene.title, scene.caption, "tests", scene.title);
 }
 
 }  // namespace

@@ -43,17 +43,9 @@ Vec3 viewAcross(const Vec3& preferred, const Vec3& line) {
 
 double drawNumberBlock(Canvas& canvas, const std::vector<std::string>& lines, double bottomMargin) {
     const TextStyle ts{kNumberTextPx, roleColor(Role::Ink), Anchor::TopLeft, true, false};
-    // A line breaks only between its ";  "-separated phrases.
-    const std::string sep = ";  ";
-    std::vector<std::string> wrapped;
-    for (const std::string& l : lines) {
-        std::vector<std::string> pieces;
-        std::size_t start = 0;
-        for (std::size_t at; (at = l.find(sep, start)) != std::string::npos; start = at + sep.size())
-            pieces.push_back(l.substr(start, at - start));
-        pieces.push_back(l.substr(start));
-        for (const std::string& w : wrapPieces(canvas, pieces, sep, ts, canvas.width() - 40)) wrapped.push_back(w);
-    }
+    std::vector<std::string> wrapped;  // a line breaks only between its ";  "-separated phrases
+    for (const std::string& l : lines)
+        for (const std::string& w : wrapAtSeparator(canvas, l, ";  ", ts, canvas.width() - 40)) wrapped.push_back(w);
     double y = canvas.height() - bottomMargin - kNumberLineHeight * double(wrapped.size());
     const double top = y;
     for (const std::string& l : wrapped) {

@@ -20,6 +20,9 @@ struct PrimitiveShape {
     std::vector<Vec3> vertices;  // sphere: its centre; boxes: the 8 corners; point, segment, triangle, tetrahedron: as given
     double radius = 0.0;         // sphere
     Obb box{Vec3::Zero(), Vec3::Zero(), Mat3::Identity()};  // aabb / obb: centre, half extents, axes
+
+    /// An aabb's min and max exactly as given: its corners 0 and 7 (box holds them rounded).
+    Aabb aabb() const { return {vertices.front(), vertices.back()}; }
 };
 const char* nameOf(PrimitiveShape::Kind kind);
 /// Reads one shape (its kind among `allowed`, else an error naming the kinds in `what`).

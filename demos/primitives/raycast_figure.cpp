@@ -229,12 +229,7 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Rayc
         lines.push_back(run.hit ? decision + ";  " + verdict(run) : decision);
         drawNumberBlock(canvas, lines, 52);
     }
-    drawTitleAndCaption(canvas, scene.title, scene.caption);
-    Frame f;
-    f.name = "cast";
-    f.caption = scene.title + ": " + verdict(run);
-    f.image = canvas.readPixels();
-    return f;
+    return finishedFrame(canvas, scene.title, scene.caption, "cast", scene.title + ": " + verdict(run));
 }
 
 // ---------------------------------------------------------------------------------- triangle
@@ -302,12 +297,7 @@ Frame triangleFrame(GlContext& gl, const SceneCommon& scene, int scale, const Ra
         }
         drawNumberBlock(canvas, lines, 52);
     }
-    drawTitleAndCaption(canvas, scene.title, scene.caption);
-    Frame f;
-    f.name = "cast";
-    f.caption = scene.title + ": " + verdict(run);
-    f.image = canvas.readPixels();
-    return f;
+    return finishedFrame(canvas, scene.title, scene.caption, "cast", scene.title + ": " + verdict(run));
 }
 
 // ------------------------------------------------------------------------------------- slabs

@@ -44,15 +44,6 @@ SatPair pairOf(const SatInput& in) {
     return p;
 }
 
-Aabb aabbOf(const PrimitiveShape& s) {
-    Vec3 lo = s.vertices[0], hi = s.vertices[0];
-    for (const Vec3& v : s.vertices) {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-    }
-    return {lo, hi};
-}
-
 /// Every candidate axis's name in core's order (tested or not).
 std::vector<std::string> axisNames(const SatPair& p) {
     std::vector<std::string> names;
@@ -101,7 +92,7 @@ SatRun runSatTest(const SatInput& in) {
     SatTrace trace;
     if (isBox(other)) run.result = testObbObb(box.box, other.box, &trace);
     else if (other.kind == K::Segment) run.result = testSegmentObb({other.vertices[0], other.vertices[1]}, box.box, &trace);
-    else run.result = testTriangleAabb({other.vertices[0], other.vertices[1], other.vertices[2]}, aabbOf(box), &trace);
+    else run.result = testTriangleAabb({other.vertices[0], other.vertices[1], other.vertices[2]}, box.aabb(), &trace);
     for (std::size_t k = 0; k < trace.steps.size(); ++k) {
         const SatAxisStep& s = trace.steps[k];
         AxisRow row;

@@ -53,8 +53,8 @@ SphereRun runSphere(const SphereOverlapInput& in) {
         run.region = nameOf(closestPointOnTriangle(s.center, t).region);
         return run;
     }
-    // An aabb by its exact corners (min and max are corners 0 and 7), an obb in its own frame.
-    const SphereShapeResult r = o.kind == K::Aabb ? intersectSphereAabb(s, {o.vertices[0], o.vertices[7]})
+    // An aabb by its exact min and max, an obb in its own frame.
+    const SphereShapeResult r = o.kind == K::Aabb ? intersectSphereAabb(s, o.aabb())
                                                   : intersectSphereObb(s, o.box);
     run.hit = r.hit;
     run.closest = r.closestPoint;
@@ -165,12 +165,7 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
              {roleColor(Role::Result), in.other.kind == K::Sphere ? "centre to centre" : "centre to closest point"}},
             17.0f);
     if (scene.hasLayer("numbers")) drawNumberBlock(c, numberLines(in, run), 52);
-    drawTitleAndCaption(c, scene.title, scene.caption);
-    Frame f;
-    f.name = "test";
-    f.caption = scene.title + (run.hit ? ": overlap" : ": apart");
-    f.image = c.readPixels();
-    return f;
+    return finishedFrame(c, scene.title, scene.caption, "test", scene.title + (run.hit ? ": overlap" : ": apart"));
 }
 
 }  // namespace

@@ -6,13 +6,12 @@
 #include "demos/voronoi_triangle/box_regions.h"
 
 #include <algorithm>
-#include <cstdio>
 
 #include "core/closest/closest_point_box.h"
-#include "demos/draw/contact_sheet.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/step_frames.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -78,14 +77,8 @@ public:
         if (numericOnly(ctx, out)) return out;
         out.frames.push_back(drawFrame(*ctx.gl, ctx, results, -1));
         if (common_.steps || ctx.stepsOverride) {
-            const std::size_t first = out.frames.size();
-            for (std::size_t i = 0; i < queries_.size(); ++i) out.frames.push_back(drawFrame(*ctx.gl, ctx, results, int(i)));
-            std::vector<const Frame*> steps;
-            for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
-            ContactSheetOptions o;
-            o.caption = common_.caption;
-            o.title = common_.title + ": one query point per frame";
-            out.frames.push_back(contactSheetFrame(*ctx.gl, steps, common_.title, o));
+            addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()),
+                                   [&](int i) { return drawFrame(*ctx.gl, ctx, results, i); }, out);
         } else {
             out.skipped.push_back("per-step frames and contact sheet (steps off)");
         }
@@ -205,9 +198,7 @@ private:
         drawTitleAndCaption(c, common_.title, caption);
         Frame f;
         if (focus >= 0) {
-            char name[16];
-            std::snprintf(name, sizeof name, "step_%02d", focus + 1);
-            f.name = name;
+            f.name = stepFrameName(focus + 1);
             f.caption = "q" + std::to_string(focus + 1) + ": " + regionName(results[std::size_t(focus)]);
         } else {
             f.name = "3d";

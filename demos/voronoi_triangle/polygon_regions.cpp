@@ -4,13 +4,12 @@
 #include "demos/voronoi_triangle/polygon_regions.h"
 
 #include <algorithm>
-#include <cstdio>
 
 #include "core/closest/closest_point_polygon.h"
-#include "demos/draw/contact_sheet.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/step_frames.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -73,15 +72,9 @@ public:
         else out.skipped.push_back("region geometry (no 'regions' layer)");
         for (const std::string& view : views_) out.frames.push_back(drawFrame(*ctx.gl, ctx, diagram, results, view, -1));
         if (common_.steps || ctx.stepsOverride) {
-            const std::size_t first = out.frames.size();
-            for (std::size_t i = 0; i < queries_.size(); ++i)
-                out.frames.push_back(drawFrame(*ctx.gl, ctx, diagram, results, views_.front(), int(i)));
-            std::vector<const Frame*> steps;
-            for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
-            ContactSheetOptions o;
-            o.caption = common_.caption;
-            o.title = common_.title + ": one query point per frame";
-            out.frames.push_back(contactSheetFrame(*ctx.gl, steps, common_.title, o));
+            addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()), [&](int i) {
+                return drawFrame(*ctx.gl, ctx, diagram, results, views_.front(), i);
+            }, out);
         } else {
             out.skipped.push_back("per-step frames and contact sheet (steps off)");
         }
@@ -194,9 +187,7 @@ private:
         drawTitleAndCaption(c, common_.title + (plane ? "" : " (3D)"), caption);
         Frame f;
         if (focused) {
-            char name[32];
-            std::snprintf(name, sizeof name, "step_%02d", focus + 1);
-            f.name = name;
+            f.name = stepFrameName(focus + 1);
             f.caption = "q" + std::to_string(focus + 1) + ": " + regionName(*focused, int(polygon_.size()));
         } else {
             f.name = view;

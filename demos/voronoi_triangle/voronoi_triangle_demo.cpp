@@ -15,10 +15,10 @@
 
 #include "core/closest/closest_point.h"
 #include "core/closest/voronoi_regions.h"
-#include "demos/draw/contact_sheet.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/step_frames.h"
 #include "demos/scene/scene_limits.h"
 #include "demos/voronoi_triangle/box_regions.h"
 #include "demos/voronoi_triangle/polygon_regions.h"
@@ -213,8 +213,9 @@ private:
         for (const std::string& view : views_)
             out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1));
         if (common_.steps || ctx.stepsOverride)
-            addSteps(out, ctx,
-                     [&](int i) { return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i); });
+            addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()), [&](int i) {
+                return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i);
+            }, out);
         else out.skipped.push_back("per-step frames and contact sheet (steps off)");
         return out;
     }
@@ -314,7 +315,7 @@ private:
                             regionTestEntries(results[focus].trace.tests));
         drawTitleAndCaption(canvas, common_.title + (is3d ? " (3D)" : ""), caption);
         Frame f;
-        f.name = focus >= 0 ? stepName(focus) : view;
+        f.name = focus >= 0 ? stepFrameName(focus + 1) : view;
         f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + nameOf(results[focus].trace.result.region)
                                : common_.title + " — " + view;
         f.image = canvas.readPixels();
@@ -339,7 +340,8 @@ private:
         else out.skipped.push_back("region geometry (not drawn without steps and a 'regions'/'boundaries' layer)");
         out.frames.push_back(drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, -1));
         if (common_.steps || ctx.stepsOverride)
-            addSteps(out, ctx, [&](int i) { return drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, i); });
+            addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()),
+                                   [&](int i) { return drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, i); }, out);
         return out;
     }
 
@@ -432,32 +434,13 @@ private:
                             regionTestEntries(results[focus].trace.tests));
         drawTitleAndCaption(canvas, common_.title, caption);
         Frame f;
-        f.name = focus >= 0 ? stepName(focus) : "3d";
+        f.name = focus >= 0 ? stepFrameName(focus + 1) : "3d";
         f.caption = focus >= 0 ? "q" + std::to_string(focus + 1) + ": " + nameOf(results[focus].trace.result.region)
                                : common_.title;
         f.image = canvas.readPixels();
         return f;
     }
 
-    // ------------------------------------------------------------------------------- steps
-
-    static std::string stepName(int i) {
-        char buf[16];
-        std::snprintf(buf, sizeof buf, "step_%02d", i + 1);
-        return buf;
-    }
-
-    template <class DrawStep>
-    void addSteps(DemoOutput& out, const RunContext& ctx, DrawStep&& draw) const {
-        std::size_t first = out.frames.size();
-        for (std::size_t i = 0; i < queries_.size(); ++i) out.frames.push_back(draw(int(i)));
-        std::vector<const Frame*> steps;
-        for (std::size_t i = first; i < out.frames.size(); ++i) steps.push_back(&out.frames[i]);
-        ContactSheetOptions o;
-        o.caption = common_.caption;
-        o.title = common_.title + ": one query point per frame";
-        out.frames.push_back(contactSheetFrame(*ctx.gl, steps, common_.title, o));
-    }
 };
 
 // "box": {"half_extents": e, "position": p, "rotation": q} (the scenes' box), its queries and margin.
