@@ -4,12 +4,15 @@
 #include <array>
 
 #include "core/closest/voronoi_regions.h"
+#include "core/geometry/shapes.h"
+#include "core/gjk_epa/gjk.h"
 #include "demos/check/check_values.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/query/query.h"
+#include "demos/query/query_json.h"
 #include "demos/query/query_shapes.h"
 #include "render/canvas.h"
 #include "render/image.h"
@@ -53,18 +56,21 @@ std::optional<SceneShape> drawableShape(const Json& node, const std::string& pat
     }
 }
 
-// Shapes a and b of the query as a pair the figures draw (polytopesOnly: the trace figures, whose
-// configuration space is the exact hull of A − B), or nothing with `why` set.
-std::optional<PairScene> drawablePair(const Json& query, bool polytopesOnly, std::string& why) {
+// Shapes a and b of the query as a pair the figures draw (forTrace: the trace figures, drawn in
+// configuration space — polytopes, whose A − B is an exact hull, and spheres), or nothing with `why`
+// set.
+std::optional<PairScene> drawablePair(const Json& query, bool forTrace, std::string& why) {
     if (!query.contains("a") || !query.contains("b")) {
         why = "no figure: the query has no shapes a and b";
         return std::nullopt;
     }
     const std::optional<SceneShape> a = drawableShape(query["a"], "$.a"), b = drawableShape(query["b"], "$.b");
-    const auto polytope = [](const std::optional<SceneShape>& s) { return s->kind == SceneShape::Kind::Polytope; };
-    if (!a || !b || (polytopesOnly && (!polytope(a) || !polytope(b)))) {
-        why = polytopesOnly ? "no figure: trace steps are drawn for polytopes, aabbs and obbs"
-                            : "no figure: it draws polytopes, aabbs, obbs, spheres, cylinders and cones";
+    const auto traced = [](const std::optional<SceneShape>& s) {
+        return s->kind == SceneShape::Kind::Polytope || s->kind == SceneShape::Kind::Sphere;
+    };
+    if (!a || !b || (forTrace && (!traced(a) || !traced(b)))) {
+        why = forTrace ? "no figure: trace steps are drawn for polytopes, aabbs, obbs and spheres"
+                       : "no figure: it draws polytopes, aabbs, obbs, spheres, cylinders and cones";
         return std::nullopt;
     }
     PairScene pair;
@@ -187,6 +193,33 @@ std::optional<StepPicture> stepOf(const Json& trace, int k) {
         for (const Json& v : s["simplex"])
             if (isVec(v)) p.simplex.push_back(vec(v));
     return p;
+}
+
+// cdlab's GJK steps on the full shapes, world units, in the check schema: each bounded shape is
+// conv(vertices) ⊕ ball(radius) (a sphere: its centre and radius), run through core GJK's
+// RoundedShape, the radius in every support point as a student's support function has it. The
+// query's own trace runs on the cores (a sphere's centre, docs/check.md), a different
+// configuration space. Starts along `initial` when given.
+Json fullShapeGjkSteps(const Json& query, const std::optional<Vec3>& initial) {
+    const QueryShape qa = parseQueryShape(JsonNode(query["a"], "$.a", "check"));
+    const QueryShape qb = parseQueryShape(JsonNode(query["b"], "$.b", "check"));
+    const RoundedShape<PolytopeShape> a{PolytopeShape(qa.vertices), qa.radius}, b{PolytopeShape(qb.vertices), qb.radius};
+    GjkOptions options;
+    GjkSimplex start;  // one vertex whose direction gives the first support (a warm start)
+    if (initial) {
+        start.count = 1;
+        start.vertex[0].direction = *initial;
+        options.warmStart = &start;
+    }
+    GjkTrace trace;
+    gjkDistance(a, b, options, &trace);
+    Json steps = Json::array();
+    for (const GjkTraceStep& t : trace.steps) {
+        Json simplex = Json::array();
+        for (int i = 0; i < t.simplexCount; ++i) simplex.push_back(vecJson(t.simplex[i].w));
+        steps.push_back({{"direction", vecJson(t.direction)}, {"support", vecJson(t.support.w)}, {"simplex", simplex}});
+    }
+    return steps;
 }
 
 // EPA at one step: the polytope's edges (when given), the face's nearest point d·n as an arrow from
@@ -316,29 +349,36 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     const bool epa = algorithm == "epa";
     const std::optional<StepPicture> mine = epa ? epaStepOf(yourTrace, step) : stepOf(yourTrace, step);
     if (!mine) return "no figure: your step " + std::to_string(step) + " could not be read";
-    Json q = query;
-    q["trace"] = true;
-    const Json answer = answerQuery(q.dump());
     // cdlab's trace starts at its first iteration, with the first support (along the initial
     // direction) already in the simplex. A trace of yours whose step 0 keeps one point lists
     // that first support as a step of its own: cdlab's then gets one too, so step k is step k.
-    std::optional<StepPicture> theirs;
-    if (answer.contains("trace") && answer["trace"].contains("algorithms"))
-        for (const Json& alg : answer["trace"]["algorithms"]) {
-            if (alg.value("algorithm", "") != algorithm || !alg.contains("steps") || alg["steps"].empty()) continue;
-            if (epa) {
-                theirs = epaStepOf(alg, step);
-                continue;
-            }
-            Json steps = alg["steps"];
-            const std::optional<StepPicture> first = stepOf(yourTrace, 0);
-            const Json& start = steps[0].value("simplex", Json::array());
-            if (first && first->simplex.size() == 1 && !start.empty() && isVec(start[0])) {
-                const Json d = isVec(query.value("initial_direction", Json())) ? query["initial_direction"] : start[0];
-                steps.insert(steps.begin(), Json{{"direction", d}, {"support", start[0]}, {"simplex", {start[0]}}});
-            }
-            theirs = stepOf(Json{{"steps", steps}}, step);
+    const std::optional<StepPicture> first = stepOf(yourTrace, 0);
+    std::optional<Vec3> initial;
+    if (isVec(query.value("initial_direction", Json()))) initial = vec(query["initial_direction"]);
+    const auto alignedStep = [&](Json steps) -> std::optional<StepPicture> {
+        const Json start = steps.empty() ? Json() : steps[0].value("simplex", Json::array());
+        if (first && first->simplex.size() == 1 && start.is_array() && !start.empty() && isVec(start[0])) {
+            const Json d = initial ? vecJson(*initial) : start[0];
+            steps.insert(steps.begin(), Json{{"direction", d}, {"support", start[0]}, {"simplex", {start[0]}}});
         }
+        return stepOf(Json{{"steps", steps}}, step);
+    };
+    const bool spheres = pairRead->a.kind == SceneShape::Kind::Sphere || pairRead->b.kind == SceneShape::Kind::Sphere;
+    if (spheres && epa) return "no figure: EPA trace steps are drawn for polytopes, aabbs and obbs";
+    std::optional<StepPicture> theirs;
+    if (spheres) {  // from your first direction, as the query would start with "initial_direction"
+        if (!initial && first) initial = first->direction;
+        theirs = alignedStep(fullShapeGjkSteps(query, initial));
+    } else {
+        Json q = query;
+        q["trace"] = true;
+        const Json answer = answerQuery(q.dump());
+        if (answer.contains("trace") && answer["trace"].contains("algorithms"))
+            for (const Json& alg : answer["trace"]["algorithms"]) {
+                if (alg.value("algorithm", "") != algorithm || !alg.contains("steps") || alg["steps"].empty()) continue;
+                theirs = epa ? epaStepOf(alg, step) : alignedStep(alg["steps"]);
+            }
+    }
     const PairScene& pair = *pairRead;
     std::vector<Vec3> frame;
     for (const std::optional<StepPicture>* s : {&mine, const_cast<const std::optional<StepPicture>*>(&theirs)}) {
@@ -362,7 +402,8 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
         return cs.readPixels();
     };
     const std::string k = std::to_string(step);
-    const render::Image left = panel(theirs, "cdlab's step " + k), right = panel(mine, "your step " + k);
+    const render::Image left = panel(theirs, "cdlab's step " + k + (spheres ? ", radius in the support" : "")),
+                        right = panel(mine, "your step " + k);
     render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, captionOf(reasons)));
     return "";
 }

@@ -134,6 +134,43 @@ TEST_CASE("check --figures: a trace that breaks a rule at step k gets cdlab's st
     std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("check --figures: a sphere's trace is drawn against cdlab's GJK on the whole sphere") {
+    // A sphere (centre (3, 0, 0), radius 1) and a cube: your step 0 is right (along -x: the sphere's
+    // point (2, 0, 0) minus the cube's corner (1, 1, 1), a tie on its +x face); step 1 takes the
+    // sphere's centre, not its extreme point along the new direction.
+    const Json a = {{"sphere", {{"center", {3, 0, 0}}, {"radius", 1}}}};
+    const Json b = {{"aabb", {{"min", {-1, -1, -1}}, {"max", {1, 1, 1}}}}};
+    const Json w0 = {1, -1, -1}, w1 = {2, 1, 1};  // w1 = (3, 0, 0) - (1, -1, -1): not extreme along (-1, 1, 1)
+    Json line = {{"op", "distance"},
+                 {"a", a},
+                 {"b", b},
+                 {"answer", {{"intersect", false}, {"distance", 1}, {"point_a", {2, 0, 0}}, {"point_b", {1, 0, 0}}}},
+                 {"trace", {{"algorithm", "gjk"},
+                            {"steps", {{{"direction", {-1, 0, 0}}, {"support", w0}, {"simplex", {w0}}},
+                                       {{"direction", {-1, 1, 1}},
+                                        {"support", {{"a", {3, 0, 0}}, {"b", {1, -1, -1}}}},
+                                        {"simplex", {w0, w1}}}}}}}};
+    const FigureRun run = checkWithFigures(line.dump() + "\n", "cdlab_check_sphere_trace_figure_test");
+    const std::filesystem::path& dir = run.dir;
+    CHECK(run.status == 1);
+    CHECK(run.out.find("FAIL: trace: iteration 1: different support point") != std::string::npos);
+    REQUIRE(run.out.find("[figure " + (dir / "line_1.png").string() + "]") != std::string::npos);
+    const render::Image image = render::readPng((dir / "line_1.png").string());
+    CHECK(image.width == 1280);
+    CHECK(panelDifference(image, 3) > 2000);  // cdlab's extreme support point beside your centre
+    // An EPA trace on a sphere says why it has no figure (a right answer, a support point that is not
+    // extreme along its normal at step 0).
+    line["op"] = "penetration";
+    line["a"]["sphere"]["center"] = {1.5, 0, 0};
+    line["answer"] = {{"intersect", true}, {"depth", 0.5}, {"normal", {-1, 0, 0}}, {"point_a", {0.5, 0, 0}}, {"point_b", {1, 0, 0}}};
+    line["trace"] = {{"algorithm", "epa"}, {"steps", {{{"normal", {-1, 0, 0}}, {"distance", 0.5}, {"support", {0, 0, 0}}}}}};
+    const FigureRun epa = checkWithFigures(line.dump() + "\n", "cdlab_check_sphere_epa_figure_test");
+    CHECK(epa.out.find("trace (epa): iteration 0: different support point") != std::string::npos);
+    CHECK(epa.out.find("[no figure: EPA trace steps are drawn for polytopes, aabbs and obbs]") != std::string::npos);
+    std::filesystem::remove_all(dir);
+    std::filesystem::remove_all(epa.dir);
+}
+
 TEST_CASE("check --figures: an EPA trace that breaks a rule at step k gets cdlab's EPA step k beside yours") {
     // Two cubes overlapping by 0.25 along x; your second step's support is not extreme.
     const double s = 1 / std::sqrt(3.0);
