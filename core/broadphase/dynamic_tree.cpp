@@ -1,24 +1,9 @@
 #include "core/broadphase/dynamic_tree.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cdlab {
-
-double surfaceArea(const Aabb& box) {
-    const Vec3 d = box.max - box.min;
-    return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
-}
-
-Aabb unionOf(const Aabb& a, const Aabb& b) { return Aabb{a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
-
-bool contains(const Aabb& a, const Aabb& b) {
-    return (a.min.array() <= b.min.array()).all() && (b.max.array() <= a.max.array()).all();
-}
-
-bool overlaps(const Aabb& a, const Aabb& b) {
-    return a.min.x() <= b.max.x() && b.min.x() <= a.max.x() && a.min.y() <= b.max.y() && b.min.y() <= a.max.y() &&
-           a.min.z() <= b.max.z() && b.min.z() <= a.max.z();
-}
 
 void DynamicAabbTree::reserve(int leaves) {
     nodes_.reserve(static_cast<std::size_t>(2 * std::max(leaves, 1)));
@@ -66,32 +51,40 @@ void DynamicAabbTree::move(int leaf, const Aabb& box, DynamicTreeInsertTrace* tr
     insertLeaf(leaf, trace);
 }
 
-// Stage 1: the sibling of least SAH cost, branch and bound over the tree (file comment).
+// Stage 1: the sibling of least SAH cost, branch and bound over the tree (file comment), best
+// first: the candidate of least lower bound is costed next, and the search ends when no candidate's
+// lower bound beats the best cost found (Bittner et al. 2015, §3.1).
 int DynamicAabbTree::bestSibling(const Aabb& box, DynamicTreeInsertTrace* trace) {
     const double leafArea = surfaceArea(box);
     int best = root_;
-    double bestCost = surfaceArea(unionOf(nodes_[root_].box, box));
+    double bestCost = INFINITY;
     candidates_.clear();
-    candidates_.emplace_back(root_, 0.0);
+    candidates_.push_back({leafArea, root_, 0.0});
+    const auto later = [](const Candidate& x, const Candidate& y) { return x.lowerBound > y.lowerBound; };
     while (!candidates_.empty()) {
-        const auto [i, inherited] = candidates_.back();
+        std::pop_heap(candidates_.begin(), candidates_.end(), later);
+        const Candidate c = candidates_.back();
         candidates_.pop_back();
-        const Node& n = nodes_[i];
+        if (c.lowerBound >= bestCost) break;  // every other candidate's bound is at least this
+        const Node& n = nodes_[c.node];
         const double unionArea = surfaceArea(unionOf(n.box, box));
-        const double cost = unionArea + inherited;
+        const double cost = unionArea + c.inherited;
         ++counters_.siblingCandidates;
-        if (trace) trace->costed.push_back(i);
+        if (trace) trace->costed.push_back(c.node);
         if (cost < bestCost) {
             bestCost = cost;
-            best = i;
+            best = c.node;
         }
         if (n.leaf()) continue;
         // Below n every candidate's ancestors grow by at least what n grows by, and its own new
         // parent is at least as large as the leaf.
-        const double childInherited = inherited + unionArea - surfaceArea(n.box);
-        if (leafArea + childInherited < bestCost) {
-            candidates_.emplace_back(n.child1, childInherited);
-            candidates_.emplace_back(n.child2, childInherited);
+        const double childInherited = c.inherited + unionArea - surfaceArea(n.box);
+        const double bound = leafArea + childInherited;
+        if (bound < bestCost) {
+            for (int child : {n.child1, n.child2}) {
+                candidates_.push_back({bound, child, childInherited});
+                std::push_heap(candidates_.begin(), candidates_.end(), later);
+            }
         }
     }
     if (trace) trace->cost = bestCost;

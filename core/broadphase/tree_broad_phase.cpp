@@ -1,6 +1,7 @@
 #include "core/broadphase/tree_broad_phase.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cdlab {
 
@@ -29,10 +30,24 @@ TreeBroadPhaseResult TreeBroadPhase::update(const std::vector<Aabb>& boxes) {
     const int kept = std::min(n, static_cast<int>(leaf_.size()));
     leaf_.resize(static_cast<std::size_t>(n), DynamicAabbTree::kNull);
     fat_.resize(static_cast<std::size_t>(n));
+    last_.resize(static_cast<std::size_t>(n));
     moved_.assign(static_cast<std::size_t>(n), 0);
     movedList_.clear();
-    for (int id = 0; id < n; ++id)
-        if (id >= kept || !contains(fat_[id], boxes[id])) insertOrMove(id, boxes[id]);
+    const Vec3 huge = Vec3::Constant(4.0 * std::max(options_.margin, 0.0));
+    for (int id = 0; id < n; ++id) {
+        if (id >= kept) {
+            insertOrMove(id, boxes[id], Vec3::Zero());
+        } else if (!contains(fat_[id], boxes[id])) {
+            insertOrMove(id, boxes[id], boxes[id].min - last_[id].min);
+        } else {
+            // Still inside, but a fat box far larger than a fresh one (it was stretched along a
+            // motion that has stopped) would keep pairs that a tight one drops: shrink it.
+            const Aabb fresh = fatAbout(boxes[id], boxes[id].min - last_[id].min);
+            if (!contains(Aabb{fresh.min - huge, fresh.max + huge}, fat_[id]))
+                insertOrMove(id, boxes[id], boxes[id].min - last_[id].min);
+        }
+        last_[id] = boxes[id];
+    }
     queryMoved();
     filterPairs(boxes);
     r.moved = static_cast<int>(movedList_.size());
@@ -41,10 +56,22 @@ TreeBroadPhaseResult TreeBroadPhase::update(const std::vector<Aabb>& boxes) {
     return r;
 }
 
-// Stage 1: a new fat box about the box; the leaf inserted or moved.
-void TreeBroadPhase::insertOrMove(int id, const Aabb& box) {
+// The box grown by the margin and stretched along predictFrames times the displacement.
+Aabb TreeBroadPhase::fatAbout(const Aabb& box, const Vec3& displacement) const {
     const Vec3 m = Vec3::Constant(std::max(options_.margin, 0.0));
-    fat_[id] = Aabb{box.min - m, box.max + m};
+    Aabb fat{box.min - m, box.max + m};
+    const Vec3 ahead = std::max(options_.predictFrames, 0.0) * displacement;
+    for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(ahead[k])) continue;  // a teleport across the double range: no prediction
+        if (ahead[k] < 0) fat.min[k] += ahead[k];
+        else fat.max[k] += ahead[k];
+    }
+    return fat;
+}
+
+// Stage 1: a new fat box about the box; the leaf inserted or moved.
+void TreeBroadPhase::insertOrMove(int id, const Aabb& box, const Vec3& displacement) {
+    fat_[id] = fatAbout(box, displacement);
     if (leaf_[id] == DynamicAabbTree::kNull) leaf_[id] = tree_.insert(fat_[id], id);
     else tree_.move(leaf_[id], fat_[id]);
     moved_[id] = 1;

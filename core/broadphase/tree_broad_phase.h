@@ -1,7 +1,11 @@
-// Broad phase on a dynamic AABB tree with fat boxes (Box2D v3's b2BroadPhase, Bullet's
+// Broad phase on a dynamic AABB tree with fat boxes (Box2D's b2BroadPhase, Bullet's
 // btDbvtBroadphase; Catto, "Dynamic Bounding Volume Hierarchies", GDC 2019): each object's leaf
-// (core/broadphase/dynamic_tree.h) holds its box grown by a margin. A frame
-//   1. re-inserts only the objects whose box left its fat box (with a new fat box about it),
+// (core/broadphase/dynamic_tree.h) holds its box grown by a margin and stretched along its last
+// displacement (Box2D v2.4's b2DynamicTree::MoveProxy: predictFrames frames of the motion since the
+// previous frame), so a body in steady motion is re-inserted every few frames, not every frame.
+// A frame
+//   1. re-inserts only the objects whose box left its fat box, or whose fat box has become much
+//      larger than a new one would be (a body that stopped), with a new fat box about it,
 //   2. queries the tree with the fat box of each of those, adding the pairs of overlapping fat boxes
 //      to a set kept between frames (core/broadphase/pair_set.h),
 //   3. drops the pairs whose fat boxes no longer overlap and reports those whose own boxes overlap
@@ -21,6 +25,8 @@ namespace cdlab {
 
 struct TreeBroadPhaseOptions {
     double margin = 0.1;  ///< fat box = box grown by this on every side (world units, >= 0)
+    /// The fat box also reaches this many frames of the last displacement ahead (0: no prediction).
+    double predictFrames = 4.0;
     DynamicTreeOptions tree;
 };
 
@@ -50,14 +56,15 @@ public:
     const TreeBroadPhaseOptions& options() const { return options_; }
 
 private:
-    void insertOrMove(int id, const Aabb& box);
+    void insertOrMove(int id, const Aabb& box, const Vec3& displacement);
+    Aabb fatAbout(const Aabb& box, const Vec3& displacement) const;
     void queryMoved();
     void filterPairs(const std::vector<Aabb>& boxes);
 
     TreeBroadPhaseOptions options_;
     DynamicAabbTree tree_;
     std::vector<int> leaf_;
-    std::vector<Aabb> fat_;
+    std::vector<Aabb> fat_, last_;  ///< fat boxes; the boxes of the previous frame
     std::vector<char> moved_;
     std::vector<int> movedList_;
     PairSet fatSet_;

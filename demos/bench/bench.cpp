@@ -30,6 +30,7 @@
 #include "core/gjk_epa/gjk.h"
 #include "core/overlap/sat_tests.h"
 #include "demos/bench/bench_broadphase.h"
+#include "demos/bench/bench_tree.h"
 #include "demos/bench/bench_contact.h"
 #include "demos/bench/bench_curved.h"
 #include "demos/bench/bench_inputs.h"
@@ -558,7 +559,7 @@ int usage() {
                  "  oracles for closest point, GJK intersect / distance, GJK+EPA, SAT OBB-OBB.\n"
                  "  Sections (default: all): queries (those rows), contact (box-box, box-plane and hull-hull\n"
                  "  manifolds beside Bullet's box-box detector and hull clipping), vclip (Lin-Canny and V-Clip vs warm GJK),\n"
-                 "  bvh (BVH build / query / refit), broadphase (SAP, uniform grid, octrees, brute force).\n"
+                 "  bvh (BVH build / query / refit), broadphase (SAP, uniform grid, octrees, brute force, dynamic tree).\n"
                  "  Writes DIR/bench.json and DIR/bench.md (default DIR: out/bench).\n";
     return 2;
 }
@@ -645,6 +646,8 @@ int runBench(int argc, char** argv) {
     if (runs("broadphase")) {
         std::cerr << "cdlab bench: broad phase (sweep and prune, grid, octrees, brute force)\n";
         pairMismatch |= runBroadphaseBench(quick, outDir, broadphaseTable) != 0;
+        broadphaseTable << "\n";
+        pairMismatch |= runTreeBench(quick, broadphaseTable) != 0;
     }
 
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -10,6 +10,8 @@
 #include <ccd/vec3.h>
 #endif
 #if CDLAB_HAVE_BULLET
+#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
 #include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
@@ -235,6 +237,41 @@ std::vector<PeerRunner> makeContactPeerRunners(const std::vector<ContactPeerPair
     (void)pairs;
     (void)query;
     return runners;
+}
+
+std::unique_ptr<PeerBroadPhase> makeBulletDbvtBroadPhase() {
+#if CDLAB_HAVE_BULLET
+    // Objects enter on the first frame; each later frame moves every proxy (setAabb skips the tree
+    // work when the box stays inside its fattened one) and collects the pairs. No dispatcher: the
+    // pairs carry no collision algorithms to free.
+    struct State {
+        btDbvtBroadphase broadphase;
+        std::vector<btBroadphaseProxy*> proxies;
+        ~State() {
+            for (btBroadphaseProxy* p : proxies) broadphase.destroyProxy(p, nullptr);
+        }
+    };
+    auto state = std::make_shared<State>();
+    auto peer = std::make_unique<PeerBroadPhase>();
+    peer->method = "Bullet btDbvtBroadphase";
+    peer->frame = [state](const std::vector<Aabb>& boxes) -> std::int64_t {
+        const auto v = [](const Vec3& x) { return btVector3(x.x(), x.y(), x.z()); };
+        if (state->proxies.empty()) {
+            for (std::size_t i = 0; i < boxes.size(); ++i)
+                state->proxies.push_back(state->broadphase.createProxy(
+                    v(boxes[i].min), v(boxes[i].max), BOX_SHAPE_PROXYTYPE, reinterpret_cast<void*>(i + 1),
+                    int(btBroadphaseProxy::DefaultFilter), int(btBroadphaseProxy::AllFilter), nullptr));
+        } else {
+            for (std::size_t i = 0; i < boxes.size(); ++i)
+                state->broadphase.setAabb(state->proxies[i], v(boxes[i].min), v(boxes[i].max), nullptr);
+        }
+        state->broadphase.calculateOverlappingPairs(nullptr);
+        return state->broadphase.getOverlappingPairCache()->getNumOverlappingPairs();
+    };
+    return peer;
+#else
+    return nullptr;
+#endif
 }
 
 }  // namespace cdlab::demos

@@ -4,10 +4,13 @@
 // (pkg-config ccd / bullet-float64); the bench then defines CDLAB_BENCH_PEERS.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/base/primitives.h"
 #include "core/geometry/shapes.h"
 
 namespace cdlab::demos {
@@ -51,5 +54,18 @@ struct ContactPeerPair {
 /// clipping btPolyhedralContactClipping on the same boxes) and "hull_hull" (the hull clipping).
 /// Answer: the deepest reported penetration (0 when no contact), iterations = contact points.
 std::vector<PeerRunner> makeContactPeerRunners(const std::vector<ContactPeerPair>& pairs, const std::string& query);
+
+/// A peer broad phase kept across frames: frame(boxes) gives every object its box for this frame
+/// (object i = boxes[i]; the same count every frame) and updates the peer's pairs; returns the
+/// pairs the peer holds after the frame (its own notion: Bullet's cache holds pairs of its fattened
+/// boxes, some of which no longer overlap).
+struct PeerBroadPhase {
+    std::string method;
+    std::function<std::int64_t(const std::vector<Aabb>&)> frame;
+};
+
+/// Bullet's btDbvtBroadphase (two dynamic AABB trees with fattened boxes, incremental
+/// re-optimisation, a hashed pair cache), or nothing when Bullet is not installed.
+std::unique_ptr<PeerBroadPhase> makeBulletDbvtBroadPhase();
 
 }  // namespace cdlab::demos
