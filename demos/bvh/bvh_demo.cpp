@@ -10,7 +10,8 @@
 // G. van den Bergen, "Efficient collision detection of complex deformable models using AABB
 // trees", JGT 2(4) 1997 (refitting).
 //
-// Figures ("figure" key): hierarchy_levels, aabb_vs_obb, dual_traversal, refit, build_methods.
+// Figures ("figure" key): hierarchy_levels, aabb_vs_obb, dual_traversal, refit, build_methods,
+// dynamic_tree (demos/bvh/dynamic_tree_figure.h: core/broadphase/dynamic_tree.h step by step).
 // Scene keys: docs/scenes.md, "bvh".
 #include "demos/bvh/bvh_demo.h"
 
@@ -25,6 +26,7 @@
 #include "core/geometry/triangle_mesh.h"
 #include "core/overlap/sat_tests.h"
 #include "demos/bvh/bvh_draw.h"
+#include "demos/bvh/dynamic_tree_figure.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
@@ -246,7 +248,7 @@ void splitPairs(const std::vector<TrianglePair>& pairs, std::vector<int>& a, std
 
 // ---- the scene
 
-enum class Figure { Levels, AabbVsObb, DualTraversal, Refit, BuildMethods };
+enum class Figure { Levels, AabbVsObb, DualTraversal, Refit, BuildMethods, DynamicTree };
 
 enum class Deformation { Roll, Twist };
 
@@ -265,6 +267,7 @@ public:
     Deformation deformation = Deformation::Roll;
     double deformAngle = 270.0;  // degrees at t = 1
     std::vector<double> times = {0.33, 0.67, 1.0};
+    DynamicTreeSpec dynamicTree;
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
@@ -275,6 +278,7 @@ public:
             case Figure::DualTraversal: runDual(ctx, out); break;
             case Figure::Refit: runRefit(ctx, out); break;
             case Figure::BuildMethods: runBuildMethods(ctx, out); break;
+            case Figure::DynamicTree: runDynamicTree(ctx, out); break;
         }
         numericOnly(ctx, out);  // records that nothing was drawn
         return out;
@@ -343,6 +347,19 @@ private:
     }
 
     // ---- hierarchy_levels -----------------------------------------------------------------
+    void runDynamicTree(const RunContext& ctx, DemoOutput& out) const {
+        DynamicTreeDrawing d;
+        d.gl = ctx.gl;
+        d.width = W();
+        d.height = H();
+        d.scale = ss_;
+        d.title = common_.title;
+        d.caption = common_.caption;
+        d.labels = labels();
+        d.treePanel = common_.hasLayer("tree");
+        out.trace = runDynamicTreeFigure(dynamicTree, d, out.frames);
+    }
+
     void runLevels(const RunContext& ctx, DemoOutput& out) const {
         const MeshSpec& m = meshes[0];
         BvhBuildTrace bt;
@@ -1030,6 +1047,36 @@ private:
     }
 };
 
+// The dynamic_tree figure's keys: boxes [{min, max}] (2 to 16, inserted in order), margin, moves
+// [{box: index, by: [dx, dy, dz]}] (up to 8), view.
+void readDynamicTree(ObjectReader& r, DynamicTreeSpec& spec) {
+    JsonNode bs = r.get("boxes");
+    if (!bs.isArray() || bs.size() < 2 || bs.size() > 16) bs.fail("expected 2 to 16 boxes [{\"min\": [x,y,z], \"max\": [x,y,z]}]");
+    for (const JsonNode& b : bs.items()) {
+        ObjectReader br(b);
+        const Aabb box{sceneVec3(br.get("min")), sceneVec3(br.get("max"))};
+        br.finish();
+        if (!(box.min.array() <= box.max.array()).all()) b.fail("min must not exceed max on any axis");
+        spec.boxes.push_back(box);
+    }
+    if (auto m = r.find("margin")) {
+        spec.margin = m->asNonNegative();
+        if (spec.margin > 1e6) m->fail("expected a margin in [0, 1e6]");
+    }
+    if (auto ms = r.find("moves")) {
+        if (!ms->isArray() || ms->size() > 8) ms->fail("expected up to 8 moves [{\"box\": i, \"by\": [dx,dy,dz]}]");
+        for (const JsonNode& m : ms->items()) {
+            ObjectReader mr(m);
+            DynamicTreeSpec::Move mv;
+            mv.box = mr.get("box").asInt(0, static_cast<int>(spec.boxes.size()) - 1);
+            mv.by = sceneVec3(mr.get("by"));
+            mr.finish();
+            spec.moves.push_back(mv);
+        }
+    }
+    if (auto v = r.find("view")) spec.view = sceneVec3(*v);
+}
+
 class BvhDemo final : public Demo {
 public:
     std::string name() const override { return "bvh"; }
@@ -1040,8 +1087,14 @@ public:
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {480, 360}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<BvhScene>(std::move(common));
-        const std::string fig =
-            r.get("figure").asEnum({"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods"});
+        const std::string fig = r.get("figure").asEnum(
+            {"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods", "dynamic_tree"});
+        if (fig == "dynamic_tree") {
+            s->figure = Figure::DynamicTree;
+            readDynamicTree(r, s->dynamicTree);
+            r.finish();
+            return s;
+        }
         s->figure = fig == "hierarchy_levels" ? Figure::Levels
                     : fig == "aabb_vs_obb"    ? Figure::AabbVsObb
                     : fig == "dual_traversal" ? Figure::DualTraversal
