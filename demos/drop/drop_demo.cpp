@@ -57,10 +57,13 @@ public:
         const double eY0 = H_ * 0.50, eY1 = H_ - 95;
         const auto YE = [&](double v) { return eY0 + (v - eLo) / (eHi - eLo) * (eY1 - eY0); };
         c_.drawLine(P(x0_, eY0), P(x0_, eY1), axis_);
-        for (int i = 0; i <= 4; ++i) {
-            const double v = eLo + (eHi - eLo) * i / 4.0;
-            c_.drawLine(P(x0_, YE(v)), P(x1_, YE(v)), lineStyle(Role::Muted, 1.0f, true));
-            c_.drawText(P(x0_ - 8, YE(v)), formatNumber(v), ytick_);
+        // Round tick values (1, 2 or 5 times a power of ten), 4 to 7 of them.
+        const double raw = (eHi - eLo) / 6.0, decade = std::pow(10.0, std::floor(std::log10(raw)));
+        const double step = raw / decade <= 1.0 ? decade : raw / decade <= 2.0 ? 2 * decade : raw / decade <= 5.0 ? 5 * decade : 10 * decade;
+        for (double v = std::ceil(eLo / step) * step; v <= eHi + 1e-9 * step; v += step) {
+            const double tick = std::abs(v) < 1e-9 * step ? 0.0 : v;
+            c_.drawLine(P(x0_, YE(tick)), P(x1_, YE(tick)), lineStyle(Role::Muted, 1.0f, true));
+            c_.drawText(P(x0_ - 8, YE(tick)), formatNumber(tick), ytick_);
         }
         timeAxis(eY0, false);
         c_.drawText(P(x0_, eY1 + 12), "energy (J): kinetic, potential m g z, total", heading_);
@@ -95,7 +98,7 @@ public:
             c_.drawText(P(x0_ - 8, y), "1e" + std::to_string(e), ytick_);
         }
         timeAxis(pY0, true);
-        c_.drawText(P(0.5 * (x0_ + x1_), pY0 - 34), "time (s); orange ticks: the frames",
+        c_.drawText(P(0.5 * (x0_ + x1_), pY0 - 34), "time (s); ticks under the axis: the frames drawn",
                     TextStyle{16.0f, roleColor(Role::Ink), Anchor::Top, false, true});
         c_.drawText(P(x0_, pY1 + 12), "deepest vertex below the ground (log scale; ≤ 1e-10 drawn at the bottom)",
                     heading_);
@@ -184,8 +187,12 @@ public:
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius, view_, Vec3::UnitZ());
 
         const std::vector<int> frameSteps = chooseFrameSteps(tr);
+        // Impulse arrows share one scale over the run, so frames compare.
+        double maxImpulse = 0.0;
+        for (const SimulationStep& st : tr.steps)
+            for (const ContactImpulse& ct : st.contacts) maxImpulse = std::max(maxImpulse, ct.normalImpulse);
         for (std::size_t i = 0; i < frameSteps.size(); ++i)
-            out.frames.push_back(drawFrame(*ctx.gl, ss, cam, center, radius, r, tr, frameSteps[i], int(i)));
+            out.frames.push_back(drawFrame(*ctx.gl, ss, cam, center, radius, r, tr, frameSteps[i], int(i), maxImpulse));
         std::vector<const Frame*> stepFrames;
         for (const Frame& f : out.frames) stepFrames.push_back(&f);
         if (gif_) addGif(out, stepFrames, 1);
@@ -298,7 +305,7 @@ private:
     }
 
     Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius,
-                    const SimulationResult& r, const SimulationTrace& tr, int k, int index) const {
+                    const SimulationResult& r, const SimulationTrace& tr, int k, int index, double maxImpulse) const {
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         const SimulationStep& s = tr.steps[k];
         const double rho = r.boundingRadius;
@@ -352,23 +359,29 @@ private:
             c.drawLine(wv[a], wv[b], edge);
         }
 
-        // Contacts of this step: filled = pushing (λ_n > 0), hollow = speculative (λ_n = 0); normal arrows.
+        // Contacts of this step: filled = pushing (λ_n > 0), hollow = speculative (λ_n = 0); each
+        // pushing contact's impulse λ_n n as an arrow to one scale over the run (the largest λ_n of
+        // the run is 0.6 of the body's radius long).
         int pushing = 0, bounces = 0;
         if (common_.hasLayer("contacts")) {
+            const ContactImpulse* largest = nullptr;
             for (const ContactImpulse& ct : s.contacts) {
                 const bool push = ct.normalImpulse > 0;
                 pushing += push;
                 bounces += ct.bounce && push;
-                const Vec3 tip = ct.point + s.normal * 0.45 * rho;
-                c.drawArrow(ct.point, tip, lineStyle(Role::Direction, 3.0f, false, true));
-                if (push) c.drawPoint(ct.point, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                const double length = maxImpulse > 0 ? 0.6 * rho * ct.normalImpulse / maxImpulse : 0.0;
+                if (push && length > 0.02 * rho)
+                    c.drawArrow(ct.point, ct.point + length * s.normal, lineStyle(Role::Direction, 3.0f, false, true));
+                if (push && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
+            }
+            // Markers after the arrows, so an arrow never paints over its contact point.
+            for (const ContactImpulse& ct : s.contacts) {
+                if (ct.normalImpulse > 0) c.drawPoint(ct.point, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
                 else c.drawPoint(ct.point, 6.0f, roleColor(Role::Background), true, 2.0f, roleColor(Role::Result));
             }
-            if (labels && !s.contacts.empty()) {
-                const ContactImpulse& first = s.contacts.front();
-                drawLabelAway(c, first.point + s.normal * 0.45 * rho, first.point, "n",
-                              labelStyle(Role::Direction, 20.0f), 10.0);
-            }
+            if (labels && largest && largest->normalImpulse > 0.034 * maxImpulse)
+                drawLabelAway(c, largest->point + 0.6 * rho * largest->normalImpulse / maxImpulse * s.normal,
+                              largest->point, "λₙ n", labelStyle(Role::Direction, 20.0f), 10.0);
         }
         if (labels) {
             // Legend (top right), each entry in the colour of what it names.
@@ -384,7 +397,8 @@ private:
             if (common_.hasLayer("contacts")) {
                 item("filled dot: contact pushing (λₙ > 0)", Role::Result);
                 item("hollow dot: speculative contact (λₙ = 0)", Role::Result);
-                item("arrow: ground normal n", Role::Direction);
+                item("arrow: impulse λₙ n, one scale for the run (longest " + formatNumber(maxImpulse) + " N·s)",
+                     Role::Direction);
             }
             if (common_.hasLayer("trail")) item("dashed: centre-of-mass path", Role::Ink);
             if (touching) item("outline: body in contact with the ground", Role::Colliding);
