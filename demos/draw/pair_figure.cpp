@@ -1,7 +1,9 @@
 #include "demos/draw/pair_figure.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
@@ -87,6 +89,56 @@ void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool col
     // The key only where outlines are drawn (polytopes, 2D shapes; curved 3D bodies have none).
     if (colliding && (d.planar || !d.a.edges.empty() || !d.b.edges.empty()))
         drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
+}
+
+bool drawGapInset(GlContext& gl, const Canvas& world, Image& panel, int scale, const TwoPanelLayout& layout,
+                  const PairDrawing& d, const Vec3& view, const Vec3& pa, const Vec3& pb) {
+    const double gap = (pa - pb).norm();
+    if (!(gap > 0.0) || gap >= 0.03 * d.wRadius) return false;
+    const int w = layout.panelWidth() * 2 / 5, h = layout.panelHeight() * 2 / 5;
+    // Corners, bottom right first; the top ones start below the panel heading's two lines.
+    const int right = layout.panelWidth() - w - 14, bottom = layout.panelHeight() - h - 14;
+    const std::array<std::array<int, 2>, 4> corners{{{right, bottom}, {14, bottom}, {right, 70}, {14, 70}}};
+    const auto covered = [&](int cx, int cy) {
+        int count = 0;
+        const auto inside = [&](const Vec3& p) {
+            Eigen::Vector2d px;
+            return world.project(p, px) && px.x() >= cx && px.x() <= cx + w && px.y() >= cy && px.y() <= cy + h;
+        };
+        for (const ConvexDrawable* body : {&d.a, &d.b})
+            for (const Vec3& v : body->vertices) count += inside(v);
+        return count + 1000 * (inside(pa) + inside(pb));
+    };
+    int x = corners[0][0], y = corners[0][1], best = covered(x, y);
+    for (const auto& [cx, cy] : corners) {
+        const int c = covered(cx, cy);
+        if (c < best) best = c, x = cx, y = cy;
+    }
+    const Vec3 mid = 0.5 * (pa + pb);
+    const double radius = 3.0 * gap;  // the gap spans a third of the inset's height
+    const Camera cam = d.planar ? Camera::twoD(mid.x(), mid.y(), 2.0 * radius)
+                                : framingCamera(mid, radius, view, Vec3::UnitY(), true);
+    Canvas c(gl, canvasOptions(w, h, scale), cam);
+    drawPairBodies(c, d, 0.45f, false, false);
+    c.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
+    c.drawPoint(pa, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+    c.drawPoint(pb, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+    const TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+    // The bodies' centres lie far outside the inset: each name points away from the other point.
+    drawLabelAway(c, pa, pb, "p_A", ts);
+    drawLabelAway(c, pb, pa, "p_B", ts);
+    // Zoom: the panel frames ~2.1 world radii in its height, the inset 2 x 3 gaps in its height.
+    const double zoom = (h / (2.0 * radius)) / (layout.panelHeight() / (2.1 * d.wRadius));
+    char head[96];
+    std::snprintf(head, sizeof head, "zoom ×%.2g: gap %.3g", zoom, gap);
+    c.drawTextPx(8, 6, head, TextStyle{15.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+    blit(panel, c.readPixels(), x, y);
+    const Color ink = roleColor(Role::Ink);
+    paintRect(panel, x, y, w, 2, ink);
+    paintRect(panel, x, y + h - 2, w, 2, ink);
+    paintRect(panel, x, y, 2, h, ink);
+    paintRect(panel, x + w - 2, y, 2, h, ink);
+    return true;
 }
 
 }  // namespace cdlab::demos

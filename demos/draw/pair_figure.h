@@ -53,4 +53,14 @@ PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vect
 /// intersect their outlines take Role::Colliding, with a key where outlines are drawn.
 void drawPairBodies(render::Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels);
 
+/// A gap too small to see in the world panel (0 < |pa − pb| < 3% of the drawing's world radius)
+/// magnified in an inset: both bodies, p_A, p_B and their segment about the segment's middle,
+/// bordered, headed with the zoom factor and the gap, in the corner of the panel (below the
+/// heading) that covers the fewest of the bodies' projected vertices and neither point. `world`
+/// is the panel's canvas (for its projection), `panel` its image (panelWidth x panelHeight of
+/// `layout`); `view` the panel's view direction. Returns false (and draws nothing) when the gap
+/// is visible as it is.
+bool drawGapInset(render::GlContext& gl, const render::Canvas& world, render::Image& panel, int scale,
+                  const TwoPanelLayout& layout, const PairDrawing& d, const Vec3& view, const Vec3& pa, const Vec3& pb);
+
 }  // namespace cdlab::demos

@@ -180,8 +180,11 @@ private:
                          s                                     ? "witness points of the kept simplex"
                          : r.status == GjkStatus::Intersecting ? "intersecting: a common point, no closest points"
                                                                : "closest points");
-
-        return world.readPixels();
+        Image image = world.readPixels();
+        // The result's gap, magnified when the panel cannot show it (gjk/sliver: 0.0048).
+        if (!s && r.status != GjkStatus::Intersecting && common_.hasLayer("witness"))
+            drawGapInset(gl, world, image, po.scale, layout, d, pair_.view, pa, pb);
+        return image;
     }
 
     // Configuration space: A − B, the origin, the simplex, the direction, the support point, v.
