@@ -219,7 +219,12 @@ struct ConeShape {
 /// Empty polytope: support returns the origin, supportIndex -1. d = 0 / NaN: vertex 0.
 class PolytopeShape {
 public:
-    static constexpr int kLoopMaxVertices = 32;
+    /// Up to this many vertices the loop beats climbing even with adjacency: on random hulls of
+    /// points on ellipsoids (every point a vertex) GJK distance took 1.8 µs with the loop against
+    /// 3.6 µs climbing at 64 vertices, 3.0 against 7.3 at 128, 7.0 against 10.7 at 256, and the
+    /// two met near 512 (one driver, interleaved rounds, 2026-11-27): the loop is branch-light
+    /// and streams a contiguous array, each climbing step chases neighbour indices.
+    static constexpr int kLoopMaxVertices = 256;
 
     PolytopeShape() = default;
     /// Vertices only (no adjacency): always the loop. Non-extreme points are harmless.
