@@ -14,11 +14,11 @@
 #include <random>
 #include <vector>
 
-#include <time.h>
-
 #include "core/broadphase/octree.h"
 #include "core/broadphase/sweep_and_prune.h"
 #include "core/broadphase/uniform_grid.h"
+#include "demos/bench/box_motion.h"
+#include "demos/bench/bench_measure.h"
 #include "demos/draw/plot.h"
 #include "demos/measure/statistics.h"
 #include "render/image.h"
@@ -28,45 +28,10 @@ namespace cdlab::demos {
 namespace {
 
 /// Thread CPU time in ms: on a shared machine wall time mostly measures the neighbours.
-double cpuMs() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
+double cpuMs() { return 1e3 * threadSeconds(); }
 
 // Largest velocity component per frame: 5% of the mean box size (coherent motion).
 constexpr double kSpeed = 0.05;
-
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1p-53);
-}
-
-struct Motion {
-    std::vector<Vec3> center, half, velocity;
-    double side = 1.0;
-
-    /// speed: the largest velocity component per frame.
-    Motion(int n, std::uint64_t seed, double speed) {
-        std::mt19937_64 rng(seed);
-        side = std::cbrt(n / 0.05);
-        for (int i = 0; i < n; ++i) {
-            center.emplace_back(uniform(rng, 0, side), uniform(rng, 0, side), uniform(rng, 0, side));
-            half.emplace_back(uniform(rng, 0.25, 0.75), uniform(rng, 0.25, 0.75), uniform(rng, 0.25, 0.75));
-            velocity.emplace_back(uniform(rng, -speed, speed), uniform(rng, -speed, speed),
-                                  uniform(rng, -speed, speed));
-        }
-    }
-    void step(std::vector<Aabb>& boxes) {
-        boxes.resize(center.size());
-        for (std::size_t i = 0; i < center.size(); ++i) {
-            for (int k = 0; k < 3; ++k) {
-                center[i][k] += velocity[i][k];
-                if (center[i][k] < 0 || center[i][k] > side) velocity[i][k] = -velocity[i][k];
-            }
-            boxes[i] = Aabb{center[i] - half[i], center[i] + half[i]};
-        }
-    }
-};
 
 /// The O(n^2) baseline: every pair, closed overlap test on the three axes.
 std::size_t bruteForce(const std::vector<Aabb>& b, std::vector<BoxPair>& out) {
@@ -163,7 +128,7 @@ OctreeFrame octreeFrame(const std::vector<Aabb>& boxes, Octree& octree, Octree& 
 // The same boxes with velocities scaled so that the endpoint gaps crossed per frame stay constant
 // (projected endpoint density grows as n / side = n^(2/3)): SAP's s = O(n) regime.
 void measureSlowSap(int n, int frames, int warmup, std::vector<Aabb>& boxes, Result& r) {
-    Motion slow(n, 1000 + static_cast<std::uint64_t>(n), kSpeed * std::pow(100.0 / n, 2.0 / 3.0));
+    BoxMotion slow(n, 1000 + static_cast<std::uint64_t>(n), kSpeed * std::pow(100.0 / n, 2.0 / 3.0));
     slow.step(boxes);
     SweepAndPrune sapSlow;
     sapSlow.reserve(n, n);
@@ -187,7 +152,7 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
     Result r;
     r.n = n;
     r.frames = frames;
-    Motion motion(n, 1000 + static_cast<std::uint64_t>(n), kSpeed);
+    BoxMotion motion(n, 1000 + static_cast<std::uint64_t>(n), kSpeed);
     std::vector<Aabb> boxes;
     motion.step(boxes);
     SweepAndPrune sap;
@@ -265,13 +230,6 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
     }
     measureSlowSap(n, frames, warmup, boxes, r);
     return r;
-}
-
-std::string cell(const char* format, double x) {
-    if (!std::isfinite(x)) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, x);
-    return buf;
 }
 
 /// Log-log slope of the brute-force time between the first and the last n where it was measured.

@@ -102,6 +102,8 @@ std::string fmt(const char* f, double x) {
     return buf;
 }
 
+std::string cell(const char* format, double x) { return std::isfinite(x) ? fmt(format, x) : "-"; }
+
 std::string machineDescription() {
     std::string model = "unknown CPU";
     if (FILE* f = std::fopen("/proc/cpuinfo", "r")) {

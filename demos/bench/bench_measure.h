@@ -72,6 +72,8 @@ std::vector<Vec3> ellipsoidPoints(std::mt19937_64& rng, int n);
 
 /// printf-style formatting of one number ("%.0e", 1e-6 -> "1e-06").
 std::string fmt(const char* format, double x);
+/// A table cell: fmt(format, x), or "-" for a value not measured (NaN, infinite).
+std::string cell(const char* format, double x);
 
 /// CPU model, core count and load average (from /proc), for reports.
 std::string machineDescription();

@@ -16,11 +16,11 @@
 #include <random>
 #include <vector>
 
-#include <time.h>
-
 #include "core/broadphase/sweep_and_prune.h"
 #include "core/broadphase/tree_broad_phase.h"
 #include "core/broadphase/uniform_grid.h"
+#include "demos/bench/box_motion.h"
+#include "demos/bench/bench_measure.h"
 #include "demos/measure/statistics.h"
 #ifdef CDLAB_BENCH_PEERS
 #include "demos/bench/peers/bench_peers.h"
@@ -30,11 +30,7 @@ namespace cdlab::demos {
 
 namespace {
 
-double cpuMs() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
+double cpuMs() { return 1e3 * threadSeconds(); }
 
 struct Workload {
     const char* name;
@@ -47,35 +43,6 @@ constexpr double kSpeed = 0.05;  // largest velocity component per frame
 constexpr double kCell = 1.5;    // grid cell: the largest box of the uniform workload
 constexpr double kMargin = 0.2;  // tree fat-box margin: 20% of the typical box, 4 frames of the fastest motion
 
-struct Boxes {
-    std::vector<Vec3> center, half, velocity;
-    double side = 1.0;
-    Boxes(const Workload& w, int n, std::uint64_t seed) {
-        std::mt19937_64 rng(seed);
-        std::uniform_real_distribution<double> u(0.0, 1.0);
-        side = std::cbrt(n / 0.05);
-        const auto halfExtent = [&] {
-            const double t = u(rng);
-            return w.logUniform ? w.minHalf * std::pow(w.maxHalf / w.minHalf, t) : w.minHalf + t * (w.maxHalf - w.minHalf);
-        };
-        for (int i = 0; i < n; ++i) {
-            center.emplace_back(side * u(rng), side * u(rng), side * u(rng));
-            half.emplace_back(halfExtent(), halfExtent(), halfExtent());
-            velocity.emplace_back(kSpeed * (2 * u(rng) - 1), kSpeed * (2 * u(rng) - 1), kSpeed * (2 * u(rng) - 1));
-        }
-    }
-    void step(std::vector<Aabb>& boxes) {
-        boxes.resize(center.size());
-        for (std::size_t i = 0; i < center.size(); ++i) {
-            for (int k = 0; k < 3; ++k) {
-                center[i][k] += velocity[i][k];
-                if (center[i][k] < 0 || center[i][k] > side) velocity[i][k] = -velocity[i][k];
-            }
-            boxes[i] = Aabb{center[i] - half[i], center[i] + half[i]};
-        }
-    }
-};
-
 std::vector<std::uint64_t> keys(const std::vector<BoxPair>& pairs) {
     std::vector<std::uint64_t> k;
     k.reserve(pairs.size());
@@ -84,7 +51,7 @@ std::vector<std::uint64_t> keys(const std::vector<BoxPair>& pairs) {
     return k;
 }
 
-struct Row {
+struct TreeRow {
     const char* workload = "";
     int n = 0, frames = 0;
     double pairs = 0, sapMs = NAN, gridMs = NAN, treeMs = NAN, bulletMs = NAN;  // medians
@@ -93,12 +60,12 @@ struct Row {
     bool agree = true;
 };
 
-Row measure(const Workload& w, int n, int frames) {
-    Row r;
+TreeRow measure(const Workload& w, int n, int frames) {
+    TreeRow r;
     r.workload = w.name;
     r.n = n;
     r.frames = frames;
-    Boxes motion(w, n, 7000 + static_cast<std::uint64_t>(n));
+    BoxMotion motion(n, 7000 + static_cast<std::uint64_t>(n), kSpeed, w.minHalf, w.maxHalf, w.logUniform);
     std::vector<Aabb> boxes;
     motion.step(boxes);
     SweepAndPrune sap;
@@ -173,18 +140,11 @@ Row measure(const Workload& w, int n, int frames) {
     return r;
 }
 
-std::string cell(const char* format, double x) {
-    if (!std::isfinite(x)) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, x);
-    return buf;
-}
-
 }  // namespace
 
 int runTreeBench(bool quick, std::ostream& table) {
     const std::vector<int> sizes = quick ? std::vector<int>{1000, 10000} : std::vector<int>{1000, 10000, 100000};
-    std::vector<Row> rows;
+    std::vector<TreeRow> rows;
     bool agree = true;
     for (const Workload* w : {&kUniform, &kMixed})
         for (int n : sizes) {
@@ -211,7 +171,7 @@ int runTreeBench(bool quick, std::ostream& table) {
     const auto both = [](double med, double mean) {
         return std::isfinite(med) ? cell("%.3f", med) + " / " + cell("%.3f", mean) : std::string("-");
     };
-    for (const Row& r : rows) {
+    for (const TreeRow& r : rows) {
         std::snprintf(line, sizeof line, "%8s %7d %7.0f %9s %17s %17s %17s %9s %8.3f %8.0f %8s %7.1f %8.1f\n",
                       r.workload, r.n, r.pairs, cell("%.3f", r.sapMs).c_str(), both(r.gridMs, r.gridMean).c_str(),
                       both(r.treeMs, r.treeMean).c_str(), both(r.bulletMs, r.bulletMean).c_str(),
