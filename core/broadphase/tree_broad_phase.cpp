@@ -33,7 +33,6 @@ TreeBroadPhaseResult TreeBroadPhase::update(const std::vector<Aabb>& boxes) {
     last_.resize(static_cast<std::size_t>(n));
     moved_.assign(static_cast<std::size_t>(n), 0);
     movedList_.clear();
-    const Vec3 huge = Vec3::Constant(4.0 * std::max(options_.margin, 0.0));
     for (int id = 0; id < n; ++id) {
         if (id >= kept) {
             insertOrMove(id, boxes[id], Vec3::Zero());
@@ -41,10 +40,14 @@ TreeBroadPhaseResult TreeBroadPhase::update(const std::vector<Aabb>& boxes) {
             insertOrMove(id, boxes[id], boxes[id].min - last_[id].min);
         } else {
             // Still inside, but a fat box far larger than a fresh one (it was stretched along a
-            // motion that has stopped) would keep pairs that a tight one drops: shrink it.
-            const Aabb fresh = fatAbout(boxes[id], boxes[id].min - last_[id].min);
-            if (!contains(Aabb{fresh.min - huge, fresh.max + huge}, fat_[id]))
-                insertOrMove(id, boxes[id], boxes[id].min - last_[id].min);
+            // motion that has stopped) would keep pairs that a tight one drops: shrink it. Slack:
+            // 4 margins, and on each axis the stretch a body moving as now has (behind it the old
+            // fat box trails by the frames since it was made).
+            const Vec3 displacement = boxes[id].min - last_[id].min;
+            const Aabb fresh = fatAbout(boxes[id], displacement);
+            const Vec3 slack = Vec3::Constant(4.0 * margin_) + predictFrames_ * displacement.cwiseAbs();
+            if (!contains(Aabb{fresh.min - slack, fresh.max + slack}, fat_[id]))
+                insertOrMove(id, boxes[id], displacement);
         }
         last_[id] = boxes[id];
     }
@@ -56,15 +59,18 @@ TreeBroadPhaseResult TreeBroadPhase::update(const std::vector<Aabb>& boxes) {
     return r;
 }
 
-// The box grown by the margin and stretched along predictFrames times the displacement.
+// The box grown by the margin and stretched along predictFrames times the displacement. The
+// stretch is capped at 4 margins plus the box's own extent on that axis: a teleport is not a
+// velocity (stretched 4 jumps ahead, one frame's fat box would meet half the scene).
 Aabb TreeBroadPhase::fatAbout(const Aabb& box, const Vec3& displacement) const {
-    const Vec3 m = Vec3::Constant(std::max(options_.margin, 0.0));
+    const Vec3 m = Vec3::Constant(margin_);
     Aabb fat{box.min - m, box.max + m};
-    const Vec3 ahead = std::max(options_.predictFrames, 0.0) * displacement;
     for (int k = 0; k < 3; ++k) {
-        if (!std::isfinite(ahead[k])) continue;  // a teleport across the double range: no prediction
-        if (ahead[k] < 0) fat.min[k] += ahead[k];
-        else fat.max[k] += ahead[k];
+        const double cap = 4.0 * margin_ + (box.max[k] - box.min[k]);
+        const double ahead = std::clamp(predictFrames_ * displacement[k], -cap, cap);
+        if (!std::isfinite(ahead)) continue;  // a jump across the double range: no prediction
+        if (ahead < 0) fat.min[k] += ahead;
+        else fat.max[k] += ahead;
     }
     return fat;
 }

@@ -14,6 +14,7 @@
 // buffers have grown. A larger margin moves fewer leaves but keeps more fat pairs.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -24,8 +25,9 @@
 namespace cdlab {
 
 struct TreeBroadPhaseOptions {
-    double margin = 0.1;  ///< fat box = box grown by this on every side (world units, >= 0)
-    /// The fat box also reaches this many frames of the last displacement ahead (0: no prediction).
+    double margin = 0.1;  ///< fat box = box grown by this on every side (world units; NaN or < 0: 0)
+    /// The fat box also reaches this many frames of the last displacement ahead (0: no prediction;
+    /// NaN or < 0: 0), at most 4 margins plus the box's size on each axis.
     double predictFrames = 4.0;
     DynamicTreeOptions tree;
 };
@@ -40,7 +42,11 @@ struct TreeBroadPhaseResult {
 
 class TreeBroadPhase {
 public:
-    explicit TreeBroadPhase(const TreeBroadPhaseOptions& options = {}) : options_(options), tree_(options.tree) {}
+    explicit TreeBroadPhase(const TreeBroadPhaseOptions& options = {})
+        : options_(options),
+          tree_(options.tree),
+          margin_(options.margin >= 0 && options.margin < INFINITY ? options.margin : 0.0),
+          predictFrames_(options.predictFrames >= 0 && options.predictFrames < INFINITY ? options.predictFrames : 0.0) {}
 
     /// Room for `objects` objects and `pairs` fat pairs without allocation.
     void reserve(int objects, int pairs);
@@ -63,6 +69,7 @@ private:
 
     TreeBroadPhaseOptions options_;
     DynamicAabbTree tree_;
+    double margin_, predictFrames_;  ///< the options, NaN and negative values as 0
     std::vector<int> leaf_;
     std::vector<Aabb> fat_, last_;  ///< fat boxes; the boxes of the previous frame
     std::vector<char> moved_;

@@ -54,7 +54,7 @@ struct Step {
     bool reinserted = true;  ///< a move: the box left its fat box
     Aabb oldFat{Vec3::Zero(), Vec3::Zero()};
     DynamicTreeInsertTrace trace;
-    std::string sibling, parentName;
+    std::string sibling;
     double parentArea = 0.0;
     std::vector<std::string> rotationText;
 };
@@ -127,11 +127,13 @@ private:
     void finish(Step& s) const {
         if (s.trace.sibling == DynamicAabbTree::kNull) return;  // the first box: the root
         s.sibling = nodeName(tree_, s.trace.sibling);
-        s.parentName = nodeName(tree_, s.trace.parent);
         s.parentArea = surfaceArea(unionOf(tree_.node(s.trace.sibling).box, fat_[s.box]));
+        // Named by the swapped subtrees, which later rotations move whole; the node where it
+        // happened may lose a child to a rotation above it, so its leaves are not named.
         for (const DynamicTreeRotation& r : s.trace.rotations)
-            s.rotationText.push_back("at " + nodeName(tree_, r.node) + ": " + nodeName(tree_, r.from) + " swapped with " +
-                                     nodeName(tree_, r.to) + ", area " + formatNumber(r.areaSaved) + " smaller");
+            s.rotationText.push_back(nodeName(tree_, r.from) + " swapped with " + nodeName(tree_, r.to) + " (depth " +
+                                     std::to_string(depthOf(tree_, r.node)) + "), area " + formatNumber(r.areaSaved) +
+                                     " smaller");
     }
 
     Json stepJson(const Step& s) const {
@@ -144,8 +146,7 @@ private:
         j["nodes_costed"] = s.trace.costed.size();
         Json rot = Json::array();
         for (const DynamicTreeRotation& r : s.trace.rotations)
-            rot.push_back({{"at", nodeName(tree_, r.node)},
-                           {"child", nodeName(tree_, r.from)},
+            rot.push_back({{"child", nodeName(tree_, r.from)},
                            {"grandchild", nodeName(tree_, r.to)},
                            {"area_saved", r.areaSaved}});
         j["rotations"] = rot;
@@ -263,7 +264,7 @@ private:
         caption.push_back(line);
         if (s.reinserted && !s.sibling.empty())
             caption.push_back(s.rotationText.empty() ? "No rotation: no child-grandchild swap shrinks a box."
-                                                     : "Rotation " + s.rotationText.front() +
+                                                     : "Rotation: " + s.rotationText.front() +
                                                            (s.rotationText.size() > 1
                                                                 ? " (+" + std::to_string(s.rotationText.size() - 1) + " more)"
                                                                 : ""));

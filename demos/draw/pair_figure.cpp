@@ -115,7 +115,7 @@ bool drawGapInset(GlContext& gl, const Canvas& world, Image& panel, int scale, c
         if (c < best) best = c, x = cx, y = cy;
     }
     const Vec3 mid = 0.5 * (pa + pb);
-    const double radius = 3.0 * gap;  // the gap spans a third of the inset's height
+    const double radius = 3.0 * gap;  // the gap spans a sixth of the inset's height
     const Camera cam = d.planar ? Camera::twoD(mid.x(), mid.y(), 2.0 * radius)
                                 : framingCamera(mid, radius, view, Vec3::UnitY(), true);
     Canvas c(gl, canvasOptions(w, h, scale), cam);
@@ -130,7 +130,7 @@ bool drawGapInset(GlContext& gl, const Canvas& world, Image& panel, int scale, c
     // Zoom: the panel frames ~2.1 world radii in its height, the inset 2 x 3 gaps in its height.
     const double zoom = (h / (2.0 * radius)) / (layout.panelHeight() / (2.1 * d.wRadius));
     char head[96];
-    std::snprintf(head, sizeof head, "zoom ×%.2g: gap %.3g", zoom, gap);
+    std::snprintf(head, sizeof head, zoom < 100 ? "zoom ×%.2g: gap %.3g" : "zoom ×%.0f: gap %.3g", zoom, gap);
     c.drawTextPx(8, 6, head, TextStyle{15.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     blit(panel, c.readPixels(), x, y);
     const Color ink = roleColor(Role::Ink);

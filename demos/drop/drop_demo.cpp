@@ -60,8 +60,9 @@ public:
         // Round tick values (1, 2 or 5 times a power of ten), 4 to 7 of them.
         const double raw = (eHi - eLo) / 6.0, decade = std::pow(10.0, std::floor(std::log10(raw)));
         const double step = raw / decade <= 1.0 ? decade : raw / decade <= 2.0 ? 2 * decade : raw / decade <= 5.0 ? 5 * decade : 10 * decade;
-        for (double v = std::ceil(eLo / step) * step; v <= eHi + 1e-9 * step; v += step) {
-            const double tick = std::abs(v) < 1e-9 * step ? 0.0 : v;
+        const double first = std::ceil(eLo / step);
+        for (int i = 0; (first + i) * step <= eHi + 1e-9 * step; ++i) {
+            const double tick = (first + i) * step + 0.0;  // a multiple, not a running sum (+ 0.0: no "-0")
             c_.drawLine(P(x0_, YE(tick)), P(x1_, YE(tick)), lineStyle(Role::Muted, 1.0f, true));
             c_.drawText(P(x0_ - 8, YE(tick)), formatNumber(tick), ytick_);
         }

@@ -158,8 +158,9 @@ inline LVec3 toWorld(const Rational& x, int K) {
 }  // namespace region_detail
 
 /// The face clip of `incident` (a convex planar polygon, counter-clockwise seen from its outside)
-/// by the side planes of `reference` (likewise, the reference body's face), with each corner's depth
-/// behind the reference plane. Candidates: the corners with depth >= 0.
+/// by the side planes of `reference` (likewise, the reference body's face: its outward normal is
+/// its counter-clockwise area normal), with each corner's depth behind the reference plane.
+/// Candidates: the corners with depth >= 0. A face without area or not exactly planar: error.
 inline ContactRegion exactFaceClipRegion(const std::vector<Vec3>& reference, const std::vector<Vec3>& incident) {
     using namespace region_detail;
     ContactRegion out;
@@ -173,7 +174,19 @@ inline ContactRegion exactFaceClipRegion(const std::vector<Vec3>& reference, con
     std::vector<BigVec> R, I;
     for (const Vec3& v : reference) R.push_back(toBig(v, K));
     for (const Vec3& v : incident) I.push_back(toBig(v, K));
-    const BigVec nR = cross(sub(R[1], R[0]), sub(R[2], R[0])), nI = cross(sub(I[1], I[0]), sub(I[2], I[0]));
+    // Area normals (sum of the fan's cross products): non-zero for any polygon with area, even
+    // when its first three corners are collinear.
+    const auto areaNormal = [](const std::vector<BigVec>& P) {
+        BigVec n{};
+        for (std::size_t i = 1; i + 1 < P.size(); ++i) n = add(n, cross(sub(P[i], P[0]), sub(P[i + 1], P[0])));
+        return n;
+    };
+    const BigVec nR = areaNormal(R), nI = areaNormal(I);
+    const auto zero = [](const BigVec& v) { return v.v[0].sign == 0 && v.v[1].sign == 0 && v.v[2].sign == 0; };
+    if (zero(nR) || zero(nI)) {
+        out.error = "a face has no area";
+        return out;
+    }
     const BigInt dR = dotv(nR, R[0]), dI = dotv(nI, I[0]);
     for (const BigVec& r : R)
         if (!equal(dotv(nR, r), dR)) out.error = "the reference face is not exactly planar";
@@ -224,6 +237,10 @@ inline ContactRegion exactPlaneRegion(const std::vector<Vec3>& vertices, const s
     int K = commonShift({n, Vec3(d, 0, 0)});
     for (const Vec3& v : vertices) K = std::max(K, commonShift({v}));
     const BigVec N = toBig(n, K);
+    if (N.v[0].sign == 0 && N.v[1].sign == 0 && N.v[2].sign == 0) {
+        out.error = "the plane's normal is zero";
+        return out;
+    }
     const BigInt offset = toBig(d, K) * BigInt::fromParts(1, K, false);  // d in the units of N · X
     const long double length = toLong(N).norm();
     std::vector<Rational> points;

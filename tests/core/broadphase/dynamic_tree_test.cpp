@@ -144,6 +144,7 @@ TEST_SUITE("dynamic_tree") {
             broad_oracle::Motion motion = broad_oracle::Motion::random(rng, 300, 12, 0.2, 0.8, 0.06);
             TreeBroadPhaseOptions options;
             options.margin = margin;
+            if (margin == 0.0) options.predictFrames = 0.0;  // a fat box that is the box itself
             TreeBroadPhase bp(options);
             int movedTotal = 0;
             for (int frame = 0; frame < 60; ++frame) {
@@ -161,7 +162,8 @@ TEST_SUITE("dynamic_tree") {
                 REQUIRE(bp.tree().validate() == "");
                 for (int i = 0; i < static_cast<int>(boxes.size()); ++i) CHECK(contains(bp.fatBox(i), boxes[i]));
             }
-            // A margin moves fewer leaves: with 0 every moving box is re-inserted every frame.
+            // A margin moves fewer leaves: with none (and no prediction) every moving box is
+            // re-inserted every frame.
             MESSAGE("margin ", margin, ": ", movedTotal, " re-insertions over 59 frames of 300 boxes");
             if (margin == 0.0) CHECK(movedTotal >= 59 * 250);
             if (margin == 0.4) CHECK(movedTotal < 59 * 300 / 3);
@@ -192,18 +194,34 @@ TEST_SUITE("dynamic_tree") {
         }
         MESSAGE("re-insertions over 60 frames of 400 boxes: ", moved[0], " without prediction, ", moved[1], " with");
         CHECK(moved[1] < moved[0] * 3 / 4);
-        // One box moving fast along x, then stopping: its stretched fat box is replaced by a tight one.
-        TreeBroadPhase bp;
+        // One box moving along x, then stopping: its stretched fat box is replaced by a tight one.
+        TreeBroadPhaseOptions small;
+        small.margin = 0.01;
+        TreeBroadPhase bp(small);
         std::vector<Aabb> boxes = {Aabb{Vec3::Zero(), Vec3::Ones()}, Aabb{Vec3(5, 5, 5), Vec3(6, 6, 6)}};
         bp.update(boxes);
-        for (int frame = 0; frame < 5; ++frame) {
-            boxes[0].min.x() += 1.0;
-            boxes[0].max.x() += 1.0;
+        for (int frame = 0; frame < 3; ++frame) {
+            boxes[0].min.x() += 0.1;
+            boxes[0].max.x() += 0.1;
             bp.update(boxes);
         }
-        CHECK(bp.fatBox(0).max.x() > boxes[0].max.x() + 3.0);  // stretched 4 frames ahead
-        bp.update(boxes);  // stopped: zero displacement
-        CHECK(bp.fatBox(0).max.x() == doctest::Approx(boxes[0].max.x() + bp.options().margin));
+        CHECK(bp.fatBox(0).max.x() > boxes[0].max.x() + 0.1);  // stretched 0.4 ahead when made, 2 frames ago
+        bp.update(boxes);                                     // stopped: zero displacement
+        CHECK(bp.fatBox(0).max.x() == doctest::Approx(boxes[0].max.x() + 0.01));
+        // A teleport is not extrapolated past 4 margins plus the box's size.
+        boxes[0].min.x() += 100;
+        boxes[0].max.x() += 100;
+        bp.update(boxes);
+        CHECK(bp.fatBox(0).max.x() <= boxes[0].max.x() + 0.01 + 0.04 + 1.0 + 1e-12);
+        CHECK(sortedPairs(bp.pairs()) == bruteForcePairs(boxes));
+        // A NaN margin counts as 0: the pairs are still found.
+        TreeBroadPhaseOptions nan;
+        nan.margin = std::numeric_limits<double>::quiet_NaN();
+        nan.predictFrames = -1;
+        TreeBroadPhase plain(nan);
+        std::vector<Aabb> two = {Aabb{Vec3::Zero(), Vec3::Ones()}, Aabb{Vec3::Constant(0.5), Vec3::Constant(2)}};
+        plain.update(two);
+        CHECK(plain.pairs().size() == 1);
     }
 
     TEST_CASE("broad phase: exact ties (integer boxes touching), flat boxes; bad boxes refused, nothing changed") {

@@ -55,7 +55,8 @@ std::unique_ptr<TextNode> parseTree(const std::string& t, std::size_t& i) {
     return n;
 }
 std::unique_ptr<TextNode> without(std::unique_ptr<TextNode> n, int box) {  // the box's sibling takes their parent's place
-    if (!n || n->box >= 0) return n->box == box ? nullptr : std::move(n);
+    if (!n) return n;
+    if (n->box >= 0) return n->box == box ? nullptr : std::move(n);
     n->left = without(std::move(n->left), box);
     n->right = without(std::move(n->right), box);
     if (!n->left) return std::move(n->right);
