@@ -71,25 +71,29 @@ UniformGridResult UniformGrid::build(const std::vector<Aabb>& boxes, const Unifo
         }
         total += cells;
     }
-    // 2. Entries (cell, box).
+    // 2. Entries (cell, box, bucket): the bucket hashed once per entry. A table of >= entries
+    //    buckets (a power of two): load factor <= 1, the buckets scanned in step 4 stay few.
+    std::size_t buckets = 16;
+    while (buckets < static_cast<std::size_t>(total)) buckets *= 2;
+    const std::size_t mask = buckets - 1;
     entries_.resize(static_cast<std::size_t>(total));
+    bucketStart_.assign(buckets + 1, 0);
     std::size_t w = 0;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         const auto lo = cellOf(boxes[i].min, h), hi = cellOf(boxes[i].max, h);
         for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
             for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-                for (std::int64_t z = lo[2]; z <= hi[2]; ++z) entries_[w++] = Entry{{x, y, z}, static_cast<int>(i)};
+                for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+                    const auto bucket = static_cast<std::uint32_t>(hashCell({x, y, z}) & mask);
+                    entries_[w++] = Entry{{x, y, z}, static_cast<int>(i), bucket};
+                    ++bucketStart_[bucket + 1];
+                }
     }
     result.entries = total;
-    // 3. Counting sort by bucket (table of >= 2 * entries buckets, a power of two).
-    std::size_t buckets = 16;
-    while (buckets < 2 * entries_.size()) buckets *= 2;
-    const std::size_t mask = buckets - 1;
-    bucketStart_.assign(buckets + 1, 0);
-    for (const Entry& e : entries_) ++bucketStart_[(hashCell(e.cell) & mask) + 1];
+    // 3. Counting sort by bucket.
     for (std::size_t b = 0; b < buckets; ++b) bucketStart_[b + 1] += bucketStart_[b];
     sorted_.resize(entries_.size());
-    for (const Entry& e : entries_) sorted_[bucketStart_[hashCell(e.cell) & mask]++] = e;
+    for (const Entry& e : entries_) sorted_[bucketStart_[e.bucket]++] = e;
     // bucketStart_[b] now holds the end of bucket b; the start of b is the end of b - 1.
     // 4. Test the boxes that share a cell; report a pair only in its intersection's min-corner cell.
     std::size_t begin = 0;

@@ -3,7 +3,8 @@
 // VMV 2003): space is cut into cubes of side h, each box is entered into every cell its closed
 // extent touches, and only boxes sharing a cell are tested (testAabbAabb semantics: touching
 // counts). Cells live in a hash table rebuilt per frame with a counting sort by bucket (O(n +
-// cells + tests), no per-frame allocation once the buffers have grown).
+// cells + tests), no per-frame allocation once the buffers have grown; at most one bucket per entry,
+// each entry hashed once).
 //
 // Exactly-once rule: two overlapping boxes share every cell of their intersection box; the pair
 // is reported only in the cell that holds the intersection's min corner (max of the two mins on
@@ -59,6 +60,7 @@ private:
     struct Entry {
         std::array<std::int64_t, 3> cell;
         int box;
+        std::uint32_t bucket;  ///< hash of cell, masked to the table (32 bytes in all, as without it)
     };
     std::vector<Entry> entries_, sorted_;
     std::vector<std::uint32_t> bucketStart_;
