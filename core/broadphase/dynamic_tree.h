@@ -22,27 +22,10 @@
 #include <string>
 #include <vector>
 
+#include "core/base/aabb_ops.h"
 #include "core/base/primitives.h"
 
 namespace cdlab {
-
-/// Surface area of a box, 2 (dx dy + dy dz + dz dx): the SAH cost (Goldsmith and Salmon 1987,
-/// MacDonald and Booth 1990) of a node is proportional to it.
-inline double surfaceArea(const Aabb& box) {
-    const Vec3 d = box.max - box.min;
-    return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
-}
-/// The smallest box holding both.
-inline Aabb unionOf(const Aabb& a, const Aabb& b) { return Aabb{a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
-/// a holds b (closed).
-inline bool contains(const Aabb& a, const Aabb& b) {
-    return (a.min.array() <= b.min.array()).all() && (b.max.array() <= a.max.array()).all();
-}
-/// Closed overlap on all three axes (touching counts).
-inline bool overlaps(const Aabb& a, const Aabb& b) {
-    return a.min.x() <= b.max.x() && b.min.x() <= a.max.x() && a.min.y() <= b.max.y() && b.min.y() <= a.max.y() &&
-           a.min.z() <= b.max.z() && b.min.z() <= a.max.z();
-}
 
 struct DynamicTreeOptions {
     bool rotate = true;  ///< rotations on the way up (false: plain SAH insertion, for comparison)

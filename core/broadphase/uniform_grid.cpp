@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "core/base/aabb_ops.h"
+
 namespace cdlab {
 
 namespace {
@@ -21,11 +23,6 @@ std::uint64_t hashCell(const std::array<std::int64_t, 3>& c) {
     x ^= x >> 27;
     x *= 0x94d049bb133111ebull;
     return x ^ (x >> 31);
-}
-
-bool overlap(const Aabb& a, const Aabb& b) {
-    // Closed intervals on all three axes (testAabbAabb of core/overlap/sat_tests.h).
-    return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
 }
 
 }  // namespace
@@ -107,7 +104,7 @@ UniformGridResult UniformGrid::build(const std::vector<Aabb>& boxes, const Unifo
                 ++result.pairTests;
                 const Aabb& A = boxes[p.box];
                 const Aabb& B = boxes[q.box];
-                if (!overlap(A, B)) continue;
+                if (!overlaps(A, B)) continue;
                 if (cellOf(A.min.cwiseMax(B.min), h) != p.cell) continue;  // reported in another cell
                 pairs_.push_back(BoxPair::make(p.box, q.box));
             }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/base/aabb_ops.h"
 #include "core/bounding/bounding_volume_fit.h"
 #include "core/overlap/intersect_ray.h"
 #include "core/overlap/sat_tests.h"
@@ -57,8 +58,6 @@ void grow(Aabb& b, const Vec3& p) {
     b.min = b.min.cwiseMin(p);
     b.max = b.max.cwiseMax(p);
 }
-
-Aabb merged(const Aabb& a, const Aabb& b) { return Aabb{a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
 
 Aabb triangleAabb(const Triangle& t) { return Aabb{t.a.cwiseMin(t.b).cwiseMin(t.c), t.a.cwiseMax(t.b).cwiseMax(t.c)}; }
 
@@ -225,22 +224,22 @@ struct Builder {
                 const int b = binOf(*p, axis);
                 ++counts[b];
                 const Triangle t = mesh.triangle(*p);
-                boxes[b] = merged(boxes[b], triangleAabb(t));
+                boxes[b] = unionOf(boxes[b], triangleAabb(t));
             }
             // Sweep from the right: area and count of bins k+1 .. nb-1.
             Aabb acc = emptyAabb();
             int c = 0;
             for (int k = nb - 1; k > 0; --k) {
-                acc = merged(acc, boxes[k]);
+                acc = unionOf(acc, boxes[k]);
                 c += counts[k];
                 rightArea[k - 1] = area(acc);
                 rightCount[k - 1] = c;
             }
-            nodeArea = area(merged(acc, boxes[0]));
+            nodeArea = area(unionOf(acc, boxes[0]));
             acc = emptyAabb();
             c = 0;
             for (int k = 0; k + 1 < nb; ++k) {  // split between bin k and k + 1
-                acc = merged(acc, boxes[k]);
+                acc = unionOf(acc, boxes[k]);
                 c += counts[k];
                 if (c == 0 || rightCount[k] == 0) continue;  // one side empty: not a split
                 const double cost = area(acc) * c + rightArea[k] * rightCount[k];
@@ -311,7 +310,7 @@ struct Builder {
         for (int i = static_cast<int>(bvh.nodes.size()) - 1; i >= 0; --i) {
             const BvhNode& n = bvh.nodes[i];
             if (n.isLeaf()) fit(i);
-            else bvh.aabbs[i] = merged(bvh.aabbs[n.left], bvh.aabbs[n.right]);
+            else bvh.aabbs[i] = unionOf(bvh.aabbs[n.left], bvh.aabbs[n.right]);
         }
     }
 
@@ -334,7 +333,7 @@ struct Builder {
             nnCost[id] = std::numeric_limits<double>::infinity();
             for (int other : active) {
                 if (other == id) continue;
-                const double c = area(merged(box[id], box[other]));
+                const double c = area(unionOf(box[id], box[other]));
                 if (nn[id] < 0 || c < nnCost[id] || (c == nnCost[id] && other < nn[id])) {
                     nnCost[id] = c;
                     nn[id] = other;
@@ -353,7 +352,7 @@ struct Builder {
             }
             const int a = active[best], b = nn[a];
             const int k = next++;
-            box[k] = merged(box[a], box[b]);
+            box[k] = unionOf(box[a], box[b]);
             childA[k] = a;
             childB[k] = b;
             count[k] = count[a] + count[b];
@@ -557,7 +556,7 @@ BvhStatus refitBvh(Bvh& bvh, const TriangleMesh& deformed) {
         const BvhNode& n = bvh.nodes[i];
         if (bvh.kind == BvKind::Aabb) {
             if (!n.isLeaf()) {
-                bvh.aabbs[i] = merged(bvh.aabbs[n.left], bvh.aabbs[n.right]);
+                bvh.aabbs[i] = unionOf(bvh.aabbs[n.left], bvh.aabbs[n.right]);
                 continue;
             }
             Aabb b = emptyAabb();
