@@ -43,14 +43,6 @@ constexpr double kSpeed = 0.05;  // largest velocity component per frame
 constexpr double kCell = 1.5;    // grid cell: the largest box of the uniform workload
 constexpr double kMargin = 0.2;  // tree fat-box margin: 20% of the typical box, 4 frames of the fastest motion
 
-std::vector<std::uint64_t> keys(const std::vector<BoxPair>& pairs) {
-    std::vector<std::uint64_t> k;
-    k.reserve(pairs.size());
-    for (const BoxPair& p : pairs) k.push_back(BoxPair::make(p.a, p.b).key());
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
 struct TreeRow {
     const char* workload = "";
     int n = 0, frames = 0;
@@ -110,9 +102,9 @@ TreeRow measure(const Workload& w, int n, int frames) {
         }
 #endif
         // The three cdlab methods report the same pair set (compared outside the timing).
-        const std::vector<std::uint64_t> truth = keys(sap.pairs());
+        const std::vector<std::uint64_t> truth = pairKeys(sap.pairs());
         if (s.status != SapStatus::Ok || g.status != GridStatus::Ok || t.status != BoxStatus::Ok ||
-            keys(grid.pairs()) != truth || keys(tree.pairs()) != truth)
+            pairKeys(grid.pairs()) != truth || pairKeys(tree.pairs()) != truth)
             r.agree = false;
         if (f < warmup) continue;
         sapT.push_back(tSap);

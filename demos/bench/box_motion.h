@@ -2,15 +2,17 @@
 // bench_tree.cpp): n boxes with centres uniform in a cube of side (n / 0.05)^(1/3) (0.05 boxes per
 // unit volume), half extents per axis uniform in [minHalf, maxHalf] (or log-uniform: sizes spanning
 // maxHalf / minHalf), constant velocities uniform in [-speed, speed] per axis per frame, bouncing
-// off the cube's walls.
+// off the cube's walls. Also the pair set those benchmarks compare between methods.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
 
 #include "core/base/primitives.h"
+#include "core/broadphase/box_pair.h"
 
 namespace cdlab::demos {
 
@@ -51,5 +53,14 @@ private:
         return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1p-53);
     }
 };
+
+/// A broad phase's pairs as sorted 64-bit keys (a < b in each pair): sets compare as vectors.
+inline std::vector<std::uint64_t> pairKeys(const std::vector<BoxPair>& pairs) {
+    std::vector<std::uint64_t> keys;
+    keys.reserve(pairs.size());
+    for (const BoxPair& p : pairs) keys.push_back(BoxPair::make(p.a, p.b).key());
+    std::sort(keys.begin(), keys.end());
+    return keys;
+}
 
 }  // namespace cdlab::demos
