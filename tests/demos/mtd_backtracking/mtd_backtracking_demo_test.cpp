@@ -13,6 +13,7 @@
 #include "demos/catalog/catalog.h"
 #include "demos/oracles/polygon_oracle.h"
 #include "demos/scene/json_reader.h"
+#include "tests/demos/scene_error.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;
@@ -103,14 +104,7 @@ TEST_SUITE("mtd_backtracking_demo") {
     }
 
     TEST_CASE("bad scenes: one error naming the JSON path") {
-        auto errorOf = [](const std::string& text) {
-            try {
-                loadSceneText(text, "scene.json");
-            } catch (const InputError& e) {
-                return std::string(e.what());
-            }
-            return std::string();
-        };
+        const auto errorOf = [](const std::string& text) { return test::sceneTextError(text); };
         const std::string body = R"("b": [[-1,-0.2],[1,-0.2],[1,0.2],[-1,0.2]], "start": {"position": [0, 2]}, )";
         CHECK(errorOf(R"({"demo": "mtd_backtracking", "a": [[0,0],[1,0],[2,0]], )" + body + R"("motion": {"linear": [0,-1]}})")
                   .find("$.a") != std::string::npos);

@@ -12,6 +12,7 @@
 #include "core/geometry/triangle_mesh.h"
 #include "demos/catalog/catalog.h"
 #include "demos/scene/json_reader.h"
+#include "tests/demos/scene_error.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;
@@ -53,14 +54,7 @@ Json sceneJson(const std::string& name) {
     return readJsonFile(std::string(CDLAB_SOURCE_DIR) + "/golden/nonconvex/" + name + ".json");
 }
 
-std::string errorOf(const std::string& text) {
-    try {
-        loadSceneText(text, "scene.json");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string errorOf(const std::string& text) { return test::sceneTextError(text); }
 
 }  // namespace
 

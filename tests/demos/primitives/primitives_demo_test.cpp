@@ -12,6 +12,7 @@
 #include "demos/catalog/catalog.h"
 #include "demos/oracles/polygon_oracle.h"
 #include "demos/scene/json_reader.h"
+#include "tests/demos/scene_error.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;
@@ -28,14 +29,7 @@ Json runScene(const std::string& name) {
 
 Vec3 vec(const Json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
 
-std::string errorOf(const std::string& text) {
-    try {
-        loadSceneText(text, "scene.json");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string errorOf(const std::string& text) { return test::sceneTextError(text); }
 
 Mat3 rotation(const Json& q) {
     return Quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>()).normalized().toRotationMatrix();

@@ -11,28 +11,17 @@
 #include "demos/catalog/catalog.h"
 #include "demos/scene/scene.h"
 #include "demos/scene/scene_limits.h"
+#include "tests/demos/scene_error.h"
 
 using namespace cdlab::demos;
 namespace fs = std::filesystem;
 
 namespace {
 
-// The error of preparing a scene file ("" when it prepares).
-std::string prepareError(const std::string& file) {
-    try {
-        loadScene(file);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+// The error of preparing a scene file or text ("" when it prepares).
+std::string prepareError(const std::string& file) { return cdlab::test::sceneFileError(file); }
 std::string prepareTextError(const std::string& text, const std::string& source = "scene.json") {
-    try {
-        loadSceneText(text, source);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
+    return cdlab::test::sceneTextError(text, source);
 }
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
