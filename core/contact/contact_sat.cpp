@@ -50,11 +50,17 @@ struct Posed {
     };
     std::pmr::vector<Edge> edges;
     Vec3 center = Vec3::Zero();  // vertex mean (inside: convex)
+    // Vertex adjacency as flat arrays (the neighbours of v and the edges to them are
+    // [adjacencyStart[v], adjacencyStart[v + 1]) of neighbor / neighborEdge), for the descents and
+    // the arc walks of the untraced query: the half-edge links cost three dependent loads per
+    // neighbour, these one.
+    std::pmr::vector<int> adjacencyStart, neighbor, neighborEdge;
 
     // sign: +1 for A (arc from n_f1 to n_f2), -1 for B (the negated normals: B's Gauss map is
     // reflected in A - B).
     Posed(const ConvexPolyhedron& m, const Transform& t, const Vec3& origin, double sign, std::pmr::memory_resource* memory)
-        : mesh(&m), x(memory), n(memory), d(memory), edges(memory) {
+        : mesh(&m), x(memory), n(memory), d(memory), edges(memory), adjacencyStart(memory), neighbor(memory),
+          neighborEdge(memory) {
         x.reserve(m.vertexCount());
         n.reserve(m.faceCount());
         d.reserve(m.faceCount());
@@ -84,11 +90,40 @@ struct Posed {
             edges.push_back({v0, v1, f1, f2, from, to, to.cross(from)});
         }
     }
-    // min over vertices of dir · x (the support value in -dir, negated).
-    double minProjection(const Vec3& dir) const {
-        double m = INFINITY;
-        for (const Vec3& p : x) m = std::min(m, dir.dot(p));
-        return m;
+    void buildAdjacency() {
+        const auto& halfEdges = mesh->halfEdges();
+        adjacencyStart.assign(x.size() + 1, 0);
+        for (const auto& h : halfEdges) ++adjacencyStart[h.origin + 1];
+        for (size_t v = 0; v < x.size(); ++v) adjacencyStart[v + 1] += adjacencyStart[v];
+        neighbor.resize(halfEdges.size());
+        neighborEdge.resize(halfEdges.size());
+        std::pmr::vector<int> fill(adjacencyStart.begin(), adjacencyStart.end() - 1, adjacencyStart.get_allocator());
+        for (const auto& h : halfEdges) {
+            const int slot = fill[h.origin]++;
+            neighbor[slot] = halfEdges[h.twin].origin;
+            neighborEdge[slot] = h.edge;
+        }
+    }
+    // The vertex minimising dir · x (the support along -dir), the first of exact ties.
+    int minVertex(const Vec3& dir) const {
+        int best = 0;
+        double m = dir.dot(x[0]);
+        for (int i = 1; i < static_cast<int>(x.size()); ++i)
+            if (const double s = dir.dot(x[i]); s < m) m = s, best = i;
+        return best;
+    }
+    // The same by steepest descent over the vertex graph from `start` (each step lowers dir · x
+    // strictly, so it ends, at a local minimum: the minimum, the body being convex).
+    int descend(const Vec3& dir, int start) const {
+        int v = start;
+        double m = dir.dot(x[v]);
+        for (;;) {
+            int next = -1;
+            for (int k = adjacencyStart[v]; k < adjacencyStart[v + 1]; ++k)
+                if (const double s = dir.dot(x[neighbor[k]]); s < m) m = s, next = neighbor[k];
+            if (next < 0) return v;
+            v = next;
+        }
     }
     void facePolygon(int f, Polygon& p) const {
         p.clear();
@@ -112,60 +147,166 @@ struct SatQuery {
     std::vector<SatAxisRecord>* axes = nullptr;  // the trace's list, or none
     int tested = 0;
     detail::SatBestAxes best;
-    int pruned = 0, parallel = 0;
+    int pruned = 0, parallel = 0, walkFallbacks = 0;
     void count(const SatAxisRecord& rec) {
         if (axes) axes->push_back(rec);
         ++tested;
     }
 };
 
-// 1. Face axes of A, then of B (B's normal points from B toward A: the axis A→B is -n).
-void queryFaceAxes(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
-                   SatQuery& q) {
-    for (int f = 0; f < ma.faceCount(); ++f) {
-        const SatAxisRecord rec{SatAxisKind::FaceA, f, -1, A.n[f], B.minProjection(A.n[f]) - A.d[f]};
-        if (rec.separation > q.best.faceA.separation) q.best.faceA = rec, q.best.faceAIndex = q.tested;
-        q.count(rec);
+// A face axis into the family's best: the larger separation wins, an exact tie goes to the lower
+// face index (the brute-force loop's order, whatever order the faces were visited in).
+void considerFaceAxis(const SatAxisRecord& rec, int face, SatAxisRecord& best, int& bestIndex, SatQuery& q) {
+    const int bestFace = rec.kind == SatAxisKind::FaceA ? best.indexA : best.indexB;
+    if (rec.separation > best.separation || (rec.separation == best.separation && face < bestFace))
+        best = rec, bestIndex = q.tested;
+    q.count(rec);
+}
+
+// 1. Face axes of A, then of B (B's normal points from B toward A: the axis A→B is -n), every
+// vertex of the other body projected on every face normal. supportOfB[f]: the vertex of B that
+// realises face f of A's separation (B's support along -n_f), where the edge walk starts.
+void queryFaceAxes(const Posed& A, const Posed& B, SatQuery& q, std::pmr::vector<int>& supportOfB) {
+    for (int f = 0; f < A.mesh->faceCount(); ++f) {
+        const int s = B.minVertex(A.n[f]);
+        supportOfB[f] = s;
+        considerFaceAxis({SatAxisKind::FaceA, f, -1, A.n[f], A.n[f].dot(B.x[s]) - A.d[f]}, f, q.best.faceA,
+                         q.best.faceAIndex, q);
     }
-    for (int f = 0; f < mb.faceCount(); ++f) {
-        const SatAxisRecord rec{SatAxisKind::FaceB, -1, f, -B.n[f], A.minProjection(B.n[f]) - B.d[f]};
-        if (rec.separation > q.best.faceB.separation) q.best.faceB = rec, q.best.faceBIndex = q.tested;
-        q.count(rec);
+    for (int f = 0; f < B.mesh->faceCount(); ++f) {
+        const int s = A.minVertex(B.n[f]);
+        considerFaceAxis({SatAxisKind::FaceB, -1, f, -B.n[f], B.n[f].dot(A.x[s]) - B.d[f]}, f, q.best.faceB,
+                         q.best.faceBIndex, q);
     }
 }
 
-// 2. Edge pairs that form a face of the Minkowski difference (their Gauss-map arcs cross), the
-// axis their cross product, oriented away from A.
+// 1, untraced: the same supports found by descent over the other body's vertex graph, faces
+// visited breadth first across their edges and each descent started at the support of the face it
+// was reached from (adjacent normals have nearby supports: a step or two of ~6 neighbours instead
+// of every vertex). A linear function's local minimum over a convex polytope's vertex graph is its
+// minimum, so the supports are the loop's (up to ties within rounding).
+void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery& q, std::pmr::vector<int>& supportOfQ,
+                            std::pmr::memory_resource* memory) {
+    const ConvexPolyhedron& mp = *P.mesh;
+    std::fill(supportOfQ.begin(), supportOfQ.end(), -1);
+    std::pmr::vector<int> queue(memory);
+    queue.reserve(mp.faceCount());
+    supportOfQ[0] = Q.minVertex(P.n[0]);
+    queue.push_back(0);
+    for (size_t head = 0; head < queue.size(); ++head) {
+        const int f = queue[head];
+        const int s = supportOfQ[f];
+        const double separation = P.n[f].dot(Q.x[s]) - P.d[f];
+        if (pIsA) considerFaceAxis({SatAxisKind::FaceA, f, -1, P.n[f], separation}, f, q.best.faceA, q.best.faceAIndex, q);
+        else considerFaceAxis({SatAxisKind::FaceB, -1, f, -P.n[f], separation}, f, q.best.faceB, q.best.faceBIndex, q);
+        mp.forEachFaceHalfEdge(f, [&](int h) {
+            const int g = mp.halfEdge(mp.halfEdge(h).twin).face;
+            if (supportOfQ[g] >= 0) return;
+            supportOfQ[g] = Q.descend(P.n[g], s);
+            queue.push_back(g);
+        });
+    }
+}
+
+// Gregorius' arc test (file comment) row for edge `edgeA`: side[f] = (-n_f) · (b x a) over B's faces.
+void arcSideRow(const Posed::Edge& edgeA, const Posed& B, std::pmr::vector<double>& side) {
+    for (size_t f = 0; f < B.n.size(); ++f) side[f] = (-1.0 * B.n[f]).dot(edgeA.cross);
+}
+
+// An edge pair whose arcs cross: its axis e_A x e_B oriented away from A, unless the edges are
+// parallel (sin of the angle below 1e-9: the cross product is rounding noise; their separating
+// direction is a face normal, tested in step 1). The larger separation wins; an exact tie goes to
+// the lower (edge of A, edge of B) pair, the brute-force loop's order.
+void considerEdgePair(const Posed& A, const Posed& B, int ea, int eb, SatQuery& q) {
+    const Posed::Edge& edgeA = A.edges[ea];
+    const Posed::Edge& edgeB = B.edges[eb];
+    const Vec3 da = A.x[edgeA.v1] - A.x[edgeA.v0];
+    const Vec3 db = B.x[edgeB.v1] - B.x[edgeB.v0];
+    Vec3 axis = da.cross(db);
+    const double len = axis.norm();
+    if (!(len > 1e-9 * da.norm() * db.norm())) {
+        ++q.parallel;
+        return;
+    }
+    axis /= len;
+    if (axis.dot(A.x[edgeA.v0] - A.center) < 0.0) axis = -axis;  // away from A
+    const SatAxisRecord rec{SatAxisKind::EdgeEdge, ea, eb, axis, axis.dot(B.x[edgeB.v0] - A.x[edgeA.v0])};
+    SatAxisRecord& best = q.best.edge;
+    if (rec.separation > best.separation ||
+        (rec.separation == best.separation && (ea < best.indexA || (ea == best.indexA && eb < best.indexB))))
+        best = rec, q.best.edgeIndex = q.tested;
+    q.count(rec);
+}
+
+// 2. Edge pairs that form a face of the Minkowski difference (their Gauss-map arcs cross): every
+// edge of A against every edge of B by Gregorius' test.
+void queryEdgeAxesOfEdge(const Posed& A, const Posed& B, int ea, std::pmr::vector<double>& side, SatQuery& q) {
+    arcSideRow(A.edges[ea], B, side);
+    for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
+        if (isMinkowskiFace(A.edges[ea], B.edges[eb], side.data())) considerEdgePair(A, B, ea, eb, q);
+        else ++q.pruned;
+    }
+}
+
 void queryEdgeAxes(const Posed& A, const Posed& B, SatQuery& q) {
-    // B's Gauss map as the arcs see it: the negated face normals (bit for bit the arcs' end points).
-    std::pmr::vector<Vec3> negated(B.n.size(), Vec3::Zero(), B.n.get_allocator().resource());
     std::pmr::vector<double> side(B.n.size(), 0.0, B.n.get_allocator().resource());
-    for (size_t f = 0; f < B.n.size(); ++f) negated[f] = -1.0 * B.n[f];
+    for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) queryEdgeAxesOfEdge(A, B, ea, side, q);
+}
+
+// 2, untraced: the edges of B whose arcs cross the arc of A's edge ea, found by walking that arc
+// through the vertex regions of B's reflected Gauss map (the overlay of the two Gauss maps,
+// Gregorius GDC 2013; de Berg et al. §2.3 for the overlay): along m(t) = a + t (b - a), a and b the
+// normals of ea's two faces, the current vertex v of B minimises m(t) · x (it starts at face a's
+// support, found by the face query); a neighbour w takes over where m(t) · (w - v) turns negative,
+// at t_w = a · (w - v) / ((a - b) · (w - v)) for (b - a) · (w - v) < 0, the earliest first (a tie
+// goes to the steeper: the region entered just after). Each boundary crossed for 0 < t < 1 is a B
+// edge whose arc crosses ea's: the pairs the all-pairs test keeps, in O(crossings x degree) instead
+// of O(|E_B|). Crossings at t = 0 or 1 (a Gauss-map vertex on the arc) are face axes, tested in
+// step 1. Returns false when the walk does not end at face b's support (rounding in a degenerate
+// overlay): the caller tests ea against every edge of B instead.
+bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, double tol, SatQuery& q) {
+    const ConvexPolyhedron& mb = *B.mesh;
+    const Posed::Edge& edgeA = A.edges[ea];
+    const Vec3& a = A.n[edgeA.f1];
+    const Vec3& b = A.n[edgeA.f2];
+    const Vec3 ab = b - a;
+    int v = start;
+    double t = 0.0;
+    // Every step lowers (m(t) · x, its slope) lexicographically, so no vertex comes back in exact
+    // arithmetic; the bound stops a rounding cycle.
+    for (int steps = 0; steps <= mb.edgeCount(); ++steps) {
+        // The earliest t_w = rise / run (run > 0), compared as fractions: one division per step.
+        int next = -1, crossed = -1;
+        double riseNext = 1.0, runNext = 0.0;  // t = +inf
+        for (int k = B.adjacencyStart[v]; k < B.adjacencyStart[v + 1]; ++k) {
+            const int w = B.neighbor[k];
+            const Vec3 step = B.x[w] - B.x[v];
+            const double run = -ab.dot(step);
+            if (!(run > 0.0)) continue;
+            double rise = a.dot(step);
+            if (rise < t * run) rise = t * run;  // t_w = max(t, rise / run)
+            const double lhs = rise * runNext, rhs = riseNext * run;
+            if (lhs < rhs || (lhs == rhs && run > runNext))
+                next = w, crossed = B.neighborEdge[k], riseNext = rise, runNext = run;
+        }
+        const double tNext = next < 0 ? INFINITY : riseNext / runNext;
+        if (tNext >= 1.0) return v == end || b.dot(B.x[v]) <= b.dot(B.x[end]) + tol;
+        if (tNext > 0.0) considerEdgePair(A, B, ea, crossed, q);
+        v = next;
+        t = tNext;
+    }
+    return false;
+}
+
+void queryEdgeAxesByWalk(const Posed& A, const Posed& B, const std::pmr::vector<int>& supportOfB, double tol, SatQuery& q) {
+    std::pmr::vector<double> side(B.n.get_allocator().resource());
     for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
         const Posed::Edge& edgeA = A.edges[ea];
-        const Vec3 da = A.x[edgeA.v1] - A.x[edgeA.v0];
-        for (size_t f = 0; f < negated.size(); ++f) side[f] = negated[f].dot(edgeA.cross);
-        for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
-            const Posed::Edge& edgeB = B.edges[eb];
-            if (!isMinkowskiFace(edgeA, edgeB, side.data())) {
-                ++q.pruned;
-                continue;
-            }
-            const Vec3 db = B.x[edgeB.v1] - B.x[edgeB.v0];
-            Vec3 axis = da.cross(db);
-            // Parallel edges (sin of the angle below 1e-9: the cross product is rounding noise);
-            // their separating direction is a face normal, tested in step 1.
-            const double len = axis.norm();
-            if (!(len > 1e-9 * da.norm() * db.norm())) {
-                ++q.parallel;
-                continue;
-            }
-            axis /= len;
-            if (axis.dot(A.x[edgeA.v0] - A.center) < 0.0) axis = -axis;  // away from A
-            const SatAxisRecord rec{SatAxisKind::EdgeEdge, ea, eb, axis, axis.dot(B.x[edgeB.v0] - A.x[edgeA.v0])};
-            if (rec.separation > q.best.edge.separation) q.best.edge = rec, q.best.edgeIndex = q.tested;
-            q.count(rec);
-        }
+        if (walkEdgeArc(A, B, ea, supportOfB[edgeA.f1], supportOfB[edgeA.f2], tol, q)) continue;
+        // Every pair of ea (a pair the walk already took is taken again: no change to the best).
+        ++q.walkFallbacks;
+        side.resize(B.n.size());
+        queryEdgeAxesOfEdge(A, B, ea, side, q);
     }
 }
 
@@ -226,7 +367,7 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     // Scratch for both posed bodies, the edge query and the clipping: two 64-vertex hulls (~124
     // faces, ~186 edges each: ~50 KB) fit; larger bodies spill to the heap.
     StackArena<65536> arena;
-    const Posed A(ma, ta, origin, 1.0, arena.resource()), B(mb, tb, origin, -1.0, arena.resource());
+    Posed A(ma, ta, origin, 1.0, arena.resource()), B(mb, tb, origin, -1.0, arena.resource());
     double maxCoord = 0.0;
     for (const Vec3& p : B.x) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
     maxCoord += origin.cwiseAbs().maxCoeff();
@@ -235,9 +376,19 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     const double tol = r.tolerance;
 
     SatQuery q;
-    if (trace) q.axes = &trace->axes;
-    queryFaceAxes(ma, A, mb, B, q);
-    queryEdgeAxes(A, B, q);
+    std::pmr::vector<int> supportOfB(ma.faceCount(), -1, arena.resource()), supportOfA(mb.faceCount(), -1, arena.resource());
+    if (trace) {
+        // Traced: every face axis and every edge pair in index order, the pruning counted.
+        q.axes = &trace->axes;
+        queryFaceAxes(A, B, q, supportOfB);
+        queryEdgeAxes(A, B, q);
+    } else {
+        A.buildAdjacency();
+        B.buildAdjacency();
+        queryFaceAxesByDescent(A, B, true, q, supportOfB, arena.resource());
+        queryFaceAxesByDescent(B, A, false, q, supportOfA, arena.resource());
+        queryEdgeAxesByWalk(A, B, supportOfB, tol, q);
+    }
     const detail::SatChosenAxis c = detail::chooseSatAxis(q.best, tol, options);
     const SatAxisRecord& best = c.best;
     detail::recordChosenAxis(c, tol, r);

@@ -13,6 +13,12 @@
 //      Pairs failing it are pruned (their axis is no face of A - B, so it cannot be the least
 //      penetration axis); parallel edges are skipped (their axis is a face axis). A surviving
 //      pair's axis, oriented away from A's centre, has separation axis · (p_B - p_A).
+//   Untraced calls find the same axes faster: each support in step 1 by steepest descent over the
+//   other body's vertex graph, started at the support of an adjacent face (faces visited breadth
+//   first); the pairs of step 2 by walking each arc of A through the vertex regions of B's Gauss
+//   map from the support of its first face to that of its second, each region boundary crossed
+//   being one B edge whose arc crosses it (O(crossings) per edge of A instead of O(|E_B|)). Traced
+//   calls test every vertex and every pair in index order, so the trace can count the pruning.
 //   3. Max separation > tol: separated (a separating axis; the separation is a lower bound of the
 //      distance). Otherwise the axis of least penetration, preferring faces (an edge axis must be
 //      better by faceBias, a B face better than the A face by faceBias too: stable manifolds

@@ -154,6 +154,69 @@ TEST_SUITE("contact_sat") {
         CHECK(separated > 60);
     }
 
+    // The untraced call finds its supports by descent and its edge pairs by walking each arc of A
+    // over B's Gauss map; the traced call tests every vertex and every edge pair in index order.
+    // Generic poses: the same axis, separation, features and manifold, bit for bit. Degenerate
+    // poses (parallel faces and edges, B at A's pose: axes tied in exact arithmetic, their rounded
+    // values apart by ulps): the same status and separation and depth to rounding, whichever of
+    // the tied axes each picks.
+    TEST_CASE("untraced query (descent, Gauss-map walk) = traced query (every vertex, every edge pair)") {
+        std::mt19937_64 rng(11);
+        std::vector<ConvexPolyhedron> bodies = {presets::box(Vec3(0.6, 0.4, 0.3)), presets::box(Vec3(0.5, 0.5, 0.5)),
+                                                presets::tetrahedron(0.7), presets::octahedron(0.6),
+                                                presets::prism(5, 0.5, 0.3), presets::prism(24, 0.5, 0.2)};
+        for (int n : {8, 16, 64, 200}) bodies.push_back(presets::randomHull(n, 100 + n));
+        int generic = 0, degenerate = 0, edgeAxes = 0, faceAxes = 0;
+        const auto compare = [&](const ConvexPolyhedron& a, const Transform& ta, const ConvexPolyhedron& b,
+                                 const Transform& tb, bool isGeneric) {
+            SatContactTrace tr;
+            const SatContactResult all = contactPolyhedra(a, ta, b, tb, {}, &tr);
+            const SatContactResult walk = contactPolyhedra(a, ta, b, tb);
+            REQUIRE(walk.status == all.status);
+            if (!isGeneric) {
+                ++degenerate;
+                const double ulps = 1e-14 * (1.0 + ta.position.cwiseAbs().maxCoeff());
+                CHECK(std::abs(walk.separation - all.separation) <= ulps);
+                CHECK(std::abs(walk.depth - all.depth) <= std::abs(all.depth) * 0.021 + ulps);  // within the face bias
+                return;
+            }
+            ++generic;
+            CHECK(walk.separation == all.separation);
+            CHECK(walk.depth == all.depth);
+            REQUIRE(walk.axisKind == all.axisKind);
+            CHECK(walk.featureA.index == all.featureA.index);
+            CHECK(walk.featureB.index == all.featureB.index);
+            CHECK(walk.normal == all.normal);
+            REQUIRE(walk.manifold.size() == all.manifold.size());
+            for (size_t i = 0; i < all.manifold.size(); ++i) {
+                CHECK(walk.manifold[i].pointA == all.manifold[i].pointA);
+                CHECK(walk.manifold[i].pointB == all.manifold[i].pointB);
+            }
+            (all.axisKind == SatAxisKind::EdgeEdge ? edgeAxes : faceAxes) += all.colliding();
+        };
+        for (const ConvexPolyhedron& a : bodies)
+            for (const ConvexPolyhedron& b : bodies)
+                for (int k = 0; k < 12; ++k) {
+                    // Random poses (generic), then poses sharing a rotation, axis-aligned on a grid,
+                    // and B at A's own pose (degenerate).
+                    const Vec3 c = Vec3::Constant(k % 4 == 3 ? 1e5 : 0.0);
+                    Transform ta = test::randomPose(rng, c, 0.0), tb = test::randomPose(rng, c, 0.4);
+                    bool isGeneric = true;
+                    if (k % 3 == 1) tb.rotation = ta.rotation, isGeneric = false;
+                    if (k % 6 == 2) {
+                        ta.rotation = tb.rotation = Quat::Identity();
+                        tb.position = c + Vec3(0.5 * (k % 4), 0.25, 0.0);
+                        isGeneric = false;
+                    }
+                    if (k == 11) tb = ta, isGeneric = false;
+                    compare(a, ta, b, tb, isGeneric);
+                }
+        CHECK(generic == 5 * int(bodies.size() * bodies.size()));
+        CHECK(degenerate == 7 * int(bodies.size() * bodies.size()));
+        CHECK(edgeAxes > 50);  // both kinds of contact are compared, not only faces
+        CHECK(faceAxes > 200);
+    }
+
     TEST_CASE("invalid input") {
         const ConvexPolyhedron box = presets::box(Vec3(1, 1, 1));
         Transform t, bad;
