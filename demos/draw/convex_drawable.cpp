@@ -179,6 +179,21 @@ bool facesCamera(const Camera& camera, const Vec3& point, const Vec3& normal) {
     return true;
 }
 
+bool behindBody(const Camera& camera, const Vec3& point, const std::vector<Plane>& faces, double tolerance) {
+    if (camera.projection == Camera::Projection::TwoD) return false;
+    const Vec3 toCamera = camera.projection == Camera::Projection::Orthographic ? Vec3(camera.viewDirection())
+                                                                                  : Vec3((camera.eye - point).normalized());
+    // The ray p + t u (t >= 0) clipped by every face's half-space (Cyrus–Beck).
+    double enter = 0.0, leave = INFINITY;
+    for (const Plane& f : faces) {
+        const double along = f.normal.dot(toCamera), room = f.offset - f.normal.dot(point);
+        if (along > 0) leave = std::min(leave, room / along);
+        else if (along < 0) enter = std::max(enter, room / along);
+        else if (room < 0) return false;  // parallel to the face and outside it
+    }
+    return leave - enter > tolerance;
+}
+
 LineStyle edgeStyleSeen(const Camera& camera, const Vec3& midpoint, const Vec3& n1, const Vec3& n2, LineStyle visible) {
     if (facesCamera(camera, midpoint, n1) || facesCamera(camera, midpoint, n2)) return visible;
     LineStyle hidden = visible;

@@ -53,6 +53,12 @@ bool facesCamera(const render::Camera& camera, const Vec3& point, const Vec3& no
 render::LineStyle edgeStyleSeen(const render::Camera& camera, const Vec3& midpoint, const Vec3& n1, const Vec3& n2,
                                 render::LineStyle visible);
 
+/// True when `point` is seen through a convex body given by its face planes (unit outward normals,
+/// world frame; n · x <= d inside): the ray from the point towards the camera runs inside the body
+/// for longer than `tolerance` (a point on a face turned towards the camera or on the silhouette is
+/// seen; one on the far side is behind the body).
+bool behindBody(const render::Camera& camera, const Vec3& point, const std::vector<Plane>& faces, double tolerance);
+
 /// Draws the little "O" origin marker with a cross.
 void drawOrigin(render::Canvas& canvas, double size, bool planar);
 

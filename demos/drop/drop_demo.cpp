@@ -349,10 +349,11 @@ private:
             const std::vector<int> fv = r.shape.faceVertices(f);
             for (std::size_t i = 1; i + 1 < fv.size(); ++i) tris.emplace_back(fv[0], fv[i], fv[i + 1]);
         }
-        c.drawMesh(wv, tris, roleColor(Role::ShapeA), true);
-        // In contact with the ground (some contact pushing): outlined in the colliding role.
+        // In contact with the ground (some contact pushing): tinted and outlined in the colliding role.
         bool touching = false;
         for (const ContactImpulse& ct : s.contacts) touching = touching || ct.normalImpulse > 0;
+        const Color fill = roleColor(Role::ShapeA);
+        c.drawMesh(wv, tris, touching ? fill.mixed(roleColor(Role::Colliding), 0.3f) : fill, true);
         LineStyle edge = lineStyle(Role::ShapeA, touching ? 3.5f : 2.0f);
         edge.color = touching ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.5f);
         for (int e = 0; e < r.shape.edgeCount(); ++e) {
@@ -363,22 +364,38 @@ private:
         // Contacts of this step: filled = pushing (λ_n > 0), hollow = speculative (λ_n = 0); each
         // pushing contact's impulse λ_n n as an arrow to one scale over the run (the largest λ_n of
         // the run is 0.6 of the body's radius long).
-        int pushing = 0, bounces = 0;
+        // A contact seen through the body (on its far side) and its arrow are drawn faded, as
+        // hidden edges are elsewhere: the body is opaque, the marker must not read as in front.
+        int pushing = 0, bounces = 0, hiddenCount = 0;
         if (common_.hasLayer("contacts")) {
+            std::vector<Plane> faces;
+            for (int f = 0; f < r.shape.faceCount(); ++f) {
+                const Vec3 n = s.orientation * r.shape.face(f).normal;
+                faces.push_back({n, r.shape.face(f).offset + n.dot(s.position)});
+            }
+            std::vector<char> hidden;
+            for (const ContactImpulse& ct : s.contacts) hidden.push_back(behindBody(cam, ct.point, faces, 1e-3 * rho));
+            const auto faded = [](Color color) { return color.mixed(roleColor(Role::Background), 0.55f); };
             const ContactImpulse* largest = nullptr;
-            for (const ContactImpulse& ct : s.contacts) {
+            for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+                const ContactImpulse& ct = s.contacts[i];
                 const bool push = ct.normalImpulse > 0;
                 pushing += push;
                 bounces += ct.bounce && push;
+                hiddenCount += hidden[i];
                 const double length = maxImpulse > 0 ? 0.6 * rho * ct.normalImpulse / maxImpulse : 0.0;
-                if (push && length > 0.02 * rho)
-                    c.drawArrow(ct.point, ct.point + length * s.normal, lineStyle(Role::Direction, 3.0f, false, true));
+                LineStyle arrow = lineStyle(Role::Direction, 3.0f, false, true);
+                if (hidden[i]) arrow.color = faded(arrow.color);
+                if (push && length > 0.02 * rho) c.drawArrow(ct.point, ct.point + length * s.normal, arrow);
                 if (push && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
             }
             // Markers after the arrows, so an arrow never paints over its contact point.
-            for (const ContactImpulse& ct : s.contacts) {
-                if (ct.normalImpulse > 0) c.drawPoint(ct.point, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                else c.drawPoint(ct.point, 6.0f, roleColor(Role::Background), true, 2.0f, roleColor(Role::Result));
+            for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+                const ContactImpulse& ct = s.contacts[i];
+                const Color result = hidden[i] ? faded(roleColor(Role::Result)) : roleColor(Role::Result);
+                const Color ink = hidden[i] ? faded(roleColor(Role::Ink)) : roleColor(Role::Ink);
+                if (ct.normalImpulse > 0) c.drawPoint(ct.point, 7.0f, result, true, 1.5f, ink);
+                else c.drawPoint(ct.point, 6.0f, roleColor(Role::Background).withAlpha(hidden[i] ? 0.0f : 1.0f), true, 2.0f, result);
             }
             if (labels && largest && largest->normalImpulse > 0.034 * maxImpulse)
                 drawLabelAway(c, largest->point + 0.6 * rho * largest->normalImpulse / maxImpulse * s.normal,
@@ -402,7 +419,8 @@ private:
                      Role::Direction);
             }
             if (common_.hasLayer("trail")) item("dashed: centre-of-mass path", Role::Ink);
-            if (touching) item("outline: body in contact with the ground", Role::Colliding);
+            if (hiddenCount > 0) item("faded: contact behind the body", Role::Result);
+            if (touching) item("tint and outline: body in contact with the ground", Role::Colliding);
         }
         // Two caption lines: the contacts of the step, then energy and depth.
         char line1[200], line2[200];
