@@ -7,6 +7,10 @@
 
 namespace cdlab {
 
+/// Finite bounds with min <= max on every axis (NaN bounds fail the comparison: invalid).
+inline bool isValidBox(const Aabb& box) {
+    return box.min.allFinite() && box.max.allFinite() && (box.min.array() <= box.max.array()).all();
+}
 /// The smallest box holding both.
 inline Aabb unionOf(const Aabb& a, const Aabb& b) { return Aabb{a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
 /// a holds b (closed).

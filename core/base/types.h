@@ -3,8 +3,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <limits>
 
 namespace cdlab {
+
+/// The quiet NaN that invalid or undefined results carry.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -19,6 +23,7 @@ struct Segment {
 /// Triangle with vertices a, b, c in this order (zero area is allowed).
 struct Triangle {
     Vec3 a, b, c;
+    bool allFinite() const { return a.allFinite() && b.allFinite() && c.allFinite(); }
 };
 
 /// Tetrahedron with vertices a, b, c, d (zero volume is allowed).

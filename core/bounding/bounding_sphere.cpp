@@ -15,8 +15,6 @@ namespace cdlab {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // A point counts as outside the current ball when |p - c|^2 > r^2 (1 + kOutsideRel). WHY: the
 // support points of a computed ball lie on its boundary only to rounding (relative ~1e-15 for a
 // well-shaped support set, more for the thin ones we still accept); a looser test would push a

@@ -14,7 +14,6 @@ namespace cdlab {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A triangle whose |e1 x e2| is below this fraction of |e1| |e2| (sine of its angle < 1e-12)
 // has an area that is rounding noise of the cross product (about a few eps |e1| |e2|), so its

@@ -13,7 +13,6 @@ namespace cdlab {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = std::numbers::pi;
 
 // Radius pad after the final max-distance pass. The caller's containment test recomputes the

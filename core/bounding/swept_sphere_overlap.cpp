@@ -11,8 +11,6 @@ namespace cdlab {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 bool validRectangle(const Rss& r) {
     return r.center.allFinite() && r.axes.allFinite() && r.halfLengths.allFinite() &&
            (r.halfLengths.array() >= 0.0).all();

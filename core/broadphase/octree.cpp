@@ -3,27 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/aabb_ops.h"
+
 namespace cdlab {
 
-bool aabbValid(const Aabb& box) {
-    return box.min.allFinite() && box.max.allFinite() && (box.min.array() <= box.max.array()).all();
-}
-
 bool aabbOverlapClosed(const Aabb& a, const Aabb& b) {
-    if (!aabbValid(a) || !aabbValid(b)) return false;
+    if (!isValidBox(a) || !isValidBox(b)) return false;
     // Closed intervals: [a.min, a.max] and [b.min, b.max] meet unless one ends before the other starts.
     for (int i = 0; i < 3; ++i)
         if (a.max[i] < b.min[i] || b.max[i] < a.min[i]) return false;
     return true;
 }
-
-namespace {
-
-bool contains(const Aabb& outer, const Aabb& inner) {
-    return (outer.min.array() <= inner.min.array()).all() && (inner.max.array() <= outer.max.array()).all();
-}
-
-}  // namespace
 
 Aabb Octree::loosen(const Aabb& cell) const {
     if (options_.looseness <= 1.0) return cell;
@@ -77,7 +67,7 @@ void Octree::build(const std::vector<Aabb>& boxes, const OctreeOptions& options,
     std::vector<int> valid;
     Aabb bounds{Vec3::Constant(INFINITY), Vec3::Constant(-INFINITY)};
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (!aabbValid(boxes[i])) {
+        if (!isValidBox(boxes[i])) {
             rejected_.push_back(int(i));
             continue;
         }
@@ -86,7 +76,7 @@ void Octree::build(const std::vector<Aabb>& boxes, const OctreeOptions& options,
         bounds.max = bounds.max.cwiseMax(boxes[i].max);
     }
     Aabb root;
-    if (options_.useRootBounds && aabbValid(options_.rootBounds)) {
+    if (options_.useRootBounds && isValidBox(options_.rootBounds)) {
         root = options_.rootBounds;
     } else if (!valid.empty()) {
         // Fitted root: the cube around the input bounds (cubic cells read better in figures).
@@ -230,7 +220,7 @@ std::vector<std::pair<int, int>> Octree::overlappingPairs(std::int64_t* pairTest
 std::vector<int> Octree::query(const Aabb& box, int* nodesVisited) const {
     std::vector<int> hits;
     int visited = 0;
-    if (!nodes_.empty() && aabbValid(box)) {
+    if (!nodes_.empty() && isValidBox(box)) {
         // The root is always visited: it may hold boxes outside its cell.
         std::vector<int> stack{0};
         while (!stack.empty()) {

@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/aabb_ops.h"  // isValidBox
 #include "core/base/primitives.h"
 
 namespace cdlab {
@@ -36,8 +37,6 @@ namespace cdlab {
 /// Closed-box overlap with the semantics of testAabbAabb (touching overlaps), as a plain
 /// comparison (no centre subtraction: exact). Invalid boxes never overlap.
 bool aabbOverlapClosed(const Aabb& a, const Aabb& b);
-/// True when box has finite coordinates and min <= max on every axis.
-bool aabbValid(const Aabb& box);
 
 struct OctreeOptions {
     int maxDepth = 8;            ///< the root has depth 0; nodes at maxDepth are never split

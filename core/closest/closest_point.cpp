@@ -51,8 +51,6 @@ const char* nameOf(TetrahedronRegion region) {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 bool finite(const Vec3& v) { return v.allFinite(); }
 
 // The plain double formulas below (degree <= 4 in the coordinates) neither overflow nor lose

@@ -53,7 +53,7 @@ ContactType pairType(const VClipFeature& a, const VClipFeature& b) {
 }
 
 /// What one step decided.
-struct Outcome {
+struct LinCannyOutcome {
     VClipStepKind kind = VClipStepKind::Done;
     int body = -1;
     VClipFeature to;
@@ -62,7 +62,7 @@ struct Outcome {
     std::string rule;
 };
 
-struct Walk : feature_walk::WalkPair {
+struct LinCannyWalk : feature_walk::WalkPair {
     double eps = 0.0;    // applicability slack, absolute (options.applicability * scale)
     double touch = 0.0;  // touching distance, absolute
     bool insideTest = false;
@@ -167,7 +167,7 @@ struct Walk : feature_walk::WalkPair {
 
     // --- 2./3./4. applicability test of point x (frame of body r) against VR(X[r]) ----------
     // Returns true and fills `out` when a plane is violated by more than eps.
-    bool applicability(int r, const Vec3& x, Outcome& out) {
+    bool applicability(int r, const Vec3& x, LinCannyOutcome& out) {
         const VClipFeature& owner = X[r];
         const VClipPolyhedron& poly = *P[r];
         int worst = -1;
@@ -238,8 +238,8 @@ struct Walk : feature_walk::WalkPair {
         return true;
     }
 
-    Outcome step() {
-        Outcome out;
+    LinCannyOutcome step() {
+        LinCannyOutcome out;
         closest();
         if (distance <= touch) {
             out.kind = VClipStepKind::Penetration;
@@ -260,7 +260,7 @@ struct Walk : feature_walk::WalkPair {
 namespace {
 
 // The trace step of the pair before it moves: the state, the features in world space.
-LinCannyTraceStep* beginTraceStep(LinCannyTrace* trace, const Walk& w, int step) {
+LinCannyTraceStep* beginTraceStep(LinCannyTrace* trace, const LinCannyWalk& w, int step) {
     if (!trace) return nullptr;
     LinCannyTraceStep* ts = &trace->steps.emplace_back();
     ts->step = step;
@@ -273,7 +273,7 @@ LinCannyTraceStep* beginTraceStep(LinCannyTrace* trace, const Walk& w, int step)
 }
 
 // What the step decided and the closest points it found.
-void recordOutcome(LinCannyTraceStep* ts, const Walk& w, const Outcome& out) {
+void recordOutcome(LinCannyTraceStep* ts, const LinCannyWalk& w, const LinCannyOutcome& out) {
     if (!ts) return;
     ts->closestA = w.world(0, w.p[0]);
     ts->closestB = w.world(0, w.p[1]);
@@ -285,7 +285,7 @@ void recordOutcome(LinCannyTraceStep* ts, const Walk& w, const Outcome& out) {
 
 // The distance after an update and its sign of change. Equal in exact arithmetic can differ by
 // rounding: 1e-12 of the bodies' size.
-void recordUpdate(LinCannyTraceStep* ts, Walk& w, const Outcome& out, const VClipFeature& from, double extent) {
+void recordUpdate(LinCannyTraceStep* ts, LinCannyWalk& w, const LinCannyOutcome& out, const VClipFeature& from, double extent) {
     if (!ts) return;
     ts->updatedBody = out.body;
     ts->from = from;
@@ -299,7 +299,7 @@ void recordUpdate(LinCannyTraceStep* ts, Walk& w, const Outcome& out, const VCli
 }
 
 // The answer when the walk stops: separated at the closest points, or penetrating.
-void finalAnswer(const Walk& w, const Outcome& out, LinCannyResult& res) {
+void finalAnswer(const LinCannyWalk& w, const LinCannyOutcome& out, LinCannyResult& res) {
     const Vec3 pa = w.world(0, w.p[0]), pb = w.world(0, w.p[1]);
     if (out.kind == VClipStepKind::Done) {
         res.distance = w.distance;
@@ -339,7 +339,7 @@ LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const 
     if (!finitePose(poseA) || !finitePose(poseB))
         return finish(LinCannyStatus::InvalidInput, "lin_canny: non-finite pose");
 
-    Walk w;
+    LinCannyWalk w;
     w.setup(a, poseA, b, poseB);
     // Scale: largest coordinate magnitude met in A's frame (B's bounds shifted by its offset).
     const double scale = std::max({maxAbs(a.mesh().boundsMin()), maxAbs(a.mesh().boundsMax()),
@@ -367,7 +367,7 @@ LinCannyResult linCanny(const VClipPolyhedron& a, const Transform& poseA, const 
             return finish(LinCannyStatus::StepLimit, "lin_canny: step limit " + std::to_string(maxSteps) + " reached");
         LinCannyTraceStep* ts = beginTraceStep(trace, w, steps);
         w.ts = ts;
-        const Outcome out = w.step();
+        const LinCannyOutcome out = w.step();
         recordOutcome(ts, w, out);
         if (out.kind != VClipStepKind::Update) {  // Done or Penetration
             finalAnswer(w, out, res);

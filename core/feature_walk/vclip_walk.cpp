@@ -58,7 +58,7 @@ using feature_walk::finitePose;
 using feature_walk::maxAbs;
 using feature_walk::validFeature;
 
-struct Outcome {
+struct VClipOutcome {
     VClipStepKind kind = VClipStepKind::Done;
     int body = -1;
     VClipFeature to;
@@ -69,8 +69,8 @@ struct Outcome {
     Vec3 point = Vec3::Zero();
 };
 
-Outcome update(int body, VClipFeature to, const char* rule, bool localMin = false) {
-    Outcome o;
+VClipOutcome update(int body, VClipFeature to, const char* rule, bool localMin = false) {
+    VClipOutcome o;
     o.kind = VClipStepKind::Update;
     o.body = body;
     o.to = to;
@@ -79,8 +79,8 @@ Outcome update(int body, VClipFeature to, const char* rule, bool localMin = fals
     return o;
 }
 
-Outcome penetration(VClipPenetration how, int body, const Vec3& point, const char* rule) {
-    Outcome o;
+VClipOutcome penetration(VClipPenetration how, int body, const Vec3& point, const char* rule) {
+    VClipOutcome o;
     o.kind = VClipStepKind::Penetration;
     o.penetration = how;
     o.pointBody = body;
@@ -89,8 +89,8 @@ Outcome penetration(VClipPenetration how, int body, const Vec3& point, const cha
     return o;
 }
 
-Outcome done(const char* rule) {
-    Outcome o;
+VClipOutcome done(const char* rule) {
+    VClipOutcome o;
     o.rule = rule;
     return o;
 }
@@ -112,7 +112,7 @@ struct PairClosest {
     double distance = 0.0;
 };
 
-struct Walk : feature_walk::WalkPair {
+struct VClipWalk : feature_walk::WalkPair {
     VClipTraceStep* ts = nullptr;
 
     Vec3 world(int i, const Vec3& x) const { return Rw[i] * x + pose[i].position; }
@@ -273,7 +273,7 @@ struct Walk : feature_walk::WalkPair {
 
     // V-V: each vertex must lie in the other's region; a violated VE plane names the edge of the
     // other vertex that leads towards it (strict decrease).
-    Outcome vertexVertex() {
+    VClipOutcome vertexVertex() {
         for (int r : {0, 1}) {
             const int o = 1 - r;
             const Vec3 p = toFrame(o, pos(o, X[o].index));
@@ -295,7 +295,7 @@ struct Walk : feature_walk::WalkPair {
     }
 
     // V-E (vertex on body vb, edge on the other).
-    Outcome vertexEdge(int vb) {
+    VClipOutcome vertexEdge(int vb) {
         const int eb = 1 - vb, e = X[eb].index;
         const Vec3 p = toFrame(vb, pos(vb, X[vb].index));  // V in E's frame
         // V against VR(E): the VE planes first (neighbour: an endpoint, distance unchanged) ...
@@ -341,7 +341,7 @@ struct Walk : feature_walk::WalkPair {
     }
 
     // V-F (vertex on body vb, face on the other).
-    Outcome vertexFace(int vb) {
+    VClipOutcome vertexFace(int vb) {
         const int fb = 1 - vb, f = X[fb].index, v = X[vb].index;
         const Vec3 p = toFrame(vb, pos(vb, v));  // V in F's frame
         // V against the side planes of VR(F).
@@ -406,7 +406,7 @@ struct Walk : feature_walk::WalkPair {
     }
 
     // E-E, one direction: the edge X[1 - r] against VR(X[r]). Returns true with `out` on an update.
-    bool edgeEdgeSubtest(int r, Outcome& out) {
+    bool edgeEdgeSubtest(int r, VClipOutcome& out) {
         const int o = 1 - r, x = X[r].index, e = X[o].index;
         const Vec3 t = toFrame(o, pos(o, P[o]->edgeTail(e))), h = toFrame(o, pos(o, P[o]->edgeHead(e)));
         Clip c;
@@ -499,8 +499,8 @@ struct Walk : feature_walk::WalkPair {
         return false;
     }
 
-    Outcome edgeEdge() {
-        Outcome out;
+    VClipOutcome edgeEdge() {
+        VClipOutcome out;
         // E_A against VR(E_B) first, then E_B against VR(E_A) (Mirtich Fig. 9).
         if (edgeEdgeSubtest(1, out)) return out;
         if (edgeEdgeSubtest(0, out)) return out;
@@ -508,7 +508,7 @@ struct Walk : feature_walk::WalkPair {
     }
 
     // E-F (edge on body eb, face on the other). Never DONE: either an update or a penetration.
-    Outcome edgeFace(int eb) {
+    VClipOutcome edgeFace(int eb) {
         const int fb = 1 - eb, e = X[eb].index, f = X[fb].index;
         const Vec3 t = toFrame(eb, pos(eb, P[eb]->edgeTail(e))), h = toFrame(eb, pos(eb, P[eb]->edgeHead(e)));
         Clip c;
@@ -549,7 +549,7 @@ struct Walk : feature_walk::WalkPair {
         return update(fb, c.nmin, "E parallel to F: F -> Nmin");
     }
 
-    Outcome step() {
+    VClipOutcome step() {
         const FT a = X[0].type, b = X[1].type;
         if (a == FT::Vertex && b == FT::Vertex) return vertexVertex();
         if (a == FT::Vertex && b == FT::Edge) return vertexEdge(0);
@@ -675,7 +675,7 @@ struct Walk : feature_walk::WalkPair {
 namespace {
 
 // The trace step of the pair before it moves: the state, the features and their closest points.
-VClipTraceStep* beginTraceStep(VClipTrace* trace, const Walk& w, int step) {
+VClipTraceStep* beginTraceStep(VClipTrace* trace, const VClipWalk& w, int step) {
     if (!trace) return nullptr;
     VClipTraceStep* ts = &trace->steps.emplace_back();
     ts->step = step;
@@ -701,7 +701,7 @@ VClipTraceStep* beginTraceStep(VClipTrace* trace, const Walk& w, int step) {
 // The distance after an update and its sign of change. Equal in exact arithmetic, computed by
 // different formulas: allow rounding of ~1e-12 of the size of the bodies (formula errors are
 // ~1e-15 of it).
-void recordUpdate(VClipTraceStep* ts, const Walk& w, const Outcome& out, const VClipFeature& from, double extent) {
+void recordUpdate(VClipTraceStep* ts, const VClipWalk& w, const VClipOutcome& out, const VClipFeature& from, double extent) {
     if (!ts) return;
     ts->updatedBody = out.body;
     ts->from = from;
@@ -715,7 +715,7 @@ void recordUpdate(VClipTraceStep* ts, const Walk& w, const Outcome& out, const V
 
 // The answer when the walk stops: penetrating, touching (DONE at a distance below the rounding of
 // the features' coordinates) or separated at the closest points.
-void finalAnswer(const Walk& w, const Outcome& out, VClipTraceStep* ts, VClipResult& res) {
+void finalAnswer(const VClipWalk& w, const VClipOutcome& out, VClipTraceStep* ts, VClipResult& res) {
     if (out.kind == VClipStepKind::Penetration) {
         res.status = VClipStatus::Penetrating;
         res.penetration = out.penetration;
@@ -758,7 +758,7 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
     if (a.empty() || b.empty()) return fail(VClipStatus::InvalidInput, "vclip: empty polyhedron");
     if (!finitePose(poseA) || !finitePose(poseB)) return fail(VClipStatus::InvalidInput, "vclip: non-finite pose");
 
-    Walk w;
+    VClipWalk w;
     w.setup(a, poseA, b, poseB);
     // Seed: the cached pair if valid, else vertex 0 of each. F-F is never a state: B's face is
     // replaced by one of its vertices.
@@ -793,7 +793,7 @@ VClipResult vclip(const VClipPolyhedron& a, const Transform& poseA, const VClipP
         }
         VClipTraceStep* ts = beginTraceStep(trace, w, steps);
         w.ts = ts;
-        const Outcome out = w.step();
+        const VClipOutcome out = w.step();
         if (ts) {
             ts->kind = out.kind;
             ts->rule = out.rule;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/base/aabb_ops.h"
 #include "core/base/orient.h"
 #include "core/overlap/polygon_tests.h"
 
@@ -38,8 +39,6 @@ std::array<Vec2, 3> projectTriangle(const Triangle& tri, int axis) {
     return {dropAxis(tri.a, axis), dropAxis(tri.b, axis), dropAxis(tri.c, axis)};
 }
 
-bool finite(const Triangle& t) { return t.a.allFinite() && t.b.allFinite() && t.c.allFinite(); }
-
 // A ray / segment o + t d, t in [0, tMax], lying in the plane of a non-degenerate triangle:
 // first contact by 2D clipping in the projection along `axis`.
 RayTriangleHit coplanarHit(const Vec3& o, const Vec3& d, double tMax, const Triangle& tri, int axis, bool exactHit) {
@@ -57,15 +56,10 @@ RayTriangleHit coplanarHit(const Vec3& o, const Vec3& d, double tMax, const Tria
     return hit;
 }
 
-bool validBox(const Aabb& box) {
-    // Comparison order matters: NaN bounds fail <= and make the box invalid.
-    return box.min.allFinite() && box.max.allFinite() && (box.min.array() <= box.max.array()).all();
-}
-
 // Slab clipping of o + t d, t in [0, tMax] (Ericson §5.3.3, IntersectRayAABB).
 RayBoxHit slabs(const Vec3& o, const Vec3& d, double tMax, const Aabb& box, SlabTrace* trace) {
     RayBoxHit hit;
-    if (!validBox(box) || !o.allFinite() || !d.allFinite()) return hit;
+    if (!isValidBox(box) || !o.allFinite() || !d.allFinite()) return hit;
     double tEnter = 0.0, tExit = tMax;
     int enterAxis = -1;
     for (int i = 0; i < 3; ++i) {
@@ -236,7 +230,7 @@ RayTriangleHit intersectRayTriangle(const Ray& ray, const Triangle& tri, const R
     const Vec3& o = ray.origin;
     const Vec3& d = ray.direction;
     const Vec3 zero = Vec3::Zero();
-    if (!o.allFinite() || !d.allFinite() || !finite(tri) || d.isZero(0.0)) return hit;
+    if (!o.allFinite() || !d.allFinite() || !tri.allFinite() || d.isZero(0.0)) return hit;
     const int axis = projectionAxis(tri);
     if (axis < 0) return hit;  // zero-area triangle
 
@@ -282,7 +276,7 @@ RayTriangleHit intersectSegmentTriangle(const Segment& segment, const Triangle& 
     RayTriangleHit hit;
     const Vec3& p = segment.a;
     const Vec3& q = segment.b;
-    if (!p.allFinite() || !q.allFinite() || !finite(tri)) return hit;
+    if (!p.allFinite() || !q.allFinite() || !tri.allFinite()) return hit;
     const int axis = projectionAxis(tri);
     if (axis < 0) return hit;  // zero-area triangle
 

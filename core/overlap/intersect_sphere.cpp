@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/aabb_ops.h"
 #include "core/base/orient.h"
 
 namespace cdlab {
@@ -55,10 +56,6 @@ SphereShapeResult finish(const Sphere& sphere, const Vec3& closest) {
     return r;
 }
 
-bool validBox(const Aabb& box) {
-    return box.min.allFinite() && box.max.allFinite() && (box.min.array() <= box.max.array()).all();
-}
-
 }  // namespace
 
 SphereSphereResult intersectSphereSphere(const Sphere& a, const Sphere& b) {
@@ -77,7 +74,7 @@ SphereSphereResult intersectSphereSphere(const Sphere& a, const Sphere& b) {
 }
 
 SphereShapeResult intersectSphereAabb(const Sphere& sphere, const Aabb& box) {
-    if (!validSphere(sphere) || !validBox(box)) return {};
+    if (!validSphere(sphere) || !isValidBox(box)) return {};
     // Ericson §5.1.3: clamp the center to the box per axis.
     return finish(sphere, sphere.center.cwiseMax(box.min).cwiseMin(box.max));
 }

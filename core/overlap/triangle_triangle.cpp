@@ -10,8 +10,6 @@ namespace cdlab {
 
 namespace {
 
-bool finite(const Triangle& t) { return t.a.allFinite() && t.b.allFinite() && t.c.allFinite(); }
-
 // Signs of the vertices of `t` relative to the plane of `p`; true when all three are strictly
 // on the same side (no intersection possible).
 bool strictlyOneSide(const Triangle& p, const Triangle& t, bool& allZero) {
@@ -43,7 +41,7 @@ void edgeContacts(const Triangle& edges, const Triangle& t, std::array<Vec3, 12>
 
 TriangleTriangleResult intersectTriangleTriangle(const Triangle& a, const Triangle& b) {
     TriangleTriangleResult result;
-    if (!finite(a) || !finite(b)) return result;
+    if (!a.allFinite() || !b.allFinite()) return result;
     const int axisA = projectionAxis(a);
     if (axisA < 0 || projectionAxis(b) < 0) return result;  // zero-area triangle
 

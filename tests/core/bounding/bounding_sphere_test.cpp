@@ -17,8 +17,6 @@ using bvoracle::V;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 struct LBall {
     V c;
     LD r = -1;

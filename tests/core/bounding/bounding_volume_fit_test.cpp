@@ -16,8 +16,6 @@ using bvoracle::V;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // Max over points of how far (in long double) a point lies outside the box, measured along the
 // stored axes: max_i (|a_i . (p - c)| - h_i), <= 0 when inside.
 LD maxOutside(const Obb& box, const std::vector<Vec3>& pts) {

@@ -20,8 +20,6 @@ using bvoracle::V;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 template <int K>
 bool containsLD(const Kdop<K>& dop, const Vec3& p) {
     const auto dirs = kdopDirections<K>();

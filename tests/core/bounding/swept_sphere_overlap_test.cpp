@@ -16,8 +16,6 @@ using bvoracle::V;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 template <class F>
 LD minimize01(F f, int iterations) {
     LD lo = -1, hi = 1;  // parameters in [-1, 1]

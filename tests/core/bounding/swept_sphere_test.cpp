@@ -18,7 +18,6 @@ using bvoracle::V;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = std::numbers::pi;
 
 // Distance from p to the RSS's rectangle in long double: coordinates along the stored axes.

@@ -64,11 +64,11 @@ void checkAgainstBruteForce(const std::vector<Aabb>& boxes, const OctreeOptions&
                 CHECK((boxes[std::size_t(i)].max.array() <= c.max.array()).all());
             }
         }
-    for (std::size_t i = 0; i < boxes.size(); ++i) CHECK(seen[i] == (aabbValid(boxes[i]) ? 1 : 0));
+    for (std::size_t i = 0; i < boxes.size(); ++i) CHECK(seen[i] == (isValidBox(boxes[i]) ? 1 : 0));
     // Box queries: some input boxes themselves (ties) and random ones.
     for (int k = 0; k < 10 && !boxes.empty(); ++k) {
         Aabb q = boxes[std::size_t(rng() % boxes.size())];
-        if (k % 2 == 1 && aabbValid(q)) {
+        if (k % 2 == 1 && isValidBox(q)) {
             const Vec3 d = (q.max - q.min) * 1.5 + Vec3::Constant(0.5);
             q = {q.min - d, q.max + d};
         }

@@ -13,8 +13,6 @@ using namespace cdlab;
 
 namespace {
 
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 RigidBody boxBody(const Transform& pose = {}) {
     // Box 1 x 2 x 3, mass 6: I = diag(m(b²+c²), m(a²+c²), m(a²+b²)) / 12 = diag(6.5, 5, 2.5).
     RigidBodyBuild b = makeDynamicBody(6.0, Vec3(6.5, 5.0, 2.5).asDiagonal(), pose);

@@ -12,10 +12,6 @@ using namespace cdlab;
 using oracle::LD;
 using oracle::V3;
 
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}
-
 TEST_SUITE("intersect_ray") {
     TEST_CASE("ray-sphere and segment-sphere against sampling + bisection") {
         oracle::Rng rng(1);
