@@ -147,7 +147,7 @@ struct SatQuery {
     std::vector<SatAxisRecord>* axes = nullptr;  // the trace's list, or none
     int tested = 0;
     detail::SatBestAxes best;
-    int pruned = 0, parallel = 0, walkFallbacks = 0;
+    int pruned = 0, parallel = 0;
     void count(const SatAxisRecord& rec) {
         if (axes) axes->push_back(rec);
         ++tested;
@@ -304,7 +304,6 @@ void queryEdgeAxesByWalk(const Posed& A, const Posed& B, const std::pmr::vector<
         const Posed::Edge& edgeA = A.edges[ea];
         if (walkEdgeArc(A, B, ea, supportOfB[edgeA.f1], supportOfB[edgeA.f2], tol, q)) continue;
         // Every pair of ea (a pair the walk already took is taken again: no change to the best).
-        ++q.walkFallbacks;
         side.resize(B.n.size());
         queryEdgeAxesOfEdge(A, B, ea, side, q);
     }
