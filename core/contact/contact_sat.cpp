@@ -50,22 +50,28 @@ struct Posed {
     };
     std::pmr::vector<Edge> edges;
     Vec3 center = Vec3::Zero();  // vertex mean (inside: convex)
-    // Vertex adjacency as flat arrays (the neighbours of v and the edges to them are
-    // [adjacencyStart[v], adjacencyStart[v + 1]) of neighbor / neighborEdge), for the descents and
-    // the arc walks of the untraced query: the half-edge links cost three dependent loads per
-    // neighbour, these one.
+    // Vertex adjacency as flat arrays (the neighbours of v, the edges to them and the edge vectors
+    // w - v in world orientation are [adjacencyStart[v], adjacencyStart[v + 1]) of neighbor /
+    // neighborEdge / neighborStep), for the descents and the arc walks of the untraced query: the
+    // half-edge links cost three dependent loads per neighbour, these one. The steps are rotated
+    // body-frame differences, free of the rounding of B's offset from A (the arc tests of the
+    // traced query use normals only, so neither depends on where the bodies are).
+    Mat3 rotation = Mat3::Identity();
     std::pmr::vector<int> adjacencyStart, neighbor, neighborEdge;
+    std::pmr::vector<Vec3> neighborStep;
+    bool flat = false;  // an edge whose two faces are opposite (a body without volume): no Gauss arc
 
     // sign: +1 for A (arc from n_f1 to n_f2), -1 for B (the negated normals: B's Gauss map is
     // reflected in A - B).
     Posed(const ConvexPolyhedron& m, const Transform& t, const Vec3& origin, double sign, std::pmr::memory_resource* memory)
         : mesh(&m), x(memory), n(memory), d(memory), edges(memory), adjacencyStart(memory), neighbor(memory),
-          neighborEdge(memory) {
+          neighborEdge(memory), neighborStep(memory) {
         x.reserve(m.vertexCount());
         n.reserve(m.faceCount());
         d.reserve(m.faceCount());
         edges.reserve(m.edgeCount());
         const Mat3 r = t.rotation.toRotationMatrix();
+        rotation = r;
         const Vec3 shift = t.position - origin;  // exact when t.position == origin
         for (const auto& v : m.vertices()) {
             x.push_back(r * v.position + shift);
@@ -88,6 +94,9 @@ struct Posed {
             const auto [f1, f2] = m.edgeFaces(e);
             const Vec3 from = sign * n[f1], to = sign * n[f2];
             edges.push_back({v0, v1, f1, f2, from, to, to.cross(from)});
+            // Unit normals within 1e-12 of opposite: a fold of a flat body, not a dihedral edge.
+            // (Equal normals, two coplanar faces of a triangulated mesh, are fine: a point arc.)
+            flat = flat || (n[f1].dot(n[f2]) < 0.0 && !(edges.back().cross.norm() > 1e-12));
         }
     }
     void buildAdjacency() {
@@ -97,11 +106,13 @@ struct Posed {
         for (size_t v = 0; v < x.size(); ++v) adjacencyStart[v + 1] += adjacencyStart[v];
         neighbor.resize(halfEdges.size());
         neighborEdge.resize(halfEdges.size());
+        neighborStep.resize(halfEdges.size());
         std::pmr::vector<int> fill(adjacencyStart.begin(), adjacencyStart.end() - 1, adjacencyStart.get_allocator());
         for (const auto& h : halfEdges) {
             const int slot = fill[h.origin]++;
             neighbor[slot] = halfEdges[h.twin].origin;
             neighborEdge[slot] = h.edge;
+            neighborStep[slot] = rotation * (mesh->position(neighbor[slot]) - mesh->position(h.origin));
         }
     }
     // The vertex minimising dir · x (the support along -dir), the first of exact ties.
@@ -280,7 +291,7 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
         double riseNext = 1.0, runNext = 0.0;  // t = +inf
         for (int k = B.adjacencyStart[v]; k < B.adjacencyStart[v + 1]; ++k) {
             const int w = B.neighbor[k];
-            const Vec3 step = B.x[w] - B.x[v];
+            const Vec3& step = B.neighborStep[k];
             const double run = -ab.dot(step);
             if (!(run > 0.0)) continue;
             double rise = a.dot(step);
@@ -298,11 +309,14 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
     return false;
 }
 
-void queryEdgeAxesByWalk(const Posed& A, const Posed& B, const std::pmr::vector<int>& supportOfB, double tol, SatQuery& q) {
+// endTol: how far along b the walk's last vertex may be above face b's support (rounding of the
+// support values; the default touching band, whatever the caller's tolerance).
+void queryEdgeAxesByWalk(const Posed& A, const Posed& B, const std::pmr::vector<int>& supportOfB, double endTol,
+                         SatQuery& q) {
     std::pmr::vector<double> side(B.n.get_allocator().resource());
     for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
         const Posed::Edge& edgeA = A.edges[ea];
-        if (walkEdgeArc(A, B, ea, supportOfB[edgeA.f1], supportOfB[edgeA.f2], tol, q)) continue;
+        if (walkEdgeArc(A, B, ea, supportOfB[edgeA.f1], supportOfB[edgeA.f2], endTol, q)) continue;
         // Every pair of ea (a pair the walk already took is taken again: no change to the best).
         side.resize(B.n.size());
         queryEdgeAxesOfEdge(A, B, ea, side, q);
@@ -364,8 +378,8 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     if (trace) *trace = SatContactTrace{};
     const Vec3 origin = ta.position;
     // Scratch for both posed bodies, the edge query and the clipping: two 64-vertex hulls (~124
-    // faces, ~186 edges each: ~50 KB) fit; larger bodies spill to the heap.
-    StackArena<65536> arena;
+    // faces, ~186 edges, 372 adjacency slots each: ~36 KB a body) fit; larger bodies spill to the heap.
+    StackArena<98304> arena;
     Posed A(ma, ta, origin, 1.0, arena.resource()), B(mb, tb, origin, -1.0, arena.resource());
     double maxCoord = 0.0;
     for (const Vec3& p : B.x) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
@@ -376,9 +390,11 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
 
     SatQuery q;
     std::pmr::vector<int> supportOfB(ma.faceCount(), -1, arena.resource()), supportOfA(mb.faceCount(), -1, arena.resource());
-    if (trace) {
+    // A body without volume has edges whose Gauss arcs are half circles with opposite ends: no arc
+    // to walk (every region of the other body ties halfway), while the all-pairs test drops them.
+    if (trace || A.flat || B.flat) {
         // Traced: every face axis and every edge pair in index order, the pruning counted.
-        q.axes = &trace->axes;
+        if (trace) q.axes = &trace->axes;
         queryFaceAxes(A, B, q, supportOfB);
         queryEdgeAxes(A, B, q);
     } else {
@@ -386,8 +402,9 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         B.buildAdjacency();
         queryFaceAxesByDescent(A, B, true, q, supportOfB, arena.resource());
         queryFaceAxesByDescent(B, A, false, q, supportOfA, arena.resource());
-        queryEdgeAxesByWalk(A, B, supportOfB, tol, q);
+        queryEdgeAxesByWalk(A, B, supportOfB, detail::satTolerance(SatContactOptions{}, size, maxCoord), q);
     }
+    r.axesTested = q.tested;
     const detail::SatChosenAxis c = detail::chooseSatAxis(q.best, tol, options);
     const SatAxisRecord& best = c.best;
     detail::recordChosenAxis(c, tol, r);

@@ -74,6 +74,10 @@ struct SatContactResult {
     FeatureRef featureA, featureB;       ///< face: reference / incident face; edge-edge: the two edges
     ContactManifold manifold;            ///< colliding: <= maxPoints points, deepest first
     double tolerance = 0.0;
+    /// Axes whose separation was computed: every face normal of both bodies and every edge pair
+    /// that forms a face of A − B (their Gauss arcs cross, edges not parallel). The untraced and the
+    /// traced query test the same pairs, found by walking the arcs or by testing all of them.
+    int axesTested = 0;
     bool colliding() const { return status == SatContactStatus::Touching || status == SatContactStatus::Penetrating; }
 };
 

@@ -181,6 +181,9 @@ TEST_SUITE("contact_sat") {
                 return;
             }
             ++generic;
+            // The same pairs tested: a walk that missed crossings tests fewer, one that fell back
+            // to the all-pairs test for an edge tests its pairs twice.
+            CHECK(walk.axesTested == all.axesTested);
             CHECK(walk.separation == all.separation);
             CHECK(walk.depth == all.depth);
             REQUIRE(walk.axisKind == all.axisKind);
@@ -211,10 +214,42 @@ TEST_SUITE("contact_sat") {
                     if (k == 11) tb = ta, isGeneric = false;
                     compare(a, ta, b, tb, isGeneric);
                 }
-        CHECK(generic == 5 * int(bodies.size() * bodies.size()));
+        // Far from the origin, B's offset from A rounded to ulps of 1e7: still the same pairs.
+        for (int k = 0; k < 40; ++k) {
+            const Vec3 c(1e7, -3e6, 2e6);
+            compare(bodies[6 + k % 4], test::randomPose(rng, c, 0.0), bodies[7 + k % 3], test::randomPose(rng, c, 0.3), true);
+        }
+        CHECK(generic == 5 * int(bodies.size() * bodies.size()) + 40);
         CHECK(degenerate == 7 * int(bodies.size() * bodies.size()));
         CHECK(edgeAxes > 50);  // both kinds of contact are compared, not only faces
         CHECK(faceAxes > 200);
+    }
+
+    // A body without volume (a square as two faces back to back) is accepted by fromFaces; its
+    // folded edges have no Gauss arc to walk, so both queries test every pair and agree.
+    TEST_CASE("flat body: untraced = traced") {
+        const std::vector<Vec3> square = {Vec3(-0.3, -0.3, 0), Vec3(0.3, -0.3, 0), Vec3(0.3, 0.3, 0), Vec3(-0.3, 0.3, 0)};
+        const PolyhedronBuild flat = ConvexPolyhedron::fromFaces(square, {{0, 1, 2}, {0, 2, 3}, {1, 0, 3}, {1, 3, 2}});
+        REQUIRE(flat.ok());
+        const ConvexPolyhedron box = presets::box(Vec3(0.5, 0.5, 0.5));
+        std::mt19937_64 rng(4);
+        for (int k = 0; k < 50; ++k) {
+            const Transform tf = test::randomPose(rng, Vec3::Zero(), k < 10 ? 0.0 : 0.5), tb = test::randomPose(rng, Vec3::Zero(), 0.2);
+            for (const bool flatFirst : {true, false}) {
+                const ConvexPolyhedron& a = flatFirst ? flat.polyhedron : box;
+                const ConvexPolyhedron& b = flatFirst ? box : flat.polyhedron;
+                const Transform& ta = flatFirst ? tf : tb;
+                const Transform& tb2 = flatFirst ? tb : tf;
+                SatContactTrace tr;
+                const SatContactResult all = contactPolyhedra(a, ta, b, tb2, {}, &tr);
+                const SatContactResult walk = contactPolyhedra(a, ta, b, tb2);
+                CHECK(walk.status == all.status);
+                CHECK(walk.separation == all.separation);
+                CHECK(walk.axesTested == all.axesTested);
+            }
+        }
+        // A square at the centre of a larger box is inside it.
+        CHECK(contactPolyhedra(flat.polyhedron, {}, box, {}).colliding());
     }
 
     TEST_CASE("invalid input") {
@@ -223,6 +258,14 @@ TEST_SUITE("contact_sat") {
         bad.position.y() = NAN;
         CHECK(contactPolyhedra(box, t, box, bad).status == SatContactStatus::InvalidInput);
         CHECK(contactPolyhedra(ConvexPolyhedron{}, t, box, t).status == SatContactStatus::InvalidInput);
+        // A mesh with a NaN vertex never reaches the contact: fromFaces refuses it (empty polyhedron).
+        std::vector<Vec3> corners = box.positions();
+        corners[3].x() = NAN;
+        std::vector<std::vector<int>> faces;
+        for (int f = 0; f < box.faceCount(); ++f) faces.push_back(box.faceVertices(f));
+        const PolyhedronBuild broken = ConvexPolyhedron::fromFaces(corners, faces);
+        CHECK_FALSE(broken.ok());
+        CHECK(contactPolyhedra(broken.polyhedron, t, box, t).status == SatContactStatus::InvalidInput);
         bad = Transform{};
         bad.rotation = Quat(0, 0, 0, 0);
         CHECK(contactPolyhedra(box, bad, box, t).status == SatContactStatus::InvalidInput);
