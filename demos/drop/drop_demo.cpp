@@ -368,10 +368,12 @@ private:
         // hidden edges are elsewhere: the body is opaque, the marker must not read as in front.
         int pushing = 0, bounces = 0, hiddenCount = 0;
         if (common_.hasLayer("contacts")) {
+            // The contacts were found at the pose the step started from (the previous step's).
+            const SimulationStep& start = tr.steps[std::size_t(std::max(k - 1, 0))];
             std::vector<Plane> faces;
             for (int f = 0; f < r.shape.faceCount(); ++f) {
-                const Vec3 n = s.orientation * r.shape.face(f).normal;
-                faces.push_back({n, r.shape.face(f).offset + n.dot(s.position)});
+                const Vec3 n = start.orientation * r.shape.face(f).normal;
+                faces.push_back({n, r.shape.face(f).offset + n.dot(start.position)});
             }
             std::vector<char> hidden;
             for (const ContactImpulse& ct : s.contacts) hidden.push_back(behindBody(cam, ct.point, faces, 1e-3 * rho));
@@ -405,11 +407,12 @@ private:
             // Legend (top right), each entry in the colour of what it names.
             const double x = c.width() - 18.0;
             double y = 18.0;
-            const auto item = [&](const std::string& text, Role role) {
-                c.drawTextPx(
-                    x, y, text,
-                    TextStyle{16.0f, role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role),
-                              Anchor::TopRight, true, true});
+            // faded: the entry in the faded colour it names (mixed as the markers, a little less so
+            // the text stays legible).
+            const auto item = [&](const std::string& text, Role role, bool faded = false) {
+                Color color = role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role);
+                if (faded) color = color.mixed(roleColor(Role::Background), 0.45f);
+                c.drawTextPx(x, y, text, TextStyle{16.0f, color, Anchor::TopRight, true, true});
                 y += 22.0;
             };
             if (common_.hasLayer("contacts")) {
@@ -419,7 +422,7 @@ private:
                      Role::Direction);
             }
             if (common_.hasLayer("trail")) item("dashed: centre-of-mass path", Role::Ink);
-            if (hiddenCount > 0) item("faded: contact behind the body", Role::Result);
+            if (hiddenCount > 0) item("faded: contact behind the body", Role::Result, true);
             if (touching) item("tint and outline: body in contact with the ground", Role::Colliding);
         }
         // Two caption lines: the contacts of the step, then energy and depth.
