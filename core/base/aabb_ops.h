@@ -1,6 +1,7 @@
-// Plain operations on axis-aligned boxes shared by the hierarchies and broad phases (core/bvh,
-// core/broadphase): union, containment, closed overlap and surface area. Exact comparisons (no centre
-// subtraction); boxes are assumed valid (finite, min <= max).
+// Plain operations on axis-aligned boxes shared by the hierarchies, broad phases and primitive
+// tests (core/bvh, core/broadphase, core/overlap): validity, union, containment, closed overlap and
+// surface area. Exact comparisons (no centre subtraction); all but isValidBox assume valid boxes
+// (finite, min <= max).
 #pragma once
 
 #include "core/base/primitives.h"

@@ -23,6 +23,7 @@ struct Segment {
 /// Triangle with vertices a, b, c in this order (zero area is allowed).
 struct Triangle {
     Vec3 a, b, c;
+    /// No NaN or infinite coordinate.
     bool allFinite() const { return a.allFinite() && b.allFinite() && c.allFinite(); }
 };
 

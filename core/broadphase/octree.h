@@ -29,7 +29,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/base/aabb_ops.h"  // isValidBox
+#include "core/base/aabb_ops.h"
 #include "core/base/primitives.h"
 
 namespace cdlab {
@@ -37,6 +37,8 @@ namespace cdlab {
 /// Closed-box overlap with the semantics of testAabbAabb (touching overlaps), as a plain
 /// comparison (no centre subtraction: exact). Invalid boxes never overlap.
 bool aabbOverlapClosed(const Aabb& a, const Aabb& b);
+/// The former name of isValidBox (core/base/aabb_ops.h), kept for code written against it.
+[[deprecated("use isValidBox from core/base/aabb_ops.h")]] inline bool aabbValid(const Aabb& box) { return isValidBox(box); }
 
 struct OctreeOptions {
     int maxDepth = 8;            ///< the root has depth 0; nodes at maxDepth are never split
