@@ -25,6 +25,7 @@
 #include "core/base/tolerances.h"
 #include "core/closest/edge_pair_distance.h"
 #include "core/geometry/polyhedron.h"
+#include "core/gjk_epa/gjk_boolean.h"
 #include "core/gjk_epa/simplex_solver.h"
 
 namespace cdlab {
@@ -558,11 +559,36 @@ GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& option
 }
 
 /// Boolean intersection test of A and B (world frame): stops as soon as a separating axis is
-/// found. Optional `result` receives the (partial) GJK result: for separated shapes its distance
-/// is only an upper bound unless the loop converged.
+/// found. Untraced and without a warm start, the answer comes from the boolean fast path
+/// (core/gjk_epa/gjk_boolean.h) when it decides with its margin; `result` then holds only status,
+/// intersect, termination (SeparatingAxis or OriginInSimplex) and iterations. Otherwise, and for
+/// touching within the margin, the full loop runs: optional `result` receives its (partial) GJK
+/// result, for separated shapes a distance that is only an upper bound unless the loop converged.
 template <SupportMapping A, SupportMapping B>
 bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options = {}, GjkTrace* trace = nullptr,
                   GjkResult* result = nullptr) {
+    if (!trace && !options.warmStart) {
+        detail::SupportHints hints;
+        GjkVertex sup;
+        int iterations = 0;
+        const detail::QuickBoolean quick = detail::gjkQuickBoolean(
+            [&](const Vec3& d, Vec3& w) {
+                detail::gjkSupport(shapeA, shapeB, d, sup, hints);
+                w = sup.w;
+            },
+            iterations);
+        if (quick != detail::QuickBoolean::Undecided) {
+            const bool hit = quick == detail::QuickBoolean::Intersecting;
+            if (result) {
+                *result = GjkResult{};
+                result->status = hit ? GjkStatus::Intersecting : GjkStatus::Separated;
+                result->intersect = hit;
+                result->termination = hit ? GjkTermination::OriginInSimplex : GjkTermination::SeparatingAxis;
+                result->iterations = iterations;
+            }
+            return hit;
+        }
+    }
     GjkResult r = detail::gjkRun(shapeA, shapeB, options, trace, true);
     if (result) *result = r;
     return r.intersect;

@@ -127,6 +127,58 @@ TEST_SUITE("gjk") {
         }
     }
 
+    // gjkIntersect answers from the boolean fast path (core/gjk_epa/gjk_boolean.h) when it decides,
+    // from the full loop otherwise: on pairs clear of touching it must decide nearly always and
+    // agree with the oracle; within its margin of touching it must leave the answer to the loop.
+    TEST_CASE("boolean fast path: decides clear pairs as the oracle does, leaves touching to the full loop") {
+        std::mt19937_64 rng(77);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        int decided = 0, clear = 0, wrong = 0;
+        for (int trial = 0; trial < 180; ++trial) {
+            const auto [size, offset, o] = sweepTrial(trial, rng);
+            const int n = 4 + trial % 13;  // 4..16 vertices (the oracle hulls n² points)
+            const Vec3 sep = size * (0.1 + 2.0 * unit(rng)) * randomUnit(rng);
+            const PolytopeShape a{randomPolytope(rng, n, size, o)}, b{randomPolytope(rng, n, size, o + sep)};
+            const HullOracle oracle = hullOracle(a.vertices, b.vertices);
+            const double margin = static_cast<double>(oracle.inside ? oracle.depth : oracle.distance);
+            int iterations = 0;
+            const detail::QuickBoolean quick = detail::gjkQuickBoolean(
+                [&](const Vec3& d, Vec3& w) { w = a.support(d) - b.support(Vec3(-d)); }, iterations);
+            GjkTrace fullTrace;  // a trace forces the full loop
+            const bool full = gjkIntersect(a, b, {}, &fullTrace), answer = gjkIntersect(a, b);
+            if (quick != detail::QuickBoolean::Undecided) {
+                CHECK(answer == (quick == detail::QuickBoolean::Intersecting));
+                CHECK(iterations <= 32);
+            } else {
+                CHECK(answer == full);  // undecided: the full loop's answer
+            }
+            if (margin < 1e-9 * size) continue;  // touching within rounding: either answer is right
+            ++clear;
+            decided += quick != detail::QuickBoolean::Undecided;
+            wrong += answer != oracle.inside;
+        }
+        CHECK(wrong == 0);
+        CHECK(decided >= clear - clear / 100);  // the fast path is the common path
+        // Boxes face to face: gaps from 1e-2 down to 1e-16 of their size, and overlaps alike.
+        for (int k = -42; k <= 42; ++k) {
+            const double gap = k == 0 ? 0.0 : std::copysign(std::pow(10.0, -std::abs(k) * 0.35 - 1.5), double(k));
+            std::vector<Vec3> cube, moved;
+            for (int c = 0; c < 8; ++c) cube.push_back(Vec3(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1));
+            for (const Vec3& c : cube) moved.push_back(c + Vec3(2.0 + gap, 0.3, 0.1));
+            const PolytopeShape box{cube}, b{moved};
+            int iterations = 0;
+            const detail::QuickBoolean quick = detail::gjkQuickBoolean(
+                [&](const Vec3& d, Vec3& w) { w = box.support(d) - b.support(Vec3(-d)); }, iterations);
+            GjkTrace fullTrace;
+            const bool full = gjkIntersect(box, b, {}, &fullTrace);
+            CHECK(gjkIntersect(box, b) == full);
+            const detail::QuickBoolean truth = gap < 0 ? detail::QuickBoolean::Intersecting : detail::QuickBoolean::Separated;
+            if (std::abs(gap) < 1e-13) CHECK(quick == detail::QuickBoolean::Undecided);  // inside the margin (~3e-12 here)
+            else if (std::abs(gap) > 1e-10) CHECK(quick == truth);
+            else CHECK((quick == truth || quick == detail::QuickBoolean::Undecided));
+        }
+    }
+
     TEST_CASE("random polytope pairs vs long double facet-enumeration oracle") {
         std::mt19937_64 rng(1234);
         std::uniform_int_distribution<int> count(8, 10);
