@@ -167,10 +167,15 @@ struct SatQuery {
 
 // A face axis into the family's best: the larger separation wins, an exact tie goes to the lower
 // face index (the brute-force loop's order, whatever order the faces were visited in).
-void considerFaceAxis(const SatAxisRecord& rec, int face, SatAxisRecord& best, int& bestIndex, SatQuery& q) {
-    const int bestFace = rec.kind == SatAxisKind::FaceA ? best.indexA : best.indexB;
-    if (rec.separation > best.separation || (rec.separation == best.separation && face < bestFace))
-        best = rec, bestIndex = q.tested;
+// Face f of P with Q's support s along -n_f (P = A: axis n_f; P = B: axis -n_f, A→B).
+void considerFaceAxis(const Posed& P, const Posed& Q, bool pIsA, int f, int s, SatQuery& q) {
+    const double separation = P.n[f].dot(Q.x[s]) - P.d[f];
+    const SatAxisRecord rec = pIsA ? SatAxisRecord{SatAxisKind::FaceA, f, -1, P.n[f], separation}
+                                   : SatAxisRecord{SatAxisKind::FaceB, -1, f, -P.n[f], separation};
+    SatAxisRecord& best = pIsA ? q.best.faceA : q.best.faceB;
+    const int bestFace = pIsA ? best.indexA : best.indexB;
+    if (rec.separation > best.separation || (rec.separation == best.separation && f < bestFace))
+        best = rec, (pIsA ? q.best.faceAIndex : q.best.faceBIndex) = q.tested;
     q.count(rec);
 }
 
@@ -179,16 +184,10 @@ void considerFaceAxis(const SatAxisRecord& rec, int face, SatAxisRecord& best, i
 // realises face f of A's separation (B's support along -n_f), where the edge walk starts.
 void queryFaceAxes(const Posed& A, const Posed& B, SatQuery& q, std::pmr::vector<int>& supportOfB) {
     for (int f = 0; f < A.mesh->faceCount(); ++f) {
-        const int s = B.minVertex(A.n[f]);
-        supportOfB[f] = s;
-        considerFaceAxis({SatAxisKind::FaceA, f, -1, A.n[f], A.n[f].dot(B.x[s]) - A.d[f]}, f, q.best.faceA,
-                         q.best.faceAIndex, q);
+        supportOfB[f] = B.minVertex(A.n[f]);
+        considerFaceAxis(A, B, true, f, supportOfB[f], q);
     }
-    for (int f = 0; f < B.mesh->faceCount(); ++f) {
-        const int s = A.minVertex(B.n[f]);
-        considerFaceAxis({SatAxisKind::FaceB, -1, f, -B.n[f], B.n[f].dot(A.x[s]) - B.d[f]}, f, q.best.faceB,
-                         q.best.faceBIndex, q);
-    }
+    for (int f = 0; f < B.mesh->faceCount(); ++f) considerFaceAxis(B, A, false, f, A.minVertex(B.n[f]), q);
 }
 
 // 1, untraced: the same supports found by descent over the other body's vertex graph, faces
@@ -207,9 +206,7 @@ void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery&
     for (size_t head = 0; head < queue.size(); ++head) {
         const int f = queue[head];
         const int s = supportOfQ[f];
-        const double separation = P.n[f].dot(Q.x[s]) - P.d[f];
-        if (pIsA) considerFaceAxis({SatAxisKind::FaceA, f, -1, P.n[f], separation}, f, q.best.faceA, q.best.faceAIndex, q);
-        else considerFaceAxis({SatAxisKind::FaceB, -1, f, -P.n[f], separation}, f, q.best.faceB, q.best.faceBIndex, q);
+        considerFaceAxis(P, Q, pIsA, f, s, q);
         mp.forEachFaceHalfEdge(f, [&](int h) {
             const int g = mp.halfEdge(mp.halfEdge(h).twin).face;
             if (supportOfQ[g] >= 0) return;
