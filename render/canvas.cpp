@@ -8,7 +8,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <stdexcept>
 #include <variant>
@@ -18,6 +17,7 @@
 #include "render/gl_internal.h"
 #include "render/label_placement.h"
 #include "render/legibility.h"
+#include "render/translucent_order.h"
 
 namespace cdlab::render {
 
@@ -333,57 +333,6 @@ FigureLayout Canvas::Impl::layoutTexts() {
     return layout;
 }
 
-namespace {
-
-// A translucent triangle and its depth key for the painter's sort.
-struct SortedTriangle {
-    double depth;
-    Vertex v[3];
-};
-
-// The plane of a triangle, quantised (unit normal with its first non-zero coordinate positive, and
-// offset, to 1e-6): the triangles of one polygon face share it.
-using PlaneKey = std::array<long long, 4>;
-PlaneKey planeKey(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-    Vector3d n = (b - a).cross(c - a);
-    if (!(n.norm() > 0)) return {0, 0, 0, 0};
-    n.normalize();
-    const auto q = [](double x) { return static_cast<long long>(std::llround(x * 1e6)); };
-    PlaneKey key{q(n.x()), q(n.y()), q(n.z()), q(n.dot(a))};
-    // The sign from the first non-zero quantised coordinate: a rounding-level 1e-16 in front of a
-    // face's normal must not flip one of its triangles.
-    for (int i = 0; i < 3; ++i)
-        if (key[std::size_t(i)] != 0) {
-            if (key[std::size_t(i)] < 0)
-                for (long long& k : key) k = -k;
-            break;
-        }
-    return key;
-}
-
-// Gives every triangle of one polygon face (same mesh, same plane) the face's mean depth, so the
-// painter's sort keeps a face's triangles together: sorted one by one, the two triangles of a
-// quad could land on either side of another body's face and blend in different orders, drawing one
-// triangle of the quad darker than the other (a seam along its diagonal). Tried and not kept: the
-// face's farthest corner as the key (drew a large ground first, but put faces of bodies inside one
-// another in the wrong order: measured against a render of 3-px pieces sorted one by one), and
-// pieces cut on a 24-px screen grid keyed by their plane's depth at the cell centre (right order,
-// but the crossing of two faces became a staircase of cells).
-void shareFaceDepths(std::vector<SortedTriangle>& sorted, std::size_t first, const std::vector<PlaneKey>& planes) {
-    std::map<PlaneKey, std::pair<double, int>> faces;
-    for (std::size_t i = 0; i < planes.size(); ++i) {
-        auto& [sum, count] = faces[planes[i]];
-        sum += sorted[first + i].depth;
-        ++count;
-    }
-    for (std::size_t i = 0; i < planes.size(); ++i) {
-        const auto& [sum, count] = faces[planes[i]];
-        sorted[first + i].depth = sum / count;
-    }
-}
-
-}  // namespace
-
 void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>& translucent) {
     // Camera frame for the light: a key light from the upper left, in front of the scene, so
     // faces turned towards the viewer are bright and neighbouring faces differ.
@@ -393,13 +342,28 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
     right.normalize();
     const Vector3d upCam = back.cross(right);
     const Vector3d light = (0.6 * back + 0.65 * upCam - 0.45 * right).normalized();
-    const Vector3d eye = is3D() ? camera.eye : Vector3d(camera.target.x(), camera.target.y(), 0);
 
-    std::vector<SortedTriangle> sorted;
+    const auto vertex = [&](const Vector3d& p, const Color& shade) {
+        Vertex v;
+        const Vector4d c = clip(p);
+        set4(v.pos, c.x(), c.y(), c.z(), c.w());
+        setColor(v.color, shade);
+        set4(v.color2, 0, 0, 0, 0);
+        set4(v.local, 0, 0, 0, 0);
+        set4(v.param, kFlat, 0, 0, 0);
+        return v;
+    };
+    // Translucent meshes: their finite triangles and each one's shade, ordered below.
+    std::vector<std::vector<Eigen::Vector3i>> kept;
+    std::vector<std::vector<Color>> shades;
+    std::vector<const MeshCmd*> sources;
     for (const MeshCmd& m : meshes) {
         const bool isTranslucent = m.color.a < 1.0f;
-        const std::size_t firstOfMesh = sorted.size();
-        std::vector<PlaneKey> planes;  // of each translucent triangle of this mesh
+        if (isTranslucent) {
+            kept.emplace_back();
+            shades.emplace_back();
+            sources.push_back(&m);
+        }
         for (const Eigen::Vector3i& t : m.triangles) {
             const Vector3d& a = m.vertices[std::size_t(t[0])];
             const Vector3d& b = m.vertices[std::size_t(t[1])];
@@ -413,31 +377,33 @@ void Canvas::Impl::buildMeshes(std::vector<Vertex>& opaque, std::vector<Vertex>&
                 const double k = len > 0 ? 0.45 + 0.55 * std::abs(n.dot(light) / len) : 1.0;
                 shade = m.color.scaled(float(k));
             }
-            SortedTriangle s;
-            s.depth = -((a + b + c) / 3.0 - eye).dot(back);  // distance in front of the eye
-            const Vector3d* corners[3] = {&a, &b, &c};
-            for (int i = 0; i < 3; ++i) {
-                const Vector4d p = clip(*corners[i]);
-                set4(s.v[i].pos, p.x(), p.y(), p.z(), p.w());
-                setColor(s.v[i].color, shade);
-                set4(s.v[i].color2, 0, 0, 0, 0);
-                set4(s.v[i].local, 0, 0, 0, 0);
-                set4(s.v[i].param, kFlat, 0, 0, 0);
-            }
             if (isTranslucent) {
-                sorted.push_back(s);
-                planes.push_back(planeKey(a, b, c));
+                kept.back().push_back(t);
+                shades.back().push_back(shade);
             } else {
-                opaque.insert(opaque.end(), s.v, s.v + 3);
+                for (const Vector3d* p : {&a, &b, &c}) opaque.push_back(vertex(*p, shade));
             }
         }
-        if (isTranslucent) shareFaceDepths(sorted, firstOfMesh, planes);
     }
-    // Back to front by the faces' centroid depths (painter's order); stable, so equal depths
-    // (every face in 2D) keep the order they were drawn in.
-    std::stable_sort(sorted.begin(), sorted.end(),
-                     [](const SortedTriangle& x, const SortedTriangle& y) { return x.depth > y.depth; });
-    for (const SortedTriangle& s : sorted) translucent.insert(translucent.end(), s.v, s.v + 3);
+    if (!is3D()) {
+        // 2D: no depth; translucent regions blend in the order they were drawn.
+        for (std::size_t m = 0; m < kept.size(); ++m)
+            for (std::size_t i = 0; i < kept[m].size(); ++i)
+                for (int k = 0; k < 3; ++k)
+                    translucent.push_back(vertex(sources[m]->vertices[std::size_t(kept[m][i][k])], shades[m][i]));
+        return;
+    }
+    // 3D: back to front for this camera, faces that cross each other cut along the crossing.
+    std::vector<TranslucentMesh> input;
+    for (std::size_t m = 0; m < kept.size(); ++m) input.push_back({sources[m]->vertices, kept[m]});
+    const Viewer viewer{camera.eye, back, camera.projection == Camera::Projection::Orthographic};
+    for (const OrderedPiece& piece : backToFront(input, viewer)) {
+        const Color& shade = shades[std::size_t(piece.mesh)][std::size_t(piece.triangle)];
+        // A convex piece as a fan around its first corner.
+        for (std::size_t k = 1; k + 1 < piece.corners.size(); ++k)
+            for (const Vector3d* p : {&piece.corners[0], &piece.corners[k], &piece.corners[k + 1]})
+                translucent.push_back(vertex(*p, shade));
+    }
 }
 
 /// Thick line from a to b (render pixels + NDC depth) as one quad: a capsule (round caps)
@@ -815,7 +781,12 @@ Image Canvas::readPixels() {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
     draw(0, opaque.size());
-    // 2. Translucent meshes back to front: tested against the opaque depth, not written.
+    // 2. Translucent meshes back to front: tested against the opaque depth, not written. Pushed back
+    //    a few depth units more than the opaque faces, so a translucent face in the plane of an opaque
+    //    one (a highlighted triangle over its mesh) stays behind it everywhere: the pieces it was cut
+    //    into (render/translucent_order.h) have new corners whose depth, rounded to float, may
+    //    otherwise fall either side of the opaque face's, in stripes.
+    glPolygonOffset(1.0f, 8.0f);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);

@@ -11,7 +11,8 @@
 //   "frame_every" (steps between frames), "view" (camera direction, z up).
 // Layers: "ground", "shadow", "trail", "contacts", "labels", "plot".
 // Frames: frame_NN (every frame_every steps from step 0, and the first step of each impact, captioned
-// with the normal velocity before and after it), "energy" (plot), with "steps" a contact sheet.
+// with the normal velocity before and after it; the scene's camera on the left, a low side view
+// looking horizontally on the right), "energy" (plot), with "steps" a contact sheet.
 #include "demos/drop/drop_demo.h"
 
 #include <algorithm>
@@ -28,6 +29,7 @@
 #include "demos/draw/step_frames.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
+#include "render/image.h"
 
 namespace cdlab::demos {
 
@@ -37,6 +39,8 @@ using namespace render;
 
 const std::vector<std::string> kLayers = {"ground", "shadow", "trail", "contacts", "labels", "plot"};
 constexpr int kMaxFrames = 16;  // frames (plus plot and sheet) per scene: golden size and render time
+constexpr double kSideWidth = 0.45;  // the low side view's width, of the main view's
+constexpr int kSideHeading = 70;     // px at the side view's top for its heading
 
 Json quatJson(const Quat& q) { return Json::array({q.w(), q.x(), q.y(), q.z()}); }
 
@@ -186,6 +190,9 @@ public:
         boundingSphere(path, center, radius);
         radius += r.boundingRadius;
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius, view_, Vec3::UnitZ());
+        const CanvasOptions main = sceneCanvasOptions(common_, 1);
+        const Camera side = sideCamera(tr, r.boundingRadius, cam.eye - cam.target,
+                                       int(std::lround(kSideWidth * main.width)), main.height);
 
         const std::vector<int> frameSteps = chooseFrameSteps(tr);
         // Impulse arrows share one scale over the run, so frames compare.
@@ -193,7 +200,7 @@ public:
         for (const SimulationStep& st : tr.steps)
             for (const ContactImpulse& ct : st.contacts) maxImpulse = std::max(maxImpulse, ct.normalImpulse);
         for (std::size_t i = 0; i < frameSteps.size(); ++i)
-            out.frames.push_back(drawFrame(*ctx.gl, ss, cam, center, radius, r, tr, frameSteps[i], int(i), maxImpulse));
+            out.frames.push_back(drawFrame(*ctx.gl, ss, cam, side, center, radius, r, tr, frameSteps[i], int(i), maxImpulse));
         std::vector<const Frame*> stepFrames;
         for (const Frame& f : out.frames) stepFrames.push_back(&f);
         if (gif_) addGif(out, stepFrames, 1);
@@ -305,10 +312,157 @@ private:
         return steps;
     }
 
-    Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Vec3& center, double radius,
+    // How many of a step's contacts push, bounce, and are seen through the body from a camera.
+    struct ContactMarks {
+        int pushing = 0, bounces = 0, hidden = 0;
+    };
+
+    // The body at step k, tinted and outlined in the colliding role while a contact pushes, with the
+    // step's contacts: filled = pushing (λ_n > 0), hollow = speculative (λ_n = 0); each pushing
+    // contact's impulse λ_n n as an arrow to one scale over the run (the largest λ_n of the run is
+    // 0.6 of the body's radius long). A contact seen through the body (on its far side, from `cam`)
+    // and its arrow are drawn faded, as hidden edges are elsewhere: the body is opaque, the marker
+    // must not read as in front.
+    ContactMarks drawBodyAndContacts(Canvas& c, const Camera& cam, const SimulationResult& r, const SimulationTrace& tr,
+                                     int k, double maxImpulse, bool labelImpulse) const {
+        const SimulationStep& s = tr.steps[std::size_t(k)];
+        const double rho = r.boundingRadius;
+        std::vector<Vec3> wv;
+        for (const Vec3& v : r.shape.positions()) wv.push_back(s.orientation * v + s.position);
+        std::vector<Eigen::Vector3i> tris;
+        for (int f = 0; f < r.shape.faceCount(); ++f) {
+            const std::vector<int> fv = r.shape.faceVertices(f);
+            for (std::size_t i = 1; i + 1 < fv.size(); ++i) tris.emplace_back(fv[0], fv[i], fv[i + 1]);
+        }
+        const bool touching = inContact(s);
+        const Color fill = roleColor(Role::ShapeA);
+        c.drawMesh(wv, tris, touching ? fill.mixed(roleColor(Role::Colliding), 0.3f) : fill, true);
+        LineStyle edge = lineStyle(Role::ShapeA, touching ? 3.5f : 2.0f);
+        edge.color = touching ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.5f);
+        for (int e = 0; e < r.shape.edgeCount(); ++e) {
+            const auto [a, b] = r.shape.edgeVertices(e);
+            c.drawLine(wv[std::size_t(a)], wv[std::size_t(b)], edge);
+        }
+        ContactMarks marks;
+        if (!common_.hasLayer("contacts")) return marks;
+        // The contacts were found at the pose the step started from (the previous step's).
+        const SimulationStep& start = tr.steps[std::size_t(std::max(k - 1, 0))];
+        std::vector<Plane> faces;
+        for (int f = 0; f < r.shape.faceCount(); ++f) {
+            const Vec3 n = start.orientation * r.shape.face(f).normal;
+            faces.push_back({n, r.shape.face(f).offset + n.dot(start.position)});
+        }
+        std::vector<char> hidden;
+        for (const ContactImpulse& ct : s.contacts) hidden.push_back(behindBody(cam, ct.point, faces, 1e-3 * rho));
+        const auto faded = [](Color color) { return color.mixed(roleColor(Role::Background), 0.55f); };
+        const ContactImpulse* largest = nullptr;
+        for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+            const ContactImpulse& ct = s.contacts[i];
+            const bool push = ct.normalImpulse > 0;
+            marks.pushing += push;
+            marks.bounces += ct.bounce && push;
+            marks.hidden += hidden[i];
+            const double length = maxImpulse > 0 ? 0.6 * rho * ct.normalImpulse / maxImpulse : 0.0;
+            LineStyle arrow = lineStyle(Role::Direction, 3.0f, false, true);
+            if (hidden[i]) arrow.color = faded(arrow.color);
+            if (push && length > 0.02 * rho) c.drawArrow(ct.point, ct.point + length * s.normal, arrow);
+            if (push && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
+        }
+        // Markers after the arrows, so an arrow never paints over its contact point.
+        for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+            const ContactImpulse& ct = s.contacts[i];
+            const Color result = hidden[i] ? faded(roleColor(Role::Result)) : roleColor(Role::Result);
+            const Color ink = hidden[i] ? faded(roleColor(Role::Ink)) : roleColor(Role::Ink);
+            if (ct.normalImpulse > 0) c.drawPoint(ct.point, 7.0f, result, true, 1.5f, ink);
+            else c.drawPoint(ct.point, 6.0f, roleColor(Role::Background).withAlpha(hidden[i] ? 0.0f : 1.0f), true, 2.0f, result);
+        }
+        if (labelImpulse && largest && largest->normalImpulse > 0.034 * maxImpulse)
+            drawLabelAway(c, largest->point + 0.6 * rho * largest->normalImpulse / maxImpulse * s.normal, largest->point,
+                          "λₙ n", labelStyle(Role::Direction, 20.0f), 10.0);
+        return marks;
+    }
+
+    // Some contact of the step pushes: the body is in contact with the ground.
+    static bool inContact(const SimulationStep& s) {
+        return std::any_of(s.contacts.begin(), s.contacts.end(), [](const ContactImpulse& c) { return c.normalImpulse > 0; });
+    }
+
+    void drawTrail(Canvas& c, const SimulationTrace& tr, int k) const {
+        if (!common_.hasLayer("trail") || k == 0) return;
+        std::vector<Vec3> trail;
+        for (int i = 0; i <= k; ++i) trail.push_back(tr.steps[std::size_t(i)].position);
+        LineStyle ls = lineStyle(Role::Ink, 2.0f, true, false);
+        ls.color = roleColor(Role::Ink).withAlpha(0.55f);
+        c.drawPolyline(trail, false, ls);
+    }
+
+    // The low side view's camera, the same for every frame: orthographic, the eye at ground level
+    // looking horizontally the main camera's way, framing the whole path from a band under the
+    // ground to the highest point of the body, below the panel's heading.
+    static Camera sideCamera(const SimulationTrace& tr, double rho, const Vec3& view, int width, int height) {
+        Vec3 back(view.x(), view.y(), 0.0);  // towards the eye
+        if (!(back.norm() > 1e-9)) back = Vec3::UnitX();
+        back.normalize();
+        const Vec3 across = Vec3::UnitZ().cross(back);
+        double lo = INFINITY, hi = -INFINITY, top = 0.0, depth = 0.0;
+        for (const SimulationStep& s : tr.steps) {
+            lo = std::min(lo, across.dot(s.position) - rho);
+            hi = std::max(hi, across.dot(s.position) + rho);
+            top = std::max(top, s.position.z() + rho);
+            depth += back.dot(s.position) / double(tr.steps.size());
+        }
+        const double below = 0.12 * top;                     // the band under the ground
+        const double usable = (height - kSideHeading) / double(height);  // of the panel, under its heading
+        const double viewHeight = std::max((top + below) * 1.1, (hi - lo) * 1.1 * height / width) / usable;
+        Camera cam;
+        cam.projection = Camera::Projection::Orthographic;
+        cam.viewHeight = viewHeight;
+        const double bottom = -below - 0.05 * (top + below);  // the lowest world height shown
+        cam.target = 0.5 * (lo + hi) * across + depth * back + (bottom + 0.5 * viewHeight) * Vec3::UnitZ();
+        const double distance = 4.0 * (viewHeight + (hi - lo) + rho);
+        cam.eye = cam.target + distance * back;
+        cam.up = Vec3::UnitZ();
+        cam.nearPlane = 0.01 * distance;
+        cam.farPlane = 4.0 * distance;
+        return cam;
+    }
+
+    // A low side view of step k: the ground seen edge-on as a line over a band, so the body's height,
+    // its bounces and the corner or face it lands on read directly.
+    Image drawSideView(GlContext& gl, int ss, int width, int height, const Camera& cam, const SimulationResult& r,
+                       const SimulationTrace& tr, int k, double maxImpulse) const {
+        Canvas c(gl, canvasOptions(width, height, ss), cam);
+        const Vec3 back = cam.viewDirection();
+        const Vec3 across = Vec3::UnitZ().cross(back).normalized();
+        const double half = 2.0 * cam.viewHeight * width / height;
+        const Vec3 mid(cam.target.x(), cam.target.y(), 0.0);
+        if (common_.hasLayer("ground")) {
+            // Under the ground: a band in the plane through the target facing the eye, behind everything.
+            const Vec3 far = mid - 2.0 * cam.viewHeight * back;
+            c.drawPolygon({far - half * across, far + half * across, far + half * across - cam.viewHeight * Vec3::UnitZ(),
+                           far - half * across - cam.viewHeight * Vec3::UnitZ()},
+                          roleColor(Role::Muted).withAlpha(0.22f));
+            LineStyle ground = lineStyle(Role::Muted, 2.5f);
+            ground.onTop = true;
+            c.drawLine(mid - half * across, mid + half * across, ground);
+            // Named under the line near the left edge, placed off the contact markers.
+            const double perPixel = cam.viewHeight / height;
+            TextStyle ts{16.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f), Anchor::Center, true, false, {0, 16}};
+            ts.place = true;
+            c.drawText(mid - (0.5 * width - 70.0) * perPixel * across, "ground, z = 0", ts);
+        }
+        drawTrail(c, tr, k);
+        drawBodyAndContacts(c, cam, r, tr, k, maxImpulse, false);
+        c.drawTextPx(14, 10, "Side view", TextStyle{20.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+        c.drawTextPx(14, 38, "looking horizontally",
+                     TextStyle{17.0f, roleColor(Role::Ink).mixed(roleColor(Role::Muted), 0.5f), Anchor::TopLeft, true, true});
+        return c.readPixels();
+    }
+
+    Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Camera& side, const Vec3& center, double radius,
                     const SimulationResult& r, const SimulationTrace& tr, int k, int index, double maxImpulse) const {
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
-        const SimulationStep& s = tr.steps[k];
+        const SimulationStep& s = tr.steps[std::size_t(k)];
         const double rho = r.boundingRadius;
         const bool labels = common_.hasLayer("labels");
 
@@ -328,81 +482,16 @@ private:
             for (double y = std::ceil((g.y() - half) / step) * step; y <= g.y() + half; y += step)
                 c.drawLine(Vec3(g.x() - half, y, 0), Vec3(g.x() + half, y, 0), grid);
         }
-        // World vertices of the body at this step.
-        std::vector<Vec3> wv;
-        for (const Vec3& v : r.shape.positions()) wv.push_back(s.orientation * v + s.position);
         if (common_.hasLayer("shadow")) {
+            std::vector<Vec3> wv;
+            for (const Vec3& v : r.shape.positions()) wv.push_back(s.orientation * v + s.position);
             std::vector<Vec3> outline = hull2d(wv);
             for (Vec3& p : outline) p.z() = 1e-3 * rho;  // just above the grid
             if (outline.size() >= 3) c.drawPolygon(outline, roleColor(Role::Ink).withAlpha(0.16f));
         }
-        if (common_.hasLayer("trail") && k > 0) {
-            std::vector<Vec3> trail;
-            for (int i = 0; i <= k; ++i) trail.push_back(tr.steps[i].position);
-            LineStyle ls = lineStyle(Role::Ink, 2.0f, true, false);
-            ls.color = roleColor(Role::Ink).withAlpha(0.55f);
-            c.drawPolyline(trail, false, ls);
-        }
-        // The body: fan-triangulated faces, lit, with its edges.
-        std::vector<Eigen::Vector3i> tris;
-        for (int f = 0; f < r.shape.faceCount(); ++f) {
-            const std::vector<int> fv = r.shape.faceVertices(f);
-            for (std::size_t i = 1; i + 1 < fv.size(); ++i) tris.emplace_back(fv[0], fv[i], fv[i + 1]);
-        }
-        // In contact with the ground (some contact pushing): tinted and outlined in the colliding role.
-        bool touching = false;
-        for (const ContactImpulse& ct : s.contacts) touching = touching || ct.normalImpulse > 0;
-        const Color fill = roleColor(Role::ShapeA);
-        c.drawMesh(wv, tris, touching ? fill.mixed(roleColor(Role::Colliding), 0.3f) : fill, true);
-        LineStyle edge = lineStyle(Role::ShapeA, touching ? 3.5f : 2.0f);
-        edge.color = touching ? roleColor(Role::Colliding) : roleColor(Role::ShapeA).scaled(0.5f);
-        for (int e = 0; e < r.shape.edgeCount(); ++e) {
-            const auto [a, b] = r.shape.edgeVertices(e);
-            c.drawLine(wv[a], wv[b], edge);
-        }
-
-        // Contacts of this step: filled = pushing (λ_n > 0), hollow = speculative (λ_n = 0); each
-        // pushing contact's impulse λ_n n as an arrow to one scale over the run (the largest λ_n of
-        // the run is 0.6 of the body's radius long).
-        // A contact seen through the body (on its far side) and its arrow are drawn faded, as
-        // hidden edges are elsewhere: the body is opaque, the marker must not read as in front.
-        int pushing = 0, bounces = 0, hiddenCount = 0;
-        if (common_.hasLayer("contacts")) {
-            // The contacts were found at the pose the step started from (the previous step's).
-            const SimulationStep& start = tr.steps[std::size_t(std::max(k - 1, 0))];
-            std::vector<Plane> faces;
-            for (int f = 0; f < r.shape.faceCount(); ++f) {
-                const Vec3 n = start.orientation * r.shape.face(f).normal;
-                faces.push_back({n, r.shape.face(f).offset + n.dot(start.position)});
-            }
-            std::vector<char> hidden;
-            for (const ContactImpulse& ct : s.contacts) hidden.push_back(behindBody(cam, ct.point, faces, 1e-3 * rho));
-            const auto faded = [](Color color) { return color.mixed(roleColor(Role::Background), 0.55f); };
-            const ContactImpulse* largest = nullptr;
-            for (std::size_t i = 0; i < s.contacts.size(); ++i) {
-                const ContactImpulse& ct = s.contacts[i];
-                const bool push = ct.normalImpulse > 0;
-                pushing += push;
-                bounces += ct.bounce && push;
-                hiddenCount += hidden[i];
-                const double length = maxImpulse > 0 ? 0.6 * rho * ct.normalImpulse / maxImpulse : 0.0;
-                LineStyle arrow = lineStyle(Role::Direction, 3.0f, false, true);
-                if (hidden[i]) arrow.color = faded(arrow.color);
-                if (push && length > 0.02 * rho) c.drawArrow(ct.point, ct.point + length * s.normal, arrow);
-                if (push && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
-            }
-            // Markers after the arrows, so an arrow never paints over its contact point.
-            for (std::size_t i = 0; i < s.contacts.size(); ++i) {
-                const ContactImpulse& ct = s.contacts[i];
-                const Color result = hidden[i] ? faded(roleColor(Role::Result)) : roleColor(Role::Result);
-                const Color ink = hidden[i] ? faded(roleColor(Role::Ink)) : roleColor(Role::Ink);
-                if (ct.normalImpulse > 0) c.drawPoint(ct.point, 7.0f, result, true, 1.5f, ink);
-                else c.drawPoint(ct.point, 6.0f, roleColor(Role::Background).withAlpha(hidden[i] ? 0.0f : 1.0f), true, 2.0f, result);
-            }
-            if (labels && largest && largest->normalImpulse > 0.034 * maxImpulse)
-                drawLabelAway(c, largest->point + 0.6 * rho * largest->normalImpulse / maxImpulse * s.normal,
-                              largest->point, "λₙ n", labelStyle(Role::Direction, 20.0f), 10.0);
-        }
+        drawTrail(c, tr, k);
+        const ContactMarks marks = drawBodyAndContacts(c, cam, r, tr, k, maxImpulse, labels);
+        const bool touching = inContact(s);
         if (labels) {
             // Legend (top right), each entry in the colour of what it names.
             const double x = c.width() - 18.0;
@@ -422,14 +511,14 @@ private:
                      Role::Direction);
             }
             if (common_.hasLayer("trail")) item("dashed: centre-of-mass path", Role::Ink);
-            if (hiddenCount > 0) item("faded: contact behind the body", Role::Result, true);
+            if (marks.hidden > 0) item("faded: contact behind the body", Role::Result, true);
             if (touching) item("tint and outline: body in contact with the ground", Role::Colliding);
         }
         // Two caption lines: the contacts of the step, then energy and depth.
         char line1[200], line2[200];
         std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s", s.time, s.step,
-                      int(s.contacts.size()), s.contacts.size() == 1 ? "" : "s", pushing,
-                      bounces ? (", " + std::to_string(bounces) + " bouncing").c_str() : "");
+                      int(s.contacts.size()), s.contacts.size() == 1 ? "" : "s", marks.pushing,
+                      marks.bounces ? (", " + std::to_string(marks.bounces) + " bouncing").c_str() : "");
         std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground",
                       s.energy, s.kinetic, s.potential, s.maxPenetration);
         c.drawTextPx(18.0, c.height() - 18.0 - 26.0, line1,
@@ -449,7 +538,14 @@ private:
             std::snprintf(cap, sizeof cap, "%.2f s impact: vₙ %.2f → %.2f", s.time, fastest->normalVelocityBefore,
                           fastest->normalVelocityAfter);
         }
-        return Frame{name, cap, c.readPixels()};
+        // The main view, and the low side view on its right (kSideWidth of the main width).
+        const int sideWidth = int(std::lround(kSideWidth * c.width()));
+        Image frame = Image::blank(c.width() + sideWidth, c.height(), ss);
+        frame.layout.panels.push_back({0.0, 0.0, double(frame.width), double(frame.height)});
+        blit(frame, c.readPixels(), 0, 0);
+        blit(frame, drawSideView(gl, ss, sideWidth, c.height(), side, r, tr, k, maxImpulse), c.width(), 0);
+        paintRect(frame, c.width() - 1, 0, 2, c.height(), roleColor(Role::Muted));  // a rule between the views
+        return Frame{name, cap, std::move(frame)};
     }
 
     // Energy (top) and penetration on a log scale (bottom) against time, drawn in pixel units.

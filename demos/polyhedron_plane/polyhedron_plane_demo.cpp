@@ -3,7 +3,8 @@
 //
 // Scene keys (besides the common ones), by "mode":
 //   "plane" (default): "body" ({"box": {"half_extents"}} | {"tetrahedron"|"icosahedron": {"circumradius"}}
-//            | {"prism": {"sides", "radius", "half_height"}}), "poses": [{"position", "rotation", "label"}]
+//            | {"prism": {"sides", "radius", "half_height"}}), "poses": [{"position", "rotation", "label",
+//            "view" (this pose's camera direction, same framing)}]
 //            (1..6, one frame each), "plane": {"normal", "offset"} (default z = 0), "max_points" (4).
 //   "features": "pairs": [{"a": F, "b": F, "label"}] (1..6, one frame each), F = {"vertex": p} |
 //            {"edge": [p, q]} | {"face": [p, ...]} (convex, counter-clockwise seen from outside).
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "core/closest/feature_distance.h"
 #include "core/contact/contact_plane.h"
@@ -144,6 +146,7 @@ public:
     Posed body;  // plane mode
     std::vector<Transform> poses;
     std::vector<std::string> poseLabels;
+    std::vector<std::optional<Vec3>> poseViews;  // a pose's own camera direction ("view" in the pose)
     Plane plane{Vec3::UnitZ(), 0.0};
     int maxPoints = 4;
     std::vector<std::pair<FeatureGeometry, FeatureGeometry>> pairs;  // features mode
@@ -204,7 +207,13 @@ private:
         double d;
         Vec3 center;
         double radius;
+        Vec3 up;
         Camera cam;
+        // Pose i's camera: its own "view" direction with the same framing, else the common one.
+        Camera cameraFor(std::size_t i, const ContactScene& scene) const {
+            if (scene.common_.camera || !scene.poseViews[i]) return cam;
+            return framingCamera(center, radius * 1.1, *scene.poseViews[i], up);
+        }
     };
     PlaneView planeView() const {
         const Vec3 n = plane.normal.normalized();
@@ -221,7 +230,7 @@ private:
         boundingSphere(pts, center, radius);
         const Vec3 up = std::abs(n.z()) > 0.5 ? Vec3(n) : Vec3::UnitZ();
         const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, up);
-        return {n, d, center, radius, cam};
+        return {n, d, center, radius, up, cam};
     }
 
     // Where the plane's name goes: the point of the drawn patch (centre g, half size h along u and
@@ -259,7 +268,7 @@ private:
         const Vec3& n = v.n;
         const double d = v.d, radius = v.radius, rho = v.radius;
         const Vec3& center = v.center;
-        Canvas c(gl, sceneCanvasOptions(common_, ss), v.cam);
+        Canvas c(gl, sceneCanvasOptions(common_, ss), v.cameraFor(i, *this));
         const bool labels = common_.hasLayer("labels");
         if (common_.hasLayer("plane")) {
             const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
@@ -639,6 +648,11 @@ public:
                 ObjectReader pr(it);
                 scene->poses.push_back(readPose(pr));
                 scene->poseLabels.push_back(pr.stringOr("label", ""));
+                scene->poseViews.emplace_back();
+                if (auto pv = pr.find("view")) {
+                    scene->poseViews.back() = sceneVec3(*pv);
+                    if (!(scene->poseViews.back()->norm() > 0)) pv->fail("view direction must be non-zero");
+                }
                 pr.finish();
             }
             if (auto p = r.find("plane")) {
