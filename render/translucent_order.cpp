@@ -75,14 +75,19 @@ class Orderer {
 public:
     Orderer(const Viewer& viewer, std::vector<bool> convex, double eps, int cutBudget,
             std::vector<OrderedPiece>& out, TranslucentOrderStats& stats)
-        : viewer_(viewer), convex_(std::move(convex)), eps_(eps), cutBudget_(cutBudget), out_(out), stats_(stats) {}
+        : viewer_(viewer), convex_(std::move(convex)), eps_(eps), cutBudget_(cutBudget),
+          workBudget_(256 * std::size_t(cutBudget) + 4000000), out_(out), stats_(stats) {}
 
     // Pieces of one item are consecutive and items ascend along `pieces`: the input is in item
     // order and every partition below keeps the order.
-    void order(std::vector<Piece> pieces) {
+    void order(std::vector<Piece> pieces, int depth = 0) {
         if (pieces.empty()) return;
         if (pieces.front().item == pieces.back().item) return emitItem(pieces);
-        if (stats_.cuts > cutBudget_) {
+        // Budgets for pathological input (many large triangles through each other, or a long open
+        // surface of single-triangle items that peels one face per level): past them, the rest of
+        // this subtree is ordered by depth alone, and the recursion stays shallow.
+        work_ += pieces.size();
+        if (stats_.cuts > cutBudget_ || work_ > workBudget_ || depth > kMaxDepth) {
             stats_.budgetHit = true;
             return emitByDepth(pieces);
         }
@@ -106,9 +111,9 @@ public:
         pieces.shrink_to_fit();
         // The far side first, then the plane's own pieces, then the near side.
         const bool eyeInFront = facesViewer(plane, plane.n * plane.d);
-        order(std::move(eyeInFront ? back : front));
+        order(std::move(eyeInFront ? back : front), depth + 1);
         for (Piece& p : on) emit(p);
-        order(std::move(eyeInFront ? front : back));
+        order(std::move(eyeInFront ? front : back), depth + 1);
     }
 
 private:
@@ -213,13 +218,48 @@ private:
             const long score = 8 * cuts + std::labs(front - back);
             if (bestScore < 0 || score < bestScore) bestScore = score, best = candidates[k];
         }
+        // Every face plane leaves the rest on one side (a curved sheet): a plane across the middle.
+        if (const auto median = medianPlane(pieces)) {
+            long cuts = 0, front = 0, back = 0;
+            for (std::size_t s = 0; s < pieces.size(); s += sampleStep) {
+                const Side side = classify(pieces[s], *median, eps_);
+                cuts += side == Side::Spanning, front += side == Side::Front, back += side == Side::Back;
+            }
+            if (8 * cuts + std::labs(front - back) < bestScore) return *median;
+        }
         return pieces[best].plane;
     }
+
+    // The plane across the longest axis of the pieces' bounding box at the median of their first
+    // corners, if it leaves some piece wholly on each side (so both halves are smaller than the
+    // whole and the partition ends); any plane is a valid splitter, not only a face's.
+    std::optional<Plane> medianPlane(const std::vector<Piece>& pieces) const {
+        Vector3d lo = Vector3d::Constant(INFINITY), hi = Vector3d::Constant(-INFINITY);
+        for (const Piece& p : pieces)
+            for (const Vector3d& c : p.corners) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+        int axis = 0;
+        (hi - lo).maxCoeff(&axis);
+        std::vector<double> firsts;
+        for (const Piece& p : pieces) firsts.push_back(p.corners.front()[axis]);
+        std::nth_element(firsts.begin(), firsts.begin() + std::ptrdiff_t(firsts.size() / 2), firsts.end());
+        const Plane plane{Vector3d::Unit(axis), firsts[firsts.size() / 2]};
+        bool front = false, back = false;
+        for (const Piece& p : pieces) {
+            const Side side = classify(p, plane, eps_);
+            front = front || side == Side::Front;
+            back = back || side == Side::Back;
+            if (front && back) return plane;
+        }
+        return std::nullopt;
+    }
+
+    static constexpr int kMaxDepth = 4000;  // levels of the partition: a few hundred kB of stack
 
     const Viewer& viewer_;
     std::vector<bool> convex_;
     double eps_;
     int cutBudget_;
+    std::size_t workBudget_ = 0, work_ = 0;  // pieces classified, summed over the nodes
     std::vector<OrderedPiece>& out_;
     TranslucentOrderStats& stats_;
 };

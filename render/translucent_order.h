@@ -45,7 +45,7 @@ struct TranslucentOrderStats {
     int items = 0;          // convex meshes, plus one per triangle of a non-convex mesh
     int convexMeshes = 0;
     int cuts = 0;           // pieces cut in two
-    bool budgetHit = false; // too many cuts: the rest ordered by depth alone
+    bool budgetHit = false; // too many cuts, too much work or too deep: the rest ordered by depth alone
 };
 
 /// Every triangle of `meshes`, cut where needed, in an order in which each piece is drawn after every

@@ -294,3 +294,32 @@ TEST_CASE("hundreds of large random triangles through each other: past the cut b
     CHECK(stats.convexMeshes == 0);
     checkAreas({m}, pieces);
 }
+
+TEST_CASE("a large open curved sheet of single-triangle items: bounded work and depth, every piece drawn once") {
+    // A paraboloid cap z = x^2 + y^2 over a 64 x 64 grid (8192 triangles): open, too large for the
+    // all-pairs convexity check, so each triangle is its own item and the partition peels one face
+    // per level under its own faces' planes: planes across the middle keep it shallow and fast.
+    Mesh m;
+    const int n = 64;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+            const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
+            m.vertices.emplace_back(x, y, x * x + y * y);
+        }
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const int a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
+            m.triangles.emplace_back(a, c, d);
+            m.triangles.emplace_back(a, d, b);
+        }
+    TranslucentOrderStats stats;
+    const auto pieces = order({m, box({0.3, 0.3, 0.3}, Eigen::Matrix3d::Identity(), {0, 0, 0.5})},
+                              perspectiveFrom({2, -3, 4}, {0, 0, 0.5}), &stats);
+    CHECK(stats.convexMeshes == 1);  // the box
+    CHECK_FALSE(stats.budgetHit);     // planes across the middle split the sheet in halves
+    checkAreas({m, box({0.3, 0.3, 0.3}, Eigen::Matrix3d::Identity(), {0, 0, 0.5})}, pieces);
+    std::mt19937 rng(13);
+    const RayCheck check = castRays(pieces, perspectiveFrom({2, -3, 4}, {0, 0, 0.5}), {-1, -1, 0}, {1, 1, 2}, rng, 1500);
+    CHECK(check.crossings > 300);
+    CHECK(check.violations == 0);
+}
