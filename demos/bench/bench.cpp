@@ -28,6 +28,7 @@
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
+#include "core/gjk_epa/mpr.h"
 #include "core/overlap/sat_tests.h"
 #include "demos/bench/bench_broadphase.h"
 #include "demos/bench/bench_tree.h"
@@ -340,6 +341,23 @@ void benchPolytopes(const Settings& settings, int nv, int count, std::vector<Row
             GjkResult r;
             const bool hit = gjkIntersect(both[i]->a, both[i]->b, {}, nullptr, &r);
             return Answer{hit ? 1.0 : 0.0, r.iterations};
+        },
+        wrongBoolean, true));
+    // MPR from the vertex centroids, computed before timing as libccd's MPR gets them (its center
+    // callbacks), with GJK's full loop where it cannot prove an answer.
+    std::vector<std::pair<Vec3, Vec3>> interiors;
+    for (const PolyPair* p : both) {
+        Vec3 ca = Vec3::Zero(), cb = Vec3::Zero();
+        for (const Vec3& x : p->va) ca += x;
+        for (const Vec3& x : p->vb) cb += x;
+        interiors.emplace_back(ca / double(p->va.size()), cb / double(p->vb.size()));
+    }
+    rows.push_back(measure(
+        settings, "gjk_intersect", tag + " sep+pen", "MPR", static_cast<int>(both.size()),
+        [&](int i) {
+            MprResult r;
+            const bool hit = mprIntersect(both[i]->a, interiors[i].first, both[i]->b, interiors[i].second, &r);
+            return Answer{hit ? 1.0 : 0.0, r.supports};
         },
         wrongBoolean, true));
     peerRows(settings, rows, "gjk_intersect", tag + " sep+pen", both, intersectReference, wrongBoolean, true);
