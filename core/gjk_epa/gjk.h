@@ -560,7 +560,8 @@ GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& option
 
 /// Boolean intersection test of A and B (world frame): stops as soon as a separating axis is
 /// found. Untraced and without a warm start, the answer comes from the boolean fast path
-/// (core/gjk_epa/gjk_boolean.h) when it decides with its margin; `result` then holds only status,
+/// (core/gjk_epa/gjk_boolean.h; for polytopes it starts from their first vertices' difference, one
+/// support call fewer than along +x) when it decides with its margin; `result` then holds only status,
 /// intersect, termination (SeparatingAxis or OriginInSimplex) and iterations. Otherwise, and for
 /// touching within the margin, the full loop runs: optional `result` receives its (partial) GJK
 /// result, for separated shapes a distance that is only an upper bound unless the loop converged.
@@ -569,14 +570,15 @@ bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options = 
                   GjkResult* result = nullptr) {
     if (!trace && !options.warmStart) {
         detail::SupportHints hints;
-        GjkVertex sup;
         int iterations = 0;
+        Vec3 a0, b0, start;
+        const bool haveStart = detail::anyPointOf(shapeA, a0) && detail::anyPointOf(shapeB, b0);
+        if (haveStart) start = a0 - b0;
         const detail::QuickBoolean quick = detail::gjkQuickBoolean(
             [&](const Vec3& d, Vec3& w) {
-                detail::gjkSupport(shapeA, shapeB, d, sup, hints);
-                w = sup.w;
+                w = detail::hintedSupport(shapeA, d, hints.a) - detail::hintedSupport(shapeB, Vec3(-d), hints.b);
             },
-            iterations);
+            iterations, haveStart ? &start : nullptr);
         if (quick != detail::QuickBoolean::Undecided) {
             const bool hit = quick == detail::QuickBoolean::Intersecting;
             if (result) {

@@ -29,11 +29,16 @@ inline bool gjkBooleanSimplexStep(Vec3 (&p)[4], int& n, Vec3& d, double margin);
 
 namespace gjk_boolean {
 
+// |v| > length, compared squared (no square root; an underflow or overflow of the squares only
+// makes the fast path give up, never decide).
+inline bool longer(const Vec3& v, double length) { return v.squaredNorm() > length * length; }
+
 // The origin's side of a plane through `a` with normal `normal`: +1 in front by more than margin,
 // -1 behind by more than margin, 0 within it.
 inline int side(const Vec3& normal, const Vec3& a, double margin) {
-    const double s = -normal.dot(a), band = margin * normal.norm();
-    return s > band ? 1 : s < -band ? -1 : 0;
+    const double s = -normal.dot(a);
+    if (s * s <= margin * margin * normal.squaredNorm()) return 0;  // |s| <= margin |normal|, no square root
+    return s > 0.0 ? 1 : -1;
 }
 
 // Segment [b, a] (a newest): the segment's interior or a alone (the region beyond b is impossible:
@@ -42,13 +47,13 @@ inline bool line(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
     const Vec3 a = p[1], ab = p[0] - a, ao = -a;
     if (ab.dot(ao) > 0.0) {
         d = ab.cross(ao).cross(ab);
-        if (!(d.norm() > margin * ab.norm() * ab.norm())) return false;  // origin on the line
+        if (!longer(d, margin * ab.squaredNorm())) return false;  // origin on the line
         return true;
     }
     p[0] = a;
     n = 1;
     d = ao;
-    return ao.norm() > margin;
+    return longer(ao, margin);
 }
 
 // Triangle (c, b, a), a newest: an edge through a, or the face (d along its normal on the
@@ -57,12 +62,12 @@ inline bool triangle(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
     const Vec3 a = p[2], b = p[1], c = p[0];
     const Vec3 ab = b - a, ac = c - a, ao = -a, abc = ab.cross(ac);
     // Collinear within 1e-12 (the sine of the angle at a): no plane to decide by.
-    if (!(abc.norm() > 1e-12 * std::max(ab.squaredNorm(), ac.squaredNorm()))) return false;
+    if (!longer(abc, 1e-12 * std::max(ab.squaredNorm(), ac.squaredNorm()))) return false;
     if (abc.cross(ac).dot(ao) > 0.0) {  // beyond edge ac
         if (ac.dot(ao) > 0.0) {
             p[0] = c, p[1] = a, n = 2;
             d = ac.cross(ao).cross(ac);
-            return d.norm() > margin * ac.squaredNorm();
+            return longer(d, margin * ac.squaredNorm());
         }
         p[0] = b, p[1] = a, n = 2;
         return line(p, n, d, margin);
@@ -108,7 +113,7 @@ inline bool tetrahedron(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
 
 inline bool gjkBooleanSimplexStep(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
     switch (n) {
-        case 1: d = -p[0]; return p[0].norm() > margin;
+        case 1: d = -p[0]; return gjk_boolean::longer(p[0], margin);
         case 2: return gjk_boolean::line(p, n, d, margin);
         case 3: return gjk_boolean::triangle(p, n, d, margin);
         default: return gjk_boolean::tetrahedron(p, n, d, margin);
@@ -116,9 +121,11 @@ inline bool gjkBooleanSimplexStep(Vec3 (&p)[4], int& n, Vec3& d, double margin) 
 }
 
 /// The fast path itself: support points of A − B from `support(d, w)` (w = s_A(d) − s_B(−d)),
-/// starting along +x as the full loop does. iterations: support points taken.
+/// starting along +x as the full loop does, or from `start` when given: any point of A − B (a
+/// vertex of A minus one of B), the first simplex without a support call, searched from towards the
+/// origin. iterations: support points taken.
 template <class Support>
-QuickBoolean gjkQuickBoolean(Support&& support, int& iterations) {
+QuickBoolean gjkQuickBoolean(Support&& support, int& iterations, const Vec3* start = nullptr) {
     // 1e-12 of the coordinates: ~5000 ulps, above the rounding of every dot and cross product here.
     constexpr double kMargin = 1e-12;
     constexpr int kMaxIterations = 32;  // polytopes need a handful; smooth shapes go to the full loop
@@ -126,20 +133,42 @@ QuickBoolean gjkQuickBoolean(Support&& support, int& iterations) {
     int n = 0;
     Vec3 d = Vec3::UnitX();
     double size = 0.0;
+    iterations = 0;
+    if (start) {
+        if (!start->allFinite()) return QuickBoolean::Undecided;
+        size = start->cwiseAbs().maxCoeff();
+        p[n++] = *start;
+        // The origin at the start point (within the margin): touching or deep, the loop decides.
+        if (!gjkBooleanSimplexStep(p, n, d, kMargin * size)) return QuickBoolean::Undecided;
+    }
     for (iterations = 1; iterations <= kMaxIterations; ++iterations) {
         Vec3 w;
         support(d, w);
         if (!w.allFinite()) return QuickBoolean::Undecided;
         size = std::max(size, w.cwiseAbs().maxCoeff());
         const double margin = kMargin * size;
-        const double reach = w.dot(d), band = margin * d.norm();
-        if (reach < -band) return QuickBoolean::Separated;
-        if (!(reach > band)) return QuickBoolean::Undecided;  // a support plane through the origin
+        const double reach = w.dot(d);
+        // |reach| against margin |d| without a square root: within it, a support plane through the origin.
+        if (reach * reach <= margin * margin * d.squaredNorm()) return QuickBoolean::Undecided;
+        if (reach < 0.0) return QuickBoolean::Separated;
         p[n++] = w;
         if (!gjkBooleanSimplexStep(p, n, d, margin)) return QuickBoolean::Undecided;
         if (n == 4) return QuickBoolean::Intersecting;
     }
     return QuickBoolean::Undecided;
+}
+
+/// A point of the shape without a support call, where it has one to hand (a polytope's first
+/// vertex): the boolean fast path starts from their difference.
+template <class S>
+bool anyPointOf(const S& shape, Vec3& point) {
+    if constexpr (requires { shape.vertexCount(); shape.vertex(0); }) {
+        if (shape.vertexCount() == 0) return false;
+        point = shape.vertex(0);
+        return true;
+    } else {
+        return false;
+    }
 }
 
 }  // namespace cdlab::detail
