@@ -782,11 +782,13 @@ Image Canvas::readPixels() {
     glPolygonOffset(1.0f, 1.0f);
     draw(0, opaque.size());
     // 2. Translucent meshes back to front: tested against the opaque depth, not written. Pushed back
-    //    a few depth units more than the opaque faces, so a translucent face in the plane of an opaque
+    //    one depth unit more than the opaque faces, so a translucent face in the plane of an opaque
     //    one (a highlighted triangle over its mesh) stays behind it everywhere: the pieces it was cut
     //    into (render/translucent_order.h) have new corners whose depth, rounded to float, may
-    //    otherwise fall either side of the opaque face's, in stripes.
-    glPolygonOffset(1.0f, 8.0f);
+    //    otherwise fall either side of the opaque face's, in stripes. The cost: a translucent face
+    //    less than ~1 depth unit in front of an opaque one (1e-4 world units at 5 units from an eye
+    //    with near plane 0.01) is hidden there.
+    glPolygonOffset(1.0f, 2.0f);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);

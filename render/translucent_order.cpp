@@ -58,7 +58,10 @@ std::pair<Piece, Piece> split(const Piece& piece, const Plane& plane, double eps
         if (da >= -eps) front.corners.push_back(a);
         if (da <= eps) back.corners.push_back(a);
         if ((da > eps && db < -eps) || (da < -eps && db > eps)) {
-            const Vector3d x = a + (b - a) * (da / (da - db));
+            // From the lexicographically smaller end, so the two triangles sharing this edge (which
+            // run it in opposite directions) get the same point: no crack between their pieces.
+            const bool fromA = std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
+            const Vector3d x = fromA ? Vector3d(a + (b - a) * (da / (da - db))) : Vector3d(b + (a - b) * (db / (db - da)));
             front.corners.push_back(x);
             back.corners.push_back(x);
         }
@@ -76,25 +79,55 @@ public:
     Orderer(const Viewer& viewer, std::vector<bool> convex, double eps, int cutBudget,
             std::vector<OrderedPiece>& out, TranslucentOrderStats& stats)
         : viewer_(viewer), convex_(std::move(convex)), eps_(eps), cutBudget_(cutBudget),
-          workBudget_(256 * std::size_t(cutBudget) + 4000000), out_(out), stats_(stats) {}
+          workBudget_(64 * std::size_t(cutBudget) + 4000000), out_(out), stats_(stats) {}
 
     // Pieces of one item are consecutive and items ascend along `pieces`: the input is in item
-    // order and every partition below keeps the order.
-    void order(std::vector<Piece> pieces, int depth = 0) {
+    // order and every partition below keeps the order. The partition is walked with an explicit
+    // stack (a convex item peeled against another takes one level per face: thousands of levels,
+    // too deep for the call stack of a sanitizer build).
+    void order(std::vector<Piece> pieces) {
+        std::vector<Task> stack;
+        stack.push_back({std::move(pieces), false});
+        while (!stack.empty()) {
+            Task task = std::move(stack.back());
+            stack.pop_back();
+            if (task.emitOnly) {
+                for (Piece& p : task.pieces) emit(p);
+            } else {
+                node(std::move(task.pieces), stack);
+            }
+        }
+    }
+
+private:
+    struct Task {
+        std::vector<Piece> pieces;
+        bool emitOnly;  // the pieces in a splitting plane, drawn between its far and near sides
+    };
+    // Where a splitting plane comes from: a piece's own triangle (its pieces are in the plane
+    // whatever the rounding of their corners), or none (an axis or median plane).
+    struct Splitter {
+        Plane plane;
+        int mesh = -1, triangle = -1;
+    };
+
+    void node(std::vector<Piece> pieces, std::vector<Task>& stack) {
         if (pieces.empty()) return;
         if (pieces.front().item == pieces.back().item) return emitItem(pieces);
-        // Budgets for pathological input (many large triangles through each other, or a long open
-        // surface of single-triangle items that peels one face per level): past them, the rest of
-        // this subtree is ordered by depth alone, and the recursion stays shallow.
+        // Budgets for pathological input (many large triangles through each other): past them, the
+        // rest of this subtree is ordered by depth alone.
         work_ += pieces.size();
-        if (stats_.cuts > cutBudget_ || work_ > workBudget_ || depth > kMaxDepth) {
+        if (stats_.cuts > cutBudget_ || work_ > workBudget_) {
             stats_.budgetHit = true;
             return emitByDepth(pieces);
         }
-        const Plane plane = axisGap(pieces).value_or(faceSplitter(pieces));
+        const std::optional<Plane> gap = axisGap(pieces);
+        const Splitter splitter = gap ? Splitter{*gap} : faceSplitter(pieces);
+        const Plane& plane = splitter.plane;
         std::vector<Piece> front, back, on;
         for (Piece& p : pieces) {
-            switch (classify(p, plane, eps_)) {
+            const bool own = p.mesh == splitter.mesh && p.triangle == splitter.triangle;
+            switch (own ? Side::On : classify(p, plane, eps_)) {
                 case Side::Front: front.push_back(std::move(p)); break;
                 case Side::Back: back.push_back(std::move(p)); break;
                 case Side::On: on.push_back(std::move(p)); break;
@@ -107,16 +140,13 @@ public:
                 }
             }
         }
-        pieces.clear();
-        pieces.shrink_to_fit();
-        // The far side first, then the plane's own pieces, then the near side.
+        // The far side first, then the plane's own pieces, then the near side (pushed in reverse).
         const bool eyeInFront = facesViewer(plane, plane.n * plane.d);
-        order(std::move(eyeInFront ? back : front), depth + 1);
-        for (Piece& p : on) emit(p);
-        order(std::move(eyeInFront ? front : back), depth + 1);
+        stack.push_back({std::move(eyeInFront ? front : back), false});
+        stack.push_back({std::move(on), true});
+        stack.push_back({std::move(eyeInFront ? back : front), false});
     }
 
-private:
     // Whether the viewer is on the side `plane.n` points to (x: a point of the plane).
     bool facesViewer(const Plane& plane, const Vector3d& x) const {
         return viewer_.orthographic ? plane.n.dot(viewer_.towardsEye) > 0 : plane.n.dot(viewer_.eye - x) > 0;
@@ -186,7 +216,7 @@ private:
     // its own faces, so only the others are cut, and once the small item's faces are used up the
     // rest is ordered. Among single-triangle items (a non-convex mesh), the one of a few evenly
     // spread candidates that cuts the fewest of a sample of the others (the usual BSP heuristic).
-    Plane faceSplitter(const std::vector<Piece>& pieces) const {
+    Splitter faceSplitter(const std::vector<Piece>& pieces) const {
         std::vector<std::pair<std::size_t, std::size_t>> items;  // first piece, count
         for (std::size_t i = 0, start = 0; i < pieces.size(); ++i)
             if (i + 1 == pieces.size() || pieces[i + 1].item != pieces[i].item) {
@@ -198,36 +228,38 @@ private:
         std::vector<std::size_t> candidates;  // first pieces of the smallest items
         for (const auto& [start, count] : items)
             if (count == fewest) candidates.push_back(start);
-        if (fewest > 1 || candidates.size() == 1) return pieces[candidates.front()].plane;
+        // A face of the smallest item when it is one of several pieces (a convex item: its own
+        // plane has the rest of it behind), else the best of a few evenly spread candidates.
+        if (fewest > 1) candidates.resize(1);
         constexpr std::size_t kCandidates = 8, kSample = 96;
         const std::size_t step = std::max<std::size_t>(1, candidates.size() / kCandidates);
         const std::size_t sampleStep = std::max<std::size_t>(1, pieces.size() / kSample);
-        std::size_t best = candidates.front();
-        long bestScore = -1;
-        for (std::size_t k = 0; k < candidates.size(); k += step) {
-            const Plane& plane = pieces[candidates[k]].plane;
+        const auto score = [&](const Plane& plane, bool& divides) {
             long cuts = 0, front = 0, back = 0;
             for (std::size_t s = 0; s < pieces.size(); s += sampleStep) {
-                switch (classify(pieces[s], plane, eps_)) {
-                    case Side::Spanning: ++cuts; break;
-                    case Side::Front: ++front; break;
-                    case Side::Back: ++back; break;
-                    case Side::On: break;
-                }
-            }
-            const long score = 8 * cuts + std::labs(front - back);
-            if (bestScore < 0 || score < bestScore) bestScore = score, best = candidates[k];
-        }
-        // Every face plane leaves the rest on one side (a curved sheet): a plane across the middle.
-        if (const auto median = medianPlane(pieces)) {
-            long cuts = 0, front = 0, back = 0;
-            for (std::size_t s = 0; s < pieces.size(); s += sampleStep) {
-                const Side side = classify(pieces[s], *median, eps_);
+                const Side side = classify(pieces[s], plane, eps_);
                 cuts += side == Side::Spanning, front += side == Side::Front, back += side == Side::Back;
             }
-            if (8 * cuts + std::labs(front - back) < bestScore) return *median;
+            divides = cuts > 0 || (front > 0 && back > 0);
+            return 8 * cuts + std::labs(front - back);
+        };
+        std::size_t best = candidates.front();
+        long bestScore = -1;
+        bool bestDivides = false;
+        for (std::size_t k = 0; k < candidates.size(); k += step) {
+            bool divides = false;
+            const long sc = score(pieces[candidates[k]].plane, divides);
+            if (bestScore < 0 || sc < bestScore) bestScore = sc, best = candidates[k], bestDivides = divides;
         }
-        return pieces[best].plane;
+        // The face plane leaves the rest on one side, uncut (a curved sheet, or tiles of one: each
+        // level would peel one face): a plane across the middle, if it does better.
+        if (!bestDivides || fewest == 1) {
+            if (const auto median = medianPlane(pieces)) {
+                bool divides = false;
+                if (score(*median, divides) < bestScore) return Splitter{*median};
+            }
+        }
+        return Splitter{pieces[best].plane, pieces[best].mesh, pieces[best].triangle};
     }
 
     // The plane across the longest axis of the pieces' bounding box at the median of their first
@@ -253,8 +285,6 @@ private:
         return std::nullopt;
     }
 
-    static constexpr int kMaxDepth = 4000;  // levels of the partition: a few hundred kB of stack
-
     const Viewer& viewer_;
     std::vector<bool> convex_;
     double eps_;
@@ -268,7 +298,11 @@ private:
 std::optional<Vector3d> unitNormal(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
     const Vector3d n = (b - a).cross(c - a);
     const double len = n.norm();
-    if (!(len > 0) || !std::isfinite(len)) return std::nullopt;
+    const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    // A needle (width under 1e-7 of its length, e.g. a fan triangle over a polygon corner that lies
+    // on an edge) draws nothing, and rounding tilts its normal by ~1e-16 of its length over its
+    // width: its own corners would leave the eps band of its plane.
+    if (!(len > 1e-7 * longest) || !std::isfinite(len)) return std::nullopt;
     return n / len;
 }
 
@@ -289,7 +323,10 @@ bool isConvexSurface(const TranslucentMesh& mesh) {
         for (int k = 0; k < 3; ++k) radius = std::max(radius, (mesh.vertices[std::size_t(t[k])] - center).norm());
     // Rounding of the coordinates, relative to the mesh's size: a tessellated sphere's faces fold by
     // far more, a flat polygon's fan triangles by nothing.
-    const double eps = 1e-9 * std::max(radius, 1e-300);
+    double magnitude = 0;  // of the coordinates: their rounding, far from the origin
+    for (const Eigen::Vector3i& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) magnitude = std::max(magnitude, mesh.vertices[std::size_t(t[k])].cwiseAbs().maxCoeff());
+    const double eps = std::max(1e-9 * radius + 1e-14 * magnitude, 1e-300);
     const auto vertex = [&](int i) -> const Vector3d& { return mesh.vertices[std::size_t(i)]; };
 
     // Flat: every corner in the plane of the first proper triangle.
@@ -399,7 +436,8 @@ std::vector<OrderedPiece> backToFront(std::span<const TranslucentMesh> meshes, c
     st = {};
     std::vector<Piece> pieces;
     std::vector<bool> convex;
-    double extent = 0;
+    double extent = 0;  // the largest coordinate
+    Vector3d lo = Vector3d::Constant(INFINITY), hi = Vector3d::Constant(-INFINITY);  // the scene's box
     for (std::size_t m = 0; m < meshes.size(); ++m) {
         const TranslucentMesh& mesh = meshes[m];
         if (mesh.triangles.empty()) continue;
@@ -421,15 +459,18 @@ std::vector<OrderedPiece> backToFront(std::span<const TranslucentMesh> meshes, c
             if (isConvex && p.plane.distance(center) > 0) p.plane = Plane{-p.plane.n, -p.plane.d};
             if (!isConvex) convex.push_back(false);
             p.item = int(convex.size()) - 1;
-            for (const Vector3d& x : p.corners) extent = std::max(extent, x.cwiseAbs().maxCoeff());
+            for (const Vector3d& x : p.corners) {
+                extent = std::max(extent, x.cwiseAbs().maxCoeff());
+                lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+            }
             pieces.push_back(std::move(p));
         }
     }
     st.items = int(convex.size());
-    // A corner this close to a plane is on it: rounding of coordinates of size `extent`, far below
-    // anything a figure shows.
-    const double eps = 1e-9 * std::max(extent, 1e-300);
-    const int budget = 4 * int(pieces.size()) + 1024;
+    // A corner this close to a plane is on it: 1e-9 of the scene's size, far below anything a figure
+    // shows, plus the rounding of coordinates of size `extent` (a scene far from the origin).
+    const double eps = pieces.empty() ? 1.0 : std::max(1e-9 * (hi - lo).maxCoeff() + 1e-14 * extent, 1e-300);
+    const int budget = 16 * int(pieces.size()) + 4096;
     std::vector<OrderedPiece> out;
     out.reserve(pieces.size());
     Orderer(viewer, std::move(convex), eps, budget, out, st).order(std::move(pieces));

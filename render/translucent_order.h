@@ -9,7 +9,9 @@
 // item that is never partitioned against itself (its faces turned away from the viewer, then those
 // turned towards it, is the right order for a convex surface); items whose bounding boxes are apart
 // along an axis are separated by that axis's plane without cutting anything; otherwise a face of the
-// smallest item is the splitting plane.
+// smallest item is the splitting plane, or a plane across the middle where faces would only peel
+// one at a time (a curved sheet). Walked with an explicit stack; budgets on cuts and work fall back
+// to the depth sort for what is left (pathological input only).
 #pragma once
 
 #include <span>
@@ -45,7 +47,7 @@ struct TranslucentOrderStats {
     int items = 0;          // convex meshes, plus one per triangle of a non-convex mesh
     int convexMeshes = 0;
     int cuts = 0;           // pieces cut in two
-    bool budgetHit = false; // too many cuts, too much work or too deep: the rest ordered by depth alone
+    bool budgetHit = false; // too many cuts or too much work: the rest ordered by depth alone
 };
 
 /// Every triangle of `meshes`, cut where needed, in an order in which each piece is drawn after every

@@ -323,3 +323,73 @@ TEST_CASE("a large open curved sheet of single-triangle items: bounded work and 
     CHECK(check.crossings > 300);
     CHECK(check.violations == 0);
 }
+
+TEST_CASE("a polygon fan with a corner on an edge (a needle triangle) through a box: no endless peeling, right order") {
+    // drawPolygon fans from corner 0: with corner 1 on the edge from corner 0 to corner 2, the first
+    // fan triangle is a needle whose rounded normal would leave its own corners off its plane.
+    const Eigen::Matrix3d tilt = Eigen::AngleAxisd(0.37, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    Mesh fan;
+    for (const Vector3d& c : {Vector3d(-1, -1, 0.1), Vector3d(0.3, -1, 0.1), Vector3d(1, -1, 0.1), Vector3d(1, 1, 0.1),
+                              Vector3d(-1, 1, 0.1)})
+        fan.vertices.push_back(tilt * c);
+    for (int k = 1; k + 1 < 5; ++k) fan.triangles.emplace_back(0, k, k + 1);
+    const std::vector<Mesh> meshes{fan, box({0.5, 0.5, 0.5}, tilt, Vector3d::Zero())};
+    std::mt19937 rng(17);
+    for (const Viewer& viewer : {perspectiveFrom({2, 3, 4}, {0, 0, 0}), Viewer{{0, 0, 0}, Vector3d(-1, 1, 2).normalized(), true}}) {
+        TranslucentOrderStats stats;
+        const auto pieces = order(meshes, viewer, &stats);
+        CHECK(stats.convexMeshes == 2);
+        CHECK_FALSE(stats.budgetHit);
+        checkAreas(meshes, pieces);
+        CHECK(castRays(pieces, viewer, {-1, -1, -1}, {1, 1, 1}, rng, 1500).violations == 0);
+    }
+}
+
+TEST_CASE("a sheet of separate two-triangle tiles (items of two pieces): planes across the middle, not peeling") {
+    std::vector<Mesh> tiles;
+    const int n = 40;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            Mesh t;
+            for (const auto& [di, dj] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{1, 1}, std::pair{0, 1}}) {
+                const double x = -1 + 2.0 * (i + di) / n, y = -1 + 2.0 * (j + dj) / n;
+                t.vertices.emplace_back(x, y, x * x + y * y);
+            }
+            t.triangles = {{0, 1, 2}, {0, 2, 3}};
+            tiles.push_back(t);
+        }
+    tiles.push_back(box({0.3, 0.3, 0.3}, Eigen::Matrix3d::Identity(), {0, 0, 0.5}));
+    const Viewer viewer = perspectiveFrom({2, -3, 4}, {0, 0, 0.5});
+    TranslucentOrderStats stats;
+    const auto pieces = order(tiles, viewer, &stats);
+    CHECK_FALSE(stats.budgetHit);
+    CHECK(stats.cuts < 4 * 2 * n * n);
+    checkAreas(tiles, pieces);
+    std::mt19937 rng(19);
+    CHECK(castRays(pieces, viewer, {-1, -1, 0}, {1, 1, 2}, rng, 1500).violations == 0);
+}
+
+TEST_CASE("the same scenes a million units from the origin: eps follows the scene, not the coordinates alone") {
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (const double far : {1e6, 1e7}) {
+        const Vector3d offset = far * Vector3d(0.6, -0.64, 0.48);
+        std::vector<Mesh> meshes;
+        for (int b = 0; b < 3; ++b)
+            meshes.push_back(box(Vector3d(0.2 + 0.5 * std::abs(u(rng)), 0.05 + 0.5 * std::abs(u(rng)), 0.3),
+                                 randomRotation(rng), offset + 0.5 * Vector3d(u(rng), u(rng), u(rng))));
+        meshes.push_back(sphere(offset + 0.4 * Vector3d(u(rng), u(rng), u(rng)), 0.6, 8, 16));
+        const Viewer viewer = perspectiveFrom(offset + Vector3d(3, 2, 4), offset);
+        TranslucentOrderStats stats;
+        auto pieces = order(meshes, viewer, &stats);
+        CHECK(stats.convexMeshes == 4);
+        CHECK_FALSE(stats.budgetHit);
+        // The oracle in the scene's own frame (its ray tests lose precision at 1e6).
+        for (OrderedPiece& p : pieces)
+            for (Vector3d& c : p.corners) c -= offset;
+        const Viewer local{viewer.eye - offset, viewer.towardsEye, false};
+        const RayCheck check = castRays(pieces, local, {-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}, rng, 1500);
+        CHECK(check.crossings > 300);
+        CHECK(check.violations == 0);
+    }
+}
