@@ -29,16 +29,28 @@ inline bool gjkBooleanSimplexStep(Vec3 (&p)[4], int& n, Vec3& d, double margin);
 
 namespace gjk_boolean {
 
-// |v| > length, compared squared (no square root; an underflow or overflow of the squares only
-// makes the fast path give up, never decide).
+// |v| > length, compared squared (no square root; an underflow or overflow of the squares, or a
+// NaN, only makes the fast path give up, never decide).
 inline bool longer(const Vec3& v, double length) { return v.squaredNorm() > length * length; }
 
-// The origin's side of a plane through `a` with normal `normal`: +1 in front by more than margin,
-// -1 behind by more than margin, 0 within it.
-inline int side(const Vec3& normal, const Vec3& a, double margin) {
-    const double s = -normal.dot(a);
-    if (s * s <= margin * margin * normal.squaredNorm()) return 0;  // |s| <= margin |normal|, no square root
+// The origin's side of the plane through `a` spanned by e1 and e2 (normal e1 x e2): +1 in front by
+// more than the band, -1 behind by more, 0 within it or NaN. The band is the margin plus the rounding
+// of the cross product, ~u |e1| |e2| |a|, which dominates on a sliver face (e1, e2 nearly parallel:
+// the computed normal's direction is off by ~u / sine). Both enter through a bound without square
+// roots: (m |n| + c |e1| |e2| |a|)^2 <= 2 (m^2 + c^2 |a|^2) |e1|^2 |e2|^2, as |n| <= |e1| |e2|. An
+// overflow of the squares only gives up.
+/// The squared norms e1², e2² and the factor 2 (m² + c² |a|²) given (shared between faces).
+inline int sideOf(const Vec3& e1, const Vec3& e2, double e1Squared, double e2Squared, const Vec3& a, double aFactor) {
+    const double s = -e1.cross(e2).dot(a);
+    if (!(s * s > aFactor * e1Squared * e2Squared)) return 0;
     return s > 0.0 ? 1 : -1;
+}
+inline double sideFactor(const Vec3& a, double margin) {
+    constexpr double kRounding = 16.0 * 1.1102230246251565e-16;  // 16 u: the cross and dot products' error
+    return 2.0 * (margin * margin + kRounding * kRounding * a.squaredNorm());
+}
+inline int sideOf(const Vec3& e1, const Vec3& e2, const Vec3& a, double margin) {
+    return sideOf(e1, e2, e1.squaredNorm(), e2.squaredNorm(), a, sideFactor(a, margin));
 }
 
 // Segment [b, a] (a newest): the segment's interior or a alone (the region beyond b is impossible:
@@ -62,12 +74,13 @@ inline bool triangle(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
     const Vec3 a = p[2], b = p[1], c = p[0];
     const Vec3 ab = b - a, ac = c - a, ao = -a, abc = ab.cross(ac);
     // Collinear within 1e-12 (the sine of the angle at a): no plane to decide by.
-    if (!longer(abc, 1e-12 * std::max(ab.squaredNorm(), ac.squaredNorm()))) return false;
+    const double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm();
+    if (!longer(abc, 1e-12 * std::max(ab2, ac2))) return false;
     if (abc.cross(ac).dot(ao) > 0.0) {  // beyond edge ac
         if (ac.dot(ao) > 0.0) {
             p[0] = c, p[1] = a, n = 2;
             d = ac.cross(ao).cross(ac);
-            return longer(d, margin * ac.squaredNorm());
+            return longer(d, margin * ac2);
         }
         p[0] = b, p[1] = a, n = 2;
         return line(p, n, d, margin);
@@ -76,7 +89,7 @@ inline bool triangle(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
         p[0] = b, p[1] = a, n = 2;
         return line(p, n, d, margin);
     }
-    const int s = side(abc, a, margin);
+    const int s = sideOf(ab, ac, ab2, ac2, a, sideFactor(a, margin));
     if (s == 0) return false;  // the origin on the triangle's plane (touching)
     if (s > 0) {
         d = abc;  // keep (c, b, a)
@@ -92,8 +105,8 @@ inline bool triangle(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
 inline bool tetrahedron(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
     const Vec3 a = p[3], b = p[2], c = p[1], d0 = p[0];
     const Vec3 ab = b - a, ac = c - a, ad = d0 - a;
-    const Vec3 abc = ab.cross(ac), acd = ac.cross(ad), adb = ad.cross(ab);
-    const int sAbc = side(abc, a, margin), sAcd = side(acd, a, margin), sAdb = side(adb, a, margin);
+    const double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm(), ad2 = ad.squaredNorm(), f = sideFactor(a, margin);
+    const int sAbc = sideOf(ab, ac, ab2, ac2, a, f), sAcd = sideOf(ac, ad, ac2, ad2, a, f), sAdb = sideOf(ad, ab, ad2, ab2, a, f);
     if (sAbc > 0) {
         p[0] = c, p[1] = b, p[2] = a, n = 3;
         return triangle(p, n, d, margin);
@@ -149,7 +162,7 @@ QuickBoolean gjkQuickBoolean(Support&& support, int& iterations, const Vec3* sta
         const double margin = kMargin * size;
         const double reach = w.dot(d);
         // |reach| against margin |d| without a square root: within it, a support plane through the origin.
-        if (reach * reach <= margin * margin * d.squaredNorm()) return QuickBoolean::Undecided;
+        if (!(reach * reach > margin * margin * d.squaredNorm())) return QuickBoolean::Undecided;  // or NaN
         if (reach < 0.0) return QuickBoolean::Separated;
         p[n++] = w;
         if (!gjkBooleanSimplexStep(p, n, d, margin)) return QuickBoolean::Undecided;

@@ -23,6 +23,7 @@
 #include "core/base/support.h"
 #include "core/base/types.h"
 #include "core/gjk_epa/gjk.h"
+#include "core/gjk_epa/gjk_boolean.h"
 
 namespace cdlab {
 
@@ -43,15 +44,12 @@ Vec3 mprSupport(const A& shapeA, const B& shapeB, const Vec3& d, int& count) {
     return shapeA.support(d) - shapeB.support(Vec3(-d));
 }
 
-// The sign of s against the band margin · |n|, without a square root: +1 above it, −1 below −band, 0 within.
+// The sign of s against the band margin · |n|, without a square root: +1 above it, −1 below −band,
+// 0 within it or NaN (an overflow at coordinates near the double limit: give up, never decide).
 inline int mprBeyondBand(double s, const Vec3& n, double margin) {
-    if (s * s <= margin * margin * n.squaredNorm()) return 0;
+    if (!(s * s > margin * margin * n.squaredNorm())) return 0;
     return s > 0.0 ? 1 : -1;
 }
-
-// The origin's side of the plane with normal n through p: +1 in front (where n points) by more than
-// `margin` (world units), −1 behind by more, 0 within the band.
-inline int mprSide(const Vec3& n, const Vec3& p, double margin) { return mprBeyondBand(-n.dot(p), n, margin); }
 
 }  // namespace detail
 
@@ -122,15 +120,17 @@ MprResult mprDecide(const A& shapeA, const Vec3& interiorA, const B& shapeB, con
         n = (v2 - v1).cross(v3 - v1);
         if (!(n.squaredNorm() > 0.0)) return r;  // a degenerate portal
         const double band = margin(v1);
-        const int portal = detail::mprSide(n, v1, band);  // +1: the origin beyond the portal
+        // Face sides clear of the margin and of the cross products' rounding, which on a sliver
+        // portal (nearly collinear points) turns the computed normal (gjk_boolean.h: sideOf).
+        const int portal = detail::gjk_boolean::sideOf(Vec3(v2 - v1), Vec3(v3 - v1), v1, band);  // +1: beyond
         if (portal < 0) {
             // On v0's side of the portal: inside the tetrahedron v0 v1 v2 v3 (positively oriented:
             // each face normal below points towards the fourth vertex) if clear of its three other
             // faces too.
             const bool clear = (v1 - v0).cross(v2 - v0).dot(v3 - v0) > 0.0 &&
-                               detail::mprSide(Vec3((v1 - v0).cross(v2 - v0)), v0, band) > 0 &&
-                               detail::mprSide(Vec3((v2 - v0).cross(v3 - v0)), v0, band) > 0 &&
-                               detail::mprSide(Vec3((v3 - v0).cross(v1 - v0)), v0, band) > 0;
+                               detail::gjk_boolean::sideOf(Vec3(v1 - v0), Vec3(v2 - v0), v0, band) > 0 &&
+                               detail::gjk_boolean::sideOf(Vec3(v2 - v0), Vec3(v3 - v0), v0, band) > 0 &&
+                               detail::gjk_boolean::sideOf(Vec3(v3 - v0), Vec3(v1 - v0), v0, band) > 0;
             if (clear) r.outcome = MprOutcome::Intersecting;
             return r;
         }

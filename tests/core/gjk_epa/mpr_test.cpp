@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/base/orient.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/gjk_epa/mpr.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
@@ -33,6 +34,28 @@ std::vector<Vec3> cube(const Vec3& at) {
     std::vector<Vec3> v;
     for (int c = 0; c < 8; ++c) v.push_back(at + Vec3(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1));
     return v;
+}
+
+// The origin against conv(P), exactly (orient3d is an exact predicate, core/base/orient.h): -1
+// outside, 0 on the boundary, 1 inside; 2 if P spans no volume. Brute force over the facets.
+int exactOriginSide(const std::vector<Vec3>& P) {
+    const int n = int(P.size());
+    bool any = false, onBoundary = false;
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+            for (int k = j + 1; k < n; ++k) {
+                bool pos = false, neg = false;
+                for (int m = 0; m < n; ++m) {
+                    const int s = orient3d(P[i], P[j], P[k], P[m]);
+                    pos = pos || s > 0, neg = neg || s < 0;
+                }
+                if (pos == neg) continue;  // not a facet plane (or all coplanar)
+                any = true;
+                const int o = orient3d(P[i], P[j], P[k], Vec3::Zero());
+                if (o == (pos ? -1 : 1)) return -1;
+                onBoundary = onBoundary || o == 0;
+            }
+    return !any ? 2 : onBoundary ? 0 : 1;
 }
 
 }  // namespace
@@ -118,5 +141,85 @@ TEST_SUITE("mpr") {
         CHECK_FALSE(mprIntersect(a, Vec3::Zero(), above, Vec3(0, 0, 1.5)));
         // A NaN interior point: no answer from MPR, GJK's from the shapes.
         CHECK(mprDecide(a, Vec3(NAN, 0, 0), square, Vec3::Zero()).outcome == MprOutcome::Undecided);
+    }
+
+    // Sliver faces: three nearly collinear points (a face whose computed normal turns by ~1e-16 over
+    // its sine) with the origin just off them, at every scale. A decided answer (MPR from the
+    // centroid or from a vertex, and the boolean GJK fast path from either start) must match the
+    // exact hull test. Found by a review: before the faces' bands covered the cross products'
+    // rounding, about 5% of the decided answers here were wrong.
+    TEST_CASE("sliver faces against an exact oracle: no decided answer is ever wrong") {
+        std::mt19937_64 rng(2611);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        std::normal_distribution<double> g(0.0, 1.0);
+        int decided = 0, wrong = 0;
+        const auto tally = [&](int answer, int truth) {  // answer: 1 intersecting, -1 separated, 0 undecided
+            if (answer == 0) return;
+            ++decided;
+            wrong += (answer > 0 && truth < 0) || (answer < 0 && truth >= 0);
+        };
+        for (int trial = 0; trial < 1500; ++trial) {
+            const double e = std::pow(10.0, -1 - 11 * u(rng));                          // the sliver's width
+            const double h = (u(rng) < 0.5 ? -1 : 1) * std::pow(10.0, -2 - 14 * u(rng));  // the origin's offset
+            const double scale = std::pow(10.0, -3 + 9 * u(rng));
+            std::vector<Vec3> v{Vec3(-1 - u(rng), 0, 0), Vec3(1 + u(rng), 0, 0), Vec3(2 * u(rng) - 1, 0, e)};
+            const bool fat = u(rng) < 0.5;
+            for (int k = 0, extra = 2 + trial % 4; k < extra; ++k)
+                v.push_back(Vec3(4 * u(rng) - 2, -0.2 - 2 * u(rng), fat ? 4 * u(rng) - 2 : (3 * u(rng) - 1) * e));
+            double b1 = u(rng), b2 = u(rng);
+            if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+            const Vec3 o = v[0] * (1 - b1 - b2) + v[1] * b1 + v[2] * b2 + Vec3(0, h, 0);
+            const Eigen::Matrix3d r = Quat(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+            std::vector<Vec3> P;
+            for (const Vec3& x : v) P.push_back(scale * (r * (x - o)));
+            std::shuffle(P.begin(), P.end(), rng);
+            const int truth = exactOriginSide(P);
+            if (truth == 2) continue;
+            const PolytopeShape a{P}, b{std::vector<Vec3>{Vec3::Zero()}};
+            const auto sign = [](MprOutcome x) { return x == MprOutcome::Intersecting ? 1 : x == MprOutcome::Separated ? -1 : 0; };
+            const auto quickSign = [](detail::QuickBoolean x) {
+                return x == detail::QuickBoolean::Intersecting ? 1 : x == detail::QuickBoolean::Separated ? -1 : 0;
+            };
+            tally(sign(mprDecide(a, centroid(P), b, Vec3::Zero()).outcome), truth);
+            tally(sign(mprDecide(a, P[0], b, Vec3::Zero()).outcome), truth);
+            int iterations = 0;
+            const auto support = [&](const Vec3& d, Vec3& w) { w = a.support(d) - b.support(Vec3(-d)); };
+            tally(quickSign(detail::gjkQuickBoolean(support, iterations)), truth);
+            tally(quickSign(detail::gjkQuickBoolean(support, iterations, &P[0])), truth);
+        }
+        CHECK(wrong == 0);
+        CHECK(decided > 2000);  // those clear of the band are still decided (2370 of 6000 here)
+    }
+
+    TEST_CASE("a review's reproducers: a sliver portal, a sliver base triangle, coordinates near the double limit") {
+        // The origin 2.6e-8 outside a body of size 0.19 (exact), behind a portal of nearly collinear points.
+        const std::vector<Vec3> portal{{0.18580837336482625, 0.1907711021050634, 0.074791306767989452},
+                                       {-0.1184067539525608, -0.058138409876495128, -0.0015647832194075478},
+                                       {-0.095399311920724025, 0.063773309914032447, 0.079124749923604284},
+                                       {-0.17707944354871846, -0.18180897349838765, -0.071277708109507162},
+                                       {0.09948835529568982, 0.10214558933662815, 0.04004591322923224}};
+        const PolytopeShape origin{std::vector<Vec3>{Vec3::Zero()}};
+        REQUIRE(exactOriginSide(portal) == -1);
+        const PolytopeShape a{portal};
+        CHECK(mprDecide(a, centroid(portal), origin, Vec3::Zero()).outcome != MprOutcome::Intersecting);
+        CHECK_FALSE(mprIntersect(a, centroid(portal), origin, Vec3::Zero()));
+        // The origin 1.17e-6 outside a body of size 1550: the fast path's tetrahedron on a sliver base.
+        const std::vector<Vec3> base{{264.97053582221525, 124.58940480235432, -174.21658992977368},
+                                     {-716.69356582817238, -336.99000916195735, 471.22184898156507},
+                                     {1192.2611122399185, 560.60233061317388, -783.90470318840426},
+                                     {338.62740919703009, 1195.8704793447503, -167.1981340531562},
+                                     {162.91552540415205, 443.38868693233877, 957.33906197054614},
+                                     {-856.90728348968764, 1550.2287510716089, -1194.8392259070345}};
+        REQUIRE(exactOriginSide(base) == -1);
+        const PolytopeShape c{base};
+        int iterations = 0;
+        const Vec3 start = base[0];
+        CHECK(detail::gjkQuickBoolean([&](const Vec3& d, Vec3& w) { w = c.support(d); }, iterations, &start) !=
+              detail::QuickBoolean::Intersecting);
+        // Coordinates ~1e160: a support's dot product overflows to inf - inf = NaN, which must give up,
+        // not read as "beyond" (the origin is deep inside).
+        const std::vector<Vec3> huge{{-1e160, 1e159, 0}, {1e160, 0, 1e160}, {1e160, 0, -1e160}, {0, 1e160, 0}, {1e160, -1e160, 0}};
+        const PolytopeShape h{huge};
+        CHECK(mprDecide(h, Vec3(1e150, 1e150, 0), origin, Vec3::Zero()).outcome != MprOutcome::Separated);
     }
 }
