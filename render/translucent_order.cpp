@@ -69,7 +69,8 @@ std::pair<Piece, Piece> split(const Piece& piece, const Plane& plane, double eps
     return {std::move(front), std::move(back)};
 }
 
-struct Box {
+// One item's bounding box and piece count (axisGap).
+struct ItemBounds {
     Vector3d lo, hi;
     int pieces = 0;
 };
@@ -165,7 +166,7 @@ private:
         for (Piece& p : pieces) emit(p);
     }
 
-    // Past the cut budget (a pathological input): the painter's order by centroid depth.
+    // Past a budget (a pathological input): the painter's order by centroid depth.
     void emitByDepth(std::vector<Piece>& pieces) {
         const auto depth = [&](const Piece& p) {
             Vector3d c = Vector3d::Zero();
@@ -182,18 +183,18 @@ private:
     // A plane between the items' bounding boxes along x, y or z, the one that splits the pieces
     // most evenly: it orders whole groups of items without cutting anything.
     std::optional<Plane> axisGap(const std::vector<Piece>& pieces) const {
-        std::vector<Box> boxes;
+        std::vector<ItemBounds> boxes;
         for (std::size_t i = 0; i < pieces.size(); ++i) {
             if (i == 0 || pieces[i].item != pieces[i - 1].item)
                 boxes.push_back({Vector3d::Constant(INFINITY), Vector3d::Constant(-INFINITY), 0});
-            Box& b = boxes.back();
+            ItemBounds& b = boxes.back();
             for (const Vector3d& c : pieces[i].corners) b.lo = b.lo.cwiseMin(c), b.hi = b.hi.cwiseMax(c);
             ++b.pieces;
         }
         std::optional<Plane> best;
         std::size_t bestImbalance = pieces.size();
         for (int axis = 0; axis < 3; ++axis) {
-            std::sort(boxes.begin(), boxes.end(), [axis](const Box& x, const Box& y) { return x.lo[axis] < y.lo[axis]; });
+            std::sort(boxes.begin(), boxes.end(), [axis](const ItemBounds& x, const ItemBounds& y) { return x.lo[axis] < y.lo[axis]; });
             double reach = -INFINITY;
             std::size_t below = 0;
             for (std::size_t i = 0; i + 1 < boxes.size(); ++i) {
@@ -318,14 +319,15 @@ Vector3d centroidOf(const TranslucentMesh& mesh) {
 bool isConvexSurface(const TranslucentMesh& mesh) {
     if (mesh.triangles.empty()) return true;
     const Vector3d center = centroidOf(mesh);
-    double radius = 0;
+    // Rounding of the coordinates, relative to the mesh's size (a tessellated sphere's faces fold by
+    // far more, a flat polygon's fan triangles by nothing) and to their magnitude (far from the origin).
+    double radius = 0, magnitude = 0;
     for (const Eigen::Vector3i& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k) radius = std::max(radius, (mesh.vertices[std::size_t(t[k])] - center).norm());
-    // Rounding of the coordinates, relative to the mesh's size: a tessellated sphere's faces fold by
-    // far more, a flat polygon's fan triangles by nothing.
-    double magnitude = 0;  // of the coordinates: their rounding, far from the origin
-    for (const Eigen::Vector3i& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k) magnitude = std::max(magnitude, mesh.vertices[std::size_t(t[k])].cwiseAbs().maxCoeff());
+        for (int k = 0; k < 3; ++k) {
+            const Vector3d& x = mesh.vertices[std::size_t(t[k])];
+            radius = std::max(radius, (x - center).norm());
+            magnitude = std::max(magnitude, x.cwiseAbs().maxCoeff());
+        }
     const double eps = std::max(1e-9 * radius + 1e-14 * magnitude, 1e-300);
     const auto vertex = [&](int i) -> const Vector3d& { return mesh.vertices[std::size_t(i)]; };
 

@@ -33,24 +33,28 @@ namespace gjk_boolean {
 // NaN, only makes the fast path give up, never decide).
 inline bool longer(const Vec3& v, double length) { return v.squaredNorm() > length * length; }
 
-// The origin's side of the plane through `a` spanned by e1 and e2 (normal e1 x e2): +1 in front by
-// more than the band, -1 behind by more, 0 within it or NaN. The band is the margin plus the rounding
-// of the cross product, ~u |e1| |e2| |a|, which dominates on a sliver face (e1, e2 nearly parallel:
-// the computed normal's direction is off by ~u / sine). Both enter through a bound without square
-// roots: (m |n| + c |e1| |e2| |a|)^2 <= 2 (m^2 + c^2 |a|^2) |e1|^2 |e2|^2, as |n| <= |e1| |e2|. An
-// overflow of the squares only gives up.
-/// The squared norms e1², e2² and the factor 2 (m² + c² |a|²) given (shared between faces).
-inline int sideOf(const Vec3& e1, const Vec3& e2, double e1Squared, double e2Squared, const Vec3& a, double aFactor) {
-    const double s = -e1.cross(e2).dot(a);
-    if (!(s * s > aFactor * e1Squared * e2Squared)) return 0;
+// The sign of s where |s| clears a band (given squared, so no square root is taken): +1 or -1, and 0
+// within the band or for NaN (an overflow near the double limit: give up, never decide).
+inline int clearSign(double s, double bandSquared) {
+    if (!(s * s > bandSquared)) return 0;
     return s > 0.0 ? 1 : -1;
+}
+
+// The origin's side of the plane through `a` with normal = e1 x e2 (the caller's cross product): +1
+// in front by more than the band, -1 behind by more, 0 within it or NaN. The band is the margin plus
+// the rounding of the cross product, ~u |e1| |e2| |a|, which dominates on a sliver face (e1, e2 nearly
+// parallel: the computed normal's direction is off by ~u / sine). Both enter through a bound without
+// square roots: (m |n| + c |e1| |e2| |a|)^2 <= 2 (m^2 + c^2 |a|^2) |e1|^2 |e2|^2, as |n| <= |e1| |e2|.
+// The squared norms e1², e2² and the factor 2 (m² + c² |a|²) are given (shared between faces).
+inline int sideOf(const Vec3& normal, double e1Squared, double e2Squared, const Vec3& a, double aFactor) {
+    return clearSign(-normal.dot(a), aFactor * e1Squared * e2Squared);
 }
 inline double sideFactor(const Vec3& a, double margin) {
     constexpr double kRounding = 16.0 * 1.1102230246251565e-16;  // 16 u: the cross and dot products' error
     return 2.0 * (margin * margin + kRounding * kRounding * a.squaredNorm());
 }
 inline int sideOf(const Vec3& e1, const Vec3& e2, const Vec3& a, double margin) {
-    return sideOf(e1, e2, e1.squaredNorm(), e2.squaredNorm(), a, sideFactor(a, margin));
+    return sideOf(e1.cross(e2), e1.squaredNorm(), e2.squaredNorm(), a, sideFactor(a, margin));
 }
 
 // Segment [b, a] (a newest): the segment's interior or a alone (the region beyond b is impossible:
@@ -89,7 +93,7 @@ inline bool triangle(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
         p[0] = b, p[1] = a, n = 2;
         return line(p, n, d, margin);
     }
-    const int s = sideOf(ab, ac, ab2, ac2, a, sideFactor(a, margin));
+    const int s = sideOf(abc, ab2, ac2, a, sideFactor(a, margin));
     if (s == 0) return false;  // the origin on the triangle's plane (touching)
     if (s > 0) {
         d = abc;  // keep (c, b, a)
@@ -106,7 +110,8 @@ inline bool tetrahedron(Vec3 (&p)[4], int& n, Vec3& d, double margin) {
     const Vec3 a = p[3], b = p[2], c = p[1], d0 = p[0];
     const Vec3 ab = b - a, ac = c - a, ad = d0 - a;
     const double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm(), ad2 = ad.squaredNorm(), f = sideFactor(a, margin);
-    const int sAbc = sideOf(ab, ac, ab2, ac2, a, f), sAcd = sideOf(ac, ad, ac2, ad2, a, f), sAdb = sideOf(ad, ab, ad2, ab2, a, f);
+    const int sAbc = sideOf(ab.cross(ac), ab2, ac2, a, f), sAcd = sideOf(ac.cross(ad), ac2, ad2, a, f),
+              sAdb = sideOf(ad.cross(ab), ad2, ab2, a, f);
     if (sAbc > 0) {
         p[0] = c, p[1] = b, p[2] = a, n = 3;
         return triangle(p, n, d, margin);
@@ -160,10 +165,10 @@ QuickBoolean gjkQuickBoolean(Support&& support, int& iterations, const Vec3* sta
         if (!w.allFinite()) return QuickBoolean::Undecided;
         size = std::max(size, w.cwiseAbs().maxCoeff());
         const double margin = kMargin * size;
-        const double reach = w.dot(d);
-        // |reach| against margin |d| without a square root: within it, a support plane through the origin.
-        if (!(reach * reach > margin * margin * d.squaredNorm())) return QuickBoolean::Undecided;  // or NaN
-        if (reach < 0.0) return QuickBoolean::Separated;
+        // w · d against margin |d|: within it, a support plane through the origin (or NaN).
+        const int reach = gjk_boolean::clearSign(w.dot(d), margin * margin * d.squaredNorm());
+        if (reach == 0) return QuickBoolean::Undecided;
+        if (reach < 0) return QuickBoolean::Separated;
         p[n++] = w;
         if (!gjkBooleanSimplexStep(p, n, d, margin)) return QuickBoolean::Undecided;
         if (n == 4) return QuickBoolean::Intersecting;

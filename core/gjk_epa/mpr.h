@@ -44,13 +44,6 @@ Vec3 mprSupport(const A& shapeA, const B& shapeB, const Vec3& d, int& count) {
     return shapeA.support(d) - shapeB.support(Vec3(-d));
 }
 
-// The sign of s against the band margin · |n|, without a square root: +1 above it, −1 below −band,
-// 0 within it or NaN (an overflow at coordinates near the double limit: give up, never decide).
-inline int mprBeyondBand(double s, const Vec3& n, double margin) {
-    if (!(s * s > margin * margin * n.squaredNorm())) return 0;
-    return s > 0.0 ? 1 : -1;
-}
-
 }  // namespace detail
 
 /// The MPR decision alone: Undecided where it cannot prove an answer (see the file comment).
@@ -69,26 +62,29 @@ MprResult mprDecide(const A& shapeA, const Vec3& interiorA, const B& shapeB, con
         size = std::max(size, w.cwiseAbs().maxCoeff());
         return kMargin * size;
     };
-    // A support plane with the origin beyond it proves separation; one through the origin within
-    // the band is touching: Undecided.
-    const auto beyond = [&](const Vec3& n, const Vec3& w) { return detail::mprBeyondBand(w.dot(n), n, margin(w)); };
+    // s against the band margin(w) |n| (gjk_boolean.h: clearSign): +1, -1, or 0 within it or NaN.
+    const auto beyondBand = [&](double s, const Vec3& n, const Vec3& w) {
+        const double m = margin(w);
+        return detail::gjk_boolean::clearSign(s, m * m * n.squaredNorm());
+    };
+    // The support point w along n: with the origin beyond its plane, a proof of separation (the
+    // outcome set); through the origin within the band, touching (Undecided). True: stop there.
+    const auto stopsAt = [&](const Vec3& n, const Vec3& w) {
+        const int s = beyondBand(w.dot(n), n, w);
+        if (s < 0) r.outcome = MprOutcome::Separated;
+        return s <= 0;
+    };
 
     // Phase 1: a portal the ray from v0 towards the origin passes through.
     if (!(v0.squaredNorm() > margin(v0) * margin(v0))) return r;  // the origin at the interior point: let the loop decide
     Vec3 n = -v0;
     Vec3 v1 = support(n);
     if (!v1.allFinite()) return r;
-    if (const int s = beyond(n, v1); s <= 0) {
-        if (s < 0) r.outcome = MprOutcome::Separated;
-        return r;
-    }
+    if (stopsAt(n, v1)) return r;
     n = v1.cross(v0);
     if (!(n.squaredNorm() > margin(v1) * margin(v1) * v1.squaredNorm())) return r;  // the origin on the line v0 v1
     Vec3 v2 = support(n);
-    if (const int s = beyond(n, v2); s <= 0) {
-        if (s < 0) r.outcome = MprOutcome::Separated;
-        return r;
-    }
+    if (stopsAt(n, v2)) return r;
     n = (v1 - v0).cross(v2 - v0);
     if (n.dot(v0) > 0.0) {  // orient (v1, v2) so that n points from v0's plane towards the origin
         std::swap(v1, v2);
@@ -98,10 +94,7 @@ MprResult mprDecide(const A& shapeA, const Vec3& interiorA, const B& shapeB, con
     for (int step = 0;; ++step) {
         if (step == kMaxSteps || !(n.squaredNorm() > 0.0)) return r;
         v3 = support(n);
-        if (const int s = beyond(n, v3); s <= 0) {
-            if (s < 0) r.outcome = MprOutcome::Separated;
-            return r;
-        }
+        if (stopsAt(n, v3)) return r;
         if (v1.cross(v3).dot(v0) < 0.0) {  // the origin outside the plane (v0, v1, v3): drop v2
             v2 = v3;
             n = (v1 - v0).cross(v3 - v0);
@@ -122,7 +115,8 @@ MprResult mprDecide(const A& shapeA, const Vec3& interiorA, const B& shapeB, con
         const double band = margin(v1);
         // Face sides clear of the margin and of the cross products' rounding, which on a sliver
         // portal (nearly collinear points) turns the computed normal (gjk_boolean.h: sideOf).
-        const int portal = detail::gjk_boolean::sideOf(Vec3(v2 - v1), Vec3(v3 - v1), v1, band);  // +1: beyond
+        const int portal = detail::gjk_boolean::sideOf(n, (v2 - v1).squaredNorm(), (v3 - v1).squaredNorm(), v1,
+                                                       detail::gjk_boolean::sideFactor(v1, band));  // +1: beyond
         if (portal < 0) {
             // On v0's side of the portal: inside the tetrahedron v0 v1 v2 v3 (positively oriented:
             // each face normal below points towards the fourth vertex) if clear of its three other
@@ -136,13 +130,10 @@ MprResult mprDecide(const A& shapeA, const Vec3& interiorA, const B& shapeB, con
         }
         if (portal == 0) return r;  // the origin on the portal's plane
         const Vec3 v4 = support(n);
-        if (const int s = beyond(n, v4); s <= 0) {
-            if (s < 0) r.outcome = MprOutcome::Separated;
-            return r;
-        }
+        if (stopsAt(n, v4)) return r;
         // No progress: the portal lies on the boundary of A − B and the origin is beyond the portal
         // by less than the support plane's lead, within rounding of the boundary: leave it.
-        if (detail::mprBeyondBand((v4 - v3).dot(n), n, margin(v4)) <= 0) return r;
+        if (beyondBand((v4 - v3).dot(n), n, v4) <= 0) return r;
         // The new portal: the one of the three triangles around v4 that the ray still crosses.
         const Vec3 t = v4.cross(v0);
         if (v1.dot(t) > 0.0) {

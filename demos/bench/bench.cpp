@@ -346,12 +346,7 @@ void benchPolytopes(const Settings& settings, int nv, int count, std::vector<Row
     // MPR from the vertex centroids, computed before timing as libccd's MPR gets them (its center
     // callbacks), with GJK's full loop where it cannot prove an answer.
     std::vector<std::pair<Vec3, Vec3>> interiors;
-    for (const PolyPair* p : both) {
-        Vec3 ca = Vec3::Zero(), cb = Vec3::Zero();
-        for (const Vec3& x : p->va) ca += x;
-        for (const Vec3& x : p->vb) cb += x;
-        interiors.emplace_back(ca / double(p->va.size()), cb / double(p->vb.size()));
-    }
+    for (const PolyPair* p : both) interiors.emplace_back(vertexCentroid(p->va), vertexCentroid(p->vb));
     rows.push_back(measure(
         settings, "gjk_intersect", tag + " sep+pen", "MPR", static_cast<int>(both.size()),
         [&](int i) {

@@ -50,14 +50,9 @@ struct CcdSet {
 
 std::shared_ptr<CcdSet> makeCcdSet(const std::vector<PeerPair>& pairs) {
     auto set = std::make_shared<CcdSet>();
-    auto centroid = [](const std::vector<Vec3>& v) {
-        Vec3 c = Vec3::Zero();
-        for (const Vec3& x : v) c += x;
-        return Vec3(c / static_cast<double>(v.size()));
-    };
     for (const PeerPair& p : pairs) {
-        set->a.push_back({p.a, centroid(*p.va)});
-        set->b.push_back({p.b, centroid(*p.vb)});
+        set->a.push_back({p.a, vertexCentroid(*p.va)});
+        set->b.push_back({p.b, vertexCentroid(*p.vb)});
     }
     CCD_INIT(&set->ccd);  // libccd's defaults: epa / mpr tolerance 1e-4
     set->ccd.support1 = ccdSupport;

@@ -16,6 +16,14 @@
 namespace cdlab::demos {
 
 /// One polytope pair: world-frame vertices and cdlab's support mappings of both shapes.
+/// The mean of a vertex set: a point inside its hull, where MPR starts (libccd's center callbacks
+/// and cdlab's mprIntersect in the bench get the same one).
+inline Vec3 vertexCentroid(const std::vector<Vec3>& v) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& x : v) c += x;
+    return c / static_cast<double>(v.size());
+}
+
 struct PeerPair {
     const std::vector<Vec3>* va = nullptr;
     const std::vector<Vec3>* vb = nullptr;
