@@ -43,10 +43,16 @@ int signDet3(const Vec3& u1, const Vec3& v1, const Vec3& u2, const Vec3& v2, con
     const double bound = kOrient3dBound * permanent;
     if (det > bound) return 1;
     if (-det > bound) return -1;
-    if (!std::isfinite(det) || !std::isfinite(permanent)) return 0;
-    if (permanent == 0.0) return 0;  // every product is zero: the determinant is exactly 0
-    // Exact: the one expansion kit of core/base/exact_predicates.h (BigDyadic beyond its range).
     const Vec3 u[3] = {u1, u2, u3}, v[3] = {v1, v2, v3};
+    // An overflow of the products (coordinates beyond ~1e100) is no answer: finite inputs go to the
+    // exact evaluation, which has no exponent limit; only non-finite inputs give 0.
+    if (!std::isfinite(det) || !std::isfinite(permanent)) {
+        for (int r = 0; r < 3; ++r)
+            if (!u[r].allFinite() || !v[r].allFinite()) return 0;
+    } else if (permanent == 0.0) {
+        return 0;  // every product is zero: the determinant is exactly 0
+    }
+    // Exact: the one expansion kit of core/base/exact_predicates.h (BigDyadic beyond its range).
     return exact::exactSign([&](auto zero) { return det3OfDifferences<decltype(zero)>(u, v); });
 }
 
@@ -60,8 +66,11 @@ int orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
     const double bound = kOrient2dBound * detSum;
     if (det > bound) return 1;
     if (-det > bound) return -1;
-    if (!std::isfinite(det) || !std::isfinite(detSum)) return 0;
-    if (detSum == 0.0) return 0;
+    if (!std::isfinite(det) || !std::isfinite(detSum)) {
+        if (!a.allFinite() || !b.allFinite() || !c.allFinite()) return 0;  // else exact, below
+    } else if (detSum == 0.0) {
+        return 0;
+    }
     return exact::exactSign([&](auto zero) {
         using T = decltype(zero);
         return (T(b.x()) - T(a.x())) * (T(c.y()) - T(a.y())) - (T(b.y()) - T(a.y())) * (T(c.x()) - T(a.x()));

@@ -483,6 +483,8 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
     if (s.count == 4 || vv <= kTouch2 * maxW2) return finish(GjkTermination::OriginInSimplex);
 
     const double eps = options.relativeTolerance;
+    constexpr int kMaxStalls = 4;  // consecutive steps without a decrease of |v| in doubles
+    int stalls = 0;
     Vec3 wv[4];
     for (int iter = 1;; ++iter) {
         r.iterations = iter;
@@ -531,7 +533,19 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
         }
         // |v| must strictly decrease; if rounding stalls it, keep the previous (better) simplex
         // (still slots 0..count-1 with their weights: the new point in slot count is dropped).
-        if (!(vvNew < vv)) {
+        // Except while w lies far beyond v's plane (v·w < |v|²/2: the distance may be half of |v|,
+        // or zero): then the decrease is real but below rounding (a new face through v's edge,
+        // tilted from v's normal by ~1e-6: |v| drops by 1e-12 of itself), and stopping there
+        // answered "apart by |v|" for an origin on the hull (a flat body whose sliver face holds
+        // the origin). A few such steps go on with the new simplex, as exact arithmetic would.
+        // (|v| is computed to ~u max|w|: a new |v| within 16 u max|w| above the old is a stall.)
+        const bool decreased = vvNew < vv;
+        const auto withinRounding = [&] {
+            const double band = 16.0 * kUnitRoundoff * std::sqrt(maxW2), upper = std::sqrt(vv) + band;
+            return vvNew <= upper * upper;
+        };
+        const bool roundingStall = !decreased && vw < 0.5 * vv && stalls < kMaxStalls && withinRounding();
+        if (!decreased && !roundingStall) {
             if (trace) {
                 GjkSimplex reduced = s;
                 gjkCompact(reduced, c);
@@ -540,6 +554,7 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
             record.stepEndsLoop();
             return finish(GjkTermination::NoProgress);
         }
+        stalls = decreased ? 0 : stalls + 1;
         gjkCompact(s, c);
         record.reduction(c, s);
         v = c.v;

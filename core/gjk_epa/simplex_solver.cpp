@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/orient.h"
+#include "core/base/tolerances.h"
+#include "core/geometry/polyhedron.h"
+
 namespace cdlab {
 
 namespace {
@@ -44,11 +48,13 @@ void s1d(const Vec3* w, int i, int j, SimplexClosest& c) {
     // order. Taking lambda_i = 1 - lambda_j keeps v on the line; normalizing two separately
     // computed weights would not (it scales v by 1 + O(eps |w| / |t|)).
     //
-    //
-    // v = w_i + lambda_j t has an error of ~eps |w_i|. When |v| is far below |w_i| and the projection
-    // lies nearer w_j, v is stepped back from w_j instead (error ~eps |w_j|): a segment 1e9 long
-    // passing 1e-9 beside the origin otherwise lost v's component along t, the next support tied with
-    // an old one, and GJK stopped 0.7 short on a segment through a unit box.
+    // v = w_i + lambda_j t has an error of ~u |w_i| in every direction: when the line passes far
+    // closer to the origin than |w| (|v|^2 < 1e-6 |w_i|^2), v's direction is off by ~u |w| / |v| and
+    // the next support along -v misses what lies beyond (a segment 1e9 long passing 1e-9 beside the
+    // origin lost v's component along t and GJK stopped 0.7 short; the long edge of a sliver face
+    // 1e-10 beside the origin missed the face's third point). There v = t x (w_i x w_j) / t·t (the
+    // same vector: t x (p x t) = p t·t - t (t·p)) with w_i x w_j from error-free products: the
+    // cross of two nearly orthogonal vectors, accurate to a few u in every direction.
     const double lj = numJ / tt;
     c.count = 2;
     c.index[0] = i;
@@ -56,7 +62,8 @@ void s1d(const Vec3* w, int i, int j, SimplexClosest& c) {
     c.lambda[0] = 1.0 - lj;
     c.lambda[1] = lj;
     c.v = p + lj * t;
-    if (lj > 0.5 && c.v.squaredNorm() < 1e-6 * p.squaredNorm()) c.v = q - (numI / tt) * t;
+    if (c.v.squaredNorm() < 1e-6 * std::max(p.squaredNorm(), q.squaredNorm()))
+        c.v = t.cross(accurateCross(Vec3::Zero(), p, q)) / tt;
 }
 
 void keepNearest(SimplexClosest& best, const SimplexClosest& candidate, bool& have) {
@@ -76,8 +83,8 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
     const Vec3& d = w[k];
     const Vec3 ab = b - a;
     const Vec3 ad = d - a;
-    const Vec3 n = ab.cross(ad);
-    const double nn = n.squaredNorm();
+    Vec3 n = ab.cross(ad);
+    double nn = n.squaredNorm();
     const double scale2 = std::max({ab.squaredNorm(), ad.squaredNorm(), (d - b).squaredNorm()});
     const int edge[3][2] = {{j, k}, {i, k}, {i, j}};  // edge opposite vertex 0, 1, 2
     bool have = false;
@@ -90,7 +97,17 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
         }
         return;
     }
-    const Vec3 p0 = n * (a.dot(n) / nn);  // projection of the origin onto the plane
+    Vec3 p0 = n * (a.dot(n) / nn);  // projection of the origin onto the plane
+    // A sliver (sine of the angle at a below 1e-4) whose plane passes far closer to the origin than
+    // its points (|p0|^2 < 1e-6 |w|^2): the plain cross product's direction errs by ~u / sine, which
+    // moves p0 by ~u |w| / sine, comparable to p0 itself (GJK then stopped on a segment, 55 times
+    // the distance). Error-free products (accurateCross) keep the normal to a few u.
+    if (nn < 1e-8 * ab.squaredNorm() * ad.squaredNorm() &&
+        p0.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()})) {
+        n = accurateCross(a, b, d);
+        nn = n.squaredNorm();
+        p0 = n * (a.dot(n) / nn);
+    }
     int axis = 0;
     if (std::abs(n[1]) > std::abs(n[axis])) axis = 1;
     if (std::abs(n[2]) > std::abs(n[axis])) axis = 2;
@@ -111,7 +128,12 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
         c.index[1] = j;
         c.index[2] = k;
         for (int m = 0; m < 3; ++m) c.lambda[m] = cm[m] / sum;
+        // sum lambda_m w_m errs by ~u |w| in every direction, which turns v by ~u |w| / |v|: when
+        // the plane passes far closer to the origin than |w| (as for s1d's segments), the support
+        // along that -v missed points 1e-9 |w| beyond the face (a flat body with the origin inside
+        // it: GJK stopped on a duplicate support, "separated"). There v is p0, along the normal.
         c.v = c.lambda[0] * a + c.lambda[1] * b + c.lambda[2] * d;
+        if (c.v.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()})) c.v = p0;
         return;
     }
     for (int m = 0; m < 3; ++m) {
@@ -122,8 +144,37 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
     if (!have) setVertex(c, w, i);  // unreachable unless NaN: keep a defined answer
 }
 
+// The sign of a signed volume `value` computed in doubles from vectors of squared lengths l1, l2, l3,
+// or 0 when it lies within its rounding band. A triple product x·(y×z) of rounded inputs errs by
+// less than ~8 u |x| |y| |z| (the inputs' own rounding, the cross and the dot products); 16 u leaves
+// room. Compared squared: no square root; an overflow or underflow of the bound, or a NaN, gives 0.
+int clearVolumeSign(double value, double l1, double l2, double l3) {
+    constexpr double kBand = 16.0 * kUnitRoundoff;
+    if (!(value * value > kBand * kBand * l1 * l2 * l3)) return 0;
+    return value > 0.0 ? 1 : -1;
+}
+
+// The certain sign of each C_m (below), given its double value and the squared edge lengths
+// l1, l2, l3 of e_i = w_i - w_0: the plain sign where it clears its band, else orient3d's exact one.
+void facetSigns(const Vec3* w, const double* cm, double l1, double l2, double l3, int* sign) {
+    const double l0 = w[0].squaredNorm();
+    sign[0] = clearVolumeSign(cm[0], w[1].squaredNorm(), w[2].squaredNorm(), w[3].squaredNorm());
+    sign[1] = clearVolumeSign(cm[1], l0, l2, l3);
+    sign[2] = clearVolumeSign(cm[2], l0, l3, l1);
+    sign[3] = clearVolumeSign(cm[3], l0, l1, l2);
+    const Vec3 origin = Vec3::Zero();
+    if (sign[0] == 0) sign[0] = orient3d(origin, w[1], w[2], w[3]);
+    if (sign[1] == 0) sign[1] = orient3d(w[0], origin, w[2], w[3]);
+    if (sign[2] == 0) sign[2] = orient3d(w[0], w[1], origin, w[3]);
+    if (sign[3] == 0) sign[3] = orient3d(w[0], w[1], w[2], origin);
+}
+
 // S3D: tetrahedron w[0..3]. C_m = signed volume with the origin in place of vertex m, D = sum C_m.
 // All C_m of D's sign: the origin is inside. Otherwise descend into the facets it lies beyond.
+// The signs decide containment, so each is certain: a C_m within its rounding band (a sliver
+// tetrahedron, the origin within ~u |w|^3 / area of a facet's plane) takes the exact sign of
+// orient3d (Shewchuk's predicate): a plain sign there put the origin 1e-6 outside a polytope of size
+// 1.5e3 inside its terminal sliver, and GJK answered "intersecting".
 void s3d(const Vec3* w, SimplexClosest& c) {
     const Vec3 e1 = w[1] - w[0];
     const Vec3 e2 = w[2] - w[0];
@@ -138,7 +189,8 @@ void s3d(const Vec3* w, SimplexClosest& c) {
     cm[3] = -w[0].dot(n12);
     cm[0] = w[1].dot(w[2].cross(w[3]));
     const int face[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};  // facet opposite vertex m
-    const double edgeProduct = std::sqrt(e1.squaredNorm() * e2.squaredNorm() * e3.squaredNorm());
+    const double l1 = e1.squaredNorm(), l2 = e2.squaredNorm(), l3 = e3.squaredNorm();
+    const double edgeProduct = std::sqrt(l1 * l2 * l3);
     bool have = false;
     SimplexClosest candidate;
     if (!(std::abs(det) > kDegenerate * edgeProduct)) {
@@ -149,20 +201,26 @@ void s3d(const Vec3* w, SimplexClosest& c) {
         }
         return;
     }
-    if (cm[0] * det > 0.0 && cm[1] * det > 0.0 && cm[2] * det > 0.0 && cm[3] * det > 0.0) {
-        // interior: the origin is inside the tetrahedron, lambda_m = C_m / D
+    // det clears its band (kDegenerate is far above 16 u): its plain sign is certain.
+    const int detSign = det > 0.0 ? 1 : -1;
+    int sign[4];
+    facetSigns(w, cm, l1, l2, l3, sign);
+    if (sign[0] == detSign && sign[1] == detSign && sign[2] == detSign && sign[3] == detSign) {
+        // interior: the origin is inside the tetrahedron, lambda_m = C_m / D (rounded C_m of the
+        // right sign: a band's C_m may have rounded to the wrong one, so clamp it at 0)
         c.count = 4;
         c.v.setZero();
-        const double sum = cm[0] + cm[1] + cm[2] + cm[3];  // = det up to rounding; sum lambda = 1
+        double sum = 0.0;
+        for (int m = 0; m < 4; ++m) sum += std::max(cm[m] * detSign, 0.0);
         for (int m = 0; m < 4; ++m) {
             c.index[m] = m;
-            c.lambda[m] = cm[m] / sum;
+            c.lambda[m] = sum > 0.0 ? std::max(cm[m] * detSign, 0.0) / sum : 0.25;
             c.v += c.lambda[m] * w[m];
         }
         return;
     }
     for (int m = 0; m < 4; ++m) {
-        if (cm[m] * det > 0.0) continue;  // origin on the inner side of this facet
+        if (sign[m] == detSign) continue;  // origin on the inner side of this facet
         s2d(w, face[m][0], face[m][1], face[m][2], candidate);
         keepNearest(c, candidate, have);
     }
@@ -237,7 +295,15 @@ SimplexClosest closestJohnson(const Vec3* y, int n) {
         bool ok = true;
         for (int j = 0; j < n && ok; ++j)
             if (!(mask & (1 << j)) && delta[mask | (1 << j)][j] > 0.0) ok = false;
-        if (ok) return build(mask);
+        if (!ok) continue;
+        // "Inside the tetrahedron" ends GJK with an intersection: decided by the certain signs of
+        // the signed volumes (S3D's), not by cofactors of rounded dot products.
+        if (mask == 15) {
+            SimplexClosest sv;
+            s3d(y, sv);
+            if (sv.count != 4) return sv;
+        }
+        return build(mask);
     }
     // Backup procedure: rounding broke the region test; take the sub-simplex with all-positive
     // cofactors whose closest point is nearest (singletons always qualify).

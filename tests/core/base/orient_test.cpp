@@ -99,6 +99,22 @@ TEST_SUITE("orient") {
         CHECK(cdlab::orient2d(Vec2(nan, 0), Vec2(1, 0), Vec2(0, 1)) == 0);
     }
 
+    // Coordinates near the double limit: the filter's products overflow (inf, or inf - inf = NaN),
+    // which is no answer for finite inputs (it used to read as "coplanar"). Scaling by a power of two
+    // keeps every sign, so the small points' signs are the oracle.
+    TEST_CASE("orient3d and orient2d keep their exact sign when the filter overflows") {
+        const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), up(0.25, 0.25, 0x1p-40), flat(0.25, 0.25, 0);
+        for (const double scale : {0x1p500, 0x1p900, 0x1p1000}) {
+            CHECK(cdlab::orient3d(scale * a, scale * b, scale * c, scale * up) == 1);
+            CHECK(cdlab::orient3d(scale * a, scale * c, scale * b, scale * up) == -1);
+            CHECK(cdlab::orient3d(scale * a, scale * b, scale * c, scale * flat) == 0);
+            CHECK(cdlab::orient2d(Vec2(0, 0), scale * Vec2(1, 1), scale * Vec2(0.5, 0.5 + 0x1p-40)) == 1);
+        }
+        // Differences that overflow: -1e308 and +1e308 (the exact evaluation takes them as they are).
+        const Vec3 far(-1e308, 0, 0);
+        CHECK(cdlab::orient3d(far, Vec3(1e308, 0, 0), Vec3(0, 1e308, 0), Vec3(0, 0, 1e308)) == 1);
+    }
+
     TEST_CASE("projectionAxis detects exactly collinear triangles") {
         CHECK(cdlab::projectionAxis({Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2)}) == -1);
         CHECK(cdlab::projectionAxis({Vec3(1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)}) == -1);

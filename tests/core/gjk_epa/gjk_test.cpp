@@ -274,6 +274,72 @@ TEST_SUITE("gjk") {
         }
     }
 
+    // The full loop on sliver configurations (tests/core/gjk_epa/gjk_epa_test_support.h): the origin
+    // just off a face of nearly collinear points, against the exact hull test and the known distance.
+    // Found by reviews: the terminal tetrahedron's containment decided by plain signs on a sliver
+    // (the origin 1.17e-6 outside a polytope of size 1550, "intersecting"), v's direction lost in the
+    // rounding of sum lambda_i w_i when the origin is near a face or a long edge (a flat body with the
+    // origin inside: "apart"), and stops on a |v| that rounding kept from decreasing. Before the fix
+    // 452 of the ~4500 verdicts below were wrong (Johnson: 43 false hits) and the worst distance was
+    // 8.9e-9 of the size off; after it none, and 4e-15. An origin within 1e-13 of the size of the
+    // face is touching: either answer holds.
+    TEST_CASE("sliver faces: the full loop's verdict is the exact hull test's and its distance is exact") {
+        SliverConfigurations slivers(4417);
+        int wrong = 0, checked = 0, johnsonWrong = 0;
+        double worstError = 0.0;  // |distance - offset| / scale
+        const PolytopeShape origin{std::vector<Vec3>{Vec3::Zero()}};
+        for (int trial = 0; trial < 1500; ++trial) {
+            const std::vector<Vec3> P = slivers.next(trial);
+            const double offset = slivers.offset(), scale = slivers.scale();
+            const int truth = exactOriginSide(P);
+            // No volume, or touching: GJK's v = 0 up to 1e-14 |w| (|w| ~ 2 scale) holds either answer.
+            if (truth == 2 || std::abs(offset) < 1e-13 * scale) continue;
+            // (Behind the face, the origin can still be outside a thin body: the exact test decides.)
+            const PolytopeShape a{P};
+            std::vector<Vec3> negated;
+            for (const Vec3& x : P) negated.push_back(-x);
+            const PolytopeShape b{negated};  // origin − (−P) = P: the same question, roles swapped
+            const auto check = [&](bool intersect) {
+                ++checked;
+                wrong += intersect != (truth > 0);
+            };
+            const GjkResult r = gjkDistance(a, origin);
+            check(r.intersect);
+            if (!r.intersect && offset > 0) worstError = std::max(worstError, std::abs(r.distance - offset) / scale);
+            check(gjkDistance(origin, b).intersect);
+            GjkTrace trace;  // a trace runs the full loop, never the fast path
+            check(gjkIntersect(a, origin, {}, &trace));
+            check(gjkIntersect(a, origin));
+            // Johnson's sub-algorithm keeps its classic rounding (the accuracy demo shows it), but
+            // "inside the tetrahedron" is decided by the same certain signs: never a false hit.
+            johnsonWrong += truth < 0 && gjkDistance(a, origin, withSolver(SimplexSolver::Johnson)).intersect;
+        }
+        CHECK(wrong == 0);
+        CHECK(johnsonWrong == 0);
+        CHECK(checked > 4 * 1100);
+        CHECK(worstError < 2e-14);  // the points' own rounding moves the face by ~4 u scale
+        // The review's reproducer (the second body of mpr_test.cpp's reproducers).
+        const std::vector<Vec3> base{{264.97053582221525, 124.58940480235432, -174.21658992977368},
+                                     {-716.69356582817238, -336.99000916195735, 471.22184898156507},
+                                     {1192.2611122399185, 560.60233061317388, -783.90470318840426},
+                                     {338.62740919703009, 1195.8704793447503, -167.1981340531562},
+                                     {162.91552540415205, 443.38868693233877, 957.33906197054614},
+                                     {-856.90728348968764, 1550.2287510716089, -1194.8392259070345}};
+        REQUIRE(exactOriginSide(base) == -1);
+        const PolytopeShape c{base};
+        // Exact distance 1.1684449461453048e-6 (rational arithmetic: the origin projects inside the
+        // face of the first three points, outside its plane by that much and inside every other).
+        const GjkResult r = gjkDistance(c, origin);
+        CHECK(r.status == GjkStatus::Separated);
+        CHECK(std::abs(r.distance - 1.1684449461453048e-6) < 1e-12);
+        for (SimplexSolver solver : kSolvers) {
+            CHECK_FALSE(gjkDistance(c, origin, withSolver(solver)).intersect);
+            GjkTrace trace;
+            CHECK_FALSE(gjkIntersect(c, origin, withSolver(solver), &trace));
+        }
+        CHECK_FALSE(gjkIntersect(c, origin));
+    }
+
     TEST_CASE("termination: never NaN, never a hang, every reason reported") {
         // NaN shape -> InvalidInput
         PointShape nan{Vec3(NAN, 0, 0)};

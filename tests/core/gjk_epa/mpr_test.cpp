@@ -36,28 +36,6 @@ std::vector<Vec3> cube(const Vec3& at) {
     return v;
 }
 
-// The origin against conv(P), exactly (orient3d is an exact predicate, core/base/orient.h): -1
-// outside, 0 on the boundary, 1 inside; 2 if P spans no volume. Brute force over the facets.
-int exactOriginSide(const std::vector<Vec3>& P) {
-    const int n = int(P.size());
-    bool any = false, onBoundary = false;
-    for (int i = 0; i < n; ++i)
-        for (int j = i + 1; j < n; ++j)
-            for (int k = j + 1; k < n; ++k) {
-                bool pos = false, neg = false;
-                for (int m = 0; m < n; ++m) {
-                    const int s = orient3d(P[i], P[j], P[k], P[m]);
-                    pos = pos || s > 0, neg = neg || s < 0;
-                }
-                if (pos == neg) continue;  // not a facet plane (or all coplanar)
-                any = true;
-                const int o = orient3d(P[i], P[j], P[k], Vec3::Zero());
-                if (o == (pos ? -1 : 1)) return -1;
-                onBoundary = onBoundary || o == 0;
-            }
-    return !any ? 2 : onBoundary ? 0 : 1;
-}
-
 }  // namespace
 
 TEST_SUITE("mpr") {
@@ -149,9 +127,7 @@ TEST_SUITE("mpr") {
     // exact hull test. Found by a review: before the faces' bands covered the cross products'
     // rounding, about 5% of the decided answers here were wrong.
     TEST_CASE("sliver faces against an exact oracle: no decided answer is ever wrong") {
-        std::mt19937_64 rng(2611);
-        std::uniform_real_distribution<double> u(0.0, 1.0);
-        std::normal_distribution<double> g(0.0, 1.0);
+        SliverConfigurations slivers(2611);
         int decided = 0, wrong = 0;
         const auto tally = [&](int answer, int truth) {  // answer: 1 intersecting, -1 separated, 0 undecided
             if (answer == 0) return;
@@ -159,20 +135,7 @@ TEST_SUITE("mpr") {
             wrong += (answer > 0 && truth < 0) || (answer < 0 && truth >= 0);
         };
         for (int trial = 0; trial < 1500; ++trial) {
-            const double e = std::pow(10.0, -1 - 11 * u(rng));                          // the sliver's width
-            const double h = (u(rng) < 0.5 ? -1 : 1) * std::pow(10.0, -2 - 14 * u(rng));  // the origin's offset
-            const double scale = std::pow(10.0, -3 + 9 * u(rng));
-            std::vector<Vec3> v{Vec3(-1 - u(rng), 0, 0), Vec3(1 + u(rng), 0, 0), Vec3(2 * u(rng) - 1, 0, e)};
-            const bool fat = u(rng) < 0.5;
-            for (int k = 0, extra = 2 + trial % 4; k < extra; ++k)
-                v.push_back(Vec3(4 * u(rng) - 2, -0.2 - 2 * u(rng), fat ? 4 * u(rng) - 2 : (3 * u(rng) - 1) * e));
-            double b1 = u(rng), b2 = u(rng);
-            if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
-            const Vec3 o = v[0] * (1 - b1 - b2) + v[1] * b1 + v[2] * b2 + Vec3(0, h, 0);
-            const Eigen::Matrix3d r = Quat(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
-            std::vector<Vec3> P;
-            for (const Vec3& x : v) P.push_back(scale * (r * (x - o)));
-            std::shuffle(P.begin(), P.end(), rng);
+            const std::vector<Vec3> P = slivers.next(trial);
             const int truth = exactOriginSide(P);
             if (truth == 2) continue;
             const PolytopeShape a{P}, b{std::vector<Vec3>{Vec3::Zero()}};
