@@ -439,8 +439,11 @@ template <class A, class B>
 void epaSupportFallback(const A& shapeA, const B& shapeB, EpaResult& r) {
     double best = INFINITY;
     const bool haveNormal = std::abs(r.normal.squaredNorm() - 1.0) <= 1e-9;
-    for (int i = haveNormal ? -1 : 0; i < 6; ++i) {
-        const Vec3 n = i < 0 ? r.normal : Vec3((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2));
+    const Vec3 given = r.normal;
+    // The given normal both ways (a flat start's face normal has no outward side), then the axes.
+    for (int i = haveNormal ? -2 : 0; i < 6; ++i) {
+        const Vec3 n = i < 0 ? Vec3(i == -2 ? given : Vec3(-given))
+                             : Vec3((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2));
         const Vec3 sb = shapeB.support(Vec3(-n));
         const double overlap = n.dot(shapeA.support(n)) - n.dot(sb);
         if (overlap < best) best = overlap, r.normal = n, r.pointB = sb;
@@ -497,8 +500,10 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
     if (!poly.buildTetrahedron()) {
         // Zero-volume start although every blow-up step gained height: only possible with
         // values at the rounding floor. Report touching along the first face's normal.
+        // (The normal from error-free products: a sliver start's rounded cross product is off by
+        // ~u / sine, and the fallback's depth along it by ~u |w| / sine.)
         r.status = EpaStatus::Touching;
-        r.normal = (seed[1].w - seed[0].w).cross(seed[2].w - seed[0].w).normalized();
+        r.normal = accurateCross(seed[0].w, seed[1].w, seed[2].w).normalized();
         if (!r.normal.allFinite()) r.normal = Vec3::UnitX();
         return stop(EpaTermination::Degenerate);
     }
