@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "core/broadphase/column_sweep.h"
 #include "core/broadphase/sweep_and_prune.h"
 #include "core/broadphase/tree_broad_phase.h"
 #include "core/broadphase/uniform_grid.h"
@@ -46,8 +47,8 @@ constexpr double kMargin = 0.2;  // tree fat-box margin: 20% of the typical box,
 struct TreeRow {
     const char* workload = "";
     int n = 0, frames = 0;
-    double pairs = 0, sapMs = NAN, gridMs = NAN, treeMs = NAN, bulletMs = NAN;  // medians
-    double treeMean = NAN, bulletMean = NAN, gridMean = NAN;  // means: the tree and Bullet re-insert in waves
+    double pairs = 0, sapMs = NAN, columnMs = NAN, gridMs = NAN, treeMs = NAN, bulletMs = NAN;  // medians
+    double treeMean = NAN, bulletMean = NAN, gridMean = NAN, columnMean = NAN;  // means: the trees re-insert in waves
     double treeBuildMs = 0, moved = 0, fatPairs = 0, bulletPairs = NAN, gridEntries = 0;
     bool agree = true;
 };
@@ -63,6 +64,7 @@ TreeRow measure(const Workload& w, int n, int frames) {
     SweepAndPrune sap;
     sap.reserve(n, 4 * n);
     sap.build(boxes);
+    ColumnSweep columns;
     UniformGrid grid;
     UniformGridOptions go;
     go.cellSize = kCell;
@@ -77,7 +79,7 @@ TreeRow measure(const Workload& w, int n, int frames) {
     std::unique_ptr<PeerBroadPhase> bullet = makeBulletDbvtBroadPhase();
     if (bullet) bullet->frame(boxes);
 #endif
-    std::vector<double> sapT, gridT, treeT, bulletT;
+    std::vector<double> sapT, columnT, gridT, treeT, bulletT;
     // Warm-up: every fat box made on the first frame expires within 0.2 / 0.05 = 4 frames; the
     // re-insertion waves that follow settle over the next ones.
     const int warmup = 12;
@@ -86,6 +88,9 @@ TreeRow measure(const Workload& w, int n, int frames) {
         t0 = cpuMs();
         const SapResult s = sap.update(boxes);
         const double tSap = cpuMs() - t0;
+        t0 = cpuMs();
+        const ColumnSweepResult cs = columns.run(boxes);
+        const double tColumns = cpuMs() - t0;
         t0 = cpuMs();
         const UniformGridResult g = grid.build(boxes, go);
         const double tGrid = cpuMs() - t0;
@@ -104,10 +109,12 @@ TreeRow measure(const Workload& w, int n, int frames) {
         // The three cdlab methods report the same pair set (compared outside the timing).
         const std::vector<std::uint64_t> truth = pairKeys(sap.pairs());
         if (s.status != SapStatus::Ok || g.status != GridStatus::Ok || t.status != BoxStatus::Ok ||
-            pairKeys(grid.pairs()) != truth || pairKeys(tree.pairs()) != truth)
+            cs.status != BoxStatus::Ok || pairKeys(grid.pairs()) != truth || pairKeys(tree.pairs()) != truth ||
+            pairKeys(columns.pairs()) != truth)
             r.agree = false;
         if (f < warmup) continue;
         sapT.push_back(tSap);
+        columnT.push_back(tColumns);
         gridT.push_back(tGrid);
         treeT.push_back(tTree);
         if (std::isfinite(tBullet)) bulletT.push_back(tBullet);
@@ -127,6 +134,8 @@ TreeRow measure(const Workload& w, int n, int frames) {
         return v.empty() ? NAN : sum / static_cast<double>(v.size());
     };
     r.treeMean = mean(treeT);
+    r.columnMs = median(columnT);
+    r.columnMean = mean(columnT);
     r.gridMean = mean(gridT);
     if (!bulletT.empty()) r.bulletMs = median(bulletT), r.bulletMean = mean(bulletT);
     return r;
@@ -146,7 +155,8 @@ int runTreeBench(bool quick, std::ostream& table) {
             agree = agree && rows.back().agree;
         }
     table << "Dynamic AABB tree (core/broadphase/tree_broad_phase.h, fat-box margin " << kMargin
-          << ") beside SAP (update), the uniform grid (rebuilt, cell " << kCell << ")\n"
+          << ") beside SAP (update), sort and sweep in columns (core/broadphase/column_sweep.h, from scratch),\n"
+          << "the uniform grid (rebuilt, cell " << kCell << ")\n"
           << "and Bullet's btDbvtBroadphase (setAabb on every proxy + calculateOverlappingPairs), same frames, median\n"
           << "thread-CPU ms per frame (and the mean for grid, tree and Bullet: the trees re-insert in waves, light\n"
           << "and heavy frames alternate), after 12 warm-up frames. Tree: fat boxes stretched 4 frames along the last\n"
@@ -156,24 +166,25 @@ int runTreeBench(bool quick, std::ostream& table) {
           << "Bullet k = pairs in Bullet's cache (its fattened boxes: a superset). tree build = the first frame,\n"
           << "every leaf inserted.\n\n";
     char line[320];
-    const char* head = "%8s %7s %7s %9s %17s %17s %17s %9s %8s %8s %8s %7s %8s\n";
-    std::snprintf(line, sizeof line, head, "workload", "n", "k", "SAP ms", "grid ms med/mean", "tree ms med/mean",
+    const char* head = "%8s %7s %7s %9s %17s %17s %17s %17s %9s %8s %8s %8s %7s %8s\n";
+    std::snprintf(line, sizeof line, head, "workload", "n", "k", "SAP ms", "columns med/mean", "grid ms med/mean", "tree ms med/mean",
                   "Bullet med/mean", "tree/Bul", "moved/n", "fat k", "Bullet k", "grid e/n", "build ms");
     table << line;
     const auto both = [](double med, double mean) {
         return std::isfinite(med) ? cell("%.3f", med) + " / " + cell("%.3f", mean) : std::string("-");
     };
     for (const TreeRow& r : rows) {
-        std::snprintf(line, sizeof line, "%8s %7d %7.0f %9s %17s %17s %17s %9s %8.3f %8.0f %8s %7.1f %8.1f\n",
-                      r.workload, r.n, r.pairs, cell("%.3f", r.sapMs).c_str(), both(r.gridMs, r.gridMean).c_str(),
+        std::snprintf(line, sizeof line, "%8s %7d %7.0f %9s %17s %17s %17s %17s %9s %8.3f %8.0f %8s %7.1f %8.1f\n",
+                      r.workload, r.n, r.pairs, cell("%.3f", r.sapMs).c_str(), both(r.columnMs, r.columnMean).c_str(),
+                      both(r.gridMs, r.gridMean).c_str(),
                       both(r.treeMs, r.treeMean).c_str(), both(r.bulletMs, r.bulletMean).c_str(),
                       cell("%.2f", r.treeMean / r.bulletMean).c_str(), r.moved / r.n, r.fatPairs,
                       cell("%.0f", r.bulletPairs).c_str(), r.gridEntries / r.n, r.treeBuildMs);
         table << line;
     }
     table << "tree/Bul: mean over mean.\n";
-    table << (agree ? "SAP, grid and tree reported the same pair set on every frame (compared as sorted keys).\n"
-                    : "MISMATCH: SAP, grid and tree disagreed on some frame's pair set.\n");
+    table << (agree ? "SAP, columns, grid and tree reported the same pair set on every frame (compared as sorted keys).\n"
+                    : "MISMATCH: SAP, columns, grid and tree disagreed on some frame's pair set.\n");
     return agree ? 0 : 1;
 }
 
