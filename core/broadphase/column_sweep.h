@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/broadphase/box_pair.h"
@@ -58,6 +59,7 @@ private:
     std::vector<std::int64_t> columnStart_;  // counting sort by column: first entry of each column (64-bit:
                                              // counted before the entry budget is checked)
     std::vector<std::int64_t> cursor_;       // the next free entry of each column while filling
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> byMin_, scratch_;  // (min's key, box), radix sorted
     std::vector<BoxPair> pairs_;
 };
 
