@@ -25,22 +25,14 @@ void checkFinite(const EpaResult& r) {
     CHECK(std::abs(r.normal.norm() - 1.0) <= 1e-14);
 }
 
-// The depth of the origin inside conv(P) (it must be inside): facets enumerated exactly (orient3d),
-// each plane's distance from an error-free cross product (a few ulps whatever the facet's width).
+// The depth of the origin inside conv(P) (it must be inside): facets enumerated exactly
+// (forEachFacet), each plane's distance from an error-free cross product (a few ulps whatever the
+// facet's width).
 double exactFacetDepth(const std::vector<Vec3>& P) {
-    const int n = int(P.size());
     double best = INFINITY;
-    for (int i = 0; i < n; ++i)
-        for (int j = i + 1; j < n; ++j)
-            for (int k = j + 1; k < n; ++k) {
-                bool pos = false, neg = false;
-                for (int m = 0; m < n; ++m) {
-                    const int s = orient3d(P[i], P[j], P[k], P[m]);
-                    pos = pos || s > 0, neg = neg || s < 0;
-                }
-                if (pos == neg) continue;  // not a facet plane
-                best = std::min(best, std::abs(accurateCross(P[i], P[j], P[k]).normalized().dot(P[i])));
-            }
+    forEachFacet(P, [&](int i, int j, int k, bool) {
+        best = std::min(best, std::abs(accurateCross(P[i], P[j], P[k]).normalized().dot(P[i])));
+    });
     return best;
 }
 

@@ -41,11 +41,12 @@ inline SweepTrial sweepTrial(int k, std::mt19937_64& rng) {
     return {kSizes[k % 3], offset, offset * randomUnit(rng)};
 }
 
-/// The origin against conv(P), exactly (orient3d is an exact predicate, core/base/orient.h): -1
-/// outside, 0 on the boundary, 1 inside; 2 if P spans no volume. Brute force over the facets.
-inline int exactOriginSide(const std::vector<Vec3>& P) {
+/// Calls f(i, j, k, pos) for every facet plane of conv(P): three points with every other point on
+/// one side of their plane (decided exactly, orient3d: core/base/orient.h), pos = that side is
+/// orient3d's positive one. Brute force over the triples.
+template <class F>
+void forEachFacet(const std::vector<Vec3>& P, F&& f) {
     const int n = int(P.size());
-    bool any = false, onBoundary = false;
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j)
             for (int k = j + 1; k < n; ++k) {
@@ -54,13 +55,32 @@ inline int exactOriginSide(const std::vector<Vec3>& P) {
                     const int s = orient3d(P[i], P[j], P[k], P[m]);
                     pos = pos || s > 0, neg = neg || s < 0;
                 }
-                if (pos == neg) continue;  // not a facet plane (or all coplanar)
-                any = true;
-                const int o = orient3d(P[i], P[j], P[k], Vec3::Zero());
-                if (o == (pos ? -1 : 1)) return -1;
-                onBoundary = onBoundary || o == 0;
+                if (pos != neg) f(i, j, k, pos);  // else not a facet plane (or all coplanar)
             }
-    return !any ? 2 : onBoundary ? 0 : 1;
+}
+
+/// The origin against conv(P), exactly: -1 outside, 0 on the boundary, 1 inside; 2 if P spans no
+/// volume.
+inline int exactOriginSide(const std::vector<Vec3>& P) {
+    bool any = false, outside = false, onBoundary = false;
+    forEachFacet(P, [&](int i, int j, int k, bool pos) {
+        any = true;
+        const int o = orient3d(P[i], P[j], P[k], Vec3::Zero());
+        outside = outside || o == (pos ? -1 : 1);
+        onBoundary = onBoundary || o == 0;
+    });
+    return !any ? 2 : outside ? -1 : onBoundary ? 0 : 1;
+}
+
+/// A review's reproducer: the origin 1.1684449461453048e-6 (exact, in rational arithmetic) outside
+/// the hull of these six points of size 1550, beyond the face of the first three, a sliver.
+inline std::vector<Vec3> reviewSliverBody() {
+    return {{264.97053582221525, 124.58940480235432, -174.21658992977368},
+            {-716.69356582817238, -336.99000916195735, 471.22184898156507},
+            {1192.2611122399185, 560.60233061317388, -783.90470318840426},
+            {338.62740919703009, 1195.8704793447503, -167.1981340531562},
+            {162.91552540415205, 443.38868693233877, 957.33906197054614},
+            {-856.90728348968764, 1550.2287510716089, -1194.8392259070345}};
 }
 
 /// Sliver faces: three nearly collinear points (a face whose computed normal turns by ~1e-16 over

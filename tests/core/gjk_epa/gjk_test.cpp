@@ -318,13 +318,8 @@ TEST_SUITE("gjk") {
         CHECK(johnsonWrong == 0);
         CHECK(checked > 4 * 1100);
         CHECK(worstError < 2e-14);  // the points' own rounding moves the face by ~4 u scale
-        // The review's reproducer (the second body of mpr_test.cpp's reproducers).
-        const std::vector<Vec3> base{{264.97053582221525, 124.58940480235432, -174.21658992977368},
-                                     {-716.69356582817238, -336.99000916195735, 471.22184898156507},
-                                     {1192.2611122399185, 560.60233061317388, -783.90470318840426},
-                                     {338.62740919703009, 1195.8704793447503, -167.1981340531562},
-                                     {162.91552540415205, 443.38868693233877, 957.33906197054614},
-                                     {-856.90728348968764, 1550.2287510716089, -1194.8392259070345}};
+        // The review's reproducer (tests/core/gjk_epa/gjk_epa_test_support.h).
+        const std::vector<Vec3> base = reviewSliverBody();
         REQUIRE(exactOriginSide(base) == -1);
         const PolytopeShape c{base};
         // Exact distance 1.1684449461453048e-6 (rational arithmetic: the origin projects inside the

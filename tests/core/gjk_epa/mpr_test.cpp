@@ -167,12 +167,7 @@ TEST_SUITE("mpr") {
         CHECK(mprDecide(a, centroid(portal), origin, Vec3::Zero()).outcome != MprOutcome::Intersecting);
         CHECK_FALSE(mprIntersect(a, centroid(portal), origin, Vec3::Zero()));
         // The origin 1.17e-6 outside a body of size 1550: the fast path's tetrahedron on a sliver base.
-        const std::vector<Vec3> base{{264.97053582221525, 124.58940480235432, -174.21658992977368},
-                                     {-716.69356582817238, -336.99000916195735, 471.22184898156507},
-                                     {1192.2611122399185, 560.60233061317388, -783.90470318840426},
-                                     {338.62740919703009, 1195.8704793447503, -167.1981340531562},
-                                     {162.91552540415205, 443.38868693233877, 957.33906197054614},
-                                     {-856.90728348968764, 1550.2287510716089, -1194.8392259070345}};
+        const std::vector<Vec3> base = reviewSliverBody();
         REQUIRE(exactOriginSide(base) == -1);
         const PolytopeShape c{base};
         int iterations = 0;
