@@ -230,6 +230,10 @@ bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, co
         const double tol = ulps(32, m);
         // Both features extreme along n (the face supports A − B), the origin behind it.
         if (!((sa - pointA).dot(n) <= tol && (pointB - sb).dot(n) <= tol) || !(separation < -tol)) return false;
+        // And A − B reaching past the origin the other way (min over A − B of n·x below 0): a thin
+        // A − B has both orientations of the face "extreme", and behind one of them is not inside.
+        const Vec3 lowA = shapeA.support(Vec3(-n)), highB = shapeB.support(n);
+        if (!(n.dot(lowA) - n.dot(highB) < -tol)) return false;
         r.status = GjkStatus::Intersecting;
         r.intersect = true;
         r.distance = 0.0;
@@ -375,7 +379,7 @@ inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c) {
 /// the simplex is a triangle, edge-pair refinement when asked for.
 template <class A, class B>
 void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s, GjkTermination why,
-               GjkResult& r) {
+               GjkResult& r, const Vec3* closest = nullptr) {
     r.termination = why;
     if (why == GjkTermination::InvalidInput) {
         r.status = GjkStatus::InvalidInput;
@@ -384,6 +388,13 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
     detail::gjkWitness(s, r.pointA, r.pointB);
     Vec3 v = Vec3::Zero();
     for (int i = 0; i < s.count; ++i) v += s.lambda[i] * s.vertex[i].w;
+    if (closest && why != GjkTermination::OriginInSimplex) {
+        // The loop's v (the sub-algorithm's closest point: along the face normal, or from error-free
+        // products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|) is the answer;
+        // pointB follows it so that pointA - pointB = v.
+        v = *closest;
+        r.pointB = r.pointA - v;
+    }
     const double vv = v.squaredNorm();
     if (why == GjkTermination::OriginInSimplex) {
         r.status = GjkStatus::Intersecting;
@@ -413,8 +424,15 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
     if (options.refineEdgePairs && s.count >= 2) {
         gjkRefineEdgePairs(shapeA, shapeB, s, r);
         // A boolean query's separating axis (v·w > 0) is a proof of separation: a penetration of
-        // depth δ would make v·w <= -δ |v|, far beyond rounding. Only the other stops are doubtful.
-        if (why != GjkTermination::SeparatingAxis) gjkDecideCrossedEdges(shapeA, shapeB, s, r);
+        // depth δ would make v·w <= -δ |v|, far beyond rounding. So is any lower bound v·w / |v|
+        // above the rounding of the supports' dot products (~u |a|, |b|): a converged run's
+        // certificate (a thin A − B has both orientations of a crossed pair's face "extreme", and the
+        // crossed-edge decision called such a pair intersecting). Only the other stops are doubtful.
+        double extent = 0.0;
+        for (int i = 0; i < s.count; ++i)
+            extent = std::max({extent, s.vertex[i].a.cwiseAbs().maxCoeff(), s.vertex[i].b.cwiseAbs().maxCoeff()});
+        const bool certified = why == GjkTermination::SeparatingAxis || r.lowerBound > ulps(64, extent);
+        if (!certified) gjkDecideCrossedEdges(shapeA, shapeB, s, r);
     }
 }
 
@@ -468,23 +486,25 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
     // no vertex is copied unless the solver drops one before it.
     GjkSimplex& s = r.simplex;
     GjkRecorder record(trace);
+    Vec3 v = Vec3::Zero();  // the closest point of the simplex in slots 0..s.count-1
     const auto finish = [&](GjkTermination why) {
         record.termination(why);
-        gjkFinish(shapeA, shapeB, options, s, why, r);
+        gjkFinish(shapeA, shapeB, options, s, why, r, &v);
         return r;
     };
     SupportHints hints;
     SimplexClosest c;
     if (!gjkStartSimplex(shapeA, shapeB, options, s, hints, c)) return finish(GjkTermination::InvalidInput);
-    Vec3 v = c.v;
+    v = c.v;
     double vv = v.squaredNorm();
     double maxW2 = 0.0;
     for (int i = 0; i < s.count; ++i) maxW2 = std::max(maxW2, s.vertex[i].w.squaredNorm());
     if (s.count == 4 || vv <= kTouch2 * maxW2) return finish(GjkTermination::OriginInSimplex);
 
     const double eps = options.relativeTolerance;
-    constexpr int kMaxStalls = 4;  // consecutive steps without a decrease of |v| in doubles
+    constexpr int kMaxStalls = 4;  // consecutive steps without a new best |v| in doubles
     int stalls = 0;
+    double bestVV = vv;
     Vec3 wv[4];
     for (int iter = 1;; ++iter) {
         r.iterations = iter;
@@ -538,13 +558,17 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
         // tilted from v's normal by ~1e-6: |v| drops by 1e-12 of itself), and stopping there
         // answered "apart by |v|" for an origin on the hull (a flat body whose sliver face holds
         // the origin). A few such steps go on with the new simplex, as exact arithmetic would.
-        // (|v| is computed to ~u max|w|: a new |v| within 16 u max|w| above the old is a stall.)
-        const bool decreased = vvNew < vv;
+        // (|v| is computed to ~u max|w|: a new |v| within 16 u max|w| above the best so far is a
+        // stall.) Progress is a new best |v|, so a triangle <-> edge alternation cannot reset the
+        // count; a reduction that drops the new point changes nothing and is no stall.
+        const bool decreased = vvNew < bestVV;
         const auto withinRounding = [&] {
-            const double band = 16.0 * kUnitRoundoff * std::sqrt(maxW2), upper = std::sqrt(vv) + band;
+            const double band = 16.0 * kUnitRoundoff * std::sqrt(maxW2), upper = std::sqrt(bestVV) + band;
             return vvNew <= upper * upper;
         };
-        const bool roundingStall = !decreased && vw < 0.5 * vv && stalls < kMaxStalls && withinRounding();
+        const bool keepsNewPoint = c.index[c.count - 1] == n - 1;
+        const bool roundingStall =
+            !decreased && vw < 0.5 * vv && stalls < kMaxStalls && keepsNewPoint && withinRounding();
         if (!decreased && !roundingStall) {
             if (trace) {
                 GjkSimplex reduced = s;
@@ -555,6 +579,7 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
             return finish(GjkTermination::NoProgress);
         }
         stalls = decreased ? 0 : stalls + 1;
+        bestVV = std::min(bestVV, vvNew);
         gjkCompact(s, c);
         record.reduction(c, s);
         v = c.v;

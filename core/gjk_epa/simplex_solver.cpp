@@ -98,12 +98,12 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
         return;
     }
     Vec3 p0 = n * (a.dot(n) / nn);  // projection of the origin onto the plane
-    // A sliver (sine of the angle at a below 1e-4) whose plane passes far closer to the origin than
-    // its points (|p0|^2 < 1e-6 |w|^2): the plain cross product's direction errs by ~u / sine, which
-    // moves p0 by ~u |w| / sine, comparable to p0 itself (GJK then stopped on a segment, 55 times
-    // the distance). Error-free products (accurateCross) keep the normal to a few u.
-    if (nn < 1e-8 * ab.squaredNorm() * ad.squaredNorm() &&
-        p0.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()})) {
+    // A plane passing far closer to the origin than its points (|p0|^2 < 1e-6 |w|^2): the plain
+    // cross product's direction errs by ~u / sine (the sine of the angle at a), which moves p0 by
+    // ~u |w| / sine, comparable to p0 itself on a sliver (GJK stopped on a segment at 55 times the
+    // distance) and still 1e-3 of it at a sine of 1e-3 (a stop on "no progress" 26% off). Error-free
+    // products (accurateCross) keep the normal to a few u.
+    if (p0.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()})) {
         n = accurateCross(a, b, d);
         nn = n.squaredNorm();
         p0 = n * (a.dot(n) / nn);
@@ -193,16 +193,18 @@ void s3d(const Vec3* w, SimplexClosest& c) {
     const double edgeProduct = std::sqrt(l1 * l2 * l3);
     bool have = false;
     SimplexClosest candidate;
-    if (!(std::abs(det) > kDegenerate * edgeProduct)) {
-        // Flat tetrahedron: its hull is the union of its facets.
+    // det's sign: plain where it clears 1e-14 of the edge product (far above its 16 u rounding),
+    // else orient3d's exact one (a needle tetrahedron, det / edge product ~6e-16, can hold the origin
+    // well inside: a threshold called it flat and GJK answered "apart"; an overflowing edge product,
+    // edges beyond ~2^170, too). Flat only when exactly flat: then its hull is the union of its facets.
+    const int detSign = std::abs(det) > kDegenerate * edgeProduct ? (det > 0.0 ? 1 : -1) : orient3d(w[0], w[1], w[2], w[3]);
+    if (detSign == 0) {
         for (const auto& f : face) {
             s2d(w, f[0], f[1], f[2], candidate);
             keepNearest(c, candidate, have);
         }
         return;
     }
-    // det clears its band (kDegenerate is far above 16 u): its plain sign is certain.
-    const int detSign = det > 0.0 ? 1 : -1;
     int sign[4];
     facetSigns(w, cm, l1, l2, l3, sign);
     if (sign[0] == detSign && sign[1] == detSign && sign[2] == detSign && sign[3] == detSign) {

@@ -335,6 +335,80 @@ TEST_SUITE("gjk") {
         CHECK_FALSE(gjkIntersect(c, origin));
     }
 
+    // A second review's reproducers (exact answers from a brute force in __float128, or analytic).
+    TEST_CASE("a review's reproducers: the reported distance is the loop's v, needles, thin slabs, no cycling") {
+        // The distance came from sum lambda_i w_i while the loop had the accurate v: 68x too large.
+        const PolytopeShape eeA{std::vector<Vec3>{{0.076800076748931842, 0.025009846012270159, 0.05480130275544607},
+                                                  {-0.017256460978532232, -0.005619531224332037, -0.012313464599755115},
+                                                  {0.022778672552806342, 0.070691513791411142, 0.010502728532965393},
+                                                  {-0.043112303669552425, -0.0082501132652527398, 0.065738127348621916},
+                                                  {0.027508970166308842, 0.063142338389711256, 0.020959369941625578}}};
+        const PolytopeShape eeB{std::vector<Vec3>{{0.043025428696738539, 0.014011169432438454, 0.030701126227920993},
+                                                  {-0.043025428696738539, -0.014011169432438454, -0.030701126227920993},
+                                                  {-0.0070437319053268978, -0.017997897506284926, -0.02877932102554985},
+                                                  {0.0058782166364428831, -0.047982205869473299, -0.0712762552308462},
+                                                  {0.0015486844885879286, -0.041778168874105605, -0.062849180702150745}}};
+        for (const bool refine : {true, false}) {
+            GjkOptions o;
+            o.refineEdgePairs = refine;
+            const GjkResult r = gjkDistance(eeA, eeB, o);
+            CHECK(std::abs(r.distance - 1.5318589022474191e-08) < 1e-16);
+            CHECK(std::abs((r.pointA - r.pointB).norm() - r.distance) < 1e-16);
+        }
+        // A needle terminal tetrahedron (det / edge product 6e-16) holding the origin 1.1e-7 inside.
+        const PolytopeShape needleA{std::vector<Vec3>{{39.32236468509619, 204.10566285534438, 59.128742860581248},
+                                                      {5.3236853876426409, 27.632988857375356, 8.0051861402291564},
+                                                      {101.9862925102754, 529.36669121524835, 153.35575637866364}}};
+        const PolytopeShape needleB{std::vector<Vec3>{{26.207849438285738, 136.03274861519523, 39.408182126249294},
+                                                      {18.438200586290197, 95.705902956640813, 27.725747392905152},
+                                                      {-10.580128811485871, -54.91592112464869, -15.908905075886786}}};
+        CHECK(gjkDistance(needleA, needleB).intersect);
+        CHECK(gjkIntersect(needleA, needleB));
+        // Two flat bodies 0.000557902... apart in z (the sum of their offsets): A − B is flat, both
+        // orientations of a crossed pair's face looked "extreme"; the converged lower bound decides.
+        const double zA = -0.0001297192452649225, zB = 0.00042818339158165404;
+        const PolytopeShape slabA{std::vector<Vec3>{{-2053.3832712620251, -9.1455665601903164e-06, zA},
+                                                    {3891.8289331568367, -3.3774133030444401e-06, zA},
+                                                    {4051.051872569969, -1.8120219402825365e-05, zA},
+                                                    {-962.52301548617118, 1.9521070659029593e-05, zA}}};
+        const PolytopeShape slabB{std::vector<Vec3>{{402.5860004053286, -7.9585224381520445e-06, zB},
+                                                    {1435.8596614894839, -3.6060743111757807e-06, zB},
+                                                    {316.1113117976559, -3.401282571205862e-06, zB},
+                                                    {-1032.1125289187719, -5.6313599895169523e-06, zB}}};
+        const GjkResult slab = gjkDistance(slabA, slabB);
+        CHECK_FALSE(slab.intersect);
+        CHECK(slab.distance == doctest::Approx(zB - zA).epsilon(1e-12));
+        // A thin A − B whose crossed pair's face has the origin behind it, but A − B does not reach
+        // past the origin the other way: apart by 6.6e-7 (the plane nearly through the origin also
+        // needed the error-free normal: a plain one stopped 26% off).
+        const PolytopeShape thinA{std::vector<Vec3>{{19774.925551166249, -15883.235329852014, 5046.4026603351449},
+                                                    {-33356.569089403041, 26794.405713695229, -8516.7128372343213},
+                                                    {14780.67368600058, -11870.435018449129, 3769.3106427179819},
+                                                    {-31748.486479433461, 25507.255510203904, -8114.5495083584365}}};
+        const PolytopeShape thinB{std::vector<Vec3>{{-1439.9820752370417, 1158.1094604628395, -370.25720982042719},
+                                                    {-12141.661462241011, 9753.0609245966953, -3100.0529662238609},
+                                                    {-6032.9628813340414, 4847.2889621077811, -1542.5216220398393},
+                                                    {-5010.3490229412573, 4024.4834565182778, -1278.9085587390095}}};
+        const GjkResult thin = gjkDistance(thinA, thinB);
+        CHECK_FALSE(thin.intersect);
+        CHECK(std::abs(thin.distance - 6.6047704320486595e-07) < 1e-12);
+        CHECK_FALSE(gjkIntersect(thinA, thinB));
+        // A triangle <-> edge alternation of rounding stalls ran to the iteration cap.
+        const PolytopeShape cycleS{std::vector<Vec3>{{253780.6392835181, -40632.108757461967, 301695.95819376095},
+                                                     {-20083.68912446445, 428412.25490980881, 326704.65398151672},
+                                                     {330315.22211581207, -480119.43157842377, 40395.60781915921},
+                                                     {308196.30864721397, -203931.55937707267, 238920.7519930331},
+                                                     {20019.562202485795, -428603.51203223335, -327012.00234958553}}};
+        const PolytopeShape cycleT{std::vector<Vec3>{{-20306.955814972887, 433183.37483205652, 330343.98881730333},
+                                                     {-110130.0494493299, 432338.78048051958, 210995.03650283796},
+                                                     {3720.2135745780088, -80282.593056162761, -61318.893585629303},
+                                                     {-110130.04944932989, 432338.78048051964, 210995.03650283799},
+                                                     {3720.2135745780088, -80282.593056162761, -61318.893585629303},
+                                                     {-20306.955814972891, 433183.37483205646, 330343.98881730338},
+                                                     {-64791.252631791045, 62959.551363914223, -33702.803775316563}}};
+        for (SimplexSolver solver : kSolvers) CHECK(gjkDistance(cycleS, cycleT, withSolver(solver)).iterations < 20);
+    }
+
     TEST_CASE("termination: never NaN, never a hang, every reason reported") {
         // NaN shape -> InvalidInput
         PointShape nan{Vec3(NAN, 0, 0)};
