@@ -253,6 +253,15 @@ PairAnswer boundedPair(const QueryShape& a, const QueryShape& b, bool wantDepth,
     const double cs = std::max(largestCoordinate(a), largestCoordinate(b));  // of the cores (radii excluded)
     int kc = 0;
     if (cs > 0) std::frexp(cs, &kc), kc = -kc;
+    // And the pair's own extent (its Minkowski difference) kept above 2^-300 where the coordinates
+    // allow it (up to 2^400): two shapes 1e170 from the origin and 1 apart, scaled to coordinates
+    // below 1, left the difference at 2^-565, whose squared norms underflow (GJK answered touching).
+    if (const double ext = minkowskiExtent(boundingPoints(a), boundingPoints(b)); cs > 0 && ext > 0) {
+        int ee = 0, ec = 0;
+        std::frexp(ext, &ee);
+        std::frexp(cs, &ec);
+        kc = std::min(std::max(kc, -300 - ee), 400 - ec);
+    }
     // A core is its points (vertex loop support, first maximal vertex: deterministic ties;
     // non-extreme points are harmless) or a cylinder / cone (closed-form support).
     const auto withCore = [kc](const QueryShape& s, const auto& run) {

@@ -76,6 +76,18 @@ TEST_SUITE("hostile input") {
         Json b = ask(distanceQuery(R"({"point":[1e308,0,0]})", R"({"sphere":{"center":[0,0,0],"radius":1e307}})"));
         REQUIRE_FALSE(b.contains("error"));
         CHECK(b["distance"].get<double>() == doctest::Approx(9e307).epsilon(1e-15));
+        // Two shapes far from the origin and close together: the pair is scaled by its own extent
+        // (where coordinates allow), not only by its coordinates (at 1e170 the difference scaled
+        // to 2^-565 had underflowing squares: "touching" for shapes 1 apart).
+        for (const char* off : {"1e6", "1e100", "1e170", "1e200"}) {
+            const std::string o(off);
+            const Json far = ask(distanceQuery(R"({"polytope":{"vertices":[[)" + o + ",0,0],[" + o + ",1,0],[" + o + ",0,1],[" + o +
+                                                   ",1,1]]}}",
+                                               R"({"point":[)" + o + ",0.5,2]}"));
+            REQUIRE_FALSE(far.contains("error"));
+            CHECK(far["intersect"] == false);
+            CHECK(far["distance"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
+        }
         // 20-digit integers are doubles, not an integer overflow.
         CHECK_FALSE(ask(distanceQuery(R"({"point":[123456789012345678901,0,0]})", kSphere)).contains("error"));
     }
