@@ -388,13 +388,11 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
     detail::gjkWitness(s, r.pointA, r.pointB);
     Vec3 v = Vec3::Zero();
     for (int i = 0; i < s.count; ++i) v += s.lambda[i] * s.vertex[i].w;
-    if (closest && why != GjkTermination::OriginInSimplex) {
-        // The loop's v (the sub-algorithm's closest point: along the face normal, or from error-free
-        // products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|) is the answer;
-        // pointB follows it so that pointA - pointB = v.
-        v = *closest;
-        r.pointB = r.pointA - v;
-    }
+    // The loop's v (the sub-algorithm's closest point: along the face normal, or from error-free
+    // products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|) gives the distance
+    // and the axis. The witnesses stay sum lambda_i a_i and sum lambda_i b_i, each on its shape
+    // (pointB = pointA - v put pointB 1e-6 of the size off B where a sliver's weights are poor).
+    if (closest && why != GjkTermination::OriginInSimplex) v = *closest;
     const double vv = v.squaredNorm();
     if (why == GjkTermination::OriginInSimplex) {
         r.status = GjkStatus::Intersecting;
@@ -553,11 +551,11 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
         }
         // |v| must strictly decrease; if rounding stalls it, keep the previous (better) simplex
         // (still slots 0..count-1 with their weights: the new point in slot count is dropped).
-        // Except while w lies far beyond v's plane (v·w < |v|²/2: the distance may be half of |v|,
-        // or zero): then the decrease is real but below rounding (a new face through v's edge,
-        // tilted from v's normal by ~1e-6: |v| drops by 1e-12 of itself), and stopping there
-        // answered "apart by |v|" for an origin on the hull (a flat body whose sliver face holds
-        // the origin). A few such steps go on with the new simplex, as exact arithmetic would.
+        // Except while the gap test has not converged and the new simplex keeps w: then a decrease
+        // may be real but below rounding (a new face through v's edge, tilted from v's normal by
+        // ~1e-6: |v| drops by 1e-12 of itself), and stopping there answered "apart by |v|" for an
+        // origin on the hull (a flat body whose sliver face holds the origin), or 40% long. A few
+        // such steps go on with the new simplex, as exact arithmetic would.
         // (|v| is computed to ~u max|w|: a new |v| within 16 u max|w| above the best so far is a
         // stall.) Progress is a new best |v|, so a triangle <-> edge alternation cannot reset the
         // count; a reduction that drops the new point changes nothing and is no stall.
@@ -567,8 +565,7 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
             return vvNew <= upper * upper;
         };
         const bool keepsNewPoint = c.index[c.count - 1] == n - 1;
-        const bool roundingStall =
-            !decreased && vw < 0.5 * vv && stalls < kMaxStalls && keepsNewPoint && withinRounding();
+        const bool roundingStall = !decreased && stalls < kMaxStalls && keepsNewPoint && withinRounding();
         if (!decreased && !roundingStall) {
             if (trace) {
                 GjkSimplex reduced = s;

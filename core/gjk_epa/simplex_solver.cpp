@@ -103,23 +103,32 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
     // ~u |w| / sine, comparable to p0 itself on a sliver (GJK stopped on a segment at 55 times the
     // distance) and still 1e-3 of it at a sine of 1e-3 (a stop on "no progress" 26% off). Error-free
     // products (accurateCross) keep the normal to a few u.
+    // The weights then come from the same error-free products: the signed areas n·((w_j − p0) x
+    // (w_k − p0)) (the projected 2D areas of a sliver lost the witnesses: points 68x the distance
+    // apart).
+    double cm[3], mu;
     if (p0.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()})) {
         n = accurateCross(a, b, d);
         nn = n.squaredNorm();
         p0 = n * (a.dot(n) / nn);
+        cm[0] = accurateCross(p0, b, d).dot(n);
+        cm[1] = accurateCross(p0, d, a).dot(n);
+        cm[2] = accurateCross(p0, a, b).dot(n);
+        mu = 1.0;
+    } else {
+        int axis = 0;
+        if (std::abs(n[1]) > std::abs(n[axis])) axis = 1;
+        if (std::abs(n[2]) > std::abs(n[axis])) axis = 2;
+        const int x = (axis + 1) % 3;
+        const int y = (axis + 2) % 3;
+        auto cross2 = [x, y](const Vec3& u, const Vec3& v) { return u[x] * v[y] - u[y] * v[x]; };
+        const Vec3 pa = a - p0;
+        const Vec3 pb = b - p0;
+        const Vec3 pd = d - p0;
+        // C_m = projected area of the triangle with p0 in place of vertex m; mu = n[axis] = sum C_m.
+        cm[0] = cross2(pb, pd), cm[1] = cross2(pd, pa), cm[2] = cross2(pa, pb);
+        mu = n[axis];
     }
-    int axis = 0;
-    if (std::abs(n[1]) > std::abs(n[axis])) axis = 1;
-    if (std::abs(n[2]) > std::abs(n[axis])) axis = 2;
-    const int x = (axis + 1) % 3;
-    const int y = (axis + 2) % 3;
-    auto cross2 = [x, y](const Vec3& u, const Vec3& v) { return u[x] * v[y] - u[y] * v[x]; };
-    const Vec3 pa = a - p0;
-    const Vec3 pb = b - p0;
-    const Vec3 pd = d - p0;
-    // C_m = projected area of the triangle with p0 in place of vertex m; mu = n[axis] = sum C_m.
-    const double cm[3] = {cross2(pb, pd), cross2(pd, pa), cross2(pa, pb)};
-    const double mu = n[axis];
     if (cm[0] * mu > 0.0 && cm[1] * mu > 0.0 && cm[2] * mu > 0.0) {
         // face region: p_closest = p0 = l0 a + l1 b + l2 d
         const double sum = cm[0] + cm[1] + cm[2];
