@@ -374,26 +374,21 @@ inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c) {
     s.count = c.count;
 }
 
-/// The result from the terminal simplex s (van den Bergen §4.3: v = sum lambda_i w_i, the
-/// witnesses from the same weights): the distance |v| and the axis -v / |v|, a face's normal when
-/// the simplex is a triangle, edge-pair refinement when asked for.
+/// The result from the terminal simplex s and its closest point v (van den Bergen §4.3): the
+/// distance |v| and the axis -v / |v|, a face's normal when the simplex is a triangle, edge-pair
+/// refinement when asked for. v is the sub-algorithm's own (along the face normal, or from
+/// error-free products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|); the
+/// witnesses are sum lambda_i a_i and sum lambda_i b_i, each on its shape (pointB = pointA - v put
+/// pointB 1e-6 of the size off B where a sliver's weights are poor).
 template <class A, class B>
 void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s, GjkTermination why,
-               GjkResult& r, const Vec3* closest = nullptr) {
+               const Vec3& v, GjkResult& r) {
     r.termination = why;
     if (why == GjkTermination::InvalidInput) {
         r.status = GjkStatus::InvalidInput;
         return;
     }
     detail::gjkWitness(s, r.pointA, r.pointB);
-    Vec3 v = Vec3::Zero();
-    for (int i = 0; i < s.count; ++i) v += s.lambda[i] * s.vertex[i].w;
-    // The loop's v (the sub-algorithm's closest point: along the face normal, or from error-free
-    // products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|) gives the distance
-    // and the axis. The witnesses stay sum lambda_i a_i and sum lambda_i b_i, each on its shape
-    // (pointB = pointA - v put pointB 1e-6 of the size off B where a sliver's weights are poor).
-    if (closest && why != GjkTermination::OriginInSimplex) v = *closest;
-    const double vv = v.squaredNorm();
     if (why == GjkTermination::OriginInSimplex) {
         r.status = GjkStatus::Intersecting;
         r.intersect = true;
@@ -405,7 +400,7 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
     }
     r.status = GjkStatus::Separated;
     r.intersect = false;
-    r.distance = std::sqrt(vv);
+    r.distance = v.norm();
     r.upperBound = r.distance;
     r.separatingAxis = -v / r.distance;
     if (s.count == 3) {
@@ -487,7 +482,7 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
     Vec3 v = Vec3::Zero();  // the closest point of the simplex in slots 0..s.count-1
     const auto finish = [&](GjkTermination why) {
         record.termination(why);
-        gjkFinish(shapeA, shapeB, options, s, why, r, &v);
+        gjkFinish(shapeA, shapeB, options, s, why, v, r);
         return r;
     };
     SupportHints hints;

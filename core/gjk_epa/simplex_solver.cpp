@@ -107,7 +107,8 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
     // (w_k − p0)) (the projected 2D areas of a sliver lost the witnesses: points 68x the distance
     // apart).
     double cm[3], mu;
-    if (p0.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()})) {
+    const bool nearOrigin = p0.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()});
+    if (nearOrigin) {
         n = accurateCross(a, b, d);
         nn = n.squaredNorm();
         p0 = n * (a.dot(n) / nn);
@@ -141,8 +142,7 @@ void s2d(const Vec3* w, int i, int j, int k, SimplexClosest& c) {
         // the plane passes far closer to the origin than |w| (as for s1d's segments), the support
         // along that -v missed points 1e-9 |w| beyond the face (a flat body with the origin inside
         // it: GJK stopped on a duplicate support, "separated"). There v is p0, along the normal.
-        c.v = c.lambda[0] * a + c.lambda[1] * b + c.lambda[2] * d;
-        if (c.v.squaredNorm() < 1e-6 * std::max({a.squaredNorm(), b.squaredNorm(), d.squaredNorm()})) c.v = p0;
+        c.v = nearOrigin ? p0 : Vec3(c.lambda[0] * a + c.lambda[1] * b + c.lambda[2] * d);
         return;
     }
     for (int m = 0; m < 3; ++m) {
