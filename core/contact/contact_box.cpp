@@ -21,6 +21,13 @@ constexpr int kFaceCorners[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0
 constexpr int kEdgeCorners[12][2] = {{1, 3}, {3, 7}, {7, 5}, {5, 1}, {0, 4}, {4, 6},
                                      {6, 2}, {2, 0}, {6, 7}, {3, 2}, {0, 1}, {5, 4}};
 
+// The edges meeting at each corner, one bit per edge of kEdgeCorners.
+constexpr std::array<unsigned, 8> kCornerEdges = [] {
+    std::array<unsigned, 8> m{};
+    for (int e = 0; e < 12; ++e) m[kEdgeCorners[e][0]] |= 1u << e, m[kEdgeCorners[e][1]] |= 1u << e;
+    return m;
+}();
+
 int edgeOf(int u, int v) {
     for (int e = 0; e < 12; ++e)
         if ((kEdgeCorners[e][0] == u && kEdgeCorners[e][1] == v) || (kEdgeCorners[e][0] == v && kEdgeCorners[e][1] == u))
@@ -30,6 +37,18 @@ int edgeOf(int u, int v) {
 
 // Finite, positive and at most 1e150: beyond, |h| and the separations overflow double precision.
 bool validExtents(const Vec3& h) { return h.allFinite() && h.minCoeff() > 0.0 && h.maxCoeff() <= 1e150; }
+
+// The eight corners c ± hx x̂ ± hy ŷ ± hz ẑ (x̂, ŷ, ẑ the rotation's columns), added in that order
+// (the general functions' rotation * v + position agrees to an ulp), the partial sums shared.
+std::array<Vec3, 8> boxCorners(const Vec3& h, const Mat3& r, const Vec3& center) {
+    const Vec3 ex = h.x() * r.col(0), ey = h.y() * r.col(1), ez = h.z() * r.col(2);
+    const Vec3 a[2] = {center - ex, center + ex};
+    Vec3 b[4];
+    for (int k = 0; k < 4; ++k) b[k] = (k & 2) ? Vec3(a[k & 1] + ey) : Vec3(a[k & 1] - ey);
+    std::array<Vec3, 8> x;
+    for (int k = 0; k < 8; ++k) x[k] = (k & 4) ? Vec3(b[k & 3] + ez) : Vec3(b[k & 3] - ez);
+    return x;
+}
 
 // A box in world orientation, positions relative to a common origin.
 struct PosedBox {
@@ -42,9 +61,7 @@ struct PosedBox {
         const Mat3 r = t.rotation.toRotationMatrix();
         center = t.position - origin;  // exact when t.position == origin
         for (int i = 0; i < 3; ++i) axis[i] = r.col(i);
-        const Vec3 ex = h.x() * axis[0], ey = h.y() * axis[1], ez = h.z() * axis[2];
-        for (int k = 0; k < 8; ++k)
-            corner[k] = center + ((k & 1) ? ex : Vec3(-ex)) + ((k & 2) ? ey : Vec3(-ey)) + ((k & 4) ? ez : Vec3(-ez));
+        corner = boxCorners(h, r, center);
     }
     Vec3 faceNormal(int f) const { return (f & 1) ? Vec3(-axis[f / 2]) : axis[f / 2]; }
     // The corner with bit i set where u · axis_i >= 0 (extreme along u), bit `free` cleared.
@@ -115,6 +132,57 @@ detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
         best.edge.indexB = B.extremeEdge(-u, edgeJ);
     }
     return best;
+}
+
+// ---- Box–plane stages ----
+
+// The box's plane contact candidates, in contactPolyhedronPlane's order (submerged corners, then the
+// edges crossing the plane at depth 0), with rule 0 of reduceContactPolygon applied when `rim` is
+// set: a depth-0 point within the deepest depth, in the plane, of a submerged point is dropped.
+// A crossing on edge (u, v), u below, lies t = s_u / (s_u - s_v) along it; its in-plane distance from
+// u's projection is |t| |P e| with |P e|² = |e|² - (s_v - s_u)² and |e| = 2 h_m (the edge runs
+// along box axis m), so the common steep edge is recognised as u's rim before its point is built.
+// pointB = x - s n̂ lies on the plane by construction: differences of pointB are in-plane.
+using BoxCandidates = FixedCapacityVector<ContactPoint, 14>;  // a plane cuts at most 6 edges
+
+BoxCandidates boxPlaneCandidates(const std::array<Vec3, 8>& x, const std::array<double, 8>& s, const Vec3& h,
+                                 const Vec3& n, double d, double tol, bool rim) {
+    double depth = 0.0;  // the deepest depth
+    for (double sk : s) depth = std::max(depth, -sk);
+    const double surface = 1e-9 * depth, reach = depth * depth;
+    std::array<Vec3, 8> submerged;  // their pointB
+    int deep = 0;
+    for (int k = 0; k < 8; ++k)
+        if (-s[k] > surface) submerged[deep++] = x[k] - s[k] * n;
+    const auto isRim = [&](const Vec3& pointB) {
+        if (!rim) return false;
+        for (int j = 0; j < deep; ++j)
+            if ((pointB - submerged[j]).squaredNorm() <= reach) return true;
+        return false;
+    };
+
+    BoxCandidates cand;
+    unsigned belowEdges = 0, aboveEdges = 0;  // the edges at a corner beyond -tol / +tol
+    for (int k = 0; k < 8; ++k) {
+        if (s[k] < -tol) belowEdges |= kCornerEdges[k];
+        if (s[k] > tol) aboveEdges |= kCornerEdges[k];
+        if (s[k] > tol) continue;
+        const ContactPoint c{x[k], x[k] - s[k] * n, std::max(0.0, -s[k])};
+        if (c.depth > surface || !isRim(c.pointB)) cand.push_back(c);  // touching corners can be rim too
+    }
+    // Edges with one corner below and the other above (no corner is both), in the preset's order.
+    for (unsigned crossing = belowEdges & aboveEdges; crossing; crossing &= crossing - 1) {
+        const int e = std::countr_zero(crossing);
+        int u = kEdgeCorners[e][0], v = kEdgeCorners[e][1];
+        if (s[u] > s[v]) std::swap(u, v);
+        const double ds = s[v] - s[u], edge = 2.0 * h[std::countr_zero(static_cast<unsigned>(u ^ v))];
+        if (rim && -s[u] > surface && s[u] * s[u] * (edge * edge - ds * ds) <= reach * ds * ds) continue;  // u's rim
+        const double t = s[u] / (s[u] - s[v]);  // both beyond tol: no division by ~0
+        const Vec3 p = x[u] + t * (x[v] - x[u]);
+        const Vec3 pointB = p - (n.dot(p) - d) * n;
+        if (!isRim(pointB)) cand.push_back({p, pointB, 0.0});
+    }
+    return cand;
 }
 
 }  // namespace
@@ -201,21 +269,23 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
         return r;
     }
     r.normal = -n;
-    // Signed corner distances s_k = n̂ · x_k - d̂ from the world corners c ± hx x̂ ± hy ŷ ± hz ẑ (they
-    // agree with the general function's rotation * v + position to an ulp; a form with three dot
-    // products, n̂ · c ± hx n̂ · x̂ ± ..., loses ~1e-14 of a shallow depth to cancellation).
-    const PosedBox box(h, pose, Vec3::Zero());
+    // Signed corner distances s_k = n̂ · x_k - d̂ (a form with three dot products,
+    // n̂ · c ± hx n̂ · x̂ ± ..., would lose ~1e-14 of a shallow depth to cancellation).
+    const std::array<Vec3, 8> x = boxCorners(h, pose.rotation.toRotationMatrix(), pose.position);
     std::array<double, 8> s;
-    double maxCoord = std::abs(d);
+    Vec3 extent = Vec3::Zero();
+    int low = 0;
     for (int k = 0; k < 8; ++k) {
-        s[k] = n.dot(box.corner[k]) - d;
-        maxCoord = std::max(maxCoord, box.corner[k].cwiseAbs().maxCoeff());
-        if (r.deepestVertex < 0 || s[k] < s[r.deepestVertex]) r.deepestVertex = k;
+        s[k] = n.dot(x[k]) - d;
+        extent = extent.cwiseMax(x[k].cwiseAbs());
+        if (s[k] < s[low]) low = k;
     }
+    const double maxCoord = std::max(std::abs(d), extent.maxCoeff());
+    r.deepestVertex = low;
     r.tolerance = options.tolerance >= 0.0 ? options.tolerance
                                            : options.relativeTolerance * 2.0 * h.norm() + ulps(64, maxCoord);
     const double tol = r.tolerance;
-    const double sLow = s[r.deepestVertex];
+    const double sLow = s[low];
     if (!std::isfinite(sLow) || !std::isfinite(tol)) {  // a pose or plane near the double limit
         r.status = PlaneContactStatus::InvalidInput;
         r.message = "the box's coordinates overflow double precision";
@@ -229,20 +299,21 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
                               : PlaneContactStatus::Penetrating;
     if (!r.colliding()) return r;
 
-    // Candidates: submerged corners, then the edges crossing the plane (depth 0), as
-    // contactPolyhedronPlane orders them.
-    FixedCapacityVector<ContactPoint, 20> cand;
-    for (int k = 0; k < 8; ++k)
-        if (s[k] <= tol) cand.push_back({box.corner[k], box.corner[k] - s[k] * n, std::max(0.0, -s[k])});
-    for (const auto& edge : kEdgeCorners) {
-        int u = edge[0], v = edge[1];
-        if (s[u] > s[v]) std::swap(u, v);
-        if (!(s[u] < -tol && s[v] > tol)) continue;
-        const double t = s[u] / (s[u] - s[v]);  // both beyond tol: no division by ~0
-        const Vec3 p = box.corner[u] + t * (box.corner[v] - box.corner[u]);
-        cand.push_back({p, p - (n.dot(p) - d) * n, 0.0});
+    // The reduction as reduceContactPolygon, its rule 0 done with the candidates (maxPoints <= 0
+    // keeps every candidate). When what is left fits, every point, the deepest first (first of
+    // ties), then input order; else the rules, whose rule 0 then drops nothing more.
+    const int maxPoints = options.maxPoints;
+    const BoxCandidates cand = boxPlaneCandidates(x, s, h, n, d, tol, maxPoints > 0);
+    if (maxPoints <= 0 || static_cast<int>(cand.size()) > maxPoints) {
+        for (int i : reduceContactPolygon(cand, n, maxPoints)) r.manifold.push_back(cand[i]);
+        return r;
     }
-    for (int i : reduceContactPolygon(cand, n, options.maxPoints)) r.manifold.push_back(cand[i]);
+    int first = 0;
+    for (int k = 1; k < static_cast<int>(cand.size()); ++k)
+        if (clearlyGreater(cand[k].depth, cand[first].depth)) first = k;
+    r.manifold.push_back(cand[first]);
+    for (int k = 0; k < static_cast<int>(cand.size()); ++k)
+        if (k != first) r.manifold.push_back(cand[k]);
     return r;
 }
 

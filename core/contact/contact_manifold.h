@@ -41,6 +41,13 @@ inline constexpr int kMaxContactPoints = 64;
 using ContactManifold = FixedCapacityVector<ContactPoint, kMaxContactPoints>;
 using ContactIndices = FixedCapacityVector<int, kMaxContactPoints>;
 
+/// The reduction's tie rule: a score replaces the best so far only when larger by more than rounding
+/// (1e-9 relative). Exact ties are common (a clipped rectangle has parallel sides, so two points
+/// make the same triangle with the first two; a face-on box has four corners at one depth), and the
+/// first in input order must win them whatever the rounding, or the manifold flickers between
+/// frames and between two computations of the same contact (the box fast paths and the general ones).
+inline bool clearlyGreater(double score, double best) { return score > best + 1e-9 * (best < 0 ? -best : best); }
+
 /// One step of reduceContactPolygon: which rule chose which polygon point and its score
 /// (rule 1: depth; 2: distance; 3: twice the triangle area; 4: twice the added area).
 struct ManifoldReductionStep {

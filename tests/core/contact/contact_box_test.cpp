@@ -166,6 +166,46 @@ TEST_SUITE("contact_box") {
         CHECK(bad.message == "B: pose rotation is not a unit quaternion");
     }
 
+    // The simulation case the fast path takes a shortcut on: a box on a face or an edge, tilted by a
+    // few degrees and sunk a little (2 to 4 corners below, steep edges whose crossings are the rim
+    // of a corner, shallow ones that are not), at the default tolerance, at tolerance 0 (the
+    // surface band then exceeds tol: a corner just below the plane is not "submerged") and keeping
+    // every candidate (maxPoints 0: no rule 0).
+    TEST_CASE("box-plane: resting and tilted boxes, the general plane contact's manifold") {
+        std::mt19937_64 rng(14);
+        std::uniform_real_distribution<double> u(-1.0, 1.0), half(0.1, 1.0);
+        int reduced = 0, shortcut = 0;
+        for (int k = 0; k < 3000; ++k) {
+            const Vec3 h(half(rng), half(rng), half(rng));
+            const double tilt = (k % 3 == 0 ? 0.7 : 0.06);  // up to ~40° or ~3.4°
+            Transform t;
+            t.rotation = Quat(Eigen::AngleAxisd(tilt * u(rng), Vec3::UnitX())) *
+                         Quat(Eigen::AngleAxisd(tilt * u(rng), Vec3::UnitY())) *
+                         Quat(Eigen::AngleAxisd(3.0 * u(rng), Vec3::UnitZ()));
+            if (k % 2) t.rotation = t.rotation * Quat(Eigen::AngleAxisd(0.785398, Vec3::UnitX()));  // on an edge
+            t.position = Vec3(u(rng), u(rng), (k % 2 ? 1.3 : 0.97) * h.z() + 0.05 * u(rng));
+            const Plane plane{Vec3::UnitZ(), 0.0};
+            PlaneContactOptions options;
+            options.maxPoints = k % 7;  // 0 .. 6
+            if (k % 5 == 0) options.tolerance = 0.0;
+            const BoxPlaneContact f = contactBoxPlane(h, t, plane, options);
+            PlaneContactTrace trace;
+            const PlaneContactResult g = contactPolyhedronPlane(presets::box(h), t, plane, options, &trace);
+            CAPTURE(k);
+            REQUIRE(f.status == g.status);
+            CHECK(f.deepestVertex == g.deepestVertex);
+            if (options.maxPoints > 0) {
+                checkSameManifold(f.manifold, g.manifold, g.normal, 1e-13);
+            } else if (g.colliding()) {  // every candidate, the deepest first (the general function: its polygon)
+                REQUIRE(f.manifold.size() == trace.candidates.size());
+                CHECK(f.manifold[0].depth == doctest::Approx(g.depth).epsilon(1e-13));
+            }
+            if (g.colliding()) (g.manifold.size() < g.polygon.size() ? reduced : shortcut) += 1;
+        }
+        CHECK(reduced > 300);  // both outcomes of the reduction exercised
+        CHECK(shortcut > 300);
+    }
+
     TEST_CASE("box-plane: the general plane contact's answer; signed distance = long double corners") {
         std::mt19937_64 rng(13);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
