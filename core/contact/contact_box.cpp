@@ -97,32 +97,47 @@ detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
     const Vec3 tA(A.axis[0].dot(t), A.axis[1].dot(t), A.axis[2].dot(t));
     const Vec3 tB(B.axis[0].dot(t), B.axis[1].dot(t), B.axis[2].dot(t));
     const Vec3 &ha = A.h, &hb = B.h;
-    int tested = 0;
-    for (int f = 0; f < 6; ++f, ++tested) {  // A's face f: plane n · x = n · c_A + hA_i
+    // Every separation first, then the first largest of each family: the 15 axes are independent,
+    // so their square roots and divisions overlap, and no branch waits on one of them.
+    double faceSep[2][6];
+    for (int f = 0; f < 6; ++f) {  // A's face f: plane n · x = n · c_A + hA_i
         const int i = f / 2;
-        const double sep = ((f & 1) ? -tA(i) : tA(i)) - ha(i) - hb.dot(absC.row(i));
-        if (sep > best.faceA.separation) best.faceA = {SatAxisKind::FaceA, f, -1, A.faceNormal(f), sep}, best.faceAIndex = tested;
+        faceSep[0][f] = ((f & 1) ? -tA(i) : tA(i)) - ha(i) - hb.dot(absC.row(i));
     }
-    for (int f = 0; f < 6; ++f, ++tested) {  // B's face f, axis A→B = -n
+    for (int f = 0; f < 6; ++f) {  // B's face f, axis A→B = -n
         const int j = f / 2;
-        const double sep = ((f & 1) ? tB(j) : -tB(j)) - hb(j) - ha.dot(absC.col(j));
-        if (sep > best.faceB.separation)
-            best.faceB = {SatAxisKind::FaceB, -1, f, Vec3(-B.faceNormal(f)), sep}, best.faceBIndex = tested;
+        faceSep[1][f] = ((f & 1) ? tB(j) : -tB(j)) - hb(j) - ha.dot(absC.col(j));
     }
-    int edgeI = -1, edgeJ = -1;
+    const auto firstLargest = [](const double* sep, int count) {
+        int k = 0;
+        for (int m = 1; m < count; ++m)
+            if (sep[m] > sep[k]) k = m;
+        return k;
+    };
+    const int fa = firstLargest(faceSep[0], 6), fb = firstLargest(faceSep[1], 6);
+    if (faceSep[0][fa] > best.faceA.separation)  // NaN: no record, as a failed comparison
+        best.faceA = {SatAxisKind::FaceA, fa, -1, A.faceNormal(fa), faceSep[0][fa]}, best.faceAIndex = fa;
+    if (faceSep[1][fb] > best.faceB.separation)
+        best.faceB = {SatAxisKind::FaceB, -1, fb, Vec3(-B.faceNormal(fb)), faceSep[1][fb]}, best.faceBIndex = 6 + fb;
+    double edgeSep[9];
     for (int i = 0; i < 3; ++i) {
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
             const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
             const double len = std::sqrt(C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j));  // entries <= 1: no overflow
-            if (!(len > 1e-9)) continue;  // parallel edges: a face axis (contactPolyhedra's test)
             const double proj = C(i1, j) * tA(i2) - C(i2, j) * tA(i1);
             const double rA = ha(i1) * absC(i2, j) + ha(i2) * absC(i1, j);
             const double rB = hb(j1) * absC(i, j2) + hb(j2) * absC(i, j1);
-            const double sep = (std::abs(proj) - rA - rB) / len;  // oriented toward B: sign of proj
-            if (sep > best.edge.separation) best.edge.separation = sep, best.edgeIndex = tested, edgeI = i, edgeJ = j;
-            ++tested;
+            // Parallel edges (|a_i x b_j| <= 1e-9, contactPolyhedra's test) give a face axis: not tested.
+            edgeSep[3 * i + j] = len > 1e-9 ? (std::abs(proj) - rA - rB) / len : -INFINITY;  // toward B: sign of proj
         }
+    }
+    const int e = firstLargest(edgeSep, 9);
+    int edgeI = -1, edgeJ = -1;
+    if (edgeSep[e] > best.edge.separation) {
+        best.edge.separation = edgeSep[e], edgeI = e / 3, edgeJ = e % 3;
+        best.edgeIndex = 12;  // the trace's numbering: the non-parallel pairs before it
+        for (int m = 0; m < e; ++m) best.edgeIndex += edgeSep[m] > -INFINITY;
     }
     if (edgeI >= 0) {  // the winning pair's world axis and the two edges extreme along it
         Vec3 u = A.axis[edgeI].cross(B.axis[edgeJ]).normalized();
