@@ -32,13 +32,17 @@ template <class Buffer>
 bool clipPolygon(const Buffer& poly, const Vec3& n, double d, Buffer& out) {
     out.clear();
     const size_t k = poly.size();
+    if (k == 0) return true;
+    const double s0 = n.dot(poly[0]) - d;
+    double sp = s0;  // each vertex's distance taken once, carried to the next edge
     for (size_t i = 0; i < k; ++i) {
         const Vec3& p = poly[i];
-        const Vec3& q = poly[(i + 1) % k];
-        const double sp = n.dot(p) - d, sq = n.dot(q) - d;
+        const Vec3& q = poly[i + 1 == k ? 0 : i + 1];
+        const double sq = i + 1 == k ? s0 : n.dot(q) - d;
         if (sp <= 0.0 && !append(out, p)) return false;
         if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0))
             if (!append(out, Vec3(p + (sp / (sp - sq)) * (q - p)))) return false;
+        sp = sq;
     }
     return true;
 }

@@ -28,6 +28,7 @@
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
+#include "core/gjk_epa/margins.h"
 #include "core/gjk_epa/mpr.h"
 #include "core/overlap/sat_tests.h"
 #include "demos/bench/bench_broadphase.h"
@@ -469,8 +470,17 @@ void benchCapsules(const Settings& settings, std::vector<Row>& rows) {
     const auto sep = capsulePairs(3.0, 51);
     auto pen = capsulePairs(0.3, 52);
     std::erase_if(pen, [](const CapsulePair& p) { return !(p.distance < 0); });
-    // Full support (the rounded shape: GJK converges linearly on the caps) against the core
-    // segments plus the radii in closed form (what `cdlab query` does).
+    // The core ⊕ radius form (core/gjk_epa/margins.h, what `cdlab query` does): GJK / EPA on the
+    // segments, the radii in closed form; then the full support (the rounded shape: GJK converges
+    // linearly on the caps, EPA needs ever more faces) for contrast, each ratio against the first.
+    const size_t distanceReference = rows.size();
+    rows.push_back(measure(
+        settings, "gjk_distance", "capsules separated", "SV on cores + radii", nPairs,
+        [&](int i) {
+            const GjkResult r = gjkDistanceWithMargins(sep[i].a, sep[i].b);
+            return Answer{r.distance, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
     rows.push_back(measure(
         settings, "gjk_distance", "capsules separated", "SV tol 1e-13, full support", nPairs,
         [&](int i) {
@@ -478,17 +488,15 @@ void benchCapsules(const Settings& settings, std::vector<Row>& rows) {
             return Answer{r.distance, r.iterations};
         },
         [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+    rows.back().ratio = rows.back().nsMin / rows[distanceReference].nsMin;
+    const size_t depthReference = rows.size();
     rows.push_back(measure(
-        settings, "gjk_distance", "capsules separated", "SV on cores + radii", nPairs,
+        settings, "epa_depth", "capsules penetrating", "GJK+EPA on cores + radii", static_cast<int>(pen.size()),
         [&](int i) {
-            const SegmentShape ca{sep[i].a.transform.apply(sep[i].a.shape.a),
-                                  sep[i].a.transform.apply(sep[i].a.shape.b)};
-            const SegmentShape cb{sep[i].b.transform.apply(sep[i].b.shape.a),
-                                  sep[i].b.transform.apply(sep[i].b.shape.b)};
-            const GjkResult r = gjkDistance(ca, cb);
-            return Answer{r.distance - sep[i].a.shape.radius - sep[i].b.shape.radius, r.iterations};
+            const EpaResult r = penetrationWithMargins(pen[i].a, pen[i].b);
+            return Answer{r.depth, r.iterations};
         },
-        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+        [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
     rows.push_back(measure(
         settings, "epa_depth", "capsules penetrating", "GJK+EPA tol 1e-8, full support", static_cast<int>(pen.size()),
         [&](int i) {
@@ -498,6 +506,7 @@ void benchCapsules(const Settings& settings, std::vector<Row>& rows) {
             return Answer{r.depth, r.iterations};
         },
         [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
+    rows.back().ratio = rows.back().nsMin / rows[depthReference].nsMin;
 }
 
 // Float vs double: cdlab has no float variant of GJK (core is double only), so this row
@@ -533,23 +542,43 @@ void benchSpheres(const Settings& settings, std::vector<Row>& rows) {
     std::cerr << "cdlab bench: spheres\n";
     const auto sep = spherePairs(nPairs, 2.5, 41);
     const auto pen = spherePairs(nPairs, 0.5, 42);
+    // The core ⊕ radius form first (points and the radii: exact in one or two steps), then the full
+    // sphere support for contrast (ratios against the first).
+    const size_t distanceReference = rows.size();
     rows.push_back(measure(
-        settings, "gjk_distance", "spheres separated", "SV tol 1e-13", nPairs,
+        settings, "gjk_distance", "spheres separated", "SV on cores + radii", nPairs,
+        [&](int i) {
+            const GjkResult r = gjkDistanceWithMargins(sep[i].a, sep[i].b);
+            return Answer{r.distance, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+    rows.push_back(measure(
+        settings, "gjk_distance", "spheres separated", "SV tol 1e-13, full support", nPairs,
         [&](int i) {
             const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
             return Answer{r.distance, r.iterations};
         },
         [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
+    rows.back().ratio = rows.back().nsMin / rows[distanceReference].nsMin;
+    const size_t depthReference = rows.size();
+    rows.push_back(measure(
+        settings, "epa_depth", "spheres penetrating", "GJK+EPA on cores + radii", nPairs,
+        [&](int i) {
+            const EpaResult r = penetrationWithMargins(pen[i].a, pen[i].b);
+            return Answer{r.depth, r.iterations};
+        },
+        [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
     for (double tol : {1e-4, 1e-8}) {
         EpaOptions o;
         o.relativeTolerance = tol;
         rows.push_back(measure(
-            settings, "epa_depth", "spheres penetrating", "GJK+EPA tol " + fmt("%.0e", tol), nPairs,
+            settings, "epa_depth", "spheres penetrating", "GJK+EPA tol " + fmt("%.0e", tol) + ", full support", nPairs,
             [&, o](int i) {
                 const EpaResult r = penetration(pen[i].a, pen[i].b, o);
                 return Answer{r.depth, r.iterations};
             },
             [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
+        rows.back().ratio = rows.back().nsMin / rows[depthReference].nsMin;
     }
 }
 
