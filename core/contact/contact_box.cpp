@@ -158,7 +158,7 @@ detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
 // u's projection is |t| |P e| with |P e|² = |e|² - (s_v - s_u)² and |e| = 2 h_m (the edge runs
 // along box axis m), so the common steep edge is recognised as u's rim before its point is built.
 // pointB = x - s n̂ lies on the plane by construction: differences of pointB are in-plane.
-using BoxCandidates = FixedCapacityVector<ContactPoint, 14>;  // a plane cuts at most 6 edges
+using BoxCandidates = FixedCapacityVector<ContactPoint, 14>;  // corners + crossings: 13 at most, even with tol < 0
 
 BoxCandidates boxPlaneCandidates(const std::array<Vec3, 8>& x, const std::array<double, 8>& s, const Vec3& h,
                                  const Vec3& n, double d, double tol, bool rim) {
@@ -167,8 +167,8 @@ BoxCandidates boxPlaneCandidates(const std::array<Vec3, 8>& x, const std::array<
     const double surface = 1e-9 * depth, reach = depth * depth;
     std::array<Vec3, 8> submerged;  // their pointB
     int deep = 0;
-    for (int k = 0; k < 8; ++k)
-        if (-s[k] > surface) submerged[deep++] = x[k] - s[k] * n;
+    for (int k = 0; k < 8; ++k)  // candidates (s <= tol: tol may be negative) below the surface band
+        if (s[k] <= tol && -s[k] > surface) submerged[deep++] = x[k] - s[k] * n;
     const auto isRim = [&](const Vec3& pointB) {
         if (!rim) return false;
         for (int j = 0; j < deep; ++j)
@@ -191,8 +191,12 @@ BoxCandidates boxPlaneCandidates(const std::array<Vec3, 8>& x, const std::array<
         int u = kEdgeCorners[e][0], v = kEdgeCorners[e][1];
         if (s[u] > s[v]) std::swap(u, v);
         const double ds = s[v] - s[u], edge = 2.0 * h[std::countr_zero(static_cast<unsigned>(u ^ v))];
-        if (rim && -s[u] > surface && s[u] * s[u] * (edge * edge - ds * ds) <= reach * ds * ds) continue;  // u's rim
         const double t = s[u] / (s[u] - s[v]);  // both beyond tol: no division by ~0
+        // |t| |P e| <= depth, with |P e| = sqrt(edge - ds) sqrt(edge + ds): no square of a length
+        // (boxes of 1e80 or 1e-100 would overflow or underflow it).
+        if (rim && s[u] <= tol && -s[u] > surface &&
+            t * std::sqrt(std::max(edge - ds, 0.0)) * std::sqrt(edge + ds) <= depth)
+            continue;  // u's rim (u is submerged)
         const Vec3 p = x[u] + t * (x[v] - x[u]);
         const Vec3 pointB = p - (n.dot(p) - d) * n;
         if (!isRim(pointB)) cand.push_back({p, pointB, 0.0});

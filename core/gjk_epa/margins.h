@@ -53,11 +53,6 @@ auto worldCore(const S& shape) {
 
 namespace detail {
 
-// Cores closer than this (relative to the coordinates, as `cdlab query`'s touching rule) have no
-// trustworthy axis between them (GJK's closest-point direction is rounding there): EPA on the
-// cores gives the normal, as for overlapping cores.
-inline constexpr double kMarginCoreTouch = 1e-13;
-
 template <class A, class B>
 double marginCoordinateScale(const A& a, const B& b) {
     return std::max(boundingRadiusOf(a), boundingRadiusOf(b));
@@ -146,7 +141,10 @@ EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOpti
         r.iterations = g.iterations;
         r.edgePairRefined = true;
         r.lowerBound = r.upperBound = r.depth;
-    } else if (!g.intersect && g.distance > detail::kMarginCoreTouch * scale) {  // cores apart, shapes overlapping
+    } else if (!g.intersect && g.distance > 0.0) {
+        // Cores apart, shapes overlapping: the cores' axis, however close they are (GJK's closest
+        // points near the origin come from error-free products, its axis holds to a few ulps; EPA
+        // needs a simplex holding the origin, which a separated GJK does not leave).
         finish(std::max(radii - g.distance, 0.0), g.separatingAxis, g.pointA, g.pointB);
         r.termination = EpaTermination::Converged;
         r.iterations = g.iterations;

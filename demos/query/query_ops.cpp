@@ -164,7 +164,6 @@ PairAnswer boundedPairOnCores(const CoreA& ca, const CoreB& cb, int kc, const Qu
     const auto unscaleVec = [&](const Vec3& v) { return Vec3(v.unaryExpr(unscale)); };
     const double radii = a.radius + b.radius;
     const double touch = touchTolerance(a, b);  // the touching rule of every op (query_tolerance.h)
-    const double coreTouch = kTouchRelative * minkowskiExtent(boundingPoints(a), boundingPoints(b));  // cores alone
     PairAnswer ans;
     ans.traceExponent = kc;
     GjkTrace gtrace;
@@ -209,8 +208,11 @@ PairAnswer boundedPairOnCores(const CoreA& ca, const CoreB& cb, int kc, const Qu
         ans.hasWitness = true;
         return ans;
     }
-    if ((!g.intersect && coreDistance > coreTouch) || (curved && g.separatingAxis.squaredNorm() > 0)) {
-        // Cores apart, rounded shapes overlapping (or touching): the core axis is the normal.
+    if ((!g.intersect && coreDistance > 0) || (curved && g.separatingAxis.squaredNorm() > 0)) {
+        // Cores apart, rounded shapes overlapping (or touching): the core axis is the normal, however
+        // close the cores (GJK's closest points near the origin come from error-free products: its
+        // axis holds to a few ulps). EPA needs a simplex holding the origin: cores 3e-14 apart sent
+        // there gave two capsules 0.33 deep where they are 0.1.
         ans.depth = std::max(radii - coreDistance, 0.0);
         ans.normal = g.separatingAxis;
     } else {

@@ -206,6 +206,48 @@ TEST_SUITE("contact_box") {
         CHECK(shortcut > 300);
     }
 
+    // A review's reproducers: the fast path's rim bound squared lengths (boxes of 1e80 overflowed it,
+    // 1e-100 underflowed it: every crossing next to a submerged corner dropped), and took corners
+    // below the plane as submerged where a negative relativeTolerance left them out of the candidates.
+    TEST_CASE("box-plane: huge and tiny boxes, negative relative tolerance: the general manifold") {
+        for (double size : {1.0, 1e-100, 1e-80, 1e80, 1e100, 1e140}) {
+            const Vec3 h = Vec3::Constant(size);
+            Transform t;
+            t.rotation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitX()));
+            t.position = Vec3(0, 0, size * (std::cos(0.3) + std::sin(0.3)) - 0.5 * size);
+            const Plane plane{Vec3::UnitZ(), 0.0};
+            const BoxPlaneContact f = contactBoxPlane(h, t, plane);
+            const PlaneContactResult g = contactPolyhedronPlane(presets::box(h), t, plane);
+            CAPTURE(size);
+            REQUIRE(g.manifold.size() == 4);
+            REQUIRE(f.manifold.size() == 4);
+            CHECK((f.manifold[0].pointA - g.manifold[0].pointA).norm() <= 1e-13 * size);
+            CHECK(std::abs(hullArea(f.manifold, g.normal) / hullArea(g.manifold, g.normal) - 1.0) <= 1e-12);
+        }
+        int compared = 0;
+        for (double rx : {0.3, 0.5})
+            for (double z : {0.5, 1.0, 1.3})
+                for (double relative : {-0.1, -0.2, -0.3})
+                    for (int maxPoints : {3, 4}) {
+                        Transform t;
+                        t.rotation = Quat(Eigen::AngleAxisd(rx, Vec3::UnitX())) * Quat(Eigen::AngleAxisd(0.2, Vec3::UnitY()));
+                        t.position = Vec3(0, 0, z);
+                        PlaneContactOptions options;
+                        options.maxPoints = maxPoints;
+                        options.relativeTolerance = relative;
+                        const Plane plane{Vec3::UnitZ(), 0.0};
+                        const BoxPlaneContact f = contactBoxPlane(Vec3(1, 1, 1), t, plane, options);
+                        const PlaneContactResult g = contactPolyhedronPlane(presets::box(Vec3(1, 1, 1)), t, plane, options);
+                        CAPTURE(rx);
+                        CAPTURE(z);
+                        CAPTURE(relative);
+                        REQUIRE(f.status == g.status);
+                        checkSameManifold(f.manifold, g.manifold, g.normal, 1e-13);
+                        compared += g.colliding();
+                    }
+        CHECK(compared >= 10);
+    }
+
     TEST_CASE("box-plane: the general plane contact's answer; signed distance = long double corners") {
         std::mt19937_64 rng(13);
         std::uniform_real_distribution<double> u(-1.0, 1.0);

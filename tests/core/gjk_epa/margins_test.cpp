@@ -233,6 +233,42 @@ TEST_SUITE("gjk_epa/margins") {
         CHECK(inside > 100);
     }
 
+    // A review's reproducers: cores apart by 2.75e-14 .. 1e-11 (less than 1e-13 of the coordinates)
+    // went to EPA, which needs a simplex holding the origin: depths 3x .. 38000x too large, normals
+    // along a coordinate axis. The cores' own axis is exact there.
+    TEST_CASE("cores apart by a hair: the cores' axis, not EPA") {
+        const CapsuleShape A{Vec3(-0.087361662159125636, 0.12180682528121861, 0.064072713244759938),
+                             Vec3(0.39644674898118304, -0.59631227169508572, 0.56430704220252648), 0.05};
+        const CapsuleShape B{Vec3(0.17705241975889738, -0.27066423839308734, 0.33746399332504823),
+                             Vec3(-0.65614398891109804, -0.71986314770682935, 0.6599606358668999), 0.05};
+        const LD seg = segmentSegment(A.a, A.b, B.a, B.b);  // 2.75e-14
+        REQUIRE(seg > 0);
+        REQUIRE(seg < 1e-13);
+        const EpaResult e = penetrationWithMargins(A, B);
+        REQUIRE(e.status == EpaStatus::Penetrating);
+        CHECK(std::abs(e.depth - double(0.1L - seg)) <= 1e-16);
+        checkPenetrationWitnesses(e, 1.0);
+        const Vec3 shift = e.depth * e.normal;  // B moved by depth along the normal: touching
+        CHECK(std::abs(double(segmentSegment(A.a, A.b, B.a + shift, B.b + shift) - 0.1L)) <= 1e-15);
+
+        const CapsuleShape C{Vec3(999.99705271591154, 299.98432632769652, -199.99490937250562),
+                             Vec3(1000.0016520937114, 299.99603817449298, -200.00817940631822), 5e-8};
+        const CapsuleShape D{Vec3(999.99784866559276, 299.98635313240908, -199.99720583074696),
+                             Vec3(1000.0035890859751, 300.00097052784599, -200.0137679780386), 5e-8};
+        const LD gap = segmentSegment(C.a, C.b, D.a, D.b);  // 9.95e-12
+        const EpaResult f = penetrationWithMargins(C, D);
+        REQUIRE(f.status == EpaStatus::Penetrating);
+        CHECK(std::abs(f.depth - double(1e-7L - gap)) <= 1e-7 * 1e-5);  // the gap is known to ~1e-13 (coordinates 1e3)
+
+        for (double offset : {0.0, 1e6}) {
+            const EpaResult s = penetrationWithMargins(sphere(Vec3(offset, 0, 0), 5e-8), sphere(Vec3(offset, 5e-8, 0), 5e-8));
+            CAPTURE(offset);
+            REQUIRE(s.status == EpaStatus::Penetrating);
+            CHECK(s.depth == doctest::Approx(5e-8).epsilon(1e-9));
+            CHECK(s.normal.y() == doctest::Approx(1.0).epsilon(1e-12));
+        }
+    }
+
     TEST_CASE("no margin: the plain queries; bad radii: invalid input") {
         const PolytopeShape a({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)});
         const PolytopeShape b({Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(2, 1, 0), Vec3(2, 0, 1)});
