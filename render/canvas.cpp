@@ -696,7 +696,7 @@ void Canvas::clearCommands() {
 }
 
 RenderStats& renderStats() {
-    static RenderStats stats;
+    thread_local RenderStats stats;  // per thread: `cdlab figures` draws on several
     return stats;
 }
 

@@ -61,7 +61,7 @@ struct RenderStats {
     double drawSeconds = 0;      // GL draw calls until the GPU is done (profiling only)
     double readbackSeconds = 0;  // MSAA resolve, glReadPixels, flip, supersample resolve
 };
-RenderStats& renderStats();
+RenderStats& renderStats();  ///< this thread's (each drawing thread keeps its own)
 
 /// Every string drawn by any Canvas of this thread since the last clear, in drawing order: what
 /// a caller checks in the text of its frames (e.g. that no number printed as "nan" or "inf").

@@ -154,7 +154,11 @@ EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOpti
         const EpaResult e = epaPenetration(ca, cb, g.simplex, options);
         if (e.status == EpaStatus::InvalidInput) return e;
         r = e;
-        finish(e.depth + radii, e.normal, e.pointA, e.pointB);
+        // Cores that only touch or cross (two segments: a flat difference) have no deepest points
+        // for EPA to find — its blown-up start can put them far along a core —, but GJK's common
+        // point of the two is where they meet.
+        const bool coresMeet = e.depth <= detail::kEpaTouch * scale;
+        finish(e.depth + radii, e.normal, coresMeet ? g.pointA : e.pointA, coresMeet ? g.pointB : e.pointB);
         r.lowerBound = e.lowerBound + radii;
         r.upperBound = e.upperBound + radii;
     }

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -24,7 +25,9 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <sstream>
+#include <thread>
 #include <utility>
 
 #include "demos/catalog/catalog.h"
@@ -227,6 +230,172 @@ fs::path renderOutputDir(const std::string& file, const RunnerOptions& o) {
     return dir;
 }
 
+// The line a scene's failure prints: the error (naming the file once), OpenGL errors marked.
+std::string failureLine(const SceneJob& job, const std::exception& e) {
+    const std::string what = e.what();
+    if (dynamic_cast<const InputError*>(&e)) return what.rfind(job.file, 0) == 0 ? what : job.file + ": " + what;
+    if (dynamic_cast<const render::GlError*>(&e)) return job.file + ": OpenGL: " + what;
+    return job.file + ": " + what;  // render::ImageError, write errors, std::bad_alloc, ...
+}
+
+// `cdlab figures` on several cores: one worker thread per core, each with its own GL context (an
+// EGL context is current on one thread; programs and glyph atlases live in it), taking the next
+// scene from a shared counter and writing that scene's folder itself. Scenes are independent —
+// each writes only its own folder, under that folder's lock — so the files are a serial run's.
+// The reports come back in scene order. A worker whose context cannot be made stops; the scenes
+// go to the others, and when none has a context the first one's error is thrown as the serial
+// run's would be.
+std::vector<WriteReport> renderOnWorkers(const std::vector<SceneJob>& jobs, const RunnerOptions& o, int workers,
+                                         bool tty, Clock::time_point t0) {
+    std::vector<WriteReport> reports(jobs.size());
+    std::vector<char> done(jobs.size(), 0);
+    std::atomic<std::size_t> next{0};
+    std::atomic<int> started{0}, finished{0};
+    std::mutex printing;
+    std::exception_ptr contextError;
+    int total = 0;
+    for (const SceneJob& job : jobs) total += job.todo;
+    const auto work = [&](int index) {
+        std::unique_ptr<render::GlContext> gl;
+        try {
+            gl = createContext(o.verbose && index == 0);
+        } catch (const render::GlError&) {
+            std::lock_guard<std::mutex> lock(printing);
+            if (!contextError) contextError = std::current_exception();
+            return;
+        }
+        ++started;
+        const RunContext ctx{gl.get(), o.scale, o.steps};
+        for (std::size_t i = next++; i < jobs.size(); i = next++) {
+            const SceneJob& job = jobs[i];
+            if (!job.todo) continue;
+            WriteReport& report = reports[i];
+            try {
+                const auto ts = Clock::now();
+                const DemoOutput out = job.scene->run(ctx);
+                requireSelectedFrames(out, o.frames);
+                writeSceneFolder(job.dir, job.key, job.scene->common(), out, o.frames);
+                for (const Frame& fr : out.frames) report.frames += frameSelected(fr.name, o.frames);
+                if (o.perFileOutput) report.note = job.file + " -> " + job.dir.string() + "/";
+                if (o.verbose) {
+                    std::lock_guard<std::mutex> lock(printing);
+                    std::cerr << sceneId(job.scene->common()) << ": " << out.frames.size() << " frames drawn in "
+                              << ms(secondsSince(ts)) << "\n";
+                }
+            } catch (const std::exception& e) {
+                report.error = failureLine(job, e);
+            }
+            done[i] = 1;
+            const int count = ++finished;
+            if (tty && !o.verbose) {
+                std::lock_guard<std::mutex> lock(printing);
+                std::cerr << "\r[" << count << "/" << total << "] " << sceneId(job.scene->common()) << " ("
+                          << int(secondsSince(t0)) << " s)\x1b[K" << std::flush;
+            }
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int k = 0; k < workers; ++k) threads.emplace_back(work, k);
+    for (std::thread& t : threads) t.join();
+    if (started == 0 && contextError) std::rethrow_exception(contextError);
+    std::vector<WriteReport> ordered;
+    for (std::size_t i = 0; i < jobs.size(); ++i)
+        if (done[i]) ordered.push_back(std::move(reports[i]));
+    return ordered;
+}
+
+// Render workers for a run: one per core (at most 4: each holds a context and a scene's frames),
+// none beyond the scenes to render; 1 when profiling (each phase timed alone) or numeric only.
+int workerCount(const RunnerOptions& o, const std::vector<SceneJob>& jobs) {
+    if (o.profile || o.noRender) return 1;
+    int todo = 0;
+    for (const SceneJob& job : jobs) todo += job.todo;
+    const int cores = static_cast<int>(std::thread::hardware_concurrency());
+    return std::clamp(std::min(cores, todo), 1, 4);
+}
+
+// The scenes one after the other on this thread with one GL context, each scene's PNG encoding and
+// writes on a second thread while the next one draws (`--profile`: here and now, so each phase is
+// timed alone). Failures before a scene's write are printed here and counted in `failed`; the
+// writes' reports come back in order.
+std::vector<WriteReport> renderOnThisThread(const std::vector<SceneJob>& jobs, const RunnerOptions& o, bool anyTodo,
+                                            bool tty, Clock::time_point t0, int& failed) {
+    std::unique_ptr<render::GlContext> gl;
+    if (anyTodo && !o.noRender) gl = createContext(o.verbose);
+    render::RenderStats& stats = render::renderStats();
+    stats.profiling = o.profile;
+    RunContext ctx{gl.get(), o.scale, o.steps};
+
+    BackgroundWriter writer(!o.profile);  // declared after the jobs: joined before they go
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const SceneJob& job = jobs[i];
+        const SceneCommon& sc = job.scene->common();
+        if (tty && !o.verbose && !o.profile)
+            std::cerr << "\r[" << i + 1 << "/" << jobs.size() << "] " << sceneId(sc) << " (" << int(secondsSince(t0))
+                      << " s)\x1b[K" << std::flush;
+        if (!job.todo) {
+            if (o.verbose || o.profile) std::cerr << sceneId(sc) << ": unchanged (cached)\n";
+            continue;
+        }
+        // A scene that fails at run time (or whose files cannot be written) is reported with its
+        // file; its folder keeps the previous complete files and the other scenes still render.
+        bool submitted = false;  // from then on the writer's report counts the scene, not this loop
+        try {
+            double algorithm = 0;
+            if (o.profile) {  // the numeric part alone: what the algorithm costs without any drawing
+                auto ta = Clock::now();
+                job.scene->run(RunContext{});
+                algorithm = secondsSince(ta);
+            }
+            const render::RenderStats before = stats;
+            auto ts = Clock::now();
+            DemoOutput out = job.scene->run(ctx);
+            const double runSeconds = secondsSince(ts);
+            requireSelectedFrames(out, o.frames);
+
+            // The PNG encoding and writes go to the writer thread while this one draws the next
+            // scene (when profiling, here and now, so each phase is timed alone).
+            auto done = std::make_shared<DemoOutput>(std::move(out));
+            auto tw = Clock::now();
+            writer.submit([&job, &sc, &o, done] {
+                WriteReport report;
+                try {
+                    writeSceneFolder(job.dir, job.key, sc, *done, o.frames);
+                    for (const Frame& fr : done->frames) report.frames += frameSelected(fr.name, o.frames);
+                    if (o.perFileOutput) report.note = job.file + " -> " + job.dir.string() + "/";
+                } catch (const std::exception& e) {  // write errors, std::bad_alloc, ...
+                    report.error = job.file + ": " + e.what();
+                }
+                return report;
+            });
+            submitted = true;
+            const double writeSeconds = secondsSince(tw);
+
+            if (o.profile) {
+                const double build = stats.buildSeconds - before.buildSeconds,
+                             draw = stats.drawSeconds - before.drawSeconds,
+                             readback = stats.readbackSeconds - before.readbackSeconds;
+                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames; algorithm " << ms(algorithm)
+                          << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices "
+                          << ms(build) << ", GL " << ms(draw) << "), read-back " << ms(readback)
+                          << ", PNG encoding + writes " << ms(writeSeconds);
+                if (!done->skipped.empty()) {
+                    std::cerr << "; skipped:";
+                    for (const auto& s : done->skipped) std::cerr << " " << s << ";";
+                }
+                std::cerr << "\n";
+            } else if (o.verbose) {
+                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames drawn in " << ms(runSeconds)
+                          << "\n";
+            }
+        } catch (const std::exception& e) {
+            std::cerr << (tty ? "\n" : "") << failureLine(job, e) << "\n";
+            failed += !submitted;
+        }
+    }
+    return writer.finish();
+}
+
 // Reads and checks one scene file; throws InputError naming it.
 SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
     SceneJob job;
@@ -298,90 +467,16 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         job.todo = o.force || !cacheValid(job.dir, job.key);
         anyTodo = anyTodo || job.todo;
     }
-    std::unique_ptr<render::GlContext> gl;
-    if (anyTodo && !o.noRender) gl = createContext(o.verbose);
-    render::RenderStats& stats = render::renderStats();
-    stats.profiling = o.profile;
-    RunContext ctx{gl.get(), o.scale, o.steps};
-
     auto t0 = Clock::now();
     int frames = 0, rendered = 0, failed = 0;
-    BackgroundWriter writer(!o.profile);  // declared after the jobs: joined before they go
     const bool tty = isatty(fileno(stderr)) && !std::getenv("CI");
-    for (std::size_t i = 0; i < jobs.size(); ++i) {
-        const SceneJob& job = jobs[i];
-        const SceneCommon& sc = job.scene->common();
-        if (tty && !o.verbose && !o.profile)
-            std::cerr << "\r[" << i + 1 << "/" << jobs.size() << "] " << sceneId(sc) << " (" << int(secondsSince(t0))
-                      << " s)\x1b[K" << std::flush;
-        if (!job.todo) {
-            if (o.verbose || o.profile) std::cerr << sceneId(sc) << ": unchanged (cached)\n";
-            continue;
-        }
-        // A scene that fails at run time (or whose files cannot be written) is reported with its
-        // file; its folder keeps the previous complete files and the other scenes still render.
-        bool submitted = false;  // from then on the writer's report counts the scene, not this loop
-        try {
-            double algorithm = 0;
-            if (o.profile) {  // the numeric part alone: what the algorithm costs without any drawing
-                auto ta = Clock::now();
-                job.scene->run(RunContext{});
-                algorithm = secondsSince(ta);
-            }
-            const render::RenderStats before = stats;
-            auto ts = Clock::now();
-            DemoOutput out = job.scene->run(ctx);
-            const double runSeconds = secondsSince(ts);
-            requireSelectedFrames(out, o.frames);
-
-            // The PNG encoding and writes go to the writer thread while this one draws the next
-            // scene (when profiling, here and now, so each phase is timed alone).
-            auto done = std::make_shared<DemoOutput>(std::move(out));
-            auto tw = Clock::now();
-            writer.submit([&job, &sc, &o, done] {
-                WriteReport report;
-                try {
-                    writeSceneFolder(job.dir, job.key, sc, *done, o.frames);
-                    for (const Frame& fr : done->frames) report.frames += frameSelected(fr.name, o.frames);
-                    if (o.perFileOutput) report.note = job.file + " -> " + job.dir.string() + "/";
-                } catch (const std::exception& e) {  // write errors, std::bad_alloc, ...
-                    report.error = job.file + ": " + e.what();
-                }
-                return report;
-            });
-            submitted = true;
-            const double writeSeconds = secondsSince(tw);
-
-            if (o.profile) {
-                const double build = stats.buildSeconds - before.buildSeconds,
-                             draw = stats.drawSeconds - before.drawSeconds,
-                             readback = stats.readbackSeconds - before.readbackSeconds;
-                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames; algorithm " << ms(algorithm)
-                          << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices "
-                          << ms(build) << ", GL " << ms(draw) << "), read-back " << ms(readback)
-                          << ", PNG encoding + writes " << ms(writeSeconds);
-                if (!done->skipped.empty()) {
-                    std::cerr << "; skipped:";
-                    for (const auto& s : done->skipped) std::cerr << " " << s << ";";
-                }
-                std::cerr << "\n";
-            } else if (o.verbose) {
-                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames drawn in " << ms(runSeconds)
-                          << "\n";
-            }
-        } catch (const InputError& e) {
-            const std::string what = e.what();
-            std::cerr << (tty ? "\n" : "") << (what.rfind(job.file, 0) == 0 ? what : job.file + ": " + what) << "\n";
-            failed += !submitted;
-        } catch (const render::GlError& e) {
-            std::cerr << (tty ? "\n" : "") << job.file << ": OpenGL: " << e.what() << "\n";
-            failed += !submitted;
-        } catch (const std::exception& e) {  // render::ImageError, std::bad_alloc, ...
-            std::cerr << (tty ? "\n" : "") << job.file << ": " << e.what() << "\n";
-            failed += !submitted;
-        }
+    std::vector<WriteReport> reports;
+    if (const int workers = anyTodo ? workerCount(o, jobs) : 1; workers > 1) {
+        reports = renderOnWorkers(jobs, o, workers, tty, t0);
+    } else {
+        reports = renderOnThisThread(jobs, o, anyTodo, tty, t0, failed);
     }
-    for (const WriteReport& report : writer.finish()) {
+    for (const WriteReport& report : reports) {
         if (!report.error.empty()) {
             std::cerr << (tty ? "\n" : "") << report.error << "\n";
             ++failed;

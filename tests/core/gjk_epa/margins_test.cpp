@@ -269,6 +269,21 @@ TEST_SUITE("gjk_epa/margins") {
         }
     }
 
+    TEST_CASE("nearly parallel cores crossing: the deepest points where they cross, on each capsule") {
+        // A review's reproducer: cores 5.6e-18 apart at an angle of ~1e-2; EPA's start on their flat
+        // difference is blown up, and its witnesses had put pointA 0.39 off A.
+        const CapsuleShape A{Vec3(-0.06384617321017472, -0.042449289430044015, -0.0775290882964929),
+                             Vec3(1.2731867605939553, 0.36920813999860513, -0.31357009551208964), 0.1};
+        const CapsuleShape B{Vec3(-0.5154235067889756, -0.18152815246451445, 0.0021401574709631332),
+                             Vec3(1.3605382611563082, 0.39618603910536876, -0.32888983667686805), 0.05};
+        const EpaResult e = penetrationWithMargins(A, B);
+        REQUIRE(e.status == EpaStatus::Penetrating);
+        CHECK(e.depth == doctest::Approx(0.15).epsilon(1e-14));
+        checkPenetrationWitnesses(e, 2.0);
+        CHECK(double(pointSegment(lv(e.pointA), lv(A.a), lv(A.b))) == doctest::Approx(0.1).epsilon(1e-12));
+        CHECK(double(pointSegment(lv(e.pointB), lv(B.a), lv(B.b))) == doctest::Approx(0.05).epsilon(1e-12));
+    }
+
     TEST_CASE("no margin: the plain queries; bad radii: invalid input") {
         const PolytopeShape a({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)});
         const PolytopeShape b({Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(2, 1, 0), Vec3(2, 0, 1)});

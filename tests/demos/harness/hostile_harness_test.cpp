@@ -246,6 +246,28 @@ TEST_SUITE("hostile harness") {
         fs::remove_all(root);
     }
 
+    TEST_CASE("figures on several workers: the files of a serial run, byte for byte") {
+        // `cdlab figures` renders scenes on one worker per core, each with its own GL context;
+        // --profile keeps one worker (each phase timed alone): the two runs must write the same bytes.
+        const fs::path root = tempDir("workers");
+        for (const char* name : {"a", "b", "c", "d", "e"})
+            writeScene(root / "golden" / "voronoi_triangle" / (std::string(name) + ".json"), name[0] % 2 == 1);
+        const auto figures = [&](const std::string& out, bool serial) {
+            std::vector<std::string> args = {"figures", "--force", "--golden-dir", (root / "golden").string(),
+                                             "--out", (root / out).string()};
+            if (serial) args.push_back("--profile");
+            return run(args, root);
+        };
+        const Result serial = figures("serial", true), parallel = figures("parallel", false);
+        REQUIRE_MESSAGE(serial.status == 0, serial.err);
+        REQUIRE_MESSAGE(parallel.status == 0, parallel.err);
+        CHECK(contains(parallel.err, "5 scenes (5 rendered, 0 unchanged)"));
+        const auto a = snapshot(root / "serial"), b = snapshot(root / "parallel");
+        CHECK(a.size() > 20);
+        CHECK(a == b);  // every PNG, GIF, trace and manifest (same binary: same cache keys)
+        fs::remove_all(root);
+    }
+
     TEST_CASE("state in out/ that cdlab did not write is reported with its path, skipped or rebuilt") {
         // Reproducer: echo '[1,2]' > out/foo/bar/manifest.json (or '{"frames":5}') and every later
         // `cdlab figures --out out` exited 2 with "[json.exception.type_error.306] cannot use value()".

@@ -3,6 +3,7 @@
 // closed-form answers for spheres, capsules, planes and rays.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -118,6 +119,33 @@ TEST_SUITE("query") {
             R"({"op":"penetration","a":{"capsule":{"a":[-0.087361662159125636,0.12180682528121861,0.064072713244759938],"b":[0.39644674898118304,-0.59631227169508572,0.56430704220252648],"radius":0.05}},"b":{"capsule":{"a":[0.17705241975889738,-0.27066423839308734,0.33746399332504823],"b":[-0.65614398891109804,-0.71986314770682935,0.6599606358668999],"radius":0.05}}})"));
         CHECK(n["depth"].get<double>() == doctest::Approx(0.1 - 2.75e-14).epsilon(1e-14));
         CHECK(std::fabs(n["normal"][2].get<double>()) < 0.2);  // (-0.858, -0.503, 0.108): the segments' common perpendicular
+        // A capsule core 1e-6 long at 1e9 from the origin (a review's reproducer): its nearer end was
+        // chosen by rounding d · x of coordinates 1e9 (the pair is now moved next to the origin first,
+        // exactly): they overlap by 2.5404069958e-9 and were answered 1.3e-10 apart.
+        const std::string far =
+            R"({"op":"penetration","a":{"capsule":{"a":[1000000000.0,0.0,0.0],"b":[1000000000.0,7.668953380392842e-07,6.413366727701596e-07],"radius":1.0}},"b":{"sphere":{"center":[1000000000.2258492,-1.2707238588552776,1.527826245280321],"radius":1.0}}})";
+        Json f = ask(Json::parse(far));
+        REQUIRE(f["intersect"] == true);
+        CHECK(f["depth"].get<double>() == doctest::Approx(2.5404069958e-9).epsilon(1e-6));
+        CHECK(f["point_a"][0].get<double>() == doctest::Approx(1e9 + 0.1129246).epsilon(1e-15));
+        // Nearly parallel cores crossing 5.6e-18 apart: depth r1 + r2, and the deepest points where the
+        // cores cross, on each capsule (EPA's blown-up flat start had put point_a 0.39 off A).
+        const Vec3 a0(-0.06384617321017472, -0.042449289430044015, -0.0775290882964929),
+            a1(1.2731867605939553, 0.36920813999860513, -0.31357009551208964),
+            b0(-0.5154235067889756, -0.18152815246451445, 0.0021401574709631332),
+            b1(1.3605382611563082, 0.39618603910536876, -0.32888983667686805);
+        const auto vecJson = [](const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); };
+        Json x = ask(Json{{"op", "penetration"},
+                          {"a", {{"capsule", {{"a", vecJson(a0)}, {"b", vecJson(a1)}, {"radius", 0.1}}}}},
+                          {"b", {{"capsule", {{"a", vecJson(b0)}, {"b", vecJson(b1)}, {"radius", 0.05}}}}}});
+        CHECK(x["depth"].get<double>() == doctest::Approx(0.15).epsilon(1e-14));
+        const auto toSegment = [](const Vec3& p, const Vec3& s0, const Vec3& s1) {
+            const Vec3 e = s1 - s0;
+            return (p - (s0 + std::clamp((p - s0).dot(e) / e.squaredNorm(), 0.0, 1.0) * e)).norm();
+        };
+        const auto point = [](const Json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); };
+        CHECK(toSegment(point(x["point_a"]), a0, a1) == doctest::Approx(0.1).epsilon(1e-12));
+        CHECK(toSegment(point(x["point_b"]), b0, b1) == doctest::Approx(0.05).epsilon(1e-12));
         // Touching spheres count as intersecting (closed sets).
         Json t = ask(Json::parse(
             R"({"op":"intersect","a":{"sphere":{"center":[0,0,0],"radius":1}},"b":{"sphere":{"center":[2,0,0],"radius":1}}})"));
