@@ -378,7 +378,13 @@ Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int
         const int face = faceFacing(body, fromS);
         if (colliding && s.kind == Kind::Capsule && face >= 0) {
             std::vector<RoundedPoint> clipped = capsuleOnFace(s, body, face, touch);
-            if (!clipped.empty()) {
+            double reach = 0.0;
+            for (const RoundedPoint& p : clipped) reach = std::max(reach, p.depth);
+            // The face must hold the deepest point: a face split into triangles by a vertex 1e-9 off
+            // its plane faces the normal as well as the whole face did, and one triangle's clip lost
+            // the deeper end (depth 0.50 where the penetration is 0.55). Then the penetration's
+            // deepest pair stands alone.
+            if (!clipped.empty() && reach >= ans.depth - touch - 1e-9 * ans.depth) {
                 pts = clipped;
                 faceNormal = faceNormalFromTo(body.mesh.face(face).normal, sIsA);
             }

@@ -92,6 +92,25 @@ TEST_SUITE("query") {
         checkConvention(e);
     }
 
+    TEST_CASE("contact: a face split in two by a vertex 1e-9 off its plane still gives the deepest end") {
+        // A review's reproducer: the top of a 4 x 4 x 1 box with one corner raised by 1e-9 is two
+        // triangles; the capsule was clipped to the one facing first and lost its deeper end (depth
+        // 0.50 where the penetration is 0.55). Planar, the same capsule keeps both ends on the face.
+        for (double raise : {0.0, 1e-9}) {
+            const Json box = {{"polytope",
+                               {{"vertices",
+                                 {{-2, -2, -0.5}, {-2, -2, 0.5}, {-2, 2, -0.5}, {-2, 2, 0.5}, {2, -2, -0.5}, {2, -2, 0.5},
+                                  {2, 2, -0.5}, {2, 2, 0.5 + raise}}}}}};
+            const Json capsule = {{"capsule", {{"a", {1.5, -1.2, 0.05}}, {"b", {-1.2, 1.5, 0.15}}, {"radius", 0.1}}}};
+            const Json r = contact(box, capsule);
+            CAPTURE(raise);
+            REQUIRE(r["colliding"] == true);
+            CHECK(r["depth"].get<double>() == doctest::Approx(0.55).epsilon(1e-8));
+            checkConvention(r);
+            if (raise == 0.0) CHECK(r["points"].size() == 2);
+        }
+    }
+
     TEST_CASE("contact: spheres against boxes and spheres match the clamped closed form") {
         std::mt19937_64 rng(3);
         std::uniform_real_distribution<double> u(-2, 2);
