@@ -439,6 +439,55 @@ void benchBoxes(const Settings& settings, std::vector<Row>& rows) {
         [&](int i, const Answer& a) { return (a.value != 0.0) != all[i]->oracle.inside ? 1.0 : 0.0; }, true));
 }
 
+// Shapes with a margin (spheres, capsules): the core ⊕ radius form first (core/gjk_epa/margins.h,
+// what `cdlab query` does: GJK / EPA on the points or segments, the radii in closed form), then the
+// full support for contrast (GJK converges linearly on the round part, EPA needs ever more faces),
+// at each of `epaTolerances`; each full-support row's ratio against its cores row. Pairs: .a, .b and
+// the oracle's signed .distance (negative: the depth).
+template <class Pairs>
+void marginRows(const Settings& settings, std::vector<Row>& rows, const std::string& shapes, const Pairs& sep,
+                const Pairs& pen, const std::vector<double>& epaTolerances) {
+    const auto distanceError = [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); };
+    const auto depthError = [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); };
+    const int nSep = static_cast<int>(sep.size()), nPen = static_cast<int>(pen.size());
+    const size_t distanceReference = rows.size();
+    rows.push_back(measure(
+        settings, "gjk_distance", shapes + " separated", "SV on cores + radii", nSep,
+        [&](int i) {
+            const GjkResult r = gjkDistanceWithMargins(sep[i].a, sep[i].b);
+            return Answer{r.distance, r.iterations};
+        },
+        distanceError));
+    rows.push_back(measure(
+        settings, "gjk_distance", shapes + " separated", "SV tol 1e-13, full support", nSep,
+        [&](int i) {
+            const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
+            return Answer{r.distance, r.iterations};
+        },
+        distanceError));
+    rows.back().ratio = rows.back().nsMin / rows[distanceReference].nsMin;
+    const size_t depthReference = rows.size();
+    rows.push_back(measure(
+        settings, "epa_depth", shapes + " penetrating", "GJK+EPA on cores + radii", nPen,
+        [&](int i) {
+            const EpaResult r = penetrationWithMargins(pen[i].a, pen[i].b);
+            return Answer{r.depth, r.iterations};
+        },
+        depthError));
+    for (double tol : epaTolerances) {
+        EpaOptions o;
+        o.relativeTolerance = tol;
+        rows.push_back(measure(
+            settings, "epa_depth", shapes + " penetrating", "GJK+EPA tol " + fmt("%.0e", tol) + ", full support", nPen,
+            [&, o](int i) {
+                const EpaResult r = penetration(pen[i].a, pen[i].b, o);
+                return Answer{r.depth, r.iterations};
+            },
+            depthError));
+        rows.back().ratio = rows.back().nsMin / rows[depthReference].nsMin;
+    }
+}
+
 // Capsules (oracle: long double segment-segment distance minus the radii).
 void benchCapsules(const Settings& settings, std::vector<Row>& rows) {
     const bool quick = settings.quick;
@@ -470,43 +519,7 @@ void benchCapsules(const Settings& settings, std::vector<Row>& rows) {
     const auto sep = capsulePairs(3.0, 51);
     auto pen = capsulePairs(0.3, 52);
     std::erase_if(pen, [](const CapsulePair& p) { return !(p.distance < 0); });
-    // The core ⊕ radius form (core/gjk_epa/margins.h, what `cdlab query` does): GJK / EPA on the
-    // segments, the radii in closed form; then the full support (the rounded shape: GJK converges
-    // linearly on the caps, EPA needs ever more faces) for contrast, each ratio against the first.
-    const size_t distanceReference = rows.size();
-    rows.push_back(measure(
-        settings, "gjk_distance", "capsules separated", "SV on cores + radii", nPairs,
-        [&](int i) {
-            const GjkResult r = gjkDistanceWithMargins(sep[i].a, sep[i].b);
-            return Answer{r.distance, r.iterations};
-        },
-        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
-    rows.push_back(measure(
-        settings, "gjk_distance", "capsules separated", "SV tol 1e-13, full support", nPairs,
-        [&](int i) {
-            const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
-            return Answer{r.distance, r.iterations};
-        },
-        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
-    rows.back().ratio = rows.back().nsMin / rows[distanceReference].nsMin;
-    const size_t depthReference = rows.size();
-    rows.push_back(measure(
-        settings, "epa_depth", "capsules penetrating", "GJK+EPA on cores + radii", static_cast<int>(pen.size()),
-        [&](int i) {
-            const EpaResult r = penetrationWithMargins(pen[i].a, pen[i].b);
-            return Answer{r.depth, r.iterations};
-        },
-        [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
-    rows.push_back(measure(
-        settings, "epa_depth", "capsules penetrating", "GJK+EPA tol 1e-8, full support", static_cast<int>(pen.size()),
-        [&](int i) {
-            EpaOptions o;
-            o.relativeTolerance = 1e-8;
-            const EpaResult r = penetration(pen[i].a, pen[i].b, o);
-            return Answer{r.depth, r.iterations};
-        },
-        [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
-    rows.back().ratio = rows.back().nsMin / rows[depthReference].nsMin;
+    marginRows(settings, rows, "capsules", sep, pen, {1e-8});
 }
 
 // Float vs double: cdlab has no float variant of GJK (core is double only), so this row
@@ -542,44 +555,7 @@ void benchSpheres(const Settings& settings, std::vector<Row>& rows) {
     std::cerr << "cdlab bench: spheres\n";
     const auto sep = spherePairs(nPairs, 2.5, 41);
     const auto pen = spherePairs(nPairs, 0.5, 42);
-    // The core ⊕ radius form first (points and the radii: exact in one or two steps), then the full
-    // sphere support for contrast (ratios against the first).
-    const size_t distanceReference = rows.size();
-    rows.push_back(measure(
-        settings, "gjk_distance", "spheres separated", "SV on cores + radii", nPairs,
-        [&](int i) {
-            const GjkResult r = gjkDistanceWithMargins(sep[i].a, sep[i].b);
-            return Answer{r.distance, r.iterations};
-        },
-        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
-    rows.push_back(measure(
-        settings, "gjk_distance", "spheres separated", "SV tol 1e-13, full support", nPairs,
-        [&](int i) {
-            const GjkResult r = gjkDistance(sep[i].a, sep[i].b);
-            return Answer{r.distance, r.iterations};
-        },
-        [&](int i, const Answer& a) { return relativeError(a.value, sep[i].distance, 1.0); }));
-    rows.back().ratio = rows.back().nsMin / rows[distanceReference].nsMin;
-    const size_t depthReference = rows.size();
-    rows.push_back(measure(
-        settings, "epa_depth", "spheres penetrating", "GJK+EPA on cores + radii", nPairs,
-        [&](int i) {
-            const EpaResult r = penetrationWithMargins(pen[i].a, pen[i].b);
-            return Answer{r.depth, r.iterations};
-        },
-        [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
-    for (double tol : {1e-4, 1e-8}) {
-        EpaOptions o;
-        o.relativeTolerance = tol;
-        rows.push_back(measure(
-            settings, "epa_depth", "spheres penetrating", "GJK+EPA tol " + fmt("%.0e", tol) + ", full support", nPairs,
-            [&, o](int i) {
-                const EpaResult r = penetration(pen[i].a, pen[i].b, o);
-                return Answer{r.depth, r.iterations};
-            },
-            [&](int i, const Answer& a) { return relativeError(a.value, -pen[i].distance, 1.0); }));
-        rows.back().ratio = rows.back().nsMin / rows[depthReference].nsMin;
-    }
+    marginRows(settings, rows, "spheres", sep, pen, {1e-4, 1e-8});
 }
 
 /// The query rows (section "queries"): closest point, GJK distance / intersect, GJK+EPA, SAT on
