@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <memory>
+#include <mutex>
 
 namespace cdlab::render {
 
@@ -18,6 +19,14 @@ int appendBytes(GifFileType* gif, const GifByteType* data, int length) {
 [[noreturn]] void fail(const std::string& what, int code) {
     const char* msg = GifErrorString(code);
     throw GifError("gif: " + what + ": " + (msg ? msg : "unknown giflib error"));
+}
+
+// giflib's GifQuantizeBuffer sorts with a comparator that reads a file-static variable (the axis
+// being split): two threads quantising at once change each other's palettes (`cdlab figures` on
+// workers gave a different animation.gif from run to run). One quantisation at a time.
+std::mutex& quantizeMutex() {
+    static std::mutex m;
+    return m;
 }
 
 struct MapDeleter {
@@ -71,9 +80,13 @@ std::string encodeGif(const std::vector<Image>& frames, const GifOptions& option
             std::unique_ptr<ColorMapObject, MapDeleter> map(GifMakeMapObject(256, nullptr));
             if (!map) throw GifError("gif: out of memory for a colour map");
             int colors = 256;
-            if (GifQuantizeBuffer(unsigned(w), unsigned(h), &colors, red.data(), green.data(), blue.data(),
-                                  index.data(), map->Colors) != GIF_OK)
-                throw GifError("gif: colour quantisation failed");
+            int quantized;
+            {
+                const std::lock_guard<std::mutex> lock(quantizeMutex());
+                quantized = GifQuantizeBuffer(unsigned(w), unsigned(h), &colors, red.data(), green.data(), blue.data(),
+                                              index.data(), map->Colors);
+            }
+            if (quantized != GIF_OK) throw GifError("gif: colour quantisation failed");
             // Graphics control extension: frame delay, no transparency, disposal "do not dispose".
             const int delay = k + 1 == frames.size() ? options.lastDelayCentiseconds : options.delayCentiseconds;
             GraphicsControlBlock gcb{};

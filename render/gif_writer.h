@@ -1,7 +1,8 @@
 // Animated GIF encoding with giflib (GIF89a, Netscape looping extension). Each frame is
 // quantised to its own 256-colour local palette with giflib's GifQuantizeBuffer (median cut on
 // 5-bit-per-channel colours, Heckbert 1982), which is deterministic: the same pixels give the same
-// bytes. Knows nothing about what the frames show.
+// bytes, on any number of threads (the quantisation, which keeps state in giflib, runs one at a
+// time). Knows nothing about what the frames show.
 #pragma once
 
 #include <stdexcept>

@@ -9,9 +9,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "render/gif_writer.h"
 #include "render/image.h"
 
 using namespace cdlab::render;
@@ -219,6 +222,31 @@ TEST_SUITE("render/image") {
         im.rgba.resize(10);
         CHECK_THROWS_AS(writePngAtomic((tempDir() / "x.png").string(), im), ImageError);
         CHECK_THROWS_AS(writePngAtomic((tempDir() / "y.png").string(), Image()), ImageError);
+    }
+
+    TEST_CASE("GIF encoding gives the same bytes on several threads at once as alone") {
+        // giflib's colour quantisation keeps the axis it sorts on in a file-static variable: two
+        // threads quantising at once changed each other's palettes (`cdlab figures` on workers wrote
+        // a different animation.gif from run to run) until encodeGif took one at a time.
+        std::mt19937 rng(7);
+        std::uniform_int_distribution<int> byte(0, 255);
+        std::vector<std::vector<Image>> animations(4);
+        for (auto& frames : animations)
+            for (int f = 0; f < 2; ++f) {
+                Image im(96, 96);
+                for (auto& c : im.rgba) c = static_cast<std::uint8_t>(byte(rng));
+                frames.push_back(im);
+            }
+        std::vector<std::string> alone;
+        for (const auto& frames : animations) alone.push_back(encodeGif(frames));
+        for (int round = 0; round < 5; ++round) {
+            std::vector<std::string> together(animations.size());
+            std::vector<std::thread> threads;
+            for (std::size_t k = 0; k < animations.size(); ++k)
+                threads.emplace_back([&, k] { together[k] = encodeGif(animations[k]); });
+            for (std::thread& t : threads) t.join();
+            CHECK(together == alone);
+        }
     }
 
     TEST_CASE("downsample averages each block with rounding") {
