@@ -160,10 +160,9 @@ detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
 // pointB = x - s n̂ lies on the plane by construction: differences of pointB are in-plane.
 using BoxCandidates = FixedCapacityVector<ContactPoint, 14>;  // corners + crossings: 13 at most, even with tol < 0
 
+// depth: the deepest corner's, max(0, -min s_k).
 BoxCandidates boxPlaneCandidates(const std::array<Vec3, 8>& x, const std::array<double, 8>& s, const Vec3& h,
-                                 const Vec3& n, double d, double tol, bool rim) {
-    double depth = 0.0;  // the deepest depth
-    for (double sk : s) depth = std::max(depth, -sk);
+                                 const Vec3& n, double d, double tol, double depth, bool rim) {
     const double surface = 1e-9 * depth, reach = depth * depth;
     std::array<Vec3, 8> submerged;  // their pointB
     int deep = 0;
@@ -322,17 +321,12 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
     // keeps every candidate). When what is left fits, every point, the deepest first (first of
     // ties), then input order; else the rules, whose rule 0 then drops nothing more.
     const int maxPoints = options.maxPoints;
-    const BoxCandidates cand = boxPlaneCandidates(x, s, h, n, d, tol, maxPoints > 0);
+    const BoxCandidates cand = boxPlaneCandidates(x, s, h, n, d, tol, r.depth, maxPoints > 0);
     if (maxPoints <= 0 || static_cast<int>(cand.size()) > maxPoints) {
         for (int i : reduceContactPolygon(cand, n, maxPoints)) r.manifold.push_back(cand[i]);
         return r;
     }
-    int first = 0;
-    for (int k = 1; k < static_cast<int>(cand.size()); ++k)
-        if (clearlyGreater(cand[k].depth, cand[first].depth)) first = k;
-    r.manifold.push_back(cand[first]);
-    for (int k = 0; k < static_cast<int>(cand.size()); ++k)
-        if (k != first) r.manifold.push_back(cand[k]);
+    for (int i : deepestFirst(cand)) r.manifold.push_back(cand[i]);
     return r;
 }
 

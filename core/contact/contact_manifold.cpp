@@ -22,6 +22,13 @@ struct Scratch {
     int* hull;    // the chosen points' hull, up to 2 kMaxContactPoints + 2
 };
 
+// A score replaces the best so far only when larger by more than rounding (1e-9 relative): exact
+// ties are common (a clipped rectangle has parallel sides, so two points make the same triangle
+// with the first two; a face-on box has four corners at one depth), and the first in input order
+// must win them whatever the rounding, or the manifold flickers between frames and between two
+// computations of the same contact (the box fast paths and the general ones).
+bool clearlyGreater(double score, double best) { return score > best + 1e-9 * std::abs(best); }
+
 // Rule 0. Points at depth 0 (where an edge crosses the plane or the reference face's side) that lie
 // within the deepest depth, in the plane, of a submerged point are the rim of that corner, on edges
 // leaving it steeper than 45° (a cone of half-angle up to 45° on its apex: its crossings ring the
@@ -186,11 +193,7 @@ ContactIndices reduceWith(std::span<const ContactPoint> polygon, const Vec3& nor
 ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
                                     std::vector<ManifoldReductionStep>* steps) {
     const int n = static_cast<int>(polygon.size());
-    if (maxPoints <= 0 && n <= kMaxContactPoints) {  // every point, rim included, the deepest first
-        int all[kMaxContactPoints];
-        for (int i = 0; i < n; ++i) all[i] = i;
-        return deepestFirst(polygon, all, n);
-    }
+    if (maxPoints <= 0 && n <= kMaxContactPoints) return deepestFirst(polygon);  // every point, rim included
     if (maxPoints <= 0 || maxPoints > kMaxContactPoints) maxPoints = kMaxContactPoints;
     constexpr int kHull = 2 * kMaxContactPoints + 2;
     if (n <= kMaxContactPoints) {
@@ -205,6 +208,13 @@ ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const
     std::pmr::vector<unsigned char> taken(n, arena.resource());
     return reduceWith(polygon, normal, maxPoints, steps,
                       Scratch{q.data(), kept.data(), deep.data(), taken.data(), hull.data()});
+}
+
+ContactIndices deepestFirst(std::span<const ContactPoint> points) {
+    const int n = static_cast<int>(std::min(points.size(), std::size_t(kMaxContactPoints)));
+    int all[kMaxContactPoints];
+    for (int i = 0; i < n; ++i) all[i] = i;
+    return deepestFirst(points, all, n);
 }
 
 }  // namespace cdlab

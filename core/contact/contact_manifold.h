@@ -41,13 +41,6 @@ inline constexpr int kMaxContactPoints = 64;
 using ContactManifold = FixedCapacityVector<ContactPoint, kMaxContactPoints>;
 using ContactIndices = FixedCapacityVector<int, kMaxContactPoints>;
 
-/// The reduction's tie rule: a score replaces the best so far only when larger by more than rounding
-/// (1e-9 relative). Exact ties are common (a clipped rectangle has parallel sides, so two points
-/// make the same triangle with the first two; a face-on box has four corners at one depth), and the
-/// first in input order must win them whatever the rounding, or the manifold flickers between
-/// frames and between two computations of the same contact (the box fast paths and the general ones).
-inline bool clearlyGreater(double score, double best) { return score > best + 1e-9 * (best < 0 ? -best : best); }
-
 /// One step of reduceContactPolygon: which rule chose which polygon point and its score
 /// (rule 1: depth; 2: distance; 3: twice the triangle area; 4: twice the added area).
 struct ManifoldReductionStep {
@@ -66,5 +59,10 @@ struct ManifoldReductionStep {
 /// polygon has at most kMaxContactPoints points (inline scratch; a larger one uses a stack arena).
 ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const Vec3& normal, int maxPoints,
                                     std::vector<ManifoldReductionStep>* steps = nullptr);
+
+/// Every point's index (at most kMaxContactPoints points), the deepest first — first of ties, by the
+/// rules' 1e-9 relative tie rule — then input order: reduceContactPolygon's answer when nothing is
+/// dropped (maxPoints <= 0, or a caller that applied rule 0 itself and kept no more than maxPoints).
+ContactIndices deepestFirst(std::span<const ContactPoint> points);
 
 }  // namespace cdlab

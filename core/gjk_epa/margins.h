@@ -58,10 +58,6 @@ double marginCoordinateScale(const A& a, const B& b) {
     return std::max(boundingRadiusOf(a), boundingRadiusOf(b));
 }
 
-}  // namespace detail
-
-namespace detail {
-
 // GJK's result on the cores as the result on the shapes: the radii subtracted, the witnesses pushed
 // out along the axis; within rA + rB the shapes intersect (distance 0, axis zero). radii > 0.
 inline GjkResult withMargins(GjkResult g, double ra, double rb) {
@@ -117,7 +113,8 @@ EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOpti
     const auto ca = worldCore(shapeA);
     const auto cb = worldCore(shapeB);
     const GjkResult g = gjkDistance(ca, cb, options.gjk);
-    if (gjkOut) *gjkOut = detail::withMargins(g, ra, rb);
+    const GjkResult onShapes = detail::withMargins(g, ra, rb);
+    if (gjkOut) *gjkOut = onShapes;
     EpaResult r;
     if (g.status == GjkStatus::InvalidInput) return r;
     const double scale = detail::marginCoordinateScale(shapeA, shapeB);
@@ -128,12 +125,12 @@ EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOpti
         r.pointB = coreB - rb * normal;
         r.status = depth <= detail::kEpaTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
     };
-    if (!g.intersect && g.distance > radii) {  // apart
+    if (!onShapes.intersect) {  // apart: the closest points of the shapes
         r.status = EpaStatus::Separated;
         r.termination = EpaTermination::NotIntersecting;
-        r.normal = g.separatingAxis;
-        r.pointA = g.pointA + ra * g.separatingAxis;
-        r.pointB = g.pointB - rb * g.separatingAxis;
+        r.normal = onShapes.separatingAxis;
+        r.pointA = onShapes.pointA;
+        r.pointB = onShapes.pointB;
         r.iterations = g.iterations;
     } else if (g.edgePairCrossed) {  // cores crossing by a sliver, decided exactly inside GJK
         finish(g.crossedDepth + radii, g.crossedNormal, g.pointA, g.pointB);

@@ -248,7 +248,6 @@ std::string failureLine(const SceneJob& job, const std::exception& e) {
 std::vector<WriteReport> renderOnWorkers(const std::vector<SceneJob>& jobs, const RunnerOptions& o, int workers,
                                          bool tty, Clock::time_point t0) {
     std::vector<WriteReport> reports(jobs.size());
-    std::vector<char> done(jobs.size(), 0);
     std::atomic<std::size_t> next{0};
     std::atomic<int> started{0}, finished{0};
     std::mutex printing;
@@ -285,7 +284,6 @@ std::vector<WriteReport> renderOnWorkers(const std::vector<SceneJob>& jobs, cons
             } catch (const std::exception& e) {
                 report.error = failureLine(job, e);
             }
-            done[i] = 1;
             const int count = ++finished;
             if (tty && !o.verbose) {
                 std::lock_guard<std::mutex> lock(printing);
@@ -298,9 +296,9 @@ std::vector<WriteReport> renderOnWorkers(const std::vector<SceneJob>& jobs, cons
     for (int k = 0; k < workers; ++k) threads.emplace_back(work, k);
     for (std::thread& t : threads) t.join();
     if (started == 0 && contextError) std::rethrow_exception(contextError);
-    std::vector<WriteReport> ordered;
+    std::vector<WriteReport> ordered;  // every scene to render has been, by one worker or another
     for (std::size_t i = 0; i < jobs.size(); ++i)
-        if (done[i]) ordered.push_back(std::move(reports[i]));
+        if (jobs[i].todo) ordered.push_back(std::move(reports[i]));
     return ordered;
 }
 
