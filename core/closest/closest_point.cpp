@@ -435,11 +435,25 @@ SegmentSegmentResult closestPointsSegmentSegment(const Segment& first, const Seg
         r.distanceSquared = (r.pointOnFirst - r.pointOnSecond).squaredNorm();
         return r;
     };
-    // Ericson §5.1.9 notation: d1, d2 directions, r = p1 - p2.
-    const Vec3 d1 = first.b - first.a, d2 = second.b - second.a, rr = first.a - second.a;
+    // Ericson §5.1.9 notation: d1, d2 directions, r = p1 - p2. s and t do not depend on scale, and
+    // a, e, b, c, f are squares of coordinate differences, which overflow above ~1e154 (boxes of
+    // half-size 1e78 gave NaN points) and vanish below ~1e-154: the differences are taken to a
+    // largest magnitude in [1, 2) by a power of two first, exact (halved before subtracting when a
+    // difference itself would overflow), so every representable input has the same s and t as its
+    // scaled copy and moderate inputs their unscaled values bit for bit.
+    Vec3 d1 = first.b - first.a, d2 = second.b - second.a, rr = first.a - second.a;
+    if (!finite(d1) || !finite(d2) || !finite(rr))
+        d1 = 0.5 * first.b - 0.5 * first.a, d2 = 0.5 * second.b - 0.5 * second.a, rr = 0.5 * first.a - 0.5 * second.a;
+    const double largest = std::max({d1.cwiseAbs().maxCoeff(), d2.cwiseAbs().maxCoeff(), rr.cwiseAbs().maxCoeff()});
+    if (largest > 0.0) {
+        const int k = -std::ilogb(largest);
+        d1 = Vec3(std::ldexp(d1.x(), k), std::ldexp(d1.y(), k), std::ldexp(d1.z(), k));
+        d2 = Vec3(std::ldexp(d2.x(), k), std::ldexp(d2.y(), k), std::ldexp(d2.z(), k));
+        rr = Vec3(std::ldexp(rr.x(), k), std::ldexp(rr.y(), k), std::ldexp(rr.z(), k));
+    }
     const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(rr);
-    // Zero length: below the smallest normal double, 1/a overflows; such a segment is a point at
-    // every representable scale of the other one.
+    // Zero length: a below the smallest normal double (the segment shorter than ~1e-154 of the
+    // largest difference, after the scaling) would overflow 1/a; such a segment is a point.
     constexpr double kZeroLength = std::numeric_limits<double>::min();
     const bool firstPoint = a < kZeroLength, secondPoint = e < kZeroLength;
     if (firstPoint || secondPoint) r.degenerate = true;

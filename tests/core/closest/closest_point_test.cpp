@@ -11,6 +11,7 @@
 
 #include "core/closest/closest_point.h"
 #include "demos/oracles/closest_oracle.h"
+#include "tests/core/closest/closest_test_support.h"
 
 using namespace cdlab;
 using R = TriangleRegion;
@@ -18,10 +19,7 @@ using R = TriangleRegion;
 namespace {
 
 // Region names as std::string for doctest messages.
-template <class Region>
-std::string N(Region r) {
-    return nameOf(r);
-}
+using cdlab::test::N;
 
 // Vertex set (indices into a, b, c) of a triangle region.
 std::set<int> featureOf(R r) {
@@ -37,10 +35,7 @@ std::set<int> featureOf(R r) {
     return {};
 }
 
-Vec3 randomVec(std::mt19937_64& rng, double scale) {
-    std::uniform_real_distribution<double> u(-scale, scale);
-    return Vec3(u(rng), u(rng), u(rng));
-}
+using cdlab::test::randomVec;
 
 // The barycentric weights are consistent with the point and vanish off the named feature.
 void checkWeights(const ClosestPointOnTriangleResult& r, const Triangle& t, double tolerance) {
@@ -160,6 +155,26 @@ TEST_SUITE("closest_point") {
             const long double step = (oracle::L(s1.b) - oracle::L(s1.a)).norm() / n;
             CHECK(std::sqrt(static_cast<long double>(q.distanceSquared)) <= std::sqrt(best) + 1e-12L);
             CHECK(std::sqrt(static_cast<long double>(q.distanceSquared)) >= std::sqrt(best) - step - 1e-12L);
+        }
+    }
+
+    TEST_CASE("segment-segment: huge and tiny scales give the unit-scale parameters") {
+        // s and t do not depend on scale. Squared lengths overflow above ~1e154 (half-size 1e78
+        // boxes' edge contacts were NaN) and underflow below ~1e-154 (segments taken for points):
+        // the scaled copies by powers of two must give the unit answer exactly, and points on the
+        // segments; 1e300 apart the differences themselves overflow.
+        std::mt19937_64 rng(3);
+        for (int i = 0; i < 500; ++i) {
+            const Segment s1{randomVec(rng, 1), randomVec(rng, 1)}, s2{randomVec(rng, 1), randomVec(rng, 1)};
+            const auto unit = closestPointsSegmentSegment(s1, s2);
+            for (const double scale : {0x1p+260, 0x1p+1000, 0x1p-600, 0x1p-1000}) {
+                const auto q = closestPointsSegmentSegment({scale * s1.a, scale * s1.b}, {scale * s2.a, scale * s2.b});
+                CHECK(q.s == unit.s);
+                CHECK(q.t == unit.t);
+                CHECK(q.parallel == unit.parallel);
+                CHECK(q.pointOnFirst.allFinite());
+                CHECK((q.pointOnFirst - scale * unit.pointOnFirst).norm() <= 1e-15 * scale);
+            }
         }
     }
 

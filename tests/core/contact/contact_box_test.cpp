@@ -136,6 +136,37 @@ TEST_SUITE("contact_box") {
         CHECK(penetrating > 100);
     }
 
+    TEST_CASE("box-box: boxes of half-size 1e78 and 1e-120 give the unit answer scaled") {
+        // A scene scaled by a power of two has the same contact scaled. Half-sizes ~1e78 gave NaN
+        // edge-edge points (squared edge lengths overflow in the closest points of the two edges).
+        std::mt19937_64 rng(15);
+        int edgeContacts = 0;
+        for (int k = 0; k < 600; ++k) {
+            const Vec3 ha = randomExtents(rng), hb = randomExtents(rng);
+            const Transform ta = test::randomPose(rng, Vec3::Zero(), 0.0), tb = test::randomPose(rng, Vec3::Zero(), 0.8);
+            const SatContactResult unit = contactBoxBox(ha, ta, hb, tb);
+            if (!unit.colliding()) continue;
+            edgeContacts += unit.axisKind == SatAxisKind::EdgeEdge;
+            for (const double scale : {0x1p+260, 0x1p-400}) {
+                Transform sa = ta, sb = tb;
+                sa.position *= scale;
+                sb.position *= scale;
+                const SatContactResult r = contactBoxBox(scale * ha, sa, scale * hb, sb);
+                CAPTURE(k);
+                CAPTURE(scale);
+                REQUIRE(r.status == unit.status);
+                REQUIRE(r.axisKind == unit.axisKind);
+                REQUIRE(r.manifold.size() == unit.manifold.size());
+                CHECK(std::abs(r.depth - scale * unit.depth) <= 1e-12 * scale);
+                for (size_t i = 0; i < r.manifold.size(); ++i) {
+                    CHECK((r.manifold[i].pointA - scale * unit.manifold[i].pointA).norm() <= 1e-12 * scale);
+                    CHECK((r.manifold[i].pointB - scale * unit.manifold[i].pointB).norm() <= 1e-12 * scale);
+                }
+            }
+        }
+        CHECK(edgeContacts > 10);
+    }
+
     TEST_CASE("box-box: resting box, 4 points of the sunk depth; invalid input named") {
         const Vec3 ground(2, 2, 0.5), cube(0.5, 0.5, 0.5);
         Transform tg, tc;
