@@ -404,7 +404,7 @@ void benchBoxes(const Settings& settings, std::vector<Row>& rows) {
                 return touching ? std::abs(a.value) : relativeError(a.value, (*set)[i].oracle.distance, 1.0);
             }));
     }
-    std::vector<const BoxPair*> inside, all;
+    std::vector<const OrientedBoxPair*> inside, all;
     for (const auto& p : pen)
         if (p.oracle.ok && p.oracle.inside) inside.push_back(&p);
     for (const auto& p : sep) all.push_back(&p);

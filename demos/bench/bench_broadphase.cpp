@@ -27,11 +27,6 @@ namespace cdlab::demos {
 
 namespace {
 
-/// Thread CPU time in ms: on a shared machine wall time mostly measures the neighbours.
-double cpuMs() { return 1e3 * threadSeconds(); }
-
-// Largest velocity component per frame: 5% of the mean box size (coherent motion).
-constexpr double kSpeed = 0.05;
 
 /// The O(n^2) baseline: every pair, closed overlap test on the three axes.
 std::size_t bruteForce(const std::vector<Aabb>& b, std::vector<BoxPair>& out) {
@@ -58,7 +53,7 @@ std::vector<std::uint64_t> octreePairKeys(const std::vector<std::pair<int, int>>
     return keys;
 }
 
-double msSince(double t0) { return cpuMs() - t0; }
+double msSince(double t0) { return threadMilliseconds() - t0; }
 
 struct Result {
     int n = 0;
@@ -106,11 +101,11 @@ OctreeFrame octreeFrame(const std::vector<Aabb>& boxes, Octree& octree, Octree& 
                         std::vector<std::pair<int, int>>& octPairs, std::vector<std::pair<int, int>>& loosePairs) {
     const OctreeOptions octOptions = octreeOptions(1.0), looseOptions = octreeOptions(2.0);
     OctreeFrame o;
-    double t0 = cpuMs();
+    double t0 = threadMilliseconds();
     octree.build(boxes, octOptions);
     octPairs = octree.overlappingPairs(&o.octTests);
     o.octMs = msSince(t0);
-    t0 = cpuMs();
+    t0 = threadMilliseconds();
     loose.build(boxes, looseOptions);
     loosePairs = loose.overlappingPairs(&o.looseTests);
     o.looseMs = msSince(t0);
@@ -121,7 +116,7 @@ OctreeFrame octreeFrame(const std::vector<Aabb>& boxes, Octree& octree, Octree& 
 // The same boxes with velocities scaled so that the endpoint gaps crossed per frame stay constant
 // (projected endpoint density grows as n / side = n^(2/3)): SAP's s = O(n) regime.
 void measureSlowSap(int n, int frames, int warmup, std::vector<Aabb>& boxes, Result& r) {
-    BoxMotion slow(n, 1000 + static_cast<std::uint64_t>(n), kSpeed * std::pow(100.0 / n, 2.0 / 3.0));
+    BoxMotion slow(n, 1000 + static_cast<std::uint64_t>(n), kBoxSpeed * std::pow(100.0 / n, 2.0 / 3.0));
     slow.step(boxes);
     SweepAndPrune sapSlow;
     sapSlow.reserve(n, n);
@@ -130,7 +125,7 @@ void measureSlowSap(int n, int frames, int warmup, std::vector<Aabb>& boxes, Res
     double swaps = 0;
     for (int f = 0; f < warmup + frames; ++f) {
         slow.step(boxes);
-        const double t0 = cpuMs();
+        const double t0 = threadMilliseconds();
         const SapResult s = sapSlow.update(boxes);
         const double t = msSince(t0);
         if (f < warmup) continue;
@@ -145,12 +140,12 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
     Result r;
     r.n = n;
     r.frames = frames;
-    BoxMotion motion(n, 1000 + static_cast<std::uint64_t>(n), kSpeed);
+    BoxMotion motion(n, 1000 + static_cast<std::uint64_t>(n), kBoxSpeed);
     std::vector<Aabb> boxes;
     motion.step(boxes);
     SweepAndPrune sap;
     sap.reserve(n, n);
-    double t0 = cpuMs();
+    double t0 = threadMilliseconds();
     sap.build(boxes);
     r.buildMs = msSince(t0);
     UniformGrid grid;
@@ -165,10 +160,10 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
     const int warmup = 3;
     for (int f = 0; f < warmup + frames; ++f) {
         motion.step(boxes);
-        t0 = cpuMs();
+        t0 = threadMilliseconds();
         const SapResult s = sap.update(boxes);
         const double tSap = msSince(t0);
-        t0 = cpuMs();
+        t0 = threadMilliseconds();
         const UniformGridResult g = grid.build(boxes, go);
         const double tGrid = msSince(t0);
         if (s.status != SapStatus::Ok || g.status != GridStatus::Ok || sap.pairs().size() != grid.pairs().size())
@@ -196,7 +191,7 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
         pairs += static_cast<double>(sap.pairs().size());
         swaps += static_cast<double>(s.swaps);
         if (f - warmup < bruteFrames) {
-            t0 = cpuMs();
+            t0 = threadMilliseconds();
             const std::size_t k = bruteForce(boxes, brute);
             bruteT.push_back(msSince(t0));
             if (k != sap.pairs().size()) r.agree = false;

@@ -48,11 +48,11 @@ void contactPeerRows(const Settings& settings, std::vector<Row>& rows, const std
 // Minkowski hull oracle.
 void benchBoxBox(const Settings& settings, std::vector<Row>& rows) {
     const int n = settings.quick ? 200 : 1000;
-    const std::vector<BoxPair> all = boxPairs(n, 0.5, false, 32);
-    std::vector<const BoxPair*> pen;
+    const std::vector<OrientedBoxPair> all = boxPairs(n, 0.5, false, 32);
+    std::vector<const OrientedBoxPair*> pen;
     std::vector<ConvexPolyhedron> polyA, polyB;
     std::vector<ContactPeerPair> peers;
-    for (const BoxPair& p : all) {
+    for (const OrientedBoxPair& p : all) {
         if (!p.oracle.ok || !p.oracle.inside) continue;
         pen.push_back(&p);
         polyA.push_back(presets::box(p.a.shape.halfExtents));
@@ -66,7 +66,7 @@ void benchBoxBox(const Settings& settings, std::vector<Row>& rows) {
     rows.push_back(measure(
         settings, "contact_manifold", input, "box-box fast path", count,
         [&](int i) {
-            const BoxPair& p = *pen[i];
+            const OrientedBoxPair& p = *pen[i];
             return manifoldAnswer(
                 contactBoxBox(p.a.shape.halfExtents, p.a.transform, p.b.shape.halfExtents, p.b.transform).manifold);
         },

@@ -47,12 +47,12 @@ std::vector<Vec3> boxCorners(const Transformed<BoxShape>& box) {
     return c;
 }
 
-std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed) {
+std::vector<OrientedBoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> half(0.2, 1.0), lateral(-0.3, 0.3);
-    std::vector<BoxPair> pairs;
+    std::vector<OrientedBoxPair> pairs;
     for (int i = 0; i < count; ++i) {
-        BoxPair p;
+        OrientedBoxPair p;
         p.a.shape.halfExtents = Vec3(half(rng), half(rng), half(rng));
         p.b.shape.halfExtents = Vec3(half(rng), half(rng), half(rng));
         if (touching) {

@@ -30,14 +30,14 @@ std::vector<PolyPair> polyPairs(int n, int count, double offset, std::uint64_t s
 
 /// Oriented boxes: half extents in [0.2, 1], random rotation, centre offset along a random
 /// direction; `touching` puts two axis-aligned boxes face to face (distance exactly 0).
-struct BoxPair {
+struct OrientedBoxPair {
     Transformed<BoxShape> a, b;
     std::vector<Vec3> va, vb;  ///< world corners
     MinkowskiOracle oracle;
     Obb obbA, obbB;
 };
 
-std::vector<BoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed);
+std::vector<OrientedBoxPair> boxPairs(int count, double offset, bool touching, std::uint64_t seed);
 
 /// The eight world corners of a posed box, corner i with bit k of i picking +h_k (also the stress
 /// families' box vertices).

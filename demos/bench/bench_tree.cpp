@@ -31,8 +31,6 @@ namespace cdlab::demos {
 
 namespace {
 
-double cpuMs() { return 1e3 * threadSeconds(); }
-
 struct Workload {
     const char* name;
     double minHalf, maxHalf;
@@ -40,7 +38,6 @@ struct Workload {
 };
 constexpr Workload kUniform{"uniform", 0.25, 0.75, false};
 constexpr Workload kMixed{"mixed", 0.025, 2.5, true};
-constexpr double kSpeed = 0.05;  // largest velocity component per frame
 constexpr double kCell = 1.5;    // grid cell: the largest box of the uniform workload
 constexpr double kMargin = 0.2;  // tree fat-box margin: 20% of the typical box, 4 frames of the fastest motion
 
@@ -58,7 +55,7 @@ TreeRow measure(const Workload& w, int n, int frames) {
     r.workload = w.name;
     r.n = n;
     r.frames = frames;
-    BoxMotion motion(n, 7000 + static_cast<std::uint64_t>(n), kSpeed, w.minHalf, w.maxHalf, w.logUniform);
+    BoxMotion motion(n, 7000 + static_cast<std::uint64_t>(n), kBoxSpeed, w.minHalf, w.maxHalf, w.logUniform);
     std::vector<Aabb> boxes;
     motion.step(boxes);
     SweepAndPrune sap;
@@ -72,9 +69,9 @@ TreeRow measure(const Workload& w, int n, int frames) {
     to.margin = kMargin;
     TreeBroadPhase tree(to);
     tree.reserve(n, 8 * n);
-    double t0 = cpuMs();
+    double t0 = threadMilliseconds();
     tree.update(boxes);
-    r.treeBuildMs = cpuMs() - t0;
+    r.treeBuildMs = threadMilliseconds() - t0;
 #ifdef CDLAB_BENCH_PEERS
     std::unique_ptr<PeerBroadPhase> bullet = makeBulletDbvtBroadPhase();
     if (bullet) bullet->frame(boxes);
@@ -85,25 +82,25 @@ TreeRow measure(const Workload& w, int n, int frames) {
     const int warmup = 12;
     for (int f = 0; f < warmup + frames; ++f) {
         motion.step(boxes);
-        t0 = cpuMs();
+        t0 = threadMilliseconds();
         const SapResult s = sap.update(boxes);
-        const double tSap = cpuMs() - t0;
-        t0 = cpuMs();
+        const double tSap = threadMilliseconds() - t0;
+        t0 = threadMilliseconds();
         const ColumnSweepResult cs = columns.run(boxes);
-        const double tColumns = cpuMs() - t0;
-        t0 = cpuMs();
+        const double tColumns = threadMilliseconds() - t0;
+        t0 = threadMilliseconds();
         const UniformGridResult g = grid.build(boxes, go);
-        const double tGrid = cpuMs() - t0;
-        t0 = cpuMs();
+        const double tGrid = threadMilliseconds() - t0;
+        t0 = threadMilliseconds();
         const TreeBroadPhaseResult t = tree.update(boxes);
-        const double tTree = cpuMs() - t0;
+        const double tTree = threadMilliseconds() - t0;
         double tBullet = NAN;
         std::int64_t bulletPairs = 0;
 #ifdef CDLAB_BENCH_PEERS
         if (bullet) {
-            t0 = cpuMs();
+            t0 = threadMilliseconds();
             bulletPairs = bullet->frame(boxes);
-            tBullet = cpuMs() - t0;
+            tBullet = threadMilliseconds() - t0;
         }
 #endif
         // The three cdlab methods report the same pair set (compared outside the timing).

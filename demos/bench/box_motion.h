@@ -16,6 +16,10 @@
 
 namespace cdlab::demos {
 
+/// Largest velocity component per frame of the uniform workload: 5% of the mean box size
+/// (coherent motion).
+constexpr double kBoxSpeed = 0.05;
+
 struct BoxMotion {
     std::vector<Vec3> center, half, velocity;
     double side = 1.0;

@@ -14,6 +14,9 @@ double median(std::vector<double> values);
 /// while the thread's CPU time stays what the query costs.
 double threadSeconds();
 
+/// The same in milliseconds.
+inline double threadMilliseconds() { return 1e3 * threadSeconds(); }
+
 /// The size L of a point set that relative errors are measured against: the largest distance of a
 /// point from the points' centroid.
 double centroidRadius(const std::vector<Vec3>& points);

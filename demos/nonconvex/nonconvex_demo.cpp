@@ -27,6 +27,7 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/scene/json_reader.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 
@@ -121,7 +122,6 @@ PairRun runPairs(const Body& A, const Body& B) {
     return run;
 }
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json pairsJson(const Body& A, const Body& B, const PairRun& run) {
     Json pairs = Json::array();
@@ -138,12 +138,12 @@ Json pairsJson(const Body& A, const Body& B, const PairRun& run) {
               {"pairs", pairs}, {"tested", run.tested}};
     if (run.deepest >= 0) {
         const PiecePair& p = run.pairs[std::size_t(run.deepest)];
-        j["deepest"] = {{"a", p.a}, {"b", p.b}, {"depth", p.depth}, {"normal", vecJson(p.normal)}};
+        j["deepest"] = {{"a", p.a}, {"b", p.b}, {"depth", p.depth}, {"normal", vec3Json(p.normal)}};
     }
     if (run.closest >= 0 && !run.intersect) {
         const PiecePair& p = run.pairs[std::size_t(run.closest)];
-        j["closest"] = {{"a", p.a}, {"b", p.b}, {"distance", p.distance}, {"point_a", vecJson(p.pointA)},
-                        {"point_b", vecJson(p.pointB)}};
+        j["closest"] = {{"a", p.a}, {"b", p.b}, {"distance", p.distance}, {"point_a", vec3Json(p.pointA)},
+                        {"point_b", vec3Json(p.pointB)}};
     }
     return j;
 }

@@ -16,22 +16,22 @@ namespace cdlab::test {
 
 using LD = long double;
 
-struct LVec {
+struct WalkVec {
     LD x = 0, y = 0, z = 0;
-    LVec() = default;
-    LVec(LD a, LD b, LD c) : x(a), y(b), z(c) {}
-    explicit LVec(const Vec3& v) : x(v.x()), y(v.y()), z(v.z()) {}
-    LVec operator+(const LVec& o) const { return {x + o.x, y + o.y, z + o.z}; }
-    LVec operator-(const LVec& o) const { return {x - o.x, y - o.y, z - o.z}; }
-    LVec operator*(LD s) const { return {x * s, y * s, z * s}; }
-    LD dot(const LVec& o) const { return x * o.x + y * o.y + z * o.z; }
-    LVec cross(const LVec& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
+    WalkVec() = default;
+    WalkVec(LD a, LD b, LD c) : x(a), y(b), z(c) {}
+    explicit WalkVec(const Vec3& v) : x(v.x()), y(v.y()), z(v.z()) {}
+    WalkVec operator+(const WalkVec& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    WalkVec operator-(const WalkVec& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    WalkVec operator*(LD s) const { return {x * s, y * s, z * s}; }
+    LD dot(const WalkVec& o) const { return x * o.x + y * o.y + z * o.z; }
+    WalkVec cross(const WalkVec& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
     LD norm2() const { return dot(*this); }
 };
 
 /// Squared distance point p to segment ab.
-inline LD pointSegment2(const LVec& p, const LVec& a, const LVec& b) {
-    const LVec ab = b - a;
+inline LD pointSegment2(const WalkVec& p, const WalkVec& a, const WalkVec& b) {
+    const WalkVec ab = b - a;
     const LD den = ab.norm2();
     LD t = den > 0 ? (p - a).dot(ab) / den : 0;
     t = std::clamp<LD>(t, 0, 1);
@@ -39,8 +39,8 @@ inline LD pointSegment2(const LVec& p, const LVec& a, const LVec& b) {
 }
 
 /// Squared distance point p to triangle abc (closest point by regions, Ericson §5.1.5).
-inline LD pointTriangle2(const LVec& p, const LVec& a, const LVec& b, const LVec& c) {
-    const LVec n = (b - a).cross(c - a);
+inline LD pointTriangle2(const WalkVec& p, const WalkVec& a, const WalkVec& b, const WalkVec& c) {
+    const WalkVec n = (b - a).cross(c - a);
     const LD nn = n.norm2();
     if (nn > 0) {
         // Inside the prism over the triangle: the plane distance.
@@ -56,10 +56,10 @@ inline LD pointTriangle2(const LVec& p, const LVec& a, const LVec& b, const LVec
 
 /// Squared distance between segments ab and cd: the best endpoint-to-segment pair, or the
 /// closest points of the two lines when both fall inside their segments.
-inline LD segmentSegment2(const LVec& a, const LVec& b, const LVec& c, const LVec& d) {
+inline LD segmentSegment2(const WalkVec& a, const WalkVec& b, const WalkVec& c, const WalkVec& d) {
     LD best =
         std::min({pointSegment2(a, c, d), pointSegment2(b, c, d), pointSegment2(c, a, b), pointSegment2(d, a, b)});
-    const LVec u = b - a, v = d - c, w = a - c;
+    const WalkVec u = b - a, v = d - c, w = a - c;
     const LD uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
     const LD den = uu * vv - uv * uv;
     if (den > 1e-30L * uu * vv) {
@@ -70,12 +70,12 @@ inline LD segmentSegment2(const LVec& a, const LVec& b, const LVec& c, const LVe
 }
 
 /// Squared distance segment ab to triangle pqr (0 if it crosses the triangle).
-inline LD segmentTriangle2(const LVec& a, const LVec& b, const LVec& p, const LVec& q, const LVec& r) {
-    const LVec n = (q - p).cross(r - p);
+inline LD segmentTriangle2(const WalkVec& a, const WalkVec& b, const WalkVec& p, const WalkVec& q, const WalkVec& r) {
+    const WalkVec n = (q - p).cross(r - p);
     const LD ha = (a - p).dot(n), hb = (b - p).dot(n);
     if ((ha <= 0 && hb >= 0) || (ha >= 0 && hb <= 0)) {
         const LD w = ha == hb ? 0 : ha / (ha - hb);
-        const LVec x = a + (b - a) * w;
+        const WalkVec x = a + (b - a) * w;
         if ((q - p).cross(x - p).dot(n) >= 0 && (r - q).cross(x - q).dot(n) >= 0 && (p - r).cross(x - r).dot(n) >= 0)
             return 0;
     }
@@ -85,11 +85,11 @@ inline LD segmentTriangle2(const LVec& a, const LVec& b, const LVec& p, const LV
 
 /// World-frame vertices of a posed polyhedron in long double (rotation applied in long double
 /// from the double quaternion's matrix).
-inline std::vector<LVec> worldVertices(const ConvexPolyhedron& p, const Transform& pose) {
+inline std::vector<WalkVec> worldVertices(const ConvexPolyhedron& p, const Transform& pose) {
     const Mat3 r = pose.rotation.normalized().toRotationMatrix();
-    std::vector<LVec> out;
+    std::vector<WalkVec> out;
     for (const Vec3& v : p.positions()) {
-        LVec w;
+        WalkVec w;
         LD c[3];
         for (int i = 0; i < 3; ++i)
             c[i] = static_cast<LD>(r(i, 0)) * v.x() + static_cast<LD>(r(i, 1)) * v.y() +
@@ -102,11 +102,11 @@ inline std::vector<LVec> worldVertices(const ConvexPolyhedron& p, const Transfor
 /// A feature as a point set: 1 point, a segment, or a polygon (fan-triangulated).
 struct OracleFeature {
     int dim = 0;
-    std::vector<LVec> pts;
+    std::vector<WalkVec> pts;
 };
 
 /// type 0 vertex, 1 edge, 2 face (as VClipFeature::dimension()).
-inline OracleFeature oracleFeature(const ConvexPolyhedron& p, const std::vector<LVec>& world, int dim, int index) {
+inline OracleFeature oracleFeature(const ConvexPolyhedron& p, const std::vector<WalkVec>& world, int dim, int index) {
     OracleFeature f;
     f.dim = dim;
     if (dim == 0) f.pts = {world[index]};
@@ -128,13 +128,13 @@ inline LD featureDistance2(const OracleFeature& a, const OracleFeature& b) {
     if (a.dim == 1 && b.dim == 1) return segmentSegment2(a.pts[0], a.pts[1], b.pts[0], b.pts[1]);
     if (b.dim == 2) {
         for (size_t i = 1; i + 1 < b.pts.size(); ++i) {
-            const LVec &p = b.pts[0], &q = b.pts[i], &r = b.pts[i + 1];
+            const WalkVec &p = b.pts[0], &q = b.pts[i], &r = b.pts[i + 1];
             if (a.dim == 0) best = std::min(best, pointTriangle2(a.pts[0], p, q, r));
             if (a.dim == 1) best = std::min(best, segmentTriangle2(a.pts[0], a.pts[1], p, q, r));
             if (a.dim == 2)
                 for (size_t j = 1; j + 1 < a.pts.size(); ++j)
                     for (int k = 0; k < 3; ++k) {
-                        const LVec* t[3] = {&a.pts[0], &a.pts[j], &a.pts[j + 1]};
+                        const WalkVec* t[3] = {&a.pts[0], &a.pts[j], &a.pts[j + 1]};
                         best = std::min(best, segmentTriangle2(*t[k], *t[(k + 1) % 3], p, q, r));
                     }
         }
@@ -143,10 +143,10 @@ inline LD featureDistance2(const OracleFeature& a, const OracleFeature& b) {
 }
 
 /// Is world point x inside (or on) the posed polyhedron, up to `tol` (plane distances)?
-inline bool insideWorld(const ConvexPolyhedron& p, const std::vector<LVec>& world, const LVec& x, LD tol) {
+inline bool insideWorld(const ConvexPolyhedron& p, const std::vector<WalkVec>& world, const WalkVec& x, LD tol) {
     for (int f = 0; f < p.faceCount(); ++f) {
         const std::vector<int> vs = p.faceVertices(f);
-        LVec n;
+        WalkVec n;
         for (size_t i = 0; i < vs.size(); ++i) n = n + world[vs[i]].cross(world[vs[(i + 1) % vs.size()]]);
         const LD len = std::sqrt(n.norm2());
         if ((x - world[vs[0]]).dot(n) / len > tol) return false;
@@ -163,9 +163,9 @@ struct OracleDistance {
 
 inline OracleDistance oracleDistance(const ConvexPolyhedron& a, const Transform& pa, const ConvexPolyhedron& b,
                                      const Transform& pb) {
-    const std::vector<LVec> wa = worldVertices(a, pa), wb = worldVertices(b, pb);
+    const std::vector<WalkVec> wa = worldVertices(a, pa), wb = worldVertices(b, pb);
     LD best = std::numeric_limits<LD>::infinity();
-    auto faces = [](const ConvexPolyhedron& p, const std::vector<LVec>& w) {
+    auto faces = [](const ConvexPolyhedron& p, const std::vector<WalkVec>& w) {
         std::vector<OracleFeature> out;
         for (int f = 0; f < p.faceCount(); ++f) out.push_back(oracleFeature(p, w, 2, f));
         return out;
@@ -174,12 +174,12 @@ inline OracleDistance oracleDistance(const ConvexPolyhedron& a, const Transform&
     // Bounding balls (centre = first point, radius = farthest point) to skip pairs that cannot
     // beat the best distance so far; exact pruning (a ball around a set contains it).
     struct Ball {
-        LVec c;
+        WalkVec c;
         LD r = 0;
     };
     auto ball = [](const OracleFeature& f) {
         Ball b{f.pts[0], 0};
-        for (const LVec& p : f.pts) b.r = std::max(b.r, std::sqrt((p - b.c).norm2()));
+        for (const WalkVec& p : f.pts) b.r = std::max(b.r, std::sqrt((p - b.c).norm2()));
         return b;
     };
     auto far = [&](const Ball& x, const Ball& y) {
@@ -189,10 +189,10 @@ inline OracleDistance oracleDistance(const ConvexPolyhedron& a, const Transform&
     std::vector<Ball> ba, bb;
     for (const OracleFeature& f : fa) ba.push_back(ball(f));
     for (const OracleFeature& f : fb) bb.push_back(ball(f));
-    for (const LVec& v : wa)
+    for (const WalkVec& v : wa)
         for (size_t k = 0; k < fb.size(); ++k)
             if (!far(Ball{v, 0}, bb[k])) best = std::min(best, featureDistance2(OracleFeature{0, {v}}, fb[k]));
-    for (const LVec& v : wb)
+    for (const WalkVec& v : wb)
         for (size_t k = 0; k < fa.size(); ++k)
             if (!far(Ball{v, 0}, ba[k])) best = std::min(best, featureDistance2(OracleFeature{0, {v}}, fa[k]));
     std::vector<OracleFeature> eb;

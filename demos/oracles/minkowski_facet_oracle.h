@@ -16,7 +16,7 @@ namespace cdlab::test {
 // ---- Tiny support mappings (world frame) ------------------------------------------------------
 
 /// Convex hull of a vertex list; linear-scan support, first maximum wins on ties.
-struct PolytopeShape {
+struct SupportPolytope {
     std::vector<Vec3> vertices;
     Vec3 support(const Vec3& d) const {
         int best = 0;
@@ -32,7 +32,7 @@ struct PolytopeShape {
     }
 };
 
-struct SphereShape {
+struct SupportSphere {
     Vec3 center;
     double radius;
     Vec3 support(const Vec3& d) const {
@@ -42,7 +42,7 @@ struct SphereShape {
 };
 
 /// Axis-aligned box; ties (d_k = 0) go to the + side, so supports return corners only.
-struct BoxShape {
+struct SupportBox {
     Vec3 center;
     Vec3 half;
     Vec3 support(const Vec3& d) const {
@@ -59,12 +59,12 @@ struct BoxShape {
     }
 };
 
-struct PointShape {
+struct SupportPoint {
     Vec3 p;
     Vec3 support(const Vec3&) const { return p; }
 };
 
-struct SegmentShape {
+struct SupportSegment {
     Vec3 a, b;
     Vec3 support(const Vec3& d) const { return d.dot(b - a) > 0.0 ? b : a; }
 };

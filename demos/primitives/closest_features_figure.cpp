@@ -11,6 +11,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
+#include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {
 
@@ -41,7 +42,6 @@ std::string featureName(const SimplexFeature& f, char body) {
     return name;
 }
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json featuresJson(const ClosestFeaturesInput& in, const FeaturesRun& run) {
     const SimplexPairResult& r = run.result;
@@ -56,8 +56,8 @@ Json featuresJson(const ClosestFeaturesInput& in, const FeaturesRun& run) {
             {"b", nameOf(in.b.kind)},
             {"intersect", r.intersect},
             {"distance", r.distance},
-            {"point_a", vecJson(r.pointA)},
-            {"point_b", vecJson(r.pointB)},
+            {"point_a", vec3Json(r.pointA)},
+            {"point_b", vec3Json(r.pointB)},
             {"feature_a", featureName(r.featureA, 'a')},
             {"feature_b", featureName(r.featureB, 'b')},
             {"pairs_tested", r.pairsTested},

@@ -10,6 +10,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
+#include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {
 
@@ -62,18 +63,17 @@ CastRun runCast(const RaycastInput& in) {
     return run;
 }
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json castJson(const RaycastInput& in, const CastRun& run) {
     Json j = {{"test", "raycast"},
               {"cast", in.segment ? "segment" : "ray"},
-              {"origin", vecJson(in.origin)},
-              {"direction", vecJson(in.direction)},
+              {"origin", vec3Json(in.origin)},
+              {"direction", vec3Json(in.direction)},
               {"shape", nameOf(in.shape.kind)},
               {"hit", run.hit}};
     if (run.hit) {
         j["t"] = run.t;
-        j["point"] = vecJson(run.point);
+        j["point"] = vec3Json(run.point);
     }
     if (in.shape.kind == PrimitiveShape::Kind::Sphere) {
         const SphereQuadraticTrace& q = run.quadratic;
@@ -81,7 +81,7 @@ Json castJson(const RaycastInput& in, const CastRun& run) {
                           {"outcome", nameOf(q.outcome)}};
         if (q.rootsValid) j["quadratic"]["roots"] = {q.t0, q.t1};
     } else if (in.shape.kind == PrimitiveShape::Kind::Triangle) {
-        j["barycentric"] = vecJson(run.triangle.barycentric);
+        j["barycentric"] = vec3Json(run.triangle.barycentric);
         j["back_face"] = run.triangle.backFace;
         j["coplanar"] = run.triangle.coplanar;
     } else {

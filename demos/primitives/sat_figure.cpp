@@ -11,6 +11,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
+#include "demos/scene/json_reader.h"
 
 namespace cdlab::demos {
 
@@ -118,14 +119,13 @@ SatRun runSatTest(const SatInput& in) {
     return run;
 }
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json satJson(const SatInput& in, const SatRun& run) {
     Json axes = Json::array();
     for (const AxisRow& r : run.rows) {
         Json a = {{"name", r.name}, {"zero_axis", r.zero}, {"separating", r.separating}};
         if (!r.zero) {
-            a["axis"] = vecJson(r.unit);
+            a["axis"] = vec3Json(r.unit);
             a[run.pair.boxName] = {r.boxLo, r.boxHi};
             a[run.pair.otherName] = {r.otherLo, r.otherHi};
             a["gap"] = r.gap;

@@ -13,6 +13,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
+#include "demos/scene/json_reader.h"
 #include "demos/scene/pair_scene.h"
 
 namespace cdlab::demos {
@@ -63,13 +64,12 @@ SphereRun runSphere(const SphereOverlapInput& in) {
     return run;
 }
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json sphereJson(const SphereOverlapInput& in, const SphereRun& run) {
     Json j = {{"test", "sphere_overlap"},
               {"shape", nameOf(in.other.kind)},
               {"hit", run.hit},
-              {"closest", vecJson(run.closest)},
+              {"closest", vec3Json(run.closest)},
               {"distance", run.distance},
               {"reach", run.reach},
               {"gap", run.distance - run.reach}};

@@ -46,12 +46,12 @@ namespace {
 using Kind = QueryShape::Kind;
 
 // A bounded query shape as a convex polyhedron (world frame) and the map back to input vertices.
-struct Body {
+struct HullBody {
     ConvexPolyhedron mesh;
     std::vector<int> inputIndex;  // hull vertex -> input vertex
 };
 
-Body makeBody(const QueryShape& s, const JsonNode& node) {
+HullBody makeHullBody(const QueryShape& s, const JsonNode& node) {
     HullResult h = convexHull(s.vertices);
     if (!h.ok()) node.fail(std::string("contact needs a solid polytope: its convex hull failed (") + h.message + ")");
     return {std::move(h.polyhedron), std::move(h.inputIndex)};
@@ -73,7 +73,7 @@ void toLocal(QueryShape& s, const LocalFrame& f) {
 }
 
 // The input vertex indices of a feature of the hull.
-std::vector<int> featureVertices(const Body& b, const FeatureRef& f) {
+std::vector<int> featureVertices(const HullBody& b, const FeatureRef& f) {
     std::vector<int> v;
     if (f.type == FeatureType::Vertex) v = {f.index};
     else if (f.type == FeatureType::Edge) v = {b.mesh.edgeVertices(f.index).first, b.mesh.edgeVertices(f.index).second};
@@ -81,14 +81,14 @@ std::vector<int> featureVertices(const Body& b, const FeatureRef& f) {
     for (int& i : v) i = b.inputIndex[i];
     return v;
 }
-Json featureJson(const Body& b, const FeatureRef& f) {
+Json featureJson(const HullBody& b, const FeatureRef& f) {
     return {{"type", nameOf(f.type)}, {"vertices", featureVertices(b, f)}};
 }
 
 // The support feature of a body in direction d: the vertices within tol of the maximum of d·x,
 // as a vertex, an edge (two adjacent vertices) or the face holding them (core/contact/contact_plane.h
 // does the same for -n̂; here reused by calling it with a plane through the support point).
-FeatureRef supportFeature(const Body& b, const Vec3& d) {
+FeatureRef supportFeature(const HullBody& b, const Vec3& d) {
     double top = -INFINITY;
     for (const auto& v : b.mesh.vertices()) top = std::max(top, d.dot(v.position));
     // The plane -d·x = -top touches the body from the side d (the body lies on its + side): the
@@ -108,7 +108,7 @@ Json pointsJson(std::span<const ContactPoint> pts, bool swap, const LocalFrame& 
 
 // Polytope (body) vs plane; bodyIsA says which side of the query the body is on. `touch` is the
 // touching rule's tolerance (local units): s_min > touch is separated, as for the distance op.
-Json bodyPlane(const Body& body, const QueryShape& plane, bool bodyIsA, int maxPoints, bool wantTrace, double touch,
+Json bodyPlane(const HullBody& body, const QueryShape& plane, bool bodyIsA, int maxPoints, bool wantTrace, double touch,
                const LocalFrame& frame) {
     PlaneContactTrace trace;
     PlaneContactOptions opt;
@@ -177,7 +177,7 @@ Json satTraceJson(const SatContactTrace& trace, const LocalFrame& frame) {
 
 // Separated polytopes: the distance and closest points by GJK; the features are the support sets
 // of each body along the separating direction (they hold the closest points).
-Json separatedBodies(const Body& a, const Body& b, const GjkResult& g, const LocalFrame& frame) {
+Json separatedBodies(const HullBody& a, const HullBody& b, const GjkResult& g, const LocalFrame& frame) {
     const Vec3 n = g.separatingAxis;
     Json pair = {{"point_a", vecJson(frame.toWorld(g.pointA))}, {"point_b", vecJson(frame.toWorld(g.pointB))}};
     return {{"colliding", false},
@@ -190,7 +190,7 @@ Json separatedBodies(const Body& a, const Body& b, const GjkResult& g, const Loc
 
 // Two polytopes: GJK decides (the touching rule, `touch` in local units); colliding pairs get the
 // SAT manifold (Gregorius), the SAT trace is recorded either way.
-Json bodyBody(const Body& a, const Body& b, int maxPoints, bool wantTrace, double touch, const LocalFrame& frame,
+Json bodyBody(const HullBody& a, const HullBody& b, int maxPoints, bool wantTrace, double touch, const LocalFrame& frame,
               const JsonNode& bNode) {
     const GjkResult g = gjkDistance(PolytopeShape(a.mesh.positions()), PolytopeShape(b.mesh.positions()));
     if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
@@ -303,7 +303,7 @@ Json roundedPlane(const QueryShape& s, const QueryShape& plane, bool sIsA, int m
 
 // The capsule's segment clipped to the side planes of `face` of the polytope, each clipped end whose
 // sphere reaches the face (within `touch`) a contact point. Empty when none does.
-std::vector<RoundedPoint> capsuleOnFace(const QueryShape& capsule, const Body& body, int face, double touch) {
+std::vector<RoundedPoint> capsuleOnFace(const QueryShape& capsule, const HullBody& body, int face, double touch) {
     const ConvexPolyhedron& mesh = body.mesh;
     const Vec3 nf = mesh.face(face).normal;
     const double df = mesh.face(face).offset;
@@ -331,7 +331,7 @@ std::vector<RoundedPoint> capsuleOnFace(const QueryShape& capsule, const Body& b
 
 // The face of the body whose outward normal is −fromS to rounding (the contact normal from the other
 // shape is this face's normal), or −1.
-int faceFacing(const Body& body, const Vec3& fromS) {
+int faceFacing(const HullBody& body, const Vec3& fromS) {
     int face = -1;
     double best = 1.0 - 1e-9;
     for (int f = 0; f < body.mesh.faceCount(); ++f) {
@@ -374,7 +374,7 @@ Json roundedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int
     } else if (other.isCurved()) {
         otherFeature = curvedFeature(other.curved, {onOther});
     } else {
-        const Body body = makeBody(other, otherNode);
+        const HullBody body = makeHullBody(other, otherNode);
         const int face = faceFacing(body, fromS);
         if (colliding && s.kind == Kind::Capsule && face >= 0) {
             std::vector<RoundedPoint> clipped = capsuleOnFace(s, body, face, touch);
@@ -445,7 +445,7 @@ Json curvedBounded(const QueryShape& s, const QueryShape& other, bool sIsA, int 
     if (other.isCurved()) {
         otherFeature = curvedFeature(other.curved, {onOther});
     } else {
-        const Body body = makeBody(other, otherNode);
+        const HullBody body = makeHullBody(other, otherNode);
         const int face = faceFacing(body, fromS);
         if (colliding && face >= 0) {
             ReferenceFace ref{body.mesh.face(face).normal, body.mesh.face(face).offset, {}};
@@ -533,9 +533,9 @@ Json contactQuery(ObjectReader& r) {
             .fail("the plane is farther from the body than double precision spans (offset / body size above ~1e308)");
     touch = std::ldexp(touch, frame.k);
     Json out;
-    if (b.kind == Kind::Plane) out = bodyPlane(makeBody(a, an), b, true, maxPoints, wantTrace, touch, frame);
-    else if (a.kind == Kind::Plane) out = bodyPlane(makeBody(b, bn), a, false, maxPoints, wantTrace, touch, frame);
-    else out = bodyBody(makeBody(a, an), makeBody(b, bn), maxPoints, wantTrace, touch, frame, bn);
+    if (b.kind == Kind::Plane) out = bodyPlane(makeHullBody(a, an), b, true, maxPoints, wantTrace, touch, frame);
+    else if (a.kind == Kind::Plane) out = bodyPlane(makeHullBody(b, bn), a, false, maxPoints, wantTrace, touch, frame);
+    else out = bodyBody(makeHullBody(a, an), makeHullBody(b, bn), maxPoints, wantTrace, touch, frame, bn);
     requireFiniteAnswer(out);
     return out;
 }

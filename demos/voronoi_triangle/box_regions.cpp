@@ -3,6 +3,7 @@
 // a 3 × 3 × 3 grid cut by the faces' planes, so a step frame draws the query's cell (clipped to a
 // margin around the box), the feature that holds its closest point, and the three slab tests that
 // chose it. Numbers: core/closest/closest_point_box.h; this file only draws.
+#include "demos/scene/json_reader.h"
 #include "demos/voronoi_triangle/box_regions.h"
 
 #include <algorithm>
@@ -20,16 +21,15 @@ namespace {
 
 using namespace render;
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json queryJson(const Vec3& p, const BoxRegionResult& r) {
     Json tests = Json::array();
     for (const BoxAxisTest& t : r.tests)
         tests.push_back({{"coordinate", t.coordinate}, {"half_extent", t.halfExtent}, {"side", t.side}});
-    return {{"point", vecJson(p)},
+    return {{"point", vec3Json(p)},
             {"region", regionName(r)},
             {"dimension", r.dimension},
-            {"closest", vecJson(r.point)},
+            {"closest", vec3Json(r.point)},
             {"distance", r.distance},
             {"corners", r.corners},
             {"tests", tests}};
@@ -68,9 +68,9 @@ public:
         for (const Vec3& q : queries_) results.push_back(closestPointOnBox(q, box_));
         DemoOutput out;
         out.trace["simplex"] = "box";
-        out.trace["center"] = vecJson(box_.center);
-        out.trace["half_extents"] = vecJson(box_.halfExtents);
-        out.trace["axes"] = {vecJson(box_.axes.col(0)), vecJson(box_.axes.col(1)), vecJson(box_.axes.col(2))};
+        out.trace["center"] = vec3Json(box_.center);
+        out.trace["half_extents"] = vec3Json(box_.halfExtents);
+        out.trace["axes"] = {vec3Json(box_.axes.col(0)), vec3Json(box_.axes.col(1)), vec3Json(box_.axes.col(2))};
         Json qs = Json::array();
         for (std::size_t i = 0; i < queries_.size(); ++i) qs.push_back(queryJson(queries_[i], results[i]));
         out.trace["queries"] = qs;

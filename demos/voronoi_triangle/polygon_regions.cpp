@@ -1,6 +1,7 @@
 // Point vs a convex polygon in 3D: its n vertex, n edge regions and the face, seen in the polygon's
 // plane (the regions as coloured zones) and in 3D, and one frame per query with the region tests that
 // chose its region (core/closest/closest_point_polygon.h). This file only draws.
+#include "demos/scene/json_reader.h"
 #include "demos/voronoi_triangle/polygon_regions.h"
 
 #include <algorithm>
@@ -18,7 +19,6 @@ namespace {
 
 using namespace render;
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 /// The tests as made: "v0: 1.2 ≤ 0? no", "v0v1: 0.4 > 0, 0 < 0.7 < 4 → yes".
 std::vector<std::string> testEntries(const ClosestPointPolygonResult& r) {
@@ -50,7 +50,7 @@ public:
         DemoOutput out;
         out.trace["simplex"] = "polygon";
         Json corners = Json::array();
-        for (const Vec3& v : polygon_) corners.push_back(vecJson(v));
+        for (const Vec3& v : polygon_) corners.push_back(vec3Json(v));
         out.trace["vertices"] = corners;
         Json qs = Json::array();
         for (std::size_t i = 0; i < queries_.size(); ++i) {
@@ -58,10 +58,10 @@ public:
             Json tests = Json::array();
             for (const PolygonRegionTest& t : r.tests)
                 tests.push_back({{"candidate", t.candidate}, {"terms", {t.first, t.second}}, {"accepted", t.accepted}});
-            qs.push_back({{"point", vecJson(queries_[i])},
+            qs.push_back({{"point", vec3Json(queries_[i])},
                           {"region", regionName(r, int(polygon_.size()))},
                           {"dimension", r.dimension},
-                          {"closest", vecJson(r.point)},
+                          {"closest", vec3Json(r.point)},
                           {"distance", r.distance},
                           {"tests", tests}});
         }

@@ -9,6 +9,7 @@
 //   "margin": number                how far the drawn regions extend beyond the simplex (default: its size)
 // Layers: "regions" (coloured zones / region faces), "boundaries" (region boundaries: lines in the
 // plane view, translucent slabs in 3D), "labels", "closest" (segment to the closest point), "queries".
+#include "demos/scene/json_reader.h"
 #include "demos/voronoi_triangle/voronoi_triangle_demo.h"
 
 #include <algorithm>
@@ -45,7 +46,6 @@ struct TetrahedronQuery {
     TetrahedronTrace trace;
 };
 
-Json vecJson(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 template <class Test>
 Json testsJson(const std::vector<Test>& tests) {
@@ -70,9 +70,9 @@ template <class Result, class Tests>
 Json queryJson(const Vec3& point, const Result& r, const Tests& tests) {
     Json weights = Json::array();
     for (int i = 0; i < r.barycentric.size(); ++i) weights.push_back(r.barycentric[i]);
-    return {{"point", vecJson(point)},
+    return {{"point", vec3Json(point)},
             {"region", nameOf(r.region)},
-            {"closest", vecJson(r.point)},
+            {"closest", vec3Json(r.point)},
             {"barycentric", weights},
             {"distance", std::sqrt(r.distanceSquared)},
             {"degenerate", r.status != SimplexStatus::Regular},
@@ -202,7 +202,7 @@ private:
             queries_, [&](const Vec3& q, auto* trace) { closestPointOnTriangle(q, tri, trace); });
         DemoOutput out;
         out.trace["simplex"] = "triangle";
-        out.trace["vertices"] = {vecJson(tri.a), vecJson(tri.b), vecJson(tri.c)};
+        out.trace["vertices"] = {vec3Json(tri.a), vec3Json(tri.b), vec3Json(tri.c)};
         out.trace["queries"] = queriesJson(results);
         if (numericOnly(ctx, out)) return out;
         // Region geometry only when something draws it.
@@ -330,7 +330,7 @@ private:
             queries_, [&](const Vec3& q, auto* trace) { closestPointOnTetrahedron(q, tet, trace); });
         DemoOutput out;
         out.trace["simplex"] = "tetrahedron";
-        out.trace["vertices"] = {vecJson(tet.a), vecJson(tet.b), vecJson(tet.c), vecJson(tet.d)};
+        out.trace["vertices"] = {vec3Json(tet.a), vec3Json(tet.b), vec3Json(tet.c), vec3Json(tet.d)};
         out.trace["queries"] = queriesJson(results);
         if (numericOnly(ctx, out)) return out;
         // The 15 region geometries are drawn only in step frames (one region each).

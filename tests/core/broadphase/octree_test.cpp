@@ -13,10 +13,10 @@ using namespace cdlab;
 
 namespace {
 
-using Pairs = std::vector<std::pair<int, int>>;
+using IndexPairs = std::vector<std::pair<int, int>>;
 
-Pairs bruteForcePairs(const std::vector<Aabb>& boxes) {
-    Pairs out;
+IndexPairs allOverlappingPairs(const std::vector<Aabb>& boxes) {
+    IndexPairs out;
     for (int i = 0; i < int(boxes.size()); ++i)
         for (int j = i + 1; j < int(boxes.size()); ++j)
             if (testAabbAabb(boxes[std::size_t(i)], boxes[std::size_t(j)]).hit) out.emplace_back(i, j);
@@ -50,8 +50,8 @@ void checkAgainstBruteForce(const std::vector<Aabb>& boxes, const OctreeOptions&
     Octree tree;
     tree.build(boxes, options);
     std::int64_t tests = 0;
-    const Pairs pairs = tree.overlappingPairs(&tests);
-    CHECK(pairs == bruteForcePairs(boxes));
+    const IndexPairs pairs = tree.overlappingPairs(&tests);
+    CHECK(pairs == allOverlappingPairs(boxes));
     // Every valid box is stored in exactly one node, inside that node's (loose) cell unless it is the root.
     std::vector<int> seen(boxes.size(), 0);
     for (std::size_t n = 0; n < tree.nodes().size(); ++n)
@@ -113,7 +113,7 @@ TEST_SUITE("octree") {
         o.rootBounds = {Vec3::Zero(), Vec3::Constant(16.0)};
         Octree tree;
         tree.build(two, o);
-        CHECK(tree.overlappingPairs() == Pairs{{0, 1}});
+        CHECK(tree.overlappingPairs() == IndexPairs{{0, 1}});
         CHECK(tree.nodeOf(0) == 0);  // touches x = 8: stays in the root
         CHECK(tree.nodes()[std::size_t(tree.nodeOf(2))].depth ==
               2);  // [1, 2] touches the plane x = 2 of the cell [0, 4]
@@ -180,7 +180,7 @@ TEST_SUITE("octree") {
         tree.build(boxes);
         CHECK(tree.status() == OctreeStatus::SomeRejected);
         CHECK(tree.rejected() == std::vector<int>{1, 3, 4});
-        CHECK(tree.overlappingPairs() == Pairs{{0, 2}});
+        CHECK(tree.overlappingPairs() == IndexPairs{{0, 2}});
         CHECK(tree.query({Vec3::Constant(nan), Vec3::Constant(1)}).empty());
         Octree empty;
         empty.build({});
@@ -199,7 +199,7 @@ TEST_SUITE("octree") {
             o.looseness = looseness;
             tree.build(boxes, o, &trace);
             std::int64_t tests = 0;
-            CHECK(tree.overlappingPairs(&tests) == bruteForcePairs(boxes));
+            CHECK(tree.overlappingPairs(&tests) == allOverlappingPairs(boxes));
             CHECK(tests < 1000 * 999 / 2 / 10);
             CHECK(trace.steps.size() == tree.nodes().size());
             const OctreeStats s = tree.stats();

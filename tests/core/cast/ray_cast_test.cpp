@@ -11,6 +11,7 @@
 #include "core/cast/ray_cast.h"
 #include "demos/oracles/cast_oracle.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
+#include "tests/random_vectors.h"
 
 using namespace cdlab;
 namespace co = cdlab::demos::cast_oracle;
@@ -27,10 +28,7 @@ void checkSupportingNormal(const ConvexCastHit& h, const Ray& ray, const std::ve
     CHECK(h.normal.dot(ray.direction) <= 1e-12 * ray.direction.norm());
 }
 
-Vec3 uniformIn(std::mt19937_64& rng, double half) {
-    std::uniform_real_distribution<double> u(-half, half);
-    return Vec3(u(rng), u(rng), u(rng));
-}
+using cdlab::test::randomVec;
 
 }  // namespace
 
@@ -39,9 +37,9 @@ TEST_CASE("ray cast: random polytopes agree with Cyrus-Beck on brute-force facet
     int hits = 0, misses = 0, insides = 0;
     for (int trial = 0; trial < 1500; ++trial) {
         const int n = 4 + trial % 9;
-        const std::vector<Vec3> p = test::randomPolytope(rng, n, 1.0, uniformIn(rng, 0.5));
-        const Vec3 origin = trial % 10 == 0 ? uniformIn(rng, 0.5) : uniformIn(rng, 3.0);  // some start inside
-        const Ray ray{origin, Vec3(uniformIn(rng, 1.2) - origin) * (0.25 + trial % 4)};
+        const std::vector<Vec3> p = test::randomPolytope(rng, n, 1.0, randomVec(rng, 0.5));
+        const Vec3 origin = trial % 10 == 0 ? randomVec(rng, 0.5) : randomVec(rng, 3.0);  // some start inside
+        const Ray ray{origin, Vec3(randomVec(rng, 1.2) - origin) * (0.25 + trial % 4)};
         if (ray.direction.isZero()) continue;
         const co::PolytopeCast want = co::castRayPolytope(ray.origin, ray.direction, p);
         if (!want.valid) continue;
@@ -74,21 +72,21 @@ TEST_CASE("ray cast: spheres, capsules and rounded boxes agree with the first ro
     for (int trial = 0; trial < 1500; ++trial) {
         const int kind = trial % 3;  // sphere, capsule, rounded box
         std::vector<Vec3> core;
-        const Vec3 c = uniformIn(rng, 0.5);
+        const Vec3 c = randomVec(rng, 0.5);
         std::uniform_real_distribution<double> radius(0.05, 0.8);
         const double r = radius(rng);
         co::LVec lo, hi;
         if (kind == 0) core = {c};
-        if (kind == 1) core = {c, c + uniformIn(rng, 1.0)};
+        if (kind == 1) core = {c, c + randomVec(rng, 1.0)};
         if (kind == 2) {
-            const Vec3 h = uniformIn(rng, 0.6).cwiseAbs();
+            const Vec3 h = randomVec(rng, 0.6).cwiseAbs();
             for (int i = 0; i < 8; ++i)
                 core.push_back(c + Vec3(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z()));
             lo = co::toL(Vec3(c - h));
             hi = co::toL(Vec3(c + h));
         }
-        const Vec3 origin = uniformIn(rng, 3.0);
-        const Ray ray{origin, Vec3(uniformIn(rng, 1.2) - origin)};  // aimed near the shape: hits and misses
+        const Vec3 origin = randomVec(rng, 3.0);
+        const Ray ray{origin, Vec3(randomVec(rng, 1.2) - origin)};  // aimed near the shape: hits and misses
         const auto dist = [&](long double t) {
             const co::LVec x = co::toL(ray.origin) + t * co::toL(ray.direction);
             long double d = 0;

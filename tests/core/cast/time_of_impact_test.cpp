@@ -11,16 +11,14 @@
 #include "core/cast/time_of_impact.h"
 #include "demos/oracles/cast_oracle.h"
 #include "demos/oracles/minkowski_facet_oracle.h"
+#include "tests/random_vectors.h"
 
 using namespace cdlab;
 namespace co = cdlab::demos::cast_oracle;
 
 namespace {
 
-Vec3 uniformIn(std::mt19937_64& rng, double half) {
-    std::uniform_real_distribution<double> u(-half, half);
-    return Vec3(u(rng), u(rng), u(rng));
-}
+using cdlab::test::randomVec;
 
 double support(const std::vector<Vec3>& p, const Vec3& d, const Vec3& shift) {
     double best = -INFINITY;
@@ -40,12 +38,12 @@ TEST_CASE("time of impact: random polytopes agree with Cyrus-Beck on the Minkows
     std::mt19937_64 rng(11);
     int hits = 0, misses = 0, overlaps = 0;
     for (int trial = 0; trial < 600; ++trial) {
-        const std::vector<Vec3> a = test::randomPolytope(rng, 4 + trial % 5, 1.0, uniformIn(rng, 1.0));
-        const std::vector<Vec3> b = test::randomPolytope(rng, 4 + trial % 4, 1.0, uniformIn(rng, trial % 8 ? 4.0 : 1.0));
+        const std::vector<Vec3> a = test::randomPolytope(rng, 4 + trial % 5, 1.0, randomVec(rng, 1.0));
+        const std::vector<Vec3> b = test::randomPolytope(rng, 4 + trial % 4, 1.0, randomVec(rng, trial % 8 ? 4.0 : 1.0));
         // b heads roughly for a (or a for b): hits, misses and a few overlaps at t = 0.
         const Vec3 toward = (a[0] - b[0]) * (trial % 3 == 0 ? 0.5 : 1.5);
-        const Vec3 ma = trial % 2 ? Vec3(-toward + uniformIn(rng, 1.5)) : uniformIn(rng, 0.5);
-        const Vec3 mb = trial % 2 ? uniformIn(rng, 0.5) : Vec3(toward + uniformIn(rng, 1.5));
+        const Vec3 ma = trial % 2 ? Vec3(-toward + randomVec(rng, 1.5)) : randomVec(rng, 0.5);
+        const Vec3 mb = trial % 2 ? randomVec(rng, 0.5) : Vec3(toward + randomVec(rng, 1.5));
         std::vector<Vec3> difference;
         for (const Vec3& x : a)
             for (const Vec3& y : b) difference.push_back(y - x);
@@ -80,8 +78,8 @@ TEST_CASE("time of impact: moving spheres in closed form, capsules by the first 
     std::mt19937_64 rng(5);
     int hits = 0;
     for (int trial = 0; trial < 500; ++trial) {
-        const Vec3 ca = uniformIn(rng, 2.0), cb = uniformIn(rng, 2.0), ma = uniformIn(rng, 0.5);
-        const Vec3 mb = (ca - cb) * 1.5 + uniformIn(rng, 1.0);  // b heads roughly for a
+        const Vec3 ca = randomVec(rng, 2.0), cb = randomVec(rng, 2.0), ma = randomVec(rng, 0.5);
+        const Vec3 mb = (ca - cb) * 1.5 + randomVec(rng, 1.0);  // b heads roughly for a
         std::uniform_real_distribution<double> radius(0.05, 0.6);
         const double ra = radius(rng), rb = radius(rng);
         CAPTURE(trial);
@@ -102,7 +100,7 @@ TEST_CASE("time of impact: moving spheres in closed form, capsules by the first 
                 } else if (t > 1 + 1e-9) CHECK_FALSE(got.hit);
             } else if (c > 1e-9 && (B >= 0 || disc < -1e-9)) CHECK_FALSE(got.hit);
         } else {
-            const Vec3 ea = uniformIn(rng, 1.0), eb = uniformIn(rng, 1.0);
+            const Vec3 ea = randomVec(rng, 1.0), eb = randomVec(rng, 1.0);
             const auto gap = [&](long double t) {
                 const co::LVec sa = co::toL(ca) + t * co::toL(ma), sb = co::toL(cb) + t * co::toL(mb);
                 return co::segmentSegmentDistance(sa, sa + co::toL(ea), sb, sb + co::toL(eb)) - ra - rb;

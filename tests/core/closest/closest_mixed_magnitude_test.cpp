@@ -17,6 +17,7 @@
 #include "core/base/exact_predicates.h"
 #include "core/closest/closest_point.h"
 #include "demos/oracles/closest_oracle.h"
+#include "tests/core/closest/closest_test_support.h"
 
 using namespace cdlab;
 using oracle::BigInt;
@@ -26,10 +27,7 @@ using T = TetrahedronRegion;
 
 namespace {
 
-template <class Region>
-std::string N(Region r) {
-    return nameOf(r);
-}
+using cdlab::test::N;
 
 BigInt pow2(int k) { return BigInt::fromParts(1, k, false); }
 BigInt absolute(const BigInt& x) { return x.sign < 0 ? -x : x; }
@@ -160,7 +158,7 @@ void checkTrianglePoint(const Vec3& p, const Triangle& t, const ClosestPointOnTr
     }
 }
 
-Tetrahedron make(const std::array<Vec3, 4>& v) { return {v[0], v[1], v[2], v[3]}; }
+using cdlab::test::make;
 
 // Vertices of a tetrahedron region's feature, in the order of closest_point.h's enum.
 std::vector<int> tetFeature(T r) {

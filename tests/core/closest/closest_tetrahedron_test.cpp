@@ -11,13 +11,14 @@
 
 #include "core/closest/closest_point.h"
 #include "demos/oracles/closest_oracle.h"
+#include "tests/core/closest/closest_test_support.h"
 
 using namespace cdlab;
 using T = TetrahedronRegion;
 
 namespace {
 
-std::string N(T r) { return nameOf(r); }
+using cdlab::test::N;
 
 std::set<int> featureOf(T r) {
     static const std::set<int> kSets[15] = {{0},       {1},       {2},       {3},       {0, 1},
@@ -26,12 +27,9 @@ std::set<int> featureOf(T r) {
     return kSets[static_cast<int>(r)];
 }
 
-Vec3 randomVec(std::mt19937_64& rng, double scale) {
-    std::uniform_real_distribution<double> u(-scale, scale);
-    return Vec3(u(rng), u(rng), u(rng));
-}
+using cdlab::test::randomVec;
 
-Tetrahedron make(const std::array<Vec3, 4>& v) { return Tetrahedron{v[0], v[1], v[2], v[3]}; }
+using cdlab::test::make;
 
 }  // namespace
 

@@ -9,14 +9,14 @@
 
 #include "core/closest/voronoi_regions.h"
 #include "demos/oracles/closest_oracle.h"
+#include "tests/core/closest/closest_test_support.h"
 
 using namespace cdlab;
 using R = TriangleRegion;
 
 namespace {
 
-std::string N(R r) { return nameOf(r); }
-std::string N(TetrahedronRegion r) { return nameOf(r); }
+using cdlab::test::N;
 
 double polygonArea(const std::vector<Vec3>& poly, const Vec3& normal, const Vec3& origin = Vec3::Zero()) {
     Vec3 sum = Vec3::Zero();
@@ -39,10 +39,7 @@ long double featureDistance2(const Vec3& p, const Triangle& t, R r) {
     return 0;
 }
 
-Vec3 randomVec(std::mt19937_64& rng, double scale) {
-    std::uniform_real_distribution<double> u(-scale, scale);
-    return Vec3(u(rng), u(rng), u(rng));
-}
+using cdlab::test::randomVec;
 
 }  // namespace
 

@@ -30,12 +30,7 @@ long double minDepthL(const ConvexPolyhedron& b, const Transform& t, const Plane
 }
 
 // The world point x is inside the posed body up to tol: behind every face plane.
-bool insideBody(const ConvexPolyhedron& b, const Transform& t, const Vec3& x, double tol) {
-    const Vec3 xb = t.applyInverse(x);
-    for (int f = 0; f < b.faceCount(); ++f)
-        if (b.planeDistance(f, xb) > tol) return false;
-    return true;
-}
+using cdlab::test::insideBody;
 
 // The same pose as 0.3 · g + offset: a spread of 0.3 about (offset, offset, offset).
 Transform randomPose(std::mt19937_64& rng, double offset) { return test::randomPose(rng, Vec3::Constant(offset), 0.3); }

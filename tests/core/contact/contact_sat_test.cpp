@@ -24,12 +24,7 @@ std::vector<Vec3> world(const ConvexPolyhedron& m, const Transform& t) {
     return v;
 }
 
-bool insideBody(const ConvexPolyhedron& b, const Transform& t, const Vec3& x, double tol) {
-    const Vec3 xb = t.applyInverse(x);
-    for (int f = 0; f < b.faceCount(); ++f)
-        if (b.planeDistance(f, xb) > tol) return false;
-    return true;
-}
+using cdlab::test::insideBody;
 
 // Brute-force SAT: every face normal of both and every edge cross product (no pruning), both
 // orientations, separation = gap of the projection intervals. Long double, relative to a_0.

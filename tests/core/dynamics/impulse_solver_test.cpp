@@ -13,8 +13,8 @@ using namespace cdlab;
 
 namespace {
 
-// Box 1 x 2 x 3, mass 6, I = diag(6.5, 5, 2.5) (body axes).
-RigidBody boxBody(const Quat& q = Quat::Identity()) {
+// Box 1 x 2 x 3, mass 6, I = diag(6.5, 5, 2.5) (body axes), centre 1.5 above the origin.
+RigidBody boxResting(const Quat& q = Quat::Identity()) {
     RigidBodyBuild b = makeDynamicBody(6.0, Vec3(6.5, 5.0, 2.5).asDiagonal(), Transform{Vec3(0, 0, 1.5), q});
     REQUIRE(b.ok());
     return b.body;
@@ -25,7 +25,7 @@ RigidBody boxBody(const Quat& q = Quat::Identity()) {
 TEST_SUITE("impulse_solver") {
     TEST_CASE("single contact: impulse equals the hand formula and v_n⁺ = −e v_n⁻ for e in {0, 0.3, 0.8, 1}") {
         for (double e : {0.0, 0.3, 0.8, 1.0}) {
-            RigidBody b = boxBody();
+            RigidBody b = boxResting();
             b.linearVelocity = Vec3(0.4, -0.2, -3.0);
             b.angularVelocity = Vec3(1.0, -0.5, 2.0);
             const Vec3 n = Vec3::UnitZ();
@@ -53,7 +53,7 @@ TEST_SUITE("impulse_solver") {
 
     TEST_CASE("single contact on a rotated body: formula with the inertia in body axes") {
         const Quat q(Eigen::AngleAxisd(0.9, Vec3(1, -2, 0.5).normalized()));
-        RigidBody b = boxBody(q);
+        RigidBody b = boxResting(q);
         b.linearVelocity = Vec3(0, 0, -2);
         b.angularVelocity = Vec3(0.3, 0.2, -0.1);
         const Vec3 n = Vec3(0.1, 0.2, 1.0).normalized();
@@ -71,7 +71,7 @@ TEST_SUITE("impulse_solver") {
     }
 
     TEST_CASE("four corners landing flat: every corner v_n⁺ = −e v_n⁻, no spin, impulse m(1+e)|v|") {
-        RigidBody b = boxBody();
+        RigidBody b = boxResting();
         b.linearVelocity = Vec3(0, 0, -2);
         std::vector<ContactConstraintPoint> pts;
         for (int i = 0; i < 4; ++i) pts.push_back({Vec3((i & 1) ? 0.5 : -0.5, (i & 2) ? 1.0 : -1.0, 0.0), 0.0});
@@ -92,22 +92,22 @@ TEST_SUITE("impulse_solver") {
         o.friction = 0.0;
         o.timeStep = 0.01;
         // Separating: no impulse.
-        RigidBody a = boxBody();
+        RigidBody a = boxResting();
         a.linearVelocity = Vec3(0, 0, 1);
         CHECK(solveContacts(a, Vec3::UnitZ(), {{Vec3(0, 0, 0), 0.0}}, o).points[0].normalImpulse == 0.0);
         CHECK(a.linearVelocity == Vec3(0, 0, 1));
         // Gap s = 0.05, approach 1 m/s: cannot close it within dt = 0.01, so nothing happens.
-        RigidBody b = boxBody();
+        RigidBody b = boxResting();
         b.linearVelocity = Vec3(0, 0, -1);
         CHECK(solveContacts(b, Vec3::UnitZ(), {{Vec3(0, 0, 0.05), 0.05}}, o).points[0].normalImpulse == 0.0);
         // Below the restitution threshold with a gap: slowed to exactly −s/dt (touching at the end).
-        RigidBody c = boxBody();
+        RigidBody c = boxResting();
         c.linearVelocity = Vec3(0, 0, -0.2);
         const ImpulseSolverResult rc = solveContacts(c, Vec3::UnitZ(), {{Vec3(0, 0, 0.001), 0.001}}, o);
         CHECK(!rc.points[0].bounce);
         CHECK(c.linearVelocity.z() == doctest::Approx(-0.1).epsilon(1e-12));
         // Resting (slow, touching): v_n⁺ = 0, no bounce.
-        RigidBody d = boxBody();
+        RigidBody d = boxResting();
         d.linearVelocity = Vec3(0, 0, -0.1);
         solveContacts(d, Vec3::UnitZ(), {{Vec3(0, 0, 0), 0.0}}, o);
         CHECK(std::abs(d.linearVelocity.z()) < 1e-15);
@@ -118,7 +118,7 @@ TEST_SUITE("impulse_solver") {
 
     TEST_CASE("friction: Coulomb cone at every point; a slow slide sticks, a fast one loses μ λ_n") {
         for (double slide : {0.01, 5.0}) {
-            RigidBody b = boxBody();
+            RigidBody b = boxResting();
             b.linearVelocity = Vec3(slide, 0, -0.05);
             std::vector<ContactConstraintPoint> pts;
             for (int i = 0; i < 4; ++i) pts.push_back({Vec3((i & 1) ? 0.5 : -0.5, (i & 2) ? 1.0 : -1.0, 0.0), 0.0});

@@ -60,7 +60,7 @@ void checkPair(const VClipPolyhedron& A, const Transform& pa, const VClipPolyhed
         CHECK(std::abs(r.normal.norm() - 1.0) <= 1e-12);
         CHECK((trace.steps.back().kind == VClipStepKind::Done));
         // The final features are at the answer's distance (oracle's feature distance).
-        const std::vector<LVec> wa = worldVertices(A.mesh(), pa), wb = worldVertices(B.mesh(), pb);
+        const std::vector<WalkVec> wa = worldVertices(A.mesh(), pa), wb = worldVertices(B.mesh(), pb);
         const double fd = static_cast<double>(
             std::sqrt(featureDistance2(oracleFeature(A.mesh(), wa, r.featureA.dimension(), r.featureA.index),
                                        oracleFeature(B.mesh(), wb, r.featureB.dimension(), r.featureB.index))));

@@ -51,7 +51,7 @@ VClipResult checkQuery(const VClipPolyhedron& A, const Transform& pa, const VCli
         CHECK((!(s.featureA.type == VClipFeatureType::Face && s.featureB.type == VClipFeatureType::Face)));
     }
     // Distance monotonicity with the oracle's feature distances (long double, independent code).
-    const std::vector<LVec> wa = worldVertices(A.mesh(), pa), wb = worldVertices(B.mesh(), pb);
+    const std::vector<WalkVec> wa = worldVertices(A.mesh(), pa), wb = worldVertices(B.mesh(), pb);
     auto pairDistance = [&](const VClipFeature& fa, const VClipFeature& fb) {
         return static_cast<double>(std::sqrt(featureDistance2(oracleFeature(A.mesh(), wa, fa.dimension(), fa.index),
                                                               oracleFeature(B.mesh(), wb, fb.dimension(), fb.index))));

@@ -54,8 +54,8 @@ TEST_SUITE("epa") {
             for (double scale : {1e-3, 1.0, 1e3}) {
                 for (double offset : {0.0, 1e6}) {
                     const Vec3 o = Vec3(offset, 2 * offset, -offset);
-                    BoxShape a{o, scale * Vec3(1, 2, 3)};
-                    BoxShape b{o + scale * c.center, scale * Vec3(1, 1, 1)};
+                    SupportBox a{o, scale * Vec3(1, 2, 3)};
+                    SupportBox b{o + scale * c.center, scale * Vec3(1, 1, 1)};
                     const EpaResult r = penetration(a, b);
                     CAPTURE(c.center.transpose());
                     CAPTURE(scale);
@@ -76,9 +76,9 @@ TEST_SUITE("epa") {
     }
 
     TEST_CASE("touching boxes and flat contacts: depth 0, valid unit normal, never NaN") {
-        BoxShape a{Vec3(0, 0, 0), Vec3(1, 1, 1)};
+        SupportBox a{Vec3(0, 0, 0), Vec3(1, 1, 1)};
         for (const Vec3& c : {Vec3(2, 0.3, 0.1), Vec3(2, 2, 0), Vec3(2, 2, 2), Vec3(0, -2, 0.5)}) {
-            BoxShape b{c, Vec3(1, 1, 1)};
+            SupportBox b{c, Vec3(1, 1, 1)};
             const EpaResult r = penetration(a, b);
             CAPTURE(c.transpose());
             checkFinite(r);
@@ -89,23 +89,23 @@ TEST_SUITE("epa") {
             CHECK(std::abs(h) <= 1e-14);
         }
         // Two coplanar squares overlapping: A - B is flat, the origin is on its boundary.
-        PolytopeShape s1{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}};
-        PolytopeShape s2{{Vec3(0.5, 0.5, 0), Vec3(1.5, 0.5, 0), Vec3(1.5, 1.5, 0), Vec3(0.5, 1.5, 0)}};
+        SupportPolytope s1{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}};
+        SupportPolytope s2{{Vec3(0.5, 0.5, 0), Vec3(1.5, 0.5, 0), Vec3(1.5, 1.5, 0), Vec3(0.5, 1.5, 0)}};
         EpaResult r = penetration(s1, s2);
         checkFinite(r);
         CHECK(r.status == EpaStatus::Touching);
         CHECK(std::abs(std::abs(r.normal.z()) - 1.0) <= 1e-14);
         // Coincident points, point on a segment, segment crossing a segment (all flat A - B).
-        PointShape p{Vec3(1, 2, 3)};
+        SupportPoint p{Vec3(1, 2, 3)};
         r = penetration(p, p);
         checkFinite(r);
         CHECK(r.status == EpaStatus::Touching);
-        SegmentShape seg{Vec3(0, 0, 0), Vec3(2, 0, 0)};
-        PointShape mid{Vec3(0.5, 0, 0)};
+        SupportSegment seg{Vec3(0, 0, 0), Vec3(2, 0, 0)};
+        SupportPoint mid{Vec3(0.5, 0, 0)};
         r = penetration(seg, mid);
         checkFinite(r);
         CHECK(r.status == EpaStatus::Touching);
-        SegmentShape cross{Vec3(1, -1, 0), Vec3(1, 1, 0)};
+        SupportSegment cross{Vec3(1, -1, 0), Vec3(1, 1, 0)};
         r = penetration(seg, cross);
         checkFinite(r);
         CHECK(r.status == EpaStatus::Touching);
@@ -113,9 +113,9 @@ TEST_SUITE("epa") {
     }
 
     TEST_CASE("degenerate start simplices are blown up: point, segment, triangle") {
-        BoxShape a{Vec3(0, 0, 0), Vec3(1, 1, 1)};
-        PointShape inside{Vec3(0.25, 0.5, -0.125)};  // nearest face +y at 0.5
-        PolytopeShape pa{a.corners()};
+        SupportBox a{Vec3(0, 0, 0), Vec3(1, 1, 1)};
+        SupportPoint inside{Vec3(0.25, 0.5, -0.125)};  // nearest face +y at 0.5
+        SupportPolytope pa{a.corners()};
         const std::vector<Vec3> pb{inside.p};
         // Start from a 1-point simplex holding the origin exactly: w = a - b with a = b.
         GjkSimplex start;
@@ -154,9 +154,9 @@ TEST_SUITE("epa") {
 
     TEST_CASE("spheres: analytic depth (EPA on smooth shapes converges slowly)") {
         for (double size : {1e-3, 1.0, 1e3}) {
-            SphereShape a{Vec3(0, 0, 0), size};
+            SupportSphere a{Vec3(0, 0, 0), size};
             const Vec3 dir = Vec3(0.3, -0.2, 0.9).normalized();
-            SphereShape b{1.5 * size * dir, size};
+            SupportSphere b{1.5 * size * dir, size};
             const EpaResult r = penetration(a, b);
             checkFinite(r);
             CHECK(r.status == EpaStatus::Penetrating);
@@ -168,14 +168,14 @@ TEST_SUITE("epa") {
     }
 
     TEST_CASE("flat, elongated and deeply penetrating boxes") {
-        BoxShape plank{Vec3(0, 0, 0), Vec3(1000, 1, 1e-3)};
-        BoxShape needle{Vec3(3, 0.2, 0), Vec3(1e-3, 1e-3, 500)};  // pierces the plank along z
+        SupportBox plank{Vec3(0, 0, 0), Vec3(1000, 1, 1e-3)};
+        SupportBox needle{Vec3(3, 0.2, 0), Vec3(1e-3, 1e-3, 500)};  // pierces the plank along z
         EpaResult r = penetration(plank, needle);
         checkFinite(r);
         // cheapest exit: move the needle along +-y by 1 - 0.2 + 1e-3 or along z by 500 + 1e-3
         CHECK(r.depth == doctest::Approx(0.801).epsilon(1e-13));
         CHECK((r.normal - Vec3(0, 1, 0)).norm() <= 1e-12);
-        BoxShape same{Vec3(0, 0, 0), Vec3(1000, 1, 1e-3)};
+        SupportBox same{Vec3(0, 0, 0), Vec3(1000, 1, 1e-3)};
         r = penetration(plank, same);  // identical: depth = full thickness along z
         checkFinite(r);
         CHECK(r.depth == doctest::Approx(2e-3).epsilon(1e-13));
@@ -191,8 +191,8 @@ TEST_SUITE("epa") {
         for (int trial = 0; trial < 90; ++trial) {
             const auto [size, offset, o] = sweepTrial(trial, rng);
             const Vec3 sep = size * 1.2 * unit(rng) * randomUnit(rng);  // mostly overlapping
-            PolytopeShape a{randomPolytope(rng, count(rng), size, o)};
-            PolytopeShape b{randomPolytope(rng, count(rng), size, o + sep)};
+            SupportPolytope a{randomPolytope(rng, count(rng), size, o)};
+            SupportPolytope b{randomPolytope(rng, count(rng), size, o + sep)};
             const HullOracle oracle = hullOracle(a.vertices, b.vertices);
             EpaTrace trace;
             GjkResult g;
@@ -228,14 +228,14 @@ TEST_SUITE("epa") {
     // normal too (a touching origin given depth 4e-9 of the size). Now to a few u of the size.
     TEST_CASE("sliver faces: the depth is the nearest facet's, against an exact facet enumeration") {
         SliverConfigurations slivers(4417);
-        const PolytopeShape origin{std::vector<Vec3>{Vec3::Zero()}};
+        const SupportPolytope origin{std::vector<Vec3>{Vec3::Zero()}};
         int inside = 0;
         double worst = 0.0;  // |depth - exact| / scale
         for (int trial = 0; trial < 1500; ++trial) {
             const std::vector<Vec3> P = slivers.next(trial);
             if (exactOriginSide(P) != 1) continue;
             ++inside;
-            const PolytopeShape a{P};
+            const SupportPolytope a{P};
             const EpaResult e = penetration(a, origin);
             const double depth = e.status == EpaStatus::Separated ? 0.0 : e.depth;
             worst = std::max(worst, std::abs(depth - exactFacetDepth(P)) / slivers.scale());
@@ -303,7 +303,7 @@ TEST_CASE("EPA: a degenerate start gives a unit normal and a depth that separate
     // long: the blow-up direction perpendicular to it is computed from squared norms near underflow
     // (|n|² − 1 up to 2.4e-4 at 1e-161) and the start polytope has no volume. It came back as
     // "touching" with depth 0 and that non-unit normal.
-    const BoxShape a{Vec3(0, 0, 0), Vec3(1, 1, 1)}, b{Vec3(1.75, 0.5, 0), Vec3(1, 1, 1)};
+    const SupportBox a{Vec3(0, 0, 0), Vec3(1, 1, 1)}, b{Vec3(1.75, 0.5, 0), Vec3(1, 1, 1)};
     for (double e : {1e-150, 1e-155, 1e-158, 1e-160, 1e-161}) {
         CAPTURE(e);
         GjkSimplex start;

@@ -17,14 +17,14 @@
 namespace cdlab::test {
 
 struct PolytopePair {
-    PolytopeShape a, b;
+    SupportPolytope a, b;
 };
 
 /// Two random polytopes of `vertices` vertices and size 1: A about the origin, B about `centerB`.
 inline PolytopePair randomPolytopePair(unsigned seed, int vertices, const Vec3& centerB) {
     std::mt19937_64 rng(seed);
-    PolytopeShape a{randomPolytope(rng, vertices, 1.0, Vec3::Zero())};
-    PolytopeShape b{randomPolytope(rng, vertices, 1.0, centerB)};
+    SupportPolytope a{randomPolytope(rng, vertices, 1.0, Vec3::Zero())};
+    SupportPolytope b{randomPolytope(rng, vertices, 1.0, centerB)};
     return {std::move(a), std::move(b)};
 }
 

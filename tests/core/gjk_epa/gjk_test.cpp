@@ -33,8 +33,8 @@ TEST_SUITE("gjk") {
                 for (double offset : {0.0, 1e4, 1e6}) {
                     const Vec3 o(offset, -0.5 * offset, 0.25 * offset);
                     const Vec3 dir = Vec3(1, 2, -0.5).normalized();
-                    SphereShape a{o, 0.7 * size};
-                    SphereShape b{o + 2.0 * size * dir, 0.5 * size};
+                    SupportSphere a{o, 0.7 * size};
+                    SupportSphere b{o + 2.0 * size * dir, 0.5 * size};
                     const GjkResult r = gjkDistance(a, b, withSolver(solver));
                     CAPTURE(size);
                     CAPTURE(offset);
@@ -57,7 +57,7 @@ TEST_SUITE("gjk") {
     }
 
     TEST_CASE("axis-aligned boxes: face, edge and vertex closest features") {
-        BoxShape a{Vec3(0, 0, 0), Vec3(1, 2, 3)};
+        SupportBox a{Vec3(0, 0, 0), Vec3(1, 2, 3)};
         struct Case {
             Vec3 center;
             double distance;
@@ -72,8 +72,8 @@ TEST_SUITE("gjk") {
             for (const Case& c : cases) {
                 for (double offset : {0.0, 1e6}) {
                     const Vec3 o = Vec3::Constant(offset);
-                    BoxShape aa{a.center + o, a.half};
-                    BoxShape b{c.center + o, Vec3(1, 1, 1)};
+                    SupportBox aa{a.center + o, a.half};
+                    SupportBox b{c.center + o, Vec3(1, 1, 1)};
                     const GjkResult r = gjkDistance(aa, b, withSolver(solver));
                     CAPTURE(c.center.transpose());
                     CAPTURE(offset);
@@ -93,8 +93,8 @@ TEST_SUITE("gjk") {
     TEST_CASE("points and segments: degenerate shapes") {
         for (SimplexSolver solver : kSolvers) {
             const GjkOptions opt = withSolver(solver);
-            PointShape p{Vec3(1, 2, 3)};
-            PointShape q{Vec3(1, 2, 3)};
+            SupportPoint p{Vec3(1, 2, 3)};
+            SupportPoint q{Vec3(1, 2, 3)};
             GjkResult r = gjkDistance(p, q, opt);
             CHECK(r.intersect);  // coincident points touch
             CHECK(r.distance == 0.0);
@@ -103,25 +103,25 @@ TEST_SUITE("gjk") {
             CHECK(r.distance == doctest::Approx(4.0).epsilon(1e-15));
             CHECK((r.separatingAxis - Vec3(0, 0, 1)).norm() < 1e-15);
             // point to segment interior, segment to segment (skew), parallel segments
-            SegmentShape s{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
-            PointShape c{Vec3(0.25, 3, 4)};
+            SupportSegment s{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
+            SupportPoint c{Vec3(0.25, 3, 4)};
             r = gjkDistance(s, c, opt);
             CHECK(r.distance == doctest::Approx(5.0).epsilon(1e-15));
             CHECK((r.pointA - Vec3(0.25, 0, 0)).norm() < 1e-15);
-            SegmentShape t{Vec3(0.5, -1, 2), Vec3(0.5, 1, 2)};
+            SupportSegment t{Vec3(0.5, -1, 2), Vec3(0.5, 1, 2)};
             r = gjkDistance(s, t, opt);
             CHECK(r.distance == doctest::Approx(2.0).epsilon(1e-15));
             CHECK((r.pointA - Vec3(0.5, 0, 0)).norm() < 1e-15);
             CHECK((r.pointB - Vec3(0.5, 0, 2)).norm() < 1e-15);
-            SegmentShape u{Vec3(-3, 0, 1), Vec3(3, 0, 1)};  // parallel, overlapping projections
+            SupportSegment u{Vec3(-3, 0, 1), Vec3(3, 0, 1)};  // parallel, overlapping projections
             r = gjkDistance(s, u, opt);
             CHECK(r.distance == doctest::Approx(1.0).epsilon(1e-15));
-            SegmentShape x{Vec3(0, -1, 0), Vec3(0, 1, 0)};  // crossing segments
+            SupportSegment x{Vec3(0, -1, 0), Vec3(0, 1, 0)};  // crossing segments
             r = gjkDistance(s, x, opt);
             CHECK(r.intersect);
             // degenerate polytope: repeated and collinear vertices
-            PolytopeShape flat{{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 0, 0)}};
-            PointShape above{Vec3(1.5, 0, 2)};
+            SupportPolytope flat{{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 0, 0)}};
+            SupportPoint above{Vec3(1.5, 0, 2)};
             r = gjkDistance(flat, above, opt);
             CHECK(r.distance == doctest::Approx(2.0).epsilon(1e-15));
         }
@@ -138,7 +138,7 @@ TEST_SUITE("gjk") {
             const auto [size, offset, o] = sweepTrial(trial, rng);
             const int n = 4 + trial % 13;  // 4..16 vertices (the oracle hulls n² points)
             const Vec3 sep = size * (0.1 + 2.0 * unit(rng)) * randomUnit(rng);
-            const PolytopeShape a{randomPolytope(rng, n, size, o)}, b{randomPolytope(rng, n, size, o + sep)};
+            const SupportPolytope a{randomPolytope(rng, n, size, o)}, b{randomPolytope(rng, n, size, o + sep)};
             const HullOracle oracle = hullOracle(a.vertices, b.vertices);
             const double margin = static_cast<double>(oracle.inside ? oracle.depth : oracle.distance);
             int iterations = 0;
@@ -172,7 +172,7 @@ TEST_SUITE("gjk") {
             std::vector<Vec3> cube, moved;
             for (int c = 0; c < 8; ++c) cube.push_back(Vec3(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1));
             for (const Vec3& c : cube) moved.push_back(c + Vec3(2.0 + gap, 0.3, 0.1));
-            const PolytopeShape box{cube}, b{moved};
+            const SupportPolytope box{cube}, b{moved};
             int iterations = 0;
             const detail::QuickBoolean quick = detail::gjkQuickBoolean(
                 [&](const Vec3& d, Vec3& w) { w = box.support(d) - b.support(Vec3(-d)); }, iterations);
@@ -196,8 +196,8 @@ TEST_SUITE("gjk") {
             for (int trial = 0; trial < 90; ++trial) {
                 const auto [size, offset, o] = sweepTrial(trial, rng);
                 const Vec3 sep = size * (0.2 + 2.0 * unit(rng)) * randomUnit(rng);
-                PolytopeShape a{randomPolytope(rng, count(rng), size, o)};
-                PolytopeShape b{randomPolytope(rng, count(rng), size, o + sep)};
+                SupportPolytope a{randomPolytope(rng, count(rng), size, o)};
+                SupportPolytope b{randomPolytope(rng, count(rng), size, o + sep)};
                 const HullOracle oracle = hullOracle(a.vertices, b.vertices);
                 const GjkResult r = gjkDistance(a, b, withSolver(solver));
                 const bool hit = gjkIntersect(a, b, withSolver(solver));
@@ -237,11 +237,11 @@ TEST_SUITE("gjk") {
 
     TEST_CASE("every vertex ordering gives the same distance") {
         std::mt19937_64 rng(77);
-        PolytopeShape a{randomPolytope(rng, 5, 1.0, Vec3::Zero())};
-        PolytopeShape b{randomPolytope(rng, 4, 1.0, Vec3(2.2, 0.3, -0.1))};
+        SupportPolytope a{randomPolytope(rng, 5, 1.0, Vec3::Zero())};
+        SupportPolytope b{randomPolytope(rng, 4, 1.0, Vec3(2.2, 0.3, -0.1))};
         const double d = static_cast<double>(hullOracle(a.vertices, b.vertices).distance);
         std::vector<int> perm = {0, 1, 2, 3, 4};
-        PolytopeShape pa = a;
+        SupportPolytope pa = a;
         int n = 0;
         do {
             for (int i = 0; i < 5; ++i) pa.vertices[i] = a.vertices[perm[i]];
@@ -257,12 +257,12 @@ TEST_SUITE("gjk") {
     TEST_CASE("warm start from a previous simplex: same answer, no more iterations") {
         std::mt19937_64 rng(5);
         for (int trial = 0; trial < 20; ++trial) {
-            PolytopeShape a{randomPolytope(rng, 32, 1.0, Vec3::Zero())};
+            SupportPolytope a{randomPolytope(rng, 32, 1.0, Vec3::Zero())};
             const Vec3 c = 2.5 * randomUnit(rng);
-            PolytopeShape b{randomPolytope(rng, 32, 1.0, c)};
+            SupportPolytope b{randomPolytope(rng, 32, 1.0, c)};
             const GjkResult first = gjkDistance(a, b);
             // move B a little (next frame) and warm start
-            PolytopeShape b2 = b;
+            SupportPolytope b2 = b;
             for (Vec3& v : b2.vertices) v += Vec3(0.01, -0.005, 0.002);
             GjkOptions warm;
             warm.warmStart = &first.simplex;
@@ -287,7 +287,7 @@ TEST_SUITE("gjk") {
         SliverConfigurations slivers(4417);
         int wrong = 0, checked = 0, johnsonWrong = 0;
         double worstError = 0.0;  // |distance - offset| / scale
-        const PolytopeShape origin{std::vector<Vec3>{Vec3::Zero()}};
+        const SupportPolytope origin{std::vector<Vec3>{Vec3::Zero()}};
         for (int trial = 0; trial < 1500; ++trial) {
             const std::vector<Vec3> P = slivers.next(trial);
             const double offset = slivers.offset(), scale = slivers.scale();
@@ -295,10 +295,10 @@ TEST_SUITE("gjk") {
             // No volume, or touching: GJK's v = 0 up to 1e-14 |w| (|w| ~ 2 scale) holds either answer.
             if (truth == 2 || std::abs(offset) < 1e-13 * scale) continue;
             // (Behind the face, the origin can still be outside a thin body: the exact test decides.)
-            const PolytopeShape a{P};
+            const SupportPolytope a{P};
             std::vector<Vec3> negated;
             for (const Vec3& x : P) negated.push_back(-x);
-            const PolytopeShape b{negated};  // origin − (−P) = P: the same question, roles swapped
+            const SupportPolytope b{negated};  // origin − (−P) = P: the same question, roles swapped
             const auto check = [&](bool intersect) {
                 ++checked;
                 wrong += intersect != (truth > 0);
@@ -321,7 +321,7 @@ TEST_SUITE("gjk") {
         // The review's reproducer (tests/core/gjk_epa/gjk_epa_test_support.h).
         const std::vector<Vec3> base = reviewSliverBody();
         REQUIRE(exactOriginSide(base) == -1);
-        const PolytopeShape c{base};
+        const SupportPolytope c{base};
         // Exact distance 1.1684449461453048e-6 (rational arithmetic: the origin projects inside the
         // face of the first three points, outside its plane by that much and inside every other).
         const GjkResult r = gjkDistance(c, origin);
@@ -338,12 +338,12 @@ TEST_SUITE("gjk") {
     // A second review's reproducers (exact answers from a brute force in __float128, or analytic).
     TEST_CASE("a review's reproducers: the reported distance is the loop's v, needles, thin slabs, no cycling") {
         // The distance came from sum lambda_i w_i while the loop had the accurate v: 68x too large.
-        const PolytopeShape eeA{std::vector<Vec3>{{0.076800076748931842, 0.025009846012270159, 0.05480130275544607},
+        const SupportPolytope eeA{std::vector<Vec3>{{0.076800076748931842, 0.025009846012270159, 0.05480130275544607},
                                                   {-0.017256460978532232, -0.005619531224332037, -0.012313464599755115},
                                                   {0.022778672552806342, 0.070691513791411142, 0.010502728532965393},
                                                   {-0.043112303669552425, -0.0082501132652527398, 0.065738127348621916},
                                                   {0.027508970166308842, 0.063142338389711256, 0.020959369941625578}}};
-        const PolytopeShape eeB{std::vector<Vec3>{{0.043025428696738539, 0.014011169432438454, 0.030701126227920993},
+        const SupportPolytope eeB{std::vector<Vec3>{{0.043025428696738539, 0.014011169432438454, 0.030701126227920993},
                                                   {-0.043025428696738539, -0.014011169432438454, -0.030701126227920993},
                                                   {-0.0070437319053268978, -0.017997897506284926, -0.02877932102554985},
                                                   {0.0058782166364428831, -0.047982205869473299, -0.0712762552308462},
@@ -356,10 +356,10 @@ TEST_SUITE("gjk") {
             CHECK(std::abs((r.pointA - r.pointB).norm() - r.distance) < 1e-16);
         }
         // A needle terminal tetrahedron (det / edge product 6e-16) holding the origin 1.1e-7 inside.
-        const PolytopeShape needleA{std::vector<Vec3>{{39.32236468509619, 204.10566285534438, 59.128742860581248},
+        const SupportPolytope needleA{std::vector<Vec3>{{39.32236468509619, 204.10566285534438, 59.128742860581248},
                                                       {5.3236853876426409, 27.632988857375356, 8.0051861402291564},
                                                       {101.9862925102754, 529.36669121524835, 153.35575637866364}}};
-        const PolytopeShape needleB{std::vector<Vec3>{{26.207849438285738, 136.03274861519523, 39.408182126249294},
+        const SupportPolytope needleB{std::vector<Vec3>{{26.207849438285738, 136.03274861519523, 39.408182126249294},
                                                       {18.438200586290197, 95.705902956640813, 27.725747392905152},
                                                       {-10.580128811485871, -54.91592112464869, -15.908905075886786}}};
         CHECK(gjkDistance(needleA, needleB).intersect);
@@ -367,11 +367,11 @@ TEST_SUITE("gjk") {
         // Two flat bodies 0.000557902... apart in z (the sum of their offsets): A − B is flat, both
         // orientations of a crossed pair's face looked "extreme"; the converged lower bound decides.
         const double zA = -0.0001297192452649225, zB = 0.00042818339158165404;
-        const PolytopeShape slabA{std::vector<Vec3>{{-2053.3832712620251, -9.1455665601903164e-06, zA},
+        const SupportPolytope slabA{std::vector<Vec3>{{-2053.3832712620251, -9.1455665601903164e-06, zA},
                                                     {3891.8289331568367, -3.3774133030444401e-06, zA},
                                                     {4051.051872569969, -1.8120219402825365e-05, zA},
                                                     {-962.52301548617118, 1.9521070659029593e-05, zA}}};
-        const PolytopeShape slabB{std::vector<Vec3>{{402.5860004053286, -7.9585224381520445e-06, zB},
+        const SupportPolytope slabB{std::vector<Vec3>{{402.5860004053286, -7.9585224381520445e-06, zB},
                                                     {1435.8596614894839, -3.6060743111757807e-06, zB},
                                                     {316.1113117976559, -3.401282571205862e-06, zB},
                                                     {-1032.1125289187719, -5.6313599895169523e-06, zB}}};
@@ -381,11 +381,11 @@ TEST_SUITE("gjk") {
         // A thin A − B whose crossed pair's face has the origin behind it, but A − B does not reach
         // past the origin the other way: apart by 6.6e-7 (the plane nearly through the origin also
         // needed the error-free normal: a plain one stopped 26% off).
-        const PolytopeShape thinA{std::vector<Vec3>{{19774.925551166249, -15883.235329852014, 5046.4026603351449},
+        const SupportPolytope thinA{std::vector<Vec3>{{19774.925551166249, -15883.235329852014, 5046.4026603351449},
                                                     {-33356.569089403041, 26794.405713695229, -8516.7128372343213},
                                                     {14780.67368600058, -11870.435018449129, 3769.3106427179819},
                                                     {-31748.486479433461, 25507.255510203904, -8114.5495083584365}}};
-        const PolytopeShape thinB{std::vector<Vec3>{{-1439.9820752370417, 1158.1094604628395, -370.25720982042719},
+        const SupportPolytope thinB{std::vector<Vec3>{{-1439.9820752370417, 1158.1094604628395, -370.25720982042719},
                                                     {-12141.661462241011, 9753.0609245966953, -3100.0529662238609},
                                                     {-6032.9628813340414, 4847.2889621077811, -1542.5216220398393},
                                                     {-5010.3490229412573, 4024.4834565182778, -1278.9085587390095}}};
@@ -394,12 +394,12 @@ TEST_SUITE("gjk") {
         CHECK(std::abs(thin.distance - 6.6047704320486595e-07) < 1e-12);
         CHECK_FALSE(gjkIntersect(thinA, thinB));
         // A triangle <-> edge alternation of rounding stalls ran to the iteration cap.
-        const PolytopeShape cycleS{std::vector<Vec3>{{253780.6392835181, -40632.108757461967, 301695.95819376095},
+        const SupportPolytope cycleS{std::vector<Vec3>{{253780.6392835181, -40632.108757461967, 301695.95819376095},
                                                      {-20083.68912446445, 428412.25490980881, 326704.65398151672},
                                                      {330315.22211581207, -480119.43157842377, 40395.60781915921},
                                                      {308196.30864721397, -203931.55937707267, 238920.7519930331},
                                                      {20019.562202485795, -428603.51203223335, -327012.00234958553}}};
-        const PolytopeShape cycleT{std::vector<Vec3>{{-20306.955814972887, 433183.37483205652, 330343.98881730333},
+        const SupportPolytope cycleT{std::vector<Vec3>{{-20306.955814972887, 433183.37483205652, 330343.98881730333},
                                                      {-110130.0494493299, 432338.78048051958, 210995.03650283796},
                                                      {3720.2135745780088, -80282.593056162761, -61318.893585629303},
                                                      {-110130.04944932989, 432338.78048051964, 210995.03650283799},
@@ -411,13 +411,13 @@ TEST_SUITE("gjk") {
 
     TEST_CASE("termination: never NaN, never a hang, every reason reported") {
         // NaN shape -> InvalidInput
-        PointShape nan{Vec3(NAN, 0, 0)};
-        PointShape p{Vec3(0, 0, 0)};
+        SupportPoint nan{Vec3(NAN, 0, 0)};
+        SupportPoint p{Vec3(0, 0, 0)};
         GjkResult r = gjkDistance(nan, p);
         CHECK(r.status == GjkStatus::InvalidInput);
         CHECK(r.termination == GjkTermination::InvalidInput);
         // Iteration cap on smooth shapes with an impossible tolerance
-        SphereShape s1{Vec3(0, 0, 0), 1.0}, s2{Vec3(3, 1, 0.5), 1.0};
+        SupportSphere s1{Vec3(0, 0, 0), 1.0}, s2{Vec3(3, 1, 0.5), 1.0};
         GjkOptions tight;
         tight.relativeTolerance = 0.0;
         tight.maxIterations = 3;
@@ -431,11 +431,11 @@ TEST_SUITE("gjk") {
         CHECK(r.iterations < 1000);
         CHECK(r.distance == doctest::Approx(std::sqrt(9 + 1 + 0.25) - 2).epsilon(1e-14));
         // Intersecting boxes report OriginInSimplex, separated boolean query the early-out
-        BoxShape b1{Vec3(0, 0, 0), Vec3(1, 1, 1)}, b2{Vec3(0.5, 0.5, 0.5), Vec3(1, 1, 1)};
+        SupportBox b1{Vec3(0, 0, 0), Vec3(1, 1, 1)}, b2{Vec3(0.5, 0.5, 0.5), Vec3(1, 1, 1)};
         r = gjkDistance(b1, b2);
         CHECK(r.termination == GjkTermination::OriginInSimplex);
         GjkResult partial;
-        BoxShape far{Vec3(10, 0, 0), Vec3(1, 1, 1)};
+        SupportBox far{Vec3(10, 0, 0), Vec3(1, 1, 1)};
         CHECK_FALSE(gjkIntersect(b1, far, {}, nullptr, &partial));
         CHECK(partial.termination == GjkTermination::SeparatingAxis);
     }

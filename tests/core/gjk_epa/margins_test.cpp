@@ -17,19 +17,19 @@ namespace {
 
 using LD = long double;
 
-struct LVec {
+struct LongVec {
     LD x, y, z;
 };
-LVec lv(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-LVec operator-(const LVec& a, const LVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-LVec operator+(const LVec& a, const LVec& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-LVec operator*(LD s, const LVec& a) { return {s * a.x, s * a.y, s * a.z}; }
-LD dot(const LVec& a, const LVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-LD norm(const LVec& a) { return std::sqrt(dot(a, a)); }
+LongVec lv(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+LongVec operator-(const LongVec& a, const LongVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+LongVec operator+(const LongVec& a, const LongVec& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+LongVec operator*(LD s, const LongVec& a) { return {s * a.x, s * a.y, s * a.z}; }
+LD dot(const LongVec& a, const LongVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+LD norm(const LongVec& a) { return std::sqrt(dot(a, a)); }
 
 // Distance from p to segment [a, b].
-LD pointSegment(const LVec& p, const LVec& a, const LVec& b) {
-    const LVec e = b - a;
+LD pointSegment(const LongVec& p, const LongVec& a, const LongVec& b) {
+    const LongVec e = b - a;
     const LD ee = dot(e, e);
     const LD t = ee > 0 ? std::clamp(dot(p - a, e) / ee, LD(0), LD(1)) : LD(0);
     return norm(p - (a + t * e));
@@ -38,9 +38,9 @@ LD pointSegment(const LVec& p, const LVec& a, const LVec& b) {
 // Segment–segment distance: the minimum is at an endpoint against the other segment, or at the
 // interior critical point of |(a + s e) − (c + t f)|² when that lies inside both parameter ranges.
 LD segmentSegment(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
-    const LVec a = lv(a0), b = lv(a1), c = lv(b0), d = lv(b1);
+    const LongVec a = lv(a0), b = lv(a1), c = lv(b0), d = lv(b1);
     LD best = std::min({pointSegment(a, c, d), pointSegment(b, c, d), pointSegment(c, a, b), pointSegment(d, a, b)});
-    const LVec e = b - a, f = d - c, r = a - c;
+    const LongVec e = b - a, f = d - c, r = a - c;
     const LD ee = dot(e, e), ff = dot(f, f), ef = dot(e, f), er = dot(e, r), fr = dot(f, r);
     const LD det = ee * ff - ef * ef;
     if (det > 1e-30L * ee * ff) {

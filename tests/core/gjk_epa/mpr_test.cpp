@@ -48,7 +48,7 @@ TEST_SUITE("mpr") {
             const int n = 4 + trial % 13;  // 4..16 vertices (the oracle hulls n² points)
             const Vec3 sep = size * (0.05 + 2.0 * unit(rng)) * randomUnit(rng);
             const std::vector<Vec3> va = randomPolytope(rng, n, size, o), vb = randomPolytope(rng, n, size, o + sep);
-            const PolytopeShape a{va}, b{vb};
+            const SupportPolytope a{va}, b{vb};
             const HullOracle oracle = hullOracle(va, vb);
             const MprResult quick = mprDecide(a, centroid(va), b, centroid(vb));
             MprResult r;
@@ -80,7 +80,7 @@ TEST_SUITE("mpr") {
         for (int k = -42; k <= 42; ++k) {
             const double gap = k == 0 ? 0.0 : std::copysign(std::pow(10.0, -std::abs(k) * 0.35 - 1.5), double(k));
             const std::vector<Vec3> va = cube(Vec3::Zero()), vb = cube(Vec3(2.0 + gap, 0.3, 0.1));
-            const PolytopeShape a{va}, b{vb};
+            const SupportPolytope a{va}, b{vb};
             const MprResult quick = mprDecide(a, centroid(va), b, centroid(vb));
             const MprOutcome truth = gap < 0 ? MprOutcome::Intersecting : MprOutcome::Separated;
             if (std::abs(gap) < 1e-13) CHECK(quick.outcome == MprOutcome::Undecided);
@@ -108,14 +108,14 @@ TEST_SUITE("mpr") {
 
     TEST_CASE("degenerate input: the same point as both interiors, flat bodies, NaN") {
         const std::vector<Vec3> va = cube(Vec3::Zero());
-        const PolytopeShape a{va};
+        const SupportPolytope a{va};
         // B = A at the same place: v0 = 0, the origin at the interior point: GJK decides.
         CHECK(mprDecide(a, Vec3::Zero(), a, Vec3::Zero()).outcome == MprOutcome::Undecided);
         CHECK(mprIntersect(a, Vec3::Zero(), a, Vec3::Zero()));
         // A flat square through the cube, and beside it.
-        const PolytopeShape square{std::vector<Vec3>{{-3, -3, 0.2}, {3, -3, 0.2}, {3, 3, 0.2}, {-3, 3, 0.2}}};
+        const SupportPolytope square{std::vector<Vec3>{{-3, -3, 0.2}, {3, -3, 0.2}, {3, 3, 0.2}, {-3, 3, 0.2}}};
         CHECK(mprIntersect(a, Vec3::Zero(), square, Vec3(0, 0, 0.2)));
-        const PolytopeShape above{std::vector<Vec3>{{-3, -3, 1.5}, {3, -3, 1.5}, {3, 3, 1.5}, {-3, 3, 1.5}}};
+        const SupportPolytope above{std::vector<Vec3>{{-3, -3, 1.5}, {3, -3, 1.5}, {3, 3, 1.5}, {-3, 3, 1.5}}};
         CHECK_FALSE(mprIntersect(a, Vec3::Zero(), above, Vec3(0, 0, 1.5)));
         // A NaN interior point: no answer from MPR, GJK's from the shapes.
         CHECK(mprDecide(a, Vec3(NAN, 0, 0), square, Vec3::Zero()).outcome == MprOutcome::Undecided);
@@ -138,7 +138,7 @@ TEST_SUITE("mpr") {
             const std::vector<Vec3> P = slivers.next(trial);
             const int truth = exactOriginSide(P);
             if (truth == 2) continue;
-            const PolytopeShape a{P}, b{std::vector<Vec3>{Vec3::Zero()}};
+            const SupportPolytope a{P}, b{std::vector<Vec3>{Vec3::Zero()}};
             const auto sign = [](MprOutcome x) { return x == MprOutcome::Intersecting ? 1 : x == MprOutcome::Separated ? -1 : 0; };
             const auto quickSign = [](detail::QuickBoolean x) {
                 return x == detail::QuickBoolean::Intersecting ? 1 : x == detail::QuickBoolean::Separated ? -1 : 0;
@@ -161,15 +161,15 @@ TEST_SUITE("mpr") {
                                        {-0.095399311920724025, 0.063773309914032447, 0.079124749923604284},
                                        {-0.17707944354871846, -0.18180897349838765, -0.071277708109507162},
                                        {0.09948835529568982, 0.10214558933662815, 0.04004591322923224}};
-        const PolytopeShape origin{std::vector<Vec3>{Vec3::Zero()}};
+        const SupportPolytope origin{std::vector<Vec3>{Vec3::Zero()}};
         REQUIRE(exactOriginSide(portal) == -1);
-        const PolytopeShape a{portal};
+        const SupportPolytope a{portal};
         CHECK(mprDecide(a, centroid(portal), origin, Vec3::Zero()).outcome != MprOutcome::Intersecting);
         CHECK_FALSE(mprIntersect(a, centroid(portal), origin, Vec3::Zero()));
         // The origin 1.17e-6 outside a body of size 1550: the fast path's tetrahedron on a sliver base.
         const std::vector<Vec3> base = reviewSliverBody();
         REQUIRE(exactOriginSide(base) == -1);
-        const PolytopeShape c{base};
+        const SupportPolytope c{base};
         int iterations = 0;
         const Vec3 start = base[0];
         CHECK(detail::gjkQuickBoolean([&](const Vec3& d, Vec3& w) { w = c.support(d); }, iterations, &start) !=
@@ -177,7 +177,7 @@ TEST_SUITE("mpr") {
         // Coordinates ~1e160: a support's dot product overflows to inf - inf = NaN, which must give up,
         // not read as "beyond" (the origin is deep inside).
         const std::vector<Vec3> huge{{-1e160, 1e159, 0}, {1e160, 0, 1e160}, {1e160, 0, -1e160}, {0, 1e160, 0}, {1e160, -1e160, 0}};
-        const PolytopeShape h{huge};
+        const SupportPolytope h{huge};
         CHECK(mprDecide(h, Vec3(1e150, 1e150, 0), origin, Vec3::Zero()).outcome != MprOutcome::Separated);
     }
 }

@@ -17,7 +17,7 @@ using cdlab::Vec2;
 namespace {
 
 using I = __int128;
-struct P {
+struct IntPoint {
     long long x, y;
 };
 
@@ -33,11 +33,11 @@ struct Oracle {
     int winding = 0;
 };
 
-Oracle oracle(const std::vector<P>& poly, P p) {
+Oracle windingOracle(const std::vector<IntPoint>& poly, IntPoint p) {
     Oracle o;
     int quarterTurns = 0;
     for (std::size_t i = 0; i < poly.size(); ++i) {
-        const P a = poly[i], b = poly[(i + 1) % poly.size()];
+        const IntPoint a = poly[i], b = poly[(i + 1) % poly.size()];
         const long long ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
         const I cross = I(ax) * by - I(ay) * bx;
         if (cross == 0 && std::min(ax, bx) <= 0 && std::max(ax, bx) >= 0 && std::min(ay, by) <= 0 &&
@@ -55,18 +55,18 @@ Oracle oracle(const std::vector<P>& poly, P p) {
     return o;
 }
 
-std::vector<Vec2> toVec(const std::vector<P>& poly) {
+std::vector<Vec2> toVec(const std::vector<IntPoint>& poly) {
     std::vector<Vec2> v;
-    for (P q : poly) v.emplace_back(double(q.x), double(q.y));
+    for (IntPoint q : poly) v.emplace_back(double(q.x), double(q.y));
     return v;
 }
 
 // A random polygon: star-shaped around 0 when `simple`, else vertices anywhere (self-intersecting).
-std::vector<P> randomPolygon(std::mt19937_64& rng, bool simple) {
+std::vector<IntPoint> randomPolygon(std::mt19937_64& rng, bool simple) {
     std::uniform_int_distribution<int> count(3, 12);
     std::uniform_int_distribution<long long> coord(-20, 20);
     const int n = count(rng);
-    std::vector<P> poly;
+    std::vector<IntPoint> poly;
     if (!simple) {
         for (int i = 0; i < n; ++i) poly.push_back({coord(rng), coord(rng)});
         return poly;
@@ -87,12 +87,12 @@ TEST_CASE("crossing number, angle summation and edge sides agree with the exact 
     std::uniform_int_distribution<long long> coord(-22, 22);
     int inside = 0, boundary = 0, multiWound = 0, kernelPoints = 0, convexChecked = 0;
     for (int round = 0; round < 3000; ++round) {
-        const std::vector<P> poly = randomPolygon(rng, round % 3 != 0);
+        const std::vector<IntPoint> poly = randomPolygon(rng, round % 3 != 0);
         const std::vector<Vec2> v = toVec(poly);
         for (int k = 0; k < 20; ++k) {
-            const P p{coord(rng), coord(rng)};
+            const IntPoint p{coord(rng), coord(rng)};
             const Vec2 q(double(p.x), double(p.y));
-            const Oracle o = oracle(poly, p);
+            const Oracle o = windingOracle(poly, p);
             const auto crossing = cdlab::crossingNumber(v, q);
             const auto angles = cdlab::angleSummation(v, q);
             const auto sides = cdlab::sameSideOfEveryEdge(v, q);

@@ -17,13 +17,13 @@
 #include "demos/app/cli.h"
 #include "demos/scene/json_reader.h"
 #include "render/image.h"
+#include "tests/demos/harness/temp_files.h"
 
 using namespace cdlab::demos;
 namespace fs = std::filesystem;
 
 namespace {
 
-bool isTemp(const fs::path& p) { return p.filename().string().find(".tmp.") != std::string::npos; }
 
 pid_t startFigures(const fs::path& out) {
     const pid_t pid = fork();
@@ -45,7 +45,7 @@ pid_t startFigures(const fs::path& out) {
 std::map<std::string, std::pair<int, int>> checkOutputs(const fs::path& out) {
     std::map<std::string, std::pair<int, int>> files;
     for (const auto& e : fs::recursive_directory_iterator(out)) {
-        if (!e.is_regular_file() || isTemp(e.path())) continue;
+        if (!e.is_regular_file() || cdlab::test::isTempFile(e.path())) continue;
         const std::string path = e.path().string();
         const std::string ext = e.path().extension().string();
         if (ext == ".png") {

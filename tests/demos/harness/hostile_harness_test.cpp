@@ -23,6 +23,7 @@
 #include "demos/scene/json_reader.h"
 #include "demos/scene/scene.h"
 #include "render/image.h"
+#include "tests/demos/harness/temp_files.h"
 
 using namespace cdlab::demos;
 namespace fs = std::filesystem;
@@ -116,7 +117,6 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
     return files;
 }
 
-bool isTemp(const fs::path& p) { return contains(p.filename().string(), ".tmp."); }
 
 // Every output file decodes (PNG) or parses (JSON); returns how many there are.
 int checkComplete(const fs::path& out) {
@@ -124,7 +124,7 @@ int checkComplete(const fs::path& out) {
     for (const auto& e : fs::recursive_directory_iterator(out)) {
         if (!e.is_regular_file()) continue;
         ++n;
-        CHECK_MESSAGE(!isTemp(e.path()), "temp file left: " << e.path());
+        CHECK_MESSAGE(!cdlab::test::isTempFile(e.path()), "temp file left: " << e.path());
         const std::string ext = e.path().extension().string();
         if (ext == ".png") CHECK_NOTHROW(cdlab::render::readPng(e.path().string()));
         if (ext == ".json") CHECK_NOTHROW(readJsonFile(e.path().string()));

@@ -26,10 +26,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Json ask(const std::string& line) { return answerQuery(line); }
+Json askRaw(const std::string& line) { return answerQuery(line); }
 
 std::string errorOf(const std::string& line) {
-    Json a = ask(line);
+    Json a = askRaw(line);
     REQUIRE_MESSAGE(a.contains("error"), "expected an error for " << line.substr(0, 200) << ", got " << a.dump());
     return a["error"].get<std::string>();
 }
@@ -71,9 +71,9 @@ TEST_SUITE("hostile input") {
 
     TEST_CASE("huge numbers: overflow is an input error, 1e308 inputs get finite answers") {
         CHECK(contains(errorOf(distanceQuery(R"({"point":[1e400,0,0]})", kSphere)), "number overflow parsing '1e400'"));
-        Json a = ask(distanceQuery(R"({"point":[1e308,0,0]})", R"({"point":[-1e308,0,0]})"));
+        Json a = askRaw(distanceQuery(R"({"point":[1e308,0,0]})", R"({"point":[-1e308,0,0]})"));
         CHECK(contains(a.value("error", ""), "overflows double precision"));  // 2e308 has no double
-        Json b = ask(distanceQuery(R"({"point":[1e308,0,0]})", R"({"sphere":{"center":[0,0,0],"radius":1e307}})"));
+        Json b = askRaw(distanceQuery(R"({"point":[1e308,0,0]})", R"({"sphere":{"center":[0,0,0],"radius":1e307}})"));
         REQUIRE_FALSE(b.contains("error"));
         CHECK(b["distance"].get<double>() == doctest::Approx(9e307).epsilon(1e-15));
         // Two shapes far from the origin and close together: the pair is scaled by its own extent
@@ -81,7 +81,7 @@ TEST_SUITE("hostile input") {
         // to 2^-565 had underflowing squares: "touching" for shapes 1 apart).
         for (const char* off : {"1e6", "1e100", "1e170", "1e200"}) {
             const std::string o(off);
-            const Json far = ask(distanceQuery(R"({"polytope":{"vertices":[[)" + o + ",0,0],[" + o + ",1,0],[" + o + ",0,1],[" + o +
+            const Json far = askRaw(distanceQuery(R"({"polytope":{"vertices":[[)" + o + ",0,0],[" + o + ",1,0],[" + o + ",0,1],[" + o +
                                                    ",1,1]]}}",
                                                R"({"point":[)" + o + ",0.5,2]}"));
             REQUIRE_FALSE(far.contains("error"));
@@ -89,15 +89,15 @@ TEST_SUITE("hostile input") {
             CHECK(far["distance"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
         }
         // 20-digit integers are doubles, not an integer overflow.
-        CHECK_FALSE(ask(distanceQuery(R"({"point":[123456789012345678901,0,0]})", kSphere)).contains("error"));
+        CHECK_FALSE(askRaw(distanceQuery(R"({"point":[123456789012345678901,0,0]})", kSphere)).contains("error"));
     }
 
     TEST_CASE("NaN and Inf are not JSON; -0 is zero") {
         CHECK(contains(errorOf(distanceQuery(R"({"point":[NaN,0,0]})", kSphere)), "syntax error"));
         CHECK(contains(errorOf(distanceQuery(R"({"point":[Infinity,0,0]})", kSphere)), "syntax error"));
-        Json z = ask(distanceQuery(R"({"point":[-0,-0.0,0]})", R"({"point":[0,0,-0.0]})"));
+        Json z = askRaw(distanceQuery(R"({"point":[-0,-0.0,0]})", R"({"point":[0,0,-0.0]})"));
         CHECK(z["intersect"] == true);
-        Json n = ask(distanceQuery(R"({"point":[-0.0,3,0]})", kSphere));
+        Json n = askRaw(distanceQuery(R"({"point":[-0.0,3,0]})", kSphere));
         CHECK(n.dump().find("-0") == std::string::npos);  // answers never print negative zero
     }
 
@@ -115,14 +115,14 @@ TEST_SUITE("hostile input") {
         v << ']';
         const std::string poly =
             R"({"polytope":{"vertices":)" + v.str() + R"(,"position":[0,0,0],"rotation":[1,0,0,0]}})";
-        Json a = ask(distanceQuery(poly, R"({"point":[3,0,0]})"));
+        Json a = askRaw(distanceQuery(poly, R"({"point":[3,0,0]})"));
         REQUIRE_FALSE(a.contains("error"));
         // The hull of 10^5 points on the unit sphere is within ~1e-3 of the sphere in every direction.
         CHECK(a["distance"].get<double>() == doctest::Approx(2.0).epsilon(2e-3));
     }
 
     TEST_CASE("radii: zero is a point, negative is an error") {
-        Json a = ask(distanceQuery(R"({"sphere":{"center":[0,0,0],"radius":0}})", R"({"point":[0,3,4]})"));
+        Json a = askRaw(distanceQuery(R"({"sphere":{"center":[0,0,0],"radius":0}})", R"({"point":[0,3,4]})"));
         CHECK(a["distance"].get<double>() == 5.0);
         CHECK(contains(errorOf(distanceQuery(R"({"sphere":{"center":[0,0,0],"radius":-1}})", kSphere)),
                        "$.a.sphere.radius: expected a non-negative number"));
@@ -136,8 +136,8 @@ TEST_SUITE("hostile input") {
         };
         CHECK(contains(errorOf(distanceQuery(obb("[0,0,0,0]"), R"({"point":[5,5,5]})")),
                        "$.a.obb.rotation: quaternion has zero (or non-finite) length"));
-        Json unit = ask(distanceQuery(obb("[0.9238795325112867,0,0.3826834323650898,0]"), R"({"point":[5,5,5]})"));
-        Json scaled = ask(distanceQuery(obb("[9.238795325112867,0,3.826834323650898,0]"), R"({"point":[5,5,5]})"));
+        Json unit = askRaw(distanceQuery(obb("[0.9238795325112867,0,0.3826834323650898,0]"), R"({"point":[5,5,5]})"));
+        Json scaled = askRaw(distanceQuery(obb("[9.238795325112867,0,3.826834323650898,0]"), R"({"point":[5,5,5]})"));
         CHECK(unit["distance"].get<double>() == doctest::Approx(scaled["distance"].get<double>()).epsilon(1e-14));
     }
 
@@ -322,15 +322,15 @@ TEST_SUITE("hostile query") {
         for (double m : {1e-161, 1e-200, 1e-300, 0x1p-1060, 1.0, 1e154, 1e200, 1e300}) {  // 2^-1060: subnormal
             const std::string plane =
                 R"({"plane":{"normal":[)" + Json(m).dump() + R"(,0,0],"offset":)" + Json(0.5 * m).dump() + "}}";
-            Json d = ask(distanceQuery(plane, R"({"point":[1,0,0]})"));
+            Json d = askRaw(distanceQuery(plane, R"({"point":[1,0,0]})"));
             REQUIRE_MESSAGE(!d.contains("error"), m << ": " << d.dump());
             CHECK_MESSAGE(d["distance"].get<double>() == doctest::Approx(0.5).epsilon(1e-15), m);
-            Json p = ask(penetrationQuery(plane, R"({"sphere":{"center":[1,0,0],"radius":1}})"));
+            Json p = askRaw(penetrationQuery(plane, R"({"sphere":{"center":[1,0,0],"radius":1}})"));
             REQUIRE_MESSAGE(!p.contains("error"), m << ": " << p.dump());
             CHECK(p["depth"].get<double>() == doctest::Approx(0.5).epsilon(1e-15));
             CHECK(unitError(p["normal"]) < 1e-15);
             const std::string ray = R"({"ray":{"origin":[0,2,0],"direction":[)" + Json(m).dump() + R"(,0,0]}})";
-            Json r = ask(distanceQuery(ray, R"({"sphere":{"center":[5,0,0],"radius":1}})"));
+            Json r = askRaw(distanceQuery(ray, R"({"sphere":{"center":[5,0,0],"radius":1}})"));
             REQUIRE_MESSAGE(!r.contains("error"), m << ": " << r.dump());
             CHECK(r["distance"].get<double>() == doctest::Approx(1.0).epsilon(1e-14));
         }
@@ -352,13 +352,13 @@ TEST_SUITE("hostile query") {
                 const auto q = [&](const std::string& a, const std::string& b) {
                     return R"({"id":1,"op":"intersect","method":")" + method + R"(","a":)" + a + R"(,"b":)" + b + "}";
                 };
-                CHECK_MESSAGE(ask(q(box(h, 0), box(h / 10, 0)))["intersect"] == true, method << " " << h);
-                CHECK_MESSAGE(ask(q(box(h, 0), box(h, 3 * h)))["intersect"] == false, method << " " << h);
+                CHECK_MESSAGE(askRaw(q(box(h, 0), box(h / 10, 0)))["intersect"] == true, method << " " << h);
+                CHECK_MESSAGE(askRaw(q(box(h, 0), box(h, 3 * h)))["intersect"] == false, method << " " << h);
             }
             const std::string obb = R"({"obb":{"center":[0,0,0],"half_extents":[)" + Json(h).dump() + "," +
                                     Json(h).dump() + "," + Json(h).dump() +
                                     R"(],"rotation":[0.9238795325112867,0,0.3826834323650898,0]}})";
-            CHECK(ask(R"({"id":1,"op":"intersect","method":"sat","a":)" + obb + R"(,"b":)" + box(h / 10, 0) +
+            CHECK(askRaw(R"({"id":1,"op":"intersect","method":"sat","a":)" + obb + R"(,"b":)" + box(h / 10, 0) +
                       "}")["intersect"] == true);
         }
     }
@@ -367,7 +367,7 @@ TEST_SUITE("hostile query") {
         // Reproducer: points [1e15,0,0] and [1e15,50,0] "intersected" (tolerance 1e-13 x coordinate
         // size = 100); unit boxes 5e-5 apart at x = 1e9 intersected for `distance` but were separated
         // by 5e-5 for `contact` and `vclip`.
-        Json far = ask(distanceQuery(R"({"point":[1e15,0,0]})", R"({"point":[1e15,50,0]})"));
+        Json far = askRaw(distanceQuery(R"({"point":[1e15,0,0]})", R"({"point":[1e15,50,0]})"));
         CHECK(far["intersect"] == false);
         CHECK(far["distance"].get<double>() == 50.0);
         const auto boxes = [](double offset, double gap) {
@@ -384,12 +384,12 @@ TEST_SUITE("hostile query") {
                 const auto [a, b] = boxes(offset, gap);
                 const bool apart = exactGap > 0;
                 const std::string pair = R"(,"a":)" + a + R"(,"b":)" + b + "}";
-                Json in = ask(R"({"id":1,"op":"intersect")" + pair);
-                Json dist = ask(R"({"id":1,"op":"distance")" + pair);
-                Json pen = ask(R"({"id":1,"op":"penetration")" + pair);
-                Json con = ask(R"({"id":1,"op":"contact")" + pair);
-                Json vc = ask(R"({"id":1,"op":"distance","method":"vclip")" + pair);
-                Json lc = ask(R"({"id":1,"op":"distance","method":"lin_canny")" + pair);
+                Json in = askRaw(R"({"id":1,"op":"intersect")" + pair);
+                Json dist = askRaw(R"({"id":1,"op":"distance")" + pair);
+                Json pen = askRaw(R"({"id":1,"op":"penetration")" + pair);
+                Json con = askRaw(R"({"id":1,"op":"contact")" + pair);
+                Json vc = askRaw(R"({"id":1,"op":"distance","method":"vclip")" + pair);
+                Json lc = askRaw(R"({"id":1,"op":"distance","method":"lin_canny")" + pair);
                 INFO("offset " << offset << " gap " << gap);
                 CHECK(in["intersect"] == !apart);
                 CHECK(dist["intersect"] == !apart);
@@ -410,16 +410,16 @@ TEST_SUITE("hostile query") {
         // triangle [[0,0,0],[1,0,0],[0,1,1e200]] and point [0.5,-1e-80,0] answered A at distance 0.5
         // (exact: AB at [0.5,0,0], distance 1e-80). Scaled so the largest coordinate is ~1, the small
         // ones fell below 2^-200 and the degree-4 region predicates underflowed to a zero sign.
-        Json a = ask(
+        Json a = askRaw(
             R"({"id":1,"op":"closest_point_triangle","point":[0.2,0.2,1e85],"triangle":[[0,0,0],[1,0,0],[0,1,0]]})");
         CHECK(a["region"] == "ABC");
         CHECK(a["point"] == Json::array({0.2, 0.2, 0.0}));
-        Json b = ask(
+        Json b = askRaw(
             R"({"id":1,"op":"closest_point_triangle","point":[0.5,-1e-80,0],"triangle":[[0,0,0],[1,0,0],[0,1,1e200]]})");
         CHECK(b["region"] == "AB");
         CHECK(b["point"] == Json::array({0.5, 0.0, 0.0}));
         // Scaling the whole query by 2^-997 flushed the 1e-300 coordinates to 0 (answer: A at the origin).
-        Json c = ask(
+        Json c = askRaw(
             R"({"id":1,"op":"closest_point_triangle","point":[1e-300,1e-300,5],"triangle":[[0,0,0],[1e300,0,0],[0,1e300,0]]})");
         CHECK(c["region"] == "ABC");
         CHECK(c["point"] == Json::array({1e-300, 1e-300, 0.0}));
@@ -439,13 +439,13 @@ TEST_SUITE("hostile query") {
 
     TEST_CASE("contact: a box against a plane at offset 1e300 answers its depth") {
         // Reproducer: refused with "all 8 points coincide" (the query was scaled by the plane's offset).
-        Json a = ask(
+        Json a = askRaw(
             R"({"id":1,"op":"contact","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"plane":{"normal":[0,0,1],"offset":1e300}}})");
         REQUIRE_MESSAGE(!a.contains("error"), a.dump());
         CHECK(a["colliding"] == true);
         CHECK(a["depth"].get<double>() == 1e300);
         CHECK(a["points"].size() == 4);
-        Json b = ask(
+        Json b = askRaw(
             R"({"id":1,"op":"contact","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"plane":{"normal":[0,0,1],"offset":-1e300}}})");
         CHECK(b["colliding"] == false);
         CHECK(b["distance"].get<double>() == 1e300);
@@ -455,8 +455,8 @@ TEST_SUITE("hostile query") {
             const std::string pair =
                 R"(,"a":{"aabb":{"min":[1e9,1e9,1e9],"max":[1000000001,1000000001,1000000001]}},"b":{"plane":{"normal":[0,0,1],"offset":)" +
                 std::string(offset) + "}}}";
-            Json c = ask(R"({"id":1,"op":"contact")" + pair);
-            Json d = ask(R"({"id":1,"op":"distance")" + pair);
+            Json c = askRaw(R"({"id":1,"op":"contact")" + pair);
+            Json d = askRaw(R"({"id":1,"op":"distance")" + pair);
             CHECK(c["colliding"] == !apart);
             CHECK(d["intersect"] == !apart);
             if (apart) CHECK(c["distance"].get<double>() == doctest::Approx(d["distance"].get<double>()).epsilon(1e-9));
@@ -481,7 +481,7 @@ TEST_SUITE("hostile query") {
                     big + "}"),
             "$.b: vclip builds"));
         CHECK_FALSE(
-            ask(distanceQuery(big, R"({"point":[30,0,0]})")).contains("error"));  // GJK reads the points directly
+            askRaw(distanceQuery(big, R"({"point":[30,0,0]})")).contains("error"));  // GJK reads the points directly
         // Two colliding 4000-vertex spheres: ~1.4·10^8 edge pairs for the SAT.
         std::mt19937_64 rng(3);
         std::normal_distribution<double> g;
@@ -497,7 +497,7 @@ TEST_SUITE("hostile query") {
         const std::string a = sphere(0), b = sphere(1.5), c = sphere(3);
         CHECK(contains(errorOf(R"({"id":1,"op":"contact","a":)" + a + R"(,"b":)" + b + "}"),
                        "$.b: contact of two colliding polytopes tests every edge pair"));
-        Json apart = ask(R"({"id":1,"op":"contact","a":)" + a + R"(,"b":)" + c + "}");  // separated: GJK, linear
+        Json apart = askRaw(R"({"id":1,"op":"contact","a":)" + a + R"(,"b":)" + c + "}");  // separated: GJK, linear
         REQUIRE_MESSAGE(!apart.contains("error"), apart.dump().substr(0, 300));
         CHECK(apart["colliding"] == false);
     }

@@ -8,19 +8,16 @@
 #include <string>
 
 #include "demos/query/query.h"
+#include "tests/demos/query/ask.h"
 
 using cdlab::demos::answerQuery;
 using cdlab::demos::Json;
 
 namespace {
 
-Json ask(const Json& q) { return answerQuery(q.dump()); }
+using cdlab::test::ask;
 
-std::set<std::string> keysOf(const Json& j) {
-    std::set<std::string> k;
-    for (auto it = j.begin(); it != j.end(); ++it) k.insert(it.key());
-    return k;
-}
+using cdlab::test::keysOf;
 
 Json ray(const Json& o, const Json& d) { return {{"origin", o}, {"direction", d}}; }
 

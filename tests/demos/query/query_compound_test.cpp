@@ -12,6 +12,7 @@
 
 #include "demos/oracles/closest_oracle.h"
 #include "demos/query/query.h"
+#include "tests/demos/query/ask.h"
 
 using cdlab::Vec3;
 using cdlab::demos::answerQuery;
@@ -19,13 +20,9 @@ using cdlab::demos::Json;
 
 namespace {
 
-Json ask(const Json& q) { return answerQuery(q.dump()); }
+using cdlab::test::ask;
 
-std::set<std::string> keysOf(const Json& j) {
-    std::set<std::string> k;
-    for (auto it = j.begin(); it != j.end(); ++it) k.insert(it.key());
-    return k;
-}
+using cdlab::test::keysOf;
 
 const double kXY[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
 

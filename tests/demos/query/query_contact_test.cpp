@@ -19,7 +19,7 @@ using V = std::array<double, 3>;
 using L = long double;
 
 Json arr(const V& v) { return Json::array({v[0], v[1], v[2]}); }
-V vec(const Json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
+V array3(const Json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
 L dotL(const V& a, const V& b) { return (L)a[0] * b[0] + (L)a[1] * b[1] + (L)a[2] * b[2]; }
 
 // A random convex polytope: points on a random ellipsoid (world frame, no pose).
@@ -127,12 +127,12 @@ TEST_SUITE("query_contact") {
                         }
                         ++colliding;
                         CHECK(close(r["depth"].get<double>(), (double)deepest, tol));
-                        const V nn = vec(r["normal"]);  // A → B: body → plane is -n̂
+                        const V nn = array3(r["normal"]);  // A → B: body → plane is -n̂
                         CHECK(dotL(nn, n) / nl == doctest::Approx(planeIsB ? -1.0 : 1.0));
                         CHECK(r["points"].size() <= 4);
                         CHECK(close(r["points"][0]["depth"].get<double>(), (double)deepest, tol));
                         for (const Json& c : r["points"]) {
-                            const V pa = vec(c["point_a"]), pb = vec(c["point_b"]);
+                            const V pa = array3(c["point_a"]), pb = array3(c["point_b"]);
                             const V body = planeIsB ? pa : pb, onPlane = planeIsB ? pb : pa;
                             CHECK(std::abs((double)((dotL(n, onPlane) - d) / nl)) <= tol);
                             CHECK((double)((dotL(n, body) - d) / nl) <= tol);
@@ -170,11 +170,11 @@ TEST_SUITE("query_contact") {
                         // The manifold's axis may be a face preferred within 2% (stability bias).
                         CHECK(r["depth"].get<double>() >= (double)oracle - tol);
                         CHECK(r["depth"].get<double>() <= (double)oracle * 1.02 + 1e-8 * scale + tol);
-                        const V n = vec(r["normal"]);
+                        const V n = array3(r["normal"]);
                         const std::vector<Facet> fa = facets(a), fb = facets(b);
                         for (const Json& p : r["points"]) {
-                            CHECK(inside(fa, vec(p["point_a"]), 1e-9L * (scale + offset)));
-                            CHECK(inside(fb, vec(p["point_b"]), 1e-9L * (scale + offset)));
+                            CHECK(inside(fa, array3(p["point_a"]), 1e-9L * (scale + offset)));
+                            CHECK(inside(fb, array3(p["point_b"]), 1e-9L * (scale + offset)));
                         }
                         // Translating b by depth·n separates: the oracle depth of the moved pair is ~0.
                         const double depth = r["depth"].get<double>();
@@ -186,7 +186,7 @@ TEST_SUITE("query_contact") {
                         ++separated;
                         CHECK(!r["colliding"].get<bool>());
                         CHECK(r["distance"].get<double>() >= (double)-oracle - tol);
-                        const V pa = vec(r["closest"][0]["point_a"]), pb = vec(r["closest"][0]["point_b"]);
+                        const V pa = array3(r["closest"][0]["point_a"]), pb = array3(r["closest"][0]["point_b"]);
                         const double dist =
                             std::sqrt((double)((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
                                                (pa[2] - pb[2]) * (pa[2] - pb[2])));
@@ -214,7 +214,7 @@ TEST_SUITE("query_contact") {
         std::sort(top.begin(), top.end());
         CHECK(top == std::vector<int>{4, 5, 6, 7});
         CHECK(r["feature_b"]["type"] == "face");
-        CHECK(vec(r["normal"]) == V{0, 0, 1});
+        CHECK(array3(r["normal"]) == V{0, 0, 1});
         // max_points 1: the deepest point only.
         CHECK(query(ground, cube, 1)["points"].size() == 1);
         // Edge on edge: two long boxes crossed at 90 degrees, rotated 45 degrees about their axes.

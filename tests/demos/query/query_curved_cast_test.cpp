@@ -12,6 +12,7 @@
 
 #include "demos/query/query.h"
 #include "tests/demos/query/curved_solid.h"
+#include "tests/demos/query/ask.h"
 
 using namespace cdlab::demos;
 using cdlab::Vec3;
@@ -73,18 +74,13 @@ std::optional<OracleHit> oracleCast(const Solid& s, const Vec3& o, const Vec3& d
     return best;
 }
 
-Json ask(const std::string& line) {
+Json askOk(const std::string& line) {
     const Json a = answerQuery(line);
     REQUIRE_MESSAGE(!a.contains("error"), a.dump() << " for " << line);
     return a;
 }
 
-std::string vec(const Vec3& v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << "[" << v.x() << "," << v.y() << "," << v.z() << "]";
-    return s.str();
-}
+using cdlab::test::vecText;
 
 // The solid moved by `offset`.
 Solid moved(Solid s, const Vec3& offset) {
@@ -105,7 +101,7 @@ TEST_CASE("raycast: cylinders and cones against the face-by-face oracle") {
         const Vec3 aim = s.c + 1.5 * Vec3(u(rng), u(rng), u(rng));
         const Vec3 d = (aim - o) * (0.5 + std::abs(u(rng)));  // not unit: t in units of d
         if (s.outside(o) == 0) continue;
-        const Json a = ask(R"({"op":"raycast","ray":{"origin":)" + vec(o) + R"(,"direction":)" + vec(d) +
+        const Json a = askOk(R"({"op":"raycast","ray":{"origin":)" + vecText(o) + R"(,"direction":)" + vecText(d) +
                            R"(},"shape":)" + s.json() + "}");
         const std::optional<OracleHit> want = oracleCast(s, o, d);
         if (!want) {
@@ -138,7 +134,7 @@ TEST_CASE("raycast: cylinders and cones against the face-by-face oracle") {
 TEST_CASE("raycast: grazing rays, rays inside and along the axis") {
     const std::string cyl = R"({"cylinder":{"radius":1,"half_height":1}})";
     const auto cast = [&](const std::string& ray, const std::string& shape) {
-        return ask(R"({"op":"raycast","ray":)" + ray + R"(,"shape":)" + shape + "}");
+        return askOk(R"({"op":"raycast","ray":)" + ray + R"(,"shape":)" + shape + "}");
     };
     // Tangent to the side at x = 1: a hit at the tangent point, t exact.
     Json a = cast(R"({"origin":[1,0.5,-5],"direction":[0,0,1]})", cyl);
@@ -178,8 +174,8 @@ TEST_CASE("time_of_impact: cylinders and cones, certified on random pairs") {
         const Solid a = randomSolid(rng, kinds[i % 2], Vec3::Zero());
         const Solid b = randomSolid(rng, kinds[(i / 2) % 4], 4 * Vec3(u(rng), u(rng), u(rng)).normalized());
         const Vec3 ma = 2 * Vec3(u(rng), u(rng), u(rng)), mb = -4 * b.c.normalized() + Vec3(u(rng), u(rng), u(rng));
-        const Json ans = ask(R"({"op":"time_of_impact","a":)" + a.json() + R"(,"b":)" + b.json() +
-                             R"(,"motion_a":)" + vec(ma) + R"(,"motion_b":)" + vec(mb) + "}");
+        const Json ans = askOk(R"({"op":"time_of_impact","a":)" + a.json() + R"(,"b":)" + b.json() +
+                             R"(,"motion_a":)" + vecText(ma) + R"(,"motion_b":)" + vecText(mb) + "}");
         if (ans["hit"] != true) {
             ++misses;
             continue;
@@ -212,20 +208,20 @@ TEST_CASE("time_of_impact: cylinders and cones, certified on random pairs") {
 TEST_CASE("time_of_impact: closed forms with a cylinder") {
     const std::string cyl = R"({"cylinder":{"radius":1,"half_height":1}})";
     // A unit sphere from x = 5 toward the side at speed 6: touches at x = 2, t = 1/2.
-    Json a = ask(R"({"op":"time_of_impact","a":)" + cyl + R"(,"b":{"sphere":{"center":[5,0,0],"radius":1}},"motion_b":[-6,0,0]})");
+    Json a = askOk(R"({"op":"time_of_impact","a":)" + cyl + R"(,"b":{"sphere":{"center":[5,0,0],"radius":1}},"motion_b":[-6,0,0]})");
     CHECK(a["t"].get<double>() == doctest::Approx(0.5).epsilon(1e-14));
     CHECK((vecOf(a["normal"]) - Vec3(1, 0, 0)).norm() < 1e-12);
     // The cylinder rising into a box 3 above its top: t = 3 / 4, normal +y.
-    a = ask(R"({"op":"time_of_impact","a":)" + cyl +
+    a = askOk(R"({"op":"time_of_impact","a":)" + cyl +
             R"(,"b":{"box":{"half_extents":[1,1,1],"position":[0,5,0]}},"motion_a":[0,4,0]})");
     CHECK(a["t"].get<double>() == doctest::Approx(0.75).epsilon(1e-14));
     CHECK((vecOf(a["normal"]) - Vec3(0, 1, 0)).norm() < 1e-12);
     // Passing 1e-6 above the top: no contact; already touching: initially overlapping.
-    CHECK(ask(R"({"op":"time_of_impact","a":)" + cyl +
+    CHECK(askOk(R"({"op":"time_of_impact","a":)" + cyl +
               R"(,"b":{"sphere":{"center":[5,2.000001,0],"radius":1}},"motion_b":[-10,0,0]})")["hit"] == false);
-    CHECK(ask(R"({"op":"time_of_impact","a":)" + cyl +
+    CHECK(askOk(R"({"op":"time_of_impact","a":)" + cyl +
               R"(,"b":{"sphere":{"center":[2,0,0],"radius":1}},"motion_b":[1,0,0]})")["initially_overlapping"] == true);
     // A cone rising apex-first to a plane at y = 3: the apex (y = 1) gets there at t = 1/2.
-    a = ask(R"({"op":"time_of_impact","a":{"cone":{"radius":1,"half_height":1}},"b":{"plane":{"normal":[0,1,0],"offset":3}},"motion_a":[0,4,0]})");
+    a = askOk(R"({"op":"time_of_impact","a":{"cone":{"radius":1,"half_height":1}},"b":{"plane":{"normal":[0,1,0],"offset":3}},"motion_a":[0,4,0]})");
     CHECK(a["t"].get<double>() == doctest::Approx(0.5).epsilon(1e-15));
 }

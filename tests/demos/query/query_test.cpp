@@ -10,6 +10,7 @@
 
 #include "demos/oracles/minkowski_facet_oracle.h"
 #include "demos/query/query.h"
+#include "tests/demos/query/ask.h"
 
 using cdlab::Vec3;
 using cdlab::demos::answerQuery;
@@ -42,7 +43,7 @@ double hSupport(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Js
     return double(cdlab::test::supportValueL(a, b, Vec3(n[0].get<double>(), n[1].get<double>(), n[2].get<double>())));
 }
 
-Json ask(const Json& q) { return answerQuery(q.dump()); }
+using cdlab::test::ask;
 
 }  // namespace
 

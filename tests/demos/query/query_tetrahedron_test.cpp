@@ -11,6 +11,7 @@
 #include <string>
 
 #include "demos/query/query.h"
+#include "tests/demos/query/ask.h"
 
 using namespace cdlab::demos;
 using cdlab::Vec3;
@@ -67,12 +68,7 @@ Near nearestOnFace(const P& p, const P* v, const int idx[3]) {
 
 Real volume(const P& a, const P& b, const P& c, const P& d) { return dot(sub(b, a), cross(sub(c, a), sub(d, a))); }
 
-std::string vec(const Vec3& v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << "[" << v.x() << "," << v.y() << "," << v.z() << "]";
-    return s.str();
-}
+using cdlab::test::vecText;
 
 }  // namespace
 
@@ -93,8 +89,8 @@ TEST_CASE("closest_point_tetrahedron: point and region against a brute-force ora
         for (int k = 0; k < 4; ++k) v[k] = {w[k].x(), w[k].y(), w[k].z()};
         const Real whole = volume(v[0], v[1], v[2], v[3]);
         if (std::abs(whole) < 1e-3) continue;  // nearly flat: not this test's concern
-        const Json a = answerQuery(R"({"op":"closest_point_tetrahedron","point":)" + vec(pw) + R"(,"tetrahedron":[)" +
-                                   vec(w[0]) + "," + vec(w[1]) + "," + vec(w[2]) + "," + vec(w[3]) + "]}");
+        const Json a = answerQuery(R"({"op":"closest_point_tetrahedron","point":)" + vecText(pw) + R"(,"tetrahedron":[)" +
+                                   vecText(w[0]) + "," + vecText(w[1]) + "," + vecText(w[2]) + "," + vecText(w[3]) + "]}");
         REQUIRE_MESSAGE(!a.contains("error"), a.dump());
         // Inside: p replaces each vertex in turn without changing the volume's sign.
         const Real s[4] = {volume(p, v[1], v[2], v[3]), volume(v[0], p, v[2], v[3]), volume(v[0], v[1], p, v[3]),

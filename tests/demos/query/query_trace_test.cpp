@@ -7,13 +7,14 @@
 #include <string>
 
 #include "demos/query/query.h"
+#include "tests/demos/query/ask.h"
 
 using cdlab::demos::answerQuery;
 using cdlab::demos::Json;
 
 namespace {
 
-Json ask(const Json& q) { return answerQuery(q.dump()); }
+using cdlab::test::ask;
 
 double dot3(const Json& a, const Json& b) {
     return a[0].get<double>() * b[0].get<double>() + a[1].get<double>() * b[1].get<double>() +
