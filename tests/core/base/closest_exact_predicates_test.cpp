@@ -9,6 +9,7 @@
 
 #include "core/base/exact_predicates.h"
 #include "demos/oracles/closest_oracle.h"
+#include "tests/random_vectors.h"
 
 using namespace cdlab;
 using oracle::BigInt;
@@ -57,10 +58,7 @@ void checkInvariant(const exact::Expansion& e) {
     }
 }
 
-Vec3 randomVec(std::mt19937_64& rng, double scale) {
-    std::uniform_real_distribution<double> u(-scale, scale);
-    return Vec3(u(rng), u(rng), u(rng));
-}
+using cdlab::test::randomVec;
 
 }  // namespace
 

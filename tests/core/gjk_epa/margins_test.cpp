@@ -10,6 +10,7 @@
 
 #include "core/gjk_epa/margins.h"
 #include "core/geometry/shapes.h"
+#include "tests/random_vectors.h"
 
 using namespace cdlab;
 
@@ -62,10 +63,7 @@ Quat randomRotation(std::mt19937_64& rng) {
     return Quat(g(rng), g(rng), g(rng), g(rng)).normalized();
 }
 
-Vec3 randomVector(std::mt19937_64& rng, double spread) {
-    std::uniform_real_distribution<double> u(-spread, spread);
-    return Vec3(u(rng), u(rng), u(rng));
-}
+using cdlab::test::randomVec;
 
 // The answer's own consistency: unit normal, pointA − pointB = depth n (penetration) or the
 // closest points `distance` apart along the axis (separated).
@@ -83,7 +81,7 @@ TEST_SUITE("gjk_epa/margins") {
         int separated = 0, overlapping = 0;
         for (int k = 0; k < 2000; ++k) {
             const double ra = radius(rng), rb = radius(rng);
-            const Vec3 ca = randomVector(rng, 2.0), cb = ca + randomVector(rng, 1.5);
+            const Vec3 ca = randomVec(rng, 2.0), cb = ca + randomVec(rng, 1.5);
             const auto A = sphere(ca, ra), B = sphere(cb, rb);
             const LD centres = norm(lv(cb) - lv(ca));
             const double exact = double(centres - ra - rb);  // signed: < 0 overlapping
@@ -138,8 +136,8 @@ TEST_SUITE("gjk_epa/margins") {
             B.shape = CapsuleShape::alongY(half(rng), radius(rng));
             A.transform.rotation = randomRotation(rng);
             B.transform.rotation = randomRotation(rng);
-            A.transform.position = randomVector(rng, 3.0);
-            B.transform.position = A.transform.position + randomVector(rng, k % 2 ? 2.5 : 0.8);
+            A.transform.position = randomVec(rng, 3.0);
+            B.transform.position = A.transform.position + randomVec(rng, k % 2 ? 2.5 : 0.8);
             const Vec3 a0 = A.transform.apply(A.shape.a), a1 = A.transform.apply(A.shape.b);
             const Vec3 b0 = B.transform.apply(B.shape.a), b1 = B.transform.apply(B.shape.b);
             const LD seg = segmentSegment(a0, a1, b0, b1);
@@ -197,9 +195,9 @@ TEST_SUITE("gjk_epa/margins") {
             box.shape.inner.halfExtents = Vec3(half(rng), half(rng), half(rng));
             box.shape.radius = radius(rng);
             box.transform.rotation = randomRotation(rng);
-            box.transform.position = randomVector(rng, 1.0);
+            box.transform.position = randomVec(rng, 1.0);
             const double rs = radius(rng);
-            const Vec3 c = box.transform.position + randomVector(rng, 1.6);
+            const Vec3 c = box.transform.position + randomVec(rng, 1.6);
             const auto S = sphere(c, rs);
             const Vec3 h = box.shape.inner.halfExtents;
             const Vec3 local = box.transform.applyInverse(c);  // the centre in the box frame
