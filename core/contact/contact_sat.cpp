@@ -42,34 +42,32 @@ struct Posed {
     std::pmr::vector<Vec3> x;    // vertices
     std::pmr::vector<Vec3> n;    // face normals (unit)
     std::pmr::vector<double> d;  // face offsets: n · x = d
-    // Per edge: its vertices and faces, and the arc of its Gauss map (the two face normals as the
-    // arc test takes them, and their cross product), read |E_A| x |E_B| times by the edge query.
-    struct Edge {
-        int v0, v1, f1, f2;
+    const std::vector<ConvexPolyhedron::EdgeEnds>* edges = nullptr;  // the mesh's edge vertices and faces
+    // Per edge, the arc of its Gauss map (the two face normals as the arc test takes them, and their
+    // cross product), read |E_A| x |E_B| times by the all-pairs edge test; built for that test only
+    // (buildArcs), the arc walk reads the normals.
+    struct Arc {
         Vec3 from, to, cross;
     };
-    std::pmr::vector<Edge> edges;
+    std::pmr::vector<Arc> arcs;
+    double sign = 1.0;
     Vec3 center = Vec3::Zero();  // vertex mean (inside: convex)
-    // Vertex adjacency as flat arrays (the neighbours of v, the edges to them and the edge vectors
-    // w - v in world orientation are [adjacencyStart[v], adjacencyStart[v + 1]) of neighbor /
-    // neighborEdge / neighborStep), for the descents and the arc walks of the untraced query: the
-    // half-edge links cost three dependent loads per neighbour, these one. The steps are rotated
+    // The edge vectors w - v of the vertex adjacency (ConvexPolyhedron::neighbors(), same slots) in
+    // world orientation, for the descents and the arc walks of the untraced query. They are rotated
     // body-frame differences, free of the rounding of B's offset from A (the arc tests of the
     // traced query use normals only, so neither depends on where the bodies are).
     Mat3 rotation = Mat3::Identity();
-    std::pmr::vector<int> adjacencyStart, neighbor, neighborEdge;
     std::pmr::vector<Vec3> neighborStep;
     bool flat = false;  // an edge whose two faces are opposite (a body without volume): no Gauss arc
 
     // sign: +1 for A (arc from n_f1 to n_f2), -1 for B (the negated normals: B's Gauss map is
     // reflected in A - B).
     Posed(const ConvexPolyhedron& m, const Transform& t, const Vec3& origin, double sign, std::pmr::memory_resource* memory)
-        : mesh(&m), x(memory), n(memory), d(memory), edges(memory), adjacencyStart(memory), neighbor(memory),
-          neighborEdge(memory), neighborStep(memory) {
+        : mesh(&m), x(memory), n(memory), d(memory), edges(&m.edgeEnds()), arcs(memory), sign(sign),
+          neighborStep(memory) {
         x.reserve(m.vertexCount());
         n.reserve(m.faceCount());
         d.reserve(m.faceCount());
-        edges.reserve(m.edgeCount());
         const Mat3 r = t.rotation.toRotationMatrix();
         rotation = r;
         const Vec3 shift = t.position - origin;  // exact when t.position == origin
@@ -81,39 +79,27 @@ struct Posed {
         for (int f = 0; f < m.faceCount(); ++f) {
             n.push_back(r * m.face(f).normal);
             // Offset at the face's vertex mean (as the mesh does): rounding averages out.
+            const int begin = m.faceVertexStart()[f], end = m.faceVertexStart()[f + 1];
             Vec3 c = Vec3::Zero();
-            int k = 0;
-            m.forEachFaceHalfEdge(f, [&](int h) {
-                c += x[m.halfEdge(h).origin];
-                ++k;
-            });
-            d.push_back(n.back().dot(c / double(k)));
+            for (int k = begin; k < end; ++k) c += x[m.faceVertexIds()[k]];
+            d.push_back(n.back().dot(c / double(end - begin)));
         }
-        for (int e = 0; e < m.edgeCount(); ++e) {
-            const auto [v0, v1] = m.edgeVertices(e);
-            const auto [f1, f2] = m.edgeFaces(e);
-            const Vec3 from = sign * n[f1], to = sign * n[f2];
-            edges.push_back({v0, v1, f1, f2, from, to, to.cross(from)});
-            // Unit normals within 1e-12 of opposite: a fold of a flat body, not a dihedral edge.
-            // (Equal normals, two coplanar faces of a triangulated mesh, are fine: a point arc.)
-            flat = flat || (n[f1].dot(n[f2]) < 0.0 && !(edges.back().cross.norm() > 1e-12));
+        // Unit normals within 1e-12 of opposite: a fold of a flat body, not a dihedral edge.
+        // (Equal normals, two coplanar faces of a triangulated mesh, are fine: a point arc.)
+        for (const ConvexPolyhedron::EdgeEnds& e : *edges)
+            flat = flat || (n[e.f1].dot(n[e.f2]) < 0.0 && !(n[e.f2].cross(n[e.f1]).norm() > 1e-12));
+    }
+    void buildArcs() {
+        if (!arcs.empty()) return;
+        arcs.reserve(edges->size());
+        for (const ConvexPolyhedron::EdgeEnds& e : *edges) {
+            const Vec3 from = sign * n[e.f1], to = sign * n[e.f2];
+            arcs.push_back({from, to, to.cross(from)});
         }
     }
     void buildAdjacency() {
-        const auto& halfEdges = mesh->halfEdges();
-        adjacencyStart.assign(x.size() + 1, 0);
-        for (const auto& h : halfEdges) ++adjacencyStart[h.origin + 1];
-        for (size_t v = 0; v < x.size(); ++v) adjacencyStart[v + 1] += adjacencyStart[v];
-        neighbor.resize(halfEdges.size());
-        neighborEdge.resize(halfEdges.size());
-        neighborStep.resize(halfEdges.size());
-        std::pmr::vector<int> fill(adjacencyStart.begin(), adjacencyStart.end() - 1, adjacencyStart.get_allocator());
-        for (const auto& h : halfEdges) {
-            const int slot = fill[h.origin]++;
-            neighbor[slot] = halfEdges[h.twin].origin;
-            neighborEdge[slot] = h.edge;
-            neighborStep[slot] = rotation * (mesh->position(neighbor[slot]) - mesh->position(h.origin));
-        }
+        neighborStep.resize(mesh->neighbors().size());
+        for (size_t k = 0; k < neighborStep.size(); ++k) neighborStep[k] = rotation * mesh->neighbors()[k].step;
     }
     // The vertex minimising dir · x (the support along -dir), the first of exact ties.
     int minVertex(const Vec3& dir) const {
@@ -126,19 +112,22 @@ struct Posed {
     // The same by steepest descent over the vertex graph from `start` (each step lowers dir · x
     // strictly, so it ends, at a local minimum: the minimum, the body being convex).
     int descend(const Vec3& dir, int start) const {
+        const std::vector<int>& first = mesh->neighborStart();
+        const std::vector<ConvexPolyhedron::Neighbor>& nb = mesh->neighbors();
         int v = start;
         double m = dir.dot(x[v]);
         for (;;) {
             int next = -1;
-            for (int k = adjacencyStart[v]; k < adjacencyStart[v + 1]; ++k)
-                if (const double s = dir.dot(x[neighbor[k]]); s < m) m = s, next = neighbor[k];
+            for (int k = first[v]; k < first[v + 1]; ++k)
+                if (const double s = dir.dot(x[nb[k].vertex]); s < m) m = s, next = nb[k].vertex;
             if (next < 0) return v;
             v = next;
         }
     }
     void facePolygon(int f, Polygon& p) const {
         p.clear();
-        mesh->forEachFaceHalfEdge(f, [&](int h) { p.push_back(x[mesh->halfEdge(h).origin]); });
+        for (int k = mesh->faceVertexStart()[f]; k < mesh->faceVertexStart()[f + 1]; ++k)
+            p.push_back(x[mesh->faceVertexIds()[k]]);
     }
 };
 
@@ -146,8 +135,9 @@ struct Posed {
 // c→d (of B's edge, negated normals, d x c given) intersect? cba = c · (b x a) and dba = d · (b x a)
 // come from `side`, the row of (-n_f) · (b x a) over B's faces f computed once per edge of A: the
 // first test, which rejects most pairs, then costs no arithmetic per pair.
-bool isMinkowskiFace(const Posed::Edge& ea, const Posed::Edge& eb, const double* side) {
-    const double cba = side[eb.f1], dba = side[eb.f2];
+bool isMinkowskiFace(const Posed::Arc& ea, const ConvexPolyhedron::EdgeEnds& edgeB, const Posed::Arc& eb,
+                     const double* side) {
+    const double cba = side[edgeB.f1], dba = side[edgeB.f2];
     if (!(cba * dba < 0.0)) return false;  // the plane of arc a→b does not separate c and d
     const double adc = ea.from.dot(eb.cross), bdc = ea.to.dot(eb.cross);
     return adc * bdc < 0.0 && cba * bdc > 0.0;
@@ -207,18 +197,18 @@ void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery&
         const int f = queue[head];
         const int s = supportOfQ[f];
         considerFaceAxis(P, Q, pIsA, f, s, q);
-        mp.forEachFaceHalfEdge(f, [&](int h) {
-            const int g = mp.halfEdge(mp.halfEdge(h).twin).face;
-            if (supportOfQ[g] >= 0) return;
+        for (int k = mp.faceVertexStart()[f]; k < mp.faceVertexStart()[f + 1]; ++k) {
+            const int g = mp.faceAcross()[k];
+            if (supportOfQ[g] >= 0) continue;
             supportOfQ[g] = Q.descend(P.n[g], s);
             queue.push_back(g);
-        });
+        }
     }
 }
 
 // Gregorius' arc test (file comment) row for edge `edgeA`: side[f] = (-n_f) · (b x a) over B's faces.
-void arcSideRow(const Posed::Edge& edgeA, const Posed& B, std::pmr::vector<double>& side) {
-    for (size_t f = 0; f < B.n.size(); ++f) side[f] = (-1.0 * B.n[f]).dot(edgeA.cross);
+void arcSideRow(const Posed::Arc& arcA, const Posed& B, std::pmr::vector<double>& side) {
+    for (size_t f = 0; f < B.n.size(); ++f) side[f] = (-1.0 * B.n[f]).dot(arcA.cross);
 }
 
 // An edge pair whose arcs cross: its axis e_A x e_B oriented away from A, unless the edges are
@@ -226,8 +216,8 @@ void arcSideRow(const Posed::Edge& edgeA, const Posed& B, std::pmr::vector<doubl
 // direction is a face normal, tested in step 1). The larger separation wins; an exact tie goes to
 // the lower (edge of A, edge of B) pair, the brute-force loop's order.
 void considerEdgePair(const Posed& A, const Posed& B, int ea, int eb, SatQuery& q) {
-    const Posed::Edge& edgeA = A.edges[ea];
-    const Posed::Edge& edgeB = B.edges[eb];
+    const ConvexPolyhedron::EdgeEnds& edgeA = (*A.edges)[ea];
+    const ConvexPolyhedron::EdgeEnds& edgeB = (*B.edges)[eb];
     const Vec3 da = A.x[edgeA.v1] - A.x[edgeA.v0];
     const Vec3 db = B.x[edgeB.v1] - B.x[edgeB.v0];
     Vec3 axis = da.cross(db);
@@ -247,18 +237,20 @@ void considerEdgePair(const Posed& A, const Posed& B, int ea, int eb, SatQuery& 
 }
 
 // 2. Edge pairs that form a face of the Minkowski difference (their Gauss-map arcs cross): every
-// edge of A against every edge of B by Gregorius' test.
+// edge of A against every edge of B by Gregorius' test (both bodies' arcs built).
 void queryEdgeAxesOfEdge(const Posed& A, const Posed& B, int ea, std::pmr::vector<double>& side, SatQuery& q) {
-    arcSideRow(A.edges[ea], B, side);
-    for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
-        if (isMinkowskiFace(A.edges[ea], B.edges[eb], side.data())) considerEdgePair(A, B, ea, eb, q);
+    arcSideRow(A.arcs[ea], B, side);
+    for (int eb = 0; eb < static_cast<int>(B.arcs.size()); ++eb) {
+        if (isMinkowskiFace(A.arcs[ea], (*B.edges)[eb], B.arcs[eb], side.data())) considerEdgePair(A, B, ea, eb, q);
         else ++q.pruned;
     }
 }
 
-void queryEdgeAxes(const Posed& A, const Posed& B, SatQuery& q) {
+void queryEdgeAxes(Posed& A, Posed& B, SatQuery& q) {
+    A.buildArcs();
+    B.buildArcs();
     std::pmr::vector<double> side(B.n.size(), 0.0, B.n.get_allocator().resource());
-    for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) queryEdgeAxesOfEdge(A, B, ea, side, q);
+    for (int ea = 0; ea < static_cast<int>(A.arcs.size()); ++ea) queryEdgeAxesOfEdge(A, B, ea, side, q);
 }
 
 // 2, untraced: the edges of B whose arcs cross the arc of A's edge ea, found by walking that arc
@@ -274,10 +266,12 @@ void queryEdgeAxes(const Posed& A, const Posed& B, SatQuery& q) {
 // overlay): the caller tests ea against every edge of B instead.
 bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, double tol, SatQuery& q) {
     const ConvexPolyhedron& mb = *B.mesh;
-    const Posed::Edge& edgeA = A.edges[ea];
+    const ConvexPolyhedron::EdgeEnds& edgeA = (*A.edges)[ea];
     const Vec3& a = A.n[edgeA.f1];
     const Vec3& b = A.n[edgeA.f2];
     const Vec3 ab = b - a;
+    const std::vector<int>& first = mb.neighborStart();
+    const std::vector<ConvexPolyhedron::Neighbor>& nb = mb.neighbors();
     int v = start;
     double t = 0.0;
     // Every step lowers (m(t) · x, its slope) lexicographically, so no vertex comes back in exact
@@ -286,8 +280,8 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
         // The earliest t_w = rise / run (run > 0), compared as fractions: one division per step.
         int next = -1, crossed = -1;
         double riseNext = 1.0, runNext = 0.0;  // t = +inf
-        for (int k = B.adjacencyStart[v]; k < B.adjacencyStart[v + 1]; ++k) {
-            const int w = B.neighbor[k];
+        for (int k = first[v]; k < first[v + 1]; ++k) {
+            const int w = nb[k].vertex;
             const Vec3& step = B.neighborStep[k];
             const double run = -ab.dot(step);
             if (!(run > 0.0)) continue;
@@ -295,7 +289,7 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
             if (rise < t * run) rise = t * run;  // t_w = max(t, rise / run)
             const double lhs = rise * runNext, rhs = riseNext * run;
             if (lhs < rhs || (lhs == rhs && run > runNext))
-                next = w, crossed = B.neighborEdge[k], riseNext = rise, runNext = run;
+                next = w, crossed = nb[k].edge, riseNext = rise, runNext = run;
         }
         const double tNext = next < 0 ? INFINITY : riseNext / runNext;
         if (tNext >= 1.0) return v == end || b.dot(B.x[v]) <= b.dot(B.x[end]) + tol;
@@ -308,13 +302,14 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
 
 // endTol: how far along b the walk's last vertex may be above face b's support (rounding of the
 // support values; the default touching band, whatever the caller's tolerance).
-void queryEdgeAxesByWalk(const Posed& A, const Posed& B, const std::pmr::vector<int>& supportOfB, double endTol,
-                         SatQuery& q) {
+void queryEdgeAxesByWalk(Posed& A, Posed& B, const std::pmr::vector<int>& supportOfB, double endTol, SatQuery& q) {
     std::pmr::vector<double> side(B.n.get_allocator().resource());
-    for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
-        const Posed::Edge& edgeA = A.edges[ea];
+    for (int ea = 0; ea < static_cast<int>(A.edges->size()); ++ea) {
+        const ConvexPolyhedron::EdgeEnds& edgeA = (*A.edges)[ea];
         if (walkEdgeArc(A, B, ea, supportOfB[edgeA.f1], supportOfB[edgeA.f2], endTol, q)) continue;
         // Every pair of ea (a pair the walk already took is taken again: no change to the best).
+        A.buildArcs();
+        B.buildArcs();
         side.resize(B.n.size());
         queryEdgeAxesOfEdge(A, B, ea, side, q);
     }
@@ -375,7 +370,8 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     if (trace) *trace = SatContactTrace{};
     const Vec3 origin = ta.position;
     // Scratch for both posed bodies, the edge query and the clipping: two 64-vertex hulls (~124
-    // faces, ~186 edges, 372 adjacency slots each: ~36 KB a body) fit; larger bodies spill to the heap.
+    // faces, 372 adjacency slots each: ~14 KB a body, ~27 KB with the arcs of the all-pairs test)
+    // fit; larger bodies spill to the heap.
     StackArena<98304> arena;
     Posed A(ma, ta, origin, 1.0, arena.resource()), B(mb, tb, origin, -1.0, arena.resource());
     double maxCoord = 0.0;

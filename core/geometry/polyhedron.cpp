@@ -221,8 +221,40 @@ PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions, const s
         return out;
     }
     assert(poly.checkLinks().ok());
+    poly.flattenTopology();
     out.polyhedron = std::move(poly);
     return out;
+}
+
+void ConvexPolyhedron::flattenTopology() {
+    edgeEnds_.clear();
+    edgeEnds_.reserve(edges_.size());
+    for (int e = 0; e < edgeCount(); ++e) {
+        const auto [v0, v1] = edgeVertices(e);
+        const auto [f1, f2] = edgeFaces(e);
+        edgeEnds_.push_back({v0, v1, f1, f2});
+    }
+    neighborStart_.assign(vertices_.size() + 1, 0);
+    for (const HalfEdge& h : halfEdges_) ++neighborStart_[h.origin + 1];
+    for (size_t v = 0; v < vertices_.size(); ++v) neighborStart_[v + 1] += neighborStart_[v];
+    neighbors_.assign(halfEdges_.size(), Neighbor{});
+    std::vector<int> fill(neighborStart_.begin(), neighborStart_.end() - 1);
+    for (const HalfEdge& h : halfEdges_) {
+        const int w = halfEdges_[h.twin].origin;
+        neighbors_[fill[h.origin]++] = {w, h.edge, position(w) - position(h.origin)};
+    }
+    faceVertexStart_.assign(1, 0);
+    faceVertexIds_.clear();
+    faceVertexIds_.reserve(halfEdges_.size());
+    faceAcross_.clear();
+    faceAcross_.reserve(halfEdges_.size());
+    for (int f = 0; f < faceCount(); ++f) {
+        forEachFaceHalfEdge(f, [&](int h) {
+            faceVertexIds_.push_back(halfEdges_[h].origin);
+            faceAcross_.push_back(halfEdges_[halfEdges_[h].twin].face);
+        });
+        faceVertexStart_.push_back(static_cast<int>(faceVertexIds_.size()));
+    }
 }
 
 std::vector<Vec3> ConvexPolyhedron::positions() const {

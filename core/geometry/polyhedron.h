@@ -138,6 +138,31 @@ public:
     /// Edges incident to v, in the order of vertexHalfEdges(v).
     std::vector<int> vertexEdges(int v) const;
 
+    /// Pose-independent topology flattened at construction for the hot loops of the contact query
+    /// (core/contact/contact_sat.h), which would otherwise walk the half-edge links on every call:
+    /// one load per edge or neighbour instead of three dependent ones.
+    struct EdgeEnds {
+        int v0 = -1, v1 = -1;  ///< edgeVertices(e)
+        int f1 = -1, f2 = -1;  ///< edgeFaces(e)
+    };
+    struct Neighbor {
+        int vertex = -1;            ///< destination of an outgoing half-edge
+        int edge = -1;              ///< its undirected edge
+        Vec3 step = Vec3::Zero();   ///< position(vertex) - position(origin), body frame
+    };
+    /// edgeEnds()[e]: edgeVertices(e) and edgeFaces(e).
+    const std::vector<EdgeEnds>& edgeEnds() const { return edgeEnds_; }
+    /// The neighbours of v are neighbors()[neighborStart()[v] .. neighborStart()[v + 1]), its
+    /// outgoing half-edges in index order (not around the vertex: vertexNeighbors() gives that order).
+    const std::vector<int>& neighborStart() const { return neighborStart_; }
+    const std::vector<Neighbor>& neighbors() const { return neighbors_; }
+    /// The vertices of face f are faceVertexIds()[faceVertexStart()[f] .. faceVertexStart()[f + 1]),
+    /// faceVertices(f)'s order.
+    const std::vector<int>& faceVertexStart() const { return faceVertexStart_; }
+    const std::vector<int>& faceVertexIds() const { return faceVertexIds_; }
+    /// Aligned with faceVertexIds(): the face across the edge from that vertex to the next one of f.
+    const std::vector<int>& faceAcross() const { return faceAcross_; }
+
     /// Calls fn(halfEdgeIndex) for each half-edge of face f in cycle order; no allocation.
     template <class Fn>
     void forEachFaceHalfEdge(int f, Fn&& fn) const {
@@ -209,10 +234,16 @@ private:
     void forEachFanTetrahedron(const Vec3& o, Fn&& fn) const;
     PolyhedronCheck checkFaceGeometry(int f, double tolerance) const;
     PolyhedronCheck checkSolidConvexity(double tolerance) const;
+    /// Fills edgeEnds_, neighborStart_, neighbors_ and the face vertex lists from the half-edge links.
+    void flattenTopology();
     std::vector<Vertex> vertices_;
     std::vector<HalfEdge> halfEdges_;
     std::vector<Face> faces_;
     std::vector<Edge> edges_;
+    std::vector<EdgeEnds> edgeEnds_;
+    std::vector<int> neighborStart_;
+    std::vector<Neighbor> neighbors_;
+    std::vector<int> faceVertexStart_, faceVertexIds_, faceAcross_;
 };
 
 /// Output of ConvexPolyhedron::fromFaces: the mesh (empty unless check.ok()) and the check.

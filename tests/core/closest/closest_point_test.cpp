@@ -178,6 +178,27 @@ TEST_SUITE("closest_point") {
         }
     }
 
+    TEST_CASE("segment-segment: subnormal coordinates give the unit-scale parameters") {
+        // Integer coordinates times 2^-1074 (the subnormal grid: every such difference is exact).
+        // The largest difference lies below 2^-1023, so its scale to [1, 2) is no double: the
+        // scaling takes two exact products. The scaled differences equal the integer ones scaled
+        // the same way, so s and t must be the integer segments' bit for bit.
+        std::mt19937_64 rng(11);
+        std::uniform_int_distribution<int> coordinate(-20, 20);
+        const auto integerVec = [&] { return Vec3(coordinate(rng), coordinate(rng), coordinate(rng)); };
+        for (int i = 0; i < 500; ++i) {
+            const Segment s1{integerVec(), integerVec()}, s2{integerVec(), integerVec()};
+            const auto unit = closestPointsSegmentSegment(s1, s2);
+            for (const double scale : {0x1p-1074, 0x1p-1064}) {
+                const auto q = closestPointsSegmentSegment({scale * s1.a, scale * s1.b}, {scale * s2.a, scale * s2.b});
+                CHECK(q.s == unit.s);
+                CHECK(q.t == unit.t);
+                CHECK(q.parallel == unit.parallel);
+                CHECK(q.degenerate == unit.degenerate);
+            }
+        }
+    }
+
     TEST_CASE("triangle: integer cases with the region known by construction") {
         const Triangle t{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0)};
         struct Case {

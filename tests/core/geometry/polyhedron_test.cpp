@@ -2,8 +2,10 @@
 // centroids; orientation checked with independent cross products; broken meshes built by hand.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "core/geometry/polyhedron.h"
@@ -12,6 +14,48 @@
 using namespace cdlab;
 
 namespace {
+
+// The topology flattened at construction (edgeEnds, neighbors, faceVertexIds, faceAcross) against
+// the half-edge walks: the same vertices, edges and faces, the steps exact position differences.
+void checkFlatTopology(const ConvexPolyhedron& P) {
+    REQUIRE(P.edgeEnds().size() == size_t(P.edgeCount()));
+    for (int e = 0; e < P.edgeCount(); ++e) {
+        const ConvexPolyhedron::EdgeEnds& ends = P.edgeEnds()[e];
+        CHECK(std::pair(ends.v0, ends.v1) == P.edgeVertices(e));
+        CHECK(std::pair(ends.f1, ends.f2) == P.edgeFaces(e));
+    }
+    REQUIRE(P.neighborStart().size() == size_t(P.vertexCount() + 1));
+    REQUIRE(P.neighborStart().back() == P.halfEdgeCount());
+    for (int v = 0; v < P.vertexCount(); ++v) {
+        std::vector<std::pair<int, int>> flat, walked;
+        for (int k = P.neighborStart()[v]; k < P.neighborStart()[v + 1]; ++k) {
+            const ConvexPolyhedron::Neighbor& n = P.neighbors()[k];
+            flat.emplace_back(n.vertex, n.edge);
+            CHECK(n.step == P.position(n.vertex) - P.position(v));
+        }
+        const std::vector<int> ns = P.vertexNeighbors(v), es = P.vertexEdges(v);
+        for (size_t i = 0; i < ns.size(); ++i) walked.emplace_back(ns[i], es[i]);
+        std::sort(flat.begin(), flat.end());
+        std::sort(walked.begin(), walked.end());
+        CHECK(flat == walked);
+    }
+    REQUIRE(P.faceVertexStart().size() == size_t(P.faceCount() + 1));
+    for (int f = 0; f < P.faceCount(); ++f) {
+        const int begin = P.faceVertexStart()[f], end = P.faceVertexStart()[f + 1];
+        const std::vector<int> loop = P.faceVertices(f);
+        CHECK(std::vector<int>(P.faceVertexIds().begin() + begin, P.faceVertexIds().begin() + end) == loop);
+        for (int k = begin; k < end; ++k) {  // the other face of the edge from this vertex to the next
+            const int a = loop[k - begin], b = loop[(k - begin + 1) % loop.size()];
+            int across = -1;
+            for (int e = 0; e < P.edgeCount(); ++e) {
+                const auto [u, w] = P.edgeVertices(e);
+                const auto [f1, f2] = P.edgeFaces(e);
+                if ((u == a && w == b) || (u == b && w == a)) across = f1 == f ? f2 : f1;
+            }
+            CHECK(P.faceAcross()[k] == across);
+        }
+    }
+}
 
 void checkMesh(const ConvexPolyhedron& P, int V, int E, int F) {
     REQUIRE(!P.empty());
@@ -53,6 +97,7 @@ void checkMesh(const ConvexPolyhedron& P, int V, int E, int F) {
         CHECK(a != b);
         CHECK(f != g);
     }
+    checkFlatTopology(P);
 }
 
 }  // namespace
