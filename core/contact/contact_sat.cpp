@@ -306,6 +306,9 @@ void queryEdgeAxesByWalk(Posed& A, Posed& B, const std::pmr::vector<int>& suppor
     std::pmr::vector<double> side(B.n.get_allocator().resource());
     for (int ea = 0; ea < static_cast<int>(A.edges->size()); ++ea) {
         const ConvexPolyhedron::EdgeEnds& edgeA = (*A.edges)[ea];
+        // Both ends in one vertex region of B: a region is convex on the sphere and the arc shorter
+        // than a half circle, so no region boundary (no B edge) crosses it.
+        if (supportOfB[edgeA.f1] == supportOfB[edgeA.f2]) continue;
         if (walkEdgeArc(A, B, ea, supportOfB[edgeA.f1], supportOfB[edgeA.f2], endTol, q)) continue;
         // Every pair of ea (a pair the walk already took is taken again: no change to the best).
         A.buildArcs();

@@ -27,7 +27,6 @@ namespace cdlab::demos {
 
 namespace {
 
-
 /// The O(n^2) baseline: every pair, closed overlap test on the three axes.
 std::size_t bruteForce(const std::vector<Aabb>& b, std::vector<BoxPair>& out) {
     out.clear();
@@ -52,8 +51,6 @@ std::vector<std::uint64_t> octreePairKeys(const std::vector<std::pair<int, int>>
     std::sort(keys.begin(), keys.end());
     return keys;
 }
-
-double msSince(double t0) { return threadMilliseconds() - t0; }
 
 struct Result {
     int n = 0;
@@ -104,11 +101,11 @@ OctreeFrame octreeFrame(const std::vector<Aabb>& boxes, Octree& octree, Octree& 
     double t0 = threadMilliseconds();
     octree.build(boxes, octOptions);
     octPairs = octree.overlappingPairs(&o.octTests);
-    o.octMs = msSince(t0);
+    o.octMs = millisecondsSince(t0);
     t0 = threadMilliseconds();
     loose.build(boxes, looseOptions);
     loosePairs = loose.overlappingPairs(&o.looseTests);
-    o.looseMs = msSince(t0);
+    o.looseMs = millisecondsSince(t0);
     o.ok = octree.status() == OctreeStatus::Ok && loose.status() == OctreeStatus::Ok;
     return o;
 }
@@ -127,7 +124,7 @@ void measureSlowSap(int n, int frames, int warmup, std::vector<Aabb>& boxes, Res
         slow.step(boxes);
         const double t0 = threadMilliseconds();
         const SapResult s = sapSlow.update(boxes);
-        const double t = msSince(t0);
+        const double t = millisecondsSince(t0);
         if (f < warmup) continue;
         sapT.push_back(t);
         swaps += static_cast<double>(s.swaps);
@@ -147,7 +144,7 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
     sap.reserve(n, n);
     double t0 = threadMilliseconds();
     sap.build(boxes);
-    r.buildMs = msSince(t0);
+    r.buildMs = millisecondsSince(t0);
     UniformGrid grid;
     UniformGridOptions go;
     go.cellSize = 1.5;  // the largest box size: each box touches at most 8 cells
@@ -162,10 +159,10 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
         motion.step(boxes);
         t0 = threadMilliseconds();
         const SapResult s = sap.update(boxes);
-        const double tSap = msSince(t0);
+        const double tSap = millisecondsSince(t0);
         t0 = threadMilliseconds();
         const UniformGridResult g = grid.build(boxes, go);
-        const double tGrid = msSince(t0);
+        const double tGrid = millisecondsSince(t0);
         if (s.status != SapStatus::Ok || g.status != GridStatus::Ok || sap.pairs().size() != grid.pairs().size())
             r.agree = false;
         // Octrees, rebuilt from scratch every frame like the grid (the warm-up frames always run).
@@ -193,7 +190,7 @@ Result measure(int n, int frames, int bruteFrames, int octFrames) {
         if (f - warmup < bruteFrames) {
             t0 = threadMilliseconds();
             const std::size_t k = bruteForce(boxes, brute);
-            bruteT.push_back(msSince(t0));
+            bruteT.push_back(millisecondsSince(t0));
             if (k != sap.pairs().size()) r.agree = false;
             // The pair sets themselves (not only their sizes) against brute force's, outside the timing.
             const std::vector<std::uint64_t> truth = pairKeys(brute);

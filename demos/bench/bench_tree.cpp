@@ -71,7 +71,7 @@ TreeRow measure(const Workload& w, int n, int frames) {
     tree.reserve(n, 8 * n);
     double t0 = threadMilliseconds();
     tree.update(boxes);
-    r.treeBuildMs = threadMilliseconds() - t0;
+    r.treeBuildMs = millisecondsSince(t0);
 #ifdef CDLAB_BENCH_PEERS
     std::unique_ptr<PeerBroadPhase> bullet = makeBulletDbvtBroadPhase();
     if (bullet) bullet->frame(boxes);
@@ -84,23 +84,23 @@ TreeRow measure(const Workload& w, int n, int frames) {
         motion.step(boxes);
         t0 = threadMilliseconds();
         const SapResult s = sap.update(boxes);
-        const double tSap = threadMilliseconds() - t0;
+        const double tSap = millisecondsSince(t0);
         t0 = threadMilliseconds();
         const ColumnSweepResult cs = columns.run(boxes);
-        const double tColumns = threadMilliseconds() - t0;
+        const double tColumns = millisecondsSince(t0);
         t0 = threadMilliseconds();
         const UniformGridResult g = grid.build(boxes, go);
-        const double tGrid = threadMilliseconds() - t0;
+        const double tGrid = millisecondsSince(t0);
         t0 = threadMilliseconds();
         const TreeBroadPhaseResult t = tree.update(boxes);
-        const double tTree = threadMilliseconds() - t0;
+        const double tTree = millisecondsSince(t0);
         double tBullet = NAN;
         std::int64_t bulletPairs = 0;
 #ifdef CDLAB_BENCH_PEERS
         if (bullet) {
             t0 = threadMilliseconds();
             bulletPairs = bullet->frame(boxes);
-            tBullet = threadMilliseconds() - t0;
+            tBullet = millisecondsSince(t0);
         }
 #endif
         // The three cdlab methods report the same pair set (compared outside the timing).

@@ -16,6 +16,8 @@ double threadSeconds();
 
 /// The same in milliseconds.
 inline double threadMilliseconds() { return 1e3 * threadSeconds(); }
+/// Thread CPU time since t0 (a threadMilliseconds() reading), in milliseconds.
+inline double millisecondsSince(double t0) { return threadMilliseconds() - t0; }
 
 /// The size L of a point set that relative errors are measured against: the largest distance of a
 /// point from the points' centroid.
