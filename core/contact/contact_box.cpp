@@ -36,7 +36,8 @@ int edgeOf(int u, int v) {
 }
 
 // Finite, positive and at most 1e150: beyond, |h| and the separations overflow double precision.
-// (Three comparisons each, false for NaN: cheaper than Eigen's allFinite, which GCC calls out of line.)
+// (Two comparisons a coefficient, both false for NaN: cheaper than Eigen's allFinite, which GCC
+// calls out of line.)
 bool validExtents(const Vec3& h) {
     const auto valid = [](double x) { return x > 0.0 && x <= 1e150; };
     return valid(h.x()) && valid(h.y()) && valid(h.z());

@@ -39,6 +39,14 @@ void checkFlatTopology(const ConvexPolyhedron& P) {
         std::sort(walked.begin(), walked.end());
         CHECK(flat == walked);
     }
+    // Slot order: the outgoing half-edges in index order (the descents and walks break ties by it).
+    std::vector<int> seen(P.vertexCount(), 0);
+    for (int h = 0; h < P.halfEdgeCount(); ++h) {
+        const int v = P.halfEdge(h).origin;
+        const ConvexPolyhedron::Neighbor& n = P.neighbors()[P.neighborStart()[v] + seen[v]++];
+        CHECK(n.vertex == P.halfEdgeDestination(h));
+        CHECK(n.edge == P.halfEdge(h).edge);
+    }
     REQUIRE(P.faceVertexStart().size() == size_t(P.faceCount() + 1));
     for (int f = 0; f < P.faceCount(); ++f) {
         const int begin = P.faceVertexStart()[f], end = P.faceVertexStart()[f + 1];
