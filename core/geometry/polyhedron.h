@@ -140,7 +140,9 @@ public:
 
     /// Pose-independent topology flattened at construction for the hot loops of the contact query
     /// (core/contact/contact_sat.h), which would otherwise walk the half-edge links on every call:
-    /// one load per edge or neighbour instead of three dependent ones.
+    /// one load per edge or neighbour instead of three dependent ones. Memory: ~48 bytes a half-edge
+    /// on top of the links' 24, the neighbours' steps 24 of them (computing the steps per call
+    /// instead measured 6% more instructions in contactPolyhedra).
     struct EdgeEnds {
         int v0 = -1, v1 = -1;  ///< edgeVertices(e)
         int f1 = -1, f2 = -1;  ///< edgeFaces(e)
