@@ -132,7 +132,7 @@ public:
     /// The sorted endpoint list of axis 0, 1 or 2 (x, y, z).
     const std::vector<SapEndpoint>& endpoints(int axis) const { return endpoints_[axis]; }
     /// Index of object id's min (or max) endpoint in endpoints(axis).
-    int rank(int axis, int id, bool isMax) const { return static_cast<int>(rank_[axis][2 * id + (isMax ? 1 : 0)]); }
+    int rank(int axis, int id, bool isMax) const { return static_cast<int>(ranks_[id].of[axis][isMax ? 1 : 0]); }
     int objectCount() const { return liveCount_; }
     /// One past the largest id ever handed out (the size update() expects).
     int idCapacity() const { return static_cast<int>(boxes_.size()); }
@@ -143,11 +143,13 @@ public:
 
 private:
     void sortAxis(int axis, std::size_t from, SapTrace* trace, SapResult& result);
+    void sortAxisUntraced(int axis, std::size_t from, SapResult& result);
     void swapped(int axis, const SapEndpoint& moving, const SapEndpoint& passed, std::size_t position, SapTrace* trace,
                  SapResult& result);
     bool overlapOnAxis(int axis, int a, int b) const {
-        const std::vector<std::uint32_t>& r = rank_[axis];
-        return r[2 * a] < r[2 * b + 1] && r[2 * b] < r[2 * a + 1];
+        const std::uint32_t* ra = ranks_[a].of[axis];
+        const std::uint32_t* rb = ranks_[b].of[axis];
+        return ra[0] < rb[1] && rb[0] < ra[1];
     }
     void addPair(int a, int b, SapTrace* trace, SapResult& result);
     bool removePair(int a, int b, SapTrace* trace, SapResult& result);
@@ -155,7 +157,13 @@ private:
     std::size_t findSlot(std::uint64_t key) const;
 
     std::vector<SapEndpoint> endpoints_[3];
-    std::vector<std::uint32_t> rank_[3];  ///< by tag: position in endpoints_[axis]
+    /// Where one object's endpoints are in the three sorted lists, [axis][0 = min, 1 = max]; the
+    /// six together in one cache line, as a swap reads or writes both objects' entries.
+    struct alignas(32) Ranks {
+        std::uint32_t of[3][2];
+    };
+    std::uint32_t& rankOf(int axis, std::uint32_t tag) { return ranks_[tag >> 1].of[axis][tag & 1u]; }
+    std::vector<Ranks> ranks_;  ///< by object id
     std::vector<Aabb> boxes_;
     std::vector<char> alive_;
     std::vector<int> freeIds_;

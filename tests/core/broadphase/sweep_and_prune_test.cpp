@@ -23,19 +23,43 @@ std::vector<broad_oracle::End> orderOf(const SweepAndPrune& sap, int axis) {
     return out;
 }
 
+/// The untraced update (its own insertion loop, sweep_and_prune.cpp) left `untraced` as the traced
+/// one left `traced`: the same lists, ranks and pairs, and the same counts in the results.
+void checkSameState(const SweepAndPrune& untraced, const SapResult& u, const SweepAndPrune& traced, const SapResult& t) {
+    CHECK(u.status == t.status);
+    CHECK(u.swaps == t.swaps);
+    CHECK(u.pairsAdded == t.pairsAdded);
+    CHECK(u.pairsRemoved == t.pairsRemoved);
+    CHECK(sortedPairs(untraced.pairs()) == sortedPairs(traced.pairs()));
+    for (int k = 0; k < 3; ++k) {
+        CHECK(u.swapsPerAxis[k] == t.swapsPerAxis[k]);
+        const auto& eu = untraced.endpoints(k);
+        const auto& et = traced.endpoints(k);
+        REQUIRE(eu.size() == et.size());
+        for (std::size_t i = 0; i < eu.size(); ++i) {
+            CHECK(eu[i].tag == et[i].tag);
+            CHECK(untraced.rank(k, eu[i].object(), eu[i].isMax()) == static_cast<int>(i));
+        }
+    }
+}
+
 /// Update with `boxes`, then check pairs against brute force, the sortedness and ranks of the
 /// lists, the trace's pair events against the set difference, and (if asked) swaps = inversions.
+/// A copy updated without a trace must end in the same state.
 void updateAndCheck(SweepAndPrune& sap, const std::vector<Aabb>& boxes, bool checkInversions,
                     const std::vector<char>* alive = nullptr) {
     std::int64_t expectedSwaps[3] = {0, 0, 0};
     if (checkInversions)
         for (int k = 0; k < 3; ++k) expectedSwaps[k] = broad_oracle::inversions(orderOf(sap, k), boxes, k);
     const std::vector<IdPair> before = sortedPairs(sap.pairs());
+    SweepAndPrune untraced = sap;
+    const SapResult u = untraced.update(boxes);
     SapTrace trace;
     const SapResult r = sap.update(boxes, &trace);
     REQUIRE(r.status == SapStatus::Ok);
     const std::vector<IdPair> after = sortedPairs(sap.pairs());
     REQUIRE(after == bruteForcePairs(boxes, alive));
+    checkSameState(untraced, u, sap, r);
     for (int k = 0; k < 3; ++k) {
         const auto& e = sap.endpoints(k);
         for (std::size_t i = 0; i < e.size(); ++i) {
@@ -209,8 +233,12 @@ TEST_SUITE("sweep_and_prune") {
                                   Vec3::Zero()};
                     Aabb box = nb;
                     box.max = box.min + Vec3(1, 1, 1);
+                    SweepAndPrune traced = sap;
+                    SapTrace t;
+                    const SapResult rt = traced.add(box, &t);
                     const SapResult r = sap.add(box);
                     REQUIRE(r.status == SapStatus::Ok);
+                    checkSameState(sap, r, traced, rt);
                     const int id = r.object;
                     if (id >= static_cast<int>(m.center.size())) {
                         m.center.push_back(Vec3::Zero());
