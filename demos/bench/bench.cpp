@@ -580,7 +580,8 @@ int usage() {
                  "  time per query (median / min / max over repetitions) and error against independent\n"
                  "  oracles for closest point, GJK intersect / distance, GJK+EPA, SAT OBB-OBB.\n"
                  "  Sections (default: all): queries (those rows), contact (box-box, box-plane and hull-hull\n"
-                 "  manifolds beside Bullet's box-box detector and hull clipping), vclip (Lin-Canny and V-Clip vs warm GJK),\n"
+                 "  manifolds beside Bullet's box-box detector, convex-plane algorithm and hull clipping),\n"
+                 "  vclip (Lin-Canny and V-Clip vs warm GJK),\n"
                  "  bvh (BVH build / query / refit), broadphase (SAP, uniform grid, octrees, brute force, dynamic tree).\n"
                  "  Writes DIR/bench.json and DIR/bench.md (default DIR: out/bench).\n";
     return 2;

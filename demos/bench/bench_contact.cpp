@@ -153,6 +153,20 @@ void benchBoxPlane(const Settings& settings, bool resting, std::vector<Row>& row
         },
         error));
     rows.back().ratio = rows.back().nsMin / rows[reference].nsMin;
+#ifdef CDLAB_BENCH_PEERS
+    std::vector<PlanePeerCase> peerCases;
+    for (const Case& c : cases) peerCases.push_back({c.h, c.pose, c.plane.normal, c.plane.offset});
+    for (const PeerRunner& peer : makePlanePeerRunners(peerCases)) {
+        rows.push_back(measure(
+            settings, "contact_manifold", input, peer.method, n,
+            [&](int i) {
+                const PeerAnswer a = peer.run(i);
+                return Answer{a.value, a.iterations};
+            },
+            error));
+        rows.back().ratio = rows.back().nsMin / rows[reference].nsMin;
+    }
+#endif
 }
 
 // Hull pairs (16 / 64 points on ellipsoids, centres 0.4 apart): the general SAT beside Bullet's

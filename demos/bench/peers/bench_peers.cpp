@@ -13,9 +13,16 @@
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
 #include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
 #include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btConvexPolyhedron.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btPolyhedralContactClipping.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
@@ -144,6 +151,72 @@ PeerAnswer bulletClipping(BulletContactSet& s, int i) {
     }
     return PeerAnswer{out.deepest, out.points};
 }
+
+// Box–plane cases as Bullet's dispatcher holds them: collision objects, and per case one
+// btConvexPlaneCollisionAlgorithm with its persistent manifold (from the dispatcher's pools).
+struct BulletPlaneSet {
+    btDefaultCollisionConfiguration configuration;
+    btCollisionDispatcher dispatcher{&configuration};
+    btDispatcherInfo info;
+    std::vector<std::unique_ptr<btBoxShape>> boxes;
+    std::vector<std::unique_ptr<btStaticPlaneShape>> planes;
+    std::vector<std::unique_ptr<btCollisionObject>> boxObjects, planeObjects;
+    std::vector<btCollisionAlgorithm*> algorithms;
+    std::vector<btPersistentManifold*> manifolds;
+
+    BulletPlaneSet(const std::vector<PlanePeerCase>& cases, int perturbations, int minimumPoints) {
+        btConvexPlaneCollisionAlgorithm::CreateFunc create;  // box first, plane second (not swapped)
+        create.m_numPerturbationIterations = perturbations;
+        create.m_minimumPointsPerturbationThreshold = minimumPoints;
+        btManifoldArray owned;
+        for (const PlanePeerCase& c : cases) {
+            boxes.push_back(std::make_unique<btBoxShape>(btVector3(c.half.x(), c.half.y(), c.half.z())));
+            boxes.back()->setMargin(0.0);  // btBoxShape keeps its outer extents: the same box
+            planes.push_back(std::make_unique<btStaticPlaneShape>(btVector3(c.normal.x(), c.normal.y(), c.normal.z()),
+                                                                  c.offset));
+            boxObjects.push_back(std::make_unique<btCollisionObject>());
+            boxObjects.back()->setCollisionShape(boxes.back().get());
+            boxObjects.back()->setWorldTransform(bulletTransform(c.pose));
+            planeObjects.push_back(std::make_unique<btCollisionObject>());
+            planeObjects.back()->setCollisionShape(planes.back().get());
+            const std::size_t i = algorithms.size();
+            btCollisionObjectWrapper boxWrap(nullptr, boxes[i].get(), boxObjects[i].get(),
+                                             boxObjects[i]->getWorldTransform(), -1, -1);
+            btCollisionObjectWrapper planeWrap(nullptr, planes[i].get(), planeObjects[i].get(),
+                                               planeObjects[i]->getWorldTransform(), -1, -1);
+            btCollisionAlgorithmConstructionInfo ci;
+            ci.m_dispatcher1 = &dispatcher;
+            algorithms.push_back(create.CreateCollisionAlgorithm(ci, &boxWrap, &planeWrap));
+            owned.resize(0);
+            algorithms.back()->getAllContactManifolds(owned);
+            manifolds.push_back(owned.size() ? owned[0] : nullptr);
+        }
+    }
+    ~BulletPlaneSet() {
+        for (btCollisionAlgorithm* a : algorithms) {
+            a->~btCollisionAlgorithm();  // releases its manifold to the dispatcher
+            dispatcher.freeCollisionAlgorithm(a);
+        }
+    }
+
+    PeerAnswer run(int i) {
+        PeerAnswer answer;
+        btPersistentManifold* manifold = manifolds[i];
+        if (!manifold) return answer;
+        manifold->clearManifold();
+        btCollisionObjectWrapper boxWrap(nullptr, boxes[i].get(), boxObjects[i].get(), boxObjects[i]->getWorldTransform(),
+                                         -1, -1);
+        btCollisionObjectWrapper planeWrap(nullptr, planes[i].get(), planeObjects[i].get(),
+                                           planeObjects[i]->getWorldTransform(), -1, -1);
+        btManifoldResult result(&boxWrap, &planeWrap);
+        result.setPersistentManifold(manifold);
+        algorithms[i]->processCollision(&boxWrap, &planeWrap, info, &result);
+        answer.iterations = manifold->getNumContacts();
+        for (int k = 0; k < answer.iterations; ++k)
+            answer.value = std::max(answer.value, -double(manifold->getContactPoint(k).getDistance()));
+        return answer;
+    }
+};
 #endif
 
 }  // namespace
@@ -231,6 +304,18 @@ std::vector<PeerRunner> makeContactPeerRunners(const std::vector<ContactPeerPair
 #endif
     (void)pairs;
     (void)query;
+    return runners;
+}
+
+std::vector<PeerRunner> makePlanePeerRunners(const std::vector<PlanePeerCase>& cases) {
+    std::vector<PeerRunner> runners;
+#if CDLAB_HAVE_BULLET
+    auto single = std::make_shared<BulletPlaneSet>(cases, 1, 0);  // Bullet's defaults: no perturbation
+    auto multi = std::make_shared<BulletPlaneSet>(cases, 3, 3);
+    runners.push_back({"Bullet convex-plane, one point", [single](int i) { return single->run(i); }});
+    runners.push_back({"Bullet convex-plane, multipoint", [multi](int i) { return multi->run(i); }});
+#endif
+    (void)cases;
     return runners;
 }
 

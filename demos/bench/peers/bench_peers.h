@@ -63,6 +63,22 @@ struct ContactPeerPair {
 /// Answer: the deepest reported penetration (0 when no contact), iterations = contact points.
 std::vector<PeerRunner> makeContactPeerRunners(const std::vector<ContactPeerPair>& pairs, const std::string& query);
 
+/// One box on a plane for the box–plane rows: the box (half extents, world pose) against the solid
+/// half-space normal · x <= offset.
+struct PlanePeerCase {
+    Vec3 half = Vec3::Ones();
+    Transform pose;
+    Vec3 normal = Vec3::UnitZ();
+    double offset = 0.0;
+};
+
+/// Bullet's box–static plane algorithm (btConvexPlaneCollisionAlgorithm, what its dispatcher runs
+/// for a box on a btStaticPlaneShape), one persistent algorithm and manifold per case as in a
+/// simulation, the manifold cleared before each call: with one point (Bullet's default) and with
+/// its multipoint perturbation (setPlaneConvexMultipointIterations(3, 3)). Answer: the deepest
+/// penetration (0 when none) and the manifold's point count. `cases` must outlive the runners.
+std::vector<PeerRunner> makePlanePeerRunners(const std::vector<PlanePeerCase>& cases);
+
 /// A peer broad phase kept across frames: frame(boxes) gives every object its box for this frame
 /// (object i = boxes[i]; the same count every frame) and updates the peer's pairs; returns the
 /// pairs the peer holds after the frame (its own notion: Bullet's cache holds pairs of its fattened
