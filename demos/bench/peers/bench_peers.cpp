@@ -164,6 +164,8 @@ struct BulletPlaneSet {
     std::vector<btCollisionAlgorithm*> algorithms;
     std::vector<btPersistentManifold*> manifolds;
 
+    BulletPlaneSet(const BulletPlaneSet&) = delete;
+    BulletPlaneSet& operator=(const BulletPlaneSet&) = delete;
     BulletPlaneSet(const std::vector<PlanePeerCase>& cases, int perturbations, int minimumPoints) {
         btConvexPlaneCollisionAlgorithm::CreateFunc create;  // box first, plane second (not swapped)
         create.m_numPerturbationIterations = perturbations;
@@ -202,7 +204,7 @@ struct BulletPlaneSet {
     PeerAnswer run(int i) {
         PeerAnswer answer;
         btPersistentManifold* manifold = manifolds[i];
-        if (!manifold) return answer;
+        if (!manifold) return answer;  // the dispatcher declined the pair (needsCollision): never for these objects
         manifold->clearManifold();
         btCollisionObjectWrapper boxWrap(nullptr, boxes[i].get(), boxObjects[i].get(), boxObjects[i]->getWorldTransform(),
                                          -1, -1);

@@ -76,7 +76,9 @@ struct PlanePeerCase {
 /// for a box on a btStaticPlaneShape), one persistent algorithm and manifold per case as in a
 /// simulation, the manifold cleared before each call: with one point (Bullet's default) and with
 /// its multipoint perturbation (setPlaneConvexMultipointIterations(3, 3)). Answer: the deepest
-/// penetration (0 when none) and the manifold's point count. `cases` must outlive the runners.
+/// penetration (0 when none) and the manifold's point count. The count is not cdlab's: Bullet keeps
+/// corners up to its contact breaking threshold above the plane (0.02 times the box's size), and
+/// reports corners only, where cdlab reports submerged corners and edge crossings.
 std::vector<PeerRunner> makePlanePeerRunners(const std::vector<PlanePeerCase>& cases);
 
 /// A peer broad phase kept across frames: frame(boxes) gives every object its box for this frame

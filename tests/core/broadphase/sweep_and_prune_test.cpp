@@ -30,6 +30,10 @@ void checkSameState(const SweepAndPrune& untraced, const SapResult& u, const Swe
     CHECK(u.swaps == t.swaps);
     CHECK(u.pairsAdded == t.pairsAdded);
     CHECK(u.pairsRemoved == t.pairsRemoved);
+    CHECK(untraced.counters().updates == traced.counters().updates);
+    CHECK(untraced.counters().swaps == traced.counters().swaps);
+    CHECK(untraced.counters().pairsAdded == traced.counters().pairsAdded);
+    CHECK(untraced.counters().pairsRemoved == traced.counters().pairsRemoved);
     CHECK(sortedPairs(untraced.pairs()) == sortedPairs(traced.pairs()));
     for (int k = 0; k < 3; ++k) {
         CHECK(u.swapsPerAxis[k] == t.swapsPerAxis[k]);
@@ -145,6 +149,18 @@ TEST_SUITE("sweep_and_prune") {
                     b.max += d;
                 }
                 updateAndCheck(sap, boxes, true);
+            }
+            // Additions full of ties (integer boxes, some of zero size), untraced beside a traced copy.
+            for (int k = 0; k < 5; ++k) {
+                const Aabb box = broad_oracle::integerBox(rng, 6, k % 2 ? 0 : 2);
+                SweepAndPrune traced = sap;
+                SapTrace t;
+                const SapResult rt = traced.add(box, &t);
+                const SapResult r = sap.add(box);
+                REQUIRE(r.status == SapStatus::Ok);
+                checkSameState(sap, r, traced, rt);
+                boxes.push_back(box);
+                CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(boxes));
             }
         }
     }
@@ -287,6 +303,24 @@ TEST_SUITE("sweep_and_prune") {
         CHECK(sap.objectCount() == 3);
         updateAndCheck(sap, boxes, true);
         CHECK(sap.pairs().size() == 1);
+    }
+
+    TEST_CASE("additions to an empty structure, untraced and traced alike") {
+        std::mt19937_64 rng(11);
+        SweepAndPrune sap;
+        std::vector<Aabb> boxes;
+        for (int k = 0; k < 12; ++k) {
+            const Aabb box = broad_oracle::integerBox(rng, 3, k % 3 == 0 ? 0 : 1);
+            SweepAndPrune traced = sap;
+            SapTrace t;
+            const SapResult rt = traced.add(box, &t);
+            const SapResult r = sap.add(box);
+            REQUIRE(r.status == SapStatus::Ok);
+            CHECK(r.object == k);
+            checkSameState(sap, r, traced, rt);
+            boxes.push_back(box);
+            CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(boxes));
+        }
     }
 
     TEST_CASE("counters accumulate; a still frame swaps nothing") {
