@@ -100,6 +100,17 @@ void updateAndCheck(SweepAndPrune& sap, const std::vector<Aabb>& boxes, bool che
     CHECK(std::vector<IdPair>(replay.begin(), replay.end()) == after);
 }
 
+/// Adds `box` without a trace, and to a copy with one: both must end in the same state.
+SapResult addAndCheck(SweepAndPrune& sap, const Aabb& box) {
+    SweepAndPrune traced = sap;
+    SapTrace trace;
+    const SapResult t = traced.add(box, &trace);
+    const SapResult r = sap.add(box);
+    REQUIRE(r.status == SapStatus::Ok);
+    checkSameState(sap, r, traced, t);
+    return r;
+}
+
 /// The boxes the structure holds now (last update / add), by id.
 std::vector<Aabb> stored(const SweepAndPrune& sap) {
     std::vector<Aabb> out;
@@ -153,12 +164,7 @@ TEST_SUITE("sweep_and_prune") {
             // Additions full of ties (integer boxes, some of zero size), untraced beside a traced copy.
             for (int k = 0; k < 5; ++k) {
                 const Aabb box = broad_oracle::integerBox(rng, 6, k % 2 ? 0 : 2);
-                SweepAndPrune traced = sap;
-                SapTrace t;
-                const SapResult rt = traced.add(box, &t);
-                const SapResult r = sap.add(box);
-                REQUIRE(r.status == SapStatus::Ok);
-                checkSameState(sap, r, traced, rt);
+                addAndCheck(sap, box);
                 boxes.push_back(box);
                 CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(boxes));
             }
@@ -249,13 +255,7 @@ TEST_SUITE("sweep_and_prune") {
                                   Vec3::Zero()};
                     Aabb box = nb;
                     box.max = box.min + Vec3(1, 1, 1);
-                    SweepAndPrune traced = sap;
-                    SapTrace t;
-                    const SapResult rt = traced.add(box, &t);
-                    const SapResult r = sap.add(box);
-                    REQUIRE(r.status == SapStatus::Ok);
-                    checkSameState(sap, r, traced, rt);
-                    const int id = r.object;
+                    const int id = addAndCheck(sap, box).object;
                     if (id >= static_cast<int>(m.center.size())) {
                         m.center.push_back(Vec3::Zero());
                         m.half.push_back(Vec3::Zero());
@@ -311,13 +311,7 @@ TEST_SUITE("sweep_and_prune") {
         std::vector<Aabb> boxes;
         for (int k = 0; k < 12; ++k) {
             const Aabb box = broad_oracle::integerBox(rng, 3, k % 3 == 0 ? 0 : 1);
-            SweepAndPrune traced = sap;
-            SapTrace t;
-            const SapResult rt = traced.add(box, &t);
-            const SapResult r = sap.add(box);
-            REQUIRE(r.status == SapStatus::Ok);
-            CHECK(r.object == k);
-            checkSameState(sap, r, traced, rt);
+            CHECK(addAndCheck(sap, box).object == k);
             boxes.push_back(box);
             CHECK(sortedPairs(sap.pairs()) == bruteForcePairs(boxes));
         }
