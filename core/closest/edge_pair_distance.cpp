@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/base/double_double.h"
+#include "core/base/power_of_two.h"
 
 namespace cdlab {
 
@@ -20,11 +21,13 @@ Vec3 rounded(const Vec3DD& v) { return {v.x.value(), v.y.value(), v.z.value()}; 
 
 /// The four points scaled by one power of two (exact) so that the largest |coordinate| is in
 /// [0.5, 1): products of four coordinates (|c|^2) then neither overflow nor lose the split's
-/// range, and tiny inputs do not underflow before they must.
+/// range, and tiny inputs do not underflow before they must. exponent is in [-1073, 1024] (frexp
+/// of a finite double), so both scalings are in PowerOfTwo's range.
 struct ScaledQuad {
     Vec3 p[4];
     int exponent = 0;  // original = scaled * 2^exponent
     bool finite = true;
+    PowerOfTwo up{0};
 
     ScaledQuad(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
         const Vec3 in[4] = {a0, a1, b0, b1};
@@ -34,12 +37,12 @@ struct ScaledQuad {
             m = std::max(m, v.cwiseAbs().maxCoeff());
         }
         if (finite && m > 0.0) std::frexp(m, &exponent);
-        for (int i = 0; i < 4; ++i) p[i] = in[i].unaryExpr([e = -exponent](double x) { return std::ldexp(x, e); });
+        const PowerOfTwo down(-exponent);
+        for (int i = 0; i < 4; ++i) p[i] = in[i].unaryExpr(down);
+        up = PowerOfTwo(exponent);
     }
-    double unscale(double x) const { return std::ldexp(x, exponent); }
-    Vec3 unscale(const Vec3& v) const {
-        return v.unaryExpr([e = exponent](double x) { return std::ldexp(x, e); });
-    }
+    double unscale(double x) const { return up(x); }
+    Vec3 unscale(const Vec3& v) const { return v.unaryExpr(up); }
 };
 
 /// Common perpendicular of lines a0 + s (a1 - a0) and b0 + t (b1 - b0), scaled coordinates.
