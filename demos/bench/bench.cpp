@@ -229,19 +229,8 @@ void peerRows(const Settings& settings, std::vector<Row>& rows, const std::strin
 #ifdef CDLAB_BENCH_PEERS
     std::vector<PeerPair> peerPairs;
     for (const PolyPair* p : set) peerPairs.push_back({&p->va, &p->vb, &p->a, &p->b});
-    for (const PeerRunner& peer : makePeerRunners(peerPairs, query)) {
-        Row row = measure(
-            settings, query, input, peer.method, static_cast<int>(set.size()),
-            [&](int i) {
-                const PeerAnswer a = peer.run(i);
-                return Answer{a.value, a.iterations};
-            },
-            error, boolean);
-        // Ratio of the fastest repetitions: on a shared machine the minimum is the time least
-        // disturbed by other processes (medians are reported too).
-        row.ratio = row.nsMin / rows[reference].nsMin;
-        rows.push_back(row);
-    }
+    appendPeerRows(settings, rows, query, input, makePeerRunners(peerPairs, query), static_cast<int>(set.size()),
+                   reference, error, boolean);
 #else
     (void)settings, (void)rows, (void)query, (void)input, (void)set, (void)reference, (void)error, (void)boolean;
 #endif

@@ -28,17 +28,8 @@ void contactPeerRows(const Settings& settings, std::vector<Row>& rows, const std
                      const std::vector<ContactPeerPair>& pairs, const std::string& query, size_t reference,
                      const std::function<double(int, const Answer&)>& error) {
 #ifdef CDLAB_BENCH_PEERS
-    for (const PeerRunner& peer : makeContactPeerRunners(pairs, query)) {
-        Row row = measure(
-            settings, "contact_manifold", input, peer.method, static_cast<int>(pairs.size()),
-            [&](int i) {
-                const PeerAnswer a = peer.run(i);
-                return Answer{a.value, a.iterations};
-            },
-            error);
-        row.ratio = row.nsMin / rows[reference].nsMin;
-        rows.push_back(row);
-    }
+    appendPeerRows(settings, rows, "contact_manifold", input, makeContactPeerRunners(pairs, query),
+                   static_cast<int>(pairs.size()), reference, error);
 #else
     (void)settings, (void)rows, (void)input, (void)pairs, (void)query, (void)reference, (void)error;
 #endif
@@ -161,16 +152,7 @@ void benchBoxPlane(const Settings& settings, bool resting, std::vector<Row>& row
 #ifdef CDLAB_BENCH_PEERS
     std::vector<PlanePeerCase> peerCases;
     for (const Case& c : cases) peerCases.push_back({c.h, c.pose, c.plane.normal, c.plane.offset});
-    for (const PeerRunner& peer : makePlanePeerRunners(peerCases)) {
-        rows.push_back(measure(
-            settings, "contact_manifold", input, peer.method, n,
-            [&](int i) {
-                const PeerAnswer a = peer.run(i);
-                return Answer{a.value, a.iterations};
-            },
-            error));
-        rows.back().ratio = rows.back().nsMin / rows[reference].nsMin;
-    }
+    appendPeerRows(settings, rows, "contact_manifold", input, makePlanePeerRunners(peerCases), n, reference, error);
 #endif
 }
 

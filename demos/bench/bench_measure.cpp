@@ -69,6 +69,24 @@ Row measure(const Settings& settings, std::string query, std::string input, std:
     return row;
 }
 
+void appendPeerRows(const Settings& settings, std::vector<Row>& rows, const std::string& query,
+                    const std::string& input, const std::vector<PeerRunner>& peers, int count, size_t reference,
+                    const std::function<double(int, const Answer&)>& error, bool boolean) {
+    for (const PeerRunner& peer : peers) {
+        Row row = measure(
+            settings, query, input, peer.method, count,
+            [&](int i) {
+                const PeerAnswer a = peer.run(i);
+                return Answer{a.value, a.iterations};
+            },
+            error, boolean);
+        // Ratio of the fastest repetitions: on a shared machine the minimum is the time least
+        // disturbed by other processes (medians are reported too).
+        row.ratio = row.nsMin / rows[reference].nsMin;
+        rows.push_back(row);
+    }
+}
+
 double relativeError(double x, double exact, double size) {
     const double denom = exact > 0 ? exact : size;
     return std::abs(x - exact) / denom;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/base/types.h"
+#include "demos/bench/peers/bench_peers.h"
 
 namespace cdlab::demos {
 
@@ -57,6 +58,12 @@ struct Settings {
 Row measure(const Settings& settings, std::string query, std::string input, std::string method, int count,
             const std::function<Answer(int)>& run, const std::function<double(int, const Answer&)>& error,
             bool boolean = false);
+
+/// One row per peer, measured as `measure` does on the same `count` inputs, each with its ratio:
+/// its min time over rows[reference]'s (cdlab's row on that input). No peers (none installed): no rows.
+void appendPeerRows(const Settings& settings, std::vector<Row>& rows, const std::string& query,
+                    const std::string& input, const std::vector<PeerRunner>& peers, int count, size_t reference,
+                    const std::function<double(int, const Answer&)>& error, bool boolean = false);
 
 /// |x - exact| / exact, or |x - exact| / size when exact is 0 (touching: relative to the size).
 double relativeError(double x, double exact, double size);

@@ -164,6 +164,15 @@ struct BulletPlaneSet {
     std::vector<btCollisionAlgorithm*> algorithms;
     std::vector<btPersistentManifold*> manifolds;
 
+    /// Case i's box and plane as the dispatcher hands them to an algorithm (views, not copies).
+    struct Wrapped {
+        btCollisionObjectWrapper box, plane;
+        Wrapped(const BulletPlaneSet& s, std::size_t i)
+            : box(nullptr, s.boxes[i].get(), s.boxObjects[i].get(), s.boxObjects[i]->getWorldTransform(), -1, -1),
+              plane(nullptr, s.planes[i].get(), s.planeObjects[i].get(), s.planeObjects[i]->getWorldTransform(), -1,
+                    -1) {}
+    };
+
     BulletPlaneSet(const BulletPlaneSet&) = delete;
     BulletPlaneSet& operator=(const BulletPlaneSet&) = delete;
     BulletPlaneSet(const std::vector<PlanePeerCase>& cases, int perturbations, int minimumPoints) {
@@ -181,14 +190,10 @@ struct BulletPlaneSet {
             boxObjects.back()->setWorldTransform(bulletTransform(c.pose));
             planeObjects.push_back(std::make_unique<btCollisionObject>());
             planeObjects.back()->setCollisionShape(planes.back().get());
-            const std::size_t i = algorithms.size();
-            btCollisionObjectWrapper boxWrap(nullptr, boxes[i].get(), boxObjects[i].get(),
-                                             boxObjects[i]->getWorldTransform(), -1, -1);
-            btCollisionObjectWrapper planeWrap(nullptr, planes[i].get(), planeObjects[i].get(),
-                                               planeObjects[i]->getWorldTransform(), -1, -1);
+            const Wrapped w(*this, algorithms.size());
             btCollisionAlgorithmConstructionInfo ci;
             ci.m_dispatcher1 = &dispatcher;
-            algorithms.push_back(create.CreateCollisionAlgorithm(ci, &boxWrap, &planeWrap));
+            algorithms.push_back(create.CreateCollisionAlgorithm(ci, &w.box, &w.plane));
             owned.resize(0);
             algorithms.back()->getAllContactManifolds(owned);
             manifolds.push_back(owned.size() ? owned[0] : nullptr);
@@ -206,13 +211,10 @@ struct BulletPlaneSet {
         btPersistentManifold* manifold = manifolds[i];
         if (!manifold) return answer;  // the dispatcher declined the pair (needsCollision): never for these objects
         manifold->clearManifold();
-        btCollisionObjectWrapper boxWrap(nullptr, boxes[i].get(), boxObjects[i].get(), boxObjects[i]->getWorldTransform(),
-                                         -1, -1);
-        btCollisionObjectWrapper planeWrap(nullptr, planes[i].get(), planeObjects[i].get(),
-                                           planeObjects[i]->getWorldTransform(), -1, -1);
-        btManifoldResult result(&boxWrap, &planeWrap);
+        const Wrapped w(*this, static_cast<std::size_t>(i));
+        btManifoldResult result(&w.box, &w.plane);
         result.setPersistentManifold(manifold);
-        algorithms[i]->processCollision(&boxWrap, &planeWrap, info, &result);
+        algorithms[i]->processCollision(&w.box, &w.plane, info, &result);
         answer.iterations = manifold->getNumContacts();
         for (int k = 0; k < answer.iterations; ++k)
             answer.value = std::max(answer.value, -double(manifold->getContactPoint(k).getDistance()));
