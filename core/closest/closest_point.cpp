@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/base/exact_predicates.h"
+#include "core/base/power_of_two.h"
 
 namespace cdlab {
 
@@ -446,15 +447,9 @@ SegmentSegmentResult closestPointsSegmentSegment(const Segment& first, const Seg
         d1 = 0.5 * first.b - 0.5 * first.a, d2 = 0.5 * second.b - 0.5 * second.a, rr = 0.5 * first.a - 0.5 * second.a;
     const double largest = std::max({d1.cwiseAbs().maxCoeff(), d2.cwiseAbs().maxCoeff(), rr.cwiseAbs().maxCoeff()});
     if (largest > 0.0) {
-        // x * 2^k as one correctly rounded product, ldexp's value: 2^k is a double for k <= 1023;
-        // k up to 1074 (a subnormal largest) takes two products, both exact as they scale up.
-        const int k = -std::ilogb(largest);
-        const double scale = std::ldexp(1.0, std::min(k, 1023));
-        d1 *= scale, d2 *= scale, rr *= scale;
-        if (k > 1023) {
-            const double rest = std::ldexp(1.0, k - 1023);
-            d1 *= rest, d2 *= rest, rr *= rest;
-        }
+        // x * 2^k as ldexp gives it (k = -ilogb(largest) is in [-1023, 1074]: PowerOfTwo's range).
+        const PowerOfTwo scale(-std::ilogb(largest));
+        d1 = d1.unaryExpr(scale), d2 = d2.unaryExpr(scale), rr = rr.unaryExpr(scale);
     }
     const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(rr);
     // Zero length: a below the smallest normal double (the segment shorter than ~1e-154 of the

@@ -21,13 +21,12 @@ Vec3 rounded(const Vec3DD& v) { return {v.x.value(), v.y.value(), v.z.value()}; 
 
 /// The four points scaled by one power of two (exact) so that the largest |coordinate| is in
 /// [0.5, 1): products of four coordinates (|c|^2) then neither overflow nor lose the split's
-/// range, and tiny inputs do not underflow before they must. exponent is in [-1073, 1024] (frexp
-/// of a finite double), so both scalings are in PowerOfTwo's range.
+/// range, and tiny inputs do not underflow before they must. The exponent is in [-1073, 1024]
+/// (frexp of a finite double), so both scalings are in PowerOfTwo's range.
 struct ScaledQuad {
     Vec3 p[4];
-    int exponent = 0;  // original = scaled * 2^exponent
     bool finite = true;
-    PowerOfTwo up{0};
+    PowerOfTwo up{0};  // original = up(scaled)
 
     ScaledQuad(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
         const Vec3 in[4] = {a0, a1, b0, b1};
@@ -36,6 +35,7 @@ struct ScaledQuad {
             finite = finite && v.allFinite();
             m = std::max(m, v.cwiseAbs().maxCoeff());
         }
+        int exponent = 0;
         if (finite && m > 0.0) std::frexp(m, &exponent);
         const PowerOfTwo down(-exponent);
         for (int i = 0; i < 4; ++i) p[i] = in[i].unaryExpr(down);
