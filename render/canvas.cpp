@@ -16,6 +16,7 @@
 
 #include "render/gl_internal.h"
 #include "render/label_placement.h"
+#include "render/pixel_budget.h"
 #include "render/legibility.h"
 #include "render/translucent_order.h"
 
@@ -709,10 +710,27 @@ namespace {
 double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+thread_local PixelBudget* g_budget = nullptr;  // the innermost budget of this thread
 }  // namespace
+
+PixelBudget::PixelBudget(double limit) : limit_(limit), outer_(g_budget) { g_budget = this; }
+
+PixelBudget::~PixelBudget() { g_budget = outer_; }
+
+void PixelBudget::spend(double pixels) {
+    PixelBudget* b = g_budget;
+    if (!b) return;
+    if (b->used_ + pixels > b->limit_)
+        throw ImageError("the frames drawn take more than " + std::to_string(static_cast<long long>(b->limit_)) +
+                         " rendered pixels together, the limit for one scene (fewer steps, views or queries, or a "
+                         "smaller image)");
+    b->used_ += pixels;
+}
 
 Image Canvas::readPixels() {
     Impl& m = *impl_;
+    PixelBudget::spend(double(m.rw) * double(m.rh));  // before anything is read back
     RenderStats& stats = renderStats();
     auto t0 = std::chrono::steady_clock::now();
     GlContext::Impl& gl = m.context.impl();

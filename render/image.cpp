@@ -1,6 +1,7 @@
 #include "render/image.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #pragma GCC diagnostic push
@@ -24,16 +26,61 @@ namespace {
 
 constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
+// ---- Temp files in flight, for the signal handler -----------------------------------------------
+// A fixed table (no allocation, no lock: a signal handler may read it at any moment). A slot is
+// free (0), being filled (1) or names a temp file that exists or is about to (2). More temp files
+// in flight than slots go untracked; removeStaleTempFiles finds those on a later run.
+constexpr int kTempSlots = 256;
+constexpr std::size_t kTempPathBytes = 4096;
+struct TempSlot {
+    std::atomic<int> state{0};
+    char path[kTempPathBytes];
+};
+TempSlot g_temps[kTempSlots];
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots' state");
+
+int trackTemp(const std::string& temp) {
+    if (temp.size() >= kTempPathBytes) return -1;
+    for (int i = 0; i < kTempSlots; ++i) {
+        int expected = 0;
+        if (g_temps[i].state.compare_exchange_strong(expected, 1)) {
+            std::memcpy(g_temps[i].path, temp.c_str(), temp.size() + 1);
+            g_temps[i].state.store(2);
+            return i;
+        }
+    }
+    return -1;
+}
+
+void untrackTemp(int slot) {
+    if (slot >= 0) g_temps[slot].state.store(0);
+}
+
+extern "C" void removeTempsAndResignal(int sig) {
+    const int savedErrno = errno;
+    for (TempSlot& t : g_temps)
+        if (t.state.load() == 2) ::unlink(t.path);
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);  // delivered when the handler returns: the process ends as the signal asks
+    errno = savedErrno;
+}
+
 template <class Error>
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
     throw Error("cannot write '" + path + "': " + what);
 }
 
-/// Writes `data` to a new temp file in the target's folder and fsyncs it; returns the temp name.
+struct StagedTemp {
+    std::string temp;
+    int slot;  // in g_temps, or -1
+};
+
+/// Writes `data` to a new temp file in the target's folder and fsyncs it; returns the temp name
+/// and its slot in the signal handler's table (the caller untracks it once renamed or removed).
 /// The name is unique per process and call, so parallel writers of one file (two runs into the
 /// same folder) never share a temp file. On failure the temp file is removed.
 template <class Error>
-std::string stageFile(const std::string& path, const void* data, std::size_t size) {
+StagedTemp stageFile(const std::string& path, const void* data, std::size_t size) {
     namespace fs = std::filesystem;
     if (path.empty()) throw Error("cannot write '': empty path");
     const fs::path target(path);
@@ -46,11 +93,17 @@ std::string stageFile(const std::string& path, const void* data, std::size_t siz
     if (fs::symlink_status(target, ec).type() == fs::file_type::directory) fail<Error>(path, "is a directory");
     static std::atomic<unsigned> counter{0};
     const std::string temp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    const int slot = trackTemp(temp);  // before the file exists: a signal never misses it
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd < 0) fail<Error>(path, std::strerror(errno));
+    if (fd < 0) {
+        const int err = errno;
+        untrackTemp(slot);
+        fail<Error>(path, std::strerror(err));
+    }
     auto abandon = [&](int err) {
         ::close(fd);
         ::unlink(temp.c_str());
+        untrackTemp(slot);
         fail<Error>(path, std::strerror(err));
     };
     const auto* bytes = static_cast<const unsigned char*>(data);
@@ -65,19 +118,22 @@ std::string stageFile(const std::string& path, const void* data, std::size_t siz
     if (::close(fd) != 0) {
         const int err = errno;
         ::unlink(temp.c_str());
+        untrackTemp(slot);
         fail<Error>(path, std::strerror(err));
     }
-    return temp;
+    return {temp, slot};
 }
 
 /// POSIX rename is atomic within a file system: readers see the old file or the complete new one.
 template <class Error>
-void commitFile(const std::string& temp, const std::string& path) {
-    if (::rename(temp.c_str(), path.c_str()) != 0) {
+void commitFile(const StagedTemp& staged, const std::string& path) {
+    if (::rename(staged.temp.c_str(), path.c_str()) != 0) {
         const int err = errno;
-        ::unlink(temp.c_str());
+        ::unlink(staged.temp.c_str());
+        untrackTemp(staged.slot);
         fail<Error>(path, std::strerror(err));
     }
+    untrackTemp(staged.slot);
 }
 
 /// Temp file in the target folder + write + fsync + rename: never a truncated target.
@@ -92,6 +148,40 @@ std::string sizeText(std::size_t bytes) {
 }
 
 }  // namespace
+
+void removeTempFilesOnSignal() {
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+        struct sigaction old {};
+        if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;  // e.g. nohup: kept
+        struct sigaction action {};
+        action.sa_handler = removeTempsAndResignal;
+        sigemptyset(&action.sa_mask);
+        ::sigaction(sig, &action, nullptr);
+    }
+}
+
+void removeStaleTempFiles(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        // <name>.tmp.<pid>.<n>: digits after the last two dots, ".tmp" before them.
+        const std::size_t last = name.rfind('.');
+        if (last == std::string::npos || last == 0) continue;
+        const std::size_t pidDot = name.rfind('.', last - 1);
+        if (pidDot == std::string::npos || pidDot < 5 || name.compare(pidDot - 4, 4, ".tmp") != 0) continue;
+        const std::string pidText = name.substr(pidDot + 1, last - pidDot - 1), n = name.substr(last + 1);
+        const auto digits = [](const std::string& t) {
+            return !t.empty() && t.size() <= 10 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+        };
+        if (!digits(pidText) || !digits(n)) continue;
+        const long pid = std::stol(pidText);
+        if (pid <= 0 || pid > std::numeric_limits<pid_t>::max() || pid == ::getpid()) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to ask
+        if (fs::symlink_status(it->path(), ec).type() == fs::file_type::regular) fs::remove(it->path(), ec);
+        ec.clear();
+    }
+}
 
 bool readFileBounded(const std::string& path, std::size_t maxBytes, const std::string& kind, std::string& bytes,
                      std::string& problem) {
@@ -202,16 +292,21 @@ void writeFileAtomic(const std::string& path, const std::string& bytes) {
 }
 
 FileSetWriter::~FileSetWriter() {
-    for (const Staged& s : staged_) ::unlink(s.temp.c_str());
+    for (const Staged& s : staged_) {
+        ::unlink(s.temp.c_str());
+        untrackTemp(s.slot);
+    }
 }
 
 void FileSetWriter::addPng(const std::string& path, const Image& image) {
     const std::vector<unsigned char> png = encodePng(path, image);
-    staged_.push_back({stageFile<ImageError>(path, png.data(), png.size()), path});
+    const StagedTemp t = stageFile<ImageError>(path, png.data(), png.size());
+    staged_.push_back({t.temp, path, t.slot});
 }
 
 void FileSetWriter::addFile(const std::string& path, const std::string& bytes) {
-    staged_.push_back({stageFile<std::runtime_error>(path, bytes.data(), bytes.size()), path});
+    const StagedTemp t = stageFile<std::runtime_error>(path, bytes.data(), bytes.size());
+    staged_.push_back({t.temp, path, t.slot});
 }
 
 void FileSetWriter::commit() {
@@ -219,9 +314,12 @@ void FileSetWriter::commit() {
     staged_.clear();
     for (std::size_t i = 0; i < files.size(); ++i) {
         try {
-            commitFile<std::runtime_error>(files[i].temp, files[i].target);
+            commitFile<std::runtime_error>({files[i].temp, files[i].slot}, files[i].target);
         } catch (...) {
-            for (std::size_t j = i + 1; j < files.size(); ++j) ::unlink(files[j].temp.c_str());
+            for (std::size_t j = i + 1; j < files.size(); ++j) {
+                ::unlink(files[j].temp.c_str());
+                untrackTemp(files[j].slot);
+            }
             throw;
         }
     }

@@ -66,6 +66,16 @@ void writePngAtomic(const std::string& path, const Image& image);
 /// Writes bytes atomically (temp file + rename); used for JSON/HTML outputs. Throws std::runtime_error.
 void writeFileAtomic(const std::string& path, const std::string& bytes);
 
+/// SIGINT, SIGTERM and SIGHUP (where their action is still the default) first remove the temp
+/// files of the atomic writes in flight, then end the process as the signal would have
+/// (hostile_harness_test "an interrupted render leaves no temp file"). For commands that write.
+void removeTempFilesOnSignal();
+
+/// Removes the temp files "<name>.tmp.<pid>.<n>" in `dir` (not below it) whose process is gone: what
+/// a run killed by SIGKILL or a power cut left. Files of running processes, this one's included,
+/// and every other name are kept.
+void removeStaleTempFiles(const std::string& dir);
+
 /// Writes several files as one unit (a scene's frames, trace and manifest): each add*() stages a
 /// file (a temp file with a name unique to this process and call, written and fsynced); commit()
 /// renames them all into place, in the order added. A failure while staging, or destruction
@@ -84,6 +94,7 @@ public:
 private:
     struct Staged {
         std::string temp, target;
+        int slot;  // the temp file's entry in the signal handler's table, or -1
     };
     std::vector<Staged> staged_;
 };

@@ -1,5 +1,9 @@
 #include "demos/app/cli.h"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -94,19 +98,19 @@ int guarded(const char* program, F&& body) {
     try {
         return body();
     } catch (const UsageError& e) {
-        std::cerr << program << ": " << e.what() << "\n" << kUsage;
+        std::cerr << program << ": " << printable(e.what()) << "\n" << kUsage;
         return 2;
     } catch (const InputError& e) {
-        std::cerr << e.what() << "\n";
+        std::cerr << printable(e.what()) << "\n";
         return 2;
     } catch (const render::GlError& e) {
-        std::cerr << program << ": OpenGL: " << e.what() << "\n";
+        std::cerr << program << ": OpenGL: " << printable(e.what()) << "\n";
         return 2;
     } catch (const render::ImageError& e) {
-        std::cerr << program << ": " << e.what() << "\n";
+        std::cerr << program << ": " << printable(e.what()) << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << program << ": " << e.what() << "\n";
+        std::cerr << program << ": " << printable(e.what()) << "\n";
         return 2;
     }
 }
@@ -133,9 +137,34 @@ int runRender(int argc, char** argv) {
     return renderSceneFiles(files, o);
 }
 
+// What a command printed on stdout must have reached it: a full disk or a closed pipe is exit 2,
+// not success (hostile_harness_test "stdout on a full disk is exit 2").
+int withStdoutChecked(const char* program, int status) {
+    errno = 0;
+    std::cout.flush();
+    const bool flushFailed = std::fflush(stdout) != 0;
+    int err = errno;
+    if (!flushFailed && std::cout && !std::ferror(stdout)) return status;
+    // A write failed earlier and its errno is gone: one more byte finds the reason (ENOSPC, EPIPE).
+    if (!err && ::write(STDOUT_FILENO, "\n", 1) < 0) err = errno;
+    std::cerr << program << ": cannot write to standard output" << (err ? std::string(": ") + std::strerror(err) : "")
+              << "\n";
+    return 2;
+}
+
+int cdlabCommand(int argc, char** argv);
+
 }  // namespace
 
 int cdlabMain(int argc, char** argv) {
+    // Commands that write files remove their temp files when interrupted (render/image.h).
+    render::removeTempFilesOnSignal();
+    return withStdoutChecked("cdlab", cdlabCommand(argc, argv));
+}
+
+namespace {
+
+int cdlabCommand(int argc, char** argv) {
     return guarded("cdlab", [&]() -> int {
         if (argc < 2) throw UsageError("missing command");
         std::string cmd = argv[1];
@@ -169,8 +198,15 @@ int cdlabMain(int argc, char** argv) {
                 const std::string a = argv[i];
                 if (a == "--tolerance" && i + 1 < argc) {
                     char* end = nullptr;
-                    co.tolerance = std::strtod(argv[++i], &end);
-                    if (!end || *end || !(co.tolerance > 0)) throw UsageError("--tolerance takes a positive number");
+                    const char* text = argv[++i];
+                    co.tolerance = std::strtod(text, &end);
+                    // Finite and in (0, kMaxCheckTolerance]: "inf", "nan" and 1e300 are refused, never a pass-all.
+                    if (!end || end == text || *end || !(co.tolerance > 0) || !(co.tolerance <= kMaxCheckTolerance)) {
+                        std::ostringstream most;
+                        most << kMaxCheckTolerance;
+                        throw UsageError("--tolerance takes a number above 0 and at most " + most.str() +
+                                         " (relative to the shapes' size), got " + std::string(text));
+                    }
                 } else if (a == "--figures" && i + 1 < argc) {
                     co.figuresDir = argv[++i];
                 } else throw UsageError("check: unknown argument " + a + " (it reads JSON Lines on stdin)");
@@ -183,13 +219,16 @@ int cdlabMain(int argc, char** argv) {
             for (const Demo* d : allDemos()) std::cout << d->name() << "\t" << d->description() << "\n";
             return 0;
         }
-        throw UsageError("unknown command '" + cmd + "'");
+        throw UsageError("unknown command '" + printable(cmd) + "'");
     });
 }
 
+}  // namespace
+
 int demoMain(const std::string& demo, int argc, char** argv) {
     std::string program = "demo_" + demo;
-    return guarded(program.c_str(), [&]() -> int {
+    render::removeTempFilesOnSignal();
+    return withStdoutChecked(program.c_str(), guarded(program.c_str(), [&]() -> int {
         if (wantsHelp(argc, argv, 1)) {
             std::cout << "usage: " << program << " [scene.json ...] [options]\n"
                       << "  renders the " << demo << " demo's golden scenes (or the scene files given) into out/figures/\n"
@@ -205,7 +244,7 @@ int demoMain(const std::string& demo, int argc, char** argv) {
         o.demo = demo;
         if (files.empty()) return runFigures(o);
         return renderSceneFiles(files, o);
-    });
+    }));
 }
 
 }  // namespace cdlab::demos

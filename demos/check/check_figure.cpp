@@ -14,6 +14,7 @@
 #include "demos/query/query.h"
 #include "demos/query/query_json.h"
 #include "demos/query/query_shapes.h"
+#include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 #include "render/image.h"
 
@@ -79,6 +80,17 @@ std::optional<PairScene> drawablePair(const Json& query, bool forTrace, std::str
     return pair;
 }
 
+// A − B of two polytopes is drawn as the exact hull of every difference: the scenes' cap on their
+// count (kMaxMinkowskiPoints, demos/scene/scene_limits.h) holds here too, checked before any hull
+// is built. "" within it, else why there is no figure.
+std::string minkowskiTooLarge(const PairScene& pair) {
+    if (!pair.a.isPolytope() || !pair.b.isPolytope()) return "";
+    const std::size_t na = pair.a.polytope.vertices().size(), nb = pair.b.polytope.vertices().size();
+    if (!(double(na) * double(nb) > kMaxMinkowskiPoints)) return "";
+    return "no figure: A − B would be the hull of " + std::to_string(na) + " x " + std::to_string(nb) +
+           " differences of vertices, over the limit of " + std::to_string(std::size_t(kMaxMinkowskiPoints)) +
+           " the figures draw";
+}
 
 std::string number(const Json& j) {
     if (!j.is_number()) return j.dump();
@@ -201,8 +213,11 @@ std::optional<StepPicture> stepOf(const Json& trace, int k) {
 // query's own trace runs on the cores (a sphere's centre, docs/check.md), a different
 // configuration space. Starts along `initial` when given.
 Json fullShapeGjkSteps(const Json& query, const std::optional<Vec3>& initial) {
-    const QueryShape qa = parseQueryShape(JsonNode(query["a"], "$.a", "check"));
-    const QueryShape qb = parseQueryShape(JsonNode(query["b"], "$.b", "check"));
+    const Json* ja = member(query, "a");
+    const Json* jb = member(query, "b");
+    if (!ja || !jb) return Json::array();
+    const QueryShape qa = parseQueryShape(JsonNode(*ja, "$.a", "check"));
+    const QueryShape qb = parseQueryShape(JsonNode(*jb, "$.b", "check"));
     const RoundedShape<PolytopeShape> a{PolytopeShape(qa.vertices), qa.radius}, b{PolytopeShape(qb.vertices), qb.radius};
     GjkOptions options;
     GjkSimplex start;  // one vertex whose direction gives the first support (a warm start)
@@ -338,6 +353,12 @@ std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Js
     return "";
 }
 
+std::string traceFigureRefusal(const Json& query) {
+    std::string why;
+    const std::optional<PairScene> pair = drawablePair(query, true, why);
+    return pair ? minkowskiTooLarge(*pair) : why;
+}
+
 std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const Json& trace,
                                  const std::string& algorithm, int step, const std::string& title,
                                  const std::vector<std::string>& reasons, const std::string& path) {
@@ -345,6 +366,7 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     std::string why;
     const std::optional<PairScene> pairRead = drawablePair(query, true, why);
     if (!pairRead) return why;
+    if (const std::string tooLarge = minkowskiTooLarge(*pairRead); !tooLarge.empty()) return tooLarge;
     const Json yourTrace = traceOf(trace, algorithm);
     const bool epa = algorithm == "epa";
     const std::optional<StepPicture> mine = epa ? epaStepOf(yourTrace, step) : stepOf(yourTrace, step);

@@ -25,6 +25,12 @@ std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Js
                               const std::string& title, const std::vector<std::string>& reasons,
                               const std::string& path);
 
+/// Why a trace figure of the query cannot be drawn ("no figure: ..."), or "" when it can: shapes
+/// other than polytopes, aabbs, obbs and spheres, or two polytopes whose vertex counts multiply to
+/// more than kMaxMinkowskiPoints (demos/scene/scene_limits.h), the hull of A − B the scenes refuse
+/// too. Needs no GL context: --figures asks it first.
+std::string traceFigureRefusal(const Json& query);
+
 /// For a GJK or EPA trace of yours (`algorithm`; `trace` may hold several in "algorithms") whose
 /// step `step` (0-based) breaks a rule: configuration space twice, A − B and the origin with cdlab's
 /// step beside yours (GJK: simplex kept, support point, search direction; EPA: the face's nearest

@@ -15,8 +15,8 @@ namespace cdlab::demos {
 
 namespace {
 
-// Distance from the origin to the convex hull of up to four points (cdlab's distance op).
-std::optional<double> originDistance(const std::vector<Vec3>& pts) {
+// The convex hull of points (a point, segment, triangle or polytope), read as a query shape.
+ShapeModel hullOf(const std::vector<Vec3>& pts) {
     Json shape;
     if (pts.size() == 1) shape = {{"point", vecJson(pts[0])}};
     else if (pts.size() == 2) shape = {{"segment", {vecJson(pts[0]), vecJson(pts[1])}}};
@@ -26,82 +26,110 @@ std::optional<double> originDistance(const std::vector<Vec3>& pts) {
         for (const Vec3& p : pts) v.push_back(vecJson(p));
         shape = {{"polytope", {{"vertices", v}}}};
     }
-    return distanceTo(Vec3::Zero(), shape);
+    return ShapeModel(shape);
 }
 
 // The steps of a trace: {"steps": [...]} or the array itself.
 const Json* stepsOf(const Json& trace) {
-    if (trace.is_object() && trace.contains("steps") && trace["steps"].is_array()) return &trace["steps"];
+    const Json* steps = member(trace, "steps");
+    if (steps && steps->is_array()) return steps;
     return trace.is_array() ? &trace : nullptr;
 }
 
-// A support point given as a point of A − B or as the pair {"a", "b"}.
-std::optional<Vec3> supportPoint(const Json& s) {
-    if (isVec(s)) return vec(s);
-    if (s.is_object() && s.contains("a") && s.contains("b") && isVec(s["a"]) && isVec(s["b"]))
-        return Vec3(vec(s["a"]) - vec(s["b"]));
+// A support point given as a point of A − B or as the pair {"a", "b"} (then also each of the pair).
+struct GivenSupport {
+    Vec3 w;
+    std::optional<Vec3> a, b;
+};
+
+std::optional<GivenSupport> supportPoint(const Json* s) {
+    if (!s) return std::nullopt;
+    if (isVec(*s)) return GivenSupport{vec(*s), std::nullopt, std::nullopt};
+    const std::optional<Vec3> a = vecMember(*s, "a"), b = vecMember(*s, "b");
+    if (a && b) return GivenSupport{Vec3(*a - *b), a, b};
     return std::nullopt;
 }
 
+// Rule 1 of GJK and EPA: the support w is extreme in A − B along the unit direction u, w·u =
+// h_A(u) + h_B(−u) within tol, from both sides: not short of it (another point reaches further) and
+// not beyond it (no point of A − B does). Given the pair {a, b}, each is held to its own shape. ""
+// when it holds (or no support value can be computed: planes, rays), else the reason's detail.
+std::string supportRuleBreak(const GivenSupport& given, const Vec3& u, const ShapeModel& shapeA,
+                             const ShapeModel& shapeB, double tol, const std::string& along) {
+    const std::optional<double> ha = shapeA.support(u), hb = shapeB.support(-u);
+    if (!ha || !hb) return "";
+    const double reach = given.w.dot(u), h = *ha + *hb;
+    std::string detail;
+    if (given.a && given.b) {
+        const double ra = given.a->dot(u), rb = given.b->dot(-u);
+        if (ra > *ha + tol) detail = "your a reaches " + value(ra) + " along " + along + ", beyond A's extreme " + value(*ha) + ": not a point of A";
+        else if (rb > *hb + tol) detail = "your b reaches " + value(rb) + " along −(" + along + "), beyond B's extreme " + value(*hb) + ": not a point of B";
+        else if (ra < *ha - tol) detail = "your a is not extreme in A along " + along + ": it reaches " + value(ra) + ", A reaches " + value(*ha);
+        else if (rb < *hb - tol) detail = "your b is not extreme in B along −(" + along + "): it reaches " + value(rb) + ", B reaches " + value(*hb);
+    }
+    if (std::abs(reach - h) <= tol && detail.empty()) return "";
+    std::string why = "yours reaches " + value(reach) + " along it, A − B reaches " + value(h);
+    if (reach > h + tol) why += " (yours lies beyond A − B)";
+    return detail.empty() ? why : why + "; " + detail;
+}
+
 // Your GJK trace, step by step, against the rule every step must follow (so ties are not
-// divergences): the support point is extreme along your direction (h_{A−B}(d)); the simplex kept
-// holds the point of the simplex nearest the origin; the next direction points from that point
-// toward the origin. The first step that breaks one is reported.
-void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
-                   int& divergence) {
-    if (!query.contains("a") || !query.contains("b")) return reasons.push_back("trace: the query needs a and b");
+// divergences): the support point is extreme along your direction (h_{A−B}(d), both ways); the
+// simplex kept holds the point of the simplex nearest the origin; the next direction points from
+// that point toward the origin. The first step that breaks one is reported.
+void checkGjkTrace(const Json& query, const Json& trace, double tol, const ShapeModel& shapeA,
+                   const ShapeModel& shapeB, std::vector<std::string>& reasons, int& divergence) {
+    if (!member(query, "a") || !member(query, "b")) return reasons.push_back("trace: the query needs a and b");
     const Json* steps = stepsOf(trace);
     if (!steps) return reasons.push_back("trace: expected {\"steps\": [...]} (docs/check.md)");
-    std::vector<Vec3> kept;
+    if (steps->size() > kMaxTraceSteps)
+        return reasons.push_back("trace: " + std::to_string(steps->size()) + " steps, over the limit of " +
+                                 std::to_string(kMaxTraceSteps) + " steps a trace may have");
+    // The points a step may keep: the last simplex given plus every support since. Steps without
+    // "simplex" only append their support (amortised O(1) a step: the check is linear in the
+    // steps, tests/demos/check/check_test.cpp "step limit").
+    std::vector<Vec3> pool;
     std::optional<Vec3> closest;
     for (std::size_t k = 0; k < steps->size(); ++k) {
         const Json& s = (*steps)[k];
         const std::string at = "trace: iteration " + std::to_string(k) + ": ";
         divergence = static_cast<int>(k);  // where a failure returns below
-        const std::optional<Vec3> given = s.is_object() ? supportPoint(s.value("support", Json())) : std::nullopt;
-        if (!s.is_object() || !isVec(s.value("direction", Json())) || !given)
+        const std::optional<Vec3> dGiven = vecMember(s, "direction");
+        const std::optional<GivenSupport> given = supportPoint(member(s, "support"));
+        if (!dGiven || !given)
             return reasons.push_back(at + "expected \"direction\" [x,y,z] and \"support\" (a point of A − B, or {\"a\", \"b\"})");
-        const Vec3 d = vec(s["direction"]);
-        const Vec3 w = *given;
-        if (closest && closest->norm() > tol) {
-            const Vec3 toward = -closest->normalized();
-            if (d.norm() == 0 || (d.normalized() - toward).norm() > 1e-6)
+        const Vec3 d = *dGiven;
+        const Vec3 w = given->w;
+        if (closest && length(*closest) > tol) {
+            const Vec3 toward = -unit(*closest);
+            if (!(length(d) > 0) || !(length(unit(d) - toward) <= 1e-6))
                 return reasons.push_back(at + "the search direction does not point from the simplex's closest point " +
                                          "toward the origin");
         }
-        const std::optional<double> ha = support(query["a"], d), hb = support(query["b"], -d);
-        if (ha && hb && !(w.dot(d) >= *ha + *hb - tol * std::max(d.norm(), 1.0)))
-            return reasons.push_back(at + "different support point for the same direction: yours reaches " + value(w.dot(d)) +
-                                     " along it, A − B reaches " + value(*ha + *hb));
-        std::vector<Vec3> all = kept;
-        all.push_back(w);
-        if (!s.contains("simplex")) {
-            kept = all;
-            continue;
+        if (length(d) > 0) {
+            const std::string why = supportRuleBreak(*given, unit(d), shapeA, shapeB, tol, "d");
+            if (!why.empty()) return reasons.push_back(at + "different support point for the same direction: " + why);
         }
+        pool.push_back(w);
+        const Json* simplex = member(s, "simplex");
+        if (!simplex) continue;
+        if (!simplex->is_array()) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
+        if (simplex->empty() || simplex->size() > 4) return reasons.push_back(at + "the simplex kept has 1 to 4 points");
         std::vector<Vec3> next;
-        for (const Json& p : s["simplex"]) {
+        for (const Json& p : *simplex) {
             if (!isVec(p)) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
             next.push_back(vec(p));
-            if (std::none_of(all.begin(), all.end(), [&](const Vec3& y) { return (y - next.back()).norm() <= tol; }))
+            if (std::none_of(pool.begin(), pool.end(), [&](const Vec3& y) { return length(y - next.back()) <= tol; }))
                 return reasons.push_back(at + "the simplex keeps a point that was not in it");
         }
-        if (next.empty() || next.size() > 4) return reasons.push_back(at + "the simplex kept has 1 to 4 points");
-        const std::optional<double> best = originDistance(all), mineD = originDistance(next);  // all: up to 5 points
+        const ShapeModel kept = hullOf(next);
+        const std::optional<double> best = hullOf(pool).distanceTo(Vec3::Zero()), mineD = kept.distanceTo(Vec3::Zero());
         if (best && mineD && !(*mineD <= *best + tol))
             return reasons.push_back(at + "wrong sub-simplex kept: its nearest point is " + num(*mineD) +
                                      " from the origin, the simplex's is " + num(*best));
-        kept = next;
+        pool = next;
         // The closest point of the kept simplex, for the next direction: by the distance op's witness.
-        Json shape;
-        if (next.size() == 1) closest = next[0];
-        else {
-            Json v = Json::array();
-            for (const Vec3& p : next) v.push_back(vecJson(p));
-            shape = next.size() == 2 ? Json{{"segment", v}} : next.size() == 3 ? Json{{"triangle", v}} : Json{{"polytope", {{"vertices", v}}}};
-            const Json a = answerQuery(Json{{"op", "distance"}, {"a", {{"point", {0, 0, 0}}}}, {"b", shape}}.dump());
-            closest = a.value("intersect", true) ? Vec3::Zero() : vec(a["point_b"]);
-        }
+        closest = next.size() == 1 ? std::optional<Vec3>(next[0]) : kept.closestPointTo(Vec3::Zero());
     }
     divergence = -1;  // every step follows the rules
 }
@@ -111,32 +139,34 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, std::vector
 // d) by the support point along n. Rules: n unit; the support extreme along n; d never above the
 // penetration depth (the polytope lies inside A − B) and never below the previous step's d (the
 // polytope only grows); with your "polytope" (its triangles), the face is its closest one.
-void checkEpaTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
-                   int& divergence) {
-    if (!query.contains("a") || !query.contains("b")) return reasons.push_back("trace (epa): the query needs a and b");
+void checkEpaTrace(const Json& query, const Json& trace, double tol, const ShapeModel& shapeA, const ShapeModel& shapeB,
+                   std::vector<std::string>& reasons, int& divergence) {
+    const Json* qa = member(query, "a");
+    const Json* qb = member(query, "b");
+    if (!qa || !qb) return reasons.push_back("trace (epa): the query needs a and b");
     const Json* steps = stepsOf(trace);
     if (!steps) return reasons.push_back("trace (epa): expected {\"steps\": [...]} (docs/check.md)");
-    const Json answer =
-        answerQuery(Json{{"op", "penetration"}, {"a", query["a"]}, {"b", query["b"]}}.dump());
+    if (steps->size() > kMaxTraceSteps)
+        return reasons.push_back("trace (epa): " + std::to_string(steps->size()) + " steps, over the limit of " +
+                                 std::to_string(kMaxTraceSteps) + " steps a trace may have");
+    const Json answer = answerQuery(Json{{"op", "penetration"}, {"a", *qa}, {"b", *qb}}.dump());
     // cdlab's depth (NaN: none, e.g. the shapes do not overlap).
-    const double depth = answer.contains("depth") && answer["depth"].is_number() ? answer["depth"].get<double>() : NAN;
+    const double depth = numberMember(answer, "depth").value_or(NAN);
     double previous = -INFINITY;
     for (std::size_t k = 0; k < steps->size(); ++k) {
         divergence = static_cast<int>(k);
         const Json& s = (*steps)[k];
         const std::string at = "trace (epa): iteration " + std::to_string(k) + ": ";
-        const Json n = s.is_object() ? s.value("normal", s.value("closest_normal", Json())) : Json();
-        const Json d = s.is_object() ? s.value("distance", s.value("closest_distance", Json())) : Json();
-        const std::optional<Vec3> w = s.is_object() ? supportPoint(s.value("support", Json())) : std::nullopt;
-        if (!isVec(n) || !d.is_number() || !w)
+        const Json* n = member(s, "normal") ? member(s, "normal") : member(s, "closest_normal");
+        const Json* d = member(s, "distance") ? member(s, "distance") : member(s, "closest_distance");
+        const std::optional<GivenSupport> w = supportPoint(member(s, "support"));
+        if (!n || !isVec(*n) || !d || !d->is_number() || !w)
             return reasons.push_back(at + "expected \"normal\" [x,y,z], \"distance\" and \"support\"");
-        const Vec3 normal = vec(n);
-        const double dist = d.get<double>();
-        if (!(std::abs(normal.norm() - 1) <= 1e-6)) return reasons.push_back(at + "the face normal is not unit");
-        const std::optional<double> ha = support(query["a"], normal), hb = support(query["b"], -normal);
-        if (ha && hb && !(w->dot(normal) >= *ha + *hb - tol))
-            return reasons.push_back(at + "different support point for the face's normal: yours reaches " +
-                                     value(w->dot(normal)) + " along it, A − B reaches " + value(*ha + *hb));
+        const Vec3 normal = vec(*n);
+        const double dist = d->get<double>();
+        if (!(std::abs(length(normal) - 1) <= 1e-6)) return reasons.push_back(at + "the face normal is not unit");
+        const std::string why = supportRuleBreak(*w, unit(normal), shapeA, shapeB, tol, "n");
+        if (!why.empty()) return reasons.push_back(at + "different support point for the face's normal: " + why);
         if (dist > depth + tol)  // false for a NaN depth
             return reasons.push_back(at + "the face is " + value(dist) + " from the origin, beyond the depth " +
                                      value(depth) + ": your polytope is not inside A − B");
@@ -144,13 +174,13 @@ void checkEpaTrace(const Json& query, const Json& trace, double tol, std::vector
             return reasons.push_back(at + "the closest face came nearer (" + value(previous) + " → " + value(dist) +
                                      "): the polytope only grows, so its closest face cannot");
         previous = dist;
-        if (s.contains("polytope") && s["polytope"].is_array()) {
+        if (const Json* polytope = member(s, "polytope"); polytope && polytope->is_array()) {
             double nearest = INFINITY;
-            for (const Json& f : s["polytope"]) {
+            for (const Json& f : *polytope) {
                 if (!f.is_array() || f.size() != 3 || !isVec(f[0]) || !isVec(f[1]) || !isVec(f[2]))
                     return reasons.push_back(at + "polytope: expected triangles [[x,y,z] x 3]");
                 const Vec3 p0 = vec(f[0]), e = (vec(f[1]) - p0).cross(vec(f[2]) - p0);
-                if (e.norm() > 0) nearest = std::min(nearest, std::abs(e.normalized().dot(p0)));
+                if (length(e) > 0) nearest = std::min(nearest, std::abs(unit(e).dot(p0)));
             }
             if (nearest < dist - tol)
                 return reasons.push_back(at + "not the closest face of your polytope: a face lies " + value(nearest) +
@@ -223,14 +253,16 @@ int regionCondition(const std::string& region, const RegionTerms& t, double eps2
 // boundary (a term within the tolerance of 0): either decision passes there.
 void checkRegionTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
                       int& divergence) {
-    const Json* tests = trace.is_object() && trace.contains("tests") && trace["tests"].is_array() ? &trace["tests"] : nullptr;
-    if (!tests) return reasons.push_back("trace (regions): expected {\"tests\": [...]} (docs/check.md)");
+    const Json* tests = member(trace, "tests");
+    if (!tests || !tests->is_array()) return reasons.push_back("trace (regions): expected {\"tests\": [...]} (docs/check.md)");
+    if (tests->size() > kMaxTraceSteps)
+        return reasons.push_back("trace (regions): " + std::to_string(tests->size()) + " tests, over the limit of " +
+                                 std::to_string(kMaxTraceSteps) + " a trace may have");
     const Json tri0 = query.value("triangle", Json());
     if (!isVec(query.value("point", Json())) || !tri0.is_array() || tri0.size() != 3 || !isVec(tri0[0]) ||
         !isVec(tri0[1]) || !isVec(tri0[2]))
         return reasons.push_back("trace (regions): the query needs \"point\" and \"triangle\"");
-    const Json& tri = query["triangle"];
-    const RegionTerms t = regionTerms(vec(tri[0]), vec(tri[1]), vec(tri[2]), vec(query["point"]));
+    const RegionTerms t = regionTerms(vec(tri0[0]), vec(tri0[1]), vec(tri0[2]), vec(query.value("point", Json())));
     const double L = std::sqrt(t.scale);
     const double rel = std::max(tol / std::max(L, 1e-300), 1e-12);  // your tolerance, relative
     const double eps2 = rel * t.scale, eps4 = rel * t.scale * t.scale;
@@ -238,23 +270,25 @@ void checkRegionTrace(const Json& query, const Json& trace, double tol, std::vec
         divergence = static_cast<int>(k);
         const Json& test = (*tests)[k];
         const std::string region = test.is_object() ? test.value("region", "") : "";
-        const std::string at = "trace (regions): test " + std::to_string(k) + " (" + region + "): ";
+        const std::string at = "trace (regions): test " + std::to_string(k) + " (" + shortText(region) + "): ";
         const int holds = regionCondition(region, t, eps2, eps4);
         if (holds == -2) return reasons.push_back(at + "not a region of the triangle (A, B, C, AB, BC, AC, ABC)");
-        if (test.contains("terms") && test["terms"].is_array())
-            for (const Json& term : test["terms"]) {
+        if (const Json* terms = member(test, "terms"); terms && terms->is_array())
+            for (const Json& term : *terms) {
                 const std::string name = term.is_object() ? term.value("name", "") : "";
                 const std::optional<double> expected = termValue(t, name);
-                if (!expected || !term.contains("value") || !term["value"].is_number())
+                const std::optional<double> given = numberMember(term, "value");
+                if (!expected || !given)
                     return reasons.push_back(at + "a term needs \"name\" (d1..d6, va, vb, vc) and \"value\"");
                 const double eps = name[0] == 'v' ? eps4 : eps2;
-                const double mine = term["value"].get<double>();
+                const double mine = *given;
                 if (!(std::abs(mine - *expected) <= eps + 1e-12 * std::abs(*expected)))
                     return reasons.push_back(at + name + " = " + value(mine) + ", but it is " + value(*expected));
             }
-        if (!test.contains("accepted") || !test["accepted"].is_boolean())
+        const Json* acceptedGiven = member(test, "accepted");
+        if (!acceptedGiven || !acceptedGiven->is_boolean())
             return reasons.push_back(at + "expected \"accepted\": true or false");
-        const bool accepted = test["accepted"].get<bool>();
+        const bool accepted = acceptedGiven->get<bool>();
         if (holds == 1 && !accepted) return reasons.push_back(at + "rejected, but the point lies in this region");
         if (holds == -1 && accepted) return reasons.push_back(at + "accepted, but the point lies outside this region");
         if (accepted) {  // the region found: later tests are not made
@@ -291,13 +325,16 @@ std::optional<Vec3> tetrahedronFeaturePoint(const std::string& region, const Vec
 // trace of that region uses (Ericson §5.1.6 as core tests it: "(p-a).(b-a)", ...) must have its value.
 void checkTetrahedronRegionTrace(const Json& query, const Json& trace, double tol, std::vector<std::string>& reasons,
                                  int& divergence) {
-    const Json* tests = trace.is_object() && trace.contains("tests") && trace["tests"].is_array() ? &trace["tests"] : nullptr;
-    if (!tests) return reasons.push_back("trace (regions): expected {\"tests\": [...]} (docs/check.md)");
+    const Json* tests = member(trace, "tests");
+    if (!tests || !tests->is_array()) return reasons.push_back("trace (regions): expected {\"tests\": [...]} (docs/check.md)");
+    if (tests->size() > kMaxTraceSteps)
+        return reasons.push_back("trace (regions): " + std::to_string(tests->size()) + " tests, over the limit of " +
+                                 std::to_string(kMaxTraceSteps) + " a trace may have");
     const Json tet = query.value("tetrahedron", Json());
     if (!isVec(query.value("point", Json())) || !tet.is_array() || tet.size() != 4 ||
         !std::all_of(tet.begin(), tet.end(), [](const Json& x) { return isVec(x); }))
         return reasons.push_back("trace (regions): the query needs \"point\" and \"tetrahedron\"");
-    const Vec3 v[4] = {vec(tet[0]), vec(tet[1]), vec(tet[2]), vec(tet[3])}, p = vec(query["point"]);
+    const Vec3 v[4] = {vec(tet[0]), vec(tet[1]), vec(tet[2]), vec(tet[3])}, p = vec(query.value("point", Json()));
     TetrahedronTrace mine;
     const ClosestPointOnTetrahedronResult cdlab = closestPointOnTetrahedron(p, Tetrahedron{v[0], v[1], v[2], v[3]}, &mine);
     double scale = 0;
@@ -315,27 +352,28 @@ void checkTetrahedronRegionTrace(const Json& query, const Json& trace, double to
         const Json& test = (*tests)[k];
         std::string region = test.is_object() ? test.value("region", "") : "";
         std::sort(region.begin(), region.end());
-        const std::string at = "trace (regions): test " + std::to_string(k) + " (" + region + "): ";
+        const std::string at = "trace (regions): test " + std::to_string(k) + " (" + shortText(region) + "): ";
         const std::optional<Vec3> onFeature = tetrahedronFeaturePoint(region, v, p);
         if (!onFeature) return reasons.push_back(at + "not a region of the tetrahedron (A..D, AB..CD, ABC..BCD, ABCD)");
-        if (test.contains("terms") && test["terms"].is_array())
-            for (const Json& term : test["terms"]) {
+        if (const Json* terms = member(test, "terms"); terms && terms->is_array())
+            for (const Json& term : *terms) {
                 const std::string name = term.is_object() ? term.value("name", "") : "";
-                if (!term.contains("value") || !term["value"].is_number())
-                    return reasons.push_back(at + "a term needs \"name\" and \"value\"");
+                const std::optional<double> given = numberMember(term, "value");
+                if (!given) return reasons.push_back(at + "a term needs \"name\" and \"value\"");
                 for (const auto& known : mine.tests) {
                     if (nameOf(known.candidate) != region) continue;
                     for (int i = 0; i < known.termCount; ++i)
                         if (name == known.terms[std::size_t(i)].name) {
-                            const double expected = known.terms[std::size_t(i)].value, yours = term["value"].get<double>();
+                            const double expected = known.terms[std::size_t(i)].value, yours = *given;
                             if (!(std::abs(yours - expected) <= epsOf(name) + 1e-12 * std::abs(expected)))
                                 return reasons.push_back(at + name + " = " + value(yours) + ", but it is " + value(expected));
                         }
                 }
             }
-        if (!test.contains("accepted") || !test["accepted"].is_boolean())
+        const Json* acceptedGiven = member(test, "accepted");
+        if (!acceptedGiven || !acceptedGiven->is_boolean())
             return reasons.push_back(at + "expected \"accepted\": true or false");
-        const bool accepted = test["accepted"].get<bool>();
+        const bool accepted = acceptedGiven->get<bool>();
         const bool holds = region == nameOf(cdlab.region);
         const bool tie = !holds && (*onFeature - cdlab.point).norm() <= tol;
         if (holds && !accepted) {
@@ -366,11 +404,15 @@ void checkTetrahedronRegionTrace(const Json& query, const Json& trace, double to
 
 }  // namespace
 
-void checkTrace(const std::string& op, const Json& query, const Json& trace, double tol,
-                std::vector<std::string>& reasons, int& divergence, std::string& algorithm) {
-    if (trace.is_object() && trace.contains("algorithms") && trace["algorithms"].is_array()) {
-        for (const Json& one : trace["algorithms"]) {
-            checkTrace(op, query, one, tol, reasons, divergence, algorithm);
+void checkTrace(const std::string& op, const Json& query, const Json& trace, double tol, const ShapeModel& a,
+                const ShapeModel& b, std::vector<std::string>& reasons, int& divergence, std::string& algorithm) {
+    if (const Json* several = member(trace, "algorithms"); several && several->is_array()) {
+        if (several->size() > kMaxTraceAlgorithms)
+            return reasons.push_back("trace: " + std::to_string(several->size()) +
+                                     " traces in \"algorithms\", over the limit of " + std::to_string(kMaxTraceAlgorithms));
+        for (const Json& one : *several) {
+            if (member(one, "algorithms")) return reasons.push_back("trace: \"algorithms\" inside \"algorithms\"");
+            checkTrace(op, query, one, tol, a, b, reasons, divergence, algorithm);
             if (!reasons.empty()) return;
         }
         return;
@@ -385,14 +427,15 @@ void checkTrace(const std::string& op, const Json& query, const Json& trace, dou
         return checkRegionTrace(query, trace, tol, reasons, divergence);
     }
     if (op != "intersect" && op != "distance" && op != "penetration")
-        return reasons.push_back("trace: " + algorithm + " traces are checked for intersect, distance and penetration");
+        return reasons.push_back("trace: " + shortText(algorithm) +
+                                 " traces are checked for intersect, distance and penetration");
     if (algorithm == "epa") {
         if (op != "penetration") return reasons.push_back("trace: EPA steps are checked for penetration");
-        return checkEpaTrace(query, trace, tol, reasons, divergence);
+        return checkEpaTrace(query, trace, tol, a, b, reasons, divergence);
     }
     if (algorithm != "gjk")
-        return reasons.push_back("trace: unknown algorithm '" + algorithm + "' (gjk, epa, ericson_regions)");
-    checkGjkTrace(query, trace, tol, reasons, divergence);
+        return reasons.push_back("trace: unknown algorithm '" + shortText(algorithm) + "' (gjk, epa, ericson_regions)");
+    checkGjkTrace(query, trace, tol, a, b, reasons, divergence);
 }
 
 }  // namespace cdlab::demos

@@ -7,6 +7,8 @@
 
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/scene/json_reader.h"
+#include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
@@ -61,8 +63,11 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     std::vector<Image> cells;
     int cellW = 0, cellH = 0;
     for (const Frame* f : frames) {
-        const int layoutWidth = f->image.width / f->image.scale;
-        int factor = std::max(1, (layoutWidth + o.cellWidth - 1) / o.cellWidth);
+        // A cell is at most cellWidth wide and 3 cellWidth tall: a 16 x 4096 frame is no 4096-tall
+        // cell (hostile_harness_test "a contact sheet stays within the image limits").
+        const int layoutWidth = f->image.width / f->image.scale, layoutHeight = f->image.height / f->image.scale;
+        const int factor = std::max({1, (layoutWidth + o.cellWidth - 1) / o.cellWidth,
+                                     (layoutHeight + 3 * o.cellWidth - 1) / (3 * o.cellWidth)});
         cells.push_back(factor > 1 ? downsample(f->image, factor) : f->image);
         cellW = std::max(cellW, cells.back().width / scale);
         cellH = std::max(cellH, cells.back().height / scale);
@@ -111,6 +116,10 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
     }
     layOut();
     const int height = titleH + rows * (cellH + captionH + pad) + pad;
+    if (width > kMaxImageSide || height > kMaxImageSide)
+        throw InputError("the contact sheet of " + std::to_string(n) + " frames would be " + std::to_string(width) +
+                         " x " + std::to_string(height) + " pixels, above the limit of " + std::to_string(kMaxImageSide) +
+                         " per side (fewer step frames, or no steps)");
 
     Canvas canvas(gl, canvasOptions(width, height, scale), Camera::twoD(0, 0, 1));
     TextStyle caption{captionPx, roleColor(Role::Ink), Anchor::Top, false, false};

@@ -19,14 +19,17 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/Eigenvalues>
+
 #include "core/dynamics/simulation.h"
+#include "core/geometry/mass_properties.h"
 #include "core/geometry/polyhedron_presets.h"
-#include "demos/scene/body_scene.h"
 #include "demos/draw/contact_sheet.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/step_frames.h"
+#include "demos/scene/body_scene.h"
 #include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 #include "render/image.h"
@@ -571,6 +574,21 @@ private:
     }
 };
 
+// The body's mass and smallest principal moment of inertia at the scene's density: the solver
+// divides by them and inverts the inertia tensor through its determinant (~ I³), so both must stay
+// far above the smallest normal double (density 1e-300 gave a NaN trace). The presets and sizes the
+// scene limits allow, at kMinDensity, stay above kMinMass and kMinInertia; a sliver of a polytope
+// may not. Test: "hostile scene" / "drop: the smallest density, mass and inertia".
+void requireSimulatedMass(const JsonNode& body, const DropInput& in) {
+    const MassProperties mp = computeMassProperties(in.shape, {.density = in.density});
+    if (!mp.ok()) body.fail("the body has no usable mass properties: " + mp.message);
+    const std::string why = "the simulation divides by the mass and inverts the inertia tensor";
+    requireAtLeast(body, mp.mass, kMinMass, "the body's mass (kg)", why);
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (mp.inertia + mp.inertia.transpose()), Eigen::EigenvaluesOnly);
+    requireAtLeast(body, eig.eigenvalues()[0], kMinInertia, "the body's smallest principal moment of inertia (kg m²)",
+                   why);
+}
+
 class DropDemo final : public Demo {
 public:
     std::string name() const override { return "drop"; }
@@ -590,7 +608,11 @@ public:
             requireAtMost(n, value, limit, what, "the physical range a drop scene accepts");
             return value;
         };
-        if (auto d = r.find("density")) in.density = atMost(*d, d->asPositive(), kMaxDensity, "density");
+        if (auto d = r.find("density")) {
+            in.density = atMost(*d, d->asPositive(), kMaxDensity, "density");
+            requireAtLeast(*d, in.density, kMinDensity, "density",
+                           "mass and inertia must stay far from the smallest doubles: the simulation divides by them");
+        }
         if (auto p = r.find("position")) in.pose.position = sceneVec3(*p);
         if (auto q = r.find("rotation")) in.pose.rotation = q->asQuat();
         if (auto v = r.find("velocity"))
@@ -637,6 +659,11 @@ public:
         for (const Vec3& v : in.shape.positions()) lowest = std::min(lowest, in.pose.apply(v).z());
         if (!(lowest >= 0))
             r.node().fail("the body starts below the ground (lowest vertex z = " + formatNumber(lowest) + ")");
+        requireSimulatedMass(r.get("body"), in);
+        // At most kMaxFrames step frames and the plot; with "steps" the contact sheet too. Each frame
+        // is the image with the low side view beside it, kSideWidth of its width.
+        const int width = common.image.width;
+        common.frames = {kMaxFrames + 1, kMaxFrames + 2, width + int(std::lround(kSideWidth * width))};
         return std::make_unique<DropScene>(std::move(common), std::move(in), o, bodyName, frameEvery, view, gif);
     }
 };

@@ -521,6 +521,8 @@ public:
             mr.finish();
         }
         r.finish();
+        // GJK's simplex, the result and the plot; with steps at most max_step_frames steps and the sheet.
+        common.frames = {3, pair.maxStepFrames + 4, 0};
         return std::make_unique<EpaScene>(std::move(common), std::move(pair), options);
     }
 };

@@ -341,6 +341,8 @@ public:
             mr.finish();
         }
         r.finish();
+        // The result; with steps at most max_step_frames steps and the contact sheet.
+        common.frames = {1, pair.maxStepFrames + 2, 0};
         return std::make_unique<GjkScene>(std::move(common), std::move(pair), options);
     }
 };

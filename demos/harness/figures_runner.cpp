@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -35,8 +36,10 @@
 #include "demos/harness/gallery.h"
 #include "demos/harness/layout_json.h"
 #include "demos/harness/scene_runner.h"
+#include "demos/scene/scene_limits.h"
 #include "render/canvas.h"
 #include "render/image.h"
+#include "render/pixel_budget.h"
 
 namespace cdlab::demos {
 
@@ -116,18 +119,27 @@ private:
     int fd_;
 };
 
-// The files the previous run wrote into `dir` (its manifest's list). No manifest, or one that does
-// not read (reported with its path), lists nothing: nothing is deleted then.
+// The files the previous run wrote into `dir` (its manifest's list); none without a manifest. A
+// manifest.json that is not cdlab's (another program's, or not JSON) is the user's file: the
+// folder is refused, nothing in it is written or deleted (hostile_harness_test "render --out
+// keeps a folder's own files").
 std::vector<std::string> previouslyWritten(const fs::path& dir) {
     const fs::path file = dir / "manifest.json";
     if (!pathExists(file)) return {};
     try {
         return readFigureManifest(file).files;
     } catch (const InputError& e) {
-        std::cerr << "cdlab figures: " << e.what()
-                  << " (not used: no earlier file is deleted; a new manifest replaces it)\n";
-        return {};
+        throw InputError("refusing to write into " + printable(dir.string()) + ": its manifest.json is not cdlab's (" +
+                         printable(e.what()) + "); give --out a folder of its own");
     }
+}
+
+// A file this run is about to write into `dir` that is there but no cdlab manifest lists: the
+// user's, never replaced (hostile_harness_test "render --out keeps a folder's own files").
+void refuseForeign(const fs::path& dir, const std::string& name, const std::vector<std::string>& previous) {
+    if (pathExists(dir / name) && std::find(previous.begin(), previous.end(), name) == previous.end())
+        throw InputError("refusing to overwrite " + printable((dir / name).string()) +
+                         ": cdlab did not write it (no cdlab manifest.json there lists it); give --out a folder of its own");
 }
 
 // Files of an earlier run that this run did not write (e.g. fewer steps now). Names come from the
@@ -177,6 +189,13 @@ void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCo
     if (ec) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + ec.message());
     FolderLock lock(dir);
     const std::vector<std::string> previous = previouslyWritten(dir);
+    render::removeStaleTempFiles(dir.string());
+    // Every name is checked before the first file is staged: a refused folder gets nothing.
+    for (const Frame& fr : out.frames)
+        if (frameSelected(fr.name, frameGlobs)) refuseForeign(dir, plainOutputName(fr.name + ".png"), previous);
+    if (frameGlobs.empty())
+        for (const auto& extra : out.files) refuseForeign(dir, plainOutputName(extra.first), previous);
+    refuseForeign(dir, "trace.json", previous);
 
     render::FileSetWriter files;
     FigureManifest manifest{key, sc.title, sc.caption, {}, {}};
@@ -209,8 +228,28 @@ struct SceneJob {
     bool todo = true;
 };
 
-// `cdlab render`: <out>/<file stem>, or --out itself for one file; never inside golden/ (goldens
-// change only through `cdlab golden --update`).
+// A folder as one absolute path without "..", symlinks resolved as far as they exist: two output
+// folders are one when these are equal.
+fs::path resolvedFolder(const fs::path& dir) {
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(fs::absolute(dir), ec);
+    return ec ? fs::absolute(dir).lexically_normal() : p;
+}
+
+// figures and render never write inside the golden folder (goldens change only through `cdlab
+// golden --update`; hostile_harness_test "figures --out inside --golden-dir is refused").
+void refuseInsideGolden(const fs::path& dir, const RunnerOptions& o) {
+    const fs::path golden =
+        resolvedFolder(o.goldenDir.empty() ? fs::path(CDLAB_SOURCE_DIR) / "golden" : fs::path(o.goldenDir));
+    const fs::path target = resolvedFolder(dir);
+    const auto [g, t] = std::mismatch(golden.begin(), golden.end(), target.begin(), target.end());
+    if (g == golden.end())
+        throw InputError("output folder '" + printable(dir.string()) + "' is inside the golden folder " +
+                         printable(golden.string()) +
+                         ": figures and render never write there (goldens change with cdlab golden --update)");
+}
+
+// `cdlab render`: <out>/<file stem>, or --out itself for one file (whatever the file's name).
 fs::path renderOutputDir(const std::string& file, const RunnerOptions& o) {
     fs::path dir = o.outDir;
     if (!o.outIsFolder) {
@@ -220,22 +259,23 @@ fs::path renderOutputDir(const std::string& file, const RunnerOptions& o) {
                              " cannot name an output folder: give one with --out DIR");
         dir /= stem;
     }
-    const fs::path golden =
-        fs::weakly_canonical(o.goldenDir.empty() ? fs::path(CDLAB_SOURCE_DIR) / "golden" : fs::path(o.goldenDir));
-    const fs::path target = fs::weakly_canonical(fs::absolute(dir));
-    const auto [g, t] = std::mismatch(golden.begin(), golden.end(), target.begin(), target.end());
-    if (g == golden.end())
-        throw InputError("output folder '" + dir.string() +
-                         "' is inside golden/: render never writes there (goldens change with cdlab golden --update)");
+    refuseInsideGolden(dir, o);
     return dir;
+}
+
+// A scene's run with its frames' pixels bounded together (kMaxScenePixels), whatever its demo
+// declared in its frame budget (render/pixel_budget.h).
+DemoOutput runBounded(const PreparedScene& scene, const RunContext& ctx) {
+    render::PixelBudget budget(kMaxScenePixels);
+    return scene.run(ctx);
 }
 
 // The line a scene's failure prints: the error (naming the file once), OpenGL errors marked.
 std::string failureLine(const SceneJob& job, const std::exception& e) {
-    const std::string what = e.what();
-    if (dynamic_cast<const InputError*>(&e)) return what.rfind(job.file, 0) == 0 ? what : job.file + ": " + what;
-    if (dynamic_cast<const render::GlError*>(&e)) return job.file + ": OpenGL: " + what;
-    return job.file + ": " + what;  // render::ImageError, write errors, std::bad_alloc, ...
+    const std::string what = printable(e.what()), file = printable(job.file);
+    if (dynamic_cast<const InputError*>(&e)) return what.rfind(file, 0) == 0 ? what : file + ": " + what;
+    if (dynamic_cast<const render::GlError*>(&e)) return file + ": OpenGL: " + what;
+    return file + ": " + what;  // render::ImageError, write errors, std::bad_alloc, ...
 }
 
 // `cdlab figures` on several cores: one worker thread per core, each with its own GL context (an
@@ -271,11 +311,11 @@ std::vector<WriteReport> renderOnWorkers(const std::vector<SceneJob>& jobs, cons
             WriteReport& report = reports[i];
             try {
                 const auto ts = Clock::now();
-                const DemoOutput out = job.scene->run(ctx);
+                const DemoOutput out = runBounded(*job.scene, ctx);
                 requireSelectedFrames(out, o.frames);
                 writeSceneFolder(job.dir, job.key, job.scene->common(), out, o.frames);
                 for (const Frame& fr : out.frames) report.frames += frameSelected(fr.name, o.frames);
-                if (o.perFileOutput) report.note = job.file + " -> " + job.dir.string() + "/";
+                if (o.perFileOutput) report.note = printable(job.file) + " -> " + printable(job.dir.string()) + "/";
                 if (o.verbose) {
                     std::lock_guard<std::mutex> lock(printing);
                     std::cerr << sceneId(job.scene->common()) << ": " << out.frames.size() << " frames drawn in "
@@ -347,7 +387,7 @@ std::vector<WriteReport> renderOnThisThread(const std::vector<SceneJob>& jobs, c
             }
             const render::RenderStats before = stats;
             auto ts = Clock::now();
-            DemoOutput out = job.scene->run(ctx);
+            DemoOutput out = runBounded(*job.scene, ctx);
             const double runSeconds = secondsSince(ts);
             requireSelectedFrames(out, o.frames);
 
@@ -360,9 +400,9 @@ std::vector<WriteReport> renderOnThisThread(const std::vector<SceneJob>& jobs, c
                 try {
                     writeSceneFolder(job.dir, job.key, sc, *done, o.frames);
                     for (const Frame& fr : done->frames) report.frames += frameSelected(fr.name, o.frames);
-                    if (o.perFileOutput) report.note = job.file + " -> " + job.dir.string() + "/";
+                    if (o.perFileOutput) report.note = printable(job.file) + " -> " + printable(job.dir.string()) + "/";
                 } catch (const std::exception& e) {  // write errors, std::bad_alloc, ...
-                    report.error = job.file + ": " + e.what();
+                    report.error = printable(job.file) + ": " + printable(e.what());
                 }
                 return report;
             });
@@ -403,11 +443,15 @@ SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
     const SceneCommon& sc = job.scene->common();
     if (!o.demo.empty() && sc.demo != o.demo)
         throw InputError(file + ": $.demo: this scene is for demo '" + sc.demo + "', not '" + o.demo + "'");
-    if (!o.noRender) checkImageBudget(sc, o.scale);  // --scale multiplies the pixels the scene asked for
+    if (!o.noRender) checkImageBudget(sc, o.scale, o.steps);  // --scale and --steps multiply what the scene asked for
     try {
         job.dir = o.perFileOutput ? renderOutputDir(file, o) : sceneOutputDir(o.outDir, sc.demo, sc.name);
+        // A folder whose manifest.json or trace.json is the user's is refused now, before any
+        // scene is drawn; the frames' names are checked again when the folder is written.
+        refuseForeign(job.dir, "trace.json", previouslyWritten(job.dir));
+        if (!o.perFileOutput) requireGalleryPage(job.dir.string() + ".html");
     } catch (const InputError& e) {
-        throw InputError(file + ": " + e.what());
+        throw InputError(printable(file) + ": " + e.what());
     }
     job.key = cacheKey(bytes, o) + (o.noRender ? "-numeric" : "");
     return job;
@@ -420,10 +464,24 @@ bool validateAll(const std::vector<std::string>& files, const RunnerOptions& o, 
         try {
             jobs.push_back(validateScene(f, o));
         } catch (const InputError& e) {
-            std::cerr << e.what() << "\n";
+            std::cerr << printable(e.what()) << "\n";
             ++bad;
         } catch (const std::exception& e) {  // e.g. std::bad_alloc while reading a scene
-            std::cerr << f << ": " << e.what() << "\n";
+            std::cerr << printable(f) << ": " << printable(e.what()) << "\n";
+            ++bad;
+        }
+    }
+    // Two scenes writing one folder would overwrite each other (hostile_harness_test "two scenes
+    // into one folder are refused").
+    std::map<fs::path, const SceneJob*> folders;
+    for (const SceneJob& job : jobs) {
+        const auto [at, added] = folders.emplace(resolvedFolder(job.dir), &job);
+        if (!added) {
+            std::cerr << printable(job.file) << ": writes the same folder " << printable(job.dir.string()) << " as "
+                      << printable(at->second->file)
+                      << (o.perFileOutput ? " (rename one, or render them one at a time with --out)"
+                                          : " (two scenes of one demo with one name)")
+                      << "\n";
             ++bad;
         }
     }
@@ -446,6 +504,15 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
     if (files.empty()) {
         std::cerr << "cdlab figures: no scene matches\n";
         return 2;
+    }
+    if (!o.perFileOutput) {  // figures: the gallery pages and the golden folder, before any scene
+        try {
+            refuseInsideGolden(o.outDir, o);
+            requireGalleryPage((fs::path(o.outDir) / "index.html").string());
+        } catch (const InputError& e) {
+            std::cerr << "cdlab figures: " << printable(e.what()) << "; nothing written\n";
+            return 2;
+        }
     }
     std::vector<SceneJob> jobs;
     if (!validateAll(files, o, jobs)) return 2;
@@ -494,7 +561,7 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
     }
     {
         FolderLock lock(o.outDir);
-        writeGallery(o.outDir);
+        failed += writeGallery(o.outDir);
     }
     std::cerr << "cdlab figures: " << jobs.size() << " scenes (" << rendered << " rendered, "
               << jobs.size() - rendered - failed << " unchanged";

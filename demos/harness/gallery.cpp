@@ -1,6 +1,7 @@
 #include "demos/harness/gallery.h"
 
 #include <algorithm>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -55,6 +56,9 @@ std::string figureManifestText(const FigureManifest& m) {
 
 namespace {
 
+// Every page the gallery writes carries this line: what requireGalleryPage recognises as cdlab's.
+const char* const kGenerator = "<meta name=\"generator\" content=\"cdlab figures\">";
+
 struct GalleryScene {
     std::string demo, scene;  // plain names: the folder <out>/<demo>/<scene>/
     FigureManifest manifest;
@@ -85,8 +89,8 @@ std::string scenePage(const GalleryScene& s, const GalleryScene* prev, const Gal
     const FigureManifest& m = s.manifest;
     std::ostringstream h;
     const std::string title = m.title.empty() ? s.id() : m.title;
-    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << htmlEscape(title)
-      << "</title>\n" << kGalleryStyle << "</head><body>\n<nav><a href=\"../index.html\">all figures</a>";
+    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">" << kGenerator << "<title>"
+      << htmlEscape(title) << "</title>\n" << kGalleryStyle << "</head><body>\n<nav><a href=\"../index.html\">all figures</a>";
     if (prev) h << "<a href=\"../" << htmlEscape(prev->id()) << ".html\">&larr; " << htmlEscape(prev->id()) << "</a>";
     if (next) h << "<a href=\"../" << htmlEscape(next->id()) << ".html\">" << htmlEscape(next->id()) << " &rarr;</a>";
     h << "</nav>\n<h1>" << htmlEscape(title) << " <small>(" << htmlEscape(s.id()) << ")</small></h1>\n";
@@ -113,7 +117,34 @@ std::string scenePage(const GalleryScene& s, const GalleryScene* prev, const Gal
 
 }  // namespace
 
-void writeGallery(const std::string& outDir) {
+void requireGalleryPage(const std::string& page) {
+    std::error_code ec;
+    const fs::file_type type = fs::symlink_status(page, ec).type();
+    if (type == fs::file_type::not_found) return;
+    std::string head;
+    if (type == fs::file_type::regular) {
+        std::ifstream in(page, std::ios::binary);
+        head.resize(4096);
+        in.read(head.data(), std::streamsize(head.size()));
+        head.resize(std::size_t(in.gcount()));
+    }
+    // Pages of earlier versions had no generator line; their style sheet is as distinctive.
+    if (head.find(kGenerator) != std::string::npos || head.find(kGalleryStyle) != std::string::npos) return;
+    throw InputError("refusing to overwrite " + printable(page) +
+                     ": cdlab did not write it (not a cdlab gallery page); give --out a folder of its own");
+}
+
+int writeGallery(const std::string& outDir) {
+    int refused = 0;
+    const auto write = [&](const fs::path& page, const std::string& html) {
+        try {
+            requireGalleryPage(page.string());
+            render::writeFileAtomic(page.string(), html);
+        } catch (const InputError& e) {
+            std::cerr << "cdlab figures: " << e.what() << "\n";
+            ++refused;
+        }
+    };
     // Only <plain demo>/<plain scene> folders can be cdlab's; anything else in out/ is not read.
     std::vector<fs::path> manifests;
     std::error_code ec;
@@ -131,20 +162,20 @@ void writeGallery(const std::string& outDir) {
             scenes.push_back({path.parent_path().parent_path().filename().string(),
                               path.parent_path().filename().string(), readFigureManifest(path)});
         } catch (const InputError& e) {
-            std::cerr << "cdlab figures: " << e.what() << " (left out of the gallery)\n";
+            std::cerr << "cdlab figures: " << printable(e.what()) << " (left out of the gallery)\n";
         }
     }
 
     // One page per scene, <out>/<demo>/<scene>.html, with links to its neighbours.
     for (std::size_t i = 0; i < scenes.size(); ++i)
-        render::writeFileAtomic((fs::path(outDir) / (scenes[i].id() + ".html")).string(),
-                                scenePage(scenes[i], i > 0 ? &scenes[i - 1] : nullptr,
-                                          i + 1 < scenes.size() ? &scenes[i + 1] : nullptr));
+        write(fs::path(outDir) / (scenes[i].id() + ".html"),
+              scenePage(scenes[i], i > 0 ? &scenes[i - 1] : nullptr, i + 1 < scenes.size() ? &scenes[i + 1] : nullptr));
 
     // The index: by demo, a grid of each scene's key frame linking to its page.
     using render::htmlEscape;
     std::ostringstream h;
-    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>cdlab figures</title>\n"
+    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">" << kGenerator
+      << "<title>cdlab figures</title>\n"
       << kGalleryStyle << "</head><body>\n<h1>cdlab figures</h1>\n<nav>";
     std::vector<std::string> demos;
     for (const GalleryScene& s : scenes)
@@ -168,7 +199,8 @@ void writeGallery(const std::string& outDir) {
         h << "</div></section>\n";
     }
     h << "</body></html>\n";
-    render::writeFileAtomic((fs::path(outDir) / "index.html").string(), h.str());
+    write(fs::path(outDir) / "index.html", h.str());
+    return refused;
 }
 
 }  // namespace cdlab::demos

@@ -35,8 +35,13 @@ FigureManifest readFigureManifest(const std::filesystem::path& file);
 std::string figureManifestText(const FigureManifest& manifest);
 
 /// Scans <outDir>/<demo>/<scene>/manifest.json and writes <outDir>/index.html and the scene pages
-/// <outDir>/<demo>/<scene>.html atomically. A
-/// manifest that does not read is reported on stderr with its path and left out of the page.
-void writeGallery(const std::string& outDir);
+/// <outDir>/<demo>/<scene>.html atomically. A manifest that does not read is reported on stderr
+/// with its path and left out of the page. A page whose path holds a file cdlab did not write
+/// (requireGalleryPage) is not replaced: reported on stderr and counted in the result.
+int writeGallery(const std::string& outDir);
+
+/// Throws InputError when `page` exists and is not a gallery page cdlab wrote (the user's own
+/// index.html in --out; hostile_harness_test "figures --out keeps the user's index.html").
+void requireGalleryPage(const std::string& page);
 
 }  // namespace cdlab::demos

@@ -14,9 +14,11 @@
 
 #include "demos/catalog/catalog.h"
 #include "demos/harness/trace_compare.h"
+#include "demos/scene/scene_limits.h"
 #include "render/compare.h"
 #include "render/image.h"
 #include "render/legibility.h"
+#include "render/pixel_budget.h"
 
 namespace cdlab::demos {
 
@@ -60,7 +62,7 @@ public:
         std::vector<std::string> files, folders;
         const std::string problem = readList(list, files, folders);
         if (!problem.empty()) {
-            std::cerr << "cdlab golden: " << list.string() << ": " << problem << "; nothing in " << root_.string()
+            std::cerr << "cdlab golden: " << printable(list.string()) << ": " << printable(problem) << "; nothing in " << printable(root_.string())
                       << " deleted\n";
             return;
         }
@@ -85,7 +87,16 @@ public:
                     !fs::exists(root_ / folder, ec))
                     folders_.push_back(folder);
             }
-            if (std::find(files_.begin(), files_.end(), rel) == files_.end()) files_.push_back(rel);
+            if (std::find(files_.begin(), files_.end(), rel) != files_.end()) continue;
+            // removePrevious() took away every file an earlier report listed: anything still at
+            // this path is the user's (hostile_harness_test "golden --report . keeps the user's
+            // index.html"), and is never replaced.
+            std::error_code ec;
+            if (fs::symlink_status(root_ / rel, ec).type() != fs::file_type::not_found)
+                throw std::runtime_error("refusing to overwrite " + printable((root_ / rel).string()) +
+                                         ": cdlab did not write it (" + kReportList +
+                                         " does not list it); give --report a folder of its own");
+            files_.push_back(rel);
         }
         std::string text = std::string(kReportHeader) + "\n";
         for (const std::string& f : files_) text += "file " + f + "\n";
@@ -151,7 +162,7 @@ struct GoldenRun {
     bool writeFailed = false;  // a golden update or a report file could not be written: exit 2
 
     void fail(const std::string& what) {
-        std::cout << "FAIL " << what << "\n";
+        std::cout << "FAIL " << printable(what) << "\n";
         ++failed;
     }
     void sceneFailed(const std::string& what) {  // one failed check for the scene as a whole
@@ -159,7 +170,7 @@ struct GoldenRun {
         fail(what);
     }
     void writeError(const std::string& what) {
-        std::cerr << "cdlab golden: " << what << "\n";
+        std::cerr << "cdlab golden: " << printable(what) << "\n";
         writeFailed = true;
     }
     bool updates(const std::string& problem) const {
@@ -172,7 +183,7 @@ struct GoldenRun {
         if (!updates(problem)) return false;
         try {
             write();
-            std::cout << "UPDATED " << id << (problem.empty() ? "" : " (was: " + problem + ")") << "\n";
+            std::cout << "UPDATED " << printable(id + (problem.empty() ? "" : " (was: " + problem + ")")) << "\n";
             ++updated;
         } catch (const std::exception& e) {
             fail(id + ": " + problem);
@@ -203,6 +214,7 @@ void GoldenRun::runScene(const std::string& file, const RunContext& ctx) {
         const SceneCommon& sc = scene->common();
         const fs::path goldenDir = sceneOutputDir(fs::path(file).parent_path().parent_path(),
                                                   fs::path(file).parent_path().filename().string(), sc.name);
+        render::PixelBudget budget(kMaxScenePixels);  // every frame of the scene together
         DemoOutput out = scene->run(ctx);
         for (const Frame& fr : out.frames) {
             checkFrame(sc, fr, goldenDir);
@@ -232,7 +244,7 @@ void GoldenRun::checkFrame(const SceneCommon& sc, const Frame& fr, const fs::pat
     });
     if (updateGolden(id, problem, [&] { render::writePngAtomic(goldenPng.string(), fr.image); })) return;
     if (problem.empty()) {
-        std::cout << "PASS " << id << ": " << cmp.summary() << "\n";
+        std::cout << "PASS " << printable(id) << ": " << cmp.summary() << "\n";
         return;
     }
     if (!exists) problem += createHint(sc);
@@ -253,7 +265,7 @@ void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
          " problem(s); worst: " + render::describe(problems.front()));
     std::string details = "not slide-legible: " + render::describe(problems.front());
     for (std::size_t i = 1; i < problems.size() && i < 6; ++i) {
-        std::cout << "     " << render::describe(problems[i]) << "\n";
+        std::cout << "     " << printable(render::describe(problems[i])) << "\n";
         details += "\n" + render::describe(problems[i]);
     }
     entries.push_back({id, "", "", "", details});
@@ -302,13 +314,13 @@ void GoldenRun::checkTrace(const SceneCommon& sc, const Json& trace, const fs::p
     });
     if (updateGolden(id, problem, [&] { render::writeFileAtomic(goldenTrace.string(), traceText(trace)); })) return;
     if (problem.empty()) {
-        std::cout << "PASS " << id << ": " << tc.summary() << "\n";
+        std::cout << "PASS " << printable(id) << ": " << printable(tc.summary()) << "\n";
         return;
     }
     fail(id + ": " + problem + (exists ? "" : createHint(sc)));
     std::string details = problem + (exists ? "" : createHint(sc));
     for (std::size_t i = 1; i < tc.mismatches.size(); ++i) {
-        std::cout << "     " << tc.mismatches[i].path << ": " << tc.mismatches[i].what << "\n";
+        std::cout << "     " << printable(tc.mismatches[i].path + ": " + tc.mismatches[i].what) << "\n";
         details += "\n" + tc.mismatches[i].path + ": " + tc.mismatches[i].what;
     }
     entries.push_back({id, "", "", "", details});  // the report lists trace failures too
@@ -337,7 +349,7 @@ int runGolden(const RunnerOptions& o) {
         try {
             run.report.plan({"index.html"});
             render::writeHtmlReport(page, run.entries);
-            std::cout << "report: " << page << "\n";
+            std::cout << "report: " << printable(page) << "\n";
         } catch (const std::exception& e) {
             run.writeError("report: " + std::string(e.what()));
         }
@@ -347,7 +359,7 @@ int runGolden(const RunnerOptions& o) {
                          [](const auto& a, const auto& b) { return a.problem.severity > b.problem.severity; });
         std::cout << "legibility: " << run.offenders.size() << " problem(s); worst:\n";
         for (std::size_t i = 0; i < run.offenders.size() && i < 12; ++i) {
-            std::cout << "  " << run.offenders[i].frame << ": " << render::describe(run.offenders[i].problem) << "\n";
+            std::cout << "  " << printable(run.offenders[i].frame + ": " + render::describe(run.offenders[i].problem)) << "\n";
         }
     }
     std::cout << "golden: " << run.checked - run.failed - run.updated << " passed, " << run.failed << " failed";

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <new>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/closest/closest_point.h"
 #include "demos/query/query_cast.h"
@@ -82,13 +84,99 @@ Json closestPointTetrahedron(ObjectReader& r) {
     return out;
 }
 
-// The id of a line the strict reader refused (a duplicate key, say) when a lenient parse can read
-// it, so that its error answer can still be matched to the query.
-Json lenientId(const std::string& line, const Json& id) {
+// Reads a line's top-level "id" while the parser streams through it, building no tree: the parser
+// keeps one bit per open bracket (60 MB of "[[[..." inside an object: ~8 MB, where its DOM took
+// 2.2 GB), and a line that is not an object stops at its first bracket. An id that is itself an
+// array or object is copied only up to kMaxIdDepth levels and kMaxIdValues values (past them the
+// line has no usable id). As nlohmann's DOM does, the last of duplicate "id" keys wins. Test:
+// "hostile query" / "a refused nested line costs its own size, and the lines after it are answered".
+class TopLevelIdReader {
+public:
+    using number_integer_t = Json::number_integer_t;
+    using number_unsigned_t = Json::number_unsigned_t;
+    using number_float_t = Json::number_float_t;
+    using string_t = Json::string_t;
+    using binary_t = Json::binary_t;
+
+    const Json& id() const { return id_; }
+
+    bool null() { return value(Json(nullptr)); }
+    bool boolean(bool v) { return value(Json(v)); }
+    bool number_integer(number_integer_t v) { return value(Json(v)); }
+    bool number_unsigned(number_unsigned_t v) { return value(Json(v)); }
+    bool number_float(number_float_t v, const string_t&) { return value(Json(v)); }
+    bool string(string_t& v) { return value(Json(v)); }
+    bool binary(binary_t&) { return value(Json(nullptr)); }
+    bool start_object(std::size_t) { return open(Json::object()); }
+    bool start_array(std::size_t) { return open(Json::array()); }
+    bool key(string_t& k) {
+        if (depth_ == 1) capturing_ = k == "id";
+        else if (!stack_.empty()) key_ = k;
+        return true;
+    }
+    bool end_object() { return close(); }
+    bool end_array() { return close(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) { return false; }
+
+private:
+    static constexpr std::size_t kMaxIdDepth = 16;
+    static constexpr std::size_t kMaxIdValues = 1024;
+
+    // Where a value goes: the id being copied (inside it: its innermost open container).
+    bool value(Json v) {
+        if (!stack_.empty()) return add(std::move(v)) != nullptr;
+        if (depth_ == 1 && capturing_) id_ = std::move(v), capturing_ = false;
+        return true;
+    }
+    bool open(Json container) {
+        ++depth_;
+        if (depth_ == 1) return container.is_object();  // a line that is not an object has no id
+        if (stack_.empty() && !(depth_ == 2 && capturing_)) return true;
+        if (stack_.size() >= kMaxIdDepth) return false;
+        Json* slot = stack_.empty() ? &(id_ = std::move(container)) : add(std::move(container));
+        if (!slot) return false;
+        stack_.push_back(slot);
+        return true;
+    }
+    bool close() {
+        --depth_;
+        if (!stack_.empty()) {
+            stack_.pop_back();
+            if (stack_.empty()) capturing_ = false;
+        }
+        return true;
+    }
+    // Appends to the innermost open container of the id; null past kMaxIdValues.
+    Json* add(Json v) {
+        if (++values_ > kMaxIdValues) return nullptr;
+        Json& parent = *stack_.back();
+        if (parent.is_array()) {
+            parent.push_back(std::move(v));
+            return &parent.back();
+        }
+        Json& slot = parent[key_];
+        slot = std::move(v);
+        return &slot;
+    }
+
+    Json id_ = nullptr;
+    std::size_t depth_ = 0;
+    bool capturing_ = false;    // the next value at depth 1 is the id
+    std::vector<Json*> stack_;  // the open containers of the id being copied, outermost first
+    std::string key_;
+    std::size_t values_ = 0;
+};
+
+// The id of a line the strict reader refused (a duplicate key, say) when the whole line is JSON, so
+// that its error answer can still be matched to the query; null otherwise. Never throws.
+Json lenientId(const std::string& line, const Json& id) noexcept {
     if (!id.is_null()) return id;
-    const Json lenient = Json::parse(line, nullptr, false);
-    if (lenient.is_object() && lenient.contains("id")) return lenient["id"];
-    return id;
+    try {
+        TopLevelIdReader reader;
+        if (Json::sax_parse(line, &reader)) return reader.id();
+    } catch (...) {  // out of memory: the answer goes without its id
+    }
+    return nullptr;
 }
 
 }  // namespace
@@ -115,6 +203,8 @@ Json answerQuery(const std::string& line) {
         for (auto it = result.begin(); it != result.end(); ++it) answer[it.key()] = it.value();
     } catch (const InputError& e) {
         answer = {{"id", lenientId(line, id)}, {"error", e.what()}};
+    } catch (const std::bad_alloc&) {
+        answer = {{"id", lenientId(line, id)}, {"error", "query: not enough memory to answer this line"}};
     } catch (const std::exception& e) {
         answer = {{"id", lenientId(line, id)}, {"error", std::string("internal error: ") + e.what()}};
     }
@@ -182,9 +272,20 @@ int runQueries(std::istream& in, std::ostream& out) {
             continue;
         }
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        Json a = answerQuery(line, lineNumber);
-        if (a.contains("error")) failed = true;
-        writeAnswer(out, std::move(a));
+        // Whatever one line throws (std::bad_alloc building its answer), it gets an error answer and
+        // the next line is still read.
+        try {
+            Json a = answerQuery(line, lineNumber);
+            if (a.contains("error")) failed = true;
+            writeAnswer(out, std::move(a));
+        } catch (const std::exception& e) {
+            failed = true;
+            const bool memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
+            writeAnswer(out, {{"id", nullptr},
+                              {"error", "query: line " + std::to_string(lineNumber) + ": " +
+                                            (memory ? std::string("not enough memory to answer this line")
+                                                    : std::string("internal error: ") + e.what())}});
+        }
     }
     // Answers that cannot be written (a full disk, a closed pipe) are an output error, not success.
     errno = 0;

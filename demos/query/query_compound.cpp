@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry/solid_mesh.h"
@@ -220,24 +222,32 @@ struct PairPick {
     long long tested = 0;
 };
 
+// Fails at `node` when GJK has been run on more than kMaxCompoundGjkPairs pairs of pieces.
+void requireGjkPairsWithinLimit(const JsonNode& node, long long pairs) {
+    if (double(pairs) > kMaxCompoundGjkPairs)
+        node.fail("the search needs GJK on more than " + std::to_string(static_cast<long long>(kMaxCompoundGjkPairs)) +
+                  " pairs of pieces whose boxes meet, the limit (about a second)");
+}
+
 // Visits the pairs whose boxes are within the touching margin, in order, with their answer
-// (`wantDepth` as in shapePairAnswer); the visit returns false to stop. Counts the pairs tested.
+// (`wantDepth` as in shapePairAnswer); the visit returns false to stop. Counts the pairs tested and
+// fails at `node` before the test past kMaxCompoundGjkPairs.
 template <class Visit>
 void forEachNearPair(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b, bool wantDepth,
-                     PairPick& pick, Visit&& visit) {
+                     const JsonNode& node, PairPick& pick, Visit&& visit) {
     const std::vector<Box> ba = boxesOf(a), bb = boxesOf(b);
     for (std::size_t i = 0; i < a.size(); ++i)
         for (std::size_t j = 0; j < b.size(); ++j) {
             if (boxGap(ba[i], bb[j]) > cullMargin(ba[i], bb[j])) continue;
-            ++pick.tested;
+            requireGjkPairsWithinLimit(node, ++pick.tested);
             if (!visit(int(i), int(j), shapePairAnswer(a[i], b[j], wantDepth))) return;
         }
 }
 
 // The first pair of boundary pieces that intersects (touching counts).
-PairPick firstIntersecting(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b) {
+PairPick firstIntersecting(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b, const JsonNode& node) {
     PairPick pick;
-    forEachNearPair(a, b, false, pick, [&](int i, int j, const ShapePairAnswer& ans) {
+    forEachNearPair(a, b, false, node, pick, [&](int i, int j, const ShapePairAnswer& ans) {
         if (ans.intersect) pick.found = true, pick.i = i, pick.j = j, pick.answer = ans;
         return !pick.found;
     });
@@ -261,13 +271,14 @@ bool meshHoldsAPiece(const Body& outer, const Body& inner) {
 }
 
 // The closest pair of boundary pieces of two disjoint bodies (branch and bound on the box gaps,
-// seeded with the pair whose boxes are nearest).
-PairPick closestPair(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b) {
+// seeded with the pair whose boxes are nearest); fails at `node` before the test past
+// kMaxCompoundGjkPairs.
+PairPick closestPair(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b, const JsonNode& node) {
     const std::vector<Box> ba = boxesOf(a), bb = boxesOf(b);
     PairPick pick;
     double best = INFINITY;
     const auto test = [&](std::size_t i, std::size_t j) {
-        ++pick.tested;
+        requireGjkPairsWithinLimit(node, ++pick.tested);
         const ShapePairAnswer ans = shapePairAnswer(a[i], b[j], false);
         if (!pick.found || ans.distance < best) {
             best = ans.distance;
@@ -286,14 +297,49 @@ PairPick closestPair(const std::vector<QueryShape>& a, const std::vector<QuerySh
     return pick;
 }
 
-// The deepest overlapping pair of convex pieces.
-PairPick deepestPair(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b) {
+// An upper bound on the penetration depth of two shapes inside boxes a and b: the depth is the
+// shortest translation that separates them, and along each axis the shorter of the two that
+// separate the boxes separates the shapes too.
+double depthBound(const Box& a, const Box& b) { return (a.hi - b.lo).cwiseMin(b.hi - a.lo).minCoeff(); }
+
+// The deepest overlapping pair of convex pieces. Every pair whose boxes meet is a candidate; past
+// kMaxCompoundDepthPairs candidates the query fails at `node` before any EPA runs. Candidates are
+// visited by their depth bound, largest first, and the search stops when the bound (plus the
+// rounding slack of the touching rule) is below the deepest depth found: the answer is the deepest
+// pair, and among pairs of equal depth the first in (a, b) order, as a visit of every pair gives.
+PairPick deepestPair(const std::vector<QueryShape>& a, const std::vector<QueryShape>& b, const JsonNode& node) {
+    const std::vector<Box> ba = boxesOf(a), bb = boxesOf(b);
+    struct Candidate {
+        double bound;
+        int i, j;
+    };
+    std::vector<Candidate> candidates;
+    long long count = 0;
+    double slack = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        for (std::size_t j = 0; j < b.size(); ++j) {
+            const double margin = cullMargin(ba[i], bb[j]);
+            if (boxGap(ba[i], bb[j]) > margin) continue;
+            if (double(++count) > kMaxCompoundDepthPairs) continue;  // counted, not kept
+            candidates.push_back({depthBound(ba[i], bb[j]), int(i), int(j)});
+            slack = std::max(slack, margin);
+        }
+    if (double(count) > kMaxCompoundDepthPairs)
+        node.fail("penetration runs EPA on the pairs of pieces whose boxes meet: " + std::to_string(count) +
+                  ", above the limit of " + std::to_string(static_cast<long long>(kMaxCompoundDepthPairs)) +
+                  " (about a second)");
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& x, const Candidate& y) { return x.bound > y.bound; });
     PairPick pick;
-    forEachNearPair(a, b, true, pick, [&](int i, int j, const ShapePairAnswer& ans) {
-        if (ans.intersect && (!pick.found || ans.depth > pick.answer.depth))
-            pick.found = true, pick.i = i, pick.j = j, pick.answer = ans;
-        return true;
-    });
+    for (const Candidate& c : candidates) {
+        if (pick.found && c.bound + slack < pick.answer.depth) break;
+        ++pick.tested;
+        const ShapePairAnswer ans = shapePairAnswer(a[std::size_t(c.i)], b[std::size_t(c.j)], true);
+        if (!ans.intersect) continue;
+        const bool deeper = !pick.found || ans.depth > pick.answer.depth ||
+                            (ans.depth == pick.answer.depth && std::pair(c.i, c.j) < std::pair(pick.i, pick.j));
+        if (deeper) pick.found = true, pick.i = c.i, pick.j = c.j, pick.answer = ans;
+    }
     return pick;
 }
 
@@ -324,7 +370,7 @@ Json answerCompoundQuery(const std::string& op, ObjectReader& r, const JsonNode&
     requirePairsWithinLimit(a, b, a.boundary, b.boundary);
 
     // Intersect: a pair of boundary pieces meets, or a mesh holds a piece of the other body.
-    PairPick hit = firstIntersecting(a.boundary, b.boundary);
+    PairPick hit = firstIntersecting(a.boundary, b.boundary, an);
     long long tested = hit.tested;
     const bool intersect = hit.found || (a.mesh && meshHoldsAPiece(a, b)) || (b.mesh && meshHoldsAPiece(b, a));
     Json out;
@@ -334,7 +380,7 @@ Json answerCompoundQuery(const std::string& op, ObjectReader& r, const JsonNode&
         return out;
     }
     if (!intersect) {
-        const PairPick c = closestPair(a.boundary, b.boundary);
+        const PairPick c = closestPair(a.boundary, b.boundary, an);
         tested += c.tested;
         const ShapePairAnswer& s = c.answer;
         out = {{"intersect", false}, {"distance", s.distance}};
@@ -354,11 +400,11 @@ Json answerCompoundQuery(const std::string& op, ObjectReader& r, const JsonNode&
     ensurePieces(a);
     ensurePieces(b);
     requirePairsWithinLimit(a, b, a.pieces, b.pieces);
-    PairPick deep = deepestPair(a.pieces, b.pieces);
+    PairPick deep = deepestPair(a.pieces, b.pieces, an);
     tested += deep.tested;
     const char* among = "convex_pieces";
     if (!deep.found) {
-        deep = deepestPair(a.boundary, b.boundary);
+        deep = deepestPair(a.boundary, b.boundary, an);
         tested += deep.tested;
         among = "boundary";
     }

@@ -102,6 +102,8 @@ std::unique_ptr<PreparedScene> Demo::prepare(const Json& json, const std::string
     std::unique_ptr<PreparedScene> scene =
         readScene(reader, readSceneCommon(reader, file, format.layers, format.layers, format.defaultImage));
     requireImageSize(reader, scene->common(), format);
+    // The frames' sizes and count at the scene's own scale, before anything is drawn.
+    checkImageBudget(scene->common(), 0);
     return scene;
 }
 

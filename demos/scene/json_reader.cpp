@@ -1,12 +1,77 @@
 #include "demos/scene/json_reader.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <set>
 #include <vector>
 
 #include "render/image.h"
 
 namespace cdlab::demos {
+
+namespace {
+
+// The length of the UTF-8 sequence starting at s[i] and its code point, or 0 when the bytes there
+// are not a valid (shortest-form, non-surrogate) sequence.
+std::size_t utf8Sequence(const std::string& s, std::size_t i, std::uint32_t& code) {
+    const auto byte = [&](std::size_t k) { return static_cast<std::uint32_t>(static_cast<unsigned char>(s[k])); };
+    const std::uint32_t b0 = byte(i);
+    std::size_t n = 0;
+    if (b0 >= 0xc2 && b0 <= 0xdf) n = 2, code = b0 & 0x1f;
+    else if (b0 >= 0xe0 && b0 <= 0xef) n = 3, code = b0 & 0x0f;
+    else if (b0 >= 0xf0 && b0 <= 0xf4) n = 4, code = b0 & 0x07;
+    else return 0;
+    if (i + n > s.size()) return 0;
+    for (std::size_t k = 1; k < n; ++k) {
+        const std::uint32_t b = byte(i + k);
+        if ((b & 0xc0) != 0x80) return 0;
+        code = (code << 6) | (b & 0x3f);
+    }
+    const std::uint32_t least = n == 2 ? 0x80 : n == 3 ? 0x800 : 0x10000;
+    if (code < least || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) return 0;
+    return n;
+}
+
+}  // namespace
+
+std::string printable(const std::string& s) {
+    std::string out;
+    out.reserve(s.size());
+    char buf[16];
+    for (std::size_t i = 0; i < s.size();) {
+        const unsigned char c = static_cast<unsigned char>(s[i]);
+        if (c < 0x80) {
+            if (c == '\n') out += "\\n";
+            else if (c == '\t') out += "\\t";
+            else if (c == '\r') out += "\\r";
+            else if (c < 0x20 || c == 0x7f) {
+                std::snprintf(buf, sizeof buf, "\\x%02x", unsigned(c));
+                out += buf;
+            } else out += char(c);
+            ++i;
+            continue;
+        }
+        std::uint32_t code = 0;
+        const std::size_t n = utf8Sequence(s, i, code);
+        if (n == 0) {  // not UTF-8: the byte, escaped
+            std::snprintf(buf, sizeof buf, "\\x%02x", unsigned(c));
+            out += buf;
+            ++i;
+            continue;
+        }
+        // C1 controls, line and paragraph separators, bidirectional embeddings, overrides and isolates.
+        const bool control = (code >= 0x80 && code <= 0x9f) || code == 0x2028 || code == 0x2029 ||
+                             (code >= 0x202a && code <= 0x202e) || (code >= 0x2066 && code <= 0x2069) ||
+                             code == 0x200e || code == 0x200f || code == 0x061c;
+        if (control) {
+            std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(code));
+            out += buf;
+        } else out.append(s, i, n);
+        i += n;
+    }
+    return out;
+}
 
 namespace {
 

@@ -21,6 +21,13 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// `text` safe to print on a terminal, as one line: C0 controls and DEL (\n, \t, \r, \x1b ...),
+/// C1 controls, line / paragraph separators and bidirectional overrides (\u0085, \u2028, \u202e
+/// ...) and the bytes of invalid UTF-8 (\xff ...) are escaped; everything else, "é" included, is
+/// kept. Every line cdlab prints that holds text from a file goes through it (hostile_harness_test
+/// "control characters from files are escaped", check_test "escaped").
+std::string printable(const std::string& s);
+
 /// Largest JSON file read (scene, golden trace, figures manifest): the largest golden scene is a
 /// few KB and a 10^5-vertex polytope ~6 MB, so 16 MiB leaves room and bounds what a file costs.
 constexpr std::size_t kMaxJsonFileBytes = std::size_t(16) << 20;

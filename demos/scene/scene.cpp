@@ -43,11 +43,11 @@ SceneCommon readSceneCommon(ObjectReader& r, const std::string& file, const std:
     SceneCommon s;
     s.image = defaultImage;
     s.file = file;
+    // The name becomes a folder (<out>/<demo>/<name>, golden/<demo>/<name>) where a run puts one:
+    // sceneOutputDir refuses a name that is not plain ("...json" would name ".."), and `render
+    // FILE --out DIR`, which names its folder itself, takes any file name.
     s.name = fs::path(file).stem().string();
-    // The name becomes a folder (<out>/<demo>/<name>, golden/<demo>/<name>): "...json" would name "..".
-    if (!isPlainName(s.name))
-        throw InputError(file + ": the scene file name '" + s.name +
-                         "' cannot name an output folder (use letters, digits, '_', '-' and '.', not first)");
+    requireTextLengths(r.node());  // before any text is read
     s.demo = r.get("demo").asString();
     s.title = r.stringOr("title", s.name);
     s.caption = r.stringOr("caption", "");
@@ -91,15 +91,33 @@ bool isPlainName(const std::string& name) {
     return std::all_of(name.begin(), name.end(), plainChar);
 }
 
-void checkImageBudget(const SceneCommon& scene, int scaleOverride) {
+void checkImageBudget(const SceneCommon& scene, int scaleOverride, bool stepsOverride) {
     const int scale = scaleOverride > 0 ? scaleOverride : scene.image.scale;
+    const std::string where = scene.file + ": $.image: ";
+    const auto count = [](double x) { return std::to_string(static_cast<long long>(x)); };
     const double pixels = double(scene.image.width) * scene.image.height * scale * scale;
     if (pixels > kMaxSupersampledPixels)
-        throw InputError(scene.file + ": $.image: " + std::to_string(scene.image.width) + " x " +
-                         std::to_string(scene.image.height) + " at scale " + std::to_string(scale) + " is " +
-                         std::to_string(static_cast<long long>(pixels)) + " supersampled pixels, above the limit of " +
-                         std::to_string(static_cast<long long>(kMaxSupersampledPixels)));
+        throw InputError(where + std::to_string(scene.image.width) + " x " + std::to_string(scene.image.height) +
+                         " at scale " + std::to_string(scale) + " is " + count(pixels) +
+                         " supersampled pixels, above the limit of " + count(kMaxSupersampledPixels));
+    // A frame wider than the image (drop: the view and a side view beside it) obeys the same limits.
+    const int width = std::max(scene.image.width, scene.frames.frameWidth);
+    const double framePixels = double(width) * scene.image.height * scale * scale;
+    if (width > kMaxImageSide || framePixels > kMaxSupersampledPixels)
+        throw InputError(where + "the " + scene.demo + " frames are " + std::to_string(width) + " x " +
+                         std::to_string(scene.image.height) + " (wider than the image) at scale " +
+                         std::to_string(scale) + ": above the limit of " + std::to_string(kMaxImageSide) +
+                         " per side or " + count(kMaxSupersampledPixels) + " supersampled pixels");
+    const bool steps = scene.steps || stepsOverride;
+    const int frames = std::max(1, steps ? scene.frames.framesWithSteps : scene.frames.frames);
+    const double total = frames * framePixels;
+    if (total > kMaxScenePixels)
+        throw InputError(where + std::to_string(frames) + " frames" + (steps ? " (with per-step frames)" : "") +
+                         " of " + std::to_string(width) + " x " + std::to_string(scene.image.height) + " at scale " +
+                         std::to_string(scale) + " are " + count(total) + " supersampled pixels, above the limit of " +
+                         count(kMaxScenePixels) + " for one scene (every frame is kept until the scene is written)");
 }
+
 
 std::vector<std::string> findSceneFiles(const std::string& goldenDir) {
     std::vector<std::string> files;

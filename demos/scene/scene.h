@@ -26,6 +26,16 @@ struct GoldenTolerance {
     double traceRelative = 1e-9;
 };
 
+/// What a scene's run may draw, declared by its demo while it reads the scene (before anything is
+/// drawn) and checked by checkImageBudget: the most frames it draws without and with per-step
+/// frames (views, plots and the contact sheet included), and the width of its widest frame in
+/// layout pixels where a frame is wider than the image (0: none is).
+struct FrameBudget {
+    int frames = 1;
+    int framesWithSteps = 1;
+    int frameWidth = 0;
+};
+
 /// The keys every scene has.
 struct SceneCommon {
     std::string file;  // path of the scene JSON
@@ -38,6 +48,7 @@ struct SceneCommon {
     std::set<std::string> layers;
     bool steps = false;  // one frame per step + a contact sheet
     GoldenTolerance golden;
+    FrameBudget frames;  // set by the demo's readScene
 
     bool hasLayer(const std::string& layer) const { return layers.count(layer) != 0; }
 };
@@ -54,9 +65,13 @@ SceneCommon readSceneCommon(ObjectReader& reader, const std::string& file,
 
 render::Camera readCamera(const JsonNode& node);
 
-/// Fails (InputError naming the scene file) when the scene's frames, drawn at `scaleOverride` (> 0:
-/// the command line's --scale; 0: the scene's own), exceed kMaxSupersampledPixels.
-void checkImageBudget(const SceneCommon& scene, int scaleOverride);
+/// Fails (InputError naming the scene file and $.image) when the scene's frames, drawn at
+/// `scaleOverride` (> 0: the command line's --scale; 0: the scene's own) and with per-step frames
+/// when the scene or `stepsOverride` (--steps) asks for them, break a limit: a frame above
+/// kMaxSupersampledPixels or wider than kMaxImageSide, or all of them together above
+/// kMaxScenePixels (scene.frames says how many and how wide). Demo::prepare checks it at the scene's
+/// own scale; a command with --scale or --steps checks it again.
+void checkImageBudget(const SceneCommon& scene, int scaleOverride, bool stepsOverride = false);
 
 /// Scene files: golden/<demo>/<scene>.json, sorted.
 std::vector<std::string> findSceneFiles(const std::string& goldenDir);

@@ -19,9 +19,13 @@
 #include <functional>
 #include <map>
 #include <random>
+#include <string>
+#include <utility>
 
+#include "core/base/orient.h"
 #include "core/broadphase/octree.h"
 #include "core/broadphase/uniform_grid.h"
+#include "core/overlap/polygon_tests.h"
 #include "core/spatial/bsp_tree.h"
 #include "core/spatial/kd_tree.h"
 #include "demos/draw/figure_canvas.h"
@@ -743,6 +747,42 @@ private:
 
 // ---------------------------------------------------------------------------------------------
 
+// bsp_shape's polygon: simple and counter-clockwise. Its walls face outward only in that order (the
+// BSP classifies by the side of them: a clockwise square put (1, 1) outside and far points inside),
+// and a self-crossing outline bounds no solid. Exact: consecutive vertices differ, two edges that
+// are not neighbours share no point, neighbours share only their vertex (no fold back), and the
+// turn at the lowest-leftmost vertex (a convex corner of a simple polygon) is counter-clockwise.
+// O(n²) segment tests, n <= kMaxBspEdges. Test: "hostile scenes" / "bsp_shape polygons".
+void requireSimpleCounterClockwise(const JsonNode& node, const std::vector<Vec3>& polygon) {
+    const std::size_t n = polygon.size();
+    const auto v = [&](std::size_t i) { return Vec2(polygon[i % n].x(), polygon[i % n].y()); };
+    const auto edge = [&](std::size_t i) {
+        return "the edge from vertex " + std::to_string(i) + " to " + std::to_string((i + 1) % n);
+    };
+    for (std::size_t i = 0; i < n; ++i)
+        if (v(i) == v(i + 1)) node.at((i + 1) % n).fail("repeats the vertex before it (an edge of zero length)");
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = v(i), b = v(i + 1), c = v(i + 2);
+        if (orient2d(a, b, c) == 0 && (a - b).dot(c - b) > 0)
+            node.fail(edge(i) + " and " + edge((i + 1) % n) +
+                      " overlap: the polygon folds back on itself (it must be simple)");
+        for (std::size_t j = i + 2; j < n; ++j) {
+            if (i == 0 && j == n - 1) continue;  // neighbours through vertex 0
+            if (segmentsIntersect2d(a, b, v(j), v(j + 1)))
+                node.fail(edge(i) + " and " + edge(j) + " meet: the polygon crosses itself (it must be simple)");
+        }
+    }
+    std::size_t low = 0;
+    for (std::size_t i = 1; i < n; ++i)
+        if (std::pair(v(i).x(), v(i).y()) < std::pair(v(low).x(), v(low).y())) low = i;
+    if (orient2d(v(low + n - 1), v(low), v(low + 1)) < 0) {
+        double area = 0;
+        for (std::size_t i = 0; i < n; ++i) area += v(i).x() * v(i + 1).y() - v(i + 1).x() * v(i).y();
+        node.fail("the polygon is clockwise (signed area " + formatNumber(0.5 * area) +
+                  "); give its vertices counter-clockwise");
+    }
+}
+
 Aabb readRect(const JsonNode& node) {
     if (node.size() != 4) node.fail("expected [x0, y0, x1, y1]");
     const double x0 = sceneCoordinate(node.at(0)), y0 = sceneCoordinate(node.at(1)), x1 = sceneCoordinate(node.at(2)),
@@ -849,7 +889,8 @@ public:
             requireAtMost(polygon, double(polygon.size()), kMaxBspEdges, "the number of polygon edges",
                           "the BSP autopartition is quadratic in the edges");
             for (const JsonNode& item : polygon.items()) s->polygon.push_back(readPoint2(item));
-            if (s->polygon.size() < 3) r.get("polygon").fail("expected at least 3 vertices (counter-clockwise)");
+            if (s->polygon.size() < 3) polygon.fail("expected at least 3 vertices (counter-clockwise)");
+            requireSimpleCounterClockwise(polygon, s->polygon);
             if (auto q = r.find("queries")) {
                 requireAtMost(*q, double(q->size()), kMaxPartitionItems, "the number of query points",
                               "one drawn point each");

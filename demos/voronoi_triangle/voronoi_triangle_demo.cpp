@@ -460,6 +460,7 @@ std::unique_ptr<PreparedScene> readBox(ObjectReader& r, SceneCommon common) {
         if (v->size() == 0) v->fail("expected at least one view");
     }
     r.finish();
+    common.frames = {1, int(queries.size()) + 2, 0};  // the view; with steps a frame per query and the sheet
     return makeBoxRegionsScene(std::move(common), Obb::fromRotation(c, e, q), std::move(queries), margin);
 }
 
@@ -498,6 +499,8 @@ std::unique_ptr<PreparedScene> readPolygon(ObjectReader& r, SceneCommon common) 
         if (views.empty()) v->fail("expected at least one view");
     }
     r.finish();
+    // The views; with steps a frame per query and the sheet.
+    common.frames = {int(views.size()), int(views.size() + queries.size()) + 1, 0};
     return makePolygonRegionsScene(std::move(common), std::move(polygon), std::move(queries), margin, std::move(views));
 }
 
@@ -538,6 +541,8 @@ public:
         double margin = 0;
         if (auto m = r.find("margin")) margin = sceneSize(*m);
         r.finish();
+        // The views; with steps a frame per query and the sheet.
+        common.frames = {int(views.size()), int(views.size() + queries.size()) + 1, 0};
         return std::make_unique<VoronoiScene>(std::move(common), std::move(simplex), std::move(queries),
                                               std::move(views), margin);
     }

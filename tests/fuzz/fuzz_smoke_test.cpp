@@ -65,6 +65,21 @@ TEST_SUITE("fuzz") {
         CHECK(runs > seeds.size());
     }
 
+    TEST_CASE("check verdicts keep the contract on mutated student files") {
+        // The seeds: every hostile check line found so far (tests/fuzz/seeds/check.jsonl), then the
+        // query corpus, whose lines check must judge too (and pass with cdlab's own answer).
+        std::vector<std::string> seeds = readSeedLines(CDLAB_SOURCE_DIR "/tests/fuzz/seeds/check.jsonl");
+        REQUIRE(seeds.size() >= 10);
+        const std::vector<std::string> queries = readSeedLines(CDLAB_SOURCE_DIR "/tests/fuzz/seeds/queries.jsonl");
+        seeds.insert(seeds.end(), queries.begin(), queries.end());
+        MutationFuzzer fuzzer(seeds, 0xC4EC4, 16384);
+        const Budget b = budget(20'000);
+        const std::size_t runs =
+            fuzzer.run([](const std::string& s) { fuzzCheck(bytes(s), s.size()); }, b.executions, b.seconds);
+        MESSAGE("check: " << runs << " executions");
+        CHECK(runs > seeds.size());
+    }
+
     TEST_CASE("the answer contract rejects what it should") {
         CHECK(queryAnswerViolation(R"({"id":1,"intersect":false,"distance":2.5,"normal":[0,0,1]})") == "");
         CHECK(queryAnswerViolation(R"({"id":1,"error":"query: $.a: expected an object"})") == "");

@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "demos/catalog/catalog.h"
+#include "demos/check/check.h"
 #include "demos/query/query.h"
 #include "render/gl_context.h"
 
@@ -91,6 +93,59 @@ void fuzzQuery(const std::uint8_t* data, std::size_t size) {
     }
     if (count != expected)
         contractViolation(std::to_string(count) + " answers for " + std::to_string(expected) + " lines", input);
+}
+
+void fuzzCheck(const std::uint8_t* data, std::size_t size) {
+    const std::string input(reinterpret_cast<const char*>(data), size);
+    std::istringstream in(input);
+    std::ostringstream out;
+    int status = 0;
+    try {
+        status = demos::runCheck(in, out, demos::CheckOptions{});
+    } catch (const std::exception& e) {
+        contractViolation(std::string("runCheck threw: ") + e.what(), input);
+    }
+    std::vector<std::size_t> numbers;  // of the non-blank input lines
+    {
+        std::istringstream lines(input);
+        std::string line;
+        for (std::size_t n = 1; std::getline(lines, line); ++n)
+            if (!isBlank(line)) numbers.push_back(n);
+    }
+    const std::string text = out.str();
+    for (const char c : text)
+        if ((static_cast<unsigned char>(c) < 0x20 && c != '\n') || c == 0x7f)
+            contractViolation("a control character in check's output", input);
+    std::istringstream verdicts(text);
+    std::string line;
+    std::size_t count = 0, passed = 0, failed = 0;
+    while (std::getline(verdicts, line)) {
+        if (count == numbers.size()) {
+            if (line != std::to_string(passed) + " passed, " + std::to_string(failed) + " failed")
+                contractViolation("summary line is not the verdicts' count: " + line, input);
+            if (status != (failed ? 1 : 0)) contractViolation("exit status " + std::to_string(status), input);
+            ++count;
+            continue;
+        }
+        if (count > numbers.size()) contractViolation("a line after the summary: " + line, input);
+        const std::string head = "line " + std::to_string(numbers[count]);
+        if (line.rfind(head, 0) != 0) contractViolation("verdict " + std::to_string(count) + " is not " + head + ": " + line, input);
+        const bool pass = line.size() >= 6 && line.compare(line.size() - 6, 6, ": pass") == 0;
+        const bool fail = line.find(": FAIL", head.size()) != std::string::npos;
+        if (pass == fail) contractViolation("neither one pass nor one FAIL: " + line, input);
+        (pass ? passed : failed) += 1;
+        ++count;
+    }
+    if (count != numbers.size() + 1)
+        contractViolation(std::to_string(count) + " output lines for " + std::to_string(numbers.size()) + " input lines",
+                          input);
+    // Self-consistency: cdlab's answer to a valid query, handed back, passes.
+    std::istringstream lines(input);
+    while (std::getline(lines, line)) {
+        if (isBlank(line)) continue;
+        std::string why;
+        if (!demos::selfCheckPasses(line, &why)) contractViolation("cdlab's own answer fails check: " + why, input);
+    }
 }
 
 namespace {

@@ -28,6 +28,13 @@ void fuzzScene(const std::uint8_t* data, std::size_t size);
 void fuzzRender(const std::uint8_t* data, std::size_t size);
 constexpr int kFuzzImageSide = 96;
 
+/// `cdlab check`: the bytes are JSON Lines a student handed in. The run never throws; it prints
+/// exactly one verdict line per non-blank input line ("line <k>" in order, then ": pass" or
+/// ": FAIL"), then "<passed> passed, <failed> failed" with the right counts, and no byte below
+/// 0x20 but the line ends (nothing a line holds can forge a verdict or hide one). And cdlab's own
+/// answer to every line that is a valid query, handed back as the answer, passes.
+void fuzzCheck(const std::uint8_t* data, std::size_t size);
+
 /// What is wrong with one answer line of `cdlab query` ("" when it keeps the contract above).
 std::string queryAnswerViolation(const std::string& line);
 

@@ -4,12 +4,20 @@
 // trace divergence is reported at its iteration.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
+#include <streambuf>
 #include <string>
+#include <vector>
 
 #include "demos/check/check.h"
+#include "demos/check/check_figure.h"
+#include "demos/check/check_values.h"
+#include "demos/check/trace_check.h"
 #include "demos/query/query.h"
+#include "demos/query/query_limits.h"
 
 using namespace cdlab::demos;
 
@@ -84,10 +92,12 @@ TEST_CASE("check: wrong answers fail with the reason in words") {
     r = check({{"op", "closest_point_triangle"}, {"point", {0.2, -1, 0}}, {"triangle", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
                {"answer", {{"point", {0.2, 0, 0}}, {"region", "A"}}}});
     CHECK(reasons(r).find("region differs: yours A, cdlab's AB") != std::string::npos);
-    // A tolerance per line loosens it.
+    // A tolerance per line sets it, up to the check's own (--tolerance).
     Json loose = distanceLine({{"intersect", false}, {"distance", 1.001}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2.001, 0.5, 0.5}}});
-    loose["tolerance"] = 1e-2;
-    CHECK(check(loose).pass);
+    loose["tolerance"] = 1e-3;
+    CheckOptions grader;
+    grader.tolerance = 1e-3;
+    CHECK(checkLine(loose.dump(), 1, grader).pass);
 }
 
 TEST_CASE("check: closest_point_tetrahedron — letters in any order, a boundary tie passes, a wrong face fails") {
@@ -163,7 +173,7 @@ TEST_CASE("check: an answer with keys of the wrong type fails that line only") {
                        {"answer", {{"hit", true}, {"t", 1.0}, {"point", {0, 0.5, 0.5}}, {"inside", "no"}}}};
     const CheckResult r = check(line);
     CHECK_FALSE(r.pass);
-    CHECK(reasons(r).find("could not be read") != std::string::npos);
+    CHECK(reasons(r).find("your \"inside\" is not true or false") != std::string::npos);
     Json trace = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
     trace["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {-1, 1, 1}}, {"simplex", "x"}}}}};
     CHECK_FALSE(check(trace).pass);
@@ -294,4 +304,305 @@ TEST_CASE("check: region tests in any order; ABC has its own condition; some tes
     const Json ac = {{"op", "closest_point_triangle"}, {"point", {0, 2, 0}}, {"triangle", triangle},
                      {"answer", {{"point", {0.6896551724137931, 1.7241379310344829, 0}}, {"region", "AC"}}}};
     CHECK(check(ac).pass);
+}
+
+namespace {
+
+// The line with cdlab's own answer (`cdlab query`'s output for it, "id" included) as its "answer".
+Json withOwnAnswer(Json line) {
+    line["answer"] = answerQuery(line.dump());
+    return line;
+}
+
+Json box(double lo, double hi, double scale) {
+    return {{"aabb", {{"min", {lo * scale, 0, 0}}, {"max", {hi * scale, scale, scale}}}}};
+}
+
+std::string runText(const std::string& input, const CheckOptions& options = CheckOptions{}) {
+    std::istringstream in(input);
+    std::ostringstream out;
+    runCheck(in, out, options);
+    return out.str();
+}
+
+// An input of `size` bytes of 'x', a newline, then `tail`: an over-long line no test holds in memory.
+class LongLineInput : public std::streambuf {
+public:
+    LongLineInput(std::size_t size, const std::string& tail) : left_(size), tail_("\n" + tail) {}
+
+protected:
+    int_type underflow() override {
+        if (left_ > 0) {
+            const std::size_t n = std::min(left_, chunk_.size());
+            left_ -= n;
+            setg(chunk_.data(), chunk_.data(), chunk_.data() + n);
+            return traits_type::to_int_type(chunk_[0]);
+        }
+        if (!tailGiven_) {
+            tailGiven_ = true;
+            setg(tail_.data(), tail_.data(), tail_.data() + tail_.size());
+            return traits_type::to_int_type(tail_[0]);
+        }
+        return traits_type::eof();
+    }
+
+private:
+    std::size_t left_;
+    std::string tail_;
+    bool tailGiven_ = false;
+    std::string chunk_ = std::string(std::size_t(1) << 16, 'x');
+};
+
+const Json kRightDistance = {{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}};
+
+}  // namespace
+
+TEST_CASE("check: cdlab's own mass_properties answer passes; the echoed id is not part of the answer") {
+    // Reproducer: echo '{"op":"mass_properties","a":{"polytope":{"vertices":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]]}},"answer":{"center_of_mass":[0.25,0.25,0.25],"id":null,"inertia":[[0.012500000000000002,0.0020833333333333333,0.0020833333333333333],[0.0020833333333333333,0.012500000000000002,0.0020833333333333333],[0.0020833333333333333,0.0020833333333333333,0.012500000000000002]],"mass":0.16666666666666666,"volume":0.16666666666666666}}' | cdlab check
+    const Json query = {{"op", "mass_properties"}, {"a", {{"polytope", {{"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}}}}};
+    Json line = withOwnAnswer(query);  // "id": null among the answer's keys, as `cdlab query` writes it
+    REQUIRE(line["answer"].contains("volume"));
+    CheckResult r = check(line);
+    CHECK_MESSAGE(r.pass, reasons(r));
+    line["answer"].erase("id");
+    r = check(line);
+    CHECK_MESSAGE(r.pass, reasons(r));
+    line["id"] = 5;
+    r = check(line);
+    CHECK_MESSAGE(r.pass, reasons(r));
+    line["answer"].erase("volume");
+    CHECK(reasons(check(line)).find("your answer has no volume") != std::string::npos);
+}
+
+TEST_CASE("check: cdlab's own answers pass at coordinates of 1e160 and 1e-160 (no norm overflows or underflows)") {
+    // Reproducer: echo '{"id":1,"op":"distance","a":{"aabb":{"min":[0,0,0],"max":[1e160,1e160,1e160]}},"b":{"aabb":{"min":[2e160,0,0],"max":[3e160,1e160,1e160]}},"answer":{"intersect":false,"distance":1e160,"point_a":[1e160,5e159,5e159],"point_b":[2e160,5e159,5e159]}}' | cdlab check
+    for (const double scale : {1e160, 1e200, 1e300, 1e-160, 1e-200, 1e-300}) {
+        for (const char* op : {"distance", "penetration", "contact"}) {
+            const Json line = withOwnAnswer({{"id", 1}, {"op", op}, {"a", box(0, 1, scale)}, {"b", box(2, 3, scale)}});
+            const CheckResult r = check(line);
+            CHECK_MESSAGE(r.pass, op << " at " << scale << ": " << reasons(r));
+            const Json overlapping = withOwnAnswer({{"id", 2}, {"op", op}, {"a", box(0, 1, scale)}, {"b", box(0.75, 1.75, scale)}});
+            const CheckResult o = check(overlapping);
+            CHECK_MESSAGE(o.pass, op << " overlapping at " << scale << ": " << reasons(o));
+        }
+        // A region tie (p at vertex A: A, AB and CA name its closest point) at that scale.
+        for (const char* region : {"A", "AB", "CA"}) {
+            const Json tie = {{"op", "closest_point_triangle"}, {"point", {-scale, -scale, 0}},
+                              {"triangle", {{0, 0, 0}, {scale, 0, 0}, {0, scale, 0}}},
+                              {"answer", {{"point", {0, 0, 0}}, {"region", region}}}};
+            const CheckResult t = check(tie);
+            CHECK_MESSAGE(t.pass, region << " at " << scale << ": " << reasons(t));
+        }
+        // The witness relation itself: |point_b − point_a| is 1e160, not inf; 1e-160, not 0.
+        Json line = distanceLine(kRightDistance);
+        line["a"] = box(0, 1, scale);
+        line["b"] = box(2, 3, scale);
+        line["answer"] = {{"intersect", false}, {"distance", scale}, {"point_a", {scale, 0.5 * scale, 0.5 * scale}},
+                          {"point_b", {2 * scale, 0.5 * scale, 0.5 * scale}}};
+        const CheckResult r = check(line);
+        CHECK_MESSAGE(r.pass, scale << ": " << reasons(r));
+    }
+}
+
+TEST_CASE("check: cdlab's own answer to every query of the fuzz corpus passes (selfCheckPasses)") {
+    // Reproducer: ./cdlab query < tests/fuzz/seeds/queries.jsonl, each answer put into its line as
+    // "answer", | cdlab check (mass_properties lines failed "your answer has no id").
+    std::ifstream corpus(CDLAB_SOURCE_DIR "/tests/fuzz/seeds/queries.jsonl");
+    REQUIRE(corpus);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(corpus, line);)
+        if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+    CHECK(lines.size() >= 40);
+    // Lines like the query tests' besides: every op, rotations, separated and touching contacts.
+    const Json cube = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
+    const Json turned = {{"obb", {{"center", {1.4, 0.6, 0.5}}, {"half_extents", {0.5, 0.5, 0.5}}, {"rotation", {0.9, 0.1, 0.3, 0.2}}}}};
+    const Json capsule = {{"capsule", {{"a", {0, -1, 0}}, {"b", {0, 1, 0}}, {"radius", 0.25}}}};
+    const Json sphere = {{"sphere", {{"center", {0.5, 2.2, 0.5}}, {"radius", 1}}}};
+    for (const Json& q : {
+             Json{{"op", "penetration"}, {"a", cube}, {"b", turned}},
+             Json{{"op", "contact"}, {"a", cube}, {"b", turned}},
+             Json{{"op", "contact"}, {"a", cube}, {"b", kBoxB}},
+             Json{{"op", "contact"}, {"a", cube}, {"b", sphere}, {"max_points", 8}},
+             Json{{"op", "distance"}, {"a", capsule}, {"b", turned}},
+             Json{{"op", "penetration"}, {"a", capsule}, {"b", sphere}},
+             Json{{"op", "raycast"}, {"ray", {{"origin", {-2, 0.5, 0.25}}, {"direction", {1, 0.1, 0}}}}, {"shape", turned}},
+             Json{{"op", "time_of_impact"}, {"a", sphere}, {"b", cube}, {"motion_a", {0, -3, 0}}},
+             Json{{"op", "closest_point_tetrahedron"}, {"point", {2, 2, 2}}, {"tetrahedron", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}},
+             Json{{"op", "mass_properties"}, {"a", turned}},
+             Json{{"op", "distance"}, {"a", cube}, {"b", turned}, {"trace", true}},
+         })
+        lines.push_back(q.dump());
+    for (const std::string& line : lines) {
+        std::string why;
+        CHECK_MESSAGE(selfCheckPasses(line, &why), line.substr(0, 160) << ": " << why);
+    }
+}
+
+TEST_CASE("check: GJK rule 1 holds both ways: a support point beyond A − B fails, naming the one of the pair") {
+    // Reproducer: echo '{"id":1,"op":"distance","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[2,0,0],"max":[3,1,1]}},"answer":{"intersect":false,"distance":1,"point_a":[1,0.5,0.5],"point_b":[2,0.5,0.5]},"trace":{"steps":[{"direction":[1,0,0],"support":[5,0,0]}]}}' | cdlab check
+    Json line = distanceLine(kRightDistance);
+    line["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {5, 0, 0}}}}}};
+    CheckResult r = check(line);
+    CHECK(reasons(r).find("iteration 0: different support point for the same direction: yours reaches 5 along it, "
+                          "A − B reaches -1 (yours lies beyond A − B)") != std::string::npos);
+    CHECK(r.traceDivergence == 0);
+    // A pair: a beyond A, b extreme.
+    line["trace"] = {{"steps", {{{"direction", {2, 0, 0}}, {"support", {{"a", {4, 0.5, 0.5}}, {"b", {2, 0.5, 0.5}}}}}}}};
+    r = check(line);
+    CHECK(reasons(r).find("your a reaches 4 along d, beyond A's extreme 1: not a point of A") != std::string::npos);
+    // a beyond A by 2, b short of B's extreme by 2: w · d is h(d), but neither point is right.
+    line["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {{"a", {3, 0.5, 0.5}}, {"b", {4, 0.5, 0.5}}}}}}}};
+    r = check(line);
+    CHECK(reasons(r).find("your a reaches 3 along d, beyond A's extreme 1: not a point of A") != std::string::npos);
+    line["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {{"a", {1, 0.5, 0.5}}, {"b", {3, 0.5, 0.5}}}}}}}};
+    r = check(line);
+    CHECK(reasons(r).find("your b is not extreme in B along −(d): it reaches -3, B reaches -2") != std::string::npos);
+    // Short of it, as before: another point reaches further.
+    line["trace"] = {{"steps", {{{"direction", {1, 0, 0}}, {"support", {-2, 0, 0}}}}}};
+    CHECK(reasons(check(line)).find("yours reaches -2 along it, A − B reaches -1") != std::string::npos);
+    // An EPA support beyond A − B along the face's normal fails the same way.
+    const Json a = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
+    const Json b = {{"aabb", {{"min", {0.75, 0, 0}}, {"max", {1.75, 1, 1}}}}};
+    const Json epa = {{"op", "penetration"}, {"a", a}, {"b", b},
+                      {"answer", {{"intersect", true}, {"depth", 0.25}, {"normal", {1, 0, 0}}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {0.75, 0.5, 0.5}}}},
+                      {"trace", {{"algorithm", "epa"}, {"steps", {{{"normal", {1, 0, 0}}, {"distance", 0.25}, {"support", {5, 0, 0}}}}}}}};
+    CHECK(reasons(check(epa)).find("iteration 0: different support point for the face's normal: yours reaches 5 along it, "
+                                   "A − B reaches 0.25 (yours lies beyond A − B)") != std::string::npos);
+}
+
+TEST_CASE("check: a line whose op is not a string fails alone; the run goes on") {
+    // Reproducer: printf '%s\n' '{"id":1,"op":7,"answer":{}}' '{"id":2,"op":null,"answer":{}}' | cdlab check
+    static_assert(noexcept(checkLine(std::string(), 1, CheckOptions{})));
+    const std::string text = runText(R"({"id":1,"op":7,"answer":{}})" "\n" R"({"id":2,"op":null,"answer":{}})" "\n"
+                                     R"({"id":3,"answer":{}})" "\n" R"({"id":4,"op":[],"answer":{"error":"x"}})" "\n" +
+                                     distanceLine(kRightDistance).dump() + "\n");
+    CHECK(text.find("line 1 (id 1): FAIL: line 1: expected \"op\": the name of the query's operation, a string, got 7\n") !=
+          std::string::npos);
+    CHECK(text.find("line 2 (id 2): FAIL: line 2: expected \"op\"") != std::string::npos);
+    CHECK(text.find("line 3 (id 3): FAIL: line 3: expected \"op\"") != std::string::npos);
+    CHECK(text.find("line 4 (id 4): FAIL: line 4: expected \"op\"") != std::string::npos);
+    CHECK(text.find("line 5 (id 1): pass\n") != std::string::npos);
+    CHECK(text.find("1 passed, 4 failed\n") != std::string::npos);
+    CHECK(text.find("json.exception") == std::string::npos);
+}
+
+TEST_CASE("check: an answer missing depth, distance or t fails naming the field (no read of a missing key)") {
+    // Reproducer: echo '{"op":"penetration","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[0.75,0,0],"max":[1.75,1,1]}},"answer":{"intersect":true,"normal":[1,0,0],"point_a":[1,0.5,0.5],"point_b":[0.75,0.5,0.5]}}' | cdlab check
+    const Json a = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
+    const Json b = {{"aabb", {{"min", {0.75, 0, 0}}, {"max", {1.75, 1, 1}}}}};
+    CheckResult r = check({{"op", "penetration"}, {"a", a}, {"b", b},
+                           {"answer", {{"intersect", true}, {"normal", {1, 0, 0}}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {0.75, 0.5, 0.5}}}}});
+    CHECK(reasons(r).find("your answer has no depth number") != std::string::npos);
+    r = check({{"op", "penetration"}, {"a", kBoxA}, {"b", kBoxB},
+               {"answer", {{"intersect", false}, {"normal", {1, 0, 0}}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}}}});
+    CHECK(reasons(r).find("your answer has no distance number") != std::string::npos);
+    r = check(distanceLine({{"intersect", false}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}}));
+    CHECK(reasons(r).find("your answer has no distance number") != std::string::npos);
+    const Json sphere = {{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}};
+    const Json far = {{"sphere", {{"center", {5, 0, 0}}, {"radius", 1}}}};
+    r = check({{"op", "time_of_impact"}, {"a", sphere}, {"b", far}, {"motion_a", {6, 0, 0}},
+               {"answer", {{"hit", true}, {"normal", {1, 0, 0}}, {"point_a", {4, 0, 0}}, {"point_b", {4, 0, 0}}}}});
+    CHECK(reasons(r).find("your answer has no t number") != std::string::npos);
+    r = check({{"op", "raycast"}, {"ray", {{"origin", {-1, 0.5, 0.5}}, {"direction", {1, 0, 0}}}}, {"shape", kBoxA},
+               {"answer", {{"hit", true}, {"point", {0, 0.5, 0.5}}, {"normal", {-1, 0, 0}}}}});
+    CHECK(reasons(r).find("your answer has no t number") != std::string::npos);
+    // Contact entries that are not objects, a region that is not a string: reasons, not reads.
+    r = check({{"op", "contact"}, {"a", a}, {"b", b}, {"answer", {{"colliding", true}, {"depth", 0.25}, {"normal", {1, 0, 0}}, {"points", {1, 2}}}}});
+    CHECK(reasons(r).find("points[0]: your answer has no point_a") != std::string::npos);
+    r = check({{"op", "closest_point_tetrahedron"}, {"point", {2, 2, 2}}, {"tetrahedron", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
+               {"answer", {{"point", {0.3, 0.3, 0.3}}, {"region", 4}}}});
+    CHECK(reasons(r).find("your answer has no \"region\"") != std::string::npos);
+}
+
+TEST_CASE("check: verdict lines are escaped: an answer's strings cannot forge lines or terminal escapes") {
+    // Reproducer: printf '%s\n' '{"id":1,"op":"closest_point_triangle","point":[0.2,-1,0],"triangle":[[0,0,0],[1,0,0],[0,1,0]],"answer":{"point":[0.2,0,0],"region":"\n2 passed, 0 failed\u001b[8m"}}' | cdlab check
+    const Json line = {{"id", 1}, {"op", "closest_point_triangle"}, {"point", {0.2, -1, 0}}, {"triangle", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                       {"answer", {{"point", {0.2, 0, 0}}, {"region", "\n2 passed, 0 failed\x1b[8m"}}}};
+    Json idLine = distanceLine({{"intersect", true}});
+    idLine["id"] = "\x7f\xc2\x85\xe2\x80\xae x";
+    const std::string text = runText(line.dump() + "\n" + idLine.dump() + "\n");
+    CHECK(std::count(text.begin(), text.end(), '\n') == 3);  // one line per input line, then the summary
+    CHECK(text.find('\x1b') == std::string::npos);
+    CHECK(text.find('\x7f') == std::string::npos);
+    CHECK(text.find("\xc2\x85") == std::string::npos);
+    CHECK(text.find("\xe2\x80\xae") == std::string::npos);
+    CHECK(text.find("region differs: yours \\n2 passed, 0 failed\\x1b[8m, cdlab's AB") != std::string::npos);
+    CHECK(text.find("0 passed, 2 failed\n") != std::string::npos);
+    CHECK(printable("a\tb\r\xff\xc3\xa9") == "a\\tb\\r\\xff\xc3\xa9");  // é stays, a stray byte does not
+    // An id cannot put a verdict of its own into a line: its colons are written \u003a.
+    Json forged = distanceLine(kRightDistance);
+    forged["id"] = "x: FAIL: y";
+    CHECK(runText(forged.dump() + "\n").find("line 1 (id \"x\\u003a FAIL\\u003a y\"): pass\n") != std::string::npos);
+}
+
+TEST_CASE("check: a line's tolerance may only tighten the check's (--tolerance caps it)") {
+    // Reproducer: echo '{"id":1,"op":"distance","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[2,0,0],"max":[3,1,1]}},"answer":{"intersect":false,"distance":5,"point_a":[1,0.5,0.5],"point_b":[6,0.5,0.5]},"tolerance":1e300}' | cdlab check
+    Json wrong = distanceLine({{"intersect", false}, {"distance", 5}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {6, 0.5, 0.5}}});
+    wrong["tolerance"] = 1e300;
+    CheckResult r = check(wrong);
+    CHECK_FALSE(r.pass);
+    CHECK(reasons(r).find("\"tolerance\" 1e+300 is over the check's tolerance 1e-09 (--tolerance): a line may tighten it, "
+                          "never loosen it") != std::string::npos);
+    Json tight = distanceLine(kRightDistance);
+    tight["tolerance"] = 1e-12;
+    CHECK(check(tight).pass);
+    // Directions do not size the problem: a huge "initial_direction" (a valid GJK start) leaves
+    // the tolerance where it was (directions).
+    Json inflated = distanceLine({{"intersect", false}, {"distance", 1.5}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2.5, 0.5, 0.5}}});
+    inflated["initial_direction"] = {1e300, 0, 0};
+    CHECK(reasons(check(inflated)).find("distance off by 0.5") != std::string::npos);
+    // The check's own tolerance: finite, in (0, kMaxCheckTolerance] (the command line refuses others).
+    for (const double bad : {double(INFINITY), double(NAN), 0.0, -1.0, 2 * kMaxCheckTolerance}) {
+        CheckOptions o;
+        o.tolerance = bad;
+        CHECK_FALSE(checkLine(distanceLine(kRightDistance).dump(), 1, o).pass);
+    }
+}
+
+TEST_CASE("check: trace step limit; steps without a simplex cost linear time") {
+    // Reproducer: python3 -c 'import json; s=[{"direction":[1,0,0],"support":[-1,1,1]}]*100000; print(json.dumps({"op":"distance","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[2,0,0],"max":[3,1,1]}},"answer":{"intersect":False,"distance":1,"point_a":[1,0.5,0.5],"point_b":[2,0.5,0.5]},"trace":{"steps":s}}))' | cdlab check
+    Json line = distanceLine(kRightDistance);
+    const Json step = {{"direction", {1, 0, 0}}, {"support", {-1, 1, 1}}};
+    Json steps = Json::array();
+    for (std::size_t i = 0; i < kMaxTraceSteps; ++i) steps.push_back(step);
+    steps.back()["simplex"] = {{-1, 1, 1}};  // the last step keeps one point of the long run
+    line["trace"] = {{"steps", steps}};
+    CheckResult r = check(line);
+    CHECK_MESSAGE(r.pass, reasons(r));
+    steps.push_back(step);
+    line["trace"] = {{"steps", steps}};
+    r = check(line);
+    CHECK(reasons(r).find("trace: 10001 steps, over the limit of 10000 steps a trace may have") != std::string::npos);
+    line["trace"] = {{"algorithms", Json::array({Json{{"steps", Json::array()}}, Json{{"algorithms", Json::array()}}})}};
+    CHECK(reasons(check(line)).find("\"algorithms\" inside \"algorithms\"") != std::string::npos);
+}
+
+TEST_CASE("check: a line over cdlab query's length limit fails naming its length; the next line is checked") {
+    // Reproducer: python3 -c 'print("x" * (64 * 2**20 + 1))' | cdlab check
+    LongLineInput input(kMaxQueryLineBytes + 1, distanceLine(kRightDistance).dump() + "\n");
+    std::istream in(&input);
+    std::ostringstream out;
+    CHECK(runCheck(in, out, CheckOptions{}) == 1);
+    const std::string text = out.str();
+    CHECK(text.find("line 1: FAIL: line 1: the line is " + std::to_string(kMaxQueryLineBytes + 1) +
+                    " bytes, over the limit of 64 MiB for one line\n") != std::string::npos);
+    CHECK(text.find("line 2 (id 1): pass\n") != std::string::npos);
+    CHECK(text.find("1 passed, 1 failed\n") != std::string::npos);
+}
+
+TEST_CASE("check --figures: no trace figure where the hull of A − B is over the scenes' cap") {
+    // Reproducer: two 2000-vertex polytopes and a GJK trace that breaks a rule | cdlab check --figures out/check
+    const auto polytope = [](int n, double x) {
+        Json v = Json::array();
+        for (int i = 0; i < n; ++i) {
+            const double t = 0.01 * i;
+            v.push_back({x + std::cos(t), std::sin(t), 0.001 * i});
+        }
+        return Json{{"polytope", {{"vertices", v}}}};
+    };
+    const Json over = {{"op", "distance"}, {"a", polytope(501, 0)}, {"b", polytope(500, 5)}};
+    CHECK(traceFigureRefusal(over).find("no figure: A − B would be the hull of 501 x 500 differences of vertices, over the "
+                                        "limit of 250000") != std::string::npos);
+    const Json within = {{"op", "distance"}, {"a", polytope(500, 0)}, {"b", polytope(500, 5)}};
+    CHECK(traceFigureRefusal(within).empty());
 }

@@ -23,6 +23,7 @@
 #include "demos/scene/json_reader.h"
 #include "demos/scene/scene.h"
 #include "render/image.h"
+#include "render/pixel_budget.h"
 #include "tests/demos/harness/temp_files.h"
 
 using namespace cdlab::demos;
@@ -280,14 +281,22 @@ TEST_SUITE("hostile harness") {
         std::ofstream(scene / "manifest.json") << R"({"frames": 5, "files": ["../../../user.txt", "notes.txt"]})";
         std::ofstream(scene / "notes.txt") << "the user's";
         std::ofstream(root / "user.txt") << "precious";
-        const Result r = run({"figures", "--golden-dir", (root / "golden").string(), "--out", out.string()}, root);
-        CHECK(r.status == 0);
-        CHECK(contains(r.err, (out / "foo" / "bar" / "manifest.json").string() + ": $: expected an object"));
-        CHECK(contains(r.err, (scene / "manifest.json").string() + ": $: missing required key 'key'"));
+        const std::string foreignManifest = slurp(scene / "manifest.json");
+        Result r = run({"figures", "--golden-dir", (root / "golden").string(), "--out", out.string()}, root);
+        // A scene folder whose manifest.json is not cdlab's is the user's: refused, nothing written.
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, "refusing to write into " + scene.string() + ": its manifest.json is not cdlab's (" +
+                                  (scene / "manifest.json").string() + ": $: missing required key 'key')"));
+        CHECK(slurp(scene / "manifest.json") == foreignManifest);
         CHECK(fs::exists(scene / "notes.txt"));  // never listed by cdlab: never deleted
         CHECK(fs::exists(root / "user.txt"));
-        CHECK(readFigureManifest(scene / "manifest.json").files.size() >= 2);  // rebuilt
-        CHECK(slurp(out / "foo" / "bar" / "manifest.json") == "[1,2]");        // skipped, untouched
+        CHECK_FALSE(fs::exists(out / "index.html"));
+        // Elsewhere in out/, a manifest that does not read is reported and left out of the gallery.
+        fs::remove_all(scene);
+        r = run({"figures", "--golden-dir", (root / "golden").string(), "--out", out.string()}, root);
+        CHECK(r.status == 0);
+        CHECK(contains(r.err, (out / "foo" / "bar" / "manifest.json").string() + ": $: expected an object"));
+        CHECK(slurp(out / "foo" / "bar" / "manifest.json") == "[1,2]");  // skipped, untouched
         CHECK(fs::exists(out / "index.html"));
         fs::remove_all(root);
     }
@@ -484,3 +493,307 @@ TEST_SUITE("hostile harness") {
     }
 
 }  // TEST_SUITE
+
+namespace {
+
+// A child whose stdout is /dev/full (a full disk) and stdin /dev/null.
+Result runToFullDisk(const std::vector<std::string>& args, const fs::path& logs) {
+    const fs::path err = logs / "err.full";
+    std::fflush(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        if (!std::freopen("/dev/null", "r", stdin) || !std::freopen("/dev/full", "w", stdout) ||
+            !std::freopen(err.c_str(), "w", stderr))
+            _exit(5);
+        std::vector<std::string> a = args;
+        a.insert(a.begin(), "cdlab");
+        std::vector<char*> argv;
+        for (auto& x : a) argv.push_back(x.data());
+        const int status = cdlabMain(int(argv.size()), argv.data());
+        std::fflush(stderr);
+        _exit(status);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, "", slurp(err)};
+}
+
+bool anyTempFile(const fs::path& dir) {
+    std::error_code ec;
+    for (const auto& e : fs::recursive_directory_iterator(dir, ec))
+        if (cdlab::test::isTempFile(e.path())) return true;
+    return false;
+}
+
+// A pid that no process has: a child that has exited and been waited for.
+pid_t deadPid() {
+    const pid_t pid = fork();
+    if (pid == 0) _exit(0);
+    waitpid(pid, nullptr, 0);
+    return pid;
+}
+
+}  // namespace
+
+TEST_SUITE("hostile harness: output folders") {
+    TEST_CASE("golden --report . keeps the user's index.html") {
+        // Reproducer: cd folder-with-index.html && cdlab golden --report . (a failing run) replaced
+        // index.html with the report and listed it in cdlab-report.txt; the next, passing run deleted it.
+        const fs::path root = tempDir("report_index");
+        const fs::path golden = root / "golden", rep = root / "rep";
+        writeScene(golden / "voronoi_triangle" / "small.json");
+        const std::vector<std::string> args = {"golden", "--golden-dir", golden.string(), "--report", rep.string()};
+        std::vector<std::string> update = args;
+        update.insert(update.end(), {"--update", "failing"});
+        REQUIRE(run(update, root).status == 0);
+        fs::create_directories(rep);
+        std::ofstream(rep / "index.html") << "<html>the user's page</html>";
+        const fs::path png = golden / "voronoi_triangle" / "small" / "plane.png";
+        const cdlab::render::Image good = cdlab::render::readPng(png.string());
+        cdlab::render::Image bad = good;
+        for (int y = 10; y < 20; ++y)
+            for (int x = 10; x < 20; ++x) bad.pixel(x, y)[1] ^= 0x80;
+        cdlab::render::writePngAtomic(png.string(), bad);
+        Result r = run(args, root);
+        CHECK(r.status == 2);  // the frame fails, and the report page cannot be written
+        CHECK(contains(r.out, "FAIL voronoi_triangle/small/plane"));
+        CHECK(contains(r.err, "refusing to overwrite " + (rep / "index.html").string() + ": cdlab did not write it"));
+        CHECK(slurp(rep / "index.html") == "<html>the user's page</html>");
+        CHECK_FALSE(contains(slurp(rep / "cdlab-report.txt"), "index.html"));
+        CHECK(fs::exists(rep / "voronoi_triangle" / "small" / "plane.diff.png"));  // the rest of the report
+        cdlab::render::writePngAtomic(png.string(), good);
+        r = run(args, root);
+        CHECK(r.status == 0);
+        CHECK(slurp(rep / "index.html") == "<html>the user's page</html>");
+        CHECK_FALSE(fs::exists(rep / "voronoi_triangle"));
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("figures --out keeps the user's index.html") {
+        // Reproducer: echo mine > DIR/index.html; cdlab figures --scene voronoi_triangle/regions
+        // --out DIR -> index.html replaced by the gallery.
+        const fs::path root = tempDir("figures_index");
+        writeScene(root / "golden" / "voronoi_triangle" / "a.json");
+        const fs::path out = root / "out";
+        fs::create_directories(out / "voronoi_triangle");
+        std::ofstream(out / "index.html") << "mine";
+        const std::vector<std::string> args = {"figures", "--golden-dir", (root / "golden").string(), "--out",
+                                               out.string()};
+        Result r = run(args, root);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, "refusing to overwrite " + (out / "index.html").string() + ": cdlab did not write it"));
+        CHECK(contains(r.err, "nothing written"));
+        CHECK(snapshot(out) == std::map<std::string, std::string>{{"index.html", "mine"}});
+        // A scene page's path holding the user's file: refused before anything is drawn.
+        fs::remove(out / "index.html");
+        std::ofstream(out / "voronoi_triangle" / "a.html") << "mine too";
+        r = run(args, root);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, "refusing to overwrite " + (out / "voronoi_triangle" / "a.html").string()));
+        CHECK(snapshot(out) == std::map<std::string, std::string>{{"voronoi_triangle/a.html", "mine too"}});
+        // cdlab's own pages are rewritten, run after run.
+        fs::remove(out / "voronoi_triangle" / "a.html");
+        REQUIRE(run(args, root).status == 0);
+        CHECK(run(args, root).status == 0);
+        CHECK(contains(slurp(out / "index.html"), "<meta name=\"generator\" content=\"cdlab figures\">"));
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("render --out keeps a folder's own files") {
+        // Reproducer: render F --out DIR overwrote a user's DIR/trace.json, DIR/result.png and a web
+        // app's DIR/manifest.json (the note about it said "cdlab figures").
+        const fs::path root = tempDir("render_own");
+        writeScene(root / "scene.json");
+        const fs::path out = root / "out";
+        const std::vector<std::string> args = {"render", (root / "scene.json").string(), "--out", out.string()};
+        for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+                 {"trace.json", "{\"mine\": 1}"}, {"plane.png", "not a png, but mine"}, {"manifest.json", "{\"name\": \"web app\"}"}}) {
+            fs::remove_all(out);
+            fs::create_directories(out);
+            std::ofstream(out / name) << text;
+            std::ofstream(out / "notes.txt") << "notes";
+            const auto before = snapshot(out);
+            const Result r = run(args, root);
+            CHECK_MESSAGE(r.status == 2, name);
+            CHECK_MESSAGE(contains(r.err, out.string()), r.err);
+            CHECK_MESSAGE((contains(r.err, "refusing to overwrite " + (out / name).string()) ||
+                           contains(r.err, "refusing to write into " + out.string() + ": its manifest.json is not cdlab's")),
+                          r.err);
+            CHECK_FALSE(contains(r.err, "cdlab figures"));
+            CHECK_MESSAGE(snapshot(out) == before, name);  // nothing written, no temp file
+        }
+        // Into a folder of other files whose names do not collide: written, and re-rendered later.
+        fs::remove_all(out);
+        fs::create_directories(out);
+        std::ofstream(out / "notes.txt") << "notes";
+        REQUIRE(run(args, root).status == 0);
+        CHECK(run({"render", (root / "scene.json").string(), "--out", out.string(), "--force"}, root).status == 0);
+        CHECK(slurp(out / "notes.txt") == "notes");
+        CHECK(fs::exists(out / "plane.png"));
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("figures --out inside --golden-dir is refused") {
+        // Reproducer: cdlab figures --golden-dir G --out G [--scale 2] overwrote the goldens (at 2x)
+        // and left html, gif and manifest files in G.
+        const fs::path root = tempDir("golden_out");
+        const fs::path golden = root / "golden";
+        writeScene(golden / "voronoi_triangle" / "a.json");
+        REQUIRE(run({"golden", "--golden-dir", golden.string(), "--update", "all", "--report", (root / "rep").string()},
+                    root)
+                    .status == 0);
+        const auto before = snapshot(golden);
+        for (const fs::path& out : {golden, golden / "sub", golden / "voronoi_triangle" / ".." / "x"}) {
+            const Result r = run({"figures", "--golden-dir", golden.string(), "--out", out.string(), "--scale", "2"}, root);
+            CHECK(r.status == 2);
+            CHECK_MESSAGE(contains(r.err, "is inside the golden folder"), r.err);
+            CHECK(snapshot(golden) == before);
+        }
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("two scenes into one folder are refused before anything is written") {
+        // Reproducer: cdlab render a/x.json b/x.json -> both into out/render/x, "2 rendered", exit 0;
+        // figures with a scene filed under another demo's folder did the same.
+        const fs::path root = tempDir("same_folder");
+        writeScene(root / "a" / "x.json");
+        writeScene(root / "b" / "x.json");
+        Result r = run({"render", (root / "a" / "x.json").string(), (root / "b" / "x.json").string(), "--out",
+                        (root / "out").string()},
+                       root);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, (root / "b" / "x.json").string() + ": writes the same folder"));
+        CHECK(contains(r.err, "nothing written"));
+        CHECK_FALSE(fs::exists(root / "out"));
+        // A voronoi_triangle scene filed under another folder of the golden set, with the same name.
+        writeScene(root / "golden" / "voronoi_triangle" / "x.json");
+        writeScene(root / "golden" / "gjk" / "x.json");
+        r = run({"figures", "--golden-dir", (root / "golden").string(), "--out", (root / "figs").string()}, root);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, "writes the same folder"));
+        CHECK_FALSE(fs::exists(root / "figs" / "voronoi_triangle"));
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("an interrupted render leaves no temp file; stale ones of dead runs are swept") {
+        // Reproducer: cdlab render big_steps.json & sleep 1; kill -INT $! -> 48-65 *.png.tmp.<pid>.<n>
+        // files that no later run removed.
+        const fs::path root = tempDir("interrupt");
+        fs::create_directories(root);
+        std::ofstream(root / "big.json") << R"({"demo": "voronoi_triangle", "image": {"width": 1024, "height": 1024},
+          "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]],
+          "queries": [[-0.5, -0.5, 0.2], [1.0, 0.5, 0.5], [0.2, 0.2, 0.1], [3, 1, 0], [-1, 2, 0.3], [1, -1, 0]],
+          "views": ["plane", "3d"], "steps": true})";
+        const fs::path out = root / "out";
+        int caught = 0;  // kills that came while a temp file was there
+        for (int attempt = 0; attempt < 12 && caught < 3; ++attempt) {
+            fs::remove_all(out);
+            const Child c = start({"render", (root / "big.json").string(), "--out", out.string(), "--force"}, root);
+            bool seen = false;
+            for (int poll = 0; poll < 40000 && !seen; ++poll) {
+                seen = anyTempFile(out);
+                if (!seen) usleep(250);
+            }
+            kill(c.pid, attempt % 2 ? SIGTERM : SIGINT);
+            int status = 0;
+            waitpid(c.pid, &status, 0);
+            caught += seen && WIFSIGNALED(status);
+            CHECK_MESSAGE(!anyTempFile(out), "attempt " << attempt);
+        }
+        CHECK(caught >= 1);
+
+        // What SIGKILL leaves: swept by the next run into that folder; a live process's file is kept.
+        fs::remove_all(out);
+        REQUIRE(run({"render", (root / "big.json").string(), "--out", out.string()}, root).status == 0);
+        const std::string dead = "plane.png.tmp." + std::to_string(deadPid()) + ".7";
+        const std::string live = "plane.png.tmp." + std::to_string(getpid()) + ".7";
+        std::ofstream(out / dead) << "x";
+        std::ofstream(out / live) << "x";
+        std::ofstream(out / "notes.tmp.12.x") << "not a temp name";
+        REQUIRE(run({"render", (root / "big.json").string(), "--out", out.string(), "--force"}, root).status == 0);
+        CHECK_FALSE(fs::exists(out / dead));
+        CHECK(fs::exists(out / live));
+        CHECK(fs::exists(out / "notes.tmp.12.x"));
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("stdout on a full disk is exit 2") {
+        // Reproducer: cdlab check < lines > /dev/full; cdlab render --template gjk > /dev/full;
+        // cdlab golden > /dev/full; cdlab demos > /dev/full -> exit 0, everything lost.
+        const fs::path root = tempDir("full_disk");
+        writeScene(root / "golden" / "voronoi_triangle" / "a.json");
+        REQUIRE(run({"golden", "--golden-dir", (root / "golden").string(), "--update", "all", "--report",
+                     (root / "rep").string()},
+                    root)
+                    .status == 0);
+        for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+                 {"check"},
+                 {"render", "--template", "gjk"},
+                 {"golden", "--golden-dir", (root / "golden").string(), "--report", (root / "rep").string()},
+                 {"demos"}}) {
+            const Result r = runToFullDisk(args, root);
+            CHECK_MESSAGE(r.status == 2, args[0]);
+            CHECK_MESSAGE(contains(r.err, "cdlab: cannot write to standard output: No space left on device"), r.err);
+        }
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("render --out DIR takes a file whose name is no folder name") {
+        // Reproducer: cdlab render "é scene.json" --out DIR -> refused for its name, though --out
+        // names the folder.
+        const fs::path root = tempDir("odd_name");
+        writeScene(root / "\xc3\xa9 scene.json");
+        Result r = run({"render", (root / "\xc3\xa9 scene.json").string(), "--out", (root / "o").string()}, root);
+        CHECK_MESSAGE(r.status == 0, r.err);
+        CHECK(fs::exists(root / "o" / "plane.png"));
+        // With two files each one's name is its folder's: refused, with the way out named.
+        writeScene(root / "plain.json");
+        r = run({"render", (root / "\xc3\xa9 scene.json").string(), (root / "plain.json").string(), "--out",
+                 (root / "o2").string()},
+                root);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, "cannot name an output folder: give one with --out DIR"));
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("a scene's frames are bounded together, whatever its demo declared") {
+        // Reproducer: a 64-query voronoi scene at 4096² with steps took 0.93 GB at 1024², 1.87 GB at
+        // 2048² and ended in bad_alloc at 4096²; a demo that declares fewer frames than it draws is
+        // stopped by the budget every readPixels() counts against.
+        using cdlab::render::PixelBudget;
+        CHECK_NOTHROW(PixelBudget::spend(1e300));  // no budget in force: nothing counted
+        {
+            PixelBudget outer(1000);
+            CHECK_NOTHROW(PixelBudget::spend(600));
+            {
+                PixelBudget inner(100);
+                CHECK_THROWS_AS(PixelBudget::spend(101), cdlab::render::ImageError);
+                CHECK_NOTHROW(PixelBudget::spend(100));
+            }
+            CHECK_NOTHROW(PixelBudget::spend(400));  // the outer one's 1000, the inner spending not counted
+            CHECK_THROWS_WITH_AS(PixelBudget::spend(1), doctest::Contains("the limit for one scene"),
+                                 cdlab::render::ImageError);
+        }
+        CHECK_NOTHROW(PixelBudget::spend(1e300));
+    }
+
+    TEST_CASE("control characters from files are escaped in every line printed") {
+        // Reproducer: a scene key "\u001b[8m" (or a file name with a newline) printed raw: a
+        // terminal hid the rest of the line; a newline forged a line of its own.
+        CHECK(printable("a\nb\x1b[8m\t\r\x7f") == "a\\nb\\x1b[8m\\t\\r\\x7f");
+        CHECK(printable("\xc3\xa9t\xc3\xa9 \xe2\x88\x92") == "\xc3\xa9t\xc3\xa9 \xe2\x88\x92");  // UTF-8 kept
+        CHECK(printable("\xc2\x9b" "31m") == "\\u009b31m");                        // C1 CSI
+        CHECK(printable("\xff\xc3") == "\\xff\\xc3");                              // not UTF-8
+        CHECK(printable("\xed\xa0\x80") == "\\xed\\xa0\\x80");                     // a surrogate
+        const fs::path root = tempDir("escapes");
+        std::ofstream(root / "line\nbreak.json") << R"({"demo": "voronoi_triangle", "triangle": [[0, 0, 0], [2, 0, 0],
+          [0.5, 1.5, 0]], "queries": [[1, 1, 1]], "\u001b[8mhidden": 1})";
+        const Result r = run({"render", (root / "line\nbreak.json").string(), "--out", (root / "o").string()}, root);
+        CHECK(r.status == 2);
+        CHECK(r.err.find('\x1b') == std::string::npos);
+        CHECK(contains(r.err, "line\\nbreak.json"));
+        CHECK(contains(r.err, "\\x1b[8mhidden"));
+        fs::remove_all(root);
+    }
+}
+

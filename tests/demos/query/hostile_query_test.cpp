@@ -9,10 +9,12 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include "demos/app/cli.h"
 #include "demos/catalog/catalog.h"
@@ -293,6 +295,96 @@ TEST_SUITE("hostile query") {
     }
 
     }  // namespace
+
+    TEST_CASE("a refused nested line costs its own size, and the lines after it are answered") {
+        // Reproducer: python3 -c "print('['*60000000)" | cdlab query  -> std::bad_alloc, exit 2, the
+        // later lines unanswered; closed ("[" * 3e7 + "]" * 3e7) it peaked at 2.2 GB: the error answer
+        // re-parsed the refused line into a tree to find its "id". Scaled to 8 MB (its tree: ~300 MB).
+        const std::size_t n = 8'000'000;
+        const std::string input = std::string(n, '[') + "\n" + std::string(n / 2, '[') + std::string(n / 2, ']') +
+                                  "\n" + R"({"id":5,"a":)" + std::string(n / 2, '[') + std::string(n / 2, ']') + "}\n" +
+                                  distanceQuery(kSphere, R"({"point":[3,0,0]})") + "\n";
+        const pid_t pid = fork();
+        REQUIRE(pid >= 0);
+        if (pid == 0) {
+            // The peak resident size of this child from here on (clear_refs 5 resets VmHWM).
+            const auto statusKiB = [](const std::string& field) {
+                std::ifstream status("/proc/self/status");
+                for (std::string l; std::getline(status, l);)
+                    if (l.rfind(field + ":", 0) == 0) return std::atol(l.c_str() + field.size() + 1);
+                return -1L;
+            };
+            const bool reset = bool(std::ofstream("/proc/self/clear_refs") << "5");
+            const long before = statusKiB("VmRSS");
+            std::istringstream in(input);
+            std::ostringstream out;
+            const int status = runQueries(in, out);
+            const long growthKiB = statusKiB("VmHWM") - before;
+            std::istringstream lines(out.str());
+            std::vector<Json> answers;
+            for (std::string l; std::getline(lines, l);) answers.push_back(Json::parse(l));
+            const bool ok = status == 1 && answers.size() == 4 &&
+                            contains(answers[0].value("error", ""), "line 1: byte 65: nesting deeper than 64") &&
+                            answers[1]["id"].is_null() && contains(answers[1].value("error", ""), "line 2: byte 65") &&
+                            answers[2]["id"] == 5 && contains(answers[2].value("error", ""), "line 3: byte 76") &&
+                            answers[3]["distance"] == 2.0;
+            _exit(!ok ? 3 : reset && before > 0 && growthKiB > 128 * 1024 ? 4 : 0);
+        }
+        int status = 0;
+        waitpid(pid, &status, 0);
+        REQUIRE(WIFEXITED(status));
+        CHECK(WEXITSTATUS(status) == 0);  // 3: wrong answers, 4: peak growth above 128 MB (the trees: 150-300 MB)
+
+        // The id of a refused line is read while streaming: only the top level's (the last of
+        // duplicates, as a parse into a tree keeps); an id nested deeper than the copy allows, or a
+        // line that is not JSON, answers without one.
+        CHECK(askRaw(R"({"id":"q","op":"distance","op":"intersect"})")["id"] == "q");
+        CHECK(askRaw(R"({"id":1,"id":2,"op":"distance"})")["id"] == 2);
+        CHECK(askRaw(R"({"a":{"id":3},"id":[1,{"b":2}],"op":1,"op":2})")["id"] == Json::parse(R"([1,{"b":2}])"));
+        CHECK(askRaw(R"({"id":)" + std::string(40, '[') + std::string(40, ']') + R"(,"op":1,"op":2})")["id"].is_null());
+        CHECK(askRaw(R"({"id":4,"op":"distance",)")["id"].is_null());
+    }
+
+    TEST_CASE("penetration of compounds: EPA only where the box bound can beat the deepest pair, capped") {
+        // Reproducer: python3 -c "import json; c = {'compound': [{'aabb': {'min': [0, 0, 0], 'max': [1, 1, 1]}}]
+        // * 10000}; print(json.dumps({'id': 1, 'op': 'penetration', 'a': c, 'b': c}))" | cdlab query
+        // (820 KB, 10^8 pairs, at the pair limit) took ~7 min: EPA ran on every pair (1000^2: 2.5-4.5 s).
+        const auto boxes = [](int n, std::uint64_t seed) {
+            std::mt19937_64 rng(seed);
+            std::uniform_real_distribution<double> u(0.0, 1.0);
+            Json list = Json::array();
+            for (int i = 0; i < n; ++i)
+                list.push_back({{"aabb",
+                                 {{"min", {-1 - u(rng), -1 - u(rng), -1 - u(rng)}},
+                                  {"max", {1 + u(rng), 1 + u(rng), 1 + u(rng)}}}}});
+            return list;
+        };
+        const auto penetration = [](const Json& a, const Json& b) {
+            return Json{
+                {"id", 1}, {"op", "penetration"}, {"trace", true}, {"a", {{"compound", a}}}, {"b", {{"compound", b}}}}
+                .dump();
+        };
+        // 600 x 600 pairs whose boxes all overlap: refused before any EPA runs.
+        const std::string e = errorOf(penetration(boxes(600, 1), boxes(600, 2)));
+        CHECK(contains(
+            e, "$.a: penetration runs EPA on the pairs of pieces whose boxes meet: 360000, above the limit of 250000"));
+        // 400 x 400, every pair overlapping: the deepest pair (for two aabbs the depth is the bound
+        // itself) is found after a handful of EPA runs, not 160 000.
+        const Json a = boxes(400, 3), b = boxes(400, 4);
+        double deepest = 0;
+        for (const Json& x : a)
+            for (const Json& y : b) {
+                double bound = INFINITY;
+                for (int k = 0; k < 3; ++k)
+                    bound = std::min({bound, x["aabb"]["max"][k].get<double>() - y["aabb"]["min"][k].get<double>(),
+                                      y["aabb"]["max"][k].get<double>() - x["aabb"]["min"][k].get<double>()});
+                deepest = std::max(deepest, bound);
+            }
+        const Json p = askRaw(penetration(a, b));
+        REQUIRE_MESSAGE(!p.contains("error"), p.dump().substr(0, 300));
+        CHECK(p["depth"].get<double>() == doctest::Approx(deepest).epsilon(1e-12));
+        CHECK(p["trace"]["pairs_tested"].get<long long>() < 100);
+    }
 
     TEST_CASE("answers that cannot be written are exit status 2, not 0") {
         // Reproducer: echo '{"id":1,"op":"distance",...}' | cdlab query > /dev/full  -> exit 0, answers lost.

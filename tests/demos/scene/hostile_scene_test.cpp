@@ -9,6 +9,7 @@
 #include <string>
 
 #include "demos/catalog/catalog.h"
+#include "demos/harness/scene_runner.h"
 #include "demos/scene/scene.h"
 #include "demos/scene/scene_limits.h"
 #include "tests/demos/scene_error.h"
@@ -44,11 +45,16 @@ private:
 }  // namespace
 
 TEST_SUITE("hostile scene") {
-    TEST_CASE("a scene file name that cannot name an output folder is refused") {
+    TEST_CASE("a scene file name that cannot name an output folder is refused where it would name one") {
         // Reproducer: a scene file named `...json` has the name "..", whose output folder
-        // <out>/<demo>/.. is <out> itself (and golden/<demo>/.. is golden/).
-        for (const std::string bad : {"...json", "..json", ".hidden.json", "a b.json", "x\"y.json"})
-            CHECK_MESSAGE(contains(prepareTextError(kGjk, "/tmp/" + bad), "cannot name an output folder"), bad);
+        // <out>/<demo>/.. is <out> itself (and golden/<demo>/.. is golden/). The scene reads (`render
+        // "é scene.json" --out DIR` names its folder itself); sceneOutputDir refuses the name.
+        for (const std::string bad : {"...json", "..json", ".hidden.json", "a b.json", "x\"y.json"}) {
+            CHECK_MESSAGE(prepareTextError(kGjk, "/tmp/" + bad) == "", bad);
+            const std::string name = std::filesystem::path(bad).stem().string();
+            CHECK_THROWS_WITH_AS(sceneOutputDir("/tmp/out", "gjk", name), doctest::Contains("cannot name an output folder"),
+                                 InputError);
+        }
         for (const std::string good : {"box_box.json", "box-box.2.json", "A9.json"})
             CHECK(prepareTextError(kGjk, good) == "");
         CHECK(isPlainName("box_box"));
@@ -146,6 +152,129 @@ TEST_SUITE("hostile scene") {
         const FixedOutputScene fine(common, DemoOutput{});
         CHECK_NOTHROW(scene.common());
         CHECK_NOTHROW(fine.run(RunContext{}));
+    }
+
+    TEST_CASE("bsp_shape polygons: clockwise and self-crossing ones are refused, naming the path") {
+        // Reproducer: echo '{"demo":"space_partition","figure":"bsp_shape","polygon":[[0,0],[0,2],[2,2],
+        // [2,0]],"queries":[[1,1],[50,50]]}' > cw.json && cdlab render --out /tmp/o cw.json: (1, 1)
+        // inside the square was classified outside and (50, 50) inside; the bow-tie
+        // [[0,0],[2,2],[2,0],[0,2]] was accepted.
+        const auto bsp = [](const std::string& polygon) {
+            return prepareTextError(R"({"demo":"space_partition","figure":"bsp_shape","polygon":)" + polygon + "}");
+        };
+        CHECK(bsp("[[0,0],[2,0],[2,2],[0,2]]") == "");
+        CHECK(bsp("[[0,0],[2,0],[1,0.5],[2,2],[0,2]]") == "");  // non-convex, counter-clockwise
+        CHECK(bsp("[[0,0],[1,0],[2,0],[2,2],[0,2]]") == "");    // a straight angle at (1, 0)
+        CHECK(contains(bsp("[[0,0],[0,2],[2,2],[2,0]]"),
+                       "scene.json: $.polygon: the polygon is clockwise (signed area -4); give its vertices "
+                       "counter-clockwise"));
+        CHECK(contains(bsp("[[0,0],[2,2],[2,0],[0,2]]"),
+                       "scene.json: $.polygon: the edge from vertex 0 to 1 and the edge from vertex 2 to 3 meet: the "
+                       "polygon crosses itself"));
+        // A vertex on another edge, an edge folding back along its neighbour, a repeated vertex.
+        CHECK(contains(bsp("[[0,0],[4,0],[4,4],[2,0],[0,4]]"),
+                       "the edge from vertex 0 to 1 and the edge from vertex 2 to 3 meet"));
+        CHECK(contains(bsp("[[0,0],[2,0],[1,0],[1,1]]"), "folds back on itself"));
+        CHECK(contains(bsp("[[0,0],[2,0],[2,0],[0,2]]"), "$.polygon[2]: repeats the vertex before it"));
+        CHECK(contains(bsp("[[0,0],[1,1],[2,2]]"), "folds back on itself"));  // no area
+        // 256 vertices (the limit) on a circle: the O(n²) test is quick, the polygon accepted.
+        std::string circle = "[";
+        for (int i = 0; i < 256; ++i)
+            circle += (i ? "," : "") + ("[" + std::to_string(100 * std::cos(i * M_PI / 128)) + "," +
+                                        std::to_string(100 * std::sin(i * M_PI / 128)) + "]");
+        CHECK(bsp(circle + "]") == "");
+    }
+
+    TEST_CASE("all the frames of a scene together have a pixel budget, checked before anything is drawn") {
+        // Reproducer: cdlab render --out /tmp/o q64.json, q64.json = voronoi(4096, true) below (a
+        // triangle, 64 queries, "steps": true): 0.93 GB at 1024², 1.87 GB at 2048², std::bad_alloc
+        // under 4 GB at 4096² (every frame is kept until the scene is written).
+        std::string queries = "[";
+        for (int i = 0; i < 64; ++i) queries += (i ? ",[" : "[") + std::to_string(0.1 * i) + ",0.3,0.5]";
+        queries += "]";
+        const auto voronoi = [&](int side, bool steps) {
+            return R"({"demo":"voronoi_triangle","triangle":[[0,0,0],[4,0,0],[0,4,0]],"queries":)" + queries +
+                   R"(,"steps":)" + (steps ? "true" : "false") + R"(,"image":{"width":)" + std::to_string(side) +
+                   R"(,"height":)" + std::to_string(side) + "}}";
+        };
+        CHECK(contains(prepareTextError(voronoi(4096, true)),
+                       "scene.json: $.image: 67 frames (with per-step frames) of 4096 x 4096 at scale 1 are "
+                       "1124073472 supersampled pixels, above the limit of 134217728 for one scene"));
+        CHECK(prepareTextError(voronoi(4096, false)) == "");  // the two views
+        CHECK(prepareTextError(voronoi(1024, true)) == "");   // the most queries at the default size
+        // --scale and --steps are checked against the same budget.
+        auto scene = loadSceneText(voronoi(1024, true), "q64.json");
+        CHECK_THROWS_WITH_AS(checkImageBudget(scene->common(), 2),
+                             doctest::Contains("q64.json: $.image: 67 frames (with per-step frames) of 1024 x 1024 "
+                                               "at scale 2"),
+                             InputError);
+        auto views = loadSceneText(voronoi(2048, false), "views.json");
+        CHECK_NOTHROW(checkImageBudget(views->common(), 0));
+        CHECK_THROWS_WITH_AS(checkImageBudget(views->common(), 0, true),
+                             doctest::Contains("views.json: $.image: 67 frames (with per-step frames)"), InputError);
+
+        // drop: each frame is the image with a side view 0.45 of its width beside it; at 4096 wide
+        // the frames came out 5939 x 4096, above the per-side and the 2^24-pixel limits.
+        const auto drop = [](int width, int height) {
+            return R"({"demo":"drop","body":{"box":{"half_extents":[0.5,0.5,0.5]}},"position":[0,0,1],"image":{"width":)" +
+                   std::to_string(width) + R"(,"height":)" + std::to_string(height) + "}}";
+        };
+        CHECK(contains(prepareTextError(drop(4096, 4096)),
+                       "scene.json: $.image: the drop frames are 5939 x 4096 (wider than the image) at scale 1"));
+        CHECK(contains(prepareTextError(drop(2826, 1000)), "the drop frames are 4098 x 1000"));
+        CHECK(prepareTextError(drop(2825, 1000)) == "");  // 4096 x 1000 frames
+    }
+
+    TEST_CASE("drop: the smallest density, mass and inertia keep the run finite") {
+        // Reproducer: echo '{"demo":"drop","body":{"box":{"half_extents":[0.5,0.5,0.5]}},"position":
+        // [0,0,1],"density":1e-300}' > d.json && cdlab render --out /tmp/o d.json: within the documented
+        // limits (density had only an upper one) it ended in a "... is NaN" error: the inverse inertia
+        // tensor underflowed.
+        const auto drop = [](const std::string& body, const std::string& extra) {
+            return R"({"demo":"drop","body":)" + body + extra + "}";
+        };
+        const std::string unitBox = R"({"box":{"half_extents":[0.5,0.5,0.5]}},"position":[0,0,1])";
+        CHECK(contains(prepareTextError(drop(unitBox, R"(,"density":1e-300)")),
+                       "scene.json: $.density: density is 1e-300, below the limit of 0.001"));
+        // The smallest body at the smallest density prepares and runs to finite numbers (run()
+        // throws on a NaN or an infinity in the trace).
+        const std::string tinyBox =
+            R"({"box":{"half_extents":[1e-5,1e-5,1e-5]}},"position":[0,0,2e-5],"simulation":{"duration":0.25})";
+        REQUIRE(prepareTextError(drop(tinyBox, R"(,"density":1e-3)")) == "");
+        CHECK_NOTHROW(loadSceneText(drop(tinyBox, R"(,"density":1e-3)"), "tiny.json")->run(RunContext{}));
+        // A body below the mass limit however small its density (a 1e-30 polytope) is refused at $.body.
+        const std::string e = prepareTextError(
+            drop(R"({"polytope":{"vertices":[[0,0,0],[1e-30,0,0],[0,1e-30,0],[0,0,1e-30]]}},"position":[0,0,1])", ""));
+        CHECK_MESSAGE(contains(e, "scene.json: $.body"), e);
+        CHECK_MESSAGE(contains(e, "mass"), e);
+    }
+
+    TEST_CASE("every text of a scene has a length limit, refused with its JSON path and length") {
+        // Reproducer: cdlab render --out /tmp/o t.json, t.json = gjkWith("title", 100000) below: 2.8 GB
+        // and 9-13 s (300 KB: std::bad_alloc); a 30 KB "caption" made a 1008 x 18678 contact sheet and
+        // then a GL error blaming the supersampling factor.
+        const auto gjkWith = [](const std::string& key, std::size_t length) {
+            return kGjk.substr(0, kGjk.size() - 1) + ",\"" + key + "\":\"" + std::string(length, 'x') + "\"}";
+        };
+        CHECK(prepareTextError(gjkWith("title", kMaxTitleChars)) == "");
+        CHECK(contains(prepareTextError(gjkWith("title", 100000)),
+                       "scene.json: $.title: the text is 100000 characters, above the limit of 200 for a title"));
+        CHECK(prepareTextError(gjkWith("caption", kMaxCaptionChars)) == "");
+        CHECK(contains(prepareTextError(gjkWith("caption", kMaxCaptionChars + 1)),
+                       "scene.json: $.caption: the text is 1001 characters, above the limit of 1000 for a caption"));
+        // Characters, not bytes: 200 two-byte characters are a title within the limit.
+        std::string accented;
+        for (std::size_t i = 0; i < kMaxTitleChars; ++i) accented += "\xc3\xa9";
+        CHECK(prepareTextError(kGjk.substr(0, kGjk.size() - 1) + ",\"title\":\"" + accented + "\"}") == "");
+        // A label drawn on a frame (polyhedron_plane's pose labels), and any other text of a scene.
+        const std::string poses =
+            R"({"demo":"polyhedron_plane","mode":"plane","body":{"box":{"half_extents":[0.5,0.5,0.5]}},"poses":[{"position":[0,0,0.4],"label":")" +
+            std::string(kMaxLabelChars + 1, 'x') + "\"}]}";
+        CHECK(contains(prepareTextError(poses),
+                       "scene.json: $.poses[0].label: the text is 101 characters, above the "
+                       "limit of 100 for a label"));
+        // A comment is not drawn: any length (up to the file's).
+        CHECK(prepareTextError(gjkWith("_comment", 100000)) == "");
     }
 
     TEST_CASE("every golden scene is within the limits") {
