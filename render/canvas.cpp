@@ -730,7 +730,9 @@ void PixelBudget::spend(double pixels) {
 
 Image Canvas::readPixels() {
     Impl& m = *impl_;
-    PixelBudget::spend(double(m.rw) * double(m.rh));  // before anything is read back
+    // The rendered size, counted before anything is drawn or read back (m.rw, m.rh are set below).
+    const double ss = double(m.options.supersample) * double(m.options.scale);
+    PixelBudget::spend(double(m.options.width) * ss * double(m.options.height) * ss);
     RenderStats& stats = renderStats();
     auto t0 = std::chrono::steady_clock::now();
     GlContext::Impl& gl = m.context.impl();

@@ -160,7 +160,7 @@ void removeTempFilesOnSignal() {
     }
 }
 
-void removeStaleTempFiles(const std::string& dir) {
+void removeStaleTempFiles(const std::string& dir, const std::vector<std::string>& names) {
     namespace fs = std::filesystem;
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
@@ -170,6 +170,7 @@ void removeStaleTempFiles(const std::string& dir) {
         if (last == std::string::npos || last == 0) continue;
         const std::size_t pidDot = name.rfind('.', last - 1);
         if (pidDot == std::string::npos || pidDot < 5 || name.compare(pidDot - 4, 4, ".tmp") != 0) continue;
+        if (std::find(names.begin(), names.end(), name.substr(0, pidDot - 4)) == names.end()) continue;
         const std::string pidText = name.substr(pidDot + 1, last - pidDot - 1), n = name.substr(last + 1);
         const auto digits = [](const std::string& t) {
             return !t.empty() && t.size() <= 10 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });

@@ -71,10 +71,11 @@ void writeFileAtomic(const std::string& path, const std::string& bytes);
 /// (hostile_harness_test "an interrupted render leaves no temp file"). For commands that write.
 void removeTempFilesOnSignal();
 
-/// Removes the temp files "<name>.tmp.<pid>.<n>" in `dir` (not below it) whose process is gone: what
-/// a run killed by SIGKILL or a power cut left. Files of running processes, this one's included,
-/// and every other name are kept.
-void removeStaleTempFiles(const std::string& dir);
+/// Removes the temp files "<name>.tmp.<pid>.<n>" in `dir` (not below it) whose <name> is one of
+/// `names` (the files cdlab writes there) and whose process is gone: what a run killed by SIGKILL
+/// or a power cut left. Files of running processes, this one's included, and every other name
+/// ("data.csv.tmp.5.1" of the user's) are kept.
+void removeStaleTempFiles(const std::string& dir, const std::vector<std::string>& names);
 
 /// Writes several files as one unit (a scene's frames, trace and manifest): each add*() stages a
 /// file (a temp file with a name unique to this process and call, written and fsynced); commit()

@@ -129,8 +129,10 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
     // real solid (a 1 x 1 x 1e-4 slab is 1e-4 of its diagonal^3) and above the rounding of a flat one.
     if (!(volume > 1e-12 * diagonal * diagonal * diagonal))
         return fail(MassStatus::Degenerate, -1,
-                    "volume " + std::to_string(volume) +
-                        " is not positive: flat, empty or inside-out (faces must be counter-clockwise from outside)");
+                    "volume " + std::to_string(volume) + " is not above 1e-12 x its bounding box diagonal cubed (" +
+                        std::to_string(1e-12 * diagonal * diagonal * diagonal) +
+                        "): flat, empty, inside-out (faces must be counter-clockwise from outside), or too thin for "
+                        "its length to weigh in double precision");
 
     MassProperties m;
     m.status = MassStatus::Ok;

@@ -145,6 +145,7 @@ int withStdoutChecked(const char* program, int status) {
     const bool flushFailed = std::fflush(stdout) != 0;
     int err = errno;
     if (!flushFailed && std::cout && !std::ferror(stdout)) return status;
+    if (status == 2) return status;  // the command has said what went wrong (query: its own line)
     // A write failed earlier and its errno is gone: one more byte finds the reason (ENOSPC, EPIPE).
     if (!err && ::write(STDOUT_FILENO, "\n", 1) < 0) err = errno;
     std::cerr << program << ": cannot write to standard output" << (err ? std::string(": ") + std::strerror(err) : "")

@@ -108,32 +108,27 @@ private:
 
     void fail(const std::string& why) { reasons.push_back(why); }
 
-    // cdlab's number or vector `key` (a reason when its answer lacks it).
-    std::optional<double> theirNumber(const std::string& key) {
-        const std::optional<double> x = numberMember(theirs_, key);
-        if (!x) fail("cdlab's answer has no " + key + " number");
+    // `x`, or a reason naming what is missing when it is absent.
+    template <class T>
+    std::optional<T> required(std::optional<T> x, const std::string& whose, const std::string& key, const char* kind) {
+        if (!x) fail(whose + " has no " + key + kind);
         return x;
+    }
+    // cdlab's, the query's or your number or vector `key` (a reason when it lacks it).
+    std::optional<double> theirNumber(const std::string& key) {
+        return required(numberMember(theirs_, key), "cdlab's answer", key, " number");
     }
     std::optional<Vec3> theirVec(const std::string& key) {
-        const std::optional<Vec3> x = vecMember(theirs_, key);
-        if (!x) fail("cdlab's answer has no " + key + " [x, y, z]");
-        return x;
+        return required(vecMember(theirs_, key), "cdlab's answer", key, " [x, y, z]");
     }
     std::optional<Vec3> queryVec(const std::string& key) {
-        const std::optional<Vec3> x = vecMember(q_, key);
-        if (!x) fail("the query has no " + key + " [x, y, z]");
-        return x;
+        return required(vecMember(q_, key), "the query", key, " [x, y, z]");
     }
-    // Your number or vector `key` (a reason when yours lacks it).
     std::optional<double> myNumber(const std::string& key) {
-        const std::optional<double> x = numberMember(mine_, key);
-        if (!x) fail("your answer has no " + key + " number");
-        return x;
+        return required(numberMember(mine_, key), "your answer", key, " number");
     }
     std::optional<Vec3> myVec(const std::string& key) {
-        const std::optional<Vec3> x = vecMember(mine_, key);
-        if (!x) fail("your answer has no " + key + " [x, y, z]");
-        return x;
+        return required(vecMember(mine_, key), "your answer", key, " [x, y, z]");
     }
     // A boolean of an answer, `otherwise` when absent; a present non-boolean is a reason.
     bool flag(const Json& answer, const std::string& key, bool otherwise, const char* whose) {

@@ -65,6 +65,19 @@ std::optional<PairScene> drawablePair(const Json& query, bool forTrace, std::str
         why = "no figure: the query has no shapes a and b";
         return std::nullopt;
     }
+    // Read as a scene reads a polytope, within its vertex limit, before any hull is built: a
+    // 500 000-vertex line took a minute and 2.8 GB, then LLVM ran out of memory (check_test "check
+    // --figures: no figure of a polytope over the scenes' vertex limit").
+    for (const char* side : {"a", "b"}) {
+        const Json* shape = member(query, side);
+        const Json* polytope = shape ? member(*shape, "polytope") : nullptr;
+        const Json* vertices = polytope ? member(*polytope, "vertices") : nullptr;
+        if (vertices && vertices->is_array() && vertices->size() > kMaxShapeVertices) {
+            why = std::string("no figure: ") + side + " is a polytope of " + std::to_string(vertices->size()) +
+                  " vertices, over the limit of " + std::to_string(kMaxShapeVertices) + " the figures draw";
+            return std::nullopt;
+        }
+    }
     const std::optional<SceneShape> a = drawableShape(query["a"], "$.a"), b = drawableShape(query["b"], "$.b");
     const auto traced = [](const std::optional<SceneShape>& s) {
         return s->kind == SceneShape::Kind::Polytope || s->kind == SceneShape::Kind::Sphere;

@@ -106,10 +106,11 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, const Shape
                 return reasons.push_back(at + "the search direction does not point from the simplex's closest point " +
                                          "toward the origin");
         }
-        if (length(d) > 0) {
-            const std::string why = supportRuleBreak(*given, unit(d), shapeA, shapeB, tol, "d");
-            if (!why.empty()) return reasons.push_back(at + "different support point for the same direction: " + why);
-        }
+        if (!(length(d) > 0))  // no support point is defined along a zero direction
+            return reasons.push_back(at + "the search direction is zero: no support point is "
+                                          "extreme along it");
+        const std::string why = supportRuleBreak(*given, unit(d), shapeA, shapeB, tol, "d");
+        if (!why.empty()) return reasons.push_back(at + "different support point for the same direction: " + why);
         pool.push_back(w);
         const Json* simplex = member(s, "simplex");
         if (!simplex) continue;
@@ -417,7 +418,14 @@ void checkTrace(const std::string& op, const Json& query, const Json& trace, dou
         }
         return;
     }
-    algorithm = trace.is_object() ? trace.value("algorithm", std::string()) : std::string();
+    if (!trace.is_object())
+        return reasons.push_back("trace: expected an object {\"algorithm\": ..., \"steps\": [...]}, got " +
+                                 JsonNode::describe(trace));
+    const Json* named = member(trace, "algorithm");
+    if (named && !named->is_string())
+        return reasons.push_back("trace: \"algorithm\" must be a string (gjk, epa or ericson_regions), got " +
+                                 JsonNode::describe(*named));
+    algorithm = named ? named->get<std::string>() : std::string();
     const bool regionOp = op == "closest_point_triangle" || op == "closest_point_tetrahedron";
     if (algorithm.empty()) algorithm = regionOp ? "ericson_regions" : "gjk";
     if (algorithm == "ericson_regions") {

@@ -189,13 +189,16 @@ void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCo
     if (ec) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + ec.message());
     FolderLock lock(dir);
     const std::vector<std::string> previous = previouslyWritten(dir);
-    render::removeStaleTempFiles(dir.string());
     // Every name is checked before the first file is staged: a refused folder gets nothing.
+    std::vector<std::string> names = {"trace.json", "manifest.json"};
     for (const Frame& fr : out.frames)
-        if (frameSelected(fr.name, frameGlobs)) refuseForeign(dir, plainOutputName(fr.name + ".png"), previous);
+        if (frameSelected(fr.name, frameGlobs)) names.push_back(plainOutputName(fr.name + ".png"));
     if (frameGlobs.empty())
-        for (const auto& extra : out.files) refuseForeign(dir, plainOutputName(extra.first), previous);
-    refuseForeign(dir, "trace.json", previous);
+        for (const auto& extra : out.files) names.push_back(plainOutputName(extra.first));
+    for (const std::string& name : names)
+        if (name != "manifest.json") refuseForeign(dir, name, previous);
+    names.insert(names.end(), previous.begin(), previous.end());
+    render::removeStaleTempFiles(dir.string(), names);  // of this folder's files only
 
     render::FileSetWriter files;
     FigureManifest manifest{key, sc.title, sc.caption, {}, {}};
@@ -247,6 +250,17 @@ void refuseInsideGolden(const fs::path& dir, const RunnerOptions& o) {
         throw InputError("output folder '" + printable(dir.string()) + "' is inside the golden folder " +
                          printable(golden.string()) +
                          ": figures and render never write there (goldens change with cdlab golden --update)");
+}
+
+// An output folder is a folder (a symlink to one included) or not there at all: a file or a
+// dangling symlink in its place is refused before anything is written (hostile_harness_test "two
+// scenes into one folder are refused before anything is written").
+void requireFolderOrNothing(const fs::path& dir) {
+    std::error_code ec;
+    const fs::file_type own = fs::symlink_status(dir, ec).type(), target = fs::status(dir, ec).type();
+    if (own == fs::file_type::not_found || target == fs::file_type::directory) return;
+    throw InputError("the output folder " + printable(dir.string()) + " is " +
+                     (target == fs::file_type::not_found ? "a symlink to nothing" : "there and not a folder"));
 }
 
 // `cdlab render`: <out>/<file stem>, or --out itself for one file (whatever the file's name).
@@ -446,6 +460,8 @@ SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
     if (!o.noRender) checkImageBudget(sc, o.scale, o.steps);  // --scale and --steps multiply what the scene asked for
     try {
         job.dir = o.perFileOutput ? renderOutputDir(file, o) : sceneOutputDir(o.outDir, sc.demo, sc.name);
+        refuseInsideGolden(job.dir, o);  // also through a symlinked folder below --out
+        requireFolderOrNothing(job.dir);
         // A folder whose manifest.json or trace.json is the user's is refused now, before any
         // scene is drawn; the frames' names are checked again when the folder is written.
         refuseForeign(job.dir, "trace.json", previouslyWritten(job.dir));

@@ -51,6 +51,19 @@ class ReportFolder {
 public:
     explicit ReportFolder(fs::path root) : root_(std::move(root)) {}
 
+    /// A path below the report folder that goes through a symlink (a folder of the path, or the
+    /// file itself): never written or deleted through (hostile_harness_test "golden --report
+    /// writes and deletes nothing through a symlink").
+    bool throughSymlink(const std::string& rel) const {
+        fs::path p = root_;
+        std::error_code ec;
+        for (const fs::path& part : fs::path(rel)) {
+            p /= part;
+            if (fs::symlink_status(p, ec).type() == fs::file_type::symlink) return true;
+        }
+        return false;
+    }
+
     const fs::path& root() const { return root_; }
 
     /// Deletes what the previous report listed. A list that is not cdlab's (unreadable, another
@@ -67,12 +80,14 @@ public:
             return;
         }
         for (const std::string& rel : files)
-            if (fs::symlink_status(root_ / rel, ec).type() == fs::file_type::regular) fs::remove(root_ / rel, ec);
+            if (!throughSymlink(rel) && fs::symlink_status(root_ / rel, ec).type() == fs::file_type::regular)
+                fs::remove(root_ / rel, ec);
         // Deepest first; rmdir() removes only empty folders (and no symlink).
         std::sort(folders.begin(), folders.end(), [](const std::string& a, const std::string& b) {
             return std::count(a.begin(), a.end(), '/') > std::count(b.begin(), b.end(), '/');
         });
-        for (const std::string& rel : folders) ::rmdir((root_ / rel).c_str());
+        for (const std::string& rel : folders)
+            if (!throughSymlink(rel)) ::rmdir((root_ / rel).c_str());
         fs::remove(list, ec);
     }
 
@@ -92,6 +107,9 @@ public:
             // this path is the user's (hostile_harness_test "golden --report . keeps the user's
             // index.html"), and is never replaced.
             std::error_code ec;
+            if (throughSymlink(rel))
+                throw std::runtime_error("refusing to write " + printable((root_ / rel).string()) +
+                                         ": a folder on its path is a symlink; give --report a folder of its own");
             if (fs::symlink_status(root_ / rel, ec).type() != fs::file_type::not_found)
                 throw std::runtime_error("refusing to overwrite " + printable((root_ / rel).string()) +
                                          ": cdlab did not write it (" + kReportList +
@@ -338,6 +356,32 @@ int runGolden(const RunnerOptions& o) {
         o,
         ReportFolder(o.reportDir.empty() ? std::string(CDLAB_SOURCE_DIR) + "/build/golden-report" : o.reportDir),
         {}};
+    // The report never mixes with the goldens: not the golden folder itself, nor inside a folder
+    // of it that holds scenes (a demo's; its PNGs would sit beside the goldens). A folder of its
+    // own below it (tests use <golden>/report) is fine.
+    {
+        const auto resolved = [](const fs::path& p) {
+            std::error_code ec;
+            const fs::path r = fs::weakly_canonical(fs::absolute(p), ec);
+            return ec ? fs::absolute(p).lexically_normal() : r;
+        };
+        const fs::path golden =
+            resolved(o.goldenDir.empty() ? fs::path(CDLAB_SOURCE_DIR) / "golden" : fs::path(o.goldenDir));
+        const fs::path report = resolved(run.report.root());
+        const auto [g, r] = std::mismatch(golden.begin(), golden.end(), report.begin(), report.end());
+        const auto holdsScenes = [](const fs::path& dir) {
+            std::error_code ec;
+            for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+                if (it->path().extension() == ".json" && it->is_regular_file(ec)) return true;
+            return false;
+        };
+        if (g == golden.end() && (r == report.end() || holdsScenes(golden / *r))) {
+            std::cerr << "cdlab golden: the report folder " << printable(run.report.root().string())
+                      << " is inside the golden folder " << printable(golden.string())
+                      << ": give --report a folder outside it\n";
+            return 2;
+        }
+    }
     run.report.removePrevious();
 
     std::unique_ptr<render::GlContext> gl = createContext(o.verbose);  // one context for the whole run

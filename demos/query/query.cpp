@@ -99,6 +99,8 @@ public:
     using binary_t = Json::binary_t;
 
     const Json& id() const { return id_; }
+    /// No id container left open: the id read (or null) is whole, even where the line breaks off later.
+    bool idComplete() const { return stack_.empty(); }
 
     bool null() { return value(Json(nullptr)); }
     bool boolean(bool v) { return value(Json(v)); }
@@ -172,8 +174,9 @@ private:
 Json lenientId(const std::string& line, const Json& id) noexcept {
     if (!id.is_null()) return id;
     try {
+        // An id read before the line breaks off (unclosed, or nested too deep further on) is kept.
         TopLevelIdReader reader;
-        if (Json::sax_parse(line, &reader)) return reader.id();
+        if (Json::sax_parse(line, &reader) || reader.idComplete()) return reader.id();
     } catch (...) {  // out of memory: the answer goes without its id
     }
     return nullptr;

@@ -220,13 +220,23 @@ struct PairPick {
     int i = -1, j = -1;
     ShapePairAnswer answer;
     long long tested = 0;
+    double work = 0;  // of the pairs tested, in pairs of boxes (pairWork)
 };
 
-// Fails at `node` when GJK has been run on more than kMaxCompoundGjkPairs pairs of pieces.
-void requireGjkPairsWithinLimit(const JsonNode& node, long long pairs) {
-    if (double(pairs) > kMaxCompoundGjkPairs)
+// A pair's GJK / EPA work in pairs of boxes (kBoxPairVertices).
+double pairWork(const QueryShape& a, const QueryShape& b) {
+    const auto vertices = [](const QueryShape& s) { return s.isCurved() ? 8.0 : double(s.vertices.size()); };
+    return std::max(1.0, (vertices(a) + vertices(b)) / kBoxPairVertices);
+}
+
+// Counts one more pair tested; fails at `node` when the GJK work passes kMaxCompoundGjkPairs.
+void countGjkPair(const JsonNode& node, PairPick& pick, const QueryShape& a, const QueryShape& b) {
+    ++pick.tested;
+    pick.work += pairWork(a, b);
+    if (pick.work > kMaxCompoundGjkPairs)
         node.fail("the search needs GJK on more than " + std::to_string(static_cast<long long>(kMaxCompoundGjkPairs)) +
-                  " pairs of pieces whose boxes meet, the limit (about a second)");
+                  " pairs of boxes' work (pieces whose boxes meet; a piece of n vertices counts n / 16 boxes), the "
+                  "limit (about a second)");
 }
 
 // Visits the pairs whose boxes are within the touching margin, in order, with their answer
@@ -239,7 +249,7 @@ void forEachNearPair(const std::vector<QueryShape>& a, const std::vector<QuerySh
     for (std::size_t i = 0; i < a.size(); ++i)
         for (std::size_t j = 0; j < b.size(); ++j) {
             if (boxGap(ba[i], bb[j]) > cullMargin(ba[i], bb[j])) continue;
-            requireGjkPairsWithinLimit(node, ++pick.tested);
+            countGjkPair(node, pick, a[i], b[j]);
             if (!visit(int(i), int(j), shapePairAnswer(a[i], b[j], wantDepth))) return;
         }
 }
@@ -278,7 +288,7 @@ PairPick closestPair(const std::vector<QueryShape>& a, const std::vector<QuerySh
     PairPick pick;
     double best = INFINITY;
     const auto test = [&](std::size_t i, std::size_t j) {
-        requireGjkPairsWithinLimit(node, ++pick.tested);
+        countGjkPair(node, pick, a[i], b[j]);
         const ShapePairAnswer ans = shapePairAnswer(a[i], b[j], false);
         if (!pick.found || ans.distance < best) {
             best = ans.distance;
@@ -315,19 +325,22 @@ PairPick deepestPair(const std::vector<QueryShape>& a, const std::vector<QuerySh
     };
     std::vector<Candidate> candidates;
     long long count = 0;
-    double slack = 0;
+    double work = 0, slack = 0;
     for (std::size_t i = 0; i < a.size(); ++i)
         for (std::size_t j = 0; j < b.size(); ++j) {
             const double margin = cullMargin(ba[i], bb[j]);
             if (boxGap(ba[i], bb[j]) > margin) continue;
-            if (double(++count) > kMaxCompoundDepthPairs) continue;  // counted, not kept
+            ++count;
+            work += pairWork(a[i], b[j]);
+            if (work > kMaxCompoundDepthPairs) continue;  // counted, not kept
             candidates.push_back({depthBound(ba[i], bb[j]), int(i), int(j)});
             slack = std::max(slack, margin);
         }
-    if (double(count) > kMaxCompoundDepthPairs)
-        node.fail("penetration runs EPA on the pairs of pieces whose boxes meet: " + std::to_string(count) +
-                  ", above the limit of " + std::to_string(static_cast<long long>(kMaxCompoundDepthPairs)) +
-                  " (about a second)");
+    if (work > kMaxCompoundDepthPairs)
+        node.fail("penetration runs EPA on the pairs of pieces whose boxes meet: " + std::to_string(count) + " pairs, " +
+                  std::to_string(static_cast<long long>(work)) +
+                  " pairs of boxes' work (a piece of n vertices counts n / 16 boxes), above the limit of " +
+                  std::to_string(static_cast<long long>(kMaxCompoundDepthPairs)) + " (about a second)");
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& x, const Candidate& y) { return x.bound > y.bound; });
     PairPick pick;

@@ -35,6 +35,19 @@ std::size_t utf8Sequence(const std::string& s, std::size_t i, std::uint32_t& cod
 
 }  // namespace
 
+namespace {
+
+std::string withoutNul(const std::string& text) {
+    if (text.find('\0') == std::string::npos) return text;
+    std::string out;
+    for (const char c : text) c == '\0' ? out += "\\x00" : out += c;
+    return out;
+}
+
+}  // namespace
+
+InputError::InputError(const std::string& what) : std::runtime_error(withoutNul(what)) {}
+
 std::string printable(const std::string& s) {
     std::string out;
     out.reserve(s.size());
@@ -86,10 +99,13 @@ constexpr int kMaxJsonDepth = 64;
 // Runs before the DOM parser, keeping only a depth counter: nlohmann builds the whole tree before
 // anyone could look at its depth (a 60 MB "[[[[..." line peaked at 2.24 GB, an unclosed one ended
 // in bad_alloc), and its lexer takes a NUL byte for the end of the input, silently dropping the
-// rest of the text. Stops at the first NUL byte, or at the first bracket that opens level 65.
-// Brackets inside strings do not count; a malformed text is left to the parser's own message.
+// rest of the text. Stops at the first NUL byte, at the first bracket that opens level 65, or
+// where the containers or the values (a container, or a comma: one more member or element) pass
+// kMaxJsonContainers or kMaxJsonValues. Brackets and commas inside strings do not count; a
+// malformed text is left to the parser's own message.
 void checkDepthAndNulBytes(const std::string& text, const std::string& source) {
     int depth = 0;
+    std::size_t containers = 0, values = 0;
     bool inString = false, escaped = false;
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
@@ -103,9 +119,17 @@ void checkDepthAndNulBytes(const std::string& text, const std::string& source) {
         } else if (c == '{' || c == '[') {
             if (++depth > kMaxJsonDepth)
                 failAtByte(source, i, "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+            if (++containers > kMaxJsonContainers)
+                failAtByte(source, i, "more than " + std::to_string(kMaxJsonContainers) +
+                                          " arrays and objects, the limit for one text");
+            ++values;
         } else if ((c == '}' || c == ']') && depth > 0) {
             --depth;
+        } else if (c == ',') {
+            ++values;
         }
+        if (values > kMaxJsonValues)
+            failAtByte(source, i, "more than " + std::to_string(kMaxJsonValues) + " values, the limit for one text");
     }
 }
 

@@ -17,8 +17,12 @@ namespace cdlab::demos {
 using Json = nlohmann::json;
 
 /// One-line input error: "<source>: <where>: <what>". Exit status 2 where it reaches main().
+/// A message that names what in the input is wrong. NUL bytes from the input ("\u0000" in a key)
+/// are written \x00 when it is made: what() is a C string, and everything after a raw NUL would be
+/// lost (hostile_query_test "an escaped NUL does not cut the error message").
 struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+    explicit InputError(const std::string& what);
+    explicit InputError(const char* what) : InputError(std::string(what)) {}
 };
 
 /// `text` safe to print on a terminal, as one line: C0 controls and DEL (\n, \t, \r, \x1b ...),
@@ -32,8 +36,16 @@ std::string printable(const std::string& s);
 /// few KB and a 10^5-vertex polytope ~6 MB, so 16 MiB leaves room and bounds what a file costs.
 constexpr std::size_t kMaxJsonFileBytes = std::size_t(16) << 20;
 
-/// Parses text; a syntax error becomes "<source>: byte N: <what>". Before parsing, a NUL byte or
-/// nesting deeper than 64 levels is refused with its byte position (no tree is built for them).
+/// The most arrays and objects, and the most values of any kind, one text may hold: each costs
+/// its node in the tree (16 bytes, and ~64 more for a container), so a 64 MiB query line of "{},"
+/// costs ~0.6 GB, not 3.6 GB; two 10^6-vertex polytopes (8·10^6 values) still read.
+constexpr std::size_t kMaxJsonContainers = 4'000'000;
+constexpr std::size_t kMaxJsonValues = 10'000'000;
+
+/// Parses text; a syntax error becomes "<source>: byte N: <what>". Before parsing, a NUL byte,
+/// nesting deeper than 64 levels, and more containers or values than the limits above are refused
+/// with their byte position (no tree is built for them; hostile_harness_test "a line of millions of
+/// empty objects builds no tree").
 Json parseJson(const std::string& text, const std::string& source);
 /// Reads a file of at most kMaxJsonFileBytes: "<path>: cannot open: <reason>", "<path>: is a
 /// directory, not a file", "<path>: larger than the 16 MiB limit for a JSON file".

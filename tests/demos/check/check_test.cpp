@@ -287,6 +287,19 @@ TEST_CASE("check: malformed traces fail their line with a reason, never crash") 
     CHECK_NOTHROW(check(brokenTriangle));
 }
 
+TEST_CASE("check: a trace that is no object, an algorithm that is no string, a zero direction: each a FAIL") {
+    // Reproducer: "trace": [] passed; {"algorithm": 7} printed a raw [json.exception.type_error.302];
+    // a step with "direction": [0, 0, 0] and a support point outside A − B ([1, 2, 3]) passed.
+    Json line = distanceLine({{"intersect", false}, {"distance", 1}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    line["trace"] = Json::array();
+    CHECK(reasons(check(line)).find("trace: expected an object") != std::string::npos);
+    line["trace"] = {{"algorithm", 7}, {"steps", Json::array()}};
+    CHECK(reasons(check(line)).find("trace: \"algorithm\" must be a string (gjk, epa or ericson_regions), got the "
+                                    "number 7") != std::string::npos);
+    line["trace"] = {{"algorithm", "gjk"}, {"steps", {{{"direction", {0, 0, 0}}, {"support", {1, 2, 3}}}}}};
+    CHECK(reasons(check(line)).find("iteration 0: the search direction is zero") != std::string::npos);
+}
+
 TEST_CASE("check: region tests in any order; ABC has its own condition; some test must accept") {
     const Json triangle = {{0, 0, 0}, {4, 0, 0}, {1.2, 3, 0}};
     // p = (-1, -1, 0) lies in region A: testing ABC first and rejecting it is right, accepting it wrong.
@@ -605,4 +618,13 @@ TEST_CASE("check --figures: no trace figure where the hull of A − B is over th
                                         "limit of 250000") != std::string::npos);
     const Json within = {{"op", "distance"}, {"a", polytope(500, 0)}, {"b", polytope(500, 5)}};
     CHECK(traceFigureRefusal(within).empty());
+}
+
+TEST_CASE("check --figures: no figure of a polytope over the scenes' vertex limit") {
+    // Reproducer: a penetration line of two 500 000-vertex polytopes with a wrong depth | cdlab check
+    // --figures FIG -> 63 s, 2.75 GB, then "LLVM ERROR: Unable to allocate section memory!".
+    Json v = Json::array();
+    for (int i = 0; i < 1001; ++i) v.push_back({std::cos(0.01 * i), std::sin(0.01 * i), 0.001 * i});
+    const Json big = {{"op", "penetration"}, {"a", {{"polytope", {{"vertices", v}}}}}, {"b", kBoxB}};
+    CHECK(traceFigureRefusal(big) == "no figure: a is a polytope of 1001 vertices, over the limit of 1000 the figures draw");
 }

@@ -22,6 +22,7 @@
 #include "demos/harness/scene_runner.h"
 #include "demos/scene/json_reader.h"
 #include "demos/scene/scene.h"
+#include "render/canvas.h"
 #include "render/image.h"
 #include "render/pixel_budget.h"
 #include "tests/demos/harness/temp_files.h"
@@ -119,6 +120,25 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
 }
 
 
+// A golden folder with one small scene and its goldens; `args` compares them with a report into
+// `rep`, `update` also updates failing ones.
+struct GoldenSetup {
+    fs::path root, golden, rep;
+    std::vector<std::string> args, update;
+};
+GoldenSetup goldenSetup(const std::string& name) {
+    GoldenSetup g;
+    g.root = tempDir(name);
+    g.golden = g.root / "golden";
+    g.rep = g.root / "rep";
+    writeScene(g.golden / "voronoi_triangle" / "small.json");
+    g.args = {"golden", "--golden-dir", g.golden.string(), "--report", g.rep.string()};
+    g.update = g.args;
+    g.update.insert(g.update.end(), {"--update", "failing"});
+    REQUIRE(run(g.update, g.root).status == 0);
+    return g;
+}
+
 // Every output file decodes (PNG) or parses (JSON); returns how many there are.
 int checkComplete(const fs::path& out) {
     int n = 0;
@@ -177,13 +197,10 @@ TEST_SUITE("hostile harness") {
     TEST_CASE("golden --report deletes only the files an earlier report wrote") {
         // Reproducer: mkdir rep && echo precious > rep/user.txt && cdlab golden --report rep
         // (everything passing) -> rep was removed recursively; `--report .` wiped the working folder.
-        const fs::path root = tempDir("report");
-        const fs::path golden = root / "golden", rep = root / "rep";
-        writeScene(golden / "voronoi_triangle" / "small.json");
-        const std::vector<std::string> args = {"golden", "--golden-dir", golden.string(), "--report", rep.string()};
-        std::vector<std::string> update = args;
-        update.insert(update.end(), {"--update", "failing"});
-        REQUIRE(run(update, root).status == 0);
+        const GoldenSetup g = goldenSetup("report");
+        const fs::path &root = g.root, &golden = g.golden, &rep = g.rep;
+        const std::vector<std::string>& args = g.args;
+        const std::vector<std::string>& update = g.update;
 
         fs::create_directories(rep / "userdir" / "empty");
         std::ofstream(rep / "user.txt") << "precious";
@@ -404,17 +421,30 @@ TEST_SUITE("hostile harness") {
     TEST_CASE("a scene that fails after validation is named; the others render; exit 2") {
         // Reproducer: a failure while running or writing one scene (an OpenGL error at --scale 4, an
         // unwritable folder) ended the whole run without naming the scene file.
+        // Scene a draws more step frames than its contact sheet can hold: found while it runs.
         const fs::path root = tempDir("run_failure");
-        writeScene(root / "golden" / "voronoi_triangle" / "a.json");
+        fs::create_directories(root / "golden" / "voronoi_triangle");
+        std::ofstream scene(root / "golden" / "voronoi_triangle" / "a.json");
+        scene << R"({"demo": "voronoi_triangle", "image": {"width": 64, "height": 4096}, "views": ["plane"],
+          "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "steps": true, "queries": [)";
+        for (int i = 0; i < 40; ++i) scene << (i ? ", " : "") << "[" << 0.1 * i << ", " << 0.05 * i << ", 0.2]";
+        scene << "]}";
+        scene.close();
         writeScene(root / "golden" / "voronoi_triangle" / "b.json");
-        fs::create_directories(root / "out" / "voronoi_triangle");
-        std::ofstream(root / "out" / "voronoi_triangle" / "a") << "a file where scene a's folder should be";
-        const Result r =
-            run({"figures", "--golden-dir", (root / "golden").string(), "--out", (root / "out").string()}, root);
+        Result r = run({"figures", "--golden-dir", (root / "golden").string(), "--out", (root / "out").string()}, root);
         CHECK(r.status == 2);
-        CHECK(contains(r.err, (root / "golden" / "voronoi_triangle" / "a.json").string() + ": cannot create folder"));
+        CHECK(contains(r.err, (root / "golden" / "voronoi_triangle" / "a.json").string() + ": the contact sheet of"));
         CHECK(contains(r.err, "1 failed"));
         CHECK(fs::exists(root / "out" / "voronoi_triangle" / "b" / "manifest.json"));
+        // A file where a scene's folder should be is found before anything is drawn.
+        fs::remove(root / "golden" / "voronoi_triangle" / "a.json");
+        writeScene(root / "golden" / "voronoi_triangle" / "c.json");
+        std::ofstream(root / "out" / "voronoi_triangle" / "c") << "a file where scene c's folder should be";
+        r = run({"figures", "--golden-dir", (root / "golden").string(), "--out", (root / "out").string()}, root);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, "the output folder " + (root / "out" / "voronoi_triangle" / "c").string() +
+                                  " is there and not a folder"));
+        CHECK(contains(r.err, "nothing written"));
         fs::remove_all(root);
     }
 
@@ -473,6 +503,30 @@ TEST_SUITE("hostile harness") {
         // Brackets in strings are text, not nesting; an escaped quote does not end the string.
         const std::string inString = "[\"\\\"" + std::string(100, '[') + "\"]";
         CHECK(parseJson(inString, "s")[0].get<std::string>().size() == 101);
+    }
+
+    TEST_CASE("a line of millions of empty objects builds no tree") {
+        // Reproducer: a 60 MB check line whose trace held 2·10^7 "{}" steps took 27 s and 3.6 GB, then
+        // std::bad_alloc ended the run; `query` on a 60 MB line of "[]," took 1.5 GB. The scan before
+        // the parser counts containers and values.
+        const auto errorOf = [](const std::string& text) -> std::string {
+            try {
+                parseJson(text, "src");
+            } catch (const InputError& e) {
+                return e.what();
+            }
+            return "";
+        };
+        std::string objects = "[";
+        for (std::size_t k = 0; k <= kMaxJsonContainers; ++k) objects += "{},";
+        CHECK(errorOf(objects) == "src: byte " + std::to_string(3 * kMaxJsonContainers - 1) + ": more than " +
+                                      std::to_string(kMaxJsonContainers) + " arrays and objects, the limit for one text");
+        std::string numbers = "[0";
+        for (std::size_t k = 0; k < kMaxJsonValues; ++k) numbers += ",0";
+        numbers += "]";
+        CHECK(contains(errorOf(numbers), "more than " + std::to_string(kMaxJsonValues) + " values, the limit"));
+        // Commas and brackets inside strings are text.
+        CHECK(errorOf("[\"" + std::string(100, ',') + std::string(100, '{') + "\"]").empty());
     }
 
     TEST_CASE("a NUL byte is refused with its position, not taken for the end of the text") {
@@ -539,13 +593,9 @@ TEST_SUITE("hostile harness: output folders") {
     TEST_CASE("golden --report . keeps the user's index.html") {
         // Reproducer: cd folder-with-index.html && cdlab golden --report . (a failing run) replaced
         // index.html with the report and listed it in cdlab-report.txt; the next, passing run deleted it.
-        const fs::path root = tempDir("report_index");
-        const fs::path golden = root / "golden", rep = root / "rep";
-        writeScene(golden / "voronoi_triangle" / "small.json");
-        const std::vector<std::string> args = {"golden", "--golden-dir", golden.string(), "--report", rep.string()};
-        std::vector<std::string> update = args;
-        update.insert(update.end(), {"--update", "failing"});
-        REQUIRE(run(update, root).status == 0);
+        const GoldenSetup g = goldenSetup("report_index");
+        const fs::path &root = g.root, &golden = g.golden, &rep = g.rep;
+        const std::vector<std::string>& args = g.args;
         fs::create_directories(rep);
         std::ofstream(rep / "index.html") << "<html>the user's page</html>";
         const fs::path png = golden / "voronoi_triangle" / "small" / "plane.png";
@@ -643,13 +693,51 @@ TEST_SUITE("hostile harness: output folders") {
                     root)
                     .status == 0);
         const auto before = snapshot(golden);
-        for (const fs::path& out : {golden, golden / "sub", golden / "voronoi_triangle" / ".." / "x"}) {
+        // Also through a symlink below --out: F/voronoi_triangle -> G/voronoi_triangle.
+        fs::create_directories(root / "F");
+        fs::create_directory_symlink(golden / "voronoi_triangle", root / "F" / "voronoi_triangle");
+        for (const fs::path& out : {golden, golden / "sub", golden / "voronoi_triangle" / ".." / "x", root / "F"}) {
             const Result r = run({"figures", "--golden-dir", golden.string(), "--out", out.string(), "--scale", "2"}, root);
             CHECK(r.status == 2);
             CHECK_MESSAGE(contains(r.err, "is inside the golden folder"), r.err);
             CHECK(snapshot(golden) == before);
         }
+        // golden --report never writes its report into the golden folder.
+        const Result r = run({"golden", "--golden-dir", golden.string(), "--report", (golden / "voronoi_triangle").string()}, root);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, "is inside the golden folder"));
+        CHECK(snapshot(golden) == before);
         fs::remove_all(root);
+    }
+
+    TEST_CASE("golden --report writes and deletes nothing through a symlink") {
+        // Reproducer: mkdir R; ln -s G/voronoi_triangle R/voronoi_triangle; cdlab golden --golden-dir G
+        // --report R wrote plane.actual/expected/diff.png into G/voronoi_triangle/t1/; with R/out ->
+        // another folder, "file out/victim.txt" in R/cdlab-report.txt deleted that folder's victim.txt.
+        const GoldenSetup g = goldenSetup("report_symlink");
+        const fs::path other = g.root / "other";
+        fs::create_directories(other);
+        std::ofstream(other / "victim.txt") << "victim";
+        fs::create_directories(g.rep);
+        fs::create_directory_symlink(other, g.rep / "out");
+        std::ofstream(g.rep / "cdlab-report.txt")
+            << "# cdlab golden --report: what this report wrote (the next run deletes it)\nfile out/victim.txt\nfolder out\n";
+        Result r = run(g.args, g.root);
+        CHECK(r.status == 0);
+        CHECK(slurp(other / "victim.txt") == "victim");
+        // A failing frame's report would go through R/voronoi_triangle -> the golden folder: refused.
+        fs::create_directory_symlink(g.golden / "voronoi_triangle", g.rep / "voronoi_triangle");
+        const fs::path png = g.golden / "voronoi_triangle" / "small" / "plane.png";
+        cdlab::render::Image img = cdlab::render::readPng(png.string());
+        for (int y = 10; y < 30; ++y)
+            for (int x = 10; x < 30; ++x) img.pixel(x, y)[1] ^= 0x80;
+        cdlab::render::writePngAtomic(png.string(), img);
+        const auto before = snapshot(g.golden);
+        r = run(g.args, g.root);
+        CHECK(r.status == 2);
+        CHECK_MESSAGE(contains(r.err, "a folder on its path is a symlink"), r.err);
+        CHECK(snapshot(g.golden) == before);
+        fs::remove_all(g.root);
     }
 
     TEST_CASE("two scenes into one folder are refused before anything is written") {
@@ -672,6 +760,16 @@ TEST_SUITE("hostile harness: output folders") {
         CHECK(r.status == 2);
         CHECK(contains(r.err, "writes the same folder"));
         CHECK_FALSE(fs::exists(root / "figs" / "voronoi_triangle"));
+        // A dangling symlink where a scene's folder goes (out/y -> x, not there yet).
+        writeScene(root / "c" / "y.json");
+        fs::create_directories(root / "out2");
+        fs::create_directory_symlink("x", root / "out2" / "y");
+        r = run({"render", (root / "a" / "x.json").string(), (root / "c" / "y.json").string(), "--out",
+                 (root / "out2").string()},
+                root);
+        CHECK(r.status == 2);
+        CHECK_MESSAGE(contains(r.err, "is a symlink to nothing"), r.err);
+        CHECK_FALSE(fs::exists(root / "out2" / "x"));
         fs::remove_all(root);
     }
 
@@ -710,10 +808,13 @@ TEST_SUITE("hostile harness: output folders") {
         std::ofstream(out / dead) << "x";
         std::ofstream(out / live) << "x";
         std::ofstream(out / "notes.tmp.12.x") << "not a temp name";
+        const std::string usersTemp = "data.csv.tmp." + std::to_string(deadPid()) + ".1";  // no file cdlab writes
+        std::ofstream(out / usersTemp) << "the user's";
         REQUIRE(run({"render", (root / "big.json").string(), "--out", out.string(), "--force"}, root).status == 0);
         CHECK_FALSE(fs::exists(out / dead));
         CHECK(fs::exists(out / live));
         CHECK(fs::exists(out / "notes.tmp.12.x"));
+        CHECK(fs::exists(out / usersTemp));
         fs::remove_all(root);
     }
 
@@ -775,6 +876,37 @@ TEST_SUITE("hostile harness: output folders") {
                                  cdlab::render::ImageError);
         }
         CHECK_NOTHROW(PixelBudget::spend(1e300));
+        // Every frame read back counts its rendered pixels, supersampling and --scale included: a
+        // vclip scene of 37 frames of 2048 x 1536 at --scale 2 drew 466 M pixels (3.3 GB) before.
+        std::unique_ptr<cdlab::render::GlContext> gl = createContext(false);
+        cdlab::render::CanvasOptions options;
+        options.width = 64, options.height = 32, options.supersample = 2, options.scale = 2;
+        cdlab::render::Canvas canvas(*gl, options, cdlab::render::Camera::twoD(0, 0, 1));
+        PixelBudget budget(2 * (64 * 4) * (32 * 4));
+        CHECK_NOTHROW(canvas.readPixels());
+        CHECK_NOTHROW(canvas.readPixels());
+        CHECK_THROWS_AS(canvas.readPixels(), cdlab::render::ImageError);
+    }
+
+    TEST_CASE("a contact sheet stays within the image limits") {
+        // Reproducer: a 30 KB caption made a 1008 x 18678 contact sheet, then a GL error blaming
+        // the supersampling factor; 40 step frames of 64 x 4096 made cells 4096 tall. Cells are now
+        // at most 3 x 384 layout pixels tall, and a sheet past 4096 per side is one error.
+        const fs::path root = tempDir("tall_sheet");
+        std::ofstream scene(root / "tall.json");
+        scene << R"({"demo": "voronoi_triangle", "image": {"width": 64, "height": 4096}, "views": ["plane"],
+          "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "steps": true, "queries": [)";
+        for (int i = 0; i < 40; ++i) scene << (i ? ", " : "") << "[" << 0.1 * i << ", " << 0.05 * i << ", 0.2]";
+        scene << "]}";
+        scene.close();
+        const Result r = run({"render", (root / "tall.json").string(), "--out", (root / "o").string()}, root);
+        CHECK(r.status == 2);
+        CHECK_MESSAGE(contains(r.err, "tall.json: the contact sheet of 40 frames would be 208 x 7050 pixels, above the "
+                                      "limit of 4096 per side"),
+                      r.err);
+        CHECK_FALSE(contains(r.err, "OpenGL"));
+        CHECK_FALSE(fs::exists(root / "o" / "contact_sheet.png"));
+        fs::remove_all(root);
     }
 
     TEST_CASE("control characters from files are escaped in every line printed") {
@@ -796,4 +928,3 @@ TEST_SUITE("hostile harness: output folders") {
         fs::remove_all(root);
     }
 }
-

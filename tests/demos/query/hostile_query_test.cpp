@@ -336,13 +336,14 @@ TEST_SUITE("hostile query") {
         CHECK(WEXITSTATUS(status) == 0);  // 3: wrong answers, 4: peak growth above 128 MB (the trees: 150-300 MB)
 
         // The id of a refused line is read while streaming: only the top level's (the last of
-        // duplicates, as a parse into a tree keeps); an id nested deeper than the copy allows, or a
-        // line that is not JSON, answers without one.
+        // duplicates, as a parse into a tree keeps); an id nested deeper than the copy allows
+        // answers without one; an id read whole before the line breaks off is kept.
         CHECK(askRaw(R"({"id":"q","op":"distance","op":"intersect"})")["id"] == "q");
         CHECK(askRaw(R"({"id":1,"id":2,"op":"distance"})")["id"] == 2);
         CHECK(askRaw(R"({"a":{"id":3},"id":[1,{"b":2}],"op":1,"op":2})")["id"] == Json::parse(R"([1,{"b":2}])"));
         CHECK(askRaw(R"({"id":)" + std::string(40, '[') + std::string(40, ']') + R"(,"op":1,"op":2})")["id"].is_null());
-        CHECK(askRaw(R"({"id":4,"op":"distance",)")["id"].is_null());
+        CHECK(askRaw(R"({"id":4,"op":"distance",)")["id"] == 4);
+        CHECK(askRaw(R"(["id",4])")["id"].is_null());
     }
 
     TEST_CASE("penetration of compounds: EPA only where the box bound can beat the deepest pair, capped") {
@@ -366,8 +367,19 @@ TEST_SUITE("hostile query") {
         };
         // 600 x 600 pairs whose boxes all overlap: refused before any EPA runs.
         const std::string e = errorOf(penetration(boxes(600, 1), boxes(600, 2)));
-        CHECK(contains(
-            e, "$.a: penetration runs EPA on the pairs of pieces whose boxes meet: 360000, above the limit of 250000"));
+        CHECK(contains(e, "$.a: penetration runs EPA on the pairs of pieces whose boxes meet: 360000 pairs, 360000 "
+                          "pairs of boxes' work (a piece of n vertices counts n / 16 boxes), above the limit of 250000"));
+        // Pieces of many vertices count their work: 101 x 101 pairs of 200-vertex polytopes (the
+        // attacker's 499 x 499 took 7 s at 249 001 pairs) are 255 025 box pairs' work, over the limit.
+        Json ball = Json::array();
+        for (int k = 0; k < 200; ++k) {
+            const double z = -1 + (2 * k + 1) / 200.0, r = std::sqrt(1 - z * z), t = 2.399963 * k;
+            ball.push_back({r * std::cos(t), r * std::sin(t), z});
+        }
+        const Json polys = Json::array({{{"polytope", {{"vertices", ball}}}}});
+        Json many = Json::array();
+        for (int k = 0; k < 101; ++k) many.push_back(polys[0]);
+        CHECK(contains(errorOf(penetration(many, many)), "10201 pairs, 255025 pairs of boxes' work"));
         // 400 x 400, every pair overlapping: the deepest pair (for two aabbs the depth is the bound
         // itself) is found after a handful of EPA runs, not 160 000.
         const Json a = boxes(400, 3), b = boxes(400, 4);
@@ -384,6 +396,20 @@ TEST_SUITE("hostile query") {
         REQUIRE_MESSAGE(!p.contains("error"), p.dump().substr(0, 300));
         CHECK(p["depth"].get<double>() == doctest::Approx(deepest).epsilon(1e-12));
         CHECK(p["trace"]["pairs_tested"].get<long long>() < 100);
+    }
+
+    TEST_CASE("an escaped NUL does not cut the error message; an id read before the line breaks off is kept") {
+        // Reproducer: printf '%s\n' '{"id":1,"op":"distance","a":{"poi\u0000nt":[0,0,0]},"b":{"point":[1,0,0]}}' |
+        // cdlab query -> "... unknown shape 'poi" (what() is a C string: the rest was lost at the NUL).
+        const std::string e = errorOf(R"({"id":1,"op":"distance","a":{"poi\u0000nt\u001b[31m":[0,0,0]},"b":{"point":[1,0,0]}})");
+        CHECK_MESSAGE(contains(e, "poi\\x00nt"), e);
+        CHECK_MESSAGE(e.find('\0') == std::string::npos, e);
+        CHECK(InputError(std::string("a\0b", 3)).what() == std::string("a\\x00b"));
+        // Reproducer: {"id":"o","x":[[[[... (70 levels, unclosed) answered "id":null; closed, "id":"o".
+        const std::string deep = R"({"id":"o","x":)" + std::string(70, '[');
+        CHECK(askRaw(deep)["id"] == "o");
+        CHECK(askRaw(deep + std::string(70, ']') + "}")["id"] == "o");
+        CHECK(askRaw(R"({"x":[[[[1]]]],"id":[1,[2,)")["id"].is_null());  // the id itself broken off
     }
 
     TEST_CASE("answers that cannot be written are exit status 2, not 0") {
