@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -27,39 +28,49 @@ namespace {
 constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
 // ---- Temp files in flight, for the signal handler -----------------------------------------------
-// A fixed table (no allocation, no lock: a signal handler may read it at any moment). A slot is
-// free (0), being filled (1) or names a temp file that exists or is about to (2). More temp files
-// in flight than slots go untracked; removeStaleTempFiles finds those on a later run.
+// A fixed table (no allocation, no lock: a signal handler may read it at any moment, on any
+// thread, while other threads go on). A slot's word is (generation << 2) | state, state free (0),
+// being filled (1) or naming a temp file that exists or is about to (2); every fill raises the
+// generation, so the handler, which copies a live path and then reads the word again, unlinks
+// only a path no other thread changed under it (a seqlock). More temp files in flight than slots
+// go untracked, as does one another thread opens between the handler's sweep and the end of the
+// process; removeStaleTempFiles finds those on a later run.
 constexpr int kTempSlots = 256;
 constexpr std::size_t kTempPathBytes = 4096;
 struct TempSlot {
-    std::atomic<int> state{0};
+    std::atomic<std::uint64_t> word{0};
     char path[kTempPathBytes];
 };
 TempSlot g_temps[kTempSlots];
-static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots' state");
+static_assert(std::atomic<std::uint64_t>::is_always_lock_free, "the signal handler reads the slots' words");
 
 int trackTemp(const std::string& temp) {
     if (temp.size() >= kTempPathBytes) return -1;
     for (int i = 0; i < kTempSlots; ++i) {
-        int expected = 0;
-        if (g_temps[i].state.compare_exchange_strong(expected, 1)) {
-            std::memcpy(g_temps[i].path, temp.c_str(), temp.size() + 1);
-            g_temps[i].state.store(2);
-            return i;
-        }
+        std::uint64_t word = g_temps[i].word.load();
+        if ((word & 3) != 0 || !g_temps[i].word.compare_exchange_strong(word, word | 1)) continue;
+        std::memcpy(g_temps[i].path, temp.c_str(), temp.size() + 1);
+        g_temps[i].word.store(((word >> 2) + 1) << 2 | 2);
+        return i;
     }
     return -1;
 }
 
 void untrackTemp(int slot) {
-    if (slot >= 0) g_temps[slot].state.store(0);
+    if (slot >= 0) g_temps[slot].word.store(g_temps[slot].word.load() & ~std::uint64_t(3));
 }
 
 extern "C" void removeTempsAndResignal(int sig) {
     const int savedErrno = errno;
-    for (TempSlot& t : g_temps)
-        if (t.state.load() == 2) ::unlink(t.path);
+    char path[kTempPathBytes];
+    for (TempSlot& t : g_temps) {
+        const std::uint64_t before = t.word.load();
+        if ((before & 3) != 2) continue;
+        std::size_t n = 0;
+        while (n + 1 < kTempPathBytes && t.path[n] != '\0') path[n] = t.path[n], ++n;
+        path[n] = '\0';
+        if (t.word.load() == before) ::unlink(path);  // the copy is the path of this generation
+    }
     ::signal(sig, SIG_DFL);
     ::raise(sig);  // delivered when the handler returns: the process ends as the signal asks
     errno = savedErrno;
@@ -93,7 +104,7 @@ StagedTemp stageFile(const std::string& path, const void* data, std::size_t size
     if (fs::symlink_status(target, ec).type() == fs::file_type::directory) fail<Error>(path, "is a directory");
     static std::atomic<unsigned> counter{0};
     const std::string temp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-    const int slot = trackTemp(temp);  // before the file exists: a signal never misses it
+    const int slot = trackTemp(temp);  // before the file exists
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) {
         const int err = errno;
@@ -292,6 +303,16 @@ void writeFileAtomic(const std::string& path, const std::string& bytes) {
     writeAtomic<std::runtime_error>(path, bytes.data(), bytes.size());
 }
 
+void FileSetWriter::keep(const std::string& temp, const std::string& target, int slot) {
+    try {
+        staged_.push_back({temp, target, slot});
+    } catch (...) {  // out of memory: the staged file goes, as a failed staging's would
+        ::unlink(temp.c_str());
+        untrackTemp(slot);
+        throw;
+    }
+}
+
 FileSetWriter::~FileSetWriter() {
     for (const Staged& s : staged_) {
         ::unlink(s.temp.c_str());
@@ -302,12 +323,12 @@ FileSetWriter::~FileSetWriter() {
 void FileSetWriter::addPng(const std::string& path, const Image& image) {
     const std::vector<unsigned char> png = encodePng(path, image);
     const StagedTemp t = stageFile<ImageError>(path, png.data(), png.size());
-    staged_.push_back({t.temp, path, t.slot});
+    keep(t.temp, path, t.slot);
 }
 
 void FileSetWriter::addFile(const std::string& path, const std::string& bytes) {
     const StagedTemp t = stageFile<std::runtime_error>(path, bytes.data(), bytes.size());
-    staged_.push_back({t.temp, path, t.slot});
+    keep(t.temp, path, t.slot);
 }
 
 void FileSetWriter::commit() {

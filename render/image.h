@@ -97,6 +97,7 @@ private:
         std::string temp, target;
         int slot;  // the temp file's entry in the signal handler's table, or -1
     };
+    void keep(const std::string& temp, const std::string& target, int slot);  // or remove it and throw
     std::vector<Staged> staged_;
 };
 

@@ -2,11 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <utility>
 
 #include "core/base/tolerances.h"
 
 namespace cdlab {
+
+namespace {
+
+// %g: a volume of 1e-20 is not "0.000000".
+std::string volumeText(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return buf;
+}
+
+}  // namespace
 
 const char* nameOf(MassStatus status) {
     switch (status) {
@@ -129,8 +142,8 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
     // real solid (a 1 x 1 x 1e-4 slab is 1e-4 of its diagonal^3) and above the rounding of a flat one.
     if (!(volume > 1e-12 * diagonal * diagonal * diagonal))
         return fail(MassStatus::Degenerate, -1,
-                    "volume " + std::to_string(volume) + " is not above 1e-12 x its bounding box diagonal cubed (" +
-                        std::to_string(1e-12 * diagonal * diagonal * diagonal) +
+                    "volume " + volumeText(volume) + " is not above 1e-12 x its bounding box diagonal cubed (" +
+                        volumeText(1e-12 * diagonal * diagonal * diagonal) +
                         "): flat, empty, inside-out (faces must be counter-clockwise from outside), or too thin for "
                         "its length to weigh in double precision");
 

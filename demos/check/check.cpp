@@ -556,21 +556,30 @@ CheckResult checkOneLine(const std::string& line, std::size_t lineNumber, const 
 
 }  // namespace
 
+namespace {
+
+// A failed line with one reason; with no reason when even that cannot be allocated (runCheck then
+// prints the line's FAIL bare). Never throws: checkLine is noexcept.
+CheckResult failedLine(std::size_t lineNumber, const char* what, const char* detail = "") noexcept {
+    CheckResult r;
+    try {
+        r.reasons.push_back("line " + std::to_string(lineNumber) + ": " + what + detail);
+    } catch (...) {
+    }
+    return r;
+}
+
+}  // namespace
+
 CheckResult checkLine(const std::string& line, std::size_t lineNumber, const CheckOptions& options) noexcept {
     try {
         return checkOneLine(line, lineNumber, options);
     } catch (const std::bad_alloc&) {
-        CheckResult r;
-        r.reasons.push_back("line " + std::to_string(lineNumber) + ": out of memory checking this line");
-        return r;
+        return failedLine(lineNumber, "out of memory checking this line");
     } catch (const std::exception& e) {
-        CheckResult r;
-        r.reasons.push_back("line " + std::to_string(lineNumber) + ": could not be checked: " + e.what());
-        return r;
+        return failedLine(lineNumber, "could not be checked: ", e.what());
     } catch (...) {
-        CheckResult r;
-        r.reasons.push_back("line " + std::to_string(lineNumber) + ": could not be checked");
-        return r;
+        return failedLine(lineNumber, "could not be checked");
     }
 }
 
@@ -660,7 +669,8 @@ int runCheck(std::istream& in, std::ostream& out, const CheckOptions& options) {
     std::string line;
     std::size_t lineNumber = 0, passed = 0, failed = 0, length = 0;
     std::unique_ptr<render::GlContext> gl;  // --figures only
-    for (CheckLineRead read; (read = readCheckLine(*in.rdbuf(), line, kMaxQueryLineBytes, length)) != CheckLineRead::End;) {
+    // Reading stops when the verdicts can no longer be written (a full disk, a closed pipe).
+    for (CheckLineRead read; out && (read = readCheckLine(*in.rdbuf(), line, kMaxQueryLineBytes, length)) != CheckLineRead::End;) {
         ++lineNumber;
         CheckResult r;
         if (read == CheckLineRead::TooLong) {

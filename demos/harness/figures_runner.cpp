@@ -160,9 +160,6 @@ std::string plainOutputName(const std::string& name) {
     return name;
 }
 
-// Writes one scene's output: everything staged first, then renamed in place; stale files of the
-// previous run go next, the manifest last (so a run killed half-way leaves a manifest that still
-// lists every file a later run may clean up).
 bool frameSelected(const std::string& name, const std::vector<std::string>& globs) {
     if (globs.empty()) return true;
     return std::any_of(globs.begin(), globs.end(),
@@ -182,6 +179,12 @@ void requireSelectedFrames(const DemoOutput& out, const std::vector<std::string>
     throw InputError("--frame " + asked + " matches no frame of this scene (frames: " + names + ")");
 }
 
+// Writes one scene's output: everything staged first; then a provisional manifest (no cache key)
+// listing the previous files and this run's; then the renames; stale files of the previous run
+// next, the final manifest last. Whenever a run stops (killed, a full disk), the manifest there
+// lists every file cdlab put in the folder, so a later run neither refuses them as the user's nor
+// takes them for a finished render (hostile_harness_test "a run killed between its renames and its
+// manifest leaves a folder the next run takes").
 void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCommon& sc, const DemoOutput& out,
                       const std::vector<std::string>& frameGlobs) {
     std::error_code ec;
@@ -216,6 +219,10 @@ void writeSceneFolder(const fs::path& dir, const std::string& key, const SceneCo
     }
     files.addFile((dir / "trace.json").string(), traceText(out.trace));
     manifest.files.push_back("trace.json");
+    FigureManifest provisional{"", sc.title, sc.caption, {}, previous};
+    for (const std::string& name : manifest.files)
+        if (std::find(previous.begin(), previous.end(), name) == previous.end()) provisional.files.push_back(name);
+    render::writeFileAtomic((dir / "manifest.json").string(), figureManifestText(provisional));
     files.commit();
     removeStale(dir, previous, manifest.files);
     render::writeFileAtomic((dir / "manifest.json").string(), figureManifestText(manifest));
@@ -256,11 +263,23 @@ void refuseInsideGolden(const fs::path& dir, const RunnerOptions& o) {
 // dangling symlink in its place is refused before anything is written (hostile_harness_test "two
 // scenes into one folder are refused before anything is written").
 void requireFolderOrNothing(const fs::path& dir) {
-    std::error_code ec;
-    const fs::file_type own = fs::symlink_status(dir, ec).type(), target = fs::status(dir, ec).type();
-    if (own == fs::file_type::not_found || target == fs::file_type::directory) return;
-    throw InputError("the output folder " + printable(dir.string()) + " is " +
-                     (target == fs::file_type::not_found ? "a symlink to nothing" : "there and not a folder"));
+    // The folder and, up to the first that exists, its parents (a file at <out>/<demo> hides the
+    // scene's folder behind ENOTDIR).
+    for (fs::path p = dir; !p.empty(); p = p.parent_path()) {
+        std::error_code ec;
+        const fs::file_type own = fs::symlink_status(p, ec).type();
+        if (own == fs::file_type::not_found) {
+            if (p == p.parent_path()) return;
+            continue;
+        }
+        const fs::file_type target = fs::status(p, ec).type();
+        if (target == fs::file_type::directory) return;
+        throw InputError("the output folder " + printable(dir.string()) + " cannot be made: " +
+                         printable(p.string()) + " is " +
+                         (target == fs::file_type::not_found ? "a symlink to nothing"
+                          : own == fs::file_type::none   ? "not readable (" + ec.message() + ")"
+                                                         : std::string("there and not a folder")));
+    }
 }
 
 // `cdlab render`: <out>/<file stem>, or --out itself for one file (whatever the file's name).
@@ -332,7 +351,7 @@ std::vector<WriteReport> renderOnWorkers(const std::vector<SceneJob>& jobs, cons
                 if (o.perFileOutput) report.note = printable(job.file) + " -> " + printable(job.dir.string()) + "/";
                 if (o.verbose) {
                     std::lock_guard<std::mutex> lock(printing);
-                    std::cerr << sceneId(job.scene->common()) << ": " << out.frames.size() << " frames drawn in "
+                    std::cerr << printable(sceneId(job.scene->common())) << ": " << out.frames.size() << " frames drawn in "
                               << ms(secondsSince(ts)) << "\n";
                 }
             } catch (const std::exception& e) {
@@ -341,7 +360,7 @@ std::vector<WriteReport> renderOnWorkers(const std::vector<SceneJob>& jobs, cons
             const int count = ++finished;
             if (tty && !o.verbose) {
                 std::lock_guard<std::mutex> lock(printing);
-                std::cerr << "\r[" << count << "/" << total << "] " << sceneId(job.scene->common()) << " ("
+                std::cerr << "\r[" << count << "/" << total << "] " << printable(sceneId(job.scene->common())) << " ("
                           << int(secondsSince(t0)) << " s)\x1b[K" << std::flush;
             }
         }
@@ -383,10 +402,10 @@ std::vector<WriteReport> renderOnThisThread(const std::vector<SceneJob>& jobs, c
         const SceneJob& job = jobs[i];
         const SceneCommon& sc = job.scene->common();
         if (tty && !o.verbose && !o.profile)
-            std::cerr << "\r[" << i + 1 << "/" << jobs.size() << "] " << sceneId(sc) << " (" << int(secondsSince(t0))
+            std::cerr << "\r[" << i + 1 << "/" << jobs.size() << "] " << printable(sceneId(sc)) << " (" << int(secondsSince(t0))
                       << " s)\x1b[K" << std::flush;
         if (!job.todo) {
-            if (o.verbose || o.profile) std::cerr << sceneId(sc) << ": unchanged (cached)\n";
+            if (o.verbose || o.profile) std::cerr << printable(sceneId(sc)) << ": unchanged (cached)\n";
             continue;
         }
         // A scene that fails at run time (or whose files cannot be written) is reported with its
@@ -427,17 +446,17 @@ std::vector<WriteReport> renderOnThisThread(const std::vector<SceneJob>& jobs, c
                 const double build = stats.buildSeconds - before.buildSeconds,
                              draw = stats.drawSeconds - before.drawSeconds,
                              readback = stats.readbackSeconds - before.readbackSeconds;
-                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames; algorithm " << ms(algorithm)
+                std::cerr << printable(sceneId(sc)) << ": " << done->frames.size() << " frames; algorithm " << ms(algorithm)
                           << ", drawing " << ms(runSeconds - readback - (gl ? algorithm : 0)) << " (vertices "
                           << ms(build) << ", GL " << ms(draw) << "), read-back " << ms(readback)
                           << ", PNG encoding + writes " << ms(writeSeconds);
                 if (!done->skipped.empty()) {
                     std::cerr << "; skipped:";
-                    for (const auto& s : done->skipped) std::cerr << " " << s << ";";
+                    for (const auto& s : done->skipped) std::cerr << " " << printable(s) << ";";
                 }
                 std::cerr << "\n";
             } else if (o.verbose) {
-                std::cerr << sceneId(sc) << ": " << done->frames.size() << " frames drawn in " << ms(runSeconds)
+                std::cerr << printable(sceneId(sc)) << ": " << done->frames.size() << " frames drawn in " << ms(runSeconds)
                           << "\n";
             }
         } catch (const std::exception& e) {
@@ -464,7 +483,10 @@ SceneJob validateScene(const std::string& file, const RunnerOptions& o) {
         requireFolderOrNothing(job.dir);
         // A folder whose manifest.json or trace.json is the user's is refused now, before any
         // scene is drawn; the frames' names are checked again when the folder is written.
-        refuseForeign(job.dir, "trace.json", previouslyWritten(job.dir));
+        {
+            FolderLock lock(job.dir);  // another run writing it has listed its files first
+            refuseForeign(job.dir, "trace.json", previouslyWritten(job.dir));
+        }
         if (!o.perFileOutput) requireGalleryPage(job.dir.string() + ".html");
     } catch (const InputError& e) {
         throw InputError(printable(file) + ": " + e.what());
@@ -514,7 +536,7 @@ int runFigures(const RunnerOptions& o) { return renderSceneFiles(selectScenes(o)
 int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions& o) {
     if (o.list) {
         for (const auto& f : files)
-            std::cout << fs::path(f).parent_path().filename().string() << "/" << fs::path(f).stem().string() << "\n";
+            std::cout << printable(fs::path(f).parent_path().filename().string() + "/" + fs::path(f).stem().string()) << "\n";
         return 0;
     }
     if (files.empty()) {
@@ -536,7 +558,7 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         std::error_code ec;
         fs::create_directories(o.outDir, ec);
         if (ec) {
-            std::cerr << "cdlab figures: cannot create the output folder '" << o.outDir << "': " << ec.message()
+            std::cerr << "cdlab figures: cannot create the output folder '" << printable(o.outDir) << "': " << ec.message()
                       << "\n";
             return 2;
         }
@@ -575,16 +597,18 @@ int renderSceneFiles(const std::vector<std::string>& files, const RunnerOptions&
         std::cerr << "), " << frames << " frames in " << secondsSince(t0) << " s\n";
         return failed ? 2 : 0;
     }
+    int pagesRefused = 0;  // gallery pages of the user's (reported by writeGallery), not scenes
     {
         FolderLock lock(o.outDir);
-        failed += writeGallery(o.outDir);
+        pagesRefused = writeGallery(o.outDir);
     }
     std::cerr << "cdlab figures: " << jobs.size() << " scenes (" << rendered << " rendered, "
-              << jobs.size() - rendered - failed << " unchanged";
+              << int(jobs.size()) - rendered - failed << " unchanged";
     if (failed) std::cerr << ", " << failed << " failed";
-    std::cerr << "), " << frames << " frames into " << o.outDir << " in " << secondsSince(t0) << " s; gallery "
-              << (fs::path(o.outDir) / "index.html").string() << "\n";
-    return failed ? 2 : 0;
+    if (pagesRefused) std::cerr << ", " << pagesRefused << " gallery page" << (pagesRefused == 1 ? "" : "s") << " refused";
+    std::cerr << "), " << frames << " frames into " << printable(o.outDir) << " in " << secondsSince(t0)
+              << " s; gallery " << printable((fs::path(o.outDir) / "index.html").string()) << "\n";
+    return failed || pagesRefused ? 2 : 0;
 }
 
 }  // namespace cdlab::demos

@@ -172,8 +172,8 @@ private:
 // The id of a line the strict reader refused (a duplicate key, say) when the whole line is JSON, so
 // that its error answer can still be matched to the query; null otherwise. Never throws.
 Json lenientId(const std::string& line, const Json& id) noexcept {
-    if (!id.is_null()) return id;
     try {
+        if (!id.is_null()) return id;
         // An id read before the line breaks off (unclosed, or nested too deep further on) is kept.
         TopLevelIdReader reader;
         if (Json::sax_parse(line, &reader) || reader.idComplete()) return reader.id();

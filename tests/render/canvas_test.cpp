@@ -133,7 +133,7 @@ TEST_SUITE("render/canvas") {
         CHECK_FALSE(compareImages(moved.readPixels(), golden).passed);
     }
 
-    TEST_CASE("3D: opaque faces hide depth-tested lines; onTop lines and points stay visible") {
+    TEST_CASE("3D: opaque faces hide depth-tested lines, onTop lines and points stay visible") {
         Canvas c(context(), {200, 200, 1, 4});
         Camera cam;
         cam.eye = {0, 0, 5};
@@ -382,7 +382,7 @@ TEST_SUITE("render/canvas") {
 }
 
 TEST_SUITE("canvas layout") {
-    TEST_CASE("readPixels records text boxes, markers and who names them; placed labels go around the rest") {
+    TEST_CASE("readPixels records text boxes, markers and who names them, placed labels go around the rest") {
         Canvas c(context(), CanvasOptions{200, 200, 1, 4});
         c.setCamera(Camera::twoD(0, 0, 10));
         c.setBackground(kWhite);

@@ -59,7 +59,7 @@ TEST_SUITE("legibility") {
         CHECK(checkLegibility(l, 100, 100).empty());
     }
 
-    TEST_CASE("labels side by side need a space between them; stacked lines may touch") {
+    TEST_CASE("labels side by side need a space between them, stacked lines may touch") {
         FigureLayout l;
         l.panels = {{0, 0, 200, 100}};
         // Line height 20: a gap under 5 px runs the two texts together.

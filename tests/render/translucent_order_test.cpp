@@ -254,7 +254,7 @@ TEST_CASE("random boxes, a sphere sunk into them and a torus: right order from a
     }
 }
 
-TEST_CASE("faces in one plane keep their input order; a big tessellated sphere beside a box is cut only where needed") {
+TEST_CASE("faces in one plane keep their input order, a big tessellated sphere beside a box is cut only where needed") {
     // Two coplanar squares overlapping (touching bodies' faces): drawn mesh 0 then mesh 1, seen from either side.
     const Mesh a{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}};
     const Mesh b{{{0.5, 0.5, 0}, {1.5, 0.5, 0}, {1.5, 1.5, 0}, {0.5, 1.5, 0}}, {{0, 1, 2}, {0, 2, 3}}};

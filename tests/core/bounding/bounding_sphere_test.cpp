@@ -121,7 +121,7 @@ void checkWelzl(const std::vector<Vec3>& pts) {
 }  // namespace
 
 TEST_SUITE("bounding_sphere") {
-    TEST_CASE("Welzl equals the brute-force minimum ball; Ritter encloses and is no smaller") {
+    TEST_CASE("Welzl equals the brute-force minimum ball, Ritter encloses and is no smaller") {
         std::mt19937 rng(11);
         for (double scale : {1e-3, 1.0, 1e3}) {
             for (double offset : {0.0, 1e4, 1e6}) {

@@ -142,7 +142,7 @@ TEST_SUITE("kdop") {
         CHECK(misses > 30);
     }
 
-    TEST_CASE("more slabs are tighter: V26 <= V14, V18 <= V6; all >= the hull; Monte Carlo volume") {
+    TEST_CASE("more slabs are tighter: V26 <= V14, V18 <= V6, all >= the hull, Monte Carlo volume") {
         std::mt19937 rng(40);
         for (int rep = 0; rep < 5; ++rep) {
             const auto pts = bvoracle::randomCloud(rng, 60, Vec3(2, 1, 0.6), 1.0, Vec3(1e4, 0, 0));

@@ -157,7 +157,7 @@ TEST_SUITE("swept_sphere_overlap") {
         CHECK(misses > 20);
     }
 
-    TEST_CASE("touching counts as a hit; invalid input gives no hit and NaN") {
+    TEST_CASE("touching counts as a hit, invalid input gives no hit and NaN") {
         const Capsule a{Vec3(0, 0, 0), Vec3(1, 0, 0), 0.5};
         const Capsule b{Vec3(0, 1, 0), Vec3(1, 1, 0), 0.5};
         CHECK(testLssLss(a, b).hit);

@@ -86,7 +86,7 @@ TEST_SUITE("swept_sphere") {
         }
     }
 
-    TEST_CASE("LSS recovers a sampled capsule; RSS recovers a sampled plate") {
+    TEST_CASE("LSS recovers a sampled capsule, RSS recovers a sampled plate") {
         std::mt19937 rng(51);
         for (double offset : {0.0, 1e5}) {
             const auto q = bvoracle::randomRotation(rng);

@@ -48,7 +48,7 @@ void checkQuery(const DynamicAabbTree& tree, const std::vector<int>& leafOf, con
 }  // namespace
 
 TEST_SUITE("dynamic_tree") {
-    TEST_CASE("inserts, moves and removes keep every invariant; queries find exactly the overlapping leaves") {
+    TEST_CASE("inserts, moves and removes keep every invariant, queries find exactly the overlapping leaves") {
         std::mt19937_64 rng(5);
         DynamicAabbTree tree;
         std::vector<Aabb> boxes;
@@ -174,7 +174,7 @@ TEST_SUITE("dynamic_tree") {
         }
     }
 
-    TEST_CASE("broad phase: fat boxes stretched along the motion re-insert less; a stopped box's fat box shrinks") {
+    TEST_CASE("broad phase: fat boxes stretched along the motion re-insert less, a stopped box's fat box shrinks") {
         std::mt19937_64 rng(6);
         const broad_oracle::Motion start = broad_oracle::Motion::random(rng, 400, 14, 0.2, 0.8, 0.05);
         int moved[2] = {0, 0};
@@ -224,7 +224,7 @@ TEST_SUITE("dynamic_tree") {
         CHECK(plain.pairs().size() == 1);
     }
 
-    TEST_CASE("broad phase: exact ties (integer boxes touching), flat boxes; bad boxes refused, nothing changed") {
+    TEST_CASE("broad phase: exact ties (integer boxes touching), flat boxes, bad boxes refused, nothing changed") {
         std::mt19937_64 rng(4);
         TreeBroadPhase bp;
         for (int frame = 0; frame < 30; ++frame) {

@@ -189,7 +189,7 @@ TEST_SUITE("octree") {
         CHECK(empty.query({Vec3::Zero(), Vec3::Ones()}).empty());
     }
 
-    TEST_CASE("the pair query does fewer tests than brute force on spread-out boxes; trace matches nodes") {
+    TEST_CASE("the pair query does fewer tests than brute force on spread-out boxes, trace matches nodes") {
         std::mt19937 rng(13);
         const std::vector<Aabb> boxes = randomBoxes(rng, 1000, 100.0, 1.0, Vec3::Zero(), false);
         for (double looseness : {1.0, 2.0}) {

@@ -226,7 +226,7 @@ TEST_SUITE("sweep_and_prune") {
         }
     }
 
-    TEST_CASE("add and remove mid-sequence; ids are stable") {
+    TEST_CASE("add and remove mid-sequence, ids are stable") {
         for (std::uint64_t seed = 1; seed <= 15; ++seed) {
             std::mt19937_64 rng(seed + 500);
             auto m = broad_oracle::Motion::random(rng, 30, 8.0, 0.3, 1.2, 0.1);
@@ -317,7 +317,7 @@ TEST_SUITE("sweep_and_prune") {
         }
     }
 
-    TEST_CASE("counters accumulate; a still frame swaps nothing") {
+    TEST_CASE("counters accumulate, a still frame swaps nothing") {
         std::mt19937_64 rng(7);
         auto m = broad_oracle::Motion::random(rng, 40, 6.0, 0.3, 1.0, 0.1);
         SweepAndPrune sap;

@@ -248,7 +248,7 @@ TEST_SUITE("mesh_collision") {
               MeshCollisionStatus::TreeMeshMismatch);
     }
 
-    TEST_CASE("traces and counters: steps match the stats; OBB trees test fewer boxes on a torus") {
+    TEST_CASE("traces and counters: steps match the stats, OBB trees test fewer boxes on a torus") {
         const TriangleMesh a = torusMesh(1.0, 0.3, 32, 12);
         Transform pb;
         pb.rotation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));

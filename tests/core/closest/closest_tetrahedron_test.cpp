@@ -177,7 +177,7 @@ TEST_SUITE("closest_tetrahedron") {
         CHECK(regionsSeen.size() >= 10);
     }
 
-    TEST_CASE("flat tetrahedra fall back to the faces; non-finite input") {
+    TEST_CASE("flat tetrahedra fall back to the faces, non-finite input") {
         // Coplanar: d inside triangle abc (all in z = 0).
         const Tetrahedron flat{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), Vec3(1, 1, 0)};
         auto r = closestPointOnTetrahedron(Vec3(1, 2, 3), flat);

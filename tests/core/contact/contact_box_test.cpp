@@ -167,7 +167,7 @@ TEST_SUITE("contact_box") {
         CHECK(edgeContacts > 10);
     }
 
-    TEST_CASE("box-box: resting box, 4 points of the sunk depth; invalid input named") {
+    TEST_CASE("box-box: resting box, 4 points of the sunk depth, invalid input named") {
         const Vec3 ground(2, 2, 0.5), cube(0.5, 0.5, 0.5);
         Transform tg, tc;
         tc.position = Vec3(0.1, -0.2, 0.99);
@@ -279,7 +279,7 @@ TEST_SUITE("contact_box") {
         CHECK(compared >= 10);
     }
 
-    TEST_CASE("box-plane: the general plane contact's answer; signed distance = long double corners") {
+    TEST_CASE("box-plane: the general plane contact's answer, signed distance = long double corners") {
         std::mt19937_64 rng(13);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
         int colliding = 0;

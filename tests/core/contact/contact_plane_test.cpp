@@ -67,7 +67,7 @@ TEST_SUITE("contact_plane") {
         }
     }
 
-    TEST_CASE("edge-on resting: the edge, 2 points; vertex-on: 1 point") {
+    TEST_CASE("edge-on resting: the edge, 2 points, vertex-on: 1 point") {
         const ConvexPolyhedron box = presets::box(Vec3(1, 1, 1));
         Transform t;
         t.rotation = Quat(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitX()));
@@ -234,7 +234,7 @@ TEST_SUITE("contact_plane") {
 
 // Issue 21 §2: which points a manifold keeps (core/contact/contact_manifold.h, rules 0-5).
 TEST_SUITE("contact_plane manifold rules") {
-    TEST_CASE("asking for more points never returns fewer; every corner once maxPoints reaches their count") {
+    TEST_CASE("asking for more points never returns fewer, every corner once maxPoints reaches their count") {
         // A hexagonal prism standing on the plane, sunk 0.01: six submerged corners, all at one depth.
         const ConvexPolyhedron hex = presets::prism(6, 1.0, 0.5);  // axis y
         Transform t;

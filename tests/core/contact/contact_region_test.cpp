@@ -375,7 +375,7 @@ TEST_SUITE("contact_region") {
         }
     }
 
-    TEST_CASE("plane: tilted boxes and prisms sunk corner-, edge- and face-first; the box path on tilted planes") {
+    TEST_CASE("plane: tilted boxes and prisms sunk corner-, edge- and face-first, the box path on tilted planes") {
         const Vec3 u(1, 2, 2), v(2, 1, -2), w(2, -2, 1);
         std::mt19937_64 rng(11);
         std::uniform_int_distribution<int> level(-64, 64);

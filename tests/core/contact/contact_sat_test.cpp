@@ -50,7 +50,7 @@ long double bruteSatSeparation(const ConvexPolyhedron& ma, const Transform& ta, 
 }  // namespace
 
 TEST_SUITE("contact_sat") {
-    TEST_CASE("stacked boxes: face contact, 4 points of equal depth; touching") {
+    TEST_CASE("stacked boxes: face contact, 4 points of equal depth, touching") {
         for (double scale : {1e-3, 1.0, 1e3}) {
             for (double offset : {0.0, 1e4, 1e6}) {
                 const ConvexPolyhedron ground = presets::box(Vec3(2, 2, 0.5) * scale);
@@ -100,7 +100,7 @@ TEST_SUITE("contact_sat") {
         CHECK(r.manifold[0].pointA.isApprox(Vec3(0, 0, std::sqrt(0.5)), 1e-12));
     }
 
-    TEST_CASE("random pairs: SAT depth = Minkowski facet oracle = EPA; pruning loses nothing") {
+    TEST_CASE("random pairs: SAT depth = Minkowski facet oracle = EPA, pruning loses nothing") {
         std::mt19937_64 rng(5);
         const ConvexPolyhedron bodies[] = {presets::box(Vec3(0.6, 0.4, 0.3)), presets::tetrahedron(0.7),
                                            presets::octahedron(0.6), presets::prism(5, 0.5, 0.3),

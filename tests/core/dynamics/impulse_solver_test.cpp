@@ -116,7 +116,7 @@ TEST_SUITE("impulse_solver") {
         CHECK(solveContacts(s, Vec3::UnitZ(), {{Vec3::Zero(), -1.0}}, o).points.empty());
     }
 
-    TEST_CASE("friction: Coulomb cone at every point; a slow slide sticks, a fast one loses μ λ_n") {
+    TEST_CASE("friction: Coulomb cone at every point, a slow slide sticks, a fast one loses μ λ_n") {
         for (double slide : {0.01, 5.0}) {
             RigidBody b = boxResting();
             b.linearVelocity = Vec3(slide, 0, -0.05);

@@ -101,7 +101,7 @@ TEST_SUITE("rigid_body") {
     }
 
     TEST_CASE(
-        "asymmetric top: rotational energy never rises, |L| drifts only at first order; principal-axis spin is "
+        "asymmetric top: rotational energy never rises, |L| drifts only at first order, principal-axis spin is "
         "steady") {
         RigidBody b = boxBody(Transform{Vec3::Zero(), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 1).normalized()))});
         b.angularVelocity = Vec3(0.5, 3.0, -1.0);

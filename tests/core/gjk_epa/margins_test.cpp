@@ -126,7 +126,7 @@ TEST_SUITE("gjk_epa/margins") {
         }
     }
 
-    TEST_CASE("capsules: segment distance against the radii; crossing and collinear cores") {
+    TEST_CASE("capsules: segment distance against the radii, crossing and collinear cores") {
         std::mt19937_64 rng(72);
         std::uniform_real_distribution<double> half(0.1, 1.0), radius(0.05, 0.5);
         int separated = 0, overlapping = 0, coresApart = 0;
@@ -282,7 +282,7 @@ TEST_SUITE("gjk_epa/margins") {
         CHECK(double(pointSegment(lv(e.pointB), lv(B.a), lv(B.b))) == doctest::Approx(0.05).epsilon(1e-12));
     }
 
-    TEST_CASE("no margin: the plain queries; bad radii: invalid input") {
+    TEST_CASE("no margin: the plain queries, bad radii: invalid input") {
         const PolytopeShape a({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)});
         const PolytopeShape b({Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(2, 1, 0), Vec3(2, 0, 1)});
         const GjkResult plain = gjkDistance(a, b), withMargins = gjkDistanceWithMargins(a, b);

@@ -59,7 +59,7 @@ void checkAllOrders(const Triangle& s, const Triangle& t, bool expected) {
 }  // namespace
 
 TEST_SUITE("triangle_triangle") {
-    TEST_CASE("random triangles against the long double crossing oracle; segment lies on both") {
+    TEST_CASE("random triangles against the long double crossing oracle, segment lies on both") {
         oracle::Rng rng(1);
         int hits = 0, misses = 0;
         for (double offset : {0.0, 1e4}) {

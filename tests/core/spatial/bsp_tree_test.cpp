@@ -287,7 +287,7 @@ TEST_SUITE("bsp_tree") {
         }
     }
 
-    TEST_CASE("non-convex L-shaped prism: winding number, ray-triangle oracle, areas; offsets and scales") {
+    TEST_CASE("non-convex L-shaped prism: winding number, ray-triangle oracle, areas, offsets and scales") {
         std::mt19937 rng(3);
         const Quat q = Quat(Eigen::AngleAxisd(0.4, Vec3(-1, 2, 0.5).normalized()));
         for (double scale : {1e-3, 1.0, 1e3})

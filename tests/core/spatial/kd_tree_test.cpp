@@ -119,7 +119,7 @@ TEST_SUITE("kd_tree") {
         CHECK(tree.rangeQuery({Vec3(1, 2, 3), Vec3(1, 2, 3)}).size() == 100u);
     }
 
-    TEST_CASE("NaN points are rejected with a status; NaN queries give nothing; empty tree") {
+    TEST_CASE("NaN points are rejected with a status, NaN queries give nothing, empty tree") {
         const double nan = std::numeric_limits<double>::quiet_NaN();
         const std::vector<Vec3> pts = {Vec3(0, 0, 0), Vec3(nan, 1, 1), Vec3(1, 1, 1), Vec3(INFINITY, 0, 0)};
         KdTree tree;

@@ -91,7 +91,7 @@ void leaves(const TextNode& n, std::vector<int>& out) {
 }  // namespace
 
 TEST_SUITE("bvh_demo") {
-    TEST_CASE("dynamic tree: each insertion pairs with the least-cost node; moves re-insert exactly when they leave") {
+    TEST_CASE("dynamic tree: each insertion pairs with the least-cost node, moves re-insert exactly when they leave") {
         const Json t = runScene("dynamic_tree");
         std::ifstream in(std::string(CDLAB_SOURCE_DIR) + "/golden/bvh/dynamic_tree.json");
         const Json scene = Json::parse(in);

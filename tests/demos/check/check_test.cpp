@@ -152,7 +152,7 @@ TEST_CASE("check: a closest_point_tetrahedron trace — cdlab's own passes, a wr
     CHECK(reasons(check(empty)).find("names no feature") != std::string::npos);
 }
 
-TEST_CASE("check: a GJK trace is checked step by step; a tie is not a divergence, a planted one is found") {
+TEST_CASE("check: a GJK trace is checked step by step, a tie is not a divergence, a planted one is found") {
     Json line = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
     line["trace"] = gjkTrace(false);
     CheckResult r = check(line);
@@ -300,7 +300,7 @@ TEST_CASE("check: a trace that is no object, an algorithm that is no string, a z
     CHECK(reasons(check(line)).find("iteration 0: the search direction is zero") != std::string::npos);
 }
 
-TEST_CASE("check: region tests in any order; ABC has its own condition; some test must accept") {
+TEST_CASE("check: region tests in any order, ABC has its own condition, some test must accept") {
     const Json triangle = {{0, 0, 0}, {4, 0, 0}, {1.2, 3, 0}};
     // p = (-1, -1, 0) lies in region A: testing ABC first and rejecting it is right, accepting it wrong.
     const Json answer = {{"point", {0, 0, 0}}, {"region", "A"}};
@@ -370,7 +370,7 @@ const Json kRightDistance = {{"intersect", false}, {"distance", 1.0}, {"point_a"
 
 }  // namespace
 
-TEST_CASE("check: cdlab's own mass_properties answer passes; the echoed id is not part of the answer") {
+TEST_CASE("check: cdlab's own mass_properties answer passes, the echoed id is not part of the answer") {
     // Reproducer: echo '{"op":"mass_properties","a":{"polytope":{"vertices":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]]}},"answer":{"center_of_mass":[0.25,0.25,0.25],"id":null,"inertia":[[0.012500000000000002,0.0020833333333333333,0.0020833333333333333],[0.0020833333333333333,0.012500000000000002,0.0020833333333333333],[0.0020833333333333333,0.0020833333333333333,0.012500000000000002]],"mass":0.16666666666666666,"volume":0.16666666666666666}}' | cdlab check
     const Json query = {{"op", "mass_properties"}, {"a", {{"polytope", {{"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}}}}};
     Json line = withOwnAnswer(query);  // "id": null among the answer's keys, as `cdlab query` writes it
@@ -483,7 +483,7 @@ TEST_CASE("check: GJK rule 1 holds both ways: a support point beyond A − B fai
                                    "A − B reaches 0.25 (yours lies beyond A − B)") != std::string::npos);
 }
 
-TEST_CASE("check: a line whose op is not a string fails alone; the run goes on") {
+TEST_CASE("check: a line whose op is not a string fails alone, the run goes on") {
     // Reproducer: printf '%s\n' '{"id":1,"op":7,"answer":{}}' '{"id":2,"op":null,"answer":{}}' | cdlab check
     static_assert(noexcept(checkLine(std::string(), 1, CheckOptions{})));
     const std::string text = runText(R"({"id":1,"op":7,"answer":{}})" "\n" R"({"id":2,"op":null,"answer":{}})" "\n"
@@ -572,7 +572,7 @@ TEST_CASE("check: a line's tolerance may only tighten the check's (--tolerance c
     }
 }
 
-TEST_CASE("check: trace step limit; steps without a simplex cost linear time") {
+TEST_CASE("check: trace step limit, steps without a simplex cost linear time") {
     // Reproducer: python3 -c 'import json; s=[{"direction":[1,0,0],"support":[-1,1,1]}]*100000; print(json.dumps({"op":"distance","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[2,0,0],"max":[3,1,1]}},"answer":{"intersect":False,"distance":1,"point_a":[1,0.5,0.5],"point_b":[2,0.5,0.5]},"trace":{"steps":s}}))' | cdlab check
     Json line = distanceLine(kRightDistance);
     const Json step = {{"direction", {1, 0, 0}}, {"support", {-1, 1, 1}}};
@@ -590,7 +590,7 @@ TEST_CASE("check: trace step limit; steps without a simplex cost linear time") {
     CHECK(reasons(check(line)).find("\"algorithms\" inside \"algorithms\"") != std::string::npos);
 }
 
-TEST_CASE("check: a line over cdlab query's length limit fails naming its length; the next line is checked") {
+TEST_CASE("check: a line over cdlab query's length limit fails naming its length, the next line is checked") {
     // Reproducer: python3 -c 'print("x" * (64 * 2**20 + 1))' | cdlab check
     LongLineInput input(kMaxQueryLineBytes + 1, distanceLine(kRightDistance).dump() + "\n");
     std::istream in(&input);

@@ -142,7 +142,7 @@ TEST_SUITE("gjk_epa_demo") {
         }
     }
 
-    TEST_CASE("EPA traces: every polytope convex, closed, contains the origin; closest distance non-decreasing") {
+    TEST_CASE("EPA traces: every polytope convex, closed, contains the origin, closest distance non-decreasing") {
         for (const auto& file : scenesOf("epa")) {
             CAPTURE(file);
             const Json t = runNumeric(file);

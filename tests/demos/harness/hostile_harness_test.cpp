@@ -78,6 +78,8 @@ Child start(const std::vector<std::string>& args, const fs::path& logs, const st
     c.pid = fork();
     if (c.pid == 0) {
         if (!std::freopen(c.out.c_str(), "w", stdout) || !std::freopen(c.err.c_str(), "w", stderr)) _exit(5);
+        // As a shell starts cdlab: doctest's crash handlers (SIGINT, SIGTERM) are not inherited.
+        for (const int sig : {SIGINT, SIGTERM, SIGHUP}) signal(sig, SIG_DFL);
         if (limitFileSize > 0) {
             signal(SIGXFSZ, SIG_IGN);
             rlimit limit{limitFileSize, limitFileSize};
@@ -332,7 +334,7 @@ TEST_SUITE("hostile harness") {
         fs::remove_all(root);
     }
 
-    TEST_CASE("a golden that is a directory fails that frame; the run goes on and writes its report") {
+    TEST_CASE("a golden that is a directory fails that frame, the run goes on and writes its report") {
         // Reproducer: in a copy of golden/, rm step_01.png && mkdir step_01.png; cdlab golden
         // --golden-dir copy -> "basic_filebuf::underflow error reading the file: Is a directory",
         // no file named, no report, the other scenes never checked.
@@ -418,7 +420,7 @@ TEST_SUITE("hostile harness") {
         fs::remove_all(root);
     }
 
-    TEST_CASE("a scene that fails after validation is named; the others render; exit 2") {
+    TEST_CASE("a scene that fails after validation is named, the others render, exit 2") {
         // Reproducer: a failure while running or writing one scene (an OpenGL error at --scale 4, an
         // unwritable folder) ended the whole run without naming the scene file.
         // Scene a draws more step frames than its contact sheet can hold: found while it runs.
@@ -443,6 +445,7 @@ TEST_SUITE("hostile harness") {
         r = run({"figures", "--golden-dir", (root / "golden").string(), "--out", (root / "out").string()}, root);
         CHECK(r.status == 2);
         CHECK(contains(r.err, "the output folder " + (root / "out" / "voronoi_triangle" / "c").string() +
+                                  " cannot be made: " + (root / "out" / "voronoi_triangle" / "c").string() +
                                   " is there and not a folder"));
         CHECK(contains(r.err, "nothing written"));
         fs::remove_all(root);
@@ -773,7 +776,7 @@ TEST_SUITE("hostile harness: output folders") {
         fs::remove_all(root);
     }
 
-    TEST_CASE("an interrupted render leaves no temp file; stale ones of dead runs are swept") {
+    TEST_CASE("an interrupted render leaves no temp file, stale ones of dead runs are swept") {
         // Reproducer: cdlab render big_steps.json & sleep 1; kill -INT $! -> 48-65 *.png.tmp.<pid>.<n>
         // files that no later run removed.
         const fs::path root = tempDir("interrupt");
@@ -836,6 +839,25 @@ TEST_SUITE("hostile harness: output folders") {
             CHECK_MESSAGE(r.status == 2, args[0]);
             CHECK_MESSAGE(contains(r.err, "cdlab: cannot write to standard output: No space left on device"), r.err);
         }
+        fs::remove_all(root);
+    }
+
+    TEST_CASE("a run killed between its renames and its manifest leaves a folder the next run takes") {
+        // Reproducer: cdlab render gjk/box_box.json --out o1; rm o1/manifest.json (what a kill between
+        // the renames and the manifest left); cdlab render ... --out o1 -> "refusing to overwrite
+        // o1/trace.json". The provisional manifest, written before the renames, lists every file.
+        const fs::path root = tempDir("killed_manifest");
+        writeScene(root / "scene.json", true);
+        const fs::path out = root / "out";
+        const std::vector<std::string> args = {"render", (root / "scene.json").string(), "--out", out.string()};
+        REQUIRE(run(args, root).status == 0);
+        FigureManifest m = readFigureManifest(out / "manifest.json");
+        FigureManifest provisional{"", m.title, m.caption, {}, m.files};
+        cdlab::render::writeFileAtomic((out / "manifest.json").string(), figureManifestText(provisional));
+        const Result r = run(args, root);
+        CHECK_MESSAGE(r.status == 0, r.err);
+        CHECK(contains(r.err, "1 rendered"));  // no cache key: drawn again, not taken as finished
+        CHECK_FALSE(readFigureManifest(out / "manifest.json").key.empty());
         fs::remove_all(root);
     }
 

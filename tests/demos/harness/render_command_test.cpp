@@ -62,7 +62,7 @@ TEST_CASE("render: every demo's template renders as it is into <out>/<file stem>
     CHECK_THROWS_AS(sceneTemplate("no_such_demo", RunnerOptions{}), InputError);
 }
 
-TEST_CASE("render: --frame writes the chosen frames only; --out with one file is the folder itself") {
+TEST_CASE("render: --frame writes the chosen frames only, --out with one file is the folder itself") {
     TempFolder t;
     const std::string file = write(t.root / "pair.json", sceneTemplate("gjk", RunnerOptions{}));
     RunnerOptions o = renderOptions(t.root / "figure", true);

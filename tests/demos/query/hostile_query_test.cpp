@@ -94,7 +94,7 @@ TEST_SUITE("hostile input") {
         CHECK_FALSE(askRaw(distanceQuery(R"({"point":[123456789012345678901,0,0]})", kSphere)).contains("error"));
     }
 
-    TEST_CASE("NaN and Inf are not JSON; -0 is zero") {
+    TEST_CASE("NaN and Inf are not JSON, -0 is zero") {
         CHECK(contains(errorOf(distanceQuery(R"({"point":[NaN,0,0]})", kSphere)), "syntax error"));
         CHECK(contains(errorOf(distanceQuery(R"({"point":[Infinity,0,0]})", kSphere)), "syntax error"));
         Json z = askRaw(distanceQuery(R"({"point":[-0,-0.0,0]})", R"({"point":[0,0,-0.0]})"));
@@ -152,7 +152,7 @@ TEST_SUITE("hostile input") {
         CHECK(contains(errorOf(R"({"id":1,"op":"distance","a":{},"b":{"point":[0,0,0]}})"), "$.a: expected a shape"));
     }
 
-    TEST_CASE("duplicate keys are errors; duplicate ids are answered line by line") {
+    TEST_CASE("duplicate keys are errors, duplicate ids are answered line by line") {
         CHECK(contains(errorOf(R"({"id":1,"op":"distance","op":"intersect"})"), "duplicate key \"op\""));
         CHECK(contains(errorOf(R"({"id":1,"op":"distance","a":{"point":[0,0,0],"point":[1,1,1]}})"),
                        "duplicate key \"point\""));
@@ -398,7 +398,7 @@ TEST_SUITE("hostile query") {
         CHECK(p["trace"]["pairs_tested"].get<long long>() < 100);
     }
 
-    TEST_CASE("an escaped NUL does not cut the error message; an id read before the line breaks off is kept") {
+    TEST_CASE("an escaped NUL does not cut the error message, an id read before the line breaks off is kept") {
         // Reproducer: printf '%s\n' '{"id":1,"op":"distance","a":{"poi\u0000nt":[0,0,0]},"b":{"point":[1,0,0]}}' |
         // cdlab query -> "... unknown shape 'poi" (what() is a C string: the rest was lost at the NUL).
         const std::string e = errorOf(R"({"id":1,"op":"distance","a":{"poi\u0000nt\u001b[31m":[0,0,0]},"b":{"point":[1,0,0]}})");
@@ -419,7 +419,7 @@ TEST_SUITE("hostile query") {
         CHECK(queryExitStatus(line, "/dev/null") == 0);
     }
 
-    TEST_CASE("a query line longer than the limit is one error answer; the next line is still answered") {
+    TEST_CASE("a query line longer than the limit is one error answer, the next line is still answered") {
         // A 60 MB line of nesting cost 2.24 GB; lines are now read with a cap (kMaxQueryLineBytes).
         std::string huge = R"({"id":1,"op":"distance","a":{"polytope":{"vertices":[)";
         huge.append((64u << 20) + 10 - huge.size(), ' ');

@@ -158,7 +158,7 @@ TEST_SUITE("query") {
         CHECK(meeting > 50);
     }
 
-    TEST_CASE("compound: penetration is the deepest pair's; distance the nearest pair's") {
+    TEST_CASE("compound: penetration is the deepest pair's, distance the nearest pair's") {
         // Two spheres as one compound against a third sphere: closed forms.
         const Json pair = {{"compound", {sphere(Vec3(0, 0, 0), 1), sphere(Vec3(5, 0, 0), 1)}}};
         const Json far = ask(query("distance", pair, sphere(Vec3(5, 3.5, 0), 1)));

@@ -70,7 +70,7 @@ TEST_SUITE("query") {
         CHECK(at(t["points"][0]["point_a"], 0) == -1.0);
     }
 
-    TEST_CASE("contact: a capsule on a box face is clipped to the face; across an edge it is one point") {
+    TEST_CASE("contact: a capsule on a box face is clipped to the face, across an edge it is one point") {
         const Json capsule = {{"capsule", {{"a", {-1, 0, 0.45}}, {"b", {1, 0, 0.45}}, {"radius", 0.5}}}};
         const Json narrow = {{"aabb", {{"min", {-0.5, -5, -1}}, {"max", {0.5, 5, 0}}}}};
         const Json r = roundedContact(narrow, capsule);

@@ -126,7 +126,7 @@ TEST_SUITE("query_vclip") {
         CHECK(t["trace"]["algorithms"][0]["steps"].size() >= 1);
     }
 
-    TEST_CASE("errors: non-polyhedral shapes, flat hulls; lin_canny") {
+    TEST_CASE("errors: non-polyhedral shapes, flat hulls, lin_canny") {
         const Json box = {{"aabb", {{"min", {-1, -1, -1}}, {"max", {1, 1, 1}}}}};
         const Json sphere = {{"sphere", {{"center", {3, 0, 0}}, {"radius", 1}}}};
         Json e = askWithoutId({{"op", "distance"}, {"method", "vclip"}, {"a", box}, {"b", sphere}});

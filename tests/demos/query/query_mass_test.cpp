@@ -56,7 +56,7 @@ TEST_SUITE("query_mass") {
         CHECK(std::abs(a["inertia"][0][1].get<double>()) < 1e-12 * m);
     }
 
-    TEST_CASE("rotation: world-frame tensor R I Rᵀ; density scales mass and inertia") {
+    TEST_CASE("rotation: world-frame tensor R I Rᵀ, density scales mass and inertia") {
         // 90° about z ([w,x,y,z] = [cos 45°, 0, 0, sin 45°]) swaps the x and y moments.
         const Json a = askMass(
             withTop(boxQuery(1.0, R"(,"rotation":[0.70710678118654752,0,0,0.70710678118654752])"), R"("density":2.5)"));
