@@ -141,6 +141,16 @@ GoldenSetup goldenSetup(const std::string& name) {
     return g;
 }
 
+// What parseJson says of `text` (source "src"), or "" when it parses.
+std::string parseError(const std::string& text) {
+    try {
+        parseJson(text, "src");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
 // Every output file decodes (PNG) or parses (JSON); returns how many there are.
 int checkComplete(const fs::path& out) {
     int n = 0;
@@ -512,41 +522,25 @@ TEST_SUITE("hostile harness") {
         // Reproducer: a 60 MB check line whose trace held 2·10^7 "{}" steps took 27 s and 3.6 GB, then
         // std::bad_alloc ended the run; `query` on a 60 MB line of "[]," took 1.5 GB. The scan before
         // the parser counts containers and values.
-        const auto errorOf = [](const std::string& text) -> std::string {
-            try {
-                parseJson(text, "src");
-            } catch (const InputError& e) {
-                return e.what();
-            }
-            return "";
-        };
         std::string objects = "[";
         for (std::size_t k = 0; k <= kMaxJsonContainers; ++k) objects += "{},";
-        CHECK(errorOf(objects) == "src: byte " + std::to_string(3 * kMaxJsonContainers - 1) + ": more than " +
+        CHECK(parseError(objects) == "src: byte " + std::to_string(3 * kMaxJsonContainers - 1) + ": more than " +
                                       std::to_string(kMaxJsonContainers) + " arrays and objects, the limit for one text");
         std::string numbers = "[0";
         for (std::size_t k = 0; k < kMaxJsonValues; ++k) numbers += ",0";
         numbers += "]";
-        CHECK(contains(errorOf(numbers), "more than " + std::to_string(kMaxJsonValues) + " values, the limit"));
+        CHECK(contains(parseError(numbers), "more than " + std::to_string(kMaxJsonValues) + " values, the limit"));
         // Commas and brackets inside strings are text.
-        CHECK(errorOf("[\"" + std::string(100, ',') + std::string(100, '{') + "\"]").empty());
+        CHECK(parseError("[\"" + std::string(100, ',') + std::string(100, '{') + "\"]").empty());
     }
 
     TEST_CASE("a NUL byte is refused with its position, not taken for the end of the text") {
         // Reproducer: printf '{"id":1,...}\0garbage\n' | cdlab query answered the part before the NUL;
         // a scene file with a NUL said "unexpected end of input".
-        const auto errorOf = [](const std::string& text) -> std::string {
-            try {
-                parseJson(text, "src");
-            } catch (const InputError& e) {
-                return e.what();
-            }
-            return "";
-        };
-        CHECK(errorOf(std::string("{\"a\":1}\0garbage", 15)) == "src: byte 8: NUL byte (U+0000) is not allowed");
-        CHECK(errorOf(std::string("{\"a\":\"x\0y\"}", 11)) == "src: byte 8: NUL byte (U+0000) is not allowed");
-        CHECK(errorOf(std::string("\0", 1)) == "src: byte 1: NUL byte (U+0000) is not allowed");
-        CHECK(errorOf("{\"a\":\"x\\u0000y\"}").empty());  // the escaped form is a valid string
+        CHECK(parseError(std::string("{\"a\":1}\0garbage", 15)) == "src: byte 8: NUL byte (U+0000) is not allowed");
+        CHECK(parseError(std::string("{\"a\":\"x\0y\"}", 11)) == "src: byte 8: NUL byte (U+0000) is not allowed");
+        CHECK(parseError(std::string("\0", 1)) == "src: byte 1: NUL byte (U+0000) is not allowed");
+        CHECK(parseError("{\"a\":\"x\\u0000y\"}").empty());  // the escaped form is a valid string
     }
 
 }  // TEST_SUITE
