@@ -314,7 +314,7 @@ TEST_SUITE("hostile query") {
                     if (l.rfind(field + ":", 0) == 0) return std::atol(l.c_str() + field.size() + 1);
                 return -1L;
             };
-            const bool reset = bool(std::ofstream("/proc/self/clear_refs") << "5");
+            [[maybe_unused]] const bool reset = bool(std::ofstream("/proc/self/clear_refs") << "5");
             const long before = statusKiB("VmRSS");
             std::istringstream in(input);
             std::ostringstream out;
@@ -328,7 +328,14 @@ TEST_SUITE("hostile query") {
                             answers[1]["id"].is_null() && contains(answers[1].value("error", ""), "line 2: byte 65") &&
                             answers[2]["id"] == 5 && contains(answers[2].value("error", ""), "line 3: byte 76") &&
                             answers[3]["distance"] == 2.0;
-            _exit(!ok ? 3 : reset && before > 0 && growthKiB > 128 * 1024 ? 4 : 0);
+            // ASan's quarantine holds freed blocks (256 MB by default): the peak says nothing there,
+            // so the bound is checked in the plain build only.
+#if defined(__SANITIZE_ADDRESS__)
+            const bool measured = false;
+#else
+            const bool measured = reset && before > 0;
+#endif
+            _exit(!ok ? 3 : measured && growthKiB > 128 * 1024 ? 4 : 0);
         }
         int status = 0;
         waitpid(pid, &status, 0);
