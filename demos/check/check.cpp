@@ -275,23 +275,14 @@ private:
         witnessRelation(overlapping);
     }
 
-    // Your region name (a string), or a reason.
-    std::optional<std::string> myRegion() {
-        const Json* r = member(mine_, "region");
-        if (!r || !r->is_string()) {
-            fail("your answer has no \"region\"");
-            return std::nullopt;
-        }
-        return r->get<std::string>();
+    // Your or cdlab's region name (a string), or a reason.
+    std::optional<std::string> regionOf(const Json& answer, const std::string& whose) {
+        const Json* r = member(answer, "region");
+        return required(r && r->is_string() ? std::optional<std::string>(r->get<std::string>()) : std::nullopt, whose,
+                        "\"region\"", "");
     }
-    std::optional<std::string> theirRegion() {
-        const Json* r = member(theirs_, "region");
-        if (!r || !r->is_string()) {
-            fail("cdlab's answer has no \"region\"");
-            return std::nullopt;
-        }
-        return r->get<std::string>();
-    }
+    std::optional<std::string> myRegion() { return regionOf(mine_, "your answer"); }
+    std::optional<std::string> theirRegion() { return regionOf(theirs_, "cdlab's answer"); }
 
     // The query's list `key` of `count` points.
     std::optional<std::vector<Vec3>> queryPoints(const std::string& key, std::size_t count) {
