@@ -6,7 +6,7 @@
 // Petrinic, Barbieri, "Improving the GJK algorithm for faster and more reliable distance
 // queries between convex objects", ACM TOG 2017) and once with Johnson's (Gilbert, Johnson,
 // Keerthi 1988; van den Bergen §4.3.3), and compares both with an independent long double oracle
-// (demos/oracles/minkowski_hull_oracle.h: the Minkowski-hull oracle, and the hull-free brute force for small
+// (verification/minkowski_hull_oracle.h: the Minkowski-hull oracle, and the hull-free brute force for small
 // separated sets). The error is |d - d*| / L, L = the larger circumradius of the two vertex sets
 // (the same measure as `cdlab stress`), so 1e-16 means "as exact as the coordinates allow".
 //
@@ -31,8 +31,8 @@
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/plot.h"
-#include "demos/measure/statistics.h"
-#include "demos/oracles/minkowski_hull_oracle.h"
+#include "app/measure/statistics.h"
+#include "verification/minkowski_hull_oracle.h"
 
 namespace cdlab::demos {
 

@@ -30,8 +30,8 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
-#include "demos/scene/mesh_scene.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/mesh_scene.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

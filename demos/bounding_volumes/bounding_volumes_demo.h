@@ -5,7 +5,7 @@
 // Scene keys: docs/scenes.md, "bounding_volumes".
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

@@ -31,8 +31,8 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/step_frames.h"
-#include "demos/scene/mesh_scene.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/mesh_scene.h"
+#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos {
 

@@ -4,7 +4,7 @@
 // step by step, and refitting a deforming mesh. Scene keys: docs/scenes.md, "bvh".
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

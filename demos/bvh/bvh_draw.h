@@ -10,7 +10,7 @@
 
 #include "core/base/primitives.h"
 #include "core/base/types.h"
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos::bvhdemo {

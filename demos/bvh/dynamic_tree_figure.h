@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/base/primitives.h"
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 #include "render/gl_context.h"
 
 namespace cdlab::demos::bvhdemo {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 #include "render/gl_context.h"
 
 namespace cdlab::demos {

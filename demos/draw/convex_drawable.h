@@ -9,7 +9,7 @@
 
 #include "core/base/primitives.h"
 #include "core/base/types.h"
-#include "demos/scene/pair_scene.h"
+#include "app/scene/pair_scene.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

@@ -10,8 +10,8 @@
 #include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/body_scene.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/body_scene.h"
+#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos::walkfigure {
 

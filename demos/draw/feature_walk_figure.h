@@ -10,9 +10,9 @@
 
 #include "core/feature_walk/vclip.h"
 #include "core/geometry/polyhedron.h"
-#include "demos/scene/demo.h"
-#include "demos/scene/json_reader.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/demo.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos::walkfigure {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/feature_walk/vclip.h"
-#include "demos/scene/json_reader.h"
+#include "app/scene/json_reader.h"
 
 namespace cdlab::demos::walkfigure {
 

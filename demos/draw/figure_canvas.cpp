@@ -1,7 +1,7 @@
 #include "demos/draw/figure_canvas.h"
 
-#include "demos/scene/demo.h"
-#include "demos/scene/scene.h"
+#include "app/scene/demo.h"
+#include "app/scene/scene.h"
 
 namespace cdlab::demos {
 

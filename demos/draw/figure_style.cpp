@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 #include "render/legibility.h"
 
 namespace cdlab::demos {

@@ -9,7 +9,7 @@
 
 namespace cdlab::demos {
 
-struct Frame;  // demos/scene/demo.h
+struct Frame;  // app/scene/demo.h
 
 /// Title (bold, top left) and caption (bottom left) of a figure, in pixels, on top of everything.
 void drawTitleAndCaption(render::Canvas& canvas, const std::string& title, const std::string& caption);

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "demos/draw/convex_drawable.h"
-#include "demos/scene/pair_scene.h"
+#include "app/scene/pair_scene.h"
 #include "render/canvas.h"
 #include "render/gl_context.h"
 #include "render/image.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

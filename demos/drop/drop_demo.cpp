@@ -2,7 +2,7 @@
 // (state, manifold with impulses, energies, penetration); this file only chooses frames and draws.
 //
 // Scene keys (besides the common ones):
-//   "body": any body of demos/scene/body_scene.h: box, tetrahedron, icosahedron, prism, or a
+//   "body": any body of app/scene/body_scene.h: box, tetrahedron, icosahedron, prism, or a
 //           {"polytope": {"vertices": [...]}} of your own (its hull, recentred at its centre of mass)
 //   "density", "position", "rotation" [w,x,y,z], "velocity", "angular_velocity" (world, rad/s),
 //   "gravity" (m/s² along −z; the ground is the plane z = 0),
@@ -29,8 +29,8 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/step_frames.h"
-#include "demos/scene/body_scene.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/body_scene.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 #include "render/image.h"
 

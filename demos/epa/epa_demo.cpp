@@ -1,5 +1,5 @@
 // EPA step-through. Numbers come from core (gjkDistance + epaPenetration with their traces) or, for
-// planar scenes, from epaPenetration2d (demos/epa/epa_2d.h: core's 3D EPA reports flat input as
+// planar scenes, from epaPenetration2d (core/gjk_epa/epa_2d.h: core's 3D EPA reports flat input as
 // touching). This file converts both traces into one drawable form and draws them.
 //
 // Scene keys (besides the common ones and the pair keys of scene/pair_scene.h):
@@ -20,8 +20,8 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
-#include "demos/epa/epa_2d.h"
-#include "demos/scene/pair_scene.h"
+#include "core/gjk_epa/epa_2d.h"
+#include "app/scene/pair_scene.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

@@ -20,7 +20,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
-#include "demos/scene/pair_scene.h"
+#include "app/scene/pair_scene.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

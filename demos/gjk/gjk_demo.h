@@ -3,7 +3,7 @@
 // the kept Voronoi region), in 3D and in the plane. Scene keys: docs/scenes.md, "gjk".
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

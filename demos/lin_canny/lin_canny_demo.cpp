@@ -33,7 +33,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

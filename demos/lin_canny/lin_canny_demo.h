@@ -6,7 +6,7 @@
 // Scene keys: docs/scenes.md, "lin_canny".
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

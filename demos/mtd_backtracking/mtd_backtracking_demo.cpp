@@ -14,7 +14,7 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/mtd_backtracking/resolution_figures.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos {
 

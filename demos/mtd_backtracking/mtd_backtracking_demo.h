@@ -3,7 +3,7 @@
 // time of impact (the linear cast), and conservative advancement along the true, turning motion.
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

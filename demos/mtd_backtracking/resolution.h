@@ -7,7 +7,7 @@
 
 #include "core/cast/conservative_advancement.h"
 #include "core/base/types.h"
-#include "demos/scene/json_reader.h"
+#include "app/scene/json_reader.h"
 
 namespace cdlab::demos {
 

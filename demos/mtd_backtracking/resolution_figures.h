@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "demos/mtd_backtracking/resolution.h"
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

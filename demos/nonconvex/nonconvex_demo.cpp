@@ -27,8 +27,8 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/json_reader.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

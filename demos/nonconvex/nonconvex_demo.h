@@ -1,7 +1,7 @@
 // demo_nonconvex: non-convex bodies split into convex pieces and collided as pairs of pieces.
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

@@ -22,11 +22,11 @@
 #include "core/contact/contact_plane.h"
 #include "core/contact/contact_sat.h"
 #include "core/geometry/polyhedron_presets.h"
-#include "demos/scene/body_scene.h"
+#include "app/scene/body_scene.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

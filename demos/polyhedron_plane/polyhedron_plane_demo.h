@@ -9,7 +9,7 @@
 // Scene keys: docs/scenes.md, "polyhedron_plane".
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

@@ -11,7 +11,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
-#include "demos/scene/json_reader.h"
+#include "app/scene/json_reader.h"
 
 namespace cdlab::demos {
 

@@ -12,7 +12,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos {
 

@@ -7,7 +7,7 @@
 
 #include "core/base/primitives.h"
 #include "demos/draw/convex_drawable.h"
-#include "demos/scene/json_reader.h"
+#include "app/scene/json_reader.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

@@ -7,7 +7,7 @@
 
 #include "core/base/primitives.h"
 #include "core/base/types.h"
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

@@ -15,8 +15,8 @@
 #include "demos/primitives/primitives_demo.h"
 
 #include "demos/primitives/primitive_scenes.h"
-#include "demos/scene/body_scene.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/body_scene.h"
+#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos {
 

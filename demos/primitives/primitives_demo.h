@@ -4,7 +4,7 @@
 // point in polygon three ways.
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

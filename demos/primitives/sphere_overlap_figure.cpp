@@ -13,8 +13,8 @@
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
-#include "demos/scene/json_reader.h"
-#include "demos/scene/pair_scene.h"
+#include "app/scene/json_reader.h"
+#include "app/scene/pair_scene.h"
 
 namespace cdlab::demos {
 

@@ -30,7 +30,7 @@
 #include "core/spatial/kd_tree.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

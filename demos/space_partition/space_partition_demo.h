@@ -2,7 +2,7 @@
 // tree (top views), k-d nearest / range queries, and a solid-leaf BSP of a non-convex shape.
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

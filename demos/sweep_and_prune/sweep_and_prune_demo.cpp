@@ -22,7 +22,7 @@
 #include "core/broadphase/sweep_and_prune.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {

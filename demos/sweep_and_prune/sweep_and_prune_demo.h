@@ -3,7 +3,7 @@
 // (the swaps of the frame highlighted) and the pairs added / removed.
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

@@ -5,7 +5,7 @@
 // Scene keys: docs/scenes.md, "vclip".
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

@@ -3,7 +3,7 @@
 // a 3 × 3 × 3 grid cut by the faces' planes, so a step frame draws the query's cell (clipped to a
 // margin around the box), the feature that holds its closest point, and the three slab tests that
 // chose it. Numbers: core/closest/closest_point_box.h; this file only draws.
-#include "demos/scene/json_reader.h"
+#include "app/scene/json_reader.h"
 #include "demos/voronoi_triangle/box_regions.h"
 
 #include <algorithm>

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/base/primitives.h"
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

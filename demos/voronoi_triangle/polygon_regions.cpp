@@ -1,7 +1,7 @@
 // Point vs a convex polygon in 3D: its n vertex, n edge regions and the face, seen in the polygon's
 // plane (the regions as coloured zones) and in 3D, and one frame per query with the region tests that
 // chose its region (core/closest/closest_point_polygon.h). This file only draws.
-#include "demos/scene/json_reader.h"
+#include "app/scene/json_reader.h"
 #include "demos/voronoi_triangle/polygon_regions.h"
 
 #include <algorithm>

@@ -9,7 +9,7 @@
 //   "margin": number                how far the drawn regions extend beyond the simplex (default: its size)
 // Layers: "regions" (coloured zones / region faces), "boundaries" (region boundaries: lines in the
 // plane view, translucent slabs in 3D), "labels", "closest" (segment to the closest point), "queries".
-#include "demos/scene/json_reader.h"
+#include "app/scene/json_reader.h"
 #include "demos/voronoi_triangle/voronoi_triangle_demo.h"
 
 #include <algorithm>
@@ -20,7 +20,7 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/step_frames.h"
-#include "demos/scene/scene_limits.h"
+#include "app/scene/scene_limits.h"
 #include "demos/voronoi_triangle/box_regions.h"
 #include "demos/voronoi_triangle/polygon_regions.h"
 #include "render/canvas.h"

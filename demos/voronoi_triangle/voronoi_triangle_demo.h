@@ -1,7 +1,7 @@
 // demo_voronoi_triangle: point vs triangle (7 Voronoi regions) and point vs tetrahedron (15).
 #pragma once
 
-#include "demos/scene/demo.h"
+#include "app/scene/demo.h"
 
 namespace cdlab::demos {
 

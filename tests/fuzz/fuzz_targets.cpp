@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "demos/catalog/catalog.h"
-#include "demos/check/check.h"
-#include "demos/query/query.h"
+#include "app/catalog/catalog.h"
+#include "app/check/check.h"
+#include "app/query/query.h"
 #include "render/gl_context.h"
 
 namespace cdlab::fuzz {

@@ -2,7 +2,7 @@
 //   core/ includes only core/ (and the standard library and Eigen), and a core folder only folders
 //   at or below its layer; render/ includes only render/; production code never includes tests/;
 //   a demo's folder includes only its own folder and the shared ones (scene, draw, measure,
-//   oracles), and only demos/catalog (the list of every demo) and the executables' mains include
+//   oracles), and only app/catalog (the list of every demo) and the executables' mains include
 //   demo folders.
 #include <doctest/doctest.h>
 
@@ -21,23 +21,8 @@ namespace {
 // Core's folders from the bottom up: a folder may include its own and every folder before it.
 const std::vector<std::string> kCoreLayers = {"base",    "geometry", "closest", "overlap", "gjk_epa", "cast", "feature_walk",
                                               "contact", "bounding", "bvh",     "broadphase", "spatial", "dynamics"};
-const std::vector<std::string> kDemoFolders = {"voronoi_triangle",
-                                               "gjk",
-                                               "epa",
-                                               "vclip",
-                                               "lin_canny",
-                                               "polyhedron_plane",
-                                               "drop",
-                                               "accuracy",
-                                               "space_partition",
-                                               "bounding_volumes",
-                                               "bvh",
-                                               "sweep_and_prune",
-                                               "primitives",
-                                               "mtd_backtracking",
-                                               "nonconvex"};
-// Shared demos/ folders a demo may use.
-const std::vector<std::string> kSharedForDemos = {"scene", "draw", "measure", "oracles"};
+// Folders a demo may include besides its own.
+const std::vector<std::string> kSharedForDemos = {"demos/draw", "app/scene", "app/measure"};
 
 struct Include {
     std::string file;  // relative to the source root
@@ -96,16 +81,23 @@ std::string violation(const Include& inc) {
         return "";
     }
     if (from[0] == "render") return to[0] == "render" ? "" : "render includes " + to[0] + "/";
-    if (from[0] == "demos" && to[0] == "demos" && to.size() >= 3) {
-        const bool mainFile = from.size() == 2;  // demos/<executable>.cpp
-        const std::string& src = mainFile ? std::string() : from[1];
-        const std::string& dst = to[1];
-        if (contains(kDemoFolders, dst) && dst != src && src != "catalog" && !mainFile)
-            return "demos/" + src + " reaches into the demo folder demos/" + dst;
-        if (contains(kDemoFolders, src) && dst != src && !contains(kSharedForDemos, dst))
-            return "the demo folder demos/" + src + " includes demos/" + dst +
-                   " (a demo uses only scene, draw, measure, oracles)";
+    if (from[0] == "verification")
+        return to[0] == "core" || to[0] == "verification" ? "" : "verification includes " + to[0] + "/";
+    const auto isDemo = [](const std::vector<std::string>& p) {
+        return p.size() >= 3 && p[0] == "demos" && p[1] != "draw";
+    };
+    const std::string dst = to.size() >= 3 ? to[0] + "/" + to[1] : to[0];
+    if (isDemo(from)) {
+        if (isDemo(to) && to[1] != from[1]) return "demos/" + from[1] + " reaches into the demo folder " + dst;
+        if (!isDemo(to) && to[0] != "core" && to[0] != "render" && to[0] != "verification" &&
+            !contains(kSharedForDemos, dst))
+            return "the demo folder demos/" + from[1] + " includes " + dst +
+                   " (a demo uses only core, render, demos/draw, app/scene, app/measure, verification)";
     }
+    if (from[0] == "demos" && from.size() >= 3 && from[1] == "draw" && isDemo(to))
+        return "demos/draw reaches into the demo folder " + dst;
+    if (from[0] == "app" && isDemo(to) && !(from.size() >= 3 && from[1] == "catalog"))
+        return inc.file + " reaches into the demo folder " + dst + " (only app/catalog lists the demos)";
     return "";
 }
 
@@ -115,7 +107,7 @@ TEST_CASE("every #include follows the architecture's arrows") {
     const fs::path root = CDLAB_SOURCE_DIR;
     std::vector<std::string> problems;
     int checked = 0;
-    for (const char* top : {"core", "render", "demos"})
+    for (const char* top : {"core", "render", "verification", "demos", "app"})
         for (const Include& inc : includesUnder(root, top)) {
             ++checked;
             if (std::string v = violation(inc); !v.empty())
@@ -132,10 +124,15 @@ TEST_CASE("the arrow check catches what it should") {
     CHECK(violation({"core/base/types.h", 1, "render/canvas.h", false}) != "");
     CHECK(violation({"core/base/types.h", 1, "nlohmann/json.hpp", true}) != "");
     CHECK(violation({"core/base/types.h", 1, "Eigen/Dense", true}) == "");
-    CHECK(violation({"demos/stress/stress.cpp", 1, "tests/core/closest_test_oracle.h", false}) != "");
+    CHECK(violation({"app/stress/stress.cpp", 1, "tests/core/closest_test_oracle.h", false}) != "");
     CHECK(violation({"demos/lin_canny/lin_canny_demo.cpp", 1, "demos/vclip/vclip_demo.h", false}) != "");
     CHECK(violation({"demos/lin_canny/lin_canny_demo.cpp", 1, "demos/draw/plot.h", false}) == "");
-    CHECK(violation({"demos/catalog/catalog.cpp", 1, "demos/vclip/vclip_demo.h", false}) == "");
-    CHECK(violation({"demos/gjk/gjk_demo.cpp", 1, "demos/query/query.h", false}) != "");
+    CHECK(violation({"demos/lin_canny/lin_canny_demo.cpp", 1, "app/scene/scene.h", false}) == "");
+    CHECK(violation({"demos/gjk/gjk_demo.cpp", 1, "verification/closest_oracle.h", false}) == "");
+    CHECK(violation({"app/catalog/catalog.cpp", 1, "demos/vclip/vclip_demo.h", false}) == "");
+    CHECK(violation({"app/query/query.cpp", 1, "demos/vclip/vclip_demo.h", false}) != "");
+    CHECK(violation({"demos/gjk/gjk_demo.cpp", 1, "app/query/query.h", false}) != "");
+    CHECK(violation({"demos/draw/plot.cpp", 1, "demos/gjk/gjk_demo.h", false}) != "");
+    CHECK(violation({"verification/closest_oracle.h", 1, "app/scene/scene.h", false}) != "");
     CHECK(violation({"render/canvas.cpp", 1, "core/base/types.h", false}) != "");
 }

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "core/base/exact_predicates.h"
-#include "demos/oracles/closest_oracle.h"
+#include "verification/closest_oracle.h"
 #include "tests/random_vectors.h"
 
 using namespace cdlab;

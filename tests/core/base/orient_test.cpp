@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/base/orient.h"
-#include "demos/oracles/intersection_oracles.h"
+#include "verification/intersection_oracles.h"
 
 using cdlab::Vec2;
 using cdlab::Vec3;

@@ -9,7 +9,7 @@
 #include "core/base/tolerances.h"
 #include "core/bounding/bounding_sphere.h"
 #include "core/overlap/intersect_sphere.h"
-#include "demos/oracles/bounding_volume_oracle.h"
+#include "verification/bounding_volume_oracle.h"
 
 using namespace cdlab;
 using bvoracle::LD;

@@ -8,7 +8,7 @@
 #include "core/base/tolerances.h"
 #include "core/bounding/bounding_volume_fit.h"
 #include "core/overlap/sat_tests.h"
-#include "demos/oracles/bounding_volume_oracle.h"
+#include "verification/bounding_volume_oracle.h"
 
 using namespace cdlab;
 using bvoracle::LD;

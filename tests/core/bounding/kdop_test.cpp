@@ -12,7 +12,7 @@
 
 #include "core/base/tolerances.h"
 #include "core/bounding/kdop.h"
-#include "demos/oracles/bounding_volume_oracle.h"
+#include "verification/bounding_volume_oracle.h"
 
 using namespace cdlab;
 using bvoracle::LD;

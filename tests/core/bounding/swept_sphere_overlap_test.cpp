@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "core/bounding/swept_sphere_overlap.h"
-#include "demos/oracles/bounding_volume_oracle.h"
+#include "verification/bounding_volume_oracle.h"
 
 using namespace cdlab;
 using bvoracle::LD;

@@ -10,7 +10,7 @@
 #include "core/base/tolerances.h"
 #include "core/bounding/bounding_sphere.h"
 #include "core/bounding/swept_sphere.h"
-#include "demos/oracles/bounding_volume_oracle.h"
+#include "verification/bounding_volume_oracle.h"
 
 using namespace cdlab;
 using bvoracle::LD;

@@ -1,5 +1,5 @@
 // Sort and sweep in columns (core/broadphase/column_sweep.h) against the O(n^2) testAabbAabb loop
-// (demos/oracles/broad_phase_oracle.h): every overlapping pair exactly once, on random motion, on
+// (verification/broad_phase_oracle.h): every overlapping pair exactly once, on random motion, on
 // integer boxes whose faces meet exactly (ties on the sweep axis and on column boundaries), with mixed sizes,
 // far from the origin, and for bad input.
 #include <doctest/doctest.h>
@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "core/broadphase/column_sweep.h"
-#include "demos/oracles/broad_phase_oracle.h"
+#include "verification/broad_phase_oracle.h"
 
 using namespace cdlab;
 using broad_oracle::bruteForcePairs;

@@ -1,7 +1,7 @@
 // Dynamic AABB tree (core/broadphase/dynamic_tree.h) and its fat-box broad phase
 // (core/broadphase/tree_broad_phase.h): the tree's invariants after every insert, move and remove;
 // queries against a loop over every box; the broad phase's pairs against the O(n^2) testAabbAabb
-// loop (demos/oracles/broad_phase_oracle.h) after every frame of coherent motion, teleports,
+// loop (verification/broad_phase_oracle.h) after every frame of coherent motion, teleports,
 // growing and shrinking object counts, exact ties; rotations against the same insertions without
 // them; the pair set against std::set.
 #include <doctest/doctest.h>
@@ -14,7 +14,7 @@
 
 #include "core/broadphase/pair_set.h"
 #include "core/broadphase/tree_broad_phase.h"
-#include "demos/oracles/broad_phase_oracle.h"
+#include "verification/broad_phase_oracle.h"
 
 using namespace cdlab;
 using broad_oracle::bruteForcePairs;

@@ -1,6 +1,6 @@
 // Sweep and prune (core/broadphase/sweep_and_prune.h) against the O(n^2) testAabbAabb loop after every frame,
 // and its swap count against the number of inversions of the old endpoint order under the new
-// coordinates (demos/oracles/broad_phase_oracle.h).
+// coordinates (verification/broad_phase_oracle.h).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <set>
 
 #include "core/broadphase/sweep_and_prune.h"
-#include "demos/oracles/broad_phase_oracle.h"
+#include "verification/broad_phase_oracle.h"
 
 using namespace cdlab;
 using broad_oracle::bruteForcePairs;

@@ -1,5 +1,5 @@
 // Uniform grid broad phase (core/broadphase/uniform_grid.h) against the O(n^2) testAabbAabb loop
-// (demos/oracles/broad_phase_oracle.h): every overlapping pair exactly once, for cell sizes below,
+// (verification/broad_phase_oracle.h): every overlapping pair exactly once, for cell sizes below,
 // at and above the box size, on integer boxes whose faces lie on cell boundaries.
 #include <doctest/doctest.h>
 
@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "core/broadphase/uniform_grid.h"
-#include "demos/oracles/broad_phase_oracle.h"
+#include "verification/broad_phase_oracle.h"
 
 using namespace cdlab;
 using broad_oracle::bruteForcePairs;

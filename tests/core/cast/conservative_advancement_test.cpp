@@ -2,7 +2,7 @@
 // two convex polygons (as prisms much thicker than they are wide, so the 3D distance is the polygons'
 // distance) found by dense sampling of the pose over t and bisection, the distance of two disjoint
 // convex polygons being the least vertex-edge distance both ways and overlap decided by their edge
-// normals (2D SAT), in long double (demos/oracles/polygon_oracle.h): no GJK in the oracle. Checks:
+// normals (2D SAT), in long double (verification/polygon_oracle.h): no GJK in the oracle. Checks:
 // the advancement never passes the first contact, stops within its tolerance of touching, and says
 // "no contact" only when there is none.
 #include <doctest/doctest.h>
@@ -14,7 +14,7 @@
 
 #include "core/cast/conservative_advancement.h"
 #include "core/cast/time_of_impact.h"
-#include "demos/oracles/polygon_oracle.h"
+#include "verification/polygon_oracle.h"
 
 using namespace cdlab;
 

@@ -1,4 +1,4 @@
-// castRayRoundedHull against independent oracles (demos/oracles/cast_oracle.h: Cyrus–Beck on
+// castRayRoundedHull against independent oracles (verification/cast_oracle.h: Cyrus–Beck on
 // brute-force facets, first roots of convex distance functions, all in long double) and on the
 // degenerate cases by hand: grazing rays, rays along faces and through edges and vertices, gaps.
 #include <doctest/doctest.h>
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/cast/ray_cast.h"
-#include "demos/oracles/cast_oracle.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/cast_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 #include "tests/random_vectors.h"
 
 using namespace cdlab;

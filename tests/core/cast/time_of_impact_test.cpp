@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/cast/time_of_impact.h"
-#include "demos/oracles/cast_oracle.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/cast_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 #include "tests/random_vectors.h"
 
 using namespace cdlab;

@@ -1,7 +1,7 @@
 // Exact regions and closest points for EVERY finite double input (hostile input, "closest_point_triangle
 // with mixed magnitudes"): coordinates from 2^-1074 (subnormal) to 2^1023 mixed within one query,
 // exact boundary cases scaled by wildly different powers of two. Truth: the independent BigInt
-// oracle (demos/oracles/closest_oracle.h), never the code under test.
+// oracle (verification/closest_oracle.h), never the code under test.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -16,7 +16,7 @@
 #include "core/base/big_dyadic.h"
 #include "core/base/exact_predicates.h"
 #include "core/closest/closest_point.h"
-#include "demos/oracles/closest_oracle.h"
+#include "verification/closest_oracle.h"
 #include "tests/core/closest/closest_test_support.h"
 
 using namespace cdlab;

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "core/closest/closest_point.h"
-#include "demos/oracles/closest_oracle.h"
+#include "verification/closest_oracle.h"
 #include "tests/core/closest/closest_test_support.h"
 
 using namespace cdlab;

@@ -12,8 +12,8 @@
 #include "core/closest/edge_pair_distance.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
-#include "demos/oracles/closest_oracle.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/closest_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 
 using namespace cdlab;
 

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "core/closest/voronoi_regions.h"
-#include "demos/oracles/closest_oracle.h"
+#include "verification/closest_oracle.h"
 #include "tests/core/closest/closest_test_support.h"
 
 using namespace cdlab;

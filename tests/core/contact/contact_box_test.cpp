@@ -10,7 +10,7 @@
 
 #include "core/contact/contact_box.h"
 #include "core/geometry/polyhedron_presets.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 #include "tests/core/contact/random_pose.h"
 
 using namespace cdlab;

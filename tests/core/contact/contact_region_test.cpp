@@ -1,4 +1,4 @@
-// Contact manifolds against the exact contact region (demos/oracles/contact_region_oracle.h: the
+// Contact manifolds against the exact contact region (verification/contact_region_oracle.h: the
 // clip of the two support faces, or the submerged part of a body on a plane, in rationals): every
 // manifold point is a point of the region at its exact depth, the deepest comes first, asking for
 // more points never gives fewer or less area, and with maxPoints at the region's corner count every
@@ -15,7 +15,7 @@
 #include "core/contact/contact_plane.h"
 #include "core/contact/contact_sat.h"
 #include "core/geometry/polyhedron.h"
-#include "demos/oracles/contact_region_oracle.h"
+#include "verification/contact_region_oracle.h"
 
 using namespace cdlab;
 using oracle::ContactRegion;

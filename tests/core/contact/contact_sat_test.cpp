@@ -1,5 +1,5 @@
 // SAT contact of two polyhedra: depth against a long double Minkowski-difference facet oracle
-// (demos/oracles/minkowski_facet_oracle.h) and EPA, brute-force SAT over all edge pairs (no Gauss-map pruning),
+// (verification/minkowski_facet_oracle.h) and EPA, brute-force SAT over all edge pairs (no Gauss-map pruning),
 // stacked boxes (4 points), crossed edges (1 point), manifold points inside both bodies, offsets,
 // scales, invalid input.
 #include <doctest/doctest.h>
@@ -11,7 +11,7 @@
 #include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 #include "tests/core/contact/random_pose.h"
 
 using namespace cdlab;

@@ -1,4 +1,4 @@
-// Lin–Canny tests: distances against the long double brute-force oracle (demos/oracles/feature_walk_oracle.h,
+// Lin–Canny tests: distances against the long double brute-force oracle (verification/feature_walk_oracle.h,
 // independent code) and V-Clip on separated pairs; penetrating pairs never get a distance; the
 // degenerate families (exact touching, parallel faces, points on Voronoi planes) end in a defined
 // status; warm starts; the trace agrees with the result.
@@ -10,7 +10,7 @@
 #include "core/feature_walk/lin_canny.h"
 #include "core/feature_walk/vclip.h"
 #include "core/geometry/polyhedron_presets.h"
-#include "demos/oracles/feature_walk_oracle.h"
+#include "verification/feature_walk_oracle.h"
 #include "tests/core/feature_walk/walk_test_bodies.h"
 
 using namespace cdlab;

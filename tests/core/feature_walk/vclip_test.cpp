@@ -1,5 +1,5 @@
 // V-Clip tests: Voronoi planes, answers against a long double brute-force oracle
-// (demos/oracles/feature_walk_oracle.h) and GJK, and the walk's invariants checked on every trace step
+// (verification/feature_walk_oracle.h) and GJK, and the walk's invariants checked on every trace step
 // (Mirtich, "V-Clip", ACM TOG 1998: distance never increases, dimension-raising updates
 // decrease it, dimension-lowering ones keep it; no pair repeats; steps <= number of pairs).
 #include <doctest/doctest.h>
@@ -14,7 +14,7 @@
 #include "core/geometry/polyhedron_presets.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
-#include "demos/oracles/feature_walk_oracle.h"
+#include "verification/feature_walk_oracle.h"
 #include "tests/core/feature_walk/walk_test_bodies.h"
 
 using namespace cdlab;

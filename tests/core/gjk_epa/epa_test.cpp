@@ -1,5 +1,5 @@
 // EPA penetration depth tests: analytic boxes / spheres, touching and degenerate contacts, and
-// random polytope pairs against a long double facet-enumeration oracle (demos/oracles/minkowski_facet_oracle.h).
+// random polytope pairs against a long double facet-enumeration oracle (verification/minkowski_facet_oracle.h).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include "core/base/tolerances.h"
 #include "core/gjk_epa/epa.h"
 #include "core/geometry/polyhedron.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 #include "tests/core/gjk_epa/gjk_epa_test_support.h"
 
 using namespace cdlab;

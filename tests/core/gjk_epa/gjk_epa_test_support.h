@@ -12,7 +12,7 @@
 
 #include "core/base/orient.h"
 
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 
 namespace cdlab::test {
 

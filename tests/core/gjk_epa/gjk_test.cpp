@@ -1,5 +1,5 @@
 // GJK distance / intersection tests against analytic answers and a long double brute-force
-// oracle (facet enumeration of the Minkowski difference, demos/oracles/minkowski_facet_oracle.h).
+// oracle (facet enumeration of the Minkowski difference, verification/minkowski_facet_oracle.h).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -8,7 +8,7 @@
 
 #include "core/base/tolerances.h"
 #include "core/gjk_epa/gjk.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 #include "tests/core/gjk_epa/gjk_epa_test_support.h"
 
 using namespace cdlab;

@@ -9,7 +9,7 @@
 #include "core/base/orient.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/gjk_epa/mpr.h"
-#include "demos/oracles/minkowski_facet_oracle.h"
+#include "verification/minkowski_facet_oracle.h"
 #include "tests/core/gjk_epa/gjk_epa_test_support.h"
 
 using namespace cdlab;

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/overlap/moving_point.h"
-#include "demos/oracles/intersection_oracles.h"
+#include "verification/intersection_oracles.h"
 
 using namespace cdlab;
 using oracle::LD;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/overlap/polygon_tests.h"
-#include "demos/oracles/intersection_oracles.h"
+#include "verification/intersection_oracles.h"
 
 using cdlab::Vec2;
 using cdlab::Vec3;

@@ -10,7 +10,7 @@
 #include <limits>
 
 #include "core/overlap/sat_tests.h"
-#include "demos/oracles/intersection_oracles.h"
+#include "verification/intersection_oracles.h"
 
 using namespace cdlab;
 using oracle::LD;

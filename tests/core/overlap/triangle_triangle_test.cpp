@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "core/overlap/triangle_triangle.h"
-#include "demos/oracles/intersection_oracles.h"
+#include "verification/intersection_oracles.h"
 
 using namespace cdlab;
 using oracle::LD;

@@ -21,7 +21,7 @@
 #include <string>
 #include <utility>
 
-#include "demos/catalog/catalog.h"
+#include "app/catalog/catalog.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;

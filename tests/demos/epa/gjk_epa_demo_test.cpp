@@ -14,9 +14,9 @@
 #include <map>
 #include <set>
 
-#include "demos/catalog/catalog.h"
-#include "demos/epa/epa_2d.h"
-#include "demos/scene/pair_scene.h"
+#include "app/catalog/catalog.h"
+#include "core/gjk_epa/epa_2d.h"
+#include "app/scene/pair_scene.h"
 #include "render/gif_writer.h"
 
 using namespace cdlab;

@@ -1,6 +1,6 @@
 // The mtd_backtracking demo draws its frames from the traces checked here: every committed scene is
 // run numerically (RunContext{} without GL) and each correction is checked against the polygons
-// themselves (demos/oracles/polygon_oracle.h: distance and 2D-SAT depth in long double, no GJK/EPA):
+// themselves (verification/polygon_oracle.h: distance and 2D-SAT depth in long double, no GJK/EPA):
 // the MTD is the least overlap and leaves the bodies touching; the backtracked pose touches and an
 // instant earlier is apart; conservative advancement ends within its tolerance, never inside A, each
 // step's distance is the polygons' distance at its t and the steps only move forward.
@@ -10,10 +10,10 @@
 #include <string>
 
 #include "core/cast/conservative_advancement.h"
-#include "demos/catalog/catalog.h"
-#include "demos/oracles/polygon_oracle.h"
-#include "demos/scene/json_reader.h"
-#include "tests/demos/scene_error.h"
+#include "app/catalog/catalog.h"
+#include "verification/polygon_oracle.h"
+#include "app/scene/json_reader.h"
+#include "tests/scene_error.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;

@@ -10,9 +10,9 @@
 
 #include "core/geometry/solid_mesh.h"
 #include "core/geometry/triangle_mesh.h"
-#include "demos/catalog/catalog.h"
-#include "demos/scene/json_reader.h"
-#include "tests/demos/scene_error.h"
+#include "app/catalog/catalog.h"
+#include "app/scene/json_reader.h"
+#include "tests/scene_error.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <string>
 
-#include "demos/catalog/catalog.h"
-#include "demos/oracles/polygon_oracle.h"
-#include "demos/scene/json_reader.h"
-#include "tests/demos/scene_error.h"
+#include "app/catalog/catalog.h"
+#include "verification/polygon_oracle.h"
+#include "app/scene/json_reader.h"
+#include "tests/scene_error.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;

@@ -1,5 +1,5 @@
 // Closest features of two simplices (core/closest/simplex_pair.h), against long-double brute force
-// that shares nothing with it (demos/oracles/minkowski_hull_oracle.h: the least distance over every
+// that shares nothing with it (verification/minkowski_hull_oracle.h: the least distance over every
 // vertex triple of each set, and point-segment / point-triangle distances): the distance, the closest
 // points lying on the features named, the least total dimension among equally near pairs, and the
 // intersection of nested tetrahedra that no boundary pair sees. The demo's committed scenes: GJK
@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/closest/simplex_pair.h"
-#include "demos/catalog/catalog.h"
-#include "demos/oracles/minkowski_hull_oracle.h"
+#include "app/catalog/catalog.h"
+#include "verification/minkowski_hull_oracle.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;

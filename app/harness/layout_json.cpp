@@ -1,0 +1,30 @@
+#include "app/harness/layout_json.h"
+
+#include <cmath>
+
+namespace cdlab::demos {
+
+namespace {
+
+// Tenths of a pixel: enough for a legibility check, stable across platforms' last bits.
+double px(double v) { return std::round(v * 10.0) / 10.0 + 0.0; }
+
+Json boxJson(const render::Box& b) { return Json::array({px(b.x0), px(b.y0), px(b.x1), px(b.y1)}); }
+
+}  // namespace
+
+Json layoutJson(const render::Image& image) {
+    const render::FigureLayout& l = image.layout;
+    Json panels = Json::array(), labels = Json::array(), markers = Json::array();
+    for (const render::Box& p : l.panels) panels.push_back(boxJson(p));
+    for (const render::LayoutLabel& t : l.labels)
+        labels.push_back({{"text", t.text},
+                          {"box", boxJson(t.box)},
+                          {"anchor", t.anchor ? Json::array({px(t.anchor->x()), px(t.anchor->y())}) : Json()}});
+    for (const render::LayoutMarker& m : l.markers)
+        markers.push_back({{"box", boxJson(m.box)}, {"label", m.label >= 0 ? Json(m.label) : Json()}});
+    return {
+        {"width", image.width}, {"height", image.height}, {"panels", panels}, {"labels", labels}, {"markers", markers}};
+}
+
+}  // namespace cdlab::demos

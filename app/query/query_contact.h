@@ -1,0 +1,15 @@
+// The contact-model ops of `cdlab query` (README, "cdlab query"): "contact" (polytope–plane and
+// polytope–polytope manifolds) and "mass_properties" (volume, centre of mass, inertia tensor).
+#pragma once
+
+#include <string>
+
+#include "app/scene/json_reader.h"
+
+namespace cdlab::demos {
+
+/// Reads the op's keys from the query object and answers `op` ("contact" or "mass_properties").
+/// Throws InputError.
+Json answerContactQuery(const std::string& op, ObjectReader& reader);
+
+}  // namespace cdlab::demos

@@ -1,0 +1,944 @@
+// `cdlab stress` (see stress.h for the checks). Families of hard inputs, each case drawn from
+// (seed, family, index) only, so a failing case is replayable on its own; every failure is also
+// written as a `cdlab query` line.
+//
+// Tolerances are stated relative to the problem size L (the larger circumradius of the two shapes
+// about their vertex centroids; a triangle's longest edge) plus the rounding of the coordinates
+// themselves, 8 u M (u = 2^-53, M = the largest |coordinate|): a world-frame answer cannot be more
+// exact than its own coordinates, and with offsets of 1e9 at size 1 that term dominates.
+#include "app/stress/stress.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base/primitives.h"
+#include "core/closest/closest_point.h"
+#include "core/geometry/convex_hull.h"
+#include "core/geometry/shapes.h"
+#include "core/gjk_epa/epa.h"
+#include "core/gjk_epa/gjk.h"
+#include "core/overlap/sat_tests.h"
+#include "app/bench/bench_inputs.h"
+#include "app/bench/bench_measure.h"
+#include "demos/draw/plot.h"
+#include "app/measure/statistics.h"
+#include "verification/minkowski_hull_oracle.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+// The exact (BigInt) Ericson region of the closest-point tests: header-only, independent of core.
+#include "verification/closest_oracle.h"
+
+namespace cdlab::demos {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kU = 0x1p-53;  // unit roundoff of double
+
+// ---- Tolerances (relative to the size L; see the file comment for the 8 u M term) ---------------
+
+// GJK / EPA distances and depths: both algorithms subtract support points of magnitude ~L
+// (exactly, by Sterbenz, when the shapes are far from the origin) and stop at a relative gap of
+// 1e-13; their rounding floor is a few ulps of L (~1e-15 L), the oracle's the same in long double.
+// 1e-12 L leaves a factor ~100 for ill-conditioned features (slivers, nearly parallel edges) and
+// still catches a wrong feature or an early stop at any gap above 1e-12 L.
+constexpr double kDistanceTol = 1e-12;
+// EPA's depth and normal: the face normals come from cross products of polytope edges, whose
+// relative error grows as 1 / (face size / L) on thin faces; 1e-10 L keeps 4 digits for that.
+constexpr double kDepthTol = 1e-10;
+// Booleans: within the distance tolerance of touching either answer is right (a touching pair
+// rounds either way); outside it the answer must match the oracle's.
+constexpr double kBooleanBand = kDistanceTol;
+// SAT OBB-OBB is conservative by design (kSatParallelEpsilon = 1e-9 added to |R_ij|: at most
+// 1e-9 x the sum of the six half extents <= 6e-9 L): a separated pair closer than 1e-8 L may be
+// reported as overlapping, never the reverse.
+constexpr double kSatBand = 1e-8;
+// Closest point on a triangle: the distance comes from a world-frame point (rounded coordinates).
+constexpr double kClosestTol = 1e-12;
+// Float-rounded input: moving every vertex by at most 2^-24 |x| moves the distance / depth by at
+// most 2^-24 (max |a| + max |b|) (conv is 1-Lipschitz in the Hausdorff distance), plus the above.
+constexpr double kFloatU = 0x1p-24;
+
+// ---- Cases ---------------------------------------------------------------------------------------
+
+struct PolyCase {
+    std::vector<Vec3> va, vb;   // world frame
+    bool raw = false;           // PolytopeShape over the raw list (duplicates kept), no hull
+    bool floatRounded = false;  // the algorithms see the vertices rounded to float
+    double param = 0;
+};
+
+struct BoxCase {
+    Transformed<BoxShape> a, b;
+    double param = 0;
+};
+
+struct TriCase {
+    Vec3 p = Vec3::Zero();
+    Triangle t;
+    double param = 0;
+};
+
+enum class Kind { Poly, Box, Tri };
+
+struct Family {
+    std::string name, parameter;
+    Kind kind;
+    std::function<void(std::mt19937_64&, PolyCase&)> poly;
+    std::function<void(std::mt19937_64&, BoxCase&)> box;
+    std::function<void(std::mt19937_64&, TriCase&)> tri;
+};
+
+double uniform(std::mt19937_64& rng, double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+double logUniform(std::mt19937_64& rng, double lo, double hi) {
+    return std::pow(10.0, uniform(rng, std::log10(lo), std::log10(hi)));
+}
+
+std::vector<Vec3> scaled(std::vector<Vec3> v, double s, const Vec3& shift = Vec3::Zero()) {
+    for (Vec3& x : v) x = s * x + shift;
+    return v;
+}
+
+Vec3 perpendicular(const Vec3& u) {
+    const Vec3 t = std::abs(u.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+    return u.cross(t).normalized();
+}
+
+int argExtreme(const std::vector<Vec3>& v, const Vec3& d) {
+    int best = 0;
+    for (int i = 1; i < static_cast<int>(v.size()); ++i)
+        if (v[i].dot(d) > v[best].dot(d)) best = i;
+    return best;
+}
+
+/// Places vb so that its extreme vertex along -u sits at `gap` along u from va's extreme vertex
+/// along u: the distance is then exactly `gap` for gap >= 0 (that pair is at distance gap, and
+/// the planes u·x = h_A(u) and u·x = h_A(u) + gap separate). gap == 0 copies the vertex bit for
+/// bit: exact touching.
+void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, double gap) {
+    const int ia = argExtreme(va, u), ib = argExtreme(vb, -u);
+    const Vec3 shift = va[ia] - vb[ib] + gap * u;
+    for (Vec3& x : vb) x += shift;
+    if (gap == 0.0) vb[ib] = va[ia];
+}
+
+// Polytope pairs: scale, offset, gap, penetration, slivers, parallel edges, duplicates, rotations,
+// float rounding.
+void addPolytopeFamilies(std::vector<Family>& f) {
+    auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
+        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}});
+    };
+    poly("scale 1e-6..1e6", "size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double s = logUniform(rng, 1e-6, 1e6);
+        c.va = scaled(ellipsoidPoints(rng, 8), s);
+        c.vb = scaled(ellipsoidPoints(rng, 8), s, s * uniform(rng, 0.2, 2.6) * randomUnit(rng));
+        c.param = s;
+    });
+    poly("offset 1e3..1e9", "offset / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double o = logUniform(rng, 1e3, 1e9);
+        const Vec3 at = o * randomUnit(rng);
+        c.va = scaled(ellipsoidPoints(rng, 8), 1.0, at);
+        c.vb = scaled(ellipsoidPoints(rng, 8), 1.0, at + uniform(rng, 0.2, 2.6) * randomUnit(rng));
+        c.param = o;
+    });
+    poly("gap 1e-12..1e-3, touching", "|gap| / size", [](std::mt19937_64& rng, PolyCase& c) {
+        c.va = ellipsoidPoints(rng, 12);
+        c.vb = ellipsoidPoints(rng, 12);
+        const Vec3 u = randomUnit(rng);
+        const double g = logUniform(rng, 1e-12, 1e-3);
+        const int mode = std::uniform_int_distribution<int>(0, 7)(rng);
+        // 1 in 8 exactly touching, then half separated, half overlapping by |gap|.
+        const double gap = mode == 0 ? 0.0 : (mode % 2 ? g : -g);
+        placeAtGap(c.va, c.vb, u, gap);
+        c.param = std::abs(gap);
+    });
+    poly("deep penetration", "centre distance / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double d = logUniform(rng, 1e-6, 0.3);
+        c.va = ellipsoidPoints(rng, 16);
+        c.vb = scaled(ellipsoidPoints(rng, 16), 1.0, d * randomUnit(rng));
+        c.param = d;
+    });
+    poly("slivers and needles", "thickness / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double t = logUniform(rng, 1e-9, 1e-2);
+        const bool needle = std::uniform_int_distribution<int>(0, 1)(rng);
+        const Quat qa = randomRotation(rng), qb = randomRotation(rng);
+        const Vec3 radii(1.0, needle ? t : 1.0, t);
+        auto shape = [&](const Quat& q) {
+            std::vector<Vec3> v;
+            for (int i = 0; i < 10; ++i) v.push_back(q * radii.cwiseProduct(randomUnit(rng)));
+            return v;
+        };
+        c.va = shape(qa);
+        c.vb = scaled(shape(qb), 1.0, uniform(rng, 0.0, 1.5) * randomUnit(rng));
+        c.param = t;
+    });
+    poly("nearly parallel edges", "angle (rad)", [](std::mt19937_64& rng, PolyCase& c) {
+        // Two thin wedges whose ridges (edges of length 2) cross at an angle 1e-9..1e-1, the
+        // ridges |gap| apart along n (separated or overlapping).
+        const double angle = logUniform(rng, 1e-9, 1e-1);
+        const double gap = logUniform(rng, 1e-9, 1e-2) * (rng() % 2 ? 1 : -1);
+        const Vec3 e = randomUnit(rng), n = perpendicular(e), m = e.cross(n);
+        const Vec3 e2 = Eigen::AngleAxisd(angle, n) * e, m2 = e2.cross(n);
+        const Vec3 at = uniform(rng, -0.5, 0.5) * e;
+        c.va = {-e, e, 0.2 * (-n + m), 0.2 * (-n - m)};
+        c.vb = {at - e2 + gap * n, at + e2 + gap * n, at + 0.2 * (n + m2) + gap * n, at + 0.2 * (n - m2) + gap * n};
+        c.param = angle;
+    });
+    poly("duplicate points", "copies", [](std::mt19937_64& rng, PolyCase& c) {
+        // Raw vertex lists (no hull): every vertex 1..3 times, some copies 1 ulp off.
+        auto dup = [&](std::vector<Vec3> v) {
+            std::vector<Vec3> out;
+            for (const Vec3& x : v) {
+                const int copies = 1 + static_cast<int>(rng() % 3);
+                for (int k = 0; k < copies; ++k) {
+                    Vec3 y = x;
+                    if (k > 0 && rng() % 2) y.x() = std::nextafter(y.x(), INFINITY);
+                    out.push_back(y);
+                }
+            }
+            std::shuffle(out.begin(), out.end(), rng);
+            return out;
+        };
+        c.va = dup(ellipsoidPoints(rng, 6));
+        c.vb = dup(scaled(ellipsoidPoints(rng, 6), 1.0, uniform(rng, 0.0, 2.4) * randomUnit(rng)));
+        c.raw = true;
+        c.param = static_cast<double>(c.va.size() + c.vb.size()) / 12.0;
+    });
+    poly("random rotations, 64 vertices", "centre distance / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double d = uniform(rng, 0.05, 2.5);
+        c.va = ellipsoidPoints(rng, 64);  // ellipsoidPoints rotates each shape at random
+        c.vb = scaled(ellipsoidPoints(rng, 64), 1.0, d * randomUnit(rng));
+        c.param = d;
+    });
+    poly("float-rounded input", "offset / size", [](std::mt19937_64& rng, PolyCase& c) {
+        // No float variant of GJK / EPA exists in core (double only): this measures what storing
+        // double geometry in float does to the answer, against the float rounding bound.
+        const double s = logUniform(rng, 1e-3, 1e3), o = logUniform(rng, 1e-2, 1e6) * s;
+        const Vec3 at = o * randomUnit(rng);
+        c.va = scaled(ellipsoidPoints(rng, 8), s, at);
+        c.vb = scaled(ellipsoidPoints(rng, 8), s, at + s * uniform(rng, 0.2, 2.6) * randomUnit(rng));
+        c.floatRounded = true;
+        c.param = o / s;
+    });
+}
+
+// Box pairs: axis-aligned with support ties, and random rotations.
+void addBoxFamilies(std::vector<Family>& f) {
+    f.push_back({"axis-aligned boxes (support ties)",
+                 "|gap| / size",
+                 Kind::Box,
+                 {},
+                 [](std::mt19937_64& rng, BoxCase& c) {
+                     // Face / edge / corner contact of axis-aligned boxes (all supports tie on whole faces),
+                     // coplanar side faces where the extents match, gaps 0 or +-1e-12..1e-3.
+                     const double s = logUniform(rng, 1e-3, 1e3);
+                     const double ext[3] = {0.5, 1.0, 2.0};
+                     auto pick = [&] { return s * ext[rng() % 3]; };
+                     c.a.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     c.b.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     const int mode = std::uniform_int_distribution<int>(0, 5)(rng);
+                     const double g = mode == 0 ? 0.0 : logUniform(rng, 1e-12, 1e-3) * (mode % 2 ? 1 : -1);
+                     Vec3 centre;
+                     const int contactAxes = 1 + static_cast<int>(rng() % 3);  // face, edge, corner
+                     for (int i = 0; i < 3; ++i) {
+                         const double sign = rng() % 2 ? 1.0 : -1.0;
+                         const double touch = c.a.shape.halfExtents[i] + c.b.shape.halfExtents[i];
+                         centre[i] = i < contactAxes ? sign * (touch + g * s) : (rng() % 2 ? 0.0 : sign * 0.25 * touch);
+                     }
+                     c.b.transform.position = centre;
+                     c.param = std::abs(g);
+                 },
+                 {}});
+    f.push_back({"OBB random rotations",
+                 "centre distance / size",
+                 Kind::Box,
+                 {},
+                 [](std::mt19937_64& rng, BoxCase& c) {
+                     const double s = logUniform(rng, 1e-3, 1e3);
+                     c.a.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
+                     c.b.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
+                     c.a.transform.rotation = randomRotation(rng);
+                     c.b.transform.rotation = randomRotation(rng);
+                     const double d = uniform(rng, 0.0, 2.5);
+                     c.b.transform.position = s * d * randomUnit(rng);
+                     c.param = d;
+                 },
+                 {}});
+}
+
+// Point vs triangle: near-boundary points, slivers and needles, far offsets.
+void addTriangleFamilies(std::vector<Family>& f) {
+    auto tri = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, TriCase&)> g) {
+        f.push_back({std::move(name), std::move(param), Kind::Tri, {}, {}, std::move(g)});
+    };
+    tri("triangle: near-boundary points", "distance off the feature / size", [](std::mt19937_64& rng, TriCase& c) {
+        c.t = {randomUnit(rng), randomUnit(rng), randomUnit(rng)};
+        const Vec3* v[3] = {&c.t.a, &c.t.b, &c.t.c};
+        const int k = static_cast<int>(rng() % 3);
+        const double s = rng() % 3 == 0 ? 0.0 : uniform(rng, 0.0, 1.0);  // 1 in 3 at a vertex
+        const Vec3 onEdge = *v[k] + s * (*v[(k + 1) % 3] - *v[k]);
+        const double off = logUniform(rng, 1e-15, 1e-3);
+        c.p = onEdge + off * randomUnit(rng);
+        c.param = off;
+    });
+    tri("triangle: slivers and needles", "thickness / size", [](std::mt19937_64& rng, TriCase& c) {
+        const double t = logUniform(rng, 1e-12, 1e-2);
+        const Vec3 a = randomUnit(rng), b = -a, u = perpendicular(a);
+        c.t = rng() % 2 ? Triangle{a, b, uniform(rng, -0.9, 0.9) * a + t * u}         // sliver: c near ab
+                        : Triangle{a, a + t * u, a + t * perpendicular(u.cross(a))};  // needle-ish: short ac, ab
+        c.p = uniform(rng, 0.0, 1.5) * randomUnit(rng);
+        c.param = t;
+    });
+    tri("triangle: offsets 1e3..1e9", "offset / size", [](std::mt19937_64& rng, TriCase& c) {
+        const double o = logUniform(rng, 1e3, 1e9);
+        const Vec3 at = o * randomUnit(rng);
+        c.t = {at + randomUnit(rng), at + randomUnit(rng), at + randomUnit(rng)};
+        c.p = at + uniform(rng, 0.0, 1.5) * randomUnit(rng);
+        c.param = o;
+    });
+}
+
+std::vector<Family> families() {
+    std::vector<Family> f;
+    addPolytopeFamilies(f);
+    addBoxFamilies(f);
+    addTriangleFamilies(f);
+    return f;
+}
+
+// ---- Reproducers ------------------------------------------------------------------------------
+
+std::string num(double x) {
+    if (!std::isfinite(x)) return "null";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
+}
+
+std::string vec(const Vec3& v) { return "[" + num(v.x()) + "," + num(v.y()) + "," + num(v.z()) + "]"; }
+
+std::string polytopeJson(const std::vector<Vec3>& v) {
+    std::string s = "{\"polytope\":{\"vertices\":[";
+    for (size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + vec(v[i]);
+    return s + "],\"position\":[0,0,0],\"rotation\":[1,0,0,0]}}";
+}
+
+std::string obbJson(const Transformed<BoxShape>& b) {
+    const Quat& q = b.transform.rotation;
+    return "{\"obb\":{\"center\":" + vec(b.transform.position) + ",\"half_extents\":" + vec(b.shape.halfExtents) +
+           ",\"rotation\":[" + num(q.w()) + "," + num(q.x()) + "," + num(q.y()) + "," + num(q.z()) + "]}}";
+}
+
+std::string jsonString(const std::string& s) { return nlohmann::json(s).dump(); }
+
+// ---- The engine ---------------------------------------------------------------------------------
+
+struct Check {
+    double error = 0;      // relative to L (booleans: 0 / 1)
+    double tolerance = 0;  // same unit
+    int iterations = 0;
+    bool capHit = false;
+    double expected = 0, got = 0;  // for the reproducer's id
+};
+
+class Engine {
+public:
+    Engine(const StressOptions& options, StressReport& report) : options_(options), report_(report) {}
+
+    void record(const std::string& family, const std::string& check, const std::string& toleranceText, bool info,
+                double param, const Check& c, const std::function<std::string()>& query, int index) {
+        const auto key = family + "\n" + check;
+        auto it = index_.find(key);
+        if (it == index_.end()) {
+            it = index_.emplace(key, report_.cells.size()).first;
+            StressCell cell;
+            cell.family = family;
+            cell.check = check;
+            cell.informational = info;
+            cell.tolerance = toleranceText;
+            report_.cells.push_back(cell);
+        }
+        StressCell& cell = report_.cells[it->second];
+        ++cell.cases;
+        const bool nan = !std::isfinite(c.error);
+        const double ratio = c.tolerance > 0 ? c.error / c.tolerance : (c.error > 0 ? INFINITY : 0.0);
+        if (nan) cell.worstError = INFINITY;
+        else cell.worstError = std::max(cell.worstError, c.error);
+        cell.worstRatio = nan ? INFINITY : std::max(cell.worstRatio, ratio);
+        cell.maxIterations = std::max(cell.maxIterations, c.iterations);
+        cell.iterationCapHits += c.capHit;
+        if (cell.samples.size() < 4000) cell.samples.emplace_back(param, nan ? INFINITY : c.error);
+        const bool failed = nan || ratio > 1.0 || c.capHit;
+        if (!failed) return;
+        ++cell.failures;
+        if (info) return;
+        if (static_cast<int>(report_.failureLines.size()) >= options_.maxFailureLines) return;
+        char what[256];
+        std::snprintf(what, sizeof what, "stress %s / %s #%d: expected %.17g, got %.17g, error %.3g > %.3g%s",
+                      family.c_str(), check.c_str(), index, c.expected, c.got, c.error, c.tolerance,
+                      c.capHit ? " (iteration cap)" : "");
+        std::string line = query();
+        line.insert(1, "\"id\":" + jsonString(what) + ",");
+        report_.failureLines.push_back(line);
+    }
+
+    double tampered(const std::string& check, double value) const {
+        if (options_.tamper) options_.tamper(check, value);
+        return value;
+    }
+
+private:
+    const StressOptions& options_;
+    StressReport& report_;
+    std::map<std::string, size_t> index_;
+};
+
+double maxAbs(const std::vector<Vec3>& v) {
+    double m = 0;
+    for (const Vec3& x : v) m = std::max(m, x.cwiseAbs().maxCoeff());
+    return m;
+}
+
+double maxNorm(const std::vector<Vec3>& v) {
+    double m = 0;
+    for (const Vec3& x : v) m = std::max(m, x.norm());
+    return m;
+}
+
+/// h_{A-B}(n) = max_i a_i·n - min_j b_j·n, brute force in long double.
+double supportOfDifference(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n) {
+    const Eigen::Matrix<long double, 3, 1> m = n.cast<long double>();
+    long double ha = -INFINITY, hb = INFINITY;
+    for (const Vec3& x : a) ha = std::max(ha, x.cast<long double>().dot(m));
+    for (const Vec3& x : b) hb = std::min(hb, x.cast<long double>().dot(m));
+    return static_cast<double>(ha - hb);
+}
+
+PolytopeShape polytopeOf(const std::vector<Vec3>& v, bool raw) {
+    if (raw) return PolytopeShape(v);
+    const HullResult h = convexHull(v);
+    return h.ok() ? PolytopeShape(h.polyhedron) : PolytopeShape(v);
+}
+
+std::vector<Vec3> toFloat(std::vector<Vec3> v) {
+    for (Vec3& x : v) x = x.cast<float>().cast<double>();
+    return v;
+}
+
+/// GJK distance (SV, Johnson), GJK intersect, EPA depth and normal of two vertex sets.
+void checkPair(Engine& e, const std::string& family, int index, const std::vector<Vec3>& va,
+               const std::vector<Vec3>& vb, const PolytopeShape& a, const PolytopeShape& b,
+               const std::vector<Vec3>& algoA, const std::vector<Vec3>& algoB, bool floatRounded, double param) {
+    const MinkowskiOracle o = minkowskiOracle(va, vb);
+    const double L = std::max(centroidRadius(va), centroidRadius(vb));
+    const double M = std::max(maxAbs(va), maxAbs(vb));
+    // Float-rounded inputs: the answers may move by the rounding of the vertices (file comment).
+    const double extra = floatRounded ? kFloatU * (maxNorm(va) + maxNorm(vb)) / L : 0.0;
+    const std::string ftext = floatRounded ? " + 2^-24 (|a|max+|b|max)" : "";
+    const std::string queryA = polytopeJson(algoA), queryB = polytopeJson(algoB);
+    auto pairQuery = [&](const char* op, const char* method) {
+        return [=, &queryA, &queryB] {
+            return std::string("{\"op\":\"") + op + "\"" +
+                   (method ? std::string(",\"method\":\"") + method + "\"" : "") + ",\"a\":" + queryA +
+                   ",\"b\":" + queryB + "}";
+        };
+    };
+    Check oc;
+    oc.error = o.ok ? 0.0 : 1.0;  // informational: pairs the oracle could not judge
+    oc.tolerance = 0.5;
+    e.record(
+        family, "oracle hull", "hull failed", true, param, oc, [] { return std::string(); }, index);
+    if (!o.ok) return;
+    const double dTol = kDistanceTol + 8 * kU * M / L + extra;
+    double trueDistance = o.inside ? 0.0 : o.distance;
+    // Up to 12 vertices a second oracle with no hull at all (every vertex-triangle and edge-edge
+    // pair in long double, ~50 µs a pair) arbitrates when GJK and the hull oracle disagree: the
+    // hull of rounded differences a_i - b_j of 10-vertex slivers and needles errs by up to
+    // ~1e-11 L (an exact rational check of such a pair agreed with GJK to the last digit, not
+    // with the hull). Always run below 7 vertices, on demand above.
+    const bool arbitrable = !o.inside && va.size() <= 12 && vb.size() <= 12;
+    bool arbitrated = false;
+    if (!o.inside && va.size() <= 6 && vb.size() <= 6) {
+        // Small sets: the brute force decides, and the hull oracle's disagreement is reported.
+        const double bruteForce = oracleDistanceBruteForce(va, vb);
+        Check h;
+        h.expected = bruteForce;
+        h.got = o.distance;
+        h.error = std::abs(o.distance - bruteForce) / L;
+        h.tolerance = dTol;
+        e.record(
+            family, "hull oracle = brute force", "1e-12 L + 8uM", true, param, h, [] { return std::string(); }, index);
+        trueDistance = bruteForce;
+        arbitrated = true;
+    }
+    for (const SimplexSolver solver : {SimplexSolver::SignedVolumes, SimplexSolver::Johnson}) {
+        const bool sv = solver == SimplexSolver::SignedVolumes;
+        GjkOptions opt;
+        opt.solver = solver;
+        const GjkResult g = gjkDistance(a, b, opt);
+        if (arbitrable && !arbitrated && std::abs(g.distance - trueDistance) / L > dTol) {
+            const double bruteForce = oracleDistanceBruteForce(va, vb);
+            Check h;
+            h.expected = bruteForce;
+            h.got = o.distance;
+            h.error = std::abs(o.distance - bruteForce) / L;
+            h.tolerance = dTol;
+            e.record(
+                family, "hull oracle = brute force", "1e-12 L + 8uM", true, param, h, [] { return std::string(); },
+                index);
+            trueDistance = bruteForce;
+            arbitrated = true;
+        }
+        const std::string check = sv ? "gjk_distance" : "gjk_distance Johnson";
+        Check c;
+        c.got = e.tampered(check, g.distance);
+        c.expected = trueDistance;
+        c.error = std::abs(c.got - trueDistance) / L;
+        c.tolerance = dTol;
+        c.iterations = g.iterations;
+        c.capHit = g.termination == GjkTermination::MaxIterations;
+        e.record(family, check, "1e-12 L + 8uM" + ftext, !sv, param, c, pairQuery("distance", nullptr), index);
+    }
+    // Boolean: judged outside the band where touching rounds either way.
+    const double margin = (o.inside ? o.depth : o.distance) / L;
+    {
+        GjkResult g;
+        const bool hit = e.tampered("gjk_intersect", gjkIntersect(a, b, {}, nullptr, &g) ? 1.0 : 0.0) != 0.0;
+        Check c;
+        c.got = hit;
+        c.expected = o.inside;
+        c.error = hit != o.inside && margin > kBooleanBand + 8 * kU * M / L + extra ? 1.0 : 0.0;
+        c.tolerance = 0.5;
+        c.iterations = g.iterations;
+        c.capHit = g.termination == GjkTermination::MaxIterations;
+        e.record(family, "gjk_intersect", "exact outside 1e-12 L of touching", false, param, c,
+                 pairQuery("intersect", nullptr), index);
+    }
+    if (!o.inside) return;
+    EpaResult r = penetration(a, b);
+    r.depth = e.tampered("epa_depth", r.depth);
+    const double pTol = kDepthTol + 8 * kU * M / L + extra;
+    Check c;
+    c.got = r.depth;
+    c.expected = o.depth;
+    c.error = std::abs(r.depth - o.depth) / L;
+    c.tolerance = pTol;
+    c.iterations = r.iterations;
+    c.capHit = r.termination == EpaTermination::MaxIterations || r.termination == EpaTermination::CapacityExceeded;
+    e.record(family, "epa_depth", "1e-10 L + 8uM" + ftext, false, param, c, pairQuery("penetration", nullptr), index);
+    // The normal: the support of A - B along n must equal the depth (n attains the minimum of h).
+    Check n;
+    const double h = supportOfDifference(va, vb, r.normal);
+    n.got = h;
+    n.expected = r.depth;
+    n.error = std::isfinite(r.normal.squaredNorm()) && std::abs(r.normal.norm() - 1.0) < 1e-12
+                  ? std::abs(h - r.depth) / L
+                  : INFINITY;
+    n.tolerance = pTol;
+    e.record(family, "epa_normal |h(n)-depth|", "1e-10 L + 8uM" + ftext, false, param, n,
+             pairQuery("penetration", nullptr), index);
+}
+
+void runPoly(Engine& e, const Family& f, int index, PolyCase& c) {
+    const std::vector<Vec3> algoA = c.floatRounded ? toFloat(c.va) : c.va;
+    const std::vector<Vec3> algoB = c.floatRounded ? toFloat(c.vb) : c.vb;
+    const PolytopeShape a = polytopeOf(algoA, c.raw), b = polytopeOf(algoB, c.raw);
+    checkPair(e, f.name, index, c.va, c.vb, a, b, algoA, algoB, c.floatRounded, c.param);
+    // V-Clip slot: when core/feature_walk/vclip.h lands, add "vclip_distance" = the same oracle here.
+}
+
+void runBox(Engine& e, const Family& f, int index, BoxCase& c) {
+    const std::vector<Vec3> va = boxCorners(c.a), vb = boxCorners(c.b);
+    const MinkowskiOracle o = minkowskiOracle(va, vb);
+    const double L = std::max(c.a.shape.halfExtents.norm(), c.b.shape.halfExtents.norm());
+    const double M = std::max(maxAbs(va), maxAbs(vb));
+    // GJK / EPA on the support mappings (not the corner lists): ties on whole faces.
+    const MinkowskiOracle* oracle = &o;
+    if (!oracle->ok) return;
+    {
+        const GjkResult g = gjkDistance(c.a, c.b);
+        Check k;
+        k.got = e.tampered("gjk_distance", g.distance);
+        k.expected = o.inside ? 0.0 : o.distance;
+        k.error = std::abs(k.got - k.expected) / L;
+        k.tolerance = kDistanceTol + 8 * kU * M / L;
+        k.iterations = g.iterations;
+        k.capHit = g.termination == GjkTermination::MaxIterations;
+        e.record(
+            f.name, "gjk_distance", "1e-12 L + 8uM", false, c.param, k,
+            [&] { return "{\"op\":\"distance\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; }, index);
+    }
+    const double margin = (o.inside ? o.depth : o.distance) / L;
+    const bool gjkHit = e.tampered("gjk_intersect", gjkIntersect(c.a, c.b) ? 1.0 : 0.0) != 0.0;
+    {
+        Check k;
+        k.got = gjkHit;
+        k.expected = o.inside;
+        k.error = gjkHit != o.inside && margin > kBooleanBand + 8 * kU * M / L ? 1.0 : 0.0;
+        k.tolerance = 0.5;
+        e.record(
+            f.name, "gjk_intersect", "exact outside 1e-12 L of touching", false, c.param, k,
+            [&] { return "{\"op\":\"intersect\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; }, index);
+    }
+    {
+        // SAT = GJK = the oracle. SAT may say "overlap" for a pair separated by less than its
+        // conservative band (kSatBand), never "separated" for a pair overlapping by more than the
+        // boolean band.
+        const Obb a = Obb::fromRotation(c.a.transform.position, c.a.shape.halfExtents, c.a.transform.rotation);
+        const Obb b = Obb::fromRotation(c.b.transform.position, c.b.shape.halfExtents, c.b.transform.rotation);
+        const bool satHit = e.tampered("sat_obb_obb", testObbObb(a, b).hit ? 1.0 : 0.0) != 0.0;
+        const double band = (o.inside ? kBooleanBand : kSatBand) + 8 * kU * M / L;
+        Check k;
+        k.got = satHit;
+        k.expected = o.inside;
+        k.error = satHit != o.inside && margin > band ? 1.0 : 0.0;
+        k.tolerance = 0.5;
+        e.record(
+            f.name, "sat_obb_obb = oracle (= GJK)", "exact outside 1e-8 L (sep.) / 1e-12 L (overlap)", false, c.param,
+            k,
+            [&] {
+                return "{\"op\":\"intersect\",\"method\":\"sat\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) +
+                       "}";
+            },
+            index);
+    }
+    if (!o.inside) return;
+    EpaResult r = penetration(c.a, c.b);
+    r.depth = e.tampered("epa_depth", r.depth);
+    auto query = [&] { return "{\"op\":\"penetration\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; };
+    Check k;
+    k.got = r.depth;
+    k.expected = o.depth;
+    k.error = std::abs(r.depth - o.depth) / L;
+    k.tolerance = kDepthTol + 8 * kU * M / L;
+    k.iterations = r.iterations;
+    k.capHit = r.termination == EpaTermination::MaxIterations || r.termination == EpaTermination::CapacityExceeded;
+    e.record(f.name, "epa_depth", "1e-10 L + 8uM", false, c.param, k, query, index);
+    Check n;
+    n.got = supportOfDifference(va, vb, r.normal);
+    n.expected = r.depth;
+    n.error = std::abs(r.normal.norm() - 1.0) < 1e-12 ? std::abs(n.got - r.depth) / L : INFINITY;
+    n.tolerance = k.tolerance;
+    e.record(f.name, "epa_normal |h(n)-depth|", "1e-10 L + 8uM", false, c.param, n, query, index);
+}
+
+void runTri(Engine& e, const Family& f, int index, TriCase& c) {
+    const ClosestPointOnTriangleResult r = closestPointOnTriangle(c.p, c.t);
+    const double L = std::max({(c.t.b - c.t.a).norm(), (c.t.c - c.t.b).norm(), (c.t.a - c.t.c).norm()});
+    const double M = std::max({c.p.cwiseAbs().maxCoeff(), c.t.a.cwiseAbs().maxCoeff(), c.t.b.cwiseAbs().maxCoeff(),
+                               c.t.c.cwiseAbs().maxCoeff()});
+    auto query = [&] {
+        return "{\"op\":\"closest_point_triangle\",\"point\":" + vec(c.p) + ",\"triangle\":[" + vec(c.t.a) + "," +
+               vec(c.t.b) + "," + vec(c.t.c) + "]}";
+    };
+    const double exact = oracleDistanceToTriangle(c.p, c.t);
+    Check d;
+    d.got = e.tampered("closest_distance", (c.p - r.point).norm());
+    d.expected = exact;
+    d.error = std::abs(d.got - exact) / L;
+    d.tolerance = kClosestTol + 8 * kU * M / L;
+    e.record(f.name, "closest_distance", "1e-12 L + 8uM", false, c.param, d, query, index);
+    // Region: the exact rational Ericson region (BigInt), for non-collinear triangles (exactly).
+    const oracle::BigVec A = oracle::toBig(c.t.a, oracle::commonShift({c.t.a, c.t.b, c.t.c}));
+    const int K = oracle::commonShift({c.t.a, c.t.b, c.t.c});
+    const oracle::BigVec B = oracle::toBig(c.t.b, K), C = oracle::toBig(c.t.c, K);
+    const oracle::BigVec n = oracle::cross(oracle::sub(B, A), oracle::sub(C, A));
+    if (n.v[0].sign == 0 && n.v[1].sign == 0 && n.v[2].sign == 0) return;
+    const TriangleRegion truth = oracle::exactEricsonRegion(c.p, c.t.a, c.t.b, c.t.c);
+    Check g;
+    const double got = e.tampered("closest_region", static_cast<double>(static_cast<int>(r.region)));
+    g.got = got;
+    g.expected = static_cast<int>(truth);
+    g.error = got == static_cast<double>(static_cast<int>(truth)) ? 0.0 : 1.0;
+    g.tolerance = 0.5;
+    e.record(f.name, "closest_region = exact", "exact", false, c.param, g, query, index);
+}
+
+}  // namespace
+
+StressReport runStressSuite(const StressOptions& options) {
+    StressReport report;
+    Engine engine(options, report);
+    const std::vector<Family> fam = families();
+    for (const Family& f : fam) report.familyParameter.push_back(f.parameter);
+    std::vector<int> done(fam.size(), 0);
+    const auto start = Clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    double nextProgress = 1.0;
+    constexpr int kBatch = 10;
+    const bool trace = std::getenv("CDLAB_STRESS_TRACE") != nullptr;
+    for (;;) {
+        const bool minimumDone =
+            std::all_of(done.begin(), done.end(), [&](int n) { return n >= options.minCasesPerFamily; });
+        if (minimumDone && elapsed() >= options.seconds) break;
+        for (size_t fi = 0; fi < fam.size(); ++fi) {
+            const Family& f = fam[fi];
+            for (int k = 0; k < kBatch; ++k) {
+                const int i = done[fi]++;
+                // Case i of family fi depends on (seed, fi, i) only.
+                std::seed_seq seq{static_cast<std::uint32_t>(options.seed),
+                                  static_cast<std::uint32_t>(options.seed >> 32), static_cast<std::uint32_t>(fi),
+                                  static_cast<std::uint32_t>(i)};
+                std::mt19937_64 rng(seq);
+                // A crash (not a failed check) leaves no report: CDLAB_STRESS_TRACE=1 names each
+                // case before it runs, so the last line names the crashing one.
+                if (trace) std::fprintf(stderr, "cdlab stress: %s #%d\n", f.name.c_str(), i);
+                switch (f.kind) {
+                    case Kind::Poly: {
+                        PolyCase c;
+                        f.poly(rng, c);
+                        if (trace)
+                            std::fprintf(stderr, "{\"op\":\"distance\",\"a\":%s,\"b\":%s}\n",
+                                         polytopeJson(c.va).c_str(), polytopeJson(c.vb).c_str());
+                        runPoly(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Box: {
+                        BoxCase c;
+                        f.box(rng, c);
+                        runBox(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Tri: {
+                        TriCase c;
+                        f.tri(rng, c);
+                        runTri(engine, f, i, c);
+                        break;
+                    }
+                }
+            }
+        }
+        if (options.progress && elapsed() >= nextProgress) {
+            int cases = 0, failures = 0;
+            for (const StressCell& c : report.cells)
+                if (!c.informational) cases += c.cases, failures += c.failures;
+            std::fprintf(stderr, "\rcdlab stress: %5.1f / %.0f s, %d checks, %d failures", elapsed(), options.seconds,
+                         cases, failures);
+            std::fflush(stderr);
+            nextProgress = elapsed() + 1.0;
+        }
+    }
+    if (options.progress) std::fprintf(stderr, "\n");
+    report.seconds = elapsed();
+    for (const StressCell& c : report.cells) {
+        if (c.informational) continue;
+        report.totalCases += c.cases;
+        report.totalFailures += c.failures;
+    }
+    return report;
+}
+
+std::string stressTable(const StressReport& report) {
+    std::ostringstream out;
+    char line[512];
+    std::snprintf(line, sizeof line, "%-34s %-30s %7s %6s %9s %9s %9s %6s  %s\n", "family", "check", "cases", "fail",
+                  "rate", "worst err", "err/tol", "iters", "tolerance (L = size)");
+    out << line;
+    std::string last;
+    for (const StressCell& c : report.cells) {
+        if (c.check == "oracle hull" && c.failures == 0) continue;
+        std::snprintf(line, sizeof line, "%-34s %-30s %7d %6d %9.2g %9.2g %9.2g %6d  %s%s\n",
+                      c.family == last ? "" : c.family.c_str(), c.check.c_str(), c.cases, c.failures,
+                      c.cases ? double(c.failures) / c.cases : 0.0, c.worstError, c.worstRatio, c.maxIterations,
+                      c.informational ? "(info) " : "", c.tolerance.c_str());
+        out << line;
+        last = c.family;
+    }
+    return out.str();
+}
+
+namespace {
+
+nlohmann::json reportJson(const StressReport& r, const StressOptions& o) {
+    nlohmann::json j;
+    j["seconds"] = r.seconds;
+    j["seed"] = o.seed;
+    j["machine"] = machineDescription();
+    j["checks"] = r.totalCases;
+    j["failures"] = r.totalFailures;
+    j["ok"] = r.ok();
+    j["size_definition"] =
+        "L: larger circumradius of the two shapes about their vertex centroids (triangle: longest edge); "
+        "M: largest |coordinate|; u = 2^-53";
+    for (const StressCell& c : r.cells) {
+        j["cells"].push_back(
+            {{"family", c.family},
+             {"check", c.check},
+             {"informational", c.informational},
+             {"cases", c.cases},
+             {"failures", c.failures},
+             {"failure_rate", c.cases ? double(c.failures) / c.cases : 0.0},
+             {"worst_error", std::isfinite(c.worstError) ? nlohmann::json(c.worstError) : nlohmann::json("inf")},
+             {"worst_error_over_tolerance",
+              std::isfinite(c.worstRatio) ? nlohmann::json(c.worstRatio) : nlohmann::json("inf")},
+             {"tolerance", c.tolerance},
+             {"max_iterations", c.maxIterations},
+             {"iteration_cap_hits", c.iterationCapHits}});
+    }
+    return j;
+}
+
+/// Error-vs-parameter figures: one per family with iterative checks, one series per check.
+/// False when a figure could not be written (reported); no GL context means no figures, not an error.
+bool writeFigures(const StressReport& r, const std::string& outDir) {
+    std::unique_ptr<render::GlContext> gl;
+    try {
+        gl = render::GlContext::create();
+    } catch (const std::exception& e) {
+        std::cerr << "cdlab stress: no figures (" << e.what() << ")\n";
+        return true;
+    }
+    bool written = true;
+    // Teaching figure: signed volumes vs Johnson on the sliver family and on scales.
+    struct Figure {
+        std::string file, family, title;
+        std::vector<std::string> checks;
+    };
+    const std::vector<Figure> figures = {
+        {"error_vs_thickness_slivers.png",
+         "slivers and needles",
+         "GJK distance error on slivers: signed volumes vs Johnson",
+         {"gjk_distance", "gjk_distance Johnson"}},
+        {"error_vs_scale.png",
+         "scale 1e-6..1e6",
+         "Error relative to size vs scale (8-vertex polytopes)",
+         {"gjk_distance", "gjk_distance Johnson", "epa_depth"}},
+        {"error_vs_offset.png",
+         "offset 1e3..1e9",
+         "Error relative to size vs distance from the origin",
+         {"gjk_distance", "gjk_distance Johnson", "epa_depth"}},
+        {"error_vs_gap.png",
+         "gap 1e-12..1e-3, touching",
+         "Error relative to size vs gap (separated and overlapping)",
+         {"gjk_distance", "gjk_distance Johnson", "epa_depth", "epa_normal |h(n)-depth|"}},
+        {"error_vs_angle_parallel_edges.png",
+         "nearly parallel edges",
+         "Error vs angle between nearly parallel edges",
+         {"gjk_distance", "gjk_distance Johnson", "epa_depth"}},
+    };
+    const std::vector<std::string> families = [&] {
+        std::vector<std::string> v;
+        for (const StressCell& c : r.cells)
+            if (std::find(v.begin(), v.end(), c.family) == v.end()) v.push_back(c.family);
+        return v;
+    }();
+    for (const Figure& fig : figures) {
+        PlotOptions po;
+        po.title = fig.title;
+        const auto fi = std::find(families.begin(), families.end(), fig.family);
+        po.xLabel = fi != families.end() && size_t(fi - families.begin()) < r.familyParameter.size()
+                        ? r.familyParameter[fi - families.begin()]
+                        : "parameter";
+        po.yLabel = "|error| / size (0 drawn at the floor)";
+        po.yFloor = 1e-18;
+        po.subtitle = "cdlab stress, family \"" + fig.family + "\"; dashed line: the stated tolerance floor";
+        std::vector<PlotSeries> series;
+        int k = 0;
+        for (const std::string& check : fig.checks) {
+            for (const StressCell& c : r.cells) {
+                if (c.family != fig.family || c.check != check) continue;
+                PlotSeries s;
+                s.label = check == "gjk_distance"           ? "GJK distance, signed volumes"
+                          : check == "gjk_distance Johnson" ? "GJK distance, Johnson"
+                          : check == "epa_depth"            ? "EPA depth"
+                                                            : "EPA normal |h(n) - depth|";
+                s.style = k++;
+                for (const auto& [x, y] : c.samples)
+                    if (x > 0 && std::isfinite(y)) s.points.emplace_back(x, y);
+                series.push_back(s);
+            }
+        }
+        if (series.empty()) continue;
+        po.hLines.push_back({kDistanceTol, "1e-12 (distance tolerance)"});
+        try {
+            render::writePngAtomic(outDir + "/" + fig.file, drawLogLogPlot(*gl, po, series));
+        } catch (const render::ImageError& e) {  // names the file
+            std::cerr << "cdlab stress: " << e.what() << "\n";
+            written = false;
+        } catch (const std::exception& e) {
+            std::cerr << "cdlab stress: " << fig.file << ": " << e.what() << "\n";
+            written = false;
+        }
+    }
+    return written;
+}
+
+int usage(int status) {
+    std::cerr << "usage: cdlab stress [--seconds N] [--quick] [--seed S] [--out DIR] [--no-figures]\n"
+                 "  families of hard inputs checked against independent oracles; writes DIR/stress.json,\n"
+                 "  DIR/failures.jsonl (one `cdlab query` line per failure) and error-vs-parameter figures\n"
+                 "  (default DIR out/stress, 20 s; --quick: 3 s). Exit 0: all checks within tolerance; 1: failures;\n"
+                 "  2: usage error, or DIR cannot be written.\n";
+    return status;
+}
+
+}  // namespace
+
+int runStress(int argc, char** argv) {
+    StressOptions options;
+    options.progress = true;
+    std::string outDir = "out/stress";
+    bool figures = true;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--quick") {
+            options.seconds = 3.0;
+        } else if (arg == "--seconds" && i + 1 < argc) {
+            char* end = nullptr;
+            options.seconds = std::strtod(argv[++i], &end);
+            if (*end || !(options.seconds >= 0) || options.seconds > 86400) return usage(2);
+        } else if (arg == "--seed" && i + 1 < argc) {
+            options.seed = std::strtoull(argv[++i], nullptr, 10);
+        } else if (arg == "--out" && i + 1 < argc) {
+            outDir = argv[++i];
+        } else if (arg == "--no-figures") {
+            figures = false;
+        } else if (arg == "-h" || arg == "--help") {
+            return usage(0);
+        } else {
+            std::cerr << "cdlab stress: unknown argument " << arg << "\n";
+            return usage(2);
+        }
+    }
+    // An output folder that cannot be made is found before the run, not after it (exit 2, as for
+    // every output that cannot be written).
+    {
+        std::error_code ec;
+        std::filesystem::create_directories(outDir, ec);
+        if (ec) {
+            std::cerr << "cdlab stress: cannot create the output folder '" << outDir << "': " << ec.message() << "\n";
+            return 2;
+        }
+    }
+    const StressReport report = runStressSuite(options);
+    std::cout << stressTable(report);
+    std::printf("%d checks in %.1f s, %d failures%s\n", report.totalCases, report.seconds, report.totalFailures,
+                report.ok() ? "" : (" (reproducers: " + outDir + "/failures.jsonl)").c_str());
+    try {
+        render::writeFileAtomic(outDir + "/stress.json", reportJson(report, options).dump(2) + "\n");
+        std::string lines;
+        for (const std::string& l : report.failureLines) lines += l + "\n";
+        render::writeFileAtomic(outDir + "/failures.jsonl", lines);
+    } catch (const std::exception& e) {  // "cannot write '<path>': <reason>"
+        std::cerr << "cdlab stress: " << e.what() << "\n";
+        return 2;
+    }
+    if (figures && !writeFigures(report, outDir)) return 2;
+    std::cerr << "cdlab stress: wrote " << outDir << "/stress.json, failures.jsonl" << (figures ? " and figures" : "")
+              << "\n";
+    return report.ok() ? 0 : 1;
+}
+
+}  // namespace cdlab::demos

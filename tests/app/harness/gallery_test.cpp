@@ -1,0 +1,72 @@
+// The figure gallery opens in a real headless browser (Debian chromium) offline, and its images
+// load: the screenshot shows the figure's region colours, not broken-image icons.
+#include <doctest/doctest.h>
+
+#include <unistd.h>
+#include <cstdlib>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "app/harness/scene_runner.h"
+#include "render/image.h"
+
+using namespace cdlab::demos;
+namespace fs = std::filesystem;
+
+TEST_CASE("gallery: the index and a scene page render in headless chromium with their images") {
+    const char* chromium = "/usr/bin/chromium";
+    REQUIRE_MESSAGE(fs::exists(chromium), "Debian chromium is needed (./cdlab test installs it)");
+
+    fs::path root = fs::temp_directory_path() / ("cdlab_gallery_test_" + std::to_string(getpid()));
+    fs::remove_all(root);
+    fs::create_directories(root / "golden" / "voronoi_triangle");
+    std::ofstream(root / "golden" / "voronoi_triangle" / "gallery.json") << R"({
+      "demo": "voronoi_triangle", "title": "gallery check", "caption": "regions in the plane",
+      "image": {"width": 320, "height": 320},
+      "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[-0.5, -0.5, 0.2]], "views": ["plane"]})";
+    RunnerOptions o;
+    o.goldenDir = (root / "golden").string();
+    o.outDir = (root / "out").string();
+    REQUIRE(runFigures(o) == 0);
+    fs::path index = root / "out" / "index.html";
+    REQUIRE(fs::exists(index));
+
+    // The index links each scene to its page, and the page shows every frame.
+    const fs::path page = root / "out" / "voronoi_triangle" / "gallery.html";
+    REQUIRE(fs::exists(page));
+    std::ifstream indexIn(index), pageIn(page);
+    const std::string indexText((std::istreambuf_iterator<char>(indexIn)), std::istreambuf_iterator<char>());
+    const std::string pageText((std::istreambuf_iterator<char>(pageIn)), std::istreambuf_iterator<char>());
+    CHECK(indexText.find("href=\"voronoi_triangle/gallery.html\"") != std::string::npos);
+    CHECK(pageText.find("src=\"gallery/plane.png\"") != std::string::npos);
+    CHECK(pageText.find("href=\"gallery/trace.json\"") != std::string::npos);
+    CHECK(pageText.find("<script") == std::string::npos);
+
+    for (const fs::path& html : {index, page}) {
+        fs::path shot = root / "shot.png";
+        fs::remove(shot);
+        // Flags: no sandbox (root), no GPU, and no background networking (the machine is offline).
+        std::string cmd = std::string("timeout 120 ") + chromium +
+                          " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                          " --disable-background-networking --disable-component-update --disable-sync"
+                          " --user-data-dir=" +
+                          (root / "profile").string() + " --window-size=900,700 --screenshot=" + shot.string() +
+                          " file://" + html.string() + " >" + (root / "chromium.log").string() + " 2>&1";
+        REQUIRE_MESSAGE(std::system(cmd.c_str()) == 0, "chromium failed: see " << (root / "chromium.log").string());
+        REQUIRE(fs::exists(shot));
+        cdlab::render::Image img = cdlab::render::readPng(shot.string());
+        // Count pixels of the region palette (saturated colours): a broken image shows none.
+        long coloured = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                const auto* p = img.pixel(x, y);
+                int mx = std::max({p[0], p[1], p[2]}), mn = std::min({p[0], p[1], p[2]});
+                if (mx - mn > 60) ++coloured;
+            }
+        CHECK_MESSAGE(coloured > 5000, html);
+    }
+    fs::remove_all(root);
+}
