@@ -1,6 +1,7 @@
 #include "core/gjk_epa/gjk.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace cdlab {
 
