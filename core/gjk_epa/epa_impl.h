@@ -1,7 +1,8 @@
 // EPA's machinery behind core/gjk_epa/epa.h (include that header, not this one): the polytope in
 // fixed arrays, its three stages (seed from GJK's simplex, blow-up to a tetrahedron, expansion),
-// the answer from the final face with its edge-pair refinements, the fallback for degenerate
-// starts, and the entry points' bodies.
+// the answer from the final face with its edge-pair refinements (precision checks in
+// core/gjk_epa/feature_certificate.h), the fallback for degenerate starts, and the entry points'
+// bodies.
 #pragma once
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include "core/base/tolerances.h"
 #include "core/closest/edge_pair_distance.h"
 #include "core/gjk_epa/epa.h"
+#include "core/gjk_epa/feature_certificate.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/gjk_epa/simplex_solver.h"
 
@@ -113,6 +115,13 @@ private:
 inline constexpr double kEpaTouch = 1e-14;          // origin within 1e-14 |w| of the boundary: touching
 inline constexpr double kEpaVisible = 1e-14;        // w above a face plane by less than this: not visible
 inline constexpr double kEpaAbsGap = ulps(4, 1.0);  // gap noise floor (4 ulps of |w|)
+// A normal whose squared length is within this of 1 is unit (a normalized vector is a few u off);
+// one further off (normalized from a vector that underflowed to zero) sends the answer to the
+// support fallback.
+inline constexpr double kEpaUnitNormal = 1e-9;
+
+/// True when n is a unit normal up to kEpaUnitNormal.
+inline bool epaIsUnitNormal(const Vec3& n) { return std::abs(n.squaredNorm() - 1.0) <= kEpaUnitNormal; }
 
 /// Stage 1: the distinct finite vertices of GJK's simplex, reduced to the smallest sub-simplex
 /// that holds the origin (a flat tetrahedron becomes a triangle, etc.); r's witnesses become the
@@ -215,12 +224,12 @@ EpaTermination epaExpandLoop(const Support& support, const EpaOptions& options, 
     return EpaTermination::MaxIterations;
 }
 
-/// True when face f is a sliver (|e1 x e2| < 1e-3 |e1| |e2|): its normal, from rounded
-/// differences, errs by more than 1e3 u.
+/// True when face f is a sliver (isSliver): its normal, from rounded differences, errs by more
+/// than 1e3 u.
 inline bool epaIsSliver(const EpaPolytope& poly, int f) {
     const EpaFace& F = poly.face[f];
     const Vec3 e1 = poly.vertex[F.v[1]].w - poly.vertex[F.v[0]].w, e2 = poly.vertex[F.v[2]].w - poly.vertex[F.v[0]].w;
-    return e1.cross(e2).squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
+    return isSliver(e1, e2);
 }
 
 /// An uncertified sliver answer (nearly parallel edges whose faces of A − B EPA's rounded
@@ -246,26 +255,20 @@ void epaCrossedEdgePairs(const A& shapeA, const B& shapeB, const EpaPolytope& po
     // when both shapes' supports certify it and it is nearer than the answer so far.
     const auto offer = [&](const Vec3& n, double depth, const Vec3& pointA, const Vec3& pointB) {
         if (!(depth >= 0.0 && depth < r.depth) || !n.allFinite()) return;
-        const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), pointA.cwiseAbs().maxCoeff(),
-                                   pointB.cwiseAbs().maxCoeff()});
-        if (!((sa - pointA).dot(n) <= ulps(32, m) && (pointB - sb).dot(n) <= ulps(32, m))) return;
+        const SupportCertificate c = supportCertificate(shapeA, shapeB, n, pointA, pointB);
+        if (!c.featuresExtreme(n, pointA, pointB, c.tolerance())) return;
         r.depth = r.lowerBound = r.upperBound = depth;
         r.normal = n;
         r.pointA = pointA;
         r.pointB = pointB;
         r.edgePairRefined = true;
     };
-    // Edge of A against edge of B: the lines' common perpendicular.
-    for (int i = 0; i < na; ++i)
-        for (int j = i + 1; j < na; ++j)
-            for (int k = 0; k < nb; ++k)
-                for (int l = k + 1; l < nb; ++l) {
-                    const LinePairSeparation p = linePairSeparation(a[i], a[j], b[k], b[l]);
-                    if (!p.ok || !(p.s > 1e-9 && p.s < 1 - 1e-9 && p.t > 1e-9 && p.t < 1 - 1e-9)) continue;
-                    const double sign = p.separation <= 0.0 ? 1.0 : -1.0;  // n out of A − B: (pA − pB)·n >= 0
-                    offer(sign * p.normal, -sign * p.separation, p.pointA, p.pointB);
-                }
+    // Edge of A against edge of B: the lines' common perpendicular, feet strictly inside both edges.
+    forEachInteriorEdgePair(a, na, b, nb, [&](const LinePairSeparation& p) {
+        const double sign = p.separation <= 0.0 ? 1.0 : -1.0;  // n out of A − B: (pA − pB)·n >= 0
+        offer(sign * p.normal, -sign * p.separation, p.pointA, p.pointB);
+        return false;  // every pair is offered
+    });
     // A point of one shape against a (sliver) face of the other: the face normal from
     // accurateCross (a few ulps in direction whatever the sliver's width).
     const auto faceCandidates = [&](const Vec3* face, int nf, const Vec3* pts, int np, bool faceOfA) {
@@ -311,10 +314,9 @@ void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& optio
         out = r;
         if (!epaRefineEdgePair(poly, g, out)) return false;
         const Vec3& n = out.normal;
-        const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
-        const double h = n.dot(sa) - n.dot(sb);
-        const double m = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
-        return h <= out.depth + ulps(32, m);  // 32 ulps = 64 unit roundoffs
+        const SupportCertificate c = supportCertificate(shapeA, shapeB, n);
+        const double h = n.dot(c.sa) - n.dot(c.sb);  // h_C(n), an upper bound of the depth
+        return h <= out.depth + c.tolerance();
     };
     EpaResult refined;
     if (certified(f, refined)) r = refined;
@@ -342,7 +344,7 @@ void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& optio
 template <class A, class B>
 void epaSupportFallback(const A& shapeA, const B& shapeB, EpaResult& r) {
     double best = INFINITY;
-    const bool haveNormal = std::abs(r.normal.squaredNorm() - 1.0) <= 1e-9;
+    const bool haveNormal = epaIsUnitNormal(r.normal);
     const Vec3 given = r.normal;
     // The given normal both ways (a flat start's face normal has no outward side), then the axes.
     for (int i = haveNormal ? -2 : 0; i < 6; ++i) {
@@ -379,7 +381,7 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
         r.vertexCount = poly.vertexCount;
         r.faceCount = poly.liveCount;
         if (why == EpaTermination::Degenerate ||
-            (why != EpaTermination::InvalidInput && !(std::abs(r.normal.squaredNorm() - 1.0) <= 1e-9)))
+            (why != EpaTermination::InvalidInput && !detail::epaIsUnitNormal(r.normal)))
             detail::epaSupportFallback(shapeA, shapeB, r);
         return r;
     };

@@ -1,7 +1,7 @@
 // GJK's machinery behind core/gjk_epa/gjk.h (include that header, not this one): support
 // evaluation with hints, the loop (gjkRun), the answer from the terminal simplex (gjkFinish), and
-// the feature-pair checks that certify or overturn a doubtful answer, and the entry points'
-// bodies.
+// the feature-pair checks that certify or overturn a doubtful answer (precision checks in
+// core/gjk_epa/feature_certificate.h), and the entry points' bodies.
 #pragma once
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include "core/base/accurate_cross.h"
 #include "core/base/tolerances.h"
 #include "core/closest/edge_pair_distance.h"
+#include "core/gjk_epa/feature_certificate.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/gjk_epa/gjk_boolean.h"
 #include "core/gjk_epa/simplex_solver.h"
@@ -44,20 +45,36 @@ private:
     GjkTraceStep* step_ = nullptr;
 };
 
+/// A separated distance is certified when its lower bound is within this relative gap of it: a
+/// converged run's gap is relativeTolerance (1e-13); a stop on a duplicate support or on no
+/// progress can leave |v| far above the distance.
+inline constexpr double kGjkCertifiedGap = 1e-9;
+
 /// True when a separated answer may be off by more than rounding of L: the terminal triangle is
-/// a sliver (two nearly parallel edges, normal error ~u / angle) or GJK stopped without
-/// certifying the distance (lower bound well below |v|: duplicate support or no progress).
+/// a sliver (isSliver: two nearly parallel edges, normal error ~u / angle) or GJK stopped without
+/// certifying the distance (lower bound below (1 − kGjkCertifiedGap) |v|: duplicate support or no
+/// progress).
 bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r);
 
 /// Every two points of A with every two points of B among the simplex's vertices, as accurate
 /// segment-segment distances (core/closest/edge_pair_distance.h), or the point-triangle distance when
 /// the simplex has one point of one shape and three of the other; sorted by distance, returns
-/// the count (<= kGjkMaxEdgePairCandidates). Each is a distance between subsets of A and B: an upper bound of the true
-/// distance.
+/// the count (<= kGjkMaxEdgePairCandidates, <= kGjkMaxEdgePairCandidatesOfTriangle for a triangle;
+/// feature_certificate.h). Each is a distance between subsets of A and B: an upper bound of the
+/// true distance.
 int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
-/// Room for gjkEdgePairCandidates' answer on any simplex: a tetrahedron of 4 + 4 distinct points
-/// gives 6 x 6 edge pairs (a triangle at most 9 + 1).
-constexpr int kGjkMaxEdgePairCandidates = 40;
+
+/// A certified edge-pair candidate e becomes the separated answer: distance e.distance, bounds
+/// [min(lower, e.distance), e.distance], e's witnesses and axis (status and intersect are the caller's).
+inline void gjkAdoptEdgePair(const EdgePairDistance& e, double lower, GjkResult& r) {
+    r.distance = e.distance;
+    r.upperBound = e.distance;
+    r.lowerBound = std::min(lower, e.distance);
+    r.pointA = e.pointA;
+    r.pointB = e.pointB;
+    r.separatingAxis = e.axis;
+    r.edgePairRefined = true;
+}
 
 /// Replace a doubtful separated answer (gjkNeedsEdgePairs) by the smallest edge-pair distance
 /// that the supports certify: with axis d of that pair, d . (s_B(-d) - s_A(d)) is a lower bound
@@ -66,24 +83,16 @@ constexpr int kGjkMaxEdgePairCandidates = 40;
 template <class A, class B>
 void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
     if (!gjkNeedsEdgePairs(s, r)) return;
-    EdgePairDistance candidate[9];
+    // Separated: the terminal simplex is at most a triangle.
+    EdgePairDistance candidate[kGjkMaxEdgePairCandidatesOfTriangle];
     const int n = gjkEdgePairCandidates(s, candidate);
     for (int i = 0; i < n; ++i) {
         const EdgePairDistance& e = candidate[i];
         if (!(e.distance > 0.0)) continue;  // touching edges give no axis to certify
-        const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
-        const double lower = e.axis.dot(sb) - e.axis.dot(sa);
-        // Rounding of the two dot products and of the axis (a few u) times the coordinates.
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), e.pointA.cwiseAbs().maxCoeff(),
-                                   e.pointB.cwiseAbs().maxCoeff()});
-        if (!(lower >= e.distance - ulps(32, m))) continue;  // 32 ulps = 64 unit roundoffs
-        r.distance = e.distance;
-        r.upperBound = e.distance;
-        r.lowerBound = std::min(lower, e.distance);
-        r.pointA = e.pointA;
-        r.pointB = e.pointB;
-        r.separatingAxis = e.axis;
-        r.edgePairRefined = true;
+        const SupportCertificate c = supportCertificate(shapeA, shapeB, e.axis, e.pointA, e.pointB);
+        const double lower = c.lowerBoundAlong(e.axis);
+        if (!c.certifiesDistance(lower, e.distance)) continue;
+        gjkAdoptEdgePair(e, lower, r);
         return;
     }
 }
@@ -105,12 +114,10 @@ bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, co
     // Decided: intersecting, the face through pointA - pointB with normal n (out of A − B) at depth.
     const auto decide = [&](const Vec3& n, const Vec3& pointA, const Vec3& pointB) {
         const double separation = n.dot(pointB - pointA);
-        const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), pointA.cwiseAbs().maxCoeff(),
-                                   pointB.cwiseAbs().maxCoeff()});
-        const double tol = ulps(32, m);
+        const SupportCertificate c = supportCertificate(shapeA, shapeB, n, pointA, pointB);
+        const double tol = c.tolerance();
         // Both features extreme along n (the face supports A − B), the origin behind it.
-        if (!((sa - pointA).dot(n) <= tol && (pointB - sb).dot(n) <= tol) || !(separation < -tol)) return false;
+        if (!c.featuresExtreme(n, pointA, pointB, tol) || !(separation < -tol)) return false;
         // And A − B reaching past the origin the other way (min over A − B of n·x below 0): a thin
         // A − B has both orientations of the face "extreme", and behind one of them is not inside.
         const Vec3 lowA = shapeA.support(Vec3(-n)), highB = shapeB.support(n);
@@ -129,17 +136,12 @@ bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, co
     };
     // Edge of A against edge of B: the lines' common perpendicular, feet strictly inside both edges
     // (the origin projects into the face's interior).
-    for (int i = 0; i < na; ++i)
-        for (int j = i + 1; j < na; ++j)
-            for (int k = 0; k < nb; ++k)
-                for (int l = k + 1; l < nb; ++l) {
-                    const LinePairSeparation p = linePairSeparation(a[i], a[j], b[k], b[l]);
-                    if (!p.ok || !(p.s > 1e-9 && p.s < 1 - 1e-9 && p.t > 1e-9 && p.t < 1 - 1e-9)) continue;
-                    // The orientation out of A − B is the one along which both edges are extreme
-                    // (decide checks it): GJK's axis from a sliver may point either way.
-                    if (decide(p.normal, p.pointA, p.pointB) || decide(Vec3(-p.normal), p.pointA, p.pointB))
-                        return true;
-                }
+    const bool edgesCross = forEachInteriorEdgePair(a, na, b, nb, [&](const LinePairSeparation& p) {
+        // The orientation out of A − B is the one along which both edges are extreme (decide
+        // checks it): GJK's axis from a sliver may point either way.
+        return decide(p.normal, p.pointA, p.pointB) || decide(Vec3(-p.normal), p.pointA, p.pointB);
+    });
+    if (edgesCross) return true;
     // A point of one shape against a (sliver) face of the other, the face normal from accurateCross;
     // the origin projects inside the face of A − B when the point projects inside the face.
     const auto pointFace = [&](const Vec3& f0, const Vec3& f1, const Vec3& f2, const Vec3& point, bool faceOfA) {
@@ -186,7 +188,7 @@ void gjkDecideFlatIntersection(const A& shapeA, const B& shapeB, const GjkSimple
     if (!r.intersect || s.count < 3) return;
     const Vec3 e1 = s.vertex[1].w - s.vertex[0].w, e2 = s.vertex[2].w - s.vertex[0].w;
     const Vec3 n = e1.cross(e2);
-    bool flat = n.squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
+    bool flat = isSliverCross(n, e1, e2);
     if (s.count == 4) {
         const Vec3 e3 = s.vertex[3].w - s.vertex[0].w;
         flat = flat || std::abs(n.dot(e3)) < 1e-3 * std::sqrt(e1.squaredNorm() * e2.squaredNorm() * e3.squaredNorm());
@@ -197,20 +199,12 @@ void gjkDecideFlatIntersection(const A& shapeA, const B& shapeB, const GjkSimple
     for (int i = count - 1; i >= 0; --i) {  // the largest certified distance: a separating axis
         const EdgePairDistance& e = candidate[i];
         if (!(e.distance > 0.0)) continue;
-        const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
-        const double lower = e.axis.dot(sb) - e.axis.dot(sa);
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), e.pointA.cwiseAbs().maxCoeff(),
-                                   e.pointB.cwiseAbs().maxCoeff()});
-        if (!(lower >= e.distance - ulps(32, m)) || !(lower > ulps(64, m))) continue;
+        const SupportCertificate c = supportCertificate(shapeA, shapeB, e.axis, e.pointA, e.pointB);
+        const double lower = c.lowerBoundAlong(e.axis);
+        if (!c.certifiesDistance(lower, e.distance) || !c.provesSeparation(lower)) continue;
         r.status = GjkStatus::Separated;
         r.intersect = false;
-        r.distance = e.distance;
-        r.upperBound = e.distance;
-        r.lowerBound = std::min(lower, e.distance);
-        r.pointA = e.pointA;
-        r.pointB = e.pointB;
-        r.separatingAxis = e.axis;
-        r.edgePairRefined = true;
+        gjkAdoptEdgePair(e, lower, r);
         return;
     }
 }
@@ -259,7 +253,7 @@ inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c) {
 /// distance |v| and the axis -v / |v|, a face's normal when the simplex is a triangle, edge-pair
 /// refinement when asked for. v is the sub-algorithm's own (along the face normal, or from
 /// error-free products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|); the
-/// witnesses are sum lambda_i a_i and sum lambda_i b_i, each on its shape (pointB = pointA - v put
+/// witnesses are sum lambda_i a_i and sum lambda_i b_i, each on its shape (pointB = pointA - v would put
 /// pointB 1e-6 of the size off B where a sliver's weights are poor).
 template <class A, class B>
 void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s, GjkTermination why,
@@ -301,11 +295,12 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
         // depth δ would make v·w <= -δ |v|, far beyond rounding. So is any lower bound v·w / |v|
         // above the rounding of the supports' dot products (~u |a|, |b|): a converged run's
         // certificate (a thin A − B has both orientations of a crossed pair's face "extreme", and the
-        // crossed-edge decision called such a pair intersecting). Only the other stops are doubtful.
+        // crossed-edge decision would call such a pair intersecting). Only the other stops are doubtful.
         double extent = 0.0;
         for (int i = 0; i < s.count; ++i)
             extent = std::max({extent, s.vertex[i].a.cwiseAbs().maxCoeff(), s.vertex[i].b.cwiseAbs().maxCoeff()});
-        const bool certified = why == GjkTermination::SeparatingAxis || r.lowerBound > ulps(64, extent);
+        const bool certified =
+            why == GjkTermination::SeparatingAxis || r.lowerBound > ulps(kSeparationProofUlps, extent);
         if (!certified) gjkDecideCrossedEdges(shapeA, shapeB, s, r);
     }
 }
@@ -429,7 +424,7 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
         // (still slots 0..count-1 with their weights: the new point in slot count is dropped).
         // Except while the gap test has not converged and the new simplex keeps w: then a decrease
         // may be real but below rounding (a new face through v's edge, tilted from v's normal by
-        // ~1e-6: |v| drops by 1e-12 of itself), and stopping there answered "apart by |v|" for an
+        // ~1e-6: |v| drops by 1e-12 of itself), and stopping there would answer "apart by |v|" for an
         // origin on the hull (a flat body whose sliver face holds the origin), or 40% long. A few
         // such steps go on with the new simplex, as exact arithmetic would.
         // (|v| is computed to ~u max|w|: a new |v| within 16 u max|w| above the best so far is a
