@@ -5,6 +5,22 @@
 // of 1, DBL_EPSILON); the unit roundoff u = 2^-53 is the relative error of one correctly rounded
 // operation (half an ulp; Shewchuk's "epsilon"). "k ulps of m" in core always means
 // k * kMachineEpsilon * |m|: an absolute bound, k spacings of doubles at the magnitude m.
+//
+// Index of the named tolerances of core/gjk_epa (name — header — meaning):
+//   kCertificateUlps      — feature_certificate.h — rounding allowance of a support certificate,
+//                           in ulps of the largest coordinate involved
+//   kSeparationProofUlps  — feature_certificate.h — a distance lower bound above this many ulps
+//                           proves separation
+//   kInteriorFootMargin   — feature_certificate.h — a common perpendicular's foot parameter this
+//                           near 0 or 1 is at the edge's end
+//   kSliverSine2          — feature_certificate.h — squared sine of the edge angle below which a
+//                           triangle is a sliver
+//   kGjkCertifiedGap      — gjk_impl.h — relative gap of GJK's bounds within which a separated
+//                           distance is certified
+//   kEpaUnitNormal        — epa_impl.h — |n|² within this of 1: a unit normal (beside kEpaTouch,
+//                           kEpaVisible, kEpaAbsGap: touching, visibility and gap floors in |w|)
+//   kRefinementFloorUlps  — direction_refinement.h — rounding floor of g and its gradient, in ulps
+//                           of the scale
 #pragma once
 
 namespace cdlab {

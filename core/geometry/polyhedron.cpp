@@ -17,35 +17,6 @@ std::uint64_t directedKey(int a, int b) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
-// Error-free transformations (Knuth two-sum; Dekker/Veltkamp split and two-product).
-inline void twoSum(double a, double b, double& s, double& e) {
-    s = a + b;
-    const double bb = s - a;
-    e = (a - (s - bb)) + (b - bb);
-}
-inline void twoProduct(double a, double b, double& p, double& e) {
-    constexpr double kSplit = 134217729.0;  // 2^27 + 1
-    p = a * b;
-    const double ca = kSplit * a, cb = kSplit * b;
-    const double ah = ca - (ca - a), al = a - ah;
-    const double bh = cb - (cb - b), bl = b - bh;
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-}
-// (u_hi + u_lo) * (v_hi + v_lo) - (w_hi + w_lo) * (z_hi + z_lo) with a compensated sum.
-double crossTerm(double uh, double ul, double vh, double vl, double wh, double wl, double zh, double zl) {
-    double p1, e1, p2, e2;
-    twoProduct(uh, vh, p1, e1);
-    twoProduct(wh, zh, p2, e2);
-    const double terms[8] = {p1, -p2, e1, -e2, uh * vl, ul * vh, -(wh * zl), -(wl * zh)};
-    double s = 0.0, comp = 0.0;
-    for (double t : terms) {
-        double err;
-        twoSum(s, t, s, err);
-        comp += err;
-    }
-    return s + comp + (ul * vl - wl * zl);
-}
-
 std::string fmt(double x) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.3g", x);
@@ -73,17 +44,6 @@ void fitPlane(const std::vector<Vec3>& positions, const std::vector<int>& loop, 
 }
 
 }  // namespace
-
-Vec3 accurateCross(const Vec3& a, const Vec3& b, const Vec3& c) {
-    double uh[3], ul[3], vh[3], vl[3];  // u = b - a, v = c - a, each exactly as hi + lo
-    for (int k = 0; k < 3; ++k) {
-        twoSum(b[k], -a[k], uh[k], ul[k]);
-        twoSum(c[k], -a[k], vh[k], vl[k]);
-    }
-    return Vec3(crossTerm(uh[1], ul[1], vh[2], vl[2], uh[2], ul[2], vh[1], vl[1]),
-                crossTerm(uh[2], ul[2], vh[0], vl[0], uh[0], ul[0], vh[2], vl[2]),
-                crossTerm(uh[0], ul[0], vh[1], vl[1], uh[1], ul[1], vh[0], vl[0]));
-}
 
 const char* nameOf(PolyhedronDefect defect) {
     switch (defect) {

@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/tolerances.h"
 #include "core/base/types.h"
 
 namespace cdlab {
@@ -41,6 +42,10 @@ struct DirectionRefinement {
 };
 
 namespace detail {
+
+/// The rounding floor of g(m) = m·(s_A(m) − s_B(−m)) and of its gradient, in ulps of the scale of
+/// A − B: a step that gains less, or a gradient below it, is rounding, not progress.
+inline constexpr double kRefinementFloorUlps = 8;
 
 /// p = s_A(m) − s_B(−m), the support point of A − B along m.
 template <class A, class B>
@@ -109,7 +114,7 @@ DirectionRefinement refineDirection(const A& a, const B& b, const Vec3& m, doubl
     r.direction = m.normalized();
     r.value = r.direction.dot(detail::differenceSupport(a, b, r.direction));
     // A few ulps of g: a step that gains less is rounding, not progress.
-    const double floor = 8 * 2.220446049250313e-16 * scale;
+    const double floor = ulps(detail::kRefinementFloorUlps, scale);
     // Finite-difference angle: ~cube root of the precision, a balance of truncation (~δ) and
     // rounding (~u/δ) in the curvature; the Newton step only needs it to a few digits.
     const double delta = 1e-6;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
+#include "core/base/accurate_cross.h"
 #include "core/closest/edge_pair_distance.h"
-#include "core/geometry/polyhedron.h"
 
 namespace cdlab {
 

@@ -1,6 +1,7 @@
 #include "core/gjk_epa/gjk.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace cdlab {
 
@@ -96,12 +97,12 @@ void GjkRecorder::termination(GjkTermination why) {
 }
 
 bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r) {
-    // Uncertified: the lower bound is not within 1e-9 of |v| (a converged run has 1e-13).
-    if (!(r.lowerBound >= (1.0 - 1e-9) * r.distance)) return true;
+    // Uncertified: the lower bound is not within kGjkCertifiedGap of |v|.
+    if (!(r.lowerBound >= (1.0 - kGjkCertifiedGap) * r.distance)) return true;
     if (s.count != 3) return false;
-    // Sliver: |e1 x e2| < 1e-3 |e1| |e2| leaves the normal's rounding error above 1e3 u.
+    // Sliver: the normal's rounding error is above 1e3 u.
     const Vec3 e1 = s.vertex[1].w - s.vertex[0].w, e2 = s.vertex[2].w - s.vertex[0].w;
-    return e1.cross(e2).squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
+    return isSliver(e1, e2);
 }
 
 int gjkSimplexShapePoints(const GjkSimplex& s, Vec3* a, int& na, Vec3* b, int& nb) {

@@ -12,20 +12,19 @@
 // points are pointA = sum lambda_i a_i and pointB = sum lambda_i b_i with the simplex weights.
 //
 // Shapes are given in one common (world) frame. No heap allocation unless a trace is recorded.
+//
+// This header is the API: statuses, options, results, traces and the two entry points. The
+// machinery (the loop, the edge-pair refinements, trace recording) is core/gjk_epa/gjk_impl.h,
+// included at the end.
 #pragma once
 
-#include <algorithm>
 #include <bit>
-#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/base/support.h"
-#include "core/base/tolerances.h"
-#include "core/closest/edge_pair_distance.h"
-#include "core/geometry/polyhedron.h"
-#include "core/gjk_epa/gjk_boolean.h"
+#include "core/base/types.h"
 #include "core/gjk_epa/simplex_solver.h"
 
 namespace cdlab {
@@ -63,6 +62,8 @@ struct GjkSimplex {
     int count = 0;
 };
 
+/// How a query runs: the simplex solver, the stopping rule, an optional warm start, and whether a
+/// doubtful answer is checked against the terminal simplex's feature pairs.
 struct GjkOptions {
     SimplexSolver solver = SimplexSolver::SignedVolumes;
     /// Stop when (upper - lower) <= relativeTolerance * upper on the distance. 1e-13 keeps the
@@ -75,11 +76,13 @@ struct GjkOptions {
     const GjkSimplex* warmStart = nullptr;
     /// When a separated answer is doubtful (a sliver terminal triangle, or an uncertified stop),
     /// recompute it from the edge pairs of the terminal simplex in double-double arithmetic,
-    /// certified by the supports (core/closest/edge_pair_distance.h, detail::gjkRefineEdgePairs): exact
+    /// certified by the supports (core/closest/edge_pair_distance.h, gjk_impl.h's gjkRefineEdgePairs): exact
     /// to a few ulps even for nearly parallel edges, where |v| errs by ~u L / angle.
     bool refineEdgePairs = true;
 };
 
+/// The answer of gjkDistance (and of gjkIntersect's full loop): status, distance, witnesses and
+/// axis, the terminal simplex, why and after how many iterations the loop stopped, and the bounds.
 struct GjkResult {
     GjkStatus status = GjkStatus::InvalidInput;
     bool intersect = false;
@@ -94,7 +97,7 @@ struct GjkResult {
     double lowerBound = 0.0;       ///< max over iterations of v·w / |v| (distance >= this)
     double upperBound = 0.0;       ///< |v| (distance <= this)
     bool edgePairRefined = false;  ///< distance and witnesses from the edge pair (see options)
-    /// Intersecting by a crossed edge pair (detail::gjkDecideCrossedEdges): GJK's sliver simplex
+    /// Intersecting by a crossed edge pair (gjk_impl.h's gjkDecideCrossedEdges): GJK's sliver simplex
     /// said "apart" but the pair's face of A − B has the origin behind it. Its depth (world units),
     /// normal (unit, from A toward B) and deepest points (pointA − pointB = depth · normal) are
     /// the penetration: EPA need not run.
@@ -118,7 +121,8 @@ struct GjkTraceStep {
     double lowerBound = 0.0;  ///< distance lower bound so far
     double upperBound = 0.0;  ///< |v| before this step's reduction
     double gapTest = 0.0;     ///< |v|² - v·w, compared with relativeTolerance * |v|²
-    bool terminated = false;  ///< this step ended the loop (then keptSlots etc. are unchanged)
+    bool terminated = false;  ///< this step ended the loop; a stop before the reduction (Converged,
+                              ///< DuplicateSupport, SeparatingAxis) keeps all of W in keptSlots
 
     int keptCount() const { return std::popcount(keptSlots); }
 };
@@ -126,6 +130,7 @@ struct GjkTraceStep {
 /// The slots of a kept sub-simplex by letter, ascending: 0b0101 -> "AC" (trace display).
 std::string slotLetters(std::uint8_t slots);
 
+/// Every iteration of one traced query (pass a GjkTrace* to gjkDistance / gjkIntersect).
 struct GjkTrace {
     std::vector<GjkTraceStep> steps;
     GjkTermination termination = GjkTermination::InvalidInput;
@@ -135,460 +140,11 @@ struct GjkTrace {
 const char* nameOf(GjkStatus status);
 const char* nameOf(GjkTermination termination);
 
-namespace detail {
-
-/// Witness points sum lambda_i a_i, written relative to vertex 0 (pointA = a_0 + sum lambda_i
-/// (a_i - a_0)) so that far-from-origin shapes (offsets 1e6) lose no digits to the offset.
-void gjkWitness(const GjkSimplex& s, Vec3& pointA, Vec3& pointB);
-
-/// Trace recording for gjkRun, one call per event of the loop; without a trace every call is a
-/// no-op, so the loop reads as the algorithm and the untraced run does no trace work.
-class GjkRecorder {
-public:
-    explicit GjkRecorder(GjkTrace* trace) : trace_(trace) {}
-    /// A new iteration: direction -v, the support point, the bounds and the gap test, and the
-    /// simplex W before w joins it (kept slots: all of W).
-    void beginStep(int iteration, const Vec3& v, const GjkVertex& support, double lowerBound, double upperBound,
-                   double gapTest, const GjkSimplex& s);
-    /// W + {w}: the n = |W| + 1 vertices the solver reduces.
-    void candidate(const GjkSimplex& s, int n);
-    /// The sub-simplex c kept out of W + {w}, with v and the witnesses of `reduced` (c compacted).
-    void reduction(const SimplexClosest& c, const GjkSimplex& reduced);
-    /// This step ended the loop.
-    void stepEndsLoop();
-    void termination(GjkTermination why);
-
-private:
-    GjkTrace* trace_;
-    GjkTraceStep* step_ = nullptr;
-};
-
-/// True when a separated answer may be off by more than rounding of L: the terminal triangle is
-/// a sliver (two nearly parallel edges, normal error ~u / angle) or GJK stopped without
-/// certifying the distance (lower bound well below |v|: duplicate support or no progress).
-bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r);
-
-/// Every two points of A with every two points of B among the simplex's vertices, as accurate
-/// segment-segment distances (core/closest/edge_pair_distance.h), or the point-triangle distance when
-/// the simplex has one point of one shape and three of the other; sorted by distance, returns
-/// the count (<= kGjkMaxEdgePairCandidates). Each is a distance between subsets of A and B: an upper bound of the true
-/// distance.
-int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
-/// Room for gjkEdgePairCandidates' answer on any simplex: a tetrahedron of 4 + 4 distinct points
-/// gives 6 x 6 edge pairs (a triangle at most 9 + 1).
-constexpr int kGjkMaxEdgePairCandidates = 40;
-
-/// Replace a doubtful separated answer (gjkNeedsEdgePairs) by the smallest edge-pair distance
-/// that the supports certify: with axis d of that pair, d . (s_B(-d) - s_A(d)) is a lower bound
-/// of the distance; when it equals the pair's distance up to rounding, that distance is exact.
-/// Uncertified candidates (e.g. crossed edges of penetrating shapes) change nothing.
-template <class A, class B>
-void gjkRefineEdgePairs(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
-    if (!gjkNeedsEdgePairs(s, r)) return;
-    EdgePairDistance candidate[9];
-    const int n = gjkEdgePairCandidates(s, candidate);
-    for (int i = 0; i < n; ++i) {
-        const EdgePairDistance& e = candidate[i];
-        if (!(e.distance > 0.0)) continue;  // touching edges give no axis to certify
-        const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
-        const double lower = e.axis.dot(sb) - e.axis.dot(sa);
-        // Rounding of the two dot products and of the axis (a few u) times the coordinates.
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), e.pointA.cwiseAbs().maxCoeff(),
-                                   e.pointB.cwiseAbs().maxCoeff()});
-        if (!(lower >= e.distance - ulps(32, m))) continue;  // 32 ulps = 64 unit roundoffs
-        r.distance = e.distance;
-        r.upperBound = e.distance;
-        r.lowerBound = std::min(lower, e.distance);
-        r.pointA = e.pointA;
-        r.pointB = e.pointB;
-        r.separatingAxis = e.axis;
-        r.edgePairRefined = true;
-        return;
-    }
-}
-
-/// Edge pairs among a simplex's points: distinct points of A (at most 3) and of B.
-int gjkSimplexShapePoints(const GjkSimplex& s, Vec3* a, int& na, Vec3* b, int& nb);
-
-/// A doubtful separated answer that no edge pair certified (gjkRefineEdgePairs) may be a shallow
-/// penetration: two nearly parallel edges whose ridges cross by less than the rounding of GJK's
-/// sliver simplex (~u L / angle). For each edge of A and edge of B among the simplex's points
-/// whose lines' common perpendicular has its feet inside both edges, and along whose normal n
-/// (oriented like GJK's axis, from A toward B) both edges are extreme in their shapes — so the
-/// parallelogram edge_a ⊕ (−edge_b) is a face of A − B and the origin projects inside it — the side
-/// of the origin is decided from the lines' separation in double-double arithmetic
-/// (core/closest/edge_pair_distance.h): behind the face by more than rounding, the shapes
-/// intersect, by that depth along n (the nearest face of A − B: the others are a body's size away).
-template <class A, class B>
-bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, const Vec3* b, int nb, GjkResult& r) {
-    // Decided: intersecting, the face through pointA - pointB with normal n (out of A − B) at depth.
-    const auto decide = [&](const Vec3& n, const Vec3& pointA, const Vec3& pointB) {
-        const double separation = n.dot(pointB - pointA);
-        const Vec3 sa = shapeA.support(n), sb = shapeB.support(Vec3(-n));
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), pointA.cwiseAbs().maxCoeff(),
-                                   pointB.cwiseAbs().maxCoeff()});
-        const double tol = ulps(32, m);
-        // Both features extreme along n (the face supports A − B), the origin behind it.
-        if (!((sa - pointA).dot(n) <= tol && (pointB - sb).dot(n) <= tol) || !(separation < -tol)) return false;
-        // And A − B reaching past the origin the other way (min over A − B of n·x below 0): a thin
-        // A − B has both orientations of the face "extreme", and behind one of them is not inside.
-        const Vec3 lowA = shapeA.support(Vec3(-n)), highB = shapeB.support(n);
-        if (!(n.dot(lowA) - n.dot(highB) < -tol)) return false;
-        r.status = GjkStatus::Intersecting;
-        r.intersect = true;
-        r.distance = 0.0;
-        r.upperBound = 0.0;
-        r.separatingAxis.setZero();
-        r.pointA = pointA;
-        r.pointB = pointB;
-        r.edgePairCrossed = true;
-        r.crossedDepth = -separation;
-        r.crossedNormal = n;
-        return true;
-    };
-    // Edge of A against edge of B: the lines' common perpendicular, feet strictly inside both edges
-    // (the origin projects into the face's interior).
-    for (int i = 0; i < na; ++i)
-        for (int j = i + 1; j < na; ++j)
-            for (int k = 0; k < nb; ++k)
-                for (int l = k + 1; l < nb; ++l) {
-                    const LinePairSeparation p = linePairSeparation(a[i], a[j], b[k], b[l]);
-                    if (!p.ok || !(p.s > 1e-9 && p.s < 1 - 1e-9 && p.t > 1e-9 && p.t < 1 - 1e-9)) continue;
-                    // The orientation out of A − B is the one along which both edges are extreme
-                    // (decide checks it): GJK's axis from a sliver may point either way.
-                    if (decide(p.normal, p.pointA, p.pointB) || decide(Vec3(-p.normal), p.pointA, p.pointB))
-                        return true;
-                }
-    // A point of one shape against a (sliver) face of the other, the face normal from accurateCross;
-    // the origin projects inside the face of A − B when the point projects inside the face.
-    const auto pointFace = [&](const Vec3& f0, const Vec3& f1, const Vec3& f2, const Vec3& point, bool faceOfA) {
-        const Vec3 c = accurateCross(f0, f1, f2);
-        const double len = c.norm();
-        if (!(len > 0.0)) return false;
-        const Vec3 n = c / len;
-        const Vec3 q = point - n * n.dot(point - f0);  // the point projected on the face's plane
-        const Vec3 f[3] = {f0, f1, f2};
-        for (int e = 0; e < 3; ++e)
-            if (accurateCross(f[e], f[(e + 1) % 3], q).dot(c) < 0.0) return false;
-        // Either orientation: decide keeps the one along which both features are extreme.
-        return faceOfA ? decide(n, q, point) || decide(Vec3(-n), q, point)
-                       : decide(n, point, q) || decide(Vec3(-n), point, q);
-    };
-    for (int i = 0; i < na; ++i)
-        for (int j = i + 1; j < na; ++j)
-            for (int k = j + 1; k < na; ++k)
-                for (int q = 0; q < nb; ++q)
-                    if (pointFace(a[i], a[j], a[k], b[q], true)) return true;
-    for (int i = 0; i < nb; ++i)
-        for (int j = i + 1; j < nb; ++j)
-            for (int k = j + 1; k < nb; ++k)
-                for (int q = 0; q < na; ++q)
-                    if (pointFace(b[i], b[j], b[k], a[q], false)) return true;
-    return false;
-}
-
-template <class A, class B>
-void gjkDecideCrossedEdges(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
-    if (r.intersect || r.edgePairRefined || !gjkNeedsEdgePairs(s, r)) return;
-    Vec3 a[8], b[8];
-    int na = 0, nb = 0;
-    gjkSimplexShapePoints(s, a, na, b, nb);
-    gjkCrossedAmong(shapeA, shapeB, a, na, b, nb, r);
-}
-
-/// The converse: GJK stopped with the origin in a flat terminal simplex (a sliver tetrahedron or
-/// triangle of nearly parallel edges, whose rounded volume can put the origin inside) although a
-/// feature pair of its points certifies a positive distance (gjkRefineEdgePairs' certificate: the
-/// supports along the pair's axis are that distance apart, up to rounding): the shapes are apart.
-template <class A, class B>
-void gjkDecideFlatIntersection(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
-    if (!r.intersect || s.count < 3) return;
-    const Vec3 e1 = s.vertex[1].w - s.vertex[0].w, e2 = s.vertex[2].w - s.vertex[0].w;
-    const Vec3 n = e1.cross(e2);
-    bool flat = n.squaredNorm() < 1e-6 * e1.squaredNorm() * e2.squaredNorm();
-    if (s.count == 4) {
-        const Vec3 e3 = s.vertex[3].w - s.vertex[0].w;
-        flat = flat || std::abs(n.dot(e3)) < 1e-3 * std::sqrt(e1.squaredNorm() * e2.squaredNorm() * e3.squaredNorm());
-    }
-    if (!flat) return;
-    EdgePairDistance candidate[kGjkMaxEdgePairCandidates];
-    const int count = gjkEdgePairCandidates(s, candidate);
-    for (int i = count - 1; i >= 0; --i) {  // the largest certified distance: a separating axis
-        const EdgePairDistance& e = candidate[i];
-        if (!(e.distance > 0.0)) continue;
-        const Vec3 sa = shapeA.support(e.axis), sb = shapeB.support(Vec3(-e.axis));
-        const double lower = e.axis.dot(sb) - e.axis.dot(sa);
-        const double m = std::max({sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff(), e.pointA.cwiseAbs().maxCoeff(),
-                                   e.pointB.cwiseAbs().maxCoeff()});
-        if (!(lower >= e.distance - ulps(32, m)) || !(lower > ulps(64, m))) continue;
-        r.status = GjkStatus::Separated;
-        r.intersect = false;
-        r.distance = e.distance;
-        r.upperBound = e.distance;
-        r.lowerBound = std::min(lower, e.distance);
-        r.pointA = e.pointA;
-        r.pointB = e.pointB;
-        r.separatingAxis = e.axis;
-        r.edgePairRefined = true;
-        return;
-    }
-}
-
-/// Support of `shape` along d, through the shape's hinted overload support(d, hint) when it has
-/// one (PolytopeShape: hill climbing restarts at the previous answer, see core/geometry/shapes.h).
-template <class S>
-inline Vec3 hintedSupport(const S& shape, const Vec3& d, int& hint) {
-    if constexpr (requires { shape.support(d, hint); }) {
-        return shape.support(d, hint);
-    } else {
-        return shape.support(d);
-    }
-}
-
-/// Support hints of both shapes for one query (-1: cold start).
-struct SupportHints {
-    int a = -1;
-    int b = -1;
-};
-
-template <class A, class B>
-inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out, SupportHints& hints) {
-    out.direction = d;
-    out.a = hintedSupport(shapeA, d, hints.a);
-    out.b = hintedSupport(shapeB, Vec3(-d), hints.b);
-    out.w = out.a - out.b;  // exact (Sterbenz) when a and b are within a factor 2 per coordinate
-}
-
-template <class A, class B>
-inline void gjkSupport(const A& shapeA, const B& shapeB, const Vec3& d, GjkVertex& out) {
-    SupportHints cold;
-    gjkSupport(shapeA, shapeB, d, out, cold);
-}
-
-/// Keep the sub-simplex `c` of s (indices ascending, so compaction in place is safe).
-inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c) {
-    for (int k = 0; k < c.count; ++k) {
-        if (c.index[k] != k) s.vertex[k] = s.vertex[c.index[k]];
-        s.lambda[k] = c.lambda[k];
-    }
-    s.count = c.count;
-}
-
-/// The result from the terminal simplex s and its closest point v (van den Bergen §4.3): the
-/// distance |v| and the axis -v / |v|, a face's normal when the simplex is a triangle, edge-pair
-/// refinement when asked for. v is the sub-algorithm's own (along the face normal, or from
-/// error-free products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|); the
-/// witnesses are sum lambda_i a_i and sum lambda_i b_i, each on its shape (pointB = pointA - v put
-/// pointB 1e-6 of the size off B where a sliver's weights are poor).
-template <class A, class B>
-void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s, GjkTermination why,
-               const Vec3& v, GjkResult& r) {
-    r.termination = why;
-    if (why == GjkTermination::InvalidInput) {
-        r.status = GjkStatus::InvalidInput;
-        return;
-    }
-    detail::gjkWitness(s, r.pointA, r.pointB);
-    if (why == GjkTermination::OriginInSimplex) {
-        r.status = GjkStatus::Intersecting;
-        r.intersect = true;
-        r.distance = 0.0;
-        r.upperBound = 0.0;
-        r.separatingAxis.setZero();
-        if (options.refineEdgePairs) gjkDecideFlatIntersection(shapeA, shapeB, s, r);
-        return;
-    }
-    r.status = GjkStatus::Separated;
-    r.intersect = false;
-    r.distance = v.norm();
-    r.upperBound = r.distance;
-    r.separatingAxis = -v / r.distance;
-    if (s.count == 3) {
-        // Face region: the triangle normal is a better axis than v, whose direction carries
-        // an error of ~eps |w| / |v| when the distance is small against the shapes' size.
-        Vec3 n = (s.vertex[1].w - s.vertex[0].w).cross(s.vertex[2].w - s.vertex[0].w);
-        const double len = n.norm();
-        if (len > 0.0) {
-            n /= len;
-            if (n.dot(v) < 0.0) n = -n;
-            if (n.dot(v) > 0.5 * r.distance) r.separatingAxis = -n;  // sanity: same side
-        }
-    }
-    if (options.refineEdgePairs && s.count >= 2) {
-        gjkRefineEdgePairs(shapeA, shapeB, s, r);
-        // A boolean query's separating axis (v·w > 0) is a proof of separation: a penetration of
-        // depth δ would make v·w <= -δ |v|, far beyond rounding. So is any lower bound v·w / |v|
-        // above the rounding of the supports' dot products (~u |a|, |b|): a converged run's
-        // certificate (a thin A − B has both orientations of a crossed pair's face "extreme", and the
-        // crossed-edge decision called such a pair intersecting). Only the other stops are doubtful.
-        double extent = 0.0;
-        for (int i = 0; i < s.count; ++i)
-            extent = std::max({extent, s.vertex[i].a.cwiseAbs().maxCoeff(), s.vertex[i].b.cwiseAbs().maxCoeff()});
-        const bool certified = why == GjkTermination::SeparatingAxis || r.lowerBound > ulps(64, extent);
-        if (!certified) gjkDecideCrossedEdges(shapeA, shapeB, s, r);
-    }
-}
-
-/// The initial simplex in s with its closest point c: the warm start's directions re-evaluated
-/// as supports of the current shapes (duplicates dropped, then reduced), or one support point
-/// along +x. False when a support is not finite.
-template <class A, class B>
-bool gjkStartSimplex(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkSimplex& s, SupportHints& hints,
-                     SimplexClosest& c) {
-    if (options.warmStart && options.warmStart->count > 0) {
-        int n = 0;
-        for (int i = 0; i < options.warmStart->count && i < 4; ++i) {
-            gjkSupport(shapeA, shapeB, options.warmStart->vertex[i].direction, s.vertex[n], hints);
-            bool dup = false;
-            for (int j = 0; j < n; ++j) dup = dup || (s.vertex[j].w == s.vertex[n].w);
-            if (!dup) ++n;
-        }
-        s.count = n;
-        Vec3 wv[4];
-        for (int i = 0; i < n; ++i) {
-            if (!s.vertex[i].w.allFinite()) {
-                s.count = 0;
-                return false;
-            }
-            wv[i] = s.vertex[i].w;
-        }
-        c = closestOnSimplex(wv, n, options.solver);
-        gjkCompact(s, c);
-        return true;
-    }
-    gjkSupport(shapeA, shapeB, Vec3::UnitX(), s.vertex[0], hints);
-    s.lambda[0] = 1.0;
-    s.count = 1;
-    if (!s.vertex[0].w.allFinite()) return false;
-    c.count = 1;
-    c.v = s.vertex[0].w;
-    return true;
-}
-
-/// GJK (Gilbert, Johnson, Keerthi 1988; van den Bergen, "Collision Detection in Interactive 3D
-/// Environments", §4.3): v is the point of the simplex W nearest the origin; each iteration adds
-/// the support point w of A − B along -v and keeps the smallest sub-simplex of W + {w} that holds
-/// the new nearest point, until the bounds v·w / |v| <= distance <= |v| meet.
-template <class A, class B>
-GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, GjkTrace* trace, bool booleanQuery) {
-    // v = 0 up to rounding: |v|² <= kTouch² max|w_i|². Computing v from vertices of size |w|
-    // leaves an error of a few ulps of |w|; below 1e-14 |w| the origin is on the simplex.
-    constexpr double kTouch2 = 1e-14 * 1e-14;
-    GjkResult r;
-    // The simplex lives in r.simplex: W + {w} is built in slot s.count and reduced in place, so
-    // no vertex is copied unless the solver drops one before it.
-    GjkSimplex& s = r.simplex;
-    GjkRecorder record(trace);
-    Vec3 v = Vec3::Zero();  // the closest point of the simplex in slots 0..s.count-1
-    const auto finish = [&](GjkTermination why) {
-        record.termination(why);
-        gjkFinish(shapeA, shapeB, options, s, why, v, r);
-        return r;
-    };
-    SupportHints hints;
-    SimplexClosest c;
-    if (!gjkStartSimplex(shapeA, shapeB, options, s, hints, c)) return finish(GjkTermination::InvalidInput);
-    v = c.v;
-    double vv = v.squaredNorm();
-    double maxW2 = 0.0;
-    for (int i = 0; i < s.count; ++i) maxW2 = std::max(maxW2, s.vertex[i].w.squaredNorm());
-    if (s.count == 4 || vv <= kTouch2 * maxW2) return finish(GjkTermination::OriginInSimplex);
-
-    const double eps = options.relativeTolerance;
-    constexpr int kMaxStalls = 4;  // consecutive steps without a new best |v| in doubles
-    int stalls = 0;
-    double bestVV = vv;
-    Vec3 wv[4];
-    for (int iter = 1;; ++iter) {
-        r.iterations = iter;
-        // The new support point goes into the free slot s.count (the simplex has at most 3
-        // vertices here: a full tetrahedron ended the loop).
-        GjkVertex& sup = s.vertex[s.count];
-        gjkSupport(shapeA, shapeB, Vec3(-v), sup, hints);
-        if (!sup.w.allFinite()) return finish(GjkTermination::InvalidInput);
-        const double vw = v.dot(sup.w);
-        const double gapTest = vv - vw;  // = |v| (upper - lower) when vw > 0
-        const double vNorm = std::sqrt(vv);
-        if (vw > 0.0) r.lowerBound = std::max(r.lowerBound, vw / vNorm);
-        r.upperBound = vNorm;
-        record.beginStep(iter, v, sup, r.lowerBound, r.upperBound, gapTest, s);
-        // Boolean query: v·w > 0 means the plane through w orthogonal to v separates C from the
-        // origin, i.e. -v is a separating axis. Early-out before converging on the distance.
-        if (booleanQuery && vw > 0.0) {
-            record.stepEndsLoop();
-            return finish(GjkTermination::SeparatingAxis);
-        }
-        // Progress test (van den Bergen §4.3.5): |v|² - v·w <= eps |v|² bounds the relative
-        // distance error by eps. Also true when w brings nothing new (v·w >= |v|²).
-        if (gapTest <= eps * vv) {
-            record.stepEndsLoop();
-            return finish(GjkTermination::Converged);
-        }
-        // Duplicate support point: the simplex cannot change, exit to avoid cycling.
-        bool dup = false;
-        for (int i = 0; i < s.count; ++i) dup = dup || (s.vertex[i].w == sup.w);
-        if (dup) {
-            record.stepEndsLoop();
-            return finish(GjkTermination::DuplicateSupport);
-        }
-        // W + {w}, then its closest sub-simplex.
-        const int n = s.count + 1;
-        for (int i = 0; i < n; ++i) wv[i] = s.vertex[i].w;
-        c = closestOnSimplex(wv, n, options.solver);
-        const double vvNew = c.v.squaredNorm();
-        record.candidate(s, n);
-        maxW2 = std::max(maxW2, sup.w.squaredNorm());
-        if (c.count == 4 || vvNew <= kTouch2 * maxW2) {
-            gjkCompact(s, c);
-            record.reduction(c, s);
-            record.stepEndsLoop();
-            return finish(GjkTermination::OriginInSimplex);
-        }
-        // |v| must strictly decrease; if rounding stalls it, keep the previous (better) simplex
-        // (still slots 0..count-1 with their weights: the new point in slot count is dropped).
-        // Except while the gap test has not converged and the new simplex keeps w: then a decrease
-        // may be real but below rounding (a new face through v's edge, tilted from v's normal by
-        // ~1e-6: |v| drops by 1e-12 of itself), and stopping there answered "apart by |v|" for an
-        // origin on the hull (a flat body whose sliver face holds the origin), or 40% long. A few
-        // such steps go on with the new simplex, as exact arithmetic would.
-        // (|v| is computed to ~u max|w|: a new |v| within 16 u max|w| above the best so far is a
-        // stall.) Progress is a new best |v|, so a triangle <-> edge alternation cannot reset the
-        // count; a reduction that drops the new point changes nothing and is no stall.
-        const bool decreased = vvNew < bestVV;
-        const auto withinRounding = [&] {
-            const double band = 16.0 * kUnitRoundoff * std::sqrt(maxW2), upper = std::sqrt(bestVV) + band;
-            return vvNew <= upper * upper;
-        };
-        const bool keepsNewPoint = c.index[c.count - 1] == n - 1;
-        const bool roundingStall = !decreased && stalls < kMaxStalls && keepsNewPoint && withinRounding();
-        if (!decreased && !roundingStall) {
-            if (trace) {
-                GjkSimplex reduced = s;
-                gjkCompact(reduced, c);
-                record.reduction(c, reduced);
-            }
-            record.stepEndsLoop();
-            return finish(GjkTermination::NoProgress);
-        }
-        stalls = decreased ? 0 : stalls + 1;
-        bestVV = std::min(bestVV, vvNew);
-        gjkCompact(s, c);
-        record.reduction(c, s);
-        v = c.v;
-        vv = vvNew;
-        if (iter >= options.maxIterations) return finish(GjkTermination::MaxIterations);
-    }
-}
-
-}  // namespace detail
-
 /// Distance between convex shapes A and B (world frame, world units) with witness points and a
 /// separating axis. Intersecting (or touching up to rounding) shapes give status Intersecting,
 /// distance 0 and a terminal simplex that contains the origin (feed it to epaPenetration).
 template <SupportMapping A, SupportMapping B>
-GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& options = {}, GjkTrace* trace = nullptr) {
-    return detail::gjkRun(shapeA, shapeB, options, trace, false);
-}
+GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& options = {}, GjkTrace* trace = nullptr);
 
 /// Boolean intersection test of A and B (world frame): stops as soon as a separating axis is
 /// found. Untraced and without a warm start, the answer comes from the boolean fast path
@@ -599,33 +155,8 @@ GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& option
 /// result, for separated shapes a distance that is only an upper bound unless the loop converged.
 template <SupportMapping A, SupportMapping B>
 bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options = {}, GjkTrace* trace = nullptr,
-                  GjkResult* result = nullptr) {
-    if (!trace && !options.warmStart) {
-        detail::SupportHints hints;
-        int iterations = 0;
-        Vec3 a0, b0, start;
-        const bool haveStart = detail::anyPointOf(shapeA, a0) && detail::anyPointOf(shapeB, b0);
-        if (haveStart) start = a0 - b0;
-        const detail::QuickBoolean quick = detail::gjkQuickBoolean(
-            [&](const Vec3& d, Vec3& w) {
-                w = detail::hintedSupport(shapeA, d, hints.a) - detail::hintedSupport(shapeB, Vec3(-d), hints.b);
-            },
-            iterations, haveStart ? &start : nullptr);
-        if (quick != detail::QuickBoolean::Undecided) {
-            const bool hit = quick == detail::QuickBoolean::Intersecting;
-            if (result) {
-                *result = GjkResult{};
-                result->status = hit ? GjkStatus::Intersecting : GjkStatus::Separated;
-                result->intersect = hit;
-                result->termination = hit ? GjkTermination::OriginInSimplex : GjkTermination::SeparatingAxis;
-                result->iterations = iterations;
-            }
-            return hit;
-        }
-    }
-    GjkResult r = detail::gjkRun(shapeA, shapeB, options, trace, true);
-    if (result) *result = r;
-    return r.intersect;
-}
+                  GjkResult* result = nullptr);
 
 }  // namespace cdlab
+
+#include "core/gjk_epa/gjk_impl.h"

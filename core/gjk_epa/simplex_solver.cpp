@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/accurate_cross.h"
 #include "core/base/orient.h"
 #include "core/base/tolerances.h"
-#include "core/geometry/polyhedron.h"
 
 namespace cdlab {
 
