@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/tolerances.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
 
@@ -60,7 +61,7 @@ Epa2dResult epaPenetration2d(const A& shapeA, const B& shapeB, const GjkSimplex&
     // Tolerances relative to the polygon's scale max|w|, as in core/gjk_epa/epa.h: support values and edge
     // distances carry a few ulps of |w| of rounding.
     constexpr double kTouch = 1e-14;
-    constexpr double kAbsGap = 4.0 * 2.220446049250313e-16;
+    constexpr double kAbsGap = 4.0 * kMachineEpsilon;
     constexpr int kMaxVertices = 256;
     struct V {
         Vec3 w, a, b;
