@@ -470,9 +470,7 @@ PolyhedronCheck ConvexPolyhedron::checkFaceGeometry(int f, double tolerance) con
     if (!face.normal.allFinite() || !std::isfinite(face.offset)) {
         return fail(PolyhedronDefect::NonFinite, f, "face " + std::to_string(f) + " plane is not finite");
     }
-    // 1e-9: a normal fitted and normalized in double is unit to ~1e-16; anything
-    // farther was not normalized at all.
-    if (std::abs(face.normal.norm() - 1.0) > 1e-9) {
+    if (std::abs(face.normal.norm() - 1.0) > kUnitNormalTolerance) {
         return fail(PolyhedronDefect::NonUnitNormal, f, "face " + std::to_string(f) + " normal is not unit");
     }
     const std::vector<int> loop = faceVertices(f);

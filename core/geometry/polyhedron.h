@@ -25,6 +25,10 @@
 
 namespace cdlab {
 
+/// validate(): a face normal is unit when | |n| - 1 | is at most this. A normal fitted and
+/// normalized in double is unit to ~1e-16; anything farther was not normalized at all.
+inline constexpr double kUnitNormalTolerance = 1e-9;
+
 /// What validate() / fromFaces() found wrong first (None = nothing).
 enum class PolyhedronDefect {
     None,
