@@ -375,8 +375,8 @@ double ConvexPolyhedron::scaleTolerance() const {
     return ulps(65536.0, maxAbs + (hi - lo).norm());
 }
 
-PolyhedronCheck ConvexPolyhedron::validate(double tolerance) const {
-    if (tolerance < 0.0) tolerance = scaleTolerance();
+PolyhedronCheck ConvexPolyhedron::validate(std::optional<double> requested) const {
+    const double tolerance = requested && !(*requested < 0.0) ? *requested : scaleTolerance();
     const int V = vertexCount(), F = faceCount();
     if (V < 4 || F < 4) return fail(PolyhedronDefect::NoFaces, -1, "fewer than 4 vertices or faces");
     // 1-3. Links, face cycles, vertex fans.

@@ -17,6 +17,7 @@
 //   vertexNeighbors(v)   destination of each half-edge of vertexHalfEdges(v), same order.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -216,8 +217,8 @@ public:
     /// Euler V - E + F = 2, finite unit normals, every face planar and convex within tolerance,
     /// every vertex on or behind every face plane (done for all pairs when V*F <= 2e7, otherwise
     /// for the neighbours of each face's vertices, which for a closed genus-0 surface implies
-    /// global convexity), positive volume. tolerance < 0 means scaleTolerance().
-    PolyhedronCheck validate(double tolerance = -1.0) const;
+    /// global convexity), positive volume. std::nullopt (or a negative value) means scaleTolerance().
+    PolyhedronCheck validate(std::optional<double> tolerance = std::nullopt) const;
     /// validate()'s structural part alone: every half-edge's twin / next / prev / face / edge
     /// consistent, face cycles closed and covering every half-edge once, one fan per vertex.
     /// fromFaces() asserts it on what it builds (on in the sanitizer build).
