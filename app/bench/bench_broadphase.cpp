@@ -14,6 +14,7 @@
 #include <random>
 #include <vector>
 
+#include "core/base/aabb_ops.h"
 #include "core/broadphase/octree.h"
 #include "core/broadphase/sweep_and_prune.h"
 #include "core/broadphase/uniform_grid.h"
@@ -35,9 +36,7 @@ std::size_t bruteForce(const std::vector<Aabb>& b, std::vector<BoxPair>& out) {
         const Aabb& p = b[i];
         for (int j = i + 1; j < n; ++j) {
             const Aabb& q = b[j];
-            if (p.min.x() <= q.max.x() && q.min.x() <= p.max.x() && p.min.y() <= q.max.y() && q.min.y() <= p.max.y() &&
-                p.min.z() <= q.max.z() && q.min.z() <= p.max.z())
-                out.push_back(BoxPair{i, j});
+            if (overlaps(p, q)) out.push_back(BoxPair{i, j});
         }
     }
     return out.size();

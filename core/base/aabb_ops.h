@@ -1,7 +1,7 @@
 // Plain operations on axis-aligned boxes shared by the hierarchies, broad phases and primitive
 // tests (core/bvh, core/broadphase, core/overlap): validity, union, containment, closed overlap and
-// surface area. Exact comparisons (no centre subtraction); all but isValidBox assume valid boxes
-// (finite, min <= max).
+// surface area. Exact comparisons (no centre subtraction); all but isValidBox and aabbOverlapClosed
+// assume valid boxes (finite, min <= max).
 #pragma once
 
 #include "core/base/primitives.h"
@@ -23,6 +23,9 @@ inline bool overlaps(const Aabb& a, const Aabb& b) {
     return a.min.x() <= b.max.x() && b.min.x() <= a.max.x() && a.min.y() <= b.max.y() && b.min.y() <= a.max.y() &&
            a.min.z() <= b.max.z() && b.min.z() <= a.max.z();
 }
+/// Closed overlap of boxes that may be invalid: both valid (isValidBox) and overlapping (touching
+/// counts). Invalid boxes never overlap.
+inline bool aabbOverlapClosed(const Aabb& a, const Aabb& b) { return isValidBox(a) && isValidBox(b) && overlaps(a, b); }
 /// Surface area of a box, 2 (dx dy + dy dz + dz dx): the SAH cost (Goldsmith and Salmon 1987,
 /// MacDonald and Booth 1990) of a node is proportional to it.
 inline double surfaceArea(const Aabb& box) {

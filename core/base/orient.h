@@ -36,7 +36,4 @@ Vec2 dropAxis(const Vec3& p, int axis);
 /// (zero area), decided exactly.
 int projectionAxis(const Triangle& t);
 
-/// True when every coordinate is finite (no NaN, no inf).
-inline bool isFinite(const Vec3& v) { return v.allFinite(); }
-
 }  // namespace cdlab

@@ -3,7 +3,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <initializer_list>
 #include <limits>
+#include <span>
 
 namespace cdlab {
 
@@ -14,6 +16,22 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
+
+/// No NaN or infinite coordinate in any of the points (true for none): the one spelling of "all
+/// coordinates finite" for point sets in core (a single vector asks Eigen: v.allFinite()).
+inline bool allFinite(std::span<const Vec3> points) {
+    for (const Vec3& p : points)
+        if (!p.allFinite()) return false;
+    return true;
+}
+inline bool allFinite(std::span<const Vec2> points) {
+    for (const Vec2& p : points)
+        if (!p.allFinite()) return false;
+    return true;
+}
+inline bool allFinite(std::initializer_list<Vec3> points) {
+    return allFinite(std::span<const Vec3>(points.begin(), points.size()));
+}
 
 /// Line segment from a to b (a == b is a point and is allowed).
 struct Segment {

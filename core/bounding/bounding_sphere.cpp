@@ -231,7 +231,8 @@ Sphere fitSphereWelzl(std::span<const Vec3> points, WelzlTrace* trace) {
         const double supportR = std::sqrt(std::max(mtf.r2, 0.0));
         double maxR2 = 0.0;
         for (const Vec3& p : lp.p) maxR2 = std::max(maxR2, (p - mtf.center).squaredNorm());
-        trace->status = std::sqrt(maxR2) > supportR * (1.0 + 1e-9) ? WelzlStatus::Approximate : WelzlStatus::Exact;
+        trace->status =
+            std::sqrt(maxR2) > supportR * (1.0 + kWelzlExactRelative) ? WelzlStatus::Approximate : WelzlStatus::Exact;
     }
     return ball;
 }

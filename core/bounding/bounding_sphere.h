@@ -24,6 +24,11 @@
 
 namespace cdlab {
 
+/// Welzl's trace status: Exact while the farthest point exceeds the support ball's radius by at most
+/// this, relative (rounding of a well-shaped support set is ~1e-15; a rejected, nearly dependent
+/// support set leaves far more).
+inline constexpr double kWelzlExactRelative = 1e-9;
+
 /// One growth step of Ritter's pass: point `pointIndex` was outside the sphere (before), so the
 /// sphere grew to just reach it (after), the far side of the old sphere staying on the new one.
 struct RitterStep {
@@ -49,7 +54,7 @@ Sphere fitSphereRitter(std::span<const Vec3> points, RitterTrace* trace = nullpt
 enum class WelzlStatus {
     Exact,        ///< minimum ball to rounding (every point within the support ball)
     Approximate,  ///< a nearly affinely dependent support set was rejected and the final
-                  ///< radius (max distance) exceeds the support ball's by more than 1e-9
+                  ///< radius (max distance) exceeds the support ball's by more than kWelzlExactRelative
                   ///< relative: still encloses every point, may be slightly larger than minimal
     Empty,        ///< no finite point
 };

@@ -103,8 +103,6 @@ Obb boxFromCovariance(ObbFitMethod method, const Mat3& covariance, const Vec3& r
     return boxFromAxes(axes, ref, forEachPoint);
 }
 
-bool finite(const Triangle& t) { return t.a.allFinite() && t.b.allFinite() && t.c.allFinite(); }
-
 // Point-covariance OBB over the finite points delivered by forEachPoint (count n, bounds box).
 template <class ForEachPoint>
 Obb pointCovarianceObb(const Aabb& bounds, int n, ForEachPoint forEachPoint, ObbFitTrace* trace) {
@@ -155,7 +153,7 @@ Aabb fitAabb(std::span<const Vec3> points) {
 Aabb fitAabb(std::span<const Triangle> triangles) {
     Aabb box = emptyAabb();
     for (const Triangle& t : triangles) {
-        if (!finite(t)) continue;
+        if (!t.allFinite()) continue;
         grow(box, t.a);
         grow(box, t.b);
         grow(box, t.c);
@@ -188,12 +186,12 @@ Obb fitObbTriangles(std::span<const Triangle> triangles, ObbFitTrace* trace) {
     const Aabb bounds = fitAabb(triangles);
     if (trace)
         for (const Triangle& t : triangles)
-            if (!finite(t)) ++trace->skippedNonFinite;
+            if (!t.allFinite()) ++trace->skippedNonFinite;
     if (isEmpty(bounds)) return emptyObb();
     const Vec3 ref = 0.5 * (bounds.min + bounds.max);
     auto forEachVertex = [&](auto&& f) {
         for (const Triangle& t : triangles) {
-            if (!finite(t)) continue;
+            if (!t.allFinite()) continue;
             f(t.a);
             f(t.b);
             f(t.c);
@@ -207,7 +205,7 @@ Obb fitObbTriangles(std::span<const Triangle> triangles, ObbFitTrace* trace) {
     Vec3 firstMoment = Vec3::Zero();
     Mat3 secondMoment = Mat3::Zero();
     for (const Triangle& t : triangles) {
-        if (!finite(t)) continue;
+        if (!t.allFinite()) continue;
         const Vec3 p = t.a - ref, q = t.b - ref, r = t.c - ref;
         const Vec3 e1 = q - p, e2 = r - p;
         const double crossNorm = e1.cross(e2).norm();

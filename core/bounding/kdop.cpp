@@ -136,9 +136,8 @@ ConvexPolyhedron kdopPolytope(const Kdop<K>& dop) {
         normals.push_back(-dirs[i]);
         offsets.push_back(shift - dop.min[i]);
     }
-    // A corner candidate may violate another slab by rounding only; 1e-9 of the box size is far
-    // above that (1e-16 relative) and far below any real feature of the polytope.
-    const double tol = 1e-9 * size.maxCoeff();
+    // A corner candidate may violate another slab by rounding only (kKdopCornerRelative).
+    const double tol = kKdopCornerRelative * size.maxCoeff();
     const int m = static_cast<int>(normals.size());
     std::vector<Vec3> corners;
     for (int a = 0; a < m; ++a)

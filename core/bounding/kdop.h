@@ -26,6 +26,10 @@
 
 namespace cdlab {
 
+/// k-DOP corners: a corner candidate may violate another slab by this times the box size and still
+/// count (rounding is ~1e-16 relative; any real feature of the polytope is far larger).
+inline constexpr double kKdopCornerRelative = 1e-9;
+
 /// k-DOP with K in {6, 14, 18, 26}: K/2 slabs over kdopDirections<K>(). Default: empty (every
 /// min = +inf, max = -inf; no hit in testKdopKdop).
 template <int K>

@@ -7,14 +7,6 @@
 
 namespace cdlab {
 
-bool aabbOverlapClosed(const Aabb& a, const Aabb& b) {
-    if (!isValidBox(a) || !isValidBox(b)) return false;
-    // Closed intervals: [a.min, a.max] and [b.min, b.max] meet unless one ends before the other starts.
-    for (int i = 0; i < 3; ++i)
-        if (a.max[i] < b.min[i] || b.max[i] < a.min[i]) return false;
-    return true;
-}
-
 Aabb Octree::loosen(const Aabb& cell) const {
     if (options_.looseness <= 1.0) return cell;
     const Vec3 c = 0.5 * (cell.min + cell.max);

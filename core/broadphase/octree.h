@@ -34,12 +34,6 @@
 
 namespace cdlab {
 
-/// Closed-box overlap with the semantics of testAabbAabb (touching overlaps), as a plain
-/// comparison (no centre subtraction: exact). Invalid boxes never overlap.
-bool aabbOverlapClosed(const Aabb& a, const Aabb& b);
-/// The former name of isValidBox (core/base/aabb_ops.h), kept for code written against it.
-[[deprecated("use isValidBox from core/base/aabb_ops.h")]] inline bool aabbValid(const Aabb& box) { return isValidBox(box); }
-
 struct OctreeOptions {
     int maxDepth = 8;            ///< the root has depth 0; nodes at maxDepth are never split
     int maxObjectsPerLeaf = 4;   ///< a node with more objects than this (at its depth) is split

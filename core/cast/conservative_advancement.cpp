@@ -7,16 +7,6 @@
 
 namespace cdlab {
 
-namespace {
-
-bool finite(const std::vector<Vec3>& points) {
-    for (const Vec3& p : points)
-        if (!p.allFinite()) return false;
-    return true;
-}
-
-}  // namespace
-
 Transform poseAt(const Transform& start, const RigidMotion& motion, double t) {
     Transform pose = start;
     const double angle = t * motion.angular.norm();
@@ -42,7 +32,7 @@ AdvancementResult conservativeAdvancement(const std::vector<Vec3>& a, const std:
                                           const AdvancementOptions& options, AdvancementTrace* trace) {
     using O = AdvancementResult::Outcome;
     AdvancementResult result;
-    if (a.empty() || bodyB.empty() || !finite(a) || !finite(bodyB) || !startB.position.allFinite() ||
+    if (a.empty() || bodyB.empty() || !allFinite(a) || !allFinite(bodyB) || !startB.position.allFinite() ||
         !startB.rotation.coeffs().allFinite() || !motion.linear.allFinite() || !motion.angular.allFinite() ||
         !(options.tolerance >= 0.0))
         return result;

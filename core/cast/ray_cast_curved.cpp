@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/tolerances.h"
+
 namespace cdlab {
 
 namespace {
@@ -87,7 +89,7 @@ ConvexCastHit castRayCurved(const Ray& ray, const CurvedFaces& faces, const Conv
     // The entry: the first t at which f reaches min(0, top). A peak within f's rounding of 0 is a
     // tangent point: f is flat there (−κs² at a distance s), so the first t with f >= 0 in floating
     // point would come ~sqrt(u) early; the peak itself is exact.
-    const double rounding = 8 * 2.220446049250313e-16 * std::max(radius, Vec3(o + peak * d).norm());
+    const double rounding = 8 * kMachineEpsilon * std::max(radius, Vec3(o + peak * d).norm());
     const double target = std::min(0.0, top);
     double a = lo, b = peak;
     if (f(a).value >= target) b = a;

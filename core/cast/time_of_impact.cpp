@@ -10,10 +10,6 @@ namespace cdlab {
 
 namespace {
 
-bool allFinite(std::span<const Vec3> points) {
-    return std::all_of(points.begin(), points.end(), [](const Vec3& v) { return v.allFinite(); });
-}
-
 std::vector<Vec3> moved(std::span<const Vec3> points, const Vec3& by) {
     std::vector<Vec3> out;
     out.reserve(points.size());

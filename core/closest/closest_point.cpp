@@ -52,8 +52,6 @@ const char* nameOf(TetrahedronRegion region) {
 
 namespace {
 
-bool finite(const Vec3& v) { return v.allFinite(); }
-
 // The plain double formulas below (degree <= 4 in the coordinates) neither overflow nor lose
 // precision to underflow when every coordinate they read is 0 or of magnitude in [2^-200, 2^241)
 // (exact::inExpansionRange): every nonzero difference is then a multiple of 2^-252, and every
@@ -395,7 +393,7 @@ ClosestPointOnSegmentResult closestPointOnSegment(const Vec3& p, const Segment& 
     ClosestPointOnSegmentResult r;
     // One pass classifies the input: in the expansion range (so finite: plain arithmetic), or not.
     const bool plain = exact::inExpansionRange({&p, &s.a, &s.b});
-    if (!plain && (!finite(p) || !finite(s.a) || !finite(s.b))) {
+    if (!plain && (!p.allFinite() || !s.a.allFinite() || !s.b.allFinite())) {
         r.point = Vec3::Constant(kNaN);
         r.t = r.distanceSquared = kNaN;
         return r;
@@ -421,7 +419,7 @@ ClosestPointOnSegmentResult closestPointOnSegment(const Vec3& p, const Segment& 
 
 SegmentSegmentResult closestPointsSegmentSegment(const Segment& first, const Segment& second) {
     SegmentSegmentResult r;
-    if (!finite(first.a) || !finite(first.b) || !finite(second.a) || !finite(second.b)) {
+    if (!first.a.allFinite() || !first.b.allFinite() || !second.a.allFinite() || !second.b.allFinite()) {
         r.s = r.t = r.distanceSquared = kNaN;
         r.pointOnFirst = r.pointOnSecond = Vec3::Constant(kNaN);
         return r;
@@ -443,7 +441,7 @@ SegmentSegmentResult closestPointsSegmentSegment(const Segment& first, const Seg
     // difference itself would overflow), so every representable input has the same s and t as its
     // scaled copy and moderate inputs their unscaled values bit for bit.
     Vec3 d1 = first.b - first.a, d2 = second.b - second.a, rr = first.a - second.a;
-    if (!finite(d1) || !finite(d2) || !finite(rr))
+    if (!d1.allFinite() || !d2.allFinite() || !rr.allFinite())
         d1 = 0.5 * first.b - 0.5 * first.a, d2 = 0.5 * second.b - 0.5 * second.a, rr = 0.5 * first.a - 0.5 * second.a;
     const double largest = std::max({d1.cwiseAbs().maxCoeff(), d2.cwiseAbs().maxCoeff(), rr.cwiseAbs().maxCoeff()});
     if (largest > 0.0) {
@@ -509,7 +507,8 @@ ClosestPointOnTriangleResult closestPointOnTriangle(const Vec3& p, const Triangl
     // One pass classifies the input: in the expansion range (so finite: expansions and plain
     // double points), or not (BigDyadic where needed), or not finite.
     const bool plain = exact::inExpansionRange({&p, &t.a, &t.b, &t.c});
-    if (!plain && (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c))) return done(nonFiniteTriangle());
+    if (!plain && (!p.allFinite() || !t.a.allFinite() || !t.b.allFinite() || !t.c.allFinite()))
+        return done(nonFiniteTriangle());
     TriangleSigns signs(p, t.a, t.b, t.c, plain);
     if (!signs.certainlyNotCollinear() && exact::collinear(t.a, t.b, t.c)) return done(degenerateTriangle(p, t));
     ClosestPointOnTriangleResult r;
@@ -780,7 +779,7 @@ ClosestPointOnTetrahedronResult closestPointOnTetrahedron(const Vec3& p, const T
     const Vec3* v[4] = {&t.a, &t.b, &t.c, &t.d};
     // One pass classifies the input (see closestPointOnTriangle).
     const bool plain = exact::inExpansionRange({&p, &t.a, &t.b, &t.c, &t.d});
-    if (!plain && (!finite(p) || !finite(t.a) || !finite(t.b) || !finite(t.c) || !finite(t.d))) {
+    if (!plain && (!p.allFinite() || !t.a.allFinite() || !t.b.allFinite() || !t.c.allFinite() || !t.d.allFinite())) {
         return done(nonFiniteTetrahedronResult());
     }
     const int volumeSign = exact::orient3dSign(t.a, t.b, t.c, t.d);

@@ -139,7 +139,7 @@ FeaturePairPoints closestPointsSegmentPolygon(const Segment& s, const std::vecto
         // Parallel to the plane (to rounding): a continuum of closest pairs when the projection
         // overlaps the polygon.
         const double d = (s.b - s.a).norm();
-        r.parallel = d > 0.0 && std::abs(sa - sb) <= 1e-12 * d;
+        r.parallel = d > 0.0 && std::abs(sa - sb) <= kFeatureParallelRelative * d;
     }
     r.distanceSquared = INFINITY;
     for (const Vec3& e : {s.a, s.b}) {
@@ -172,7 +172,7 @@ FeaturePairPoints closestPointsPolygonPolygon(const std::vector<Vec3>& a, const 
     }
     // Parallel planes: a face-on pair has a continuum of closest pairs.
     const Vec3 na = newellNormal(a), nb = newellNormal(b);
-    r.parallel = na.cross(nb).norm() <= 1e-12 * na.norm() * nb.norm();
+    r.parallel = na.cross(nb).norm() <= kFeatureParallelRelative * na.norm() * nb.norm();
     return r;
 }
 
@@ -225,11 +225,11 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
     const double size = featureScale(a.points, b.points);
 
     // The features that hold the closest points (the pair type is decided by where the closest
-    // points lie, not by the features asked about). 1e-12 of the size is far above the points'
-    // rounding and far below any modelled feature.
+    // points lie, not by the features asked about): kFeatureSnapRelative of the size.
     const Vec3 toB = r.distance > 0.0 ? Vec3((r.pointB - r.pointA) / r.distance) : Vec3::Zero();
-    const double tol = 1e-12 * size;
-    const double slope = 1e-9 + (r.distance > 0.0 ? tol / r.distance : 0.0);  // the direction's own rounding
+    const double tol = kFeatureSnapRelative * size;
+    const double slope =
+        kFeatureDirectionSlope + (r.distance > 0.0 ? tol / r.distance : 0.0);  // the direction's own rounding
     const FeatureGeometry fa = realizedFeature(a, r.pointA, toB, tol, slope);
     const FeatureGeometry fb = realizedFeature(b, r.pointB, -toB, tol, slope);
     r.realizedA = fa.type;
@@ -249,9 +249,8 @@ FeatureDistanceResult featureDistance(const FeatureGeometry& a, const FeatureGeo
         r.normalDefined = true;
         return r;
     }
-    // V–V, V–E, E–E: the closest-point line. Below 1e-9 of the size the direction carries fewer
-    // than ~7 correct digits (the points have ~1e-16 relative rounding each): flagged unstable.
-    r.normalUnstable = r.distance <= 1e-9 * size;
+    // V–V, V–E, E–E: the closest-point line, flagged unstable below kUnstableNormalRelative of the size.
+    r.normalUnstable = r.distance <= kUnstableNormalRelative * size;
     if (r.distance > 0.0) {
         r.normal = (r.pointB - r.pointA) / r.distance;
         r.normalRule = "closest points";

@@ -23,11 +23,11 @@
 //   V–V, V–E, E–E: the line between the closest points, (pointB - pointA) / distance. This is
 //                  UNSTABLE: as the features approach each other its direction is rounding noise
 //                  and at contact it is undefined (0/0). normalUnstable flags distances below
-//                  1e-9 of the features' size; at distance 0 the E–E normal falls back to the edge
-//                  cross product (sign: toward B's edge midpoint, a heuristic; the bodies would
-//                  decide), V–V and V–E have no normal at all (normal = 0, normalDefined = false). Engines avoid
-//                  this by taking the normal from SAT (core/contact/contact_sat.h) or the face of a
-//                  neighbouring feature.
+//                  kUnstableNormalRelative of the features' size; at distance 0 the E–E normal falls
+//                  back to the edge cross product (sign: toward B's edge midpoint, a heuristic; the
+//                  bodies would decide), V–V and V–E have no normal at all (normal = 0, normalDefined = false). Engines
+//                  avoid this by taking the normal from SAT (core/contact/contact_sat.h) or the face of a neighbouring
+//                  feature.
 #pragma once
 
 #include <string>
@@ -37,6 +37,21 @@
 #include "core/geometry/polyhedron_feature.h"
 
 namespace cdlab {
+
+/// Parallel tests of featureDistance, relative: a segment is parallel to a polygon's plane when its
+/// end heights differ by at most this times its length, two polygons when |n_a x n_b| is at most this
+/// times |n_a| |n_b|; ~4500 ulps, above the rounding of a Newell normal, below any modelled tilt.
+inline constexpr double kFeatureParallelRelative = 1e-12;
+/// How far (times the features' size) a closest point may sit off a vertex or edge and still be
+/// realized on it: far above the points' rounding (~1e-16), far below any modelled feature.
+inline constexpr double kFeatureSnapRelative = 1e-12;
+/// The closest-point direction's own rounding, as a sine: the floor of the slope below which a
+/// feature's direction and the closest-point direction count as parallel (or perpendicular) when
+/// the realized feature is decided; the points' offset tol / distance is added to it.
+inline constexpr double kFeatureDirectionSlope = 1e-9;
+/// normalUnstable: a closest-point line shorter than this times the features' size carries fewer
+/// than ~7 correct digits of direction (the points have ~1e-16 relative rounding each).
+inline constexpr double kUnstableNormalRelative = 1e-9;
 
 enum class ContactType { VV, VE, VF, EE, EF, FF };
 
@@ -67,7 +82,7 @@ struct FeatureDistanceResult {
     Vec3 normal = Vec3::Zero();  ///< unit contact normal from A toward B (0 if !normalDefined)
     bool normalDefined = false;
     const char* normalRule = "";  ///< "face A", "face B", "closest points", "edge cross product", "none"
-    bool normalUnstable = false;  ///< normal from the closest-point line at distance < 1e-9 x size (or none)
+    bool normalUnstable = false;  ///< normal from the closest-point line below kUnstableNormalRelative x size
     bool parallel = false;        ///< parallel edges / faces: one of many closest pairs
 };
 

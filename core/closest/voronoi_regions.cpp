@@ -30,19 +30,12 @@ std::vector<Vec3> clipAll(std::vector<Vec3> polygon, std::initializer_list<HalfS
     return polygon;
 }
 
-bool finiteAll(std::initializer_list<Vec3> points) {
-    for (const Vec3& p : points) {
-        if (!p.allFinite()) return false;
-    }
-    return true;
-}
-
 }  // namespace
 
 TriangleVoronoiDiagram triangleVoronoiRegions(const TriangleVoronoiInput& input) {
     TriangleVoronoiDiagram d;
     const Vec3 &a = input.triangle.a, &b = input.triangle.b, &c = input.triangle.c;
-    if (!finiteAll({a, b, c}) || exact::collinear(a, b, c)) return d;
+    if (!allFinite({a, b, c}) || exact::collinear(a, b, c)) return d;
     const Vec3 n = (b - a).cross(c - a);
     d.valid = true;
     d.normal = n.normalized();
@@ -108,7 +101,7 @@ TetrahedronVoronoiDiagram tetrahedronVoronoiRegions(const TetrahedronVoronoiInpu
     TetrahedronVoronoiDiagram d;
     const Tetrahedron& t = input.tetrahedron;
     const Vec3 v[4] = {t.a, t.b, t.c, t.d};
-    if (!finiteAll({t.a, t.b, t.c, t.d}) || exact::orient3dSign(t.a, t.b, t.c, t.d) == 0) return d;
+    if (!allFinite({t.a, t.b, t.c, t.d}) || exact::orient3dSign(t.a, t.b, t.c, t.d) == 0) return d;
     d.valid = true;
     for (const Vec3& x : v) d.box.extend(x);
     d.box.min() -= Vec3::Constant(input.margin);

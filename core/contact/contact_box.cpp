@@ -133,8 +133,9 @@ detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
             const double proj = C(i1, j) * tA(i2) - C(i2, j) * tA(i1);
             const double rA = ha(i1) * absC(i2, j) + ha(i2) * absC(i1, j);
             const double rB = hb(j1) * absC(i, j2) + hb(j2) * absC(i, j1);
-            // Parallel edges (|a_i x b_j| <= 1e-9, contactPolyhedra's test) give a face axis: not tested.
-            edgeSep[3 * i + j] = len > 1e-9 ? (std::abs(proj) - rA - rB) / len : -INFINITY;  // toward B: sign of proj
+            // Parallel edges (|a_i x b_j| <= kParallelEdgeSine, contactPolyhedra's test) give a face axis: not tested.
+            edgeSep[3 * i + j] =
+                len > kParallelEdgeSine ? (std::abs(proj) - rA - rB) / len : -INFINITY;  // toward B: sign of proj
         }
     }
     const int e = firstLargest(edgeSep, 9);
@@ -168,7 +169,7 @@ using BoxCandidates = FixedCapacityVector<ContactPoint, 14>;  // corners + cross
 // depth: the deepest corner's, max(0, -min s_k).
 BoxCandidates boxPlaneCandidates(const std::array<Vec3, 8>& x, const std::array<double, 8>& s, const Vec3& h,
                                  const Vec3& n, double d, double tol, double depth, bool rim) {
-    const double surface = 1e-9 * depth, reach = depth * depth;
+    const double surface = kSurfaceBandRelative * depth, reach = depth * depth;
     std::array<Vec3, 8> submerged;  // their pointB
     int deep = 0;
     for (int k = 0; k < 8; ++k)  // candidates (s <= tol: tol may be negative) below the surface band
@@ -286,7 +287,7 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
     double d = 0.0;
     r.message = validExtents(h) ? detail::unitPlane(plane, n, d) : "box half extents must be finite, > 0 and at most 1e150";
     if (!*r.message) r.message = detail::poseProblem(pose);
-    if (!*r.message && !std::isfinite(options.tolerance)) r.message = "tolerance is not finite";
+    if (!*r.message && options.tolerance && !std::isfinite(*options.tolerance)) r.message = "tolerance is not finite";
     if (*r.message) {
         r.signedDistance = NAN;
         return r;
@@ -305,8 +306,9 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
     }
     const double maxCoord = std::max(std::abs(d), extent.maxCoeff());
     r.deepestVertex = low;
-    r.tolerance = options.tolerance >= 0.0 ? options.tolerance
-                                           : options.relativeTolerance * 2.0 * h.norm() + ulps(64, maxCoord);
+    r.tolerance = options.tolerance && *options.tolerance >= 0.0
+                      ? *options.tolerance
+                      : options.relativeTolerance * 2.0 * h.norm() + ulps(64, maxCoord);
     const double tol = r.tolerance;
     const double sLow = s[low];
     if (!std::isfinite(sLow) || !std::isfinite(tol)) {  // a pose or plane near the double limit

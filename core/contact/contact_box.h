@@ -10,7 +10,7 @@
 // (the gap between the boxes' projections). The axes are the face normals ±a_i, ±b_j (the face
 // queries of contactPolyhedra) and the nine a_i x b_j: each is the normal of the Minkowski face of
 // the two edges extreme along it, so these are exactly the edge pairs contactPolyhedra keeps after
-// its Gauss-map pruning, with the same parallel test (|a_i x b_j| <= 1e-9: skipped). The axis
+// its Gauss-map pruning, with the same parallel test (|a_i x b_j| <= kParallelEdgeSine: skipped). The axis
 // choice, the face clipping and the reduction are contactPolyhedra's own
 // (core/contact/contact_stages.h). Exact depths: the depth is the chosen axis's overlap, with no
 // fudge term (Bullet's btBoxBoxDetector inflates edge–edge depths).

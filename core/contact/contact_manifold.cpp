@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/base/stack_arena.h"
+#include "core/contact/contact_tolerances.h"
 
 namespace cdlab {
 
@@ -22,12 +23,12 @@ struct Scratch {
     int* hull;    // the chosen points' hull, up to 2 kMaxContactPoints + 2
 };
 
-// A score replaces the best so far only when larger by more than rounding (1e-9 relative): exact
+// A score replaces the best so far only when larger by more than rounding (kManifoldTieRelative): exact
 // ties are common (a clipped rectangle has parallel sides, so two points make the same triangle
 // with the first two; a face-on box has four corners at one depth), and the first in input order
 // must win them whatever the rounding, or the manifold flickers between frames and between two
 // computations of the same contact (the box fast paths and the general ones).
-bool clearlyGreater(double score, double best) { return score > best + 1e-9 * std::abs(best); }
+bool clearlyGreater(double score, double best) { return score > best + kManifoldTieRelative * std::abs(best); }
 
 // Rule 0. Points at depth 0 (where an edge crosses the plane or the reference face's side) that lie
 // within the deepest depth, in the plane, of a submerged point are the rim of that corner, on edges
@@ -36,7 +37,7 @@ bool clearlyGreater(double score, double best) { return score > best + 1e-9 * st
 // (every depth 0) keep theirs. Returns how many points are kept (written to s.kept).
 int supportingPoints(std::span<const ContactPoint> polygon, double deepest, const Scratch& s) {
     const int n = static_cast<int>(polygon.size());
-    const double surface = 1e-9 * deepest;  // at the surface, up to rounding of the depths
+    const double surface = kSurfaceBandRelative * deepest;  // at the surface, up to rounding of the depths
     const double reach = deepest * deepest;
     int deep = 0;
     for (int j = 0; j < n; ++j)
@@ -128,7 +129,7 @@ ContactIndices reduceWith(std::span<const ContactPoint> polygon, const Vec3& nor
     // Each rule below picks among the submerged points first and turns to the depth-0 ones only when
     // no submerged point scores: a crossing never displaces a full-depth corner. (Rule 0 keeps the
     // deepest point, so `deepest` is also the deepest kept depth.)
-    const auto submerged = [&](int i) { return polygon[i].depth > 1e-9 * deepest; };
+    const auto submerged = [&](int i) { return polygon[i].depth > kSurfaceBandRelative * deepest; };
     const auto pick = [&](const auto& score, double& bestScore) {
         for (bool tier : {true, false}) {
             int chosen = -1;

@@ -6,7 +6,7 @@
 // GDC 2015; Bullet btPersistentManifold::sortCachedPoints keeps the largest-area quad likewise):
 //   0. points at depth 0 (edge crossings) within the deepest depth, in the plane, of a submerged
 //      point are dropped: they are the rim of that corner and would displace full-depth corners;
-//   1. the deepest point (largest depth; ties, to 1e-9 relative as in every rule: first in input order),
+//   1. the deepest point (largest depth; ties, to kManifoldTieRelative as in every rule: first in input order),
 //   2. the point farthest from it (measured in the contact plane),
 //   3. the point that makes the triangle with 1 and 2 of largest area,
 //   4. the point that adds the most area to that triangle (largest area of the triangle it
@@ -61,7 +61,7 @@ ContactIndices reduceContactPolygon(std::span<const ContactPoint> polygon, const
                                     std::vector<ManifoldReductionStep>* steps = nullptr);
 
 /// Every point's index (at most kMaxContactPoints points), the deepest first — first of ties, by the
-/// rules' 1e-9 relative tie rule — then input order: reduceContactPolygon's answer when nothing is
+/// rules' kManifoldTieRelative tie rule — then input order: reduceContactPolygon's answer when nothing is
 /// dropped (maxPoints <= 0, or a caller that applied rule 0 itself and kept no more than maxPoints).
 ContactIndices deepestFirst(std::span<const ContactPoint> points);
 

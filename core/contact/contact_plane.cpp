@@ -204,7 +204,8 @@ PlaneContactResult contactPolyhedronPlane(const ConvexPolyhedron& body, const Tr
     double d = 0.0;
     r.message = body.empty() ? "empty polyhedron" : detail::unitPlane(plane, n, d);
     if (r.message.empty()) r.message = detail::poseProblem(pose);
-    if (r.message.empty() && !std::isfinite(options.tolerance)) r.message = "tolerance is not finite";
+    if (r.message.empty() && options.tolerance && !std::isfinite(*options.tolerance))
+        r.message = "tolerance is not finite";
     if (!r.message.empty()) {
         r.status = PlaneContactStatus::InvalidInput;
         r.signedDistance = NAN;
@@ -226,7 +227,9 @@ PlaneContactResult contactPolyhedronPlane(const ConvexPolyhedron& body, const Tr
     // n̂ · x - d̂ rounded: ~4 ulps of |x| + |d|; the margin keeps coplanar vertices of a face-on
     // body together at offsets 1e6 x its size).
     const double diag = (body.boundsMax() - body.boundsMin()).norm();
-    r.tolerance = options.tolerance >= 0.0 ? options.tolerance : options.relativeTolerance * diag + ulps(64, maxCoord);
+    r.tolerance = options.tolerance && *options.tolerance >= 0.0
+                      ? *options.tolerance
+                      : options.relativeTolerance * diag + ulps(64, maxCoord);
     const double tol = r.tolerance;
     const double sLow = pv.s[pv.low];
     r.deepestVertex = pv.low;

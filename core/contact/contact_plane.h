@@ -25,11 +25,13 @@
 // plane, pointA - pointB = depth * normal.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/base/types.h"
 #include "core/contact/contact_manifold.h"
+#include "core/contact/contact_tolerances.h"
 #include "core/geometry/polyhedron.h"
 #include "core/geometry/shapes.h"
 
@@ -46,13 +48,14 @@ const char* nameOf(PlaneContactStatus status);
 
 struct PlaneContactOptions {
     /// Feature tolerance tol (world units): vertices within tol of the extreme form the closest
-    /// feature, and |s_min| <= tol counts as touching. < 0: relativeTolerance * body diameter.
-    double tolerance = -1.0;
-    /// Default tolerance relative to the body's bounding-box diagonal: 1e-9 is ~1e7 ulps of the
-    /// coordinates (far above the rounding of s_i, ~4 ulps of |x| + |d|, for offsets up to 1e6 x
-    /// the size) and far below any modelled tilt. A simulation resting on the ground wants a
-    /// larger, absolute value (a "contact slop", e.g. 1e-3 of the size).
-    double relativeTolerance = 1e-9;
+    /// feature, and |s_min| <= tol counts as touching. std::nullopt (or a negative value): automatic,
+    /// relativeTolerance * body diameter + 64 ulps of the coordinates.
+    std::optional<double> tolerance;
+    /// Default tolerance relative to the body's bounding-box diagonal: kTouchingBandRelative (1e-9)
+    /// is ~1e7 ulps of the coordinates (far above the rounding of s_i, ~4 ulps of |x| + |d|, for
+    /// offsets up to 1e6 x the size) and far below any modelled tilt. A simulation resting on the
+    /// ground wants a larger, absolute value (a "contact slop", e.g. 1e-3 of the size).
+    double relativeTolerance = kTouchingBandRelative;
     /// Manifold size: 1 = deepest point only, 4 = engine-style quad; <= 0 keeps the full polygon.
     int maxPoints = 4;
 };

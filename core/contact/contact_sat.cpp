@@ -86,10 +86,10 @@ struct Posed {
             for (int k = begin; k < end; ++k) c += x[m.faceVertexIds()[k]];
             d.push_back(n.back().dot(c / double(end - begin)));
         }
-        // Unit normals within 1e-12 of opposite: a fold of a flat body, not a dihedral edge.
+        // Unit normals within kFoldedEdgeSine of opposite: a fold of a flat body, not a dihedral edge.
         // (Equal normals, two coplanar faces of a triangulated mesh, are fine: a point arc.)
         for (const ConvexPolyhedron::EdgeEnds& e : *edges)
-            flat = flat || (n[e.f1].dot(n[e.f2]) < 0.0 && !(n[e.f2].cross(n[e.f1]).norm() > 1e-12));
+            flat = flat || (n[e.f1].dot(n[e.f2]) < 0.0 && !(n[e.f2].cross(n[e.f1]).norm() > kFoldedEdgeSine));
     }
     void buildArcs() {
         if (!arcs.empty()) return;
@@ -214,7 +214,7 @@ void arcSideRow(const Posed::Arc& arcA, const Posed& B, std::pmr::vector<double>
 }
 
 // An edge pair whose arcs cross: its axis e_A x e_B oriented away from A, unless the edges are
-// parallel (sin of the angle below 1e-9: the cross product is rounding noise; their separating
+// parallel (sin of the angle at most kParallelEdgeSine: the cross product is rounding noise; their separating
 // direction is a face normal, tested in step 1). The larger separation wins; an exact tie goes to
 // the lower (edge of A, edge of B) pair, the brute-force loop's order.
 void considerEdgePair(const Posed& A, const Posed& B, int ea, int eb, SatQuery& q) {
@@ -224,7 +224,7 @@ void considerEdgePair(const Posed& A, const Posed& B, int ea, int eb, SatQuery& 
     const Vec3 db = B.x[edgeB.v1] - B.x[edgeB.v0];
     Vec3 axis = da.cross(db);
     const double len = axis.norm();
-    if (!(len > 1e-9 * da.norm() * db.norm())) {
+    if (!(len > kParallelEdgeSine * da.norm() * db.norm())) {
         ++q.parallel;
         return;
     }

@@ -33,12 +33,14 @@
 // taken relative to A's position so large offsets cost no precision in differences.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/base/sat_axis_kind.h"
 #include "core/base/types.h"
 #include "core/contact/contact_manifold.h"
+#include "core/contact/contact_tolerances.h"
 #include "core/geometry/polyhedron.h"
 
 namespace cdlab {
@@ -55,8 +57,9 @@ const char* nameOf(SatContactStatus status);
 const char* nameOf(SatAxisKind kind);
 
 struct SatContactOptions {
-    /// Touching tolerance (world units); < 0: 1e-9 x the larger body diagonal + 64 ulps of the coordinates.
-    double tolerance = -1.0;
+    /// Touching tolerance (world units); std::nullopt (or a negative value): automatic,
+    /// kTouchingBandRelative x the larger body diagonal + 64 ulps of the coordinates.
+    std::optional<double> tolerance;
     /// Axis preference: a candidate replaces the current best only if its separation exceeds it
     /// by faceBiasRelative * |best| + faceBiasAbsolute (order: face A, face B, edges).
     double faceBiasRelative = 0.02;

@@ -62,7 +62,8 @@ const char* poseProblem(const Transform& pose) {
     const Quat& q = pose.rotation;
     const double zero = p.x() * 0.0 + p.y() * 0.0 + p.z() * 0.0 + q.x() * 0.0 + q.y() * 0.0 + q.z() * 0.0 + q.w() * 0.0;
     if (!(zero == 0.0)) return "pose is not finite";
-    if (std::abs(pose.rotation.squaredNorm() - 1.0) > 1e-6) return "pose rotation is not a unit quaternion";
+    if (std::abs(pose.rotation.squaredNorm() - 1.0) > kUnitQuaternionTolerance)
+        return "pose rotation is not a unit quaternion";
     return "";
 }
 
@@ -78,7 +79,8 @@ const char* unitPlane(const Plane& plane, Vec3& n, double& d) {
 }
 
 double satTolerance(const SatContactOptions& options, double size, double maxCoord) {
-    return options.tolerance >= 0.0 ? options.tolerance : 1e-9 * size + ulps(64, maxCoord);
+    return options.tolerance && *options.tolerance >= 0.0 ? *options.tolerance
+                                                          : kTouchingBandRelative * size + ulps(64, maxCoord);
 }
 
 SatChosenAxis chooseSatAxis(const SatBestAxes& b, double tol, const SatContactOptions& options) {

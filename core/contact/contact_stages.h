@@ -8,18 +8,21 @@
 #include <string>
 
 #include "core/contact/contact_sat.h"
+#include "core/contact/contact_tolerances.h"
 
 namespace cdlab::detail {
 
-/// "" (a static string, as every message here) when the pose is usable: finite, and its quaternion unit to ~1e-6 (a typo-level error, not
-/// rounding drift, which stays ~1e-15 per multiplication); else why not.
+/// "" (a static string, as every message here) when the pose is usable: finite, and its quaternion
+/// unit to kUnitQuaternionTolerance (~1e-6: a typo-level error, not rounding drift, which stays
+/// ~1e-15 per multiplication); else why not.
 const char* poseProblem(const Transform& pose);
 
 /// Unit plane (n̂, d̂) of n · x = d without overflow or underflow (divides by the largest |n_i|
 /// first). "" on success, else why the plane is invalid (not finite, zero normal).
 const char* unitPlane(const Plane& plane, Vec3& n, double& d);
 
-/// The touching band: the caller's tolerance, else 1e-9 of the larger body diagonal plus 64 ulps of
+/// The touching band: the caller's tolerance (when set and >= 0), else kTouchingBandRelative of the
+/// larger body diagonal plus 64 ulps of
 /// the largest coordinate (support values are dot products of coordinates up to maxCoord, rounded
 /// to a few ulps).
 double satTolerance(const SatContactOptions& options, double size, double maxCoord);

@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/tolerances.h"
 #include "core/base/types.h"
 #include "core/closest/feature_distance.h"
 #include "core/feature_walk/vclip.h"
@@ -92,7 +93,7 @@ struct LinCannyOptions {
     /// Touching tolerance, relative to scale: a pair whose closest points are this close is
     /// reported as Penetrating (FeaturesMeet). 16 DBL_EPSILON: the rounding floor of a distance
     /// computed from coordinates of that magnitude (below it the sign of the gap is noise).
-    double touching = 16.0 * 2.220446049250313e-16;
+    double touching = 16.0 * kMachineEpsilon;
 };
 
 struct LinCannyResult {

@@ -480,8 +480,9 @@ HullFrame hullFrame(std::span<const Vec3> points, const HullOptions& options) {
     const double maxAbs = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
     const double diagonal = (hi - lo).norm();
     HullFrame frame;
-    frame.eps = options.absoluteEpsilon > 0.0 ? options.absoluteEpsilon
-                                              : options.epsilonFactor * kMachineEpsilon * (maxAbs + diagonal);
+    frame.eps = options.absoluteEpsilon && *options.absoluteEpsilon > 0.0
+                    ? *options.absoluteEpsilon
+                    : options.epsilonFactor * kMachineEpsilon * (maxAbs + diagonal);
     frame.mergeTol = options.mergeFactor * frame.eps;
     const Vec3 center = 0.5 * (lo + hi);
     frame.P.resize(points.size());

@@ -38,6 +38,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -62,7 +63,7 @@ const char* nameOf(HullStatus status);
 
 struct HullOptions {
     double epsilonFactor = 4096.0;   ///< eps = epsilonFactor * DBL_EPSILON * (max|coord| + diagonal)
-    double absoluteEpsilon = 0.0;    ///< if > 0, use this eps instead (length units)
+    std::optional<double> absoluteEpsilon;  ///< set and > 0: this eps instead (length units); else automatic
     double mergeFactor = 4.0;        ///< merge tolerance = mergeFactor * eps (folds of eps can chain)
     bool mergeCoplanarFaces = true;  ///< false: output the triangulated hull
     bool removeCollinearVertices = true;

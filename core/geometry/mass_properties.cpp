@@ -138,12 +138,11 @@ MassProperties computeMassProperties(const std::vector<Vec3>& positions, const s
         }
     }
     const double volume = six / 6.0;
-    // Degenerate: relative to the bounding box volume scale diagonal^3; 1e-12 of it is far below any
-    // real solid (a 1 x 1 x 1e-4 slab is 1e-4 of its diagonal^3) and above the rounding of a flat one.
-    if (!(volume > 1e-12 * diagonal * diagonal * diagonal))
+    // Degenerate: relative to the bounding box volume scale diagonal^3 (kMassDegenerateVolume).
+    if (!(volume > kMassDegenerateVolume * diagonal * diagonal * diagonal))
         return fail(MassStatus::Degenerate, -1,
                     "volume " + volumeText(volume) + " is not above 1e-12 x its bounding box diagonal cubed (" +
-                        volumeText(1e-12 * diagonal * diagonal * diagonal) +
+                        volumeText(kMassDegenerateVolume * diagonal * diagonal * diagonal) +
                         "): flat, empty, inside-out (faces must be counter-clockwise from outside), or too thin for "
                         "its length to weigh in double precision");
 

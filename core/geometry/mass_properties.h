@@ -25,6 +25,13 @@
 
 namespace cdlab {
 
+/// Default planarTolerance, relative to the bounding-box diagonal (see MassPropertiesOptions): far
+/// above what convexHull() leaves, far below any modelled feature.
+inline constexpr double kMassPlanarTolerance = 1e-9;
+/// Degenerate solid: volume at most this times diagonal^3 (far below any real solid, a 1 x 1 x 1e-4
+/// slab being 1e-4 of it, and above the rounding of a flat one).
+inline constexpr double kMassDegenerateVolume = 1e-12;
+
 enum class MassStatus {
     Ok,                  ///< every output is meaningful
     NonFinite,           ///< a NaN / Inf coordinate or density; index = the vertex (-1: density)
@@ -45,7 +52,7 @@ struct MassPropertiesOptions {
     /// for coordinate rounding at large offsets. 1e-9 is far above what convexHull() leaves (faces
     /// planar within ~1e-12 of the scale) and far below any modelled feature; a non-planar face has
     /// no unique solid (its fan triangulation picks one), hence the error.
-    double planarTolerance = 1e-9;
+    double planarTolerance = kMassPlanarTolerance;
 };
 
 struct MassProperties {

@@ -335,8 +335,8 @@ double ConvexPolyhedron::scaleTolerance() const {
     return ulps(65536.0, maxAbs + (hi - lo).norm());
 }
 
-PolyhedronCheck ConvexPolyhedron::validate(double tolerance) const {
-    if (tolerance < 0.0) tolerance = scaleTolerance();
+PolyhedronCheck ConvexPolyhedron::validate(std::optional<double> requested) const {
+    const double tolerance = requested && !(*requested < 0.0) ? *requested : scaleTolerance();
     const int V = vertexCount(), F = faceCount();
     if (V < 4 || F < 4) return fail(PolyhedronDefect::NoFaces, -1, "fewer than 4 vertices or faces");
     // 1-3. Links, face cycles, vertex fans.
@@ -430,9 +430,7 @@ PolyhedronCheck ConvexPolyhedron::checkFaceGeometry(int f, double tolerance) con
     if (!face.normal.allFinite() || !std::isfinite(face.offset)) {
         return fail(PolyhedronDefect::NonFinite, f, "face " + std::to_string(f) + " plane is not finite");
     }
-    // 1e-9: a normal fitted and normalized in double is unit to ~1e-16; anything
-    // farther was not normalized at all.
-    if (std::abs(face.normal.norm() - 1.0) > 1e-9) {
+    if (std::abs(face.normal.norm() - 1.0) > kUnitNormalTolerance) {
         return fail(PolyhedronDefect::NonUnitNormal, f, "face " + std::to_string(f) + " normal is not unit");
     }
     const std::vector<int> loop = faceVertices(f);

@@ -17,6 +17,7 @@
 //   vertexNeighbors(v)   destination of each half-edge of vertexHalfEdges(v), same order.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +26,10 @@
 #include "core/base/types.h"
 
 namespace cdlab {
+
+/// validate(): a face normal is unit when | |n| - 1 | is at most this. A normal fitted and
+/// normalized in double is unit to ~1e-16; anything farther was not normalized at all.
+inline constexpr double kUnitNormalTolerance = 1e-9;
 
 /// What validate() / fromFaces() found wrong first (None = nothing).
 enum class PolyhedronDefect {
@@ -205,8 +210,8 @@ public:
     /// Euler V - E + F = 2, finite unit normals, every face planar and convex within tolerance,
     /// every vertex on or behind every face plane (done for all pairs when V*F <= 2e7, otherwise
     /// for the neighbours of each face's vertices, which for a closed genus-0 surface implies
-    /// global convexity), positive volume. tolerance < 0 means scaleTolerance().
-    PolyhedronCheck validate(double tolerance = -1.0) const;
+    /// global convexity), positive volume. std::nullopt (or a negative value) means scaleTolerance().
+    PolyhedronCheck validate(std::optional<double> tolerance = std::nullopt) const;
     /// validate()'s structural part alone: every half-edge's twin / next / prev / face / edge
     /// consistent, face cycles closed and covering every half-edge once, one fan per vertex.
     /// fromFaces() asserts it on what it builds (on in the sanitizer build).

@@ -133,9 +133,8 @@ ConvexPolyhedron prism(int n, double radius, double halfHeight) {
     return fromFacesOrEmpty(std::move(v), faces);
 }
 
-ConvexPolyhedron disk(int n, double radius, double halfThickness) {
-    // 1e-4 * radius: see the header.
-    return prism(n, radius, halfThickness > 0.0 ? halfThickness : 1e-4 * radius);
+ConvexPolyhedron disk(int n, double radius, std::optional<double> halfThickness) {
+    return prism(n, radius, halfThickness && *halfThickness > 0.0 ? *halfThickness : kDiskHalfThicknessRatio * radius);
 }
 
 ConvexPolyhedron geodesicSphere(int level, double radius) {

@@ -7,12 +7,17 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/base/types.h"
 #include "core/geometry/polyhedron.h"
 
 namespace cdlab::presets {
+
+/// disk()'s default half thickness, relative to its radius: thick enough that the face planes are
+/// well conditioned in double, thin enough to look and collide like a disk.
+inline constexpr double kDiskHalfThicknessRatio = 1e-4;
 
 /// splitmix64 (Steele, Lea, Flood, OOPSLA 2014): identical sequence on every platform and
 /// standard library (std:: distributions are not). Doubles are built from the top 53 bits.
@@ -46,10 +51,10 @@ ConvexPolyhedron dodecahedron(double circumradius = 1.0);
 /// seen from +y). Built from explicit faces (no hull).
 ConvexPolyhedron prism(int n, double radius, double halfHeight);
 /// A flat regular n-gon "disk" as a very thin prism: a flat polygon has no volume, so it cannot be
-/// a closed convex polyhedron. halfThickness defaults to 1e-4 * radius, thick enough that face
-/// planes are well conditioned in double, thin enough to look and collide like a disk. For a truly
-/// flat polygon use regularPolygon() with PolytopeShape (support mappings need no faces).
-ConvexPolyhedron disk(int n, double radius, double halfThickness = -1.0);
+/// a closed convex polyhedron. halfThickness (std::nullopt, or a value <= 0: automatic) defaults to
+/// kDiskHalfThicknessRatio * radius. For a truly flat polygon use regularPolygon() with
+/// PolytopeShape (support mappings need no faces).
+ConvexPolyhedron disk(int n, double radius, std::optional<double> halfThickness = std::nullopt);
 /// The n vertices (n >= 3, clamped) of a regular polygon of circumradius `radius` in the plane y = 0,
 /// counter-clockwise seen from +y (same angles as prism()).
 std::vector<Vec3> regularPolygon(int n, double radius);

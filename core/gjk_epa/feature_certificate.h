@@ -12,7 +12,7 @@
 // test's and its distance is exact"; tests/core/gjk_epa/epa_test.cpp "sliver faces: the depth is
 // the nearest facet's, against an exact facet enumeration"; tests/core/closest/
 // edge_pair_distance_test.cpp "GJK on wedges with nearly parallel ridges: distance = gap to
-// rounding"; tests/demos/stress/nearly_parallel_edges_test.cpp "nearly parallel edges: crossing by
+// rounding"; tests/app/stress/nearly_parallel_edges_test.cpp "nearly parallel edges: crossing by
 // 1e-9 of the size is intersecting, with the nearest face's depth".
 #pragma once
 

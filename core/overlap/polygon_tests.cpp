@@ -27,12 +27,6 @@ int winding(std::span<const Vec2> poly) {
     return 0;
 }
 
-bool allFinite(std::span<const Vec2> poly) {
-    for (const Vec2& v : poly)
-        if (!v.allFinite()) return false;
-    return true;
-}
-
 // Exact test for polygons of which at least one has zero area: convex sets meet iff one holds a
 // vertex of the other or their boundaries cross.
 bool intersectByFeatures(std::span<const Vec2> a, std::span<const Vec2> b) {

@@ -14,6 +14,11 @@
 
 namespace cdlab {
 
+/// Default planeTolerance of the 3D polygon tests (world units): how far off a polygon's plane a
+/// point may sit and still count as in it; far above the ~1e-16 rounding of a plane through unit-
+/// sized vertices, far below any modelled feature.
+inline constexpr double kPolygonPlaneTolerance = 1e-9;
+
 /// Closed 2D segments p0p1 and q0q1 share a point (exact; degenerate segments are points).
 bool segmentsIntersect2d(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Vec2& q1);
 
@@ -54,12 +59,13 @@ Vec3 polygonNormal(std::span<const Vec3> polygon);
 /// (world units), and its projection lies in the polygon (exact 2D test after dropping the
 /// dominant normal axis). Zero-area polygons: p must lie on the segment (or point) they span
 /// exactly (planeTolerance unused).
-bool pointInConvexPolygon3d(std::span<const Vec3> polygon, const Vec3& p, double planeTolerance = 1e-9);
+bool pointInConvexPolygon3d(std::span<const Vec3> polygon, const Vec3& p,
+                            double planeTolerance = kPolygonPlaneTolerance);
 
 /// Coplanar convex 3D polygons overlap: false when some vertex of b is farther than
 /// planeTolerance (world units) from the plane of a; otherwise the 2D test on both polygons
 /// projected along a's dominant normal axis.
 PolygonOverlapResult intersectCoplanarConvexPolygons3d(std::span<const Vec3> a, std::span<const Vec3> b,
-                                                       double planeTolerance = 1e-9);
+                                                       double planeTolerance = kPolygonPlaneTolerance);
 
 }  // namespace cdlab

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/aabb_ops.h"
+
 namespace cdlab {
 
 namespace {
@@ -16,10 +18,6 @@ namespace {
 // that noise for |T| up to ~1e6 times the extents, while a nondegenerate axis is widened by a
 // relative 1e-9 only. Such an axis is never needed: with parallel edges the face axes decide.
 constexpr double kSatParallelEpsilon = 1e-9;
-
-bool validAabb(const Aabb& box) {
-    return box.min.allFinite() && box.max.allFinite() && (box.min.array() <= box.max.array()).all();
-}
 
 bool validObb(const Obb& box) {
     return box.center.allFinite() && box.axes.allFinite() && box.halfExtents.allFinite() &&
@@ -83,7 +81,7 @@ void projectTriangle(const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3&
 
 SatResult testAabbAabb(const Aabb& a, const Aabb& b, SatTrace* trace) {
     SatResult result;
-    if (!validAabb(a) || !validAabb(b)) return result;
+    if (!isValidBox(a) || !isValidBox(b)) return result;
     const Vec3 c = 0.5 * (a.min + a.max);
     for (int i = 0; i < 3; ++i)
         if (axisStep(SatAxisKind::FaceA, i, -1, Vec3::Unit(i), a.min[i] - c[i], a.max[i] - c[i], b.min[i] - c[i],
@@ -94,7 +92,7 @@ SatResult testAabbAabb(const Aabb& a, const Aabb& b, SatTrace* trace) {
 }
 
 SatResult testSegmentAabb(const Segment& segment, const Aabb& box, SatTrace* trace) {
-    if (!validAabb(box) || !segment.a.allFinite() || !segment.b.allFinite()) return {};
+    if (!isValidBox(box) || !segment.a.allFinite() || !segment.b.allFinite()) return {};
     const Vec3 c = 0.5 * (box.min + box.max);
     const Vec3 e = box.max - c;
     return segmentBoxLocal(segment.a - c, segment.b - c, e, Mat3::Identity(), trace);
@@ -109,7 +107,7 @@ SatResult testSegmentObb(const Segment& segment, const Obb& box, SatTrace* trace
 
 SatResult testTriangleAabb(const Triangle& tri, const Aabb& box, SatTrace* trace) {
     SatResult result;
-    if (!validAabb(box) || !tri.a.allFinite() || !tri.b.allFinite() || !tri.c.allFinite()) return result;
+    if (!isValidBox(box) || !tri.a.allFinite() || !tri.b.allFinite() || !tri.c.allFinite()) return result;
     // Ericson §5.2.9: move the box to the origin.
     const Vec3 c = 0.5 * (box.min + box.max);
     const Vec3 e = box.max - c;

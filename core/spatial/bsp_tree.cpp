@@ -92,7 +92,7 @@ void splitPolygon(const Fragment& f, const Vec3& n, double d, double eps, Fragme
 
 void BspTree::build(const std::vector<BspPolygon>& polygons, const BspOptions& options, BspTrace* trace) {
     options_ = options;
-    if (!(options_.planeThickness >= 0.0)) options_.planeThickness = 1e-9;
+    if (!(options_.planeThickness >= 0.0)) options_.planeThickness = kBspPlaneThickness;
     options_.splitWeight = std::clamp(std::isfinite(options_.splitWeight) ? options_.splitWeight : 0.8, 0.0, 1.0);
     nodes_.clear();
     localOffset_.clear();
@@ -139,12 +139,11 @@ void BspTree::build(const std::vector<BspPolygon>& polygons, const BspOptions& o
             Vec3 nrm = Vec3::Zero();
             for (std::size_t k = 0; k < f.vertices.size(); ++k)
                 nrm += (f.vertices[k] - c).cross(f.vertices[(k + 1) % f.vertices.size()] - c);
-            // Zero-area threshold, relative to the input size squared (rounding of the cross
-            // products is ~1e-16 L^2; a polygon below 1e-12 L^2 has no reliable plane).
+            // Zero-area threshold, relative to the input size squared: kBspDegenerateArea.
             const double len = nrm.norm();
             work.normal.push_back(len > 0 ? Vec3(nrm / len) : Vec3::UnitZ());
             work.offset.push_back(len > 0 ? work.normal.back().dot(c) : 0.0);
-            if (f.vertices.size() < 3 || !(len > 1e-12 * size * size)) {
+            if (f.vertices.size() < 3 || !(len > kBspDegenerateArea * size * size)) {
                 degenerate = true;
                 continue;
             }

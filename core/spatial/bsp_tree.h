@@ -24,7 +24,7 @@
 // polygon planes are fitted in floating point, so a polygon's own vertices, or a vertex shared
 // by two polygons, are off a plane by rounding noise (~1e-16 L); without a thick plane they
 // would be classified as in front or behind at random, splitting polygons into slivers and
-// making point classification flip. 1e-9 L sits far above that noise and far below any feature
+// making point classification flip. kBspPlaneThickness (1e-9) L sits far above that noise and far below any feature
 // a figure or test uses. Geometry is stored relative to the centre of the input bounds (origin),
 // so large offsets (1e6) do not add rounding to the plane distances.
 //
@@ -42,13 +42,20 @@
 
 namespace cdlab {
 
+/// Default planeThickness, relative to the input size L (see the file comment): far above the
+/// ~1e-16 L rounding of fitted planes, far below any feature a figure or test uses.
+inline constexpr double kBspPlaneThickness = 1e-9;
+/// Zero-area polygons: |Newell normal| at most this times L^2 (its rounding is ~1e-16 L^2; below
+/// it a polygon has no reliable plane).
+inline constexpr double kBspDegenerateArea = 1e-12;
+
 /// A convex planar polygon, counter-clockwise seen from the front (outside).
 struct BspPolygon {
     std::vector<Vec3> vertices;
 };
 
 struct BspOptions {
-    double planeThickness = 1e-9;  ///< relative to the input size (see the header)
+    double planeThickness = kBspPlaneThickness;  ///< relative to the input size (see the header)
     double splitWeight = 0.8;      ///< K of Ericson §8.3.2: weight of splits vs imbalance (0.8 as there)
     int maxCandidates = 0;  ///< 0: every polygon of a node is a candidate; else at most this many (evenly spaced)
     int maxDepth = 1000;    ///< root depth 0 (a 5k-triangle torus needs ~220)

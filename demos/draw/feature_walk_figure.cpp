@@ -47,7 +47,11 @@ Body parseBody(const JsonNode& node) {
         const int n = getEither(s, "n", "sides").asInt(3, 200);
         const double radius = sceneSize(s.get("radius"));
         if (kind == "prism") mesh = presets::prism(n, radius, sceneSize(s.get("half_height")));
-        else mesh = presets::disk(n, radius, s.find("half_thickness") ? sceneSize(s.get("half_thickness")) : -1.0);
+        else {
+            std::optional<double> halfThickness;  // std::nullopt: disk()'s default
+            if (s.find("half_thickness")) halfThickness = sceneSize(s.get("half_thickness"));
+            mesh = presets::disk(n, radius, halfThickness);
+        }
     } else if (kind == "geodesic_sphere") {
         mesh = presets::geodesicSphere(s.get("level").asInt(0, 3), s.find("radius") ? sceneSize(s.get("radius")) : 1.0);
     } else if (kind == "hull" || kind == "polytope") {
