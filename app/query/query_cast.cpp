@@ -14,9 +14,8 @@
 #include "app/query/query_json.h"
 #include "app/query/query_limits.h"
 #include "app/query/query_ops.h"
-#include "app/query/query_plane.h"
+#include "core/query/touch.h"
 #include "app/query/query_shapes.h"
-#include "app/query/query_tolerance.h"
 
 namespace cdlab::demos {
 

@@ -197,7 +197,7 @@ std::vector<Box> boxesOf(const std::vector<QueryShape>& shapes) {
 double boxGap(const Box& a, const Box& b) { return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0).stableNorm(); }
 
 // Box gaps at or below this may still be touching pairs: far above the rounding of the gap and of
-// the touching rule (1e-13 of the pair's extent, query_tolerance.h).
+// the touching rule (1e-13 of the pair's extent, core/base/touch_rule.h).
 double cullMargin(const Box& a, const Box& b) {
     double m = 0;
     for (const Box* x : {&a, &b})

@@ -12,7 +12,7 @@
 // (face vertices counter-clockwise seen from outside; aabb/obb corners are numbered with bit k of
 // the index choosing the + side of axis k); the plane's feature is {"type":"plane"}.
 //
-// Touching or separated is decided by the touching rule of every op (query_tolerance.h): for two
+// Touching or separated is decided by the touching rule of every op (core/base/touch_rule.h): for two
 // polytopes by the GJK distance, for a polytope and a plane by the lowest signed vertex distance.
 // The manifold itself (which vertices form the touching feature, which clipped points are kept)
 // uses the core's feature tolerance. Everything is computed in a frame local to the bodies —
@@ -35,9 +35,8 @@
 #include "app/query/query_limits.h"
 #include "app/query/query_mass.h"
 #include "app/query/query_ops.h"
-#include "app/query/query_plane.h"
+#include "core/query/touch.h"
 #include "app/query/query_shapes.h"
-#include "app/query/query_tolerance.h"
 
 namespace cdlab::demos {
 

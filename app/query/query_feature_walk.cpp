@@ -11,7 +11,7 @@
 #include "core/geometry/convex_hull.h"
 #include "app/query/query_json.h"
 #include "app/query/query_limits.h"
-#include "app/query/query_tolerance.h"
+#include "core/query/touch.h"
 
 namespace cdlab::demos {
 
@@ -80,7 +80,7 @@ Json traceJson(const LinCannyTrace& t) {
 }
 
 // The answer of either walk (VClipResult or LinCannyResult: the same fields), scaled back by 2^-k.
-// `touch` (normalised units) is the touching rule shared with GJK (query_tolerance.h): a walk that
+// `touch` (normalised units) is the touching rule shared with GJK (core/base/touch_rule.h): a walk that
 // ends at a distance within it reports touching, as every other op does.
 template <class Result>
 Json walkAnswer(const std::string& op, const Result& r, int k, double touch) {

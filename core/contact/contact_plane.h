@@ -50,7 +50,7 @@ struct PlaneContactOptions {
     /// Feature tolerance tol (world units): vertices within tol of the extreme form the closest
     /// feature, and |s_min| <= tol counts as touching. std::nullopt (or a negative value): automatic,
     /// relativeTolerance * body diameter + 64 ulps of the coordinates.
-    std::optional<double> tolerance;
+    std::optional<double> tolerance = std::nullopt;
     /// Default tolerance relative to the body's bounding-box diagonal: kTouchingBandRelative (1e-9)
     /// is ~1e7 ulps of the coordinates (far above the rounding of s_i, ~4 ulps of |x| + |d|, for
     /// offsets up to 1e6 x the size) and far below any modelled tilt. A simulation resting on the

@@ -59,7 +59,7 @@ const char* nameOf(SatAxisKind kind);
 struct SatContactOptions {
     /// Touching tolerance (world units); std::nullopt (or a negative value): automatic,
     /// kTouchingBandRelative x the larger body diagonal + 64 ulps of the coordinates.
-    std::optional<double> tolerance;
+    std::optional<double> tolerance = std::nullopt;
     /// Axis preference: a candidate replaces the current best only if its separation exceeds it
     /// by faceBiasRelative * |best| + faceBiasAbsolute (order: face A, face B, edges).
     double faceBiasRelative = 0.02;

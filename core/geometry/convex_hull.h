@@ -63,7 +63,7 @@ const char* nameOf(HullStatus status);
 
 struct HullOptions {
     double epsilonFactor = 4096.0;   ///< eps = epsilonFactor * DBL_EPSILON * (max|coord| + diagonal)
-    std::optional<double> absoluteEpsilon;  ///< set and > 0: this eps instead (length units); else automatic
+    std::optional<double> absoluteEpsilon = std::nullopt;  ///< set and > 0: this eps instead (length units); else automatic
     double mergeFactor = 4.0;        ///< merge tolerance = mergeFactor * eps (folds of eps can chain)
     bool mergeCoplanarFaces = true;  ///< false: output the triangulated hull
     bool removeCollinearVertices = true;

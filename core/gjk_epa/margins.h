@@ -11,16 +11,22 @@
 // Why: on a sphere's full support GJK converges only linearly (each step halves the angle: ~16
 // iterations to 1e-13, 3 µs for two capsules) and EPA needs ever more faces on the round surface
 // (tens of µs, 1e-4..1e-8 error); on the cores — points, segments, polytopes — both terminate
-// exactly in a few steps, and the closed form adds no error beyond one addition. `cdlab query`
-// answers every bounded pair this way. Shapes without a margin (margin() 0 or absent) go to
-// gjkDistance / penetration unchanged.
+// exactly in a few steps, and the closed form adds no error beyond one addition.
+//
+// marginPairOnCores is the one implementation: penetrationWithMargins (typed shapes) and core/query's
+// pairQuery (the shapes of `cdlab query`, which also polishes curved cores) both call it, with the
+// one touching rule of core/base/touch_rule.h. Typed shapes without a margin (both radii 0) go to
+// gjkDistance / penetration, whose own rules are GJK's and EPA's (core/gjk_epa/gjk.h, epa.h).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <type_traits>
 
-#include "core/gjk_epa/epa.h"
+#include "core/base/touch_rule.h"
 #include "core/geometry/shapes.h"
+#include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
 
 namespace cdlab {
@@ -51,22 +57,144 @@ auto worldCore(const S& shape) {
     }
 }
 
-namespace detail {
+/// Options of marginPairOnCores.
+struct MarginPairOptions {
+    /// false: an overlapping pair answers only `intersect` (EPA does not run).
+    bool depth = true;
+    /// W, the extent of the cores' Minkowski difference in the result's units (core/base/touch_rule.h);
+    /// unset: computed from the cores' supports along the axes.
+    std::optional<double> minkowskiExtent = std::nullopt;
+    GjkOptions gjk{};  ///< GJK on the cores (a warm start: gjk.warmStart)
+    EpaOptions epa{};  ///< EPA on the cores, when they overlap
+    GjkTrace* gjkTrace = nullptr;
+    EpaTrace* epaTrace = nullptr;
+};
 
-template <class A, class B>
-double marginCoordinateScale(const A& a, const B& b) {
-    return std::max(boundingRadiusOf(a), boundingRadiusOf(b));
+/// How marginPairOnCores decided (the branches of the file comment).
+enum class MarginPairCase {
+    InvalidInput,  ///< a non-finite support point (GJK's or EPA's status says which)
+    Separated,     ///< the cores are farther apart than rA + rB + the touching tolerance
+    Overlapping,   ///< touching or overlapping; the depth was not asked for
+    CrossedEdges,  ///< cores crossing by a sliver of nearly parallel edges, decided exactly inside GJK
+    CoresApart,    ///< cores apart (or touching) but within rA + rB: depth = rA + rB − distance
+    Epa,           ///< cores overlapping: EPA's depth + rA + rB
+};
+
+/// A pair of shapes conv(core) ⊕ ball(r), in the result's units (see unscale below).
+struct MarginPair {
+    MarginPairCase how = MarginPairCase::InvalidInput;
+    bool intersect = false;
+    double distance = 0.0;        ///< separated: > 0
+    double depth = 0.0;           ///< intersecting (with the depth asked): >= 0
+    Vec3 normal = Vec3::UnitX();  ///< unit, from A toward B
+    Vec3 pointA = Vec3::Zero();   ///< separated: closest points; intersecting: deepest points,
+    Vec3 pointB = Vec3::Zero();   ///<   pointA − pointB = depth · normal
+    double touchTolerance = 0.0;  ///< kTouchRelative · (W + rA + rB)
+    GjkResult gjk;                ///< GJK on the cores (the cores' units)
+    EpaResult epa;                ///< EPA on the cores, when how == Epa (or EPA failed)
+};
+
+/// The identity "polish" of marginPairOnCores (polytope and point / segment cores terminate exactly).
+struct NoPolish {
+    static constexpr bool active = false;
+    void operator()(Vec3&, double&, Vec3&, Vec3&, double, double) const {}
+};
+
+/// GJK and, when the cores overlap, EPA on the cores ca and cb, with the radii ra and rb added in
+/// closed form (the file comment). The cores may be given in their own units (a power-of-two
+/// scaling): unscale(x) maps their lengths to the result's, in which ra, rb and the extent are given.
+/// A Polish with active == true refines a smooth core pair's axis / normal m and its value
+/// (−distance or depth) with its witnesses: polish(m, value, pointA, pointB, lowerBound, upperBound)
+/// on GJK's separated answer and on EPA's, which then runs to epa.relativeTolerance only
+/// (core/query's curved solids; tests/core/query/pair_query_test.cpp).
+template <class CoreA, class CoreB, class Unscale, class Polish = NoPolish>
+MarginPair marginPairOnCores(const CoreA& ca, const CoreB& cb, double ra, double rb, const MarginPairOptions& options,
+                             Unscale unscale, const Polish& polish = {}) {
+    const auto unscaleVec = [&](const Vec3& v) { return Vec3(v.unaryExpr(unscale)); };
+    const double radii = ra + rb;
+    const double extent = options.minkowskiExtent ? *options.minkowskiExtent : unscale(minkowskiExtentOfSupports(ca, cb));
+    MarginPair ans;
+    ans.touchTolerance = kTouchRelative * (extent + ra + rb);
+    GjkResult& g = ans.gjk;
+    g = gjkDistance(ca, cb, options.gjk, options.gjkTrace);
+    if (g.status == GjkStatus::InvalidInput) return ans;
+    if (Polish::active && !g.intersect) {
+        // GJK stops ~1e-8 short on a smooth patch (its simplex shrinks to nearly equal points).
+        double value = -g.distance;
+        polish(g.separatingAxis, value, g.pointA, g.pointB, g.lowerBound, g.upperBound);
+        g.distance = std::max(-value, 0.0);
+        g.intersect = value >= 0;  // the cores touch: no EPA needed, depth 0 along the axis
+    }
+    const double coreDistance = unscale(g.distance);
+    const Vec3 coreA = unscaleVec(g.pointA), coreB = unscaleVec(g.pointB);
+    const auto witnesses = [&](const Vec3& onA, const Vec3& onB) {
+        ans.pointA = onA + ra * ans.normal;  // pointA − pointB = (onA − onB) + radii n
+        ans.pointB = onB - rb * ans.normal;
+    };
+    if (!g.intersect && coreDistance > radii + ans.touchTolerance) {
+        ans.how = MarginPairCase::Separated;
+        ans.distance = coreDistance - radii;
+        ans.normal = g.separatingAxis;  // unit, from A toward B
+        witnesses(coreA, coreB);
+        return ans;
+    }
+    ans.intersect = true;
+    ans.how = MarginPairCase::Overlapping;
+    if (!options.depth) return ans;
+    if (g.edgePairCrossed) {  // the face of A − B the crossing edges span is the nearest one
+        ans.how = MarginPairCase::CrossedEdges;
+        ans.depth = unscale(g.crossedDepth) + radii;
+        ans.normal = g.crossedNormal;
+        witnesses(coreA, coreB);
+        return ans;
+    }
+    if ((!g.intersect && coreDistance > 0) || (Polish::active && g.separatingAxis.squaredNorm() > 0)) {
+        // Cores apart, shapes overlapping (or touching): the core axis is the normal, however close
+        // the cores (GJK's closest points near the origin come from error-free products: its axis
+        // holds to a few ulps). EPA needs a simplex holding the origin: cores 3e-14 apart sent there
+        // gave two capsules 0.33 deep where they are 0.1.
+        ans.how = MarginPairCase::CoresApart;
+        ans.depth = std::max(radii - coreDistance, 0.0);
+        ans.normal = g.separatingAxis;
+        witnesses(coreA, coreB);
+        return ans;
+    }
+    EpaResult& e = ans.epa;
+    e = epaPenetration(ca, cb, g.simplex, options.epa, options.epaTrace);
+    if (e.status == EpaStatus::InvalidInput) {
+        ans.how = MarginPairCase::InvalidInput;
+        return ans;
+    }
+    ans.how = MarginPairCase::Epa;
+    if (Polish::active) {  // EPA's polytope needs ever more faces on a smooth patch
+        double value = e.depth;
+        polish(e.normal, value, e.pointA, e.pointB, e.lowerBound, e.upperBound);
+        e.depth = std::max(value, 0.0);
+    }
+    // EPA always gives a unit normal (a degenerate start falls back to the axis of least overlap
+    // inside epaPenetration).
+    ans.depth = unscale(e.depth) + radii;
+    ans.normal = e.normal;
+    // Cores that only touch or cross (their own depth within the touching band: two segments, a flat
+    // difference) have no deepest points for EPA to find — its blown-up start put them 0.4 off a
+    // capsule —, but GJK's common point is where they meet.
+    const bool coresMeet = unscale(e.depth) <= kTouchRelative * extent;
+    witnesses(coresMeet ? coreA : unscaleVec(e.pointA), coresMeet ? coreB : unscaleVec(e.pointB));
+    return ans;
 }
 
+namespace detail {
+
+inline bool validRadii(double ra, double rb) { return ra >= 0.0 && rb >= 0.0 && std::isfinite(ra + rb); }
+
 // GJK's result on the cores as the result on the shapes: the radii subtracted, the witnesses pushed
-// out along the axis; within rA + rB the shapes intersect (distance 0, axis zero). radii > 0.
-inline GjkResult withMargins(GjkResult g, double ra, double rb) {
-    const double radii = ra + rb;
-    if (g.status == GjkStatus::InvalidInput) return g;
-    const Vec3 axis = g.separatingAxis;  // zero when the cores intersect
-    g.pointA += ra * axis;  // cores apart: on the segment between them, inside both shapes when overlapping
-    g.pointB -= rb * axis;
-    if (g.intersect || !(g.distance > radii)) {
+// out along the axis; intersecting (distance 0, axis zero) when p decided so.
+inline GjkResult gjkOnShapes(const MarginPair& p, double ra, double rb) {
+    GjkResult g = p.gjk;
+    if (p.how == MarginPairCase::InvalidInput && g.status == GjkStatus::InvalidInput) return g;
+    if (p.intersect) {
+        g.pointA += ra * g.separatingAxis;
+        g.pointB -= rb * g.separatingAxis;
         g.status = GjkStatus::Intersecting;
         g.intersect = true;
         g.distance = 0.0;
@@ -74,33 +202,40 @@ inline GjkResult withMargins(GjkResult g, double ra, double rb) {
         g.lowerBound = g.upperBound = 0.0;
         return g;
     }
-    g.distance -= radii;
-    g.lowerBound = std::max(g.lowerBound - radii, 0.0);
-    g.upperBound -= radii;
+    g.pointA = p.pointA;
+    g.pointB = p.pointB;
+    g.distance = p.distance;
+    g.lowerBound = std::max(g.lowerBound - (ra + rb), 0.0);
+    g.upperBound -= ra + rb;
     return g;
 }
-
-inline bool validRadii(double ra, double rb) { return ra >= 0.0 && rb >= 0.0 && std::isfinite(ra + rb); }
 
 }  // namespace detail
 
 /// GJK distance of two shapes with margins (see the file comment): GJK on the cores, the radii
-/// subtracted. The result is GJK's on the cores with distance, pointA / pointB, bounds and status
-/// adjusted to the shapes (intersecting when the cores are within rA + rB: distance 0, axis zero);
-/// simplex and iterations are the cores' (a warm start in options.warmStart must be one of these).
-/// A negative or NaN radius: InvalidInput.
+/// subtracted, the touching rule of core/base/touch_rule.h. The result is GJK's on the cores with
+/// distance, pointA / pointB, bounds and status adjusted to the shapes (intersecting when the cores
+/// are within rA + rB + the touching tolerance: distance 0, axis zero); simplex and iterations are
+/// the cores' (a warm start in options.warmStart must be one of these). A negative or NaN radius:
+/// InvalidInput. Shapes without a margin (both radii 0) are answered by gjkDistance itself.
 template <SupportMapping A, SupportMapping B>
 GjkResult gjkDistanceWithMargins(const A& shapeA, const B& shapeB, const GjkOptions& options = {}) {
     const double ra = marginOf(shapeA), rb = marginOf(shapeB);
     if (!detail::validRadii(ra, rb)) return GjkResult{};
     if (ra + rb == 0.0) return gjkDistance(shapeA, shapeB, options);
-    return detail::withMargins(gjkDistance(worldCore(shapeA), worldCore(shapeB), options), ra, rb);
+    MarginPairOptions o;
+    o.depth = false;
+    o.gjk = options;
+    const auto identity = [](double x) { return x; };
+    return detail::gjkOnShapes(marginPairOnCores(worldCore(shapeA), worldCore(shapeB), ra, rb, o, identity), ra, rb);
 }
 
 /// Penetration of two shapes with margins (see the file comment): status, depth, normal and deepest
-/// points as penetration() reports them for the shapes themselves; iterations, bounds and polytope
-/// size are the core queries'. Separated shapes: status Separated, normal = the axis, pointA /
-/// pointB the closest points. `gjkOut` optionally receives gjkDistanceWithMargins' result.
+/// points as penetration() reports them for the shapes themselves, decided by the touching rule of
+/// core/base/touch_rule.h (Touching: depth within kTouchRelative · (W + rA + rB)); iterations, bounds
+/// and polytope size are the core queries'. Separated shapes: status Separated, normal = the axis,
+/// pointA / pointB the closest points. `gjkOut` optionally receives gjkDistanceWithMargins' result.
+/// Shapes without a margin (both radii 0) are answered by penetration() itself.
 template <SupportMapping A, SupportMapping B>
 EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOptions& options = {},
                                  GjkResult* gjkOut = nullptr) {
@@ -110,54 +245,33 @@ EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOpti
         return EpaResult{};
     }
     if (radii == 0.0) return penetration(shapeA, shapeB, options, nullptr, gjkOut);
-    const auto ca = worldCore(shapeA);
-    const auto cb = worldCore(shapeB);
-    const GjkResult g = gjkDistance(ca, cb, options.gjk);
-    const GjkResult onShapes = detail::withMargins(g, ra, rb);
-    if (gjkOut) *gjkOut = onShapes;
-    EpaResult r;
-    if (g.status == GjkStatus::InvalidInput) return r;
-    const double scale = detail::marginCoordinateScale(shapeA, shapeB);
-    const auto finish = [&](double depth, const Vec3& normal, const Vec3& coreA, const Vec3& coreB) {
-        r.depth = depth;
-        r.normal = normal;
-        r.pointA = coreA + ra * normal;  // pointA − pointB = (coreA − coreB) + radii n = depth n
-        r.pointB = coreB - rb * normal;
-        r.status = depth <= detail::kEpaTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
-    };
-    if (!onShapes.intersect) {  // apart: the closest points of the shapes
+    MarginPairOptions o;
+    o.gjk = options.gjk;
+    o.epa = options;
+    const MarginPair p =
+        marginPairOnCores(worldCore(shapeA), worldCore(shapeB), ra, rb, o, [](double x) { return x; });
+    if (gjkOut) *gjkOut = detail::gjkOnShapes(p, ra, rb);
+    if (p.how == MarginPairCase::InvalidInput) return p.gjk.status == GjkStatus::InvalidInput ? EpaResult{} : p.epa;
+    EpaResult r = p.how == MarginPairCase::Epa ? p.epa : EpaResult{};
+    r.normal = p.normal;
+    r.pointA = p.pointA;
+    r.pointB = p.pointB;
+    if (!p.intersect) {
         r.status = EpaStatus::Separated;
         r.termination = EpaTermination::NotIntersecting;
-        r.normal = onShapes.separatingAxis;
-        r.pointA = onShapes.pointA;
-        r.pointB = onShapes.pointB;
-        r.iterations = g.iterations;
-    } else if (g.edgePairCrossed) {  // cores crossing by a sliver, decided exactly inside GJK
-        finish(g.crossedDepth + radii, g.crossedNormal, g.pointA, g.pointB);
+        r.iterations = p.gjk.iterations;
+        return r;
+    }
+    r.depth = p.depth;
+    r.status = p.depth <= p.touchTolerance ? EpaStatus::Touching : EpaStatus::Penetrating;
+    if (p.how == MarginPairCase::Epa) {
+        r.lowerBound = p.epa.lowerBound + radii;
+        r.upperBound = p.epa.upperBound + radii;
+    } else {  // decided by GJK alone (crossed edges, or cores apart within the radii)
         r.termination = EpaTermination::Converged;
-        r.iterations = g.iterations;
-        r.edgePairRefined = true;
+        r.iterations = p.gjk.iterations;
+        r.edgePairRefined = p.how == MarginPairCase::CrossedEdges;
         r.lowerBound = r.upperBound = r.depth;
-    } else if (!g.intersect && g.distance > 0.0) {
-        // Cores apart, shapes overlapping: the cores' axis, however close they are (GJK's closest
-        // points near the origin come from error-free products, its axis holds to a few ulps; EPA
-        // needs a simplex holding the origin, which a separated GJK does not leave).
-        finish(std::max(radii - g.distance, 0.0), g.separatingAxis, g.pointA, g.pointB);
-        r.termination = EpaTermination::Converged;
-        r.iterations = g.iterations;
-        r.lowerBound = r.upperBound = r.depth;
-    } else {  // cores overlapping or touching: EPA on the cores (a flat or point start falls back
-              // to a unit normal of least overlap inside epaPenetration)
-        const EpaResult e = epaPenetration(ca, cb, g.simplex, options);
-        if (e.status == EpaStatus::InvalidInput) return e;
-        r = e;
-        // Cores that only touch or cross (two segments: a flat difference) have no deepest points
-        // for EPA to find — its blown-up start can put them far along a core —, but GJK's common
-        // point of the two is where they meet.
-        const bool coresMeet = e.depth <= detail::kEpaTouch * scale;
-        finish(e.depth + radii, e.normal, coresMeet ? g.pointA : e.pointA, coresMeet ? g.pointB : e.pointB);
-        r.lowerBound = e.lowerBound + radii;
-        r.upperBound = e.upperBound + radii;
     }
     return r;
 }

@@ -8,6 +8,7 @@ root="$1"; build="$2"
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
 test -f "$tmp/prefix/include/cdlab/core/gjk_epa/gjk.h"
+test -f "$tmp/prefix/include/cdlab/core/cdlab.h"
 test -f "$tmp/prefix/lib/cmake/cdlab/cdlabConfig.cmake"
 # A core built with ASan + UBSan (./cdlab test --sanitize) needs the sanitizer runtimes in whatever
 # links it: the consumer of that installed library links them too.
@@ -17,6 +18,10 @@ cmake -S "$root/tests/install/consumer" -B "$tmp/installed" -DCMAKE_PREFIX_PATH=
       -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >/dev/null
 cmake --build "$tmp/installed" -j 2 >/dev/null
 "$tmp/installed/consumer"
+# The installed core answers the same pairs as `cdlab query`, double for double.
+"$tmp/installed/consumer" lines > "$tmp/pairs.jsonl"
+"$build/bin/cdlab" query < "$tmp/pairs.jsonl" > "$tmp/answers.jsonl"
+"$tmp/installed/consumer" compare < "$tmp/answers.jsonl"
 # add_subdirectory(core): configure, and compile the consumer's source against the core target's
 # include directory and flags (linking it would rebuild all of core: the installed variant links).
 cmake -S "$root/tests/install/consumer" -B "$tmp/subdir" -DCDLAB_CORE_DIR="$root/core" >/dev/null
@@ -26,4 +31,4 @@ cmake -S "$root" -B "$tmp/core-only" -DCDLAB_BUILD_DEMOS=OFF -DCDLAB_BUILD_TESTS
 if grep -E -i "EGL|GIF|nlohmann|doctest|PNG|OpenGL" "$tmp/core-only.log"; then
     echo "FAIL the core-only configure looked for more than Eigen"; exit 1
 fi
-echo "install: the find_package(cdlab) consumer builds and runs; add_subdirectory(core) compiles; core-only configure needs Eigen alone"
+echo "install: the find_package(cdlab) consumer builds, runs and answers as cdlab query does; add_subdirectory(core) compiles; core-only configure needs Eigen alone"

@@ -1,10 +1,23 @@
-#include "app/query/query_plane.h"
+#include "core/query/touch.h"
 
+#include <algorithm>
 #include <cmath>
 
-#include "app/query/query_tolerance.h"
+namespace cdlab {
 
-namespace cdlab::demos {
+double touchTolerance(const QueryShape& a, const QueryShape& b) {
+    return kTouchRelative * (minkowskiExtent(boundingPoints(a), boundingPoints(b)) + a.radius + b.radius);
+}
+
+double planeTouchTolerance(double unitOffset, double magnitude) {
+    return kTouchRelative * (magnitude + std::abs(unitOffset));
+}
+
+double largestCoordinate(const QueryShape& s) {
+    double m = 0.0;
+    for (const Vec3& v : boundingPoints(s)) m = std::max(m, v.cwiseAbs().maxCoeff());
+    return m;
+}
 
 UnitPlane unitPlane(const QueryShape& plane) {
     const double m = plane.normal.norm();
@@ -33,4 +46,4 @@ PlaneSpan planeSpan(const QueryShape& plane, const QueryShape& s) {
     return span;
 }
 
-}  // namespace cdlab::demos
+}  // namespace cdlab
