@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/scene/demo.h"
 #include "core/bounding/bounding_volume_fit.h"
 #include "core/bvh/bvh.h"
 #include "core/bvh/mesh_collision.h"
