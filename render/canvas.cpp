@@ -266,8 +266,7 @@ Image Canvas::Impl::readBack(FigureLayout layout) {
     checkGl("rendering and reading back the canvas");
     const std::size_t stride = std::size_t(rw) * 4;
     for (int y = 0; y < rh; ++y)
-        std::copy_n(rows.data() + std::size_t(rh - 1 - y) * stride, stride,
-                    raw.rgba.data() + std::size_t(y) * stride);
+        std::copy_n(rows.data() + std::size_t(rh - 1 - y) * stride, stride, raw.rgba.data() + std::size_t(y) * stride);
     const int resolve = options.supersample;
     Image out = resolve > 1 ? downsample(raw, resolve) : std::move(raw);
     out.layout = options.scale > 1 ? layout.scaled(options.scale) : std::move(layout);  // in output pixels

@@ -14,8 +14,8 @@ void BvhScene::runAabbVsObb(const RunContext& ctx, DemoOutput& out) const {
     const MeshSpec& m = meshes[0];
     const Bvh trees[2] = {buildChecked(m.mesh, BvKind::Aabb, build.method),
                           buildChecked(m.mesh, BvKind::Obb, build.method)};
-    const int maxLevel = std::min(*std::max_element(levels.begin(), levels.end()) + 2,
-                                  std::min(trees[0].height(), trees[1].height()));
+    const int maxLevel =
+        std::min(*std::max_element(levels.begin(), levels.end()) + 2, std::min(trees[0].height(), trees[1].height()));
     Json t;
     t["mesh"] = m.kind;
     t["trees"] = {treeJson(trees[0], maxLevel), treeJson(trees[1], maxLevel)};
@@ -70,18 +70,17 @@ Frame BvhScene::aabbVsObbLevelsFrame(GlContext& gl, const MeshView& mv, const Bv
                                      double radius) const {
     const MeshSpec& m = meshes[0];
     GridLayout L = grid(W(), H(), int(levels.size()), 2);
-    const Camera cam = common_.camera ? *common_.camera
-                                      : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+    const Camera cam =
+        common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
     std::vector<Image> panels;
     for (int k = 0; k < 2; ++k)
         for (int level : levels) {
             const std::vector<int> nodes = levelNodes(trees[k], level);
             const double v = sumVolume(trees[k], nodes);
-            panels.push_back(
-                boxesPanel(gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes,
-                           k == 0 ? levelColor(0) : levelColor(1), cam,
-                           std::string(nameOf(trees[k].kind)) + " tree, level " + std::to_string(level),
-                           std::to_string(nodes.size()) + " boxes, volume " + fmt(v)));
+            panels.push_back(boxesPanel(gl, L.panelWidth(), L.panelHeight(), mv, trees[k], m.pose, nodes,
+                                        k == 0 ? levelColor(0) : levelColor(1), cam,
+                                        std::string(nameOf(trees[k].kind)) + " tree, level " + std::to_string(level),
+                                        std::to_string(nodes.size()) + " boxes, volume " + fmt(v)));
         }
     std::vector<LegendItem> legend = {
         {LegendItem::Swatch::Fill, roleColor(Role::ShapeA).withAlpha(0.5f), "torus mesh"},

@@ -23,8 +23,8 @@ void BvhScene::runBuildMethods(const RunContext& ctx, DemoOutput& out) const {
     Vec3 center;
     double radius;
     sphereOverTopLevel(mv, trees, m.pose, center, radius);
-    const Camera cam = common_.camera ? *common_.camera
-                                      : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+    const Camera cam =
+        common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
     std::vector<Image> panels;
     for (int k = 0; k < 2; ++k) {
         for (int level : levels) {

@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
+#include "app/scene/scene_limits.h"
 #include "demos/bvh/bvh_scene.h"
 #include "demos/bvh/dynamic_tree_figure.h"
-#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos {
 
@@ -39,7 +39,8 @@ const std::vector<std::string> kLayers = {"mesh", "boxes", "tree", "labels"};
 // [{box: index, by: [dx, dy, dz]}] (up to 8), view.
 void readDynamicTree(ObjectReader& r, DynamicTreeSpec& spec) {
     JsonNode bs = r.get("boxes");
-    if (!bs.isArray() || bs.size() < 2 || bs.size() > 16) bs.fail("expected 2 to 16 boxes [{\"min\": [x,y,z], \"max\": [x,y,z]}]");
+    if (!bs.isArray() || bs.size() < 2 || bs.size() > 16)
+        bs.fail("expected 2 to 16 boxes [{\"min\": [x,y,z], \"max\": [x,y,z]}]");
     for (const JsonNode& b : bs.items()) {
         ObjectReader br(b);
         const Aabb box{sceneVec3(br.get("min")), sceneVec3(br.get("max"))};

@@ -41,8 +41,8 @@ void BvhScene::runDual(const RunContext& ctx, DemoOutput& out) const {
     GridLayout L = grid(W(), H(), 2, 1);
     L.columnWidths = {W() - 360, 360};
     L.captionBand = 100;
-    const Camera cam = common_.camera ? *common_.camera
-                                      : sphereCamera(center, radius / zoom, view, L.panelWidth(0), L.panelHeight());
+    const Camera cam =
+        common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(0), L.panelHeight());
     const std::vector<LegendItem> legend = {
         {LegendItem::Swatch::Line, roleColor(Role::ShapeA), "box of A's node"},
         {LegendItem::Swatch::Line, roleColor(Role::ShapeB), "box of B's node"},
@@ -104,9 +104,9 @@ std::vector<int> BvhScene::chosenDualSteps(const std::vector<DualStep>& bv) cons
     return chosen;
 }
 
-Frame BvhScene::dualResultFrame(GlContext& gl, const GridLayout& L, const Camera& cam, const MeshView& va, const MeshView& vb,
-                                const MeshCollisionResult& r, const MeshCollisionResult& brute, bool equal,
-                                const std::vector<LegendItem>& legend) const {
+Frame BvhScene::dualResultFrame(GlContext& gl, const GridLayout& L, const Camera& cam, const MeshView& va,
+                                const MeshView& vb, const MeshCollisionResult& r, const MeshCollisionResult& brute,
+                                bool equal, const std::vector<LegendItem>& legend) const {
     Canvas c(gl, canvasOptions(L.panelWidth(0), L.panelHeight(), ss_), cam);
     drawMesh(c, va, roleColor(Role::ShapeA).withAlpha(0.3f), 0.6f,
              roleColor(Role::ShapeA).scaled(0.7f).withAlpha(0.6f));
@@ -174,15 +174,15 @@ Frame BvhScene::dualFrame(GlContext& gl, const GridLayout& L, const Camera& cam,
     }
     std::string axisName;
     if (!s.overlap)
-        axisName = drawSeparatingAxis(c, worldBox(ta.box(s.nodeA), ma.pose), worldBox(tb.box(s.nodeB), mb.pose),
-                                      labels());
+        axisName =
+            drawSeparatingAxis(c, worldBox(ta.box(s.nodeA), ma.pose), worldBox(tb.box(s.nodeB), mb.pose), labels());
     // A leaf pair: its triangle tests follow in the trace; the hits highlighted.
     std::string triNote;
     if (leafTest) {
         std::vector<int> ha, hb;
         int tests = 0, hit = 0;
-        for (int i = d.trace + 1;
-             i < int(tr.steps.size()) && tr.steps[i].action == BvhTraversalAction::TriangleTest; ++i) {
+        for (int i = d.trace + 1; i < int(tr.steps.size()) && tr.steps[i].action == BvhTraversalAction::TriangleTest;
+             ++i) {
             ++tests;
             if (tr.steps[i].triangleHit) {
                 ++hit;
@@ -198,11 +198,10 @@ Frame BvhScene::dualFrame(GlContext& gl, const GridLayout& L, const Camera& cam,
     const std::string pair = "pair (A" + std::to_string(s.nodeA) + ", B" + std::to_string(s.nodeB) + ")";
     // Steps count from 0, as in the trace, the scene's step_frames and the file names (step_04).
     drawHeading(c, "Step " + std::to_string(k) + " (of 0–" + std::to_string(bv.size() - 1) + "): " + pair,
-                std::string(s.overlap             ? "boxes overlap"
+                std::string(s.overlap          ? "boxes overlap"
                             : axisName.empty() ? "boxes disjoint"
                                                : "boxes disjoint along " + axisName) +
-                    " → " + nameOf(s.action) +
-                    (triNote.empty() ? "" : ": " + triNote));
+                    " → " + nameOf(s.action) + (triNote.empty() ? "" : ": " + triNote));
     if (labels()) {
         drawFooter(c,
                    {"pending pairs on the stack: " + std::to_string(d.pending),

@@ -37,25 +37,25 @@ void BvhScene::runLevels(const RunContext& ctx, DemoOutput& out) const {
     Vec3 center;
     double radius;
     meshSphere({&mv}, center, radius, rootCorners(bvh, m.pose));
-    const Camera cam = common_.camera ? *common_.camera
-                                      : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+    const Camera cam =
+        common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
     const double rootVolume = volume(bvh.box(0));
     std::vector<Image> panels;
     for (int level : levels) {
         const std::vector<int> nodes = levelNodes(bvh, level);
         const double v = sumVolume(bvh, nodes);
-        panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, bvh, m.pose, nodes,
-                                    levelColor(level), cam,
-                                    "Level " + std::to_string(level) + ": " + std::to_string(nodes.size()) +
-                                        " box" + (nodes.size() == 1 ? "" : "es"),
+        panels.push_back(boxesPanel(*ctx.gl, L.panelWidth(), L.panelHeight(), mv, bvh, m.pose, nodes, levelColor(level),
+                                    cam,
+                                    "Level " + std::to_string(level) + ": " + std::to_string(nodes.size()) + " box" +
+                                        (nodes.size() == 1 ? "" : "es"),
                                     "total volume " + fmt(v) + " (" + pct(v / rootVolume) + " of the root)"));
     }
     while (int(panels.size()) < L.columns * L.rows - 1)
         panels.push_back(Image::blank(L.panelWidth(), L.panelHeight(), ss_));
     if (common_.hasLayer("tree")) {
         TreeDiagramInput tin = treeOf(bvh, treeDepth);
-        tin.heading = "The tree (" + std::to_string(bvh.nodes.size()) + " nodes, height " +
-                      std::to_string(bvh.height()) + ")";
+        tin.heading =
+            "The tree (" + std::to_string(bvh.nodes.size()) + " nodes, height " + std::to_string(bvh.height()) + ")";
         tin.sub = "binary; drawn to level " + std::to_string(treeDepth) + ", dashed: more below";
         for (const BvhNode& n : bvh.nodes) {
             const bool shown = std::find(levels.begin(), levels.end(), n.depth) != levels.end();
@@ -71,10 +71,9 @@ void BvhScene::runLevels(const RunContext& ctx, DemoOutput& out) const {
     std::vector<std::string> caption;
     if (!common_.caption.empty()) caption.push_back(common_.caption);
     caption.push_back(std::string(nameOf(bvh.kind)) + " tree, " + methodWords(bvh.method) + ", leaves of ≤ " +
-                      std::to_string(build.maxLeafTriangles) + " triangle" +
-                      (build.maxLeafTriangles == 1 ? "" : "s") + "; " + std::to_string(bvh.triangleCount()) +
-                      " triangles, " + std::to_string(bvh.nodes.size()) + " nodes, height " +
-                      std::to_string(bvh.height()));
+                      std::to_string(build.maxLeafTriangles) + " triangle" + (build.maxLeafTriangles == 1 ? "" : "s") +
+                      "; " + std::to_string(bvh.triangleCount()) + " triangles, " + std::to_string(bvh.nodes.size()) +
+                      " nodes, height " + std::to_string(bvh.height()));
     std::string vols = "Summed box volume, levels 0.." + std::to_string(bvh.height()) + ":";
     for (int level = 0; level <= bvh.height(); ++level) vols += " " + fmt(sumVolume(bvh, levelNodes(bvh, level)));
     caption.push_back(vols + ". Boxes of one level overlap, and on a closed");

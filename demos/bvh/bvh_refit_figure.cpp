@@ -76,8 +76,8 @@ void BvhScene::runRefit(const RunContext& ctx, DemoOutput& out) const {
     Vec3 center;
     double radius;
     meshSphere(all, center, radius);
-    const Camera cam = common_.camera ? *common_.camera
-                                      : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
+    const Camera cam =
+        common_.camera ? *common_.camera : sphereCamera(center, radius / zoom, view, L.panelWidth(), L.panelHeight());
     std::vector<Image> panels;
     for (int row = 0; row < 2; ++row)
         for (std::size_t i = 0; i < times.size(); ++i) {
@@ -119,10 +119,10 @@ void BvhScene::runRefit(const RunContext& ctx, DemoOutput& out) const {
     }
     for (int kk = 0; kk < 2; ++kk)
         for (int row = 0; row < 2; ++row) {
-            BarSeries s{std::string(nameOf(kinds[kk])) + (row == 0 ? " refitted" : " rebuilt"),
-                        (kk == 0 ? levelColor(0) : levelColor(2))
-                            .mixed(roleColor(Role::Background), row == 0 ? 0.0f : 0.45f),
-                        {}};
+            BarSeries s{
+                std::string(nameOf(kinds[kk])) + (row == 0 ? " refitted" : " rebuilt"),
+                (kk == 0 ? levelColor(0) : levelColor(2)).mixed(roleColor(Role::Background), row == 0 ? 0.0f : 0.45f),
+                {}};
             for (std::size_t i = 0; i < times.size(); ++i)
                 s.values.push_back(totalVolume(row == 0 ? refit[i][kk] : rebuilt[i][kk]));
             bc.series.push_back(s);
@@ -136,8 +136,8 @@ void BvhScene::runRefit(const RunContext& ctx, DemoOutput& out) const {
             hi[kk] = std::max(hi[kk], r);
         }
     std::vector<std::string> cap2 = {
-        "AABB refit: union of the children's boxes, exact for the old groups: refitted / rebuilt volume " +
-            fmt(lo[0]) + " .. " + fmt(hi[0]) + ".",
+        "AABB refit: union of the children's boxes, exact for the old groups: refitted / rebuilt volume " + fmt(lo[0]) +
+            " .. " + fmt(hi[0]) + ".",
         "OBB refit: the flat sheet's axes, new extents: refitted / rebuilt " + fmt(lo[1]) + " .. " + fmt(hi[1]) +
             ". Refitting is one bottom-up pass; rebuilding a full build per frame."};
     out.frames.push_back(

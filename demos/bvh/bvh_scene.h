@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "app/scene/demo.h"
+#include "app/scene/mesh_scene.h"
+#include "app/scene/scene_limits.h"
 #include "core/bounding/bounding_volume_fit.h"
 #include "core/bvh/bvh.h"
 #include "core/bvh/mesh_collision.h"
@@ -26,8 +28,6 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/step_frames.h"
-#include "app/scene/mesh_scene.h"
-#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos::bvhfig {
 

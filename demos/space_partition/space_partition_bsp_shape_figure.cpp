@@ -115,15 +115,15 @@ DemoOutput SpaceScene::runBspShape(const RunContext& ctx) const {
     heading(canvas, P(frame.min.x(), frame.max.y()), "Splits and leaf regions (top view)",
             std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
                 (bs.splits == 1 ? " edge" : " edges") + " cut");
-    if (common_.hasLayer("labels"))
-        keyBelow(canvas, frame.min, {{roleColor(Role::Highlight), "an edge cut in two"}});
+    if (common_.hasLayer("labels")) keyBelow(canvas, frame.min, {{roleColor(Role::Highlight), "an edge cut in two"}});
     if (common_.hasLayer("tree"))
         drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);
     out.frames.push_back(titledFrame(canvas, "bsp_shape"));
     return out;
 }
 
-void SpaceScene::drawTreeDiagram(Canvas& canvas, const BspTree& bt, const Vec3& corner, double w, double h, int depth) const {
+void SpaceScene::drawTreeDiagram(Canvas& canvas, const BspTree& bt, const Vec3& corner, double w, double h,
+                                 int depth) const {
     const auto& nodes = bt.nodes();
     std::vector<double> x(nodes.size(), 0.0);
     int leafCount = 0;
@@ -161,9 +161,8 @@ void SpaceScene::drawTreeDiagram(Canvas& canvas, const BspTree& bt, const Vec3& 
     }
     Eigen::Vector2d px;
     if (canvas.project(corner, px))
-        drawKey(
-            canvas, px.x(), px.y() - 18,
-            {{roleColor(Role::ShapeA), "solid leaf (inside)"}, {roleColor(Role::Muted), "empty leaf (outside)"}});
+        drawKey(canvas, px.x(), px.y() - 18,
+                {{roleColor(Role::ShapeA), "solid leaf (inside)"}, {roleColor(Role::Muted), "empty leaf (outside)"}});
     heading(canvas, corner + P(0, h), "The tree", "edge name = splitting line; solid: front child, dashed: back");
 }
 

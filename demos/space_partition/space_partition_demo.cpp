@@ -23,10 +23,10 @@
 #include <utility>
 #include <vector>
 
+#include "app/scene/scene_limits.h"
 #include "core/base/orient.h"
 #include "core/overlap/polygon_tests.h"
 #include "demos/space_partition/space_partition_scene.h"
-#include "app/scene/scene_limits.h"
 
 namespace cdlab::demos {
 

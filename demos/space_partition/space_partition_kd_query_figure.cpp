@@ -85,8 +85,7 @@ DemoOutput SpaceScene::runKdQuery(const RunContext& ctx) const {
         canvas.drawPoint(at + points[std::size_t(nearest.index)], 8.0f, roleColor(Role::Result), true, 2.0f);
         canvas.drawPoint(at + query, 9.0f, roleColor(Role::Query), true, 2.0f);
         if (common_.hasLayer("labels"))
-            canvas.drawText(at + query, "q",
-                            TextStyle{20.0f, roleColor(Role::Ink), Anchor::Left, true, true, {10, 0}});
+            canvas.drawText(at + query, "q", TextStyle{20.0f, roleColor(Role::Ink), Anchor::Left, true, true, {10, 0}});
     }
     heading(canvas, offsets[0] + P(frame.min.x(), frame.max.y()), "Nearest neighbour of q",
             std::to_string(nt.distanceTests) + " of " + std::to_string(points.size()) + " points tested, " +
@@ -111,8 +110,7 @@ DemoOutput SpaceScene::runKdQuery(const RunContext& ctx) const {
     heading(canvas, offsets[1] + P(frame.min.x(), frame.max.y()), "Range query (box)",
             std::to_string(hits.size()) + " hits, " + std::to_string(rt.distanceTests) + " points tested, " +
                 std::to_string(rt.pruned.size()) + " subtrees pruned");
-    if (common_.hasLayer("labels"))
-        keyBelow(canvas, offsets[1] + frame.min, keyWith({roleColor(Role::Result), "hit"}));
+    if (common_.hasLayer("labels")) keyBelow(canvas, offsets[1] + frame.min, keyWith({roleColor(Role::Result), "hit"}));
     out.frames.push_back(titledFrame(canvas, "kd_query"));
     return out;
 }

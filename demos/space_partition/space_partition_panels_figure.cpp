@@ -109,13 +109,14 @@ Frame SpaceScene::drawPanels(GlContext& gl, int ss, const PanelStructures& st) c
     return titledFrame(canvas, "panels");
 }
 
-void SpaceScene::drawBoxes(const PanelView& v, const Vec3& at, const std::function<Color(int)>& fill, float alpha) const {
+void SpaceScene::drawBoxes(const PanelView& v, const Vec3& at, const std::function<Color(int)>& fill,
+                           float alpha) const {
     if (!v.drawObjects) return;
     for (int i = 0; i < int(boxes.size()); ++i) {
         fillRect(v.canvas, boxes[std::size_t(i)], at, fill(i).withAlpha(alpha));
-        outlineRect(v.canvas, boxes[std::size_t(i)], at,
-                    lineStyle(v.paired[std::size_t(i)] ? Role::Highlight : Role::Ink,
-                              v.paired[std::size_t(i)] ? 2.2f : 1.4f));
+        outlineRect(
+            v.canvas, boxes[std::size_t(i)], at,
+            lineStyle(v.paired[std::size_t(i)] ? Role::Highlight : Role::Ink, v.paired[std::size_t(i)] ? 2.2f : 1.4f));
     }
 }
 
@@ -144,8 +145,8 @@ void SpaceScene::drawGridPanel(const PanelView& v, const Vec3& at, const PanelSt
         v, at, [](int) { return roleColor(Role::ShapeA); }, 0.30f);
     outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
     heading(canvas, at + P(frame.min.x(), frame.max.y()), "Uniform grid, cell h = " + formatNumber(gridCell),
-            std::to_string(st.grid.entries) + " box-cell entries, " + std::to_string(st.grid.pairTests) +
-                " tests, " + std::to_string(st.grid.pairs) + " pairs");
+            std::to_string(st.grid.entries) + " box-cell entries, " + std::to_string(st.grid.pairTests) + " tests, " +
+                std::to_string(st.grid.pairs) + " pairs");
 }
 
 void SpaceScene::drawOctreePanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const {

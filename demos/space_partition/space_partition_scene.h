@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/scene/demo.h"
+#include "app/scene/scene_limits.h"
 #include "core/base/orient.h"
 #include "core/broadphase/octree.h"
 #include "core/broadphase/uniform_grid.h"
@@ -23,7 +24,6 @@
 #include "core/spatial/kd_tree.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
-#include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos::spacefig {
