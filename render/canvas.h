@@ -49,9 +49,8 @@ struct TextStyle {
     bool place = false;
 };
 
-/// Not thread-safe; a Canvas must not outlive its GlContext. Cheap to create: GL objects
-/// (program, buffers, glyph atlases, framebuffers by size) are cached in the GlContext.
-/// Where readPixels() spends its time, summed over the process (for `cdlab figures --profile`).
+/// Where readPixels() spends its time, summed over this thread's frames (each drawing thread keeps
+/// its own; for `cdlab figures --profile`).
 /// With `profiling` on, readPixels() waits for the GPU (glFinish) before reading back, so the
 /// draw / read-back split is real; off (default), nothing waits and only totals are meaningful.
 struct RenderStats {
@@ -67,6 +66,8 @@ RenderStats& renderStats();  ///< this thread's (each drawing thread keeps its o
 /// a caller checks in the text of its frames (e.g. that no number printed as "nan" or "inf").
 std::vector<std::string>& drawnTextLog();
 
+/// Not thread-safe; a Canvas must not outlive its GlContext. Cheap to create: GL objects
+/// (program, buffers, glyph atlases, framebuffers by size) are cached in the GlContext.
 class Canvas {
 public:
     Canvas(GlContext& context, const CanvasOptions& options);

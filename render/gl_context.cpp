@@ -337,7 +337,7 @@ void GlContext::Impl::ensureDrawResources() {
     glGenBuffers(1, &vbo);
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
-    constexpr GLsizei stride = 20 * sizeof(float);  // 5 x vec4, see Vertex in canvas.cpp
+    constexpr GLsizei stride = 20 * sizeof(float);  // 5 x vec4, see Vertex in canvas_internal.h
     for (GLuint i = 0; i < 5; ++i) {
         glEnableVertexAttribArray(i);
         glVertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(std::uintptr_t(i * 16)));

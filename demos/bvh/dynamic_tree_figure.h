@@ -1,8 +1,9 @@
-// Internal to the BVH demo (bvh_demo.cpp): the dynamic AABB tree figure — boxes inserted one at a
-// time into core's DynamicAabbTree (core/broadphase/dynamic_tree.h) with fat margins, then moved: per
-// step the node boxes by depth, the fat boxes, the new leaf and the sibling the SAH branch and bound
-// chose, the rotations on the way up, and the tree diagram. Every number comes from the tree's
-// insertion traces; this file names nodes by the boxes under them and draws.
+// Internal to the BVH demo (BvhScene::runDynamicTree in bvh_scene.h): the dynamic AABB tree
+// figure — boxes inserted one at a time into core's DynamicAabbTree (core/broadphase/dynamic_tree.h)
+// with fat margins, then moved: per step the node boxes by depth, the fat boxes, the new leaf and
+// the sibling the SAH branch and bound chose, the rotations on the way up, and the tree diagram.
+// Every number comes from the tree's insertion traces; this file names nodes by the boxes under
+// them and draws.
 #pragma once
 
 #include <string>
