@@ -69,6 +69,14 @@ CurvedSolid scaledCurved(CurvedSolid c, int k) {
 // g along m from it; where neither is unique (a face against a face), GJK's or EPA's points moved
 // onto the two support planes. GJK's simplex on a flat cap is a few rim points, so its witness
 // can sit 1e-8 across the cap even where its distance is exact. Cores scaled to coordinates below 1.
+// A support point is unique along d when turning d by kUniqueTurn moves it by at most
+// kUniqueMove (~1e-9 times a radius of curvature below ~2 on a smooth patch; a face or a flat cap
+// lets it jump across, by the face's size).
+constexpr double kUniqueTurn = 1e-9;
+constexpr double kUniqueMove = 1e-6;
+// The polish's first step: 4 sqrt(gap) of the bounds, within [1e-10, 1e-3] radians.
+constexpr double kPolishStepMin = 1e-10, kPolishStepMax = 1e-3;
+
 template <class CoreA, class CoreB>
 struct CurvedPolish {
     static constexpr bool active = true;
@@ -79,18 +87,16 @@ struct CurvedPolish {
         // The bounds' relative gap ε leaves the direction ~sqrt(ε) off on a smooth patch (g is
         // quadratic at its minimum): the pattern search starts there.
         const double gap = upperBound > 0 ? std::max(upperBound - lowerBound, 0.0) / upperBound : 1.0;
-        const DirectionRefinement r = refineDirection(ca, cb, m, 1.0, std::clamp(4 * std::sqrt(gap), 1e-10, 1e-3));
+        const DirectionRefinement r = refineDirection(ca, cb, m, 1.0, std::clamp(4 * std::sqrt(gap), kPolishStepMin, kPolishStepMax));
         if (r.steps > 0) {
             m = r.direction;
             value = r.value;
         }
-        // Unique: turning the direction by 1e-9 moves the support point by ~1e-9 (times a radius of
-        // curvature below ~2), where a face or a flat cap would let it jump across.
         const auto unique = [](const auto& shape, const Vec3& d) {
             const Vec3 s = shape.support(d);
             const Vec3 t1 = d.unitOrthogonal(), t2 = d.cross(t1);
             for (const Vec3& t : {t1, Vec3(-t1), t2, Vec3(-t2)})
-                if ((Vec3(shape.support(Vec3((d + 1e-9 * t).normalized()))) - s).norm() > 1e-6) return false;
+                if ((Vec3(shape.support(Vec3((d + kUniqueTurn * t).normalized()))) - s).norm() > kUniqueMove) return false;
             return true;
         };
         if (unique(ca, m)) {
