@@ -28,6 +28,7 @@ const char* describe(PairStatus status) {
             return "penetration of two non-parallel planes is unbounded (no translation separates them)";
         case PairStatus::Overflow: return "the answer overflows double precision (coordinates too large)";
         case PairStatus::InvalidInput: return "shapes of kinds the operation does not take, or a zero initial direction";
+        case PairStatus::WorkLimit: return "the work asked for is over the operation's limit";
     }
     return "?";
 }

@@ -38,6 +38,7 @@ enum class PairStatus {
     UnboundedPenetration,  ///< penetration of two non-parallel planes: no translation separates them
     Overflow,              ///< the answer overflows double precision (coordinates too large)
     InvalidInput,          ///< shapes of kinds the operation does not take, or a zero initial direction
+    WorkLimit,             ///< the work the input asks for is over the operation's limit (its result says which)
 };
 /// One sentence for each status (the query format's error text after "query: ").
 const char* describe(PairStatus status);
