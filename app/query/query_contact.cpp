@@ -193,7 +193,7 @@ Json bodyBody(const HullBody& a, const HullBody& b, int maxPoints, bool wantTrac
               const JsonNode& bNode) {
     const GjkResult g = gjkDistance(PolytopeShape(a.mesh.positions()), PolytopeShape(b.mesh.positions()));
     if (g.status == GjkStatus::InvalidInput) throw InputError("query: non-finite support point (coordinates overflow)");
-    const bool colliding = g.intersect || g.distance <= touch;
+    const bool colliding = g.intersect() || g.distance <= touch;
     if (!colliding && !wantTrace) return separatedBodies(a, b, g, frame);  // no SAT needed: linear time
     requireEdgePairsWithinLimit(a.mesh.edgeCount(), b.mesh.edgeCount(), bNode);
     SatContactTrace trace;

@@ -52,8 +52,8 @@ AdvancementResult conservativeAdvancement(const std::vector<Vec3>& a, const std:
         const GjkResult g = gjkDistance(shapeA, PolytopeShape(b));
         AdvancementStep s;
         s.t = t;
-        s.distance = g.intersect ? 0.0 : g.distance;
-        s.normal = g.intersect ? Vec3::Zero() : g.separatingAxis;
+        s.distance = g.intersect() ? 0.0 : g.distance;
+        s.normal = g.intersect() ? Vec3::Zero() : g.separatingAxis;
         s.pointA = g.pointA;
         s.pointB = g.pointB;
         result.t = t;

@@ -27,6 +27,7 @@ const char* nameOf(EpaTermination termination) {
         case EpaTermination::Touching: return "Touching";
         case EpaTermination::NotIntersecting: return "NotIntersecting";
         case EpaTermination::InvalidInput: return "InvalidInput";
+        case EpaTermination::DecidedByGjk: return "DecidedByGjk";
     }
     return "?";
 }

@@ -51,6 +51,10 @@ enum class EpaTermination {
     Touching,          ///< during blow-up the origin was found on the boundary of A - B
     NotIntersecting,   ///< (penetration() only) GJK says separated
     InvalidInput,      ///< empty simplex / NaN
+    /// (penetration(), penetrationWithMargins only) EPA did not run, iterations 0: GJK's answer
+    /// decided the depth (a crossed edge pair, GjkTermination::EdgePairCrossed; with margins also
+    /// cores apart within the radii, whose GJK iterations are reported)
+    DecidedByGjk,
 };
 
 /// How a query runs: the stopping rule, the iteration cap, the GJK run of penetration(), and
@@ -128,7 +132,9 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
                          EpaTrace* trace = nullptr);
 
 /// GJK followed by EPA when the shapes intersect. Separated shapes give status Separated
-/// (depth 0, normal = GJK's separating axis, witness points = GJK's closest points).
+/// (depth 0, normal = GJK's separating axis, witness points = GJK's closest points). A shallow
+/// crossing of nearly parallel edges that GJK decided (GjkTermination::EdgePairCrossed) is answered
+/// from crossedEdgePenetration without EPA: termination DecidedByGjk, 0 iterations.
 /// `gjkOut` optionally receives the GJK result (distance, simplex).
 template <SupportMapping A, SupportMapping B>
 EpaResult penetration(const A& shapeA, const B& shapeB, const EpaOptions& options = {}, EpaTrace* trace = nullptr,

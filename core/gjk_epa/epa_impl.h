@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <optional>
 
 #include "core/base/accurate_cross.h"
 #include "core/base/tolerances.h"
@@ -434,7 +435,7 @@ EpaResult penetration(const A& shapeA, const B& shapeB, const EpaOptions& option
         if (trace) trace->termination = EpaTermination::InvalidInput;
         return r;
     }
-    if (!g.intersect) {
+    if (!g.intersect()) {
         EpaResult r;
         r.status = EpaStatus::Separated;
         r.termination = EpaTermination::NotIntersecting;
@@ -444,14 +445,16 @@ EpaResult penetration(const A& shapeA, const B& shapeB, const EpaOptions& option
         if (trace) trace->termination = r.termination;
         return r;
     }
-    if (g.edgePairCrossed) {  // a shallow crossing of nearly parallel edges, decided exactly by GJK
+    // A shallow crossing of nearly parallel edges, decided exactly by GJK: its simplex does not hold
+    // the origin, and the crossing's face is the nearest one.
+    if (const std::optional<EdgePairCrossing> c = crossedEdgePenetration(shapeA, shapeB, g)) {
         EpaResult r;
         r.status = EpaStatus::Penetrating;
-        r.termination = EpaTermination::Converged;
-        r.depth = r.lowerBound = r.upperBound = g.crossedDepth;
-        r.normal = g.crossedNormal;
-        r.pointA = g.pointA;
-        r.pointB = g.pointB;
+        r.termination = EpaTermination::DecidedByGjk;
+        r.depth = r.lowerBound = r.upperBound = c->depth;
+        r.normal = c->normal;
+        r.pointA = c->pointA;
+        r.pointB = c->pointB;
         r.edgePairRefined = true;
         if (trace) trace->termination = r.termination;
         return r;

@@ -23,6 +23,7 @@ const char* nameOf(GjkTermination termination) {
         case GjkTermination::SeparatingAxis: return "SeparatingAxis";
         case GjkTermination::MaxIterations: return "MaxIterations";
         case GjkTermination::InvalidInput: return "InvalidInput";
+        case GjkTermination::EdgePairCrossed: return "EdgePairCrossed";
     }
     return "?";
 }

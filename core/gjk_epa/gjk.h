@@ -20,6 +20,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,8 @@ namespace cdlab {
 /// Outcome of a GJK query.
 enum class GjkStatus {
     Separated,     ///< distance > 0: distance, pointA, pointB, separatingAxis are meaningful
-    Intersecting,  ///< the shapes overlap or touch: distance = 0, simplex contains the origin
+    Intersecting,  ///< the shapes overlap or touch: distance = 0; gjkDistance's simplex contains the
+                   ///< origin unless termination is EdgePairCrossed (see GjkTermination)
     InvalidInput,  ///< a support point was NaN or infinite: outputs are zero, nothing meaningful
 };
 
@@ -45,6 +47,11 @@ enum class GjkTermination {
     SeparatingAxis,    ///< gjkIntersect early-out: v·w > 0, so -v separates the shapes
     MaxIterations,     ///< iteration cap reached: bounds in the result say how far off it is
     InvalidInput,      ///< NaN / infinite support point
+    /// The loop stopped "apart" on a doubtful sliver simplex (duplicate support, no progress or the
+    /// cap), but an edge pair of it crosses: the shapes intersect (gjk_impl.h's
+    /// gjkDecideCrossedEdges). The simplex does not contain the origin; crossedEdgePenetration
+    /// gives the crossing's depth, normal and deepest points (EPA need not run).
+    EdgePairCrossed,
 };
 
 /// One simplex vertex: the support points of both shapes and the direction that produced them.
@@ -85,25 +92,31 @@ struct GjkOptions {
 /// axis, the terminal simplex, why and after how many iterations the loop stopped, and the bounds.
 struct GjkResult {
     GjkStatus status = GjkStatus::InvalidInput;
-    bool intersect = false;
     double distance = 0.0;               ///< Euclidean distance (0 when intersecting), world units
     Vec3 pointA = Vec3::Zero();          ///< closest point on A (when intersecting: a common point
-    Vec3 pointB = Vec3::Zero();          ///<   of the simplex, pointA ~ pointB), world frame
+    Vec3 pointB = Vec3::Zero();          ///<   of the simplex, pointA ~ pointB; EdgePairCrossed:
+                                         ///<   the crossing's deepest points), world frame
     Vec3 separatingAxis = Vec3::Zero();  ///< unit, from A toward B: (pointB - pointA) / distance;
                                          ///< zero when intersecting
-    GjkSimplex simplex;                  ///< terminal simplex (input for EPA or a warm start)
+    GjkSimplex simplex;                  ///< terminal simplex (a warm start; EPA's start when it
+                                         ///< contains the origin: intersecting, not EdgePairCrossed)
     int iterations = 0;
     GjkTermination termination = GjkTermination::InvalidInput;
     double lowerBound = 0.0;       ///< max over iterations of v·w / |v| (distance >= this)
     double upperBound = 0.0;       ///< |v| (distance <= this)
     bool edgePairRefined = false;  ///< distance and witnesses from the edge pair (see options)
-    /// Intersecting by a crossed edge pair (gjk_impl.h's gjkDecideCrossedEdges): GJK's sliver simplex
-    /// said "apart" but the pair's face of A − B has the origin behind it. Its depth (world units),
-    /// normal (unit, from A toward B) and deepest points (pointA − pointB = depth · normal) are
-    /// the penetration: EPA need not run.
-    bool edgePairCrossed = false;
-    double crossedDepth = 0.0;
-    Vec3 crossedNormal = Vec3::Zero();
+
+    /// The verdict: status == Intersecting (overlapping or touching).
+    bool intersect() const { return status == GjkStatus::Intersecting; }
+};
+
+/// The penetration of a crossed edge pair (GjkTermination::EdgePairCrossed): the face of A − B the
+/// pair spans, with the origin behind it, is the nearest one.
+struct EdgePairCrossing {
+    double depth = 0.0;           ///< > 0, world units
+    Vec3 normal = Vec3::UnitX();  ///< unit, from A toward B (out of A − B through the face)
+    Vec3 pointA = Vec3::Zero();   ///< deepest points of the pair's features, world frame:
+    Vec3 pointB = Vec3::Zero();   ///<   pointA − pointB = depth · normal (up to rounding)
 };
 
 /// One GJK iteration as plain data (for demos / debugging). Simplex slots are named A, B, C, D.
@@ -133,7 +146,8 @@ std::string slotLetters(std::uint8_t slots);
 /// Every iteration of one traced query (pass a GjkTrace* to gjkDistance / gjkIntersect).
 struct GjkTrace {
     std::vector<GjkTraceStep> steps;
-    GjkTermination termination = GjkTermination::InvalidInput;
+    GjkTermination termination = GjkTermination::InvalidInput;  ///< the result's (EdgePairCrossed
+                                                                ///< after a loop that stopped apart)
 };
 
 /// Display name of the enum values.
@@ -142,15 +156,23 @@ const char* nameOf(GjkTermination termination);
 
 /// Distance between convex shapes A and B (world frame, world units) with witness points and a
 /// separating axis. Intersecting (or touching up to rounding) shapes give status Intersecting,
-/// distance 0 and a terminal simplex that contains the origin (feed it to epaPenetration).
+/// distance 0 and, unless termination is EdgePairCrossed, a terminal simplex that contains the
+/// origin (feed it to epaPenetration; penetration() does both and handles the crossed pair).
 template <SupportMapping A, SupportMapping B>
 GjkResult gjkDistance(const A& shapeA, const B& shapeB, const GjkOptions& options = {}, GjkTrace* trace = nullptr);
+
+/// The crossing of a result g of gjkDistance / gjkIntersect on the same shapes with termination
+/// EdgePairCrossed, recomputed from its terminal simplex by the same decision GJK took
+/// (gjk_impl.h's gjkCrossedAmong: the same operations, the same bits); nullopt for any other
+/// termination. The penetration: EPA need not run (penetration(), marginPairOnCores).
+template <SupportMapping A, SupportMapping B>
+std::optional<EdgePairCrossing> crossedEdgePenetration(const A& shapeA, const B& shapeB, const GjkResult& g);
 
 /// Boolean intersection test of A and B (world frame): stops as soon as a separating axis is
 /// found. Untraced and without a warm start, the answer comes from the boolean fast path
 /// (core/gjk_epa/gjk_boolean.h; for polytopes it starts from their first vertices' difference, one
 /// support call fewer than along +x) when it decides with its margin; `result` then holds only status,
-/// intersect, termination (SeparatingAxis or OriginInSimplex) and iterations. Otherwise, and for
+/// termination (SeparatingAxis or OriginInSimplex) and iterations. Otherwise, and for
 /// touching within the margin, the full loop runs: optional `result` receives its (partial) GJK
 /// result, for separated shapes a distance that is only an upper bound unless the loop converged.
 template <SupportMapping A, SupportMapping B>

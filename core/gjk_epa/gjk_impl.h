@@ -65,7 +65,7 @@ bool gjkNeedsEdgePairs(const GjkSimplex& s, const GjkResult& r);
 int gjkEdgePairCandidates(const GjkSimplex& s, EdgePairDistance* out);
 
 /// A certified edge-pair candidate e becomes the separated answer: distance e.distance, bounds
-/// [min(lower, e.distance), e.distance], e's witnesses and axis (status and intersect are the caller's).
+/// [min(lower, e.distance), e.distance], e's witnesses and axis (status is the caller's).
 inline void gjkAdoptEdgePair(const EdgePairDistance& e, double lower, GjkResult& r) {
     r.distance = e.distance;
     r.upperBound = e.distance;
@@ -109,8 +109,11 @@ int gjkSimplexShapePoints(const GjkSimplex& s, Vec3* a, int& na, Vec3* b, int& n
 /// of the origin is decided from the lines' separation in double-double arithmetic
 /// (core/closest/edge_pair_distance.h): behind the face by more than rounding, the shapes
 /// intersect, by that depth along n (the nearest face of A − B: the others are a body's size away).
+/// The first crossing found goes to `out`. A pure function of the points and the shapes' supports:
+/// crossedEdgePenetration reruns it on the terminal simplex and gets the same bits.
 template <class A, class B>
-bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, const Vec3* b, int nb, GjkResult& r) {
+bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, const Vec3* b, int nb,
+                     EdgePairCrossing& out) {
     // Decided: intersecting, the face through pointA - pointB with normal n (out of A − B) at depth.
     const auto decide = [&](const Vec3& n, const Vec3& pointA, const Vec3& pointB) {
         const double separation = n.dot(pointB - pointA);
@@ -122,16 +125,10 @@ bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, co
         // A − B has both orientations of the face "extreme", and behind one of them is not inside.
         const Vec3 lowA = shapeA.support(Vec3(-n)), highB = shapeB.support(n);
         if (!(n.dot(lowA) - n.dot(highB) < -tol)) return false;
-        r.status = GjkStatus::Intersecting;
-        r.intersect = true;
-        r.distance = 0.0;
-        r.upperBound = 0.0;
-        r.separatingAxis.setZero();
-        r.pointA = pointA;
-        r.pointB = pointB;
-        r.edgePairCrossed = true;
-        r.crossedDepth = -separation;
-        r.crossedNormal = n;
+        out.depth = -separation;
+        out.normal = n;
+        out.pointA = pointA;
+        out.pointB = pointB;
         return true;
     };
     // Edge of A against edge of B: the lines' common perpendicular, feet strictly inside both edges
@@ -170,13 +167,31 @@ bool gjkCrossedAmong(const A& shapeA, const B& shapeB, const Vec3* a, int na, co
     return false;
 }
 
+/// gjkCrossedAmong on the distinct points of A and of B among the simplex's vertices.
 template <class A, class B>
-void gjkDecideCrossedEdges(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
-    if (r.intersect || r.edgePairRefined || !gjkNeedsEdgePairs(s, r)) return;
+bool gjkCrossingOfSimplex(const A& shapeA, const B& shapeB, const GjkSimplex& s, EdgePairCrossing& out) {
     Vec3 a[8], b[8];
     int na = 0, nb = 0;
     gjkSimplexShapePoints(s, a, na, b, nb);
-    gjkCrossedAmong(shapeA, shapeB, a, na, b, nb, r);
+    return gjkCrossedAmong(shapeA, shapeB, a, na, b, nb, out);
+}
+
+/// A doubtful separated answer (no edge pair certified it) whose simplex holds a crossing edge pair
+/// (gjkCrossedAmong) becomes intersecting: status Intersecting, termination EdgePairCrossed,
+/// distance 0, the crossing's deepest points as pointA / pointB. Its depth and normal are not kept:
+/// crossedEdgePenetration recomputes them from the simplex (the same decision, the same bits).
+template <class A, class B>
+void gjkDecideCrossedEdges(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
+    if (r.intersect() || r.edgePairRefined || !gjkNeedsEdgePairs(s, r)) return;
+    EdgePairCrossing crossing;
+    if (!gjkCrossingOfSimplex(shapeA, shapeB, s, crossing)) return;
+    r.status = GjkStatus::Intersecting;
+    r.termination = GjkTermination::EdgePairCrossed;
+    r.distance = 0.0;
+    r.upperBound = 0.0;
+    r.separatingAxis.setZero();
+    r.pointA = crossing.pointA;
+    r.pointB = crossing.pointB;
 }
 
 /// The converse: GJK stopped with the origin in a flat terminal simplex (a sliver tetrahedron or
@@ -185,7 +200,7 @@ void gjkDecideCrossedEdges(const A& shapeA, const B& shapeB, const GjkSimplex& s
 /// supports along the pair's axis are that distance apart, up to rounding): the shapes are apart.
 template <class A, class B>
 void gjkDecideFlatIntersection(const A& shapeA, const B& shapeB, const GjkSimplex& s, GjkResult& r) {
-    if (!r.intersect || s.count < 3) return;
+    if (!r.intersect() || s.count < 3) return;
     const Vec3 e1 = s.vertex[1].w - s.vertex[0].w, e2 = s.vertex[2].w - s.vertex[0].w;
     const Vec3 n = e1.cross(e2);
     bool flat = isSliverCross(n, e1, e2);
@@ -203,7 +218,6 @@ void gjkDecideFlatIntersection(const A& shapeA, const B& shapeB, const GjkSimple
         const double lower = c.lowerBoundAlong(e.axis);
         if (!c.certifiesDistance(lower, e.distance) || !c.provesSeparation(lower)) continue;
         r.status = GjkStatus::Separated;
-        r.intersect = false;
         gjkAdoptEdgePair(e, lower, r);
         return;
     }
@@ -254,7 +268,8 @@ inline void gjkCompact(GjkSimplex& s, const SimplexClosest& c) {
 /// refinement when asked for. v is the sub-algorithm's own (along the face normal, or from
 /// error-free products, where sum lambda_i w_i errs by ~u |w| against a far smaller |v|); the
 /// witnesses are sum lambda_i a_i and sum lambda_i b_i, each on its shape (pointB = pointA - v would put
-/// pointB 1e-6 of the size off B where a sliver's weights are poor).
+/// pointB 1e-6 of the size off B where a sliver's weights are poor). The result's termination is
+/// `why`, or EdgePairCrossed when a doubtful "apart" turns out to be a crossed edge pair.
 template <class A, class B>
 void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, const GjkSimplex& s, GjkTermination why,
                const Vec3& v, GjkResult& r) {
@@ -266,7 +281,6 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
     detail::gjkWitness(s, r.pointA, r.pointB);
     if (why == GjkTermination::OriginInSimplex) {
         r.status = GjkStatus::Intersecting;
-        r.intersect = true;
         r.distance = 0.0;
         r.upperBound = 0.0;
         r.separatingAxis.setZero();
@@ -274,7 +288,6 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
         return;
     }
     r.status = GjkStatus::Separated;
-    r.intersect = false;
     r.distance = v.norm();
     r.upperBound = r.distance;
     r.separatingAxis = -v / r.distance;
@@ -357,8 +370,8 @@ GjkResult gjkRun(const A& shapeA, const B& shapeB, const GjkOptions& options, Gj
     GjkRecorder record(trace);
     Vec3 v = Vec3::Zero();  // the closest point of the simplex in slots 0..s.count-1
     const auto finish = [&](GjkTermination why) {
-        record.termination(why);
         gjkFinish(shapeA, shapeB, options, s, why, v, r);
+        record.termination(r.termination);  // the result's: EdgePairCrossed replaces the loop's stop
         return r;
     };
     SupportHints hints;
@@ -481,7 +494,6 @@ bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options, G
             if (result) {
                 *result = GjkResult{};
                 result->status = hit ? GjkStatus::Intersecting : GjkStatus::Separated;
-                result->intersect = hit;
                 result->termination = hit ? GjkTermination::OriginInSimplex : GjkTermination::SeparatingAxis;
                 result->iterations = iterations;
             }
@@ -490,7 +502,15 @@ bool gjkIntersect(const A& shapeA, const B& shapeB, const GjkOptions& options, G
     }
     GjkResult r = detail::gjkRun(shapeA, shapeB, options, trace, true);
     if (result) *result = r;
-    return r.intersect;
+    return r.intersect();
+}
+
+template <SupportMapping A, SupportMapping B>
+std::optional<EdgePairCrossing> crossedEdgePenetration(const A& shapeA, const B& shapeB, const GjkResult& g) {
+    if (g.termination != GjkTermination::EdgePairCrossed) return std::nullopt;
+    EdgePairCrossing crossing;
+    if (!detail::gjkCrossingOfSimplex(shapeA, shapeB, g.simplex, crossing)) return std::nullopt;
+    return crossing;
 }
 
 }  // namespace cdlab

@@ -90,7 +90,8 @@ struct MarginPair {
     Vec3 pointA = Vec3::Zero();   ///< separated: closest points; intersecting: deepest points,
     Vec3 pointB = Vec3::Zero();   ///<   pointA − pointB = depth · normal
     double touchTolerance = 0.0;  ///< kTouchRelative · (W + rA + rB)
-    GjkResult gjk;                ///< GJK on the cores (the cores' units)
+    GjkResult gjk;                ///< GJK on the cores (the cores' units; with a Polish, Intersecting
+                                  ///< also for cores that the polish found touching)
     EpaResult epa;                ///< EPA on the cores, when how == Epa (or EPA failed)
 };
 
@@ -118,12 +119,13 @@ MarginPair marginPairOnCores(const CoreA& ca, const CoreB& cb, double ra, double
     GjkResult& g = ans.gjk;
     g = gjkDistance(ca, cb, options.gjk, options.gjkTrace);
     if (g.status == GjkStatus::InvalidInput) return ans;
-    if (Polish::active && !g.intersect) {
+    if (Polish::active && !g.intersect()) {
         // GJK stops ~1e-8 short on a smooth patch (its simplex shrinks to nearly equal points).
         double value = -g.distance;
         polish(g.separatingAxis, value, g.pointA, g.pointB, g.lowerBound, g.upperBound);
         g.distance = std::max(-value, 0.0);
-        g.intersect = value >= 0;  // the cores touch: no EPA needed, depth 0 along the axis
+        // The cores touch: no EPA needed, depth 0 along the axis (kept: the CoresApart branch's normal).
+        if (value >= 0) g.status = GjkStatus::Intersecting;
     }
     const double coreDistance = unscale(g.distance);
     const Vec3 coreA = unscaleVec(g.pointA), coreB = unscaleVec(g.pointB);
@@ -131,7 +133,7 @@ MarginPair marginPairOnCores(const CoreA& ca, const CoreB& cb, double ra, double
         ans.pointA = onA + ra * ans.normal;  // pointA − pointB = (onA − onB) + radii n
         ans.pointB = onB - rb * ans.normal;
     };
-    if (!g.intersect && coreDistance > radii + ans.touchTolerance) {
+    if (!g.intersect() && coreDistance > radii + ans.touchTolerance) {
         ans.how = MarginPairCase::Separated;
         ans.distance = coreDistance - radii;
         ans.normal = g.separatingAxis;  // unit, from A toward B
@@ -141,14 +143,16 @@ MarginPair marginPairOnCores(const CoreA& ca, const CoreB& cb, double ra, double
     ans.intersect = true;
     ans.how = MarginPairCase::Overlapping;
     if (!options.depth) return ans;
-    if (g.edgePairCrossed) {  // the face of A − B the crossing edges span is the nearest one
+    // GJK's crossed edge pair (its simplex does not hold the origin): the face of A − B the crossing
+    // edges span is the nearest one.
+    if (const std::optional<EdgePairCrossing> c = crossedEdgePenetration(ca, cb, g)) {
         ans.how = MarginPairCase::CrossedEdges;
-        ans.depth = unscale(g.crossedDepth) + radii;
-        ans.normal = g.crossedNormal;
-        witnesses(coreA, coreB);
+        ans.depth = unscale(c->depth) + radii;
+        ans.normal = c->normal;
+        witnesses(unscaleVec(c->pointA), unscaleVec(c->pointB));
         return ans;
     }
-    if ((!g.intersect && coreDistance > 0) || (Polish::active && g.separatingAxis.squaredNorm() > 0)) {
+    if ((!g.intersect() && coreDistance > 0) || (Polish::active && g.separatingAxis.squaredNorm() > 0)) {
         // Cores apart, shapes overlapping (or touching): the core axis is the normal, however close
         // the cores (GJK's closest points near the origin come from error-free products: its axis
         // holds to a few ulps). EPA needs a simplex holding the origin: cores 3e-14 apart sent there
@@ -196,7 +200,6 @@ inline GjkResult gjkOnShapes(const MarginPair& p, double ra, double rb) {
         g.pointA += ra * g.separatingAxis;
         g.pointB -= rb * g.separatingAxis;
         g.status = GjkStatus::Intersecting;
-        g.intersect = true;
         g.distance = 0.0;
         g.separatingAxis = Vec3::Zero();
         g.lowerBound = g.upperBound = 0.0;
@@ -233,8 +236,10 @@ GjkResult gjkDistanceWithMargins(const A& shapeA, const B& shapeB, const GjkOpti
 /// Penetration of two shapes with margins (see the file comment): status, depth, normal and deepest
 /// points as penetration() reports them for the shapes themselves, decided by the touching rule of
 /// core/base/touch_rule.h (Touching: depth within kTouchRelative · (W + rA + rB)); iterations, bounds
-/// and polytope size are the core queries'. Separated shapes: status Separated, normal = the axis,
-/// pointA / pointB the closest points. `gjkOut` optionally receives gjkDistanceWithMargins' result.
+/// and polytope size are the core queries' (termination DecidedByGjk with GJK's iterations where EPA
+/// did not run: crossed core edges, or cores apart within the radii). Separated shapes: status
+/// Separated, normal = the axis, pointA / pointB the closest points. `gjkOut` optionally receives
+/// gjkDistanceWithMargins' result.
 /// Shapes without a margin (both radii 0) are answered by penetration() itself.
 template <SupportMapping A, SupportMapping B>
 EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOptions& options = {},
@@ -267,8 +272,8 @@ EpaResult penetrationWithMargins(const A& shapeA, const B& shapeB, const EpaOpti
     if (p.how == MarginPairCase::Epa) {
         r.lowerBound = p.epa.lowerBound + radii;
         r.upperBound = p.epa.upperBound + radii;
-    } else {  // decided by GJK alone (crossed edges, or cores apart within the radii)
-        r.termination = EpaTermination::Converged;
+    } else {  // decided by GJK alone (crossed edges, or cores apart within the radii): EPA did not run
+        r.termination = EpaTermination::DecidedByGjk;
         r.iterations = p.gjk.iterations;
         r.edgePairRefined = p.how == MarginPairCase::CrossedEdges;
         r.lowerBound = r.upperBound = r.depth;

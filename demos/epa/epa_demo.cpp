@@ -111,7 +111,7 @@ private:
         EpaRun run;
         run.gjk = gjkDistance(pair_.a, pair_.b, options_.gjk);
         if (run.gjk.status == GjkStatus::InvalidInput) return run;
-        if (!run.gjk.intersect) {
+        if (!run.gjk.intersect()) {
             run.status = EpaStatus::Separated;
             run.termination = EpaTermination::NotIntersecting;
             run.normal = run.gjk.separatingAxis;
@@ -408,8 +408,8 @@ private:
         if (isGjk) {
             lines.push_back("GJK: " + std::string(nameOf(run.gjk.status)) + " after " +
                             std::to_string(run.gjk.iterations) + " iterations (" + nameOf(run.gjk.termination) + ")" +
-                            (run.gjk.intersect ? "; EPA starts from this simplex (" + run.start + ")"
-                                               : ", distance " + formatNumber(run.gjk.distance)));
+                            (run.gjk.intersect() ? "; EPA starts from this simplex (" + run.start + ")"
+                                                 : ", distance " + formatNumber(run.gjk.distance)));
             lines.push_back(
                 "EPA grows a polytope inside A − B around the origin until its face nearest the origin lies on the "
                 "boundary.");

@@ -230,7 +230,7 @@ private:
                   {"pairs", vcPairs}}},
                 {"seed", {featureJson(r.seed.a), featureJson(r.seed.b)}},
                 {"gjk_distance", r.gjk.distance},
-                {"gjk_intersect", r.gjk.intersect}};
+                {"gjk_intersect", r.gjk.intersect()}};
     }
 
     // ---------------------------------------------------------------------------------- drawing
@@ -354,7 +354,7 @@ private:
         return nameOf(r.status);
     }
     std::string gjkText(const GjkResult& g) const {
-        return g.intersect ? std::string("intersecting") : formatNumber(g.distance);
+        return g.intersect() ? std::string("intersecting") : formatNumber(g.distance);
     }
 
     Frame drawStepFrame(GlContext& gl, int ss, const Runs& run, int index) const {

@@ -50,7 +50,7 @@ Json featuresJson(const ClosestFeaturesInput& in, const FeaturesRun& run) {
         runnersUp.push_back({{"a", featureName(run.candidates[k].a, 'a')},
                              {"b", featureName(run.candidates[k].b, 'b')},
                              {"distance", run.candidates[k].distance}});
-    const double gjkDistance = run.gjk.intersect ? 0.0 : run.gjk.distance;
+    const double gjkDistance = run.gjk.intersect() ? 0.0 : run.gjk.distance;
     return {{"test", "closest_features"},
             {"a", nameOf(in.a.kind)},
             {"b", nameOf(in.b.kind)},
@@ -62,7 +62,7 @@ Json featuresJson(const ClosestFeaturesInput& in, const FeaturesRun& run) {
             {"feature_b", featureName(r.featureB, 'b')},
             {"pairs_tested", r.pairsTested},
             {"nearest_pairs", runnersUp},
-            {"gjk", {{"intersect", run.gjk.intersect}, {"distance", gjkDistance},
+            {"gjk", {{"intersect", run.gjk.intersect()}, {"distance", gjkDistance},
                      {"difference", std::abs(gjkDistance - r.distance)}}}};
 }
 
@@ -198,10 +198,10 @@ Frame featuresFrame(GlContext& gl, const SceneCommon& scene, int scale, const Cl
             next += (k ? ";  " : " ") + featureName(run.candidates[k].a, 'a') + " – " + featureName(run.candidates[k].b, 'b') +
                     " " + formatNumber(run.candidates[k].distance);
         lines.push_back(next);
-        const double gjkDistance = run.gjk.intersect ? 0.0 : run.gjk.distance;
+        const double gjkDistance = run.gjk.intersect() ? 0.0 : run.gjk.distance;
         lines.push_back("check against GJK: distance " + formatNumber(gjkDistance) + ", difference " +
                         formatNumber(std::abs(gjkDistance - r.distance)) +
-                        (run.gjk.intersect == r.intersect ? ", same verdict" : ", verdicts differ"));
+                        (run.gjk.intersect() == r.intersect ? ", same verdict" : ", verdicts differ"));
         drawNumberBlock(c, lines, 52);
     }
     return finishedFrame(c, scene.title, scene.caption, "features", scene.title + ": " + featureName(r.featureA, 'a') + " – " + featureName(r.featureB, 'b'));

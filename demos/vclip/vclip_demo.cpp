@@ -188,7 +188,7 @@ private:
         Json j = walkResultJson(c.result);
         j["seed"] = {featureJson(c.seed.a), featureJson(c.seed.b)};
         j["gjk_distance"] = c.gjk.distance;
-        j["gjk_intersect"] = c.gjk.intersect;
+        j["gjk_intersect"] = c.gjk.intersect();
         if (c.result.status == VClipStatus::Separated) {
             j["theorem1_a_in_region_b"] = checkInRegion(s_.b, c.poseB, c.result.featureB, c.result.pointA).minDistance;
             j["theorem1_b_in_region_a"] =
@@ -542,7 +542,7 @@ private:
         lines.push_back(std::string("Result: ") + nameOf(r.status) +
                         (separated ? ", closest features " : ", found at features ") + featureLabel(r.featureA, 0) +
                         " and " + featureLabel(r.featureB, 1) + ", distance " + formatNumber(r.distance) + "  (GJK: " +
-                        (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
+                        (call.gjk.intersect() ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
         lines.push_back(l2);
         lines.push_back(
             separated
@@ -693,7 +693,7 @@ private:
         lines.push_back("Call " + std::to_string(k) + ": " + nameOf(r.status) + ", features " +
                         featureLabel(r.featureA, 0) + ", " + featureLabel(r.featureB, 1) + ", distance " +
                         formatNumber(r.distance) + "  (GJK " +
-                        (call.gjk.intersect ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
+                        (call.gjk.intersect() ? std::string("intersecting") : formatNumber(call.gjk.distance)) + ")");
         lines.push_back(std::string(k == 0 ? "first call, seeded with " : "started from the previous call's pair ") +
                         nameOf(call.seed.a) + ", " + nameOf(call.seed.b) + "; states: " + states);
         int total = 0;

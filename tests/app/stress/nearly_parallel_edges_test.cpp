@@ -2,14 +2,19 @@
 // failures, kept as fixed reproducers): GJK decides them exactly — intersecting when a crossed
 // edge pair's (or a point-face's) face of A − B has the origin behind it, separated when a flat
 // terminal simplex's feature pair certifies a distance — and the depth is the nearest face's,
-// against the hull of the Minkowski difference.
+// against the hull of the Minkowski difference. A crossing is GJK's verdict (termination
+// EdgePairCrossed, its simplex not holding the origin) and penetration()'s answer without EPA
+// (termination DecidedByGjk, crossedEdgePenetration's bits), with margins too.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
+#include "core/gjk_epa/margins.h"
 #include "verification/minkowski_hull_oracle.h"
 
 using namespace cdlab;
@@ -100,7 +105,7 @@ const std::vector<Pair> kPairs = {
 }  // namespace
 
 TEST_CASE("nearly parallel edges: crossing by 1e-9 of the size is intersecting, with the nearest face's depth") {
-    int inside = 0;
+    int inside = 0, crossed = 0;
     for (std::size_t i = 0; i < kPairs.size(); ++i) {
         const Pair& p = kPairs[i];
         const MinkowskiOracle o = minkowskiOracle(p.a, p.b);
@@ -109,7 +114,7 @@ TEST_CASE("nearly parallel edges: crossing by 1e-9 of the size is intersecting, 
         CAPTURE(i);
         const GjkResult g = gjkDistance(a, b);
         CHECK(gjkIntersect(a, b) == o.inside);
-        CHECK(g.intersect == o.inside);
+        CHECK(g.intersect() == o.inside);
         if (!o.inside) {
             CHECK(std::abs(g.distance - o.distance) <= 1e-12);
             continue;
@@ -120,6 +125,31 @@ TEST_CASE("nearly parallel edges: crossing by 1e-9 of the size is intersecting, 
         CHECK(std::abs(e.depth - o.depth) <= 1e-12);
         // The normal attains the depth: h_{A-B}(n) = depth.
         CHECK(std::abs(e.normal.dot(a.support(e.normal)) - e.normal.dot(b.support(Vec3(-e.normal))) - e.depth) <= 1e-12);
+        // A crossing decided by GJK: recomputed from the simplex, the same bits penetration() answers
+        // with (and GJK's witnesses), EPA never ran. Any other intersecting answer is EPA's.
+        const std::optional<EdgePairCrossing> c = crossedEdgePenetration(a, b, g);
+        CHECK(c.has_value() == (g.termination == GjkTermination::EdgePairCrossed));
+        if (c) {
+            ++crossed;
+            CHECK(e.termination == EpaTermination::DecidedByGjk);
+            CHECK(e.iterations == 0);
+            CHECK(e.depth == c->depth);
+            CHECK((e.normal == c->normal));
+            CHECK((e.pointA == c->pointA));
+            CHECK((e.pointB == c->pointB));
+            CHECK((g.pointA == c->pointA));
+            CHECK((g.pointB == c->pointB));
+        } else {
+            CHECK(e.termination != EpaTermination::DecidedByGjk);
+        }
+        // With margins: the cores' crossing answers without EPA as well, the radii added.
+        const RoundedShape<PolytopeShape> ma{PolytopeShape(p.a), 0.125}, mb{PolytopeShape(p.b), 0.125};
+        GjkResult gm;
+        const EpaResult m = penetrationWithMargins(ma, mb, EpaOptions{}, &gm);
+        CHECK(m.status == EpaStatus::Penetrating);
+        CHECK(std::abs(m.depth - (o.depth + 0.25)) <= 1e-12);
+        if (gm.termination == GjkTermination::EdgePairCrossed) CHECK(m.termination == EpaTermination::DecidedByGjk);
     }
     CHECK(inside >= 20);
+    CHECK(crossed >= 1);  // the family's point: GJK's sliver simplex stops "apart" on crossed edges
 }

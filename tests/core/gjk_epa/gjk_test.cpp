@@ -78,7 +78,7 @@ TEST_SUITE("gjk") {
                     CAPTURE(c.center.transpose());
                     CAPTURE(offset);
                     if (c.distance == 0.0) {
-                        CHECK(r.intersect);
+                        CHECK(r.intersect());
                         CHECK(r.distance == 0.0);
                     } else {
                         REQUIRE(r.status == GjkStatus::Separated);
@@ -96,7 +96,7 @@ TEST_SUITE("gjk") {
             SupportPoint p{Vec3(1, 2, 3)};
             SupportPoint q{Vec3(1, 2, 3)};
             GjkResult r = gjkDistance(p, q, opt);
-            CHECK(r.intersect);  // coincident points touch
+            CHECK(r.intersect());  // coincident points touch
             CHECK(r.distance == 0.0);
             q.p = Vec3(1, 2, 7);
             r = gjkDistance(p, q, opt);
@@ -118,7 +118,7 @@ TEST_SUITE("gjk") {
             CHECK(r.distance == doctest::Approx(1.0).epsilon(1e-15));
             SupportSegment x{Vec3(0, -1, 0), Vec3(0, 1, 0)};  // crossing segments
             r = gjkDistance(s, x, opt);
-            CHECK(r.intersect);
+            CHECK(r.intersect());
             // degenerate polytope: repeated and collinear vertices
             SupportPolytope flat{{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 0, 0)}};
             SupportPoint above{Vec3(1.5, 0, 2)};
@@ -204,13 +204,13 @@ TEST_SUITE("gjk") {
                 CHECK(std::isfinite(r.distance));
                 if (oracle.inside) {
                     ++intersecting;
-                    if (oracle.depth > 1e-9 * size && (!r.intersect || !hit)) ++wrong;
+                    if (oracle.depth > 1e-9 * size && (!r.intersect() || !hit)) ++wrong;
                     continue;
                 }
                 ++separated;
                 const double d = static_cast<double>(oracle.distance);
                 if (d < 1e-9 * size) continue;  // touching within rounding: either answer is right
-                if (r.intersect || hit) {
+                if (r.intersect() || hit) {
                     ++wrong;
                     continue;
                 }
@@ -268,7 +268,7 @@ TEST_SUITE("gjk") {
             warm.warmStart = &first.simplex;
             const GjkResult cold = gjkDistance(a, b2);
             const GjkResult hot = gjkDistance(a, b2, warm);
-            CHECK(hot.intersect == cold.intersect);
+            CHECK(hot.intersect() == cold.intersect());
             CHECK(std::abs(hot.distance - cold.distance) <= 1e-13 * std::max(cold.distance, 1.0));
             CHECK(hot.iterations <= cold.iterations + 1);
         }
@@ -304,15 +304,15 @@ TEST_SUITE("gjk") {
                 wrong += intersect != (truth > 0);
             };
             const GjkResult r = gjkDistance(a, origin);
-            check(r.intersect);
-            if (!r.intersect && offset > 0) worstError = std::max(worstError, std::abs(r.distance - offset) / scale);
-            check(gjkDistance(origin, b).intersect);
+            check(r.intersect());
+            if (!r.intersect() && offset > 0) worstError = std::max(worstError, std::abs(r.distance - offset) / scale);
+            check(gjkDistance(origin, b).intersect());
             GjkTrace trace;  // a trace runs the full loop, never the fast path
             check(gjkIntersect(a, origin, {}, &trace));
             check(gjkIntersect(a, origin));
             // Johnson's sub-algorithm keeps its classic rounding (the accuracy demo shows it), but
             // "inside the tetrahedron" is decided by the same certain signs: never a false hit.
-            johnsonWrong += truth < 0 && gjkDistance(a, origin, withSolver(SimplexSolver::Johnson)).intersect;
+            johnsonWrong += truth < 0 && gjkDistance(a, origin, withSolver(SimplexSolver::Johnson)).intersect();
         }
         CHECK(wrong == 0);
         CHECK(johnsonWrong == 0);
@@ -328,7 +328,7 @@ TEST_SUITE("gjk") {
         CHECK(r.status == GjkStatus::Separated);
         CHECK(std::abs(r.distance - 1.1684449461453048e-6) < 1e-12);
         for (SimplexSolver solver : kSolvers) {
-            CHECK_FALSE(gjkDistance(c, origin, withSolver(solver)).intersect);
+            CHECK_FALSE(gjkDistance(c, origin, withSolver(solver)).intersect());
             GjkTrace trace;
             CHECK_FALSE(gjkIntersect(c, origin, withSolver(solver), &trace));
         }
@@ -362,7 +362,7 @@ TEST_SUITE("gjk") {
         const SupportPolytope needleB{std::vector<Vec3>{{26.207849438285738, 136.03274861519523, 39.408182126249294},
                                                       {18.438200586290197, 95.705902956640813, 27.725747392905152},
                                                       {-10.580128811485871, -54.91592112464869, -15.908905075886786}}};
-        CHECK(gjkDistance(needleA, needleB).intersect);
+        CHECK(gjkDistance(needleA, needleB).intersect());
         CHECK(gjkIntersect(needleA, needleB));
         // Two flat bodies 0.000557902... apart in z (the sum of their offsets): A − B is flat, both
         // orientations of a crossed pair's face looked "extreme"; the converged lower bound decides.
@@ -376,7 +376,7 @@ TEST_SUITE("gjk") {
                                                     {316.1113117976559, -3.401282571205862e-06, zB},
                                                     {-1032.1125289187719, -5.6313599895169523e-06, zB}}};
         const GjkResult slab = gjkDistance(slabA, slabB);
-        CHECK_FALSE(slab.intersect);
+        CHECK_FALSE(slab.intersect());
         CHECK(slab.distance == doctest::Approx(zB - zA).epsilon(1e-12));
         // A thin A − B whose crossed pair's face has the origin behind it, but A − B does not reach
         // past the origin the other way: apart by 6.6e-7 (the plane nearly through the origin also
@@ -390,7 +390,7 @@ TEST_SUITE("gjk") {
                                                     {-6032.9628813340414, 4847.2889621077811, -1542.5216220398393},
                                                     {-5010.3490229412573, 4024.4834565182778, -1278.9085587390095}}};
         const GjkResult thin = gjkDistance(thinA, thinB);
-        CHECK_FALSE(thin.intersect);
+        CHECK_FALSE(thin.intersect());
         CHECK(std::abs(thin.distance - 6.6047704320486595e-07) < 1e-12);
         CHECK_FALSE(gjkIntersect(thinA, thinB));
         // A triangle <-> edge alternation of rounding stalls ran to the iteration cap.

@@ -92,7 +92,7 @@ TEST_SUITE("gjk_epa/margins") {
             const EpaResult e = penetrationWithMargins(A, B);
             if (exact > 1e-12) {
                 ++separated;
-                REQUIRE(!g.intersect);
+                REQUIRE(!g.intersect());
                 CHECK(std::abs(g.distance - exact) <= 4e-16 * (centres + 2));
                 CHECK(std::abs((g.pointA - ca).norm() - ra) <= 1e-15 * 4);
                 CHECK(std::abs((g.pointB - cb).norm() - rb) <= 1e-15 * 4);
@@ -100,7 +100,7 @@ TEST_SUITE("gjk_epa/margins") {
                 CHECK(e.status == EpaStatus::Separated);
             } else if (exact < -1e-12) {
                 ++overlapping;
-                CHECK(g.intersect);
+                CHECK(g.intersect());
                 REQUIRE(e.status == EpaStatus::Penetrating);
                 CHECK(std::abs(e.depth + exact) <= 4e-16 * (centres + 2));
                 checkPenetrationWitnesses(e, 4.0);
@@ -150,7 +150,7 @@ TEST_SUITE("gjk_epa/margins") {
             CHECK(g.iterations <= 6);  // segment cores (full support: ~17)
             if (exact > 1e-12) {
                 ++separated;
-                REQUIRE(!g.intersect);
+                REQUIRE(!g.intersect());
                 CHECK(std::abs(g.distance - exact) <= 1e-14);
                 CHECK(e.status == EpaStatus::Separated);
             } else if (exact < -1e-12) {
@@ -212,7 +212,7 @@ TEST_SUITE("gjk_epa/margins") {
                 const double exact = outsideBy - radii;
                 ++outside;
                 if (exact > 1e-12) {
-                    REQUIRE(!g.intersect);
+                    REQUIRE(!g.intersect());
                     CHECK(std::abs(g.distance - exact) <= 1e-14);
                 } else if (exact < -1e-12) {
                     REQUIRE(e.status == EpaStatus::Penetrating);

@@ -240,7 +240,7 @@ TEST_SUITE("gjk_epa_demo") {
         a.halfExtents = b.halfExtents = Vec3(0.5, 0.5, 0);
         b.pose.position = Vec3(0.75, 0.1, 0);
         const GjkResult g = gjkDistance(a, b);
-        REQUIRE(g.intersect);
+        REQUIRE(g.intersect());
         REQUIRE(g.simplex.count >= 1);
         GjkSimplex s = g.simplex;
         std::vector<int> order(s.count);
@@ -258,7 +258,7 @@ TEST_SUITE("gjk_epa_demo") {
         // Touching squares: depth 0 with the contact normal.
         b.pose.position = Vec3(1.0, 0.1, 0);
         const GjkResult gt = gjkDistance(a, b);
-        REQUIRE(gt.intersect);
+        REQUIRE(gt.intersect());
         const Epa2dResult rt = epaPenetration2d(a, b, gt.simplex, EpaOptions{});
         CHECK(rt.status == EpaStatus::Touching);
         CHECK(rt.depth == 0.0);
