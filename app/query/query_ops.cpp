@@ -18,6 +18,9 @@ namespace cdlab::demos {
 
 namespace {
 
+// A GJK trace as `cdlab query` writes it: each step's `simplex` lists the slots w0..w3 in order, and
+// `region` spells the slots kept as letters A..D = w0..w3 (slotLetters: 0b0101 -> "AC", w0 and w2
+// kept); the letters name slots, not the bodies A and B.
 Json gjkTraceJson(const GjkTrace& t) {
     Json steps = Json::array();
     for (const GjkTraceStep& s : t.steps) {

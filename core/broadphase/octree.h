@@ -15,7 +15,7 @@
 // Loose octree (looseness k > 1): every cell is enlarged by the factor k about its centre and
 // an object goes into the deepest node whose loose cell contains it; with k = 2 an object
 // whose largest extent is <= half a cell's size always fits at that cell's depth (by its
-// centre), so small objects no longer get stuck at the root on split planes. Loose cells of
+// centre), so a small object on a split plane sits at its own size's depth, not at the root. Loose cells of
 // siblings overlap, so pairs are then found by box queries against the loose cells.
 //
 // Frame: world; any length unit. Degenerate input: boxes with NaN / inf or min > max on an axis

@@ -21,7 +21,7 @@
 //    subnormal), kept within the feature's bounding box; weights likewise (they sum to 1 before
 //    rounding). E.g. p = (0.2, 0.2, 1e85)
 //    over the unit triangle gives (0.2, 0.2, 0) exactly. Costs tens of microseconds;
-//  - otherwise (the common case, unchanged): double arithmetic from the nearest feature vertex,
+//  - otherwise (the common case): double arithmetic from the nearest feature vertex,
 //    no overflow or underflow possible. Edge: the projection from the nearer endpoint e, error a
 //    few ulps of max(|point|, |p - e|). Face: the projection onto the plane from the nearest
 //    vertex o, error a few ulps of max(|point|, |p - o| / sin of the angle between the edges at o)

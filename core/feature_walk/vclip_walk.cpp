@@ -23,8 +23,8 @@
 //     an O(|F|) scan. The paper picks the most violated plane / Nmin, which can be an edge
 //     farther than the nearest one (the distance would rise). Taking the corner vertex rather than
 //     one of its two edges matters: E-E may raise an edge E' to a face F whose closest point to E
-//     is E''s endpoint (distance equal, not smaller), and going back to E' from F repeats the pair
-//     (642-vertex sphere test, before this rule).
+//     is E''s endpoint (distance equal, not smaller), and going back to E' from F would repeat the
+//     pair (tests/core/feature_walk/vclip_test.cpp, "642-vertex geodesic sphere ...", checks it ends).
 //   - E-E compound exclusion: decided from the closest pair of the two segments (the endpoint
 //     vertex if the closest point of E' is an endpoint, else the face whose FE plane the closest
 //     point of E violates); the paper's implementation compares face-plane distances there.

@@ -8,7 +8,7 @@
 //         upper bound min(n_e · w); stop when n_e · w − d_e <= eps_rel n_e · w;
 //         remove the edges visible from w (a contiguous chain), connect its two ends to w.
 // Same conventions as core/gjk_epa/epa.h: normal from A toward B, pointA − pointB = depth · normal.
-// Demo-side code because cdlab's core has no 2D EPA; it uses core's types and status enums.
+// Its results and trace use core's types and status enums; tests/core/gjk_epa/epa_2d_test.cpp checks it.
 #pragma once
 
 #include <algorithm>

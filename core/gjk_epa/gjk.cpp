@@ -28,6 +28,7 @@ const char* nameOf(GjkTermination termination) {
     return "?";
 }
 
+// Letter i names slot i (A..D = w0..w3, the names the figures use); they name slots, not bodies.
 std::string slotLetters(std::uint8_t slots) {
     std::string letters;
     for (int i = 0; i < 4; ++i)

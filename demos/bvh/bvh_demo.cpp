@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "app/scene/scene_limits.h"
+#include "core/base/aabb_ops.h"
 #include "demos/bvh/bvh_scene.h"
 #include "demos/bvh/dynamic_tree_figure.h"
 
@@ -45,7 +46,7 @@ void readDynamicTree(ObjectReader& r, DynamicTreeSpec& spec) {
         ObjectReader br(b);
         const Aabb box{sceneVec3(br.get("min")), sceneVec3(br.get("max"))};
         br.finish();
-        if (!(box.min.array() <= box.max.array()).all()) b.fail("min must not exceed max on any axis");
+        if (!isValidBox(box)) b.fail("min must not exceed max on any axis");  // coordinates are finite (sceneVec3)
         spec.boxes.push_back(box);
     }
     if (auto m = r.find("margin")) {

@@ -49,7 +49,8 @@ std::vector<int> keptSlotIndices(std::uint8_t slots) {
     return out;
 }
 
-// The figures name the simplex vertices by their slot, w0..w3 (A and B are the bodies).
+// The figures name the simplex vertices by their slot, w0..w3 (A and B are the bodies); trace.json's
+// "region" spells the same kept slots as letters A..D = w0..w3 (slotLetters: "AC" is w0w2).
 std::string slotName(int slot) { return "w" + std::to_string(slot); }
 
 // The kept slots as the figures name them: 0b1011 -> "w0w1w3" (a region of the simplex).

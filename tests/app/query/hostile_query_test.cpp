@@ -427,7 +427,8 @@ TEST_SUITE("hostile query") {
     }
 
     TEST_CASE("a query line longer than the limit is one error answer, the next line is still answered") {
-        // A 60 MB line of nesting cost 2.24 GB; lines are now read with a cap (kMaxQueryLineBytes).
+        // Lines are read with a cap (kMaxQueryLineBytes): a longer one is an error answer and is not
+        // kept, so a line of deep nesting cannot take gigabytes (60 MB of it parsed takes 2.24 GB).
         std::string huge = R"({"id":1,"op":"distance","a":{"polytope":{"vertices":[)";
         huge.append((64u << 20) + 10 - huge.size(), ' ');
         std::istringstream in(huge + "\n" + distanceQuery(kSphere, R"({"point":[3,0,0]})") + "\n");

@@ -94,9 +94,9 @@ TEST_SUITE("query") {
     }
 
     TEST_CASE("contact: a face split in two by a vertex 1e-9 off its plane still gives the deepest end") {
-        // A review's reproducer: the top of a 4 x 4 x 1 box with one corner raised by 1e-9 is two
-        // triangles; the capsule was clipped to the one facing first and lost its deeper end (depth
-        // 0.50 where the penetration is 0.55). Planar, the same capsule keeps both ends on the face.
+        // The top of a 4 x 4 x 1 box with one corner raised by 1e-9 is two triangles; the capsule's
+        // contact keeps its deeper end (the penetration, 0.55), not only the end over the triangle met
+        // first (0.50). Planar, the same capsule keeps both ends on the face.
         for (double raise : {0.0, 1e-9}) {
             const Json box = {{"polytope",
                                {{"vertices",

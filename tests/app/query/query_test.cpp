@@ -114,15 +114,15 @@ TEST_SUITE("query") {
             R"({"op":"penetration","a":{"capsule":{"a":[0,-1,0],"b":[0,1,0],"radius":0.25}},"b":{"capsule":{"a":[-1,0,0],"b":[1,0,0],"radius":0.5}}})"));
         CHECK(c["depth"].get<double>() == doctest::Approx(0.75).epsilon(1e-15));
         CHECK(std::fabs(c["normal"][2].get<double>()) == doctest::Approx(1.0));
-        // Cores 2.75e-14 apart (a review's reproducer): the cores' axis, depth r1 + r2 - 2.75e-14. They
-        // went to EPA, whose start needs a simplex holding the origin: 0.327 along +z.
+        // Cores 2.75e-14 apart: the cores' axis, depth r1 + r2 - 2.75e-14, not EPA's answer (its start
+        // needs a simplex holding the origin: 0.327 along +z).
         Json n = ask(Json::parse(
             R"({"op":"penetration","a":{"capsule":{"a":[-0.087361662159125636,0.12180682528121861,0.064072713244759938],"b":[0.39644674898118304,-0.59631227169508572,0.56430704220252648],"radius":0.05}},"b":{"capsule":{"a":[0.17705241975889738,-0.27066423839308734,0.33746399332504823],"b":[-0.65614398891109804,-0.71986314770682935,0.6599606358668999],"radius":0.05}}})"));
         CHECK(n["depth"].get<double>() == doctest::Approx(0.1 - 2.75e-14).epsilon(1e-14));
         CHECK(std::fabs(n["normal"][2].get<double>()) < 0.2);  // (-0.858, -0.503, 0.108): the segments' common perpendicular
-        // A capsule core 1e-6 long at 1e9 from the origin (a review's reproducer): its nearer end was
-        // chosen by rounding d · x of coordinates 1e9 (the pair is now moved next to the origin first,
-        // exactly): they overlap by 2.5404069958e-9 and were answered 1.3e-10 apart.
+        // A capsule core 1e-6 long at 1e9 from the origin: the pair is moved next to the origin first
+        // (exactly), so its nearer end is not chosen by rounding d · x of coordinates 1e9; they overlap
+        // by 2.5404069958e-9 (rounding there answers them 1.3e-10 apart).
         const std::string far =
             R"({"op":"penetration","a":{"capsule":{"a":[1000000000.0,0.0,0.0],"b":[1000000000.0,7.668953380392842e-07,6.413366727701596e-07],"radius":1.0}},"b":{"sphere":{"center":[1000000000.2258492,-1.2707238588552776,1.527826245280321],"radius":1.0}}})";
         Json f = ask(Json::parse(far));

@@ -121,9 +121,10 @@ TEST_SUITE("hostile scene") {
     }
 
     TEST_CASE("a NaN in a trace, a caption or a drawn text is an error naming the scene and the quantity") {
-        // Reproducer: drop with gravity 1e300 drew "E = -nan J", reported "max energy rise 0" and wrote
-        // null into trace.json, exit 0 (likewise vclip at 1e300 and a voronoi triangle at 1e300). The
-        // limits above now refuse those scenes; this check is the last line of defence.
+        // A NaN that reaches a trace, a caption or a drawn text (drop with gravity 1e300 would draw
+        // "E = -nan J" and write null into trace.json; likewise vclip or a voronoi triangle at 1e300)
+        // fails the scene. The limits above refuse those scenes first; this check is the last line of
+        // defence.
         SceneCommon common;
         common.file = "golden/drop/box.json";
         DemoOutput nanTrace;

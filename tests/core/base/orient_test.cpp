@@ -100,7 +100,7 @@ TEST_SUITE("orient") {
     }
 
     // Coordinates near the double limit: the filter's products overflow (inf, or inf - inf = NaN),
-    // which is no answer for finite inputs (it used to read as "coplanar"). Scaling by a power of two
+    // which is no answer for finite inputs (not "coplanar": the exact stage decides). Scaling by a power of two
     // keeps every sign, so the small points' signs are the oracle.
     TEST_CASE("orient3d and orient2d keep their exact sign when the filter overflows") {
         const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), up(0.25, 0.25, 0x1p-40), flat(0.25, 0.25, 0);

@@ -203,8 +203,8 @@ TEST_SUITE("edge pair distance") {
 
     TEST_CASE("GJK on wedges with nearly parallel ridges: distance = gap to rounding") {
         // The stress family "nearly parallel edges": two thin wedges whose ridges cross at
-        // 1e-10..1e-1 rad, `gap` apart along n. Before edge-pair refinement GJK erred by up to
-        // ~5e-9 here; now the distance must be the gap to rounding of the input.
+        // 1e-10..1e-1 rad, `gap` apart along n. With edge-pair refinement the distance is the gap to
+        // rounding of the input (GJK's own answer is up to ~5e-9 off here).
         std::mt19937_64 rng(3);
         int refined = 0;
         for (int i = 0; i < 2000; ++i) {

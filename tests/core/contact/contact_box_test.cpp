@@ -237,9 +237,10 @@ TEST_SUITE("contact_box") {
         CHECK(shortcut > 300);
     }
 
-    // A review's reproducers: the fast path's rim bound squared lengths (boxes of 1e80 overflowed it,
-    // 1e-100 underflowed it: every crossing next to a submerged corner dropped), and took corners
-    // below the plane as submerged where a negative relativeTolerance left them out of the candidates.
+    // Box-plane's fast path gives the general manifold for boxes of 1e-100 .. 1e140 (squared lengths
+    // in its rim bound overflow at 1e80 and underflow at 1e-100, which would drop every crossing next
+    // to a submerged corner) and with a negative relativeTolerance (a corner below the plane that it
+    // leaves out of the candidates is not taken as submerged).
     TEST_CASE("box-plane: huge and tiny boxes, negative relative tolerance: the general manifold") {
         for (double size : {1.0, 1e-100, 1e-80, 1e80, 1e100, 1e140}) {
             const Vec3 h = Vec3::Constant(size);

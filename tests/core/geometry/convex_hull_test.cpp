@@ -304,9 +304,9 @@ TEST_SUITE("convex_hull") {
     }
 
     TEST_CASE("noise just above eps: thin slabs and noisy cubes stay valid (no folds, no slivers)") {
-        // Regression: with noise a few eps above the tolerance, cone triangles used to fold under a
-        // coplanar neighbour (flipped normal) or span three nearly collinear points (plane meaningless),
-        // leaving faces with input points up to 0.4 in front of them.
+        // With noise a few eps above the tolerance, no cone triangle folds under a coplanar neighbour
+        // (flipped normal) or spans three nearly collinear points (plane meaningless): no face has an
+        // input point in front of it beyond the bound below.
         // Known limitation (documented in convex_hull.h): for noise of 2-10 eps the result is only
         // accurate to ~100 x the noise (still ~1e-9 of the scale), so the bound is max(8 mergeTol, 100 noise).
         auto checkValid = [](const std::vector<Vec3>& pts, double noise) {

@@ -72,7 +72,7 @@ inline int exactOriginSide(const std::vector<Vec3>& P) {
     return !any ? 2 : outside ? -1 : onBoundary ? 0 : 1;
 }
 
-/// A review's reproducer: the origin 1.1684449461453048e-6 (exact, in rational arithmetic) outside
+/// A sliver: the origin 1.1684449461453048e-6 (exact, in rational arithmetic) outside
 /// the hull of these six points of size 1550, beyond the face of the first three, a sliver.
 inline std::vector<Vec3> reviewSliverBody() {
     return {{264.97053582221525, 124.58940480235432, -174.21658992977368},

@@ -318,7 +318,7 @@ TEST_SUITE("gjk") {
         CHECK(johnsonWrong == 0);
         CHECK(checked > 4 * 1100);
         CHECK(worstError < 2e-14);  // the points' own rounding moves the face by ~4 u scale
-        // The review's reproducer (tests/core/gjk_epa/gjk_epa_test_support.h).
+        // A sliver face with the origin 1.17e-6 outside it (reviewSliverBody, gjk_epa_test_support.h).
         const std::vector<Vec3> base = reviewSliverBody();
         REQUIRE(exactOriginSide(base) == -1);
         const SupportPolytope c{base};
@@ -335,9 +335,9 @@ TEST_SUITE("gjk") {
         CHECK_FALSE(gjkIntersect(c, origin));
     }
 
-    // A second review's reproducers (exact answers from a brute force in __float128, or analytic).
-    TEST_CASE("a review's reproducers: the reported distance is the loop's v, needles, thin slabs, no cycling") {
-        // The distance came from sum lambda_i w_i while the loop had the accurate v: 68x too large.
+    // Hard pairs with exact answers (from a brute force in __float128, or analytic).
+    TEST_CASE("hard pairs: the reported distance is the loop's v, needles, thin slabs, no cycling") {
+        // The reported distance is the loop's accurate v (sum lambda_i w_i is 68x too large here).
         const SupportPolytope eeA{std::vector<Vec3>{{0.076800076748931842, 0.025009846012270159, 0.05480130275544607},
                                                   {-0.017256460978532232, -0.005619531224332037, -0.012313464599755115},
                                                   {0.022778672552806342, 0.070691513791411142, 0.010502728532965393},
@@ -365,7 +365,7 @@ TEST_SUITE("gjk") {
         CHECK(gjkDistance(needleA, needleB).intersect());
         CHECK(gjkIntersect(needleA, needleB));
         // Two flat bodies 0.000557902... apart in z (the sum of their offsets): A − B is flat, both
-        // orientations of a crossed pair's face looked "extreme"; the converged lower bound decides.
+        // orientations of a crossed pair's face look "extreme"; the converged lower bound decides.
         const double zA = -0.0001297192452649225, zB = 0.00042818339158165404;
         const SupportPolytope slabA{std::vector<Vec3>{{-2053.3832712620251, -9.1455665601903164e-06, zA},
                                                     {3891.8289331568367, -3.3774133030444401e-06, zA},
@@ -379,8 +379,8 @@ TEST_SUITE("gjk") {
         CHECK_FALSE(slab.intersect());
         CHECK(slab.distance == doctest::Approx(zB - zA).epsilon(1e-12));
         // A thin A − B whose crossed pair's face has the origin behind it, but A − B does not reach
-        // past the origin the other way: apart by 6.6e-7 (the plane nearly through the origin also
-        // needed the error-free normal: a plain one stopped 26% off).
+        // past the origin the other way: apart by 6.6e-7 (the plane nearly through the origin needs
+        // the error-free normal: a plain one stops 26% off).
         const SupportPolytope thinA{std::vector<Vec3>{{19774.925551166249, -15883.235329852014, 5046.4026603351449},
                                                     {-33356.569089403041, 26794.405713695229, -8516.7128372343213},
                                                     {14780.67368600058, -11870.435018449129, 3769.3106427179819},
@@ -393,7 +393,8 @@ TEST_SUITE("gjk") {
         CHECK_FALSE(thin.intersect());
         CHECK(std::abs(thin.distance - 6.6047704320486595e-07) < 1e-12);
         CHECK_FALSE(gjkIntersect(thinA, thinB));
-        // A triangle <-> edge alternation of rounding stalls ran to the iteration cap.
+        // A triangle <-> edge alternation of rounding stalls: the loop ends within 20 iterations, far
+        // below the iteration cap.
         const SupportPolytope cycleS{std::vector<Vec3>{{253780.6392835181, -40632.108757461967, 301695.95819376095},
                                                      {-20083.68912446445, 428412.25490980881, 326704.65398151672},
                                                      {330315.22211581207, -480119.43157842377, 40395.60781915921},

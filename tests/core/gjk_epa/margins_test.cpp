@@ -231,9 +231,9 @@ TEST_SUITE("gjk_epa/margins") {
         CHECK(inside > 100);
     }
 
-    // A review's reproducers: cores apart by 2.75e-14 .. 1e-11 (less than 1e-13 of the coordinates)
-    // went to EPA, which needs a simplex holding the origin: depths 3x .. 38000x too large, normals
-    // along a coordinate axis. The cores' own axis is exact there.
+    // Cores apart by 2.75e-14 .. 1e-11 (less than 1e-13 of the coordinates): the normal is the cores'
+    // own axis, exact there. EPA, which needs a simplex holding the origin, would give depths
+    // 3x .. 38000x too large and normals along a coordinate axis.
     TEST_CASE("cores apart by a hair: the cores' axis, not EPA") {
         const CapsuleShape A{Vec3(-0.087361662159125636, 0.12180682528121861, 0.064072713244759938),
                              Vec3(0.39644674898118304, -0.59631227169508572, 0.56430704220252648), 0.05};
@@ -268,8 +268,8 @@ TEST_SUITE("gjk_epa/margins") {
     }
 
     TEST_CASE("nearly parallel cores crossing: the deepest points where they cross, on each capsule") {
-        // A review's reproducer: cores 5.6e-18 apart at an angle of ~1e-2; EPA's start on their flat
-        // difference is blown up, and its witnesses had put pointA 0.39 off A.
+        // Cores 5.6e-18 apart at an angle of ~1e-2: EPA's start on their flat difference is blown up,
+        // and its witnesses would put pointA 0.39 off A; the witnesses lie on each capsule.
         const CapsuleShape A{Vec3(-0.06384617321017472, -0.042449289430044015, -0.0775290882964929),
                              Vec3(1.2731867605939553, 0.36920813999860513, -0.31357009551208964), 0.1};
         const CapsuleShape B{Vec3(-0.5154235067889756, -0.18152815246451445, 0.0021401574709631332),

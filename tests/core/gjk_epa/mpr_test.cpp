@@ -154,7 +154,7 @@ TEST_SUITE("mpr") {
         CHECK(decided > 2000);  // those clear of the band are still decided (2370 of 6000 here)
     }
 
-    TEST_CASE("a review's reproducers: a sliver portal, a sliver base triangle, coordinates near the double limit") {
+    TEST_CASE("hard pairs: a sliver portal, a sliver base triangle, coordinates near the double limit") {
         // The origin 2.6e-8 outside a body of size 0.19 (exact), behind a portal of nearly collinear points.
         const std::vector<Vec3> portal{{0.18580837336482625, 0.1907711021050634, 0.074791306767989452},
                                        {-0.1184067539525608, -0.058138409876495128, -0.0015647832194075478},

@@ -15,7 +15,6 @@
 #include <set>
 
 #include "app/catalog/catalog.h"
-#include "core/gjk_epa/epa_2d.h"
 #include "app/scene/pair_scene.h"
 #include "render/gif_writer.h"
 
@@ -231,38 +230,6 @@ TEST_SUITE("gjk_epa_demo") {
             ++checked;
         }
         CHECK(checked >= 4);
-    }
-
-    TEST_CASE("2D EPA: square overlap in every vertex order of the start triangle") {
-        // Unit squares overlapping by 0.25 along x: depth 0.25, normal +x (A toward B).
-        SceneShape a, b;
-        a.planar = b.planar = true;
-        a.halfExtents = b.halfExtents = Vec3(0.5, 0.5, 0);
-        b.pose.position = Vec3(0.75, 0.1, 0);
-        const GjkResult g = gjkDistance(a, b);
-        REQUIRE(g.intersect());
-        REQUIRE(g.simplex.count >= 1);
-        GjkSimplex s = g.simplex;
-        std::vector<int> order(s.count);
-        for (int i = 0; i < s.count; ++i) order[i] = i;
-        do {
-            GjkSimplex p = s;
-            for (int i = 0; i < s.count; ++i) p.vertex[i] = s.vertex[order[i]];
-            Epa2dTrace trace;
-            const Epa2dResult r = epaPenetration2d(a, b, p, EpaOptions{}, &trace);
-            CHECK(r.status == EpaStatus::Penetrating);
-            CHECK(r.depth == doctest::Approx(0.25).epsilon(1e-12));
-            CHECK((r.normal - Vec3::UnitX()).norm() < 1e-12);
-            CHECK((r.pointA - r.pointB - r.depth * r.normal).norm() < 1e-12);
-        } while (std::next_permutation(order.begin(), order.end()));
-        // Touching squares: depth 0 with the contact normal.
-        b.pose.position = Vec3(1.0, 0.1, 0);
-        const GjkResult gt = gjkDistance(a, b);
-        REQUIRE(gt.intersect());
-        const Epa2dResult rt = epaPenetration2d(a, b, gt.simplex, EpaOptions{});
-        CHECK(rt.status == EpaStatus::Touching);
-        CHECK(rt.depth == 0.0);
-        CHECK(std::abs(rt.normal.x()) == doctest::Approx(1.0));
     }
 
     TEST_CASE("GIF writer: decodes to the frames' size and colours") {
