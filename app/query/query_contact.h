@@ -1,5 +1,6 @@
-// The contact-model ops of `cdlab query` (README, "cdlab query"): "contact" (polytope–plane and
-// polytope–polytope manifolds) and "mass_properties" (volume, centre of mass, inertia tensor).
+// The contact-model ops of `cdlab query` (README, "cdlab query"): "contact" (the manifold of two
+// shapes, computed by core/query/contact.h) and "mass_properties" (volume, centre of mass, inertia
+// tensor).
 #pragma once
 
 #include <string>

@@ -1,16 +1,33 @@
-#include "app/query/query_contact_curved.h"
+// Contact points of a cylinder or cone on a reference face, and the feature holding them
+// (core/query/curved_contact.h). Moved from app/query (`cdlab query`'s contact op) unchanged: the
+// same samples, crossings, order of candidates and reduction, so every answer keeps its bits.
+#include "core/query/curved_contact.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <utility>
 
 #include "core/contact/contact_manifold.h"
 
-namespace cdlab::demos {
+namespace cdlab {
 
 namespace {
 
+// Azimuths sampled on each rim circle (the first at the deepest one).
 constexpr int kRimSamples = 32;
+// The side has a deepest generator when −n leans off the axis by more than this (|−n in the rim's
+// plane| > 1e-9); else a cap faces the face and no generator is lowest.
+constexpr double kGeneratorTiltMin = 1e-9;
+// The rims' samples start at the deepest azimuth when −n in the rim's plane is longer than this;
+// else (a cap facing the face) at azimuth 0.
+constexpr double kDeepestAzimuthMin = 1e-12;
+// A cap lies flat on the face when |n · axis| >= 1 − kCapFlatSlack.
+constexpr double kCapFlatSlack = 1e-9;
+// curvedFeature: a point is on an end, the rim or the apex within kFeatureRelative of the solid's
+// size (its half height or radius, at least kFeatureSizeFloor).
+constexpr double kFeatureRelative = 1e-9, kFeatureSizeFloor = 1e-300;
 
 struct Rim {
     Vec3 center, e1, e2;  // the circle center + r (cos φ e1 + sin φ e2)
@@ -67,7 +84,7 @@ void addDeepestGenerator(const CurvedSolid& s, Candidates& c) {
     const Rim& rim = rims.front();
     const Vec3& n = c.face.normal;
     const double w1 = -n.dot(rim.e1), w2 = -n.dot(rim.e2);
-    if (!(std::hypot(w1, w2) > 1e-9) || !(rim.radius > 0.0)) return;
+    if (!(std::hypot(w1, w2) > kGeneratorTiltMin) || !(rim.radius > 0.0)) return;
     const double deepest = std::atan2(w2, w1);
     const Vec3 p0 = rim.at(deepest);
     const Vec3 p1 = s.cone ? Vec3(s.center + s.halfHeight * s.axis()) : rims[1].at(deepest);
@@ -96,7 +113,7 @@ std::vector<CurvedContactPoint> curvedOnFace(const CurvedSolid& s, const Referen
         }
         // Samples from the deepest azimuth: the direction of −n in the rim's plane.
         const double w1 = -n.dot(rim.e1), w2 = -n.dot(rim.e2);
-        const double deepest = std::hypot(w1, w2) > 1e-12 ? std::atan2(w2, w1) : 0.0;
+        const double deepest = std::hypot(w1, w2) > kDeepestAzimuthMin ? std::atan2(w2, w1) : 0.0;
         for (int k = 0; k < kRimSamples; ++k) c.add(rim.at(deepest + 2 * std::numbers::pi * k / kRimSamples));
         // Where the circle crosses the face's plane (depth 0) ...
         for (double phi : solveCircle(rim.radius * n.dot(rim.e1), rim.radius * n.dot(rim.e2), face.offset - n.dot(rim.center)))
@@ -116,7 +133,7 @@ std::vector<CurvedContactPoint> curvedOnFace(const CurvedSolid& s, const Referen
     addDeepestGenerator(s, c);
     // A cap lying flat on the face: the face's corners over the disc touch it too.
     const double along = n.dot(s.axis());
-    if (std::abs(along) >= 1 - 1e-9 && !(s.cone && along < 0)) {
+    if (std::abs(along) >= 1 - kCapFlatSlack && !(s.cone && along < 0)) {
         const Vec3 cap = s.center - (along > 0 ? 1.0 : -1.0) * s.halfHeight * s.axis();  // the cap facing the face
         for (const Vec3& q : face.corners) {
             const Vec3 onCap = q + (cap - q).dot(n) * n;
@@ -133,9 +150,30 @@ std::vector<CurvedContactPoint> curvedOnFace(const CurvedSolid& s, const Referen
     return kept;
 }
 
-Json curvedFeature(const CurvedSolid& s, const std::vector<Vec3>& points) {
+const char* nameOf(CurvedFeature::Type type) {
+    switch (type) {
+        case CurvedFeature::Type::Cap: return "cap";
+        case CurvedFeature::Type::Side: return "side";
+        case CurvedFeature::Type::Rim: return "rim";
+        case CurvedFeature::Type::Apex: return "apex";
+    }
+    return "side";
+}
+
+const char* nameOf(CurvedFeature::End end) {
+    switch (end) {
+        case CurvedFeature::End::None: return "";
+        case CurvedFeature::End::Top: return "top";
+        case CurvedFeature::End::Bottom: return "bottom";
+    }
+    return "";
+}
+
+CurvedFeature curvedFeature(const CurvedSolid& s, const std::vector<Vec3>& points) {
+    using Type = CurvedFeature::Type;
+    using End = CurvedFeature::End;
     const Vec3 u = s.axis();
-    const double tol = 1e-9 * std::max({s.halfHeight, s.radius, 1e-300});
+    const double tol = kFeatureRelative * std::max({s.halfHeight, s.radius, kFeatureSizeFloor});
     int top = 0, bottom = 0, apex = 0, onRim = 0;
     for (const Vec3& p : points) {
         const double y = (p - s.center).dot(u);
@@ -146,12 +184,12 @@ Json curvedFeature(const CurvedSolid& s, const std::vector<Vec3>& points) {
         if (std::abs(radial - s.radius) <= tol) ++onRim;
     }
     const int count = static_cast<int>(points.size());
-    if (apex == count) return {{"type", "apex"}};
+    if (apex == count) return {Type::Apex, End::None};
     // On one end: its rim when one or two points all lie on the circle, else its cap (three or
     // more points, or a point inside the disc: a sphere resting on the middle of the cap).
-    for (const auto& [onEnd, name] : {std::pair{top, "top"}, std::pair{bottom, "bottom"}})
-        if (onEnd == count) return {{"type", count < 3 && onRim == count ? "rim" : "cap"}, {"end", name}};
-    return {{"type", "side"}};
+    for (const auto& [onEnd, end] : {std::pair{top, End::Top}, std::pair{bottom, End::Bottom}})
+        if (onEnd == count) return {count < 3 && onRim == count ? Type::Rim : Type::Cap, end};
+    return {Type::Side, End::None};
 }
 
-}  // namespace cdlab::demos
+}  // namespace cdlab
