@@ -11,5 +11,6 @@
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
 #include "core/gjk_epa/margins.h"
+#include "core/query/compound.h"
 #include "core/query/pair.h"
 #include "core/query/shape.h"
