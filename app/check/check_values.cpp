@@ -9,7 +9,7 @@
 
 #include "app/query/query.h"
 #include "app/query/query_json.h"
-#include "app/query/query_ops.h"
+#include "core/query/pair.h"
 
 namespace cdlab::demos {
 
@@ -172,10 +172,8 @@ std::optional<double> ShapeModel::support(const Vec3& n) const {
 std::optional<double> ShapeModel::distanceTo(const Vec3& p) const {
     try {
         if (form_ == Form::Shape) {
-            QueryShape point;
-            point.kind = QueryShape::Kind::Point;
-            point.vertices = {p};
-            const ShapePairAnswer a = shapePairAnswer(std::move(point), shape_, false);
+            const PairResult a = pairQuery(QueryShape::point(p), shape_, PairOptions{.depth = false});
+            if (a.status != PairStatus::Ok) return std::nullopt;
             return a.intersect ? 0.0 : a.distance;
         }
         if (!text_) return std::nullopt;
@@ -190,10 +188,8 @@ std::optional<double> ShapeModel::distanceTo(const Vec3& p) const {
 std::optional<Vec3> ShapeModel::closestPointTo(const Vec3& p) const {
     if (form_ != Form::Shape) return std::nullopt;
     try {
-        QueryShape point;
-        point.kind = QueryShape::Kind::Point;
-        point.vertices = {p};
-        const ShapePairAnswer a = shapePairAnswer(std::move(point), shape_, false);
+        const PairResult a = pairQuery(QueryShape::point(p), shape_, PairOptions{.depth = false});
+        if (a.status != PairStatus::Ok) return std::nullopt;
         return a.intersect ? p : a.pointB;
     } catch (const std::exception&) {
         return std::nullopt;

@@ -9,6 +9,10 @@
 // the two unions. penetration: the deepest pair of convex pieces (a mesh's pieces are the cells
 // of its solid-leaf BSP tree, core/spatial/convex_decomposition.h) — not the union's true depth,
 // which may need a longer translation; separated, the distance answer with its normal.
+//
+// The geometry, searches and work limits are core's (core/query/compound.h: CompoundBody,
+// compoundPairQuery); this file reads the JSON into CompoundBody and writes the result, trace and
+// failures back (a work limit or failed pair as the error at its JSON node).
 #pragma once
 
 #include <string>

@@ -27,32 +27,10 @@ constexpr std::size_t kMaxHullVertices = 100000;
 /// them in linear time.
 constexpr double kMaxSatEdgePairs = 1e8;
 
-/// Pairs of pieces one compound or mesh query may visit (boundary pieces of a x of b: a mesh's
-/// triangles, a compound's shapes). Boxes cull most pairs, but every pair's boxes are compared
-/// (~5 ns a pair): 10^8 pairs take ~0.5 s before any GJK.
-constexpr double kMaxCompoundPairs = 1e8;
-
-/// The work of a pair of pieces in pairs of boxes: GJK and EPA grow with the pieces' vertices (a
-/// pair of 200-vertex polytopes costs ~25x a pair of boxes), so a pair counts (n_a + n_b) / 16 box
-/// pairs, at least one (curved solids count 8 vertices).
-constexpr double kBoxPairVertices = 16;
-
-/// Work, in pairs of boxes (kBoxPairVertices), that `penetration` of a compound or mesh may hand to
-/// EPA: the pairs of pieces whose boxes meet, counted before any EPA runs. EPA costs ~2.5-4.5 us a
-/// pair of boxes (two 1000-box compounds, every pair overlapping: 10^6 pairs in 2.5-4.5 s), so the
-/// limit runs in about a second. The search visits the pairs by an upper bound on their depth from
-/// the boxes and stops when the bound is below the deepest depth found, so most queries run far
-/// fewer (hostile_query_test "compound penetration: work bounded").
-constexpr double kMaxCompoundDepthPairs = 2.5e5;
-
-/// Work, in pairs of boxes, that `intersect`, `distance` and a separated `penetration` of a
-/// compound or mesh may hand to GJK (counted as the pairs run; past it the line answers an error):
-/// ~0.3-0.5 us a pair of boxes, so about a second too. The box culls leave most queries far below it.
-constexpr double kMaxCompoundGjkPairs = 2e6;
-
-/// Triangles of a mesh that `penetration` decomposes into convex pieces (the cells of its BSP
-/// tree, 32 candidate planes per node): a 10 000-triangle torus takes 0.3 s and 41 MB.
-constexpr std::size_t kMaxMeshTrianglesForPieces = 50000;
+// The compound and mesh limits (piece pairs, GJK and EPA work, mesh triangles decomposed) multiply
+// the work of core's compound query and live with it: core/query/compound.h (kMaxCompoundPairs,
+// kMaxCompoundGjkPairs, kMaxCompoundDepthPairs, kMaxMeshTrianglesForPieces, CompoundOptions);
+// app/query/query_compound.cpp turns a CompoundLimitHit into the error at the JSON path.
 
 /// Fails at `node` when a shape for `op` has more vertices than kMaxHullVertices.
 void requireHullVerticesWithinLimit(std::size_t vertices, const char* op, const JsonNode& node);

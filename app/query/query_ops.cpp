@@ -88,16 +88,6 @@ void requireOk(PairStatus status) {
 
 }  // namespace
 
-ShapePairAnswer penetrationOf(QueryShape a, QueryShape b) { return shapePairAnswer(std::move(a), std::move(b), true); }
-
-ShapePairAnswer shapePairAnswer(QueryShape a, QueryShape b, bool wantDepth) {
-    PairOptions options;
-    options.depth = wantDepth;
-    const PairResult r = pairQuery(std::move(a), std::move(b), options);
-    requireOk(r.status);
-    return {r.intersect, r.distance, r.depth, r.normal, r.pointA, r.pointB};
-}
-
 Json answerShapeQuery(const std::string& op, ObjectReader& r) {
     JsonNode an = r.get("a"), bn = r.get("b");
     if (isCompoundOrMesh(an) || isCompoundOrMesh(bn)) return answerCompoundQuery(op, r, an, bn);
