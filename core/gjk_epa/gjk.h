@@ -119,7 +119,8 @@ struct EdgePairCrossing {
     Vec3 pointB = Vec3::Zero();   ///<   pointA − pointB = depth · normal (up to rounding)
 };
 
-/// One GJK iteration as plain data (for demos / debugging). Simplex slots are named A, B, C, D.
+/// One GJK iteration as plain data (for demos / debugging). The simplex slots are w0..w3
+/// (simplex[i] is wi); a region string names kept slots by the letters A..D = w0..w3, not the bodies.
 struct GjkTraceStep {
     int iteration = 0;
     GjkVertex simplex[4];  ///< simplex after adding the new support point, before reduction
@@ -140,7 +141,8 @@ struct GjkTraceStep {
     int keptCount() const { return std::popcount(keptSlots); }
 };
 
-/// The slots of a kept sub-simplex by letter, ascending: 0b0101 -> "AC" (trace display).
+/// The slots of a kept sub-simplex by letter, ascending: 0b0101 -> "AC" (w0 and w2 kept; the trace
+/// JSON's "region").
 std::string slotLetters(std::uint8_t slots);
 
 /// Every iteration of one traced query (pass a GjkTrace* to gjkDistance / gjkIntersect).
