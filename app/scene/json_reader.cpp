@@ -298,10 +298,19 @@ Quat JsonNode::asQuat() const {
     if (!value_->is_array() || value_->size() != 4)
         fail("expected a quaternion [w, x, y, z], got " + describe(*value_));
     Quat q(at(0).asNumber(), at(1).asNumber(), at(2).asNumber(), at(3).asNumber());
-    double n = q.norm();
-    // Non-unit quaternions are normalised (documented); a zero or overflowing one has no rotation.
-    if (!(n > 1e-300) || !std::isfinite(n)) fail("quaternion has zero (or non-finite) length");
-    q.coeffs() /= n;
+    // Non-unit quaternions are normalised (documented); a zero or non-finite one has no rotation.
+    // Invariant: every finite non-zero quaternion is accepted. Its largest coefficient is first
+    // brought into [0.5, 1) by a power of two (exact, and the same rotation), as normals and ray
+    // directions are, so that the squared norm neither underflows ([1e-200, 1e-200, 0, 0]) nor
+    // overflows ([1e200, ...]); for coefficients in the normal range the normalised result is the one
+    // the unscaled division gives
+    // (tests/app/query/hostile_query_test.cpp, "quaternions: ...").
+    const double largest = q.coeffs().cwiseAbs().maxCoeff();
+    if (!(largest > 0.0) || !std::isfinite(largest)) fail("quaternion has zero (or non-finite) length");
+    int e = 0;
+    std::frexp(largest, &e);
+    q.coeffs() = q.coeffs().unaryExpr([e](double x) { return std::ldexp(x, -e); });
+    q.coeffs() /= q.norm();
     return q;
 }
 

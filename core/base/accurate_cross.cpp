@@ -34,4 +34,12 @@ Vec3 accurateCross(const Vec3& a, const Vec3& b, const Vec3& c) {
                 crossTerm(uh[0], ul[0], vh[1], vl[1], uh[1], ul[1], vh[0], vl[0]));
 }
 
+Vec3 accurateOffsetCross(const Vec3& a, const Vec3& b, const Vec3& v) {
+    double uh[3], ul[3];  // u = b - a exactly as hi + lo; v is exact with lo = 0
+    for (int k = 0; k < 3; ++k) dd::twoSum(b[k], -a[k], uh[k], ul[k]);
+    return Vec3(crossTerm(uh[1], ul[1], v[2], 0.0, uh[2], ul[2], v[1], 0.0),
+                crossTerm(uh[2], ul[2], v[0], 0.0, uh[0], ul[0], v[2], 0.0),
+                crossTerm(uh[0], ul[0], v[1], 0.0, uh[1], ul[1], v[0], 0.0));
+}
+
 }  // namespace cdlab

@@ -13,4 +13,10 @@ namespace cdlab {
 /// Needs -ffp-contract=off (set project-wide). Body frame of the inputs; units length^2.
 Vec3 accurateCross(const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// (b - a) x v, with b - a taken exactly (two-sum) and the products and sums error-free as above:
+/// the exact value rounded to ~2 ulps. For a ray or a segment against a sphere or a cylinder, where
+/// |e x d| / |d| is the distance e⊥ of the centre (axis) from the line: its error is then relative
+/// to |e⊥|, not to the far offset |e| (tests/core/overlap/intersect_ray_far_test.cpp).
+Vec3 accurateOffsetCross(const Vec3& a, const Vec3& b, const Vec3& v);
+
 }  // namespace cdlab

@@ -203,6 +203,11 @@ Sphere fitSphereRitter(std::span<const Vec3> points, RitterTrace* trace) {
         if (!(d2 > r * r)) continue;
         const double dist = std::sqrt(d2);
         const double newR = 0.5 * (r + dist);
+        // Invariant: a recorded grow step increases the radius. A point outside by less than the
+        // rounding of sqrt and of the mean (d2 > r² but newR == r) leaves the sphere as it is
+        // (the centre would move by 0 · d): it is not a step, so the trace counts only real growth
+        // (tests/core/bounding/bounding_sphere_test.cpp, "Ritter: every grow step grows").
+        if (!(newR > r)) continue;
         const Sphere before{lp.ref + c, r};
         c += ((newR - r) / dist) * d;
         r = newR;

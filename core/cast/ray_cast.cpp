@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/base/accurate_cross.h"
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/polyhedron.h"
 #include "core/geometry/shapes.h"
@@ -140,9 +141,9 @@ CoreBoundary coreBoundary(std::span<const Vec3> p) {
 }
 
 // The roots of A t² + 2 B t + C = 0 in increasing order, computed without cancellation
-// (Numerical Recipes §5.6); false when there are none.
-bool quadraticRoots(double A, double B, double C, double& t0, double& t1) {
-    const double disc = B * B - A * C;
+// (Numerical Recipes §5.6), given its discriminant disc = B² − A C computed by the caller without
+// cancellation; false when there are none.
+bool quadraticRoots(double A, double B, double C, double disc, double& t0, double& t1) {
     if (!(A > 0) || !(disc >= 0)) return false;
     const double q = -(B + std::copysign(std::sqrt(disc), B));
     t0 = q / A;
@@ -151,27 +152,48 @@ bool quadraticRoots(double A, double B, double C, double& t0, double& t1) {
     return true;
 }
 
-// First t >= 0 of the ray on the sphere |x − c| = r (Ericson §5.3.2).
+// (b − a) × v with b − a taken exactly (core/base/accurate_cross.h): the plain product beyond the
+// error-free split's range (~2^996).
+Vec3 offsetCross(const Vec3& a, const Vec3& b, const Vec3& v) {
+    const Vec3 w = accurateOffsetCross(a, b, v);
+    return w.allFinite() ? w : Vec3((b - a).cross(v));
+}
+
+// First t >= 0 of the ray on the sphere |x − c| = r (Ericson §5.3.2). The discriminant
+// B² − A C = |d|² r² − |e × d|² (Lagrange's identity; |e × d| / |d| is the line's distance from c,
+// from the exact e): its error is relative to r², where B² − A C lost r² to the rounding of |e|²
+// far from c (a unit sphere at 1e9 was hit at its centre; tests/core/cast/ray_cast_far_test.cpp).
 bool raySphereSurface(const Ray& ray, const Vec3& c, double r, double& t) {
     const Vec3 e = ray.origin - c;
+    const double A = ray.direction.squaredNorm();
+    const double disc = A * (r * r) - offsetCross(c, ray.origin, ray.direction).squaredNorm();
     double t0, t1;
-    if (!quadraticRoots(ray.direction.squaredNorm(), e.dot(ray.direction), e.squaredNorm() - r * r, t0, t1))
-        return false;
+    if (!quadraticRoots(A, e.dot(ray.direction), e.squaredNorm() - r * r, disc, t0, t1)) return false;
     t = t0 >= 0 ? t0 : t1;
     return t >= 0;
 }
 
 // First t >= 0 of the ray on the side of the cylinder of radius r around segment ab (Ericson
 // §5.3.7 without the caps, which the end spheres cover); s returns the axial weight of b.
+// With L = b − a, P = L × (o − a) and Q = L × d (|P| / |L| is the origin's distance from the axis
+// line, P + t Q the ray across it, scaled by |L|), the side is |P + t Q|² = |L|² r², divided by |L|²:
+// A = |Q|² / |L|², B = P·Q / |L|², C = |P|² / |L|² − r², and (Lagrange, and (L × e) × (L × d) =
+// [L, e, d] L) B² − A C = A r² − [L, e, d]² / |L|², the triple product [L, e, d] = L · (e × d)
+// from the exact e = o − a. Its error is relative to r times the distance from the axis, where
+// B² − A C lost r² to the rounding of |e⊥|² (and the projection e⊥ erred relative to the axial
+// offset) far from the axis (tests/core/cast/ray_cast_far_test.cpp).
 bool rayCylinderSide(const Ray& ray, const Vec3& a, const Vec3& b, double r, double& t, double& s) {
     const Vec3 axis = b - a;
     const double length2 = axis.squaredNorm();
     if (!(length2 > 0)) return false;
     const Vec3 e = ray.origin - a;
-    const Vec3 dPerp = ray.direction - (ray.direction.dot(axis) / length2) * axis;
-    const Vec3 ePerp = e - (e.dot(axis) / length2) * axis;
+    const Vec3 P = -offsetCross(a, ray.origin, axis);  // axis × (o − a)
+    const Vec3 Q = axis.cross(ray.direction);
+    const double across = axis.dot(offsetCross(a, ray.origin, ray.direction)) / std::sqrt(length2);
+    const double A = Q.squaredNorm() / length2;
+    const double disc = A * (r * r) - across * across;
     double t0, t1;
-    if (!quadraticRoots(dPerp.squaredNorm(), ePerp.dot(dPerp), ePerp.squaredNorm() - r * r, t0, t1)) return false;
+    if (!quadraticRoots(A, P.dot(Q) / length2, P.squaredNorm() / length2 - r * r, disc, t0, t1)) return false;
     for (double root : {t0, t1}) {
         if (root < 0) continue;
         s = (e + root * ray.direction).dot(axis) / length2;

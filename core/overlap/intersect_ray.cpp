@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/base/aabb_ops.h"
+#include "core/base/accurate_cross.h"
 #include "core/base/orient.h"
 #include "core/overlap/polygon_tests.h"
 
@@ -139,7 +140,14 @@ RayHit lineSphere(const Vec3& o, const Vec3& d, double tMax, const Sphere& s, Sp
     q.a = a;
     q.b = b;
     q.c = c;
-    q.discriminant = b * b - a * c;
+    // b² − a c written as a r² − |m × d|² (Lagrange: |m|²|d|² − (m·d)² = |m × d|²), |m × d| / |d|
+    // the line's distance from the centre, with m × d from the exact m (core/base/accurate_cross.h).
+    // b² − a c loses r² to the rounding of |m|² far from the centre (a unit sphere at 1e9 was hit
+    // at its centre); this form's error is relative to r², not |m|²
+    // (tests/core/overlap/intersect_ray_far_test.cpp).
+    Vec3 w = accurateOffsetCross(s.center, o, d);
+    if (!w.allFinite()) w = m.cross(d);  // beyond the error-free split's range (~2^996)
+    q.discriminant = a * (s.radius * s.radius) - w.squaredNorm();
     if (a > 0.0 && q.discriminant >= 0.0) {  // the line's two crossings, for the figure
         const double root = std::sqrt(q.discriminant);
         // The root of larger magnitude without cancellation, the other from the product c / a.

@@ -33,7 +33,8 @@ RayHit intersectRayPlane(const Ray& ray, const Plane& plane);
 RayHit intersectSegmentPlane(const Segment& segment, const Plane& plane);
 
 /// The quadratic of the ray-sphere test, recorded for demos: |m + t d|^2 = r^2 with m = o - c is
-/// a t^2 + 2 b t + c = 0, a = d.d, b = m.d, c = m.m - r^2, discriminant b^2 - a c.
+/// a t^2 + 2 b t + c = 0, a = d.d, b = m.d, c = m.m - r^2, discriminant b^2 - a c (computed as
+/// a r^2 - |m x d|^2, equal in exact arithmetic, without the loss of r^2 far from the centre).
 struct SphereQuadraticTrace {
     enum class Outcome {
         Invalid,       ///< NaN / inf, a negative radius or a zero direction: no test made

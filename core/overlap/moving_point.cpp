@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/accurate_cross.h"
 #include "core/base/orient.h"
 #include "core/overlap/intersect_ray.h"
 #include "core/overlap/polygon_tests.h"
@@ -99,16 +100,25 @@ MovingPointHit intersectMovingPointCapsule(const MovingPoint& m, const Capsule& 
     double best = 2.0;  // > 1: none yet
     // Cylinder side (Ericson §5.3.7): |(m + s n) - axial part|^2 = r^2, with m = p - a,
     // n = d, D = b - a:  A s^2 + 2 B s + C = 0,
-    //   A = (D.D)(n.n) - (n.D)^2,  B = (D.D)(m.n) - (n.D)(m.D),  C = (D.D)(m.m - r^2) - (m.D)^2.
+    //   A = (D.D)(n.n) - (n.D)^2,  B = (D.D)(m.n) - (n.D)(m.D),  C = (D.D)(m.m - r^2) - (m.D)^2,
+    // computed by Lagrange's identity as A = |D x n|^2, B = (D x m).(D x n), C = |D x m|^2 - (D.D) r^2
+    // and B^2 - A C = (D.D) (A r^2 - [D, m, n]^2), with D x m and m x n from the exact m
+    // (core/base/accurate_cross.h). The expanded forms lost r^2 to the rounding of |m|^2 far from
+    // the capsule; these err relative to r times the distance from the axis
+    // (tests/core/overlap/intersect_ray_far_test.cpp).
     const Vec3 D = c.b - c.a, mv = p - c.a;
     const double dd = D.dot(D), md = mv.dot(D), nd = d.dot(D);
-    const double A = dd * d.dot(d) - nd * nd;
-    const double B = dd * mv.dot(d) - nd * md;
-    const double C = dd * (mv.dot(mv) - r2) - md * md;
+    Vec3 Dm = -accurateOffsetCross(c.a, p, D), mn = accurateOffsetCross(c.a, p, d);
+    if (!Dm.allFinite() || !mn.allFinite()) Dm = D.cross(mv), mn = mv.cross(d);  // past the split's range
+    const Vec3 Dn = D.cross(d);
+    const double triple = D.dot(mn);  // [D, m, n]
+    const double A = Dn.squaredNorm();
+    const double B = Dm.dot(Dn);
+    const double C = Dm.squaredNorm() - dd * r2;
     // C > 0: outside the infinite cylinder (else the entry is through an end sphere);
     // B < 0: approaching its axis; A > 0: not moving parallel to the axis.
     if (dd > 0.0 && A > 0.0 && C > 0.0 && B < 0.0) {
-        const double disc = B * B - A * C;
+        const double disc = dd * (A * r2 - triple * triple);
         if (disc >= 0.0) {
             // Smaller root (-B - sqrt(disc)) / A = C / (-B + sqrt(disc)): no cancellation.
             const double s = C / (-B + std::sqrt(disc));

@@ -143,6 +143,27 @@ TEST_SUITE("hostile input") {
         CHECK(unit["distance"].get<double>() == doctest::Approx(scaled["distance"].get<double>()).epsilon(1e-14));
     }
 
+    TEST_CASE("quaternions: any finite non-zero length is normalised, however small or large (issue 41)") {
+        // [s, s, 0, 0] is 90 degrees about x for every s > 0: the box [1, 2, 3] turns into
+        // [1, 3, 2], whose distance from (5, 5, 5) is sqrt(4² + 2² + 3²) = sqrt(29). The squared norm
+        // of s = 1e-200 underflows and of 1e200 overflows: the reader rescales by a power of two
+        // first (app/scene/json_reader.cpp, JsonNode::asQuat), so all agree to rounding.
+        const auto obb = [](const std::string& q) {
+            return R"({"obb":{"center":[0,0,0],"half_extents":[1,2,3],"rotation":)" + q + "}}";
+        };
+        const double control = askRaw(distanceQuery(obb("[1,1,0,0]"), R"({"point":[5,5,5]})"))["distance"].get<double>();
+        CHECK(control == doctest::Approx(std::sqrt(29.0)).epsilon(1e-14));
+        for (const char* q : {"[1e-200,1e-200,0,0]", "[1e200,1e200,0,0]", "[4.9e-324,4.9e-324,0,0]",
+                              "[1.7976931348623157e308,1.7976931348623157e308,0,0]"}) {
+            CAPTURE(q);
+            Json a = askRaw(distanceQuery(obb(q), R"({"point":[5,5,5]})"));
+            REQUIRE(a.contains("distance"));
+            CHECK(a["distance"].get<double>() == doctest::Approx(std::sqrt(29.0)).epsilon(1e-14));
+        }
+        CHECK(contains(errorOf(distanceQuery(obb("[0,0,0,-0.0]"), R"({"point":[5,5,5]})")),
+                       "$.a.obb.rotation: quaternion has zero (or non-finite) length"));
+    }
+
     TEST_CASE("empty arrays and missing members are errors naming the path") {
         CHECK(contains(errorOf(distanceQuery(R"({"triangle":[]})", kSphere)), "$.a.triangle: expected [a, b, c]"));
         CHECK(contains(

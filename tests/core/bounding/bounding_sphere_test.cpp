@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <limits>
+#include <random>
 
 #include "core/base/tolerances.h"
 #include "core/bounding/bounding_sphere.h"
@@ -277,6 +278,36 @@ TEST_SUITE("bounding_sphere") {
             CHECK((pts[s.pointIndex] - s.after.center).norm() == doctest::Approx(s.after.radius).epsilon(1e-12));
         }
         CHECK(volume(Sphere{Vec3::Zero(), 2.0}) == doctest::Approx(32.0 / 3.0 * 3.14159265358979));
+    }
+
+    TEST_CASE("Ritter: every grow step grows, also for points outside by an ulp (issue 41)") {
+        // Points on the unit sphere scaled by 1 + k 2^-52, k = 0..3, between the x extremes ±1 (the
+        // initial pair): many are outside by less than the rounding of sqrt and of (r + d) / 2, where
+        // the sphere cannot grow. Such a point is no grow step: the trace counts real growth only
+        // (before the fix 17 of the 21 recorded steps left the radius as it was).
+        std::mt19937 rng(41);
+        std::normal_distribution<double> g;
+        std::vector<Vec3> pts{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
+        for (int i = 0; i < 2000; ++i) {
+            Vec3 u(g(rng), g(rng), g(rng));
+            u.normalize();
+            u.x() *= 0.9;
+            u.normalize();
+            if (std::abs(u.x()) > 0.95) continue;
+            pts.push_back(u * (1 + (i % 4) * 0x1p-52));
+        }
+        RitterTrace trace;
+        const Sphere s = fitSphereRitter(pts, &trace);
+        CHECK(trace.initial.radius == 1.0);
+        CHECK(trace.steps.size() < 10);
+        double r = trace.initial.radius;
+        for (const RitterStep& step : trace.steps) {
+            CHECK(step.before.radius == r);  // the steps chain: each starts where the last ended
+            CHECK(step.after.radius > step.before.radius);
+            r = step.after.radius;
+        }
+        checkContains(s, pts);
+        CHECK(s.radius <= 1.0 + 1e-14);
     }
 
 }  // TEST_SUITE
