@@ -1,9 +1,12 @@
 #include "core/gjk_epa/epa.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/base/accurate_cross.h"
+#include "core/closest/closest_point.h"
 #include "core/closest/edge_pair_distance.h"
+#include "core/gjk_epa/feature_certificate.h"
 
 namespace cdlab {
 
@@ -259,20 +262,85 @@ EpaExpand EpaPolytope::expand(int seed, int vi, double visibleTolerance, EpaTrac
     return EpaExpand::Ok;
 }
 
+namespace {
+// Weights l1, l2 of p on the triangle w0 w1 w2 with unit normal n (p = w0 + l1 (w1 - w0) + l2 (w2 - w0)
+// in the plane), by areas signed along n: l1 = [w0 p w2] / [w0 w1 w2], l2 = [w0 w1 p] / [w0 w1 w2].
+// A sliver's rounded cross products err by ~u |w|^2, its area is ~sine |w|^2: there the areas come
+// from error-free products (accurateCross), else they would put sum l_i w_i 0.03 from p on a 1e6
+// face (tests/core/gjk_epa/epa_witness_test.cpp, the tiny sphere in a large polytope).
+void faceWeights(const Vec3& n, const Vec3& w0, const Vec3& w1, const Vec3& w2, const Vec3& p, double& l1,
+                 double& l2) {
+    const Vec3 e1 = w1 - w0, e2 = w2 - w0;
+    if (isSliver(e1, e2)) {
+        const double total = n.dot(accurateCross(w0, w1, w2));
+        l1 = n.dot(accurateCross(w0, p, w2)) / total;
+        l2 = n.dot(accurateCross(w0, w1, p)) / total;
+        return;
+    }
+    const double total = n.dot(e1.cross(e2));
+    l1 = n.dot((p - w0).cross(e2)) / total;
+    l2 = n.dot(e1.cross(p - w0)) / total;
+}
+
+bool convexWeights(double l1, double l2) { return l1 >= 0.0 && l2 >= 0.0 && l1 + l2 <= 1.0; }
+}  // namespace
+
 void EpaPolytope::witness(int f, double depth, Vec3& pointA, Vec3& pointB) const {
     const EpaFace& F = face[f];
-    const EpaVertex& v0 = vertex[F.v[0]];
-    const EpaVertex& v1 = vertex[F.v[1]];
-    const EpaVertex& v2 = vertex[F.v[2]];
     const Vec3 p = depth * F.normal;  // projection of the origin on the face plane
-    // Barycentric weights by areas signed along the normal: l1 = [p0 p p2] / [p0 p1 p2], etc.
-    const double total = F.normal.dot((v1.w - v0.w).cross(v2.w - v0.w));
-    double l1 = F.normal.dot((p - v0.w).cross(v2.w - v0.w)) / total;
-    double l2 = F.normal.dot((v1.w - v0.w).cross(p - v0.w)) / total;
-    if (!std::isfinite(l1) || !std::isfinite(l2)) l1 = l2 = 0.0;
+    double l1 = 0.0, l2 = 0.0;
+    faceWeights(F.normal, vertex[F.v[0]].w, vertex[F.v[1]].w, vertex[F.v[2]].w, p, l1, l2);
+    // Weights of a convex combination: pointA lies in conv(a0, a1, a2) ⊂ A, pointB in conv(b_i) ⊂ B,
+    // and pointA − pointB = sum l_i w_i = p. Otherwise (NaN included) p lies outside face f: a
+    // neighbouring face of A − B is coplanar with it (two faces of a box: golden/epa/box_box put p_B
+    // 0.1 off B), and coveringFaceWitness finds the face that holds p.
+    if (convexWeights(l1, l2)) return weightedWitness(f, l1, l2, pointA, pointB);
+    coveringFaceWitness(p, pointA, pointB);
+}
+
+void EpaPolytope::weightedWitness(int f, double l1, double l2, Vec3& pointA, Vec3& pointB) const {
+    const EpaVertex& v0 = vertex[face[f].v[0]];
+    const EpaVertex& v1 = vertex[face[f].v[1]];
+    const EpaVertex& v2 = vertex[face[f].v[2]];
     // pointA = a0 + l1 (a1 - a0) + l2 (a2 - a0): relative to one vertex, exact far from origin.
     pointA = v0.a + (l1 * (v1.a - v0.a) + l2 * (v2.a - v0.a));
     pointB = v0.b + (l1 * (v1.b - v0.b) + l2 * (v2.b - v0.b));
+}
+
+// The origin's projection p = depth · n on the nearest face's plane lies in the polytope P (for
+// every face g: n_g · p = depth n_g · n <= depth <= d_g), hence on P's boundary in the union of the
+// faces whose planes pass through p: the facet of P in that plane, of which face f is one triangle.
+// The live face nearest p (exact region signs, closestPointOnTriangle) holds it up to rounding; its
+// weights, clamped to a convex combination, put the witnesses on A and on B whatever the rounding,
+// with pointA − pointB = the point of that face nearest p (= depth · n up to rounding).
+// Test: tests/core/gjk_epa/epa_witness_test.cpp.
+void EpaPolytope::coveringFaceWitness(const Vec3& p, Vec3& pointA, Vec3& pointB) const {
+    int best = -1;
+    ClosestPointOnTriangleResult bestPoint;
+    bestPoint.distanceSquared = INFINITY;
+    for (int g = 0; g < faceEnd; ++g) {
+        const EpaFace& G = face[g];
+        if (!G.live) continue;
+        // The plane's gap bounds the triangle's distance from below: skip faces that cannot win.
+        const double gap = G.distance - G.normal.dot(p);
+        if (best >= 0 && gap * gap > bestPoint.distanceSquared) continue;
+        const Triangle t{vertex[G.v[0]].w, vertex[G.v[1]].w, vertex[G.v[2]].w};
+        const ClosestPointOnTriangleResult c = closestPointOnTriangle(p, t);
+        if (c.distanceSquared < bestPoint.distanceSquared) best = g, bestPoint = c;
+    }
+    if (best < 0) return;
+    const EpaFace& G = face[best];
+    double l1 = bestPoint.barycentric[1], l2 = bestPoint.barycentric[2];
+    // Inside the face: its weights by faceWeights (accurate on a sliver, where Ericson's are not).
+    if (bestPoint.region == TriangleRegion::ABC) {
+        double m1 = 0.0, m2 = 0.0;
+        faceWeights(G.normal, vertex[G.v[0]].w, vertex[G.v[1]].w, vertex[G.v[2]].w, p, m1, m2);
+        if (std::isfinite(m1) && std::isfinite(m2)) l1 = m1, l2 = m2;
+    }
+    // Clamped to a convex combination (they are one up to rounding).
+    l1 = std::clamp(l1, 0.0, 1.0);
+    l2 = std::clamp(l2, 0.0, 1.0 - l1);
+    weightedWitness(best, l1, l2, pointA, pointB);
 }
 
 int EpaPolytope::snapshot(EpaTraceStep& step, int f) const {

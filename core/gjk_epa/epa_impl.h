@@ -60,8 +60,16 @@ public:
     /// Remove all faces visible from vertex vi (flood fill from `seed`, which must be visible)
     /// and fan the horizon to vi. On failure the removed faces are restored (rollback).
     EpaExpand expand(int seed, int vi, double visibleTolerance, EpaTraceStep* trace);
-    /// Witness points of the origin's projection on face f: depth * normal = sum l_i w_i.
+    /// Witness points of the origin's projection p = depth * normal on face f: p = sum l_i w_i,
+    /// pointA = sum l_i a_i, pointB = sum l_i b_i with weights l_i >= 0 summing to 1, from face f
+    /// when they hold there, else from the coplanar face that holds p (coveringFaceWitness). So
+    /// pointA lies on A, pointB on B and pointA − pointB = depth * normal up to rounding
+    /// (tests/core/gjk_epa/epa_witness_test.cpp).
     void witness(int f, double depth, Vec3& pointA, Vec3& pointB) const;
+    /// Witnesses from the live face nearest p, with clamped weights (the fallback of witness()).
+    void coveringFaceWitness(const Vec3& p, Vec3& pointA, Vec3& pointB) const;
+    /// pointA = sum l_i a_i, pointB = sum l_i b_i over face f's vertices (l0 = 1 - l1 - l2).
+    void weightedWitness(int f, double l1, double l2, Vec3& pointA, Vec3& pointB) const;
     /// Record vertices and live faces into a trace step; returns the index of face f in it.
     int snapshot(EpaTraceStep& step, int f) const;
     /// The invariant of the face graph: every live face's neighbour across edge e is live, names

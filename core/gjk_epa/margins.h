@@ -181,8 +181,12 @@ MarginPair marginPairOnCores(const CoreA& ca, const CoreB& cb, double ra, double
     ans.normal = e.normal;
     // Cores that only touch or cross (their own depth within the touching band: two segments, a flat
     // difference) have no deepest points for EPA to find — its blown-up start put them 0.4 off a
-    // capsule —, but GJK's common point is where they meet.
-    const bool coresMeet = unscale(e.depth) <= kTouchRelative * extent;
+    // capsule —, but GJK's common point is where they meet. Only when it is one: GJK's intersecting
+    // witnesses from a tetrahedron need not meet (a point core in a 1e6 polytope: 6200 apart), and
+    // pointA − pointB = depth · normal needs coreA − coreB = core depth · normal, i.e. ~0 here
+    // (tests/core/gjk_epa/epa_witness_test.cpp).
+    const bool coresMeet =
+        unscale(e.depth) <= kTouchRelative * extent && unscale((g.pointA - g.pointB).norm()) <= kTouchRelative * extent;
     witnesses(coresMeet ? coreA : unscaleVec(e.pointA), coresMeet ? coreB : unscaleVec(e.pointB));
     return ans;
 }
