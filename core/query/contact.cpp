@@ -58,8 +58,18 @@ struct ContactHull {
 };
 
 // The convex hull of shape `which` (0: a, 1: b) of the query; on failure r's status is HullFailed.
+// A hull that the default tolerance (4096 ulps of the coordinates plus the body's diagonal) finds
+// flat is tried again at kThinHullEpsilonFactor ulps: a needle 1e-12 of its length wide is a solid
+// for every other op (issue 41 (e)); a body flat within that stays refused, with the first message.
+constexpr double kThinHullEpsilonFactor = 64.0;
+
 std::optional<ContactHull> contactHull(const QueryShape& s, int which, ContactResult& r) {
     HullResult h = convexHull(s.vertices);
+    if (h.status == HullStatus::AllCollinear || h.status == HullStatus::AllCoplanar) {
+        HullOptions thin;
+        thin.epsilonFactor = kThinHullEpsilonFactor;
+        if (HullResult t = convexHull(s.vertices, thin); t.ok()) h = std::move(t);
+    }
     if (!h.ok()) {
         r.status = ContactStatus::HullFailed;
         r.shape = which;

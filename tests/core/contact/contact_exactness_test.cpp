@@ -172,4 +172,29 @@ TEST_SUITE("contact_exactness") {
         CHECK_FALSE(r.colliding);
         CHECK(std::abs(r.distance - 1.1670682512434476e-06) <= 1e-9 * 3000);
     }
+
+    TEST_CASE("(e) a needle 1e-12 of its length wide is a solid, as for every other op") {
+        // contact_needle_refused: "all 4 points lie in one plane within eps = 9.04e-13" (4096 ulps of
+        // the needle's own coordinates and diagonal); its vertices lie ~2e-13 off each other's plane.
+        const std::vector<Vec3> a = {{0.0, 0.0, 0.0},
+                                     {-0.11340471236568012, 0.2272825786766557, -0.09021370630661538},
+                                     {-0.07207777772528108, 0.14445628268034696, -0.05733803591898995},
+                                     {-0.07548258733536625, 0.15128010764994432, -0.060046569697702085}};
+        const std::vector<Vec3> b = {{0.10868463068080857, 0.024072740203421237, -0.07597553733559315},
+                                     {0.22069573544629928, 0.1607517594739946, 0.12756529459421295},
+                                     {-0.10868463068036159, -0.024072740202875843, 0.07597553733640533},
+                                     {0.0033264740851291215, 0.11260627906769752, 0.27951636926621143},
+                                     {-0.004720081684871552, 0.2513553188800769, -0.1661892436422085},
+                                     {0.10729102308061916, 0.3880343381506503, 0.037351588287597576},
+                                     {-0.22208934304604172, 0.20320983847377985, -0.014238168970210048},
+                                     {-0.11007823828055101, 0.33988885774435323, 0.18930266295959605}};
+        const ContactResult r = contactQuery(QueryShape::polytope(a), QueryShape::polytope(b));
+        REQUIRE(r.status == ContactStatus::Ok);
+        CHECK_FALSE(r.colliding);
+        CHECK(std::abs(r.distance - 5.377827704152724e-13) <= 1e-9 * 0.6);
+        // Exactly coplanar points stay refused.
+        const ContactResult flat = contactQuery(QueryShape::polytope({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}),
+                                                QueryShape::polytope(b));
+        CHECK(flat.status == ContactStatus::HullFailed);
+    }
 }
