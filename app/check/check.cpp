@@ -21,6 +21,7 @@
 #include "app/query/query_json.h"
 #include "app/query/query_limits.h"
 #include "app/query/query_shapes.h"
+#include "core/contact/contact_sat.h"
 
 namespace cdlab::demos {
 
@@ -205,7 +206,10 @@ private:
 
     // Overlapping: moving b by depth along your normal must leave the shapes touching, i.e. the
     // overlap of their projections on n, h_a(n) + h_b(-n), is cdlab's (minimal) depth.
-    void separatingNormal(bool overlapping, const Vec3& shiftA = Vec3::Zero(), const Vec3& shiftB = Vec3::Zero()) {
+    // depthGiven: the depth the normal must realise (a contact's own depth, see contactDepth);
+    // otherwise cdlab's.
+    void separatingNormal(bool overlapping, const Vec3& shiftA = Vec3::Zero(), const Vec3& shiftB = Vec3::Zero(),
+                          std::optional<double> depthGiven = std::nullopt) {
         if (!unitNormal("normal")) return;
         const Vec3 n = *vecMember(mine_, "normal");
         const std::optional<double> ha = a_.support(n), hb = b_.support(-n);
@@ -218,12 +222,14 @@ private:
         }
         const double overlap = *ha + shiftA.dot(n) + *hb - shiftB.dot(n);
         if (overlapping) {
-            const std::optional<double> depth = theirNumber("depth");
+            const std::optional<double> depth = depthGiven ? depthGiven : theirNumber("depth");
             if (!depth) return;
             const double gap = overlap - *depth;
             if (!(gap <= tol_))
                 fail("normal not a valid separating direction: moving b by the depth along it leaves an overlap of " +
                      num(gap) + " (support gap)");
+            else if (depthGiven && !(-gap <= tol_))
+                fail("normal does not realise your depth: moving b by the depth along it leaves a gap of " + num(-gap));
         } else {
             const std::optional<double> distance = theirNumber("distance");
             if (!distance) return;
@@ -403,12 +409,37 @@ private:
         reasons.insert(reasons.end(), c.reasons.begin(), c.reasons.end());
     }
 
+    // A colliding contact's depth: the least overlap, or, with the face preference of the SAT
+    // (core/contact/contact_sat.h, faceBiasRelative f), a face axis whose overlap is at most
+    // (1 + f) x the least overlap: depth <= least overlap · (1 + f) + tolerance. cdlab's depth D
+    // obeys the same bound, so the least overlap lies in [(D - tol) / (1 + f), D]: yours passes in
+    // [(D - tol) / (1 + f) - tol, D · (1 + f) + tol], and your normal must realise your depth (the
+    // overlap of the projections on it is your depth). Returns your depth when it passes.
+    std::optional<double> contactDepth() {
+        const std::optional<double> m = myNumber("depth");
+        const std::optional<double> t = theirNumber("depth");
+        if (!m || !t) return std::nullopt;
+        const double f = SatContactOptions{}.faceBiasRelative;
+        const double lo = (*t - tol_) / (1 + f) - tol_, hi = *t * (1 + f) + tol_;
+        if (!(*m >= lo && *m <= hi)) {
+            fail("depth " + value(*m) + " outside [" + value(lo) + ", " + value(hi) + "] (cdlab's " + value(*t) +
+                 ": the least overlap, or a face axis within " + num(f) + " of it, within tolerance " + num(tol_) + ")");
+            return std::nullopt;
+        }
+        return m;
+    }
+
     void contactOp() {
         if (!verdict("colliding")) return;
         const bool colliding = theirVerdict("colliding");
         const char* size = colliding ? "depth" : "distance";
-        if (given(size)) number(size, tol_);
-        if (given("normal") && given(size)) separatingNormal(colliding);
+        if (!colliding) {
+            if (given(size)) number(size, tol_);
+            if (given("normal") && given(size)) separatingNormal(false);
+        } else if (given(size)) {
+            const std::optional<double> depth = contactDepth();
+            if (depth && given("normal")) separatingNormal(true, Vec3::Zero(), Vec3::Zero(), depth);
+        }
         const char* list = colliding ? "points" : "closest";
         const Json* entries = member(mine_, list);
         if (!entries || !entries->is_array() || entries->empty())

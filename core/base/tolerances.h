@@ -56,6 +56,7 @@
 //   contact (contact/contact_tolerances.h)
 //     kTouchingBandRelative — the automatic touching band, times the body size.
 //     kParallelEdgeSine — edge pairs skipped as parallel (sine of their angle).
+//     kPreciseEdgeSine — below it an edge axis is computed in long double (nearly parallel edges).
 //     kFoldedEdgeSine — face normals of one edge opposite: a fold of a flat body.
 //     kUnitQuaternionTolerance — | |q|^2 - 1 | of a usable pose rotation.
 //     kManifoldTieRelative — manifold reduction: a score wins only when larger by more than this.

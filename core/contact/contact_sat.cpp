@@ -1,6 +1,7 @@
 #include "core/contact/contact_sat.h"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 
@@ -151,6 +152,7 @@ struct SatQuery {
     int tested = 0;
     detail::SatBestAxes best;
     int pruned = 0, parallel = 0;
+    int nearlyParallel = 0;  // pairs whose axis was computed in long double
     void count(const SatAxisRecord& rec) {
         if (axes) axes->push_back(rec);
         ++tested;
@@ -228,7 +230,28 @@ void considerEdgePair(const Posed& A, const Posed& B, int ea, int eb, SatQuery& 
         ++q.parallel;
         return;
     }
-    axis /= len;
+    if (len > kPreciseEdgeSine * da.norm() * db.norm()) {
+        axis /= len;
+    } else {
+        // Nearly parallel: the double cross product's direction is off by ~1e-16 / sine (the
+        // rounding of da, db and of the products), its separation by that times the body size.
+        // The same from the vertices in long double (exact differences, 64-bit products).
+        ++q.nearlyParallel;
+        const auto diff = [](const Vec3& p, const Vec3& o) {
+            return std::array<long double, 3>{(long double)p.x() - o.x(), (long double)p.y() - o.y(),
+                                              (long double)p.z() - o.z()};
+        };
+        const auto u = diff(A.x[edgeA.v1], A.x[edgeA.v0]), w = diff(B.x[edgeB.v1], B.x[edgeB.v0]);
+        const long double c[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const long double lc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        const long double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        const long double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        if (!(lc > kParallelEdgeSine * lu * lw)) {
+            ++q.parallel;
+            return;
+        }
+        axis = Vec3(double(c[0] / lc), double(c[1] / lc), double(c[2] / lc));
+    }
     if (axis.dot(A.x[edgeA.v0] - A.center) < 0.0) axis = -axis;  // away from A
     const SatAxisRecord rec{SatAxisKind::EdgeEdge, ea, eb, axis, axis.dot(B.x[edgeB.v0] - A.x[edgeA.v0])};
     SatAxisRecord& best = q.best.edge;
@@ -327,10 +350,17 @@ void queryEdgeAxesByWalk(Posed& A, Posed& B, const std::pmr::vector<int>& suppor
 
 // 4a. Edge–edge: one point, the closest points of the two edges.
 void edgeContact(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
-                 const SatAxisRecord& best, const Vec3& origin, SatContactResult& r, SatContactTrace* trace) {
+                 const SatAxisRecord& best, const Vec3& origin, double tol, SatContactResult& r,
+                 SatContactTrace* trace) {
     const auto [a0, a1] = ma.edgeVertices(best.indexA);
     const auto [b0, b1] = mb.edgeVertices(best.indexB);
-    const SegmentSegmentResult c = closestPointsSegmentSegment(Segment{A.x[a0], A.x[a1]}, Segment{B.x[b0], B.x[b1]});
+    SegmentSegmentResult c = closestPointsSegmentSegment(Segment{A.x[a0], A.x[a1]}, Segment{B.x[b0], B.x[b1]});
+    // Nearly parallel edges: their closest points are ill-conditioned along the edges (a shift of
+    // either along its edge changes their distance little), and can disagree with the axis by far
+    // more than the touching band (issue 41 (d): 0.75 of the size). Then the point of A stays and
+    // B's is its translate by -depth · n, so pointA - pointB = depth · n as everywhere else.
+    if (!((c.pointOnFirst - c.pointOnSecond - r.depth * r.normal).norm() <= tol))
+        c.pointOnSecond = c.pointOnFirst - r.depth * r.normal;
     r.featureA = {FeatureType::Edge, best.indexA};
     r.featureB = {FeatureType::Edge, best.indexB};
     r.manifold.push_back({c.pointOnFirst + origin, c.pointOnSecond + origin, r.depth});
@@ -408,6 +438,7 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         queryEdgeAxesByWalk(A, B, supportOfB, detail::satTolerance(SatContactOptions{}, size, maxCoord), q);
     }
     r.axesTested = q.tested;
+    r.nearlyParallelEdgePairs = q.nearlyParallel;
     const detail::SatChosenAxis c = detail::chooseSatAxis(q.best, tol, options);
     const SatAxisRecord& best = c.best;
     detail::recordChosenAxis(c, tol, r);
@@ -427,7 +458,7 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         else r.featureB = {FeatureType::Face, best.indexB};
         return r;
     }
-    if (best.kind == SatAxisKind::EdgeEdge) edgeContact(ma, A, mb, B, best, origin, r, trace);
+    if (best.kind == SatAxisKind::EdgeEdge) edgeContact(ma, A, mb, B, best, origin, tol, r, trace);
     else faceContact(A, B, best, origin, tol, options, r, trace, arena.resource());
     return r;
 }

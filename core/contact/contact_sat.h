@@ -22,7 +22,13 @@
 //   3. Max separation > tol: separated (a separating axis; the separation is a lower bound of the
 //      distance). Otherwise the axis of least penetration, preferring faces (an edge axis must be
 //      better by faceBias, a B face better than the A face by faceBias too: stable manifolds
-//      under rounding, as Box2D's b2CollidePolygons does with k_tol).
+//      under rounding, as Box2D's b2CollidePolygons does with k_tol). The contract (issue 41 (a)):
+//      the depth is not always the least overlap; it is bounded by
+//         least overlap <= depth <= least overlap · (1 + faceBiasRelative) + faceBiasAbsolute + tol
+//      (2 % with the defaults), and it is the overlap of the projections on the reported normal.
+//      faceBiasRelative = 0 asks for the least overlap (within tol). Nearly parallel edges (sine
+//      below kPreciseEdgeSine) have their axis computed in long double, so the bound holds for them
+//      too (their double cross product is off by ~1e-16 / sine).
 //   4. Face axis: reference face = that face, incident face = the other body's face most
 //      anti-parallel to it; the incident polygon is clipped by the reference face's side planes
 //      (Sutherland–Hodgman), points behind the reference plane (s <= tol) are kept with depth
@@ -61,7 +67,8 @@ struct SatContactOptions {
     /// kTouchingBandRelative x the larger body diagonal + 64 ulps of the coordinates.
     std::optional<double> tolerance = std::nullopt;
     /// Axis preference: a candidate replaces the current best only if its separation exceeds it
-    /// by faceBiasRelative * |best| + faceBiasAbsolute (order: face A, face B, edges).
+    /// by faceBiasRelative * |best| + faceBiasAbsolute (order: face A, face B, edges): the depth is
+    /// then at most least overlap · (1 + faceBiasRelative) + faceBiasAbsolute + tolerance.
     double faceBiasRelative = 0.02;
     double faceBiasAbsolute = 0.0;  ///< world units; < 0 not allowed (treated as 0)
     int maxPoints = 4;              ///< manifold size (<= 0: every clipped point, up to kMaxContactPoints)
@@ -81,6 +88,10 @@ struct SatContactResult {
     /// that forms a face of A − B (their Gauss arcs cross, edges not parallel). The untraced and the
     /// traced query test the same pairs, found by walking the arcs or by testing all of them.
     int axesTested = 0;
+    /// Edge pairs tested whose sine is below kPreciseEdgeSine (their axis computed in long double):
+    /// their axis is only as good as the vertices, so a caller whose vertices were rounded (a
+    /// translated frame) may want to run again on exact ones (core/query/contact.cpp does).
+    int nearlyParallelEdgePairs = 0;
     bool colliding() const { return status == SatContactStatus::Touching || status == SatContactStatus::Penetrating; }
 };
 

@@ -14,6 +14,11 @@ inline constexpr double kTouchingBandRelative = 1e-9;
 /// product is then rounding noise and the separating direction is a face normal, tested anyway.
 inline constexpr double kParallelEdgeSine = 1e-9;
 
+/// Nearly parallel edges: below this sine the edge axis is computed in long double (the double
+/// cross product's direction is off by ~1e-16 / sine, its separation by that times the body size:
+/// 1e-11 of the size here, far below the touching band kTouchingBandRelative).
+inline constexpr double kPreciseEdgeSine = 1e-5;
+
 /// Unit face normals of one edge within this (|n_1 x n_2|) of opposite: a fold of a flat body, not a
 /// dihedral edge (a unit normal is unit to ~1e-16; any modelled dihedral angle is far larger).
 inline constexpr double kFoldedEdgeSine = 1e-12;

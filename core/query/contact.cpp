@@ -58,8 +58,18 @@ struct ContactHull {
 };
 
 // The convex hull of shape `which` (0: a, 1: b) of the query; on failure r's status is HullFailed.
+// A hull that the default tolerance (4096 ulps of the coordinates plus the body's diagonal) finds
+// flat is tried again at kThinHullEpsilonFactor ulps: a needle 1e-12 of its length wide is a solid
+// for every other op (issue 41 (e)); a body flat within that stays refused, with the first message.
+constexpr double kThinHullEpsilonFactor = 64.0;
+
 std::optional<ContactHull> contactHull(const QueryShape& s, int which, ContactResult& r) {
     HullResult h = convexHull(s.vertices);
+    if (h.status == HullStatus::AllCollinear || h.status == HullStatus::AllCoplanar) {
+        HullOptions thin;
+        thin.epsilonFactor = kThinHullEpsilonFactor;
+        if (HullResult t = convexHull(s.vertices, thin); t.ok()) h = std::move(t);
+    }
     if (!h.ok()) {
         r.status = ContactStatus::HullFailed;
         r.shape = which;
@@ -174,9 +184,10 @@ void separatedBodies(const ContactHull& a, const ContactHull& b, const GjkResult
 }
 
 // Two polytopes: GJK decides (the touching rule, `touch` in local units); colliding pairs get the
-// SAT manifold (Gregorius), the SAT trace is recorded either way.
+// SAT manifold (Gregorius), the SAT trace is recorded either way. nearlyParallel: whether the SAT
+// met nearly parallel edges (an answer that depends on the vertices' rounding).
 ContactResult bodyBodyContact(const ContactHull& a, const ContactHull& b, int maxPoints, double maxEdgePairs,
-                              SatContactTrace* trace, double touch, const ContactFrame& frame) {
+                              SatContactTrace* trace, double touch, const ContactFrame& frame, bool& nearlyParallel) {
     ContactResult out;
     out.method = ContactMethod::Sat;
     const GjkResult g = gjkDistance(PolytopeShape(a.mesh.positions()), PolytopeShape(b.mesh.positions()));
@@ -209,6 +220,7 @@ ContactResult bodyBodyContact(const ContactHull& a, const ContactHull& b, int ma
         opt.tolerance = std::max(touch, r.separation);
         r = contactPolyhedra(a.mesh, Transform{}, b.mesh, Transform{}, opt, trace);
     }
+    nearlyParallel = r.nearlyParallelEdgePairs > 0;
     if (!colliding) {
         separatedBodies(a, b, g, frame, out);
         return out;
@@ -520,8 +532,52 @@ ContactFrame contactFrameOf(const QueryShape& a, const QueryShape& b) {
     return f;
 }
 
+// x - o without rounding: Knuth's TwoSum of x and -o has error term 0.
+bool exactDifference(double x, double o) {
+    const double s = x - o, bb = s - x;
+    return (x - (s - bb)) + (-o - bb) == 0.0;
+}
+
+// Two bodies' exact frame: contactFrameOf's, but origin 0 on each axis where some vertex minus the
+// first vertex would round (subtracting 0 is exact; a difference that rounds means the bodies span
+// more than half their distance from 0 on that axis, so their coordinates there are within a small
+// factor of their extent anyway). Its local vertices are the input's exactly, up to the power of two.
+ContactFrame exactContactFrameOf(const QueryShape& a, const QueryShape& b) {
+    ContactFrame f = contactFrameOf(a, b);
+    bool changed = false;
+    for (int i = 0; i < 3; ++i) {
+        bool exact = true;
+        for (const QueryShape* s : {&a, &b})
+            for (const Vec3& v : s->vertices) exact = exact && exactDifference(v[i], f.origin[i]);
+        if (!exact) f.origin[i] = 0.0, changed = true;
+    }
+    if (!changed) return f;
+    double m = 0.0;
+    for (const QueryShape* s : {&a, &b})
+        for (const Vec3& v : s->vertices) m = std::max(m, (v - f.origin).cwiseAbs().maxCoeff());
+    f.exponent = 0;
+    if (m > 0 && std::isfinite(m)) std::frexp(m, &f.exponent), f.exponent = -f.exponent;
+    return f;
+}
+
 bool isSolidBody(const QueryShape& s) {
     return s.kind == ShapeKind::Polytope || s.kind == ShapeKind::Aabb || s.kind == ShapeKind::Obb;
+}
+
+// Two bodies already in `frame` (touch in its units): b's hull first, where both fail b's failure
+// is the answer (as `cdlab query` built with GCC always answered, evaluating the two hulls as
+// arguments right to left). vertexSensitive: a hull failed or the SAT met nearly parallel edges.
+ContactResult bodiesInFrame(const QueryShape& a, const QueryShape& b, const ContactFrame& frame, double touch,
+                            const ContactOptions& options, ContactTrace* trace, bool& vertexSensitive) {
+    ContactResult r;
+    vertexSensitive = true;
+    const std::optional<ContactHull> hullB = contactHull(b, 1, r);
+    if (!hullB) return r;
+    const std::optional<ContactHull> hullA = contactHull(a, 0, r);
+    if (!hullA) return r;
+    vertexSensitive = false;
+    return bodyBodyContact(*hullA, *hullB, options.maxPoints, options.maxSatEdgePairs, trace ? &trace->sat : nullptr,
+                           touch, frame, vertexSensitive);
 }
 
 ContactResult failedOn(ContactStatus status, int shape) {
@@ -569,6 +625,9 @@ ContactResult contactQuery(QueryShape a, QueryShape b, const ContactOptions& opt
     } else {
         touch = touchTolerance(a, b);
     }
+    const double touchWorld = touch;
+    const bool twoBodies = a.kind != ShapeKind::Plane && b.kind != ShapeKind::Plane;
+    QueryShape aIn = twoBodies ? a : QueryShape{}, bIn = twoBodies ? b : QueryShape{};  // for a second frame
     const ContactFrame frame = contactFrameOf(a, b);
     if (trace) trace->frame = frame;
     toContactFrame(a, frame);
@@ -583,13 +642,23 @@ ContactResult contactQuery(QueryShape a, QueryShape b, const ContactOptions& opt
         if (!hull) return r;
         return bodyPlaneContact(*hull, bodyIsA ? b : a, bodyIsA, maxPoints, trace ? &trace->plane : nullptr, touch, frame);
     }
-    // b's hull first: where both fail, b's failure is the answer (as `cdlab query` built with GCC
-    // always answered, evaluating the two hulls as arguments right to left).
-    const std::optional<ContactHull> hullB = contactHull(b, 1, r);
-    if (!hullB) return r;
-    const std::optional<ContactHull> hullA = contactHull(a, 0, r);
-    if (!hullA) return r;
-    return bodyBodyContact(*hullA, *hullB, maxPoints, options.maxSatEdgePairs, trace ? &trace->sat : nullptr, touch, frame);
+    bool vertexSensitive = false;
+    r = bodiesInFrame(a, b, frame, touch, options, trace, vertexSensitive);
+    // The frame's translation rounded some vertex, and the answer depends on that rounding: a hull
+    // failed (its tolerance is relative to the coordinates, ~1e3 for a 2e-9 cube beside a large
+    // body: issue 41 (e)) or the SAT met nearly parallel edges (their axis amplifies the vertices'
+    // rounding by 1 / sine: issue 41 (b)). Again on the input's exact vertices; every other answer
+    // keeps the first frame (and its bits).
+    if (vertexSensitive) {
+        const ContactFrame exact = exactContactFrameOf(aIn, bIn);
+        if (exact.origin != frame.origin || exact.exponent != frame.exponent) {
+            toContactFrame(aIn, exact);
+            toContactFrame(bIn, exact);
+            if (trace) *trace = ContactTrace{}, trace->frame = exact;
+            r = bodiesInFrame(aIn, bIn, exact, std::ldexp(touchWorld, exact.exponent), options, trace, vertexSensitive);
+        }
+    }
+    return r;
 }
 
 }  // namespace cdlab

@@ -8,7 +8,9 @@
 // Conventions (the same as the penetration of core/query/pair.h): normal n is a unit vector from A
 // toward B; translating B by depth·n leaves the shapes touching; each contact point has
 // pointA − pointB = depth·n (pointA: the point of A inside B, pointB: its projection on B's
-// surface). A plane here is the solid half-space n·x <= d (a ground): a body below the plane is
+// surface). Two polytopes' depth is the least overlap or a face axis's overlap at most
+// faceBiasRelative (2 %) above it: least overlap <= depth <= least overlap · 1.02 + tolerance
+// (core/contact/contact_sat.h, step 3). A plane here is the solid half-space n·x <= d (a ground): a body below the plane is
 // deep inside it. Features name the input vertices of the shape (face vertices counter-clockwise
 // seen from outside; aabb/obb corners numbered with bit k of the index choosing the + side of axis
 // k); the plane's feature is Plane.
@@ -20,7 +22,12 @@
 // the feature tolerance does not. Polytope pairs are computed in a frame local to the bodies
 // (ContactFrame: translated to the first body's first vertex, then scaled by a power of two), so the
 // rounding is relative to the bodies' extent, not to how far they are from the origin; the result
-// is in the input's units.
+// is in the input's units. Two bodies whose answer depends on how that translation rounded their
+// vertices (a hull failed: a 2e-9 cube 1e3 from the origin vertex; or the SAT met nearly parallel
+// edges, whose axis amplifies vertex rounding by 1 / sine) are computed again in the exact frame:
+// origin 0 on each axis where the translation rounded some vertex (issue 41 (b), (e)). A hull the
+// default tolerance (4096 ulps) finds flat is tried again at 64 ulps, so a needle ~1e-12 of its
+// length wide is a solid here as for the other ops; exactly flat bodies stay refused.
 //
 // Spheres and capsules (a point or segment core ⊕ ball(r)), in the input's units (issue 21 §2):
 //   sphere – anything: one point, the penetration query's deepest pair (a plane: the half-space);

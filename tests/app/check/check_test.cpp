@@ -628,3 +628,33 @@ TEST_CASE("check --figures: no figure of a polytope over the scenes' vertex limi
     const Json big = {{"op", "penetration"}, {"a", {{"polytope", {{"vertices", v}}}}}, {"b", kBoxB}};
     CHECK(traceFigureRefusal(big) == "no figure: a is a polytope of 1001 vertices, over the limit of 1000 the figures draw");
 }
+
+TEST_CASE("check: a contact's depth may be the least overlap or cdlab's face preference, nothing beyond") {
+    // Issue 41 (a): a box and a wedge; cdlab answers face A at depth 0.2, the least overlap is 0.199007 along
+    // the wedge's tilted face. The contract: least overlap <= depth <= least overlap · 1.02 + tolerance.
+    const Json box = {{"aabb", {{"min", {-1, -1, -1}}, {"max", {1, 1, 1}}}}};
+    const Json wedge = {{"polytope",
+                         {{"vertices", {{-1, -1, 0.8}, {1, -1, 1.0}, {-1, 1, 0.8}, {1, 1, 1.0}, {-1, -1, 3}, {1, -1, 3}, {-1, 1, 3}, {1, 1, 3}}}}}};
+    using Vec3 = Eigen::Vector3d;
+    const double s = 1 / std::sqrt(1.01);  // the tilted face's normal (-0.1, 0, 1) / |.|
+    const Vec3 n(-0.1 * s, 0, s);
+    const double least = 0.2 * s;  // A's support (-1, y, 1) against the plane z = 0.9 + 0.1 x
+    const Vec3 pa(-1, 0, 1), pb = pa - least * n;
+    const auto answer = [&](double depth, const Vec3& normal, const Vec3& b) {
+        return Json{{"op", "contact"}, {"a", box}, {"b", wedge},
+                    {"answer", {{"colliding", true}, {"depth", depth}, {"normal", {normal.x(), normal.y(), normal.z()}},
+                                {"points", {{{"point_a", {pa.x(), pa.y(), pa.z()}}, {"point_b", {b.x(), b.y(), b.z()}}, {"depth", depth}}}}}}};
+    };
+    // The least overlap passes, though cdlab's depth is 0.2.
+    CheckResult r = check(answer(least, n, pb));
+    CHECK_MESSAGE(r.pass, reasons(r));
+    // 3 % above cdlab's face depth: outside the range.
+    const Vec3 up(0, 0, 1);
+    r = check(answer(0.2 * 1.03, up, pa - 0.2 * 1.03 * up));
+    CHECK_FALSE(r.pass);
+    CHECK(reasons(r).find("depth 0.206 outside [") != std::string::npos);
+    // Inside the range, but the normal does not realise it (its overlap is 0.2).
+    r = check(answer(0.201, up, pa - 0.201 * up));
+    CHECK_FALSE(r.pass);
+    CHECK(reasons(r).find("normal does not realise your depth") != std::string::npos);
+}
