@@ -19,6 +19,12 @@
 //      gives the normal: the face's normal (computed from the input points, accurateCross), the
 //      cylinder's or the sphere's radial direction. Triangles are tested with the exact-decision
 //      ray/triangle test (core/overlap/intersect_ray.h), so no ray slips between two faces.
+//      A piece's t is its exact crossing rounded (intersectRayTriangle takes t from the decision's
+//      own determinants, exactly where d · n cancels), so a ray within rounding of a face plane gets
+//      a point on S up to rounding, never one before it (issue 41 class 3).
+//      Grazing: a ray lying in a face plane (exactly, or within the touching tolerance) is a HIT at
+//      the first point of the face it touches (the first t within the tolerance of S); its origin
+//      within the tolerance of S is `inside`, t = 0. It is never answered as a miss.
 //   3. A hit by the verdict that no piece sees is a graze below rounding (or a core of dimension
 //      < 2 with r = 0: a segment or point, which a ray meets only on a set of measure zero): t and
 //      the normal then come from GJK's closest points of step 1.

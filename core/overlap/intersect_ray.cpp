@@ -7,6 +7,8 @@
 
 #include "core/base/aabb_ops.h"
 #include "core/base/accurate_cross.h"
+#include "core/base/big_dyadic.h"
+#include "core/base/exact_predicates.h"
 #include "core/base/orient.h"
 #include "core/overlap/polygon_tests.h"
 
@@ -15,6 +17,47 @@ namespace cdlab {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// det[u1 - v1; u2 - v2; u3 - v3] = (u1 - v1) · ((u2 - v2) × (u3 - v3)) in number type T (Bounded:
+// with a rigorous error bound; BigDyadic: exact), the differences taken in T.
+template <class T>
+T det3Rows(const Vec3* u, const Vec3* v) {
+    T d[3][3];
+    for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) d[r][k] = T(u[r][k]) - T(v[r][k]);
+    return d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) + d[0][1] * (d[1][2] * d[2][0] - d[1][0] * d[2][2]) +
+           d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+}
+
+// A determinant whose double evaluation is within a relative 2^-44 of the exact value (a
+// cancellation of at most ~64 against its permanent): the plain quotient of two such is within
+// ~2^-43 of the exact quotient.
+constexpr double kWellConditioned = 0x1p-44;
+bool wellConditioned(const exact::Bounded& x) {
+    return std::isfinite(x.value) && x.error <= kWellConditioned * std::abs(x.value);
+}
+
+// Quotients num / den of determinants of differences of the input doubles over one den (non-zero
+// exactly): the plain quotient when both are well conditioned, else the exact quotient rounded
+// once (a ray within rounding of a triangle's plane has a near-zero d · n whose double value has no
+// correct digit: Möller-Trumbore's t was then anywhere, even negative and clamped to 0; issue 41
+// class 3).
+class DeterminantRatio {
+public:
+    DeterminantRatio(const Vec3* u, const Vec3* v) : u_(u), v_(v), den_(det3Rows<exact::Bounded>(u, v)) {}
+    double of(const Vec3* nu, const Vec3* nv) {
+        const exact::Bounded num = det3Rows<exact::Bounded>(nu, nv);
+        if (wellConditioned(num) && wellConditioned(den_) && den_.value != 0.0) return num.value / den_.value;
+        if (!exactDen_) exactDen_ = true, denExact_ = det3Rows<exact::BigDyadic>(u_, v_);
+        return exact::quotient(det3Rows<exact::BigDyadic>(nu, nv), denExact_);
+    }
+
+private:
+    const Vec3 *u_, *v_;
+    exact::Bounded den_;
+    bool exactDen_ = false;
+    exact::BigDyadic denExact_;
+};
 
 // Clamp barycentric weights computed in doubles to the closed triangle: the exact decision has
 // already put the point inside, so negative weights are rounding noise.
@@ -262,19 +305,23 @@ RayTriangleHit intersectRayTriangle(const Ray& ray, const Triangle& tri, const R
     const int sNum = signDet3(tri.a, o, tri.b, tri.a, tri.c, tri.a);
     if (sNum * sDn < 0) return hit;
 
-    // Möller-Trumbore for the numbers: solve o + t d = a + u (b - a) + v (c - a).
-    const Vec3 e1 = tri.b - tri.a, e2 = tri.c - tri.a;
-    const Vec3 pv = d.cross(e2);
-    const double det = e1.dot(pv);
-    const Vec3 tv = o - tri.a;
-    const Vec3 qv = tv.cross(e1);
-    const double u = tv.dot(pv) / det;
-    const double v = d.dot(qv) / det;
-    const double t = e2.dot(qv) / det;
+    // The numbers: t = [a - o, b - a, c - a] / [d, b - a, c - a] and the weights
+    // [d, b - o, c - o] / [d, b - a, c - a], ... from the same determinants of the input doubles,
+    // evaluated with an error bound: where d · n or the numerator cancels (a ray within rounding of
+    // the plane), exactly and rounded once (ratioOfDeterminants), so the hit point is on the
+    // triangle up to the rounding of o + t d, never before it.
+    const Vec3 dRows[3] = {d, tri.b, tri.c}, dBase[3] = {zero, tri.a, tri.a};
+    DeterminantRatio ratio(dRows, dBase);
+    const Vec3 tRows[3] = {tri.a, tri.b, tri.c}, tBase[3] = {o, tri.a, tri.a};
+    const double t = sNum == 0 ? 0.0 : ratio.of(tRows, tBase);
+    const Vec3 ua[3] = {d, tri.b, tri.c}, ub[3] = {d, tri.c, tri.a}, uc[3] = {d, tri.a, tri.b};
+    const Vec3 base[3] = {zero, o, o};
+    const Vec3 w(wa == 0 ? 0.0 : ratio.of(ua, base), wb == 0 ? 0.0 : ratio.of(ub, base),
+                 wc == 0 ? 0.0 : ratio.of(uc, base));
     hit.hit = true;
-    // Rounding can push t slightly negative for an origin on the plane (exactly t = 0 then).
-    hit.t = sNum == 0 ? 0.0 : (std::isfinite(t) ? std::max(t, 0.0) : 0.0);
-    hit.barycentric = clampBarycentric(Vec3(1.0 - u - v, u, v));
+    // Exactly t = 0 for an origin on the plane; the exact decision put t >= 0 (the quotient keeps its sign).
+    hit.t = std::isfinite(t) ? std::max(t, 0.0) : 0.0;
+    hit.barycentric = clampBarycentric(w);
     hit.point = o + hit.t * d;
     hit.backFace = sDn > 0;
     return hit;

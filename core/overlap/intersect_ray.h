@@ -115,9 +115,12 @@ struct RayTriangleHit {
 /// Ray against triangle (Möller-Trumbore 1997; Ericson §5.3.6). The hit/miss decision is exact
 /// for the double inputs: it is made from signs of scalar triple products (Ericson §5.3.4)
 /// evaluated with core/base/orient.h, so rays through an edge or vertex never slip between two
-/// triangles sharing it. t and barycentric are then computed by Möller-Trumbore in doubles
-/// (clamped to the exact decision). A ray in the triangle's plane hits iff it meets the
-/// triangle in that plane (decided in doubles by 2D clipping; single-sided: no hit).
+/// triangles sharing it. t and barycentric are then the quotients of the same triple products
+/// (Cramer's rule, as Möller-Trumbore), evaluated in doubles with a rigorous error bound and, where
+/// d . n or a numerator cancels (a ray within rounding of the plane), exactly and rounded once: the
+/// point o + t d is on the triangle up to its own rounding, never before it (issue 41 class 3).
+/// A ray in the triangle's plane hits iff it meets the triangle in that plane (decided in doubles
+/// by 2D clipping; single-sided: no hit); t is then its first point of the triangle.
 RayTriangleHit intersectRayTriangle(const Ray& ray, const Triangle& triangle, const RayTriangleOptions& options = {});
 
 /// Segment against triangle (Ericson §5.3.6, both faces). Exact decision from orient3d of the
