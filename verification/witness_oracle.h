@@ -61,6 +61,49 @@ public:
         return h + radius_ * n.norm();
     }
 
+    /// The ray o + t d, t >= 0, against the body: the first t at which it meets the body (-1: it
+    /// never does). A solid polytope: Cyrus–Beck clipping against the facet planes (exact up to the
+    /// planes' rounding); otherwise the first root of the convex f(t) = signedDistance(o + t d) on
+    /// [0, tMax] (ternary search for the minimum, bisection below it).
+    long double firstContact(const Vec3& o, const Vec3& d, long double tMax) const {
+        if (solid_ && radius_ == 0) {
+            const LVec lo = toL(o) - ref_, ld = toL(d);
+            long double enter = 0, exit = tMax;
+            for (const Plane& f : planes_) {
+                const long double s0 = f.n.dot(lo) - f.offset, rate = f.n.dot(ld);
+                if (rate == 0) {
+                    if (s0 > 0) return -1;
+                    continue;
+                }
+                const long double t = -s0 / rate;
+                if (rate < 0) enter = std::max(enter, t);
+                else exit = std::min(exit, t);
+            }
+            return enter <= exit ? enter : -1;
+        }
+        const LVec lo = toL(o), ld = toL(d);
+        auto f = [&](long double t) {
+            const LVec x = lo + t * ld;
+            return signedDistance(Vec3(static_cast<double>(x.x()), static_cast<double>(x.y()),
+                                       static_cast<double>(x.z())));
+        };
+        if (f(0) <= 0) return 0;
+        long double a = 0, b = tMax;
+        for (int i = 0; i < 200; ++i) {
+            const long double m1 = a + (b - a) / 3, m2 = b - (b - a) / 3;
+            if (f(m1) < f(m2)) b = m2;
+            else a = m1;
+        }
+        long double hi = (a + b) / 2, lo2 = 0;
+        if (f(hi) > 0) return -1;
+        for (int i = 0; i < 200; ++i) {
+            const long double mid = (lo2 + hi) / 2;
+            if (f(mid) > 0) lo2 = mid;
+            else hi = mid;
+        }
+        return hi;
+    }
+
     const LVec& reference() const { return ref_; }
     long double radius() const { return radius_; }
     bool solid() const { return solid_; }
@@ -235,6 +278,57 @@ inline WitnessCheck checkWitness(const WitnessBody& a, const WitnessBody& b, con
     fail(WitnessCheck::Failed::PointBOffBody, r.pointBOff, tol.onBodyB);
     fail(WitnessCheck::Failed::Offset, r.offset, tol.offset);
     fail(WitnessCheck::Failed::Normal, r.normal, tol.normal);
+    return r;
+}
+
+/// A ray hit (t, point, normal) of the ray o + t d checked against the body, world units:
+/// point = o + t d, point on the surface (|signed distance| small), no earlier hit (t = the first
+/// contact), and the normal an outward normal there: unit, facing the ray (n · d <= 0 up to the
+/// tolerance) and supporting the body at the point (h_body(n) = n · point).
+struct RayHitCheck {
+    enum class Failed { None, NotFinite, NotUnit, PointOffRay, PointOffSurface, NotFirstContact, Normal };
+    Failed failed = Failed::None;
+    double size = 0, tolerance = 0;
+    double offRay = 0;       ///< |point − (o + t d)|
+    double offSurface = 0;   ///< |signed distance of point|
+    double earlier = 0;      ///< |t − first contact| · |d| (INFINITY when the oracle sees no contact)
+    double support = 0;      ///< |h_body(n) − n · point|, plus max(0, n · d / |d|) · |point − o|
+    double normalLength = 0;
+    bool ok() const { return failed == Failed::None; }
+};
+
+struct RayHitTolerances {
+    double point = 0, surface = 0, firstContact = 0, normal = 0;  // world units
+};
+
+inline RayHitCheck checkRayHit(const WitnessBody& body, const Vec3& o, const Vec3& d, double t, const Vec3& point,
+                               const Vec3& normal, const RayHitTolerances& tol, double unitTolerance = 1e-12) {
+    RayHitCheck r;
+    if (!(o.allFinite() && d.allFinite() && point.allFinite() && normal.allFinite() && std::isfinite(t))) {
+        r.failed = RayHitCheck::Failed::NotFinite;
+        r.size = r.offRay = r.offSurface = r.earlier = r.support = r.normalLength = INFINITY;
+        return r;
+    }
+    const LVec lo = toL(o), ld = toL(d), lp = toL(point), ln = toL(normal);
+    r.offRay = static_cast<double>((lp - (lo + static_cast<long double>(t) * ld)).norm());
+    r.offSurface = static_cast<double>(std::abs(body.signedDistance(point)));
+    const long double first = body.firstContact(o, d, 2 * static_cast<long double>(t) + 1);
+    r.earlier = first < 0 ? INFINITY : static_cast<double>(std::abs(static_cast<long double>(t) - first) * ld.norm());
+    r.normalLength = static_cast<double>(std::abs(ln.norm() - 1));
+    const long double facing = std::max(0.0L, ln.dot(ld) / ld.norm()) * (lp - lo).norm();
+    r.support = static_cast<double>(std::abs(body.support(ln, body.reference()) - ln.dot(lp - body.reference())) +
+                                    facing);
+    auto fail = [&](RayHitCheck::Failed f, double size, double tl) {
+        if (r.failed != RayHitCheck::Failed::None || size <= tl) return;
+        r.failed = f;
+        r.size = size;
+        r.tolerance = tl;
+    };
+    fail(RayHitCheck::Failed::NotUnit, r.normalLength, unitTolerance);
+    fail(RayHitCheck::Failed::PointOffRay, r.offRay, tol.point);
+    fail(RayHitCheck::Failed::PointOffSurface, r.offSurface, tol.surface);
+    fail(RayHitCheck::Failed::NotFirstContact, r.earlier, tol.firstContact);
+    fail(RayHitCheck::Failed::Normal, r.support, tol.normal);
     return r;
 }
 

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/primitives.h"
+#include "core/cast/ray_cast.h"
 #include "core/closest/closest_point.h"
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/shapes.h"
@@ -63,6 +64,7 @@ using stress_cases::BoxCase;
 using stress_cases::Family;
 using stress_cases::Kind;
 using stress_cases::PolyCase;
+using stress_cases::RayCase;
 using stress_cases::TriCase;
 
 // The cases and their families: app/stress/stress_families.h.
@@ -484,6 +486,46 @@ void runTri(Engine& e, const Family& f, int index, TriCase& c) {
     e.record(f.name, "closest_region = exact", "exact", false, c.param, g, query, index);
 }
 
+/// A ray against a polytope: the verdict against the oracle's first contact (judged unless the
+/// ray passes within rounding of the body), and every field of a hit (verification/witness_oracle.h):
+/// point = o + t d, on the surface, no earlier contact, the normal outward and supporting there.
+void runRay(Engine& e, const Family& f, int index, RayCase& c) {
+    const ConvexCastHit h = castRayRoundedHull(c.ray, c.body);
+    const WitnessBody body = WitnessBody::polytope(c.body);
+    const double L = centroidRadius(c.body);
+    const double M = std::max(maxAbs(c.body), c.ray.origin.cwiseAbs().maxCoeff());
+    const double tMax = 4.0 * (L + (c.ray.origin - c.body[0]).norm()) / c.ray.direction.norm();
+    const long double first = body.firstContact(c.ray.origin, c.ray.direction, tMax);
+    auto query = [&] {
+        return "{\"op\":\"raycast\",\"ray\":{\"origin\":" + vec(c.ray.origin) + ",\"direction\":" +
+               vec(c.ray.direction) + "},\"shape\":" + polytopeJson(c.body) + "}";
+    };
+    const bool hit = e.tampered("ray_hit", h.hit ? 1.0 : 0.0) != 0.0;
+    {
+        Check k;
+        k.got = hit;
+        k.expected = first >= 0;
+        k.error = c.judgeVerdict && hit != (first >= 0) ? 1.0 : 0.0;
+        k.tolerance = 0.5;
+        e.record(f.name, "ray hit = oracle", "exact unless within rounding of the body", false, c.param, k, query,
+                 index);
+    }
+    if (!hit || first < 0 || h.inside) return;
+    const double tol = kWitnessTol * L + 8 * kU * M;
+    verification::RayHitTolerances t;
+    t.point = t.surface = t.firstContact = t.normal = tol;
+    Vec3 point = h.point;
+    point.x() = e.tampered("ray_point", point.x());
+    const verification::RayHitCheck r = verification::checkRayHit(body, c.ray.origin, c.ray.direction, h.t, point,
+                                                                   h.normal, t);
+    witnessCell(e, f.name, "ray point = o + t d", "1e-9 L + 8uM", false, c.param, r.offRay, tol, L, index, query);
+    witnessCell(e, f.name, "ray point on surface", "1e-9 L + 8uM", false, c.param, r.offSurface, tol, L, index,
+                query);
+    witnessCell(e, f.name, "ray t = first contact", "1e-9 L + 8uM", false, c.param, r.earlier, tol, L, index, query);
+    witnessCell(e, f.name, "ray normal outward, supporting", "1e-9 L + 8uM", false, c.param,
+                r.normalLength <= 1e-12 ? r.support : INFINITY, tol, L, index, query);
+}
+
 }  // namespace
 
 StressReport runStressSuite(const StressOptions& options) {
@@ -527,6 +569,12 @@ StressReport runStressSuite(const StressOptions& options) {
                         BoxCase c;
                         f.box(rng, c);
                         runBox(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Ray: {
+                        RayCase c;
+                        f.ray(rng, c);
+                        runRay(engine, f, i, c);
                         break;
                     }
                     case Kind::Tri: {

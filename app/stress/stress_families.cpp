@@ -51,7 +51,7 @@ void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, dou
 // float rounding.
 void addPolytopeFamilies(std::vector<Family>& f) {
     auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
-        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}});
+        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}, {}});
     };
     poly("scale 1e-6..1e6", "size", [](std::mt19937_64& rng, PolyCase& c) {
         const double s = logUniform(rng, 1e-6, 1e6);
@@ -173,6 +173,7 @@ void addBoxFamilies(std::vector<Family>& f) {
                      c.b.transform.position = centre;
                      c.param = std::abs(g);
                  },
+                 {},
                  {}});
     f.push_back({"OBB random rotations",
                  "centre distance / size",
@@ -188,13 +189,14 @@ void addBoxFamilies(std::vector<Family>& f) {
                      c.b.transform.position = s * d * randomUnit(rng);
                      c.param = d;
                  },
+                 {},
                  {}});
 }
 
 // Point vs triangle: near-boundary points, slivers and needles, far offsets.
 void addTriangleFamilies(std::vector<Family>& f) {
     auto tri = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, TriCase&)> g) {
-        f.push_back({std::move(name), std::move(param), Kind::Tri, {}, {}, std::move(g)});
+        f.push_back({std::move(name), std::move(param), Kind::Tri, {}, {}, std::move(g), {}});
     };
     tri("triangle: near-boundary points", "distance off the feature / size", [](std::mt19937_64& rng, TriCase& c) {
         c.t = {randomUnit(rng), randomUnit(rng), randomUnit(rng)};
@@ -228,7 +230,7 @@ void addTriangleFamilies(std::vector<Family>& f) {
 // least-overlap directions, face-face distances).
 void addWitnessFamilies(std::vector<Family>& f) {
     auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
-        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}});
+        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}, {}});
     };
     poly("tiny against huge (1e-6 vs 1e3)", "|gap| / tiny size", [](std::mt19937_64& rng, PolyCase& c) {
         // A 1e-6 body against a 1e3 one, at a vertex of the huge body (placeAtGap along a random
@@ -296,7 +298,47 @@ void addWitnessFamilies(std::vector<Family>& f) {
                      c.b.transform.position = c.a.transform.position + q * local;
                      c.param = d / s;
                  },
+                 {},
                  {}});
+}
+
+// Rays in the plane of a face of an axis-aligned box (exactly: the plane's coordinate is the
+// origin's and the direction has no component across it), so the ray grazes the face and enters
+// through the edge where it crosses the side face; or tilted by 1e-12..1e-3 rad into the box's slab
+// (a hit on the side face just below the edge) or away from it (a miss by the tilt times the
+// distance, judged when that is above the rounding band).
+void addRayFamilies(std::vector<Family>& f) {
+    Family ray{"rays in a face plane", "tilt (rad; 0 in the plane)", Kind::Ray, {}, {}, {}, {}};
+    ray.ray = [](std::mt19937_64& rng, RayCase& c) {
+        const double s = logUniform(rng, 1e-3, 1e3);
+        const Vec3 half = s * Vec3(uniform(rng, 0.2, 1.0), uniform(rng, 0.2, 1.0), uniform(rng, 0.2, 1.0));
+        const Vec3 centre = s * uniform(rng, 0.0, 2.0) * randomUnit(rng);
+        const int axis = static_cast<int>(rng() % 3);  // the face's axis, +/- side
+        const double side = rng() % 2 ? 1.0 : -1.0;
+        for (int i = 0; i < 8; ++i)
+            c.body.push_back(centre + Vec3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
+                                           i & 4 ? half.z() : -half.z()));
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        // origin in the face's plane, outside the face; target inside the face (or on its edge)
+        Vec3 o = centre, target = centre;
+        o[axis] = target[axis] = centre[axis] + side * half[axis];  // the corner's coordinate exactly
+        const double angle = uniform(rng, 0.0, 6.283185307179586);
+        o[u] += 2.0 * half.norm() * std::cos(angle);
+        o[v] += 2.0 * half.norm() * std::sin(angle);
+        const bool onEdge = rng() % 4 == 0;  // the target on the face's edge: a graze of a graze
+        target[u] += (onEdge ? 1.0 : uniform(rng, -1.0, 1.0)) * half[u];
+        target[v] += uniform(rng, -1.0, 1.0) * half[v];
+        Vec3 d = target - o;  // d[axis] == 0 exactly
+        const int mode = static_cast<int>(rng() % 3);  // 0 in the plane, 1 into the slab, 2 away
+        const double tilt = mode == 0 ? 0.0 : logUniform(rng, 1e-12, 1e-3);
+        d[axis] = (mode == 1 ? -side : side) * tilt * d.norm();
+        c.ray = Ray{o, d};
+        // A miss by tilt * |target - o| (~2 |half|): judged above the rounding band. A ray to an
+        // edge point passes within the rounding of d = target - o of the edge: either verdict.
+        c.judgeVerdict = !onEdge && (mode != 2 || tilt > 1e-10);
+        c.param = tilt;
+    };
+    f.push_back(std::move(ray));
 }
 
 }  // namespace
@@ -306,6 +348,7 @@ std::vector<Family> stressFamilies() {
     addPolytopeFamilies(f);
     addBoxFamilies(f);
     addWitnessFamilies(f);
+    addRayFamilies(f);
     addTriangleFamilies(f);
     return f;
 }

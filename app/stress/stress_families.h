@@ -34,7 +34,15 @@ struct TriCase {
     double param = 0;
 };
 
-enum class Kind { Poly, Box, Tri };
+/// A ray o + t d, t >= 0, against the convex hull of `body` (world frame).
+struct RayCase {
+    std::vector<Vec3> body;
+    Ray ray{Vec3::Zero(), Vec3::UnitX()};
+    bool judgeVerdict = true;  // false: the ray passes within rounding of the body (either verdict)
+    double param = 0;
+};
+
+enum class Kind { Poly, Box, Tri, Ray };
 
 struct Family {
     std::string name, parameter;
@@ -42,11 +50,13 @@ struct Family {
     std::function<void(std::mt19937_64&, PolyCase&)> poly;
     std::function<void(std::mt19937_64&, BoxCase&)> box;
     std::function<void(std::mt19937_64&, TriCase&)> tri;
+    std::function<void(std::mt19937_64&, RayCase&)> ray;
 };
 
 /// Every family, in report order: polytope pairs (scale, offset, gap, penetration, slivers,
 /// parallel edges, duplicates, rotations, float rounding), box pairs (axis-aligned, rotated), the
-/// witness oracle's (tiny against huge, coplanar faces of A - B), point vs triangle.
+/// witness oracle's (tiny against huge, coplanar faces of A - B, rays in a face plane), point vs
+/// triangle.
 std::vector<Family> stressFamilies();
 
 }  // namespace cdlab::demos::stress_cases

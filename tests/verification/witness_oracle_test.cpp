@@ -10,7 +10,10 @@
 #include "verification/witness_oracle.h"
 
 using namespace cdlab;
+using cdlab::verification::checkRayHit;
 using cdlab::verification::checkWitness;
+using cdlab::verification::RayHitCheck;
+using cdlab::verification::RayHitTolerances;
 using cdlab::verification::WitnessBody;
 using cdlab::verification::WitnessCheck;
 using cdlab::verification::WitnessTolerances;
@@ -37,6 +40,12 @@ WitnessTolerances tight(double t = 1e-12) {
 WitnessTolerances looseBodies(double onBody) {
     WitnessTolerances tol = tight();
     tol.onBodyA = tol.onBodyB = onBody;
+    return tol;
+}
+
+RayHitTolerances rayTight(double t = 1e-12) {
+    RayHitTolerances tol;
+    tol.point = tol.surface = tol.firstContact = tol.normal = t;
     return tol;
 }
 
@@ -171,5 +180,64 @@ TEST_SUITE("witness oracle") {
               WitnessCheck::Failed::PointAOffBody);
         const Vec3 nr = q * rotatedZ(Vec3::UnitX(), 1e-4);
         CHECK(checkWitness(a, b, pA, pA - 0.5 * nr, nr, 0.5, tight(tol)).failed == WitnessCheck::Failed::Normal);
+    }
+
+    TEST_CASE("ray hits: the first contact passes; a later point, the exit, a wrong normal are flagged") {
+        const WitnessBody b = WitnessBody::polytope(box(Vec3::Zero(), Vec3(1, 1, 1)));
+        const Vec3 o(-3, 0, 0), d(1, 0, 0);
+        CHECK(double(b.firstContact(o, d, 10)) == doctest::Approx(2.0));
+        CHECK(checkRayHit(b, o, d, 2.0, Vec3(-1, 0, 0), Vec3(-1, 0, 0), rayTight()).ok());
+        // a point inside, on the ray: off the surface
+        const RayHitCheck inside = checkRayHit(b, o, d, 2.5, Vec3(-0.5, 0, 0), Vec3(-1, 0, 0), rayTight());
+        CHECK(inside.failed == RayHitCheck::Failed::PointOffSurface);
+        CHECK(inside.offSurface == doctest::Approx(0.5));
+        // the exit point: on the ray and the surface, not the first contact
+        const RayHitCheck exit = checkRayHit(b, o, d, 4.0, Vec3(1, 0, 0), Vec3(1, 0, 0), rayTight());
+        CHECK(exit.failed == RayHitCheck::Failed::NotFirstContact);
+        CHECK(exit.earlier == doctest::Approx(2.0));
+        // a point off the ray
+        CHECK(checkRayHit(b, o, d, 2.0, Vec3(-1, 0.5, 0), Vec3(-1, 0, 0), rayTight()).failed ==
+              RayHitCheck::Failed::PointOffRay);
+        // normals: tangent to the wrong face, facing away, not unit
+        const RayHitCheck side = checkRayHit(b, o, d, 2.0, Vec3(-1, 0, 0), Vec3(0, 1, 0), rayTight());
+        CHECK(side.failed == RayHitCheck::Failed::Normal);
+        CHECK(side.support == doctest::Approx(1.0));
+        CHECK(checkRayHit(b, o, d, 2.0, Vec3(-1, 0, 0), Vec3(1, 0, 0), rayTight()).failed ==
+              RayHitCheck::Failed::Normal);
+        CHECK(checkRayHit(b, o, d, 2.0, Vec3(-1, 0, 0), Vec3(-1.1, 0, 0), rayTight()).failed ==
+              RayHitCheck::Failed::NotUnit);
+        // a ray that misses, reported as a hit
+        const RayHitCheck miss = checkRayHit(b, Vec3(-3, 2, 0), d, 3.0, Vec3(0, 2, 0), Vec3(0, 1, 0), rayTight());
+        CHECK_FALSE(miss.ok());
+        CHECK(miss.earlier == INFINITY);
+    }
+
+    TEST_CASE("rays in a face plane: the graze enters at the edge, either face's normal is right") {
+        const WitnessBody b = WitnessBody::polytope(box(Vec3::Zero(), Vec3(1, 1, 1)));
+        const Vec3 o(-3, 0.25, 1), d(2, 0, 0);  // in the plane z = 1 of the top face
+        CHECK(double(b.firstContact(o, d, 10)) == doctest::Approx(1.0));
+        CHECK(checkRayHit(b, o, d, 1.0, Vec3(-1, 0.25, 1), Vec3(-1, 0, 0), rayTight()).ok());
+        CHECK(checkRayHit(b, o, d, 1.0, Vec3(-1, 0.25, 1), Vec3(0, 0, 1), rayTight()).ok());
+        CHECK(checkRayHit(b, o, d, 1.0, Vec3(-1, 0.25, 1), Vec3(-1, 0, 1).normalized(), rayTight()).ok());
+        // the point halfway along the face: on the surface, but after the entry
+        CHECK(checkRayHit(b, o, d, 1.5, Vec3(0, 0.25, 1), Vec3(0, 0, 1), rayTight()).failed ==
+              RayHitCheck::Failed::NotFirstContact);
+        // just above the plane: no contact at all
+        CHECK(b.firstContact(Vec3(-3, 0.25, 1 + 1e-9), d, 10) < 0);
+    }
+
+    TEST_CASE("a ray against a sphere (a rounded body: first contact by root finding)") {
+        const WitnessBody s = WitnessBody::rounded({Vec3::Zero()}, 1.0);
+        const Vec3 o(-3, 0.5, 0), d(1, 0, 0);
+        const double t = 3 - std::sqrt(0.75);
+        const Vec3 p = o + t * d;
+        CHECK(double(s.firstContact(o, d, 10)) == doctest::Approx(t).epsilon(1e-14));
+        CHECK(checkRayHit(s, o, d, t, p, p.normalized(), rayTight(1e-12)).ok());
+        CHECK(checkRayHit(s, o, d, t, p, Vec3(-1, 0, 0), rayTight(1e-12)).failed == RayHitCheck::Failed::Normal);
+        const double t2 = 3 + std::sqrt(0.75);
+        // the exit: not the first contact, and its normal faces away from the ray
+        const RayHitCheck exit = checkRayHit(s, o, d, t2, o + t2 * d, (o + t2 * d).normalized(), rayTight(1e-12));
+        CHECK(exit.failed == RayHitCheck::Failed::NotFirstContact);
+        CHECK(exit.support == doctest::Approx(std::sqrt(0.75) * (o + t2 * d - o).norm()));
     }
 }
