@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/primitives.h"
+#include "core/cast/ray_cast.h"
 #include "core/closest/closest_point.h"
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/shapes.h"
@@ -35,9 +36,12 @@
 #include "verification/minkowski_hull_oracle.h"
 #include "render/gl_context.h"
 #include "render/image.h"
+#include "app/stress/stress_families.h"
 #include "app/stress/stress_tolerances.h"
 // The exact (BigInt) Ericson region of the closest-point tests: header-only, independent of core.
 #include "verification/closest_oracle.h"
+// Every field of a contact answer: witnesses on their bodies, pointA - pointB = s n, n least overlap.
+#include "verification/witness_oracle.h"
 
 namespace cdlab::demos {
 
@@ -52,255 +56,18 @@ using stress_tolerances::kBooleanBand;
 using stress_tolerances::kSatBand;
 using stress_tolerances::kClosestTol;
 using stress_tolerances::kFloatU;
+using stress_tolerances::kWitnessTol;
+using stress_tolerances::kAxisFactor;
+using verification::WitnessBody;
+using verification::WitnessCheck;
+using stress_cases::BoxCase;
+using stress_cases::Family;
+using stress_cases::Kind;
+using stress_cases::PolyCase;
+using stress_cases::RayCase;
+using stress_cases::TriCase;
 
-// ---- Cases ---------------------------------------------------------------------------------------
-
-struct PolyCase {
-    std::vector<Vec3> va, vb;   // world frame
-    bool raw = false;           // PolytopeShape over the raw list (duplicates kept), no hull
-    bool floatRounded = false;  // the algorithms see the vertices rounded to float
-    double param = 0;
-};
-
-struct BoxCase {
-    Transformed<BoxShape> a, b;
-    double param = 0;
-};
-
-struct TriCase {
-    Vec3 p = Vec3::Zero();
-    Triangle t;
-    double param = 0;
-};
-
-enum class Kind { Poly, Box, Tri };
-
-struct Family {
-    std::string name, parameter;
-    Kind kind;
-    std::function<void(std::mt19937_64&, PolyCase&)> poly;
-    std::function<void(std::mt19937_64&, BoxCase&)> box;
-    std::function<void(std::mt19937_64&, TriCase&)> tri;
-};
-
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-    return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
-double logUniform(std::mt19937_64& rng, double lo, double hi) {
-    return std::pow(10.0, uniform(rng, std::log10(lo), std::log10(hi)));
-}
-
-std::vector<Vec3> scaled(std::vector<Vec3> v, double s, const Vec3& shift = Vec3::Zero()) {
-    for (Vec3& x : v) x = s * x + shift;
-    return v;
-}
-
-Vec3 perpendicular(const Vec3& u) {
-    const Vec3 t = std::abs(u.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-    return u.cross(t).normalized();
-}
-
-int argExtreme(const std::vector<Vec3>& v, const Vec3& d) {
-    int best = 0;
-    for (int i = 1; i < static_cast<int>(v.size()); ++i)
-        if (v[i].dot(d) > v[best].dot(d)) best = i;
-    return best;
-}
-
-/// Places vb so that its extreme vertex along -u sits at `gap` along u from va's extreme vertex
-/// along u: the distance is then exactly `gap` for gap >= 0 (that pair is at distance gap, and
-/// the planes u·x = h_A(u) and u·x = h_A(u) + gap separate). gap == 0 copies the vertex bit for
-/// bit: exact touching.
-void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, double gap) {
-    const int ia = argExtreme(va, u), ib = argExtreme(vb, -u);
-    const Vec3 shift = va[ia] - vb[ib] + gap * u;
-    for (Vec3& x : vb) x += shift;
-    if (gap == 0.0) vb[ib] = va[ia];
-}
-
-// Polytope pairs: scale, offset, gap, penetration, slivers, parallel edges, duplicates, rotations,
-// float rounding.
-void addPolytopeFamilies(std::vector<Family>& f) {
-    auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
-        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}});
-    };
-    poly("scale 1e-6..1e6", "size", [](std::mt19937_64& rng, PolyCase& c) {
-        const double s = logUniform(rng, 1e-6, 1e6);
-        c.va = scaled(ellipsoidPoints(rng, 8), s);
-        c.vb = scaled(ellipsoidPoints(rng, 8), s, s * uniform(rng, 0.2, 2.6) * randomUnit(rng));
-        c.param = s;
-    });
-    poly("offset 1e3..1e9", "offset / size", [](std::mt19937_64& rng, PolyCase& c) {
-        const double o = logUniform(rng, 1e3, 1e9);
-        const Vec3 at = o * randomUnit(rng);
-        c.va = scaled(ellipsoidPoints(rng, 8), 1.0, at);
-        c.vb = scaled(ellipsoidPoints(rng, 8), 1.0, at + uniform(rng, 0.2, 2.6) * randomUnit(rng));
-        c.param = o;
-    });
-    poly("gap 1e-12..1e-3, touching", "|gap| / size", [](std::mt19937_64& rng, PolyCase& c) {
-        c.va = ellipsoidPoints(rng, 12);
-        c.vb = ellipsoidPoints(rng, 12);
-        const Vec3 u = randomUnit(rng);
-        const double g = logUniform(rng, 1e-12, 1e-3);
-        const int mode = std::uniform_int_distribution<int>(0, 7)(rng);
-        // 1 in 8 exactly touching, then half separated, half overlapping by |gap|.
-        const double gap = mode == 0 ? 0.0 : (mode % 2 ? g : -g);
-        placeAtGap(c.va, c.vb, u, gap);
-        c.param = std::abs(gap);
-    });
-    poly("deep penetration", "centre distance / size", [](std::mt19937_64& rng, PolyCase& c) {
-        const double d = logUniform(rng, 1e-6, 0.3);
-        c.va = ellipsoidPoints(rng, 16);
-        c.vb = scaled(ellipsoidPoints(rng, 16), 1.0, d * randomUnit(rng));
-        c.param = d;
-    });
-    poly("slivers and needles", "thickness / size", [](std::mt19937_64& rng, PolyCase& c) {
-        const double t = logUniform(rng, 1e-9, 1e-2);
-        const bool needle = std::uniform_int_distribution<int>(0, 1)(rng);
-        const Quat qa = randomRotation(rng), qb = randomRotation(rng);
-        const Vec3 radii(1.0, needle ? t : 1.0, t);
-        auto shape = [&](const Quat& q) {
-            std::vector<Vec3> v;
-            for (int i = 0; i < 10; ++i) v.push_back(q * radii.cwiseProduct(randomUnit(rng)));
-            return v;
-        };
-        c.va = shape(qa);
-        c.vb = scaled(shape(qb), 1.0, uniform(rng, 0.0, 1.5) * randomUnit(rng));
-        c.param = t;
-    });
-    poly("nearly parallel edges", "angle (rad)", [](std::mt19937_64& rng, PolyCase& c) {
-        // Two thin wedges whose ridges (edges of length 2) cross at an angle 1e-9..1e-1, the
-        // ridges |gap| apart along n (separated or overlapping).
-        const double angle = logUniform(rng, 1e-9, 1e-1);
-        const double gap = logUniform(rng, 1e-9, 1e-2) * (rng() % 2 ? 1 : -1);
-        const Vec3 e = randomUnit(rng), n = perpendicular(e), m = e.cross(n);
-        const Vec3 e2 = Eigen::AngleAxisd(angle, n) * e, m2 = e2.cross(n);
-        const Vec3 at = uniform(rng, -0.5, 0.5) * e;
-        c.va = {-e, e, 0.2 * (-n + m), 0.2 * (-n - m)};
-        c.vb = {at - e2 + gap * n, at + e2 + gap * n, at + 0.2 * (n + m2) + gap * n, at + 0.2 * (n - m2) + gap * n};
-        c.param = angle;
-    });
-    poly("duplicate points", "copies", [](std::mt19937_64& rng, PolyCase& c) {
-        // Raw vertex lists (no hull): every vertex 1..3 times, some copies 1 ulp off.
-        auto dup = [&](std::vector<Vec3> v) {
-            std::vector<Vec3> out;
-            for (const Vec3& x : v) {
-                const int copies = 1 + static_cast<int>(rng() % 3);
-                for (int k = 0; k < copies; ++k) {
-                    Vec3 y = x;
-                    if (k > 0 && rng() % 2) y.x() = std::nextafter(y.x(), INFINITY);
-                    out.push_back(y);
-                }
-            }
-            std::shuffle(out.begin(), out.end(), rng);
-            return out;
-        };
-        c.va = dup(ellipsoidPoints(rng, 6));
-        c.vb = dup(scaled(ellipsoidPoints(rng, 6), 1.0, uniform(rng, 0.0, 2.4) * randomUnit(rng)));
-        c.raw = true;
-        c.param = static_cast<double>(c.va.size() + c.vb.size()) / 12.0;
-    });
-    poly("random rotations, 64 vertices", "centre distance / size", [](std::mt19937_64& rng, PolyCase& c) {
-        const double d = uniform(rng, 0.05, 2.5);
-        c.va = ellipsoidPoints(rng, 64);  // ellipsoidPoints rotates each shape at random
-        c.vb = scaled(ellipsoidPoints(rng, 64), 1.0, d * randomUnit(rng));
-        c.param = d;
-    });
-    poly("float-rounded input", "offset / size", [](std::mt19937_64& rng, PolyCase& c) {
-        // No float variant of GJK / EPA exists in core (double only): this measures what storing
-        // double geometry in float does to the answer, against the float rounding bound.
-        const double s = logUniform(rng, 1e-3, 1e3), o = logUniform(rng, 1e-2, 1e6) * s;
-        const Vec3 at = o * randomUnit(rng);
-        c.va = scaled(ellipsoidPoints(rng, 8), s, at);
-        c.vb = scaled(ellipsoidPoints(rng, 8), s, at + s * uniform(rng, 0.2, 2.6) * randomUnit(rng));
-        c.floatRounded = true;
-        c.param = o / s;
-    });
-}
-
-// Box pairs: axis-aligned with support ties, and random rotations.
-void addBoxFamilies(std::vector<Family>& f) {
-    f.push_back({"axis-aligned boxes (support ties)",
-                 "|gap| / size",
-                 Kind::Box,
-                 {},
-                 [](std::mt19937_64& rng, BoxCase& c) {
-                     // Face / edge / corner contact of axis-aligned boxes (all supports tie on whole faces),
-                     // coplanar side faces where the extents match, gaps 0 or +-1e-12..1e-3.
-                     const double s = logUniform(rng, 1e-3, 1e3);
-                     const double ext[3] = {0.5, 1.0, 2.0};
-                     auto pick = [&] { return s * ext[rng() % 3]; };
-                     c.a.shape.halfExtents = Vec3(pick(), pick(), pick());
-                     c.b.shape.halfExtents = Vec3(pick(), pick(), pick());
-                     const int mode = std::uniform_int_distribution<int>(0, 5)(rng);
-                     const double g = mode == 0 ? 0.0 : logUniform(rng, 1e-12, 1e-3) * (mode % 2 ? 1 : -1);
-                     Vec3 centre;
-                     const int contactAxes = 1 + static_cast<int>(rng() % 3);  // face, edge, corner
-                     for (int i = 0; i < 3; ++i) {
-                         const double sign = rng() % 2 ? 1.0 : -1.0;
-                         const double touch = c.a.shape.halfExtents[i] + c.b.shape.halfExtents[i];
-                         centre[i] = i < contactAxes ? sign * (touch + g * s) : (rng() % 2 ? 0.0 : sign * 0.25 * touch);
-                     }
-                     c.b.transform.position = centre;
-                     c.param = std::abs(g);
-                 },
-                 {}});
-    f.push_back({"OBB random rotations",
-                 "centre distance / size",
-                 Kind::Box,
-                 {},
-                 [](std::mt19937_64& rng, BoxCase& c) {
-                     const double s = logUniform(rng, 1e-3, 1e3);
-                     c.a.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
-                     c.b.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
-                     c.a.transform.rotation = randomRotation(rng);
-                     c.b.transform.rotation = randomRotation(rng);
-                     const double d = uniform(rng, 0.0, 2.5);
-                     c.b.transform.position = s * d * randomUnit(rng);
-                     c.param = d;
-                 },
-                 {}});
-}
-
-// Point vs triangle: near-boundary points, slivers and needles, far offsets.
-void addTriangleFamilies(std::vector<Family>& f) {
-    auto tri = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, TriCase&)> g) {
-        f.push_back({std::move(name), std::move(param), Kind::Tri, {}, {}, std::move(g)});
-    };
-    tri("triangle: near-boundary points", "distance off the feature / size", [](std::mt19937_64& rng, TriCase& c) {
-        c.t = {randomUnit(rng), randomUnit(rng), randomUnit(rng)};
-        const Vec3* v[3] = {&c.t.a, &c.t.b, &c.t.c};
-        const int k = static_cast<int>(rng() % 3);
-        const double s = rng() % 3 == 0 ? 0.0 : uniform(rng, 0.0, 1.0);  // 1 in 3 at a vertex
-        const Vec3 onEdge = *v[k] + s * (*v[(k + 1) % 3] - *v[k]);
-        const double off = logUniform(rng, 1e-15, 1e-3);
-        c.p = onEdge + off * randomUnit(rng);
-        c.param = off;
-    });
-    tri("triangle: slivers and needles", "thickness / size", [](std::mt19937_64& rng, TriCase& c) {
-        const double t = logUniform(rng, 1e-12, 1e-2);
-        const Vec3 a = randomUnit(rng), b = -a, u = perpendicular(a);
-        c.t = rng() % 2 ? Triangle{a, b, uniform(rng, -0.9, 0.9) * a + t * u}         // sliver: c near ab
-                        : Triangle{a, a + t * u, a + t * perpendicular(u.cross(a))};  // needle-ish: short ac, ab
-        c.p = uniform(rng, 0.0, 1.5) * randomUnit(rng);
-        c.param = t;
-    });
-    tri("triangle: offsets 1e3..1e9", "offset / size", [](std::mt19937_64& rng, TriCase& c) {
-        const double o = logUniform(rng, 1e3, 1e9);
-        const Vec3 at = o * randomUnit(rng);
-        c.t = {at + randomUnit(rng), at + randomUnit(rng), at + randomUnit(rng)};
-        c.p = at + uniform(rng, 0.0, 1.5) * randomUnit(rng);
-        c.param = o;
-    });
-}
-
-std::vector<Family> families() {
-    std::vector<Family> f;
-    addPolytopeFamilies(f);
-    addBoxFamilies(f);
-    addTriangleFamilies(f);
-    return f;
-}
+// The cases and their families: app/stress/stress_families.h.
 
 // ---- Reproducers ------------------------------------------------------------------------------
 
@@ -401,13 +168,87 @@ double maxNorm(const std::vector<Vec3>& v) {
     return m;
 }
 
-/// h_{A-B}(n) = max_i a_i·n - min_j b_j·n, brute force in long double.
-double supportOfDifference(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n) {
-    const Eigen::Matrix<long double, 3, 1> m = n.cast<long double>();
-    long double ha = -INFINITY, hb = INFINITY;
-    for (const Vec3& x : a) ha = std::max(ha, x.cast<long double>().dot(m));
-    for (const Vec3& x : b) hb = std::min(hb, x.cast<long double>().dot(m));
-    return static_cast<double>(ha - hb);
+/// The two bodies as the witness oracle sees them (the vertex lists the algorithms were given),
+/// with each body's size and largest |coordinate| and the pair's (file comment).
+struct WitnessPair {
+    WitnessBody a, b;
+    double La = 0, Ma = 0, Lb = 0, Mb = 0;
+    double L = 0, M = 0;
+};
+
+WitnessPair witnessPair(const std::vector<Vec3>& va, const std::vector<Vec3>& vb, double L, double M) {
+    return {WitnessBody::polytope(va), WitnessBody::polytope(vb), centroidRadius(va), maxAbs(va), centroidRadius(vb),
+            maxAbs(vb), L, M};
+}
+
+verification::WitnessTolerances witnessTolerances(const WitnessPair& w) {
+    verification::WitnessTolerances t;
+    t.onBodyA = kWitnessTol * w.La + 8 * kU * w.Ma;
+    t.onBodyB = kWitnessTol * w.Lb + 8 * kU * w.Mb;
+    t.offset = kWitnessTol * w.L + 8 * kU * w.M;
+    return t;
+}
+
+/// One cell per measured field of the witness oracle's answer: the error relative to `scale`.
+void witnessCell(Engine& e, const std::string& family, const std::string& check, const std::string& text, bool info,
+                 double param, double value, double tol, double scale, int index,
+                 const std::function<std::string()>& query) {
+    Check k;
+    k.got = value;
+    k.expected = 0;
+    k.error = std::isfinite(value) ? std::max(0.0, value) / scale : INFINITY;
+    k.tolerance = tol / scale;
+    e.record(family, check, text, info, param, k, query, index);
+}
+
+/// GJK's witnesses and separating axis (separated answers only): pointA on A, pointB on B,
+/// pointA - pointB = -distance * axis, and h_{A-B}(axis) = -distance (the axis separates by the
+/// distance), with the axis tolerance of stress_tolerances.h.
+void checkGjkWitnesses(Engine& e, const std::string& family, const std::string& prefix, bool info, int index,
+                       double param, const WitnessPair& w, const GjkResult& g,
+                       const std::function<std::string()>& query) {
+    if (g.intersect() || !(g.distance > 0)) return;  // intersecting: no axis; the verdict is judged apart
+    Vec3 pointA = g.pointA;
+    pointA.x() = e.tampered(prefix + "_witness", pointA.x());
+    verification::WitnessTolerances t = witnessTolerances(w);
+    t.normal = kAxisFactor * t.offset * (1.0 + 4.0 * w.L / g.distance);
+    const WitnessCheck c =
+        verification::checkWitness(w.a, w.b, pointA, g.pointB, g.separatingAxis, -g.distance, t);
+    witnessCell(e, family, prefix + " pointA on A", "1e-9 L_A + 8uM_A", info, param, c.pointAOff, t.onBodyA, w.La,
+                index, query);
+    witnessCell(e, family, prefix + " pointB on B", "1e-9 L_B + 8uM_B", info, param, c.pointBOff, t.onBodyB, w.Lb,
+                index, query);
+    witnessCell(e, family, prefix + " pA-pB = -d n", "1e-9 L + 8uM", info, param, c.offset, t.offset, w.L, index,
+                query);
+    witnessCell(e, family, prefix + " axis |h(n)+d|", "4 tau (1 + 4 L/d), tau = 1e-9 L + 8uM", info, param,
+                c.normalLength <= 1e-12 ? c.normal : INFINITY, t.normal, w.L, index, query);
+}
+
+/// EPA's witnesses and normal: pointA on A, pointB on B (Penetrating / Touching answers),
+/// pointA - pointB = depth * n, and h_{A-B}(n) = depth (the cell the figures draw; tolerance
+/// `normalTol`, relative to L).
+void checkEpaWitnesses(Engine& e, const std::string& family, int index, double param, const WitnessPair& w,
+                       const EpaResult& r, double normalTol, const std::string& normalText,
+                       const std::function<std::string()>& query) {
+    Vec3 pointA = r.pointA;
+    pointA.x() = e.tampered("epa_witness", pointA.x());
+    verification::WitnessTolerances t = witnessTolerances(w);
+    t.normal = normalTol * w.L;
+    const WitnessCheck c = verification::checkWitness(w.a, w.b, pointA, r.pointB, r.normal, r.depth, t);
+    if (r.status == EpaStatus::Penetrating || r.status == EpaStatus::Touching) {
+        witnessCell(e, family, "epa pointA on A", "1e-9 L_A + 8uM_A", false, param, c.pointAOff, t.onBodyA, w.La,
+                    index, query);
+        witnessCell(e, family, "epa pointB on B", "1e-9 L_B + 8uM_B", false, param, c.pointBOff, t.onBodyB, w.Lb,
+                    index, query);
+        witnessCell(e, family, "epa pA-pB = depth n", "1e-9 L + 8uM", false, param, c.offset, t.offset, w.L, index,
+                    query);
+    }
+    Check n;
+    n.got = static_cast<double>(verification::supportOfDifferenceL(w.a, w.b, r.normal));
+    n.expected = r.depth;
+    n.error = c.normalLength < 1e-12 ? c.normal / w.L : INFINITY;
+    n.tolerance = normalTol;
+    e.record(family, "epa_normal |h(n)-depth|", normalText, false, param, n, query, index);
 }
 
 PolytopeShape polytopeOf(const std::vector<Vec3>& v, bool raw) {
@@ -432,6 +273,8 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
     const double extra = floatRounded ? kFloatU * (maxNorm(va) + maxNorm(vb)) / L : 0.0;
     const std::string ftext = floatRounded ? " + 2^-24 (|a|max+|b|max)" : "";
     const std::string queryA = polytopeJson(algoA), queryB = polytopeJson(algoB);
+    // The witnesses lie on the bodies the algorithms were given (float-rounded ones included).
+    const WitnessPair w = witnessPair(algoA, algoB, L, std::max(maxAbs(algoA), maxAbs(algoB)));
     auto pairQuery = [&](const char* op, const char* method) {
         return [=, &queryA, &queryB] {
             return std::string("{\"op\":\"") + op + "\"" +
@@ -494,6 +337,8 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
         c.iterations = g.iterations;
         c.capHit = g.termination == GjkTermination::MaxIterations;
         e.record(family, check, "1e-12 L + 8uM" + ftext, !sv, param, c, pairQuery("distance", nullptr), index);
+        checkGjkWitnesses(e, family, sv ? "gjk" : "gjk Johnson", !sv, index, param, w, g,
+                          pairQuery("distance", nullptr));
     }
     // Boolean: judged outside the band where touching rounds either way.
     const double margin = (o.inside ? o.depth : o.distance) / L;
@@ -522,17 +367,9 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
     c.iterations = r.iterations;
     c.capHit = r.termination == EpaTermination::MaxIterations || r.termination == EpaTermination::CapacityExceeded;
     e.record(family, "epa_depth", "1e-10 L + 8uM" + ftext, false, param, c, pairQuery("penetration", nullptr), index);
-    // The normal: the support of A - B along n must equal the depth (n attains the minimum of h).
-    Check n;
-    const double h = supportOfDifference(va, vb, r.normal);
-    n.got = h;
-    n.expected = r.depth;
-    n.error = std::isfinite(r.normal.squaredNorm()) && std::abs(r.normal.norm() - 1.0) < 1e-12
-                  ? std::abs(h - r.depth) / L
-                  : INFINITY;
-    n.tolerance = pTol;
-    e.record(family, "epa_normal |h(n)-depth|", "1e-10 L + 8uM" + ftext, false, param, n,
-             pairQuery("penetration", nullptr), index);
+    // Witnesses and normal: the support of A - B along n must equal the depth (n attains the
+    // minimum of h), pointA on A, pointB on B, pointA - pointB = depth n.
+    checkEpaWitnesses(e, family, index, param, w, r, pTol, "1e-10 L + 8uM" + ftext, pairQuery("penetration", nullptr));
 }
 
 void runPoly(Engine& e, const Family& f, int index, PolyCase& c) {
@@ -551,6 +388,7 @@ void runBox(Engine& e, const Family& f, int index, BoxCase& c) {
     // GJK / EPA on the support mappings (not the corner lists): ties on whole faces.
     const MinkowskiOracle* oracle = &o;
     if (!oracle->ok) return;
+    const WitnessPair w = witnessPair(va, vb, L, M);
     {
         const GjkResult g = gjkDistance(c.a, c.b);
         Check k;
@@ -563,6 +401,9 @@ void runBox(Engine& e, const Family& f, int index, BoxCase& c) {
         e.record(
             f.name, "gjk_distance", "1e-12 L + 8uM", false, c.param, k,
             [&] { return "{\"op\":\"distance\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}"; }, index);
+        checkGjkWitnesses(e, f.name, "gjk", false, index, c.param, w, g, [&] {
+            return "{\"op\":\"distance\",\"a\":" + obbJson(c.a) + ",\"b\":" + obbJson(c.b) + "}";
+        });
     }
     const double margin = (o.inside ? o.depth : o.distance) / L;
     const bool gjkHit = e.tampered("gjk_intersect", gjkIntersect(c.a, c.b) ? 1.0 : 0.0) != 0.0;
@@ -610,12 +451,7 @@ void runBox(Engine& e, const Family& f, int index, BoxCase& c) {
     k.iterations = r.iterations;
     k.capHit = r.termination == EpaTermination::MaxIterations || r.termination == EpaTermination::CapacityExceeded;
     e.record(f.name, "epa_depth", "1e-10 L + 8uM", false, c.param, k, query, index);
-    Check n;
-    n.got = supportOfDifference(va, vb, r.normal);
-    n.expected = r.depth;
-    n.error = std::abs(r.normal.norm() - 1.0) < 1e-12 ? std::abs(n.got - r.depth) / L : INFINITY;
-    n.tolerance = k.tolerance;
-    e.record(f.name, "epa_normal |h(n)-depth|", "1e-10 L + 8uM", false, c.param, n, query, index);
+    checkEpaWitnesses(e, f.name, index, c.param, w, r, k.tolerance, "1e-10 L + 8uM", query);
 }
 
 void runTri(Engine& e, const Family& f, int index, TriCase& c) {
@@ -650,12 +486,52 @@ void runTri(Engine& e, const Family& f, int index, TriCase& c) {
     e.record(f.name, "closest_region = exact", "exact", false, c.param, g, query, index);
 }
 
+/// A ray against a polytope: the verdict against the oracle's first contact (judged unless the
+/// ray passes within rounding of the body), and every field of a hit (verification/witness_oracle.h):
+/// point = o + t d, on the surface, no earlier contact, the normal outward and supporting there.
+void runRay(Engine& e, const Family& f, int index, RayCase& c) {
+    const ConvexCastHit h = castRayRoundedHull(c.ray, c.body);
+    const WitnessBody body = WitnessBody::polytope(c.body);
+    const double L = centroidRadius(c.body);
+    const double M = std::max(maxAbs(c.body), c.ray.origin.cwiseAbs().maxCoeff());
+    const double tMax = 4.0 * (L + (c.ray.origin - c.body[0]).norm()) / c.ray.direction.norm();
+    const long double first = body.firstContact(c.ray.origin, c.ray.direction, tMax);
+    auto query = [&] {
+        return "{\"op\":\"raycast\",\"ray\":{\"origin\":" + vec(c.ray.origin) + ",\"direction\":" +
+               vec(c.ray.direction) + "},\"shape\":" + polytopeJson(c.body) + "}";
+    };
+    const bool hit = e.tampered("ray_hit", h.hit ? 1.0 : 0.0) != 0.0;
+    {
+        Check k;
+        k.got = hit;
+        k.expected = first >= 0;
+        k.error = c.judgeVerdict && hit != (first >= 0) ? 1.0 : 0.0;
+        k.tolerance = 0.5;
+        e.record(f.name, "ray hit = oracle", "exact unless within rounding of the body", false, c.param, k, query,
+                 index);
+    }
+    if (!hit || first < 0 || h.inside) return;
+    const double tol = kWitnessTol * L + 8 * kU * M;
+    verification::RayHitTolerances t;
+    t.point = t.surface = t.firstContact = t.normal = tol;
+    Vec3 point = h.point;
+    point.x() = e.tampered("ray_point", point.x());
+    const verification::RayHitCheck r = verification::checkRayHit(body, c.ray.origin, c.ray.direction, h.t, point,
+                                                                   h.normal, t);
+    witnessCell(e, f.name, "ray point = o + t d", "1e-9 L + 8uM", false, c.param, r.offRay, tol, L, index, query);
+    witnessCell(e, f.name, "ray point on surface", "1e-9 L + 8uM", false, c.param, r.offSurface, tol, L, index,
+                query);
+    witnessCell(e, f.name, "ray t = first contact", "1e-9 L + 8uM", false, c.param, r.earlier, tol, L, index, query);
+    witnessCell(e, f.name, "ray normal outward, supporting", "1e-9 L + 8uM", false, c.param,
+                r.normalLength <= 1e-12 ? r.support : INFINITY, tol, L, index, query);
+}
+
 }  // namespace
 
 StressReport runStressSuite(const StressOptions& options) {
     StressReport report;
     Engine engine(options, report);
-    const std::vector<Family> fam = families();
+    const std::vector<Family> fam = stress_cases::stressFamilies();
     for (const Family& f : fam) report.familyParameter.push_back(f.parameter);
     std::vector<int> done(fam.size(), 0);
     const auto start = Clock::now();
@@ -693,6 +569,12 @@ StressReport runStressSuite(const StressOptions& options) {
                         BoxCase c;
                         f.box(rng, c);
                         runBox(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Ray: {
+                        RayCase c;
+                        f.ray(rng, c);
+                        runRay(engine, f, i, c);
                         break;
                     }
                     case Kind::Tri: {

@@ -4,6 +4,9 @@
 //  - gjk_intersect and SAT OBB-OBB = the oracle's boolean (so SAT = GJK), outside a rounding band;
 //  - epa_depth = the oracle's depth, and the EPA normal valid: |h_{A-B}(n) - depth| small, with the
 //    support function h evaluated by brute force over the vertex lists;
+//  - every witness field (verification/witness_oracle.h): GJK's (separated answers) and EPA's
+//    witness points on their bodies (judged against each body's own size), pointA - pointB =
+//    -distance * axis / depth * normal, GJK's axis separating by the distance;
 //  - closest point on a triangle: region = the exact rational (BigInt) Ericson region, distance =
 //    the long double brute force;
 //  - no NaN, no hang: every query's iterations are counted, reaching the cap is a failure.

@@ -27,5 +27,19 @@ constexpr double kClosestTol = 1e-12;
 // Float-rounded input: moving every vertex by at most 2^-24 |x| moves the distance / depth by at
 // most 2^-24 (max |a| + max |b|) (conv is 1-Lipschitz in the Hausdorff distance), plus the above.
 constexpr double kFloatU = 0x1p-24;
+// Witness points (verification/witness_oracle.h): a witness on its body within 1e-9 of that body's
+// own size L_body (+ 8 u M_body: the witness is a world-frame point), and pointA - pointB = s n
+// within 1e-9 L (+ 8 u M). Both witnesses are convex combinations of support points with weights
+// from the final simplex / face (errors of a few ulps, ~1e-15, on well-shaped features, growing as
+// 1 / (feature size / L) on slivers): 1e-9 leaves the same margin as the depth tolerance and still
+// catches a witness on the wrong feature (an error of the feature's size) anywhere above 1e-9 L.
+// A bound to be measured: `cdlab stress` reports the worst error of every witness cell.
+constexpr double kWitnessTol = 1e-9;
+// GJK's separating axis is (pointB - pointA) / distance: witnesses within tau of a closest pair
+// turn it by at most 2 * 2 tau / d, and h_{A-B} is Lipschitz with constant max |A - B| <= d + 4 L,
+// so |h_{A-B}(n) + d| <= 4 tau (1 + 4 L / d) with tau the offset tolerance above. The factor
+// kAxisFactor is that 4; the check is meaningful where d >> tau (every separated case but the
+// near-touching ones, where any axis nearly separates).
+constexpr double kAxisFactor = 4.0;
 
 }  // namespace cdlab::demos::stress_tolerances

@@ -1,0 +1,356 @@
+// The families of `cdlab stress` (stress_families.h): hard inputs drawn from (seed, family, index).
+#include "app/stress/stress_families.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "app/bench/bench_inputs.h"
+#include "app/bench/bench_measure.h"
+
+namespace cdlab::demos::stress_cases {
+
+namespace {
+
+double uniform(std::mt19937_64& rng, double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+double logUniform(std::mt19937_64& rng, double lo, double hi) {
+    return std::pow(10.0, uniform(rng, std::log10(lo), std::log10(hi)));
+}
+
+std::vector<Vec3> scaled(std::vector<Vec3> v, double s, const Vec3& shift = Vec3::Zero()) {
+    for (Vec3& x : v) x = s * x + shift;
+    return v;
+}
+
+Vec3 perpendicular(const Vec3& u) {
+    const Vec3 t = std::abs(u.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+    return u.cross(t).normalized();
+}
+
+int argExtreme(const std::vector<Vec3>& v, const Vec3& d) {
+    int best = 0;
+    for (int i = 1; i < static_cast<int>(v.size()); ++i)
+        if (v[i].dot(d) > v[best].dot(d)) best = i;
+    return best;
+}
+
+/// Places vb so that its extreme vertex along -u sits at `gap` along u from va's extreme vertex
+/// along u: the distance is then exactly `gap` for gap >= 0 (that pair is at distance gap, and
+/// the planes u·x = h_A(u) and u·x = h_A(u) + gap separate). gap == 0 copies the vertex bit for
+/// bit: exact touching.
+void placeAtGap(std::vector<Vec3>& va, std::vector<Vec3>& vb, const Vec3& u, double gap) {
+    const int ia = argExtreme(va, u), ib = argExtreme(vb, -u);
+    const Vec3 shift = va[ia] - vb[ib] + gap * u;
+    for (Vec3& x : vb) x += shift;
+    if (gap == 0.0) vb[ib] = va[ia];
+}
+
+// Polytope pairs: scale, offset, gap, penetration, slivers, parallel edges, duplicates, rotations,
+// float rounding.
+void addPolytopeFamilies(std::vector<Family>& f) {
+    auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
+        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}, {}});
+    };
+    poly("scale 1e-6..1e6", "size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double s = logUniform(rng, 1e-6, 1e6);
+        c.va = scaled(ellipsoidPoints(rng, 8), s);
+        c.vb = scaled(ellipsoidPoints(rng, 8), s, s * uniform(rng, 0.2, 2.6) * randomUnit(rng));
+        c.param = s;
+    });
+    poly("offset 1e3..1e9", "offset / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double o = logUniform(rng, 1e3, 1e9);
+        const Vec3 at = o * randomUnit(rng);
+        c.va = scaled(ellipsoidPoints(rng, 8), 1.0, at);
+        c.vb = scaled(ellipsoidPoints(rng, 8), 1.0, at + uniform(rng, 0.2, 2.6) * randomUnit(rng));
+        c.param = o;
+    });
+    poly("gap 1e-12..1e-3, touching", "|gap| / size", [](std::mt19937_64& rng, PolyCase& c) {
+        c.va = ellipsoidPoints(rng, 12);
+        c.vb = ellipsoidPoints(rng, 12);
+        const Vec3 u = randomUnit(rng);
+        const double g = logUniform(rng, 1e-12, 1e-3);
+        const int mode = std::uniform_int_distribution<int>(0, 7)(rng);
+        // 1 in 8 exactly touching, then half separated, half overlapping by |gap|.
+        const double gap = mode == 0 ? 0.0 : (mode % 2 ? g : -g);
+        placeAtGap(c.va, c.vb, u, gap);
+        c.param = std::abs(gap);
+    });
+    poly("deep penetration", "centre distance / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double d = logUniform(rng, 1e-6, 0.3);
+        c.va = ellipsoidPoints(rng, 16);
+        c.vb = scaled(ellipsoidPoints(rng, 16), 1.0, d * randomUnit(rng));
+        c.param = d;
+    });
+    poly("slivers and needles", "thickness / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double t = logUniform(rng, 1e-9, 1e-2);
+        const bool needle = std::uniform_int_distribution<int>(0, 1)(rng);
+        const Quat qa = randomRotation(rng), qb = randomRotation(rng);
+        const Vec3 radii(1.0, needle ? t : 1.0, t);
+        auto shape = [&](const Quat& q) {
+            std::vector<Vec3> v;
+            for (int i = 0; i < 10; ++i) v.push_back(q * radii.cwiseProduct(randomUnit(rng)));
+            return v;
+        };
+        c.va = shape(qa);
+        c.vb = scaled(shape(qb), 1.0, uniform(rng, 0.0, 1.5) * randomUnit(rng));
+        c.param = t;
+    });
+    poly("nearly parallel edges", "angle (rad)", [](std::mt19937_64& rng, PolyCase& c) {
+        // Two thin wedges whose ridges (edges of length 2) cross at an angle 1e-9..1e-1, the
+        // ridges |gap| apart along n (separated or overlapping).
+        const double angle = logUniform(rng, 1e-9, 1e-1);
+        const double gap = logUniform(rng, 1e-9, 1e-2) * (rng() % 2 ? 1 : -1);
+        const Vec3 e = randomUnit(rng), n = perpendicular(e), m = e.cross(n);
+        const Vec3 e2 = Eigen::AngleAxisd(angle, n) * e, m2 = e2.cross(n);
+        const Vec3 at = uniform(rng, -0.5, 0.5) * e;
+        c.va = {-e, e, 0.2 * (-n + m), 0.2 * (-n - m)};
+        c.vb = {at - e2 + gap * n, at + e2 + gap * n, at + 0.2 * (n + m2) + gap * n, at + 0.2 * (n - m2) + gap * n};
+        c.param = angle;
+    });
+    poly("duplicate points", "copies", [](std::mt19937_64& rng, PolyCase& c) {
+        // Raw vertex lists (no hull): every vertex 1..3 times, some copies 1 ulp off.
+        auto dup = [&](std::vector<Vec3> v) {
+            std::vector<Vec3> out;
+            for (const Vec3& x : v) {
+                const int copies = 1 + static_cast<int>(rng() % 3);
+                for (int k = 0; k < copies; ++k) {
+                    Vec3 y = x;
+                    if (k > 0 && rng() % 2) y.x() = std::nextafter(y.x(), INFINITY);
+                    out.push_back(y);
+                }
+            }
+            std::shuffle(out.begin(), out.end(), rng);
+            return out;
+        };
+        c.va = dup(ellipsoidPoints(rng, 6));
+        c.vb = dup(scaled(ellipsoidPoints(rng, 6), 1.0, uniform(rng, 0.0, 2.4) * randomUnit(rng)));
+        c.raw = true;
+        c.param = static_cast<double>(c.va.size() + c.vb.size()) / 12.0;
+    });
+    poly("random rotations, 64 vertices", "centre distance / size", [](std::mt19937_64& rng, PolyCase& c) {
+        const double d = uniform(rng, 0.05, 2.5);
+        c.va = ellipsoidPoints(rng, 64);  // ellipsoidPoints rotates each shape at random
+        c.vb = scaled(ellipsoidPoints(rng, 64), 1.0, d * randomUnit(rng));
+        c.param = d;
+    });
+    poly("float-rounded input", "offset / size", [](std::mt19937_64& rng, PolyCase& c) {
+        // No float variant of GJK / EPA exists in core (double only): this measures what storing
+        // double geometry in float does to the answer, against the float rounding bound.
+        const double s = logUniform(rng, 1e-3, 1e3), o = logUniform(rng, 1e-2, 1e6) * s;
+        const Vec3 at = o * randomUnit(rng);
+        c.va = scaled(ellipsoidPoints(rng, 8), s, at);
+        c.vb = scaled(ellipsoidPoints(rng, 8), s, at + s * uniform(rng, 0.2, 2.6) * randomUnit(rng));
+        c.floatRounded = true;
+        c.param = o / s;
+    });
+}
+
+// Box pairs: axis-aligned with support ties, and random rotations.
+void addBoxFamilies(std::vector<Family>& f) {
+    f.push_back({"axis-aligned boxes (support ties)",
+                 "|gap| / size",
+                 Kind::Box,
+                 {},
+                 [](std::mt19937_64& rng, BoxCase& c) {
+                     // Face / edge / corner contact of axis-aligned boxes (all supports tie on whole faces),
+                     // coplanar side faces where the extents match, gaps 0 or +-1e-12..1e-3.
+                     const double s = logUniform(rng, 1e-3, 1e3);
+                     const double ext[3] = {0.5, 1.0, 2.0};
+                     auto pick = [&] { return s * ext[rng() % 3]; };
+                     c.a.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     c.b.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     const int mode = std::uniform_int_distribution<int>(0, 5)(rng);
+                     const double g = mode == 0 ? 0.0 : logUniform(rng, 1e-12, 1e-3) * (mode % 2 ? 1 : -1);
+                     Vec3 centre;
+                     const int contactAxes = 1 + static_cast<int>(rng() % 3);  // face, edge, corner
+                     for (int i = 0; i < 3; ++i) {
+                         const double sign = rng() % 2 ? 1.0 : -1.0;
+                         const double touch = c.a.shape.halfExtents[i] + c.b.shape.halfExtents[i];
+                         centre[i] = i < contactAxes ? sign * (touch + g * s) : (rng() % 2 ? 0.0 : sign * 0.25 * touch);
+                     }
+                     c.b.transform.position = centre;
+                     c.param = std::abs(g);
+                 },
+                 {},
+                 {}});
+    f.push_back({"OBB random rotations",
+                 "centre distance / size",
+                 Kind::Box,
+                 {},
+                 [](std::mt19937_64& rng, BoxCase& c) {
+                     const double s = logUniform(rng, 1e-3, 1e3);
+                     c.a.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
+                     c.b.shape.halfExtents = s * Vec3(uniform(rng, 0.1, 1), uniform(rng, 0.1, 1), uniform(rng, 0.1, 1));
+                     c.a.transform.rotation = randomRotation(rng);
+                     c.b.transform.rotation = randomRotation(rng);
+                     const double d = uniform(rng, 0.0, 2.5);
+                     c.b.transform.position = s * d * randomUnit(rng);
+                     c.param = d;
+                 },
+                 {},
+                 {}});
+}
+
+// Point vs triangle: near-boundary points, slivers and needles, far offsets.
+void addTriangleFamilies(std::vector<Family>& f) {
+    auto tri = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, TriCase&)> g) {
+        f.push_back({std::move(name), std::move(param), Kind::Tri, {}, {}, std::move(g), {}});
+    };
+    tri("triangle: near-boundary points", "distance off the feature / size", [](std::mt19937_64& rng, TriCase& c) {
+        c.t = {randomUnit(rng), randomUnit(rng), randomUnit(rng)};
+        const Vec3* v[3] = {&c.t.a, &c.t.b, &c.t.c};
+        const int k = static_cast<int>(rng() % 3);
+        const double s = rng() % 3 == 0 ? 0.0 : uniform(rng, 0.0, 1.0);  // 1 in 3 at a vertex
+        const Vec3 onEdge = *v[k] + s * (*v[(k + 1) % 3] - *v[k]);
+        const double off = logUniform(rng, 1e-15, 1e-3);
+        c.p = onEdge + off * randomUnit(rng);
+        c.param = off;
+    });
+    tri("triangle: slivers and needles", "thickness / size", [](std::mt19937_64& rng, TriCase& c) {
+        const double t = logUniform(rng, 1e-12, 1e-2);
+        const Vec3 a = randomUnit(rng), b = -a, u = perpendicular(a);
+        c.t = rng() % 2 ? Triangle{a, b, uniform(rng, -0.9, 0.9) * a + t * u}         // sliver: c near ab
+                        : Triangle{a, a + t * u, a + t * perpendicular(u.cross(a))};  // needle-ish: short ac, ab
+        c.p = uniform(rng, 0.0, 1.5) * randomUnit(rng);
+        c.param = t;
+    });
+    tri("triangle: offsets 1e3..1e9", "offset / size", [](std::mt19937_64& rng, TriCase& c) {
+        const double o = logUniform(rng, 1e3, 1e9);
+        const Vec3 at = o * randomUnit(rng);
+        c.t = {at + randomUnit(rng), at + randomUnit(rng), at + randomUnit(rng)};
+        c.p = at + uniform(rng, 0.0, 1.5) * randomUnit(rng);
+        c.param = o;
+    });
+}
+
+// Issue 41's families for the witness oracle: a tiny body against a huge one (witnesses judged
+// against each body's own size), and boxes whose Minkowski difference has coplanar faces (tied
+// least-overlap directions, face-face distances).
+void addWitnessFamilies(std::vector<Family>& f) {
+    auto poly = [&](std::string name, std::string param, std::function<void(std::mt19937_64&, PolyCase&)> g) {
+        f.push_back({std::move(name), std::move(param), Kind::Poly, std::move(g), {}, {}, {}});
+    };
+    poly("tiny against huge (1e-6 vs 1e3)", "|gap| / tiny size", [](std::mt19937_64& rng, PolyCase& c) {
+        // A 1e-6 body against a 1e3 one, at a vertex of the huge body (placeAtGap along a random
+        // direction) or on the middle of a face of a huge box, touching, apart or overlapping by
+        // up to the tiny body's size; which is A is drawn. Witnesses on the tiny body are judged
+        // against its own size (stress_tolerances.h), depths and distances against the pair's.
+        const double big = 1e3 * uniform(rng, 0.5, 2.0), tiny = 1e-6 * uniform(rng, 0.5, 2.0);
+        std::vector<Vec3> small = scaled(ellipsoidPoints(rng, 8), tiny);
+        const int mode = std::uniform_int_distribution<int>(0, 3)(rng);  // 0 touching, 1 apart, 2-3 overlapping
+        const double g = tiny * logUniform(rng, 1e-3, 1.0);
+        const double gap = mode == 0 ? 0.0 : (mode == 1 ? g : -g);
+        std::vector<Vec3> huge;
+        if (rng() % 2) {
+            huge = scaled(ellipsoidPoints(rng, 12), big);
+            placeAtGap(huge, small, randomUnit(rng), gap);
+        } else {
+            for (int i = 0; i < 8; ++i)
+                huge.push_back(big * Vec3(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0));
+            const Vec3 at(uniform(rng, -0.5, 0.5) * big, uniform(rng, -0.5, 0.5) * big, big + gap);
+            const Vec3 low = small[argExtreme(small, -Vec3::UnitZ())];
+            for (Vec3& x : small) x += at - low;
+            const Quat q = randomRotation(rng);  // the whole pair, rounded
+            for (Vec3& x : small) x = q * x;
+            for (Vec3& x : huge) x = q * x;
+        }
+        const bool tinyFirst = rng() % 2;
+        c.va = tinyFirst ? small : huge;
+        c.vb = tinyFirst ? huge : small;
+        c.param = std::abs(gap) / tiny;
+    });
+    f.push_back({"coplanar faces of A - B (shared orientation)",
+                 "depth / size",
+                 Kind::Box,
+                 {},
+                 [](std::mt19937_64& rng, BoxCase& c) {
+                     // Two boxes with one orientation (identity 1 in 3, else a random rotation shared
+                     // by both), so A - B is a box whose faces are coplanar with faces of A and B and
+                     // whose support ties on whole faces: overlapping by the same depth d along 1..3
+                     // axes (tied least-overlap directions, any of them right) and more along the
+                     // others; 1 in 3 apart by d along one axis (face-face distance, coplanar sides).
+                     const double s = logUniform(rng, 1e-3, 1e3);
+                     const double ext[3] = {0.5, 1.0, 2.0};
+                     auto pick = [&] { return s * ext[rng() % 3]; };
+                     c.a.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     c.b.shape.halfExtents = Vec3(pick(), pick(), pick());
+                     const Quat q = rng() % 3 == 0 ? Quat::Identity() : randomRotation(rng);
+                     c.a.transform.rotation = q;
+                     c.b.transform.rotation = q;
+                     c.a.transform.position = s * uniform(rng, 0.0, 3.0) * randomUnit(rng);
+                     const double d = s * logUniform(rng, 1e-6, 0.5);
+                     const int tied = 1 + static_cast<int>(rng() % 3);
+                     const bool apart = rng() % 3 == 0;
+                     int axis[3] = {0, 1, 2};
+                     std::shuffle(axis, axis + 3, rng);
+                     Vec3 local;
+                     for (int k = 0; k < 3; ++k) {
+                         const int i = axis[k];
+                         const double sign = rng() % 2 ? 1.0 : -1.0;
+                         const double touch = c.a.shape.halfExtents[i] + c.b.shape.halfExtents[i];
+                         // overlap along i (<= s <= touch, so |centre_i| = touch - overlap)
+                         double overlap = k < tied ? d : d + s * uniform(rng, 0.1, 0.5);
+                         if (apart && k == 0) overlap = -d;
+                         local[i] = sign * (touch - overlap);
+                     }
+                     c.b.transform.position = c.a.transform.position + q * local;
+                     c.param = d / s;
+                 },
+                 {},
+                 {}});
+}
+
+// Rays in the plane of a face of an axis-aligned box (exactly: the plane's coordinate is the
+// origin's and the direction has no component across it), so the ray grazes the face and enters
+// through the edge where it crosses the side face; or tilted by 1e-12..1e-3 rad into the box's slab
+// (a hit on the side face just below the edge) or away from it (a miss by the tilt times the
+// distance, judged when that is above the rounding band).
+void addRayFamilies(std::vector<Family>& f) {
+    Family ray{"rays in a face plane", "tilt (rad; 0 in the plane)", Kind::Ray, {}, {}, {}, {}};
+    ray.ray = [](std::mt19937_64& rng, RayCase& c) {
+        const double s = logUniform(rng, 1e-3, 1e3);
+        const Vec3 half = s * Vec3(uniform(rng, 0.2, 1.0), uniform(rng, 0.2, 1.0), uniform(rng, 0.2, 1.0));
+        const Vec3 centre = s * uniform(rng, 0.0, 2.0) * randomUnit(rng);
+        const int axis = static_cast<int>(rng() % 3);  // the face's axis, +/- side
+        const double side = rng() % 2 ? 1.0 : -1.0;
+        for (int i = 0; i < 8; ++i)
+            c.body.push_back(centre + Vec3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
+                                           i & 4 ? half.z() : -half.z()));
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        // origin in the face's plane, outside the face; target inside the face (or on its edge)
+        Vec3 o = centre, target = centre;
+        o[axis] = target[axis] = centre[axis] + side * half[axis];  // the corner's coordinate exactly
+        const double angle = uniform(rng, 0.0, 6.283185307179586);
+        o[u] += 2.0 * half.norm() * std::cos(angle);
+        o[v] += 2.0 * half.norm() * std::sin(angle);
+        const bool onEdge = rng() % 4 == 0;  // the target on the face's edge: a graze of a graze
+        target[u] += (onEdge ? 1.0 : uniform(rng, -1.0, 1.0)) * half[u];
+        target[v] += uniform(rng, -1.0, 1.0) * half[v];
+        Vec3 d = target - o;  // d[axis] == 0 exactly
+        const int mode = static_cast<int>(rng() % 3);  // 0 in the plane, 1 into the slab, 2 away
+        const double tilt = mode == 0 ? 0.0 : logUniform(rng, 1e-12, 1e-3);
+        d[axis] = (mode == 1 ? -side : side) * tilt * d.norm();
+        c.ray = Ray{o, d};
+        // A miss by tilt * |target - o| (~2 |half|): judged above the rounding band. A ray to an
+        // edge point passes within the rounding of d = target - o of the edge: either verdict.
+        c.judgeVerdict = !onEdge && (mode != 2 || tilt > 1e-10);
+        c.param = tilt;
+    };
+    f.push_back(std::move(ray));
+}
+
+}  // namespace
+
+std::vector<Family> stressFamilies() {
+    std::vector<Family> f;
+    addPolytopeFamilies(f);
+    addBoxFamilies(f);
+    addWitnessFamilies(f);
+    addRayFamilies(f);
+    addTriangleFamilies(f);
+    return f;
+}
+
+}  // namespace cdlab::demos::stress_cases

@@ -1,0 +1,62 @@
+// The cases of `cdlab stress` (stress.h): a family draws case i from (seed, family, i) only, so a
+// failing case is replayable on its own. Polytope pairs (vertex lists), box pairs (support
+// mappings), point-triangle pairs; stress.cpp runs every check of its kind on each case.
+#pragma once
+
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/base/primitives.h"
+#include "core/base/types.h"
+#include "core/geometry/shapes.h"
+
+namespace cdlab::demos::stress_cases {
+
+// ---- Cases ---------------------------------------------------------------------------------------
+
+struct PolyCase {
+    std::vector<Vec3> va, vb;   // world frame
+    bool raw = false;           // PolytopeShape over the raw list (duplicates kept), no hull
+    bool floatRounded = false;  // the algorithms see the vertices rounded to float
+    double param = 0;
+};
+
+struct BoxCase {
+    Transformed<BoxShape> a, b;
+    double param = 0;
+};
+
+struct TriCase {
+    Vec3 p = Vec3::Zero();
+    Triangle t;
+    double param = 0;
+};
+
+/// A ray o + t d, t >= 0, against the convex hull of `body` (world frame).
+struct RayCase {
+    std::vector<Vec3> body;
+    Ray ray{Vec3::Zero(), Vec3::UnitX()};
+    bool judgeVerdict = true;  // false: the ray passes within rounding of the body (either verdict)
+    double param = 0;
+};
+
+enum class Kind { Poly, Box, Tri, Ray };
+
+struct Family {
+    std::string name, parameter;
+    Kind kind;
+    std::function<void(std::mt19937_64&, PolyCase&)> poly;
+    std::function<void(std::mt19937_64&, BoxCase&)> box;
+    std::function<void(std::mt19937_64&, TriCase&)> tri;
+    std::function<void(std::mt19937_64&, RayCase&)> ray;
+};
+
+/// Every family, in report order: polytope pairs (scale, offset, gap, penetration, slivers,
+/// parallel edges, duplicates, rotations, float rounding), box pairs (axis-aligned, rotated), the
+/// witness oracle's (tiny against huge, coplanar faces of A - B, rays in a face plane), point vs
+/// triangle.
+std::vector<Family> stressFamilies();
+
+}  // namespace cdlab::demos::stress_cases
