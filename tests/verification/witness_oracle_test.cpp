@@ -54,7 +54,7 @@ Vec3 rotatedZ(const Vec3& v, double angle) { return Eigen::AngleAxisd(angle, Vec
 }  // namespace
 
 TEST_SUITE("witness oracle") {
-    TEST_CASE("overlapping boxes: the right answer passes; a moved witness and a rotated normal are flagged") {
+    TEST_CASE("overlapping boxes: the right answer passes, and a moved witness and a rotated normal are flagged") {
         // A = [-1,1]^3, B = [0.5,2.5] x [-1,1]^2: depth 0.5 along +x (least overlap: y and z give 2).
         const WitnessBody a = WitnessBody::polytope(box(Vec3::Zero(), Vec3(1, 1, 1)));
         const WitnessBody b = WitnessBody::polytope(box(Vec3(1.5, 0, 0), Vec3(1, 1, 1)));
@@ -182,7 +182,7 @@ TEST_SUITE("witness oracle") {
         CHECK(checkWitness(a, b, pA, pA - 0.5 * nr, nr, 0.5, tight(tol)).failed == WitnessCheck::Failed::Normal);
     }
 
-    TEST_CASE("ray hits: the first contact passes; a later point, the exit, a wrong normal are flagged") {
+    TEST_CASE("ray hits: the first contact passes, and a later point, the exit, a wrong normal are flagged") {
         const WitnessBody b = WitnessBody::polytope(box(Vec3::Zero(), Vec3(1, 1, 1)));
         const Vec3 o(-3, 0, 0), d(1, 0, 0);
         CHECK(double(b.firstContact(o, d, 10)) == doctest::Approx(2.0));
