@@ -265,13 +265,15 @@ std::vector<Vec3> toFloat(std::vector<Vec3> v) {
 /// GJK distance (SV, Johnson), GJK intersect, EPA depth and normal of two vertex sets.
 void checkPair(Engine& e, const std::string& family, int index, const std::vector<Vec3>& va,
                const std::vector<Vec3>& vb, const PolytopeShape& a, const PolytopeShape& b,
-               const std::vector<Vec3>& algoA, const std::vector<Vec3>& algoB, bool floatRounded, double param) {
+               const std::vector<Vec3>& algoA, const std::vector<Vec3>& algoB, bool floatRounded, double oracleSlack,
+               double param) {
     const MinkowskiOracle o = minkowskiOracle(va, vb);
     const double L = std::max(centroidRadius(va), centroidRadius(vb));
     const double M = std::max(maxAbs(va), maxAbs(vb));
     // Float-rounded inputs: the answers may move by the rounding of the vertices (file comment).
-    const double extra = floatRounded ? kFloatU * (maxNorm(va) + maxNorm(vb)) / L : 0.0;
-    const std::string ftext = floatRounded ? " + 2^-24 (|a|max+|b|max)" : "";
+    const double extra = (floatRounded ? kFloatU * (maxNorm(va) + maxNorm(vb)) / L : 0.0) + oracleSlack;
+    const std::string ftext = std::string(floatRounded ? " + 2^-24 (|a|max+|b|max)" : "") +
+                              (oracleSlack > 0 ? " + the hull oracle's 1e-10 L" : "");
     const std::string queryA = polytopeJson(algoA), queryB = polytopeJson(algoB);
     // The witnesses lie on the bodies the algorithms were given (float-rounded ones included).
     const WitnessPair w = witnessPair(algoA, algoB, L, std::max(maxAbs(algoA), maxAbs(algoB)));
@@ -376,7 +378,7 @@ void runPoly(Engine& e, const Family& f, int index, PolyCase& c) {
     const std::vector<Vec3> algoA = c.floatRounded ? toFloat(c.va) : c.va;
     const std::vector<Vec3> algoB = c.floatRounded ? toFloat(c.vb) : c.vb;
     const PolytopeShape a = polytopeOf(algoA, c.raw), b = polytopeOf(algoB, c.raw);
-    checkPair(e, f.name, index, c.va, c.vb, a, b, algoA, algoB, c.floatRounded, c.param);
+    checkPair(e, f.name, index, c.va, c.vb, a, b, algoA, algoB, c.floatRounded, c.oracleSlack, c.param);
     // V-Clip slot: when core/feature_walk/vclip.h lands, add "vclip_distance" = the same oracle here.
 }
 

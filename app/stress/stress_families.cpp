@@ -7,6 +7,7 @@
 
 #include "app/bench/bench_inputs.h"
 #include "app/bench/bench_measure.h"
+#include "app/stress/stress_tolerances.h"
 
 namespace cdlab::demos::stress_cases {
 
@@ -260,6 +261,7 @@ void addWitnessFamilies(std::vector<Family>& f) {
         c.va = tinyFirst ? small : huge;
         c.vb = tinyFirst ? huge : small;
         c.param = std::abs(gap) / tiny;
+        c.oracleSlack = stress_tolerances::kHullOracleSlack;
     });
     f.push_back({"coplanar faces of A - B (shared orientation)",
                  "depth / size",

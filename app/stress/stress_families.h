@@ -20,6 +20,11 @@ struct PolyCase {
     std::vector<Vec3> va, vb;   // world frame
     bool raw = false;           // PolytopeShape over the raw list (duplicates kept), no hull
     bool floatRounded = false;  // the algorithms see the vertices rounded to float
+    /// The judge's own error, relative to the pair's size L, added to the verdict, distance and
+    /// depth tolerances: the hull of the rounded differences a_i − b_j merges features below its
+    /// tolerance (~4096 ulps of the differences' magnitude), so a 1e-6 body beside a 1e3 one is
+    /// resolved only to ~1e-10 L (its "hull oracle = brute force" row measures it).
+    double oracleSlack = 0;
     double param = 0;
 };
 
