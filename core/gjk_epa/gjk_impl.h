@@ -50,6 +50,18 @@ private:
 /// progress can leave |v| far above the distance.
 inline constexpr double kGjkCertifiedGap = 1e-9;
 
+/// The most an edge simplex's accurate normal may turn GJK's axis -v / |v| (radians) and replace it
+/// (gjkFinish): v's own direction errs by ~u |w| / |v|; more than this is not rounding.
+inline constexpr double kGjkEdgeAxisTurn = 1e-9;
+
+/// A support point within this many ulps of the extent (plus kGjkEdgeAxisTurn times its offset from
+/// the edge) of the edge's plane lies in that plane: the edge and it span a face of A − B (gjkFinish).
+inline constexpr double kGjkFacePlaneUlps = 16.0;
+
+/// The tilt (radians) of gjkFinish's probes for a face through a terminal edge: far above rounding,
+/// far below the angle between two faces of a box or a mesh.
+inline constexpr double kGjkFaceProbe = 0x1p-20;
+
 /// True when a separated answer may be off by more than rounding of L: the terminal triangle is
 /// a sliver (isSliver: two nearly parallel edges, normal error ~u / angle) or GJK stopped without
 /// certifying the distance (lower bound below (1 − kGjkCertifiedGap) |v|: duplicate support or no
@@ -293,13 +305,60 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
     r.separatingAxis = -v / r.distance;
     if (s.count == 3) {
         // Face region: the triangle normal is a better axis than v, whose direction carries
-        // an error of ~eps |w| / |v| when the distance is small against the shapes' size.
-        Vec3 n = (s.vertex[1].w - s.vertex[0].w).cross(s.vertex[2].w - s.vertex[0].w);
+        // an error of ~eps |w| / |v| when the distance is small against the shapes' size. The
+        // normal from accurateCross (the exact cross product rounded once): points sharing a
+        // coordinate exactly (a face of a box axis-aligned in the input) give that axis exactly.
+        Vec3 n = accurateCross(s.vertex[0].w, s.vertex[1].w, s.vertex[2].w);
         const double len = n.norm();
         if (len > 0.0) {
             n /= len;
             if (n.dot(v) < 0.0) n = -n;
             if (n.dot(v) > 0.5 * r.distance) r.separatingAxis = -n;  // sanity: same side
+        }
+    } else if (s.count == 2 && s.lambda[0] > 0.0 && s.lambda[1] > 0.0) {
+        // Edge region: -v is w0 less its component along e = w1 - w0, i.e. ((w0 x e) x e) / (|e|² |v|),
+        // with w0 x e from accurateCross (exact, rounded once): when w0 and w1 share a coordinate
+        // exactly (a box's face diagonal: a sphere centre over it), the axis has that coordinate
+        // exactly 0 — -v / |v| carried the rounding of the weights there (1e-14, issue 41). Kept only
+        // within kGjkEdgeAxisTurn of -v / |v| (rounding; anything more is not this edge's normal).
+        const Vec3 &w0 = s.vertex[0].w, &w1 = s.vertex[1].w;
+        const Vec3 e = w1 - w0;
+        Vec3 n = accurateCross(w0, w1, Vec3::Zero()).cross(e);  // (w0 x e) x e ∝ -v
+        const double len = n.norm();
+        if (len > 0.0 && std::isfinite(len)) {
+            n /= len;
+            if ((n - r.separatingAxis).squaredNorm() <= kGjkEdgeAxisTurn * kGjkEdgeAxisTurn) {
+                r.separatingAxis = n;
+                // The edge may lie in a face of A − B that holds the origin's projection up to
+                // rounding (a sphere centre over a box face's diagonal: GJK's triangle lost its third
+                // point to the weights' rounding, then stopped on a duplicate support). The supports
+                // along n tilted by kGjkFaceProbe to either side of the edge (t = n x e) reach that
+                // face's other points, on the edge's plane up to rounding (along n itself the tie with
+                // the edge's ends is decided by rounding); the face's accurate normal is then the axis:
+                // exact for a face axis-aligned in the input.
+                const Vec3 t = n.cross(e).normalized();
+                for (const double side : {1.0, -1.0}) {
+                    GjkVertex third;
+                    gjkSupport(shapeA, shapeB, Vec3((n + side * kGjkFaceProbe * t).normalized()), third);
+                    const Vec3& w2 = third.w;
+                    const double extent = std::max({w0.cwiseAbs().maxCoeff(), w1.cwiseAbs().maxCoeff(),
+                                                    w2.cwiseAbs().maxCoeff()});
+                    // On the edge's plane: up to rounding and the turn allowed (n itself is the
+                    // edge's normal, off the face's by the origin's offset from the edge's line).
+                    const double offPlane = std::abs(n.dot(w2 - w0));
+                    if (!w2.allFinite() || w2 == w0 || w2 == w1 ||
+                        !(offPlane <= kGjkEdgeAxisTurn * (w2 - w0).norm() + ulps(kGjkFacePlaneUlps, extent)))
+                        continue;
+                    Vec3 f = accurateCross(w0, w1, w2);
+                    const double flen = f.norm();
+                    if (!(flen > 0.0) || !std::isfinite(flen)) continue;
+                    f /= flen;
+                    if (f.dot(n) < 0.0) f = -f;
+                    if ((f - n).squaredNorm() > kGjkEdgeAxisTurn * kGjkEdgeAxisTurn) continue;
+                    r.separatingAxis = f;
+                    break;
+                }
+            }
         }
     }
     if (options.refineEdgePairs && s.count >= 2) {
