@@ -63,7 +63,7 @@ Json impactTraceJson(const ImpactQueryTrace& t) {
         }
         case ImpactQueryTrace::Algorithm::RayCast: break;
     }
-    return castTraceJson(t.cast, 1.0, std::ldexp(1.0, t.lengthExponent), t.pairedWith);
+    return castTraceJson(t.cast, std::ldexp(1.0, t.tExponent), std::ldexp(1.0, t.lengthExponent), t.pairedWith);
 }
 
 Json answerRaycast(ObjectReader& r) {

@@ -386,6 +386,27 @@ ConvexCastHit castRayRoundedHull(const Ray& ray, std::span<const Vec3> points, d
     // 3. A graze below rounding, or a segment / point core: the verdict's closest point on the ray.
     const double dd = ray.direction.squaredNorm();
     double t = std::clamp(ray.direction.dot(verdict.pointA - ray.origin) / dd, window.first, tEnd);
+    // A polytope core (radius 0, a face or solid core): the piece tests are exact, so no piece met
+    // means the ray never goes in, only comes within the touch tolerance, and it may do so over a whole
+    // stretch: a ray sliding along a face within rounding. The verdict's common point is any point of
+    // that stretch, not its start (t = 0.494 for a first touch at 0.4327;
+    // tests/core/cast/time_of_impact_scale_test.cpp). The t within reach are an interval (the distance
+    // is convex along the ray): bisect down to its start, between window.first and a t within reach.
+    // (Rounded cores keep the verdict's point: their quadratic tests can miss a real crossing by
+    // rounding, where the verdict's point is a good one and reach would move it early.)
+    if (radius == 0 && core.dimension >= 2 && t > window.first) {
+        const auto within = [&](double s) { return gjkDistance(PolytopeShape({ray.at(s)}), shape).distance <= reach; };
+        if (within(t)) {
+            double lo = window.first, hi = t;
+            if (within(lo)) hi = lo;
+            for (int i = 0; i < 1100; ++i) {
+                const double mid = lo + 0.5 * (hi - lo);
+                if (!(mid > lo && mid < hi)) break;
+                (within(mid) ? hi : lo) = mid;
+            }
+            t = hi;
+        }
+    }
     if (core.dimension == 1 && radius == 0) {
         // A ray along the segment meets it first at its nearer end, not where GJK's common point is.
         const Vec3 a = points[core.edges[0][0]], b = points[core.edges[0][1]];

@@ -36,7 +36,7 @@ TimeOfImpactResult translationalTimeOfImpact(std::span<const Vec3> pointsA, doub
         return out;
     }
 
-    // The cast of the origin along motionA − motionB against B − A, up to t = 1.
+    // The cast of the origin along motionA − motionB against B − A, up to t = maxT.
     const Vec3 motion = motionA - motionB;
     if (motion.isZero(0.0)) return out;
     const std::size_t nB = pointsB.size();
@@ -45,7 +45,7 @@ TimeOfImpactResult translationalTimeOfImpact(std::span<const Vec3> pointsA, doub
     for (const Vec3& a : pointsA)
         for (const Vec3& b : pointsB) difference.push_back(b - a);
     ConvexCastOptions cast;
-    cast.maxT = 1.0;
+    cast.maxT = options.maxT;
     cast.touchTolerance = options.touchTolerance;
     const ConvexCastHit h = castRayRoundedHull(Ray{Vec3::Zero(), motion}, difference, radii, cast, trace);
     if (!h.hit) return out;

@@ -21,6 +21,9 @@ namespace cdlab {
 struct TimeOfImpactOptions {
     /// Distances at or below this count as touching (the ray cast's option, and the t = 0 test).
     double touchTolerance = 0.0;
+    /// The end of the time interval [0, maxT] (1 for the motions as given; a caller that scales the
+    /// motions down by 2^j to keep them next to the shapes' size casts up to 2^j).
+    double maxT = 1.0;
 };
 
 struct TimeOfImpactResult {
@@ -32,7 +35,7 @@ struct TimeOfImpactResult {
     Vec3 pointB = Vec3::Zero();
 };
 
-/// First contact in [0, 1]; see above. The Minkowski difference has |PA|·|PB| points: callers
+/// First contact in [0, maxT] (maxT = 1 by default); see above. The Minkowski difference has |PA|·|PB| points: callers
 /// reduce PA and PB to their hull vertices first when they may be large.
 TimeOfImpactResult translationalTimeOfImpact(std::span<const Vec3> pointsA, double radiusA, const Vec3& motionA,
                                              std::span<const Vec3> pointsB, double radiusB, const Vec3& motionB,

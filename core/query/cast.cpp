@@ -108,8 +108,8 @@ std::vector<int> hullVertexIndices(const QueryShape& s) {
     return kept;
 }
 
-void boundedImpact(const QueryShape& a, const Vec3& ma, const QueryShape& b, const Vec3& mb, const ImpactQueryOptions& o,
-                   ImpactQueryResult& out, ImpactQueryTrace* trace) {
+void boundedImpact(const QueryShape& a, const Vec3& ma, const QueryShape& b, const Vec3& mb, double maxT,
+                   const ImpactQueryOptions& o, ImpactQueryResult& out, ImpactQueryTrace* trace) {
     const std::vector<int> ia = hullVertexIndices(a), ib = hullVertexIndices(b);
     out.hullA = ia.size();
     out.hullB = ib.size();
@@ -122,6 +122,7 @@ void boundedImpact(const QueryShape& a, const Vec3& ma, const QueryShape& b, con
     for (int j : ib) pb.push_back(b.vertices[j]);
     TimeOfImpactOptions options;
     options.touchTolerance = touchTolerance(a, b);
+    options.maxT = maxT;
     out.result = translationalTimeOfImpact(pa, a.radius, ma, pb, b.radius, mb, options, trace ? &trace->cast : nullptr);
     if (trace) {
         trace->algorithm = ImpactQueryTrace::Algorithm::RayCast;
@@ -258,11 +259,20 @@ RayCastQueryResult rayCastQuery(const Vec3& origin, const Vec3& direction, Query
 
 ImpactQueryResult timeOfImpactQuery(QueryShape a, const Vec3& ma, QueryShape b, const Vec3& mb,
                                     const ImpactQueryOptions& options, ImpactQueryTrace* trace) {
-    // One power of two for the shapes and the motions: t is unchanged by it.
-    const int k = std::min(normalisingExponent(a, b), exponentOf(std::max(ma.cwiseAbs().maxCoeff(), mb.cwiseAbs().maxCoeff())));
+    // Exact powers of two: the shapes by 2^ks (size ~1), the motions by 2^km with km = min(ks, the
+    // motions' own exponent), so neither the shapes nor the motions leave the range where their
+    // digits are kept. A motion far larger than the shapes is scaled to ~1 and the shapes are not
+    // shrunk along with it (they were, to ~1e-81 at |motion| / size = 1e81, and the cast's products
+    // lost them: wrong touching points, then t = 0, then a false initial overlap;
+    // tests/core/cast/time_of_impact_scale_test.cpp). The scaled problem's t' = 2^(ks − km) t, cast
+    // up to 2^(ks − km); ks = km (the motions no larger than the shapes) is the former scaling.
+    const int ks = normalisingExponent(a, b);
+    const int km = std::min(ks, exponentOf(std::max(ma.cwiseAbs().maxCoeff(), mb.cwiseAbs().maxCoeff())));
+    const bool bounded = a.kind != Kind::Plane && b.kind != Kind::Plane && !a.isCurved() && !b.isCurved();
+    const int k = bounded ? ks : km;  // planes and curved shapes: one power of two for all (t unchanged)
     scaleShape(a, k);
     scaleShape(b, k);
-    const Vec3 sma = scaled(ma, k), smb = scaled(mb, k);
+    const Vec3 sma = scaled(ma, km), smb = scaled(mb, km);
     if (trace) trace->lengthExponent = -k;
     ImpactQueryResult out;
     if (a.kind == Kind::Plane) out.result = planeImpact(a, sma, b, smb, trace);
@@ -272,7 +282,9 @@ ImpactQueryResult timeOfImpactQuery(QueryShape a, const Vec3& ma, QueryShape b, 
     } else if (a.isCurved() || b.isCurved()) {
         curvedImpact(a, sma, b, smb, std::ldexp(1.0, -k), out, trace);
     } else {
-        boundedImpact(a, sma, b, smb, options, out, trace);
+        if (trace) trace->tExponent = km - ks;
+        boundedImpact(a, sma, b, smb, std::ldexp(1.0, ks - km), options, out, trace);
+        out.result.t = std::ldexp(out.result.t, km - ks);
     }
     if (out.status != PairStatus::Ok) return out;
     TimeOfImpactResult& res = out.result;

@@ -55,6 +55,7 @@ struct ImpactQueryTrace {
     ConvexCastTrace cast;
     int pairedWith = 0;        ///< |b|, the input's vertex count of b
     int lengthExponent = 0;    ///< the input's lengths = 2^lengthExponent · a trace length
+    int tExponent = 0;         ///< RayCast: the input's t = 2^tExponent · a trace t
 };
 
 struct ImpactQueryOptions {

@@ -1,0 +1,100 @@
+// timeOfImpactQuery where the motion dwarfs the shapes (|motion| / size up to 1e300), and a relative
+// path that slides along a face of the Minkowski difference within rounding
+// (/work/shared/reproducers/exact-2026-11-29/toi_large_motion.jsonl, toi_sliding_late.jsonl).
+// Oracles: the closed form of boxes and spheres moving along an axis, with the gap at t and just
+// before it evaluated in long double; the reproducer's exact t for the slide.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/query/cast.h"
+
+using namespace cdlab;
+
+namespace {
+
+using LD = long double;
+
+// Box [0,1]^3 moving by (m, 0, 0) against the box [5,6]×[0,1]^2: the x gap at time t (long double).
+LD boxGap(LD t, LD m) { return LD(5) - (LD(1) + t * m); }
+// Unit spheres at 0 and (5, 0, 0), the first moving by (m, 0, 0).
+LD sphereGap(LD t, LD m) { return std::fabs(LD(5) - t * m) - LD(2); }
+
+void checkTouching(const ImpactQueryResult& r, double t, LD (*gap)(LD, LD), double m) {
+    REQUIRE(r.status == PairStatus::Ok);
+    REQUIRE(r.result.hit);
+    CHECK_FALSE(r.result.initiallyOverlapping);
+    CHECK(std::fabs(double(gap(LD(r.result.t), LD(m)))) <= 1e-9);  // touching at t
+    CHECK(gap(LD(r.result.t) * (LD(1) - LD(1e-9)), LD(m)) > 0);     // apart just before
+    CHECK(std::fabs(r.result.t - t) <= 1e-12 * t);
+    CHECK((r.result.normal - Vec3(1, 0, 0)).norm() <= 1e-12);
+    CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9);
+}
+
+}  // namespace
+
+TEST_CASE("time of impact: boxes with |motion| / size from 1e81 to 1e300 touch on the face x = 5") {
+    for (double m : {1e81, 1e90, 1e120, 1e160, 1e170, 1e300}) {
+        CAPTURE(m);
+        const ImpactQueryResult r = timeOfImpactQuery(QueryShape::aabb(Vec3(0, 0, 0), Vec3(1, 1, 1)), Vec3(m, 0, 0),
+                                                      QueryShape::aabb(Vec3(5, 0, 0), Vec3(6, 1, 1)), Vec3::Zero());
+        checkTouching(r, double(LD(4) / LD(m)), boxGap, m);
+        CHECK(std::fabs(r.result.pointA.x() - 5) <= 1e-12);
+        // Both points on the touching face square [0,1]^2 (they were (5,0,0) and (5,1,1), then interior).
+        for (const Vec3& p : {r.result.pointA, r.result.pointB})
+            for (int i = 1; i < 3; ++i) CHECK((p[i] >= -1e-12 && p[i] <= 1 + 1e-12));
+    }
+}
+
+TEST_CASE("time of impact: spheres with |motion| / size from 1e81 to 1e300 touch at (4, 0, 0)") {
+    for (double m : {1e81, 1e160, 1e200, 1e300}) {
+        CAPTURE(m);
+        const ImpactQueryResult r = timeOfImpactQuery(QueryShape::sphere(Vec3(0, 0, 0), 1), Vec3(m, 0, 0),
+                                                      QueryShape::sphere(Vec3(5, 0, 0), 1), Vec3::Zero());
+        checkTouching(r, double(LD(3) / LD(m)), sphereGap, m);
+        CHECK((r.result.pointA - Vec3(4, 0, 0)).norm() <= 1e-12);
+        CHECK((r.result.pointB - Vec3(4, 0, 0)).norm() <= 1e-12);
+    }
+}
+
+TEST_CASE("time of impact: the motion split between the bodies and moderate ratios keep the closed form") {
+    for (double m : {0.5, 10.0, 1e6, 1e40}) {
+        CAPTURE(m);
+        // The same relative motion, half on each body.
+        const ImpactQueryResult r = timeOfImpactQuery(QueryShape::aabb(Vec3(0, 0, 0), Vec3(1, 1, 1)), Vec3(m / 2, 0, 0),
+                                                      QueryShape::aabb(Vec3(5, 0, 0), Vec3(6, 1, 1)), Vec3(-m / 2, 0, 0));
+        if (m < 4) {
+            CHECK_FALSE(r.result.hit);
+            continue;
+        }
+        REQUIRE(r.result.hit);
+        CHECK(std::fabs(r.result.t - 4 / m) <= 1e-12 * (4 / m));
+        CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9);
+        CHECK(std::fabs(double(LD(r.result.pointA.x()) - (LD(5) + LD(r.result.t) * LD(-m / 2)))) <= 1e-9 * (1 + m / 2 * r.result.t));
+    }
+}
+
+TEST_CASE("time of impact: a path sliding along a face of A - B within rounding touches at its first contact") {
+    const std::vector<Vec3> a = {{252.1119129259992, -5.247846647292025, -45.103336894633365},
+                                 {-252.1119129259992, 5.247846647292025, 45.103336894633365},
+                                 {-42.17807886471592, -107.03322233102203, 228.88242945536626},
+                                 {-99.88335877055987, 58.70394051665994, 228.47194475733556}};
+    const std::vector<Vec3> b = {{-519.256634285548, -86.70597958123368, 472.63364474476185},
+                                 {-554.556718183753, 14.680509889396378, 472.3825387055388},
+                                 {-481.42862161838207, -73.42241522468808, 518.1998005784967},
+                                 {-577.2462670307054, -106.76271518006078, 526.6223443650193},
+                                 {-612.5463509289102, -5.376225709430724, 526.3712383257963},
+                                 {-539.4182543635394, -93.47915082351518, 572.1885001987541},
+                                 {-574.7183382617442, 7.907338647114867, 571.9373941595312}};
+    const Vec3 ma(-606.9859968797683, -209.93679517007558, 565.107642658437);
+    const Vec3 mb(203.87376367671072, 70.51333109094435, -189.8077098705626);
+    const ImpactQueryResult r = timeOfImpactQuery(QueryShape::polytope(a), ma, QueryShape::polytope(b), mb);
+    REQUIRE(r.status == PairStatus::Ok);
+    REQUIRE(r.result.hit);
+    CHECK_FALSE(r.result.initiallyOverlapping);
+    const double exact = 0.43272277707581674;  // the reproducer's exact t (it was 0.494)
+    CHECK(std::fabs(r.result.t - exact) <= 1e-9 * exact);
+    CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9 * 1000);
+    CHECK(std::fabs(r.result.normal.norm() - 1) <= 1e-12);
+}
