@@ -32,6 +32,41 @@ void checkTouching(const ImpactQueryResult& r, double t, LD (*gap)(LD, LD), doub
     CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9);
 }
 
+using V = Eigen::Matrix<long double, 3, 1>;
+
+// The largest separating-axis gap of two point sets' hulls at time t, in long double: the axes are
+// the normals of every triple of either set and the cross products of every pair of edge directions
+// (a complete set for polytopes: > 0 exactly when the hulls are apart, and at most their distance).
+long double satGap(const std::vector<Vec3>& a, const Vec3& ma, const std::vector<Vec3>& b, const Vec3& mb, long double t) {
+    std::vector<V> pa, pb;
+    for (const Vec3& v : a) pa.push_back(v.cast<long double>() + t * ma.cast<long double>());
+    for (const Vec3& v : b) pb.push_back(v.cast<long double>() + t * mb.cast<long double>());
+    std::vector<V> axes, da, db;
+    for (const auto* p : {&pa, &pb}) {
+        const std::vector<V>& q = *p;
+        for (std::size_t i = 0; i < q.size(); ++i)
+            for (std::size_t j = i + 1; j < q.size(); ++j) {
+                (p == &pa ? da : db).push_back(q[j] - q[i]);
+                for (std::size_t k = j + 1; k < q.size(); ++k) axes.push_back((q[j] - q[i]).cross(q[k] - q[i]));
+            }
+    }
+    for (const V& x : da)
+        for (const V& y : db) axes.push_back(x.cross(y));
+    long double best = -INFINITY;
+    for (V n : axes) {
+        const long double len = n.norm();
+        if (!(len > 0)) continue;
+        n /= len;
+        for (int side = 0; side < 2; ++side, n = -n) {
+            long double hiA = -INFINITY, loB = INFINITY;
+            for (const V& v : pa) hiA = std::max(hiA, n.dot(v));
+            for (const V& v : pb) loB = std::min(loB, n.dot(v));
+            best = std::max(best, loB - hiA);
+        }
+    }
+    return best;
+}
+
 }  // namespace
 
 TEST_CASE("time of impact: boxes with |motion| / size from 1e81 to 1e300 touch on the face x = 5") {
@@ -95,6 +130,10 @@ TEST_CASE("time of impact: a path sliding along a face of A - B within rounding 
     CHECK_FALSE(r.result.initiallyOverlapping);
     const double exact = 0.43272277707581674;  // the reproducer's exact t (it was 0.494)
     CHECK(std::fabs(r.result.t - exact) <= 1e-9 * exact);
+    // Touching at t (the gap within the touch rule's scale, ~1e-9 of the size 1000) and apart just before.
+    CHECK(std::fabs(double(satGap(a, ma, b, mb, r.result.t))) <= 1e-6);
+    CHECK(satGap(a, ma, b, mb, LD(r.result.t) * (1 - LD(1e-9))) > 0);
+    CHECK(satGap(a, ma, b, mb, LD(0.494)) <= 1e-6);  // the former answer: already touching long before
     CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9 * 1000);
     CHECK(std::fabs(r.result.normal.norm() - 1) <= 1e-12);
 }
