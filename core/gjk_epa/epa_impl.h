@@ -11,7 +11,6 @@
 #include <optional>
 
 #include "core/base/accurate_cross.h"
-#include "core/base/double_double.h"
 #include "core/base/tolerances.h"
 #include "core/closest/edge_pair_distance.h"
 #include "core/gjk_epa/epa.h"
@@ -346,99 +345,25 @@ void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& optio
     if (sliverNear) epaCrossedEdgePairs(shapeA, shapeB, poly, F.distance + slack, r);
 }
 
-/// n·(sa − sb) with the differences exact and the products and sums in double-double: the support
-/// overlap along n to a few ulps of itself, not of |sa| (far shapes, tiny overlaps).
-inline double epaOverlapAlong(const Vec3& n, const Vec3& sa, const Vec3& sb) {
-    dd::DoubleDouble acc{0.0, 0.0};
-    for (int i = 0; i < 3; ++i) acc = acc + dd::DoubleDouble{n[i], 0.0} * dd::exactDifference(sa[i], sb[i]);
-    return acc.hi + acc.lo;
-}
-
 /// A degenerate start (a zero-volume polytope, or a blow-up direction that underflowed: a start
-/// segment 1e-160 long, cores 1e300 long and 1 wide) or a degenerate expansion leaves no
-/// trustworthy face: the answer is then the direction of least support overlap
-/// n·s_A(n) − n·s_B(−n) among the normal it had (when unit), the six coordinate axes, the live
-/// faces' normals of the polytope `poly` (when given) and the face normals and edge-pair cross
-/// products of the distinct shape points on its vertices (accurateCross: a sliver's or a far
-/// face's normal to a few ulps), with that overlap as the depth — a unit normal and a depth that
+/// segment 1e-160 long, cores 1e300 long and 1 wide) leaves no trustworthy face: the answer is then
+/// the direction of least support overlap n·s_A(n) − n·s_B(−n) among the normal it had (when unit)
+/// and the six coordinate axes, with that overlap as the depth — a unit normal and a depth that
 /// separates (an upper bound of the least one), never "touching" for shapes that overlap.
-/// Witnesses on the bodies: pointB = s_B(−n), pointA = pointB + depth·n when that point passes
-/// A's support tests along the axes and the faces of A's points, else pointA = s_A(n),
-/// pointB = pointA − depth·n (issue 41: a 1e-9 square against a 1e5 tetrahedron).
 template <class A, class B>
-void epaSupportFallback(const A& shapeA, const B& shapeB, EpaResult& r, const EpaPolytope* poly = nullptr) {
+void epaSupportFallback(const A& shapeA, const B& shapeB, EpaResult& r) {
     double best = INFINITY;
-    Vec3 bestA = Vec3::Zero();
     const bool haveNormal = epaIsUnitNormal(r.normal);
     const Vec3 given = r.normal;
-    const auto offer = [&](const Vec3& n) {
-        if (!n.allFinite() || !epaIsUnitNormal(n)) return;
-        const Vec3 sb = shapeB.support(Vec3(-n));
-        const Vec3 sa = shapeA.support(n);
-        const double overlap = epaOverlapAlong(n, sa, sb);
-        if (overlap < best) best = overlap, r.normal = n, r.pointB = sb, bestA = sa;
-    };
     // The given normal both ways (a flat start's face normal has no outward side), then the axes.
-    for (int i = haveNormal ? -2 : 0; i < 6; ++i)
-        offer(i < 0 ? Vec3(i == -2 ? given : Vec3(-given)) : Vec3((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2)));
-    constexpr int kMax = 8;  // distinct points per shape taken from the polytope
-    Vec3 a[kMax], b[kMax];
-    int na = 0, nb = 0;
-    if (poly) {
-        for (int g = 0; g < poly->faceEnd; ++g) {
-            if (!poly->face[g].live) continue;
-            offer(poly->face[g].normal);
-            offer(Vec3(-poly->face[g].normal));
-        }
-        for (int k = 0; k < poly->vertexCount; ++k) {
-            const EpaVertex& v = poly->vertex[k];
-            if (na < kMax && std::find(a, a + na, v.a) == a + na) a[na++] = v.a;
-            if (nb < kMax && std::find(b, b + nb, v.b) == b + nb) b[nb++] = v.b;
-        }
-        const auto faces = [&](const Vec3* p, int np) {
-            for (int i = 0; i < np; ++i)
-                for (int j = i + 1; j < np; ++j)
-                    for (int k = j + 1; k < np; ++k) {
-                        const Vec3 n = accurateCross(p[i], p[j], p[k]).normalized();
-                        offer(n);
-                        offer(Vec3(-n));
-                    }
-        };
-        faces(a, na);
-        faces(b, nb);
-        for (int i = 0; i < na; ++i)
-            for (int j = i + 1; j < na; ++j)
-                for (int k = 0; k < nb; ++k)
-                    for (int l = k + 1; l < nb; ++l) {
-                        const Vec3 n = (a[j] - a[i]).cross(b[l] - b[k]).normalized();
-                        offer(n);
-                        offer(Vec3(-n));
-                    }
+    for (int i = haveNormal ? -2 : 0; i < 6; ++i) {
+        const Vec3 n = i < 0 ? Vec3(i == -2 ? given : Vec3(-given)) : Vec3((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2));
+        const Vec3 sb = shapeB.support(Vec3(-n));
+        const double overlap = n.dot(shapeA.support(n)) - n.dot(sb);
+        if (overlap < best) best = overlap, r.normal = n, r.pointB = sb;
     }
     r.depth = std::max(best, 0.0);
     r.pointA = r.pointB + r.depth * r.normal;
-    if (best < INFINITY) {
-        // pointA passes A's support tests along the axes and the planes of A's points?
-        bool onA = true;
-        const auto test = [&](const Vec3& d) {
-            if (!onA || !d.allFinite() || !(d.squaredNorm() > 0.0)) return;
-            const Vec3 s = shapeA.support(d);
-            const double tol = ulps(kCertificateUlps, std::max(s.cwiseAbs().maxCoeff(), r.pointA.cwiseAbs().maxCoeff()));
-            if (d.dot(r.pointA - s) > tol) onA = false;
-        };
-        for (int i = 0; i < 6; ++i) test((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2));
-        for (int i = 0; i < na; ++i)
-            for (int j = i + 1; j < na; ++j)
-                for (int k = j + 1; k < na; ++k) {
-                    const Vec3 n = accurateCross(a[i], a[j], a[k]).normalized();
-                    test(n);
-                    test(Vec3(-n));
-                }
-        if (!onA) {
-            r.pointA = bestA;
-            r.pointB = bestA - r.depth * r.normal;
-        }
-    }
     r.lowerBound = 0.0;
     r.upperBound = r.depth;
     r.status = r.depth > 0 ? EpaStatus::Penetrating : EpaStatus::Touching;
@@ -466,7 +391,7 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
         r.faceCount = poly.liveCount;
         if (why == EpaTermination::Degenerate ||
             (why != EpaTermination::InvalidInput && !detail::epaIsUnitNormal(r.normal)))
-            detail::epaSupportFallback(shapeA, shapeB, r, &poly);
+            detail::epaSupportFallback(shapeA, shapeB, r);
         return r;
     };
 
@@ -506,16 +431,6 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
     }
     detail::epaAnswerFromFace(shapeA, shapeB, options, poly, f, upper, r);
     r.status = r.depth <= detail::kEpaTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
-    // A duplicate support on a rounded polytope (a needle 1e-7 wide and 1e3 long, issue 41) can
-    // stop on a face that is no face of A − B: the overlap along its normal is far above its depth.
-    // Such an uncertified answer goes to the support fallback (least overlap over the polytope's
-    // normals and its points' faces and edge pairs, which holds this normal too).
-    if (why == EpaTermination::DuplicateSupport) {
-        const double h =
-            detail::epaOverlapAlong(r.normal, shapeA.support(r.normal), shapeB.support(Vec3(-r.normal)));
-        if (h - r.depth > std::max(1e-6 * std::abs(h), 1e3 * detail::kEpaAbsGap * scale))
-            detail::epaSupportFallback(shapeA, shapeB, r, &poly);
-    }
     return stop(why);
 }
 
