@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "core/base/accurate_cross.h"
+#include "core/base/double_double.h"
 #include "core/base/tolerances.h"
 #include "core/closest/edge_pair_distance.h"
 #include "core/gjk_epa/epa.h"
@@ -345,25 +346,105 @@ void epaAnswerFromFace(const A& shapeA, const B& shapeB, const EpaOptions& optio
     if (sliverNear) epaCrossedEdgePairs(shapeA, shapeB, poly, F.distance + slack, r);
 }
 
-/// A degenerate start (a zero-volume polytope, or a blow-up direction that underflowed: a start
-/// segment 1e-160 long, cores 1e300 long and 1 wide) leaves no trustworthy face: the answer is then
-/// the direction of least support overlap n·s_A(n) − n·s_B(−n) among the normal it had (when unit)
-/// and the six coordinate axes, with that overlap as the depth — a unit normal and a depth that
-/// separates (an upper bound of the least one), never "touching" for shapes that overlap.
+/// n·(sa − sb) with the differences exact and the products and sums in double-double: the support
+/// overlap along n to a few ulps of itself, not of |sa| (far shapes, tiny overlaps).
+inline double epaOverlapAlong(const Vec3& n, const Vec3& sa, const Vec3& sb) {
+    dd::DoubleDouble acc{0.0, 0.0};
+    for (int i = 0; i < 3; ++i) acc = acc + dd::DoubleDouble{n[i], 0.0} * dd::exactDifference(sa[i], sb[i]);
+    return acc.hi + acc.lo;
+}
+
+/// B moved by `shift`: the support mapping GJK sees in epaFallbackWitness.
+template <class S>
+struct EpaShifted {
+    const S& shape;
+    Vec3 shift;
+    Vec3 support(const Vec3& d) const { return shape.support(d) + shift; }
+};
+
+/// Witnesses of a fallback answer (unit n, depth d): B pushed along n by d + δ, δ = max(d, 2^-30 M)
+/// (M the supports' magnitude), lies about δ from A when n is a least-overlap direction, so GJK's
+/// closest points of that pair — convex combinations of support points — give pointA on A and
+/// pointB = (B's closest point) − push on B to rounding, with pointA − pointB = d·n as far as n is
+/// least overlap. Where GJK does not separate them the support points stay: pointB = s_B(−n),
+/// pointA = pointB + d·n. Tests: tests/core/gjk_epa/epa_fallback_witness_test.cpp (a 1e-9 square
+/// in the face of a 1e5 tetrahedron; a 1e-6 body beside a 1e3 one).
 template <class A, class B>
-void epaSupportFallback(const A& shapeA, const B& shapeB, EpaResult& r) {
+void epaFallbackWitness(const A& shapeA, const B& shapeB, EpaResult& r) {
+    const Vec3 sa = shapeA.support(r.normal), sb = shapeB.support(Vec3(-r.normal));
+    r.pointB = sb;
+    r.pointA = sb + r.depth * r.normal;
+    const double M = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
+    const double delta = std::max(r.depth, std::ldexp(M, -30));
+    if (!(delta > 0) || !std::isfinite(delta + r.depth)) return;
+    const Vec3 push = (r.depth + delta) * r.normal;
+    const GjkResult g = gjkDistance(shapeA, EpaShifted<B>{shapeB, push});
+    if (g.status != GjkStatus::Separated || !g.pointA.allFinite() || !g.pointB.allFinite()) return;
+    r.pointA = g.pointA;
+    r.pointB = g.pointB - push;
+}
+
+/// A degenerate start (a zero-volume polytope, or a blow-up direction that underflowed: a start
+/// segment 1e-160 long, cores 1e300 long and 1 wide) or a degenerate expansion leaves no
+/// trustworthy face: the answer is then the direction of least support overlap
+/// n·s_A(n) − n·s_B(−n) among the normal it had (when unit), the six coordinate axes, the live
+/// faces' normals of the polytope `poly` (when given) and the face normals and edge-pair cross
+/// products of the distinct shape points on its vertices (accurateCross: a sliver's or a far
+/// face's normal to a few ulps), with that overlap as the depth — a unit normal and a depth that
+/// separates (an upper bound of the least one), never "touching" for shapes that overlap.
+/// Witnesses: epaFallbackWitness.
+template <class A, class B>
+void epaSupportFallback(const A& shapeA, const B& shapeB, EpaResult& r, const EpaPolytope* poly = nullptr) {
     double best = INFINITY;
     const bool haveNormal = epaIsUnitNormal(r.normal);
     const Vec3 given = r.normal;
-    // The given normal both ways (a flat start's face normal has no outward side), then the axes.
-    for (int i = haveNormal ? -2 : 0; i < 6; ++i) {
-        const Vec3 n = i < 0 ? Vec3(i == -2 ? given : Vec3(-given)) : Vec3((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2));
+    const auto offer = [&](const Vec3& n) {
+        if (!n.allFinite() || !epaIsUnitNormal(n)) return;
         const Vec3 sb = shapeB.support(Vec3(-n));
-        const double overlap = n.dot(shapeA.support(n)) - n.dot(sb);
-        if (overlap < best) best = overlap, r.normal = n, r.pointB = sb;
+        const Vec3 sa = shapeA.support(n);
+        const double overlap = epaOverlapAlong(n, sa, sb);
+        if (overlap < best) best = overlap, r.normal = n;
+    };
+    // The given normal both ways (a flat start's face normal has no outward side), then the axes.
+    for (int i = haveNormal ? -2 : 0; i < 6; ++i)
+        offer(i < 0 ? Vec3(i == -2 ? given : Vec3(-given)) : Vec3((i % 2 ? -1.0 : 1.0) * Vec3::Unit(i / 2)));
+    constexpr int kMax = 8;  // distinct points per shape taken from the polytope
+    Vec3 a[kMax], b[kMax];
+    int na = 0, nb = 0;
+    if (poly) {
+        for (int g = 0; g < poly->faceEnd; ++g) {
+            if (!poly->face[g].live) continue;
+            offer(poly->face[g].normal);
+            offer(Vec3(-poly->face[g].normal));
+        }
+        for (int k = 0; k < poly->vertexCount; ++k) {
+            const EpaVertex& v = poly->vertex[k];
+            if (na < kMax && std::find(a, a + na, v.a) == a + na) a[na++] = v.a;
+            if (nb < kMax && std::find(b, b + nb, v.b) == b + nb) b[nb++] = v.b;
+        }
+        const auto faces = [&](const Vec3* p, int np) {
+            for (int i = 0; i < np; ++i)
+                for (int j = i + 1; j < np; ++j)
+                    for (int k = j + 1; k < np; ++k) {
+                        const Vec3 n = accurateCross(p[i], p[j], p[k]).normalized();
+                        offer(n);
+                        offer(Vec3(-n));
+                    }
+        };
+        faces(a, na);
+        faces(b, nb);
+        for (int i = 0; i < na; ++i)
+            for (int j = i + 1; j < na; ++j)
+                for (int k = 0; k < nb; ++k)
+                    for (int l = k + 1; l < nb; ++l) {
+                        const Vec3 n = (a[j] - a[i]).cross(b[l] - b[k]).normalized();
+                        offer(n);
+                        offer(Vec3(-n));
+                    }
     }
     r.depth = std::max(best, 0.0);
     r.pointA = r.pointB + r.depth * r.normal;
+    if (best < INFINITY) epaFallbackWitness(shapeA, shapeB, r);
     r.lowerBound = 0.0;
     r.upperBound = r.depth;
     r.status = r.depth > 0 ? EpaStatus::Penetrating : EpaStatus::Touching;
@@ -391,7 +472,7 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
         r.faceCount = poly.liveCount;
         if (why == EpaTermination::Degenerate ||
             (why != EpaTermination::InvalidInput && !detail::epaIsUnitNormal(r.normal)))
-            detail::epaSupportFallback(shapeA, shapeB, r);
+            detail::epaSupportFallback(shapeA, shapeB, r, &poly);
         return r;
     };
 
@@ -431,6 +512,16 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
     }
     detail::epaAnswerFromFace(shapeA, shapeB, options, poly, f, upper, r);
     r.status = r.depth <= detail::kEpaTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
+    // A duplicate support on a rounded polytope (a needle 1e-7 wide and 1e3 long, issue 41) can
+    // stop on a face that is no face of A − B: the overlap along its normal is far above its depth.
+    // Such an uncertified answer goes to the support fallback (least overlap over the polytope's
+    // normals and its points' faces and edge pairs, which holds this normal too).
+    if (why == EpaTermination::DuplicateSupport) {
+        const double h =
+            detail::epaOverlapAlong(r.normal, shapeA.support(r.normal), shapeB.support(Vec3(-r.normal)));
+        if (h - r.depth > std::max(1e-6 * std::abs(h), 1e3 * detail::kEpaAbsGap * scale))
+            detail::epaSupportFallback(shapeA, shapeB, r, &poly);
+    }
     return stop(why);
 }
 
