@@ -30,6 +30,7 @@
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/figure_canvas.h"
+#include "demos/draw/figure_style.h"
 #include "demos/draw/plot.h"
 #include "app/measure/statistics.h"
 #include "verification/minkowski_hull_oracle.h"
@@ -239,6 +240,7 @@ public:
             f.image = drawDecadeHistogram(*ctx.gl, po, groups);
         } else {
             po.xLabel = xLabelOf(s_.sweep);
+            if (s_.sweep != "parallel_edges") po.subtitle += "; " + worstLine(sw);  // that one's caption ranks solvers
             po.yLabel = "|d - d*| / size (0 drawn at 1e-18)";
             po.hLines.push_back({kStressTolerance, "1e-12: cdlab stress tolerance"});
             po.hLines.push_back({kUnitRoundoff, "u = 1.1e-16 (double rounding)"});
@@ -281,6 +283,15 @@ public:
     }
 
 private:
+    /// The sweep's measured worst error over both solvers, printed after the caption (the caption's
+    /// claim is the scene author's, checked by tests/demos/accuracy/accuracy_claims_test.cpp; this
+    /// number is the trace's larger "…_worst").
+    static std::string worstLine(const Sweep& sw) {
+        double worst = 0;
+        for (const Decade& d : sw.decades) worst = std::max({worst, d.svMax, d.johnsonMax});
+        return "worst " + formatNumber(worst);
+    }
+
     Json traceJson(const Sweep& sw) const {
         Json t = Json::object();
         t["sweep"] = s_.sweep;

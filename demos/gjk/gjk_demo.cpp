@@ -164,8 +164,13 @@ private:
             if (labels) {
                 TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
                 const bool apart = (pa - pb).norm() > 1e-3 * d.wRadius;
-                drawLabelAway(world, pa, apart ? pb : d.a.center, "p_A", ts);
-                drawLabelAway(world, pb, apart ? pa : d.b.center, "p_B", ts);
+                if (!s && r.status == GjkStatus::Intersecting) {
+                    // No closest points: the result's pointA ~ pointB is one common point.
+                    drawLabelAway(world, pa, d.a.center, "common point", ts);
+                } else {
+                    drawLabelAway(world, pa, apart ? pb : d.a.center, "p_A", ts);
+                    drawLabelAway(world, pb, apart ? pa : d.b.center, "p_B", ts);
+                }
             }
         }
         if (s && common_.hasLayer("support")) {
@@ -222,12 +227,14 @@ private:
         }
         if (common_.hasLayer("simplex")) drawSimplex(cs, d, s, w, names, kept, labels);
         const double arrowLen = 0.35 * d.cRadius;
-        if (s && common_.hasLayer("direction") && s->direction.norm() > 0) {
-            const Vec3 tip = s->direction.normalized() * arrowLen;
+        const int index = s ? int(s - trace.steps.data()) : -1;
+        for (const GjkDrawnVector& dv : s ? gjkStepVectors(trace.steps, index) : std::vector<GjkDrawnVector>{}) {
+            if (!dv.arrow || !common_.hasLayer("direction") || !(dv.vector.norm() > 0)) continue;
+            const Vec3 tip = dv.vector.normalized() * arrowLen;
             cs.drawArrow(Vec3::Zero(), tip, lineStyle(Role::Direction, 3.0f, false, true));
             if (labels) {
                 TextStyle ts{18.0f, roleColor(Role::Direction).scaled(0.8f), Anchor::Center, true, true};
-                drawLabelAway(cs, tip, Vec3::Zero(), "d = −v", ts, 8.0);
+                drawLabelAway(cs, tip, Vec3::Zero(), dv.label, ts, 8.0);
             }
         }
         if (s && common_.hasLayer("support")) {
@@ -240,7 +247,7 @@ private:
             cs.drawPoint(v, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
             if (labels) {
                 TextStyle ts{18.0f, roleColor(Role::Result).scaled(0.7f), Anchor::Center, true, true};
-                drawLabelAway(cs, v, d.cCenter, "v", ts, 10.0);
+                drawLabelAway(cs, v, d.cCenter, s ? gjkStepVectors(trace.steps, index).back().label : "v", ts, 10.0);
             }
         }
         std::string sub;
@@ -299,8 +306,12 @@ private:
             lines.push_back("Iteration " + std::to_string(s->iteration) +
                             ": w = s_A(d) − s_B(−d) = " + formatPoint(s->support.w) + ", simplex {" +
                             slotNames(std::uint8_t((1u << s->simplexCount) - 1)) + "} → region " +
-                            slotNames(s->keptSlots) + ", |v| = " + formatNumber(s->v.norm()));
-            lines.push_back("bounds " + formatNumber(s->lowerBound) + " ≤ distance ≤ " + formatNumber(s->upperBound) +
+                            slotNames(s->keptSlots) + ", |v" + subscriptNumber(s->iteration) +
+                            "| = " + formatNumber(s->v.norm()));
+            const std::string previousV =
+                s == trace.steps.data() ? std::string("|w0|") : "|v" + subscriptNumber(s[-1].iteration) + "|";
+            lines.push_back("bounds " + formatNumber(s->lowerBound) + " ≤ distance ≤ " + previousV + " = " +
+                            formatNumber(s->upperBound) +
                             ";  test |v|² − v·w = " + formatNumber(s->gapTest) +
                             (s->gapTest <= options_.relativeTolerance * vv ? " ≤ " : " > ") +
                             "ε|v|² = " + formatNumber(options_.relativeTolerance * vv) + ":  " + stop);
@@ -349,6 +360,24 @@ public:
 };
 
 }  // namespace
+
+std::string subscriptNumber(int n) {
+    static const char* kDigit[10] = {"₀", "₁", "₂", "₃", "₄", "₅", "₆", "₇", "₈", "₉"};
+    std::string out;
+    for (char c : std::to_string(n)) out += c == '-' ? "₋" : kDigit[c - '0'];
+    return out;
+}
+
+std::vector<GjkDrawnVector> gjkStepVectors(const std::vector<GjkTraceStep>& steps, int index) {
+    if (index < 0 || index >= int(steps.size())) return {};
+    const GjkTraceStep& s = steps[std::size_t(index)];
+    std::vector<GjkDrawnVector> out;
+    out.push_back({index == 0 ? std::string("d (start)")
+                              : "d = −v" + subscriptNumber(steps[std::size_t(index) - 1].iteration),
+                   s.direction, true});
+    out.push_back({"v" + subscriptNumber(s.iteration), s.v, false});
+    return out;
+}
 
 const Demo& gjkDemo() {
     static const GjkDemo demo;
