@@ -63,7 +63,7 @@ TEST_CASE("GJK figure: every vector drawn from the origin is the trace quantity 
         for (int i = 0; i < int(trace.steps.size()); ++i) {
             for (const GjkDrawnVector& dv : gjkStepVectors(trace.steps, i)) {
                 INFO("trial " << trial << ", step " << i << ", label '" << dv.label << "'");
-                Vec3 named;
+                Vec3 named = Vec3::Zero();
                 if (dv.label == "d (start)") {
                     CHECK(i == 0);
                     named = trace.steps[0].direction;  // the direction GJK started from
