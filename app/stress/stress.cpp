@@ -36,6 +36,7 @@
 #include "verification/minkowski_hull_oracle.h"
 #include "render/gl_context.h"
 #include "render/image.h"
+#include "app/stress/stress_engine.h"
 #include "app/stress/stress_families.h"
 #include "app/stress/stress_tolerances.h"
 // The exact (BigInt) Ericson region of the closest-point tests: header-only, independent of core.
@@ -48,8 +49,20 @@ namespace cdlab::demos {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kU = 0x1p-53;  // unit roundoff of double
 
+using stress_engine::Check;
+using stress_engine::Engine;
+using stress_engine::jsonString;
+using stress_engine::kU;
+using stress_engine::maxAbs;
+using stress_engine::maxNorm;
+using stress_engine::num;
+using stress_engine::polytopeJson;
+using stress_engine::vec;
+using stress_engine::WitnessPair;
+using stress_engine::witnessCell;
+using stress_engine::witnessPair;
+using stress_engine::witnessTolerances;
 using stress_tolerances::kDistanceTol;
 using stress_tolerances::kDepthTol;
 using stress_tolerances::kBooleanBand;
@@ -71,134 +84,10 @@ using stress_cases::TriCase;
 
 // ---- Reproducers ------------------------------------------------------------------------------
 
-std::string num(double x) {
-    if (!std::isfinite(x)) return "null";
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return buf;
-}
-
-std::string vec(const Vec3& v) { return "[" + num(v.x()) + "," + num(v.y()) + "," + num(v.z()) + "]"; }
-
-std::string polytopeJson(const std::vector<Vec3>& v) {
-    std::string s = "{\"polytope\":{\"vertices\":[";
-    for (size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + vec(v[i]);
-    return s + "],\"position\":[0,0,0],\"rotation\":[1,0,0,0]}}";
-}
-
 std::string obbJson(const Transformed<BoxShape>& b) {
     const Quat& q = b.transform.rotation;
     return "{\"obb\":{\"center\":" + vec(b.transform.position) + ",\"half_extents\":" + vec(b.shape.halfExtents) +
            ",\"rotation\":[" + num(q.w()) + "," + num(q.x()) + "," + num(q.y()) + "," + num(q.z()) + "]}}";
-}
-
-std::string jsonString(const std::string& s) { return nlohmann::json(s).dump(); }
-
-// ---- The engine ---------------------------------------------------------------------------------
-
-struct Check {
-    double error = 0;      // relative to L (booleans: 0 / 1)
-    double tolerance = 0;  // same unit
-    int iterations = 0;
-    bool capHit = false;
-    double expected = 0, got = 0;  // for the reproducer's id
-};
-
-class Engine {
-public:
-    Engine(const StressOptions& options, StressReport& report) : options_(options), report_(report) {}
-
-    void record(const std::string& family, const std::string& check, const std::string& toleranceText, bool info,
-                double param, const Check& c, const std::function<std::string()>& query, int index) {
-        const auto key = family + "\n" + check;
-        auto it = index_.find(key);
-        if (it == index_.end()) {
-            it = index_.emplace(key, report_.cells.size()).first;
-            StressCell cell;
-            cell.family = family;
-            cell.check = check;
-            cell.informational = info;
-            cell.tolerance = toleranceText;
-            report_.cells.push_back(cell);
-        }
-        StressCell& cell = report_.cells[it->second];
-        ++cell.cases;
-        const bool nan = !std::isfinite(c.error);
-        const double ratio = c.tolerance > 0 ? c.error / c.tolerance : (c.error > 0 ? INFINITY : 0.0);
-        if (nan) cell.worstError = INFINITY;
-        else cell.worstError = std::max(cell.worstError, c.error);
-        cell.worstRatio = nan ? INFINITY : std::max(cell.worstRatio, ratio);
-        cell.maxIterations = std::max(cell.maxIterations, c.iterations);
-        cell.iterationCapHits += c.capHit;
-        if (cell.samples.size() < 4000) cell.samples.emplace_back(param, nan ? INFINITY : c.error);
-        const bool failed = nan || ratio > 1.0 || c.capHit;
-        if (!failed) return;
-        ++cell.failures;
-        if (info) return;
-        if (static_cast<int>(report_.failureLines.size()) >= options_.maxFailureLines) return;
-        char what[256];
-        std::snprintf(what, sizeof what, "stress %s / %s #%d: expected %.17g, got %.17g, error %.3g > %.3g%s",
-                      family.c_str(), check.c_str(), index, c.expected, c.got, c.error, c.tolerance,
-                      c.capHit ? " (iteration cap)" : "");
-        std::string line = query();
-        line.insert(1, "\"id\":" + jsonString(what) + ",");
-        report_.failureLines.push_back(line);
-    }
-
-    double tampered(const std::string& check, double value) const {
-        if (options_.tamper) options_.tamper(check, value);
-        return value;
-    }
-
-private:
-    const StressOptions& options_;
-    StressReport& report_;
-    std::map<std::string, size_t> index_;
-};
-
-double maxAbs(const std::vector<Vec3>& v) {
-    double m = 0;
-    for (const Vec3& x : v) m = std::max(m, x.cwiseAbs().maxCoeff());
-    return m;
-}
-
-double maxNorm(const std::vector<Vec3>& v) {
-    double m = 0;
-    for (const Vec3& x : v) m = std::max(m, x.norm());
-    return m;
-}
-
-/// The two bodies as the witness oracle sees them (the vertex lists the algorithms were given),
-/// with each body's size and largest |coordinate| and the pair's (file comment).
-struct WitnessPair {
-    WitnessBody a, b;
-    double La = 0, Ma = 0, Lb = 0, Mb = 0;
-    double L = 0, M = 0;
-};
-
-WitnessPair witnessPair(const std::vector<Vec3>& va, const std::vector<Vec3>& vb, double L, double M) {
-    return {WitnessBody::polytope(va), WitnessBody::polytope(vb), centroidRadius(va), maxAbs(va), centroidRadius(vb),
-            maxAbs(vb), L, M};
-}
-
-verification::WitnessTolerances witnessTolerances(const WitnessPair& w) {
-    verification::WitnessTolerances t;
-    t.onBodyA = kWitnessTol * w.La + 8 * kU * w.Ma;
-    t.onBodyB = kWitnessTol * w.Lb + 8 * kU * w.Mb;
-    t.offset = kWitnessTol * w.L + 8 * kU * w.M;
-    return t;
-}
-
-/// One cell per measured field of the witness oracle's answer: the error relative to `scale`.
-void witnessCell(Engine& e, const std::string& family, const std::string& check, const std::string& text, bool info,
-                 double param, double value, double tol, double scale, int index,
-                 const std::function<std::string()>& query) {
-    Check k;
-    k.got = value;
-    k.expected = 0;
-    k.error = std::isfinite(value) ? std::max(0.0, value) / scale : INFINITY;
-    k.tolerance = tol / scale;
-    e.record(family, check, text, info, param, k, query, index);
 }
 
 /// GJK's witnesses and separating axis (separated answers only): pointA on A, pointB on B,
@@ -583,6 +472,18 @@ StressReport runStressSuite(const StressOptions& options) {
                         TriCase c;
                         f.tri(rng, c);
                         runTri(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Toi: {
+                        stress_cases::ToiCase c;
+                        f.toi(rng, c);
+                        stress_engine::runToi(engine, f, i, c);
+                        break;
+                    }
+                    case Kind::Rounded: {
+                        stress_cases::RoundedCase c;
+                        f.rounded(rng, c);
+                        stress_engine::runRounded(engine, f, i, c);
                         break;
                     }
                 }

@@ -9,6 +9,12 @@
 //    -distance * axis / depth * normal, GJK's axis separating by the distance;
 //  - closest point on a triangle: region = the exact rational (BigInt) Ericson region, distance =
 //    the long double brute force;
+//  - rays and times of impact (stress_witness_runs.cpp): the verdict against the first contact of
+//    the path with the body / with B − A; t neither early (apart at t) nor late (no overlap before
+//    t, and t no later than the first time the path certainly lies inside B − A, its points exact
+//    in long double); the contact points on the bodies at t, equal, the normal a touching direction;
+//  - spheres and capsules: distance and penetration against the long double signed distance of the
+//    cores minus the radii, every witness field as above;
 //  - no NaN, no hang: every query's iterations are counted, reaching the cap is a failure.
 // Every failure becomes one `cdlab query` line (README "cdlab query", %.17g numbers) that replays it.
 #pragma once

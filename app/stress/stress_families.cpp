@@ -7,7 +7,9 @@
 
 #include "app/bench/bench_inputs.h"
 #include "app/bench/bench_measure.h"
+#include "app/measure/statistics.h"
 #include "app/stress/stress_tolerances.h"
+#include "verification/cast_oracle.h"
 
 namespace cdlab::demos::stress_cases {
 
@@ -343,6 +345,190 @@ void addRayFamilies(std::vector<Family>& f) {
     f.push_back(std::move(ray));
 }
 
+// ---- Times of impact on sliding and grazing paths ----------------------------------------------------
+//
+// A translated by x touches B iff x lies in the configuration-space body D = B − A = conv{b_j − a_i}:
+// the relative path x(t) = (oA − oB) + t (motionA − motionB) is a ray against D. The path is aimed
+// at a facet of D (a face of B minus A's vertex extreme the other way, or B's vertex minus a face
+// of A), through a point p inside it and along its plane, tilted out of it by the parameter about
+// p (the path then crosses D in a chord near the facet, entering through a side face or through
+// the facet); or, 1 case in 4, along a supporting plane of an edge or vertex of D with a normal
+// inside the feature's normal cone, tilted about the path's start (a miss or a clip by ~2 size(D)
+// tilt). The path starts 2 size(D) before p. The construction only aims: the oracle recomputes D
+// from the doubles handed to the query.
+
+/// The points of v within 1e-12 of their size of the largest n·x.
+std::vector<Vec3> supportSet(const std::vector<Vec3>& v, const Vec3& n, double size) {
+    double h = -INFINITY;
+    for (const Vec3& x : v) h = std::max(h, n.dot(x));
+    std::vector<Vec3> out;
+    for (const Vec3& x : v)
+        if (n.dot(x) >= h - 1e-12 * size) out.push_back(x);
+    return out;
+}
+
+/// A random unit vector perpendicular to the unit n.
+Vec3 inPlane(std::mt19937_64& rng, const Vec3& n) {
+    for (;;) {
+        const Vec3 r = randomUnit(rng);
+        const Vec3 u = r - r.dot(n) * n;
+        if (u.norm() > 0.1) return u.normalized();
+    }
+}
+
+/// A feature of D = B − A aimed at: a point p on it and the normal n of a supporting plane there
+/// (unit, outward).
+struct AimedFeature {
+    Vec3 p = Vec3::Zero(), n = Vec3::UnitX();
+};
+
+/// A random point of conv(points) (random convex weights).
+Vec3 pointOf(std::mt19937_64& rng, const std::vector<Vec3>& points) {
+    Vec3 sum = Vec3::Zero();
+    double total = 0;
+    for (const Vec3& x : points) {
+        const double w = uniform(rng, 0.05, 1.0);
+        sum += w * x;
+        total += w;
+    }
+    return sum / total;
+}
+
+/// A facet of D: a face of B (outward normal n) minus A's vertex extreme along −n (normal n), or
+/// B's vertex extreme along −n minus a face of A with outward normal n (normal −n).
+AimedFeature facetOfDifference(std::mt19937_64& rng, const std::vector<Vec3>& va, const std::vector<Vec3>& vb,
+                               double size) {
+    const bool ofB = rng() % 2;
+    const std::vector<Vec3>& body = ofB ? vb : va;
+    const std::vector<cast_oracle::FacetPlane> planes = cast_oracle::facetPlanes(body);
+    const cast_oracle::FacetPlane& f = planes[rng() % planes.size()];
+    const Vec3 n(static_cast<double>(f.n.x()), static_cast<double>(f.n.y()), static_cast<double>(f.n.z()));
+    std::vector<Vec3> face = supportSet(body, n, size), facet;
+    if (ofB) {
+        const Vec3 a = va[argExtreme(va, -n)];
+        for (const Vec3& b : face) facet.push_back(b - a);
+        return {pointOf(rng, facet), n};
+    }
+    const Vec3 b = vb[argExtreme(vb, -n)];
+    for (const Vec3& a : face) facet.push_back(b - a);
+    return {pointOf(rng, facet), -n};
+}
+
+/// An edge or vertex of D with a normal inside its normal cone: D's support set along a direction
+/// between two adjacent face normals of B (an edge of B minus a vertex of A), or along a random one
+/// (a vertex of B minus a vertex of A).
+AimedFeature edgeOrVertexOfDifference(std::mt19937_64& rng, const std::vector<Vec3>& va, const std::vector<Vec3>& vb,
+                                      double size) {
+    Vec3 r = randomUnit(rng);
+    const std::vector<cast_oracle::FacetPlane> planes = cast_oracle::facetPlanes(vb);
+    if (rng() % 2) {
+        auto unit = [](const cast_oracle::FacetPlane& f) {
+            return Vec3(static_cast<double>(f.n.x()), static_cast<double>(f.n.y()), static_cast<double>(f.n.z()));
+        };
+        const Vec3 n1 = unit(planes[rng() % planes.size()]);
+        const std::vector<Vec3> face = supportSet(vb, n1, size);
+        for (const cast_oracle::FacetPlane& g : planes) {  // a neighbouring face: two points shared
+            const Vec3 n2 = unit(g);
+            if (n2.dot(n1) > 1 - 1e-9) continue;
+            int shared = 0;
+            for (const Vec3& x : supportSet(vb, n2, size)) shared += std::count(face.begin(), face.end(), x) > 0;
+            if (shared < 2) continue;
+            r = (uniform(rng, 0.2, 1.0) * n1 + uniform(rng, 0.2, 1.0) * n2).normalized();
+            break;
+        }
+    }
+    const Vec3 a = va[argExtreme(va, -r)];
+    std::vector<Vec3> feature;
+    for (const Vec3& b : supportSet(vb, r, size)) feature.push_back(b - a);
+    return {pointOf(rng, feature), r};
+}
+
+void toiSlidingPath(std::mt19937_64& rng, ToiCase& c) {
+    const double s = logUniform(rng, 1e-2, 1e2);
+    const std::vector<Vec3> a0 = scaled(ellipsoidPoints(rng, 4 + static_cast<int>(rng() % 5)), s);
+    const std::vector<Vec3> b0 =
+        scaled(ellipsoidPoints(rng, 4 + static_cast<int>(rng() % 5)), s * uniform(rng, 0.5, 2));
+    std::vector<Vec3> d0;
+    for (const Vec3& b : b0)
+        for (const Vec3& a : a0) d0.push_back(b - a);
+    const double size = 2.0 * centroidRadius(d0);  // at least D's diameter
+    const bool graze = rng() % 4 == 0;
+    const AimedFeature f = graze ? edgeOrVertexOfDifference(rng, a0, b0, size) : facetOfDifference(rng, a0, b0, size);
+    const int mode = static_cast<int>(rng() % 3);  // 0 in the plane, 1 tilted out, 2 tilted in
+    const double tilt = mode == 0 ? 0.0 : (mode == 1 ? 1.0 : -1.0) * logUniform(rng, 1e-15, 1e-6);
+    const Vec3 u = inPlane(rng, f.n);
+    const Vec3 w = (std::cos(tilt) * u + std::sin(tilt) * f.n).normalized();
+    const double tp = uniform(rng, 0.3, 0.7), length = 2.0 * size / tp;  // p reached at t = tp
+    const Vec3 m = length * w;
+    // x(0): 2 size before p along the tilted path (a facet: the chord pivots about p), or along
+    // the untilted one (a graze: the path passes p at 2 size tilt off its supporting plane).
+    const Vec3 x0 = graze ? Vec3(f.p - 2.0 * size * u) : Vec3(f.p - tp * m);
+    const Vec3 oB = rng() % 2 ? Vec3::Zero() : Vec3(logUniform(rng, 1.0, 1e3) * randomUnit(rng));
+    c.va = scaled(a0, 1.0, oB + x0);
+    c.vb = scaled(b0, 1.0, oB);
+    c.motionB = rng() % 3 == 0 ? Vec3::Zero() : Vec3(length * uniform(rng, 0.0, 1.5) * randomUnit(rng));
+    c.motionA = m + c.motionB;
+    c.param = std::abs(tilt);
+}
+
+// ---- Spheres and capsules --------------------------------------------------------------------------
+
+/// A sphere (kind 0), capsule (1) or polytope (2) of size s about the origin.
+void roundedBody(std::mt19937_64& rng, int kind, double s, const Vec3& axis, std::vector<Vec3>& core, double& r) {
+    if (kind == 0) {
+        core = {Vec3::Zero()};
+        r = s * uniform(rng, 0.3, 1.0);
+    } else if (kind == 1) {
+        const double h = s * uniform(rng, 0.2, 1.0);
+        core = {-h * axis, h * axis};
+        r = s * uniform(rng, 0.05, 0.6);
+    } else {
+        core = scaled(ellipsoidPoints(rng, 8), s);
+        r = 0;
+    }
+}
+
+/// The point of conv(core) ⊕ ball(r) extreme along u (the first extreme core point).
+Vec3 roundedSupport(const std::vector<Vec3>& core, double r, const Vec3& u) {
+    return core[argExtreme(core, u)] + r * u;
+}
+
+void roundedPair(std::mt19937_64& rng, RoundedCase& c) {
+    // Kinds: 1 in 4 two nearly parallel capsules (1 in 4 of those exactly parallel) side by side,
+    // else any pair but two polytopes. Sizes 1e-3..1e3 (B within 10x of A).
+    const bool parallel = rng() % 4 == 0;
+    int ka = parallel ? 1 : static_cast<int>(rng() % 3), kb = parallel ? 1 : static_cast<int>(rng() % 3);
+    if (ka == 2 && kb == 2) kb = static_cast<int>(rng() % 2);
+    const double sa = logUniform(rng, 1e-3, 1e3), sb = sa * logUniform(rng, 0.1, 10.0);
+    const Vec3 ea = randomUnit(rng), side = perpendicular(ea);
+    const double angle = parallel && rng() % 4 ? logUniform(rng, 1e-9, 1e-1) : 0.0;
+    const Vec3 turn = rng() % 2 ? side : ea.cross(side);  // crossing in parallel planes, or converging
+    const Vec3 eb = parallel ? Vec3(Eigen::AngleAxisd(angle, turn) * ea) : randomUnit(rng);
+    roundedBody(rng, ka, sa, ea, c.ca, c.ra);
+    roundedBody(rng, kb, sb, eb, c.cb, c.rb);
+    // Gap along u (across the capsules when parallel): touching, apart or overlapping by g, or deep.
+    const Vec3 u = parallel ? side : randomUnit(rng);
+    const int mode = static_cast<int>(rng() % 6);
+    const double g = std::min(sa, sb) * logUniform(rng, 1e-12, 1e-1);
+    const double gap = mode == 0 ? 0.0 : (mode <= 2 ? g : -g);
+    Vec3 shift = roundedSupport(c.ca, c.ra, u) - roundedSupport(c.cb, c.rb, -u) + gap * u;
+    if (mode == 5) shift = std::min(sa, sb) * uniform(rng, 0.0, 0.5) * randomUnit(rng);  // deep
+    if (parallel) shift += uniform(rng, -1.0, 1.0) * sa * ea;                            // slid along the axis
+    const Vec3 o = rng() % 2 ? Vec3::Zero() : Vec3(logUniform(rng, 1.0, 1e6) * randomUnit(rng));
+    c.ca = scaled(c.ca, 1.0, o);
+    c.cb = scaled(c.cb, 1.0, o + shift);
+    c.param = mode == 5 ? shift.norm() / std::max(sa, sb) : std::abs(gap) / std::max(sa, sb);
+}
+
+void addCastAndRoundedFamilies(std::vector<Family>& f) {
+    Family toi{"time of impact, sliding paths", "tilt (rad; 0 in the plane)", Kind::Toi, {}, {}, {}, {}};
+    toi.toi = toiSlidingPath;
+    f.push_back(std::move(toi));
+    Family rounded{"spheres and capsules (rounded witness)", "|gap| / size", Kind::Rounded, {}, {}, {}, {}};
+    rounded.rounded = roundedPair;
+    f.push_back(std::move(rounded));
+}
+
 }  // namespace
 
 std::vector<Family> stressFamilies() {
@@ -351,6 +537,7 @@ std::vector<Family> stressFamilies() {
     addBoxFamilies(f);
     addWitnessFamilies(f);
     addRayFamilies(f);
+    addCastAndRoundedFamilies(f);
     addTriangleFamilies(f);
     return f;
 }

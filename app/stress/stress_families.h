@@ -1,6 +1,7 @@
 // The cases of `cdlab stress` (stress.h): a family draws case i from (seed, family, i) only, so a
 // failing case is replayable on its own. Polytope pairs (vertex lists), box pairs (support
-// mappings), point-triangle pairs; stress.cpp runs every check of its kind on each case.
+// mappings), point-triangle pairs, rays, times of impact, spheres and capsules; stress.cpp and
+// stress_witness_runs.cpp run every check of its kind on each case.
 #pragma once
 
 #include <functional>
@@ -47,7 +48,24 @@ struct RayCase {
     double param = 0;
 };
 
-enum class Kind { Poly, Box, Tri, Ray };
+/// Two polytopes translating over t in [0, 1] (A by motionA, B by motionB) along a relative path
+/// that slides along a facet of the configuration-space body B − A, or grazes one of its edges or
+/// vertices, tilted by `param` (rad).
+struct ToiCase {
+    std::vector<Vec3> va, vb;  // world frame, at t = 0
+    Vec3 motionA = Vec3::Zero(), motionB = Vec3::Zero();
+    double param = 0;
+};
+
+/// Two bodies conv(core) ⊕ ball(radius): one core point a sphere, two a capsule, more a polytope
+/// (radius 0; never two polytopes).
+struct RoundedCase {
+    std::vector<Vec3> ca, cb;  // world frame
+    double ra = 0, rb = 0;
+    double param = 0;
+};
+
+enum class Kind { Poly, Box, Tri, Ray, Toi, Rounded };
 
 struct Family {
     std::string name, parameter;
@@ -56,12 +74,14 @@ struct Family {
     std::function<void(std::mt19937_64&, BoxCase&)> box;
     std::function<void(std::mt19937_64&, TriCase&)> tri;
     std::function<void(std::mt19937_64&, RayCase&)> ray;
+    std::function<void(std::mt19937_64&, ToiCase&)> toi = {};
+    std::function<void(std::mt19937_64&, RoundedCase&)> rounded = {};
 };
 
 /// Every family, in report order: polytope pairs (scale, offset, gap, penetration, slivers,
 /// parallel edges, duplicates, rotations, float rounding), box pairs (axis-aligned, rotated), the
-/// witness oracle's (tiny against huge, coplanar faces of A - B, rays in a face plane), point vs
-/// triangle.
+/// witness oracle's (tiny against huge, coplanar faces of A - B, rays in a face plane, times of
+/// impact on sliding paths, spheres and capsules), point vs triangle.
 std::vector<Family> stressFamilies();
 
 }  // namespace cdlab::demos::stress_cases
