@@ -524,7 +524,7 @@ void addCastAndRoundedFamilies(std::vector<Family>& f) {
     Family toi{"time of impact, sliding paths", "tilt (rad; 0 in the plane)", Kind::Toi, {}, {}, {}, {}};
     toi.toi = toiSlidingPath;
     f.push_back(std::move(toi));
-    Family rounded{"spheres and capsules (rounded witness)", "|gap| / size", Kind::Rounded, {}, {}, {}, {}};
+    Family rounded{"spheres and capsules", "|gap| / size", Kind::Rounded, {}, {}, {}, {}};
     rounded.rounded = roundedPair;
     f.push_back(std::move(rounded));
 }

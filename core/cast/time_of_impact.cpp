@@ -17,6 +17,35 @@ std::vector<Vec3> moved(std::span<const Vec3> points, const Vec3& by) {
     return out;
 }
 
+/// The first t in [0, tHit] at which the cores, moved along the path, come within `band` (radii +
+/// the touching tolerance): Newton on the distance d(t) of A + t·mA and B + t·mB, convex in t, from
+/// t = 0 where d > band. On a convex decreasing function the Newton step (d − band) / (n·m) from the
+/// left of the root never passes it, so every iterate stays at or before the first contact; it
+/// stops when d is within 1/16 of the band's margin or the step stops moving t. Returns tHit when
+/// it does not converge in kSteps (a path that creeps along a curved face) or the distance stops
+/// decreasing. Test: tests/core/cast/time_of_impact_scale_test.cpp (a path inside a facet plane of
+/// B − A within rounding; cdlab stress "time of impact, sliding paths").
+double firstTouchAlongPath(const PolytopeShape& coreA, const Vec3& motionA, const PolytopeShape& coreB,
+                           const Vec3& motionB, double band, double tHit, GjkResult& at) {
+    constexpr int kSteps = 64;
+    const Vec3 m = motionA - motionB;
+    double t = 0.0;
+    for (int k = 0; k < kSteps; ++k) {
+        const auto& pa = coreA.vertices();
+        const auto& pb = coreB.vertices();
+        at = gjkDistance(PolytopeShape(moved(pa, t * motionA)), PolytopeShape(moved(pb, t * motionB)));
+        if (at.status != GjkStatus::Separated) return tHit;
+        const double gap = at.distance - band;
+        if (gap <= 0.0625 * band) return t;
+        const double rate = at.separatingAxis.dot(m);  // d'(t) = −n·m, n from A toward B
+        if (!(rate > 0.0)) return tHit;
+        const double next = t + gap / rate;
+        if (!(next > t) || !(next < tHit)) return next >= tHit ? tHit : t;
+        t = next;
+    }
+    return tHit;
+}
+
 }  // namespace
 
 TimeOfImpactResult translationalTimeOfImpact(std::span<const Vec3> pointsA, double radiusA, const Vec3& motionA,
@@ -59,6 +88,21 @@ TimeOfImpactResult translationalTimeOfImpact(std::span<const Vec3> pointsA, doub
     }
     out.t = h.t;
     out.normal = -h.normal;  // the cast's normal points out of B − A, from B toward A
+    // A path that slides within rounding of a facet of B − A crosses the rounded facet up to
+    // u·|B − A| / angle later than the exact one: the contact is the first t within the touching
+    // band, found along the path when it lies more than 1e3 bands of travel before the cast's t.
+    const double band = radii + options.touchTolerance;
+    if (band > 0) {
+        GjkResult g;
+        const double t = firstTouchAlongPath(coreA, motionA, coreB, motionB, band, h.t, g);
+        if ((h.t - t) * motion.norm() > 1e3 * band && g.status == GjkStatus::Separated) {
+            out.t = t;
+            out.normal = g.separatingAxis;
+            out.pointA = g.pointA + radiusA * out.normal;
+            out.pointB = g.pointB - radiusB * out.normal;
+            return out;
+        }
+    }
     if (h.count > 0) {
         // Difference point k is pointsB[k % nB] − pointsA[k / nB]: the same weights on both shapes.
         Vec3 a = Vec3::Zero(), b = Vec3::Zero();

@@ -9,6 +9,7 @@
 #include "core/base/tolerances.h"
 #include "core/contact/contact_stages.h"
 #include "core/closest/closest_point.h"
+#include "core/closest/edge_pair_distance.h"
 
 namespace cdlab {
 
@@ -355,6 +356,13 @@ void edgeContact(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhed
     const auto [a0, a1] = ma.edgeVertices(best.indexA);
     const auto [b0, b1] = mb.edgeVertices(best.indexB);
     SegmentSegmentResult c = closestPointsSegmentSegment(Segment{A.x[a0], A.x[a1]}, Segment{B.x[b0], B.x[b1]});
+    // The crossing edges' common perpendicular in double-double: its feet stay on both edges when
+    // the edges are nearly parallel, where the double closest points slide along them (issue 41:
+    // point_b 2.3e-4 off B on a 1e4 pair; tests/app/query/exact_reproducers_test.cpp).
+    const LinePairSeparation lp = linePairSeparation(A.x[a0], A.x[a1], B.x[b0], B.x[b1]);
+    if (lp.ok && lp.s >= 0.0 && lp.s <= 1.0 && lp.t >= 0.0 && lp.t <= 1.0 && lp.pointA.allFinite() &&
+        lp.pointB.allFinite())
+        c.pointOnFirst = lp.pointA, c.pointOnSecond = lp.pointB;
     // Nearly parallel edges: their closest points are ill-conditioned along the edges (a shift of
     // either along its edge changes their distance little), and can disagree with the axis by far
     // more than the touching band (issue 41 (d): 0.75 of the size). Then the point of A stays and

@@ -137,3 +137,34 @@ TEST_CASE("time of impact: a path sliding along a face of A - B within rounding 
     CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9 * 1000);
     CHECK(std::fabs(r.result.normal.norm() - 1) <= 1e-12);
 }
+
+TEST_CASE("time of impact: a path inside a facet plane of B - A within 1e-17 answers its first touch, not later") {
+    // cdlab stress "time of impact, sliding paths" #1013 (seed 1, tilt 0): the path lies ~1e-17 W
+    // inside a facet plane of B − A; the cast on the rounded differences crossed the rounded facet
+    // at t = 0.680312 — 12 units of travel (4 % of the size) after the bodies certainly overlap
+    // (t = 0.633903032, the stress oracle: B − A's points exact in long double).
+    const std::vector<Vec3> a = {{-134.5113563895549, -116.77060811636758, -149.99293494847424},
+                                 {-143.9731943898005, -91.0426244941, -146.87471193630412},
+                                 {-105.2293733070436, -83.73167489527759, -143.35176331126704},
+                                 {-137.82019460298056, -100.66816561719497, -152.57103933463156},
+                                 {-146.22625654918508, -103.87272674751792, -116.86728574327111},
+                                 {-144.8084850358728, -105.5167362304889, -148.9479808273427},
+                                 {-123.46021008509949, -76.4041592497114, -142.12466858219943}};
+    const std::vector<Vec3> b = {{-22.23091561814164, -23.16034990514992, 13.59559320367594},
+                                 {-31.472973858260694, -23.046923900767258, 3.7867899645346563},
+                                 {-22.78872315837596, -18.99087608606373, 8.93552340046336},
+                                 {-32.92667078235563, -33.07177605494945, -8.984054764217449}};
+    const Vec3 ma(77.91785724687776, 125.15403109243812, 181.89279988291537);
+    const Vec3 mb(-36.97387096023183, 39.497899617698344, -37.38671151806936);
+    const ImpactQueryResult r = timeOfImpactQuery(QueryShape::polytope(a), ma, QueryShape::polytope(b), mb);
+    REQUIRE(r.status == PairStatus::Ok);
+    REQUIRE(r.result.hit);
+    CHECK_FALSE(r.result.initiallyOverlapping);
+    const double firstOverlap = 0.63390303219358328;
+    CHECK(r.result.t <= firstOverlap + 1e-12);
+    // Touching at t (within the touch rule's scale: 1e-13 of the size ~100, plus rounding) and apart before.
+    CHECK(std::fabs(double(satGap(a, ma, b, mb, r.result.t))) <= 1e-9);
+    CHECK(satGap(a, ma, b, mb, LD(r.result.t) * (1 - LD(1e-6))) > 0);
+    CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9 * 100);
+    CHECK(std::fabs(r.result.normal.norm() - 1) <= 1e-12);
+}
