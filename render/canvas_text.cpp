@@ -114,11 +114,13 @@ FigureLayout Canvas::Impl::layoutTexts() {
             obstacles.boxes.push_back(box);
         } else {
             const LineCmd& line = std::get<LineCmd>(item);
-            if (line.style.widthPx < 3.0f) continue;  // thin lines: a label may cross them (halo)
             for (std::size_t i = 0; i + 1 < line.points.size(); ++i) {
                 Vector2d a, b;
-                if (toPixels(line.points[i], a) && toPixels(line.points[i + 1], b))
-                    obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx});
+                if (!toPixels(line.points[i], a) || !toPixels(line.points[i + 1], b)) continue;
+                layout.strokes.push_back({a, b, line.style.widthPx, -1});
+                // Thin lines: a label may still be placed across them (halo); the review rule
+                // LabelOnStroke reports it (render/legibility.h).
+                if (line.style.widthPx >= 3.0f) obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx});
             }
         }
     }
@@ -183,6 +185,7 @@ FigureLayout Canvas::Impl::layoutTexts() {
             const Vector2d d = near - request.anchor;
             const Vector2d end = d.norm() > 4 ? Vector2d(near - 2.0 * d.normalized()) : near;
             LineStyle style{1.5f, t.style.color.withAlpha(0.8f), 0.0f, true};
+            layout.strokes.push_back({request.anchor, end, style.widthPx, int(layout.labels.size()) - 1});
             leaders.push_back(
                 LineCmd{{Vector3d(request.anchor.x(), request.anchor.y(), 0), Vector3d(end.x(), end.y(), 0)},
                         style,

@@ -25,6 +25,9 @@ void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
     }
     for (const LayoutMarker& m : other.markers)
         markers.push_back({m.box.translated(dx, dy), m.label >= 0 ? m.label + base : -1});
+    const Eigen::Vector2d d(dx, dy);
+    for (const LayoutStroke& k : other.strokes)
+        strokes.push_back({k.a + d, k.b + d, k.width, k.leaderOf >= 0 ? k.leaderOf + base : -1});
     unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
 }
 
@@ -37,6 +40,7 @@ FigureLayout FigureLayout::scaled(double s) const {
         l.lineHeight *= s;
     }
     for (LayoutMarker& m : out.markers) m.box = m.box.scaled(s);
+    for (LayoutStroke& k : out.strokes) k.a *= s, k.b *= s, k.width *= s;
     return out;
 }
 

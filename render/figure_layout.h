@@ -34,7 +34,7 @@ struct LayoutLabel {
     std::string text;
     Box box;
     std::optional<Eigen::Vector2d> anchor;
-    double lineHeight = 0;  // one line's height, px
+    double lineHeight = 0;  // the font size, px: one line's ascent + descent (manifest: size_px)
 };
 
 /// A drawn point marker (its disc's bounding box); `label` indexes the label that names it, or -1.
@@ -43,10 +43,21 @@ struct LayoutMarker {
     int label = -1;
 };
 
+/// A drawn stroke: a line, one segment of a polyline or an outline, an arrow's shaft (head
+/// included in its length), a plot's axis, grid line or series segment, from `a` to `b` with its
+/// pixel `width`. `leaderOf` indexes the label whose leader line it is (-1: none): the one label
+/// allowed to touch it.
+struct LayoutStroke {
+    Eigen::Vector2d a{0, 0}, b{0, 0};
+    double width = 0;
+    int leaderOf = -1;
+};
+
 struct FigureLayout {
     std::vector<Box> panels;  // the canvases a frame was composed from, outermost first
     std::vector<LayoutLabel> labels;
     std::vector<LayoutMarker> markers;
+    std::vector<LayoutStroke> strokes;
     /// Labels the placement step could not put anywhere free: reported here, not drawn.
     std::vector<std::string> unplaced;
 

@@ -14,8 +14,16 @@ const char* nameOf(LegibilityKind kind) {
         case LegibilityKind::LabelOutsidePanel: return "label outside its panel";
         case LegibilityKind::TextTooSmall: return "text too small";
         case LegibilityKind::Unplaced: return "label could not be placed";
+        case LegibilityKind::LabelOnStroke: return "label crosses a stroke";
+        case LegibilityKind::LabelNearerOther: return "label nearer another anchor than its own";
+        case LegibilityKind::FontBelowTarget: return "font below the 1.6 % target";
     }
     return "?";
+}
+
+bool gates(LegibilityKind kind) {
+    return kind != LegibilityKind::LabelOnStroke && kind != LegibilityKind::LabelNearerOther &&
+           kind != LegibilityKind::FontBelowTarget;
 }
 
 namespace {
@@ -39,6 +47,69 @@ const Box* homePanel(const FigureLayout& layout, const LayoutLabel& label) {
 // How far `inner` sticks out of `outer`, px (0 when inside).
 double outside(const Box& outer, const Box& inner) {
     return std::max({0.0, outer.x0 - inner.x0, outer.y0 - inner.y0, inner.x1 - outer.x1, inner.y1 - outer.y1});
+}
+
+// Length of segment ab inside box (Liang–Barsky clipping), px.
+double lengthInside(const Box& box, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    double t0 = 0, t1 = 1;
+    const Eigen::Vector2d d = b - a;
+    const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+    const double q[4] = {a.x() - box.x0, box.x1 - a.x(), a.y() - box.y0, box.y1 - a.y()};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0) {
+            if (q[i] < 0) return 0;
+            continue;
+        }
+        const double t = q[i] / p[i];
+        if (p[i] < 0) t0 = std::max(t0, t);
+        else t1 = std::min(t1, t);
+        if (t0 > t1) return 0;
+    }
+    // A zero-length stroke (a dot) inside the box counts as its width.
+    return d.norm() > 0 ? (t1 - t0) * d.norm() : 1.0;
+}
+
+// Distance from p to the box (0 inside).
+double distanceTo(const Box& box, const Eigen::Vector2d& p) {
+    const double dx = std::max({box.x0 - p.x(), 0.0, p.x() - box.x1});
+    const double dy = std::max({box.y0 - p.y(), 0.0, p.y() - box.y1});
+    return std::hypot(dx, dy);
+}
+
+// Labels crossing strokes, and labels nearer another anchor than their own.
+void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) {
+    const std::vector<LayoutLabel>& labels = layout.labels;
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        const Box& b = labels[i].box;
+        double worst = 0;
+        const LayoutStroke* hit = nullptr;
+        for (const LayoutStroke& k : layout.strokes) {
+            if (k.leaderOf == int(i)) continue;
+            // The stroke's centre line against the box grown by its half width, less the graze margin.
+            const double h = 0.5 * k.width - kStrokeGrazePx;
+            const double inside = lengthInside(Box{b.x0 - h, b.y0 - h, b.x1 + h, b.y1 + h}, k.a, k.b);
+            if (inside > worst) worst = inside, hit = &k;
+        }
+        if (hit && worst > 0) {
+            char s[128];
+            std::snprintf(s, sizeof s, "stroke (%.0f, %.0f)-(%.0f, %.0f) %.1f px wide, %.0f px inside its box",
+                          hit->a.x(), hit->a.y(), hit->b.x(), hit->b.y(), hit->width, worst);
+            out.push_back({LegibilityKind::LabelOnStroke, labels[i].text, s, worst});
+        }
+        if (!labels[i].anchor) continue;
+        const double own = distanceTo(b, *labels[i].anchor);
+        for (std::size_t j = 0; j < labels.size(); ++j) {
+            if (j == i || !labels[j].anchor || (*labels[j].anchor - *labels[i].anchor).norm() < 1.0) continue;
+            const double other = distanceTo(b, *labels[j].anchor);
+            if (other + 0.5 < own) {
+                char s[128];
+                std::snprintf(s, sizeof s, "%.1f px from \"%s\"'s anchor, %.1f px from its own", other,
+                              labels[j].text.c_str(), own);
+                out.push_back({LegibilityKind::LabelNearerOther, labels[i].text, s, own - other});
+                break;
+            }
+        }
+    }
 }
 
 }  // namespace
@@ -91,10 +162,15 @@ std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int w
         const double minimum = kMinLineHeightFraction * height;
         if (l.lineHeight < minimum) {
             char s[96];
-            std::snprintf(s, sizeof s, "line height %.1f px < %.1f px", l.lineHeight, minimum);
+            std::snprintf(s, sizeof s, "font size %.1f px < %.1f px", l.lineHeight, minimum);
             out.push_back({LegibilityKind::TextTooSmall, l.text, s, minimum - l.lineHeight});
+        } else if (l.lineHeight < kTargetFontFraction * height) {
+            char s[96];
+            std::snprintf(s, sizeof s, "font size %.1f px < %.1f px", l.lineHeight, kTargetFontFraction * height);
+            out.push_back({LegibilityKind::FontBelowTarget, l.text, s, kTargetFontFraction * height - l.lineHeight});
         }
     }
+    strokeAndAnchorRules(layout, out);
     for (const std::string& t : layout.unplaced)
         out.push_back({LegibilityKind::Unplaced, t, "no free position around its anchor", 1e9});
     std::stable_sort(out.begin(), out.end(),

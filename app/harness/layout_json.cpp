@@ -20,11 +20,19 @@ Json layoutJson(const render::Image& image) {
     for (const render::LayoutLabel& t : l.labels)
         labels.push_back({{"text", t.text},
                           {"box", boxJson(t.box)},
-                          {"anchor", t.anchor ? Json::array({px(t.anchor->x()), px(t.anchor->y())}) : Json()}});
+                          {"anchor", t.anchor ? Json::array({px(t.anchor->x()), px(t.anchor->y())}) : Json()},
+                          {"size_px", px(t.lineHeight)}});
     for (const render::LayoutMarker& m : l.markers)
         markers.push_back({{"box", boxJson(m.box)}, {"label", m.label >= 0 ? Json(m.label) : Json()}});
-    return {
-        {"width", image.width}, {"height", image.height}, {"panels", panels}, {"labels", labels}, {"markers", markers}};
+    // [x0, y0, x1, y1, width], plus the label index for a label's own leader line.
+    Json strokes = Json::array();
+    for (const render::LayoutStroke& k : l.strokes) {
+        Json s = Json::array({px(k.a.x()), px(k.a.y()), px(k.b.x()), px(k.b.y()), px(k.width)});
+        if (k.leaderOf >= 0) s.push_back(k.leaderOf);
+        strokes.push_back(std::move(s));
+    }
+    return {{"width", image.width}, {"height", image.height}, {"panels", panels},
+            {"labels", labels},     {"markers", markers},     {"strokes", strokes}};
 }
 
 }  // namespace cdlab::demos

@@ -382,6 +382,39 @@ TEST_SUITE("render/canvas") {
 }
 
 TEST_SUITE("canvas layout") {
+    TEST_CASE("readPixels records every stroke in pixels with its width, and a placed label's leader as its own") {
+        Canvas c(context(), CanvasOptions{200, 200, 1, 4});
+        c.setCamera(Camera::twoD(0, 0, 10));
+        c.drawLine(Vector3d(-4, 1, 0), Vector3d(4, 1, 0), LineStyle{2.0f, Color{0, 0, 0, 1}});
+        c.drawPolyline({Vector3d(-3, -3, 0), Vector3d(3, -3, 0), Vector3d(3, 3, 0)}, false,
+                       LineStyle{1.0f, Color{0, 0, 0, 1}});
+        c.drawArrow(Vector3d(0, 0, 0), Vector3d(2, 2, 0), LineStyle{3.0f, Color{0, 0, 0, 1}});
+        c.drawPoint(Vector3d(0, -1, 0), 40.0f, Color{0, 0, 0, 1});  // a disc over the first ring
+        TextStyle placed{16.0f, Color{0, 0, 0, 1}};
+        placed.offsetPx = Vector2d(0, 40);  // the second ring: placed with a leader line
+        placed.place = true;
+        c.drawText(Vector3d(0, -1, 0), "p", placed);
+        const Image im = c.readPixels();
+        const FigureLayout& l = im.layout;
+        Vector2d a, b;
+        REQUIRE(c.project(Vector3d(-4, 1, 0), a));
+        REQUIRE(c.project(Vector3d(4, 1, 0), b));
+        REQUIRE(l.strokes.size() >= 4);  // the line, two polyline segments, the arrow (+ a leader)
+        CHECK((l.strokes[0].a - a).norm() < 1e-9);
+        CHECK((l.strokes[0].b - b).norm() < 1e-9);
+        CHECK(l.strokes[0].width == 2.0);
+        CHECK(l.strokes[1].width == 1.0);
+        CHECK(l.strokes[3].width == 3.0);
+        int leaders = 0;
+        for (const LayoutStroke& k : l.strokes)
+            if (k.leaderOf >= 0) {
+                ++leaders;
+                REQUIRE(k.leaderOf < int(l.labels.size()));
+                CHECK(l.labels[std::size_t(k.leaderOf)].text == "p");
+            }
+        CHECK(leaders == 1);
+    }
+
     TEST_CASE("readPixels records text boxes, markers and who names them, placed labels go around the rest") {
         Canvas c(context(), CanvasOptions{200, 200, 1, 4});
         c.setCamera(Camera::twoD(0, 0, 10));

@@ -51,6 +51,48 @@ TEST_SUITE("legibility") {
         CHECK(problems.front().kind == LegibilityKind::Unplaced);  // worst first
     }
 
+    TEST_CASE("review rules: a stroke across a label, a label nearer another anchor, a font under 1.6 %") {
+        FigureLayout l;
+        l.panels = {{0, 0, 400, 300}};
+        // "axis" is crossed by a 2-px line through its middle; "v" by nothing but its own leader.
+        l.labels = {label("axis", {100, 100, 160, 120}), label("v", {300, 100, 315, 120}, Vector2d(280, 140))};
+        l.strokes = {{Vector2d(80, 110), Vector2d(200, 110), 2.0, -1}, {Vector2d(280, 140), Vector2d(300, 120), 1.5, 1}};
+        auto problems = checkLegibility(l, 400, 300);
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0].kind == LegibilityKind::LabelOnStroke);
+        CHECK(problems[0].text == "axis");
+        CHECK(problems[0].severity == doctest::Approx(59));  // 60 px of box + half width 1 − the 1.5 px graze, both sides
+        CHECK_FALSE(gates(problems[0].kind));
+        // A stroke that only grazes the box's edge (its edge 0 px inside) is no crossing.
+        l.strokes[0] = {Vector2d(80, 99), Vector2d(200, 99), 2.0, -1};
+        CHECK(checkLegibility(l, 400, 300).empty());
+        // The same leader line, not marked as v's own, crosses v.
+        l.strokes[1].leaderOf = -1;
+        l.strokes[1].b = Vector2d(310, 110);
+        problems = checkLegibility(l, 400, 300);
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0].kind == LegibilityKind::LabelOnStroke);
+        CHECK(problems[0].text == "v");
+
+        FigureLayout n;
+        n.panels = {{0, 0, 400, 300}};
+        // p's box sits on q's point, 40 px from its own.
+        n.labels = {label("p", {100, 100, 120, 120}, Vector2d(60, 110)), label("q", {200, 200, 220, 220}, Vector2d(110, 110))};
+        problems = checkLegibility(n, 400, 300);
+        REQUIRE(count(problems, LegibilityKind::LabelNearerOther) == 1);
+        CHECK(problems[0].text == "p");
+        CHECK_FALSE(gates(LegibilityKind::LabelNearerOther));
+
+        FigureLayout f;
+        f.panels = {{0, 0, 400, 300}};
+        f.labels = {label("small", {10, 10, 60, 14.6}, std::nullopt, 4.6)};  // 1.53 %: passes 1.5 %, not 1.6 %
+        problems = checkLegibility(f, 400, 300);
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0].kind == LegibilityKind::FontBelowTarget);
+        CHECK_FALSE(gates(problems[0].kind));
+        CHECK(gates(LegibilityKind::TextTooSmall));
+    }
+
     TEST_CASE("a label may cover the marker it names, touching boxes are no overlap") {
         FigureLayout l;
         l.panels = {{0, 0, 100, 100}};
