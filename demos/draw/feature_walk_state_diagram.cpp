@@ -86,7 +86,7 @@ Image drawStateDiagram(GlContext& gl, int W, int H, int ss, const DiagramInput& 
                    TextStyle{16.0f, text, Anchor::Center, false, true});
         if (counted)
             c.drawText(node(s) + Vec3(0, -10, 0), "×" + std::to_string(in.visits[s]),
-                       TextStyle{12.0f, text, Anchor::Center, false, false});
+                       TextStyle{13.0f, text, Anchor::Center, false, false});
     }
     c.drawTextPx(12, 8, in.heading, TextStyle{18.0f, ink, Anchor::TopLeft, true, true});
     if (!in.terminal.empty())

@@ -278,7 +278,7 @@ Image satTable(GlContext& gl, const SceneCommon& scene, int scale, int height, c
     auto P = [](double x, double y) { return Vec3(x, y, 0); };
     const double rowH = 27, top = H - 20;
     const double nameX = 20, barX0 = 330, barX1 = 700, textX = 730;
-    const TextStyle ink{17.0f, roleColor(Role::Ink), Anchor::Left, true, false};
+    const TextStyle ink{18.0f, roleColor(Role::Ink), Anchor::Left, true, false};
     TextStyle bold = ink;
     bold.bold = true;
     TextStyle muted = ink;
@@ -323,7 +323,7 @@ Image satTable(GlContext& gl, const SceneCommon& scene, int scale, int height, c
             {{roleColor(boxRole), run.pair.boxName + "'s interval (upper bar)"},
              {roleColor(otherRole), run.pair.otherName + "'s interval (lower bar)"},
              {deciding, "the deciding axis"}},
-            17.0f);
+            18.0f);
     drawTitleAndCaption(c, "", scene.caption);
     return c.readPixels();
 }

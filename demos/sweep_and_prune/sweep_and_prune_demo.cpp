@@ -410,7 +410,7 @@ private:
             c.drawLine(P(x, y0 + 2), P(x, barsBottom + 2), LineStyle{1.5f, roleColor(Role::Ink), 4.0f, true});
             TextStyle t = small;
             t.anchor = Anchor::Left;
-            t.sizePx = 12.0f;
+            t.sizePx = 13.0f;
             t.bold = true;
             c.drawTextPx(x + 4, y0 + 2, label, t);
         }
@@ -424,7 +424,7 @@ private:
             c.drawLine(P(X(v), yl), P(X(v), yl + 4), lineStyle(Role::Ink, 1.0f, false, true));
             TextStyle t = small;
             t.anchor = Anchor::Top;
-            t.sizePx = 12.0f;
+            t.sizePx = 13.0f;
             c.drawTextPx(X(v), yl + 5, formatNumber(v), t);
         }
     }
@@ -440,11 +440,11 @@ private:
         const double yBefore = y0 + 24, yAfter = y0 + 86;
         auto slotX = [&](int r) { return kOrderX0 + (r + 0.5) * slot; };
         TextStyle hdr = small;
-        hdr.sizePx = 12.0f;
+        hdr.sizePx = 13.0f;
         hdr.color = roleColor(Role::Muted).scaled(0.7f);
         c.drawTextPx(kOrderX0 - 8, yBefore, f == 0 ? "by id" : "before",
-                     TextStyle{12.0f, hdr.color, Anchor::Right, false, false});
-        c.drawTextPx(kOrderX0 - 8, yAfter, "after", TextStyle{12.0f, hdr.color, Anchor::Right, false, false});
+                     TextStyle{13.0f, hdr.color, Anchor::Right, false, false});
+        c.drawTextPx(kOrderX0 - 8, yAfter, "after", TextStyle{13.0f, hdr.color, Anchor::Right, false, false});
         std::vector<int> oldRank(m, 0);
         for (int r = 0; r < m; ++r) oldRank[d.before[k][r].tag] = r;
         for (int r = 0; r < m; ++r) {

@@ -176,11 +176,11 @@ private:
                       regionName(*focused, int(polygon_.size())) + ", closest " + formatPoint(focused->point) + ", distance " +
                       formatNumber(focused->distance);
             if (labels) {
-                const TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+                const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
                 const std::vector<std::string> lines = wrapPieces(c, testEntries(*focused), ";   ", ts, c.width() - 36.0);
                 double y = c.height() - 44 - 22.0 * double(lines.size() + 1);
                 c.drawTextPx(18, y, "Region tests, vertices first, then edges:",
-                             TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+                             TextStyle{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
                 for (const std::string& l : lines) c.drawTextPx(18, y += 22.0, l, ts);
             }
         }

@@ -125,12 +125,12 @@ std::vector<std::string> regionTestEntries(const Tests& tests) {
 // caption), entries joined and wrapped to `width`: the step frame's account of how the region
 // was found.
 void drawRegionTests(Canvas& canvas, double x, double bottom, double width, const std::vector<std::string>& entries) {
-    const TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+    const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
     const double lineH = 22;
     const std::vector<std::string> lines = wrapPieces(canvas, entries, ";   ", ts, width);
     double y = bottom - lineH * double(lines.size() + 1);
     canvas.drawTextPx(
-        x, y, "Region tests in Ericson's order:", TextStyle{16.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
+        x, y, "Region tests in Ericson's order:", TextStyle{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
     for (const std::string& l : lines) canvas.drawTextPx(x, y += lineH, l, ts);
 }
 
