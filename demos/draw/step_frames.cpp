@@ -35,15 +35,36 @@ void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downsc
     out.files.emplace_back("animation.gif", encodeGif(images));
 }
 
+std::string iterationCoverage(int iterations, const std::vector<int>& framed) {
+    if (iterations <= 0) return "no iteration ran";
+    std::vector<bool> shown(std::size_t(iterations), false);
+    for (int i : framed)
+        if (i >= 0 && i < iterations) shown[std::size_t(i)] = true;
+    std::string skipped;
+    for (int i = 0; i < iterations;) {
+        if (shown[std::size_t(i)]) {
+            ++i;
+            continue;
+        }
+        int j = i;
+        while (j + 1 < iterations && !shown[std::size_t(j + 1)]) ++j;
+        skipped += (skipped.empty() ? "" : ", ") + std::to_string(i + 1) + (j > i ? "–" + std::to_string(j + 1) : "");
+        i = j + 1;
+    }
+    if (skipped.empty()) return "one frame per iteration";
+    return (skipped.find_first_of(",–") == std::string::npos ? "iteration " : "iterations ") + skipped + " not shown";
+}
+
 void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, const RunContext& ctx, bool gif,
-                          const std::string& algorithm, DemoOutput& out) {
+                          const std::string& algorithm, int iterations, const std::vector<int>& framed,
+                          DemoOutput& out) {
     std::vector<const Frame*> all;
     for (const Frame& f : out.frames) all.push_back(&f);
     if (gif) addGif(out, all, 1);
     if (common.steps || ctx.stepsOverride) {
         ContactSheetOptions o;
         o.caption = common.caption;
-        o.title = common.title + ": " + algorithm + ", one iteration per frame";
+        o.title = common.title + ": " + algorithm + ", " + iterationCoverage(iterations, framed);
         o.cellWidth = 320;
         o.columns = std::min<int>(3, int(all.size()));
         out.frames.push_back(contactSheetFrame(gl, all, common.title, o));

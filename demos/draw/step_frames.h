@@ -20,11 +20,18 @@ std::string stepFrameName(int i);
 /// "animation.gif"; frames are box-downsampled by `downscale`.
 void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downscale);
 
-/// The end of a run that draws one frame per iteration (gjk, epa): the GIF of every frame so far
-/// when `gif`, and with --steps a contact sheet of them titled "<scene title>: <algorithm>, one
-/// iteration per frame".
+/// What the step frames of a run of `iterations` iterations show, for a sheet's title, from the
+/// 0-based indices `framed` that got a frame (iterations numbered from 1): "one frame per
+/// iteration", "iterations 4–6 not shown" (each run of skipped ones), or "no iteration ran".
+/// Test: tests/demos/draw/step_frames_test.cpp.
+std::string iterationCoverage(int iterations, const std::vector<int>& framed);
+
+/// The end of a run that draws a frame per framed iteration (gjk, epa): the GIF of every frame so
+/// far when `gif`, and with --steps a contact sheet of them titled "<scene title>: <algorithm>,
+/// <iterationCoverage(iterations, framed)>".
 void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, const RunContext& ctx, bool gif,
-                          const std::string& algorithm, DemoOutput& out);
+                          const std::string& algorithm, int iterations, const std::vector<int>& framed,
+                          DemoOutput& out);
 
 /// One frame per query point, draw(i) for i in [0, count), then a contact sheet of them titled
 /// "<scene title>: one query point per frame" (the voronoi_triangle scenes' steps).

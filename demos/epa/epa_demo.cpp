@@ -91,13 +91,13 @@ public:
 
         const int ss = figureScale(common_, ctx);
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
+        const std::vector<int> framed = framedSteps(int(run.steps.size()), pair_.maxStepFrames);
         if (common_.steps || ctx.stepsOverride)  // "steps": false: GJK's simplex, the result, the bounds
-            for (int i : framedSteps(int(run.steps.size()), pair_.maxStepFrames))
-                out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
+            for (int i : framed) out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
         else out.skipped.push_back("step frames (\"steps\": false)");
         out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -1));
         if (common_.hasLayer("plot") && !run.steps.empty()) out.frames.push_back(drawPlot(*ctx.gl, ss, run));
-        addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "EPA", out);
+        addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "EPA", int(run.steps.size()), framed, out);
         return out;
     }
 

@@ -81,12 +81,12 @@ public:
         const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
         const int scale = figureScale(common_, ctx);
+        const std::vector<int> framed = framedSteps(int(trace.steps.size()), pair_.maxStepFrames);
         if (common_.steps || ctx.stepsOverride)  // "steps": false draws the result frame only
-            for (int i : framedSteps(int(trace.steps.size()), pair_.maxStepFrames))
-                out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, i, r));
+            for (int i : framed) out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, i, r));
         else out.skipped.push_back("step frames (\"steps\": false)");
         out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, -1, r));
-        addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "GJK", out);
+        addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "GJK", int(trace.steps.size()), framed, out);
         return out;
     }
 

@@ -1,0 +1,17 @@
+// What a stepping demo's contact sheet says it shows (demos/draw/step_frames.h): the title names the
+// iterations it skips, never "one frame per iteration" over a gap (figure review 2026-11-29:
+// gjk/sliver's sheet jumped from iteration 3 to 7 under that title; epa/touching had no iteration).
+#include <doctest/doctest.h>
+
+#include "demos/draw/step_frames.h"
+
+using namespace cdlab::demos;
+
+TEST_CASE("iterationCoverage names the skipped iterations of framedSteps") {
+    CHECK(iterationCoverage(7, framedSteps(7, 4)) == "iterations 4–6 not shown");
+    CHECK(iterationCoverage(3, framedSteps(3, 4)) == "one frame per iteration");
+    CHECK(iterationCoverage(5, framedSteps(5, 4)) == "iteration 4 not shown");
+    CHECK(iterationCoverage(0, framedSteps(0, 4)) == "no iteration ran");
+    CHECK(iterationCoverage(9, {0, 3, 8}) == "iterations 2–3, 5–8 not shown");
+    CHECK(iterationCoverage(30, framedSteps(30, 4)) == "iterations 4–29 not shown");
+}
