@@ -72,6 +72,44 @@ struct Call {
     GjkResult gjk;
 };
 
+// The calls of a coherent sequence that get a frame, at most m, in call order: the first (the cold
+// start), then the calls whose walk updated features — the most updates first — then evenly
+// spaced others to fill m (figure review 2026-11-29: five 0-update calls were drawn while calls 27,
+// 33 and 37 changed features).
+std::vector<int> motionCallsToDraw(const std::vector<Call>& calls, int m) {
+    const int n = int(calls.size());
+    m = std::min(n, m);
+    std::vector<int> chosen;
+    if (m <= 0) return chosen;
+    chosen.push_back(0);
+    std::vector<int> updating;
+    for (int k = 1; k < n; ++k)
+        if (calls[std::size_t(k)].result.steps > 0) updating.push_back(k);
+    std::stable_sort(updating.begin(), updating.end(), [&](int a, int b) {
+        return calls[std::size_t(a)].result.steps > calls[std::size_t(b)].result.steps;
+    });
+    for (int k : updating)
+        if (int(chosen.size()) < m) chosen.push_back(k);
+    for (int j = 1; int(chosen.size()) < m && j < m; ++j) {  // fill: evenly spaced, unused
+        int k = int(std::lround(double(j) * (n - 1) / (m - 1)));
+        while (k < n && std::find(chosen.begin(), chosen.end(), k) != chosen.end()) ++k;
+        if (k < n) chosen.push_back(k);
+    }
+    for (int k = 1; int(chosen.size()) < m && k < n; ++k)
+        if (std::find(chosen.begin(), chosen.end(), k) == chosen.end()) chosen.push_back(k);
+    std::sort(chosen.begin(), chosen.end());
+    return chosen;
+}
+
+// The sheet's title: which calls it shows and how many of them updated features.
+std::string motionSheetTitle(const std::vector<Call>& calls, const std::vector<int>& drawn) {
+    int updating = 0, shown = 0;
+    for (std::size_t k = 1; k < calls.size(); ++k) updating += calls[k].result.steps > 0;
+    for (int k : drawn) shown += k > 0 && calls[std::size_t(k)].result.steps > 0;
+    return "The first call and " + std::to_string(shown) + " of the " + std::to_string(updating) +
+           " that updated (of " + std::to_string(calls.size()) + ")";
+}
+
 int stateIndex(VClipState s) { return static_cast<int>(s); }
 
 GjkResult gjkOf(const Body& a, const Body& b, const Transform& poseB) {
@@ -109,13 +147,10 @@ public:
         boundingSphere(pts, center_, radius_);
 
         std::vector<const Frame*> animated;
+        std::vector<int> drawnCalls;
         if (s_.motion) {
-            const int n = int(calls.size());
-            const int m = std::min(n, s_.motion->drawnFrames);
-            for (int j = 0; j < m; ++j) {
-                const int k = m > 1 ? int(std::lround(double(j) * (n - 1) / (m - 1))) : 0;
-                out.frames.push_back(drawMotionFrame(*ctx.gl, ss, calls, k));
-            }
+            drawnCalls = motionCallsToDraw(calls, s_.motion->drawnFrames);
+            for (int k : drawnCalls) out.frames.push_back(drawMotionFrame(*ctx.gl, ss, calls, k));
         } else {
             const Call& c = calls.front();
             if (common_.steps || ctx.stepsOverride)
@@ -130,7 +165,7 @@ public:
             // At most 1024 x 768: 3 columns of quarter-size frames, or 4 of fifth-size beyond six frames.
             ContactSheetOptions o;
             o.caption = common_.caption;
-            o.title = s_.motion ? "One warm-started V-Clip call per frame" : "V-Clip, one update per frame";
+            o.title = s_.motion ? motionSheetTitle(calls, drawnCalls) : "V-Clip, one update per frame";
             const bool many = animated.size() > 6;
             o.cellWidth = common_.image.width / (many ? 5 : 4) + 1;
             o.columns = many ? 4 : 3;
