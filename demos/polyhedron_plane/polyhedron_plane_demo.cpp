@@ -125,9 +125,14 @@ struct Legend {
     }
 };
 
+// The frame's title, its result line at the bottom and, above it, the scene's caption (docs/scenes.md
+// promises the caption on every frame).
 Frame finish(Canvas& c, const std::string& name, const std::string& title, const std::string& caption,
-             const std::string& shortCaption) {
+             const std::string& shortCaption, const std::string& sceneCaption) {
     drawTitleAndCaption(c, title, caption);
+    if (!sceneCaption.empty())
+        c.drawTextPx(18.0, c.height() - 18.0 - 28.0, sceneCaption,
+                     TextStyle{17.0f, roleColor(Role::Muted).scaled(0.8f), Anchor::BottomLeft, true, false});
     return Frame{name, shortCaption, c.readPixels()};
 }
 
@@ -355,7 +360,7 @@ private:
                           r.featurePoints.size() == 1 ? "" : "s");
         char name[32];
         std::snprintf(name, sizeof name, "pose_%02d", int(i));
-        return finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status));
+        return finish(c, name, common_.title, cap, poseLabels[i] + ": " + nameOf(r.status), common_.caption);
     }
 
     // ---- features mode ------------------------------------------------------------------------
@@ -442,7 +447,7 @@ private:
             const std::string title =
                 common_.title + ": " + nameOf(r.type) + (pairLabels[i].empty() ? "" : " (" + pairLabels[i] + ")");
             out.frames.push_back(
-                finish(c, name, title, cap, std::string(nameOf(r.type)) + ", distance " + fmt(r.distance)));
+                finish(c, name, title, cap, std::string(nameOf(r.type)) + ", distance " + fmt(r.distance), common_.caption));
         }
     }
 
@@ -573,7 +578,7 @@ private:
         else
             std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(),
                           nameOf(r.axisKind), counts);
-        return finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind));
+        return finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind), common_.caption);
     }
 
     // The clip seen along the reference normal: reference face, incident face, each side-plane step.
@@ -619,7 +624,7 @@ private:
                       "face → %d kept",
                       int(tr.clipSteps.size()), tr.clipSteps.empty() ? 0 : int(tr.clipSteps.back().after.size()),
                       int(tr.clipped.size()), int(r.manifold.size()));
-        return finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping");
+        return finish(c, "clip", "Face clipping, seen along the reference normal", cap, "face clipping", common_.caption);
     }
 };
 
