@@ -486,6 +486,12 @@ StressReport runStressSuite(const StressOptions& options) {
                         stress_engine::runRounded(engine, f, i, c);
                         break;
                     }
+                    case Kind::Contact: {
+                        stress_cases::ContactCase c;
+                        f.contact(rng, c);
+                        stress_engine::runContact(engine, f, i, c);
+                        break;
+                    }
                 }
             }
         }

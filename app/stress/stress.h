@@ -15,6 +15,11 @@
 //    in long double); the contact points on the bodies at t, equal, the normal a touching direction;
 //  - spheres and capsules: distance and penetration against the long double signed distance of the
 //    cores minus the radii, every witness field as above;
+//  - contact manifolds (stress_contact_runs.cpp): the verdict, the depth within the face
+//    preference's range of the least overlap over every face normal and edge cross product of the
+//    vertex lists (verification/least_overlap_oracle.h), the normal realising the depth, every
+//    point on its body with pointA - pointB = depth_i n, the distance and closest pair apart, the
+//    features holding the points and supporting the normal;
 //  - no NaN, no hang: every query's iterations are counted, reaching the cap is a failure.
 // Every failure becomes one `cdlab query` line (README "cdlab query", %.17g numbers) that replays it.
 #pragma once

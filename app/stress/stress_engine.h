@@ -1,5 +1,6 @@
 // The engine of `cdlab stress` (stress.h), shared by its runners (stress.cpp: polytope pairs, boxes,
-// triangles, rays; stress_witness_runs.cpp: times of impact, spheres and capsules): the report's
+// triangles, rays; stress_witness_runs.cpp: times of impact, spheres and capsules;
+// stress_contact_runs.cpp: contact manifolds): the report's
 // cells (Engine::record), the tamper hook, the witness oracle's tolerances and cells, and the
 // reproducers' JSON (`cdlab query` lines, %.17g numbers).
 #pragma once
@@ -159,5 +160,10 @@ inline void witnessCell(Engine& e, const std::string& family, const std::string&
 void runToi(Engine& e, const stress_cases::Family& f, int index, const stress_cases::ToiCase& c);
 /// Distance and penetration of spheres, capsules and polytopes (stress_families.h, RoundedCase).
 void runRounded(Engine& e, const stress_cases::Family& f, int index, const stress_cases::RoundedCase& c);
+
+// ---- The runner of stress_contact_runs.cpp ----------------------------------------------------------
+
+/// Every field of a contact answer of two polytopes (stress_families.h, ContactCase).
+void runContact(Engine& e, const stress_cases::Family& f, int index, const stress_cases::ContactCase& c);
 
 }  // namespace cdlab::demos::stress_engine

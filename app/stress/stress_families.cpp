@@ -529,6 +529,98 @@ void addCastAndRoundedFamilies(std::vector<Family>& f) {
     f.push_back(std::move(rounded));
 }
 
+
+// ---- Contact manifolds -------------------------------------------------------------------------------
+//
+// Two polytopes for the contact op, 1 case in 5 each: random hulls of 4–10 vertices placed along a
+// random direction (placeAtGap); boxes face to face (B turned about the common normal, 1 in 3 not
+// at all); edge to edge, the ridges crossing at 0.2..1.4 rad; the same nearly parallel, 1e-12..1e-3
+// rad; a vertex of B over a face of A. Sizes 1e-3..1e3 (B 0.5..2 times A), the pair rotated at
+// random and, 1 case in 2, moved by 1e-0..1e6 (nearly parallel edges: no farther than keeps the
+// coordinates' rounding 1e-3 of the angle). The gap along the contact's normal: 1 in 8 touching
+// (a vertex copied bit for bit: random hulls), 3 in 8 apart by 1e-12..1e-3 of the size, 2 in 8
+// overlapping by that much, 2 in 8 by 1e-3..0.3. The construction only aims: the oracle recomputes
+// everything from the doubles handed to the query.
+
+/// The corners of the box of half extents h turned by q about c (corner i: bit k the + side of axis k).
+std::vector<Vec3> boxPoints(const Vec3& c, const Vec3& h, const Quat& q) {
+    std::vector<Vec3> v;
+    for (int i = 0; i < 8; ++i)
+        v.push_back(c + q * Vec3(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z()));
+    return v;
+}
+
+double contactGap(std::mt19937_64& rng, double s) {
+    const int mode = static_cast<int>(rng() % 8);
+    if (mode == 0) return 0.0;
+    if (mode <= 3) return s * logUniform(rng, 1e-12, 1e-3);
+    if (mode <= 5) return -s * logUniform(rng, 1e-12, 1e-3);
+    return -s * logUniform(rng, 1e-3, 0.3);
+}
+
+/// Boxes in A's frame (A at the origin, axis-aligned) with A's ridge along x at (y, z) = (hA.y, hA.z)
+/// and B's ridge (its edge at local (y, z) = (−hB.y, −hB.z)) crossing it at P = (t0, hA.y, hA.z) at the
+/// angle theta: B turned by phi about x (the arcs of the ridges' face normals on the Gauss map,
+/// [0, 90°] for A, [phi, phi + 90°] for B reflected, overlap on [phi, 90°]), then by theta about
+/// m = (0, cos gamma, sin gamma) inside that overlap. The edge-edge face of A − B then has the normal
+/// m; B's ridge sits at P + gap m.
+void crossedRidges(std::mt19937_64& rng, const Vec3& hA, const Vec3& hB, double theta, double gap,
+                   std::vector<Vec3>& va, std::vector<Vec3>& vb) {
+    const double phi = uniform(rng, 0.2, 1.37), span = 1.5707963267948966 - phi;
+    const double gamma = phi + uniform(rng, 0.1, 0.9) * span;
+    const Vec3 m(0.0, std::cos(gamma), std::sin(gamma));
+    const Quat r = Quat(Eigen::AngleAxisd(theta, m)) * Quat(Eigen::AngleAxisd(phi, Vec3::UnitX()));
+    const Vec3 p(uniform(rng, -0.5, 0.5) * hA.x(), hA.y(), hA.z());
+    const Vec3 cB = p + gap * m - r * Vec3(0.0, -hB.y(), -hB.z());
+    va = boxPoints(Vec3::Zero(), hA, Quat::Identity());
+    vb = boxPoints(cB, hB, r);
+}
+
+void contactPair(std::mt19937_64& rng, ContactCase& c) {
+    const double s = logUniform(rng, 1e-3, 1e3), gap = contactGap(rng, s);
+    const int mode = static_cast<int>(rng() % 5);  // hulls, face-face, edge-edge, nearly parallel, vertex-face
+    double offsetCap = 1e6;
+    if (mode == 0) {
+        c.va = scaled(ellipsoidPoints(rng, 4 + static_cast<int>(rng() % 7)), s);
+        c.vb = scaled(ellipsoidPoints(rng, 4 + static_cast<int>(rng() % 7)), s * uniform(rng, 0.5, 2.0));
+        placeAtGap(c.va, c.vb, randomUnit(rng), gap);
+    } else {
+        const Vec3 hA = s * Vec3(uniform(rng, 0.3, 1), uniform(rng, 0.3, 1), uniform(rng, 0.3, 1));
+        const Vec3 hB = s * uniform(rng, 0.5, 2.0) * Vec3(uniform(rng, 0.3, 1), uniform(rng, 0.3, 1), uniform(rng, 0.3, 1));
+        if (mode == 1) {  // B on A's +z face, turned about z
+            const double psi = rng() % 3 == 0 ? 0.0 : uniform(rng, 0.0, 6.283185307179586);
+            const Vec3 cB(uniform(rng, -0.8, 0.8) * hA.x(), uniform(rng, -0.8, 0.8) * hA.y(), hA.z() + hB.z() + gap);
+            c.va = boxPoints(Vec3::Zero(), hA, Quat::Identity());
+            c.vb = boxPoints(cB, hB, Quat(Eigen::AngleAxisd(psi, Vec3::UnitZ())));
+        } else if (mode == 2 || mode == 3) {
+            const double theta = mode == 2 ? uniform(rng, 0.2, 1.4) : logUniform(rng, 1e-12, 1e-3);
+            crossedRidges(rng, hA, hB, rng() % 2 ? theta : -theta, gap, c.va, c.vb);
+            if (mode == 3) offsetCap = std::min(offsetCap, s * theta * 1e13);  // rounding u·offset <= 1e-3 theta s
+        } else {  // B's lowest vertex over a point of A's +z face
+            c.va = boxPoints(Vec3::Zero(), hA, Quat::Identity());
+            c.vb = boxPoints(Vec3::Zero(), hB, randomRotation(rng));
+            const Vec3 p(uniform(rng, -0.8, 0.8) * hA.x(), uniform(rng, -0.8, 0.8) * hA.y(), hA.z() + gap);
+            const Vec3 low = c.vb[argExtreme(c.vb, -Vec3::UnitZ())];
+            for (Vec3& x : c.vb) x += p - low;
+        }
+        const Quat q = randomRotation(rng);  // the pair, turned
+        for (Vec3& x : c.va) x = q * x;
+        for (Vec3& x : c.vb) x = q * x;
+    }
+    if (rng() % 2) {
+        const Vec3 o = std::min(offsetCap, logUniform(rng, 1.0, 1e6)) * randomUnit(rng);
+        for (Vec3& x : c.va) x += o;
+        for (Vec3& x : c.vb) x += o;
+    }
+    c.param = std::abs(gap) / s;
+}
+
+void addContactFamilies(std::vector<Family>& f) {
+    Family contact{"contact manifolds", "|gap| / size", Kind::Contact, {}, {}, {}, {}};
+    contact.contact = contactPair;
+    f.push_back(std::move(contact));
+}
+
 }  // namespace
 
 std::vector<Family> stressFamilies() {
@@ -539,6 +631,7 @@ std::vector<Family> stressFamilies() {
     addRayFamilies(f);
     addCastAndRoundedFamilies(f);
     addTriangleFamilies(f);
+    addContactFamilies(f);
     return f;
 }
 

@@ -1,7 +1,8 @@
 // The cases of `cdlab stress` (stress.h): a family draws case i from (seed, family, i) only, so a
 // failing case is replayable on its own. Polytope pairs (vertex lists), box pairs (support
-// mappings), point-triangle pairs, rays, times of impact, spheres and capsules; stress.cpp and
-// stress_witness_runs.cpp run every check of its kind on each case.
+// mappings), point-triangle pairs, rays, times of impact, spheres and capsules, contact manifolds;
+// stress.cpp, stress_witness_runs.cpp and stress_contact_runs.cpp run every check of its kind on
+// each case.
 #pragma once
 
 #include <functional>
@@ -65,7 +66,14 @@ struct RoundedCase {
     double param = 0;
 };
 
-enum class Kind { Poly, Box, Tri, Ray, Toi, Rounded };
+/// Two polytopes (world-frame vertex lists) for the contact op: random hulls, or boxes face to
+/// face, edge to edge (also nearly parallel), vertex to face; touching, apart or overlapping.
+struct ContactCase {
+    std::vector<Vec3> va, vb;
+    double param = 0;
+};
+
+enum class Kind { Poly, Box, Tri, Ray, Toi, Rounded, Contact };
 
 struct Family {
     std::string name, parameter;
@@ -76,12 +84,13 @@ struct Family {
     std::function<void(std::mt19937_64&, RayCase&)> ray;
     std::function<void(std::mt19937_64&, ToiCase&)> toi = {};
     std::function<void(std::mt19937_64&, RoundedCase&)> rounded = {};
+    std::function<void(std::mt19937_64&, ContactCase&)> contact = {};
 };
 
 /// Every family, in report order: polytope pairs (scale, offset, gap, penetration, slivers,
 /// parallel edges, duplicates, rotations, float rounding), box pairs (axis-aligned, rotated), the
 /// witness oracle's (tiny against huge, coplanar faces of A - B, rays in a face plane, times of
-/// impact on sliding paths, spheres and capsules), point vs triangle.
+/// impact on sliding paths, spheres and capsules), point vs triangle, contact manifolds.
 std::vector<Family> stressFamilies();
 
 }  // namespace cdlab::demos::stress_cases

@@ -54,7 +54,7 @@ TEST_SUITE("stress") {
                 CHECK(c.failures == 0);
             }
         }
-        CHECK(families.size() >= 19);
+        CHECK(families.size() >= 20);
         CHECK(r.totalCases > 1000);
     }
 
@@ -98,18 +98,18 @@ TEST_SUITE("stress") {
         CHECK_FALSE(r.ok());
     }
 
-    TEST_CASE("a witness moved off its body is flagged (GJK, EPA, ray, sphere / capsule, time of impact), and its reproducers replay") {
+    TEST_CASE("a witness moved off its body is flagged (GJK, EPA, ray, sphere / capsule, time of impact, contact), and its reproducers replay") {
         StressOptions o = quickOptions(0.0, 10);
         // pointA.x moved by 10 % of the coordinate's size plus 1: off A in every family; a time of
         // impact's t moved the same way (past 1: the bodies elsewhere than its points)
         o.tamper = [](const std::string& check, double& value) {
             if (check == "gjk_witness" || check == "epa_witness" || check == "ray_point" ||
-                check == "rounded_witness" || check == "toi_t")
+                check == "rounded_witness" || check == "toi_t" || check == "contact_witness")
                 value += 0.1 * std::abs(value) + 1.0;
         };
         const StressReport r = runStressSuite(o);
         CHECK_FALSE(r.ok());
-        int gjk = 0, epa = 0, ray = 0, rounded = 0, toi = 0;
+        int gjk = 0, epa = 0, ray = 0, rounded = 0, toi = 0, contact = 0;
         for (const StressCell& c : r.cells) {
             if (c.check == "ray point = o + t d") ray += c.failures;
             if (c.check == "gjk pointA on A" || c.check == "gjk pA-pB = -d n") gjk += c.failures;
@@ -117,12 +117,15 @@ TEST_SUITE("stress") {
             if (c.family == "spheres and capsules" && c.check.find("pointA on A") != std::string::npos)
                 rounded += c.failures;
             if (c.check == "toi apart at t" || c.check == "toi pointA on A(t)") toi += c.failures;
+            if (c.family == "contact manifolds" && (c.check == "contact pointA on A" || c.check == "contact closest pointA on A"))
+                contact += c.failures;
         }
         CHECK(gjk > 0);
         CHECK(epa > 0);
         CHECK(ray > 0);
         CHECK(rounded > 0);
         CHECK(toi > 0);
+        CHECK(contact > 0);
         REQUIRE(!r.failureLines.empty());
         for (const std::string& line : r.failureLines) {
             CAPTURE(line);
