@@ -4,12 +4,13 @@
 // doubles only (verification/least_overlap_oracle.h, verification/witness_oracle.h; nothing of
 // core's hull, GJK or SAT). L: the pair's size, L_body: one body's, M: the largest coordinate:
 //  - colliding = the oracle's verdict (least overlap D* > 0), exact outside 1e-12 L + 8uM of touching;
-//  - colliding: D* − tol <= depth <= 1.02 D* + tol (the face preference, README "cdlab query") and
+//  - colliding: D* − tol <= depth <= 1.02 D* + band (the face preference, README "cdlab query") and
 //    h_{A−B}(normal) = depth within tol, tol = 1e-10 L + 8uM (the penetration depth's, README's
-//    accuracy table; docs/check.md: "cdlab meets 1e-10 L on depths"). Core's own bound adds its SAT
-//    touching band, 1e-9 of the larger bounding-box diagonal, instead: an informational cell
-//    reports that bound, the judged one does not grant it. At least one point; every point: point_a on A and point_b on B within 1e-9 L_body + 8uM_body, point_a −
-//    point_b = depth_i · normal within 1e-9 L + 8uM, 0 <= depth_i <= depth + 1e-9 L + 8uM;
+//    accuracy table); band = the SAT's touching band, 1e-9 of the larger bounding-box diagonal +
+//    128 u M (core/contact/contact_sat.h's contract). At least one point; every point: point_a on
+//    A and point_b on B within 1e-9 L_body + 8uM_body, point_a − point_b = depth_i · normal within
+//    1e-9 L + 8uM, −band <= depth_i <= depth + 1e-9 L + 8uM (a point within the band above the
+//    reference face carries its separation as a negative depth);
 //  - separated: the distance = the oracle's within 1e-12 L + 8uM; the closest pair on its bodies,
 //    point_b − point_a = distance · normal, and the normal separating by the distance (GJK's axis
 //    tolerance, stress_tolerances.h);
@@ -158,18 +159,12 @@ void checkColliding(Engine& e, const Judge& j, const ContactResult& r) {
     const double least = static_cast<double>(j.o.leastOverlap());
     const std::string text = "1e-10 L + 8uM";
     contactLength(e, j, "contact depth >= D*", text, r.depth, least, least - r.depth, tol);
-    contactLength(e, j, "contact depth <= 1.02 D*", text, r.depth, least,
-                  r.depth - kFacePreference * least, tol);
-    // Informational: core's own bound (core/contact/contact_sat.h, step 3) adds the SAT's touching
-    // band, 1e-9 of the larger bounding-box diagonal + 64 ulps of the coordinates, instead of tol:
-    // inside that band a face axis is kept over a better edge or face axis.
-    Check band;
-    band.got = r.depth;
-    band.expected = least;
-    band.error = std::max(0.0, r.depth - kFacePreference * least) / j.w.L;
-    band.tolerance = (kWitnessTol * std::max(bboxDiagonal(j.c.va), bboxDiagonal(j.c.vb)) + 128 * kU * j.w.M) / j.w.L;
-    e.record(j.f.name, "contact depth <= core's bound", "1.02 D* + 1e-9 diag + 64 ulps", true, j.c.param,
-             band, j.query, j.index);
+    // The face preference's bound (core/contact/contact_sat.h, step 3; README): 1.02 D* plus the SAT's
+    // touching band, 1e-9 of the larger bounding-box diagonal + 128 u M: inside that band a face
+    // axis is kept over a better edge or face axis.
+    const double band = kWitnessTol * std::max(bboxDiagonal(j.c.va), bboxDiagonal(j.c.vb)) + 128 * kU * j.w.M;
+    contactLength(e, j, "contact depth <= 1.02 D* + band", "1e-9 diag + 128uM", r.depth, least,
+                  r.depth - kFacePreference * least, band);
     const bool unit = std::abs(toL(r.normal).norm() - 1) <= 1e-12L;
     const long double along = j.o.overlapAlong(toL(r.normal));
     contactLength(e, j, "contact normal |h(n)-depth|", text, r.depth, static_cast<double>(along),
@@ -195,7 +190,10 @@ void checkColliding(Engine& e, const Judge& j, const ContactResult& r) {
                 j.index, j.query);
     witnessCell(e, j.f.name, "contact pA-pB = depth_i n", "1e-9 L + 8uM", false, j.c.param, offset, t.offset, j.w.L,
                 j.index, j.query);
-    witnessCell(e, j.f.name, "contact depth_i >= 0", "exact", false, j.c.param, below, 0.0, j.w.L, j.index, j.query);
+    // A point up to the touching band above the reference face carries its separation as a
+    // negative depth (core/contact/contact_stages.cpp, clipWith).
+    witnessCell(e, j.f.name, "contact depth_i >= -band", "1e-9 diag + 128uM", false, j.c.param, below, band, j.w.L,
+                j.index, j.query);
     witnessCell(e, j.f.name, "contact depth_i <= depth", "1e-9 L + 8uM", false, j.c.param, above, t.offset, j.w.L,
                 j.index, j.query);
 }

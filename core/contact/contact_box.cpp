@@ -273,7 +273,7 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
         sides[k] = Plane{sn, sn.dot(refPoly[k])};
     }
     // Quads clip to at most 8 points: the inline buffers of clipIncidentFace, never the resource.
-    detail::clipIncidentFace(refPoly, nr, nr.dot(R.center) + R.h[rf / 2], incPoly, I.corner, refOnA, origin, tol,
+    detail::clipIncidentFace(refPoly, nr, nr.dot(R.center) + R.h[rf / 2], incPoly, I.corner, R.corner, refOnA, origin, tol,
                              options, r, nullptr, std::pmr::null_memory_resource(), sides);
     r.featureA = {FeatureType::Face, refOnA ? rf : inc};
     r.featureB = {FeatureType::Face, refOnA ? inc : rf};

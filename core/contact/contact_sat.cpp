@@ -395,7 +395,8 @@ void faceContact(const Posed& A, const Posed& B, const SatAxisRecord& best, cons
     R.facePolygon(rf, refPoly);
     I.facePolygon(inc, incPoly);
     if (trace) trace->referenceFace = rf, trace->incidentFace = inc;
-    detail::clipIncidentFace(refPoly, nr, R.d[rf], incPoly, I.x, refOnA, origin, tol, options, r, trace, memory);
+    detail::clipIncidentFace(refPoly, nr, R.d[rf], incPoly, I.x, R.x, refOnA, origin, tol, options, r, trace,
+                             memory);
     r.featureA = {FeatureType::Face, refOnA ? rf : inc};
     r.featureB = {FeatureType::Face, refOnA ? inc : rf};
 }

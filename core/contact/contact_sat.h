@@ -25,15 +25,19 @@
 //      under rounding, as Box2D's b2CollidePolygons does with k_tol). The contract (issue 41 (a)):
 //      the depth is not always the least overlap; it is bounded by
 //         least overlap <= depth <= least overlap · (1 + faceBiasRelative) + faceBiasAbsolute + tol
-//      (2 % with the defaults), and it is the overlap of the projections on the reported normal.
+//      (2 % with the defaults; tol the touching band, kTouchingBandRelative = 1e-9 of the larger
+//      bounding-box diagonal + 64 ulps, unless options.tolerance sets it), and it is the overlap of
+//      the projections on the reported normal (cdlab stress "contact manifolds").
 //      faceBiasRelative = 0 asks for the least overlap (within tol). Nearly parallel edges (sine
 //      below kPreciseEdgeSine) have their axis computed in long double, so the bound holds for them
 //      too (their double cross product is off by ~1e-16 / sine).
 //   4. Face axis: reference face = that face, incident face = the other body's face most
 //      anti-parallel to it; the incident polygon is clipped by the reference face's side planes
-//      (Sutherland–Hodgman), points behind the reference plane (s <= tol) are kept with depth
-//      -s, reduced to <= maxPoints (core/contact/contact_manifold.h). Edge axis: one point, the closest
-//      points of the two edges (core/closest/closest_point.h).
+//      (Sutherland–Hodgman), points behind the reference plane or up to tol above it (s <= tol)
+//      are kept with depth -s (negative within the band), reduced to <= maxPoints
+//      (core/contact/contact_manifold.h); when none is kept, the touching pair of the two bodies.
+//      Edge axis: one point, the closest points of the two edges (their common perpendicular in
+//      double-double when it lies on both).
 // Normal convention (as EPA, core/gjk_epa/epa.h): normal points from A toward B; pointA - pointB =
 // depth * normal; translating B by depth * normal separates the bodies (touching). Vertices are
 // taken relative to A's position so large offsets cost no precision in differences.

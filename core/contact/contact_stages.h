@@ -60,7 +60,8 @@ void recordChosenAxis(const SatChosenAxis& c, double tol, SatContactResult& r);
 /// sidePlanes: the side plane of each reference edge (unit normal e_i x nr / |e_i x nr|, offset
 /// through r_i) when the caller knows them cheaply (a box face); empty: computed here.
 void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dRef, std::span<const Vec3> incident,
-                      std::span<const Vec3> incidentVertices, bool referenceOnA, const Vec3& origin, double tol,
+                      std::span<const Vec3> incidentVertices, std::span<const Vec3> referenceVertices,
+                      bool referenceOnA, const Vec3& origin, double tol,
                       const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
                       std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes = {});
 

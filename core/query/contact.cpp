@@ -103,6 +103,60 @@ ContactFeature hullFeature(const ContactHull& b, const FeatureRef& f) {
     return out;
 }
 
+// Whether feature f of b holds every point of pts within tol (local units): a vertex within tol of
+// each, an edge's segment, a face's polygon (its plane, and inside each of its edges).
+bool featureHolds(const ContactHull& b, const FeatureRef& f, std::span<const Vec3> pts, double tol) {
+    const auto& v = b.mesh.vertices();
+    for (const Vec3& p : pts) {
+        if (f.type == FeatureType::Vertex) {
+            if (!((p - v[std::size_t(f.index)].position).norm() <= tol)) return false;
+        } else if (f.type == FeatureType::Edge) {
+            const auto [i, j] = b.mesh.edgeVertices(f.index);
+            const Vec3 &a = v[std::size_t(i)].position, &e = v[std::size_t(j)].position;
+            const double len2 = (e - a).squaredNorm();
+            const double t = len2 > 0 ? std::clamp((p - a).dot(e - a) / len2, 0.0, 1.0) : 0.0;
+            if (!((p - (a + t * (e - a))).norm() <= tol)) return false;
+        } else if (f.type == FeatureType::Face) {
+            const std::vector<int> fv = b.mesh.faceVertices(f.index);
+            Vec3 n = Vec3::Zero();  // Newell's normal
+            for (std::size_t k = 0; k < fv.size(); ++k)
+                n += v[std::size_t(fv[k])].position.cross(v[std::size_t(fv[(k + 1) % fv.size()])].position);
+            if (!(n.norm() > 0)) return false;
+            n.normalize();
+            if (!(std::abs(n.dot(p - v[std::size_t(fv[0])].position)) <= tol)) return false;
+            // Inside the polygon too: coplanar triangles of one flat side share its plane.
+            for (std::size_t k = 0; k < fv.size(); ++k) {
+                const Vec3& q0 = v[std::size_t(fv[k])].position;
+                const Vec3 edge = v[std::size_t(fv[(k + 1) % fv.size()])].position - q0;
+                const double len = edge.norm();
+                if (len > 0 && edge.cross(p - q0).dot(n) < -tol * len) return false;
+            }
+        } else {
+            return false;
+        }
+    }
+    return true;
+}
+
+// The feature of b that holds the reported points: `given` when it does, else the first vertex,
+// edge or face that does (a face axis kept by preference whose manifold fell back to the touching
+// pair; a separated pair whose support set is one triangle of a split quad while the closest point
+// lies on the other). tol: 1e-9 of the body's bounding-box diagonal + 64 ulps of its coordinates.
+// Test: cdlab stress "contact manifolds" ("feature holds point").
+FeatureRef featureHolding(const ContactHull& b, const FeatureRef& given, std::span<const Vec3> pts) {
+    Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+    for (const auto& x : b.mesh.vertices()) lo = lo.cwiseMin(x.position), hi = hi.cwiseMax(x.position);
+    const double tol = 1e-9 * (hi - lo).norm() + 64 * DBL_EPSILON * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    if (pts.empty() || featureHolds(b, given, pts, tol)) return given;
+    for (int i = 0; i < b.mesh.vertexCount(); ++i)
+        if (featureHolds(b, {FeatureType::Vertex, i}, pts, tol)) return {FeatureType::Vertex, i};
+    for (int e = 0; e < b.mesh.edgeCount(); ++e)
+        if (featureHolds(b, {FeatureType::Edge, e}, pts, tol)) return {FeatureType::Edge, e};
+    for (int f = 0; f < b.mesh.faceCount(); ++f)
+        if (featureHolds(b, {FeatureType::Face, f}, pts, tol)) return {FeatureType::Face, f};
+    return given;
+}
+
 ContactFeature planeFeature() {
     ContactFeature f;
     f.type = ContactFeature::Type::Plane;
@@ -179,8 +233,8 @@ void separatedBodies(const ContactHull& a, const ContactHull& b, const GjkResult
     out.distance = frame.length(g.distance);
     out.normal = n;
     out.points = {ContactPoint{frame.toWorld(g.pointA), frame.toWorld(g.pointB), 0.0}};
-    out.featureA = hullFeature(a, supportFeatureOf(a, n));
-    out.featureB = hullFeature(b, supportFeatureOf(b, -n));
+    out.featureA = hullFeature(a, featureHolding(a, supportFeatureOf(a, n), std::span<const Vec3>(&g.pointA, 1)));
+    out.featureB = hullFeature(b, featureHolding(b, supportFeatureOf(b, -n), std::span<const Vec3>(&g.pointB, 1)));
 }
 
 // Two polytopes: GJK decides (the touching rule, `touch` in local units); colliding pairs get the
@@ -230,8 +284,10 @@ ContactResult bodyBodyContact(const ContactHull& a, const ContactHull& b, int ma
     out.normal = r.normal;
     out.points = worldPoints(r.manifold, false, frame);
     out.axis = r.axisKind;
-    out.featureA = hullFeature(a, r.featureA);
-    out.featureB = hullFeature(b, r.featureB);
+    std::vector<Vec3> onA, onB;
+    for (const ContactPoint& c : r.manifold) onA.push_back(c.pointA), onB.push_back(c.pointB);
+    out.featureA = hullFeature(a, featureHolding(a, r.featureA, onA));
+    out.featureB = hullFeature(b, featureHolding(b, r.featureB, onB));
     return out;
 }
 
