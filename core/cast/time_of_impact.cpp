@@ -21,22 +21,54 @@ std::vector<Vec3> moved(std::span<const Vec3> points, const Vec3& by) {
 /// the touching tolerance): Newton on the distance d(t) of A + t·mA and B + t·mB, convex in t, from
 /// t = 0 where d > band. On a convex decreasing function the Newton step (d − band) / (n·m) from the
 /// left of the root never passes it, so every iterate stays at or before the first contact; it
-/// stops when d is within 1/16 of the band's margin or the step stops moving t. Returns tHit when
+/// stops when d is within the band (or 8 roundings of the coordinates) or the step stops moving t;
+/// a step that lands where GJK finds the cores touching (past the root by rounding) is bisected
+/// back. Returns tHit when
 /// it does not converge in kSteps (a path that creeps along a curved face) or the distance stops
 /// decreasing. Test: tests/core/cast/time_of_impact_scale_test.cpp (a path inside a facet plane of
 /// B − A within rounding; cdlab stress "time of impact, sliding paths").
 double firstTouchAlongPath(const PolytopeShape& coreA, const Vec3& motionA, const PolytopeShape& coreB,
                            const Vec3& motionB, double band, double tHit, GjkResult& at) {
+    double lastApart = 0.0;  // the last iterate at which GJK found the cores apart
     constexpr int kSteps = 64;
     const Vec3 m = motionA - motionB;
+    const auto& pa = coreA.vertices();
+    const auto& pb = coreB.vertices();
+    const auto movedMagnitude = [&](double s) {
+        double M = 0.0;
+        for (const Vec3& v : pa) M = std::max(M, (v + s * motionA).cwiseAbs().maxCoeff());
+        for (const Vec3& v : pb) M = std::max(M, (v + s * motionB).cwiseAbs().maxCoeff());
+        return M;
+    };
+    const auto distanceAt = [&](double s) {
+        return gjkDistance(PolytopeShape(moved(pa, s * motionA)), PolytopeShape(moved(pb, s * motionB)));
+    };
     double t = 0.0;
     for (int k = 0; k < kSteps; ++k) {
-        const auto& pa = coreA.vertices();
-        const auto& pb = coreB.vertices();
-        at = gjkDistance(PolytopeShape(moved(pa, t * motionA)), PolytopeShape(moved(pb, t * motionB)));
-        if (at.status != GjkStatus::Separated) return tHit;
+        const GjkResult g = distanceAt(t);
+        if (g.status != GjkStatus::Separated) {
+            if (k == 0) return tHit;
+            // A step that landed on the root within rounding (a path sliding in a facet plane meets
+            // the facet exactly there): bisect between the last iterate, apart by more than the
+            // band, and this one for the first t within it; `at` stays the last one apart.
+            double lo = lastApart, hi = t;
+            for (int i = 0; i < 48 && lo < hi; ++i) {
+                const double mid = 0.5 * (lo + hi);
+                if (!(mid > lo && mid < hi)) break;
+                const GjkResult gm = distanceAt(mid);
+                if (gm.status == GjkStatus::Separated && gm.distance > band) lo = mid, at = gm;
+                else hi = mid;
+            }
+            return lo;
+        }
+        at = g;
+        lastApart = t;
+        // Within the band plus 8 roundings of the moved coordinates counts as touching: a path
+        // sliding along a facet keeps its distance at that level (4e-14 against a 1.8e-14 band,
+        // coordinates ~100) while d' is ~1e-12, where further steps would creep along the facet
+        // (cdlab stress, 600 s, #26565).
         const double gap = at.distance - band;
-        if (gap <= 0.0625 * band) return t;
+        if (gap <= std::max(band, 8.0 * std::ldexp(movedMagnitude(t), -53))) return t;
         const double rate = at.separatingAxis.dot(m);  // d'(t) = −n·m, n from A toward B
         if (!(rate > 0.0)) return tHit;
         const double next = t + gap / rate;

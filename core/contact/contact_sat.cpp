@@ -469,6 +469,23 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     }
     if (best.kind == SatAxisKind::EdgeEdge) edgeContact(ma, A, mb, B, best, origin, tol, r, trace);
     else faceContact(A, B, best, origin, tol, options, r, trace, arena.resource());
+    // A face kept by the preference whose clip kept no point does not meet the other body where the
+    // bodies touch (its touching pair is then off its normal: cdlab stress "contact manifolds",
+    // point_a − point_b off depth_i · n by up to 6e-5 L): the least-overlap axis answers instead.
+    if (r.clipKeptNothing && (options.faceBiasRelative > 0 || options.faceBiasAbsolute > 0)) {
+        SatContactOptions least = options;
+        least.faceBiasRelative = least.faceBiasAbsolute = 0.0;
+        const detail::SatChosenAxis c2 = detail::chooseSatAxis(q.best, tol, least);
+        if (c2.chosen != c.chosen) {
+            r.manifold.clear();
+            r.featureA = r.featureB = FeatureRef{};
+            r.clipKeptNothing = false;
+            detail::recordChosenAxis(c2, tol, r);
+            if (trace) trace->chosen = c2.chosen;
+            if (c2.best.kind == SatAxisKind::EdgeEdge) edgeContact(ma, A, mb, B, c2.best, origin, tol, r, trace);
+            else faceContact(A, B, c2.best, origin, tol, options, r, trace, arena.resource());
+        }
+    }
     return r;
 }
 

@@ -96,6 +96,9 @@ struct SatContactResult {
     /// their axis is only as good as the vertices, so a caller whose vertices were rounded (a
     /// translated frame) may want to run again on exact ones (core/query/contact.cpp does).
     int nearlyParallelEdgePairs = 0;
+    /// The face clip kept no point (the manifold then holds the bodies' touching pair); with a face
+    /// preference the query retries on the least-overlap axis first (contactPolyhedra).
+    bool clipKeptNothing = false;
     bool colliding() const { return status == SatContactStatus::Touching || status == SatContactStatus::Penetrating; }
 };
 

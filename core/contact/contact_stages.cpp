@@ -1,6 +1,7 @@
 #include "core/contact/contact_stages.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -180,11 +181,26 @@ bool clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
         if (s <= tol && !append(pts, incidentPoint(p, p - s * nr, -s, referenceOnA, origin))) return false;
     }
     if (pts.empty()) {
+        r.clipKeptNothing = true;
         // Nothing survived the clip (the face axis kept by preference where the bodies meet beside
         // the reference face): the touching pair of the bodies, else the deepest incident vertex.
         Vec3 pr, pi;
         if (touchingPairAlong(referenceVertices, incidentVertices, nr, r.depth, pr, pi)) {
-            pts.push_back(incidentPoint(pi, pr, nr.dot(pr - pi), referenceOnA, origin));
+            // The pair's offset off the normal (GJK's closest points at δ) shared between the two
+            // points in proportion to their bodies' sizes (the on-body tolerances scale with them),
+            // so that pointA − pointB = depth_i · normal holds.
+            const double depthI = nr.dot(pr - pi);
+            const Vec3 lateral = (pr - pi) - depthI * nr;
+            const auto extent = [](std::span<const Vec3> v) {
+                Vec3 lo = v.front(), hi = v.front();
+                for (const Vec3& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+                return (hi - lo).norm() + 8 * DBL_EPSILON * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+            };
+            const double er = extent(referenceVertices), ei = extent(incidentVertices);
+            const double wr = er + ei > 0 ? er / (er + ei) : 0.5;
+            pr -= wr * lateral;
+            pi += (1 - wr) * lateral;
+            pts.push_back(incidentPoint(pi, pr, depthI, referenceOnA, origin));
         } else {
             size_t v = 0;
             for (size_t i = 1; i < incidentVertices.size(); ++i)

@@ -143,17 +143,28 @@ bool featureHolds(const ContactHull& b, const FeatureRef& f, std::span<const Vec
 // pair; a separated pair whose support set is one triangle of a split quad while the closest point
 // lies on the other). tol: 1e-9 of the body's bounding-box diagonal + 64 ulps of its coordinates.
 // Test: cdlab stress "contact manifolds" ("feature holds point").
-FeatureRef featureHolding(const ContactHull& b, const FeatureRef& given, std::span<const Vec3> pts) {
+FeatureRef featureHolding(const ContactHull& b, const FeatureRef& given, std::span<const Vec3> pts, const Vec3& dir) {
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-    for (const auto& x : b.mesh.vertices()) lo = lo.cwiseMin(x.position), hi = hi.cwiseMax(x.position);
+    double top = -INFINITY;
+    for (const auto& x : b.mesh.vertices())
+        lo = lo.cwiseMin(x.position), hi = hi.cwiseMax(x.position), top = std::max(top, dir.dot(x.position));
     const double tol = 1e-9 * (hi - lo).norm() + 64 * DBL_EPSILON * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
     if (pts.empty() || featureHolds(b, given, pts, tol)) return given;
+    // Only features of the support set along dir (a point near an edge lies on both its faces).
+    const auto supporting = [&](const std::vector<int>& vs) {
+        for (int v : vs)
+            if (!(dir.dot(b.mesh.vertices()[std::size_t(v)].position) >= top - 2 * tol)) return false;
+        return true;
+    };
     for (int i = 0; i < b.mesh.vertexCount(); ++i)
-        if (featureHolds(b, {FeatureType::Vertex, i}, pts, tol)) return {FeatureType::Vertex, i};
-    for (int e = 0; e < b.mesh.edgeCount(); ++e)
-        if (featureHolds(b, {FeatureType::Edge, e}, pts, tol)) return {FeatureType::Edge, e};
+        if (supporting({i}) && featureHolds(b, {FeatureType::Vertex, i}, pts, tol)) return {FeatureType::Vertex, i};
+    for (int e = 0; e < b.mesh.edgeCount(); ++e) {
+        const auto [i, j] = b.mesh.edgeVertices(e);
+        if (supporting({i, j}) && featureHolds(b, {FeatureType::Edge, e}, pts, tol)) return {FeatureType::Edge, e};
+    }
     for (int f = 0; f < b.mesh.faceCount(); ++f)
-        if (featureHolds(b, {FeatureType::Face, f}, pts, tol)) return {FeatureType::Face, f};
+        if (supporting(b.mesh.faceVertices(f)) && featureHolds(b, {FeatureType::Face, f}, pts, tol))
+            return {FeatureType::Face, f};
     return given;
 }
 
@@ -233,8 +244,8 @@ void separatedBodies(const ContactHull& a, const ContactHull& b, const GjkResult
     out.distance = frame.length(g.distance);
     out.normal = n;
     out.points = {ContactPoint{frame.toWorld(g.pointA), frame.toWorld(g.pointB), 0.0}};
-    out.featureA = hullFeature(a, featureHolding(a, supportFeatureOf(a, n), std::span<const Vec3>(&g.pointA, 1)));
-    out.featureB = hullFeature(b, featureHolding(b, supportFeatureOf(b, -n), std::span<const Vec3>(&g.pointB, 1)));
+    out.featureA = hullFeature(a, featureHolding(a, supportFeatureOf(a, n), std::span<const Vec3>(&g.pointA, 1), n));
+    out.featureB = hullFeature(b, featureHolding(b, supportFeatureOf(b, -n), std::span<const Vec3>(&g.pointB, 1), -n));
 }
 
 // Two polytopes: GJK decides (the touching rule, `touch` in local units); colliding pairs get the
@@ -286,8 +297,8 @@ ContactResult bodyBodyContact(const ContactHull& a, const ContactHull& b, int ma
     out.axis = r.axisKind;
     std::vector<Vec3> onA, onB;
     for (const ContactPoint& c : r.manifold) onA.push_back(c.pointA), onB.push_back(c.pointB);
-    out.featureA = hullFeature(a, featureHolding(a, r.featureA, onA));
-    out.featureB = hullFeature(b, featureHolding(b, r.featureB, onB));
+    out.featureA = hullFeature(a, featureHolding(a, r.featureA, onA, r.normal));
+    out.featureB = hullFeature(b, featureHolding(b, r.featureB, onB, Vec3(-r.normal)));
     return out;
 }
 

@@ -168,3 +168,34 @@ TEST_CASE("time of impact: a path inside a facet plane of B - A within 1e-17 ans
     CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9 * 100);
     CHECK(std::fabs(r.result.normal.norm() - 1) <= 1e-12);
 }
+
+TEST_CASE("time of impact: a path sliding at the band's rounding level along a facet answers where it first touches") {
+    // cdlab stress "time of impact, sliding paths" #26565 (600 s): the path slides along a facet of
+    // B − A at a distance of ~2.4 touching bands (4e-14: the rounding of coordinates ~500); Newton's
+    // steps crept along the facet and the cast's t = 0.56918 stood, 0.0054 of travel (1.3e-6 L) after
+    // the first touch, t = 0.549843858022 (an exact-rational oracle: the first t with a common point).
+    const std::vector<Vec3> a = {{-505.4616405255627, -563.8951039750392, -167.11074829073019},
+                                 {-505.476094867452, -563.8898281786217, -167.08904937341458},
+                                 {-505.46843406045843, -563.9014263679114, -167.10984769969096},
+                                 {-505.4591772287915, -563.906707952463, -167.088366990058},
+                                 {-505.47400453643405, -563.8975042757635, -167.08502463096906},
+                                 {-505.4501588523984, -563.8903770323478, -167.0872778887273},
+                                 {-505.46670278076175, -563.8822443490698, -167.08077210859125}};
+    const std::vector<Vec3> b = {{-505.40817604257956, -563.9287762982223, -166.9548968998852},
+                                 {-505.4159062970916, -563.9409132650356, -166.95381238384948},
+                                 {-505.4135655842221, -563.9406788837251, -166.95524998978615},
+                                 {-505.3927240027362, -563.9383046696225, -166.93310561461547},
+                                 {-505.4013150076402, -563.9151985210664, -166.93710289314117},
+                                 {-505.4130252935519, -563.9407461029882, -166.94216840486675},
+                                 {-505.3864183560457, -563.9189039188398, -166.93323814152552},
+                                 {-505.3923132720747, -563.926070487304, -166.94572132998923}};
+    const Vec3 ma(0.11162843426977276, -0.08999809849257724, 0.23754975469390238);
+    const Vec3 mb(-0.004183959040649053, 0.0030983348977997806, 0.0006670344004794246);
+    const ImpactQueryResult r = timeOfImpactQuery(QueryShape::polytope(a), ma, QueryShape::polytope(b), mb);
+    REQUIRE(r.status == PairStatus::Ok);
+    REQUIRE(r.result.hit);
+    const double firstTouch = 0.549843858022;
+    CHECK(std::fabs(r.result.t - firstTouch) <= 1e-9);
+    CHECK(std::fabs(double(satGap(a, ma, b, mb, r.result.t))) <= 1e-12);
+    CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9);
+}
