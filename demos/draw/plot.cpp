@@ -235,12 +235,18 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     f.ay = fitAxis(ys, o.logY, o.yFloor);
     pc.axes(f);
     Canvas& c = pc.canvas();
-    for (const auto& [value, text] : o.hLines) {
+    for (std::size_t i = 0; i < o.hLines.size(); ++i) {
+        const auto& [value, text] = o.hLines[i];
         const double y = f.py(value);
+        // Reference lines in ink and grey, never a series' colour, each its own (figure review
+        // 2026-11-29: two orange lines beside an orange series); beyond two they repeat grey.
+        const Color color = i == 0 ? roleColor(Role::Ink) : roleColor(Role::Muted).scaled(0.75f);
         // 3 px: thick enough to be an obstacle to the placement step, so its name stays off it.
-        c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), lineStyle(Role::Highlight, 3.0f, true, false));
+        LineStyle ls = lineStyle(Role::Ink, 3.0f, true, false);
+        ls.color = color;
+        c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), ls);
         // Named above the line's left end, or where the placement step finds room off the data.
-        TextStyle ts{16.0f, roleColor(Role::Highlight), Anchor::Center, true, false};
+        TextStyle ts{16.0f, color, Anchor::Center, true, false};
         ts.place = true;
         ts.offsetPx = Eigen::Vector2d(0, -12);
         const double halfWidth = 0.5 * c.measureText(text, ts).x();
