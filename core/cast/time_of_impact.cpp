@@ -23,12 +23,12 @@ std::vector<Vec3> moved(std::span<const Vec3> points, const Vec3& by) {
 /// left of the root never passes it, so every iterate stays at or before the first contact; it
 /// stops when d is within the band (or 8 roundings of the coordinates) or the step stops moving t;
 /// a step that lands where GJK finds the cores touching (past the root by rounding) is bisected
-/// back. Returns tHit when
-/// it does not converge in kSteps (a path that creeps along a curved face) or the distance stops
+/// back. atStart: GJK on the unmoved cores (the caller's t = 0 test). Returns tHit when it does
+/// not converge in kSteps (a path that creeps along a curved face) or the distance stops
 /// decreasing. Test: tests/core/cast/time_of_impact_scale_test.cpp (a path inside a facet plane of
 /// B − A within rounding; cdlab stress "time of impact, sliding paths").
 double firstTouchAlongPath(const PolytopeShape& coreA, const Vec3& motionA, const PolytopeShape& coreB,
-                           const Vec3& motionB, double band, double tHit, GjkResult& at) {
+                           const Vec3& motionB, double band, double tHit, const GjkResult& atStart, GjkResult& at) {
     double lastApart = 0.0;  // the last iterate at which GJK found the cores apart
     constexpr int kSteps = 64;
     const Vec3 m = motionA - motionB;
@@ -45,7 +45,7 @@ double firstTouchAlongPath(const PolytopeShape& coreA, const Vec3& motionA, cons
     };
     double t = 0.0;
     for (int k = 0; k < kSteps; ++k) {
-        const GjkResult g = distanceAt(t);
+        const GjkResult g = k == 0 ? atStart : distanceAt(t);  // t = 0: the caller's start test
         if (g.status != GjkStatus::Separated) {
             if (k == 0) return tHit;
             // A step that landed on the root within rounding (a path sliding in a facet plane meets
@@ -126,7 +126,7 @@ TimeOfImpactResult translationalTimeOfImpact(std::span<const Vec3> pointsA, doub
     const double band = radii + options.touchTolerance;
     if (band > 0) {
         GjkResult g;
-        const double t = firstTouchAlongPath(coreA, motionA, coreB, motionB, band, h.t, g);
+        const double t = firstTouchAlongPath(coreA, motionA, coreB, motionB, band, h.t, start, g);
         if ((h.t - t) * motion.norm() > 1e3 * band && g.status == GjkStatus::Separated) {
             out.t = t;
             out.normal = g.separatingAxis;

@@ -8,7 +8,7 @@
 
 #include "core/base/tolerances.h"
 #include "core/geometry/shapes.h"
-#include "core/gjk_epa/gjk.h"
+#include "core/gjk_epa/touching_pair.h"
 
 namespace cdlab::detail {
 
@@ -111,27 +111,18 @@ SatChosenAxis chooseSatAxis(const SatBestAxes& b, double tol, const SatContactOp
 
 namespace {
 
-// The touching pair of two vertex sets overlapping by `depth` along the reference normal nr: the
-// incident set pushed along nr by depth + δ (δ = max(depth, 2^-30 M)) is about δ apart, and GJK's
-// closest points — convex combinations of vertices — lie on both bodies (pi moved back). False when
-// GJK does not separate them. Test: cdlab stress "contact manifolds" (seed 1 #175, #2264, #2523).
+// The touching pair of the reference and incident vertex sets overlapping by `depth` along the
+// reference normal nr (core/gjk_epa/touching_pair.h, the incident set pushed clear along nr).
+// Test: cdlab stress "contact manifolds" (seed 1 #175, #2264, #2523).
 bool touchingPairAlong(std::span<const Vec3> reference, std::span<const Vec3> incident, const Vec3& nr, double depth,
                        Vec3& pr, Vec3& pi) {
     if (reference.empty() || incident.empty() || !(depth >= 0)) return false;
     double M = 0;
     for (const Vec3& v : reference) M = std::max(M, v.cwiseAbs().maxCoeff());
     for (const Vec3& v : incident) M = std::max(M, v.cwiseAbs().maxCoeff());
-    const double delta = std::max(depth, std::ldexp(M, -30));
-    if (!(delta > 0) || !std::isfinite(depth + delta)) return false;
-    const Vec3 push = (depth + delta) * nr;
-    std::vector<Vec3> moved(incident.begin(), incident.end());
-    for (Vec3& v : moved) v += push;
-    const GjkResult g =
-        gjkDistance(PolytopeShape(std::vector<Vec3>(reference.begin(), reference.end())), PolytopeShape(std::move(moved)));
-    if (g.status != GjkStatus::Separated || !g.pointA.allFinite() || !g.pointB.allFinite()) return false;
-    pr = g.pointA;
-    pi = g.pointB - push;
-    return true;
+    return cdlab::touchingPairAlong(PolytopeShape(std::vector<Vec3>(reference.begin(), reference.end())),
+                                    PolytopeShape(std::vector<Vec3>(incident.begin(), incident.end())), nr, depth, M,
+                                    pr, pi);
 }
 
 // clipIncidentFace with its polygons in `poly` / `next` and the kept points in `pts` (empty, with

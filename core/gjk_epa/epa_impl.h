@@ -17,6 +17,7 @@
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/feature_certificate.h"
 #include "core/gjk_epa/gjk.h"
+#include "core/gjk_epa/touching_pair.h"
 #include "core/gjk_epa/simplex_solver.h"
 
 namespace cdlab {
@@ -354,34 +355,17 @@ inline double epaOverlapAlong(const Vec3& n, const Vec3& sa, const Vec3& sb) {
     return acc.hi + acc.lo;
 }
 
-/// B moved by `shift`: the support mapping GJK sees in epaFallbackWitness.
-template <class S>
-struct EpaShifted {
-    const S& shape;
-    Vec3 shift;
-    Vec3 support(const Vec3& d) const { return shape.support(d) + shift; }
-};
-
-/// Witnesses of a fallback answer (unit n, depth d): B pushed along n by d + δ, δ = max(d, 2^-30 M)
-/// (M the supports' magnitude), lies about δ from A when n is a least-overlap direction, so GJK's
-/// closest points of that pair — convex combinations of support points — give pointA on A and
-/// pointB = (B's closest point) − push on B to rounding, with pointA − pointB = d·n as far as n is
-/// least overlap. Where GJK does not separate them the support points stay: pointB = s_B(−n),
-/// pointA = pointB + d·n. Tests: tests/core/gjk_epa/epa_fallback_witness_test.cpp (a 1e-9 square
-/// in the face of a 1e5 tetrahedron; a 1e-6 body beside a 1e3 one).
+/// Witnesses of a fallback answer (unit n, depth d): the touching pair along n (touching_pair.h).
+/// Where GJK does not separate them the support points stay: pointB = s_B(−n), pointA = pointB +
+/// d·n. Tests: tests/core/gjk_epa/epa_fallback_witness_test.cpp (a 1e-9 square in the face of a
+/// 1e5 tetrahedron; a 1e-6 body beside a 1e3 one).
 template <class A, class B>
 void epaFallbackWitness(const A& shapeA, const B& shapeB, EpaResult& r) {
     const Vec3 sa = shapeA.support(r.normal), sb = shapeB.support(Vec3(-r.normal));
     r.pointB = sb;
     r.pointA = sb + r.depth * r.normal;
     const double M = std::max(sa.cwiseAbs().maxCoeff(), sb.cwiseAbs().maxCoeff());
-    const double delta = std::max(r.depth, std::ldexp(M, -30));
-    if (!(delta > 0) || !std::isfinite(delta + r.depth)) return;
-    const Vec3 push = (r.depth + delta) * r.normal;
-    const GjkResult g = gjkDistance(shapeA, EpaShifted<B>{shapeB, push});
-    if (g.status != GjkStatus::Separated || !g.pointA.allFinite() || !g.pointB.allFinite()) return;
-    r.pointA = g.pointA;
-    r.pointB = g.pointB - push;
+    touchingPairAlong(shapeA, shapeB, r.normal, r.depth, M, r.pointA, r.pointB);
 }
 
 /// A degenerate start (a zero-volume polytope, or a blow-up direction that underflowed: a start
