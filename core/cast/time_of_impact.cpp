@@ -22,8 +22,8 @@ std::vector<Vec3> moved(std::span<const Vec3> points, const Vec3& by) {
 /// t = 0 where d > band. On a convex decreasing function the Newton step (d − band) / (n·m) from the
 /// left of the root never passes it, so every iterate stays at or before the first contact; it
 /// stops when d is within the band (or 8 roundings of the coordinates) or the step stops moving t;
-/// a step that lands where GJK finds the cores touching (past the root by rounding) is bisected
-/// back. atStart: GJK on the unmoved cores (the caller's t = 0 test). Returns tHit when it does
+/// a step that lands where GJK finds the cores touching (past the root by rounding), or that reaches
+/// the cast's tHit, is bisected for the first touching t. atStart: GJK on the unmoved cores (the caller's t = 0 test). Returns tHit when it does
 /// not converge in kSteps (a path that creeps along a curved face) or the distance stops
 /// decreasing. Test: tests/core/cast/time_of_impact_scale_test.cpp (a path inside a facet plane of
 /// B − A within rounding; cdlab stress "time of impact, sliding paths").
@@ -43,36 +43,46 @@ double firstTouchAlongPath(const PolytopeShape& coreA, const Vec3& motionA, cons
     const auto distanceAt = [&](double s) {
         return gjkDistance(PolytopeShape(moved(pa, s * motionA)), PolytopeShape(moved(pb, s * motionB)));
     };
+    // Within the band plus 8 roundings of the moved coordinates counts as touching: a path sliding
+    // along a facet keeps its distance at that level (4e-14 against a 1.8e-14 band, coordinates
+    // ~100) while d' is ~1e-12, where further steps would creep along the facet (cdlab stress,
+    // 600 s, #26565).
+    const auto touching = [&](const GjkResult& g, double s) {
+        return g.status != GjkStatus::Separated ||
+               g.distance - band <= std::max(band, 8.0 * std::ldexp(movedMagnitude(s), -53));
+    };
+    // The first t in (lo, hi] touching, lo apart and hi touching (or the cast's hit): bisection;
+    // `at` stays the last one apart.
+    const auto bisect = [&](double lo, double hi) {
+        for (int i = 0; i < 60 && lo < hi; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            if (!(mid > lo && mid < hi)) break;
+            const GjkResult gm = distanceAt(mid);
+            if (touching(gm, mid)) hi = mid;
+            else lo = mid, at = gm;
+        }
+        return lo;
+    };
     double t = 0.0;
     for (int k = 0; k < kSteps; ++k) {
         const GjkResult g = k == 0 ? atStart : distanceAt(t);  // t = 0: the caller's start test
         if (g.status != GjkStatus::Separated) {
-            if (k == 0) return tHit;
             // A step that landed on the root within rounding (a path sliding in a facet plane meets
-            // the facet exactly there): bisect between the last iterate, apart by more than the
-            // band, and this one for the first t within it; `at` stays the last one apart.
-            double lo = lastApart, hi = t;
-            for (int i = 0; i < 48 && lo < hi; ++i) {
-                const double mid = 0.5 * (lo + hi);
-                if (!(mid > lo && mid < hi)) break;
-                const GjkResult gm = distanceAt(mid);
-                if (gm.status == GjkStatus::Separated && gm.distance > band) lo = mid, at = gm;
-                else hi = mid;
-            }
-            return lo;
+            // the facet exactly there): bisect back between the last iterate, apart, and this one.
+            return k == 0 ? tHit : bisect(lastApart, t);
         }
         at = g;
         lastApart = t;
-        // Within the band plus 8 roundings of the moved coordinates counts as touching: a path
-        // sliding along a facet keeps its distance at that level (4e-14 against a 1.8e-14 band,
-        // coordinates ~100) while d' is ~1e-12, where further steps would creep along the facet
-        // (cdlab stress, 600 s, #26565).
-        const double gap = at.distance - band;
-        if (gap <= std::max(band, 8.0 * std::ldexp(movedMagnitude(t), -53))) return t;
+        if (touching(g, t)) return t;
         const double rate = at.separatingAxis.dot(m);  // d'(t) = −n·m, n from A toward B
         if (!(rate > 0.0)) return tHit;
-        const double next = t + gap / rate;
-        if (!(next > t) || !(next < tHit)) return next >= tHit ? tHit : t;
+        const double next = t + (at.distance - band) / rate;
+        if (!(next > t)) return t;
+        // The step reaches the cast's hit: the root lies within the step's rounding of it. On a path
+        // grazing a facet at 3e-10 rad the distance's last 1 % (its rounding) is 2e-4 of the path,
+        // and the cast's crossing of the rounded facet came 2.8e-8 after the exact one (stress
+        // "time of impact, sliding paths" #38204): the first touching t before it, by bisection.
+        if (!(next < tHit)) return bisect(t, tHit);
         t = next;
     }
     return tHit;

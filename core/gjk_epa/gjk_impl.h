@@ -53,6 +53,9 @@ inline constexpr double kGjkCertifiedGap = 1e-9;
 /// The most an edge simplex's accurate normal may turn GJK's axis -v / |v| (radians) and replace it
 /// (gjkFinish): v's own direction errs by ~u |w| / |v|; more than this is not rounding.
 inline constexpr double kGjkEdgeAxisTurn = 1e-9;
+/// ... and at most this many ulps of the simplex's extent over |v| (the rounding of v's direction;
+/// tests/core/gjk_epa/margins_test.cpp "nearly parallel capsules").
+inline constexpr double kGjkEdgeAxisTurnUlps = 0x1p20;
 
 /// A support point within this many ulps of the extent (plus kGjkEdgeAxisTurn times its offset from
 /// the edge) of the edge's plane lies in that plane: the edge and it span a face of A − B (gjkFinish).
@@ -325,9 +328,15 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
         const Vec3 e = w1 - w0;
         Vec3 n = accurateCross(w0, w1, Vec3::Zero()).cross(e);  // (w0 x e) x e ∝ -v
         const double len = n.norm();
+        // The turn rounding explains: v's direction errs by ~u |w| / |v|. A turn of θ moves
+        // pointA − pointB off −distance · axis by θ · distance, so a fixed 1e-9 rad put two nearly
+        // parallel capsules' witnesses 1.06 × the 1e-9 L tolerance off (stress "spheres and
+        // capsules" #29372: the thin parallelogram's face normal, not its edge's, taken).
+        const double wExtent = std::max(w0.cwiseAbs().maxCoeff(), w1.cwiseAbs().maxCoeff());
+        const double turn = std::min(kGjkEdgeAxisTurn, ulps(kGjkEdgeAxisTurnUlps, wExtent) / r.distance);
         if (len > 0.0 && std::isfinite(len)) {
             n /= len;
-            if ((n - r.separatingAxis).squaredNorm() <= kGjkEdgeAxisTurn * kGjkEdgeAxisTurn) {
+            if ((n - r.separatingAxis).squaredNorm() <= turn * turn) {
                 r.separatingAxis = n;
                 // The edge may lie in a face of A − B that holds the origin's projection up to
                 // rounding (a sphere centre over a box face's diagonal: GJK's triangle lost its third
@@ -347,14 +356,14 @@ void gjkFinish(const A& shapeA, const B& shapeB, const GjkOptions& options, cons
                     // edge's normal, off the face's by the origin's offset from the edge's line).
                     const double offPlane = std::abs(n.dot(w2 - w0));
                     if (!w2.allFinite() || w2 == w0 || w2 == w1 ||
-                        !(offPlane <= kGjkEdgeAxisTurn * (w2 - w0).norm() + ulps(kGjkFacePlaneUlps, extent)))
+                        !(offPlane <= turn * (w2 - w0).norm() + ulps(kGjkFacePlaneUlps, extent)))
                         continue;
                     Vec3 f = accurateCross(w0, w1, w2);
                     const double flen = f.norm();
                     if (!(flen > 0.0) || !std::isfinite(flen)) continue;
                     f /= flen;
                     if (f.dot(n) < 0.0) f = -f;
-                    if ((f - n).squaredNorm() > kGjkEdgeAxisTurn * kGjkEdgeAxisTurn) continue;
+                    if ((f - n).squaredNorm() > turn * turn) continue;
                     r.separatingAxis = f;
                     break;
                 }

@@ -199,3 +199,33 @@ TEST_CASE("time of impact: a path sliding at the band's rounding level along a f
     CHECK(std::fabs(double(satGap(a, ma, b, mb, r.result.t))) <= 1e-12);
     CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-9);
 }
+
+TEST_CASE("time of impact: a path grazing a facet at 3e-10 rad answers a touching t before the exact contact") {
+    // cdlab stress "time of impact, sliding paths" #38204 (600 s): the path enters B − A through a
+    // facet at 3.3e-10 rad, so the last 1 % of the distance (its rounding) spans 2e-4 of the path;
+    // Newton's last step reached the cast's t, which crossed the rounded facet 2.8e-8 after the exact
+    // first contact t0 = 0.5446588255950197 (an exact-rational oracle: the facets of B − A from the
+    // input doubles). The answer is the first t within the touching band: before t0, apart by at most
+    // 8 roundings of the coordinates (~228), and no earlier than where the path meets the facet's
+    // plane (9.5e-3 before t0; the distance is 6e-5 at 1e-2 before).
+    const std::vector<Vec3> a = {{21.601340273210862, 227.81393306460907, 163.52172111283696},
+                                 {21.601799024673003, 227.81466578223916, 163.5285223131711},
+                                 {21.585415569719494, 227.81036400928608, 163.53509351453496},
+                                 {21.59755393189808, 227.8129889892566, 163.52159609497713}};
+    const std::vector<Vec3> b = {{21.54920922806885, 227.90530700632044, 163.47314004521817},
+                                 {21.52659351272781, 227.90431074408397, 163.47662389803273},
+                                 {21.53851382841237, 227.90111906098116, 163.48112246296108},
+                                 {21.523750193957785, 227.89209791936523, 163.4786649200113}};
+    const Vec3 ma(-0.10625593428223276, 0.15090134723870333, -0.1524020841249903);
+    const Vec3 mb(0.025553981992366328, -0.0032275481518557626, -0.07413564311221353);
+    const ImpactQueryResult r = timeOfImpactQuery(QueryShape::polytope(a), ma, QueryShape::polytope(b), mb);
+    REQUIRE(r.status == PairStatus::Ok);
+    REQUIRE(r.result.hit);
+    const double t0 = 0.5446588255950197;
+    CHECK(r.result.t <= t0);
+    CHECK(r.result.t >= t0 - 0.01);
+    const long double gap = satGap(a, ma, b, mb, r.result.t);
+    CHECK(gap >= 0);
+    CHECK(double(gap) <= 8 * 0x1p-53 * 230 + 2e-14);  // 8 roundings of the moved coordinates + the band
+    CHECK((r.result.pointA - r.result.pointB).norm() <= 1e-12);
+}

@@ -282,6 +282,24 @@ TEST_SUITE("gjk_epa/margins") {
         CHECK(double(pointSegment(lv(e.pointB), lv(B.a), lv(B.b))) == doctest::Approx(0.05).epsilon(1e-12));
     }
 
+    TEST_CASE("nearly parallel capsules: pointA - pointB = -distance * axis") {
+        // Cores parallel to 8.6e-9 rad (stress "spheres and capsules" #29372): A − B's cores span a
+        // parallelogram 1e-8 wide whose face normal GJK's edge stop took for the axis, 0.95e-9 rad
+        // from the edge's own: the witnesses' difference left −distance · axis by 1.5e-9 (> 1e-9 L).
+        const CapsuleShape A{Vec3(0.2475999184331345, -0.55124933310580659, -0.434122679682443),
+                             Vec3(-0.2475999184331345, 0.55124933310580659, 0.434122679682443), 0.67177968178219383};
+        const CapsuleShape B{Vec3(-0.024552492472814436, 0.98475469865844156, -1.1379827912171283),
+                             Vec3(-0.42487730459449458, 1.8760263646059805, -0.43608399386853336), 0.80898665768103684};
+        const GjkResult g = gjkDistanceWithMargins(A, B);
+        REQUIRE(g.status == GjkStatus::Separated);
+        const LD seg = segmentSegment(A.a, A.b, B.a, B.b);
+        CHECK(std::abs(g.distance - double(seg - LD(A.radius) - LD(B.radius))) <= 1e-15);
+        const LongVec off = lv(g.pointA) - lv(g.pointB) + LD(g.distance) * lv(g.separatingAxis);
+        CHECK(double(norm(off)) <= 1e-12);
+        CHECK(double(pointSegment(lv(g.pointA), lv(A.a), lv(A.b))) == doctest::Approx(A.radius).epsilon(1e-13));
+        CHECK(double(pointSegment(lv(g.pointB), lv(B.a), lv(B.b))) == doctest::Approx(B.radius).epsilon(1e-13));
+    }
+
     TEST_CASE("no margin: the plain queries, bad radii: invalid input") {
         const PolytopeShape a({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)});
         const PolytopeShape b({Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(2, 1, 0), Vec3(2, 0, 1)});
