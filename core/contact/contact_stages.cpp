@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/base/tolerances.h"
+#include "core/cast/ray_cast.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/touching_pair.h"
 
@@ -125,6 +126,35 @@ bool touchingPairAlong(std::span<const Vec3> reference, std::span<const Vec3> in
                                     pr, pi);
 }
 
+// The exact touching pair along nr: the incident body pushed along nr by the least t that leaves it
+// only touching the reference body, t = max{s : s·nr ∈ R − I}, the exit of the ray from the origin
+// along nr through the difference R − I — cast back from outside it (start T·nr, T twice the
+// difference's largest norm). The hit's core point Σ w_k (r − i)_k gives pr = Σ w_k r and
+// pi = Σ w_k i, each on its body to rounding, with pr − pi = t·nr up to rounding: no lateral
+// offset, where GJK's closest points at a push δ lean off nr by up to δ (their offset, shared out
+// between the points, left pointA 3e-10 inside A, off every feature: cdlab stress "contact
+// manifolds" 600 s #9758, #19637, #33558). The difference has |R|·|I| points, only on this rare
+// path (a face axis kept by preference whose clip keeps nothing). False when the cast misses.
+bool exactTouchingPairAlong(std::span<const Vec3> reference, std::span<const Vec3> incident, const Vec3& nr, Vec3& pr,
+                            Vec3& pi) {
+    if (reference.empty() || incident.empty()) return false;
+    std::vector<Vec3> difference;
+    difference.reserve(reference.size() * incident.size());
+    double far = 0;
+    for (const Vec3& r : reference)
+        for (const Vec3& i : incident) difference.push_back(r - i), far = std::max(far, difference.back().norm());
+    if (!(far > 0) || !std::isfinite(far)) return false;
+    const ConvexCastHit h = castRayRoundedHull(Ray{2 * far * nr, -nr}, difference);
+    if (!h.hit || h.inside || h.count == 0) return false;
+    const std::size_t nI = incident.size();
+    pr = pi = Vec3::Zero();
+    for (int k = 0; k < h.count; ++k) {
+        pr += h.weight[k] * reference[std::size_t(h.index[k]) / nI];
+        pi += h.weight[k] * incident[std::size_t(h.index[k]) % nI];
+    }
+    return pr.allFinite() && pi.allFinite();
+}
+
 // clipIncidentFace with its polygons in `poly` / `next` and the kept points in `pts` (empty, with
 // room for incident.size() + reference.size() points).
 template <class Polygon, class Points>
@@ -176,7 +206,9 @@ bool clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
         // Nothing survived the clip (the face axis kept by preference where the bodies meet beside
         // the reference face): the touching pair of the bodies, else the deepest incident vertex.
         Vec3 pr, pi;
-        if (touchingPairAlong(referenceVertices, incidentVertices, nr, r.depth, pr, pi)) {
+        if (exactTouchingPairAlong(referenceVertices, incidentVertices, nr, pr, pi)) {
+            pts.push_back(incidentPoint(pi, pr, nr.dot(pr - pi), referenceOnA, origin));
+        } else if (touchingPairAlong(referenceVertices, incidentVertices, nr, r.depth, pr, pi)) {
             // The pair's offset off the normal (GJK's closest points at δ) shared between the two
             // points in proportion to their bodies' sizes (the on-body tolerances scale with them),
             // so that pointA − pointB = depth_i · normal holds.

@@ -10,6 +10,7 @@
 #include <span>
 #include <utility>
 
+#include "core/closest/edge_pair_distance.h"
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/shapes.h"
 #include "core/gjk_epa/gjk.h"
@@ -104,7 +105,7 @@ ContactFeature hullFeature(const ContactHull& b, const FeatureRef& f) {
 }
 
 // Whether feature f of b holds every point of pts within tol (local units): a vertex within tol of
-// each, an edge's segment, a face's polygon (its plane, and inside each of its edges).
+// each, an edge's segment, a face's polygon.
 bool featureHolds(const ContactHull& b, const FeatureRef& f, std::span<const Vec3> pts, double tol) {
     const auto& v = b.mesh.vertices();
     for (const Vec3& p : pts) {
@@ -117,20 +118,18 @@ bool featureHolds(const ContactHull& b, const FeatureRef& f, std::span<const Vec
             const double t = len2 > 0 ? std::clamp((p - a).dot(e - a) / len2, 0.0, 1.0) : 0.0;
             if (!((p - (a + t * (e - a))).norm() <= tol)) return false;
         } else if (f.type == FeatureType::Face) {
+            // The distance to the polygon (convex: its fan's triangles), each triangle's normal in
+            // double-double: a sliver face's normal from plain products tilts by ~u / its width
+            // (contact_edge_edge_depth0: a needle's face held the clip's points only in exact terms).
             const std::vector<int> fv = b.mesh.faceVertices(f.index);
-            Vec3 n = Vec3::Zero();  // Newell's normal
-            for (std::size_t k = 0; k < fv.size(); ++k)
-                n += v[std::size_t(fv[k])].position.cross(v[std::size_t(fv[(k + 1) % fv.size()])].position);
-            if (!(n.norm() > 0)) return false;
-            n.normalize();
-            if (!(std::abs(n.dot(p - v[std::size_t(fv[0])].position)) <= tol)) return false;
-            // Inside the polygon too: coplanar triangles of one flat side share its plane.
-            for (std::size_t k = 0; k < fv.size(); ++k) {
-                const Vec3& q0 = v[std::size_t(fv[k])].position;
-                const Vec3 edge = v[std::size_t(fv[(k + 1) % fv.size()])].position - q0;
-                const double len = edge.norm();
-                if (len > 0 && edge.cross(p - q0).dot(n) < -tol * len) return false;
-            }
+            if (fv.size() < 3) return false;
+            const Vec3& q0 = v[std::size_t(fv[0])].position;
+            double best = INFINITY;
+            for (std::size_t k = 1; k + 1 < fv.size(); ++k)
+                best = std::min(best, pointTriangleDistance(p, q0, v[std::size_t(fv[k])].position,
+                                                            v[std::size_t(fv[k + 1])].position)
+                                          .distance);
+            if (!(best <= tol)) return false;
         } else {
             return false;
         }
@@ -141,30 +140,49 @@ bool featureHolds(const ContactHull& b, const FeatureRef& f, std::span<const Vec
 // The feature of b that holds the reported points: `given` when it does, else the first vertex,
 // edge or face that does (a face axis kept by preference whose manifold fell back to the touching
 // pair; a separated pair whose support set is one triangle of a split quad while the closest point
-// lies on the other). tol: 1e-9 of the body's bounding-box diagonal + 64 ulps of its coordinates.
+// lies on the other). tol: 1e-9 of the body's bounding-box diagonal + 64 ulps of its input
+// coordinates (`frame`: the local units' origin was subtracted with rounding).
 // Test: cdlab stress "contact manifolds" ("feature holds point").
-FeatureRef featureHolding(const ContactHull& b, const FeatureRef& given, std::span<const Vec3> pts, const Vec3& dir) {
+FeatureRef featureHolding(const ContactHull& b, const FeatureRef& given, std::span<const Vec3> pts, const Vec3& dir,
+                          const ContactFrame& frame) {
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
     double top = -INFINITY;
     for (const auto& x : b.mesh.vertices())
         lo = lo.cwiseMin(x.position), hi = hi.cwiseMax(x.position), top = std::max(top, dir.dot(x.position));
-    const double tol = 1e-9 * (hi - lo).norm() + 64 * DBL_EPSILON * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-    if (pts.empty() || featureHolds(b, given, pts, tol)) return given;
+    const double rounding = 64 * DBL_EPSILON *
+                            (std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) +
+                             std::ldexp(frame.origin.cwiseAbs().maxCoeff(), frame.exponent));
+    const double tol = 1e-9 * (hi - lo).norm() + rounding;
+    if (pts.empty()) return given;
     // Only features of the support set along dir (a point near an edge lies on both its faces).
     const auto supporting = [&](const std::vector<int>& vs) {
         for (int v : vs)
             if (!(dir.dot(b.mesh.vertices()[std::size_t(v)].position) >= top - 2 * tol)) return false;
         return true;
     };
-    for (int i = 0; i < b.mesh.vertexCount(); ++i)
-        if (supporting({i}) && featureHolds(b, {FeatureType::Vertex, i}, pts, tol)) return {FeatureType::Vertex, i};
-    for (int e = 0; e < b.mesh.edgeCount(); ++e) {
-        const auto [i, j] = b.mesh.edgeVertices(e);
-        if (supporting({i, j}) && featureHolds(b, {FeatureType::Edge, e}, pts, tol)) return {FeatureType::Edge, e};
+    // `given`, else the support set's vertex, edge or face holding the points, else any feature (a
+    // touching pair along a face normal kept by preference meets the body away from its support set
+    // along that normal: core/contact/contact_stages.cpp, exactTouchingPairAlong) — first to
+    // rounding (1e-12 of the size), then to tol: points on two edges of a sliver face 5e-9 from
+    // one edge's line are the face's, not that edge's (contact_edge_edge_depth0), and a point
+    // inside a face 0.6 tol from one of its edges is the face's (stress "contact manifolds" 600 s
+    // #19637).
+    for (const double t : {1e-12 * (hi - lo).norm() + rounding, tol}) {
+        if (featureHolds(b, given, pts, t)) return given;
+        for (const bool anywhere : {false, true}) {
+            for (int i = 0; i < b.mesh.vertexCount(); ++i)
+                if ((anywhere || supporting({i})) && featureHolds(b, {FeatureType::Vertex, i}, pts, t))
+                    return {FeatureType::Vertex, i};
+            for (int e = 0; e < b.mesh.edgeCount(); ++e) {
+                const auto [i, j] = b.mesh.edgeVertices(e);
+                if ((anywhere || supporting({i, j})) && featureHolds(b, {FeatureType::Edge, e}, pts, t))
+                    return {FeatureType::Edge, e};
+            }
+            for (int f = 0; f < b.mesh.faceCount(); ++f)
+                if ((anywhere || supporting(b.mesh.faceVertices(f))) && featureHolds(b, {FeatureType::Face, f}, pts, t))
+                    return {FeatureType::Face, f};
+        }
     }
-    for (int f = 0; f < b.mesh.faceCount(); ++f)
-        if (supporting(b.mesh.faceVertices(f)) && featureHolds(b, {FeatureType::Face, f}, pts, tol))
-            return {FeatureType::Face, f};
     return given;
 }
 
@@ -244,8 +262,8 @@ void separatedBodies(const ContactHull& a, const ContactHull& b, const GjkResult
     out.distance = frame.length(g.distance);
     out.normal = n;
     out.points = {ContactPoint{frame.toWorld(g.pointA), frame.toWorld(g.pointB), 0.0}};
-    out.featureA = hullFeature(a, featureHolding(a, supportFeatureOf(a, n), std::span<const Vec3>(&g.pointA, 1), n));
-    out.featureB = hullFeature(b, featureHolding(b, supportFeatureOf(b, -n), std::span<const Vec3>(&g.pointB, 1), -n));
+    out.featureA = hullFeature(a, featureHolding(a, supportFeatureOf(a, n), std::span<const Vec3>(&g.pointA, 1), n, frame));
+    out.featureB = hullFeature(b, featureHolding(b, supportFeatureOf(b, -n), std::span<const Vec3>(&g.pointB, 1), -n, frame));
 }
 
 // Two polytopes: GJK decides (the touching rule, `touch` in local units); colliding pairs get the
@@ -297,8 +315,8 @@ ContactResult bodyBodyContact(const ContactHull& a, const ContactHull& b, int ma
     out.axis = r.axisKind;
     std::vector<Vec3> onA, onB;
     for (const ContactPoint& c : r.manifold) onA.push_back(c.pointA), onB.push_back(c.pointB);
-    out.featureA = hullFeature(a, featureHolding(a, r.featureA, onA, r.normal));
-    out.featureB = hullFeature(b, featureHolding(b, r.featureB, onB, Vec3(-r.normal)));
+    out.featureA = hullFeature(a, featureHolding(a, r.featureA, onA, r.normal, frame));
+    out.featureB = hullFeature(b, featureHolding(b, r.featureB, onB, Vec3(-r.normal), frame));
     return out;
 }
 
