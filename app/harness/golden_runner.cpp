@@ -283,7 +283,10 @@ void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
     std::vector<render::LegibilityProblem> problems;
     for (render::LegibilityProblem& p : render::checkLegibility(fr.image.layout, fr.image.width, fr.image.height)) {
         if (render::gates(p.kind)) problems.push_back(std::move(p));
-        else ++review[int(p.kind)], reviewFrames.insert(id);
+        else {
+            ++review[int(p.kind)], reviewFrames.insert(id);
+            if (options.verbose) std::cout << "  review " << printable(id + ": " + render::describe(p)) << "\n";
+        }
     }
     for (const render::LegibilityProblem& p : problems) offenders.push_back({id, p});
     if (problems.empty()) return;

@@ -486,6 +486,46 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
             else faceContact(A, B, c2.best, origin, tol, options, r, trace, arena.resource());
         }
     }
+    // A face axis (the least, or kept) whose clip still keeps nothing: the bodies meet beside the
+    // reference face, where its touching pair lies on features outside the support set along its
+    // normal (an edge of A under "face A": cdlab stress "contact manifolds" 600 s #11574, #29170,
+    // touching within the band). The best edge pair answers when its overlap is within the
+    // contract's bound (depth <= least overlap · (1 + faceBiasRelative) + faceBiasAbsolute + tol);
+    // otherwise the face keeps the touching pair (core/contact/contact_stages.cpp).
+    if (r.clipKeptNothing && q.best.edge.indexA >= 0) {
+        const double bound = c.maxSep - options.faceBiasRelative * std::abs(c.maxSep) -
+                             std::max(0.0, options.faceBiasAbsolute) - tol;
+        if (q.best.edge.separation >= bound) {
+            SatContactResult e = r;
+            e.manifold.clear();
+            e.clipKeptNothing = false;
+            detail::SatChosenAxis ce;
+            ce.best = q.best.edge;
+            ce.chosen = q.best.edgeIndex;
+            ce.maxSep = c.maxSep;
+            detail::recordChosenAxis(ce, tol, e);
+            edgeContact(ma, A, mb, B, ce.best, origin, tol, e, nullptr);
+            // Only when its points lie on both edges (nearly parallel edges move B's point off its
+            // edge onto pointA − depth · n: the face's touching pair is then the better answer,
+            // stress "contact manifolds" #2523).
+            const auto onEdge = [&](const ConvexPolyhedron& m, const Posed& P, int edge, const Vec3& p) {
+                const auto [i, j] = m.edgeVertices(edge);
+                const Vec3 u = P.x[std::size_t(i)], w = P.x[std::size_t(j)] - u;
+                const double len2 = w.squaredNorm();
+                const double t = len2 > 0 ? std::clamp((p - origin - u).dot(w) / len2, 0.0, 1.0) : 0.0;
+                return (p - origin - (u + t * w)).norm() <= tol;
+            };
+            if (e.manifold.size() == 1 && onEdge(ma, A, ce.best.indexA, e.manifold[0].pointA) &&
+                onEdge(mb, B, ce.best.indexB, e.manifold[0].pointB)) {
+                r = std::move(e);
+                if (trace) {
+                    trace->chosen = ce.chosen;
+                    trace->edgePointA = r.manifold[0].pointA;
+                    trace->edgePointB = r.manifold[0].pointB;
+                }
+            }
+        }
+    }
     return r;
 }
 

@@ -163,12 +163,10 @@ FeatureRef featureHolding(const ContactHull& b, const FeatureRef& given, std::sp
     // `given`, else the support set's vertex, edge or face holding the points, else any feature (a
     // touching pair along a face normal kept by preference meets the body away from its support set
     // along that normal: core/contact/contact_stages.cpp, exactTouchingPairAlong) — first to
-    // rounding (1e-12 of the size), then to tol: points on two edges of a sliver face 5e-9 from
-    // one edge's line are the face's, not that edge's (contact_edge_edge_depth0), and a point
-    // inside a face 0.6 tol from one of its edges is the face's (stress "contact manifolds" 600 s
-    // #19637).
+    // rounding (1e-12 of the size), then to tol: a point inside a face 0.6 tol from one of its
+    // edges is the face's, not the edge's (stress "contact manifolds" 600 s #19637).
+    if (featureHolds(b, given, pts, tol)) return given;
     for (const double t : {1e-12 * (hi - lo).norm() + rounding, tol}) {
-        if (featureHolds(b, given, pts, t)) return given;
         for (const bool anywhere : {false, true}) {
             for (int i = 0; i < b.mesh.vertexCount(); ++i)
                 if ((anywhere || supporting({i})) && featureHolds(b, {FeatureType::Vertex, i}, pts, t))
