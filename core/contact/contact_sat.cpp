@@ -507,7 +507,9 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
             edgeContact(ma, A, mb, B, ce.best, origin, tol, e, nullptr);
             // Only when its points lie on both edges (nearly parallel edges move B's point off its
             // edge onto pointA − depth · n: the face's touching pair is then the better answer,
-            // stress "contact manifolds" #2523).
+            // stress "contact manifolds" #2523) and differ by depth · n to rounding (the edge axis's
+            // normal, rounded from nearly parallel edges, turned 4e-13 rad off the points' common
+            // perpendicular, 1.7 × the 1e-9 L tolerance at coordinates 2.4e5: 600 s #36100).
             const auto onEdge = [&](const ConvexPolyhedron& m, const Posed& P, int edge, const Vec3& p) {
                 const auto [i, j] = m.edgeVertices(edge);
                 const Vec3 u = P.x[std::size_t(i)], w = P.x[std::size_t(j)] - u;
@@ -515,8 +517,10 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
                 const double t = len2 > 0 ? std::clamp((p - origin - u).dot(w) / len2, 0.0, 1.0) : 0.0;
                 return (p - origin - (u + t * w)).norm() <= tol;
             };
+            const double rounding = 1e-12 * size + 16 * DBL_EPSILON * maxCoord;
             if (e.manifold.size() == 1 && onEdge(ma, A, ce.best.indexA, e.manifold[0].pointA) &&
-                onEdge(mb, B, ce.best.indexB, e.manifold[0].pointB)) {
+                onEdge(mb, B, ce.best.indexB, e.manifold[0].pointB) &&
+                (e.manifold[0].pointA - e.manifold[0].pointB - e.depth * e.normal).norm() <= rounding) {
                 r = std::move(e);
                 if (trace) {
                     trace->chosen = ce.chosen;
