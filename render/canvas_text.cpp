@@ -92,6 +92,28 @@ Vector2d boxOrigin(Anchor anchor, double x, double y, double w, double h, double
 
 }  // namespace canvas_detail
 
+// Clips segment ab to the box (Liang–Barsky); false when nothing of it is inside.
+static bool clipToBox(const Box& box, Vector2d& a, Vector2d& b) {
+    double t0 = 0, t1 = 1;
+    const Vector2d d = b - a;
+    const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+    const double q[4] = {a.x() - box.x0, box.x1 - a.x(), a.y() - box.y0, box.y1 - a.y()};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0) {
+            if (q[i] < 0) return false;
+            continue;
+        }
+        const double t = q[i] / p[i];
+        if (p[i] < 0) t0 = std::max(t0, t);
+        else t1 = std::min(t1, t);
+        if (t0 > t1) return false;
+    }
+    const Vector2d a0 = a;
+    a = a0 + t0 * d;
+    b = a0 + t1 * d;
+    return true;
+}
+
 // Every text's box in output pixels: fixed texts where they were asked for, point labels
 // (TextStyle::place) through placeLabel around their points, in drawing order, each one an
 // obstacle for the next. Fills textOffsets and leaders for the build steps.
@@ -117,10 +139,13 @@ FigureLayout Canvas::Impl::layoutTexts() {
             for (std::size_t i = 0; i + 1 < line.points.size(); ++i) {
                 Vector2d a, b;
                 if (!toPixels(line.points[i], a) || !toPixels(line.points[i + 1], b)) continue;
+                // Only the part inside the picture is seen (a ground line running past the canvas
+                // edge was recorded across the neighbouring panel it is blitted beside).
+                if (!clipToBox(panel, a, b)) continue;
                 layout.strokes.push_back({a, b, line.style.widthPx, -1});
-                // Thin lines: a label may still be placed across them (halo); the review rule
+                // Thin lines: avoided where there is room, else crossed (halo); the review rule
                 // LabelOnStroke reports it (render/legibility.h).
-                if (line.style.widthPx >= 3.0f) obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx});
+                obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx, line.style.widthPx < 3.0f});
             }
         }
     }
@@ -151,6 +176,8 @@ FigureLayout Canvas::Impl::layoutTexts() {
         const double space = kMinGapFraction * asked[i].lineHeight;
         obstacles.boxes.push_back(Box{box.x0 - space, box.y0, box.x1 + space, box.y1});
     };
+    for (std::size_t i = 0; i < texts.size(); ++i)
+        if (texts[i].world && asked[i].visible) obstacles.anchors.push_back(asked[i].anchor);
     for (std::size_t i = 0; i < texts.size(); ++i) {  // fixed texts first: the labels go around them
         if (texts[i].style.place) continue;
         textOffsets[i] = texts[i].style.offsetPx;

@@ -51,13 +51,14 @@ Box boxAt(const Vector2d& anchor, const Vector2d& size, const Vector2d& dir, dou
     return {c.x() - 0.5 * size.x(), c.y() - 0.5 * size.y(), c.x() + 0.5 * size.x(), c.y() + 0.5 * size.y()};
 }
 
-// The preferred direction, then the eight compass directions by their angle from it.
+// The preferred direction, then sixteen directions by their angle from it (the eight compass
+// points and the eight between them: a gap between two grid lines is often only on a diagonal).
 std::vector<Vector2d> candidateDirections(Vector2d preferred) {
     if (!(preferred.norm() > 1e-9) || !preferred.allFinite()) preferred = Vector2d(1, -1);
     preferred.normalize();
     std::vector<Vector2d> dirs;
-    for (int k = 0; k < 8; ++k) {
-        const double angle = k * M_PI / 4;
+    for (int k = 0; k < 16; ++k) {
+        const double angle = k * M_PI / 8;
         dirs.emplace_back(std::cos(angle), std::sin(angle));
     }
     std::stable_sort(dirs.begin(), dirs.end(),
@@ -86,29 +87,37 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             if (b.overlapArea(o) > 0) return false;
         return true;
     };
-    const auto offLines = [&](const Box& b) {
+    const auto offLines = [&](const Box& b, bool thinToo) {
         for (const PlacementObstacles::Line& l : obstacles.lines)
-            if (segmentBoxDistance(l.a, l.b, b) < l.halfWidth + 1.0) return false;
+            if ((thinToo || !l.thin) && segmentBoxDistance(l.a, l.b, b) < l.halfWidth + 1.0) return false;
         return true;
     };
     // No preferred side (a name that belongs on its point, such as a body's): on the point if free.
     if (!(request.preferred.norm() > 1e-9)) {
         const Box centered{request.anchor.x() - 0.5 * request.size.x(), request.anchor.y() - 0.5 * request.size.y(),
                            request.anchor.x() + 0.5 * request.size.x(), request.anchor.y() + 0.5 * request.size.y()};
-        if (free(centered) && offLines(centered)) return {true, centered, false};
+        if (free(centered) && offLines(centered, true)) return {true, centered, false};
     }
+    const auto ambiguous = [&](const Box& b) {
+        const double own = pointBoxDistance(request.anchor, b);
+        for (const Vector2d& a : obstacles.anchors)
+            if ((a - request.anchor).norm() >= 1.0 && pointBoxDistance(a, b) + 0.5 < own) return true;
+        return false;
+    };
     const std::vector<Vector2d> dirs = candidateDirections(request.preferred);
     // Rings: next to the anchor, then farther out (with a leader line back to the anchor).
-    const double rings[3] = {1.0, 2.5, 4.5};
-    Placement touchingLines;
-    for (int ring = 0; ring < 3; ++ring)
+    const double rings[5] = {1.0, 1.75, 2.5, 3.5, 4.5};
+    Placement best;
+    int bestCost = 1 << 30;
+    for (int ring = 0; ring < 5; ++ring)
         for (const Vector2d& d : dirs) {
             const Box b = boxAt(request.anchor, request.size, d, request.gap * rings[ring] + (ring ? 8.0 : 0.0));
             if (!free(b)) continue;
-            if (offLines(b)) return {true, b, ring > 0};
-            if (!touchingLines.placed) touchingLines = {true, b, ring > 0};
+            const int cost = (offLines(b, false) ? (offLines(b, true) ? 0 : 2) : 4) + (ambiguous(b) ? 1 : 0);
+            if (cost == 0) return {true, b, ring > 0};
+            if (cost < bestCost) bestCost = cost, best = {true, b, ring > 0};
         }
-    return touchingLines;
+    return best;
 }
 
 }  // namespace cdlab::render

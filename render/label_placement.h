@@ -2,8 +2,11 @@
 // TextStyle::place): candidate positions around the anchor, the preferred side first, then the
 // eight compass directions nearest to it, then the same farther out with a leader line. A
 // candidate must stay inside the panel and off every other label and marker; the first one that
-// also keeps off thick lines wins, else the first that only touches lines; else the label is not
-// placed (the caller reports it instead of drawing it over something).
+// also keeps off every line and lies nearer its own anchor than any other wins (any ring: a leader
+// line is better than a label across a stroke or beside another point: the review rules
+// LabelOnStroke and LabelNearerOther of render/legibility.h); else the first of the least bad
+// (crossing a thick line worst, then a thin one, then being nearer another anchor); else the label
+// is not placed (the caller reports it instead of drawing it over something).
 // Imhof, "Positioning names on maps" (1975) ranks the positions around a point the same way.
 #pragma once
 
@@ -19,11 +22,14 @@ struct PlacementObstacles {
     struct Line {
         Eigen::Vector2d a, b;
         double halfWidth;
+        bool thin = false;  // below 3 px: avoided when possible, crossed when not
     };
     Box panel;  // the label must stay inside, `margin` px from the edge
     double margin = 2.0;
     std::vector<Box> boxes;   // other labels and markers
-    std::vector<Line> lines;  // thick lines and arrows
+    std::vector<Line> lines;  // every stroke drawn (lines, arrows, outlines)
+    std::vector<Eigen::Vector2d> anchors;  // every label's anchor (a candidate nearer another one than
+                                           // its own is avoided: LabelNearerOther)
 };
 
 struct PlacementRequest {

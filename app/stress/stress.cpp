@@ -152,6 +152,39 @@ std::vector<Vec3> toFloat(std::vector<Vec3> v) {
     return v;
 }
 
+/// The verdict and depth the pair checks compare with: the hull oracle's, or the least-overlap
+/// oracle's where it arbitrated (apart: the distance, a lower bound when arbitrated).
+struct PairTruth {
+    bool inside = false;
+    double depth = 0.0, apart = 0.0;
+    bool leastRan = false;
+};
+
+// Up to 12 vertices the least-overlap oracle (no hull: every triple normal and edge pair in long
+// double with exact edge vectors, verification/least_overlap_oracle.h) arbitrates a verdict or depth
+// the hull oracle disputes with the algorithms: the hull of the differences of a 1e-6 body at a 1e3
+// one's face said apart where both bodies overlap by 6.6e-7 (exact rationals agree), and a depth of
+// 9.8e-8 where it is 4.96e-7 (tiny against huge, 600 s #20595, #38997). The disagreement is an
+// info row.
+void arbitrateWithLeastOverlap(Engine& e, const std::string& family, int index, double param,
+                               const std::vector<Vec3>& va, const std::vector<Vec3>& vb, const MinkowskiOracle& o,
+                               double L, double M, const char* what, PairTruth& t) {
+    const verification::least_overlap::LeastOverlap lo(va, vb);
+    const double least = static_cast<double>(lo.leastOverlap());
+    Check h;
+    h.expected = least > 0 ? least : 0.0;
+    h.got = o.inside ? o.depth : 0.0;
+    h.error = (least > 0) != o.inside ? 1.0 : std::abs(h.got - h.expected) / L;
+    h.tolerance = kDepthTol + 8 * kU * M / L;
+    e.record(
+        family, std::string("hull oracle = least overlap (") + what + ")", "1e-10 L + 8uM", true, param, h,
+        [] { return std::string(); }, index);
+    t.inside = least > 0;
+    t.depth = t.inside ? least : 0.0;
+    t.apart = t.inside ? 0.0 : -least;
+    t.leastRan = true;
+}
+
 /// GJK distance (SV, Johnson), GJK intersect, EPA depth and normal of two vertex sets.
 void checkPair(Engine& e, const std::string& family, int index, const std::vector<Vec3>& va,
                const std::vector<Vec3>& vb, const PolytopeShape& a, const PolytopeShape& b,
@@ -232,55 +265,34 @@ void checkPair(Engine& e, const std::string& family, int index, const std::vecto
         checkGjkWitnesses(e, family, sv ? "gjk" : "gjk Johnson", !sv, index, param, w, g,
                           pairQuery("distance", nullptr));
     }
-    // Up to 12 vertices the least-overlap oracle (no hull: every triple normal and edge pair in
-    // long double with exact edge vectors, verification/least_overlap_oracle.h) arbitrates a verdict
-    // or depth the hull oracle disputes with the algorithms: the hull of the differences of a 1e-6
-    // body at a 1e3 one's face said apart where both bodies overlap by 6.6e-7 (exact rationals
-    // agree), and a depth of 9.8e-8 where it is 4.96e-7 (tiny against huge, 600 s #20595, #38997).
-    bool inside = o.inside, leastRan = false;
-    double depth = o.depth, apart = o.inside ? 0.0 : o.distance;  // apart: a lower bound when arbitrated
-    const auto arbitrate = [&](const char* what) {
-        const verification::least_overlap::LeastOverlap lo(va, vb);
-        const double least = static_cast<double>(lo.leastOverlap());
-        Check h;
-        h.expected = least > 0 ? least : 0.0;
-        h.got = o.inside ? o.depth : 0.0;
-        h.error = (least > 0) != o.inside ? 1.0 : std::abs(h.got - h.expected) / L;
-        h.tolerance = kDepthTol + 8 * kU * M / L;
-        e.record(
-            family, std::string("hull oracle = least overlap (") + what + ")", "1e-10 L + 8uM", true, param, h,
-            [] { return std::string(); }, index);
-        inside = least > 0;
-        depth = inside ? least : 0.0;
-        apart = inside ? 0.0 : -least;
-        leastRan = true;
-    };
+    PairTruth truth{o.inside, o.depth, o.inside ? 0.0 : o.distance};
+    const auto arbitrate = [&](const char* what) { arbitrateWithLeastOverlap(e, family, index, param, va, vb, o, L, M, what, truth); };
     const bool smallSets = va.size() <= 12 && vb.size() <= 12;
     // Boolean: judged outside the band where touching rounds either way.
     {
         GjkResult g;
         const bool hit = e.tampered("gjk_intersect", gjkIntersect(a, b, {}, nullptr, &g) ? 1.0 : 0.0) != 0.0;
         if (smallSets && hit != o.inside) arbitrate("verdict");
-        const double margin = (inside ? depth : apart) / L;
+        const double margin = (truth.inside ? truth.depth : truth.apart) / L;
         Check c;
         c.got = hit;
-        c.expected = inside;
-        c.error = hit != inside && margin > kBooleanBand + 8 * kU * M / L + extra ? 1.0 : 0.0;
+        c.expected = truth.inside;
+        c.error = hit != truth.inside && margin > kBooleanBand + 8 * kU * M / L + extra ? 1.0 : 0.0;
         c.tolerance = 0.5;
         c.iterations = g.iterations;
         c.capHit = g.termination == GjkTermination::MaxIterations;
         e.record(family, "gjk_intersect", "exact outside 1e-12 L of touching", false, param, c,
                  pairQuery("intersect", nullptr), index);
     }
-    if (!inside) return;
+    if (!truth.inside) return;
     EpaResult r = penetration(a, b);
     r.depth = e.tampered("epa_depth", r.depth);
     const double pTol = kDepthTol + 8 * kU * M / L + extra;
-    if (smallSets && !leastRan && std::abs(r.depth - depth) / L > pTol) arbitrate("depth");
+    if (smallSets && !truth.leastRan && std::abs(r.depth - truth.depth) / L > pTol) arbitrate("depth");
     Check c;
     c.got = r.depth;
-    c.expected = depth;
-    c.error = std::abs(r.depth - depth) / L;
+    c.expected = truth.depth;
+    c.error = std::abs(r.depth - truth.depth) / L;
     c.tolerance = pTol;
     c.iterations = r.iterations;
     c.capHit = r.termination == EpaTermination::MaxIterations || r.termination == EpaTermination::CapacityExceeded;

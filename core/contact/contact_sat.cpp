@@ -401,6 +401,55 @@ void faceContact(const Posed& A, const Posed& B, const SatAxisRecord& best, cons
     r.featureB = {FeatureType::Face, refOnA ? inc : rf};
 }
 
+// A face axis (the least, or kept) whose clip still keeps nothing: the bodies meet beside the
+// reference face, where its touching pair lies on features outside the support set along its
+// normal (an edge of A under "face A": cdlab stress "contact manifolds" 600 s #11574, #29170,
+// touching within the band). The best edge pair answers when its overlap is within the
+// contract's bound (depth <= least overlap · (1 + faceBiasRelative) + faceBiasAbsolute + tol);
+// otherwise the face keeps the touching pair (core/contact/contact_stages.cpp).
+void edgeAxisForEmptyClip(const ConvexPolyhedron& ma, const Posed& A, const ConvexPolyhedron& mb, const Posed& B,
+                          const SatQuery& q, double maxSep, const Vec3& origin, double tol, double size,
+                          double maxCoord, const SatContactOptions& options, SatContactResult& r,
+                          SatContactTrace* trace) {
+    if (q.best.edge.indexA < 0) return;
+    const double bound = maxSep - options.faceBiasRelative * std::abs(maxSep) -
+                         std::max(0.0, options.faceBiasAbsolute) - tol;
+    if (q.best.edge.separation >= bound) {
+        SatContactResult e = r;
+        e.manifold.clear();
+        e.clipKeptNothing = false;
+        detail::SatChosenAxis ce;
+        ce.best = q.best.edge;
+        ce.chosen = q.best.edgeIndex;
+        ce.maxSep = maxSep;
+        detail::recordChosenAxis(ce, tol, e);
+        edgeContact(ma, A, mb, B, ce.best, origin, tol, e, nullptr);
+        // Only when its points lie on both edges (nearly parallel edges move B's point off its
+        // edge onto pointA − depth · n: the face's touching pair is then the better answer,
+        // stress "contact manifolds" #2523) and differ by depth · n to rounding (the edge axis's
+        // normal, rounded from nearly parallel edges, turned 4e-13 rad off the points' common
+        // perpendicular, 1.7 × the 1e-9 L tolerance at coordinates 2.4e5: 600 s #36100).
+        const auto onEdge = [&](const ConvexPolyhedron& m, const Posed& P, int edge, const Vec3& p) {
+            const auto [i, j] = m.edgeVertices(edge);
+            const Vec3 u = P.x[std::size_t(i)], w = P.x[std::size_t(j)] - u;
+            const double len2 = w.squaredNorm();
+            const double t = len2 > 0 ? std::clamp((p - origin - u).dot(w) / len2, 0.0, 1.0) : 0.0;
+            return (p - origin - (u + t * w)).norm() <= tol;
+        };
+        const double rounding = 1e-12 * size + 16 * DBL_EPSILON * maxCoord;
+        if (e.manifold.size() == 1 && onEdge(ma, A, ce.best.indexA, e.manifold[0].pointA) &&
+            onEdge(mb, B, ce.best.indexB, e.manifold[0].pointB) &&
+            (e.manifold[0].pointA - e.manifold[0].pointB - e.depth * e.normal).norm() <= rounding) {
+            r = std::move(e);
+            if (trace) {
+                trace->chosen = ce.chosen;
+                trace->edgePointA = r.manifold[0].pointA;
+                trace->edgePointB = r.manifold[0].pointB;
+            }
+        }
+    }
+}
+
 }  // namespace
 
 // Gregorius, "The Separating Axis Test between Convex Polyhedra" (GDC 2013) and "Robust Contact
@@ -486,50 +535,7 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
             else faceContact(A, B, c2.best, origin, tol, options, r, trace, arena.resource());
         }
     }
-    // A face axis (the least, or kept) whose clip still keeps nothing: the bodies meet beside the
-    // reference face, where its touching pair lies on features outside the support set along its
-    // normal (an edge of A under "face A": cdlab stress "contact manifolds" 600 s #11574, #29170,
-    // touching within the band). The best edge pair answers when its overlap is within the
-    // contract's bound (depth <= least overlap · (1 + faceBiasRelative) + faceBiasAbsolute + tol);
-    // otherwise the face keeps the touching pair (core/contact/contact_stages.cpp).
-    if (r.clipKeptNothing && q.best.edge.indexA >= 0) {
-        const double bound = c.maxSep - options.faceBiasRelative * std::abs(c.maxSep) -
-                             std::max(0.0, options.faceBiasAbsolute) - tol;
-        if (q.best.edge.separation >= bound) {
-            SatContactResult e = r;
-            e.manifold.clear();
-            e.clipKeptNothing = false;
-            detail::SatChosenAxis ce;
-            ce.best = q.best.edge;
-            ce.chosen = q.best.edgeIndex;
-            ce.maxSep = c.maxSep;
-            detail::recordChosenAxis(ce, tol, e);
-            edgeContact(ma, A, mb, B, ce.best, origin, tol, e, nullptr);
-            // Only when its points lie on both edges (nearly parallel edges move B's point off its
-            // edge onto pointA − depth · n: the face's touching pair is then the better answer,
-            // stress "contact manifolds" #2523) and differ by depth · n to rounding (the edge axis's
-            // normal, rounded from nearly parallel edges, turned 4e-13 rad off the points' common
-            // perpendicular, 1.7 × the 1e-9 L tolerance at coordinates 2.4e5: 600 s #36100).
-            const auto onEdge = [&](const ConvexPolyhedron& m, const Posed& P, int edge, const Vec3& p) {
-                const auto [i, j] = m.edgeVertices(edge);
-                const Vec3 u = P.x[std::size_t(i)], w = P.x[std::size_t(j)] - u;
-                const double len2 = w.squaredNorm();
-                const double t = len2 > 0 ? std::clamp((p - origin - u).dot(w) / len2, 0.0, 1.0) : 0.0;
-                return (p - origin - (u + t * w)).norm() <= tol;
-            };
-            const double rounding = 1e-12 * size + 16 * DBL_EPSILON * maxCoord;
-            if (e.manifold.size() == 1 && onEdge(ma, A, ce.best.indexA, e.manifold[0].pointA) &&
-                onEdge(mb, B, ce.best.indexB, e.manifold[0].pointB) &&
-                (e.manifold[0].pointA - e.manifold[0].pointB - e.depth * e.normal).norm() <= rounding) {
-                r = std::move(e);
-                if (trace) {
-                    trace->chosen = ce.chosen;
-                    trace->edgePointA = r.manifold[0].pointA;
-                    trace->edgePointB = r.manifold[0].pointB;
-                }
-            }
-        }
-    }
+    if (r.clipKeptNothing) edgeAxisForEmptyClip(ma, A, mb, B, q, c.maxSep, origin, tol, size, maxCoord, options, r, trace);
     return r;
 }
 

@@ -328,7 +328,7 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
             c.drawTextPx(left - 11, y, buf, TextStyle{13.0f, roleColor(Role::Ink), Anchor::Right, true, false});
         }
     }
-    const TextStyle value{12.0f, roleColor(Role::Ink), Anchor::Bottom, true, false};
+    const TextStyle value{13.0f, roleColor(Role::Ink), Anchor::Bottom, true, false};
     for (int g = 0; g < groups; ++g) {
         const double gx = left + g * groupW + 0.1 * groupW;
         for (int s = 0; s < ns; ++s) {

@@ -102,11 +102,12 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
         titleH = titleBlock() + int(sceneLineH * double(captionLines.size())) + (captionLines.empty() ? 0 : 4);
     };
     // Sizes only grow with the height they give, so this settles in a pass or two. Captions that
-    // wrap to more lines as they grow could feed on themselves: sizes stop at 30 px (the check then
-    // names what is too small), and the layout is always redone at the final sizes.
+    // wrap to more lines as they grow could feed on themselves: sizes stop at 36 px (the check then
+    // names what is too small; a 15-frame sheet 1894 px tall needs 31), and the layout is always
+    // redone at the final sizes.
     for (int pass = 0; pass < 8; ++pass) {
         layOut();
-        const float legible = std::min(30.0f, float(std::ceil(0.016 * (titleH + rows * (cellH + captionH + pad) + pad))));
+        const float legible = std::min(36.0f, float(std::ceil(0.016 * (titleH + rows * (cellH + captionH + pad) + pad))));
         if (std::max(15.0f, legible) == captionPx && std::max(16.0f, legible) == sceneCaption.sizePx &&
             std::max(22.0f, legible) == titlePx)
             break;  // settled: the sizes fit the height they give

@@ -495,16 +495,21 @@ private:
         drawTrail(c, tr, k);
         const ContactMarks marks = drawBodyAndContacts(c, cam, r, tr, k, maxImpulse, labels);
         const bool touching = inContact(s);
+        double legendBottom = 0.0;  // the status lines go under the legend where they would meet it
+        double legendWidest = 0.0;  // the widest legend entry from the status lines' row down
         if (labels) {
             // Legend (top right), each entry in the colour of what it names.
             const double x = c.width() - 18.0;
-            double y = 18.0;
+            double& y = legendBottom;
+            y = 18.0;
             // faded: the entry in the faded colour it names (mixed as the markers, a little less so
             // the text stays legible).
             const auto item = [&](const std::string& text, Role role, bool faded = false) {
                 Color color = role == Role::Result ? roleColor(Role::Result).scaled(0.75f) : roleColor(role);
                 if (faded) color = color.mixed(roleColor(Role::Background), 0.45f);
-                c.drawTextPx(x, y, text, TextStyle{16.0f, color, Anchor::TopRight, true, true});
+                const TextStyle style{16.0f, color, Anchor::TopRight, true, true};
+                c.drawTextPx(x, y, text, style);
+                if (y + 22.0 > 58.0) legendWidest = std::max(legendWidest, c.measureText(text, style).x());
                 y += 22.0;
             };
             if (common_.hasLayer("contacts")) {
@@ -524,9 +529,15 @@ private:
                       marks.bounces ? (", " + std::to_string(marks.bounces) + " bouncing").c_str() : "");
         std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground",
                       s.energy, s.kinetic, s.potential, s.maxPenetration);
-        c.drawTextPx(18.0, c.height() - 18.0 - 26.0, line1,
-                     TextStyle{19.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
-        drawTitleAndCaption(c, common_.title, line2);
+        // Under the title, in the sky: at the bottom they sat on the ground's grid lines (the review
+        // rule LabelOnStroke).
+        const TextStyle status1{19.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+        const TextStyle status2{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+        const double statusRight = 18.0 + std::max(c.measureText(line1, status1).x(), c.measureText(line2, status2).x());
+        const double statusTop = statusRight + 12.0 < c.width() - 18.0 - legendWidest ? 58.0 : std::max(58.0, legendBottom + 6.0);
+        c.drawTextPx(18.0, statusTop, line1, status1);
+        c.drawTextPx(18.0, statusTop + 26.0, line2, status2);
+        drawTitleAndCaption(c, common_.title, "");
         char name[32];
         std::snprintf(name, sizeof name, "frame_%02d", index);
         char cap[200];

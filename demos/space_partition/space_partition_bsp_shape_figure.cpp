@@ -140,20 +140,32 @@ void SpaceScene::drawTreeDiagram(Canvas& canvas, const BspTree& bt, const Vec3& 
     auto pos = [&](int id) -> Vec3 {
         return corner + P(x[std::size_t(id)] * w, h - (nodes[std::size_t(id)].depth + 0.5) * rowH);
     };
+    // Tree edges stop at the nodes' discs (an inner node's 17 px disc holds its splitter's name,
+    // which an edge to its centre crossed), a leaf's 6 px dot.
+    const auto discRadiusPx = [&](int id) { return nodes[std::size_t(id)].kind == BspNodeKind::Inner ? 10.0 : 4.0; };
+    const auto edge = [&](int from, int to, const LineStyle& style) {
+        const Vec3 a = pos(from), b = pos(to);
+        Eigen::Vector2d pa, pb;
+        if (!canvas.project(a, pa) || !canvas.project(b, pb) || !((pa - pb).norm() > 0)) return;
+        const double len = (pa - pb).norm();
+        const double s0 = std::min(0.45, discRadiusPx(from) / len), s1 = std::min(0.45, discRadiusPx(to) / len);
+        canvas.drawLine(a + s0 * (b - a), b - s1 * (b - a), style);
+    };
     for (std::size_t i = 0; i < nodes.size(); ++i) {
         const BspNode& n = nodes[i];
         if (n.kind != BspNodeKind::Inner) continue;
-        canvas.drawLine(pos(int(i)), pos(n.front), lineStyle(Role::Muted, 1.8f));
-        canvas.drawLine(pos(int(i)), pos(n.back), lineStyle(Role::Ink, 1.8f, true));
+        edge(int(i), n.front, lineStyle(Role::Muted, 1.8f));
+        edge(int(i), n.back, lineStyle(Role::Ink, 1.8f, true));
     }
     for (std::size_t i = 0; i < nodes.size(); ++i) {
         const BspNode& n = nodes[i];
         const Vec3 p = pos(int(i));
         if (n.kind == BspNodeKind::Inner) {
-            canvas.drawPoint(p, 11.0f, depthColor(n.depth, depth).mixed(roleColor(Role::Background), 0.35f), true,
+            // The splitter's name inside its node: 13 px text (1.6 % of the 800 px frame) in a 17 px disc.
+            canvas.drawPoint(p, 17.0f, depthColor(n.depth, depth).mixed(roleColor(Role::Background), 0.35f), true,
                              1.5f);
             canvas.drawText(p, "e" + std::to_string(n.splitter),
-                            TextStyle{12.0f, roleColor(Role::Ink), Anchor::Center, false, true});
+                            TextStyle{13.0f, roleColor(Role::Ink), Anchor::Center, false, true});
         } else {
             const bool solid = n.kind == BspNodeKind::SolidLeaf;
             canvas.drawPoint(p, 6.0f, solid ? roleColor(Role::ShapeA) : roleColor(Role::Muted), true, 1.5f);

@@ -174,7 +174,7 @@ void SpaceScene::drawOctreePanel(const PanelView& v, const Vec3& at, const Panel
                 p,
                 (d == 0 ? "root" : "d" + std::to_string(d)) + ": " +
                     std::to_string(d < int(os.objectsPerDepth.size()) ? os.objectsPerDepth[std::size_t(d)] : 0),
-                TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
+                TextStyle{17.0f, roleColor(Role::Ink), Anchor::Left, true, false, {9, 0}});
         }
     }
 }

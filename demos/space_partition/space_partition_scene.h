@@ -172,12 +172,12 @@ private:
     // Heading above a panel whose top-left corner is `topLeft` (world).
     static void heading(Canvas& c, const Vec3& topLeft, const std::string& text, const std::string& sub) {
         c.drawText(topLeft, text, TextStyle{20.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, true, {0, -24}});
-        c.drawText(topLeft, sub, TextStyle{16.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false, {0, -5}});
+        c.drawText(topLeft, sub, TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false, {0, -5}});
     }
     // A colour key just under a panel whose bottom-left corner is `bottomLeft` (world).
     static void keyBelow(Canvas& c, const Vec3& bottomLeft, const std::vector<KeyItem>& items) {
         Eigen::Vector2d px;
-        if (c.project(bottomLeft, px)) drawKey(c, px.x(), px.y() + 8, items);
+        if (c.project(bottomLeft, px)) drawKey(c, px.x(), px.y() + 8, items, 17.0f);  // 1.6 % of 1024 px
     }
     // The title and caption drawn over a finished figure, which is named `name` and captioned by the title.
     Frame titledFrame(Canvas& canvas, const std::string& name) const {
