@@ -77,13 +77,15 @@ void Canvas::drawPolygon(const std::vector<Eigen::Vector3d>& corners, const Colo
     impl_->meshes.push_back({corners, std::move(fan), color, lit});
 }
 
+void Canvas::setStrokeOwner(int owner) { impl_->strokeOwner = owner; }
+
 void Canvas::drawLine(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const LineStyle& style) {
-    impl_->overlays.emplace_back(LineCmd{{p, q}, style, false});
+    impl_->overlays.emplace_back(LineCmd{{p, q}, style, false, false, impl_->strokeOwner});
 }
 
 void Canvas::drawPolyline(const std::vector<Eigen::Vector3d>& points, bool closed, const LineStyle& style) {
     if (points.size() < 2) return;
-    LineCmd cmd{points, style, false};
+    LineCmd cmd{points, style, false, false, impl_->strokeOwner};
     if (closed) cmd.points.push_back(points.front());
     impl_->overlays.emplace_back(std::move(cmd));
 }
@@ -94,7 +96,7 @@ void Canvas::drawPoint(const Eigen::Vector3d& p, float radiusPx, const Color& co
 }
 
 void Canvas::drawArrow(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const LineStyle& style) {
-    impl_->overlays.emplace_back(LineCmd{{p, q}, style, true});
+    impl_->overlays.emplace_back(LineCmd{{p, q}, style, true, false, impl_->strokeOwner});
 }
 
 void Canvas::drawText(const Eigen::Vector3d& at, const std::string& text, const TextStyle& style) {

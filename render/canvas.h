@@ -47,6 +47,9 @@ struct TextStyle {
     /// labels, markers and thick lines, preferring the side offsetPx points to; one that fits nowhere
     /// is not drawn and is listed in the layout's `unplaced`.
     bool place = false;
+    /// The strokes this label names (Canvas::setStrokeOwner; 0: none): a body's name may cross its
+    /// own outline (the review rule LabelOnStroke exempts them, render/legibility.h).
+    int names = 0;
 };
 
 /// Where readPixels() spends its time, summed over this thread's frames (each drawing thread keeps
@@ -90,6 +93,9 @@ public:
     /// Convex planar polygon (fan-triangulated), e.g. a face, a region or a translucent plane patch.
     void drawPolygon(const std::vector<Eigen::Vector3d>& corners, const Color& color, bool lit = false);
     /// Thick anti-aliased line as a screen-space quad (any width; dashed optional).
+    /// Every stroke drawn from now on belongs to `owner` (0: none) until the next call: a body's
+    /// outline, named by the label whose TextStyle::names is the same id.
+    void setStrokeOwner(int owner);
     void drawLine(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const LineStyle& style);
     void drawPolyline(const std::vector<Eigen::Vector3d>& points, bool closed, const LineStyle& style);
     /// Filled disc of `radiusPx` pixels, with an optional outline in `outline` colour.

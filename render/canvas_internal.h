@@ -53,6 +53,7 @@ struct LineCmd {
     LineStyle style;
     bool arrow;
     bool pixelSpace = false;  // points are output pixels (x, y, 0): leader lines of placed labels
+    int owner = 0;            // Canvas::setStrokeOwner at the time it was drawn (0: none)
 };
 struct PointCmd {
     Vector3d p;
@@ -111,6 +112,7 @@ struct Canvas::Impl {
     std::vector<MeshCmd> meshes;
     std::vector<std::variant<LineCmd, PointCmd>> overlays;
     std::vector<TextCmd> texts;
+    int strokeOwner = 0;  // setStrokeOwner: the owner of the strokes drawn next
     // Per frame, from layoutTexts(): where each text goes (its offset after placement; none: not
     // drawn) and the leader lines of labels moved away from their points.
     std::vector<std::optional<Vector2d>> textOffsets;

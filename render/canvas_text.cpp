@@ -114,6 +114,27 @@ static bool clipToBox(const Box& box, Vector2d& a, Vector2d& b) {
     return true;
 }
 
+// Which label each stroke's body and each marker belong to: a stroke outlines the body its owner
+// names (the first label with that id, setStrokeOwner / TextStyle::names); a marker is named by the
+// label whose point is inside it (the nearest to its centre).
+static void nameOutlinesAndMarkers(FigureLayout& layout, const std::vector<int>& strokeOwners,
+                                   const std::vector<int>& labelNames) {
+    for (std::size_t k = 0; k < strokeOwners.size(); ++k) {
+        if (strokeOwners[k] == 0) continue;
+        const auto it = std::find(labelNames.begin(), labelNames.end(), strokeOwners[k]);
+        if (it != labelNames.end()) layout.strokes[k].outlineOf = int(it - labelNames.begin());
+    }
+    for (LayoutMarker& m : layout.markers) {
+        double best = INFINITY;
+        for (std::size_t i = 0; i < layout.labels.size(); ++i) {
+            const auto& a = layout.labels[i].anchor;
+            if (!a || !m.box.contains(*a)) continue;
+            const double d = (*a - m.box.center()).norm();
+            if (d < best) best = d, m.label = int(i);
+        }
+    }
+}
+
 // Every text's box in output pixels: fixed texts where they were asked for, point labels
 // (TextStyle::place) through placeLabel around their points, in drawing order, each one an
 // obstacle for the next. Fills textOffsets and leaders for the build steps.
@@ -126,6 +147,7 @@ FigureLayout Canvas::Impl::layoutTexts() {
 
     PlacementObstacles obstacles;
     obstacles.panel = panel;
+    std::vector<int> strokeOwners, labelNames;  // parallel to layout.strokes / layout.labels
     for (const auto& item : overlays) {
         if (const auto* pt = std::get_if<PointCmd>(&item)) {
             Vector2d c;
@@ -143,9 +165,10 @@ FigureLayout Canvas::Impl::layoutTexts() {
                 // edge was recorded across the neighbouring panel it is blitted beside).
                 if (!clipToBox(panel, a, b)) continue;
                 layout.strokes.push_back({a, b, line.style.widthPx, -1});
+                strokeOwners.push_back(line.owner);
                 // Thin lines: avoided where there is room, else crossed (halo); the review rule
                 // LabelOnStroke reports it (render/legibility.h).
-                obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx, line.style.widthPx < 3.0f});
+                obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx, line.style.widthPx < 3.0f, line.owner});
             }
         }
     }
@@ -171,6 +194,7 @@ FigureLayout Canvas::Impl::layoutTexts() {
         std::optional<Vector2d> anchor;
         if (t.world) anchor = asked[i].anchor;
         layout.labels.push_back({t.text, box, anchor, asked[i].lineHeight});
+        labelNames.push_back(t.style.names);
         // Kept a space's width clear on either side, so the next label cannot run into it
         // (the legibility check's rule, render/legibility.h).
         const double space = kMinGapFraction * asked[i].lineHeight;
@@ -195,6 +219,7 @@ FigureLayout Canvas::Impl::layoutTexts() {
         request.anchor = asked[i].anchor;
         request.size = asked[i].size;
         request.preferred = t.style.offsetPx;
+        request.names = t.style.names;
         const Vector2d dir = t.style.offsetPx.norm() > 0 ? Vector2d(t.style.offsetPx.normalized()) : Vector2d(0, 0);
         const double halfAlong =
             0.5 * std::abs(dir.x()) * request.size.x() + 0.5 * std::abs(dir.y()) * request.size.y();
@@ -220,16 +245,7 @@ FigureLayout Canvas::Impl::layoutTexts() {
                         true});
         }
     }
-    // A marker is named by the label whose point is inside it (the nearest to its centre).
-    for (LayoutMarker& m : layout.markers) {
-        double best = INFINITY;
-        for (std::size_t i = 0; i < layout.labels.size(); ++i) {
-            const auto& a = layout.labels[i].anchor;
-            if (!a || !m.box.contains(*a)) continue;
-            const double d = (*a - m.box.center()).norm();
-            if (d < best) best = d, m.label = int(i);
-        }
-    }
+    nameOutlinesAndMarkers(layout, strokeOwners, labelNames);
     return layout;
 }
 

@@ -27,7 +27,8 @@ void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
         markers.push_back({m.box.translated(dx, dy), m.label >= 0 ? m.label + base : -1});
     const Eigen::Vector2d d(dx, dy);
     for (const LayoutStroke& k : other.strokes)
-        strokes.push_back({k.a + d, k.b + d, k.width, k.leaderOf >= 0 ? k.leaderOf + base : -1});
+        strokes.push_back({k.a + d, k.b + d, k.width, k.leaderOf >= 0 ? k.leaderOf + base : -1,
+                           k.outlineOf >= 0 ? k.outlineOf + base : -1});
     unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
 }
 

@@ -51,6 +51,7 @@ struct LayoutStroke {
     Eigen::Vector2d a{0, 0}, b{0, 0};
     double width = 0;
     int leaderOf = -1;
+    int outlineOf = -1;  ///< the label naming the body this stroke outlines (TextStyle::names), or -1
 };
 
 struct FigureLayout {

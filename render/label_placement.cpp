@@ -89,7 +89,9 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
     };
     const auto offLines = [&](const Box& b, bool thinToo) {
         for (const PlacementObstacles::Line& l : obstacles.lines)
-            if ((thinToo || !l.thin) && segmentBoxDistance(l.a, l.b, b) < l.halfWidth + 1.0) return false;
+            if ((thinToo || !l.thin) && (l.owner == 0 || l.owner != request.names) &&
+                segmentBoxDistance(l.a, l.b, b) < l.halfWidth + 1.0)
+                return false;
         return true;
     };
     // No preferred side (a name that belongs on its point, such as a body's): on the point if free.
@@ -113,7 +115,12 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
         for (const Vector2d& d : dirs) {
             const Box b = boxAt(request.anchor, request.size, d, request.gap * rings[ring] + (ring ? 8.0 : 0.0));
             if (!free(b)) continue;
-            const int cost = (offLines(b, false) ? (offLines(b, true) ? 0 : 2) : 4) + (ambiguous(b) ? 1 : 0);
+            // Crossing a thick line is worst, then being nearer another point than its own (it
+            // misleads), then crossing a thin line; each ring beyond the second costs 1, so a label
+            // does not fly far off across a dense drawing to dodge one thin line (figure review of
+            // 2026-11-29's re-render: "V0 (B)" 80 px from its point, its leader lost among edges).
+            const int cost = (offLines(b, false) ? (offLines(b, true) ? 0 : 2) : 8) + (ambiguous(b) ? 4 : 0) +
+                             std::max(0, ring - 1);
             if (cost == 0) return {true, b, ring > 0};
             if (cost < bestCost) bestCost = cost, best = {true, b, ring > 0};
         }

@@ -23,6 +23,7 @@ struct PlacementObstacles {
         Eigen::Vector2d a, b;
         double halfWidth;
         bool thin = false;  // below 3 px: avoided when possible, crossed when not
+        int owner = 0;      // Canvas::setStrokeOwner (0: none)
     };
     Box panel;  // the label must stay inside, `margin` px from the edge
     double margin = 2.0;
@@ -37,6 +38,7 @@ struct PlacementRequest {
     Eigen::Vector2d size;       // the text box, px
     Eigen::Vector2d preferred;  // preferred direction from the anchor (any length; zero: on the point, else up-right)
     double gap = 6.0;           // px between the anchor and the nearest edge of the box
+    int names = 0;              // the owner of the strokes it may cross (its body's outline; 0: none)
 };
 
 struct Placement {

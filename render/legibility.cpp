@@ -84,8 +84,9 @@ void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProb
         double worst = 0;
         const LayoutStroke* hit = nullptr;
         for (const LayoutStroke& k : layout.strokes) {
-            // Its own leader; a band at least as wide as the text is a fill behind it (a table's highlighted row).
-            if (k.leaderOf == int(i) || k.width >= labels[i].lineHeight) continue;
+            // Its own leader, its own body's outline; a band at least as wide as the text is a fill
+            // behind it (a table's highlighted row).
+            if (k.leaderOf == int(i) || k.outlineOf == int(i) || k.width >= labels[i].lineHeight) continue;
             // The stroke's centre line against the box grown by its half width, less the graze margin.
             const double h = 0.5 * k.width - kStrokeGrazePx;
             const double inside = lengthInside(Box{b.x0 - h, b.y0 - h, b.x1 + h, b.y1 + h}, k.a, k.b);

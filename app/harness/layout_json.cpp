@@ -24,11 +24,13 @@ Json layoutJson(const render::Image& image) {
                           {"size_px", px(t.lineHeight)}});
     for (const render::LayoutMarker& m : l.markers)
         markers.push_back({{"box", boxJson(m.box)}, {"label", m.label >= 0 ? Json(m.label) : Json()}});
-    // [x0, y0, x1, y1, width], plus the label index for a label's own leader line.
+    // [x0, y0, x1, y1, width], plus the label index for a label's own leader line, plus (the 6th
+    // null when it is no leader) the index of the label naming the body it outlines.
     Json strokes = Json::array();
     for (const render::LayoutStroke& k : l.strokes) {
         Json s = Json::array({px(k.a.x()), px(k.a.y()), px(k.b.x()), px(k.b.y()), px(k.width)});
-        if (k.leaderOf >= 0) s.push_back(k.leaderOf);
+        if (k.leaderOf >= 0 || k.outlineOf >= 0) s.push_back(k.leaderOf >= 0 ? Json(k.leaderOf) : Json());
+        if (k.outlineOf >= 0) s.push_back(k.outlineOf);
         strokes.push_back(std::move(s));
     }
     return {{"width", image.width}, {"height", image.height}, {"panels", panels},

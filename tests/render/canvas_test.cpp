@@ -415,6 +415,25 @@ TEST_SUITE("canvas layout") {
         CHECK(leaders == 1);
     }
 
+    TEST_CASE("strokes drawn under a stroke owner outline the body its name label names") {
+        Canvas c(context(), CanvasOptions{200, 200, 1, 4});
+        c.setCamera(Camera::twoD(0, 0, 10));
+        LineStyle s;
+        s.widthPx = 1.5f;
+        c.setStrokeOwner(7);
+        c.drawPolyline({Vector3d(-3, -3, 0), Vector3d(3, -3, 0), Vector3d(3, 3, 0)}, true, s);
+        c.setStrokeOwner(0);
+        c.drawLine(Vector3d(-4, 0, 0), Vector3d(4, 0, 0), s);
+        TextStyle name;
+        name.names = 7;
+        c.drawText(Vector3d(1, 1, 0), "B", name);
+        const FigureLayout l = c.readPixels().layout;
+        REQUIRE(l.labels.size() == 1);
+        REQUIRE(l.strokes.size() == 4);
+        for (int k = 0; k < 3; ++k) CHECK(l.strokes[std::size_t(k)].outlineOf == 0);
+        CHECK(l.strokes[3].outlineOf == -1);
+    }
+
     TEST_CASE("readPixels records text boxes, markers and who names them, placed labels go around the rest") {
         Canvas c(context(), CanvasOptions{200, 200, 1, 4});
         c.setCamera(Camera::twoD(0, 0, 10));

@@ -73,6 +73,11 @@ TEST_SUITE("legibility") {
         REQUIRE(problems.size() == 1);
         CHECK(problems[0].kind == LegibilityKind::LabelOnStroke);
         CHECK(problems[0].text == "v");
+        // A body's name may cross the body's own outline (outlineOf), not another body's.
+        l.strokes[1].outlineOf = 1;
+        CHECK(checkLegibility(l, 400, 300).empty());
+        l.strokes[1].outlineOf = 0;
+        REQUIRE(checkLegibility(l, 400, 300).size() == 1);
 
         FigureLayout n;
         n.panels = {{0, 0, 400, 300}};
