@@ -5,6 +5,7 @@
 
 #include "core/broadphase/dynamic_tree.h"
 #include "demos/bvh/bvh_draw.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 
@@ -170,8 +171,10 @@ private:
         }
         for (int b = 0; b < count; ++b) {
             drawBoxFill(c, obbFromAabb(boxes_[b]), roleColor(Role::ShapeA).withAlpha(0.30f));
+            c.setStrokeOwner(bodyOwner(boxName(b)));  // its name may cross its own box and fat box
             drawBoxWire(c, obbFromAabb(boxes_[b]), lineStyle(Role::ShapeA, 1.5f));
             drawBoxWire(c, obbFromAabb(fat_[b]), lineStyle(Role::Muted, 1.5f, true));
+            c.setStrokeOwner(0);
         }
         if (!s.insert && s.reinserted) drawBoxWire(c, obbFromAabb(s.oldFat), lineStyle(Role::Muted, 3.0f));
         if (s.reinserted && s.trace.sibling != DynamicAabbTree::kNull)
@@ -181,6 +184,7 @@ private:
             for (int b = 0; b < count; ++b) {
                 TextStyle ts = labelStyle(Role::Ink, 20.0f);
                 ts.place = true;
+                ts.names = bodyOwner(boxName(b));
                 c.drawText(0.5 * (boxes_[b].min + boxes_[b].max), boxName(b), ts);
             }
         const std::string what = s.insert ? "Insert " + boxName(s.box) : "Move " + boxName(s.box);

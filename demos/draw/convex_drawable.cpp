@@ -1,8 +1,9 @@
 #include "demos/draw/convex_drawable.h"
 
 #include <algorithm>
-#include <map>
 #include <cmath>
+#include <cstdint>
+#include <map>
 
 #include "core/geometry/convex_hull.h"
 #include "demos/draw/figure_style.h"
@@ -232,9 +233,16 @@ void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::
 }
 
 
+int bodyOwner(const std::string& name) {
+    std::uint32_t h = 2166136261u;  // FNV-1a, 31 bits, never 0
+    for (const unsigned char ch : name) h = (h ^ ch) * 16777619u;
+    return int(h & 0x7fffffffu) | 1;
+}
+
 void drawBodyName(Canvas& canvas, const Vec3& at, const std::string& name, Role role) {
     TextStyle style = labelStyle(role, 26.0f);
     style.place = true;  // on its point when free, else beside it
+    style.names = bodyOwner(name);
     canvas.drawText(at, name, style);
 }
 

@@ -65,7 +65,12 @@ void drawOrigin(render::Canvas& canvas, double size, bool planar);
 /// Text next to `at`, pushed `px` output pixels away from `from` on screen (so labels fan out
 /// from a centre instead of piling onto the point they name).
 /// A body's name ("A", "B") at its centre, or beside it when a marker or label is there.
+/// The name names the strokes drawn under bodyOwner(name) (Canvas::setStrokeOwner): it may cross
+/// its own body's outline, no other stroke (render/legibility.h).
 void drawBodyName(render::Canvas& canvas, const Vec3& at, const std::string& name, render::Role role);
+/// The stroke owner id of the body named `name` (never 0): draw its outline under
+/// canvas.setStrokeOwner(bodyOwner(name)), its name with drawBodyName or TextStyle::names.
+int bodyOwner(const std::string& name);
 /// Where the names of two bodies go: their centres, except that when the centres are close
 /// (one body deep inside the other) the larger body's name moves away from the smaller one, onto
 /// a part of it the other does not cover.

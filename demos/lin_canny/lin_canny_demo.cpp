@@ -257,16 +257,22 @@ private:
     Color featureColor(int i) const { return roleColor(i == 0 ? Role::ShapeA : Role::ShapeB).scaled(0.8f); }
 
     void drawBodies(Canvas& c, bool names) const {
+        c.setStrokeOwner(bodyOwner("A"));
         drawPolyhedron(c, s_.a, s_.a.pose, roleColor(Role::ShapeA), 0.18f);
+        c.setStrokeOwner(bodyOwner("B"));
         drawPolyhedron(c, s_.b, s_.b.pose, roleColor(Role::ShapeB), 0.18f);
+        c.setStrokeOwner(0);
         if (names && common_.hasLayer("labels")) {
             // Each body's name on its far side from the other body, where the features are not.
             const Vec3 ca = centroid(0), cb = centroid(1);
             const Vec3 away = (cb - ca).norm() > 0 ? Vec3((cb - ca).normalized()) : Vec3::UnitX();
             const double ra = (s_.a.regions.mesh().boundsMax() - s_.a.regions.mesh().boundsMin()).norm() * 0.3;
             const double rb = (s_.b.regions.mesh().boundsMax() - s_.b.regions.mesh().boundsMin()).norm() * 0.3;
-            c.drawText(ca - away * ra, "A", labelStyle(Role::ShapeA, 26.0f));
-            c.drawText(cb + away * rb, "B", labelStyle(Role::ShapeB, 26.0f));
+            TextStyle nameA = labelStyle(Role::ShapeA, 26.0f), nameB = labelStyle(Role::ShapeB, 26.0f);
+            nameA.names = bodyOwner("A");  // it may cross its own body's edges, nothing else
+            nameB.names = bodyOwner("B");
+            c.drawText(ca - away * ra, "A", nameA);
+            c.drawText(cb + away * rb, "B", nameB);
         }
     }
 

@@ -222,11 +222,14 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
     Canvas c(gl, canvasOptions(scene.image.width, height, scale));
     c.setCamera(cam);
     const Role roleOf[2] = {Role::ShapeA, Role::ShapeB};
-    drawShape(c, in.a, roleOf[0]);
-    drawShape(c, in.b, roleOf[1]);
-    const bool labels = scene.hasLayer("labels");
     const std::string nameA = run.pair.boxIsA ? run.pair.boxName : run.pair.otherName;
     const std::string nameB = run.pair.boxIsA ? run.pair.otherName : run.pair.boxName;
+    c.setStrokeOwner(bodyOwner(nameA));
+    drawShape(c, in.a, roleOf[0]);
+    c.setStrokeOwner(bodyOwner(nameB));
+    drawShape(c, in.b, roleOf[1]);
+    c.setStrokeOwner(0);
+    const bool labels = scene.hasLayer("labels");
     if (labels) {
         // Two boxes deep in each other: the larger one's name moves onto a part the other leaves free.
         std::pair<Vec3, Vec3> at{centreOf(in.a), centreOf(in.b)};

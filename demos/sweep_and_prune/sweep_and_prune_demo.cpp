@@ -20,6 +20,7 @@
 #include <cstdio>
 
 #include "core/broadphase/sweep_and_prune.h"
+#include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "app/scene/scene_limits.h"
@@ -230,9 +231,12 @@ private:
                                              : LineStyle{1.5f, col.scaled(0.7f), 0.0f, false};
             const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
                                       {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+            c.setStrokeOwner(bodyOwner(boxName(static_cast<int>(i))));
             for (const auto& e : edges) c.drawLine(v[e[0]], v[e[1]], edge);
+            c.setStrokeOwner(0);
             TextStyle ts = labelStyle(Role::Ink, 18.0f);
             ts.color = col.scaled(0.6f);
+            ts.names = bodyOwner(boxName(static_cast<int>(i)));  // on its own box's edges, nothing else
             // Identical boxes share a centre: their labels step right so each stays readable.
             int same = 0;
             for (std::size_t j = 0; j < i; ++j) same += (d.boxes[j].min == b.min && d.boxes[j].max == b.max) ? 1 : 0;
