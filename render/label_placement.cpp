@@ -119,7 +119,7 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             // misleads), then crossing a thin line; each ring beyond the second costs 1, so a label
             // does not fly far off across a dense drawing to dodge one thin line (figure review of
             // 2026-11-29's re-render: "V0 (B)" 80 px from its point, its leader lost among edges).
-            const int cost = (offLines(b, false) ? (offLines(b, true) ? 0 : 2) : 8) + (ambiguous(b) ? 4 : 0) +
+            const int cost = (offLines(b, false) ? (offLines(b, true) ? 0 : 2) : 8) + (ambiguous(b) ? 9 : 0) +
                              std::max(0, ring - 1);
             if (cost == 0) return {true, b, ring > 0};
             if (cost < bestCost) bestCost = cost, best = {true, b, ring > 0};

@@ -22,8 +22,7 @@ const char* nameOf(LegibilityKind kind) {
 }
 
 bool gates(LegibilityKind kind) {
-    return kind != LegibilityKind::LabelOnStroke && kind != LegibilityKind::LabelNearerOther &&
-           kind != LegibilityKind::FontBelowTarget;
+    return kind != LegibilityKind::LabelOnStroke && kind != LegibilityKind::LabelNearerOther;
 }
 
 namespace {

@@ -94,7 +94,7 @@ TEST_SUITE("legibility") {
         problems = checkLegibility(f, 400, 300);
         REQUIRE(problems.size() == 1);
         CHECK(problems[0].kind == LegibilityKind::FontBelowTarget);
-        CHECK_FALSE(gates(problems[0].kind));
+        CHECK(gates(problems[0].kind));  // every golden frame meets it (issue 42)
         CHECK(gates(LegibilityKind::TextTooSmall));
     }
 
