@@ -92,23 +92,11 @@ Vector2d boxOrigin(Anchor anchor, double x, double y, double w, double h, double
 
 }  // namespace canvas_detail
 
-// Clips segment ab to the box (Liang–Barsky); false when nothing of it is inside.
+// Clips segment ab to the box; false when nothing of it is inside.
 static bool clipToBox(const Box& box, Vector2d& a, Vector2d& b) {
-    double t0 = 0, t1 = 1;
-    const Vector2d d = b - a;
-    const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
-    const double q[4] = {a.x() - box.x0, box.x1 - a.x(), a.y() - box.y0, box.y1 - a.y()};
-    for (int i = 0; i < 4; ++i) {
-        if (p[i] == 0) {
-            if (q[i] < 0) return false;
-            continue;
-        }
-        const double t = q[i] / p[i];
-        if (p[i] < 0) t0 = std::max(t0, t);
-        else t1 = std::min(t1, t);
-        if (t0 > t1) return false;
-    }
-    const Vector2d a0 = a;
+    double t0, t1;
+    if (!box.clip(a, b, t0, t1)) return false;
+    const Vector2d a0 = a, d = b - a;
     a = a0 + t0 * d;
     b = a0 + t1 * d;
     return true;

@@ -32,6 +32,24 @@ void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
     unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
 }
 
+bool Box::clip(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double& t0, double& t1) const {
+    t0 = 0, t1 = 1;
+    const Eigen::Vector2d d = b - a;
+    const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+    const double q[4] = {a.x() - x0, x1 - a.x(), a.y() - y0, y1 - a.y()};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0) {
+            if (q[i] < 0) return false;
+            continue;
+        }
+        const double t = q[i] / p[i];
+        if (p[i] < 0) t0 = std::max(t0, t);
+        else t1 = std::min(t1, t);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
 FigureLayout FigureLayout::scaled(double s) const {
     FigureLayout out = *this;
     for (Box& p : out.panels) p = p.scaled(s);

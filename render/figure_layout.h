@@ -26,6 +26,9 @@ struct Box {
     bool contains(const Eigen::Vector2d& p) const { return p.x() >= x0 && p.x() <= x1 && p.y() >= y0 && p.y() <= y1; }
     Box translated(double dx, double dy) const { return {x0 + dx, y0 + dy, x1 + dx, y1 + dy}; }
     Box scaled(double s) const { return {x0 * s, y0 * s, x1 * s, y1 * s}; }
+    /// Segment ab clipped to the box (Liang–Barsky): its parameters [t0, t1] along ab inside, or
+    /// false when no part of it is inside (a zero-length segment: whether its point is).
+    bool clip(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double& t0, double& t1) const;
 };
 
 /// A text as drawn: its box spans the font's line height (ascent to descent) of every line and

@@ -25,21 +25,8 @@ double pointBoxDistance(const Vector2d& p, const Box& b) {
 
 // Liang–Barsky: does segment ab enter the box?
 bool segmentHitsBox(const Vector2d& a, const Vector2d& b, const Box& box) {
-    double t0 = 0, t1 = 1;
-    const Vector2d d = b - a;
-    const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
-    const double q[4] = {a.x() - box.x0, box.x1 - a.x(), a.y() - box.y0, box.y1 - a.y()};
-    for (int i = 0; i < 4; ++i) {
-        if (p[i] == 0) {
-            if (q[i] < 0) return false;
-        } else {
-            const double t = q[i] / p[i];
-            if (p[i] < 0) t0 = std::max(t0, t);
-            else t1 = std::min(t1, t);
-            if (t0 > t1) return false;
-        }
-    }
-    return true;
+    double t0, t1;
+    return box.clip(a, b, t0, t1);
 }
 
 // A box of `size` beside the anchor on the side `dir` (unit) points to, `gap` px away: centred

@@ -50,22 +50,11 @@ double outside(const Box& outer, const Box& inner) {
 
 // Length of segment ab inside box (Liang–Barsky clipping), px.
 double lengthInside(const Box& box, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    double t0 = 0, t1 = 1;
-    const Eigen::Vector2d d = b - a;
-    const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
-    const double q[4] = {a.x() - box.x0, box.x1 - a.x(), a.y() - box.y0, box.y1 - a.y()};
-    for (int i = 0; i < 4; ++i) {
-        if (p[i] == 0) {
-            if (q[i] < 0) return 0;
-            continue;
-        }
-        const double t = q[i] / p[i];
-        if (p[i] < 0) t0 = std::max(t0, t);
-        else t1 = std::min(t1, t);
-        if (t0 > t1) return 0;
-    }
+    double t0, t1;
+    if (!box.clip(a, b, t0, t1)) return 0;
     // A zero-length stroke (a dot) inside the box counts as its width.
-    return d.norm() > 0 ? (t1 - t0) * d.norm() : 1.0;
+    const double len = (b - a).norm();
+    return len > 0 ? (t1 - t0) * len : 1.0;
 }
 
 // Distance from p to the box (0 inside).
