@@ -192,6 +192,10 @@ Image drawTreeDiagram(GlContext& gl, int W, int H, int ss, const TreeDiagramInpu
             if ((l.ring || l.radius > 4.5f) != (pass == 1)) continue;
             c.drawPoint(pos(i), l.radius, l.color, true, l.ring ? 2.5f : 0.8f, roleColor(Role::Ink));
         }
+    for (int i = 0; i < n && i < int(in.names.size()); ++i)
+        if (depth[i] >= 0 && !in.names[std::size_t(i)].empty())
+            c.drawTextPx(pos(i).x(), H - pos(i).y() + lookOf(i).radius + 4.0, in.names[std::size_t(i)],
+                         TextStyle{16.0f, roleColor(Role::Ink), Anchor::Top, true, true});
     return c.readPixels();
 }
 

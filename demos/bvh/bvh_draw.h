@@ -66,6 +66,8 @@ struct TreeDiagramInput {
     std::vector<int> litLevels;  // levels whose row label is highlighted
     /// Edges from parent to these nodes drawn thick in their node colour (e.g. the traversal path).
     std::vector<int> litEdges;
+    /// Per node, a name drawn under it (a leaf's box letter; empty: none).
+    std::vector<std::string> names;
 };
 /// Draws the diagram into a W × H image (background, heading top-left).
 render::Image drawTreeDiagram(render::GlContext& gl, int width, int height, int scale,

@@ -220,6 +220,7 @@ private:
             if (s.reinserted && i == leaf_[s.box]) look = {roleColor(Role::Query), 7.0f, true};
             if (s.reinserted && i == s.trace.sibling) look = {look.color, 8.0f, true};
             in.look.push_back(look);
+            in.names.push_back(n.leaf() ? boxName(n.userId) : "");  // the review: leaves carried no letters
         }
         if (s.reinserted)
             for (int p = leaf_[s.box]; p != DynamicAabbTree::kNull; p = tree_.node(p).parent) in.litEdges.push_back(index[p]);
