@@ -245,12 +245,13 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
         LineStyle ls = lineStyle(Role::Ink, 3.0f, true, false);
         ls.color = color;
         c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), ls);
-        // Named above the line's left end, or where the placement step finds room off the data.
+        // Named just past the line's right end, in the margin outside the data (inside the axes
+        // it sat among the series: the re-render review of 2026-11-29 found "u = 1.1e-16" crossed
+        // twice by a median line), or where the placement step finds room.
         TextStyle ts{16.0f, color, Anchor::Center, true, false};
         ts.place = true;
-        ts.offsetPx = Eigen::Vector2d(0, -12);
-        const double halfWidth = 0.5 * c.measureText(text, ts).x();
-        c.drawText(pc.P(f.x0 + 8 + halfWidth, y), text, ts);
+        ts.offsetPx = Eigen::Vector2d(10, 0);
+        c.drawText(pc.P(f.x1, y), text, ts);
     }
     // Many points: smaller, translucent markers so that dense clouds stay readable.
     size_t total = 0;
