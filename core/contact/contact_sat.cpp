@@ -431,10 +431,9 @@ void edgeAxisForEmptyClip(const ConvexPolyhedron& ma, const Posed& A, const Conv
         // perpendicular, 1.7 × the 1e-9 L tolerance at coordinates 2.4e5: 600 s #36100).
         const auto onEdge = [&](const ConvexPolyhedron& m, const Posed& P, int edge, const Vec3& p) {
             const auto [i, j] = m.edgeVertices(edge);
-            const Vec3 u = P.x[std::size_t(i)], w = P.x[std::size_t(j)] - u;
-            const double len2 = w.squaredNorm();
-            const double t = len2 > 0 ? std::clamp((p - origin - u).dot(w) / len2, 0.0, 1.0) : 0.0;
-            return (p - origin - (u + t * w)).norm() <= tol;
+            const Vec3 local = p - origin;
+            return (local - closestPointOnSegment(local, Segment{P.x[std::size_t(i)], P.x[std::size_t(j)]}).point)
+                       .norm() <= tol;
         };
         const double rounding = 1e-12 * size + 16 * DBL_EPSILON * maxCoord;
         if (e.manifold.size() == 1 && onEdge(ma, A, ce.best.indexA, e.manifold[0].pointA) &&

@@ -10,6 +10,7 @@
 #include <span>
 #include <utility>
 
+#include "core/closest/closest_point.h"
 #include "core/closest/edge_pair_distance.h"
 #include "core/geometry/convex_hull.h"
 #include "core/geometry/shapes.h"
@@ -113,10 +114,8 @@ bool featureHolds(const ContactHull& b, const FeatureRef& f, std::span<const Vec
             if (!((p - v[std::size_t(f.index)].position).norm() <= tol)) return false;
         } else if (f.type == FeatureType::Edge) {
             const auto [i, j] = b.mesh.edgeVertices(f.index);
-            const Vec3 &a = v[std::size_t(i)].position, &e = v[std::size_t(j)].position;
-            const double len2 = (e - a).squaredNorm();
-            const double t = len2 > 0 ? std::clamp((p - a).dot(e - a) / len2, 0.0, 1.0) : 0.0;
-            if (!((p - (a + t * (e - a))).norm() <= tol)) return false;
+            const Segment s{v[std::size_t(i)].position, v[std::size_t(j)].position};
+            if (!((p - closestPointOnSegment(p, s).point).norm() <= tol)) return false;
         } else if (f.type == FeatureType::Face) {
             // The distance to the polygon (convex: its fan's triangles), each triangle's normal in
             // double-double: a sliver face's normal from plain products tilts by ~u / its width
