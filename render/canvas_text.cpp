@@ -224,8 +224,12 @@ FigureLayout Canvas::Impl::layoutTexts() {
                                 std::clamp(request.anchor.y(), p.box.y0, p.box.y1));
             const Vector2d d = near - request.anchor;
             const Vector2d end = d.norm() > 4 ? Vector2d(near - 2.0 * d.normalized()) : near;
-            LineStyle style{1.5f, t.style.color.withAlpha(0.8f), 0.0f, true};
+            // In ink, not the label's colour: a brown leader among a brown body's edges was lost
+            // (figure review of 2026-11-29's re-render).
+            LineStyle style{1.5f, roleColor(Role::Ink).withAlpha(0.85f), 0.0f, true};
             layout.strokes.push_back({request.anchor, end, style.widthPx, int(layout.labels.size()) - 1});
+            // The next labels keep off it and their leaders do not cross it.
+            obstacles.lines.push_back({request.anchor, end, 0.5 * style.widthPx, true, 0});
             leaders.push_back(
                 LineCmd{{Vector3d(request.anchor.x(), request.anchor.y(), 0), Vector3d(end.x(), end.y(), 0)},
                         style,

@@ -32,6 +32,44 @@ void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
     unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
 }
 
+void FigureLayout::cover(const Box& area) {
+    std::vector<int> newIndex(labels.size(), -1);
+    std::vector<LayoutLabel> keptLabels;
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        if (area.contains(labels[i].box)) continue;
+        newIndex[i] = int(keptLabels.size());
+        keptLabels.push_back(std::move(labels[i]));
+    }
+    labels = std::move(keptLabels);
+    const auto remap = [&](int i) { return i >= 0 ? newIndex[std::size_t(i)] : -1; };
+    std::vector<LayoutMarker> keptMarkers;
+    for (const LayoutMarker& m : markers)
+        if (!area.contains(m.box)) keptMarkers.push_back({m.box, remap(m.label)});
+    markers = std::move(keptMarkers);
+    std::vector<LayoutStroke> keptStrokes;
+    for (const LayoutStroke& k : strokes) {
+        LayoutStroke s = k;
+        s.leaderOf = remap(k.leaderOf), s.outlineOf = remap(k.outlineOf);
+        double t0 = 0, t1 = 0;
+        if (!area.clip(k.a, k.b, t0, t1) || t1 <= t0) {
+            keptStrokes.push_back(s);
+            continue;
+        }
+        const Eigen::Vector2d d = k.b - k.a;
+        if (t0 > 0) {
+            LayoutStroke before = s;
+            before.b = k.a + t0 * d;
+            keptStrokes.push_back(before);
+        }
+        if (t1 < 1) {
+            LayoutStroke after = s;
+            after.a = k.a + t1 * d;
+            keptStrokes.push_back(after);
+        }
+    }
+    strokes = std::move(keptStrokes);
+}
+
 bool Box::clip(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double& t0, double& t1) const {
     t0 = 0, t1 = 1;
     const Eigen::Vector2d d = b - a;

@@ -67,6 +67,10 @@ struct FigureLayout {
 
     /// Adds `other`, moved by (dx, dy) (marker label indices follow their labels).
     void append(const FigureLayout& other, double dx, double dy);
+    /// An opaque picture pasted over `area` hides what was there: strokes keep only their parts
+    /// outside it; labels and markers wholly inside are dropped (indices into labels follow).
+    /// Call before appending the pasted picture's own layout (blitCovering, render/image.h).
+    void cover(const Box& area);
     /// Every coordinate times s (a picture resized by s).
     FigureLayout scaled(double s) const;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace cdlab::render {
 
@@ -44,14 +45,23 @@ std::vector<Vector2d> candidateDirections(Vector2d preferred) {
     if (!(preferred.norm() > 1e-9) || !preferred.allFinite()) preferred = Vector2d(1, -1);
     preferred.normalize();
     std::vector<Vector2d> dirs;
-    for (int k = 0; k < 16; ++k) {
-        const double angle = k * M_PI / 8;
+    for (int k = 0; k < 32; ++k) {
+        const double angle = k * M_PI / 16;
         dirs.emplace_back(std::cos(angle), std::sin(angle));
     }
     std::stable_sort(dirs.begin(), dirs.end(),
                      [&](const Vector2d& x, const Vector2d& y) { return x.dot(preferred) > y.dot(preferred); });
     dirs.insert(dirs.begin(), preferred);
     return dirs;
+}
+
+// Do segments ab and cd cross properly (each one's ends strictly on both sides of the other)? A
+// leader starts on its anchor, often a vertex: the edges meeting there do not count.
+bool segmentsCross(const Vector2d& a, const Vector2d& b, const Vector2d& c, const Vector2d& d) {
+    const auto cross = [](const Vector2d& u, const Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+    const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+    const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+    return d1 * d2 < 0 && d3 * d4 < 0;
 }
 
 }  // namespace
@@ -94,20 +104,57 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
         return false;
     };
     const std::vector<Vector2d> dirs = candidateDirections(request.preferred);
-    // Rings: next to the anchor, then farther out (with a leader line back to the anchor).
-    const double rings[5] = {1.0, 1.75, 2.5, 3.5, 4.5};
+    // What a leader costs beyond its length (figure reviews of 2026-11-29): 3 for each stroke it
+    // crosses ("its leader lost among edges"); 40 for running along a stroke or carrying one on
+    // past the anchor (an arrow's shaft, a body's edge: it reads as part of it, or as naming that
+    // stroke's far end); 500 for passing through another label or marker (it reads as naming it).
+    const auto leaderCost = [&](const Box& b) {
+        const Vector2d near(std::clamp(request.anchor.x(), b.x0, b.x1), std::clamp(request.anchor.y(), b.y0, b.y1));
+        const Vector2d leader = near - request.anchor;
+        const double length = leader.norm();
+        if (length < 1) return 0.0;
+        const Vector2d u = leader / length;
+        double cost = 0;
+        for (const Box& o : obstacles.boxes) {
+            if (o.contains(request.anchor)) continue;  // its own marker
+            double t0, t1;
+            if (o.clip(request.anchor, near, t0, t1) && (t1 - t0) * length > 1.0) cost += 500;
+        }
+        for (const PlacementObstacles::Line& l : obstacles.lines) {
+            if (l.owner != 0 && l.owner == request.names) continue;
+            if (segmentsCross(request.anchor, near, l.a, l.b)) cost += 3;
+            const Vector2d ld = l.b - l.a;
+            if (!(ld.norm() > 1)) continue;
+            if (std::abs(u.dot(ld.normalized())) < 0.94) continue;  // within 20 degrees of parallel
+            int along = 0;
+            for (double t : {0.2, 0.35, 0.5, 0.65, 0.8})
+                if (pointSegmentDistance(request.anchor + t * leader, l.a, l.b) < l.halfWidth + 4.0) ++along;
+            const bool fromEnd = (l.a - request.anchor).norm() < 5.0 || (l.b - request.anchor).norm() < 5.0;
+            if (along >= 3 || fromEnd) cost += 40;
+        }
+        return cost;
+    };
+    // Rings: next to the anchor, then farther out with a leader line back to it; the last ten
+    // reach past a dense drawing's outline (a vertex inside a wireframe has no free spot near it).
+    constexpr int kRings = 15;
+    const auto ringDistance = [&](int ring) {
+        constexpr double near[5] = {1.0, 1.75, 2.5, 3.5, 4.5};
+        constexpr double far[10] = {15, 30, 45, 60, 80, 100, 125, 150, 175, 200};
+        if (ring < 5) return request.gap * near[ring] + (ring ? 8.0 : 0.0);
+        return request.gap * near[4] + 8.0 + far[ring - 5];
+    };
     Placement best;
-    int bestCost = 1 << 30;
-    for (int ring = 0; ring < 5; ++ring)
+    double bestCost = std::numeric_limits<double>::infinity();
+    for (int ring = 0; ring < kRings; ++ring)
         for (const Vector2d& d : dirs) {
-            const Box b = boxAt(request.anchor, request.size, d, request.gap * rings[ring] + (ring ? 8.0 : 0.0));
+            const Box b = boxAt(request.anchor, request.size, d, ringDistance(ring));
             if (!free(b)) continue;
-            // Crossing a thick line is worst, then being nearer another point than its own (it
-            // misleads), then crossing a thin line; each ring beyond the second costs 1, so a label
-            // does not fly far off across a dense drawing to dodge one thin line (figure review of
-            // 2026-11-29's re-render: "V0 (B)" 80 px from its point, its leader lost among edges).
-            const int cost = (offLines(b, false) ? (offLines(b, true) ? 0 : 2) : 8) + (ambiguous(b) ? 9 : 0) +
-                             std::max(0, ring - 1);
+            // Crossing a thick stroke is worst, then being nearer another point than its own (it
+            // misleads), then crossing a thin stroke; then the leader: 2 for each ring beyond the
+            // second and leaderCost, so of the clean spots the nearest, most direct one wins.
+            const double crossing = offLines(b, false) ? (offLines(b, true) ? 0 : 100) : 1000;
+            const double cost = crossing + (ambiguous(b) ? 150 : 0) + 2.0 * std::max(0, ring - 1) +
+                                (ring > 0 ? leaderCost(b) : 0.0);
             if (cost == 0) return {true, b, ring > 0};
             if (cost < bestCost) bestCost = cost, best = {true, b, ring > 0};
         }

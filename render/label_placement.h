@@ -1,12 +1,13 @@
 // The one placement step every point label goes through (Canvas, for texts drawn with
-// TextStyle::place): candidate positions around the anchor, the preferred side first, then the
-// eight compass directions nearest to it, then the same farther out with a leader line. A
-// candidate must stay inside the panel and off every other label and marker; the first one that
-// also keeps off every line and lies nearer its own anchor than any other wins (any ring: a leader
-// line is better than a label across a stroke or beside another point: the review rules
-// LabelOnStroke and LabelNearerOther of render/legibility.h); else the first of the least bad
-// (crossing a thick line worst, then a thin one, then being nearer another anchor); else the label
-// is not placed (the caller reports it instead of drawing it over something).
+// TextStyle::place): candidate positions around the anchor, the preferred side first, then 32
+// directions by their angle from it, then the same farther out (up to 200 px past the nearest
+// rings) with a leader line. A candidate must stay inside the panel and off every other label and
+// marker. Costs rank the rest: crossing a thick line worst, then lying nearer another anchor than
+// its own, then crossing a thin line (the review rules LabelOnStroke and LabelNearerOther of
+// render/legibility.h); then the leader: its length, the strokes it crosses, running along a
+// stroke or on from one, passing through another label (tests/render/legibility_test.cpp, "a
+// leader neither runs along..."). The first candidate of cost 0 wins, else the least; a label with
+// no candidate at all is not placed (the caller reports it instead of drawing it over something).
 // Imhof, "Positioning names on maps" (1975) ranks the positions around a point the same way.
 #pragma once
 

@@ -94,34 +94,86 @@ void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool col
         drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
 }
 
-bool drawGapInset(GlContext& gl, const Canvas& world, Image& panel, int scale, const TwoPanelLayout& layout,
-                  const PairDrawing& d, const Vec3& view, const Vec3& pa, const Vec3& pb) {
+GapInset planGapInset(const Canvas& world, const TwoPanelLayout& layout, const PairDrawing& d, const Vec3& pa,
+                      const Vec3& pb) {
+    GapInset g;
     const double gap = (pa - pb).norm();
-    if (!(gap > 0.0) || gap >= 0.03 * d.wRadius) return false;
-    const int w = layout.panelWidth() * 2 / 5, h = layout.panelHeight() * 2 / 5;
-    // Corners, bottom right first; the top ones start below the panel heading's two lines.
-    const int right = layout.panelWidth() - w - 14, bottom = layout.panelHeight() - h - 14;
+    if (!(gap > 0.0) || gap >= 0.03 * d.wRadius) return g;
+    g.w = layout.panelWidth() * 2 / 5, g.h = layout.panelHeight() * 2 / 5;
+    // Corners, bottom right first; the top ones start below the panel heading's two lines, and
+    // leave a line for the inset's heading (drawn above a bottom inset, below a top one).
+    const int right = layout.panelWidth() - g.w - 14, bottom = layout.panelHeight() - g.h - 14;
     const std::array<std::array<int, 2>, 4> corners{{{right, bottom}, {14, bottom}, {right, 70}, {14, 70}}};
     const auto covered = [&](int cx, int cy) {
         int count = 0;
         const auto inside = [&](const Vec3& p) {
             Eigen::Vector2d px;
-            return world.project(p, px) && px.x() >= cx && px.x() <= cx + w && px.y() >= cy && px.y() <= cy + h;
+            return world.project(p, px) && px.x() >= cx && px.x() <= cx + g.w && px.y() >= cy - 26 &&
+                   px.y() <= cy + g.h + 26;
         };
         for (const ConvexDrawable* body : {&d.a, &d.b})
             for (const Vec3& v : body->vertices) count += inside(v);
         return count + 1000 * (inside(pa) + inside(pb));
     };
-    int x = corners[0][0], y = corners[0][1], best = covered(x, y);
+    g.x = corners[0][0], g.y = corners[0][1];
+    int best = covered(g.x, g.y);
     for (const auto& [cx, cy] : corners) {
         const int c = covered(cx, cy);
-        if (c < best) best = c, x = cx, y = cy;
+        if (c < best) best = c, g.x = cx, g.y = cy;
     }
+    g.shown = true;
+    g.radius = 3.0 * gap;  // the gap spans a sixth of the inset's height
+    // Zoom: the panel frames ~2.1 world radii in its height, the inset 2 x 3 gaps in its height.
+    g.zoom = ((g.h - GapInset::kHeading) / (2.0 * g.radius)) / (layout.panelHeight() / (2.1 * d.wRadius));
+    return g;
+}
+
+void markGapInset(Canvas& world, const GapInset& g, const Vec3& pa, const Vec3& pb) {
+    if (!g.shown) return;
     const Vec3 mid = 0.5 * (pa + pb);
-    const double radius = 3.0 * gap;  // the gap spans a sixth of the inset's height
-    const Camera cam = d.planar ? Camera::twoD(mid.x(), mid.y(), 2.0 * radius)
-                                : framingCamera(mid, radius, view, Vec3::UnitY(), true);
-    Canvas c(gl, canvasOptions(w, h, scale), cam);
+    Eigen::Vector2d m;
+    if (!world.project(mid, m)) return;
+    // Pixel offsets as world points in the plane through mid facing the camera, where the
+    // projection is a similarity: (dx, dy) px from mid's pixel.
+    const Camera& cam = world.camera();
+    const Vec3 forward = (cam.target - cam.eye).normalized();
+    const Vec3 right = forward.cross(cam.up).normalized(), up = right.cross(forward);
+    Eigen::Vector2d r1;
+    const double probe = 1e-3 * std::max(g.radius, 1e-300) + 1e-12;
+    if (!world.project(mid + probe * right, r1) || !((r1 - m).norm() > 0)) return;
+    const double unitsPerPx = probe / (r1 - m).norm();
+    const auto at = [&](double dx, double dy) { return Vec3(mid + unitsPerPx * (dx * right - dy * up)); };
+    // The source square: what the inset shows (2 radius across), at least 12 px so it is seen.
+    const double half = std::max(6.0, g.radius / unitsPerPx);
+    const LineStyle ink = lineStyle(Role::Ink, 1.5f, false, true);
+    world.drawPolyline({at(-half, -half), at(half, -half), at(half, half), at(-half, half)}, true, ink);
+    // A connector from the square's nearest corner to the inset's nearest point on its border.
+    const Eigen::Vector2d c(m.x() + (g.x + 0.5 * g.w > m.x() ? half : -half),
+                            m.y() + (g.y + 0.5 * g.h > m.y() ? half : -half));
+    const Eigen::Vector2d e(std::clamp(c.x(), double(g.x), double(g.x + g.w)),
+                            std::clamp(c.y(), double(g.y), double(g.y + g.h)));
+    if ((e - c).norm() > 4) world.drawLine(at(c.x() - m.x(), c.y() - m.y()), at(e.x() - m.x(), e.y() - m.y()), ink);
+}
+
+void drawGapInset(GlContext& gl, Image& panel, int scale, const GapInset& g, const PairDrawing& d, const Vec3& view,
+                  const Vec3& pa, const Vec3& pb) {
+    if (!g.shown) return;
+    const Vec3 mid = 0.5 * (pa + pb);
+    const Camera cam = d.planar ? Camera::twoD(mid.x(), mid.y(), 2.0 * g.radius)
+                                : framingCamera(mid, g.radius, view, Vec3::UnitY(), true);
+    // What the inset covers is hidden: the world panel's strokes and labels there are not seen.
+    panel.layout.cover(Box{double(g.x), double(g.y), double(g.x + g.w), double(g.y + g.h)}.scaled(panel.scale));
+    // The heading in a strip of its own above the picture, so no stroke runs under it.
+    {
+        Canvas strip(gl, canvasOptions(g.w, GapInset::kHeading, scale), Camera::pixels(g.w, GapInset::kHeading));
+        char head[96];
+        const double gap = (pa - pb).norm();
+        std::snprintf(head, sizeof head, g.zoom < 100 ? "zoom ×%.2g: gap %.3g" : "zoom ×%.0f: gap %.3g", g.zoom, gap);
+        strip.drawTextPx(8, 0.5 * GapInset::kHeading + 1, head,
+                         TextStyle{15.0f, roleColor(Role::Ink), Anchor::Left, true, true});
+        blit(panel, strip.readPixels(), g.x, g.y);
+    }
+    Canvas c(gl, canvasOptions(g.w, g.h - GapInset::kHeading, scale), cam);
     drawPairBodies(c, d, 0.45f, false, false);
     c.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
     c.drawPoint(pa, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
@@ -130,18 +182,13 @@ bool drawGapInset(GlContext& gl, const Canvas& world, Image& panel, int scale, c
     // The bodies' centres lie far outside the inset: each name points away from the other point.
     drawLabelAway(c, pa, pb, "p_A", ts);
     drawLabelAway(c, pb, pa, "p_B", ts);
-    // Zoom: the panel frames ~2.1 world radii in its height, the inset 2 x 3 gaps in its height.
-    const double zoom = (h / (2.0 * radius)) / (layout.panelHeight() / (2.1 * d.wRadius));
-    char head[96];
-    std::snprintf(head, sizeof head, zoom < 100 ? "zoom ×%.2g: gap %.3g" : "zoom ×%.0f: gap %.3g", zoom, gap);
-    c.drawTextPx(8, 6, head, TextStyle{15.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true});
-    blit(panel, c.readPixels(), x, y);
+    blit(panel, c.readPixels(), g.x, g.y + GapInset::kHeading);
     const Color ink = roleColor(Role::Ink);
-    paintRect(panel, x, y, w, 2, ink);
-    paintRect(panel, x, y + h - 2, w, 2, ink);
-    paintRect(panel, x, y, 2, h, ink);
-    paintRect(panel, x + w - 2, y, 2, h, ink);
-    return true;
+    paintRect(panel, g.x, g.y, g.w, 2, ink);
+    paintRect(panel, g.x, g.y + g.h - 2, g.w, 2, ink);
+    paintRect(panel, g.x, g.y, 2, g.h, ink);
+    paintRect(panel, g.x + g.w - 2, g.y, 2, g.h, ink);
+    paintRect(panel, g.x, g.y + GapInset::kHeading - 1, g.w, 1, ink);
 }
 
 }  // namespace cdlab::demos

@@ -55,12 +55,23 @@ void drawPairBodies(render::Canvas& world, const PairDrawing& d, float alpha3d, 
 
 /// A gap too small to see in the world panel (0 < |pa − pb| < 3% of the drawing's world radius)
 /// magnified in an inset: both bodies, p_A, p_B and their segment about the segment's middle,
-/// bordered, headed with the zoom factor and the gap, in the corner of the panel (below the
-/// heading) that covers the fewest of the bodies' projected vertices and neither point. `world`
-/// is the panel's canvas (for its projection), `panel` its image (panelWidth x panelHeight of
-/// `layout`); `view` the panel's view direction. Returns false (and draws nothing) when the gap
-/// is visible as it is.
-bool drawGapInset(render::GlContext& gl, const render::Canvas& world, render::Image& panel, int scale,
-                  const TwoPanelLayout& layout, const PairDrawing& d, const Vec3& view, const Vec3& pa, const Vec3& pb);
+/// bordered, in the corner of the panel (below the heading) that covers the fewest of the bodies'
+/// projected vertices and neither point. Three steps, because the world panel's canvas draws the
+/// marks before it is read and the inset is pasted after: planGapInset (where, how much zoom;
+/// shown false when the gap is visible as it is), markGapInset (on `world`: a square where the
+/// inset is taken from and a connector to it), drawGapInset (renders the inset into `panel`, the
+/// world canvas's image, under a strip headed with the zoom and the gap).
+struct GapInset {
+    bool shown = false;
+    int x = 0, y = 0, w = 0, h = 0;  // px in the panel
+    double radius = 0;               // world units the inset frames about the segment's middle
+    double zoom = 1;
+    static constexpr int kHeading = 24;  // px of the inset's top strip: the zoom and the gap
+};
+GapInset planGapInset(const render::Canvas& world, const TwoPanelLayout& layout, const PairDrawing& d, const Vec3& pa,
+                      const Vec3& pb);
+void markGapInset(render::Canvas& world, const GapInset& inset, const Vec3& pa, const Vec3& pb);
+void drawGapInset(render::GlContext& gl, render::Image& panel, int scale, const GapInset& inset, const PairDrawing& d,
+                  const Vec3& view, const Vec3& pa, const Vec3& pb);
 
 }  // namespace cdlab::demos

@@ -64,13 +64,17 @@ public:
         const double eY0 = H_ * 0.50, eY1 = H_ - 95;
         const auto YE = [&](double v) { return eY0 + (v - eLo) / (eHi - eLo) * (eY1 - eY0); };
         c_.drawLine(P(x0_, eY0), P(x0_, eY1), axis_);
+        lx_ = x1_ - 300;
+        ly_ = eY1 - 12;
+        const std::vector<std::string> names = {"total E = KE + PE", "kinetic KE", "potential PE"};
+        reserveLegend(names);
         // Round tick values (1, 2 or 5 times a power of ten), 4 to 7 of them.
         const double raw = (eHi - eLo) / 6.0, decade = std::pow(10.0, std::floor(std::log10(raw)));
         const double step = raw / decade <= 1.0 ? decade : raw / decade <= 2.0 ? 2 * decade : raw / decade <= 5.0 ? 5 * decade : 10 * decade;
         const double first = std::ceil(eLo / step);
         for (int i = 0; (first + i) * step <= eHi + 1e-9 * step; ++i) {
             const double tick = (first + i) * step + 0.0;  // a multiple, not a running sum (+ 0.0: no "-0")
-            c_.drawLine(P(x0_, YE(tick)), P(x1_, YE(tick)), lineStyle(Role::Muted, 1.0f, true));
+            hline(YE(tick), lineStyle(Role::Muted, 1.0f, true));
             c_.drawText(P(x0_ - 8, YE(tick)), formatNumber(tick), ytick_);
         }
         timeAxis(eY0, false);
@@ -84,11 +88,9 @@ public:
         c_.drawPolyline(pe, false, lineStyle(Role::ShapeB, 2.5f));
         c_.drawPolyline(ke, false, lineStyle(Role::ShapeA, 2.5f));
         c_.drawPolyline(te, false, lineStyle(Role::Ink, 3.0f));
-        lx_ = x1_ - 300;
-        ly_ = eY1 - 12;
-        legendLine(Role::Ink, 3.0f, false, "total E = KE + PE");
-        legendLine(Role::ShapeA, 2.5f, false, "kinetic KE");
-        legendLine(Role::ShapeB, 2.5f, false, "potential PE");
+        legendLine(Role::Ink, 3.0f, false, names[0]);
+        legendLine(Role::ShapeA, 2.5f, false, names[1]);
+        legendLine(Role::ShapeB, 2.5f, false, names[2]);
     }
 
     // Log10 from 1e-10 to 1e-2 (0 is drawn at the bottom).
@@ -100,9 +102,15 @@ public:
             return pY0 + (l - lLo) / (lHi - lLo) * (pY1 - pY0);
         };
         c_.drawLine(P(x0_, pY0), P(x0_, pY1), axis_);
+        // Legend on the left, below the slop line: bodies in flight have no depth there.
+        lx_ = x0_ + 24;
+        ly_ = YP(slop) - 26;
+        const std::vector<std::string> names = {"after the step", "before the position correction",
+                                                "slop (allowed depth)"};
+        reserveLegend(names);
         for (int e = int(lLo); e <= int(lHi); e += 2) {
             const double y = YP(std::pow(10.0, e));
-            c_.drawLine(P(x0_, y), P(x1_, y), lineStyle(Role::Muted, 1.0f, true));
+            hline(y, lineStyle(Role::Muted, 1.0f, true));
             c_.drawText(P(x0_ - 8, y), "1e" + std::to_string(e), ytick_);
         }
         timeAxis(pY0, true);
@@ -115,15 +123,12 @@ public:
             before.push_back(P(X(s.time), YP(s.penetrationBeforeCorrection)));
             after.push_back(P(X(s.time), YP(s.maxPenetration)));
         }
-        c_.drawLine(P(x0_, YP(slop)), P(x1_, YP(slop)), lineStyle(Role::Ink, 1.5f, true));
+        hline(YP(slop), lineStyle(Role::Ink, 1.5f, true));
         c_.drawPolyline(after, false, lineStyle(Role::Result, 3.0f));
         c_.drawPolyline(before, false, lineStyle(Role::Direction, 1.5f, true));  // on top: equal unless corrected
-        // Legend on the left, below the slop line: bodies in flight have no depth there.
-        lx_ = x0_ + 24;
-        ly_ = YP(slop) - 26;
-        legendLine(Role::Result, 3.0f, false, "after the step");
-        legendLine(Role::Direction, 1.5f, true, "before the position correction");
-        legendLine(Role::Ink, 1.5f, true, "slop (allowed depth)");
+        legendLine(Role::Result, 3.0f, false, names[0]);
+        legendLine(Role::Direction, 1.5f, true, names[1]);
+        legendLine(Role::Ink, 1.5f, true, names[2]);
     }
 
 private:
@@ -140,6 +145,23 @@ private:
         for (int k : frameSteps_)
             c_.drawLine(P(X(tr_.steps[k].time), y0), P(X(tr_.steps[k].time), y0 + 8), lineStyle(Role::Highlight, 2.0f));
     }
+    // The legend's rows from (lx_, ly_) down, 24 px apart, kept clear of the grid and reference
+    // lines (hline), as an opaque legend frame would: no label over a line (render/legibility.h).
+    void reserveLegend(const std::vector<std::string>& names) {
+        double widest = 0;
+        for (const std::string& n : names) widest = std::max(widest, c_.measureText(n, legend_).x());
+        legendX0_ = lx_ - 6, legendX1_ = lx_ + 44 + widest + 6;
+        legendY1_ = ly_ + 12, legendY0_ = ly_ - 24.0 * double(names.size() - 1) - 12;
+    }
+    // A horizontal grid or reference line across the plot, with a gap where the legend is.
+    void hline(double y, const LineStyle& style) {
+        if (y < legendY0_ || y > legendY1_ || legendX1_ <= legendX0_) {
+            c_.drawLine(P(x0_, y), P(x1_, y), style);
+            return;
+        }
+        if (legendX0_ > x0_) c_.drawLine(P(x0_, y), P(legendX0_, y), style);
+        if (legendX1_ < x1_) c_.drawLine(P(legendX1_, y), P(x1_, y), style);
+    }
     // One legend entry at (lx_, ly_), the next one below it.
     void legendLine(Role role, float w, bool dashed, const std::string& text) {
         c_.drawLine(P(lx_, ly_), P(lx_ + 36, ly_), lineStyle(role, w, dashed));
@@ -153,6 +175,7 @@ private:
     const double x0_ = 110, x1_, tMax_;
     const int H_;
     double lx_ = 0, ly_ = 0;
+    double legendX0_ = 0, legendX1_ = 0, legendY0_ = 0, legendY1_ = 0;  // reserveLegend's box (y up)
     const LineStyle axis_ = lineStyle(Role::Ink, 2.0f);
     const TextStyle tick_{14.0f, roleColor(Role::Ink), Anchor::Top, false, false};
     const TextStyle ytick_{14.0f, roleColor(Role::Ink), Anchor::Right, false, false};

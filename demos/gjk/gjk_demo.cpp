@@ -186,10 +186,13 @@ private:
                          s                                     ? "witness points of the kept simplex"
                          : r.status == GjkStatus::Intersecting ? "intersecting: a common point, no closest points"
                                                                : "closest points");
-        Image image = world.readPixels();
         // The result's gap, magnified when the panel cannot show it (gjk/sliver: 0.0048).
+        GapInset inset;
         if (!s && r.status != GjkStatus::Intersecting && common_.hasLayer("witness"))
-            drawGapInset(gl, world, image, po.scale, layout, d, pair_.view, pa, pb);
+            inset = planGapInset(world, layout, d, pa, pb);
+        markGapInset(world, inset, pa, pb);
+        Image image = world.readPixels();
+        drawGapInset(gl, image, po.scale, inset, d, pair_.view, pa, pb);
         return image;
     }
 

@@ -267,6 +267,30 @@ private:
         return best;
     }
 
+    // The part of the plane patch (corners in order) the picture shows above the caption band
+    // at the canvas's foot (its lowest 70 px): the fill, and the border's pieces (no stroke runs
+    // through the caption: a label on a stroke, render/legibility.h). The screen row is a plane
+    // through the eye: clip.y - t clip.w >= 0 in clip coordinates, cut in 3D.
+    static void drawPlanePatch(Canvas& c, const std::vector<Vec3>& corners) {
+        const double aspect = double(c.width()) / double(c.height());
+        const Eigen::Matrix4d m = c.camera().viewProjection(aspect);
+        const double t = 1.0 - 2.0 * (c.height() - 70.0) / c.height();
+        const Eigen::RowVector4d row = m.row(1) - t * m.row(3);
+        const auto side = [&](const Vec3& p) { return row.dot(Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0)); };
+        std::vector<Vec3> kept;
+        const LineStyle border = lineStyle(Role::Muted, 1.5f);
+        for (std::size_t k = 0; k < corners.size(); ++k) {
+            const Vec3& p = corners[k];
+            const Vec3& q = corners[(k + 1) % corners.size()];
+            const double sp = side(p), sq = side(q);
+            if (sp >= 0) kept.push_back(p);
+            if ((sp >= 0) != (sq >= 0)) kept.push_back(p + (sp / (sp - sq)) * (q - p));
+            if (sp >= 0 && sq >= 0) c.drawLine(p, q, border);
+            else if (sp >= 0 || sq >= 0) c.drawLine(sp >= 0 ? p : q, p + (sp / (sp - sq)) * (q - p), border);
+        }
+        if (kept.size() >= 3) c.drawPolygon(kept, roleColor(Role::Muted).withAlpha(0.25f));
+    }
+
     // Pose i against the plane: the contact polygon, manifold and normals, or the closest feature.
     Frame planeFrame(GlContext& gl, int ss, const PlaneView& v, size_t i, const PlaneContactResult& r,
                      const PlaneContactTrace& tr) const {
@@ -279,10 +303,7 @@ private:
             const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
             const Vec3 g = center - (n.dot(center) - d) * n;
             const double h = 1.5 * radius;
-            c.drawPolygon({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w},
-                          roleColor(Role::Muted).withAlpha(0.25f));
-            c.drawPolyline({g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w}, true,
-                           lineStyle(Role::Muted, 1.5f));
+            drawPlanePatch(c, {g - h * u - h * w, g + h * u - h * w, g + h * u + h * w, g - h * u + h * w});
             if (labels) {
                 TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::Center, true, false};
                 ts.place = true;
@@ -291,7 +312,9 @@ private:
         }
         Posed pb = body;
         pb.pose = poses[i];
-        drawPosed(c, pb, roleColor(Role::ShapeA), r.colliding() ? 0.45f : 0.75f, r.colliding());
+        // Separated: opaque, so the plane's border behind it is hidden (the review: "the plane's far
+        // border drawn across the separated box").
+        drawPosed(c, pb, roleColor(Role::ShapeA), r.colliding() ? 0.45f : 1.0f, r.colliding());
         Legend lg{c};
         if (labels)
             lg.item(r.colliding() ? "body colliding (outline)" : "body separated",
@@ -522,7 +545,13 @@ private:
                       a.mesh.faceCount(), b.mesh.faceCount(),
                       int(tr.axes.size()) - a.mesh.faceCount() - b.mesh.faceCount(), tr.edgePairsTotal,
                       tr.edgePairsPruned, tr.edgePairsParallel);
-        const Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ());
+        Camera cam = common_.camera ? *common_.camera : framingCamera(center, radius * 1.1, view, Vec3::UnitZ());
+        if (!common_.camera) {  // the bodies left of centre: the legend's column is on the right
+            const Vec3 forward = (cam.target - cam.eye).normalized();
+            const Vec3 right = forward.cross(cam.up).normalized();
+            cam.eye += 0.3 * radius * right;
+            cam.target += 0.3 * radius * right;
+        }
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         drawPosed(c, a, roleColor(Role::ShapeA), 0.35f, r.colliding());
         drawPosed(c, b, roleColor(Role::ShapeB), 0.35f, r.colliding());

@@ -258,13 +258,18 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
         c.drawLine(at(shown->boxLo) - apart, at(shown->boxHi) - apart, lineStyle(boxRole, 8.0f, false, true));
         c.drawLine(at(shown->otherLo) + apart, at(shown->otherHi) + apart, lineStyle(otherRole, 8.0f, false, true));
         if (labels) {
+            // Past the axis's arrowhead, along it (on the axis's middle it crossed the axis and the
+            // dashed projection lines).
             TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
-            ts.offsetPx = Eigen::Vector2d(0, 30);
+            Eigen::Vector2d lo2, hi2, along(0, 1);
+            if (c.project(at(line.lo), lo2) && c.project(at(line.hi), hi2) && (hi2 - lo2).norm() > 1)
+                along = (hi2 - lo2).normalized();
+            ts.offsetPx = 24.0 * along;
             ts.place = true;
             const std::string what = !run.result.hit ? "separating axis " + shown->name + ": gap " + formatNumber(shown->gap)
                                                      : "least depth: " + shown->name + ", depth " +
                                                            formatNumber(-shown->gap);
-            c.drawText(at(0.5 * (line.lo + line.hi)), what, ts);
+            c.drawText(at(line.hi), what, ts);
         }
     }
     drawTitleAndCaption(c, scene.title, "");

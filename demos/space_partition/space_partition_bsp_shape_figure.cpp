@@ -98,23 +98,28 @@ DemoOutput SpaceScene::runBspShape(const RunContext& ctx) const {
                               : classes[i] == BspPointClass::Outside ? Role::Query
                                                                      : Role::Simplex;
             canvas.drawPoint(queries[i], 8.0f, roleColor(role), true, 2.0f);
-            if (labels)
-                canvas.drawText(queries[i], kClass[int(classes[i])],
-                                TextStyle{15.0f, roleColor(Role::Ink), Anchor::Left, true, false, {10, 0}});
+            if (labels) {  // right of the point when free, else around it (off the split lines)
+                TextStyle ts{15.0f, roleColor(Role::Ink), Anchor::Center, true, false, {30, 0}};
+                ts.place = true;
+                canvas.drawText(queries[i], kClass[int(classes[i])], ts);
+            }
         }
         if (hasSegment) {
             canvas.drawArrow(segment.a, segment.b, lineStyle(Role::Direction, 2.5f, true, true));
             if (ray.hit) {
                 canvas.drawPoint(ray.point, 9.0f, roleColor(Role::Support), true, 2.0f);
-                if (labels)
-                    canvas.drawText(ray.point, "first hit, t = " + formatNumber(ray.t),
-                                    TextStyle{15.0f, roleColor(Role::Ink), Anchor::TopRight, true, true, {-12, 6}});
+                if (labels) {  // below left of the hit when free, else around it
+                    TextStyle ts{15.0f, roleColor(Role::Ink), Anchor::Center, true, true, {-36, 8}};
+                    ts.place = true;
+                    canvas.drawText(ray.point, "first hit", ts);  // its t in the subtitle
+                }
             }
         }
     }
     heading(canvas, P(frame.min.x(), frame.max.y()), "Splits and leaf regions (top view)",
             std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) +
-                (bs.splits == 1 ? " edge" : " edges") + " cut");
+                (bs.splits == 1 ? " edge" : " edges") + " cut" +
+                (hasSegment && ray.hit ? "; the ray's first hit at t = " + formatNumber(ray.t) : std::string()));
     if (common_.hasLayer("labels")) keyBelow(canvas, frame.min, {{roleColor(Role::Highlight), "an edge cut in two"}});
     if (common_.hasLayer("tree"))
         drawTreeDiagram(canvas, bt, P(frame.max.x() + gap, frame.min.y()), treeW, W, bs.depth);

@@ -237,10 +237,9 @@ private:
             TextStyle ts = labelStyle(Role::Ink, 18.0f);
             ts.color = col.scaled(0.6f);
             ts.names = bodyOwner(boxName(static_cast<int>(i)));  // on its own box's edges, nothing else
-            // Identical boxes share a centre: their labels step right so each stays readable.
-            int same = 0;
-            for (std::size_t j = 0; j < i; ++j) same += (d.boxes[j].min == b.min && d.boxes[j].max == b.max) ? 1 : 0;
-            ts.offsetPx = Eigen::Vector2d(22.0 * same, 0.0);  // a letter and a space apart
+            // On the box's centre when free, else beside it (identical boxes share a centre; another
+            // box's edge may run through it).
+            ts.place = true;
             c.drawText(0.5 * (b.min + b.max), boxName(static_cast<int>(i)), ts);
         }
         // Screen directions of the world axes, for the triad drawn beside the view.
@@ -392,7 +391,8 @@ private:
             for (int e = 0; e < 2; ++e)
                 if (moved[2 * i + e]) {
                     const double x = e ? xb : xa;
-                    c.drawLine(P(x, yc - hh - 2), P(x, yc + hh + 2),
+                    // Within its own row (rows are 13 px; the next row's name starts there).
+                    c.drawLine(P(x, yc - hh - 1), P(x, yc + hh + 1),
                                LineStyle{3.0f, roleColor(Role::Highlight), 0.0f, true});
                 }
         }

@@ -302,11 +302,9 @@ private:
             const Vec3 away = (cb - ca).norm() > 0 ? Vec3((cb - ca).normalized()) : Vec3::UnitX();
             const double ra = (s_.a.regions.mesh().boundsMax() - s_.a.regions.mesh().boundsMin()).norm() * 0.3;
             const double rb = (s_.b.regions.mesh().boundsMax() - s_.b.regions.mesh().boundsMin()).norm() * 0.3;
-            TextStyle nameA = labelStyle(Role::ShapeA, 26.0f), nameB = labelStyle(Role::ShapeB, 26.0f);
-            nameA.names = bodyOwner("A");  // it may cross its own body's edges, nothing else
-            nameB.names = bodyOwner("B");
-            c.drawText(ca - away * ra, "A", nameA);
-            c.drawText(cb + away * rb, "B", nameB);
+            // Each may cross its own body's edges, nothing else; on its point when free, else beside it.
+            drawBodyName(c, ca - away * ra, "A", Role::ShapeA);
+            drawBodyName(c, cb + away * rb, "B", Role::ShapeB);
         }
     }
 

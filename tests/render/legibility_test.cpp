@@ -140,6 +140,23 @@ TEST_SUITE("legibility") {
     }
 }
 
+TEST_CASE("a picture pasted over a layout hides its strokes, labels and markers there") {
+    FigureLayout l;
+    l.labels = {label("under", {20, 20, 40, 30}, Vector2d(10, 10)), label("kept", {100, 0, 140, 10}, std::nullopt)};
+    l.markers = {{{22, 22, 26, 26}, 0}, {{0, 0, 4, 4}, 1}};
+    l.strokes = {{Vector2d(0, 25), Vector2d(100, 25), 2, -1, 1}, {Vector2d(0, 80), Vector2d(10, 80), 1}};
+    l.cover({10, 10, 50, 50});
+    REQUIRE(l.labels.size() == 1);
+    CHECK(l.labels[0].text == "kept");
+    REQUIRE(l.markers.size() == 1);
+    CHECK(l.markers[0].label == 0);  // follows "kept" to its new index
+    REQUIRE(l.strokes.size() == 3);  // the crossing stroke in two pieces, the other whole
+    CHECK(l.strokes[0].b.x() == doctest::Approx(10));
+    CHECK(l.strokes[1].a.x() == doctest::Approx(50));
+    CHECK(l.strokes[0].outlineOf == 0);
+    CHECK(l.strokes[2].a.y() == 80);
+}
+
 TEST_SUITE("label placement") {
     PlacementObstacles open() {
         PlacementObstacles o;
@@ -184,6 +201,44 @@ TEST_SUITE("label placement") {
         const Placement q = placeLabel(r, lines);
         REQUIRE(q.placed);
         CHECK(segmentBoxDistance(lines.lines[0].a, lines.lines[0].b, q.box) >= 4);
+    }
+
+    TEST_CASE("a leader neither runs along a stroke from its point nor passes through another label") {
+        // Five thin lines above, five below and five on the right, 12 px and more from the point,
+        // leave a 10 px label room only on its row; with that row taken, the label goes out with
+        // a leader across five lines, or left, the short way out, past what is there.
+        const Vector2d at(150, 100);
+        PlacementObstacles fence;
+        fence.panel = {0, 0, 300, 200};
+        for (int k = 0; k < 5; ++k) {
+            fence.lines.push_back({Vector2d(162 + 8 * k, 20), Vector2d(162 + 8 * k, 180), 0.75, true});
+            fence.lines.push_back({Vector2d(70, 88 - 8 * k), Vector2d(162, 88 - 8 * k), 0.75, true});
+            fence.lines.push_back({Vector2d(70, 112 + 8 * k), Vector2d(162, 112 + 8 * k), 0.75, true});
+        }
+        const PlacementRequest r{at, Vector2d(20, 10), Vector2d(-1, 0), 6};
+        const auto leaderOf = [&](const Placement& p) {
+            const Vector2d near(std::clamp(at.x(), p.box.x0, p.box.x1), std::clamp(at.y(), p.box.y0, p.box.y1));
+            return Vector2d(near - at);
+        };
+        const Placement inRow = placeLabel(r, fence);
+        REQUIRE(inRow.placed);
+        CHECK_FALSE(inRow.leader);  // left of the point, between the lines
+        // The row holds an edge leaving the point to the left: a leader along it would name its far end.
+        PlacementObstacles edge = fence;
+        edge.lines.push_back({at, Vector2d(70, 100), 0.75, true});
+        const Placement p = placeLabel(r, edge);
+        REQUIRE(p.placed);
+        CHECK(p.leader);
+        CHECK(std::abs(leaderOf(p).normalized().y()) > 0.34);  // not within 20 degrees of the edge
+        for (const auto& l : edge.lines) CHECK(segmentBoxDistance(l.a, l.b, p.box) > l.halfWidth);
+        // The row holds another label: a leader through it would name it.
+        PlacementObstacles label = fence;
+        label.boxes.push_back({110, 94, 146, 106});
+        const Placement q = placeLabel(r, label);
+        REQUIRE(q.placed);
+        CHECK(q.leader);
+        double t0, t1;
+        CHECK_FALSE(label.boxes[0].clip(at, Vector2d(at + leaderOf(q)), t0, t1));
     }
 
     TEST_CASE("no room: not placed") {
