@@ -284,9 +284,14 @@ private:
         if (showStep && common_.hasLayer("support")) {
             const double h = s.normal.dot(s.support);
             const Vec3 tip = s.closestPoint + s.normal * std::max(h - s.distance, 0.25 * d.cRadius);
-            cs.drawArrow(s.closestPoint, tip, lineStyle(Role::Direction, 3.0f, false, true));
+            // The search normal in ink and named: the horizon has the direction colour (the review:
+            // an unlabelled arrow in the horizon's pink).
+            cs.drawArrow(s.closestPoint, tip, lineStyle(Role::Ink, 3.0f, false, true));
             cs.drawPoint(s.support, 10.0f, roleColor(Role::Support), true, 2.0f, roleColor(Role::Ink));
-            if (labels) drawLabelAway(cs, s.support, d.cCenter, "w", labelStyle(Role::Ink, 20.0f), 10.0);
+            if (labels) {
+                drawLabelAway(cs, tip, s.closestPoint, "n", labelStyle(Role::Ink, 18.0f), 8.0);
+                drawLabelAway(cs, s.support, d.cCenter, "w", labelStyle(Role::Ink, 20.0f), 10.0);
+            }
         }
     }
 
@@ -430,13 +435,18 @@ private:
             f.caption = "it " + std::to_string(s->iteration) + ": d = " + formatNumber(s->distance) + ", gap " +
                         formatNumber(h - s->distance) + (s->terminated ? " (stop)" : "");
         } else {
+            // Where the bounds have not met (a curved A − B stops at its tolerance or the cap), the
+            // depth is the interval, not its lower end (the review: 0.551 printed, 0.5560 exact).
+            const bool open = run.upper - run.lower > 1e-4 * std::abs(run.upper);
+            const std::string depth = open ? "depth in [" + formatNumber(run.lower) + ", " + formatNumber(run.upper) + "]"
+                                           : "depth " + formatNumber(run.depth);
             lines.push_back(std::string("Result: ") + nameOf(run.status) + " (" + nameOf(run.termination) + ") after " +
-                            std::to_string(run.iterations) + " EPA iterations: depth " + formatNumber(run.depth) +
-                            ", normal " + formatPoint(run.normal));
+                            std::to_string(run.iterations) + " EPA iterations: " + depth + ", normal " +
+                            formatPoint(run.normal));
             lines.push_back("p_A = " + formatPoint(run.pointA) + ",  p_B = " + formatPoint(run.pointB) + ";  bounds " +
                             formatNumber(run.lower) + " ≤ depth ≤ " + formatNumber(run.upper));
             f.name = "result";
-            f.caption = std::string("result: ") + nameOf(run.status) + ", depth " + formatNumber(run.depth);
+            f.caption = std::string("result: ") + nameOf(run.status) + ", " + depth;
         }
         return lines;
     }
