@@ -178,12 +178,17 @@ Frame featuresFrame(GlContext& gl, const SceneCommon& scene, int scale, const Cl
             c.drawText(0.5 * (r.pointA + r.pointB), "distance " + formatNumber(r.distance), ts);
         }
     }
-    drawKey(c, 20, 62,
-            {{roleColor(Role::ShapeA), "simplex a"},
-             {roleColor(Role::ShapeB), "simplex b"},
-             {roleColor(Role::Simplex), "the closest features"},
-             {roleColor(Role::Result), r.intersect ? "a common point" : "closest points"}},
-            17.0f);
+    // A simplex that is its own closest feature is drawn all in the feature colour: its own
+    // colour is not in the picture, so not in the key (the review: a blue "simplex a" not drawn).
+    const auto wholly = [&](const PrimitiveShape& s, const auto& feature) {
+        return r.valid && feature.dimension() < 3 && std::size_t(feature.dimension() + 1) == s.vertices.size();
+    };
+    std::vector<KeyItem> key;
+    if (!wholly(in.a, r.featureA)) key.push_back({roleColor(Role::ShapeA), "simplex a"});
+    if (!wholly(in.b, r.featureB)) key.push_back({roleColor(Role::ShapeB), "simplex b"});
+    key.push_back({roleColor(Role::Simplex), "the closest features"});
+    key.push_back({roleColor(Role::Result), r.intersect ? "a common point" : "closest points"});
+    drawKey(c, 20, 62, key, 17.0f);
     if (scene.hasLayer("numbers")) {
         std::vector<std::string> lines;
         if (r.intersect)

@@ -84,7 +84,7 @@ Json sphereJson(const SphereOverlapInput& in, const SphereRun& run) {
     return j;
 }
 
-void drawOther(Canvas& c, const PrimitiveShape& o) {
+void drawOther(Canvas& c, const PrimitiveShape& o, bool labels) {
     const Color color = roleColor(Role::ShapeB);
     if (o.kind == K::Sphere) {
         SceneShape s;
@@ -95,6 +95,13 @@ void drawOther(Canvas& c, const PrimitiveShape& o) {
     } else if (o.kind == K::Triangle) {
         c.drawPolygon(o.vertices, color.withAlpha(0.35f), true);
         c.drawPolyline(o.vertices, true, lineStyle(Role::ShapeB, 3.0f));
+        // The vertices named A, B, C, as the region the caption names (Ericson §5.1.5's).
+        if (labels) {
+            const Vec3 centroid = (o.vertices[0] + o.vertices[1] + o.vertices[2]) / 3.0;
+            for (int i = 0; i < 3; ++i)
+                drawLabelAway(c, o.vertices[std::size_t(i)], centroid, std::string(1, char('A' + i)),
+                              labelStyle(Role::Ink, 18.0f));
+        }
     } else {
         drawBody(c, boxDrawable(o.box), color, 0.25f, color.scaled(0.7f), 3.0f);
     }
@@ -143,7 +150,7 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
     c.setCamera(scene.camera ? *scene.camera
                              : viewAbove(drawn, viewAcross(Vec3(1.0, 0.8, 1.7), run.closest - c0), Vec3::UnitY(), 0.72,
                                          scene.image.width, scene.image.height));
-    drawOther(c, in.other);
+    drawOther(c, in.other, scene.hasLayer("labels"));
     SceneShape s;
     s.kind = SceneShape::Kind::Sphere;
     s.radius = r;
