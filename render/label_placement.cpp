@@ -132,6 +132,15 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             const bool fromEnd = (l.a - request.anchor).norm() < 5.0 || (l.b - request.anchor).norm() < 5.0;
             if (along >= 3 || fromEnd) cost += 40;
         }
+        // Passing by or ending at another vertex (a stroke's end away from the anchor): the label
+        // reads as naming that corner (figure review: "V1 (A)" led to the icosahedron's silhouette
+        // vertex, "s_B(−n)" to the box's hidden corner).
+        for (const PlacementObstacles::Line& l : obstacles.lines)
+            for (const Vector2d& end : {l.a, l.b})
+                if ((end - request.anchor).norm() > 6.0 && pointSegmentDistance(end, request.anchor, near) < 5.0) {
+                    cost += 15;
+                    break;
+                }
         return cost;
     };
     // Rings: next to the anchor, then farther out with a leader line back to it; the last ten

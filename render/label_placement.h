@@ -5,7 +5,7 @@
 // marker. Costs rank the rest: crossing a thick line worst, then lying nearer another anchor than
 // its own, then crossing a thin line (the review rules LabelOnStroke and LabelNearerOther of
 // render/legibility.h); then the leader: its length, the strokes it crosses, running along a
-// stroke or on from one, passing through another label (tests/render/legibility_test.cpp, "a
+// stroke or on from one, passing another vertex or through another label (tests/render/legibility_test.cpp, "a
 // leader neither runs along..."). The first candidate of cost 0 wins, else the least; a label with
 // no candidate at all is not placed (the caller reports it instead of drawing it over something).
 // Imhof, "Positioning names on maps" (1975) ranks the positions around a point the same way.
