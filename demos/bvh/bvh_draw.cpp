@@ -298,7 +298,7 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
     drawHeading(c, in.heading, in.sub);
     // Without a number on each bar a linear chart gets a value axis on the left.
     const bool valueAxis = in.valueFormat.empty() && !in.logY;
-    const double left = valueAxis ? 56 : 24, right = 16, legendTop = in.sub.empty() ? 40 : 62, bottom = 40;
+    const double left = valueAxis || in.logY ? 56 : 24, right = 16, legendTop = in.sub.empty() ? 40 : 62, bottom = 40;
     const double top = legendTop + 18.0 * double(in.series.size()) + 22;
     const int groups = int(in.groups.size()), ns = int(in.series.size());
     if (groups == 0 || ns == 0) return c.readPixels();
@@ -329,6 +329,17 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
             c.drawLine(P(left - 4, y), P(W - right, y), lineStyle(Role::Muted, 1.0f, true));
             char buf[32];
             std::snprintf(buf, sizeof buf, "%g", v);
+            c.drawTextPx(left - 11, y, buf, TextStyle{13.0f, roleColor(Role::Ink), Anchor::Right, true, false});
+        }
+    }
+    if (in.logY) {  // a log scale carries its decades (the review: 389 against 10000 read as 1 : 2)
+        c.drawLine(P(left - 4, H - bottom), P(left - 4, top), lineStyle(Role::Ink, 1.5f));
+        for (int e = int(std::ceil(logLo)); e <= int(std::floor(logHi)); ++e) {
+            const double y = H - bottom - frac(std::pow(10.0, e)) * plotH;
+            c.drawLine(P(left - 8, y), P(left - 4, y), lineStyle(Role::Ink, 1.5f));  // ticks only: the
+            char buf[32];                                                             // values sit on the bars
+            if (e >= 0 && e <= 4) std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, e));
+            else std::snprintf(buf, sizeof buf, "1e%d", e);
             c.drawTextPx(left - 11, y, buf, TextStyle{13.0f, roleColor(Role::Ink), Anchor::Right, true, false});
         }
     }
