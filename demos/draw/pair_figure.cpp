@@ -91,7 +91,7 @@ void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool col
     drawBodyName(world, nameB, "B", Role::ShapeB);
     // The key only where outlines are drawn (polytopes, 2D shapes; curved 3D bodies have none).
     if (colliding && (d.planar || !d.a.edges.empty() || !d.b.edges.empty()))
-        drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B intersect"}});
+        drawKey(world, 14, 64, {{roleColor(Role::Colliding), "colliding: A and B share a point"}});  // touching too
 }
 
 GapInset planGapInset(const Canvas& world, const TwoPanelLayout& layout, const PairDrawing& d, const Vec3& pa,
