@@ -209,13 +209,15 @@ void SpaceScene::drawBspPanel(const PanelView& v, const Vec3& at, const PanelStr
     if (v.drawObjects)
         for (const Aabb& b : boxes) fillRect(canvas, b, at, roleColor(Role::ShapeA).withAlpha(0.30f));
     if (v.splits) drawBspSplits(canvas, bt, regions, at, 0.6f);
-    if (v.drawObjects) drawBspFragments(canvas, bt, at, 3.5f, 2.5f);
+    // Cut walls in the direction colour: the highlight colour outlines a box in a pair in every
+    // panel (the review: orange meant two things).
+    if (v.drawObjects) drawBspFragments(canvas, bt, at, 3.5f, 2.5f, Role::Direction);
     outlineRect(canvas, v.frame, at, lineStyle(Role::Ink, 1.5f));
     heading(canvas, at + P(v.frame.min.x(), v.frame.max.y()),
             "BSP tree of the box walls, depth " + std::to_string(bs.depth),
             std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + " walls cut in two");
     if (common_.hasLayer("labels"))
-        keyBelow(canvas, at + v.frame.min, {{roleColor(Role::Highlight), "a wall cut in two"}});
+        keyBelow(canvas, at + v.frame.min, {{roleColor(Role::Direction), "a wall cut in two"}});
 }
 
 }  // namespace cdlab::demos::spacefig

@@ -213,13 +213,15 @@ private:
                            LineStyle{widthScale * depthWidth(node.depth), depthColor(node.depth, maxDepth)});
         }
     }
-    // The wall fragments seen from the top; the pieces of walls that a plane cut in two are highlighted.
-    static void drawBspFragments(Canvas& c, const BspTree& tree, const Vec3& at, float splitWidth, float wallWidth) {
+    // The wall fragments seen from the top; the pieces of walls that a plane cut in two in the
+    // `cut` role (its figure's key names it; one that outlines paired boxes in the highlight
+    // colour gives cut walls another).
+    static void drawBspFragments(Canvas& c, const BspTree& tree, const Vec3& at, float splitWidth, float wallWidth,
+                                 Role cut = Role::Highlight) {
         for (const BspFragment& f : tree.fragments()) {
             Vec3 p, q;
             fragmentSegment(f, p, q);
-            c.drawLine(at + p, at + q,
-                       lineStyle(f.split ? Role::Highlight : Role::Ink, f.split ? splitWidth : wallWidth, false, true));
+            c.drawLine(at + p, at + q, lineStyle(f.split ? cut : Role::Ink, f.split ? splitWidth : wallWidth, false, true));
         }
     }
 
