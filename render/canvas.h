@@ -25,6 +25,8 @@ struct CanvasOptions {
     int msaaSamples = 4;  // 4x MSAA (llvmpipe supports 4, not 8); clamped to GL_MAX_SAMPLES
     int scale = 1;        // a print figure: width*scale x height*scale pixels, text, lines and points scaled
                           // with it; every coordinate of the API stays in units of the scale-1 figure
+    bool text = true;     // false: texts are recorded but neither drawn nor laid out (a contact sheet's
+                          // thumbnail carries no text of its own, only its tile caption)
 };
 
 struct LineStyle {

@@ -160,6 +160,10 @@ FigureLayout Canvas::Impl::layoutTexts() {
             }
         }
     }
+    if (!options.text) {  // a thumbnail: no text, no leaders (CanvasOptions::text)
+        nameOutlinesAndMarkers(layout, strokeOwners, labelNames);
+        return layout;
+    }
     // Where a text is asked to be: its anchor point (output px) and its box's size.
     struct Asked {
         bool visible = false;

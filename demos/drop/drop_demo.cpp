@@ -233,13 +233,30 @@ public:
         Frame sheet;
         const bool wantSheet = common_.steps || ctx.stepsOverride;
         if (wantSheet) {
+            // Thumbnails without text (each tile's caption says what it is; the frames' legends and
+            // status lines were ~3 px there), and of the frames at rest only the first: the rest
+            // are the same picture (figure review of 2026-11-29).
+            std::vector<Frame> thumbs;
+            int atRest = 0;
+            for (std::size_t i = 0; i < frameSteps.size(); ++i) {
+                const bool resting = r.restTime >= 0 && tr.steps[std::size_t(frameSteps[i])].time >= r.restTime;
+                if (resting && atRest++ > 0) continue;
+                thumbs.push_back(drawFrame(*ctx.gl, ss, cam, side, center, radius, r, tr, frameSteps[i], int(i),
+                                           maxImpulse, true));
+            }
+            std::vector<const Frame*> tiles;
+            for (const Frame& f : thumbs) tiles.push_back(&f);
             ContactSheetOptions o;
-            o.caption = common_.caption;
+            o.caption = common_.caption +
+                        (atRest > 1 ? " At rest from t = " + formatNumber(r.restTime) + " s: " +
+                                          std::to_string(atRest - 1) + " later frame" + (atRest > 2 ? "s" : "") +
+                                          " not shown."
+                                    : std::string());
             o.title = common_.title + ": every " + std::to_string(frameEvery_) + " steps (" +
                       formatNumber(frameEvery_ * options_.timeStep) + " s) and at each impact";
             o.cellWidth = 300;
             o.columns = 4;
-            sheet = contactSheetFrame(*ctx.gl, stepFrames, common_.title, o);
+            sheet = contactSheetFrame(*ctx.gl, tiles, common_.title, o);
         }
         if (common_.hasLayer("plot")) out.frames.push_back(drawPlot(*ctx.gl, ss, r, tr, frameSteps));
         else out.skipped.push_back("energy / penetration plot (no 'plot' layer)");
@@ -392,7 +409,8 @@ private:
             LineStyle arrow = lineStyle(Role::Direction, 3.0f, false, true);
             if (hidden[i]) arrow.color = faded(arrow.color);
             if (push && length > 0.02 * rho) c.drawArrow(ct.point, ct.point + length * s.normal, arrow);
-            if (push && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
+            // The one named: the largest seen (a contact behind the body has a faded arrow).
+            if (push && !hidden[i] && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
         }
         // Markers after the arrows, so an arrow never paints over its contact point.
         for (std::size_t i = 0; i < s.contacts.size(); ++i) {
@@ -402,9 +420,14 @@ private:
             if (ct.normalImpulse > 0) c.drawPoint(ct.point, 7.0f, result, true, 1.5f, ink);
             else c.drawPoint(ct.point, 6.0f, roleColor(Role::Background).withAlpha(hidden[i] ? 0.0f : 1.0f), true, 2.0f, result);
         }
-        if (labelImpulse && largest && largest->normalImpulse > 0.034 * maxImpulse)
-            drawLabelAway(c, largest->point + 0.6 * rho * largest->normalImpulse / maxImpulse * s.normal, largest->point,
-                          "λₙ n", labelStyle(Role::Direction, 20.0f), 10.0);
+        // Named only where its arrow is seen: drawn, and reaching 12 px past its contact marker (7 px)
+        // on the picture (the review: "λₙ n" beside an arrow hidden under its dot).
+        if (labelImpulse && largest && 0.6 * largest->normalImpulse / maxImpulse > 0.02) {
+            const Vec3 tip = largest->point + 0.6 * rho * largest->normalImpulse / maxImpulse * s.normal;
+            Eigen::Vector2d from, to;
+            if (c.project(largest->point, from) && c.project(tip, to) && (to - from).norm() >= 19.0)
+                drawLabelAway(c, tip, largest->point, "λₙ n", labelStyle(Role::Direction, 20.0f), 10.0);
+        }
         return marks;
     }
 
@@ -456,8 +479,10 @@ private:
     // A low side view of step k: the ground seen edge-on as a line over a band, so the body's height,
     // its bounces and the corner or face it lands on read directly.
     Image drawSideView(GlContext& gl, int ss, int width, int height, const Camera& cam, const SimulationResult& r,
-                       const SimulationTrace& tr, int k, double maxImpulse) const {
-        Canvas c(gl, canvasOptions(width, height, ss), cam);
+                       const SimulationTrace& tr, int k, double maxImpulse, bool text) const {
+        CanvasOptions o = canvasOptions(width, height, ss);
+        o.text = text;
+        Canvas c(gl, o, cam);
         const Vec3 back = cam.viewDirection();
         const Vec3 across = Vec3::UnitZ().cross(back).normalized();
         const double half = 2.0 * cam.viewHeight * width / height;
@@ -485,9 +510,13 @@ private:
         return c.readPixels();
     }
 
+    // Step k's frame; a thumbnail (for the contact sheet) is the same picture without its text.
     Frame drawFrame(GlContext& gl, int ss, const Camera& cam, const Camera& side, const Vec3& center, double radius,
-                    const SimulationResult& r, const SimulationTrace& tr, int k, int index, double maxImpulse) const {
-        Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
+                    const SimulationResult& r, const SimulationTrace& tr, int k, int index, double maxImpulse,
+                    bool thumbnail = false) const {
+        CanvasOptions o = sceneCanvasOptions(common_, ss);
+        o.text = !thumbnail;
+        Canvas c(gl, o, cam);
         const SimulationStep& s = tr.steps[std::size_t(k)];
         const double rho = r.boundingRadius;
         const bool labels = common_.hasLayer("labels");
@@ -580,7 +609,7 @@ private:
         Image frame = Image::blank(c.width() + sideWidth, c.height(), ss);
         frame.layout.panels.push_back({0.0, 0.0, double(frame.width), double(frame.height)});
         blit(frame, c.readPixels(), 0, 0);
-        blit(frame, drawSideView(gl, ss, sideWidth, c.height(), side, r, tr, k, maxImpulse), c.width(), 0);
+        blit(frame, drawSideView(gl, ss, sideWidth, c.height(), side, r, tr, k, maxImpulse, !thumbnail), c.width(), 0);
         paintRect(frame, c.width() - 1, 0, 2, c.height(), roleColor(Role::Muted));  // a rule between the views
         return Frame{name, cap, std::move(frame)};
     }

@@ -434,6 +434,34 @@ TEST_SUITE("canvas layout") {
         CHECK(l.strokes[3].outlineOf == -1);
     }
 
+    TEST_CASE("a canvas without text draws the same picture less its texts and lays none out") {
+        const auto draw = [&](bool text) {
+            CanvasOptions o{200, 200, 1, 4};
+            o.text = text;
+            Canvas c(context(), o);
+            c.setCamera(Camera::twoD(0, 0, 10));
+            c.setBackground(kWhite);
+            c.drawLine(Vector3d(-4, 0, 0), Vector3d(4, 0, 0), LineStyle{});
+            c.drawPoint(Vector3d(0, 0, 0), 6.0f, Color{0, 0, 0, 1});
+            TextStyle placed{16.0f, Color{0, 0, 0, 1}};
+            placed.offsetPx = Vector2d(40, -40);
+            placed.place = true;
+            c.drawText(Vector3d(0, 0, 0), "label", placed);
+            c.drawTextPx(10, 10, "title", TextStyle{16.0f, Color{0, 0, 0, 1}, Anchor::TopLeft});
+            return c.readPixels();
+        };
+        const Image with = draw(true), without = draw(false);
+        CHECK(with.layout.labels.size() == 2);
+        CHECK(without.layout.labels.empty());
+        CHECK(without.layout.strokes.size() == 1);  // the line, no leader
+        CHECK(without.layout.markers.size() == 1);
+        int inked = 0;  // dark pixels in the title's corner: none without text
+        for (int y = 8; y < 30; ++y)
+            for (int x = 8; x < 60; ++x) inked += without.pixel(x, y)[0] < 128;
+        CHECK(inked == 0);
+        CHECK(pixelHash(with) != pixelHash(without));
+    }
+
     TEST_CASE("readPixels records text boxes, markers and who names them, placed labels go around the rest") {
         Canvas c(context(), CanvasOptions{200, 200, 1, 4});
         c.setCamera(Camera::twoD(0, 0, 10));
