@@ -116,10 +116,15 @@ Eigen::Vector2d Canvas::measureText(const std::string& text, const TextStyle& st
     return {L.width, L.height};
 }
 
+void Canvas::noteQuantity(const std::string& name, const Vector3d& p, const Vector3d& q) {
+    impl_->quantities.push_back({name, p, q});
+}
+
 void Canvas::clearCommands() {
     impl_->meshes.clear();
     impl_->overlays.clear();
     impl_->texts.clear();
+    impl_->quantities.clear();
 }
 
 RenderStats& renderStats() {

@@ -109,6 +109,9 @@ public:
     void drawText(const Eigen::Vector3d& at, const std::string& text, const TextStyle& style);
     /// ... or at pixel coordinates (x right, y down, output pixels at scale 1).
     void drawTextPx(double x, double y, const std::string& text, const TextStyle& style);
+    /// A quantity the frame names, drawn from p to q (a gap, a depth): readPixels() records its
+    /// length on the picture in the layout's `quantities` (the review rule QuantityTooSmall).
+    void noteQuantity(const std::string& name, const Eigen::Vector3d& p, const Eigen::Vector3d& q);
     /// Width and height in output pixels that drawTextPx would use.
     Eigen::Vector2d measureText(const std::string& text, const TextStyle& style) const;
 

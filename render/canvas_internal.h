@@ -112,6 +112,11 @@ struct Canvas::Impl {
     std::vector<MeshCmd> meshes;
     std::vector<std::variant<LineCmd, PointCmd>> overlays;
     std::vector<TextCmd> texts;
+    struct QuantityCmd {
+        std::string name;
+        Eigen::Vector3d p, q;
+    };
+    std::vector<QuantityCmd> quantities;  // noteQuantity: measured on the picture by layoutTexts
     int strokeOwner = 0;  // setStrokeOwner: the owner of the strokes drawn next
     // Per frame, from layoutTexts(): where each text goes (its offset after placement; none: not
     // drawn) and the leader lines of labels moved away from their points.

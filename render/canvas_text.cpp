@@ -123,6 +123,21 @@ static void nameOutlinesAndMarkers(FigureLayout& layout, const std::vector<int>&
     }
 }
 
+// A placed label's leader line: from its point to the nearest point of its box, stopping 2 px
+// short, in ink (not the label's colour: a brown leader among a brown body's edges was lost,
+// figure review of 2026-11-29's re-render); the label's own stroke in the layout, and an obstacle
+// the next labels keep off and their leaders do not cross.
+static void addLeader(const Vector2d& anchor, const Box& box, FigureLayout& layout, PlacementObstacles& obstacles,
+                      std::vector<LineCmd>& leaders) {
+    const Vector2d near(std::clamp(anchor.x(), box.x0, box.x1), std::clamp(anchor.y(), box.y0, box.y1));
+    const Vector2d d = near - anchor;
+    const Vector2d end = d.norm() > 4 ? Vector2d(near - 2.0 * d.normalized()) : near;
+    LineStyle style{1.5f, roleColor(Role::Ink).withAlpha(0.85f), 0.0f, true};
+    layout.strokes.push_back({anchor, end, style.widthPx, int(layout.labels.size()) - 1});
+    obstacles.lines.push_back({anchor, end, 0.5 * style.widthPx, true, 0});
+    leaders.push_back(LineCmd{{Vector3d(anchor.x(), anchor.y(), 0), Vector3d(end.x(), end.y(), 0)}, style, false, true});
+}
+
 // Every text's box in output pixels: fixed texts where they were asked for, point labels
 // (TextStyle::place) through placeLabel around their points, in drawing order, each one an
 // obstacle for the next. Fills textOffsets and leaders for the build steps.
@@ -159,6 +174,10 @@ FigureLayout Canvas::Impl::layoutTexts() {
                 obstacles.lines.push_back({a, b, 0.5 * line.style.widthPx, line.style.widthPx < 3.0f, line.owner});
             }
         }
+    }
+    for (const QuantityCmd& q : quantities) {
+        Vector2d a, b;
+        if (toPixels(q.p, a) && toPixels(q.q, b)) layout.quantities.push_back({q.name, (b - a).norm()});
     }
     if (!options.text) {  // a thumbnail: no text, no leaders (CanvasOptions::text)
         nameOutlinesAndMarkers(layout, strokeOwners, labelNames);
@@ -223,23 +242,7 @@ FigureLayout Canvas::Impl::layoutTexts() {
         }
         textOffsets[i] = p.box.center() - request.anchor;
         record(i, p.box);
-        if (p.leader) {  // from the point to the nearest point of the box, stopping 2 px short
-            const Vector2d near(std::clamp(request.anchor.x(), p.box.x0, p.box.x1),
-                                std::clamp(request.anchor.y(), p.box.y0, p.box.y1));
-            const Vector2d d = near - request.anchor;
-            const Vector2d end = d.norm() > 4 ? Vector2d(near - 2.0 * d.normalized()) : near;
-            // In ink, not the label's colour: a brown leader among a brown body's edges was lost
-            // (figure review of 2026-11-29's re-render).
-            LineStyle style{1.5f, roleColor(Role::Ink).withAlpha(0.85f), 0.0f, true};
-            layout.strokes.push_back({request.anchor, end, style.widthPx, int(layout.labels.size()) - 1});
-            // The next labels keep off it and their leaders do not cross it.
-            obstacles.lines.push_back({request.anchor, end, 0.5 * style.widthPx, true, 0});
-            leaders.push_back(
-                LineCmd{{Vector3d(request.anchor.x(), request.anchor.y(), 0), Vector3d(end.x(), end.y(), 0)},
-                        style,
-                        false,
-                        true});
-        }
+        if (p.leader) addLeader(request.anchor, p.box, layout, obstacles, leaders);
     }
     nameOutlinesAndMarkers(layout, strokeOwners, labelNames);
     return layout;

@@ -29,6 +29,7 @@ void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
     for (const LayoutStroke& k : other.strokes)
         strokes.push_back({k.a + d, k.b + d, k.width, k.leaderOf >= 0 ? k.leaderOf + base : -1,
                            k.outlineOf >= 0 ? k.outlineOf + base : -1});
+    quantities.insert(quantities.end(), other.quantities.begin(), other.quantities.end());
     unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
 }
 
@@ -98,6 +99,7 @@ FigureLayout FigureLayout::scaled(double s) const {
     }
     for (LayoutMarker& m : out.markers) m.box = m.box.scaled(s);
     for (LayoutStroke& k : out.strokes) k.a *= s, k.b *= s, k.width *= s;
+    for (LayoutQuantity& q : out.quantities) q.px *= s;
     return out;
 }
 

@@ -57,11 +57,20 @@ struct LayoutStroke {
     int outlineOf = -1;  ///< the label naming the body this stroke outlines (TextStyle::names), or -1
 };
 
+/// A quantity the frame names (a gap, a depth, the change from the previous step) and its drawn
+/// length in pixels; the same name drawn again in a zoomed inset counts at its longest
+/// (render/legibility.h: QuantityTooSmall).
+struct LayoutQuantity {
+    std::string name;
+    double px = 0;
+};
+
 struct FigureLayout {
     std::vector<Box> panels;  // the canvases a frame was composed from, outermost first
     std::vector<LayoutLabel> labels;
     std::vector<LayoutMarker> markers;
     std::vector<LayoutStroke> strokes;
+    std::vector<LayoutQuantity> quantities;
     /// Labels the placement step could not put anywhere free: reported here, not drawn.
     std::vector<std::string> unplaced;
 

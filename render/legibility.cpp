@@ -17,12 +17,14 @@ const char* nameOf(LegibilityKind kind) {
         case LegibilityKind::LabelOnStroke: return "label crosses a stroke";
         case LegibilityKind::LabelNearerOther: return "label nearer another anchor than its own";
         case LegibilityKind::FontBelowTarget: return "font below the 1.6 % target";
+        case LegibilityKind::QuantityTooSmall: return "quantity drawn too small";
     }
     return "?";
 }
 
 bool gates(LegibilityKind kind) {
-    return kind != LegibilityKind::LabelOnStroke && kind != LegibilityKind::LabelNearerOther;
+    return kind != LegibilityKind::LabelOnStroke && kind != LegibilityKind::LabelNearerOther &&
+           kind != LegibilityKind::QuantityTooSmall;
 }
 
 namespace {
@@ -161,6 +163,19 @@ std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int w
         }
     }
     strokeAndAnchorRules(layout, out);
+    // Each named quantity at its longest (an inset that zooms on it draws it again, larger).
+    std::vector<std::pair<std::string, double>> longest;
+    for (const LayoutQuantity& q : layout.quantities) {
+        auto it = std::find_if(longest.begin(), longest.end(), [&](const auto& e) { return e.first == q.name; });
+        if (it == longest.end()) longest.emplace_back(q.name, q.px);
+        else it->second = std::max(it->second, q.px);
+    }
+    for (const auto& [name, px] : longest)
+        if (!(px >= kMinQuantityPx)) {
+            char s[96];
+            std::snprintf(s, sizeof s, "drawn %.1f px long < %.0f px (no inset draws it larger)", px, kMinQuantityPx);
+            out.push_back({LegibilityKind::QuantityTooSmall, name, s, kMinQuantityPx - px});
+        }
     for (const std::string& t : layout.unplaced)
         out.push_back({LegibilityKind::Unplaced, t, "no free position around its anchor", 1e9});
     std::stable_sort(out.begin(), out.end(),

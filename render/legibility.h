@@ -23,6 +23,8 @@ enum class LegibilityKind {
     LabelOnStroke,      // a label's box crosses a drawn stroke other than its own leader line
                         // or the outline of the body it names
     LabelNearerOther,   // a label is nearer another label's anchor than its own
+    QuantityTooSmall,   // a quantity the frame names (layout.quantities) drawn under kMinQuantityPx
+                        // everywhere it is drawn (a zoomed inset that draws it larger is enough)
 };
 const char* nameOf(LegibilityKind kind);
 /// True for the rules that fail `cdlab golden`; false for the review rules above.
@@ -33,6 +35,8 @@ constexpr double kMinLineHeightFraction = 0.015;
 /// The smallest font size the review rules ask for, 1.6 %: 16.4 px on a 1024-px frame, 12.3 px on
 /// a 768-px one (about 12 pt on a projected slide).
 constexpr double kTargetFontFraction = 0.016;
+/// The shortest a named quantity (a gap, a depth) may be drawn, px: shorter, a reader cannot see it.
+constexpr double kMinQuantityPx = 12.0;
 /// A stroke whose edge reaches less than this (px) into a label's box only grazes it.
 constexpr double kStrokeGrazePx = 1.5;
 /// Overlaps smaller than this (px²) are anti-aliasing contact, not overprinting.

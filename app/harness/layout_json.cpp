@@ -33,8 +33,14 @@ Json layoutJson(const render::Image& image) {
         if (k.outlineOf >= 0) s.push_back(k.outlineOf);
         strokes.push_back(std::move(s));
     }
-    return {{"width", image.width}, {"height", image.height}, {"panels", panels},
-            {"labels", labels},     {"markers", markers},     {"strokes", strokes}};
+    Json out = {{"width", image.width}, {"height", image.height}, {"panels", panels},
+                {"labels", labels},     {"markers", markers},     {"strokes", strokes}};
+    if (!l.quantities.empty()) {  // only where a frame names one: older manifests stay as they were
+        Json quantities = Json::array();
+        for (const render::LayoutQuantity& q : l.quantities) quantities.push_back({{"name", q.name}, {"px", px(q.px)}});
+        out["quantities"] = std::move(quantities);
+    }
+    return out;
 }
 
 }  // namespace cdlab::demos

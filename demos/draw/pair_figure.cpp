@@ -176,6 +176,7 @@ void drawGapInset(GlContext& gl, Image& panel, int scale, const GapInset& g, con
     Canvas c(gl, canvasOptions(g.w, g.h - GapInset::kHeading, scale), cam);
     drawPairBodies(c, d, 0.45f, false, false);
     c.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
+    c.noteQuantity(kDistanceQuantity, pa, pb);
     c.drawPoint(pa, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
     c.drawPoint(pb, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
     const TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::Center, true, true};

@@ -61,6 +61,9 @@ void drawPairBodies(render::Canvas& world, const PairDrawing& d, float alpha3d, 
 /// shown false when the gap is visible as it is), markGapInset (on `world`: a square where the
 /// inset is taken from and a connector to it), drawGapInset (renders the inset into `panel`, the
 /// world canvas's image, under a strip headed with the zoom and the gap).
+/// The name under which a pair figure records the witness distance it draws (Canvas::noteQuantity).
+inline const std::string kDistanceQuantity = "distance |p_A − p_B|";
+
 struct GapInset {
     bool shown = false;
     int x = 0, y = 0, w = 0, h = 0;  // px in the panel

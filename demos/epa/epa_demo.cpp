@@ -330,8 +330,10 @@ private:
         if (isResult && common_.hasLayer("witness")) {
             world.drawPoint(run.pointA, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
             world.drawPoint(run.pointB, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-            if (penetrating && run.depth > 0)
+            if (penetrating && run.depth > 0) {
                 world.drawArrow(run.pointB, run.pointA, lineStyle(Role::Result, 3.5f, false, true));
+                world.noteQuantity("depth", run.pointB, run.pointA);
+            }
             else if (penetrating)
                 world.drawArrow(run.pointA, run.pointA + run.normal * 0.3 * d.wRadius,
                                 lineStyle(Role::Direction, 3.0f, false, true));
@@ -391,6 +393,7 @@ private:
             if (penetrating && run.depth > 0) {
                 const Vec3 pv = run.depth * run.normal;
                 cs.drawArrow(Vec3::Zero(), pv, lineStyle(Role::Result, 4.0f, false, true));
+                cs.noteQuantity("depth", Vec3::Zero(), pv);
                 if (labels)
                     drawLabelAway(cs, pv, Vec3::Zero(), "depth · n",
                                   TextStyle{18.0f, roleColor(Role::Result).scaled(0.7f), Anchor::Center, true, true},

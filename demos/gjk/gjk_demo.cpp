@@ -159,6 +159,8 @@ private:
         const Vec3 pa = s ? s->pointA : r.pointA, pb = s ? s->pointB : r.pointB;
         if (common_.hasLayer("witness")) {
             world.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
+            // The result's distance is what the frame names: drawn at 12 px, or again in the inset.
+            if (!s && r.status != GjkStatus::Intersecting) world.noteQuantity(kDistanceQuantity, pa, pb);
             world.drawPoint(pa, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
             world.drawPoint(pb, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
             if (labels) {

@@ -338,6 +338,7 @@ private:
                 for (size_t k = 0; k < r.manifold.size(); ++k) {
                     const ContactPoint& p = r.manifold[k];
                     c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                    if (k == 0 && p.depth > 0) c.noteQuantity("deepest depth", p.pointA, p.pointB);
                     c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
                     c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
                     if (labels && (k == 0 || p.depth > 0))
@@ -593,11 +594,15 @@ private:
             }
         }
         if (common_.hasLayer("contacts")) {
+            const ContactPoint* deepest = nullptr;
             for (const ContactPoint& p : r.manifold) {
                 c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
                 c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
                 c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+                if (!deepest || p.depth > deepest->depth) deepest = &p;
             }
+            // The depth the caption names, drawn as the deepest point's segment.
+            if (deepest && deepest->depth > 0) c.noteQuantity("depth", deepest->pointA, deepest->pointB);
             if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
         }
         char cap[400];

@@ -257,6 +257,10 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
         const Vec3 apart = 0.012 * size * line.across;
         c.drawLine(at(shown->boxLo) - apart, at(shown->boxHi) - apart, lineStyle(boxRole, 8.0f, false, true));
         c.drawLine(at(shown->otherLo) + apart, at(shown->otherHi) + apart, lineStyle(otherRole, 8.0f, false, true));
+        // The gap (or the depth, the shorter push) the frame names, between the bars' ends.
+        if (shown->otherLo - shown->boxHi >= shown->boxLo - shown->otherHi)
+            c.noteQuantity(shown->gap > 0 ? "gap" : "depth", at(shown->boxHi), at(shown->otherLo));
+        else c.noteQuantity(shown->gap > 0 ? "gap" : "depth", at(shown->otherHi), at(shown->boxLo));
         if (labels) {
             // Past the axis's arrowhead, along it (on the axis's middle it crossed the axis and the
             // dashed projection lines).

@@ -158,6 +158,12 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
     drawBody(c, shapeDrawable(s), roleColor(Role::ShapeA), run.hit ? 0.35f : 0.25f, roleColor(Role::ShapeA).scaled(0.7f), 1.5f);
     c.drawPoint(c0, 6.0f, roleColor(Role::Ink));
     c.drawLine(c0, run.closest, lineStyle(Role::Result, 3.0f, false, true));
+    // The overlap or the gap the frame names: along the centre line, between the sphere's surface
+    // and the closest point (the other sphere's surface).
+    if ((run.closest - c0).norm() > 0) {
+        const Vec3 dir = (run.closest - c0).normalized();
+        c.noteQuantity(run.hit ? "overlap" : "gap", c0 + r * dir, run.closest - (run.reach - r) * dir);
+    }
     c.drawPoint(run.closest, 8.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
     if (scene.hasLayer("labels")) {
         TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};

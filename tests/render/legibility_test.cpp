@@ -98,6 +98,27 @@ TEST_SUITE("legibility") {
         CHECK(gates(LegibilityKind::TextTooSmall));
     }
 
+    TEST_CASE("review rule: a named quantity under 12 px, unless an inset draws it larger") {
+        FigureLayout q;
+        q.panels = {{0, 0, 400, 300}};
+        q.quantities = {{"gap", 7.0}, {"depth", 30.0}};
+        auto problems = checkLegibility(q, 400, 300);
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0].kind == LegibilityKind::QuantityTooSmall);
+        CHECK(problems[0].text == "gap");
+        CHECK(problems[0].severity == doctest::Approx(5));
+        CHECK_FALSE(gates(problems[0].kind));
+        // A zoomed inset draws the gap again at 140 px: it is seen.
+        FigureLayout inset;
+        inset.quantities = {{"gap", 140.0}};
+        q.append(inset, 200, 150);
+        CHECK(checkLegibility(q, 400, 300).empty());
+        // Carried through a resize: 14 px halved is 7.
+        FigureLayout r;
+        r.quantities = {{"depth", 14.0}};
+        CHECK(count(checkLegibility(r.scaled(0.5), 200, 150), LegibilityKind::QuantityTooSmall) == 1);
+    }
+
     TEST_CASE("a label may cover the marker it names, touching boxes are no overlap") {
         FigureLayout l;
         l.panels = {{0, 0, 100, 100}};
