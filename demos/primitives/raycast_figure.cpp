@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/overlap/intersect_ray.h"
+#include "render/legibility.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/primitives/primitive_figures.h"
@@ -183,7 +184,21 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Rayc
     if (labels) canvas.drawText(c0, "C", pointLabel(22.0f));
     // The radius and the closest approach of the line, for the discriminant: b² − ac = a(r² − dist²).
     const Vec3 closest = in.origin + tc * in.direction;
-    canvas.drawLine(c0, closest, lineStyle(Role::Muted, 2.0f, true));
+    // In ink and named: a grey dashed 25-px segment read as two faint dashes (the review).
+    // Named on the picture only where it is seen (12 px, the quantity rule); shorter, the footer
+    // gives its value alone (segment_sphere_short: 0.04, 7 px).
+    canvas.drawLine(c0, closest, lineStyle(Role::Ink, 2.5f, false, true));
+    Eigen::Vector2d pc, pq;
+    const bool seen = canvas.project(c0, pc) && canvas.project(closest, pq) && (pq - pc).norm() >= kMinQuantityPx;
+    if (labels && seen) {
+        canvas.noteQuantity("dist", c0, closest);
+        TextStyle ts = pointLabel();
+        const Vec3 along = in.direction.normalized();
+        Eigen::Vector2d a, b;
+        if (canvas.project(0.5 * (c0 + closest), a) && canvas.project(0.5 * (c0 + closest) + along, b))
+            ts.offsetPx = 30.0 * Eigen::Vector2d((b - a).normalized());  // beside it, along the line
+        canvas.drawText(0.5 * (c0 + closest), "dist", ts);
+    }
     if (q.rootsValid && in.segment) {  // the segment's line, dashed, out to the roots past its end
         const double from = std::min(0.0, q.t0), to = std::max(1.0, q.t1);
         canvas.drawLine(in.origin + from * in.direction, in.origin + to * in.direction, lineStyle(Role::Muted, 2.0f, true));
@@ -214,7 +229,7 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Rayc
         };
         // The discriminant's meaning: b² − ac = a·(r² − dist²), dist the line's closest approach to C.
         lines.push_back("b² − a·c = a·(r² − dist²):  the line passes C at dist = " + formatNumber((closest - c0).norm()) +
-                        " (dashed), r = " + formatNumber(r));
+                        ", r = " + formatNumber(r));
         using O = SphereQuadraticTrace::Outcome;
         std::string decision = "decision: ";
         switch (q.outcome) {
