@@ -247,6 +247,21 @@ private:
         return cam;
     }
 
+    /// Do both bodies' vertices project inside a w x h panel, `top` px below its top edge, 6 px
+    /// from the others?
+    bool bodiesInside(const Camera& cam, int w, int h, double top) const {
+        const Eigen::Matrix4d m = cam.viewProjection(double(w) / h);
+        for (int i = 0; i < 2; ++i)
+            for (const Vec3& p : body(i).regions.mesh().positions()) {
+                const Vec3 x = pose(i).apply(p);
+                const Eigen::Vector4d clip = m * Eigen::Vector4d(x.x(), x.y(), x.z(), 1.0);
+                if (!(clip.w() > 0)) return false;
+                const double px = (clip.x() / clip.w() + 1) * 0.5 * w, py = (1 - clip.y() / clip.w()) * 0.5 * h;
+                if (px < 6 || px > w - 6 || py < top || py > h - 6) return false;
+            }
+        return true;
+    }
+
     /// shiftUp: the view moves down by this fraction of the scene radius (room for the panel
     /// heading); zoom: the fraction of the scene's bounding sphere that is framed.
     void setupPanel(Canvas& c, double shiftUp, double zoom) const { c.setCamera(camera(shiftUp, zoom)); }
@@ -538,7 +553,11 @@ private:
                     const VClipFeature& fb, const Vec3& pa, const Vec3& pb, bool closest, const std::string& heading,
                     const std::string& sub) const {
         Canvas c(gl, canvasOptions(w, h, ss));
-        setupPanel(c, 0.28, 0.80);
+        // Framed as close as the panel allows with both bodies whole below its heading (the view
+        // rule: no body cut by its panel's edge; at 0.80 the review found box A cut at the bottom).
+        double zoom = 0.80;
+        for (int k = 0; k < 24 && !bodiesInside(camera(0.28, zoom), w, h, 96.0); ++k) zoom *= 1.03;
+        setupPanel(c, 0.28, zoom);
         drawBodies(c, true);
         const bool labels = common_.hasLayer("labels");
         drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureColor(0), featureLabel(fa, 0), centroid(1),
