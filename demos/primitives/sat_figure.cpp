@@ -236,6 +236,17 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
         if (isBox(in.a) && isBox(in.b)) at = bodyNamePoints(boxDrawable(in.a.box), boxDrawable(in.b.box));
         drawBodyName(c, at.first, nameA, Role::Ink);
         drawBodyName(c, at.second, nameB, Role::Ink);
+        // A triangle's edges numbered as the table's axes name them (core: edge j + 1 runs from
+        // vertex j to vertex j + 1), outside the triangle at each edge's middle.
+        for (const PrimitiveShape* s : {&in.a, &in.b}) {
+            if (s->kind != K::Triangle) continue;
+            const Vec3 centroid = (s->vertices[0] + s->vertices[1] + s->vertices[2]) / 3.0;
+            for (int j = 0; j < 3; ++j) {
+                const Vec3 mid = 0.5 * (s->vertices[std::size_t(j)] + s->vertices[std::size_t((j + 1) % 3)]);
+                drawLabelAway(c, mid, centroid, "edge " + std::to_string(j + 1), labelStyle(Role::Ink, 18.0f, false),
+                              8.0);
+            }
+        }
     }
     if (shown) {
         const auto at = [&](double k) { return Vec3(line.base + k * shown->unit); };
