@@ -10,6 +10,7 @@
 #include "demos/epa/epa_demo.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 
 #include "core/gjk_epa/epa.h"
@@ -267,9 +268,26 @@ private:
             if (!closest.empty()) cs.drawMesh(s.vertices, closest, closestColor().withAlpha(0.8f), true);
             LineStyle edge = lineStyle(Role::Simplex, 1.5f);
             edge.color = roleColor(Role::Simplex).scaled(0.6f);
-            for (const auto& f : s.faces)
-                for (int e = 0; e < 3; ++e)
-                    if (f[e] < f[(e + 1) % 3]) cs.drawLine(s.vertices[f[e]], s.vertices[f[(e + 1) % 3]], edge);
+            // Each edge once, dashed and faded where both its faces look away from the camera
+            // (the review: a 26-face polytope with every edge solid does not read as a solid).
+            Vec3 inside = Vec3::Zero();
+            for (const Vec3& v : s.vertices) inside += v;
+            inside /= double(std::max<std::size_t>(1, s.vertices.size()));
+            std::map<std::pair<int, int>, std::vector<Vec3>> normals;
+            for (const auto& f : s.faces) {
+                const Vec3 &a = s.vertices[f[0]], &b = s.vertices[f[1]], &c = s.vertices[f[2]];
+                Vec3 n = (b - a).cross(c - a);
+                if (n.dot(a - inside) < 0) n = -n;  // outward
+                for (int e = 0; e < 3; ++e) {
+                    const int u = f[e], w = f[(e + 1) % 3];
+                    normals[{std::min(u, w), std::max(u, w)}].push_back(n);
+                }
+            }
+            for (const auto& [key, ns] : normals) {
+                const Vec3 &p = s.vertices[key.first], &q = s.vertices[key.second];
+                const Vec3& n2 = ns.size() > 1 ? ns[1] : ns[0];
+                cs.drawLine(p, q, edgeStyleSeen(cs.camera(), 0.5 * (p + q), ns[0], n2, edge));
+            }
             if (showStep && common_.hasLayer("horizon"))
                 for (const auto& e : s.horizonEdges)
                     cs.drawLine(s.vertices[e[0]], s.vertices[e[1]], lineStyle(Role::Direction, 5.0f, false, true));
