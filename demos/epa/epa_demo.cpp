@@ -403,7 +403,8 @@ private:
                 drawKey(cs, 14, cs.height() - 28,  // at the bottom: the polytope fills the top
                         {{closestColor(), std::string("closest ") + (d.planar ? "edge" : "face")},
                          {roleColor(Role::Support), "visible from w (removed)"},
-                         {roleColor(Role::Direction), "horizon"}});
+                         {roleColor(Role::Direction),
+                          d.planar ? "horizon (dashed: its new edges to w)" : "horizon"}});  // the 2D drawing dashes them
             if (s->terminated)
                 sub = "converged: the closest " + std::string(d.planar ? "edge" : "face") + " is on the boundary";
         } else {
