@@ -129,7 +129,7 @@ static void nameOutlinesAndMarkers(FigureLayout& layout, const std::vector<int>&
 // the next labels keep off and their leaders do not cross.
 static void addLeader(const Vector2d& anchor, const Box& box, FigureLayout& layout, PlacementObstacles& obstacles,
                       std::vector<LineCmd>& leaders) {
-    const Vector2d near(std::clamp(anchor.x(), box.x0, box.x1), std::clamp(anchor.y(), box.y0, box.y1));
+    const Vector2d near = box.nearest(anchor);
     const Vector2d d = near - anchor;
     const Vector2d end = d.norm() > 4 ? Vector2d(near - 2.0 * d.normalized()) : near;
     LineStyle style{1.5f, roleColor(Role::Ink).withAlpha(0.85f), 0.0f, true};

@@ -1,6 +1,7 @@
 #include "render/figure_layout.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cdlab::render {
 
@@ -69,6 +70,16 @@ void FigureLayout::cover(const Box& area) {
         }
     }
     strokes = std::move(keptStrokes);
+}
+
+Eigen::Vector2d Box::nearest(const Eigen::Vector2d& p) const {
+    return {std::clamp(p.x(), x0, x1), std::clamp(p.y(), y0, y1)};
+}
+
+double Box::distanceTo(const Eigen::Vector2d& p) const {
+    const double dx = std::max({x0 - p.x(), 0.0, p.x() - x1});
+    const double dy = std::max({y0 - p.y(), 0.0, p.y() - y1});
+    return std::hypot(dx, dy);
 }
 
 bool Box::clip(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double& t0, double& t1) const {

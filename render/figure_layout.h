@@ -26,6 +26,10 @@ struct Box {
     bool contains(const Eigen::Vector2d& p) const { return p.x() >= x0 && p.x() <= x1 && p.y() >= y0 && p.y() <= y1; }
     Box translated(double dx, double dy) const { return {x0 + dx, y0 + dy, x1 + dx, y1 + dy}; }
     Box scaled(double s) const { return {x0 * s, y0 * s, x1 * s, y1 * s}; }
+    /// The box's point nearest to p (p itself inside): where a leader line from p meets the box.
+    Eigen::Vector2d nearest(const Eigen::Vector2d& p) const;
+    /// Distance from p to the box (0 inside).
+    double distanceTo(const Eigen::Vector2d& p) const;
     /// Segment ab clipped to the box (Liang–Barsky): its parameters [t0, t1] along ab inside, or
     /// false when no part of it is inside (a zero-length segment: whether its point is).
     bool clip(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double& t0, double& t1) const;
@@ -78,7 +82,7 @@ struct FigureLayout {
     void append(const FigureLayout& other, double dx, double dy);
     /// An opaque picture pasted over `area` hides what was there: strokes keep only their parts
     /// outside it; labels and markers wholly inside are dropped (indices into labels follow).
-    /// Call before appending the pasted picture's own layout (blitCovering, render/image.h).
+    /// Call before appending the pasted picture's own layout (drawGapInset, demos/draw/pair_figure.cpp).
     void cover(const Box& area);
     /// Every coordinate times s (a picture resized by s).
     FigureLayout scaled(double s) const;

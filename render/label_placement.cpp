@@ -18,11 +18,6 @@ double pointSegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d
     return (a + t * ab - p).norm();
 }
 
-double pointBoxDistance(const Vector2d& p, const Box& b) {
-    const double dx = std::max({b.x0 - p.x(), 0.0, p.x() - b.x1});
-    const double dy = std::max({b.y0 - p.y(), 0.0, p.y() - b.y1});
-    return std::hypot(dx, dy);
-}
 
 // Liang–Barsky: does segment ab enter the box?
 bool segmentHitsBox(const Vector2d& a, const Vector2d& b, const Box& box) {
@@ -68,7 +63,7 @@ bool segmentsCross(const Vector2d& a, const Vector2d& b, const Vector2d& c, cons
 
 double segmentBoxDistance(const Vector2d& a, const Vector2d& b, const Box& box) {
     if (segmentHitsBox(a, b, box)) return 0.0;
-    double d = std::min(pointBoxDistance(a, box), pointBoxDistance(b, box));
+    double d = std::min(box.distanceTo(a), box.distanceTo(b));
     const std::array<Vector2d, 4> corners = {Vector2d(box.x0, box.y0), Vector2d(box.x1, box.y0),
                                              Vector2d(box.x1, box.y1), Vector2d(box.x0, box.y1)};
     for (const Vector2d& c : corners) d = std::min(d, pointSegmentDistance(c, a, b));
@@ -98,9 +93,9 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
         if (free(centered) && offLines(centered, true)) return {true, centered, false};
     }
     const auto ambiguous = [&](const Box& b) {
-        const double own = pointBoxDistance(request.anchor, b);
+        const double own = b.distanceTo(request.anchor);
         for (const Vector2d& a : obstacles.anchors)
-            if ((a - request.anchor).norm() >= 1.0 && pointBoxDistance(a, b) + 0.5 < own) return true;
+            if ((a - request.anchor).norm() >= 1.0 && b.distanceTo(a) + 0.5 < own) return true;
         return false;
     };
     const std::vector<Vector2d> dirs = candidateDirections(request.preferred);
@@ -109,7 +104,7 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
     // past the anchor (an arrow's shaft, a body's edge: it reads as part of it, or as naming that
     // stroke's far end); 500 for passing through another label or marker (it reads as naming it).
     const auto leaderCost = [&](const Box& b) {
-        const Vector2d near(std::clamp(request.anchor.x(), b.x0, b.x1), std::clamp(request.anchor.y(), b.y0, b.y1));
+        const Vector2d near = b.nearest(request.anchor);
         const Vector2d leader = near - request.anchor;
         const double length = leader.norm();
         if (length < 1) return 0.0;
@@ -121,6 +116,14 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             if (o.clip(request.anchor, near, t0, t1) && (t1 - t0) * length > 1.0) cost += 500;
         }
         for (const PlacementObstacles::Line& l : obstacles.lines) {
+            // 15 for passing by or ending at another vertex (a stroke's end away from the anchor,
+            // its own body's too): the label reads as naming that corner (figure review: "V1 (A)"
+            // led to the icosahedron's silhouette vertex, "s_B(−n)" to the box's hidden corner).
+            for (const Vector2d& end : {l.a, l.b})
+                if ((end - request.anchor).norm() > 6.0 && pointSegmentDistance(end, request.anchor, near) < 5.0) {
+                    cost += 15;
+                    break;
+                }
             if (l.owner != 0 && l.owner == request.names) continue;
             if (segmentsCross(request.anchor, near, l.a, l.b)) cost += 3;
             const Vector2d ld = l.b - l.a;
@@ -132,15 +135,6 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             const bool fromEnd = (l.a - request.anchor).norm() < 5.0 || (l.b - request.anchor).norm() < 5.0;
             if (along >= 3 || fromEnd) cost += 40;
         }
-        // Passing by or ending at another vertex (a stroke's end away from the anchor): the label
-        // reads as naming that corner (figure review: "V1 (A)" led to the icosahedron's silhouette
-        // vertex, "s_B(−n)" to the box's hidden corner).
-        for (const PlacementObstacles::Line& l : obstacles.lines)
-            for (const Vector2d& end : {l.a, l.b})
-                if ((end - request.anchor).norm() > 6.0 && pointSegmentDistance(end, request.anchor, near) < 5.0) {
-                    cost += 15;
-                    break;
-                }
         return cost;
     };
     // Rings: next to the anchor, then farther out with a leader line back to it; the last ten

@@ -59,13 +59,6 @@ double lengthInside(const Box& box, const Eigen::Vector2d& a, const Eigen::Vecto
     return len > 0 ? (t1 - t0) * len : 1.0;
 }
 
-// Distance from p to the box (0 inside).
-double distanceTo(const Box& box, const Eigen::Vector2d& p) {
-    const double dx = std::max({box.x0 - p.x(), 0.0, p.x() - box.x1});
-    const double dy = std::max({box.y0 - p.y(), 0.0, p.y() - box.y1});
-    return std::hypot(dx, dy);
-}
-
 // Labels crossing strokes, and labels nearer another anchor than their own.
 void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) {
     const std::vector<LayoutLabel>& labels = layout.labels;
@@ -89,10 +82,10 @@ void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProb
             out.push_back({LegibilityKind::LabelOnStroke, labels[i].text, s, worst});
         }
         if (!labels[i].anchor) continue;
-        const double own = distanceTo(b, *labels[i].anchor);
+        const double own = b.distanceTo(*labels[i].anchor);
         for (std::size_t j = 0; j < labels.size(); ++j) {
             if (j == i || !labels[j].anchor || (*labels[j].anchor - *labels[i].anchor).norm() < 1.0) continue;
-            const double other = distanceTo(b, *labels[j].anchor);
+            const double other = b.distanceTo(*labels[j].anchor);
             if (other + 0.5 < own) {
                 char s[128];
                 std::snprintf(s, sizeof s, "%.1f px from \"%s\"'s anchor, %.1f px from its own", other,

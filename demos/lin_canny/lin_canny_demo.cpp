@@ -247,17 +247,15 @@ private:
         return cam;
     }
 
-    /// Do both bodies' vertices project inside a w x h panel, `top` px below its top edge, 6 px
-    /// from the others?
-    bool bodiesInside(const Camera& cam, int w, int h, double top) const {
-        const Eigen::Matrix4d m = cam.viewProjection(double(w) / h);
+    /// Do both bodies' vertices project inside the canvas, `top` px below its top edge, 6 px from
+    /// the others, through its camera?
+    bool bodiesInside(const Canvas& c, double top) const {
         for (int i = 0; i < 2; ++i)
             for (const Vec3& p : body(i).regions.mesh().positions()) {
-                const Vec3 x = pose(i).apply(p);
-                const Eigen::Vector4d clip = m * Eigen::Vector4d(x.x(), x.y(), x.z(), 1.0);
-                if (!(clip.w() > 0)) return false;
-                const double px = (clip.x() / clip.w() + 1) * 0.5 * w, py = (1 - clip.y() / clip.w()) * 0.5 * h;
-                if (px < 6 || px > w - 6 || py < top || py > h - 6) return false;
+                Eigen::Vector2d px;
+                if (!c.project(pose(i).apply(p), px) || px.x() < 6 || px.x() > c.width() - 6 || px.y() < top ||
+                    px.y() > c.height() - 6)
+                    return false;
             }
         return true;
     }
@@ -556,8 +554,8 @@ private:
         // Framed as close as the panel allows with both bodies whole below its heading (the view
         // rule: no body cut by its panel's edge; at 0.80 the review found box A cut at the bottom).
         double zoom = 0.80;
-        for (int k = 0; k < 24 && !bodiesInside(camera(0.28, zoom), w, h, 96.0); ++k) zoom *= 1.03;
         setupPanel(c, 0.28, zoom);
+        for (int k = 0; k < 24 && !bodiesInside(c, 96.0); ++k) setupPanel(c, 0.28, zoom *= 1.03);
         drawBodies(c, true);
         const bool labels = common_.hasLayer("labels");
         drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureColor(0), featureLabel(fa, 0), centroid(1),

@@ -238,8 +238,7 @@ TEST_SUITE("label placement") {
         }
         const PlacementRequest r{at, Vector2d(20, 10), Vector2d(-1, 0), 6};
         const auto leaderOf = [&](const Placement& p) {
-            const Vector2d near(std::clamp(at.x(), p.box.x0, p.box.x1), std::clamp(at.y(), p.box.y0, p.box.y1));
-            return Vector2d(near - at);
+            return Vector2d(p.box.nearest(at) - at);
         };
         const Placement inRow = placeLabel(r, fence);
         REQUIRE(inRow.placed);
