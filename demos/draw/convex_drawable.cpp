@@ -204,6 +204,30 @@ LineStyle edgeStyleSeen(const Camera& camera, const Vec3& midpoint, const Vec3& 
     return hidden;
 }
 
+void drawConvexMeshEdges(Canvas& canvas, const std::vector<Vec3>& vertices, const std::vector<Eigen::Vector3i>& faces,
+                         const LineStyle& visible) {
+    Vec3 inside = Vec3::Zero();
+    for (const Vec3& v : vertices) inside += v;
+    inside /= double(std::max<std::size_t>(1, vertices.size()));
+    std::map<std::pair<int, int>, std::vector<Vec3>> normals;  // by edge, its faces' outward normals
+    for (const Eigen::Vector3i& f : faces) {
+        const Vec3 &a = vertices[std::size_t(f[0])], &b = vertices[std::size_t(f[1])], &c = vertices[std::size_t(f[2])];
+        Vec3 n = (b - a).cross(c - a);
+        if (n.dot(a - inside) < 0) n = -n;
+        for (int e = 0; e < 3; ++e) {
+            const int u = f[e], w = f[(e + 1) % 3];
+            normals[{std::min(u, w), std::max(u, w)}].push_back(n);
+        }
+    }
+    for (const auto& [edge, ns] : normals) {
+        const Vec3 &p = vertices[std::size_t(edge.first)], &q = vertices[std::size_t(edge.second)];
+        const double flat = 1e-9 * (q - p).squaredNorm();
+        const bool seenFaces = std::all_of(ns.begin(), ns.end(), [&](const Vec3& n) { return n.norm() > flat; });
+        const Vec3& n2 = ns.size() > 1 ? ns[1] : ns[0];
+        canvas.drawLine(p, q, seenFaces ? edgeStyleSeen(canvas.camera(), 0.5 * (p + q), ns[0], n2, visible) : visible);
+    }
+}
+
 void drawOrigin(Canvas& canvas, double size, bool planar) {
     LineStyle ls = lineStyle(Role::Origin, 2.0f, false, true);
     for (int k = 0; k < (planar ? 2 : 3); ++k) {

@@ -52,6 +52,15 @@ bool facesCamera(const render::Camera& camera, const Vec3& point, const Vec3& no
 /// a translucent body reads in depth instead of flipping like a Necker cube.
 render::LineStyle edgeStyleSeen(const render::Camera& camera, const Vec3& midpoint, const Vec3& n1, const Vec3& n2,
                                 render::LineStyle visible);
+/// The four faces of a tetrahedron over vertex ids 0..3 (a GJK or EPA simplex drawn as a mesh).
+inline const std::vector<Eigen::Vector3i> kTetrahedronFaces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+/// Each edge of a closed convex triangle mesh (an EPA polytope, a GJK tetrahedron) once, in the
+/// order of its vertex ids, styled by edgeStyleSeen with the outward normals (away from the
+/// vertices' mean) of the faces meeting at it; an edge beside a flat face (normal under 1e-9 of
+/// the edge's length squared) is drawn `visible`.
+void drawConvexMeshEdges(render::Canvas& canvas, const std::vector<Vec3>& vertices,
+                         const std::vector<Eigen::Vector3i>& faces, const render::LineStyle& visible);
 
 /// True when `point` is seen through a convex body given by its face planes (unit outward normals,
 /// world frame; n · x <= d inside): the ray from the point towards the camera runs inside the body

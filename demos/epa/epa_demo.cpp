@@ -10,7 +10,6 @@
 #include "demos/epa/epa_demo.h"
 
 #include <algorithm>
-#include <map>
 #include <cmath>
 
 #include "core/gjk_epa/epa.h"
@@ -270,24 +269,9 @@ private:
             edge.color = roleColor(Role::Simplex).scaled(0.6f);
             // Each edge once, dashed and faded where both its faces look away from the camera
             // (the review: a 26-face polytope with every edge solid does not read as a solid).
-            Vec3 inside = Vec3::Zero();
-            for (const Vec3& v : s.vertices) inside += v;
-            inside /= double(std::max<std::size_t>(1, s.vertices.size()));
-            std::map<std::pair<int, int>, std::vector<Vec3>> normals;
-            for (const auto& f : s.faces) {
-                const Vec3 &a = s.vertices[f[0]], &b = s.vertices[f[1]], &c = s.vertices[f[2]];
-                Vec3 n = (b - a).cross(c - a);
-                if (n.dot(a - inside) < 0) n = -n;  // outward
-                for (int e = 0; e < 3; ++e) {
-                    const int u = f[e], w = f[(e + 1) % 3];
-                    normals[{std::min(u, w), std::max(u, w)}].push_back(n);
-                }
-            }
-            for (const auto& [key, ns] : normals) {
-                const Vec3 &p = s.vertices[key.first], &q = s.vertices[key.second];
-                const Vec3& n2 = ns.size() > 1 ? ns[1] : ns[0];
-                cs.drawLine(p, q, edgeStyleSeen(cs.camera(), 0.5 * (p + q), ns[0], n2, edge));
-            }
+            std::vector<Eigen::Vector3i> all;
+            for (const auto& f : s.faces) all.emplace_back(f[0], f[1], f[2]);
+            drawConvexMeshEdges(cs, s.vertices, all, edge);
             if (showStep && common_.hasLayer("horizon"))
                 for (const auto& e : s.horizonEdges)
                     cs.drawLine(s.vertices[e[0]], s.vertices[e[1]], lineStyle(Role::Direction, 5.0f, false, true));
@@ -383,10 +367,7 @@ private:
             for (int i = 0; i < run.gjk.simplex.count; ++i) w.push_back(run.gjk.simplex.vertex[i].w);
             if (w.size() == 3) cs.drawPolygon(w, roleColor(Role::Simplex).withAlpha(0.35f));
             if (w.size() == 4)
-                cs.drawMesh(w,
-                            {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2),
-                             Eigen::Vector3i(1, 2, 3)},
-                            roleColor(Role::Simplex).withAlpha(0.3f), true);
+                cs.drawMesh(w, kTetrahedronFaces, roleColor(Role::Simplex).withAlpha(0.3f), true);
             for (std::size_t i = 0; i < w.size(); ++i) {
                 for (std::size_t j = i + 1; j < w.size(); ++j)
                     cs.drawLine(w[i], w[j], lineStyle(Role::Simplex, 4.0f, false, true));

@@ -281,33 +281,14 @@ private:
         for (int k : kept) kv.push_back(w[k]);
         if (kv.size() == 3) cs.drawPolygon(kv, roleColor(Role::Simplex).withAlpha(0.35f));
         if (kv.size() == 4)
-            cs.drawMesh(kv,
-                        {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2),
-                         Eigen::Vector3i(1, 2, 3)},
-                        roleColor(Role::Simplex).withAlpha(0.3f), true);
-        // A kept tetrahedron's edges behind it dashed and faded (edgeStyleSeen), so whether O is
-        // inside reads (the review: gjk/deep_penetration's final tetrahedron all solid). The
-        // faces beside edge ij hold one of the other two vertices; each normal points away from
-        // the vertex it leaves out. A flat tetrahedron keeps its edges solid.
-        for (std::size_t i = 0; i < kv.size(); ++i)
-            for (std::size_t j = i + 1; j < kv.size(); ++j) {
-                LineStyle style = lineStyle(Role::Simplex, 4.0f, false, true);
-                if (kv.size() == 4) {
-                    Vec3 n[2];
-                    int m = 0;
-                    for (std::size_t k = 0; k < 4; ++k) {
-                        if (k == i || k == j) continue;
-                        const std::size_t out = 6 - i - j - k;  // the vertex the face leaves out
-                        n[m] = (kv[j] - kv[i]).cross(kv[k] - kv[i]);
-                        if (n[m].dot(kv[out] - kv[i]) > 0) n[m] = -n[m];
-                        ++m;
-                    }
-                    const double scale = (kv[j] - kv[i]).squaredNorm();
-                    if (n[0].norm() > 1e-9 * scale && n[1].norm() > 1e-9 * scale)
-                        style = edgeStyleSeen(cs.camera(), 0.5 * (kv[i] + kv[j]), n[0], n[1], style);
-                }
-                cs.drawLine(kv[i], kv[j], style);
-            }
+            cs.drawMesh(kv, kTetrahedronFaces, roleColor(Role::Simplex).withAlpha(0.3f), true);
+        // A kept tetrahedron's edges behind it dashed and faded, so whether O is inside reads (the
+        // review: gjk/deep_penetration's final tetrahedron all solid).
+        const LineStyle edge = lineStyle(Role::Simplex, 4.0f, false, true);
+        if (kv.size() == 4) drawConvexMeshEdges(cs, kv, kTetrahedronFaces, edge);
+        else
+            for (std::size_t i = 0; i < kv.size(); ++i)
+                for (std::size_t j = i + 1; j < kv.size(); ++j) cs.drawLine(kv[i], kv[j], edge);
         for (std::size_t i = 0; i < w.size(); ++i) {
             const bool isKept = std::find(kept.begin(), kept.end(), int(i)) != kept.end();
             cs.drawPoint(w[i], isKept ? 8.0f : 6.0f, isKept ? roleColor(Role::Simplex) : roleColor(Role::Muted), true,
