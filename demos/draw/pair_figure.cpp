@@ -150,8 +150,7 @@ void markGapInset(Canvas& world, const GapInset& g, const Vec3& pa, const Vec3& 
     // A connector from the square's nearest corner to the inset's nearest point on its border.
     const Eigen::Vector2d c(m.x() + (g.x + 0.5 * g.w > m.x() ? half : -half),
                             m.y() + (g.y + 0.5 * g.h > m.y() ? half : -half));
-    const Eigen::Vector2d e(std::clamp(c.x(), double(g.x), double(g.x + g.w)),
-                            std::clamp(c.y(), double(g.y), double(g.y + g.h)));
+    const Eigen::Vector2d e = g.area().nearest(c);
     if ((e - c).norm() > 4) world.drawLine(at(c.x() - m.x(), c.y() - m.y()), at(e.x() - m.x(), e.y() - m.y()), ink);
 }
 
@@ -162,7 +161,7 @@ void drawGapInset(GlContext& gl, Image& panel, int scale, const GapInset& g, con
     const Camera cam = d.planar ? Camera::twoD(mid.x(), mid.y(), 2.0 * g.radius)
                                 : framingCamera(mid, g.radius, view, Vec3::UnitY(), true);
     // What the inset covers is hidden: the world panel's strokes and labels there are not seen.
-    panel.layout.cover(Box{double(g.x), double(g.y), double(g.x + g.w), double(g.y + g.h)}.scaled(panel.scale));
+    panel.layout.cover(g.area().scaled(panel.scale));
     // The heading in a strip of its own above the picture, so no stroke runs under it.
     {
         Canvas strip(gl, canvasOptions(g.w, GapInset::kHeading, scale), Camera::pixels(g.w, GapInset::kHeading));

@@ -70,6 +70,7 @@ struct GapInset {
     double radius = 0;               // world units the inset frames about the segment's middle
     double zoom = 1;
     static constexpr int kHeading = 24;  // px of the inset's top strip: the zoom and the gap
+    render::Box area() const { return {double(x), double(y), double(x + w), double(y + h)}; }
 };
 GapInset planGapInset(const render::Canvas& world, const TwoPanelLayout& layout, const PairDrawing& d, const Vec3& pa,
                       const Vec3& pb);
