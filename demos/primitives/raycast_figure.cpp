@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/closest/closest_point_box.h"
 #include "core/overlap/intersect_ray.h"
 #include "render/legibility.h"
 #include "demos/draw/figure_canvas.h"
@@ -328,9 +329,8 @@ Vec3 viewAcrossMiss(const RaycastInput& in, double tEnd) {
     double best = kInf;
     for (int k = 0; k <= 4096; ++k) {
         const Vec3 p = in.origin + (tEnd * k / 4096.0) * in.direction;
-        const Vec3 local = box.axes.transpose() * (p - box.center);
-        const Vec3 q = box.center + box.axes * local.cwiseMax(-box.halfExtents).cwiseMin(box.halfExtents);
-        if ((p - q).norm() < best) best = (p - q).norm(), gap = p - q;
+        const BoxRegionResult q = closestPointOnBox(p, box);
+        if (q.valid && q.distance < best) best = q.distance, gap = p - q.point;
     }
     if (!(gap.norm() > 0) || !(in.direction.norm() > 0)) return usual;
     const Vec3 g = gap.normalized();
