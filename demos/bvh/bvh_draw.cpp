@@ -319,29 +319,31 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
     };
     const double plotH = H - top - bottom, groupW = (W - left - right) / groups, barW = 0.8 * groupW / ns;
     c.drawLine(P(left - 4, H - bottom), P(W - right, H - bottom), lineStyle(Role::Ink, 1.5f));
-    if (valueAxis) {  // ticks at 2, 5 or 10 x 10^k, at most five of them
+    // The value axis: a linear one ticked at 2, 5 or 10 x 10^k (at most five, with grid lines); a
+    // log scale at its decades, ticks only, the values sitting on the bars (the review: 389
+    // against 10000 read as 1 : 2 on bars with no axis).
+    std::vector<std::pair<double, std::string>> ticks;
+    char buf[32];
+    if (valueAxis) {
         const double raw = hi / 4, decade = std::pow(10.0, std::floor(std::log10(raw)));
         const double tickStep = raw / decade < 2 ? 2 * decade : raw / decade < 5 ? 5 * decade : 10 * decade;
-        c.drawLine(P(left - 4, H - bottom), P(left - 4, top), lineStyle(Role::Ink, 1.5f));
         for (double v = 0; v <= hi * (1 + 1e-9); v += tickStep) {
-            const double y = H - bottom - frac(v) * plotH;
-            c.drawLine(P(left - 8, y), P(left - 4, y), lineStyle(Role::Ink, 1.5f));
-            c.drawLine(P(left - 4, y), P(W - right, y), lineStyle(Role::Muted, 1.0f, true));
-            char buf[32];
             std::snprintf(buf, sizeof buf, "%g", v);
-            c.drawTextPx(left - 11, y, buf, TextStyle{13.0f, roleColor(Role::Ink), Anchor::Right, true, false});
+            ticks.emplace_back(v, buf);
         }
-    }
-    if (in.logY) {  // a log scale carries its decades (the review: 389 against 10000 read as 1 : 2)
-        c.drawLine(P(left - 4, H - bottom), P(left - 4, top), lineStyle(Role::Ink, 1.5f));
+    } else if (in.logY) {
         for (int e = int(std::ceil(logLo)); e <= int(std::floor(logHi)); ++e) {
-            const double y = H - bottom - frac(std::pow(10.0, e)) * plotH;
-            c.drawLine(P(left - 8, y), P(left - 4, y), lineStyle(Role::Ink, 1.5f));  // ticks only: the
-            char buf[32];                                                             // values sit on the bars
             if (e >= 0 && e <= 4) std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, e));
             else std::snprintf(buf, sizeof buf, "1e%d", e);
-            c.drawTextPx(left - 11, y, buf, TextStyle{13.0f, roleColor(Role::Ink), Anchor::Right, true, false});
+            ticks.emplace_back(std::pow(10.0, e), buf);
         }
+    }
+    if (valueAxis || in.logY) c.drawLine(P(left - 4, H - bottom), P(left - 4, top), lineStyle(Role::Ink, 1.5f));
+    for (const auto& [v, text] : ticks) {
+        const double y = H - bottom - frac(v) * plotH;
+        c.drawLine(P(left - 8, y), P(left - 4, y), lineStyle(Role::Ink, 1.5f));
+        if (valueAxis) c.drawLine(P(left - 4, y), P(W - right, y), lineStyle(Role::Muted, 1.0f, true));
+        c.drawTextPx(left - 11, y, text, TextStyle{13.0f, roleColor(Role::Ink), Anchor::Right, true, false});
     }
     const TextStyle value{13.0f, roleColor(Role::Ink), Anchor::Bottom, true, false};
     for (int g = 0; g < groups; ++g) {
