@@ -53,29 +53,7 @@ PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vect
 /// intersect their outlines take Role::Colliding, with a key where outlines are drawn.
 void drawPairBodies(render::Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels);
 
-/// A gap too small to see in the world panel (0 < |pa − pb| < 3% of the drawing's world radius)
-/// magnified in an inset: both bodies, p_A, p_B and their segment about the segment's middle,
-/// bordered, in the corner of the panel (below the heading) that covers the fewest of the bodies'
-/// projected vertices and neither point. Three steps, because the world panel's canvas draws the
-/// marks before it is read and the inset is pasted after: planGapInset (where, how much zoom;
-/// shown false when the gap is visible as it is), markGapInset (on `world`: a square where the
-/// inset is taken from and a connector to it), drawGapInset (renders the inset into `panel`, the
-/// world canvas's image, under a strip headed with the zoom and the gap).
 /// The name under which a pair figure records the witness distance it draws (Canvas::noteQuantity).
 inline const std::string kDistanceQuantity = "distance |p_A − p_B|";
-
-struct GapInset {
-    bool shown = false;
-    int x = 0, y = 0, w = 0, h = 0;  // px in the panel
-    double radius = 0;               // world units the inset frames about the segment's middle
-    double zoom = 1;
-    static constexpr int kHeading = 24;  // px of the inset's top strip: the zoom and the gap
-    render::Box area() const { return {double(x), double(y), double(x + w), double(y + h)}; }
-};
-GapInset planGapInset(const render::Canvas& world, const TwoPanelLayout& layout, const PairDrawing& d, const Vec3& pa,
-                      const Vec3& pb);
-void markGapInset(render::Canvas& world, const GapInset& inset, const Vec3& pa, const Vec3& pb);
-void drawGapInset(render::GlContext& gl, render::Image& panel, int scale, const GapInset& inset, const PairDrawing& d,
-                  const Vec3& view, const Vec3& pa, const Vec3& pb);
 
 }  // namespace cdlab::demos

@@ -20,6 +20,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
+#include "demos/draw/zoom_inset.h"
 #include "app/scene/pair_scene.h"
 #include "render/canvas.h"
 
@@ -188,13 +189,19 @@ private:
                          s                                     ? "witness points of the kept simplex"
                          : r.status == GjkStatus::Intersecting ? "intersecting: a common point, no closest points"
                                                                : "closest points");
-        // The result's gap, magnified when the panel cannot show it (gjk/sliver: 0.0048).
-        GapInset inset;
-        if (!s && r.status != GjkStatus::Intersecting && common_.hasLayer("witness"))
-            inset = planGapInset(world, layout, d, pa, pb);
-        markGapInset(world, inset, pa, pb);
-        Image image = world.readPixels();
-        drawGapInset(gl, image, po.scale, inset, d, pair_.view, pa, pb);
+        // The result's gap, magnified when the panel draws it under 12 px (gjk/sliver: 0.0048).
+        if (s || r.status == GjkStatus::Intersecting || !common_.hasLayer("witness")) return world.readPixels();
+        ZoomTarget gap{kDistanceQuantity, "gap " + formatNumber((pa - pb).norm()), pa, pb, [&](Canvas& c) {
+                           drawPairBodies(c, d, 0.45f, false, false);
+                           c.drawPoint(pa, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                           c.drawPoint(pb, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                           // The bodies' centres lie far outside the inset: each name points away from the other point.
+                           const TextStyle ts{16.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                           drawLabelAway(c, pa, pb, "p_A", ts);
+                           drawLabelAway(c, pb, pa, "p_B", ts);
+                       }};
+        const Image image = readPixelsZoomed(gl, world, po.scale, gap,
+                                             Box{14.0, 70.0, layout.panelWidth() - 14.0, layout.panelHeight() - 14.0});
         return image;
     }
 

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 
 #include "core/closest/feature_distance.h"
@@ -26,6 +27,7 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/zoom_inset.h"
 #include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 
@@ -128,12 +130,13 @@ struct Legend {
 // The frame's title, its result line at the bottom and, above it, the scene's caption (docs/scenes.md
 // promises the caption on every frame).
 Frame finish(Canvas& c, const std::string& name, const std::string& title, const std::string& caption,
-             const std::string& shortCaption, const std::string& sceneCaption) {
+             const std::string& shortCaption, const std::string& sceneCaption,
+             const std::function<Image(Canvas&)>& read = {}) {
     drawTitleAndCaption(c, title, caption);
     if (!sceneCaption.empty())
         c.drawTextPx(18.0, c.height() - 18.0 - 28.0, sceneCaption,
                      TextStyle{17.0f, roleColor(Role::Muted).scaled(0.8f), Anchor::BottomLeft, true, false});
-    return Frame{name, shortCaption, c.readPixels()};
+    return Frame{name, shortCaption, read ? read(c) : c.readPixels()};
 }
 
 Json pointsJson(std::span<const ContactPoint> pts) {
@@ -554,8 +557,32 @@ private:
             cam.target += 0.3 * radius * right;
         }
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
-        drawPosed(c, a, roleColor(Role::ShapeA), 0.35f, r.colliding());
-        drawPosed(c, b, roleColor(Role::ShapeB), 0.35f, r.colliding());
+        // The bodies, the clipped faces and the manifold: the picture, and again in the depth's inset.
+        const std::vector<Vec3> rp = faceContact ? facePolygon(ref, tr.referenceFace) : std::vector<Vec3>{};
+        const auto drawGeometry = [&](Canvas& on) {
+            drawPosed(on, a, roleColor(Role::ShapeA), 0.35f, r.colliding());
+            drawPosed(on, b, roleColor(Role::ShapeB), 0.35f, r.colliding());
+            if (faceContact) {
+                on.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
+                on.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
+                on.drawPolyline(facePolygon(inc, tr.incidentFace), true, lineStyle(incRole, 4.0f, true, true));
+            }
+            if (!faceContact && r.colliding() && !r.manifold.empty()) {
+                const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
+                const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
+                on.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)),
+                            lineStyle(Role::ShapeA, 6.0f, false, true));
+                on.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)),
+                            lineStyle(Role::ShapeB, 6.0f, false, true));
+            }
+            if (!common_.hasLayer("contacts")) return;
+            for (const ContactPoint& p : r.manifold) {
+                on.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
+                on.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
+                on.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+            }
+        };
+        drawGeometry(c);
         Legend lg{c};
         if (labels) {
             lg.item("body A", Role::ShapeA);
@@ -564,22 +591,12 @@ private:
         }
         Vec3 axisFrom = center;
         if (faceContact) {
-            const std::vector<Vec3> rp = facePolygon(ref, tr.referenceFace), ip = facePolygon(inc, tr.incidentFace);
-            c.drawPolygon(rp, roleColor(refRole).withAlpha(0.6f));
-            c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
-            c.drawPolyline(ip, true, lineStyle(incRole, 4.0f, true, true));
             axisFrom = centroid(rp);
             if (labels) {
                 lg.item(std::string("reference face (") + (tr.referenceOnA ? "A" : "B") + "), black outline", refRole);
                 lg.item(std::string("- - incident face (") + (tr.referenceOnA ? "B" : "A") + ")", incRole);
             }
         } else if (r.colliding() && !r.manifold.empty()) {
-            const auto [a0, a1] = a.mesh.edgeVertices(r.featureA.index);
-            const auto [b0, b1] = b.mesh.edgeVertices(r.featureB.index);
-            c.drawLine(a.pose.apply(a.mesh.position(a0)), a.pose.apply(a.mesh.position(a1)),
-                       lineStyle(Role::ShapeA, 6.0f, false, true));
-            c.drawLine(b.pose.apply(b.mesh.position(b0)), b.pose.apply(b.mesh.position(b1)),
-                       lineStyle(Role::ShapeB, 6.0f, false, true));
             axisFrom = r.manifold[0].pointA;
             if (labels) lg.item("edges of the edge–edge axis", Role::Ink);
         }
@@ -593,18 +610,21 @@ private:
                 lg.item("→ axis of least penetration", Role::Direction);
             }
         }
+        // The depth the caption names, drawn as the deepest point's segment (magnified under 12 px).
+        const ContactPoint* deepest = nullptr;
         if (common_.hasLayer("contacts")) {
-            const ContactPoint* deepest = nullptr;
-            for (const ContactPoint& p : r.manifold) {
-                c.drawLine(p.pointA, p.pointB, lineStyle(Role::Ink, 2.0f, false, true));
-                c.drawPoint(p.pointA, 6.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
-                c.drawPoint(p.pointB, 4.0f, roleColor(Role::Ink), true);
+            for (const ContactPoint& p : r.manifold)
                 if (!deepest || p.depth > deepest->depth) deepest = &p;
-            }
-            // The depth the caption names, drawn as the deepest point's segment.
             if (deepest && deepest->depth > 0) c.noteQuantity("depth", deepest->pointA, deepest->pointB);
             if (labels && !r.manifold.empty()) lg.item("manifold points (on A), depth segments", Role::Result);
         }
+        std::function<Image(Canvas&)> read;
+        if (deepest && deepest->depth > 0)
+            read = [&, p = deepest->pointA, q = deepest->pointB](Canvas& on) {
+                const ZoomTarget depth{"depth", "depth " + fmt(deepest->depth), p, q, drawGeometry};
+                return readPixelsZoomed(gl, on, ss, depth,
+                                        Box{14.0, 70.0, common_.image.width - 14.0, common_.image.height - 80.0});
+            };
         char cap[400];
         if (r.colliding())
             std::snprintf(cap, sizeof cap, "%s axis, depth %s, %d point%s; %s", nameOf(r.axisKind),
@@ -612,7 +632,8 @@ private:
         else
             std::snprintf(cap, sizeof cap, "Separated by %s along the %s axis; %s", fmt(r.separation).c_str(),
                           nameOf(r.axisKind), counts);
-        return finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind), common_.caption);
+        return finish(c, "contact", common_.title, cap, std::string("SAT contact: ") + nameOf(r.axisKind), common_.caption,
+                      read);
     }
 
     // The clip seen along the reference normal: reference face, incident face, each side-plane step.

@@ -9,6 +9,7 @@
 #include "core/overlap/sat_tests.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/zoom_inset.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
 #include "app/scene/json_reader.h"
@@ -224,18 +225,43 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
     const Role roleOf[2] = {Role::ShapeA, Role::ShapeB};
     const std::string nameA = run.pair.boxIsA ? run.pair.boxName : run.pair.otherName;
     const std::string nameB = run.pair.boxIsA ? run.pair.otherName : run.pair.boxName;
-    c.setStrokeOwner(bodyOwner(nameA));
-    drawShape(c, in.a, roleOf[0]);
-    c.setStrokeOwner(bodyOwner(nameB));
-    drawShape(c, in.b, roleOf[1]);
-    c.setStrokeOwner(0);
+    const auto at = [&](double k) { return Vec3(line.base + k * shown->unit); };
+    // The shapes, the axis, the dashed projections and the two intervals: the picture, and again
+    // in the inset that magnifies a gap or depth drawn under 12 px.
+    const auto drawGeometry = [&](Canvas& on) {
+        on.setStrokeOwner(bodyOwner(nameA));
+        drawShape(on, in.a, roleOf[0]);
+        on.setStrokeOwner(bodyOwner(nameB));
+        drawShape(on, in.b, roleOf[1]);
+        on.setStrokeOwner(0);
+        if (!shown) return;
+        on.drawArrow(at(line.lo), at(line.hi), lineStyle(Role::Muted, 2.0f, false, true));
+        // Each interval's ends come from a shape's extreme points along the axis: dashed lines show which.
+        for (const PrimitiveShape* s : {&in.a, &in.b}) {
+            const Vec3* lo = &s->vertices.front();
+            const Vec3* hi = lo;
+            for (const Vec3& v : s->vertices) {
+                if (v.dot(shown->unit) < lo->dot(shown->unit)) lo = &v;
+                if (v.dot(shown->unit) > hi->dot(shown->unit)) hi = &v;
+            }
+            for (const Vec3* v : {lo, hi})
+                on.drawLine(*v, at((*v - origin).dot(shown->unit)), lineStyle(Role::Muted, 1.5f, true));
+        }
+        const Role boxRole = run.pair.boxIsA ? roleOf[0] : roleOf[1];
+        const Role otherRole = run.pair.boxIsA ? roleOf[1] : roleOf[0];
+        // Side by side across the line, so that an overlap shows both bars.
+        const Vec3 apart = 0.012 * size * line.across;
+        on.drawLine(at(shown->boxLo) - apart, at(shown->boxHi) - apart, lineStyle(boxRole, 8.0f, false, true));
+        on.drawLine(at(shown->otherLo) + apart, at(shown->otherHi) + apart, lineStyle(otherRole, 8.0f, false, true));
+    };
+    drawGeometry(c);
     const bool labels = scene.hasLayer("labels");
     if (labels) {
         // Two boxes deep in each other: the larger one's name moves onto a part the other leaves free.
-        std::pair<Vec3, Vec3> at{centreOf(in.a), centreOf(in.b)};
-        if (isBox(in.a) && isBox(in.b)) at = bodyNamePoints(boxDrawable(in.a.box), boxDrawable(in.b.box));
-        drawBodyName(c, at.first, nameA, Role::Ink);
-        drawBodyName(c, at.second, nameB, Role::Ink);
+        std::pair<Vec3, Vec3> names{centreOf(in.a), centreOf(in.b)};
+        if (isBox(in.a) && isBox(in.b)) names = bodyNamePoints(boxDrawable(in.a.box), boxDrawable(in.b.box));
+        drawBodyName(c, names.first, nameA, Role::Ink);
+        drawBodyName(c, names.second, nameB, Role::Ink);
         // A triangle's edges numbered as the table's axes name them (core: edge j + 1 runs from
         // vertex j to vertex j + 1), outside the triangle at each edge's middle.
         for (const PrimitiveShape* s : {&in.a, &in.b}) {
@@ -248,47 +274,33 @@ Image satPicture(GlContext& gl, const SceneCommon& scene, int scale, int height,
             }
         }
     }
-    if (shown) {
-        const auto at = [&](double k) { return Vec3(line.base + k * shown->unit); };
-        c.drawArrow(at(line.lo), at(line.hi), lineStyle(Role::Muted, 2.0f, false, true));
-        // Each interval's ends come from a shape's extreme points along the axis: dashed lines show which.
-        for (const PrimitiveShape* s : {&in.a, &in.b}) {
-            const Vec3* lo = &s->vertices.front();
-            const Vec3* hi = lo;
-            for (const Vec3& v : s->vertices) {
-                if (v.dot(shown->unit) < lo->dot(shown->unit)) lo = &v;
-                if (v.dot(shown->unit) > hi->dot(shown->unit)) hi = &v;
-            }
-            for (const Vec3* v : {lo, hi})
-                c.drawLine(*v, at((*v - origin).dot(shown->unit)), lineStyle(Role::Muted, 1.5f, true));
-        }
-        const Role boxRole = run.pair.boxIsA ? roleOf[0] : roleOf[1];
-        const Role otherRole = run.pair.boxIsA ? roleOf[1] : roleOf[0];
-        // Side by side across the line, so that an overlap shows both bars.
-        const Vec3 apart = 0.012 * size * line.across;
-        c.drawLine(at(shown->boxLo) - apart, at(shown->boxHi) - apart, lineStyle(boxRole, 8.0f, false, true));
-        c.drawLine(at(shown->otherLo) + apart, at(shown->otherHi) + apart, lineStyle(otherRole, 8.0f, false, true));
-        // The gap (or the depth, the shorter push) the frame names, between the bars' ends.
-        if (shown->otherLo - shown->boxHi >= shown->boxLo - shown->otherHi)
-            c.noteQuantity(shown->gap > 0 ? "gap" : "depth", at(shown->boxHi), at(shown->otherLo));
-        else c.noteQuantity(shown->gap > 0 ? "gap" : "depth", at(shown->otherHi), at(shown->boxLo));
-        if (labels) {
-            // Past the axis's arrowhead, along it (on the axis's middle it crossed the axis and the
-            // dashed projection lines).
-            TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
-            Eigen::Vector2d lo2, hi2, along(0, 1);
-            if (c.project(at(line.lo), lo2) && c.project(at(line.hi), hi2) && (hi2 - lo2).norm() > 1)
-                along = (hi2 - lo2).normalized();
-            ts.offsetPx = 24.0 * along;
-            ts.place = true;
-            const std::string what = !run.result.hit ? "separating axis " + shown->name + ": gap " + formatNumber(shown->gap)
-                                                     : "least depth: " + shown->name + ", depth " +
-                                                           formatNumber(-shown->gap);
-            c.drawText(at(line.hi), what, ts);
-        }
+    if (!shown) {
+        drawTitleAndCaption(c, scene.title, "");
+        return c.readPixels();
+    }
+    // The gap (or the depth, the shorter push) the frame names, between the bars' ends.
+    ZoomTarget quantity;
+    quantity.name = shown->gap > 0 ? "gap" : "depth";
+    quantity.heading = quantity.name + " " + formatNumber(std::abs(shown->gap));
+    if (shown->otherLo - shown->boxHi >= shown->boxLo - shown->otherHi) quantity.p = at(shown->boxHi), quantity.q = at(shown->otherLo);
+    else quantity.p = at(shown->otherHi), quantity.q = at(shown->boxLo);
+    quantity.draw = drawGeometry;
+    c.noteQuantity(quantity.name, quantity.p, quantity.q);
+    if (labels) {
+        // Past the axis's arrowhead, along it (on the axis's middle it crossed the axis and the
+        // dashed projection lines).
+        TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+        Eigen::Vector2d lo2, hi2, along(0, 1);
+        if (c.project(at(line.lo), lo2) && c.project(at(line.hi), hi2) && (hi2 - lo2).norm() > 1)
+            along = (hi2 - lo2).normalized();
+        ts.offsetPx = 24.0 * along;
+        ts.place = true;
+        const std::string what = !run.result.hit ? "separating axis " + shown->name + ": gap " + formatNumber(shown->gap)
+                                                 : "least depth: " + shown->name + ", depth " + formatNumber(-shown->gap);
+        c.drawText(at(line.hi), what, ts);
     }
     drawTitleAndCaption(c, scene.title, "");
-    return c.readPixels();
+    return readPixelsZoomed(gl, c, scale, quantity, Box{14.0, 60.0, scene.image.width - 14.0, height - 14.0});
 }
 
 // ---------------------------------------------------------------------------------------- table

@@ -11,6 +11,7 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/zoom_inset.h"
 #include "demos/primitives/primitive_figures.h"
 #include "demos/primitives/primitive_scenes.h"
 #include "app/scene/json_reader.h"
@@ -134,6 +135,29 @@ std::vector<std::string> numberLines(const SphereOverlapInput& in, const SphereR
     return lines;
 }
 
+// A cap of the sphere (centre c, radius r) about direction `dir`, `halfAngle` radians across,
+// as a 128 x 128 grid of triangles: the sphere where a zoomed inset looks (its 900-sample hull's
+// facets are seen there).
+std::pair<std::vector<Vec3>, std::vector<Eigen::Vector3i>> sphereCap(const Vec3& c, double r, const Vec3& dir, double halfAngle) {
+    constexpr int n = 128;
+    const Vec3 e1 = dir.unitOrthogonal(), e2 = dir.cross(e1);
+    const double t = std::tan(std::min(halfAngle, 1.2));
+    std::vector<Vec3> vertices;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+            const double a = t * (2.0 * i / n - 1), b = t * (2.0 * j / n - 1);
+            vertices.push_back(c + r * (dir + a * e1 + b * e2).normalized());
+        }
+    std::vector<Eigen::Vector3i> triangles;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const int k = i * (n + 1) + j;
+            triangles.emplace_back(k, k + n + 1, k + 1);
+            triangles.emplace_back(k + 1, k + n + 1, k + n + 2);
+        }
+    return {vertices, triangles};
+}
+
 Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const SphereOverlapInput& in, const SphereRun& run) {
     const Vec3 c0 = in.sphere.vertices[0];
     const double r = in.sphere.radius;
@@ -150,21 +174,37 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
     c.setCamera(scene.camera ? *scene.camera
                              : viewAbove(drawn, viewAcross(Vec3(1.0, 0.8, 1.7), run.closest - c0), Vec3::UnitY(), 0.72,
                                          scene.image.width, scene.image.height));
-    drawOther(c, in.other, scene.hasLayer("labels"));
     SceneShape s;
     s.kind = SceneShape::Kind::Sphere;
     s.radius = r;
     s.pose.position = c0;
-    drawBody(c, shapeDrawable(s), roleColor(Role::ShapeA), run.hit ? 0.35f : 0.25f, roleColor(Role::ShapeA).scaled(0.7f), 1.5f);
-    c.drawPoint(c0, 6.0f, roleColor(Role::Ink));
-    c.drawLine(c0, run.closest, lineStyle(Role::Result, 3.0f, false, true));
+    // The bodies and the centre line: the picture, and again in the inset that magnifies an
+    // overlap or gap drawn under 12 px (names only on the picture). There the sphere's 900-sample
+    // hull would show its facets: a fine cap about `capAt` replaces it.
+    const auto drawGeometry = [&](Canvas& on, bool labels, const Vec3* capAt) {
+        drawOther(on, in.other, labels);
+        const Color fill = roleColor(Role::ShapeA);
+        const float alpha = run.hit ? 0.35f : 0.25f;
+        if (capAt) {
+            const auto [vertices, triangles] = sphereCap(c0, r, *capAt, 25.0 * std::abs(run.reach - run.distance) / r);
+            on.drawMesh(vertices, triangles, fill.withAlpha(alpha), true);
+        } else {
+            drawBody(on, shapeDrawable(s), fill, alpha, fill.scaled(0.7f), 1.5f);
+        }
+        on.drawPoint(c0, 6.0f, roleColor(Role::Ink));
+        on.drawLine(c0, run.closest, lineStyle(Role::Result, 3.0f, false, true));
+        on.drawPoint(run.closest, 8.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
+    };
+    drawGeometry(c, scene.hasLayer("labels"), nullptr);
     // The overlap or the gap the frame names: along the centre line, between the sphere's surface
     // and the closest point (the other sphere's surface).
+    ZoomTarget quantity;
     if ((run.closest - c0).norm() > 0) {
         const Vec3 dir = (run.closest - c0).normalized();
-        c.noteQuantity(run.hit ? "overlap" : "gap", c0 + r * dir, run.closest - (run.reach - r) * dir);
+        quantity = {run.hit ? "overlap" : "gap", (run.hit ? "overlap " : "gap ") + formatNumber(std::abs(run.reach - run.distance)),
+                    c0 + r * dir, run.closest - (run.reach - r) * dir, [&, dir](Canvas& on) { drawGeometry(on, false, &dir); }};
+        c.noteQuantity(quantity.name, quantity.p, quantity.q);
     }
-    c.drawPoint(run.closest, 8.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
     if (scene.hasLayer("labels")) {
         TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
         ts.place = true;
@@ -178,7 +218,10 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
              {roleColor(Role::Result), in.other.kind == K::Sphere ? "centre to centre" : "centre to closest point"}},
             17.0f);
     if (scene.hasLayer("numbers")) drawNumberBlock(c, numberLines(in, run), 52);
-    return finishedFrame(c, scene.title, scene.caption, "test", scene.title + (run.hit ? ": overlap" : ": apart"));
+    drawTitleAndCaption(c, scene.title, scene.caption);
+    const Box within{14.0, 90.0, scene.image.width - 14.0, scene.image.height - 130.0};
+    return Frame{"test", scene.title + (run.hit ? ": overlap" : ": apart"),
+                 quantity.draw ? readPixelsZoomed(gl, c, scale, quantity, within) : c.readPixels()};
 }
 
 }  // namespace
