@@ -153,10 +153,11 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             const Box b = boxAt(request.anchor, request.size, d, ringDistance(ring));
             if (!free(b)) continue;
             // Crossing a thick stroke is worst, then being nearer another point than its own (it
-            // misleads), then crossing a thin stroke; then the leader: 2 for each ring beyond the
-            // second and leaderCost, so of the clean spots the nearest, most direct one wins.
-            const double crossing = offLines(b, false) ? (offLines(b, true) ? 0 : 100) : 1000;
-            const double cost = crossing + (ambiguous(b) ? 150 : 0) + 2.0 * std::max(0, ring - 1) +
+            // misleads), then a leader through another label (leaderCost), then crossing a thin
+            // stroke: each of these outweighs any clean spot's leader, which costs 2 for each ring
+            // beyond the second and leaderCost, so of the clean spots the nearest, most direct wins.
+            const double crossing = offLines(b, false) ? (offLines(b, true) ? 0 : 400) : 1000;
+            const double cost = crossing + (ambiguous(b) ? 700 : 0) + 2.0 * std::max(0, ring - 1) +
                                 (ring > 0 ? leaderCost(b) : 0.0);
             if (cost == 0) return {true, b, ring > 0};
             if (cost < bestCost) bestCost = cost, best = {true, b, ring > 0};

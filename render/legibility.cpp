@@ -75,7 +75,7 @@ void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProb
             const double inside = lengthInside(Box{b.x0 - h, b.y0 - h, b.x1 + h, b.y1 + h}, k.a, k.b);
             if (inside > worst) worst = inside, hit = &k;
         }
-        if (hit && worst > 0) {
+        if (hit && worst >= 1.0) {  // under a pixel: the stroke only nicks the box's corner
             char s[128];
             std::snprintf(s, sizeof s, "stroke (%.0f, %.0f)-(%.0f, %.0f) %.1f px wide, %.0f px inside its box",
                           hit->a.x(), hit->a.y(), hit->b.x(), hit->b.y(), hit->width, worst);

@@ -138,7 +138,7 @@ ConvexDrawable minkowskiDrawable(const SceneShape& a, const SceneShape& b, bool*
 }
 
 void drawBody(Canvas& canvas, const ConvexDrawable& body, const Color& fill, float alpha, const Color& edge,
-              float edgeWidth) {
+              float edgeWidth, bool hiddenEdges) {
     if (!body.valid) return;
     LineStyle ls;
     ls.widthPx = edgeWidth;
@@ -165,9 +165,9 @@ void drawBody(Canvas& canvas, const ConvexDrawable& body, const Color& fill, flo
         const auto it = normalsAt.find({std::min(i, j), std::max(i, j)});
         const Vec3 &p = body.vertices[std::size_t(i)], &q = body.vertices[std::size_t(j)];
         const bool twoFaces = it != normalsAt.end() && it->second.size() == 2;
-        canvas.drawLine(p, q,
-                        twoFaces ? edgeStyleSeen(canvas.camera(), 0.5 * (p + q), it->second[0], it->second[1], ls)
-                                 : ls);
+        const LineStyle style =
+            twoFaces ? edgeStyleSeen(canvas.camera(), 0.5 * (p + q), it->second[0], it->second[1], ls) : ls;
+        if (hiddenEdges || style.dashPx == 0.0f) canvas.drawLine(p, q, style);
     }
 }
 

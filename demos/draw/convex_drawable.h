@@ -41,9 +41,11 @@ ConvexDrawable minkowskiDrawable(const SceneShape& a, const SceneShape& b, bool*
 /// Bounding sphere of points (centre of the bounding box, max distance).
 void boundingSphere(const std::vector<Vec3>& points, Vec3& center, double& radius);
 
-/// Draws a body translucent with its edges (3D) or a filled outline (2D).
+/// Draws a body translucent with its edges (3D) or a filled outline (2D); the edges behind it
+/// (edgeStyleSeen) dashed, or left out when not `hiddenEdges` (a background body such as A − B
+/// behind an algorithm's own simplex or polytope: its far side would only crowd their labels).
 void drawBody(render::Canvas& canvas, const ConvexDrawable& body, const render::Color& fill, float alpha,
-              const render::Color& edge, float edgeWidth);
+              const render::Color& edge, float edgeWidth, bool hiddenEdges = true);
 
 /// True when the face through `point` with outward `normal` is turned towards the camera.
 bool facesCamera(const render::Camera& camera, const Vec3& point, const Vec3& normal);

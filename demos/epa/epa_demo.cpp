@@ -359,7 +359,7 @@ private:
         const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
         if (d.c.valid)
             drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.18f : 0.12f,
-                     roleColor(Role::Minkowski).scaled(0.75f), 1.0f);
+                     roleColor(Role::Minkowski).scaled(0.75f), 1.0f, false);
         drawOrigin(cs, 0.06 * d.cRadius, d.planar);
         std::string sub;
         if (isGjk) {

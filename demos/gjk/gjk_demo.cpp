@@ -215,7 +215,7 @@ private:
                                               : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
         if (d.c.valid)
             drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.22f : 0.18f,
-                     roleColor(Role::Minkowski).scaled(0.7f), 1.2f);
+                     roleColor(Role::Minkowski).scaled(0.7f), 1.2f, false);
         drawOrigin(cs, 0.06 * d.cRadius, d.planar);
 
         // The simplex: W ∪ {w} dashed, the kept sub-simplex solid and filled.
