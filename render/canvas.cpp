@@ -101,12 +101,18 @@ void Canvas::drawArrow(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const
 
 void Canvas::drawText(const Eigen::Vector3d& at, const std::string& text, const TextStyle& style) {
     drawnTextLog().push_back(text);
-    impl_->texts.push_back({true, at, Vector2d::Zero(), text, style});
+    impl_->texts.push_back({true, at, Vector2d::Zero(), text, style, {}});
+}
+
+void Canvas::drawTextAtAnyOf(const std::vector<Eigen::Vector3d>& at, const std::string& text, const TextStyle& style) {
+    if (at.empty()) return;
+    drawnTextLog().push_back(text);
+    impl_->texts.push_back({true, at.front(), Vector2d::Zero(), text, style, {at.begin() + 1, at.end()}});
 }
 
 void Canvas::drawTextPx(double x, double y, const std::string& text, const TextStyle& style) {
     drawnTextLog().push_back(text);
-    impl_->texts.push_back({false, Vector3d::Zero(), Vector2d(x, y), text, style});
+    impl_->texts.push_back({false, Vector3d::Zero(), Vector2d(x, y), text, style, {}});
 }
 
 Eigen::Vector2d Canvas::measureText(const std::string& text, const TextStyle& style) const {

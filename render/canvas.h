@@ -50,7 +50,7 @@ struct TextStyle {
     /// is not drawn and is listed in the layout's `unplaced`.
     bool place = false;
     /// The strokes this label names (Canvas::setStrokeOwner; 0: none): a body's name may cross its
-    /// own outline (the review rule LabelOnStroke exempts them, render/legibility.h).
+    /// own outline (the rule LabelOnStroke exempts them, render/legibility.h).
     int names = 0;
 };
 
@@ -107,10 +107,14 @@ public:
     void drawArrow(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const LineStyle& style);
     /// Text at a 3D point (projected; skipped when behind the camera), always on top of everything ...
     void drawText(const Eigen::Vector3d& at, const std::string& text, const TextStyle& style);
+    /// ... or naming any one of several points (a face or an edge by its points; TextStyle::place):
+    /// the placement step takes the point with the cleanest spot, the first on a tie, and the
+    /// label's layout anchor is that point. Test: canvas_test "a label naming any of several points".
+    void drawTextAtAnyOf(const std::vector<Eigen::Vector3d>& at, const std::string& text, const TextStyle& style);
     /// ... or at pixel coordinates (x right, y down, output pixels at scale 1).
     void drawTextPx(double x, double y, const std::string& text, const TextStyle& style);
     /// A quantity the frame names, drawn from p to q (a gap, a depth): readPixels() records its
-    /// length on the picture in the layout's `quantities` (the review rule QuantityTooSmall).
+    /// length on the picture in the layout's `quantities` (the rule QuantityTooSmall).
     void noteQuantity(const std::string& name, const Eigen::Vector3d& p, const Eigen::Vector3d& q);
     /// Width and height in output pixels that drawTextPx would use.
     Eigen::Vector2d measureText(const std::string& text, const TextStyle& style) const;

@@ -69,6 +69,7 @@ struct TextCmd {
     Vector2d px;  // output pixels
     std::string text;
     TextStyle style;
+    std::vector<Vector3d> alsoAt;  // world: other points the label may name instead (Canvas::drawTextAtAnyOf)
 };
 
 /// A laid-out line of glyphs: code points (already mapped to what the atlas has) and pen x.

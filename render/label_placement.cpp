@@ -100,7 +100,7 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
     };
     const std::vector<Vector2d> dirs = candidateDirections(request.preferred);
     // What a leader costs beyond its length (figure reviews of 2026-11-29): 3 for each stroke it
-    // crosses ("its leader lost among edges"); 40 for running along a stroke or carrying one on
+    // crosses ("its leader lost among edges"); 80 for running along a stroke or carrying one on
     // past the anchor (an arrow's shaft, a body's edge: it reads as part of it, or as naming that
     // stroke's far end); 500 for passing through another label or marker (it reads as naming it).
     const auto leaderCost = [&](const Box& b) {
@@ -116,12 +116,12 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             if (o.clip(request.anchor, near, t0, t1) && (t1 - t0) * length > 1.0) cost += 500;
         }
         for (const PlacementObstacles::Line& l : obstacles.lines) {
-            // 15 for passing by or ending at another vertex (a stroke's end away from the anchor,
+            // 30 for passing by or ending at another vertex (a stroke's end away from the anchor,
             // its own body's too): the label reads as naming that corner (figure review: "V1 (A)"
             // led to the icosahedron's silhouette vertex, "s_B(−n)" to the box's hidden corner).
             for (const Vector2d& end : {l.a, l.b})
                 if ((end - request.anchor).norm() > 6.0 && pointSegmentDistance(end, request.anchor, near) < 5.0) {
-                    cost += 15;
+                    cost += 30;
                     break;
                 }
             if (l.owner != 0 && l.owner == request.names) continue;
@@ -133,7 +133,7 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             for (double t : {0.2, 0.35, 0.5, 0.65, 0.8})
                 if (pointSegmentDistance(request.anchor + t * leader, l.a, l.b) < l.halfWidth + 4.0) ++along;
             const bool fromEnd = (l.a - request.anchor).norm() < 5.0 || (l.b - request.anchor).norm() < 5.0;
-            if (along >= 3 || fromEnd) cost += 40;
+            if (along >= 3 || fromEnd) cost += 80;
         }
         return cost;
     };
@@ -159,8 +159,8 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
             const double crossing = offLines(b, false) ? (offLines(b, true) ? 0 : 400) : 1000;
             const double cost = crossing + (ambiguous(b) ? 700 : 0) + 2.0 * std::max(0, ring - 1) +
                                 (ring > 0 ? leaderCost(b) : 0.0);
-            if (cost == 0) return {true, b, ring > 0};
-            if (cost < bestCost) bestCost = cost, best = {true, b, ring > 0};
+            if (cost == 0) return {true, b, ring > 0, 0.0};
+            if (cost < bestCost) bestCost = cost, best = {true, b, ring > 0, cost};
         }
     return best;
 }

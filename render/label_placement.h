@@ -3,11 +3,12 @@
 // directions by their angle from it, then the same farther out (up to 200 px past the nearest
 // rings) with a leader line. A candidate must stay inside the panel and off every other label and
 // marker. Costs rank the rest: crossing a thick line worst, then lying nearer another anchor than
-// its own, then crossing a thin line (the review rules LabelOnStroke and LabelNearerOther of
-// render/legibility.h); then the leader: its length, the strokes it crosses, running along a
-// stroke or on from one, passing another vertex or through another label (tests/render/legibility_test.cpp, "a
-// leader neither runs along..."). The first candidate of cost 0 wins, else the least; a label with
-// no candidate at all is not placed (the caller reports it instead of drawing it over something).
+// its own, then a leader through another label, then crossing a thin line (the rules LabelOnStroke
+// and LabelNearerOther of render/legibility.h), each above any clean spot's leader: its length,
+// the strokes it crosses, running along a stroke or on from one, passing another vertex
+// (tests/render/legibility_test.cpp, "a leader neither runs along..."). The first candidate of
+// cost 0 wins, else the least (Placement::cost says what it weighed); a label with no candidate at
+// all is not placed (the caller reports it instead of drawing it over something).
 // Imhof, "Positioning names on maps" (1975) ranks the positions around a point the same way.
 #pragma once
 
@@ -46,6 +47,7 @@ struct Placement {
     bool placed = false;
     Box box;
     bool leader = false;  // moved away from its anchor: draw a leader line
+    double cost = 0;      // 0: clean; else what placeLabel weighed against it (crossings, ambiguity, leader)
 };
 
 Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& obstacles);

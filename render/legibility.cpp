@@ -22,11 +22,6 @@ const char* nameOf(LegibilityKind kind) {
     return "?";
 }
 
-bool gates(LegibilityKind kind) {
-    return kind != LegibilityKind::LabelOnStroke && kind != LegibilityKind::LabelNearerOther &&
-           kind != LegibilityKind::QuantityTooSmall;
-}
-
 namespace {
 
 std::string boxText(const Box& b) {
@@ -83,8 +78,12 @@ void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProb
         }
         if (!labels[i].anchor) continue;
         const double own = b.distanceTo(*labels[i].anchor);
+        // Only the points of its own panel compete: a panel's border separates what it names from
+        // another panel's points (a 3D view's label is not read as a plot's tick).
+        const Box* home = homePanel(layout, labels[i]);
         for (std::size_t j = 0; j < labels.size(); ++j) {
             if (j == i || !labels[j].anchor || (*labels[j].anchor - *labels[i].anchor).norm() < 1.0) continue;
+            if (homePanel(layout, labels[j]) != home) continue;
             const double other = b.distanceTo(*labels[j].anchor);
             if (other + 0.5 < own) {
                 char s[128];

@@ -16,23 +16,18 @@ enum class LegibilityKind {
     LabelOutsidePanel,  // a label leaves its panel (the innermost one holding its anchor) or the image
     TextTooSmall,       // a font size under kMinLineHeightFraction of the image height
     Unplaced,           // the placement step found no free position (the label was not drawn)
-    FontBelowTarget,    // a font size under kTargetFontFraction of the image height (issue 42; gated
-                        // since every golden frame meets it)
-    // Review rules (issue 42): measured on every frame and reported by `cdlab golden`, not yet
-    // failing it — the golden scenes do not meet them yet (gates() is false for these).
+    FontBelowTarget,    // a font size under kTargetFontFraction of the image height (issue 42)
     LabelOnStroke,      // a label's box crosses a drawn stroke other than its own leader line
                         // or the outline of the body it names
-    LabelNearerOther,   // a label is nearer another label's anchor than its own
+    LabelNearerOther,   // a label is nearer another label's point (in its panel) than its own
     QuantityTooSmall,   // a quantity the frame names (layout.quantities) drawn under kMinQuantityPx
                         // everywhere it is drawn (a zoomed inset that draws it larger is enough)
 };
 const char* nameOf(LegibilityKind kind);
-/// True for the rules that fail `cdlab golden`; false for the review rules above.
-bool gates(LegibilityKind kind);
 
 /// The smallest font size that fails the gate, 1.5 % of the image height: 15 px on a 1024-px frame.
 constexpr double kMinLineHeightFraction = 0.015;
-/// The smallest font size the review rules ask for, 1.6 %: 16.4 px on a 1024-px frame, 12.3 px on
+/// The smallest font size the target asks for, 1.6 %: 16.4 px on a 1024-px frame, 12.3 px on
 /// a 768-px one (about 12 pt on a projected slide).
 constexpr double kTargetFontFraction = 0.016;
 /// The shortest a named quantity (a gap, a depth) may be drawn, px: shorter, a reader cannot see it.

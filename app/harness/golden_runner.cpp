@@ -218,9 +218,6 @@ struct GoldenRun {
         render::LegibilityProblem problem;
     };
     std::vector<Offender> offenders{};
-    // The review rules' problems by kind, and the frames that have any (render/legibility.h).
-    std::map<int, int> review{};
-    std::set<std::string> reviewFrames{};
 
     void runScene(const std::string& file, const RunContext& ctx);
     void checkLegibility(const SceneCommon& sc, const Frame& fr);
@@ -280,14 +277,8 @@ void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
     if (fr.image.width == 0) return;
     ++checked;
     const std::string id = sceneId(sc) + "/" + fr.name;
-    std::vector<render::LegibilityProblem> problems;
-    for (render::LegibilityProblem& p : render::checkLegibility(fr.image.layout, fr.image.width, fr.image.height)) {
-        if (render::gates(p.kind)) problems.push_back(std::move(p));
-        else {
-            ++review[int(p.kind)], reviewFrames.insert(id);
-            if (options.verbose) std::cout << "  review " << printable(id + ": " + render::describe(p)) << "\n";
-        }
-    }
+    const std::vector<render::LegibilityProblem> problems =
+        render::checkLegibility(fr.image.layout, fr.image.width, fr.image.height);
     for (const render::LegibilityProblem& p : problems) offenders.push_back({id, p});
     if (problems.empty()) return;
     fail(id + ": not slide-legible, " + std::to_string(problems.size()) +
@@ -416,18 +407,6 @@ int runGolden(const RunnerOptions& o) {
         for (std::size_t i = 0; i < run.offenders.size() && i < 12; ++i) {
             std::cout << "  " << printable(run.offenders[i].frame + ": " + render::describe(run.offenders[i].problem)) << "\n";
         }
-    }
-    if (!run.review.empty()) {
-        // Measured, not failing (issue 42's rules until the scenes meet them): one line.
-        int total = 0;
-        std::string kinds;
-        for (const auto& [kind, count] : run.review) {
-            total += count;
-            kinds += std::string(kinds.empty() ? "" : ", ") + render::nameOf(render::LegibilityKind(kind)) + " " +
-                     std::to_string(count);
-        }
-        std::cout << "legibility review rules (not yet gated): " << total << " problem(s) in "
-                  << run.reviewFrames.size() << " frame(s): " << kinds << "\n";
     }
     std::cout << "golden: " << run.checked - run.failed - run.updated << " passed, " << run.failed << " failed";
     if (run.updated) std::cout << ", " << run.updated << " updated";

@@ -243,7 +243,7 @@ void drawOrigin(Canvas& canvas, double size, bool planar) {
 }
 
 void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text, TextStyle style,
-                   double px) {
+                   double px, const std::vector<Vec3>& alsoAt) {
     Eigen::Vector2d pa, pf;
     Eigen::Vector2d dir(0.7071, -0.7071);  // up and to the right when there is no better direction
     if (canvas.project(at, pa) && canvas.project(from, pf) && (pa - pf).norm() > 1.0) dir = (pa - pf).normalized();
@@ -253,7 +253,9 @@ void drawLabelAway(Canvas& canvas, const Vec3& at, const Vec3& from, const std::
     const double reach = px + 0.5 * std::abs(dir.x()) * box.x() + 0.5 * std::abs(dir.y()) * box.y();
     style.offsetPx = dir * reach;  // the preferred side; the placement step moves it off anything in the way
     style.place = true;
-    canvas.drawText(at, text, style);
+    std::vector<Vec3> points{at};
+    points.insert(points.end(), alsoAt.begin(), alsoAt.end());
+    canvas.drawTextAtAnyOf(points, text, style);
 }
 
 

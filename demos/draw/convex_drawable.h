@@ -73,8 +73,6 @@ bool behindBody(const render::Camera& camera, const Vec3& point, const std::vect
 /// Draws the little "O" origin marker with a cross.
 void drawOrigin(render::Canvas& canvas, double size, bool planar);
 
-/// Text next to `at`, pushed `px` output pixels away from `from` on screen (so labels fan out
-/// from a centre instead of piling onto the point they name).
 /// A body's name ("A", "B") at its centre, or beside it when a marker or label is there.
 /// The name names the strokes drawn under bodyOwner(name) (Canvas::setStrokeOwner): it may cross
 /// its own body's outline, no other stroke (render/legibility.h).
@@ -86,7 +84,11 @@ int bodyOwner(const std::string& name);
 /// (one body deep inside the other) the larger body's name moves away from the smaller one, onto
 /// a part of it the other does not cover.
 std::pair<Vec3, Vec3> bodyNamePoints(const ConvexDrawable& a, const ConvexDrawable& b);
+/// Text next to `at`, pushed `px` output pixels away from `from` on screen (so labels fan out
+/// from a centre instead of piling onto the point they name). A feature's label may name it at
+/// any of `alsoAt` too (points of a face or an edge): it goes where its spot is cleanest
+/// (Canvas::drawTextAtAnyOf).
 void drawLabelAway(render::Canvas& canvas, const Vec3& at, const Vec3& from, const std::string& text,
-                   render::TextStyle style, double px = 16.0);
+                   render::TextStyle style, double px = 16.0, const std::vector<Vec3>& alsoAt = {});
 
 }  // namespace cdlab::demos

@@ -141,8 +141,17 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const Color& color,
     }
     if (labels) {
         TextStyle ts{18.0f, color.scaled(0.75f), Anchor::Center, true, true};
-        drawLabelAway(canvas, featureCenter(g), awayFrom, label, ts, g.size() == 1 ? 14.0 : 10.0);
+        drawLabelAway(canvas, featureCenter(g), awayFrom, label, ts, g.size() == 1 ? 14.0 : 10.0, featureLabelPoints(g));
     }
+}
+
+std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& g) {
+    std::vector<Vec3> points;
+    if (g.size() == 2)
+        for (const double t : {0.25, 0.75, 1.0 / 6.0, 5.0 / 6.0, 0.4, 0.6, 0.1, 0.9}) points.push_back((1 - t) * g[0] + t * g[1]);
+    else if (g.size() > 2)
+        for (const Vec3& corner : g) points.push_back(0.5 * (featureCenter(g) + corner));
+    return points;
 }
 
 std::string featureLabel(const VClipFeature& f, int body) { return nameOf(f) + (body == 0 ? " (A)" : " (B)"); }

@@ -76,6 +76,10 @@ void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, cons
                  const std::string& label, const Vec3& awayFrom, bool labels);
 /// Mean of a feature's points.
 Vec3 featureCenter(const std::vector<Vec3>& geometry);
+/// The other points a feature's label may name it at (drawLabelAway's alsoAt): an edge's points a
+/// quarter and a sixth from either end, a face's halfway from its centre to each corner; none for
+/// a vertex.
+std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& geometry);
 /// A patch of a Voronoi plane of `body` placed at `pose`, world frame: FE planes are drawn as the edge extruded along
 /// the face's outward normal, VE planes as a square about the vertex turned towards `toward`.
 std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int plane, const Vec3& toward, double size);

@@ -431,7 +431,8 @@ private:
             drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(step.updatedBody), 0.5f), "", from, false);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(step.to, step.updatedBody),
-                              TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
+                              TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0,
+                              featureLabelPoints(gTo));
         }
         return shown;
     }

@@ -465,7 +465,8 @@ private:
             drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f), "", from, false);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
-                              TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0);
+                              TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0,
+                              featureLabelPoints(gTo));
         }
         heading = "Step " + std::to_string(st->step) + ": state " + nameOf(st->state);
         const bool faceSearch =

@@ -434,6 +434,42 @@ TEST_SUITE("canvas layout") {
         CHECK(l.strokes[3].outlineOf == -1);
     }
 
+    TEST_CASE("a label naming any of several points goes to the one with a clean spot, the first on a tie") {
+        // 400 x 300 px, one world unit a pixel, y up. The first point sits in a mesh of lines 8 px
+        // apart (no spot near it is clean, a leader out crosses lines); the second in open space.
+        const auto drawMesh = [](Canvas& c) {
+            LineStyle s;
+            s.widthPx = 1.0f;
+            for (double k = 0; k <= 240; k += 8) {
+                c.drawLine(Vector3d(0, 30 + k, 0), Vector3d(240, 30 + k, 0), s);
+                c.drawLine(Vector3d(k, 30, 0), Vector3d(k, 270, 0), s);
+            }
+        };
+        TextStyle ts;
+        ts.sizePx = 16.0f;
+        ts.place = true;
+        ts.offsetPx = Vector2d(0, -16);
+        {
+            Canvas c(context(), CanvasOptions{400, 300, 1, 4}, Camera::pixels(400, 300));
+            drawMesh(c);
+            c.drawTextAtAnyOf({Vector3d(124, 150, 0), Vector3d(330, 150, 0)}, "face", ts);
+            const FigureLayout l = c.readPixels().layout;
+            REQUIRE(l.labels.size() == 1);
+            REQUIRE(l.labels[0].anchor);
+            CHECK((*l.labels[0].anchor - Vector2d(330, 150)).norm() < 1e-9);
+            CHECK(l.labels[0].box.distanceTo(Vector2d(330, 150)) < 20);
+            CHECK(checkLegibility(l, 400, 300).empty());
+        }
+        {
+            // Both clean: the first.
+            Canvas c(context(), CanvasOptions{400, 300, 1, 4}, Camera::pixels(400, 300));
+            c.drawTextAtAnyOf({Vector3d(300, 100, 0), Vector3d(330, 150, 0)}, "face", ts);
+            const FigureLayout l = c.readPixels().layout;
+            REQUIRE(l.labels.size() == 1);
+            CHECK((*l.labels[0].anchor - Vector2d(300, 200)).norm() < 1e-9);
+        }
+    }
+
     TEST_CASE("a canvas without text draws the same picture less its texts and lays none out") {
         const auto draw = [&](bool text) {
             CanvasOptions o{200, 200, 1, 4};
