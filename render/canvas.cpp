@@ -126,11 +126,16 @@ void Canvas::noteQuantity(const std::string& name, const Vector3d& p, const Vect
     impl_->quantities.push_back({name, p, q});
 }
 
+void Canvas::noteBody(const std::string& name, const std::vector<Vector3d>& points) {
+    impl_->bodies.push_back({name, points});
+}
+
 void Canvas::clearCommands() {
     impl_->meshes.clear();
     impl_->overlays.clear();
     impl_->texts.clear();
     impl_->quantities.clear();
+    impl_->bodies.clear();
 }
 
 RenderStats& renderStats() {

@@ -116,6 +116,10 @@ public:
     /// A quantity the frame names, drawn from p to q (a gap, a depth): readPixels() records its
     /// length on the picture in the layout's `quantities` (the rule QuantityTooSmall).
     void noteQuantity(const std::string& name, const Eigen::Vector3d& p, const Eigen::Vector3d& q);
+    /// A body the frame draws, by its points (a polytope's vertices, a curved body's samples):
+    /// readPixels() records the convex hull of their projections in the layout's `bodies` (the
+    /// rule BodyCutByPanel, render/legibility.h).
+    void noteBody(const std::string& name, const std::vector<Eigen::Vector3d>& points);
     /// Width and height in output pixels that drawTextPx would use.
     Eigen::Vector2d measureText(const std::string& text, const TextStyle& style) const;
 

@@ -118,6 +118,11 @@ struct Canvas::Impl {
         Eigen::Vector3d p, q;
     };
     std::vector<QuantityCmd> quantities;  // noteQuantity: measured on the picture by layoutTexts
+    struct BodyCmd {
+        std::string name;
+        std::vector<Eigen::Vector3d> points;
+    };
+    std::vector<BodyCmd> bodies;  // noteBody: projected and hulled by layoutTexts
     int strokeOwner = 0;  // setStrokeOwner: the owner of the strokes drawn next
     // Per frame, from layoutTexts(): where each text goes (its offset after placement; none: not
     // drawn) and the leader lines of labels moved away from their points.

@@ -103,6 +103,29 @@ static bool clipToBox(const Box& box, Vector2d& a, Vector2d& b) {
     return true;
 }
 
+// The convex hull of points (Andrew's monotone chain), duplicates and collinear points dropped.
+static std::vector<Vector2d> convexHull(std::vector<Vector2d> p) {
+    std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) {
+        return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+    });
+    if (p.size() < 3) return p;
+    const auto turn = [](const Vector2d& o, const Vector2d& a, const Vector2d& b) {
+        return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+    };
+    std::vector<Vector2d> h;
+    for (const Vector2d& q : p) {  // lower chain
+        while (h.size() >= 2 && turn(h[h.size() - 2], h.back(), q) <= 0) h.pop_back();
+        h.push_back(q);
+    }
+    const std::size_t lower = h.size() + 1;
+    for (std::size_t i = p.size() - 1; i-- > 0;) {  // upper chain
+        while (h.size() >= lower && turn(h[h.size() - 2], h.back(), p[i]) <= 0) h.pop_back();
+        h.push_back(p[i]);
+    }
+    h.pop_back();  // the first point again
+    return h;
+}
+
 // Which label each stroke's body and each marker belong to: a stroke outlines the body its owner
 // names (the first label with that id, setStrokeOwner / TextStyle::names); a marker is named by the
 // label whose point is inside it (the nearest to its centre).
@@ -313,6 +336,12 @@ FigureLayout Canvas::Impl::layoutTexts() {
     for (const QuantityCmd& q : quantities) {
         Vector2d a, b;
         if (toPixels(q.p, a) && toPixels(q.q, b)) layout.quantities.push_back({q.name, (b - a).norm()});
+    }
+    for (const BodyCmd& body : bodies) {
+        std::vector<Vector2d> projected;
+        for (const Vector3d& p : body.points)
+            if (Vector2d q; toPixels(p, q)) projected.push_back(q);
+        if (!projected.empty()) layout.bodies.push_back({body.name, convexHull(std::move(projected))});
     }
     if (!options.text) {  // a thumbnail: no text, no leaders (CanvasOptions::text)
         nameOutlinesAndMarkers(layout, strokeOwners, labelNames);

@@ -31,6 +31,10 @@ void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
         strokes.push_back({k.a + d, k.b + d, k.width, k.leaderOf >= 0 ? k.leaderOf + base : -1,
                            k.outlineOf >= 0 ? k.outlineOf + base : -1});
     quantities.insert(quantities.end(), other.quantities.begin(), other.quantities.end());
+    for (LayoutBody b : other.bodies) {
+        for (Eigen::Vector2d& p : b.outline) p += d;
+        bodies.push_back(std::move(b));
+    }
     unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
 }
 
@@ -111,6 +115,8 @@ FigureLayout FigureLayout::scaled(double s) const {
     for (LayoutMarker& m : out.markers) m.box = m.box.scaled(s);
     for (LayoutStroke& k : out.strokes) k.a *= s, k.b *= s, k.width *= s;
     for (LayoutQuantity& q : out.quantities) q.px *= s;
+    for (LayoutBody& b : out.bodies)
+        for (Eigen::Vector2d& p : b.outline) p *= s;
     return out;
 }
 

@@ -69,12 +69,20 @@ struct LayoutQuantity {
     double px = 0;
 };
 
+/// A body as the frame draws it (Canvas::noteBody): the convex hull of its projected points, px
+/// (render/legibility.h: BodyCutByPanel).
+struct LayoutBody {
+    std::string name;
+    std::vector<Eigen::Vector2d> outline;
+};
+
 struct FigureLayout {
     std::vector<Box> panels;  // the canvases a frame was composed from, outermost first
     std::vector<LayoutLabel> labels;
     std::vector<LayoutMarker> markers;
     std::vector<LayoutStroke> strokes;
     std::vector<LayoutQuantity> quantities;
+    std::vector<LayoutBody> bodies;
     /// Labels the placement step could not put anywhere free: reported here, not drawn.
     std::vector<std::string> unplaced;
 
@@ -82,7 +90,7 @@ struct FigureLayout {
     void append(const FigureLayout& other, double dx, double dy);
     /// An opaque picture pasted over `area` hides what was there: strokes keep only their parts
     /// outside it; labels and markers wholly inside are dropped (indices into labels follow).
-    /// Call before appending the pasted picture's own layout (drawGapInset, demos/draw/pair_figure.cpp).
+    /// Call before appending the pasted picture's own layout (readPixelsZoomed, demos/draw/zoom_inset.cpp).
     void cover(const Box& area);
     /// Every coordinate times s (a picture resized by s).
     FigureLayout scaled(double s) const;

@@ -18,6 +18,7 @@ const char* nameOf(LegibilityKind kind) {
         case LegibilityKind::LabelNearerOther: return "label nearer another anchor than its own";
         case LegibilityKind::FontBelowTarget: return "font below the 1.6 % target";
         case LegibilityKind::QuantityTooSmall: return "quantity drawn too small";
+        case LegibilityKind::BodyCutByPanel: return "body cut by its panel's edge";
     }
     return "?";
 }
@@ -96,6 +97,29 @@ void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProb
     }
 }
 
+// A body cut by the edge of its panel (the smallest holding its outline's centre).
+void bodyRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) {
+    const auto bounds = [](const LayoutBody& b) {
+        Box box{INFINITY, INFINITY, -INFINITY, -INFINITY};
+        for (const Eigen::Vector2d& p : b.outline)
+            box = {std::min(box.x0, p.x()), std::min(box.y0, p.y()), std::max(box.x1, p.x()), std::max(box.y1, p.y())};
+        return box;
+    };
+    for (const LayoutBody& b : layout.bodies) {
+        if (b.outline.empty()) continue;
+        const Box box = bounds(b);
+        const Box* home = nullptr;
+        for (const Box& panel : layout.panels)
+            if (panel.contains(box.center()) && (!home || panel.width() * panel.height() < home->width() * home->height()))
+                home = &panel;
+        if (!home) continue;
+        const double off = outside(*home, box);
+        if (off > kBodySlackPx)
+            out.push_back({LegibilityKind::BodyCutByPanel, b.name,
+                           "outline " + boxText(box) + " vs panel " + boxText(*home), off});
+    }
+}
+
 }  // namespace
 
 std::string describe(const LegibilityProblem& p) {
@@ -168,6 +192,7 @@ std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int w
             std::snprintf(s, sizeof s, "drawn %.1f px long < %.0f px (no inset draws it larger)", px, kMinQuantityPx);
             out.push_back({LegibilityKind::QuantityTooSmall, name, s, kMinQuantityPx - px});
         }
+    bodyRules(layout, out);
     for (const std::string& t : layout.unplaced)
         out.push_back({LegibilityKind::Unplaced, t, "no free position around its anchor", 1e9});
     std::stable_sort(out.begin(), out.end(),

@@ -22,6 +22,8 @@ enum class LegibilityKind {
     LabelNearerOther,   // a label is nearer another label's point (in its panel) than its own
     QuantityTooSmall,   // a quantity the frame names (layout.quantities) drawn under kMinQuantityPx
                         // everywhere it is drawn (a zoomed inset that draws it larger is enough)
+    BodyCutByPanel,     // a body (layout.bodies) reaches past the edge of its panel (the smallest
+                        // holding its outline's centre) by more than kBodySlackPx
 };
 const char* nameOf(LegibilityKind kind);
 
@@ -32,6 +34,8 @@ constexpr double kMinLineHeightFraction = 0.015;
 constexpr double kTargetFontFraction = 0.016;
 /// The shortest a named quantity (a gap, a depth) may be drawn, px: shorter, a reader cannot see it.
 constexpr double kMinQuantityPx = 12.0;
+/// How far (px) a body may reach past its panel's edge: anti-aliasing, not a cut.
+constexpr double kBodySlackPx = 1.5;
 /// A stroke whose edge reaches less than this (px) into a label's box only grazes it.
 constexpr double kStrokeGrazePx = 1.5;
 /// Overlaps smaller than this (px²) are anti-aliasing contact, not overprinting.

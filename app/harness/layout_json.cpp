@@ -40,6 +40,15 @@ Json layoutJson(const render::Image& image) {
         for (const render::LayoutQuantity& q : l.quantities) quantities.push_back({{"name", q.name}, {"px", px(q.px)}});
         out["quantities"] = std::move(quantities);
     }
+    if (!l.bodies.empty()) {  // only where a frame notes its bodies (Canvas::noteBody)
+        Json bodies = Json::array();
+        for (const render::LayoutBody& b : l.bodies) {
+            Json outline = Json::array();
+            for (const Eigen::Vector2d& p : b.outline) outline.push_back(Json::array({px(p.x()), px(p.y())}));
+            bodies.push_back({{"name", b.name}, {"outline", std::move(outline)}});
+        }
+        out["bodies"] = std::move(bodies);
+    }
     return out;
 }
 

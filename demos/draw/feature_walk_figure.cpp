@@ -96,10 +96,12 @@ void sceneSphere(const std::vector<const Body*>& bodies, Vec3& center, double& r
     boundingSphere(pts, center, radius);
 }
 
-void drawPolyhedron(Canvas& canvas, const Body& body, const Transform& pose, const Color& fill, float alpha) {
+void drawPolyhedron(Canvas& canvas, const Body& body, const Transform& pose, const Color& fill, float alpha,
+                    const std::string& name) {
     const ConvexPolyhedron& m = body.regions.mesh();
     std::vector<Vec3> verts;
     for (const Vec3& p : m.positions()) verts.push_back(pose.apply(p));
+    canvas.noteBody(name, verts);
     std::vector<Eigen::Vector3i> tris;
     for (int f = 0; f < m.faceCount(); ++f) {
         const std::vector<int> fv = m.faceVertices(f);

@@ -67,9 +67,9 @@ render::Image composeFrame(render::GlContext& gl, const Layout& layout, int scal
 
 // ---- the 3D panel pieces (vclip_demo_draw.cpp)
 
-/// A body placed at `pose`, translucent, with its edges.
+/// A body placed at `pose`, translucent, with its edges; noted as `name` (Canvas::noteBody).
 void drawPolyhedron(render::Canvas& canvas, const Body& body, const Transform& pose, const render::Color& fill,
-                    float alpha);
+                    float alpha, const std::string& name);
 /// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; labelled
 /// with `label` pushed away from `awayFrom`.
 void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, const render::Color& color,

@@ -80,9 +80,11 @@ PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vect
 void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels) {
     const float alpha = d.planar ? 0.35f : alpha3d;
     for (const auto& [body, role] : {std::pair{&d.a, Role::ShapeA}, std::pair{&d.b, Role::ShapeB}}) {
-        world.setStrokeOwner(bodyOwner(role == Role::ShapeA ? "A" : "B"));
+        const char* name = role == Role::ShapeA ? "A" : "B";
+        world.setStrokeOwner(bodyOwner(name));
         drawBody(world, *body, roleColor(role), alpha,
                  colliding ? roleColor(Role::Colliding) : roleColor(role).scaled(0.6f), colliding ? 3.5f : 2.0f);
+        world.noteBody(name, body->planar && !body->outline.empty() ? body->outline : body->vertices);
     }
     world.setStrokeOwner(0);
     if (!labels) return;

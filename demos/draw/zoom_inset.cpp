@@ -80,6 +80,9 @@ Image readPixelsZoomed(GlContext& gl, Canvas& canvas, int scale, const ZoomTarge
     if (!(length > 0) || !canvas.project(target.p, pp) || !canvas.project(target.q, qq) ||
         !((pp - qq).norm() < kMinQuantityPx))
         return canvas.readPixels();
+    // A picture too small for an inset with a heading and a picture under it is left as it is
+    // (tests/fuzz: scenes drawn at a few dozen pixels).
+    if (!(0.25 * within.width() >= 60.0 && 0.25 * within.height() >= kZoomHeadingPx + 30.0)) return canvas.readPixels();
     const Vec3 mid = 0.5 * (target.p + target.q);
     const double radius = 3.0 * length;  // the quantity spans a sixth of the inset's height
     Vec3 right, up;
@@ -151,7 +154,9 @@ Image readPixelsZoomed(GlContext& gl, Canvas& canvas, int scale, const ZoomTarge
     Canvas strip(gl, canvasOptions(w, kZoomHeadingPx, scale), Camera::pixels(w, kZoomHeadingPx));
     strip.drawTextPx(8, 0.5 * kZoomHeadingPx + 1, head, headStyle);
     blit(image, strip.readPixels(), int(area.x0), int(area.y0));
-    blit(image, c.readPixels(), int(area.x0), int(area.y0) + kZoomHeadingPx);
+    Image picture = c.readPixels();
+    picture.layout.bodies.clear();  // a zoomed view cuts its bodies by design
+    blit(image, picture, int(area.x0), int(area.y0) + kZoomHeadingPx);
     paintBorder(image, area, roleColor(Role::Ink));
     return image;
 }

@@ -27,7 +27,8 @@ struct ZoomTarget {
 constexpr int kZoomHeadingPx = 28;
 
 /// The picture of `canvas` (everything drawn on it), with `target` magnified when the canvas draws
-/// p–q shorter than render::kMinQuantityPx; otherwise exactly canvas.readPixels(). The inset sits
+/// p–q shorter than render::kMinQuantityPx; otherwise (or when `within` is too small for an inset,
+/// under 240 x 232 px) exactly canvas.readPixels(). The inset sits
 /// in a corner of `within` (px in the canvas), 9/20 of it each way or smaller down to 1/4, wide
 /// enough for its heading: the one that hides least of what the picture draws (label and marker
 /// area, strokes; never p or q), a smaller one costing more; learning the layout costs one more

@@ -92,6 +92,7 @@ std::vector<Eigen::Vector3i> triangles(const ConvexPolyhedron& m) {
 // A colliding body keeps its colour; its outline says it collides (Role::Colliding, thicker).
 void drawPosed(Canvas& c, const Posed& b, const Color& fill, float alpha, bool colliding = false) {
     const std::vector<Vec3> w = b.world();
+    c.noteBody(b.name.empty() ? "body" : b.name, w);
     c.drawMesh(w, triangles(b.mesh), fill.withAlpha(alpha), true);
     LineStyle edge;
     edge.widthPx = colliding ? 3.5f : 2.0f;

@@ -291,9 +291,9 @@ private:
 
     void drawBodies(Canvas& c, const Transform& poseB) const {
         c.setStrokeOwner(bodyOwner("A"));
-        drawPolyhedron(c, s_.a, s_.a.pose, roleColor(Role::ShapeA), 0.18f);
+        drawPolyhedron(c, s_.a, s_.a.pose, roleColor(Role::ShapeA), 0.18f, "A");
         c.setStrokeOwner(bodyOwner("B"));
-        drawPolyhedron(c, s_.b, poseB, roleColor(Role::ShapeB), 0.18f);
+        drawPolyhedron(c, s_.b, poseB, roleColor(Role::ShapeB), 0.18f, "B");
         c.setStrokeOwner(0);
         if (common_.hasLayer("labels")) {
             // Each body's name on its far side from the other body, where the features are not.

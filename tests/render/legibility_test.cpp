@@ -123,6 +123,20 @@ TEST_SUITE("legibility") {
         CHECK(count(checkLegibility(r.scaled(0.5), 200, 150), LegibilityKind::QuantityTooSmall) == 1);
     }
 
+    TEST_CASE("a body cut by its panel's edge, not one inside it or past it by anti-aliasing") {
+        FigureLayout l;
+        l.panels = {{0, 0, 400, 300}, {0, 0, 200, 300}};  // a page and its left panel
+        // A's outline runs 10 px past the left panel's right edge into the other panel.
+        l.bodies = {{"A", {{150, 100}, {210, 100}, {210, 200}, {150, 200}}}, {"B", {{20, 20}, {60, 20}, {40, 60}}}};
+        auto problems = checkLegibility(l, 400, 300);
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0].kind == LegibilityKind::BodyCutByPanel);
+        CHECK(problems[0].text == "A");
+        CHECK(problems[0].severity == doctest::Approx(10));
+        l.bodies[0].outline = {{150, 100}, {201, 100}, {201, 200}, {150, 200}};  // 1 px: anti-aliasing
+        CHECK(checkLegibility(l, 400, 300).empty());
+    }
+
     TEST_CASE("a label may cover the marker it names, touching boxes are no overlap") {
         FigureLayout l;
         l.panels = {{0, 0, 100, 100}};

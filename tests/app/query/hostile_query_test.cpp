@@ -257,7 +257,7 @@ TEST_SUITE("hostile input") {
         fs::path root = tempDir("golden_size");
         fs::create_directories(root / "voronoi_triangle");
         std::ofstream(root / "voronoi_triangle" / "small.json") << R"({
-      "demo": "voronoi_triangle", "image": {"width": 128, "height": 128},
+      "demo": "voronoi_triangle", "image": {"width": 480, "height": 360},
       "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[1.0, 0.5, 0.5]], "views": ["plane"],
       "layers": ["regions", "boundaries", "closest", "queries"]})";
         RunnerOptions o;
