@@ -99,7 +99,7 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
         return false;
     };
     const std::vector<Vector2d> dirs = candidateDirections(request.preferred);
-    // What a leader costs beyond its length (figure reviews of 2026-11-29): 3 for each stroke it
+    // What a leader costs beyond its length (figure reviews of 2026-11-29): 8 for each stroke it
     // crosses ("its leader lost among edges"); 80 for running along a stroke or carrying one on
     // past the anchor (an arrow's shaft, a body's edge: it reads as part of it, or as naming that
     // stroke's far end); 500 for passing through another label or marker (it reads as naming it).
@@ -125,7 +125,7 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
                     break;
                 }
             if (l.owner != 0 && l.owner == request.names) continue;
-            if (segmentsCross(request.anchor, near, l.a, l.b)) cost += 3;
+            if (segmentsCross(request.anchor, near, l.a, l.b)) cost += 8;
             const Vector2d ld = l.b - l.a;
             if (!(ld.norm() > 1)) continue;
             if (std::abs(u.dot(ld.normalized())) < 0.94) continue;  // within 20 degrees of parallel
