@@ -150,7 +150,7 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const Color& color,
 std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& g) {
     std::vector<Vec3> points;
     if (g.size() == 2)
-        for (const double t : {0.25, 0.75, 1.0 / 6.0, 5.0 / 6.0, 0.4, 0.6, 0.1, 0.9}) points.push_back((1 - t) * g[0] + t * g[1]);
+        for (const double t : {0.25, 0.75, 1.0 / 6.0, 5.0 / 6.0, 0.4, 0.6}) points.push_back((1 - t) * g[0] + t * g[1]);
     else if (g.size() > 2)
         for (const Vec3& corner : g) points.push_back(0.5 * (featureCenter(g) + corner));
     return points;

@@ -77,8 +77,8 @@ void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, cons
 /// Mean of a feature's points.
 Vec3 featureCenter(const std::vector<Vec3>& geometry);
 /// The other points a feature's label may name it at (drawLabelAway's alsoAt): an edge's points a
-/// quarter and a sixth from either end, a face's halfway from its centre to each corner; none for
-/// a vertex.
+/// quarter, a sixth and 0.4 from either end (not nearer its ends: a leader there reads as naming
+/// the vertex), a face's halfway from its centre to each corner; none for a vertex.
 std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& geometry);
 /// A patch of a Voronoi plane of `body` placed at `pose`, world frame: FE planes are drawn as the edge extruded along
 /// the face's outward normal, VE planes as a square about the vertex turned towards `toward`.
