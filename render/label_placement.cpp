@@ -18,7 +18,6 @@ double pointSegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d
     return (a + t * ab - p).norm();
 }
 
-
 // Liang–Barsky: does segment ab enter the box?
 bool segmentHitsBox(const Vector2d& a, const Vector2d& b, const Box& box) {
     double t0, t1;

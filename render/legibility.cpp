@@ -31,14 +31,18 @@ std::string boxText(const Box& b) {
     return s;
 }
 
-// The panel a label belongs to: the smallest one holding its anchor (or its box centre).
-const Box* homePanel(const FigureLayout& layout, const LayoutLabel& label) {
-    const Eigen::Vector2d p = label.anchor ? *label.anchor : label.box.center();
+// The panel a point belongs to: the smallest one holding it (null: none).
+const Box* homePanel(const FigureLayout& layout, const Eigen::Vector2d& p) {
     const Box* best = nullptr;
     for (const Box& panel : layout.panels)
         if (panel.contains(p) && (!best || panel.width() * panel.height() < best->width() * best->height()))
             best = &panel;
     return best;
+}
+
+// The panel a label belongs to: its anchor's (or its box centre's).
+const Box* homePanel(const FigureLayout& layout, const LayoutLabel& label) {
+    return homePanel(layout, label.anchor ? *label.anchor : label.box.center());
 }
 
 // How far `inner` sticks out of `outer`, px (0 when inside).
@@ -108,10 +112,7 @@ void bodyRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) 
     for (const LayoutBody& b : layout.bodies) {
         if (b.outline.empty()) continue;
         const Box box = bounds(b);
-        const Box* home = nullptr;
-        for (const Box& panel : layout.panels)
-            if (panel.contains(box.center()) && (!home || panel.width() * panel.height() < home->width() * home->height()))
-                home = &panel;
+        const Box* home = homePanel(layout, box.center());
         if (!home) continue;
         const double off = outside(*home, box);
         if (off > kBodySlackPx)
