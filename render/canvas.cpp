@@ -292,6 +292,19 @@ Image Canvas::Impl::readBack(FigureLayout layout) {
     return out;
 }
 
+void Canvas::Impl::setFrameSize() {
+    ss = options.supersample * options.scale;  // every pixel size is multiplied by this
+    rw = options.width * ss;
+    rh = options.height * ss;
+    viewProjection = camera.viewProjection(double(options.width) / options.height);
+}
+
+FigureLayout Canvas::layout() {
+    impl_->setFrameSize();
+    FigureLayout layout = impl_->layoutTexts();
+    return impl_->options.scale > 1 ? layout.scaled(impl_->options.scale) : layout;  // in output pixels
+}
+
 Image Canvas::readPixels() {
     Impl& m = *impl_;
     // The rendered size, counted before anything is drawn or read back (m.rw, m.rh are set below).
@@ -302,11 +315,8 @@ Image Canvas::readPixels() {
     GlContext::Impl& gl = m.context.impl();
     gl.makeCurrent();
     gl.ensureDrawResources();
-    m.ss = m.options.supersample * m.options.scale;  // every pixel size is multiplied by this
-    m.rw = m.options.width * m.ss;
-    m.rh = m.options.height * m.ss;
+    m.setFrameSize();
     m.prepareTarget(gl);
-    m.viewProjection = m.camera.viewProjection(double(m.options.width) / m.options.height);
     FigureLayout layout = m.layoutTexts();  // places the point labels: before any vertex is built
     const FrameVertices frame = m.buildFrame();
 

@@ -127,6 +127,9 @@ public:
     /// picture's layout (every text box, marker and the panel; output pixels) in Image::layout.
     /// The command list is kept; calling again re-renders identically.
     Image readPixels();
+    /// The layout readPixels() would record (the same placement of every label), without drawing:
+    /// for a caller that arranges the picture by it before reading it (demos/draw/zoom_inset.cpp).
+    FigureLayout layout();
     /// Forgets recorded commands (camera and background stay).
     void clearCommands();
     /// MSAA samples actually used: msaaSamples clamped to GL_MAX_SAMPLES, halved further if the

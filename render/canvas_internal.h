@@ -166,8 +166,9 @@ struct Canvas::Impl {
         px = screen(c).head<2>() / ss;
         return px.allFinite();
     }
-    // readPixels(), in order: prepareTarget, layoutTexts (places the labels), buildFrame,
-    // renderPasses, readBack.
+    // readPixels(), in order: setFrameSize, prepareTarget, layoutTexts (places the labels),
+    // buildFrame, renderPasses, readBack; layout() only the first and the third.
+    void setFrameSize();
     void prepareTarget(GlContext::Impl& gl);
     FigureLayout layoutTexts();
     FrameVertices buildFrame();

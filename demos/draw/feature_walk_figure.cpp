@@ -152,7 +152,7 @@ std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& g) {
     if (g.size() == 2)
         for (const double t : {0.25, 0.75, 1.0 / 6.0, 5.0 / 6.0, 0.4, 0.6}) points.push_back((1 - t) * g[0] + t * g[1]);
     else if (g.size() > 2)
-        for (const Vec3& corner : g) points.push_back(0.5 * (featureCenter(g) + corner));
+        for (const Vec3 centre = featureCenter(g); const Vec3& corner : g) points.push_back(0.5 * (centre + corner));
     return points;
 }
 

@@ -95,9 +95,9 @@ Image readPixelsZoomed(GlContext& gl, Canvas& canvas, int scale, const ZoomTarge
     const Box source{m.x() - half, m.y() - half, m.x() + half, m.y() + half};
 
     // The corner of `within` and the size (9/20 of it each way down to 1/4, wide enough for the
-    // heading) whose inset hides least of what the picture draws (read once for it), each step
-    // smaller costing as much as hiding two edges; the largest one, if none is wide enough.
-    const FigureLayout drawn = canvas.readPixels().layout;
+    // heading) whose inset hides least of what the picture draws (its layout), each step smaller
+    // costing as much as hiding two edges; the largest one, if none is wide enough.
+    const FigureLayout drawn = canvas.layout();
     const TextStyle headStyle{18.0f, roleColor(Role::Ink), Anchor::Left, true, true};
     const double headWidth = canvas.measureText("zoom ×000: " + target.heading, headStyle).x() + 16.0;
     Box area;
@@ -137,17 +137,16 @@ Image readPixelsZoomed(GlContext& gl, Canvas& canvas, int scale, const ZoomTarge
     // shows inside), and over it a tick across each end.
     c.drawLine(target.p, target.q, lineStyle(Role::Ink, 5.0f, false, true));
     target.draw(c);
+    Vec3 insetRight, insetUp;  // the picture's own: the camera only moved
+    const double insetUnits = unitsPerPx(c, mid, 1e-3 * radius, insetRight, insetUp);
     Eigen::Vector2d p2, q2;
     if (c.project(target.p, p2) && c.project(target.q, q2) && (q2 - p2).norm() > 0) {
         const Eigen::Vector2d across = Eigen::Vector2d(-(q2 - p2).y(), (q2 - p2).x()).normalized() * 9.0;
-        const double units = 2.0 * radius / pictureH;  // world units per inset pixel
-        const Vec3 tick = units * (across.x() * right - across.y() * up);
+        const Vec3 tick = insetUnits * (across.x() * right - across.y() * up);
         for (const Vec3& end : {target.p, target.q})
             c.drawLine(end - tick, end + tick, lineStyle(Role::Ink, 3.0f, false, true));
     }
     c.noteQuantity(target.name, target.p, target.q);
-    Vec3 r2, u2;
-    const double insetUnits = unitsPerPx(c, mid, 1e-3 * radius, r2, u2);
     const double zoom = insetUnits > 0 ? worldUnits / insetUnits : 0.0;
     char head[160];
     std::snprintf(head, sizeof head, zoom < 100 ? "zoom ×%.2g: %s" : "zoom ×%.0f: %s", zoom, target.heading.c_str());

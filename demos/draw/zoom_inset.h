@@ -31,8 +31,7 @@ constexpr int kZoomHeadingPx = 28;
 /// under 240 x 232 px) exactly canvas.readPixels(). The inset sits
 /// in a corner of `within` (px in the canvas), 9/20 of it each way or smaller down to 1/4, wide
 /// enough for its heading: the one that hides least of what the picture draws (label and marker
-/// area, strokes; never p or q), a smaller one costing more; learning the layout costs one more
-/// render of the canvas. Its heading
+/// area, strokes in Canvas::layout(); never p or q), a smaller one costing more. Its heading
 /// strip names the zoom (the ratio of the two pictures' scales at the quantity) and `heading`;
 /// its picture marks p–q in ink with a tick across each end. On the canvas a square marks where the
 /// inset is taken from, with a connector to it; the layout loses what the inset hides

@@ -453,8 +453,13 @@ TEST_SUITE("canvas layout") {
             Canvas c(context(), CanvasOptions{400, 300, 1, 4}, Camera::pixels(400, 300));
             drawMesh(c);
             c.drawTextAtAnyOf({Vector3d(124, 150, 0), Vector3d(330, 150, 0)}, "face", ts);
+            const FigureLayout laidOut = c.layout();  // the same placement, without drawing
             const FigureLayout l = c.readPixels().layout;
             REQUIRE(l.labels.size() == 1);
+            REQUIRE(laidOut.labels.size() == 1);
+            CHECK(laidOut.labels[0].box.x0 == l.labels[0].box.x0);
+            CHECK(laidOut.labels[0].box.y0 == l.labels[0].box.y0);
+            CHECK(laidOut.strokes.size() == l.strokes.size());
             REQUIRE(l.labels[0].anchor);
             CHECK((*l.labels[0].anchor - Vector2d(330, 150)).norm() < 1e-9);
             CHECK(l.labels[0].box.distanceTo(Vector2d(330, 150)) < 20);
