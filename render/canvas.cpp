@@ -126,8 +126,16 @@ void Canvas::noteQuantity(const std::string& name, const Vector3d& p, const Vect
     impl_->quantities.push_back({name, p, q});
 }
 
-void Canvas::noteBody(const std::string& name, const std::vector<Vector3d>& points) {
-    impl_->bodies.push_back({name, points});
+void Canvas::noteBody(const std::string& name, const std::vector<Vector3d>& points, const std::string& apartFrom) {
+    impl_->bodies.push_back({name, points, apartFrom});
+}
+
+void Canvas::noteFeature(const FeatureNote& feature) { impl_->features.push_back(feature); }
+
+void Canvas::noteAxis(const Vector3d& p, const Vector3d& q, bool log) { impl_->axes.push_back({p, q, log}); }
+
+void Canvas::noteSeries(const std::string& name, const Color& color, const Vector3d& at) {
+    impl_->series.push_back({name, color, at});
 }
 
 void Canvas::clearCommands() {
@@ -136,6 +144,9 @@ void Canvas::clearCommands() {
     impl_->texts.clear();
     impl_->quantities.clear();
     impl_->bodies.clear();
+    impl_->features.clear();
+    impl_->axes.clear();
+    impl_->series.clear();
 }
 
 RenderStats& renderStats() {

@@ -54,6 +54,17 @@ struct TextStyle {
     int names = 0;
 };
 
+/// A highlighted feature of a body (Canvas::noteFeature): its points (one: a vertex, two: an
+/// edge, more: a face) and the outward normals of the faces holding it (a face: its own; an edge:
+/// its two faces'; a vertex: its faces'), world frame.
+struct FeatureNote {
+    std::string name;
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector3d> normals;
+    bool filled = false;  // drawn as a filled region
+    bool step = false;    // what the frame's step changed (the feature the frame is built around)
+};
+
 /// Where readPixels() spends its time, summed over this thread's frames (each drawing thread keeps
 /// its own; for `cdlab figures --profile`).
 /// With `profiling` on, readPixels() waits for the GPU (glFinish) before reading back, so the
@@ -119,7 +130,18 @@ public:
     /// A body the frame draws, by its points (a polytope's vertices, a curved body's samples):
     /// readPixels() records the convex hull of their projections in the layout's `bodies` (the
     /// rule BodyCutByPanel, render/legibility.h).
-    void noteBody(const std::string& name, const std::vector<Eigen::Vector3d>& points);
+    /// `apartFrom`: the body (noted by that name) the trace says this one is separated from; their
+    /// outlines on the picture must not overlap (SeparatedBodiesOverlap).
+    void noteBody(const std::string& name, const std::vector<Eigen::Vector3d>& points,
+                  const std::string& apartFrom = "");
+    /// A feature the frame highlights: readPixels() records how the camera sees it in the layout's
+    /// `features` (FeatureEdgeOn, FeatureFromBehind, HiddenFilled; render/legibility.h).
+    void noteFeature(const FeatureNote& feature);
+    /// A plot axis from p to q (log: a log scale; LogAxisWithoutValues) ...
+    void noteAxis(const Eigen::Vector3d& p, const Eigen::Vector3d& q, bool log);
+    /// ... and a series or reference line as the legend names it, drawn in `color` through `at`
+    /// (SeriesShareColour).
+    void noteSeries(const std::string& name, const Color& color, const Eigen::Vector3d& at);
     /// Width and height in output pixels that drawTextPx would use.
     Eigen::Vector2d measureText(const std::string& text, const TextStyle& style) const;
 

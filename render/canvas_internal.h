@@ -121,8 +121,21 @@ struct Canvas::Impl {
     struct BodyCmd {
         std::string name;
         std::vector<Eigen::Vector3d> points;
+        std::string apartFrom;
     };
     std::vector<BodyCmd> bodies;  // noteBody: projected and hulled by layoutTexts
+    std::vector<FeatureNote> features;  // noteFeature: seen from the camera by recordNotes
+    struct AxisCmd {
+        Eigen::Vector3d p, q;
+        bool log;
+    };
+    std::vector<AxisCmd> axes;  // noteAxis
+    struct SeriesCmd {
+        std::string name;
+        Color color;
+        Eigen::Vector3d at;
+    };
+    std::vector<SeriesCmd> series;  // noteSeries
     int strokeOwner = 0;  // setStrokeOwner: the owner of the strokes drawn next
     // Per frame, from layoutTexts(): where each text goes (its offset after placement; none: not
     // drawn) and the leader lines of labels moved away from their points.
@@ -171,6 +184,8 @@ struct Canvas::Impl {
     void setFrameSize();
     void prepareTarget(GlContext::Impl& gl);
     FigureLayout layoutTexts();
+    /// The notes (quantities, bodies, features, axes, series) as the picture shows them (canvas_notes.cpp).
+    void recordNotes(FigureLayout& layout) const;
     FrameVertices buildFrame();
     void renderPasses(GlContext::Impl& gl, const FrameVertices& frame);
     Image readBack(FigureLayout layout);

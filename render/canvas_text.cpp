@@ -103,29 +103,6 @@ static bool clipToBox(const Box& box, Vector2d& a, Vector2d& b) {
     return true;
 }
 
-// The convex hull of points (Andrew's monotone chain), duplicates and collinear points dropped.
-static std::vector<Vector2d> convexHull(std::vector<Vector2d> p) {
-    std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) {
-        return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-    });
-    if (p.size() < 3) return p;
-    const auto turn = [](const Vector2d& o, const Vector2d& a, const Vector2d& b) {
-        return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-    };
-    std::vector<Vector2d> h;
-    for (const Vector2d& q : p) {  // lower chain
-        while (h.size() >= 2 && turn(h[h.size() - 2], h.back(), q) <= 0) h.pop_back();
-        h.push_back(q);
-    }
-    const std::size_t lower = h.size() + 1;
-    for (std::size_t i = p.size() - 1; i-- > 0;) {  // upper chain
-        while (h.size() >= lower && turn(h[h.size() - 2], h.back(), p[i]) <= 0) h.pop_back();
-        h.push_back(p[i]);
-    }
-    h.pop_back();  // the first point again
-    return h;
-}
-
 // Which label each stroke's body and each marker belong to: a stroke outlines the body its owner
 // names (the first label with that id, setStrokeOwner / TextStyle::names); a marker is named by the
 // label whose point is inside it (the nearest to its centre).
@@ -249,7 +226,7 @@ struct LabelPass {
 
     // The point labels `order` names: greedy in that order; when some label found no clean spot or
     // the legibility check finds a problem with it, again with those labels first (an earlier label
-    // may have taken the one spot a later one had), at most three orders; the one with the fewest
+    // may have taken the one spot a later one had), at most six orders; the one with the fewest
     // problems, then the cheapest, is kept. Its test is the golden frames' check (cdlab golden):
     // in one order only, gjk/sphere_box step_03 and vclip/edge_edge step_08 keep a problem.
     void placeInBestOrder(std::vector<std::size_t> order, const std::vector<int>& strokeOwners, int width, int height) {
@@ -265,7 +242,7 @@ struct LabelPass {
             std::vector<std::optional<Vector2d>> textOffsets;
             std::vector<LineCmd> leaders;
         } best;
-        for (int attempt = 0; attempt < 3; ++attempt) {
+        for (int attempt = 0; attempt < 6; ++attempt) {
             layout = layout0, obstacles = obstacles0, labelNames = labelNames0, asked = asked0;
             textOffsets = textOffsets0, leaders.clear();
             double total = 0;
@@ -279,8 +256,16 @@ struct LabelPass {
             nameOutlinesAndMarkers(checked, strokeOwners, labelNames);
             for (const LegibilityProblem& problem : checkLegibility(checked, width, height)) {
                 total += 1e4;
+                // The label at fault, and for one nearer another's anchor that other label too (its
+                // anchor, one of a face's points, may be the one to move: vclip/penetration step_05).
+                std::string other;
+                if (problem.kind == LegibilityKind::LabelNearerOther)
+                    if (const std::size_t a = problem.detail.find('"'), b = problem.detail.find("\"'s anchor");
+                        a != std::string::npos && b != std::string::npos && b > a)
+                        other = problem.detail.substr(a + 1, b - a - 1);
                 for (const std::size_t i : order)
-                    if (texts[i].text == problem.text && std::find(unclean.begin(), unclean.end(), i) == unclean.end())
+                    if ((texts[i].text == problem.text || (!other.empty() && texts[i].text == other)) &&
+                        std::find(unclean.begin(), unclean.end(), i) == unclean.end())
                         unclean.push_back(i);
             }
             if (total < best.cost) best = {total, layout, labelNames, textOffsets, leaders};
@@ -333,16 +318,7 @@ FigureLayout Canvas::Impl::layoutTexts() {
             }
         }
     }
-    for (const QuantityCmd& q : quantities) {
-        Vector2d a, b;
-        if (toPixels(q.p, a) && toPixels(q.q, b)) layout.quantities.push_back({q.name, (b - a).norm()});
-    }
-    for (const BodyCmd& body : bodies) {
-        std::vector<Vector2d> projected;
-        for (const Vector3d& p : body.points)
-            if (Vector2d q; toPixels(p, q)) projected.push_back(q);
-        if (!projected.empty()) layout.bodies.push_back({body.name, convexHull(std::move(projected))});
-    }
+    recordNotes(layout);
     if (!options.text) {  // a thumbnail: no text, no leaders (CanvasOptions::text)
         nameOutlinesAndMarkers(layout, strokeOwners, labelNames);
         return layout;

@@ -70,10 +70,43 @@ struct LayoutQuantity {
 };
 
 /// A body as the frame draws it (Canvas::noteBody): the convex hull of its projected points, px
-/// (render/legibility.h: BodyCutByPanel).
+/// (render/legibility.h: BodyCutByPanel). `apartFrom` names the body the trace says it is
+/// separated from ("" none): their outlines must not overlap (SeparatedBodiesOverlap).
 struct LayoutBody {
     std::string name;
     std::vector<Eigen::Vector2d> outline;
+    std::string apartFrom;
+};
+
+/// A feature a frame highlights (Canvas::noteFeature) and how its camera sees it
+/// (FeatureEdgeOn, FeatureFromBehind, HiddenFilled).
+struct LayoutFeature {
+    std::string name;
+    int dimension = 0;  ///< 0 vertex, 1 edge, 2 face
+    /// The largest cosine between the outward normal of a face holding the feature and the direction
+    /// to the eye: below 0, every face holding it is turned away (the feature is seen from behind).
+    double facing = 1;
+    /// How much of it the view shows: a face's |cos| between its normal and the view, an edge's
+    /// |sin| between its direction and the view; 1 for a vertex. Near 0: edge-on (or end-on).
+    double foreshortening = 1;
+    bool filled = false;  ///< drawn as a filled region
+    bool step = false;    ///< what the frame's step changed: the frame is built around it
+    Eigen::Vector2d at{0, 0};  ///< its centre on the picture, px (finds its panel)
+};
+
+/// An axis of a plot, from `a` to `b` on the picture: a log axis needs its values printed
+/// (LogAxisWithoutValues: at least two numeric labels beside it).
+struct LayoutAxis {
+    Eigen::Vector2d a{0, 0}, b{0, 0};
+    bool log = false;
+};
+
+/// A series or reference line of a plot as its legend names it, with its colour (0xRRGGBB) and a
+/// point of it (finds its panel): two with one colour read as one thing (SeriesShareColour).
+struct LayoutSeries {
+    std::string name;
+    unsigned rgb = 0;
+    Eigen::Vector2d at{0, 0};
 };
 
 struct FigureLayout {
@@ -83,6 +116,9 @@ struct FigureLayout {
     std::vector<LayoutStroke> strokes;
     std::vector<LayoutQuantity> quantities;
     std::vector<LayoutBody> bodies;
+    std::vector<LayoutFeature> features;
+    std::vector<LayoutAxis> axes;
+    std::vector<LayoutSeries> series;
     /// Labels the placement step could not put anywhere free: reported here, not drawn.
     std::vector<std::string> unplaced;
 

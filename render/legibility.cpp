@@ -19,6 +19,12 @@ const char* nameOf(LegibilityKind kind) {
         case LegibilityKind::FontBelowTarget: return "font below the 1.6 % target";
         case LegibilityKind::QuantityTooSmall: return "quantity drawn too small";
         case LegibilityKind::BodyCutByPanel: return "body cut by its panel's edge";
+        case LegibilityKind::SeparatedBodiesOverlap: return "separated bodies overlap on the picture";
+        case LegibilityKind::FeatureEdgeOn: return "highlighted feature seen edge-on";
+        case LegibilityKind::FeatureFromBehind: return "the step's feature seen from behind";
+        case LegibilityKind::HiddenFilled: return "hidden feature drawn filled";
+        case LegibilityKind::LogAxisWithoutValues: return "log axis without values";
+        case LegibilityKind::SeriesShareColour: return "two series share a colour";
     }
     return "?";
 }
@@ -121,6 +127,100 @@ void bodyRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) 
     }
 }
 
+// How deep two convex outlines overlap, px: the least overlap of their projections on any edge
+// normal of either (separating axis theorem; <= 0: a gap). Fewer than 3 points: no area, 0.
+double overlapDepth(const std::vector<Eigen::Vector2d>& p, const std::vector<Eigen::Vector2d>& q) {
+    if (p.size() < 3 || q.size() < 3) return 0;
+    double depth = INFINITY;
+    for (const std::vector<Eigen::Vector2d>* poly : {&p, &q})
+        for (std::size_t i = 0; i < poly->size(); ++i) {
+            const Eigen::Vector2d e = (*poly)[(i + 1) % poly->size()] - (*poly)[i];
+            if (e.norm() == 0) continue;
+            const Eigen::Vector2d n = Eigen::Vector2d(-e.y(), e.x()).normalized();
+            double pl = INFINITY, ph = -INFINITY, ql = INFINITY, qh = -INFINITY;
+            for (const Eigen::Vector2d& v : p) pl = std::min(pl, n.dot(v)), ph = std::max(ph, n.dot(v));
+            for (const Eigen::Vector2d& v : q) ql = std::min(ql, n.dot(v)), qh = std::max(qh, n.dot(v));
+            depth = std::min(depth, std::min(ph, qh) - std::max(pl, ql));
+        }
+    return depth;
+}
+
+// Bodies the trace says are apart, overlapping on the picture (their panel's two outlines).
+void separationRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) {
+    for (const LayoutBody& a : layout.bodies) {
+        if (a.apartFrom.empty() || a.outline.empty()) continue;
+        const Box* home = homePanel(layout, a.outline.front());
+        for (const LayoutBody& b : layout.bodies) {
+            if (b.name != a.apartFrom || b.outline.empty() || homePanel(layout, b.outline.front()) != home) continue;
+            const double depth = overlapDepth(a.outline, b.outline);
+            if (depth > kBodySlackPx) {
+                char s[96];
+                std::snprintf(s, sizeof s, "and \"%s\" overlap %.1f px deep", b.name.c_str(), depth);
+                out.push_back({LegibilityKind::SeparatedBodiesOverlap, a.name, s, depth});
+            }
+        }
+    }
+}
+
+// Highlighted features against the camera: edge-on, the step's from behind, hidden ones filled.
+void viewRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) {
+    for (const LayoutFeature& f : layout.features) {
+        char s[128];
+        if (f.step && f.dimension > 0 && f.foreshortening < kEdgeOnFraction) {
+            std::snprintf(s, sizeof s, "%s at %.0f deg to the view (under %.0f%% of it shows)",
+                          f.dimension == 2 ? "normal" : "direction",
+                          std::acos(std::clamp(f.dimension == 2 ? f.foreshortening
+                                                                : std::sqrt(1 - f.foreshortening * f.foreshortening),
+                                               0.0, 1.0)) * 180 / M_PI,
+                          100 * kEdgeOnFraction);
+            out.push_back({LegibilityKind::FeatureEdgeOn, f.name, s, kEdgeOnFraction - f.foreshortening});
+        }
+        if (f.facing >= 0) continue;
+        std::snprintf(s, sizeof s, "every face holding it turned away (cos %.2f)", f.facing);
+        if (f.step) out.push_back({LegibilityKind::FeatureFromBehind, f.name, s, -f.facing});
+        if (f.filled) out.push_back({LegibilityKind::HiddenFilled, f.name, s, -f.facing});
+    }
+}
+
+// Plots: a log axis carries its values; two series apart by name are apart by colour.
+void plotRules(const FigureLayout& layout, std::vector<LegibilityProblem>& out) {
+    for (const LayoutAxis& axis : layout.axes) {
+        if (!axis.log) continue;
+        const Eigen::Vector2d d = axis.b - axis.a;
+        int values = 0;
+        for (const LayoutLabel& l : layout.labels) {
+            if (l.text.find_first_of("0123456789") == std::string::npos) continue;
+            // Beside the axis: near it, and level with some point of it.
+            const double t = d.squaredNorm() > 0 ? (l.box.center() - axis.a).dot(d) / d.squaredNorm() : 0;
+            if (t < -0.02 || t > 1.02) continue;
+            double t0, t1;
+            const Box reach{l.box.x0 - kAxisValueReachPx, l.box.y0 - kAxisValueReachPx,
+                            l.box.x1 + kAxisValueReachPx, l.box.y1 + kAxisValueReachPx};
+            if (reach.clip(axis.a, axis.b, t0, t1)) ++values;
+        }
+        if (values < kMinLogAxisValues) {
+            char s[128];
+            std::snprintf(s, sizeof s, "(%.0f, %.0f)-(%.0f, %.0f): %d numbers beside it", axis.a.x(), axis.a.y(),
+                          axis.b.x(), axis.b.y(), values);
+            out.push_back({LegibilityKind::LogAxisWithoutValues, "axis", s, double(kMinLogAxisValues - values)});
+        }
+    }
+    const auto channel = [](unsigned rgb, int shift) { return int((rgb >> shift) & 0xFF); };
+    const std::vector<LayoutSeries>& k = layout.series;
+    for (std::size_t i = 0; i < k.size(); ++i)
+        for (std::size_t j = i + 1; j < k.size(); ++j) {
+            if (k[i].name == k[j].name || homePanel(layout, k[i].at) != homePanel(layout, k[j].at)) continue;
+            int delta = 0;
+            for (const int shift : {0, 8, 16})
+                delta = std::max(delta, std::abs(channel(k[i].rgb, shift) - channel(k[j].rgb, shift)));
+            if (delta <= int(kSameColourDelta)) {
+                char s[96];
+                std::snprintf(s, sizeof s, "and \"%s\" both #%06X", k[j].name.c_str(), k[i].rgb);
+                out.push_back({LegibilityKind::SeriesShareColour, k[i].name, s, double(kSameColourDelta + 1 - delta)});
+            }
+        }
+}
+
 }  // namespace
 
 std::string describe(const LegibilityProblem& p) {
@@ -194,6 +294,9 @@ std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int w
             out.push_back({LegibilityKind::QuantityTooSmall, name, s, kMinQuantityPx - px});
         }
     bodyRules(layout, out);
+    separationRules(layout, out);
+    viewRules(layout, out);
+    plotRules(layout, out);
     for (const std::string& t : layout.unplaced)
         out.push_back({LegibilityKind::Unplaced, t, "no free position around its anchor", 1e9});
     std::stable_sort(out.begin(), out.end(),

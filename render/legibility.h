@@ -24,6 +24,16 @@ enum class LegibilityKind {
                         // everywhere it is drawn (a zoomed inset that draws it larger is enough)
     BodyCutByPanel,     // a body (layout.bodies) reaches past the edge of its panel (the smallest
                         // holding its outline's centre) by more than kBodySlackPx
+    SeparatedBodiesOverlap,  // two bodies the trace says are apart overlap on the picture by more
+                             // than kBodySlackPx (a reader takes them for touching)
+    FeatureEdgeOn,      // the feature a step changed seen edge-on: a face's normal, or an edge's
+                        // direction, within acos(kEdgeOnFraction) of the view
+    FeatureFromBehind,  // the feature a step changed is on the far side of its body (every face
+                        // holding it turned away from the eye)
+    HiddenFilled,       // a highlighted feature on the far side of its body drawn filled (hidden
+                        // geometry is dashed or hollow)
+    LogAxisWithoutValues,  // a log-scale axis with fewer than two numbers printed along it
+    SeriesShareColour,     // two series or reference lines of one plot, named apart, in one colour
 };
 const char* nameOf(LegibilityKind kind);
 
@@ -36,6 +46,14 @@ constexpr double kTargetFontFraction = 0.016;
 constexpr double kMinQuantityPx = 12.0;
 /// How far (px) a body may reach past its panel's edge: anti-aliasing, not a cut.
 constexpr double kBodySlackPx = 1.5;
+/// A face seen at more than acos(0.26) = 75° from its normal shows under a quarter of its area; an
+/// edge within 15° of the view direction shows under a quarter of its length: edge-on.
+constexpr double kEdgeOnFraction = 0.26;
+/// A log axis carries its values: at least this many numeric labels within kAxisValueReachPx of it.
+constexpr int kMinLogAxisValues = 2;
+constexpr double kAxisValueReachPx = 48.0;
+/// Two colours whose channels all differ by at most this (of 255) read as one.
+constexpr unsigned kSameColourDelta = 16;
 /// A stroke whose edge reaches less than this (px) into a label's box only grazes it.
 constexpr double kStrokeGrazePx = 1.5;
 /// Overlaps smaller than this (px²) are anti-aliasing contact, not overprinting.

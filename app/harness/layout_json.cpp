@@ -1,6 +1,7 @@
 #include "app/harness/layout_json.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace cdlab::demos {
 
@@ -45,9 +46,42 @@ Json layoutJson(const render::Image& image) {
         for (const render::LayoutBody& b : l.bodies) {
             Json outline = Json::array();
             for (const Eigen::Vector2d& p : b.outline) outline.push_back(Json::array({px(p.x()), px(p.y())}));
-            bodies.push_back({{"name", b.name}, {"outline", std::move(outline)}});
+            Json body = {{"name", b.name}, {"outline", std::move(outline)}};
+            if (!b.apartFrom.empty()) body["apart_from"] = b.apartFrom;
+            bodies.push_back(std::move(body));
         }
         out["bodies"] = std::move(bodies);
+    }
+    // Cosines to three decimals: the rules' thresholds are two.
+    const auto milli = [](double v) { return std::round(v * 1000.0) / 1000.0 + 0.0; };
+    if (!l.features.empty()) {  // only where a frame notes a highlighted feature (Canvas::noteFeature)
+        Json features = Json::array();
+        for (const render::LayoutFeature& f : l.features)
+            features.push_back({{"name", f.name},
+                                {"dimension", f.dimension},
+                                {"facing", milli(f.facing)},
+                                {"foreshortening", milli(f.foreshortening)},
+                                {"filled", f.filled},
+                                {"step", f.step},
+                                {"at", Json::array({px(f.at.x()), px(f.at.y())})}});
+        out["features"] = std::move(features);
+    }
+    if (!l.axes.empty()) {  // plots (Canvas::noteAxis)
+        Json axes = Json::array();
+        for (const render::LayoutAxis& a : l.axes)
+            axes.push_back({{"from", Json::array({px(a.a.x()), px(a.a.y())})},
+                            {"to", Json::array({px(a.b.x()), px(a.b.y())})},
+                            {"log", a.log}});
+        out["axes"] = std::move(axes);
+    }
+    if (!l.series.empty()) {  // plots (Canvas::noteSeries)
+        Json series = Json::array();
+        for (const render::LayoutSeries& k : l.series) {
+            char rgb[8];
+            std::snprintf(rgb, sizeof rgb, "#%06X", k.rgb & 0xFFFFFFu);
+            series.push_back({{"name", k.name}, {"color", rgb}, {"at", Json::array({px(k.at.x()), px(k.at.y())})}});
+        }
+        out["series"] = std::move(series);
     }
     return out;
 }

@@ -338,7 +338,10 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
             ticks.emplace_back(std::pow(10.0, e), buf);
         }
     }
-    if (valueAxis || in.logY) c.drawLine(P(left - 4, H - bottom), P(left - 4, top), lineStyle(Role::Ink, 1.5f));
+    if (valueAxis || in.logY) {
+        c.drawLine(P(left - 4, H - bottom), P(left - 4, top), lineStyle(Role::Ink, 1.5f));
+        c.noteAxis(P(left - 4, H - bottom), P(left - 4, top), in.logY);  // LogAxisWithoutValues
+    }
     for (const auto& [v, text] : ticks) {
         const double y = H - bottom - frac(v) * plotH;
         c.drawLine(P(left - 8, y), P(left - 4, y), lineStyle(Role::Ink, 1.5f));
@@ -370,6 +373,7 @@ Image drawBarChart(GlContext& gl, int W, int H, int ss, const BarChartInput& in)
         const double tw = c.measureText(in.series[s].label, ts).x();
         const double x = W - right;
         c.drawTextPx(x, ly, in.series[s].label, ts);
+        c.noteSeries(in.series[s].label, in.series[s].color, P(x - tw - 13, ly));  // SeriesShareColour
         c.drawPolygon({P(x - tw - 20, ly - 6), P(x - tw - 6, ly - 6), P(x - tw - 6, ly + 6), P(x - tw - 20, ly + 6)},
                       in.series[s].color);
         ly += 18;

@@ -97,11 +97,11 @@ void sceneSphere(const std::vector<const Body*>& bodies, Vec3& center, double& r
 }
 
 void drawPolyhedron(Canvas& canvas, const Body& body, const Transform& pose, const Color& fill, float alpha,
-                    const std::string& name) {
+                    const std::string& name, const std::string& apartFrom) {
     const ConvexPolyhedron& m = body.regions.mesh();
     std::vector<Vec3> verts;
     for (const Vec3& p : m.positions()) verts.push_back(pose.apply(p));
-    canvas.noteBody(name, verts);
+    canvas.noteBody(name, verts, apartFrom);
     std::vector<Eigen::Vector3i> tris;
     for (int f = 0; f < m.faceCount(); ++f) {
         const std::vector<int> fv = m.faceVertices(f);
@@ -120,30 +120,208 @@ void drawPolyhedron(Canvas& canvas, const Body& body, const Transform& pose, con
     }
 }
 
+std::vector<Vec3> worldVertices(const Body& body, const Transform& pose) {
+    std::vector<Vec3> out;
+    for (const Vec3& p : body.regions.mesh().positions()) out.push_back(pose.apply(p));
+    return out;
+}
+
+bool verticesInside(const Canvas& c, const std::vector<Vec3>& points, double top) {
+    for (const Vec3& p : points) {
+        Eigen::Vector2d px;
+        if (!c.project(p, px) || px.x() < 6 || px.x() > c.width() - 6 || px.y() < top || px.y() > c.height() - 6)
+            return false;
+    }
+    return true;
+}
+
 Vec3 featureCenter(const std::vector<Vec3>& g) {
     Vec3 c = Vec3::Zero();
     for (const Vec3& p : g) c += p;
     return g.empty() ? c : Vec3(c / double(g.size()));
 }
 
-void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const Color& color, const std::string& label,
-                 const Vec3& awayFrom, bool labels) {
+std::vector<Vec3> featureNormals(const Body& body, const Transform& pose, const VClipFeature& f) {
+    const ConvexPolyhedron& m = body.regions.mesh();
+    std::vector<Vec3> normals;
+    if (f.type == VClipFeatureType::Face) {
+        normals.push_back(pose.rotate(m.plane(f.index).normal));
+    } else if (f.type == VClipFeatureType::Edge) {
+        const auto [f1, f2] = m.edgeFaces(f.index);
+        normals = {pose.rotate(m.plane(f1).normal), pose.rotate(m.plane(f2).normal)};
+    } else if (f.type == VClipFeatureType::Vertex) {
+        for (int k = 0; k < m.faceCount(); ++k) {
+            const std::vector<int> fv = m.faceVertices(k);
+            if (std::find(fv.begin(), fv.end(), f.index) != fv.end()) normals.push_back(pose.rotate(m.plane(k).normal));
+        }
+    }
+    return normals;
+}
+
+namespace {
+
+// The gap between two point sets seen along v (orthographic): the largest separation of their
+// projections on any direction across v among their hulls' edge normals, approximated by 64
+// directions in the plane across v (negative: they overlap that deep).
+double gapAlong(const Vec3& v, const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    const Vec3 u = v.unitOrthogonal(), w = v.cross(u).normalized();
+    double best = -INFINITY;
+    for (int k = 0; k < 64; ++k) {
+        const double t = k * M_PI / 64;
+        const Vec3 s = std::cos(t) * u + std::sin(t) * w;
+        double aLo = INFINITY, aHi = -INFINITY, bLo = INFINITY, bHi = -INFINITY;
+        for (const Vec3& p : a) aLo = std::min(aLo, s.dot(p)), aHi = std::max(aHi, s.dot(p));
+        for (const Vec3& p : b) bLo = std::min(bLo, s.dot(p)), bHi = std::max(bHi, s.dot(p));
+        best = std::max({best, bLo - aHi, aLo - bHi});
+    }
+    return best;
+}
+
+}  // namespace
+
+namespace {
+
+// How badly a view shows the steps (chooseWalkView's order): 1000 for bodies apart in space
+// overlapping on the picture, 100 for each new feature not seen from its front, 25 for each current
+// feature edge-on, plus the turn from `view0` in degrees.
+struct ViewScorer {
+    struct Feature {
+        std::vector<Vec3> points, normals;
+        bool step;
+    };
+    std::vector<Feature> features;
+    std::vector<Vec3> apartA, apartB;
+    double size = 0;
+
+    static double facing(const Feature& f, const Vec3& v) {
+        double best = -1;
+        for (const Vec3& n : f.normals) best = std::max(best, n.normalized().dot(v));
+        return best;
+    }
+    static double shown(const Feature& f, const Vec3& v) {  // an edge's |sin| to the view, a face's |cos|
+        if (f.points.size() == 2) return (f.points[1] - f.points[0]).normalized().cross(v).norm();
+        if (f.points.size() > 2 && !f.normals.empty()) return std::abs(f.normals.front().normalized().dot(v));
+        return 1.0;
+    }
+    // A face within 63° of the view; an edge or a vertex with some face holding it within 72°,
+    // an edge at least 20° off the view.
+    static bool frontOn(const Feature& f, const Vec3& v) {
+        return facing(f, v) >= (f.points.size() > 2 ? 0.45 : 0.3) && shown(f, v) >= std::sin(20 * M_PI / 180);
+    }
+    double cost(const Vec3& v, const Vec3& v0) const {
+        double c = std::acos(std::clamp(v.dot(v0), -1.0, 1.0)) * 180 / M_PI;
+        for (const Feature& f : features)
+            c += f.step ? (frontOn(f, v) ? 0 : 100) : (f.points.size() > 1 && shown(f, v) < 0.3 ? 25 : 0);
+        if (!apartA.empty() && !apartB.empty() && gapAlong(v, apartA, apartB) < 0.08 * size) c += 1000;
+        return c;
+    }
+};
+
+ViewScorer scorer(const WalkBodies& w, const std::vector<WalkStepFeatures>& steps) {
+    ViewScorer s;
+    const auto add = [&](int body, const VClipFeature& f, bool step) {
+        const Body& b = body == 0 ? *w.a : *w.b;
+        const Transform& pose = body == 0 ? w.poseA : w.poseB;
+        if (f.type != VClipFeatureType::None) s.features.push_back({featureGeometry(b.regions, pose, f), featureNormals(b, pose, f), step});
+    };
+    for (const WalkStepFeatures& st : steps) {
+        add(0, st.fa, false);
+        add(1, st.fb, false);
+        if (st.updated >= 0) add(st.updated, st.to, true);
+    }
+    if (w.apart) {
+        s.apartA = worldVertices(*w.a, w.poseA), s.apartB = worldVertices(*w.b, w.poseB);
+        for (const std::vector<Vec3>* body : {&s.apartA, &s.apartB})
+            for (const Vec3& p : *body) s.size = std::max(s.size, (p - body->front()).norm());
+    }
+    return s;
+}
+
+}  // namespace
+
+Vec3 chooseWalkView(const WalkBodies& w, const Vec3& view, const std::vector<WalkStepFeatures>& steps,
+                    double maxTurnDegrees) {
+    const Vec3 v0 = view.normalized();
+    if (!v0.allFinite() || !w.a || !w.b) return view;
+    const ViewScorer s = scorer(w, steps);
+    // The view itself, then 600 directions spread evenly over the sphere (a Fibonacci lattice).
+    Vec3 best = v0;
+    double bestCost = s.cost(v0, v0);
+    constexpr int kDirections = 600;
+    for (int k = 0; k < kDirections; ++k) {
+        const double y = 1 - 2 * (k + 0.5) / kDirections, r = std::sqrt(1 - y * y), phi = k * M_PI * (3 - std::sqrt(5.0));
+        const Vec3 v(r * std::cos(phi), y, r * std::sin(phi));
+        if (std::abs(y) > 0.95 || v.dot(v0) < std::cos(maxTurnDegrees * M_PI / 180)) continue;
+        if (const double c = s.cost(v, v0); c < bestCost) bestCost = c, best = v;
+    }
+    return best * view.norm();
+}
+
+void drawWalkBodies(Canvas& c, const WalkBodies& w, bool names) {
+    c.setStrokeOwner(bodyOwner("A"));
+    drawPolyhedron(c, *w.a, w.poseA, roleColor(Role::ShapeA), 0.18f, "A", w.apart ? "B" : "");
+    c.setStrokeOwner(bodyOwner("B"));
+    drawPolyhedron(c, *w.b, w.poseB, roleColor(Role::ShapeB), 0.18f, "B", w.apart ? "A" : "");
+    c.setStrokeOwner(0);
+    if (!names) return;
+    const Vec3 ca = w.poseA.apply(w.a->regions.mesh().centroid()), cb = w.poseB.apply(w.b->regions.mesh().centroid());
+    const Vec3 away = (cb - ca).norm() > 0 ? Vec3((cb - ca).normalized()) : Vec3::UnitX();
+    const double ra = (w.a->regions.mesh().boundsMax() - w.a->regions.mesh().boundsMin()).norm() * 0.3;
+    const double rb = (w.b->regions.mesh().boundsMax() - w.b->regions.mesh().boundsMin()).norm() * 0.3;
+    // Each may cross its own body's edges, nothing else; on its point when free, else beside it.
+    drawBodyName(c, ca - away * ra, "A", Role::ShapeA);
+    drawBodyName(c, cb + away * rb, "B", Role::ShapeB);
+}
+
+void drawClosestPoints(Canvas& c, const Vec3& pa, const Vec3& pb, bool named, double sceneRadius) {
+    const bool apart = (pa - pb).norm() > 1e-3 * sceneRadius;
+    if (apart) c.drawLine(pa, pb, lineStyle(Role::Ink, 2.5f, true, true));
+    c.drawPoint(pa, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
+    c.drawPoint(pb, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
+    if (!named) return;
+    const Camera& cam = c.camera();
+    const Vec3 right = (cam.target - cam.eye).cross(cam.up).normalized() * (0.3 * sceneRadius);
+    TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+    if (apart) drawLabelAway(c, pa, pa + right, "p_A", ts, 10.0);
+    drawLabelAway(c, pb, pb - right, apart ? "p_B" : "p_A = p_B", ts, 10.0);
+}
+
+Vec3 stepView(const WalkBodies& w, const Vec3& sceneView, const WalkStepFeatures& step) {
+    if (step.updated < 0 || !w.a || !w.b) return sceneView;
+    const ViewScorer s = scorer(w, {{VClipFeature{}, VClipFeature{}, step.updated, step.to}});
+    if (ViewScorer::frontOn(s.features.front(), sceneView.normalized())) return sceneView;
+    return chooseWalkView(w, sceneView, {step}, 180.0);
+}
+
+void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<Vec3>& normals, const Color& color,
+                 const std::string& label, const Vec3& awayFrom, bool labels, bool step) {
     if (g.empty()) return;
+    // Seen from behind: every face holding it turned away from the eye (as Canvas::noteFeature judges).
+    const Camera& cam = canvas.camera();
+    const Vec3 centre = featureCenter(g);
+    const Vec3 toEye = cam.projection == Camera::Projection::Perspective ? Vec3((cam.eye - centre).normalized())
+                                                                          : cam.viewDirection();
+    bool hidden = !normals.empty() && cam.projection != Camera::Projection::TwoD;
+    for (const Vec3& n : normals) hidden = hidden && n.dot(toEye) < 0;
+    const bool filled = g.size() > 2 && !hidden;
+    canvas.noteFeature({label, g, normals, filled, step});
     if (g.size() == 1) {
         canvas.drawPoint(g[0], 9.0f, color, true, 2.0f, roleColor(Role::Ink));
     } else if (g.size() == 2) {
         LineStyle ls = lineStyle(Role::Ink, 6.0f, false, true);
         ls.color = color;
+        if (hidden) ls.dashPx = 10.0f;
         canvas.drawLine(g[0], g[1], ls);
     } else {
-        canvas.drawPolygon(g, color.withAlpha(0.55f));
+        if (filled) canvas.drawPolygon(g, color.withAlpha(0.55f));
         LineStyle ls = lineStyle(Role::Ink, 3.5f, false, true);
         ls.color = color;
+        if (hidden) ls.dashPx = 9.0f;
         canvas.drawPolyline(g, true, ls);
     }
     if (labels) {
         TextStyle ts{18.0f, color.scaled(0.75f), Anchor::Center, true, true};
-        drawLabelAway(canvas, featureCenter(g), awayFrom, label, ts, g.size() == 1 ? 14.0 : 10.0, featureLabelPoints(g));
+        drawLabelAway(canvas, centre, awayFrom, label, ts, g.size() == 1 ? 14.0 : 10.0, featureLabelPoints(g));
     }
 }
 

@@ -67,13 +67,60 @@ render::Image composeFrame(render::GlContext& gl, const Layout& layout, int scal
 
 // ---- the 3D panel pieces (vclip_demo_draw.cpp)
 
-/// A body placed at `pose`, translucent, with its edges; noted as `name` (Canvas::noteBody).
+/// A body placed at `pose`, translucent, with its edges; noted as `name`, apart from the body named
+/// `apartFrom` ("" none; Canvas::noteBody).
 void drawPolyhedron(render::Canvas& canvas, const Body& body, const Transform& pose, const render::Color& fill,
-                    float alpha, const std::string& name);
-/// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; labelled
-/// with `label` pushed away from `awayFrom`.
-void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, const render::Color& color,
-                 const std::string& label, const Vec3& awayFrom, bool labels);
+                    float alpha, const std::string& name, const std::string& apartFrom = "");
+/// The outward normals (world frame) of the faces of `body` placed at `pose` that hold feature f:
+/// a face's own, an edge's two, a vertex's ring (what Canvas::noteFeature judges the view by).
+std::vector<Vec3> featureNormals(const Body& body, const Transform& pose, const VClipFeature& f);
+/// A walk's bodies as its frames show them, for choosing their view: A and B at their poses, and
+/// whether the walk found them apart (then they stay apart on the picture).
+struct WalkBodies {
+    const Body* a = nullptr;
+    Transform poseA;
+    const Body* b = nullptr;
+    Transform poseB;
+    bool apart = false;
+};
+/// One step's features: the pair (fa on A, fb on B) and, after an update of body `updated` (0: A,
+/// 1: B, -1: none), its new feature `to`, the feature the frame is built around.
+struct WalkStepFeatures {
+    VClipFeature fa, fb;
+    int updated = -1;
+    VClipFeature to;
+};
+/// The view direction, within `maxTurnDegrees` of `view` and 72° of the vertical, that best shows
+/// the steps: each new feature from its front (a face's normal within 63° of the view, an edge's or
+/// a vertex's faces' nearest within 72°, an edge 20° off it: FeatureFromBehind, FeatureEdgeOn), no current feature
+/// edge-on (the review: a current face turned to a dashed line), the bodies apart on the picture
+/// when they are apart (SeparatedBodiesOverlap), and the least turn from `view`, in that order.
+/// A view that shows all of that is returned as it is. Test: tests/demos/draw/view_choice_test.cpp.
+Vec3 chooseWalkView(const WalkBodies& bodies, const Vec3& view, const std::vector<WalkStepFeatures>& steps,
+                    double maxTurnDegrees);
+/// Both bodies, translucent with their edges, noted apart when they are (drawPolyhedron), and with
+/// `names` each body's name on its far side from the other, where the features are not.
+void drawWalkBodies(render::Canvas& canvas, const WalkBodies& bodies, bool names);
+/// The closest points pa, pb (dashed between them when more than 1e-3 `sceneRadius` apart); with
+/// `named` labelled sideways on screen (p_A left, p_B right: the feature labels sit above / below),
+/// one "p_A = p_B" where they meet.
+void drawClosestPoints(render::Canvas& canvas, const Vec3& pa, const Vec3& pb, bool named, double sceneRadius);
+/// The view of one step's frame: the walk's `sceneView` when it shows the step's new feature from
+/// its front, else chooseWalkView for this step alone (the camera swings round to the feature).
+Vec3 stepView(const WalkBodies& bodies, const Vec3& sceneView, const WalkStepFeatures& step);
+/// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; on the
+/// far side of its body (every face in `normals` turned away from the eye) an edge dashed and a
+/// face hollow with a dashed outline (hidden geometry is never filled). Labelled with `label`
+/// pushed away from `awayFrom`; noted (Canvas::noteFeature) with `step`: what the frame's step
+/// changed.
+void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, const std::vector<Vec3>& normals,
+                 const render::Color& color, const std::string& label, const Vec3& awayFrom, bool labels,
+                 bool step = false);
+/// The body's vertices placed at `pose` (world frame).
+std::vector<Vec3> worldVertices(const Body& body, const Transform& pose);
+/// Do the points project inside the canvas, `top` px below its top edge and 6 px from its other
+/// edges, through its camera?
+bool verticesInside(const render::Canvas& canvas, const std::vector<Vec3>& points, double top);
 /// Mean of a feature's points.
 Vec3 featureCenter(const std::vector<Vec3>& geometry);
 /// The other points a feature's label may name it at (drawLabelAway's alsoAt): an edge's points a

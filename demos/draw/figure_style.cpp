@@ -118,4 +118,18 @@ render::Color featureDimensionColor(int dimension) {
     return render::categorical(kColor[std::clamp(dimension, 0, 3)]);
 }
 
+Vec3 viewTowards(const Vec3& view, const Vec3& normal, double minCos) {
+    const Vec3 v0 = view.normalized(), n = normal.normalized();
+    if (!v0.allFinite() || !n.allFinite() || n.dot(v0) >= minCos) return view;
+    const double flat = std::sqrt(1 - 0.95 * 0.95);  // the horizontal part at 72° from the vertical
+    Vec3 v = v0;
+    for (int k = 1; k <= 40 && n.dot(v) < minCos; ++k) {
+        const double t = k / 40.0;
+        v = ((1 - t) * v0 + t * n).normalized();
+        if (const double h = std::hypot(v.x(), v.z()); std::abs(v.y()) > 0.95 && h > 1e-9)
+            v = Vec3(v.x() / h * flat, std::copysign(0.95, v.y()), v.z() / h * flat);
+    }
+    return v * view.norm();
+}
+
 }  // namespace cdlab::demos

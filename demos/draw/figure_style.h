@@ -55,4 +55,10 @@ std::string formatNumber(double x);
 render::Camera framingCamera(const Vec3& center, double radius, const Vec3& viewDirection, const Vec3& up,
                              bool perspective = true);
 
+/// `view` turned towards `normal` as little as it takes for the two to be within acos(minCos) of
+/// each other, kept within 72° of the vertical (framingCamera's up is +y): a step's face seen from
+/// its front (the view rules FeatureEdgeOn and FeatureFromBehind, render/legibility.h). A view
+/// that already sees it so is returned as it is. Test: tests/demos/draw/view_choice_test.cpp.
+Vec3 viewTowards(const Vec3& view, const Vec3& normal, double minCos = 0.5);
+
 }  // namespace cdlab::demos

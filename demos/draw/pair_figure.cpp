@@ -7,6 +7,7 @@
 
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "render/legibility.h"
 
 namespace cdlab::demos {
 
@@ -20,6 +21,34 @@ Camera panelCamera(bool planar, const Vec3& center, double radius, const Vec3& v
         return Camera::twoD(center.x(), center.y() + 0.04 * height, height);
     }
     return framingCamera(center, radius * 1.05, view, Vec3::UnitY(), true);
+}
+
+Camera acrossGapCamera(GlContext& gl, const CanvasOptions& options, const Camera& base, const PairDrawing& d,
+                       const Vec3& pa, const Vec3& pb) {
+    const Vec3 gap = pb - pa;
+    if (d.planar || !(gap.norm() > 0) || base.projection != Camera::Projection::Perspective) return base;
+    // The bodies alone through `base`: apart on the picture already?
+    Canvas probe(gl, options, base);
+    probe.noteBody("A", d.a.vertices, "B");
+    probe.noteBody("B", d.b.vertices, "A");
+    const FigureLayout layout = probe.layout();
+    const std::vector<LegibilityProblem> problems = checkLegibility(layout, options.width, options.height);
+    if (std::none_of(problems.begin(), problems.end(), [](const LegibilityProblem& p) {
+            return p.kind == LegibilityKind::SeparatedBodiesOverlap;
+        }))
+        return base;
+    // The same distance and field of view, the view turned flat to the gap, the target (and so
+    // the eye) moved into the plane midway between the closest points.
+    const Vec3 n = gap.normalized(), mid = 0.5 * (pa + pb);
+    Vec3 view = base.eye - base.target;
+    const double distance = view.norm();
+    view -= view.dot(n) * n;
+    if (view.norm() < 1e-9 * distance) view = n.unitOrthogonal();
+    Camera cam = base;
+    cam.target = base.target - (base.target - mid).dot(n) * n;
+    cam.eye = cam.target + view.normalized() * distance;
+    if (std::abs(cam.up.normalized().dot(view.normalized())) > 0.99) cam.up = n;
+    return cam;
 }
 
 void drawPanelHeading(Canvas& canvas, const std::string& heading, const std::string& sub) {
@@ -77,14 +106,15 @@ PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vect
     return d;
 }
 
-void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels) {
+void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels, bool apart) {
     const float alpha = d.planar ? 0.35f : alpha3d;
     for (const auto& [body, role] : {std::pair{&d.a, Role::ShapeA}, std::pair{&d.b, Role::ShapeB}}) {
         const char* name = role == Role::ShapeA ? "A" : "B";
         world.setStrokeOwner(bodyOwner(name));
         drawBody(world, *body, roleColor(role), alpha,
                  colliding ? roleColor(Role::Colliding) : roleColor(role).scaled(0.6f), colliding ? 3.5f : 2.0f);
-        world.noteBody(name, body->planar && !body->outline.empty() ? body->outline : body->vertices);
+        world.noteBody(name, body->planar && !body->outline.empty() ? body->outline : body->vertices,
+                       apart ? (role == Role::ShapeA ? "B" : "A") : "");
     }
     world.setStrokeOwner(0);
     if (!labels) return;

@@ -50,8 +50,18 @@ PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vect
                             std::vector<std::string>& skipped);
 
 /// The two bodies in world space, translucent (`alpha3d` in 3D), named when `labels`; when they
-/// intersect their outlines take Role::Colliding, with a key where outlines are drawn.
-void drawPairBodies(render::Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels);
+/// intersect their outlines take Role::Colliding, with a key where outlines are drawn. `apart`: the
+/// trace says the bodies are separated (noted as such: SeparatedBodiesOverlap, render/legibility.h).
+void drawPairBodies(render::Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels,
+                    bool apart = false);
+
+/// The world panel's camera for a separated 3D pair (closest points pa on A, pb on B): `base`
+/// when the bodies are apart on its picture, else the same framing looking across the gap, the
+/// eye in the plane midway between the closest points, where the two bodies' pictures cannot
+/// overlap (the view rule SeparatedBodiesOverlap; gjk/sliver's 0.005 gap overlapped 29 px).
+/// Test: tests/demos/draw/view_choice_test.cpp.
+render::Camera acrossGapCamera(render::GlContext& gl, const render::CanvasOptions& options,
+                               const render::Camera& base, const PairDrawing& d, const Vec3& pa, const Vec3& pb);
 
 /// The name under which a pair figure records the witness distance it draws (Canvas::noteQuantity).
 inline const std::string kDistanceQuantity = "distance |p_A − p_B|";

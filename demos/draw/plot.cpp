@@ -163,6 +163,9 @@ public:
         };
         ticks(f.ax, true);
         ticks(f.ay, false);
+        // The value axes, for the rule that a log axis carries its values (LogAxisWithoutValues).
+        c_.noteAxis(P(f.x0, f.y1), P(f.x1, f.y1), f.ax.log);
+        c_.noteAxis(P(f.x0, f.y1), P(f.x0, f.y0), f.ay.log);
         c_.drawPolyline({P(f.x0, f.y0), P(f.x1, f.y0), P(f.x1, f.y1), P(f.x0, f.y1)}, true, axis);
         const TextStyle label{17.0f, roleColor(Role::Ink), Anchor::Top, false, true};
         c_.drawTextPx(0.5 * (f.x0 + f.x1), f.y1 + 36, o_.xLabel, label);
@@ -245,6 +248,7 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
         LineStyle ls = lineStyle(Role::Ink, 3.0f, true, false);
         ls.color = color;
         c.drawLine(pc.P(f.x0, y), pc.P(f.x1, y), ls);
+        c.noteSeries(text, color, pc.P(f.x0, y));
         // Named just past the line's right end, in the margin outside the data (inside the axes
         // it sat among the series: the re-render review of 2026-11-29 found "u = 1.1e-16" crossed
         // twice by a median line), or where the placement step finds room.
@@ -261,6 +265,9 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     std::vector<PlotCanvas::LegendEntry> entries;
     for (const PlotSeries& s : series) {
         entries.push_back({s.label, s.style, s.line && s.points.size() > 1, s.markers});
+        if (!s.points.empty())
+            c.noteSeries(s.label, render::categorical(s.style),
+                         pc.P(f.px(s.points[0].first), f.py(s.points[0].second)));
         if (s.line && s.points.size() > 1) {
             std::vector<Eigen::Vector3d> line;
             for (const auto& [x, y] : s.points) line.push_back(pc.P(f.px(x), f.py(y)));
@@ -321,6 +328,7 @@ render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
     for (size_t si = 0; si < series.size(); ++si) {
         const int style = static_cast<int>(si);
         entries.push_back({series[si].first, style, true, false});
+        c.noteSeries(series[si].first, render::categorical(style), pc.P(0.5 * (f.x0 + f.x1), f.y1));
         // Step outline with a translucent fill, slightly offset per series so equal bins stay visible.
         const double dx = 2.0 * si;
         std::vector<Eigen::Vector3d> outline;

@@ -64,6 +64,7 @@ public:
         const double eY0 = H_ * 0.50, eY1 = H_ - 95;
         const auto YE = [&](double v) { return eY0 + (v - eLo) / (eHi - eLo) * (eY1 - eY0); };
         c_.drawLine(P(x0_, eY0), P(x0_, eY1), axis_);
+        c_.noteAxis(P(x0_, eY0), P(x0_, eY1), false);
         lx_ = x1_ - 300;
         ly_ = eY1 - 12;
         const std::vector<std::string> names = {"total E = KE + PE", "kinetic KE", "potential PE"};
@@ -102,6 +103,7 @@ public:
             return pY0 + (l - lLo) / (lHi - lLo) * (pY1 - pY0);
         };
         c_.drawLine(P(x0_, pY0), P(x0_, pY1), axis_);
+        c_.noteAxis(P(x0_, pY0), P(x0_, pY1), true);  // LogAxisWithoutValues
         // Legend on the left, below the slop line: bodies in flight have no depth there.
         lx_ = x0_ + 24;
         ly_ = YP(slop) - 26;
@@ -123,12 +125,16 @@ public:
             before.push_back(P(X(s.time), YP(s.penetrationBeforeCorrection)));
             after.push_back(P(X(s.time), YP(s.maxPenetration)));
         }
-        hline(YP(slop), lineStyle(Role::Ink, 1.5f, true));
+        // The slop in dark grey, not the ink of the energy plot's total above it: two lines of one
+        // figure in one colour read as one thing (the rule SeriesShareColour).
+        LineStyle slopStyle = lineStyle(Role::Ink, 1.5f, true);
+        slopStyle.color = roleColor(Role::Muted).scaled(0.55f);
+        hline(YP(slop), slopStyle);
         c_.drawPolyline(after, false, lineStyle(Role::Result, 3.0f));
         c_.drawPolyline(before, false, lineStyle(Role::Direction, 1.5f, true));  // on top: equal unless corrected
         legendLine(Role::Result, 3.0f, false, names[0]);
         legendLine(Role::Direction, 1.5f, true, names[1]);
-        legendLine(Role::Ink, 1.5f, true, names[2]);
+        legendLine(slopStyle, names[2]);
     }
 
 private:
@@ -164,7 +170,11 @@ private:
     }
     // One legend entry at (lx_, ly_), the next one below it.
     void legendLine(Role role, float w, bool dashed, const std::string& text) {
-        c_.drawLine(P(lx_, ly_), P(lx_ + 36, ly_), lineStyle(role, w, dashed));
+        legendLine(lineStyle(role, w, dashed), text);
+    }
+    void legendLine(const LineStyle& style, const std::string& text) {
+        c_.drawLine(P(lx_, ly_), P(lx_ + 36, ly_), style);
+        c_.noteSeries(text, style.color, P(lx_, ly_));  // SeriesShareColour
         c_.drawText(P(lx_ + 44, ly_), text, legend_);
         ly_ -= 24;
     }

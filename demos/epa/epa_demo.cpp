@@ -256,11 +256,32 @@ private:
                 }
         } else {
             std::vector<Eigen::Vector3i> live, gone, closest;
+            // The closest face and the removed ones are filled only where they face the eye; on the
+            // polytope's far side they are outlined dashed (hidden geometry is never filled: the view
+            // rules HiddenFilled and FeatureFromBehind, render/legibility.h).
+            const Camera& cam = cs.camera();
             for (std::size_t k = 0; k < s.faces.size(); ++k) {
                 Eigen::Vector3i t(s.faces[k][0], s.faces[k][1], s.faces[k][2]);
-                if (showStep && int(k) == s.closestFace && common_.hasLayer("closest")) closest.push_back(t);
-                else if (removed[k] && common_.hasLayer("horizon")) gone.push_back(t);
-                else live.push_back(t);
+                const bool isClosest = showStep && int(k) == s.closestFace && common_.hasLayer("closest");
+                const bool isGone = !isClosest && removed[k] && common_.hasLayer("horizon");
+                if (!isClosest && !isGone) {
+                    live.push_back(t);
+                    continue;
+                }
+                const std::vector<Vec3> pts{s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]]};
+                const Vec3 centre = (pts[0] + pts[1] + pts[2]) / 3.0;
+                Vec3 n = (pts[1] - pts[0]).cross(pts[2] - pts[0]);
+                if (n.dot(centre) < 0) n = -n;  // outward: the polytope holds the origin
+                const Vec3 toEye = cam.projection == Camera::Projection::Perspective ? Vec3(cam.eye - centre)
+                                                                                      : cam.viewDirection();
+                const bool hidden = n.dot(toEye) < 0;
+                cs.noteFeature({isClosest ? "closest face" : "removed face", pts, {n}, !hidden, isClosest});
+                if (hidden) {
+                    LineStyle ls = lineStyle(isClosest ? Role::Ink : Role::Support, isClosest ? 3.0f : 2.0f, true, true);
+                    if (isClosest) ls.color = closestColor().scaled(0.7f);
+                    cs.drawPolyline(pts, true, ls);
+                    live.push_back(t);  // shaded as the rest of the polytope, seen through it
+                } else (isClosest ? closest : gone).push_back(t);
             }
             cs.drawMesh(s.vertices, live, roleColor(Role::Simplex).withAlpha(0.30f), true);
             if (!gone.empty()) cs.drawMesh(s.vertices, gone, roleColor(Role::Support).withAlpha(0.45f), true);
@@ -304,9 +325,12 @@ private:
         const PolyStep* s = index >= 0 ? &run.steps[index] : nullptr;
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
         drawWorldPanel(world, d, run, s, isResult);
+        // A step's closest face seen from its front, its normal within 49° of the configuration
+        // space's view (turned to it where needed; at 60° the labels at its closest point crowd).
+        const Vec3 csView = s && !d.planar && common_.hasLayer("closest") ? viewTowards(pair_.view, s->normal, 0.65) : pair_.view;
         Canvas cs(gl, po,
                   common_.camera && !d.planar ? *common_.camera
-                                              : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+                                              : panelCamera(d.planar, d.cCenter, d.cRadius, csView, layout));
         drawConfigurationPanel(cs, d, run, s, isGjk);
         Frame f;
         const std::vector<std::string> lines = describeFrame(d, run, s, isGjk, f);
@@ -319,7 +343,8 @@ private:
     void drawWorldPanel(Canvas& world, const Drawing& d, const EpaRun& run, const PolyStep* s, bool isResult) const {
         const bool labels = common_.hasLayer("labels");
         const bool penetrating = run.status == EpaStatus::Penetrating || run.status == EpaStatus::Touching;
-        drawPairBodies(world, d, 0.4f, penetrating, labels);  // outlined as colliding when they intersect
+        // Outlined as colliding when they intersect; noted as apart when GJK found them separated.
+        drawPairBodies(world, d, 0.4f, penetrating, labels, run.status == EpaStatus::Separated);
         if (s && common_.hasLayer("support")) {
             world.drawPoint(s->supportA, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
             world.drawPoint(s->supportB, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));

@@ -23,6 +23,7 @@
 #include "demos/draw/zoom_inset.h"
 #include "app/scene/pair_scene.h"
 #include "render/canvas.h"
+#include "render/legibility.h"
 
 namespace cdlab::demos {
 
@@ -155,8 +156,12 @@ private:
     Image worldPanel(GlContext& gl, const CanvasOptions& po, const TwoPanelLayout& layout, const Drawing& d,
                      const GjkTraceStep* s, const GjkResult& r) const {
         const bool labels = common_.hasLayer("labels");
-        Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
-        drawPairBodies(world, d, 0.45f, r.status == GjkStatus::Intersecting, labels);  // outlined as colliding when they intersect
+        // A separated pair seen across its gap where the scene's view would overlap the bodies.
+        const Camera camera = panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout);
+        Canvas world(gl, po,
+                     r.status == GjkStatus::Separated ? acrossGapCamera(gl, po, camera, d, r.pointA, r.pointB) : camera);
+        // Outlined as colliding when they intersect; noted as apart when the result separates them.
+        drawPairBodies(world, d, 0.45f, r.status == GjkStatus::Intersecting, labels, r.status == GjkStatus::Separated);
         const Vec3 pa = s ? s->pointA : r.pointA, pb = s ? s->pointB : r.pointB;
         if (common_.hasLayer("witness")) {
             world.drawLine(pa, pb, lineStyle(Role::Result, 3.0f, false, true));
@@ -170,6 +175,11 @@ private:
                 if (!s && r.status == GjkStatus::Intersecting) {
                     // No closest points: the result's pointA ~ pointB is one common point.
                     drawLabelAway(world, pa, d.a.center, "common point", ts);
+                } else if (Eigen::Vector2d qa, qb; !s && r.status == GjkStatus::Separated && world.project(pa, qa) &&
+                                                    world.project(pb, qb) && (qa - qb).norm() < render::kMinQuantityPx) {
+                    // One spot on the picture (the inset draws them apart): one label, not two
+                    // that each may land on the other's body (gjk/sliver's result had p_A on B).
+                    drawLabelAway(world, 0.5 * (pa + pb), d.a.center, "p_A, p_B", ts);
                 } else {
                     drawLabelAway(world, pa, apart ? pb : d.a.center, "p_A", ts);
                     drawLabelAway(world, pb, apart ? pa : d.b.center, "p_B", ts);

@@ -237,9 +237,10 @@ private:
 
     Layout layout() const { return Layout{common_.image.width, common_.image.height}; }
 
-    Camera camera(double shiftUp, double zoom) const {
+    /// `view`: the scene's (none), or the walk's (chooseWalkView).
+    Camera camera(double shiftUp, double zoom, const std::optional<Vec3>& view = std::nullopt) const {
         if (common_.camera) return *common_.camera;
-        Camera cam = framingCamera(center_, radius_ * zoom, s_.view, Vec3::UnitY(), true);
+        Camera cam = framingCamera(center_, radius_ * zoom, view ? *view : s_.view, Vec3::UnitY(), true);
         const Vec3 forward = (cam.target - cam.eye).normalized();
         const Vec3 screenUp = (Vec3::UnitY() - Vec3::UnitY().dot(forward) * forward).normalized();
         cam.eye += screenUp * shiftUp * radius_;
@@ -262,43 +263,20 @@ private:
 
     /// shiftUp: the view moves down by this fraction of the scene radius (room for the panel
     /// heading); zoom: the fraction of the scene's bounding sphere that is framed.
-    void setupPanel(Canvas& c, double shiftUp, double zoom) const { c.setCamera(camera(shiftUp, zoom)); }
+    void setupPanel(Canvas& c, double shiftUp, double zoom, const std::optional<Vec3>& view = std::nullopt) const {
+        c.setCamera(camera(shiftUp, zoom, view));
+    }
 
     const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
     const Transform& pose(int i) const { return i == 0 ? s_.a.pose : s_.b.pose; }
     Vec3 centroid(int i) const { return pose(i).apply(body(i).regions.mesh().centroid()); }
     Color featureColor(int i) const { return roleColor(i == 0 ? Role::ShapeA : Role::ShapeB).scaled(0.8f); }
 
-    void drawBodies(Canvas& c, bool names) const {
-        c.setStrokeOwner(bodyOwner("A"));
-        drawPolyhedron(c, s_.a, s_.a.pose, roleColor(Role::ShapeA), 0.18f, "A");
-        c.setStrokeOwner(bodyOwner("B"));
-        drawPolyhedron(c, s_.b, s_.b.pose, roleColor(Role::ShapeB), 0.18f, "B");
-        c.setStrokeOwner(0);
-        if (names && common_.hasLayer("labels")) {
-            // Each body's name on its far side from the other body, where the features are not.
-            const Vec3 ca = centroid(0), cb = centroid(1);
-            const Vec3 away = (cb - ca).norm() > 0 ? Vec3((cb - ca).normalized()) : Vec3::UnitX();
-            const double ra = (s_.a.regions.mesh().boundsMax() - s_.a.regions.mesh().boundsMin()).norm() * 0.3;
-            const double rb = (s_.b.regions.mesh().boundsMax() - s_.b.regions.mesh().boundsMin()).norm() * 0.3;
-            // Each may cross its own body's edges, nothing else; on its point when free, else beside it.
-            drawBodyName(c, ca - away * ra, "A", Role::ShapeA);
-            drawBodyName(c, cb + away * rb, "B", Role::ShapeB);
-        }
-    }
+    /// The walk's bodies, apart when `apart` (the walk found them separated).
+    WalkBodies walkBodies(bool apart) const { return {&s_.a, s_.a.pose, &s_.b, s_.b.pose, apart}; }
 
     void drawClosest(Canvas& c, const Vec3& pa, const Vec3& pb, bool named) const {
-        const bool apart = (pa - pb).norm() > 1e-3 * radius_;
-        if (apart) c.drawLine(pa, pb, lineStyle(Role::Ink, 2.5f, true, true));
-        c.drawPoint(pa, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
-        c.drawPoint(pb, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
-        if (named && common_.hasLayer("labels")) {
-            const Camera& cam = c.camera();
-            const Vec3 right = (cam.target - cam.eye).cross(cam.up).normalized() * (0.3 * radius_);
-            TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
-            if (apart) drawLabelAway(c, pa, pa + right, "p_A", ts, 10.0);
-            drawLabelAway(c, pb, pb - right, apart ? "p_B" : "p_A = p_B", ts, 10.0);
-        }
+        drawClosestPoints(c, pa, pb, named && common_.hasLayer("labels"), radius_);
     }
 
     /// One applicability test: the plane patch (red when violated) and the tested point's offset.
@@ -380,8 +358,19 @@ private:
         const LinCannyResult& r = run.lc;
         const LinCannyTraceStep* st = index >= 0 ? &tr.steps[index] : nullptr;
         Canvas c(gl, canvasOptions(L.mainWidth(), L.panelHeight(), ss));
-        setupPanel(c, 0.12, 0.92);
-        drawBodies(c, true);
+        // One view for the walk's frames, near the scene's; a step whose new feature it shows from
+        // behind swings round to it (demos/draw/feature_walk_figure.h, chooseWalkView).
+        const WalkBodies w = walkBodies(r.status == LinCannyStatus::Separated);
+        std::vector<WalkStepFeatures> steps;
+        for (const LinCannyTraceStep& t : tr.steps) steps.push_back({t.featureA, t.featureB, t.updatedBody, t.to});
+        std::optional<Vec3> view = chooseWalkView(w, s_.view, steps, 45.0);
+        if (st) view = stepView(w, *view, steps[std::size_t(index)]);
+        // Pulled back until both bodies are whole below the heading and a step's plane key, which
+        // ends 86 px down (BodyCutByPanel; the gate found B's edges through the key).
+        double zoom = 0.92;
+        setupPanel(c, 0.12, zoom, view);
+        for (int k = 0; k < 16 && !bodiesInside(c, st ? 92.0 : 48.0); ++k) setupPanel(c, 0.12, zoom *= 1.04, view);
+        drawWalkBodies(c, walkBodies(r.status == LinCannyStatus::Separated), common_.hasLayer("labels"));
         Frame f;
         std::vector<std::string> lines;
         if (st) {
@@ -411,8 +400,8 @@ private:
     /// Returns how many plane tests were drawn.
     int drawStep(Canvas& c, const LinCannyTraceStep& step) const {
         const bool labels = common_.hasLayer("labels");
-        drawFeature(c, step.featureAWorld, featureColor(0), featureLabel(step.featureA, 0), centroid(1), labels);
-        drawFeature(c, step.featureBWorld, featureColor(1), featureLabel(step.featureB, 1), centroid(0), labels);
+        drawFeature(c, step.featureAWorld, featureNormals(s_.a, s_.a.pose, step.featureA), featureColor(0), featureLabel(step.featureA, 0), centroid(1), labels);
+        drawFeature(c, step.featureBWorld, featureNormals(s_.b, s_.b.pose, step.featureB), featureColor(1), featureLabel(step.featureB, 1), centroid(0), labels);
         int shown = 0;
         if (common_.hasLayer("planes"))
             for (const VClipPlaneTest& p : step.planes) {
@@ -428,7 +417,9 @@ private:
             const Vec3 from = featureCenter(step.updatedBody == 0 ? step.featureAWorld : step.featureBWorld),
                        to = featureCenter(gTo);
             if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, lineStyle(Role::Ink, 4.0f, false, true));
-            drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(step.updatedBody), 0.5f), "", from, false);
+            drawFeature(c, gTo, featureNormals(body(step.updatedBody), pose(step.updatedBody), step.to),
+                        roleColor(Role::Ink).mixed(featureColor(step.updatedBody), 0.5f),
+                        "new " + featureLabel(step.to, step.updatedBody), from, false, true);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(step.to, step.updatedBody),
                               TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0,
@@ -496,8 +487,10 @@ private:
         const bool labels = common_.hasLayer("labels");
         const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
         const std::vector<Vec3> gb = featureGeometry(s_.b.regions, s_.b.pose, r.featureB);
-        drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroid(1), labels);
-        drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroid(0), labels);
+        drawFeature(c, ga, featureNormals(s_.a, s_.a.pose, r.featureA), featureColor(0), featureLabel(r.featureA, 0),
+                    centroid(1), labels);
+        drawFeature(c, gb, featureNormals(s_.b, s_.b.pose, r.featureB), featureColor(1), featureLabel(r.featureB, 1),
+                    centroid(0), labels);
         if (common_.hasLayer("closest") && r.status != LinCannyStatus::CycleDetected)
             drawClosest(c, r.pointA, r.pointB, true);
     }
@@ -557,12 +550,12 @@ private:
         double zoom = 0.80;
         setupPanel(c, 0.28, zoom);
         for (int k = 0; k < 24 && !bodiesInside(c, 96.0); ++k) setupPanel(c, 0.28, zoom *= 1.03);
-        drawBodies(c, true);
+        drawWalkBodies(c, walkBodies(closest), common_.hasLayer("labels"));  // closest points: apart
         const bool labels = common_.hasLayer("labels");
-        drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureColor(0), featureLabel(fa, 0), centroid(1),
-                    labels);
-        drawFeature(c, featureGeometry(s_.b.regions, s_.b.pose, fb), featureColor(1), featureLabel(fb, 1), centroid(0),
-                    labels);
+        drawFeature(c, featureGeometry(s_.a.regions, s_.a.pose, fa), featureNormals(s_.a, s_.a.pose, fa), featureColor(0),
+                    featureLabel(fa, 0), centroid(1), labels);
+        drawFeature(c, featureGeometry(s_.b.regions, s_.b.pose, fb), featureNormals(s_.b, s_.b.pose, fb), featureColor(1),
+                    featureLabel(fb, 1), centroid(0), labels);
         std::vector<Vec3> pathA, pathB;
         for (const auto& st : tr.steps) {
             pathA.push_back(st.closestA);

@@ -273,39 +273,33 @@ private:
         return canvasOptions(L.mainWidth(), L.panelHeight(), ss);
     }
 
-    void setupMain(Canvas& c) const {
+    /// `view`: the scene's, or the walk's (chooseWalkView). Framed a little low so
+    /// that the panel heading stays clear of the bodies, and pulled back until both bodies (B at
+    /// `poseB`) are whole `top` px below the panel's top (the view rule BodyCutByPanel; a step
+    /// frame's plane key ends at 86 px, the gate found B's edges through it).
+    void setupMain(Canvas& c, const Vec3& view, const Transform& poseB, double top = 48.0) const {
         if (common_.camera) {
             c.setCamera(*common_.camera);
             return;
         }
-        // Framed a little low so that the panel heading stays clear of the bodies.
-        Camera cam = framingCamera(center_, radius_ * 0.92, s_.view, Vec3::UnitY(), true);
-        const Vec3 forward = (cam.target - cam.eye).normalized();
-        const Vec3 screenUp = (Vec3::UnitY() - Vec3::UnitY().dot(forward) * forward).normalized();
-        cam.eye += screenUp * 0.12 * radius_;
-        cam.target += screenUp * 0.12 * radius_;
-        c.setCamera(cam);
+        const std::vector<Vec3> a = worldVertices(s_.a, s_.a.pose), b = worldVertices(s_.b, poseB);
+        double zoom = 0.92;
+        for (int k = 0; k < 16; ++k, zoom *= 1.04) {
+            Camera cam = framingCamera(center_, radius_ * zoom, view, Vec3::UnitY(), true);
+            const Vec3 forward = (cam.target - cam.eye).normalized();
+            const Vec3 screenUp = (Vec3::UnitY() - Vec3::UnitY().dot(forward) * forward).normalized();
+            cam.eye += screenUp * 0.12 * radius_;
+            cam.target += screenUp * 0.12 * radius_;
+            c.setCamera(cam);
+            if (verticesInside(c, a, top) && verticesInside(c, b, top)) break;
+        }
     }
 
     const Body& body(int i) const { return i == 0 ? s_.a : s_.b; }
 
-    void drawBodies(Canvas& c, const Transform& poseB) const {
-        c.setStrokeOwner(bodyOwner("A"));
-        drawPolyhedron(c, s_.a, s_.a.pose, roleColor(Role::ShapeA), 0.18f, "A");
-        c.setStrokeOwner(bodyOwner("B"));
-        drawPolyhedron(c, s_.b, poseB, roleColor(Role::ShapeB), 0.18f, "B");
-        c.setStrokeOwner(0);
-        if (common_.hasLayer("labels")) {
-            // Each body's name on its far side from the other body, where the features are not.
-            const Vec3 ca = s_.a.pose.apply(s_.a.regions.mesh().centroid());
-            const Vec3 cb = poseB.apply(s_.b.regions.mesh().centroid());
-            const Vec3 away = (cb - ca).norm() > 0 ? Vec3((cb - ca).normalized()) : Vec3::UnitX();
-            const double ra = (s_.a.regions.mesh().boundsMax() - s_.a.regions.mesh().boundsMin()).norm() * 0.3;
-            const double rb = (s_.b.regions.mesh().boundsMax() - s_.b.regions.mesh().boundsMin()).norm() * 0.3;
-            // Each may cross its own body's edges, nothing else; on its point when free, else beside it.
-            drawBodyName(c, ca - away * ra, "A", Role::ShapeA);
-            drawBodyName(c, cb + away * rb, "B", Role::ShapeB);
-        }
+    /// The call's bodies (B at `poseB`), apart when the call found them separated.
+    WalkBodies walkBodies(const Call& call) const {
+        return {&s_.a, s_.a.pose, &s_.b, call.poseB, call.result.status == VClipStatus::Separated};
     }
 
     Vec3 centroidA() const { return s_.a.pose.apply(s_.a.regions.mesh().centroid()); }
@@ -316,19 +310,7 @@ private:
     }
 
     void drawClosest(Canvas& c, const Vec3& pa, const Vec3& pb, bool named) const {
-        const bool labels = common_.hasLayer("labels");
-        const bool apart = (pa - pb).norm() > 1e-3 * radius_;
-        if (apart) c.drawLine(pa, pb, lineStyle(Role::Ink, 2.5f, true, true));
-        c.drawPoint(pa, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
-        c.drawPoint(pb, 6.0f, roleColor(Role::Ink), true, 1.5f, roleColor(Role::Background));
-        if (labels && named) {
-            // Sideways on screen (p_A left, p_B right): the feature labels sit above / below.
-            const Camera& cam = c.camera();
-            const Vec3 right = (cam.target - cam.eye).cross(cam.up).normalized() * (0.3 * radius_);
-            TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
-            if (apart) drawLabelAway(c, pa, pa + right, "p_A", ts, 10.0);
-            drawLabelAway(c, pb, pb - right, apart ? "p_B" : "p_A = p_B", ts, 10.0);
-        }
+        drawClosestPoints(c, pa, pb, named && common_.hasLayer("labels"), radius_);
     }
 
     // A Voronoi-plane patch and the tested point's offset from it.
@@ -408,8 +390,16 @@ private:
         const bool labels = common_.hasLayer("labels");
         const VClipTraceStep* st = index >= 0 ? &call.trace.steps[index] : nullptr;
         Canvas c(gl, mainOptions(ss));
-        setupMain(c);
-        drawBodies(c, call.poseB);
+        // One view for the walk's frames, near the scene's; a step whose new feature it shows from
+        // behind swings round to it (demos/draw/feature_walk_figure.h, chooseWalkView).
+        const WalkBodies w = walkBodies(call);
+        std::vector<WalkStepFeatures> steps;
+        for (const VClipTraceStep& t : call.trace.steps)
+            steps.push_back({t.featureA, t.featureB, t.kind == VClipStepKind::Update ? t.updatedBody : -1, t.to});
+        Vec3 view = chooseWalkView(w, s_.view, steps, 45.0);
+        if (st) view = stepView(w, view, steps[std::size_t(index)]);
+        setupMain(c, view, call.poseB, st ? 92.0 : 48.0);
+        drawWalkBodies(c, walkBodies(call), common_.hasLayer("labels"));
         FrameText text;
         Frame f;
         if (st) drawStepView(c, call, *st, labels, text, f);
@@ -441,8 +431,10 @@ private:
         std::string& sub = text.sub;
         std::vector<std::string>& lines = text.lines;
         const std::vector<Vec3> ga = st->featureAWorld, gb = st->featureBWorld;
-        drawFeature(c, ga, featureColor(0), featureLabel(st->featureA, 0), centroidB(call.poseB), labels);
-        drawFeature(c, gb, featureColor(1), featureLabel(st->featureB, 1), centroidA(), labels);
+        drawFeature(c, ga, featureNormals(s_.a, s_.a.pose, st->featureA), featureColor(0), featureLabel(st->featureA, 0),
+                    centroidB(call.poseB), labels);
+        drawFeature(c, gb, featureNormals(s_.b, call.poseB, st->featureB), featureColor(1), featureLabel(st->featureB, 1),
+                    centroidA(), labels);
         int shown = 0, violatedCount = 0;
         for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
         if (common_.hasLayer("planes"))
@@ -462,7 +454,8 @@ private:
             const Vec3 from = featureCenter(st->updatedBody == 0 ? ga : gb), to = featureCenter(gTo);
             LineStyle ls = lineStyle(Role::Ink, 4.0f, false, true);
             if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, ls);
-            drawFeature(c, gTo, roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f), "", from, false);
+            drawFeature(c, gTo, featureNormals(ub, pose, st->to), roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f),
+                        "new " + featureLabel(st->to, st->updatedBody), from, false, true);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
                               TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0,
@@ -543,8 +536,10 @@ private:
         std::vector<std::string>& lines = text.lines;
         const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
         const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
-        drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroidB(call.poseB), labels);
-        drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
+        drawFeature(c, ga, featureNormals(s_.a, s_.a.pose, r.featureA), featureColor(0), featureLabel(r.featureA, 0),
+                    centroidB(call.poseB), labels);
+        drawFeature(c, gb, featureNormals(s_.b, call.poseB, r.featureB), featureColor(1), featureLabel(r.featureB, 1),
+                    centroidA(), labels);
         const bool separated = r.status == VClipStatus::Separated;
         std::string l2;
         if (separated) {
@@ -662,8 +657,8 @@ private:
         const Call& call = calls[k];
         const VClipResult& r = call.result;
         Canvas c(gl, mainOptions(ss));
-        setupMain(c);
-        drawBodies(c, call.poseB);
+        setupMain(c, s_.view, call.poseB);
+        drawWalkBodies(c, walkBodies(call), common_.hasLayer("labels"));
         // B's path: its centre over every call, the part already travelled solid.
         std::vector<Vec3> path;
         for (const Call& cc : calls) path.push_back(cc.poseB.apply(s_.b.regions.mesh().centroid()));
@@ -673,8 +668,10 @@ private:
                            lineStyle(Role::ShapeB, 2.0f, false, false));
         const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
         const std::vector<Vec3> gb = featureGeometry(s_.b.regions, call.poseB, r.featureB);
-        drawFeature(c, ga, featureColor(0), featureLabel(r.featureA, 0), centroidB(call.poseB), labels);
-        drawFeature(c, gb, featureColor(1), featureLabel(r.featureB, 1), centroidA(), labels);
+        drawFeature(c, ga, featureNormals(s_.a, s_.a.pose, r.featureA), featureColor(0), featureLabel(r.featureA, 0),
+                    centroidB(call.poseB), labels);
+        drawFeature(c, gb, featureNormals(s_.b, call.poseB, r.featureB), featureColor(1), featureLabel(r.featureB, 1),
+                    centroidA(), labels);
         if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
         drawPanelHeading(c,
                          "Call " + std::to_string(k) + " of " + std::to_string(calls.size()) + ": " +

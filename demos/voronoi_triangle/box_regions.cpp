@@ -113,13 +113,27 @@ private:
         const Color color = featureDimensionColor(r.dimension);
         std::vector<Vec3> pts;
         for (int k : r.corners) pts.push_back(corner(box_, k, box_.halfExtents));
+        // The faces holding it: one per axis the query lies outside of, on that side.
+        std::vector<Vec3> normals;
+        for (int i = 0; i < 3; ++i)
+            if (const int side = r.tests[std::size_t(i)].side; side != 0) normals.push_back(side * box_.axes.col(i));
+        const Camera& cam = c.camera();
+        const Vec3 toEye = cam.projection == Camera::Projection::Perspective
+                               ? Vec3((cam.eye - box_.center).normalized())
+                               : cam.viewDirection();
+        // On the box's far side (every face holding it turned away): dashed and hollow (the view
+        // rule HiddenFilled; the review found the −x face filled with a solid outline).
+        bool hidden = !normals.empty();
+        for (const Vec3& n : normals) hidden = hidden && n.dot(toEye) < 0;
+        if (pts.size() == 4) std::swap(pts[2], pts[3]);  // corners in bit order (00, 01, 10, 11) to a loop
+        c.noteFeature({regionName(r), pts, normals, pts.size() == 4 && !hidden, true});
         if (pts.size() == 1) c.drawPoint(pts[0], 10.0f, color, true, 2.0f, roleColor(Role::Ink));
         LineStyle ls = lineStyle(Role::Ink, pts.size() == 2 ? 8.0f : 4.0f, false, true);
         ls.color = color.scaled(0.75f);
+        if (hidden) ls.dashPx = 10.0f;
         if (pts.size() == 2) c.drawLine(pts[0], pts[1], ls);
         else if (pts.size() == 4) {
-            std::swap(pts[2], pts[3]);  // corners in bit order (00, 01, 10, 11) to a loop
-            c.drawPolygon(pts, color.withAlpha(0.55f));
+            if (!hidden) c.drawPolygon(pts, color.withAlpha(0.55f));
             c.drawPolyline(pts, true, ls);
         }
     }
@@ -129,8 +143,26 @@ private:
         double reach = size() + margin();
         for (const Vec3& q : queries_) reach = std::max(reach, (q - box_.center).norm());
         // A step frame leaves the bottom to its slab tests: the view is pulled back a little.
+        // A step frame whose feature lies on the box's far side looks from that side instead: the
+        // view's component along each axis the query is outside of takes the query's side (the
+        // view rule FeatureFromBehind; the review found face −x seen from behind).
+        // A face seen nearly edge-on that way turns further towards its normal, until its normal is
+        // within 60° of the view (FeatureEdgeOn).
+        Vec3 view = Vec3(1.0, 0.75, 1.6).normalized();
+        if (focus >= 0 && results[std::size_t(focus)].valid) {
+            Vec3 outward = Vec3::Zero();
+            for (int i = 0; i < 3; ++i) {
+                const int side = results[std::size_t(focus)].tests[std::size_t(i)].side;
+                const Vec3 axis = box_.axes.col(i);
+                if (side != 0 && side * axis.dot(view) < 0) view -= 2 * axis.dot(view) * axis;
+                outward += side * axis;
+            }
+            if (results[std::size_t(focus)].dimension == 2)
+                for (int k = 0; k < 10 && outward.normalized().dot(view) < 0.5; ++k)
+                    view = (view + 0.25 * outward.normalized()).normalized();
+        }
         c.setCamera(common_.camera ? *common_.camera
-                                   : framingCamera(box_.center, reach * (focus >= 0 ? 0.95 : 0.8), Vec3(1.0, 0.75, 1.6),
+                                   : framingCamera(box_.center, reach * (focus >= 0 ? 0.95 : 0.8), view,
                                                    Vec3::UnitY(), true));
         const bool labels = common_.hasLayer("labels");
         if (focus >= 0 && common_.hasLayer("regions") && results[std::size_t(focus)].valid) {

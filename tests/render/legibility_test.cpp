@@ -127,7 +127,7 @@ TEST_SUITE("legibility") {
         FigureLayout l;
         l.panels = {{0, 0, 400, 300}, {0, 0, 200, 300}};  // a page and its left panel
         // A's outline runs 10 px past the left panel's right edge into the other panel.
-        l.bodies = {{"A", {{150, 100}, {210, 100}, {210, 200}, {150, 200}}}, {"B", {{20, 20}, {60, 20}, {40, 60}}}};
+        l.bodies = {{"A", {{150, 100}, {210, 100}, {210, 200}, {150, 200}}, ""}, {"B", {{20, 20}, {60, 20}, {40, 60}}, ""}};
         auto problems = checkLegibility(l, 400, 300);
         REQUIRE(problems.size() == 1);
         CHECK(problems[0].kind == LegibilityKind::BodyCutByPanel);

@@ -1,0 +1,70 @@
+// How the demos choose a view around what a frame shows (demos/draw/figure_style.h viewTowards,
+// pair_figure.h acrossGapCamera): checked with the legibility check's own measures on the
+// recorded layout (render/legibility.h), not by trusting the chosen direction.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "demos/draw/convex_drawable.h"
+#include "demos/draw/figure_style.h"
+#include "demos/draw/pair_figure.h"
+#include "render/legibility.h"
+
+using namespace cdlab;
+using namespace cdlab::demos;
+using namespace cdlab::render;
+
+namespace {
+
+GlContext& viewContext() {
+    static std::unique_ptr<GlContext> ctx = GlContext::create();
+    return *ctx;
+}
+
+int problemsOf(const FigureLayout& layout, int w, int h, LegibilityKind kind) {
+    int n = 0;
+    for (const LegibilityProblem& p : checkLegibility(layout, w, h)) n += p.kind == kind;
+    return n;
+}
+
+}  // namespace
+
+TEST_SUITE("demos") {
+    TEST_CASE("viewTowards keeps a view that sees the face, else turns just far enough") {
+        const Vec3 view(1.0, 0.8, 1.7);
+        CHECK((viewTowards(view, Vec3(0, 0, 1)) - view).norm() == 0);  // 0.82 > 0.5: unchanged
+        const Vec3 below(0, -1, 0);  // a face turned away from a view from above
+        const Vec3 turned = viewTowards(view, below, 0.5);
+        CHECK(turned.normalized().dot(below) >= 0.5);
+        CHECK(std::abs(turned.normalized().y()) <= 0.95 + 1e-12);  // never straight down (up is +y)
+        CHECK(turned.norm() == doctest::Approx(view.norm()));
+        // The least turn: one more step back towards the scene's view would not see it.
+        CHECK(turned.normalized().dot(below) < 0.5 + 0.1);
+    }
+
+    TEST_CASE("acrossGapCamera: a separated pair overlapping on the picture is seen across its gap") {
+        // Two unit boxes 0.01 apart along y, seen from above at an angle: their pictures overlap.
+        PairDrawing d;
+        d.a = boxDrawable(Obb{Vec3(0, 0, 0), Vec3(1, 1, 1), Eigen::Matrix3d::Identity()});
+        d.b = boxDrawable(Obb{Vec3(0.3, 2.01, 0.2), Vec3(1, 1, 1), Eigen::Matrix3d::Identity()});
+        const CanvasOptions options{640, 480, 1, 1, 1, true};
+        const Camera base = framingCamera(Vec3(0.15, 1.0, 0.1), 2.5, Vec3(1.0, 0.8, 1.7), Vec3::UnitY(), true);
+        const auto picture = [&](const Camera& cam) {
+            Canvas c(viewContext(), options, cam);
+            c.noteBody("A", d.a.vertices, "B");
+            c.noteBody("B", d.b.vertices, "A");
+            return c.layout();
+        };
+        REQUIRE(problemsOf(picture(base), 640, 480, LegibilityKind::SeparatedBodiesOverlap) == 2);
+        const Camera across =
+            acrossGapCamera(viewContext(), options, base, d, Vec3(0.3, 1.0, 0.2), Vec3(0.3, 1.01, 0.2));
+        CHECK(problemsOf(picture(across), 640, 480, LegibilityKind::SeparatedBodiesOverlap) == 0);
+        CHECK(std::abs((across.eye - Vec3(0.3, 1.005, 0.2)).y()) < 1e-9);  // the eye in the midway plane
+        CHECK((across.eye - across.target).norm() == doctest::Approx((base.eye - base.target).norm()));
+        // Already apart on the picture (a view from the side): the scene's camera is kept.
+        const Camera side = framingCamera(Vec3(0.15, 1.0, 0.1), 2.5, Vec3(1.0, 0.0, 0.3), Vec3::UnitY(), true);
+        const Camera kept = acrossGapCamera(viewContext(), options, side, d, Vec3(0.3, 1.0, 0.2), Vec3(0.3, 1.01, 0.2));
+        CHECK((kept.eye - side.eye).norm() == 0);
+    }
+}
