@@ -245,16 +245,16 @@ Vec3 chooseWalkView(const WalkBodies& w, const Vec3& view, const std::vector<Wal
     if (!v0.allFinite() || !w.a || !w.b) return view;
     const ViewScorer s = scorer(w, steps);
     // The view itself, then 600 directions spread evenly over the sphere (a Fibonacci lattice).
-    Vec3 best = v0;
+    Vec3 best = view;  // returned as it is unless a direction shows the steps better
     double bestCost = s.cost(v0, v0);
     constexpr int kDirections = 600;
     for (int k = 0; k < kDirections; ++k) {
         const double y = 1 - 2 * (k + 0.5) / kDirections, r = std::sqrt(1 - y * y), phi = k * M_PI * (3 - std::sqrt(5.0));
         const Vec3 v(r * std::cos(phi), y, r * std::sin(phi));
         if (std::abs(y) > 0.95 || v.dot(v0) < std::cos(maxTurnDegrees * M_PI / 180)) continue;
-        if (const double c = s.cost(v, v0); c < bestCost) bestCost = c, best = v;
+        if (const double c = s.cost(v, v0); c < bestCost) bestCost = c, best = v * view.norm();
     }
-    return best * view.norm();
+    return best;
 }
 
 void drawWalkBodies(Canvas& c, const WalkBodies& w, bool names) {

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <memory>
 
+#include "core/geometry/polyhedron_presets.h"
 #include "demos/draw/convex_drawable.h"
+#include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "render/legibility.h"
@@ -41,6 +43,38 @@ TEST_SUITE("demos") {
         CHECK(turned.norm() == doctest::Approx(view.norm()));
         // The least turn: one more step back towards the scene's view would not see it.
         CHECK(turned.normalized().dot(below) < 0.5 + 0.1);
+    }
+
+    TEST_CASE("chooseWalkView turns the least that shows a walk's new feature from the front, the bodies apart") {
+        using namespace cdlab::demos::walkfigure;
+        Body a, b;
+        const VClipBuild built = buildVClipPolyhedron(presets::box(Vec3(1, 1, 1)));
+        REQUIRE(built.ok());
+        a.regions = b.regions = built.polyhedron;
+        b.pose.position = Vec3(0, 2.6, 0);  // B above A, 0.6 apart
+        const WalkBodies w{&a, a.pose, &b, b.pose, true};
+        int plusX = -1;
+        for (int f = 0; f < a.regions.mesh().faceCount(); ++f)
+            if (a.regions.mesh().plane(f).normal.x() > 0.99) plusX = f;
+        REQUIRE(plusX >= 0);
+        const WalkStepFeatures step{VClipFeature::vertex(0), VClipFeature::vertex(0), 0, VClipFeature::face(plusX)};
+        // From the -x side the face is turned away: the view swings round to it...
+        const Vec3 v0 = Vec3(-1, 0.3, 1).normalized();
+        const Vec3 v = chooseWalkView(w, v0, {step}, 180.0).normalized();
+        CHECK(v.x() >= 0.45);  // A's +x face within 63 degrees of the view
+        // ... no further than it must: 45 degrees short of the nearest such view would not see it.
+        CHECK(std::acos(v.dot(v0)) * 180 / M_PI < 125);
+        // ... and B stays apart from A on the picture.
+        const CanvasOptions options{640, 480, 1, 1, 1, true};
+        Canvas c(viewContext(), options, framingCamera(Vec3(0, 1.3, 0), 3.0, v, Vec3::UnitY(), true));
+        c.noteBody("A", worldVertices(a, a.pose), "B");
+        c.noteBody("B", worldVertices(b, b.pose), "A");
+        CHECK(problemsOf(c.layout(), 640, 480, LegibilityKind::SeparatedBodiesOverlap) == 0);
+        // A view that already shows the face is kept, bit for bit, and so is one step's scene view.
+        const Vec3 good = Vec3(1, 0.05, 0.6);  // level with the gap: apart
+        CHECK((chooseWalkView(w, good, {step}, 180.0) - good).norm() == 0);
+        CHECK((stepView(w, good, step) - good).norm() == 0);
+        CHECK(stepView(w, v0, step).normalized().x() >= 0.45);
     }
 
     TEST_CASE("acrossGapCamera: a separated pair overlapping on the picture is seen across its gap") {
