@@ -35,8 +35,8 @@ void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downsc
     out.files.emplace_back("animation.gif", encodeGif(images));
 }
 
-std::string iterationCoverage(int iterations, const std::vector<int>& framed) {
-    if (iterations <= 0) return "no iteration ran";
+std::string iterationCoverage(int iterations, const std::vector<int>& framed, const std::string& noun, int first) {
+    if (iterations <= 0) return "no " + noun + " ran";
     std::vector<bool> shown(std::size_t(iterations), false);
     for (int i : framed)
         if (i >= 0 && i < iterations) shown[std::size_t(i)] = true;
@@ -48,11 +48,11 @@ std::string iterationCoverage(int iterations, const std::vector<int>& framed) {
         }
         int j = i;
         while (j + 1 < iterations && !shown[std::size_t(j + 1)]) ++j;
-        skipped += (skipped.empty() ? "" : ", ") + std::to_string(i + 1) + (j > i ? "–" + std::to_string(j + 1) : "");
+        skipped += (skipped.empty() ? "" : ", ") + std::to_string(i + first) + (j > i ? "–" + std::to_string(j + first) : "");
         i = j + 1;
     }
-    if (skipped.empty()) return "one frame per iteration";
-    return (skipped.find_first_of(",–") == std::string::npos ? "iteration " : "iterations ") + skipped + " not shown";
+    if (skipped.empty()) return "one frame per " + noun;
+    return noun + (skipped.find_first_of(",–") == std::string::npos ? " " : "s ") + skipped + " not shown";
 }
 
 void addAnimationAndSheet(render::GlContext& gl, const SceneCommon& common, const RunContext& ctx, bool gif,

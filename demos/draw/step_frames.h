@@ -21,10 +21,12 @@ std::string stepFrameName(int i);
 void addGif(DemoOutput& out, const std::vector<const Frame*>& frames, int downscale);
 
 /// What the step frames of a run of `iterations` iterations show, for a sheet's title, from the
-/// 0-based indices `framed` that got a frame (iterations numbered from 1): "one frame per
-/// iteration", "iterations 4–6 not shown" (each run of skipped ones), or "no iteration ran".
+/// 0-based indices `framed` that got a frame (iterations numbered from `first`): "one frame per
+/// iteration", "iterations 4–6 not shown" (each run of skipped ones), or "no iteration ran";
+/// `noun` names them ("step": the feature walks number their steps from 0).
 /// Test: tests/demos/draw/step_frames_test.cpp.
-std::string iterationCoverage(int iterations, const std::vector<int>& framed);
+std::string iterationCoverage(int iterations, const std::vector<int>& framed, const std::string& noun = "iteration",
+                              int first = 1);
 
 /// The end of a run that draws a frame per framed iteration (gjk, epa): the GIF of every frame so
 /// far when `gif`, and with --steps a contact sheet of them titled "<scene title>: <algorithm>,

@@ -168,9 +168,9 @@ public:
             out.skipped.push_back("step frames (side_by_side draws one frame)");
             return out;
         }
+        const std::vector<int> framed = framedSteps(int(r.lcTrace.steps.size()), s_.maxStepFrames);
         if (common_.steps || ctx.stepsOverride)
-            for (int i : framedSteps(int(r.lcTrace.steps.size()), s_.maxStepFrames))
-                out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, i));
+            for (int i : framed) out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, i));
         out.frames.push_back(drawStepFrame(*ctx.gl, ss, r, -1));
         std::vector<const Frame*> animated;
         for (const Frame& f : out.frames) animated.push_back(&f);
@@ -179,7 +179,8 @@ public:
         if ((common_.steps || ctx.stepsOverride) && animated.size() > 1) {
             ContactSheetOptions o;
             o.caption = common_.caption;
-            o.title = "Lin–Canny, one update per frame";
+            // Which steps the sheet leaves out (max_step_frames), from the trace.
+            o.title = "Lin–Canny: " + iterationCoverage(int(r.lcTrace.steps.size()), framed, "step", 0);
             const bool many = animated.size() > 6;
             o.cellWidth = common_.image.width / (many ? 5 : 4) + 1;
             o.columns = many ? 4 : 3;

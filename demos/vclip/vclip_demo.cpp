@@ -147,15 +147,15 @@ public:
         boundingSphere(pts, center_, radius_);
 
         std::vector<const Frame*> animated;
-        std::vector<int> drawnCalls;
+        std::vector<int> drawnCalls, framed;
         if (s_.motion) {
             drawnCalls = motionCallsToDraw(calls, s_.motion->drawnFrames);
             for (int k : drawnCalls) out.frames.push_back(drawMotionFrame(*ctx.gl, ss, calls, k));
         } else {
             const Call& c = calls.front();
+            framed = framedSteps(int(c.trace.steps.size()), s_.maxStepFrames);
             if (common_.steps || ctx.stepsOverride)
-                for (int i : framedSteps(int(c.trace.steps.size()), s_.maxStepFrames))
-                    out.frames.push_back(drawStepFrame(*ctx.gl, ss, c, i));
+                for (int i : framed) out.frames.push_back(drawStepFrame(*ctx.gl, ss, c, i));
             out.frames.push_back(drawStepFrame(*ctx.gl, ss, c, -1));
         }
         for (const Frame& f : out.frames) animated.push_back(&f);
@@ -165,7 +165,8 @@ public:
             // At most 1024 x 768: 3 columns of quarter-size frames, or 4 of fifth-size beyond six frames.
             ContactSheetOptions o;
             o.caption = common_.caption;
-            o.title = s_.motion ? motionSheetTitle(calls, drawnCalls) : "V-Clip, one update per frame";
+            o.title = s_.motion ? motionSheetTitle(calls, drawnCalls)
+                                : "V-Clip: " + iterationCoverage(int(calls.front().trace.steps.size()), framed, "step", 0);
             const bool many = animated.size() > 6;
             o.cellWidth = common_.image.width / (many ? 5 : 4) + 1;
             o.columns = many ? 4 : 3;

@@ -10,6 +10,10 @@ using namespace cdlab::demos;
 TEST_CASE("iterationCoverage names the skipped iterations of framedSteps") {
     CHECK(iterationCoverage(7, framedSteps(7, 4)) == "iterations 4–6 not shown");
     CHECK(iterationCoverage(3, framedSteps(3, 4)) == "one frame per iteration");
+    // The feature walks' steps, numbered from 0: edge_edge's nine steps in eight frames.
+    CHECK(iterationCoverage(9, framedSteps(9, 8), "step", 0) == "step 7 not shown");
+    CHECK(iterationCoverage(8, framedSteps(8, 8), "step", 0) == "one frame per step");
+    CHECK(iterationCoverage(12, framedSteps(12, 4), "step", 0) == "steps 3–10 not shown");
     CHECK(iterationCoverage(5, framedSteps(5, 4)) == "iteration 4 not shown");
     CHECK(iterationCoverage(0, framedSteps(0, 4)) == "no iteration ran");
     CHECK(iterationCoverage(9, {0, 3, 8}) == "iterations 2–3, 5–8 not shown");
