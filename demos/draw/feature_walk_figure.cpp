@@ -183,7 +183,7 @@ namespace {
 
 // How badly a view shows the steps (chooseWalkView's order): 1000 for bodies apart in space
 // overlapping on the picture, 100 for each new feature not seen from its front, 25 for each current
-// feature edge-on, plus the turn from `view0` in degrees.
+// feature edge-on and 10 for each seen from behind, plus the turn from `view0` in degrees.
 struct ViewScorer {
     struct Feature {
         std::vector<Vec3> points, normals;
@@ -211,7 +211,8 @@ struct ViewScorer {
     double cost(const Vec3& v, const Vec3& v0) const {
         double c = std::acos(std::clamp(v.dot(v0), -1.0, 1.0)) * 180 / M_PI;
         for (const Feature& f : features)
-            c += f.step ? (frontOn(f, v) ? 0 : 100) : (f.points.size() > 1 && shown(f, v) < 0.3 ? 25 : 0);
+            c += f.step ? (frontOn(f, v) ? 0 : 100)
+                        : (f.points.size() > 1 && shown(f, v) < 0.3 ? 25 : 0) + (facing(f, v) < 0 ? 10 : 0);
         if (!apartA.empty() && !apartB.empty() && gapAlong(v, apartA, apartB) < 0.08 * size) c += 1000;
         return c;
     }

@@ -364,7 +364,7 @@ private:
         const WalkBodies w = walkBodies(r.status == LinCannyStatus::Separated);
         std::vector<WalkStepFeatures> steps;
         for (const LinCannyTraceStep& t : tr.steps) steps.push_back({t.featureA, t.featureB, t.updatedBody, t.to});
-        std::optional<Vec3> view = chooseWalkView(w, s_.view, steps, 45.0);
+        std::optional<Vec3> view = chooseWalkView(w, s_.view, steps, 180.0);
         if (st) view = stepView(w, *view, steps[std::size_t(index)]);
         // Pulled back until both bodies are whole below the heading and a step's plane key, which
         // ends 86 px down (BodyCutByPanel; the gate found B's edges through the key).
@@ -406,8 +406,8 @@ private:
         int shown = 0;
         if (common_.hasLayer("planes"))
             for (const VClipPlaneTest& p : step.planes) {
-                // With many planes (a many-sided face) only the violated ones and the maximal one are drawn.
-                if (step.planes.size() > 8 && !p.violated && !p.maximal) continue;
+                // Over six planes (a many-sided face) only the violated ones and the maximal one are drawn.
+                if (step.planes.size() > 6 && !p.violated && !p.maximal) continue;
                 drawPlaneTest(c, p);
                 ++shown;
             }

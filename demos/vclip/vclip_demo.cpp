@@ -397,7 +397,7 @@ private:
         std::vector<WalkStepFeatures> steps;
         for (const VClipTraceStep& t : call.trace.steps)
             steps.push_back({t.featureA, t.featureB, t.kind == VClipStepKind::Update ? t.updatedBody : -1, t.to});
-        Vec3 view = chooseWalkView(w, s_.view, steps, 45.0);
+        Vec3 view = chooseWalkView(w, s_.view, steps, 180.0);
         if (st) view = stepView(w, view, steps[std::size_t(index)]);
         setupMain(c, view, call.poseB, st ? 92.0 : 48.0);
         drawWalkBodies(c, walkBodies(call), common_.hasLayer("labels"));
@@ -440,7 +440,9 @@ private:
         for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
         if (common_.hasLayer("planes"))
             for (const VClipPlaneTest& p : st->planes) {
-                if (st->planes.size() > 8 && !p.violated && !p.maximal) continue;
+                // Over six planes, only the violated ones and the maximal one (the sub-heading says
+                // how many are drawn; at eight the patches buried penetration step_05's labels).
+                if (st->planes.size() > 6 && !p.violated && !p.maximal) continue;
                 drawPlaneTest(c, body(p.regionBody), call.poseB, p.plane, p.owner, p.testedPoint, p.signedDistance,
                               p.planeNormal, p.violated, p.maximal);
                 ++shown;
