@@ -11,6 +11,7 @@
 #include "render/canvas.h"
 #include "render/compare.h"
 #include "render/legibility.h"
+#include "tests/gl_test_context.h"
 
 using namespace cdlab::render;
 using Eigen::Vector2d;
@@ -19,10 +20,7 @@ using Eigen::Vector3i;
 
 namespace {
 
-GlContext& context() {
-    static std::unique_ptr<GlContext> ctx = GlContext::create();
-    return *ctx;
-}
+GlContext& context() { return cdlab::test::glContext(); }
 
 /// Colour as the framebuffer stores it (unorm8 rounding).
 int u8(float c) { return int(std::lround(c * 255.0f)); }

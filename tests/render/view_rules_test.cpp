@@ -8,6 +8,7 @@
 
 #include "render/canvas.h"
 #include "render/legibility.h"
+#include "tests/gl_test_context.h"
 
 using namespace cdlab::render;
 using Eigen::Vector2d;
@@ -108,12 +109,11 @@ TEST_SUITE("legibility") {
 
 TEST_SUITE("canvas") {
     TEST_CASE("noteFeature measures a face's and an edge's angle to the view, noteBody keeps apart_from") {
-        static std::unique_ptr<GlContext> gl = GlContext::create();
         Camera cam;
         cam.projection = Camera::Projection::Orthographic;
         cam.eye = {0, 0, 5}, cam.target = {0, 0, 0}, cam.up = {0, 1, 0};
         cam.viewHeight = 4;
-        Canvas c(*gl, CanvasOptions{200, 200, 1, 1, 1, true}, cam);
+        Canvas c(cdlab::test::glContext(), CanvasOptions{200, 200, 1, 1, 1, true}, cam);
         const double a = 80 * M_PI / 180;  // the face's normal 80 degrees from the view (+z)
         c.noteFeature({"F", {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}}, {{std::sin(a), 0, std::cos(a)}}, true, true});
         c.noteFeature({"back", {{0, 0, -1}}, {{0, 0, -1}, {0, 1, -1}}, false, false});  // a vertex behind

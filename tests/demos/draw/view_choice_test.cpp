@@ -12,6 +12,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "render/legibility.h"
+#include "tests/gl_test_context.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;
@@ -19,10 +20,7 @@ using namespace cdlab::render;
 
 namespace {
 
-GlContext& viewContext() {
-    static std::unique_ptr<GlContext> ctx = GlContext::create();
-    return *ctx;
-}
+GlContext& viewContext() { return cdlab::test::glContext(); }
 
 int problemsOf(const FigureLayout& layout, int w, int h, LegibilityKind kind) {
     int n = 0;
@@ -57,7 +55,8 @@ TEST_SUITE("demos") {
         for (int f = 0; f < a.regions.mesh().faceCount(); ++f)
             if (a.regions.mesh().plane(f).normal.x() > 0.99) plusX = f;
         REQUIRE(plusX >= 0);
-        const WalkStepFeatures step{VClipFeature::vertex(0), VClipFeature::vertex(0), 0, VClipFeature::face(plusX)};
+        // The pair: both +x faces; A's +x face is also the new feature (a view that shows one shows all).
+        const WalkStepFeatures step{VClipFeature::face(plusX), VClipFeature::face(plusX), 0, VClipFeature::face(plusX)};
         // From the -x side the face is turned away: the view swings round to it...
         const Vec3 v0 = Vec3(-1, 0.3, 1).normalized();
         const Vec3 v = chooseWalkView(w, v0, {step}, 180.0).normalized();

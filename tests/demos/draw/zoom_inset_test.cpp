@@ -8,6 +8,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/zoom_inset.h"
 #include "render/legibility.h"
+#include "tests/gl_test_context.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;
@@ -15,10 +16,7 @@ using namespace cdlab::render;
 
 namespace {
 
-GlContext& context() {
-    static std::unique_ptr<GlContext> ctx = GlContext::create();
-    return *ctx;
-}
+GlContext& context() { return cdlab::test::glContext(); }
 
 // Two 2 x 1 rectangles `gap` apart in a 2D view 20 units high on an 800 x 600 canvas (30 px per
 // unit), and the quantity between them.
