@@ -335,6 +335,34 @@ std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& g) {
     return points;
 }
 
+std::vector<Vec3> planeTestPatch(const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,
+                                 const Vec3& tested, double sceneRadius) {
+    if (plane >= 0) return planePatch(regionBody, pose, plane, tested, 0.25 * sceneRadius);
+    if (owner.type != VClipFeatureType::Face) return {};
+    // The face plane itself (a face region's floor, or handleLocalMin's face search).
+    std::vector<Vec3> patch = featureGeometry(regionBody.regions, pose, owner);
+    const Vec3 mid = featureCenter(patch);
+    for (Vec3& q : patch) q = mid + 1.2 * (q - mid);
+    return patch;
+}
+
+void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,
+                   const Vec3& tested, double signedDistance, const Vec3& normalIntoOwner, bool violated, bool maximal,
+                   double sceneRadius) {
+    const std::vector<Vec3> patch = planeTestPatch(regionBody, pose, plane, owner, tested, sceneRadius);
+    if (patch.empty()) return;
+    const Color col = violated ? violatedColor() : satisfiedColor();
+    c.drawPolygon(patch, col.withAlpha(violated ? 0.40f : 0.12f));
+    LineStyle ls = lineStyle(Role::Ink, maximal ? 3.0f : violated ? 1.5f : 1.0f, false, false);
+    ls.color = violated ? col.scaled(0.8f) : col.withAlpha(0.6f);
+    c.drawPolyline(patch, true, ls);
+    const Vec3 foot = tested - signedDistance * normalIntoOwner;
+    LineStyle d = lineStyle(Role::Ink, 1.5f, true, true);
+    d.color = col.scaled(0.8f);
+    if ((foot - tested).norm() > 1e-6 * sceneRadius) c.drawLine(tested, foot, d);
+    c.drawPoint(tested, 4.0f, col, true, 1.0f, roleColor(Role::Ink));
+}
+
 std::string featureLabel(const VClipFeature& f, int body) { return nameOf(f) + (body == 0 ? " (A)" : " (B)"); }
 
 std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int planeIndex, const Vec3& toward, double size) {

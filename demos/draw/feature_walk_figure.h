@@ -130,6 +130,16 @@ std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& geometry);
 /// A patch of a Voronoi plane of `body` placed at `pose`, world frame: FE planes are drawn as the edge extruded along
 /// the face's outward normal, VE planes as a square about the vertex turned towards `toward`.
 std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int plane, const Vec3& toward, double size);
+/// What a plane test is drawn as (regionBody placed at `pose`): the Voronoi plane's patch
+/// (planePatch, turned towards `tested`); for the face-plane test (plane < 0) the `owner` face
+/// enlarged ×1.2 about its centre; none for anything else.
+std::vector<Vec3> planeTestPatch(const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,
+                                 const Vec3& tested, double sceneRadius);
+/// A plane test: its patch (red and solid when violated, faint green when satisfied, thick when
+/// maximal), the tested point and its offset to the plane along `normalIntoOwner`.
+void drawPlaneTest(render::Canvas& canvas, const Body& regionBody, const Transform& pose, int plane,
+                   const VClipFeature& owner, const Vec3& tested, double signedDistance, const Vec3& normalIntoOwner,
+                   bool violated, bool maximal, double sceneRadius);
 /// "V3 (A)".
 std::string featureLabel(const VClipFeature& f, int body);
 /// The scene's world bounding sphere.

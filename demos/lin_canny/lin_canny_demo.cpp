@@ -280,34 +280,6 @@ private:
         drawClosestPoints(c, pa, pb, named && common_.hasLayer("labels"), radius_);
     }
 
-    /// One applicability test: the plane patch (red when violated) and the tested point's offset.
-    void drawPlaneTest(Canvas& c, const VClipPlaneTest& p) const {
-        const Body& rb = body(p.regionBody);
-        const Transform& ps = pose(p.regionBody);
-        std::vector<Vec3> patch;
-        if (p.plane >= 0) {
-            patch = planePatch(rb, ps, p.plane, p.testedPoint, 0.25 * radius_);
-        } else if (p.owner.type == VClipFeatureType::Face) {
-            // The face plane itself (a face region's floor, or the local-minimum face search):
-            // drawn as the face, enlarged a little about its centre.
-            patch = featureGeometry(rb.regions, ps, p.owner);
-            const Vec3 mid = featureCenter(patch);
-            for (Vec3& q : patch) q = mid + 1.2 * (q - mid);
-        } else {
-            return;
-        }
-        const Color col = p.violated ? violatedColor() : satisfiedColor();
-        c.drawPolygon(patch, col.withAlpha(p.violated ? 0.40f : 0.12f));
-        LineStyle ls = lineStyle(Role::Ink, p.maximal ? 3.0f : p.violated ? 1.5f : 1.0f, false, false);
-        ls.color = p.violated ? col.scaled(0.8f) : col.withAlpha(0.6f);
-        c.drawPolyline(patch, true, ls);
-        const Vec3 foot = p.testedPoint - p.signedDistance * p.planeNormal;
-        LineStyle d = lineStyle(Role::Ink, 1.5f, true, true);
-        d.color = col.scaled(0.8f);
-        if ((foot - p.testedPoint).norm() > 1e-6 * radius_) c.drawLine(p.testedPoint, foot, d);
-        c.drawPoint(p.testedPoint, 4.0f, col, true, 1.0f, roleColor(Role::Ink));
-    }
-
     std::vector<ListRow> lcRows(const LinCannyTrace& tr) const {
         std::vector<ListRow> rows;
         for (const LinCannyTraceStep& st : tr.steps) {
@@ -408,7 +380,8 @@ private:
             for (const VClipPlaneTest& p : step.planes) {
                 // Over six planes (a many-sided face) only the violated ones and the maximal one are drawn.
                 if (step.planes.size() > 6 && !p.violated && !p.maximal) continue;
-                drawPlaneTest(c, p);
+                drawPlaneTest(c, body(p.regionBody), pose(p.regionBody), p.plane, p.owner, p.testedPoint,
+                              p.signedDistance, p.planeNormal, p.violated, p.maximal, radius_);
                 ++shown;
             }
         if (common_.hasLayer("closest")) drawClosest(c, step.closestA, step.closestB, false);

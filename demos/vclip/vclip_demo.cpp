@@ -314,35 +314,6 @@ private:
         drawClosestPoints(c, pa, pb, named && common_.hasLayer("labels"), radius_);
     }
 
-    // A Voronoi-plane patch and the tested point's offset from it.
-    void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& poseB, int plane, const VClipFeature& owner,
-                       const Vec3& tested, double signedDistance, const Vec3& normalIntoOwner, bool violated,
-                       bool maximal) const {
-        // plane < 0: the trace's face-plane test of handleLocalMin (owner = the face the vertex is
-        // farthest above): drawn as that face, enlarged a little about its centre.
-        const Transform& pose = &regionBody == &s_.a ? s_.a.pose : poseB;
-        std::vector<Vec3> patch;
-        if (plane >= 0) {
-            patch = planePatch(regionBody, pose, plane, tested, 0.25 * radius_);
-        } else if (owner.type == VClipFeatureType::Face) {
-            patch = featureGeometry(regionBody.regions, pose, owner);
-            const Vec3 mid = featureCenter(patch);
-            for (Vec3& q : patch) q = mid + 1.2 * (q - mid);
-        } else {
-            return;
-        }
-        const Color col = violated ? violatedColor() : satisfiedColor();
-        c.drawPolygon(patch, col.withAlpha(violated ? 0.40f : 0.12f));
-        LineStyle ls = lineStyle(Role::Ink, maximal ? 3.0f : violated ? 1.5f : 1.0f, false, false);
-        ls.color = violated ? col.scaled(0.8f) : col.withAlpha(0.6f);
-        c.drawPolyline(patch, true, ls);
-        const Vec3 foot = tested - signedDistance * normalIntoOwner;
-        LineStyle d = lineStyle(Role::Ink, 1.5f, true, true);
-        d.color = col.scaled(0.8f);
-        if ((foot - tested).norm() > 1e-6 * radius_) c.drawLine(tested, foot, d);
-        c.drawPoint(tested, 4.0f, col, true, 1.0f, roleColor(Role::Ink));
-    }
-
     void drawClip(Canvas& c, const VClipClip& cl, bool derivative) const {
         const bool excluded = cl.simplyExcluded || cl.compoundExcluded;
         LineStyle dashed = lineStyle(Role::Ink, 3.0f, true, true);
@@ -443,8 +414,8 @@ private:
                 // Over six planes, only the violated ones and the maximal one (the sub-heading says
                 // how many are drawn; at eight the patches buried penetration step_05's labels).
                 if (st->planes.size() > 6 && !p.violated && !p.maximal) continue;
-                drawPlaneTest(c, body(p.regionBody), call.poseB, p.plane, p.owner, p.testedPoint, p.signedDistance,
-                              p.planeNormal, p.violated, p.maximal);
+                drawPlaneTest(c, body(p.regionBody), p.regionBody == 0 ? s_.a.pose : call.poseB, p.plane, p.owner,
+                              p.testedPoint, p.signedDistance, p.planeNormal, p.violated, p.maximal, radius_);
                 ++shown;
             }
         if (common_.hasLayer("clip"))
@@ -554,13 +525,13 @@ private:
                         drawPlaneTest(c, s_.b, call.poseB, t.plane, r.featureB, r.pointA, t.distance,
                                       call.poseB.rotate(s_.b.regions.plane(t.plane).normal *
                                                         (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
-                                      t.distance < 0, false);
+                                      t.distance < 0, false, radius_);
                 for (const auto& t : inA.tests)
                     if (t.plane >= 0 && inA.tests.size() <= 9)
-                        drawPlaneTest(c, s_.a, call.poseB, t.plane, r.featureA, r.pointB, t.distance,
+                        drawPlaneTest(c, s_.a, s_.a.pose, t.plane, r.featureA, r.pointB, t.distance,
                                       s_.a.pose.rotate(s_.a.regions.plane(t.plane).normal *
                                                        (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
-                                      t.distance < 0, false);
+                                      t.distance < 0, false, radius_);
             }
             auto verdict = [](const RegionCheck& k) {
                 return k.minDistance >= -1e-12 ? " ≥ 0: inside" : " < 0: OUTSIDE";
