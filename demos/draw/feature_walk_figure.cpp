@@ -346,6 +346,10 @@ std::vector<Vec3> planeTestPatch(const Body& regionBody, const Transform& pose, 
     return patch;
 }
 
+bool planeTestDrawn(const std::vector<VClipPlaneTest>& tests, const VClipPlaneTest& p) {
+    return tests.size() <= 6 || p.violated || p.maximal;
+}
+
 void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,
                    const Vec3& tested, double signedDistance, const Vec3& normalIntoOwner, bool violated, bool maximal,
                    double sceneRadius) {

@@ -135,6 +135,9 @@ std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int plane,
 /// enlarged ×1.2 about its centre; none for anything else.
 std::vector<Vec3> planeTestPatch(const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,
                                  const Vec3& tested, double sceneRadius);
+/// Whether a step draws plane test p of its `tests`: all of them up to six; beyond that only the
+/// violated ones and the maximal one (at eight the patches buried vclip/penetration step_05's labels).
+bool planeTestDrawn(const std::vector<VClipPlaneTest>& tests, const VClipPlaneTest& p);
 /// A plane test: its patch (red and solid when violated, faint green when satisfied, thick when
 /// maximal), the tested point and its offset to the plane along `normalIntoOwner`.
 void drawPlaneTest(render::Canvas& canvas, const Body& regionBody, const Transform& pose, int plane,

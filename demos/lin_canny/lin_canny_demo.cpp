@@ -342,7 +342,16 @@ private:
         // ends 86 px down (BodyCutByPanel; the gate found B's edges through the key).
         double zoom = 0.92;
         setupPanel(c, 0.12, zoom, view);
-        for (int k = 0; k < 16 && !bodiesInside(c, st ? 92.0 : 48.0); ++k) setupPanel(c, 0.12, zoom *= 1.04, view);
+        std::vector<Vec3> patches;  // the step's plane patches are kept whole too (the review found them cut)
+        if (st && common_.hasLayer("planes"))
+            for (const VClipPlaneTest& p : st->planes)
+                if (planeTestDrawn(st->planes, p))
+                    for (const Vec3& q : planeTestPatch(body(p.regionBody), pose(p.regionBody), p.plane, p.owner,
+                                                        p.testedPoint, radius_))
+                        patches.push_back(q);
+        for (int k = 0; k < 16 && !(bodiesInside(c, st ? 92.0 : 48.0) && verticesInside(c, patches, st ? 92.0 : 48.0));
+             ++k)
+            setupPanel(c, 0.12, zoom *= 1.04, view);
         drawWalkBodies(c, walkBodies(r.status == LinCannyStatus::Separated), common_.hasLayer("labels"));
         Frame f;
         std::vector<std::string> lines;
@@ -378,8 +387,7 @@ private:
         int shown = 0;
         if (common_.hasLayer("planes"))
             for (const VClipPlaneTest& p : step.planes) {
-                // Over six planes (a many-sided face) only the violated ones and the maximal one are drawn.
-                if (step.planes.size() > 6 && !p.violated && !p.maximal) continue;
+                if (!planeTestDrawn(step.planes, p)) continue;  // the sub-heading says how many are drawn
                 drawPlaneTest(c, body(p.regionBody), pose(p.regionBody), p.plane, p.owner, p.testedPoint,
                               p.signedDistance, p.planeNormal, p.violated, p.maximal, radius_);
                 ++shown;

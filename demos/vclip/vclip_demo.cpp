@@ -276,9 +276,11 @@ private:
 
     /// `view`: the scene's, or the walk's (chooseWalkView). Framed a little low so
     /// that the panel heading stays clear of the bodies, and pulled back until both bodies (B at
-    /// `poseB`) are whole `top` px below the panel's top (the view rule BodyCutByPanel; a step
-    /// frame's plane key ends at 86 px, the gate found B's edges through it).
-    void setupMain(Canvas& c, const Vec3& view, const Transform& poseB, double top = 48.0) const {
+    /// `poseB`) and the points `alsoInside` (a step's plane patches) are whole `top` px below the
+    /// panel's top (BodyCutByPanel; a step frame's plane key ends at 86 px, the gate found B's edges
+    /// through it; the review found violated planes cut by the panel's bottom).
+    void setupMain(Canvas& c, const Vec3& view, const Transform& poseB, double top = 48.0,
+                   const std::vector<Vec3>& alsoInside = {}) const {
         if (common_.camera) {
             c.setCamera(*common_.camera);
             return;
@@ -292,7 +294,7 @@ private:
             cam.eye += screenUp * 0.12 * radius_;
             cam.target += screenUp * 0.12 * radius_;
             c.setCamera(cam);
-            if (verticesInside(c, a, top) && verticesInside(c, b, top)) break;
+            if (verticesInside(c, a, top) && verticesInside(c, b, top) && verticesInside(c, alsoInside, top)) break;
         }
     }
 
@@ -370,7 +372,14 @@ private:
             steps.push_back({t.featureA, t.featureB, t.kind == VClipStepKind::Update ? t.updatedBody : -1, t.to});
         Vec3 view = chooseWalkView(w, s_.view, steps, 180.0);
         if (st) view = stepView(w, view, steps[std::size_t(index)]);
-        setupMain(c, view, call.poseB, st ? 92.0 : 48.0);
+        std::vector<Vec3> patches;
+        if (st && common_.hasLayer("planes"))
+            for (const VClipPlaneTest& p : st->planes)
+                if (planeTestDrawn(st->planes, p))
+                    for (const Vec3& q : planeTestPatch(body(p.regionBody), p.regionBody == 0 ? s_.a.pose : call.poseB,
+                                                        p.plane, p.owner, p.testedPoint, radius_))
+                        patches.push_back(q);
+        setupMain(c, view, call.poseB, st ? 92.0 : 48.0, patches);
         drawWalkBodies(c, walkBodies(call), common_.hasLayer("labels"));
         FrameText text;
         Frame f;
@@ -411,9 +420,7 @@ private:
         for (const VClipPlaneTest& p : st->planes) violatedCount += p.violated;
         if (common_.hasLayer("planes"))
             for (const VClipPlaneTest& p : st->planes) {
-                // Over six planes, only the violated ones and the maximal one (the sub-heading says
-                // how many are drawn; at eight the patches buried penetration step_05's labels).
-                if (st->planes.size() > 6 && !p.violated && !p.maximal) continue;
+                if (!planeTestDrawn(st->planes, p)) continue;  // the sub-heading says how many are drawn
                 drawPlaneTest(c, body(p.regionBody), p.regionBody == 0 ? s_.a.pose : call.poseB, p.plane, p.owner,
                               p.testedPoint, p.signedDistance, p.planeNormal, p.violated, p.maximal, radius_);
                 ++shown;
