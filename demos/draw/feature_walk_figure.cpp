@@ -129,7 +129,8 @@ std::vector<Vec3> worldVertices(const Body& body, const Transform& pose) {
 bool verticesInside(const Canvas& c, const std::vector<Vec3>& points, double top) {
     for (const Vec3& p : points) {
         Eigen::Vector2d px;
-        if (!c.project(p, px) || px.x() < 6 || px.x() > c.width() - 6 || px.y() < top || px.y() > c.height() - 6)
+        if (!c.project(p, px) || px.x() < kSideMarginPx || px.x() > c.width() - kSideMarginPx || px.y() < top ||
+            px.y() > c.height() - kSideMarginPx)
             return false;
     }
     return true;
@@ -347,7 +348,14 @@ std::vector<Vec3> planeTestPatch(const Body& regionBody, const Transform& pose, 
 }
 
 bool planeTestDrawn(const std::vector<VClipPlaneTest>& tests, const VClipPlaneTest& p) {
-    return tests.size() <= 6 || p.violated || p.maximal;
+    if (tests.size() <= 6 || p.violated || p.maximal) return true;
+    // None violated and none maximal: the one nearest to being violated, so the step shows a plane.
+    const auto marked = [](const VClipPlaneTest& t) { return t.violated || t.maximal; };
+    if (std::any_of(tests.begin(), tests.end(), marked)) return false;
+    const auto nearest = std::min_element(tests.begin(), tests.end(), [](const VClipPlaneTest& a, const VClipPlaneTest& b) {
+        return a.signedDistance < b.signedDistance;
+    });
+    return &*nearest == &p;
 }
 
 void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,

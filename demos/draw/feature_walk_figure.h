@@ -118,8 +118,11 @@ void drawFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, cons
                  bool step = false);
 /// The body's vertices placed at `pose` (world frame).
 std::vector<Vec3> worldVertices(const Body& body, const Transform& pose);
-/// Do the points project inside the canvas, `top` px below its top edge and 6 px from its other
-/// edges, through its camera?
+/// How far (px) a walk frame keeps its bodies from the panel's sides and bottom (the review found
+/// a cube 7 px from the panel's edge).
+constexpr double kSideMarginPx = 16.0;
+/// Do the points project inside the canvas, `top` px below its top edge and kSideMarginPx from its
+/// other edges, through its camera?
 bool verticesInside(const render::Canvas& canvas, const std::vector<Vec3>& points, double top);
 /// Mean of a feature's points.
 Vec3 featureCenter(const std::vector<Vec3>& geometry);
@@ -136,7 +139,8 @@ std::vector<Vec3> planePatch(const Body& body, const Transform& pose, int plane,
 std::vector<Vec3> planeTestPatch(const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,
                                  const Vec3& tested, double sceneRadius);
 /// Whether a step draws plane test p of its `tests`: all of them up to six; beyond that only the
-/// violated ones and the maximal one (at eight the patches buried vclip/penetration step_05's labels).
+/// violated ones and the maximal one, or with neither the one nearest to being violated (at eight
+/// the patches buried vclip/penetration step_05's labels).
 bool planeTestDrawn(const std::vector<VClipPlaneTest>& tests, const VClipPlaneTest& p);
 /// A plane test: its patch (red and solid when violated, faint green when satisfied, thick when
 /// maximal), the tested point and its offset to the plane along `normalIntoOwner`.

@@ -249,17 +249,10 @@ private:
         return cam;
     }
 
-    /// Do both bodies' vertices project inside the canvas, `top` px below its top edge, 6 px from
-    /// the others, through its camera?
+    /// Do both bodies' vertices project inside the canvas, `top` px below its top edge (verticesInside)?
     bool bodiesInside(const Canvas& c, double top) const {
-        for (int i = 0; i < 2; ++i)
-            for (const Vec3& p : body(i).regions.mesh().positions()) {
-                Eigen::Vector2d px;
-                if (!c.project(pose(i).apply(p), px) || px.x() < 6 || px.x() > c.width() - 6 || px.y() < top ||
-                    px.y() > c.height() - 6)
-                    return false;
-            }
-        return true;
+        return verticesInside(c, worldVertices(s_.a, s_.a.pose), top) &&
+               verticesInside(c, worldVertices(s_.b, s_.b.pose), top);
     }
 
     /// shiftUp: the view moves down by this fraction of the scene radius (room for the panel
@@ -349,7 +342,7 @@ private:
                     for (const Vec3& q : planeTestPatch(body(p.regionBody), pose(p.regionBody), p.plane, p.owner,
                                                         p.testedPoint, radius_))
                         patches.push_back(q);
-        for (int k = 0; k < 16 && !(bodiesInside(c, st ? 92.0 : 48.0) && verticesInside(c, patches, st ? 92.0 : 48.0));
+        for (int k = 0; k < 16 && !(bodiesInside(c, 92.0) && verticesInside(c, patches, 92.0));  // result as steps
              ++k)
             setupPanel(c, 0.12, zoom *= 1.04, view);
         drawWalkBodies(c, walkBodies(r.status == LinCannyStatus::Separated), common_.hasLayer("labels"));

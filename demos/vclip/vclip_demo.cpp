@@ -379,7 +379,7 @@ private:
                     for (const Vec3& q : planeTestPatch(body(p.regionBody), p.regionBody == 0 ? s_.a.pose : call.poseB,
                                                         p.plane, p.owner, p.testedPoint, radius_))
                         patches.push_back(q);
-        setupMain(c, view, call.poseB, st ? 92.0 : 48.0, patches);
+        setupMain(c, view, call.poseB, 92.0, patches);  // the result framed as the steps
         drawWalkBodies(c, walkBodies(call), common_.hasLayer("labels"));
         FrameText text;
         Frame f;
@@ -638,7 +638,11 @@ private:
         const Call& call = calls[k];
         const VClipResult& r = call.result;
         Canvas c(gl, mainOptions(ss));
-        setupMain(c, s_.view, call.poseB);
+        // Framed to hold B at every call, so the drawn calls share one framing.
+        std::vector<Vec3> everyB;
+        for (const Call& cc : calls)
+            for (const Vec3& q : worldVertices(s_.b, cc.poseB)) everyB.push_back(q);
+        setupMain(c, s_.view, call.poseB, 48.0, everyB);
         drawWalkBodies(c, walkBodies(call), common_.hasLayer("labels"));
         // B's path: its centre over every call, the part already travelled solid.
         std::vector<Vec3> path;
