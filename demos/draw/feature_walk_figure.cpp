@@ -288,6 +288,16 @@ void drawClosestPoints(Canvas& c, const Vec3& pa, const Vec3& pb, bool named, do
     drawLabelAway(c, pb, pb - right, apart ? "p_B" : "p_A = p_B", ts, 10.0);
 }
 
+void drawUpdateArrow(Canvas& c, const Vec3& from, const Vec3& to, double sceneRadius) {
+    if (!((to - from).norm() > 1e-6 * sceneRadius)) return;
+    const Camera& cam = c.camera();
+    const Vec3 mid = 0.5 * (from + to);
+    const Vec3 toEye = cam.projection == Camera::Projection::Perspective ? Vec3(cam.eye - mid) : cam.viewDirection();
+    Vec3 side = (to - from).cross(toEye);
+    side = side.norm() > 0 ? Vec3(side.normalized() * (0.05 * sceneRadius)) : Vec3::Zero();
+    c.drawArrow(from + side, to + side, lineStyle(Role::Ink, 4.0f, false, true));
+}
+
 Vec3 stepView(const WalkBodies& w, const Vec3& sceneView, const WalkStepFeatures& step) {
     if (step.updated < 0 || !w.a || !w.b) return sceneView;
     const ViewScorer s = scorer(w, {{VClipFeature{}, VClipFeature{}, step.updated, step.to}});

@@ -105,6 +105,11 @@ void drawWalkBodies(render::Canvas& canvas, const WalkBodies& bodies, bool names
 /// `named` labelled sideways on screen (p_A left, p_B right: the feature labels sit above / below),
 /// one "p_A = p_B" where they meet.
 void drawClosestPoints(render::Canvas& canvas, const Vec3& pa, const Vec3& pb, bool named, double sceneRadius);
+/// A step's update: an arrow from the old feature's centre to the new one's, drawn beside that path
+/// (0.05 `sceneRadius` to its side on the picture), not along it: from a vertex to an edge through
+/// it the path is the edge itself, and the edge drawn over it hid the arrow (the review's walk
+/// steps 3–5, edge_edge steps 0 and 2–4).
+void drawUpdateArrow(render::Canvas& canvas, const Vec3& from, const Vec3& to, double sceneRadius);
 /// The view of one step's frame: the walk's `sceneView` when it shows the step's new feature from
 /// its front, else chooseWalkView for this step alone (the camera swings round to the feature).
 Vec3 stepView(const WalkBodies& bodies, const Vec3& sceneView, const WalkStepFeatures& step);

@@ -391,7 +391,7 @@ private:
                 featureGeometry(body(step.updatedBody).regions, pose(step.updatedBody), step.to);
             const Vec3 from = featureCenter(step.updatedBody == 0 ? step.featureAWorld : step.featureBWorld),
                        to = featureCenter(gTo);
-            if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, lineStyle(Role::Ink, 4.0f, false, true));
+            drawUpdateArrow(c, from, to, radius_);
             drawFeature(c, gTo, featureNormals(body(step.updatedBody), pose(step.updatedBody), step.to),
                         roleColor(Role::Ink).mixed(featureColor(step.updatedBody), 0.5f),
                         "new " + featureLabel(step.to, step.updatedBody), from, false, true);

@@ -433,8 +433,7 @@ private:
             const Transform& pose = st->updatedBody == 0 ? s_.a.pose : call.poseB;
             const std::vector<Vec3> gTo = featureGeometry(ub.regions, pose, st->to);
             const Vec3 from = featureCenter(st->updatedBody == 0 ? ga : gb), to = featureCenter(gTo);
-            LineStyle ls = lineStyle(Role::Ink, 4.0f, false, true);
-            if ((to - from).norm() > 1e-6 * radius_) c.drawArrow(from, to, ls);
+            drawUpdateArrow(c, from, to, radius_);
             drawFeature(c, gTo, featureNormals(ub, pose, st->to), roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f),
                         "new " + featureLabel(st->to, st->updatedBody), from, false, true);
             if (labels)
