@@ -38,7 +38,16 @@ Vec3 viewAcross(const Vec3& preferred, const Vec3& line) {
     if (!(line.norm() > 0)) return preferred;
     const Vec3 u = line.normalized();
     const Vec3 across = preferred - preferred.dot(u) * u;
-    return across.norm() > 0.3 * preferred.norm() ? across : Vec3(u.unitOrthogonal());
+    const Vec3 v = across.norm() > 0.3 * preferred.norm() ? across : Vec3(u.unitOrthogonal());
+    // The highest view across the line: +y with the line's part taken out.
+    const Vec3 up = Vec3::UnitY() - u.y() * u;
+    if (v.normalized().y() >= 0.3 || up.norm() < 1e-9) return v;
+    const Vec3 a = v.normalized(), b = up.normalized();
+    for (int k = 1; k <= 20; ++k) {  // from a towards b, in the plane across the line
+        const Vec3 w = ((1 - k / 20.0) * a + (k / 20.0) * b).normalized();
+        if (w.y() >= 0.3) return w * v.norm();
+    }
+    return b * v.norm();
 }
 
 double drawNumberBlock(Canvas& canvas, const std::vector<std::string>& lines, double bottomMargin) {
