@@ -11,6 +11,7 @@
 #include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
+#include "demos/primitives/primitive_figures.h"
 #include "render/legibility.h"
 #include "tests/gl_test_context.h"
 
@@ -74,6 +75,19 @@ TEST_SUITE("demos") {
         CHECK((chooseWalkView(w, good, {step}, 180.0) - good).norm() == 0);
         CHECK((stepView(w, good, step) - good).norm() == 0);
         CHECK(stepView(w, v0, step).normalized().x() >= 0.45);
+    }
+
+    TEST_CASE("viewAcross lies across its line and looks down where a view across it can") {
+        // primitives/sphere_obb's centre line: the preferred view turned across it looked from below.
+        const Vec3 line(-0.35, -0.6, -0.61), preferred(1.0, 0.8, 1.7);
+        const Vec3 v = viewAcross(preferred, line);
+        CHECK(std::abs(v.normalized().dot(line.normalized())) < 1e-12);
+        CHECK(v.normalized().y() >= 0.3);
+        // A view across that already looks down is kept as the plain projection.
+        const Vec3 flat(1, 0, 0);
+        CHECK((viewAcross(preferred, flat) - Vec3(0, 0.8, 1.7)).norm() < 1e-15);
+        // A vertical line: every view across it is level; a level one it is.
+        CHECK(std::abs(viewAcross(preferred, Vec3(0, 1, 0)).y()) < 1e-12);
     }
 
     TEST_CASE("acrossGapCamera: a separated pair overlapping on the picture is seen across its gap") {
