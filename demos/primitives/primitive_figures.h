@@ -22,6 +22,7 @@ render::Camera viewAbove(const std::vector<Vec3>& points, const Vec3& viewDirect
 /// shows as a gap. A line along `preferred` gives any direction across it. Turned further about
 /// the line (still across it) until it looks down at least 17° where some direction across the
 /// line does: from below, a box reads as seen from above (the review's primitives/sphere_obb).
+/// Test: tests/demos/draw/view_choice_test.cpp.
 Vec3 viewAcross(const Vec3& preferred, const Vec3& line);
 
 /// Lines of numbers, wrapped to the canvas width between their ";  "-separated phrases, whose last line ends `bottomMargin` pixels above the
