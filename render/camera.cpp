@@ -1,5 +1,6 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -23,6 +24,23 @@ Eigen::Vector3d Camera::viewDirection() const {
     const Eigen::Vector3d d = eye - target;
     const double n = d.norm();
     return n > 0 ? Eigen::Vector3d(d / n) : Eigen::Vector3d(0, 0, 1);  // eye == target: look down -z
+}
+
+Eigen::Vector3d Camera::directionToEye(const Eigen::Vector3d& p) const {
+    if (projection != Projection::Perspective) return viewDirection();
+    const Eigen::Vector3d d = eye - p;
+    return d.norm() > 0 ? Eigen::Vector3d(d.normalized()) : viewDirection();
+}
+
+FeatureView featureView(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
+                        const Eigen::Vector3d& toEye) {
+    FeatureView v{normals.empty() ? 1.0 : -1.0, 1.0};
+    for (const Eigen::Vector3d& n : normals)
+        if (n.norm() > 0) v.facing = std::max(v.facing, n.normalized().dot(toEye));
+    if (points.size() > 2 && !normals.empty()) v.foreshortening = std::abs(v.facing);
+    if (points.size() == 2 && (points[1] - points[0]).norm() > 0)
+        v.foreshortening = (points[1] - points[0]).normalized().cross(toEye).norm();
+    return v;
 }
 
 Eigen::Matrix4d Camera::viewProjection(double aspect) const {

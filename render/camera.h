@@ -1,6 +1,8 @@
 // Cameras: orthographic and perspective look-at, and a 2D mode (x right, y up, no depth).
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 namespace cdlab::render {
@@ -24,6 +26,20 @@ struct Camera {
     Eigen::Matrix4d viewProjection(double aspect) const;
     /// Unit vector from target towards the eye (for lighting and sorting).
     Eigen::Vector3d viewDirection() const;
+    /// Unit vector from a world point towards the eye: to the eye point in perspective, the view
+    /// direction otherwise.
+    Eigen::Vector3d directionToEye(const Eigen::Vector3d& p) const;
 };
+
+/// How a view sees a feature given by its points (one: a vertex, two: an edge, more: a face) and
+/// the outward normals of the faces holding it, from `toEye` (unit): `facing`, the largest cosine
+/// of a normal to the view (below 0: every face holding it turned away; 1 without normals), and
+/// `foreshortening`, a face's |cos| to the view, an edge's |sin|, 1 for a vertex (near 0: edge-on).
+/// What Canvas::noteFeature records (render/legibility.h) and the demos choose views by.
+struct FeatureView {
+    double facing = 1, foreshortening = 1;
+};
+FeatureView featureView(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
+                        const Eigen::Vector3d& toEye);
 
 }  // namespace cdlab::render

@@ -60,19 +60,9 @@ void Canvas::Impl::recordNotes(FigureLayout& layout) const {
         centre /= double(f.points.size());
         Vector2d at;
         if (!toPixels(centre, at)) continue;
-        // The direction to the eye from the feature: a perspective camera's eye point, else the
-        // orthographic view direction.
-        const Vector3d toEye = camera.projection == Camera::Projection::Perspective
-                                   ? Vector3d((camera.eye - centre).normalized())
-                                   : camera.viewDirection();
-        LayoutFeature out{f.name, std::min(int(f.points.size()) - 1, 2), -1.0, 1.0, f.filled, f.step, at};
-        for (const Vector3d& n : f.normals)
-            if (n.norm() > 0) out.facing = std::max(out.facing, n.normalized().dot(toEye));
-        if (f.normals.empty()) out.facing = 1;
-        if (out.dimension == 2 && !f.normals.empty()) out.foreshortening = std::abs(out.facing);
-        if (out.dimension == 1 && (f.points[1] - f.points[0]).norm() > 0)
-            out.foreshortening = (f.points[1] - f.points[0]).normalized().cross(toEye).norm();
-        layout.features.push_back(out);
+        const FeatureView seen = featureView(f.points, f.normals, camera.directionToEye(centre));
+        layout.features.push_back({f.name, std::min(int(f.points.size()) - 1, 2), seen.facing, seen.foreshortening,
+                                   f.filled, f.step, at});
     }
     for (const AxisCmd& a : axes)
         if (Vector2d p, q; toPixels(a.p, p) && toPixels(a.q, q)) layout.axes.push_back({p, q, a.log});

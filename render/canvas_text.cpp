@@ -258,11 +258,7 @@ struct LabelPass {
                 total += 1e4;
                 // The label at fault, and for one nearer another's anchor that other label too (its
                 // anchor, one of a face's points, may be the one to move: vclip/penetration step_05).
-                std::string other;
-                if (problem.kind == LegibilityKind::LabelNearerOther)
-                    if (const std::size_t a = problem.detail.find('"'), b = problem.detail.find("\"'s anchor");
-                        a != std::string::npos && b != std::string::npos && b > a)
-                        other = problem.detail.substr(a + 1, b - a - 1);
+                const std::string& other = problem.other;
                 for (const std::size_t i : order)
                     if ((texts[i].text == problem.text || (!other.empty() && texts[i].text == other)) &&
                         std::find(unclean.begin(), unclean.end(), i) == unclean.end())

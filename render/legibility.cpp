@@ -100,7 +100,7 @@ void strokeAndAnchorRules(const FigureLayout& layout, std::vector<LegibilityProb
                 char s[128];
                 std::snprintf(s, sizeof s, "%.1f px from \"%s\"'s anchor, %.1f px from its own", other,
                               labels[j].text.c_str(), own);
-                out.push_back({LegibilityKind::LabelNearerOther, labels[i].text, s, own - other});
+                out.push_back({LegibilityKind::LabelNearerOther, labels[i].text, s, own - other, labels[j].text});
                 break;
             }
         }

@@ -67,6 +67,7 @@ struct LegibilityProblem {
     std::string text;    // the label (first label, for an overlap)
     std::string detail;  // the other label, the marker, the panel, the size
     double severity;     // overlap area px², distance outside px, or px missing from the line height
+    std::string other = "";  // LabelNearerOther: the label whose anchor it is nearer (placement retries it too)
 };
 
 /// One line for a report: `rule: "text" detail`.

@@ -172,18 +172,12 @@ void drawBody(Canvas& canvas, const ConvexDrawable& body, const Color& fill, flo
 }
 
 bool facesCamera(const Camera& camera, const Vec3& point, const Vec3& normal) {
-    switch (camera.projection) {
-        case Camera::Projection::TwoD: return true;
-        case Camera::Projection::Orthographic: return normal.dot(camera.viewDirection()) > 0;
-        case Camera::Projection::Perspective: return normal.dot(camera.eye - point) > 0;
-    }
-    return true;
+    return camera.projection == Camera::Projection::TwoD || normal.dot(camera.directionToEye(point)) > 0;
 }
 
 bool behindBody(const Camera& camera, const Vec3& point, const std::vector<Plane>& faces, double tolerance) {
     if (camera.projection == Camera::Projection::TwoD) return false;
-    const Vec3 toCamera = camera.projection == Camera::Projection::Orthographic ? Vec3(camera.viewDirection())
-                                                                                  : Vec3((camera.eye - point).normalized());
+    const Vec3 toCamera = camera.directionToEye(point);
     // The ray p + t u (t >= 0) clipped by every face's half-space (Cyrus–Beck).
     double enter = 0.0, leave = INFINITY;
     for (const Plane& f : faces) {

@@ -194,26 +194,22 @@ struct ViewScorer {
     std::vector<Vec3> apartA, apartB;
     double size = 0;
 
-    static double facing(const Feature& f, const Vec3& v) {
-        double best = -1;
-        for (const Vec3& n : f.normals) best = std::max(best, n.normalized().dot(v));
-        return best;
-    }
-    static double shown(const Feature& f, const Vec3& v) {  // an edge's |sin| to the view, a face's |cos|
-        if (f.points.size() == 2) return (f.points[1] - f.points[0]).normalized().cross(v).norm();
-        if (f.points.size() > 2 && !f.normals.empty()) return std::abs(f.normals.front().normalized().dot(v));
-        return 1.0;
-    }
     // A face within 63° of the view; an edge or a vertex with some face holding it within 72°,
-    // an edge at least 20° off the view.
+    // an edge at least 20° off the view (render::featureView measures both, as the gate does).
     static bool frontOn(const Feature& f, const Vec3& v) {
-        return facing(f, v) >= (f.points.size() > 2 ? 0.45 : 0.3) && shown(f, v) >= std::sin(20 * M_PI / 180);
+        const render::FeatureView seen = render::featureView(f.points, f.normals, v);
+        return seen.facing >= (f.points.size() > 2 ? 0.45 : 0.3) && seen.foreshortening >= std::sin(20 * M_PI / 180);
     }
     double cost(const Vec3& v, const Vec3& v0) const {
         double c = std::acos(std::clamp(v.dot(v0), -1.0, 1.0)) * 180 / M_PI;
-        for (const Feature& f : features)
-            c += f.step ? (frontOn(f, v) ? 0 : 100)
-                        : (f.points.size() > 1 && shown(f, v) < 0.3 ? 25 : 0) + (facing(f, v) < 0 ? 10 : 0);
+        for (const Feature& f : features) {
+            if (f.step) {
+                c += frontOn(f, v) ? 0 : 100;
+                continue;
+            }
+            const render::FeatureView seen = render::featureView(f.points, f.normals, v);
+            c += (f.points.size() > 1 && seen.foreshortening < 0.3 ? 25 : 0) + (seen.facing < 0 ? 10 : 0);
+        }
         if (!apartA.empty() && !apartB.empty() && gapAlong(v, apartA, apartB) < 0.08 * size) c += 1000;
         return c;
     }
@@ -290,10 +286,7 @@ void drawClosestPoints(Canvas& c, const Vec3& pa, const Vec3& pb, bool named, do
 
 void drawUpdateArrow(Canvas& c, const Vec3& from, const Vec3& to, double sceneRadius) {
     if (!((to - from).norm() > 1e-6 * sceneRadius)) return;
-    const Camera& cam = c.camera();
-    const Vec3 mid = 0.5 * (from + to);
-    const Vec3 toEye = cam.projection == Camera::Projection::Perspective ? Vec3(cam.eye - mid) : cam.viewDirection();
-    Vec3 side = (to - from).cross(toEye);
+    Vec3 side = (to - from).cross(c.camera().directionToEye(0.5 * (from + to)));
     side = side.norm() > 0 ? Vec3(side.normalized() * (0.05 * sceneRadius)) : Vec3::Zero();
     c.drawArrow(from + side, to + side, lineStyle(Role::Ink, 4.0f, false, true));
 }
@@ -309,12 +302,10 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<V
                  const std::string& label, const Vec3& awayFrom, bool labels, bool step) {
     if (g.empty()) return;
     // Seen from behind: every face holding it turned away from the eye (as Canvas::noteFeature judges).
-    const Camera& cam = canvas.camera();
     const Vec3 centre = featureCenter(g);
-    const Vec3 toEye = cam.projection == Camera::Projection::Perspective ? Vec3((cam.eye - centre).normalized())
-                                                                          : cam.viewDirection();
-    bool hidden = !normals.empty() && cam.projection != Camera::Projection::TwoD;
-    for (const Vec3& n : normals) hidden = hidden && n.dot(toEye) < 0;
+    const bool hidden = !normals.empty() && std::none_of(normals.begin(), normals.end(), [&](const Vec3& n) {
+        return facesCamera(canvas.camera(), centre, n);
+    });
     const bool filled = g.size() > 2 && !hidden;
     canvas.noteFeature({label, g, normals, filled, step});
     if (g.size() == 1) {
@@ -366,6 +357,16 @@ bool planeTestDrawn(const std::vector<VClipPlaneTest>& tests, const VClipPlaneTe
         return a.signedDistance < b.signedDistance;
     });
     return &*nearest == &p;
+}
+
+std::vector<Vec3> drawnPatchPoints(const WalkBodies& w, const std::vector<VClipPlaneTest>& tests, double sceneRadius) {
+    std::vector<Vec3> points;
+    for (const VClipPlaneTest& p : tests)
+        if (planeTestDrawn(tests, p))
+            for (const Vec3& q : planeTestPatch(p.regionBody == 0 ? *w.a : *w.b, p.regionBody == 0 ? w.poseA : w.poseB,
+                                                p.plane, p.owner, p.testedPoint, sceneRadius))
+                points.push_back(q);
+    return points;
 }
 
 void drawPlaneTest(Canvas& c, const Body& regionBody, const Transform& pose, int plane, const VClipFeature& owner,

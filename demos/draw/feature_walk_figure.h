@@ -147,6 +147,10 @@ std::vector<Vec3> planeTestPatch(const Body& regionBody, const Transform& pose, 
 /// violated ones and the maximal one, or with neither the one nearest to being violated (at eight
 /// the patches buried vclip/penetration step_05's labels).
 bool planeTestDrawn(const std::vector<VClipPlaneTest>& tests, const VClipPlaneTest& p);
+/// The corners of the plane patches a step draws (planeTestDrawn, planeTestPatch; each region's body
+/// at its pose in `bodies`): what the step's frame keeps whole in its panel.
+std::vector<Vec3> drawnPatchPoints(const WalkBodies& bodies, const std::vector<VClipPlaneTest>& tests,
+                                   double sceneRadius);
 /// A plane test: its patch (red and solid when violated, faint green when satisfied, thick when
 /// maximal), the tested point and its offset to the plane along `normalIntoOwner`.
 void drawPlaneTest(render::Canvas& canvas, const Body& regionBody, const Transform& pose, int plane,

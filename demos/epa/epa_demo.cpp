@@ -272,9 +272,7 @@ private:
                 const Vec3 centre = (pts[0] + pts[1] + pts[2]) / 3.0;
                 Vec3 n = (pts[1] - pts[0]).cross(pts[2] - pts[0]);
                 if (n.dot(centre) < 0) n = -n;  // outward: the polytope holds the origin
-                const Vec3 toEye = cam.projection == Camera::Projection::Perspective ? Vec3(cam.eye - centre)
-                                                                                      : cam.viewDirection();
-                const bool hidden = n.dot(toEye) < 0;
+                const bool hidden = !facesCamera(cam, centre, n);
                 cs.noteFeature({isClosest ? "closest face" : "removed face", pts, {n}, !hidden, isClosest});
                 if (hidden) {
                     LineStyle ls = lineStyle(isClosest ? Role::Ink : Role::Support, isClosest ? 3.0f : 2.0f, true, true);

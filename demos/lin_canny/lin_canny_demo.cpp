@@ -335,13 +335,9 @@ private:
         // ends 86 px down (BodyCutByPanel; the gate found B's edges through the key).
         double zoom = 0.92;
         setupPanel(c, 0.12, zoom, view);
-        std::vector<Vec3> patches;  // the step's plane patches are kept whole too (the review found them cut)
-        if (st && common_.hasLayer("planes"))
-            for (const VClipPlaneTest& p : st->planes)
-                if (planeTestDrawn(st->planes, p))
-                    for (const Vec3& q : planeTestPatch(body(p.regionBody), pose(p.regionBody), p.plane, p.owner,
-                                                        p.testedPoint, radius_))
-                        patches.push_back(q);
+        // The step's plane patches are kept whole too (the review found them cut).
+        const std::vector<Vec3> patches =
+            st && common_.hasLayer("planes") ? drawnPatchPoints(w, st->planes, radius_) : std::vector<Vec3>{};
         for (int k = 0; k < 16 && !(bodiesInside(c, 92.0) && verticesInside(c, patches, 92.0));  // result as steps
              ++k)
             setupPanel(c, 0.12, zoom *= 1.04, view);

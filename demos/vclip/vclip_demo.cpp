@@ -372,13 +372,8 @@ private:
             steps.push_back({t.featureA, t.featureB, t.kind == VClipStepKind::Update ? t.updatedBody : -1, t.to});
         Vec3 view = chooseWalkView(w, s_.view, steps, 180.0);
         if (st) view = stepView(w, view, steps[std::size_t(index)]);
-        std::vector<Vec3> patches;
-        if (st && common_.hasLayer("planes"))
-            for (const VClipPlaneTest& p : st->planes)
-                if (planeTestDrawn(st->planes, p))
-                    for (const Vec3& q : planeTestPatch(body(p.regionBody), p.regionBody == 0 ? s_.a.pose : call.poseB,
-                                                        p.plane, p.owner, p.testedPoint, radius_))
-                        patches.push_back(q);
+        const std::vector<Vec3> patches =
+            st && common_.hasLayer("planes") ? drawnPatchPoints(w, st->planes, radius_) : std::vector<Vec3>{};
         setupMain(c, view, call.poseB, 92.0, patches);  // the result framed as the steps
         drawWalkBodies(c, walkBodies(call), common_.hasLayer("labels"));
         FrameText text;

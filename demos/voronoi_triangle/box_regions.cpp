@@ -117,14 +117,11 @@ private:
         std::vector<Vec3> normals;
         for (int i = 0; i < 3; ++i)
             if (const int side = r.tests[std::size_t(i)].side; side != 0) normals.push_back(side * box_.axes.col(i));
-        const Camera& cam = c.camera();
-        const Vec3 toEye = cam.projection == Camera::Projection::Perspective
-                               ? Vec3((cam.eye - box_.center).normalized())
-                               : cam.viewDirection();
         // On the box's far side (every face holding it turned away): dashed and hollow (the view
         // rule HiddenFilled; the review found the −x face filled with a solid outline).
-        bool hidden = !normals.empty();
-        for (const Vec3& n : normals) hidden = hidden && n.dot(toEye) < 0;
+        const bool hidden = !normals.empty() && std::none_of(normals.begin(), normals.end(), [&](const Vec3& n) {
+            return facesCamera(c.camera(), box_.center, n);
+        });
         if (pts.size() == 4) std::swap(pts[2], pts[3]);  // corners in bit order (00, 01, 10, 11) to a loop
         c.noteFeature({regionName(r), pts, normals, pts.size() == 4 && !hidden, true});
         if (pts.size() == 1) c.drawPoint(pts[0], 10.0f, color, true, 2.0f, roleColor(Role::Ink));

@@ -91,6 +91,7 @@ TEST_SUITE("legibility") {
         problems = checkLegibility(n, 400, 300);
         REQUIRE(count(problems, LegibilityKind::LabelNearerOther) == 1);
         CHECK(problems[0].text == "p");
+        CHECK(problems[0].other == "q");  // the label placement retries first too
         // Another panel's point does not compete: q's point in a panel of its own.
         n.panels.push_back({90, 90, 130, 130});
         CHECK(count(checkLegibility(n, 400, 300), LegibilityKind::LabelNearerOther) == 0);
