@@ -63,6 +63,9 @@ struct FeatureNote {
     std::vector<Eigen::Vector3d> normals;
     bool filled = false;  // drawn as a filled region
     bool step = false;    // what the frame's step changed (the feature the frame is built around)
+    /// The colour the step's feature is drawn in, as its legend or label shows it (alpha 0: not
+    /// judged). Where it faces the eye the picture must show it (StepFeatureFaded).
+    Color color{0, 0, 0, 0};
 };
 
 /// Where readPixels() spends its time, summed over this thread's frames (each drawing thread keeps

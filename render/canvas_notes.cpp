@@ -61,8 +61,24 @@ void Canvas::Impl::recordNotes(FigureLayout& layout) const {
         Vector2d at;
         if (!toPixels(centre, at)) continue;
         const FeatureView seen = featureView(f.points, f.normals, camera.directionToEye(centre));
-        layout.features.push_back({f.name, std::min(int(f.points.size()) - 1, 2), seen.facing, seen.foreshortening,
-                                   f.filled, f.step, at});
+        LayoutFeature noted{f.name, std::min(int(f.points.size()) - 1, 2), seen.facing, seen.foreshortening,
+                            f.filled, f.step, at};
+        if (f.color.a > 0) {
+            noted.rgb = int(rgbOf(f.color));
+            std::vector<Vector3d> samples;  // where the picture shows it (LayoutFeature::samples)
+            if (f.points.size() == 1) samples = {f.points[0]};
+            else if (f.points.size() == 2)
+                for (const double t : {0.3, 0.5, 0.7}) samples.push_back((1 - t) * f.points[0] + t * f.points[1]);
+            else {
+                samples.push_back(centre);
+                for (const Vector3d& p : f.points) samples.push_back(0.5 * (centre + p));
+            }
+            for (const Vector3d& p : samples)  // only where this picture shows it (an inset cuts)
+                if (Vector2d q; toPixels(p, q) && q.x() >= 0 && q.y() >= 0 && q.x() < options.width &&
+                                q.y() < options.height)
+                    noted.samples.push_back(q);
+        }
+        layout.features.push_back(std::move(noted));
     }
     for (const AxisCmd& a : axes)
         if (Vector2d p, q; toPixels(a.p, p) && toPixels(a.q, q)) layout.axes.push_back({p, q, a.log});

@@ -35,7 +35,11 @@ void FigureLayout::append(const FigureLayout& other, double dx, double dy) {
         for (Eigen::Vector2d& p : b.outline) p += d;
         bodies.push_back(std::move(b));
     }
-    for (LayoutFeature f : other.features) features.push_back((f.at += d, f));
+    for (LayoutFeature f : other.features) {
+        f.at += d;
+        for (Eigen::Vector2d& p : f.samples) p += d;
+        features.push_back(std::move(f));
+    }
     for (const LayoutAxis& a : other.axes) axes.push_back({a.a + d, a.b + d, a.log});
     for (LayoutSeries k : other.series) series.push_back((k.at += d, k));
     unplaced.insert(unplaced.end(), other.unplaced.begin(), other.unplaced.end());
@@ -79,6 +83,8 @@ void FigureLayout::cover(const Box& area) {
     strokes = std::move(keptStrokes);
     // What the picture pasted over it hides is not seen from the camera's side any more.
     std::erase_if(features, [&](const LayoutFeature& f) { return area.contains(f.at); });
+    for (LayoutFeature& f : features)
+        std::erase_if(f.samples, [&](const Eigen::Vector2d& p) { return area.contains(p); });
     std::erase_if(axes, [&](const LayoutAxis& a) { return area.contains(a.a) && area.contains(a.b); });
     std::erase_if(series, [&](const LayoutSeries& k) { return area.contains(k.at); });
 }
@@ -124,7 +130,10 @@ FigureLayout FigureLayout::scaled(double s) const {
     for (LayoutQuantity& q : out.quantities) q.px *= s;
     for (LayoutBody& b : out.bodies)
         for (Eigen::Vector2d& p : b.outline) p *= s;
-    for (LayoutFeature& f : out.features) f.at *= s;
+    for (LayoutFeature& f : out.features) {
+        f.at *= s;
+        for (Eigen::Vector2d& p : f.samples) p *= s;
+    }
     for (LayoutAxis& a : out.axes) a.a *= s, a.b *= s;
     for (LayoutSeries& k : out.series) k.at *= s;
     return out;

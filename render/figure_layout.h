@@ -92,6 +92,11 @@ struct LayoutFeature {
     bool filled = false;  ///< drawn as a filled region
     bool step = false;    ///< what the frame's step changed: the frame is built around it
     Eigen::Vector2d at{0, 0};  ///< its centre on the picture, px (finds its panel)
+    /// The colour it is drawn in, 0xRRGGBB (-1: not judged), and the points of the picture that
+    /// show it: a face's centre and halfway to each corner, an edge's 0.3 / 0.5 / 0.7 points, a
+    /// vertex (StepFeatureFaded: most of them, where no label or marker covers them, in that colour).
+    int rgb = -1;
+    std::vector<Eigen::Vector2d> samples{};
 };
 
 /// An axis of a plot, from `a` to `b` on the picture: a log axis needs its values printed

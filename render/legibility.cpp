@@ -25,6 +25,7 @@ const char* nameOf(LegibilityKind kind) {
         case LegibilityKind::HiddenFilled: return "hidden feature drawn filled";
         case LegibilityKind::LogAxisWithoutValues: return "log axis without values";
         case LegibilityKind::SeriesShareColour: return "two series share a colour";
+        case LegibilityKind::StepFeatureFaded: return "the step's feature does not show its colour";
     }
     return "?";
 }
@@ -301,6 +302,65 @@ std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int w
         out.push_back({LegibilityKind::Unplaced, t, "no free position around its anchor", 1e9});
     std::stable_sort(out.begin(), out.end(),
                      [](const LegibilityProblem& a, const LegibilityProblem& b) { return a.severity > b.severity; });
+    return out;
+}
+
+namespace {
+
+// Whether a sample of a feature can be judged: no label or marker drawn over it and, inside a face,
+// no stroke (an arrow or a leader crossing it); an edge's or a vertex's samples are its own stroke.
+bool judgeable(const FigureLayout& layout, const LayoutFeature& f, const Eigen::Vector2d& p) {
+    for (const LayoutLabel& l : layout.labels)  // with its halo
+        if (Box{l.box.x0 - 3, l.box.y0 - 3, l.box.x1 + 3, l.box.y1 + 3}.contains(p)) return false;
+    for (const LayoutMarker& m : layout.markers)
+        if (m.box.contains(p)) return false;
+    if (f.dimension == 1) return true;
+    for (const LayoutStroke& k : layout.strokes) {
+        const Eigen::Vector2d d = k.b - k.a;
+        const double t = d.squaredNorm() > 0 ? std::clamp((p - k.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+        if ((k.a + t * d - p).norm() <= 0.5 * k.width + 1.5) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::vector<LegibilityProblem> checkFigure(const Image& image) {
+    std::vector<LegibilityProblem> out = checkLegibility(image.layout, image.width, image.height);
+    const FigureLayout& layout = image.layout;
+    std::vector<std::string> shownSomewhere;  // a feature a zoomed inset shows in its colour
+    std::vector<LegibilityProblem> faded;
+    for (const LayoutFeature& f : layout.features) {
+        // A vertex is a marker drawn over everything, its colour a ring round whatever point sits on it.
+        if (!f.step || f.rgb < 0 || f.facing < 0 || f.dimension == 0 || (f.dimension == 2 && !f.filled)) continue;
+        int judged = 0, shown = 0, worst = 0;
+        unsigned seen = 0;
+        for (const Eigen::Vector2d& p : f.samples) {
+            const int x = int(std::floor(p.x() * image.scale)), y = int(std::floor(p.y() * image.scale));
+            if (x < 0 || y < 0 || x >= image.width || y >= image.height || !judgeable(layout, f, p)) continue;
+            const std::uint8_t* px = &image.rgba[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 4];
+            int delta = 0;
+            for (int c = 0; c < 3; ++c) delta = std::max(delta, std::abs(int(px[c]) - ((f.rgb >> (16 - 8 * c)) & 0xFF)));
+            ++judged;
+            if (delta <= int(kHighlightDelta)) ++shown;
+            else if (delta > worst) worst = delta, seen = unsigned(px[0]) << 16 | unsigned(px[1]) << 8 | px[2];
+        }
+        if (judged == 0) continue;
+        if (2 * shown >= judged) {
+            shownSomewhere.push_back(f.name);
+            continue;
+        }
+        char s[128];
+        std::snprintf(s, sizeof s, "drawn #%06X, %d of %d points show it (one shows #%06X, %d off)", unsigned(f.rgb),
+                      shown, judged, seen, worst);
+        faded.push_back({LegibilityKind::StepFeatureFaded, f.name, s, double(worst)});
+    }
+    for (LegibilityProblem& p : faded)
+        if (std::find(shownSomewhere.begin(), shownSomewhere.end(), p.text) == shownSomewhere.end())
+            out.push_back(std::move(p));
+    std::stable_sort(out.begin(), out.end(), [](const LegibilityProblem& a, const LegibilityProblem& b) {
+        return a.severity > b.severity;
+    });
     return out;
 }
 

@@ -1,11 +1,13 @@
 // The legibility check of a figure's layout (render/figure_layout.h): what makes a frame unfit
-// for a slide. Pure geometry on the recorded boxes; no pixels are read.
+// for a slide: geometry on the recorded boxes (checkLegibility), and what the pixels show of the
+// step's feature (checkFigure).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "render/figure_layout.h"
+#include "render/image.h"
 
 namespace cdlab::render {
 
@@ -34,6 +36,8 @@ enum class LegibilityKind {
                         // geometry is dashed or hollow)
     LogAxisWithoutValues,  // a log-scale axis with fewer than two numbers printed along it
     SeriesShareColour,     // two series or reference lines of one plot, named apart, in one colour
+    StepFeatureFaded,      // the feature a step changed, facing the eye, does not show the colour
+                           // it is named in (blended into the faces around it: issue 42 §3)
 };
 const char* nameOf(LegibilityKind kind);
 
@@ -54,6 +58,10 @@ constexpr int kMinLogAxisValues = 2;
 constexpr double kAxisValueReachPx = 48.0;
 /// Two colours whose channels all differ by at most this (of 255) read as one.
 constexpr unsigned kSameColourDelta = 16;
+/// A pixel within this (of 255, every channel) of a step feature's colour shows it: over a faded
+/// translucent polytope a 0.8-alpha yellow face is 40 off (olive); at 0.95 alpha under a 0.12-alpha
+/// hull, 20.
+constexpr unsigned kHighlightDelta = 32;
 /// A stroke whose edge reaches less than this (px) into a label's box only grazes it.
 constexpr double kStrokeGrazePx = 1.5;
 /// Overlaps smaller than this (px²) are anti-aliasing contact, not overprinting.
@@ -75,5 +83,10 @@ std::string describe(const LegibilityProblem& problem);
 
 /// Every problem of a picture of width x height with this layout, worst first.
 std::vector<LegibilityProblem> checkLegibility(const FigureLayout& layout, int width, int height);
+
+/// checkLegibility of the image's layout, and StepFeatureFaded from its pixels: at the samples of a
+/// step's edge or filled face facing the eye (LayoutFeature::samples, less those under a label or a marker and,
+/// for a face, under a stroke), at least half within kHighlightDelta of its colour.
+std::vector<LegibilityProblem> checkFigure(const Image& image);
 
 }  // namespace cdlab::render

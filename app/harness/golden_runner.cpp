@@ -272,13 +272,13 @@ void GoldenRun::checkFrame(const SceneCommon& sc, const Frame& fr, const fs::pat
     reportFrame(sc, fr, goldenPng, exists, problem);
 }
 
-// The frame's recorded layout against render/legibility.h's rules.
+// The frame's recorded layout and pixels against render/legibility.h's rules.
 void GoldenRun::checkLegibility(const SceneCommon& sc, const Frame& fr) {
     if (fr.image.width == 0) return;
     ++checked;
     const std::string id = sceneId(sc) + "/" + fr.name;
     const std::vector<render::LegibilityProblem> problems =
-        render::checkLegibility(fr.image.layout, fr.image.width, fr.image.height);
+        render::checkFigure(fr.image);
     for (const render::LegibilityProblem& p : problems) offenders.push_back({id, p});
     if (problems.empty()) return;
     fail(id + ": not slide-legible, " + std::to_string(problems.size()) +

@@ -64,6 +64,16 @@ Json layoutJson(const render::Image& image) {
                                 {"filled", f.filled},
                                 {"step", f.step},
                                 {"at", Json::array({px(f.at.x()), px(f.at.y())})}});
+        for (std::size_t i = 0; i < l.features.size(); ++i) {
+            const render::LayoutFeature& f = l.features[i];
+            if (f.rgb < 0) continue;
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "#%06X", unsigned(f.rgb) & 0xFFFFFFu);
+            Json samples = Json::array();
+            for (const Eigen::Vector2d& p : f.samples) samples.push_back(Json::array({px(p.x()), px(p.y())}));
+            features[i]["color"] = hex;
+            features[i]["samples"] = std::move(samples);
+        }
         out["features"] = std::move(features);
     }
     if (!l.axes.empty()) {  // plots (Canvas::noteAxis)

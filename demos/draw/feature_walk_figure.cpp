@@ -2,6 +2,7 @@
 // and the Theorem-1 check. Drawing geometry only; the walk's numbers come from core/feature_walk/vclip.h.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "core/geometry/convex_hull.h"
@@ -185,10 +186,37 @@ namespace {
 // How badly a view shows the steps (chooseWalkView's order): 1000 for bodies apart in space
 // overlapping on the picture, 100 for each new feature not seen from its front, 25 for each current
 // feature edge-on and 10 for each seen from behind, plus the turn from `view0` in degrees.
+// Whether the ray from `point` towards the eye (direction `toEye`) passes through the convex body
+// (its world face planes n · x <= d): the point is seen through it, its colour blended into the
+// body's (StepFeatureFaded, render/legibility.h).
+bool seenThrough(const std::vector<Plane>& body, const Vec3& point, const Vec3& toEye) {
+    double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+    for (const Plane& f : body) {
+        const double along = f.normal.dot(toEye), room = f.offset - f.normal.dot(point);
+        if (along == 0) {
+            if (room < 0) return false;
+        } else if (along > 0) t1 = std::min(t1, room / along);
+        else t0 = std::max(t0, room / along);
+        if (t0 >= t1) return false;
+    }
+    return !body.empty();
+}
+
+std::vector<Plane> worldPlanes(const Body& body, const Transform& pose) {
+    std::vector<Plane> out;
+    const ConvexPolyhedron& mesh = body.regions.mesh();
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const Vec3 n = pose.rotate(mesh.plane(f).normal);
+        out.push_back({n, mesh.plane(f).offset + n.dot(pose.position)});
+    }
+    return out;
+}
+
 struct ViewScorer {
     struct Feature {
         std::vector<Vec3> points, normals;
         bool step;
+        std::vector<Plane> other{};  // a step's feature: the other body, which must not hide it
     };
     std::vector<Feature> features;
     std::vector<Vec3> apartA, apartB;
@@ -204,7 +232,7 @@ struct ViewScorer {
         double c = std::acos(std::clamp(v.dot(v0), -1.0, 1.0)) * 180 / M_PI;
         for (const Feature& f : features) {
             if (f.step) {
-                c += frontOn(f, v) ? 0 : 100;
+                c += (frontOn(f, v) ? 0 : 100) + (seenThrough(f.other, featureCenter(f.points), v) ? 100 : 0);
                 continue;
             }
             const render::FeatureView seen = render::featureView(f.points, f.normals, v);
@@ -220,7 +248,10 @@ ViewScorer scorer(const WalkBodies& w, const std::vector<WalkStepFeatures>& step
     const auto add = [&](int body, const VClipFeature& f, bool step) {
         const Body& b = body == 0 ? *w.a : *w.b;
         const Transform& pose = body == 0 ? w.poseA : w.poseB;
-        if (f.type != VClipFeatureType::None) s.features.push_back({featureGeometry(b.regions, pose, f), featureNormals(b, pose, f), step});
+        if (f.type == VClipFeatureType::None) return;
+        s.features.push_back({featureGeometry(b.regions, pose, f), featureNormals(b, pose, f), step,
+                              step ? worldPlanes(body == 0 ? *w.b : *w.a, body == 0 ? w.poseB : w.poseA)
+                                   : std::vector<Plane>{}});
     };
     for (const WalkStepFeatures& st : steps) {
         add(0, st.fa, false);
@@ -294,8 +325,15 @@ void drawUpdateArrow(Canvas& c, const Vec3& from, const Vec3& to, double sceneRa
 Vec3 stepView(const WalkBodies& w, const Vec3& sceneView, const WalkStepFeatures& step) {
     if (step.updated < 0 || !w.a || !w.b) return sceneView;
     const ViewScorer s = scorer(w, {{VClipFeature{}, VClipFeature{}, step.updated, step.to}});
-    if (ViewScorer::frontOn(s.features.front(), sceneView.normalized())) return sceneView;
+    const ViewScorer::Feature& f = s.features.front();
+    if (ViewScorer::frontOn(f, sceneView.normalized()) &&
+        !seenThrough(f.other, featureCenter(f.points), sceneView.normalized()))
+        return sceneView;
     return chooseWalkView(w, sceneView, {step}, 180.0);
+}
+
+Color newFeatureColor(const Color& bodyFeature, std::size_t points) {
+    return points > 2 ? bodyFeature : roleColor(Role::Ink).mixed(bodyFeature, 0.5f);
 }
 
 void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<Vec3>& normals, const Color& color,
@@ -307,7 +345,7 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<V
         return facesCamera(canvas.camera(), centre, n);
     });
     const bool filled = g.size() > 2 && !hidden;
-    canvas.noteFeature({label, g, normals, filled, step});
+    canvas.noteFeature({label, g, normals, filled, step, color});
     if (g.size() == 1) {
         canvas.drawPoint(g[0], 9.0f, color, true, 2.0f, roleColor(Role::Ink));
     } else if (g.size() == 2) {
@@ -316,7 +354,8 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<V
         if (hidden) ls.dashPx = 10.0f;
         canvas.drawLine(g[0], g[1], ls);
     } else {
-        if (filled) canvas.drawPolygon(g, color.withAlpha(0.55f));
+        // The step's face saturated (issue 42 §3; StepFeatureFaded judges its colour), others tinted.
+        if (filled) canvas.drawPolygon(g, color.withAlpha(step ? 0.9f : 0.55f));
         LineStyle ls = lineStyle(Role::Ink, 3.5f, false, true);
         ls.color = color;
         if (hidden) ls.dashPx = 9.0f;

@@ -113,6 +113,10 @@ void drawUpdateArrow(render::Canvas& canvas, const Vec3& from, const Vec3& to, d
 /// The view of one step's frame: the walk's `sceneView` when it shows the step's new feature from
 /// its front, else chooseWalkView for this step alone (the camera swings round to the feature).
 Vec3 stepView(const WalkBodies& bodies, const Vec3& sceneView, const WalkStepFeatures& step);
+/// The colour of a step's new feature, from its body's feature colour: a face filled in it,
+/// saturated (the step's change stands out: StepFeatureFaded), an edge or a vertex darker, to
+/// stand out from the body's own edges.
+render::Color newFeatureColor(const render::Color& bodyFeature, std::size_t points);
 /// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; on the
 /// far side of its body (every face in `normals` turned away from the eye) an edge dashed and a
 /// face hollow with a dashed outline (hidden geometry is never filled). Labelled with `label`

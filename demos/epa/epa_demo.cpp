@@ -20,6 +20,7 @@
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
 #include "demos/draw/step_frames.h"
+#include "demos/draw/zoom_inset.h"
 #include "core/gjk_epa/epa_2d.h"
 #include "app/scene/pair_scene.h"
 #include "render/canvas.h"
@@ -33,6 +34,9 @@ using namespace render;
 // The closest face / edge and its closest point: yellow, distinct from the support colour (vermillion)
 // that marks w and the faces it removes.
 Color closestColor() { return categorical(3); }
+
+// The quantity a step's frame names last: how far w lies beyond the closest face's plane.
+const std::string kTestQuantity = "n·w − d";
 
 const std::vector<std::string> kLayers = {"minkowski", "polytope", "closest", "support",
                                           "horizon",   "witness",  "labels",  "plot"};
@@ -230,7 +234,9 @@ private:
     }
 
     // Polytope of a step: faces shaded, removed ones in the support colour, the closest highlighted.
-    void drawPolytope(Canvas& cs, const Drawing& d, const PolyStep& s, bool showStep) const {
+    // `inset`: drawn in a zoomed inset, where only w is named (the closest point and n are named
+    // on the picture it magnifies).
+    void drawPolytope(Canvas& cs, const Drawing& d, const PolyStep& s, bool showStep, bool inset = false) const {
         const bool labels = common_.hasLayer("labels");
         std::vector<bool> removed(s.faces.size(), false);
         if (showStep)
@@ -273,7 +279,8 @@ private:
                 Vec3 n = (pts[1] - pts[0]).cross(pts[2] - pts[0]);
                 if (n.dot(centre) < 0) n = -n;  // outward: the polytope holds the origin
                 const bool hidden = !facesCamera(cam, centre, n);
-                cs.noteFeature({isClosest ? "closest face" : "removed face", pts, {n}, !hidden, isClosest});
+                cs.noteFeature({isClosest ? "closest face" : "removed face", pts, {n}, !hidden, isClosest,
+                                isClosest ? closestColor() : roleColor(Role::Support)});
                 if (hidden) {
                     LineStyle ls = lineStyle(isClosest ? Role::Ink : Role::Support, isClosest ? 3.0f : 2.0f, true, true);
                     if (isClosest) ls.color = closestColor().scaled(0.7f);
@@ -281,11 +288,14 @@ private:
                     live.push_back(t);  // shaded as the rest of the polytope, seen through it
                 } else (isClosest ? closest : gone).push_back(t);
             }
-            cs.drawMesh(s.vertices, live, roleColor(Role::Simplex).withAlpha(0.30f), true);
-            if (!gone.empty()) cs.drawMesh(s.vertices, gone, roleColor(Role::Support).withAlpha(0.45f), true);
-            if (!closest.empty()) cs.drawMesh(s.vertices, closest, closestColor().withAlpha(0.8f), true);
+            // What the step changed is saturated, the rest faded (issue 42 §3): the closest and the
+            // removed faces opaque and unlit, in their legend colours (StepFeatureFaded: blended over
+            // the polytope at 0.8 alpha the closest face read olive), the polytope light behind them.
+            cs.drawMesh(s.vertices, live, roleColor(Role::Simplex).withAlpha(showStep ? 0.2f : 0.3f), true);
+            if (!gone.empty()) cs.drawMesh(s.vertices, gone, roleColor(Role::Support), false);
+            if (!closest.empty()) cs.drawMesh(s.vertices, closest, closestColor(), false);
             LineStyle edge = lineStyle(Role::Simplex, 1.5f);
-            edge.color = roleColor(Role::Simplex).scaled(0.6f);
+            edge.color = roleColor(Role::Simplex).scaled(showStep ? 0.75f : 0.6f);
             // Each edge once, dashed and faded where both its faces look away from the camera
             // (the review: a 26-face polytope with every edge solid does not read as a solid).
             std::vector<Eigen::Vector3i> all;
@@ -298,19 +308,24 @@ private:
         if (showStep && common_.hasLayer("closest")) {
             cs.drawLine(Vec3::Zero(), s.closestPoint, lineStyle(Role::Ink, 2.0f, true, true));
             cs.drawPoint(s.closestPoint, 7.0f, closestColor(), true, 1.5f, roleColor(Role::Ink));
-            if (labels)
+            if (labels && !inset)
                 drawLabelAway(cs, s.closestPoint, Vec3::Zero(), "closest",
                               TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 10.0);
         }
         if (showStep && common_.hasLayer("support")) {
             const double h = s.normal.dot(s.support);
+            // The step's test n·w − d, from the closest face's plane to w: a converged step draws it
+            // a pixel or two long, so the frame zooms on it (QuantityTooSmall; issue 42 §3). A gap
+            // under 1e-4 of A − B is w on the face: no picture shows it, the text prints it.
+            if (h - s.distance > 1e-4 * d.cRadius)
+                cs.noteQuantity(kTestQuantity, s.support - (h - s.distance) * s.normal, s.support);
             const Vec3 tip = s.closestPoint + s.normal * std::max(h - s.distance, 0.25 * d.cRadius);
             // The search normal in ink and named: the horizon has the direction colour (the review:
             // an unlabelled arrow in the horizon's pink).
             cs.drawArrow(s.closestPoint, tip, lineStyle(Role::Ink, 3.0f, false, true));
             cs.drawPoint(s.support, 10.0f, roleColor(Role::Support), true, 2.0f, roleColor(Role::Ink));
             if (labels) {
-                drawLabelAway(cs, tip, s.closestPoint, "n", labelStyle(Role::Ink, 18.0f), 8.0);
+                if (!inset) drawLabelAway(cs, tip, s.closestPoint, "n", labelStyle(Role::Ink, 18.0f), 8.0);
                 drawLabelAway(cs, s.support, d.cCenter, "w", labelStyle(Role::Ink, 20.0f), 10.0);
             }
         }
@@ -332,9 +347,22 @@ private:
         drawConfigurationPanel(cs, d, run, s, isGjk);
         Frame f;
         const std::vector<std::string> lines = describeFrame(d, run, s, isGjk, f);
-        f.image =
-            composeTwoPanel(gl, layout, ss, common_.title, common_.caption, world.readPixels(), cs.readPixels(), lines);
+        f.image = composeTwoPanel(gl, layout, ss, common_.title, common_.caption, world.readPixels(),
+                                  configurationPixels(gl, cs, po.scale, layout, d, s), lines);
         return f;
+    }
+
+    // The configuration space's picture, with the step's test n·w − d magnified where it is drawn
+    // under 12 px (zoom_inset.h): the closest face, w and the gap between them.
+    Image configurationPixels(GlContext& gl, Canvas& cs, int scale, const TwoPanelLayout& layout, const Drawing& d,
+                              const PolyStep* s) const {
+        if (!s || !common_.hasLayer("support")) return cs.readPixels();
+        const double gap = s->normal.dot(s->support) - s->distance;
+        if (!(gap > 1e-4 * d.cRadius)) return cs.readPixels();
+        const ZoomTarget test{kTestQuantity, "gap " + formatNumber(gap), s->support - gap * s->normal, s->support,
+                              [&](Canvas& c) { drawPolytope(c, d, *s, true, true); }};
+        return readPixelsZoomed(gl, cs, scale, test,
+                                Box{14.0, 70.0, layout.panelWidth() - 14.0, layout.panelHeight() - 40.0});
     }
 
     // World space: the bodies, this step's support points or the result's witness points.

@@ -389,7 +389,7 @@ private:
                        to = featureCenter(gTo);
             drawUpdateArrow(c, from, to, radius_);
             drawFeature(c, gTo, featureNormals(body(step.updatedBody), pose(step.updatedBody), step.to),
-                        roleColor(Role::Ink).mixed(featureColor(step.updatedBody), 0.5f),
+                        newFeatureColor(featureColor(step.updatedBody), gTo.size()),
                         "new " + featureLabel(step.to, step.updatedBody), from, false, true);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(step.to, step.updatedBody),

@@ -429,7 +429,7 @@ private:
             const std::vector<Vec3> gTo = featureGeometry(ub.regions, pose, st->to);
             const Vec3 from = featureCenter(st->updatedBody == 0 ? ga : gb), to = featureCenter(gTo);
             drawUpdateArrow(c, from, to, radius_);
-            drawFeature(c, gTo, featureNormals(ub, pose, st->to), roleColor(Role::Ink).mixed(featureColor(st->updatedBody), 0.5f),
+            drawFeature(c, gTo, featureNormals(ub, pose, st->to), newFeatureColor(featureColor(st->updatedBody), gTo.size()),
                         "new " + featureLabel(st->to, st->updatedBody), from, false, true);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),

@@ -123,14 +123,16 @@ private:
             return facesCamera(c.camera(), box_.center, n);
         });
         if (pts.size() == 4) std::swap(pts[2], pts[3]);  // corners in bit order (00, 01, 10, 11) to a loop
-        c.noteFeature({regionName(r), pts, normals, pts.size() == 4 && !hidden, true});
+        // The region's feature saturated over the faded box (issue 42 §3; StepFeatureFaded): an
+        // edge in its colour, a face filled nearly opaque.
+        c.noteFeature({regionName(r), pts, normals, pts.size() == 4 && !hidden, true, color});
         if (pts.size() == 1) c.drawPoint(pts[0], 10.0f, color, true, 2.0f, roleColor(Role::Ink));
         LineStyle ls = lineStyle(Role::Ink, pts.size() == 2 ? 8.0f : 4.0f, false, true);
-        ls.color = color.scaled(0.75f);
+        ls.color = pts.size() == 2 ? color : color.scaled(0.75f);
         if (hidden) ls.dashPx = 10.0f;
         if (pts.size() == 2) c.drawLine(pts[0], pts[1], ls);
         else if (pts.size() == 4) {
-            if (!hidden) c.drawPolygon(pts, color.withAlpha(0.55f));
+            if (!hidden) c.drawPolygon(pts, color.withAlpha(0.9f));
             c.drawPolyline(pts, true, ls);
         }
     }

@@ -1,6 +1,7 @@
 // The legibility rules about views and plots (render/legibility.h): a planted layout per rule that
 // the check must fail, and the neighbouring case it must pass. The Canvas half (what noteFeature,
-// noteBody, noteAxis and noteSeries record from a camera) is checked against hand-computed angles.
+// noteBody, noteAxis and noteSeries record from a camera) is checked against hand-computed angles;
+// StepFeatureFaded (checkFigure) against planted pixels and a drawn translucent face.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -134,5 +135,92 @@ TEST_SUITE("canvas") {
         const auto problems = checkLegibility(l, 200, 200);
         CHECK(countOf(problems, LegibilityKind::FeatureEdgeOn) == 2);  // the face and the edge
         CHECK(countOf(problems, LegibilityKind::FeatureFromBehind) == 0);  // the vertex behind is no step's
+    }
+
+    TEST_CASE("the step's feature must show its colour: olive fails, its own colour or a zoomed copy passes") {
+        // A 100 x 100 picture: the left half the face's yellow, the right half olive.
+        Image im(100, 100);
+        for (int y = 0; y < 100; ++y)
+            for (int x = 0; x < 100; ++x) {
+                std::uint8_t* p = &im.rgba[(std::size_t(y) * 100 + std::size_t(x)) * 4];
+                const bool left = x < 50;
+                p[0] = left ? 0xF0 : 0x80, p[1] = left ? 0xE4 : 0x89, p[2] = left ? 0x42 : 0x4B, p[3] = 255;
+            }
+        LayoutFeature olive{"closest face", 2, 1, 1, true, true, {75, 50}};
+        olive.rgb = 0xF0E442;
+        olive.samples = {{75, 50}, {70, 30}, {80, 70}};
+        im.layout.panels = {{0, 0, 100, 100}};
+        im.layout.features = {olive};
+        auto problems = checkFigure(im);
+        REQUIRE(countOf(problems, LegibilityKind::StepFeatureFaded) == 1);
+        CHECK(problems[0].text == "closest face");
+        CHECK(problems[0].severity == doctest::Approx(0xF0 - 0x80));
+
+        // One point in the face's colour of three is not most of them; two are.
+        im.layout.features[0].samples = {{75, 50}, {70, 30}, {20, 70}};
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 1);
+        im.layout.features[0].samples = {{75, 50}, {10, 30}, {20, 70}};
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 0);
+
+        // Under a label (with its 3-px halo) nothing is judged; a feature no step changed, a vertex
+        // (a marker over everything), a hidden or hollow face are not judged.
+        im.layout.features[0] = olive;
+        im.layout.labels = {{"closest", {60, 20, 95, 82}, std::nullopt, 16}};
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 0);
+        im.layout.labels[0].box = {60, 20, 95, 66};  // (80, 70) is 4 px below it: judged
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 1);
+        im.layout.labels.clear();
+        for (auto change : {+[](LayoutFeature& f) { f.step = false; }, +[](LayoutFeature& f) { f.dimension = 0; },
+                            +[](LayoutFeature& f) { f.facing = -0.2; }, +[](LayoutFeature& f) { f.filled = false; },
+                            +[](LayoutFeature& f) { f.rgb = -1; }}) {
+            im.layout.features[0] = olive;
+            change(im.layout.features[0]);
+            CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 0);
+        }
+
+        // A face's sample on a stroke (an arrow across it) is not judged; an edge's is its own stroke.
+        im.layout.features[0] = olive;
+        im.layout.strokes = {{{60, 30}, {90, 30}, 3}, {{75, 40}, {75, 60}, 3}};
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 1);  // (80, 70) alone: olive, 0 of 1
+        im.layout.features[0].samples.pop_back();
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 0);  // nothing left to judge
+        im.layout.features[0].dimension = 1;
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 1);
+        im.layout.strokes.clear();
+
+        // The same feature shown in its colour in a zoomed inset is enough.
+        LayoutFeature zoomed = olive;
+        zoomed.samples = {{20, 50}, {25, 40}};
+        im.layout.features = {olive, zoomed};
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 0);
+        im.layout.features[1].name = "another face";
+        CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == 1);
+    }
+
+    TEST_CASE("a drawn translucent step face over another colour fails, drawn opaque passes") {
+        Camera cam;
+        cam.projection = Camera::Projection::Orthographic;
+        cam.eye = {0, 0, 5}, cam.target = {0, 0, 0}, cam.up = {0, 1, 0};
+        cam.viewHeight = 4;
+        const Color yellow{0.94f, 0.894f, 0.259f, 1.0f}, teal{0.0f, 0.5f, 0.45f, 1.0f};
+        const std::vector<Vector3d> face{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+        const std::vector<Vector3d> behind{{-1.5, -1.5, -1}, {1.5, -1.5, -1}, {1.5, 1.5, -1}, {-1.5, 1.5, -1}};
+        for (const float alpha : {0.6f, 1.0f}) {
+            CAPTURE(alpha);
+            Canvas c(cdlab::test::glContext(), CanvasOptions{200, 200, 1, 1, 1, true}, cam);
+            c.drawPolygon(behind, teal);
+            c.drawPolygon(face, yellow.withAlpha(alpha));
+            // A point off the picture records no sample: a quad's centre and 4 halfway points, one lost.
+            std::vector<Vector3d> pts = face;
+            pts[2] = {7, 7, 0};
+            c.noteFeature({"off", pts, {{0, 0, 1}}, true, false, yellow});
+            c.noteFeature({"closest face", face, {{0, 0, 1}}, true, true, yellow});
+            const Image im = c.readPixels();
+            REQUIRE(im.layout.features.size() == 2);
+            CHECK(im.layout.features[0].samples.size() == 4);
+            CHECK(im.layout.features[1].samples.size() == 5);
+            CHECK(im.layout.features[1].rgb == 0xF0E442);
+            CHECK(countOf(checkFigure(im), LegibilityKind::StepFeatureFaded) == (alpha < 1 ? 1 : 0));
+        }
     }
 }
