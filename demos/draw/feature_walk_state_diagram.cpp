@@ -7,6 +7,7 @@
 #include "demos/draw/feature_walk_figure.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
+#include "demos/draw/plot.h"
 
 namespace cdlab::demos::walkfigure {
 
@@ -127,13 +128,7 @@ Image drawPlot(GlContext& gl, int W, int H, int ss, const PlotInput& in) {
         c.drawText(P(X(i), yBot + 6), std::to_string(i), tick);
     }
     TextStyle ytick{13.0f, ink, Anchor::Right, false, false};
-    // Round tick values: 1, 2 or 5 times a power of ten, about four intervals.
-    const double raw = (ymax - ymin) / 4.0;
-    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-    const double step = std::max(in.integerY ? 1.0 : 0.0, raw / mag <= 1.0   ? mag
-                                                          : raw / mag <= 2.0 ? 2 * mag
-                                                          : raw / mag <= 5.0 ? 5 * mag
-                                                                             : 10 * mag);
+    const double step = std::max(in.integerY ? 1.0 : 0.0, roundTickStep(ymax - ymin, 4));
     for (double v = std::ceil(ymin / step) * step; v <= ymax + 1e-9 * step; v += step) {
         if (std::abs(v) < 1e-9 * step) v = 0;
         if (v > ymin) c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 0.8f, true));

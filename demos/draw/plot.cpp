@@ -351,4 +351,10 @@ render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
     return pc.image();
 }
 
+double roundTickStep(double span, int intervals) {
+    const double raw = span / intervals;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    return raw / mag <= 1.0 ? mag : raw / mag <= 2.0 ? 2 * mag : raw / mag <= 5.0 ? 5 * mag : 10 * mag;
+}
+
 }  // namespace cdlab::demos

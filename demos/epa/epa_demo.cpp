@@ -19,6 +19,7 @@
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "demos/draw/pair_figure.h"
+#include "demos/draw/plot.h"
 #include "demos/draw/step_frames.h"
 #include "demos/draw/zoom_inset.h"
 #include "core/gjk_epa/epa_2d.h"
@@ -533,8 +534,10 @@ private:
             c.drawText(P(X(i), y0 - 10), std::to_string(i), tick);
         }
         TextStyle ytick{15.0f, roleColor(Role::Ink), Anchor::Right, false, false};
-        for (int k = 0; k <= 5; ++k) {
-            const double v = lo + (hi - lo) * k / 5.0;
+        // Round values (the review: ticks at −0.1522, 0.4556, ... read as data).
+        const double step = roundTickStep(hi - lo, 5);
+        for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) {
+            if (std::abs(v) < 1e-9 * step) v = 0;
             c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 1.0f, true));
             c.drawText(P(x0 - 10, Y(v)), formatNumber(v), ytick);
         }
