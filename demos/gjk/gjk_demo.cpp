@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
@@ -220,20 +221,41 @@ private:
                              const GjkTrace& trace, const GjkTraceStep* s, const GjkResult& r) const {
         const bool labels = common_.hasLayer("labels");
         const bool touching = r.status == GjkStatus::Intersecting;
+        // A step whose simplex, O, w and v span under a third of A − B (a curved body's simplex
+        // shrinks onto its boundary: sphere_box's within 25 px) is framed on them, the zoom named
+        // in the heading (issue 42 §3: the camera zooms on a change too small to see).
+        Vec3 viewCenter = d.cCenter;
+        double viewRadius = d.cRadius;
+        if (s && !(common_.camera && !d.planar)) {
+            std::vector<Vec3> around{Vec3::Zero(), s->support.w, s->v};
+            for (int i = 0; i < s->simplexCount; ++i) around.push_back(s->simplex[i].w);
+            Vec3 c;
+            double radius = 0;
+            boundingSphere(around, c, radius);
+            if (radius > 1e-6 * d.cRadius && radius < 0.35 * d.cRadius) viewCenter = c, viewRadius = 2 * radius;
+        }
         Canvas cs(gl, po,
                   common_.camera && !d.planar ? *common_.camera
-                                              : panelCamera(d.planar, d.cCenter, d.cRadius, pair_.view, layout));
+                                              : panelCamera(d.planar, viewCenter, viewRadius, pair_.view, layout));
         if (d.c.valid)
             drawBody(cs, d.c, roleColor(Role::Minkowski), d.planar ? 0.22f : 0.18f,
                      roleColor(Role::Minkowski).scaled(0.7f), 1.2f, false);
-        drawOrigin(cs, 0.06 * d.cRadius, d.planar);
+        drawOrigin(cs, 0.06 * viewRadius, d.planar);
 
         // The simplex: W ∪ {w} dashed, the kept sub-simplex solid and filled.
         std::vector<Vec3> w;
         std::vector<int> kept;
         std::vector<std::string> names;
         if (s) {
-            for (int i = 0; i < s->simplexCount; ++i) w.push_back(s->simplex[i].w), names.push_back(slotName(i));
+            // A vertex the reduction moved to another slot says so: the previous step's w2 is this
+            // step's w1 once w0 is dropped (the review read the renaming as a new point).
+            const GjkTraceStep* previous = s == trace.steps.data() ? nullptr : s - 1;
+            for (int i = 0; i < s->simplexCount; ++i) {
+                w.push_back(s->simplex[i].w);
+                names.push_back(slotName(i));
+                for (int j = 0; previous && j < previous->simplexCount; ++j)
+                    if (j != i && previous->simplex[j].w == s->simplex[i].w) names.back() += " (was " + slotName(j) + ")";
+            }
             kept = keptSlotIndices(s->keptSlots);
         } else {
             // The result's simplex is compacted: name each vertex by its slot in the last step.
@@ -248,7 +270,7 @@ private:
             }
         }
         if (common_.hasLayer("simplex")) drawSimplex(cs, d, s, w, names, kept, labels);
-        const double arrowLen = 0.35 * d.cRadius;
+        const double arrowLen = 0.35 * viewRadius;
         const int index = s ? int(s - trace.steps.data()) : -1;
         for (const GjkDrawnVector& dv : s ? gjkStepVectors(trace.steps, index) : std::vector<GjkDrawnVector>{}) {
             if (!dv.arrow || !common_.hasLayer("direction") || !(dv.vector.norm() > 0)) continue;
@@ -282,8 +304,11 @@ private:
         } else {
             sub = touching ? "origin inside the simplex: intersecting" : "final simplex";
         }
+        char zoom[32] = "";
+        if (viewRadius < d.cRadius) std::snprintf(zoom, sizeof zoom, ", zoom ×%.2g", d.cRadius / viewRadius);
         drawPanelHeading(
-            cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : ""), sub);
+            cs, std::string("Configuration space A − B") + (d.c.valid && !d.exact ? " (sampled hull)" : "") + zoom,
+            sub);
 
         return cs.readPixels();
     }
