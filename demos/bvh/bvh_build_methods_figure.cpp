@@ -34,15 +34,19 @@ void BvhScene::runBuildMethods(const RunContext& ctx, DemoOutput& out) const {
                            cam, std::string(k == 0 ? "Top-down" : "Bottom-up") + ", level " + std::to_string(level),
                            std::to_string(nodes.size()) + " boxes, volume " + fmt(sumVolume(trees[k], nodes))));
         }
-        TreeDiagramInput tin = treeOf(trees[k], treeDepth);
+        // The whole tree, every leaf at its real depth: drawn only to level 5 both are complete
+        // binary trees (the review: "balanced vs greedy" not visible); the top-down tree's leaves
+        // end on one level, the bottom-up one's spread over several.
+        TreeDiagramInput tin = treeOf(trees[k], trees[k].height());
         tin.heading =
             std::string(k == 0 ? "Top-down" : "Bottom-up") + " tree, height " + std::to_string(trees[k].height());
         tin.sub = std::to_string(trees[k].nodes.size()) + " nodes, total volume " + fmt(totalVolume(trees[k]));
         tin.levelLabels = false;
         for (const BvhNode& n : trees[k].nodes) {
             const bool shown = std::find(levels.begin(), levels.end(), n.depth) != levels.end();
-            tin.look.push_back(shown ? TreeNodeLook{levelColor(n.depth), 4.0f, false}
-                                     : TreeNodeLook{roleColor(Role::Muted), 2.5f, false});
+            tin.look.push_back(shown                       ? TreeNodeLook{levelColor(n.depth), 4.0f, false}
+                               : n.depth <= levels.back() ? TreeNodeLook{roleColor(Role::Muted), 2.5f, false}
+                                                          : TreeNodeLook{roleColor(Role::Muted), 1.0f, false});
         }
         panels.push_back(drawTreeDiagram(*ctx.gl, L.panelWidth(), L.panelHeight(), ss_, tin));
     }
