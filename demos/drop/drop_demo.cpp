@@ -368,6 +368,7 @@ private:
     // How many of a step's contacts push, bounce, and are seen through the body from a camera.
     struct ContactMarks {
         int pushing = 0, bounces = 0, hidden = 0;
+        double undrawn = 0;  // the largest λ_n of a pushing contact whose arrow is too short to draw
     };
 
     // The body at step k, tinted and outlined in the colliding role while a contact pushes, with the
@@ -418,7 +419,13 @@ private:
             const double length = maxImpulse > 0 ? 0.6 * rho * ct.normalImpulse / maxImpulse : 0.0;
             LineStyle arrow = lineStyle(Role::Direction, 3.0f, false, true);
             if (hidden[i]) arrow.color = faded(arrow.color);
-            if (push && length > 0.02 * rho) c.drawArrow(ct.point, ct.point + length * s.normal, arrow);
+            // Drawn where it reaches 12 px past its contact marker (7 px) on the picture; shorter, it
+            // hides under the dot, and the status line says so.
+            Eigen::Vector2d from, to;
+            const bool seen = length > 0 && c.project(ct.point, from) &&
+                              c.project(ct.point + length * s.normal, to) && (to - from).norm() >= 19.0;
+            if (push && seen) c.drawArrow(ct.point, ct.point + length * s.normal, arrow);
+            else if (push) marks.undrawn = std::max(marks.undrawn, ct.normalImpulse);
             // The one named: the largest seen (a contact behind the body has a faded arrow).
             if (push && !hidden[i] && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
         }
@@ -585,10 +592,14 @@ private:
             if (touching) item("tint and outline: body in contact with the ground", Role::Colliding);
         }
         // Two caption lines: the contacts of the step, then energy and depth.
-        char line1[200], line2[200];
-        std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s", s.time, s.step,
+        // A pushing contact without an arrow says why (the review: the legend promises an arrow that
+        // a resting contact's λₙ, a few thousandths of the run's longest, draws under a pixel).
+        char line1[260], line2[200], undrawn[96] = "";
+        if (marks.undrawn > 0)
+            std::snprintf(undrawn, sizeof undrawn, "; λₙ %.2g N·s, too short to draw", marks.undrawn);
+        std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s%s", s.time, s.step,
                       int(s.contacts.size()), s.contacts.size() == 1 ? "" : "s", marks.pushing,
-                      marks.bounces ? (", " + std::to_string(marks.bounces) + " bouncing").c_str() : "");
+                      marks.bounces ? (", " + std::to_string(marks.bounces) + " bouncing").c_str() : "", undrawn);
         std::snprintf(line2, sizeof line2, "E = %.4g J (KE %.3g + PE %.4g); deepest vertex %.2g below the ground",
                       s.energy, s.kinetic, s.potential, s.maxPenetration);
         // Under the title, in the sky: at the bottom they sat on the ground's grid lines (the review
