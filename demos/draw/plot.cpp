@@ -20,16 +20,28 @@ using render::TextStyle;
 
 namespace {
 
-/// "10⁻¹²" with Unicode superscripts (DejaVu Sans has them).
-std::string decadeLabel(int k) {
-    if (k == 0) return "1";
-    if (k == 1) return "10";
-    static const char* sup[10] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-    std::string s = "10";
-    if (k < 0) s += "⁻";
-    const std::string digits = std::to_string(std::abs(k));
-    for (char c : digits) s += sup[c - '0'];
-    return s;
+/// A decade's tick label, 10^k, drawn as "10" and its exponent raised, each a text of its own so the
+/// legibility gate sees the exponent's size: a Unicode superscript ("10⁻¹²") drew it at about 9 px
+/// inside a 15-px label (the review: tick exponents ~5 px). `anchor` as the tick's TextStyle: Top
+/// (x the centre, y the exponent's top) or Right (x the right end, y the middle). The exponent's size is the
+/// 1.6 % target of the picture's height, at least.
+void drawDecadeLabel(Canvas& c, double x, double y, int k, const TextStyle& style, int pictureHeight) {
+    if (k == 0 || k == 1) {
+        c.drawTextPx(x, y, k == 0 ? "1" : "10", style);
+        return;
+    }
+    TextStyle base = style, exponent = style;
+    exponent.sizePx = std::max(0.8f * style.sizePx, float(std::ceil(0.0165 * pictureHeight * 10) / 10));
+    const std::string e = (k < 0 ? "−" : "") + std::to_string(std::abs(k));
+    const double wBase = c.measureText("10", base).x(), wExp = c.measureText(e, exponent).x();
+    const double width = wBase + 1.0 + wExp;
+    const double left = style.anchor == Anchor::Right ? x - width : x - 0.5 * width;
+    // Under an x axis the exponent's top, not the base's, is at y (clear of the tick marks above).
+    const double middle = style.anchor == Anchor::Right ? y : y + style.sizePx;
+    base.anchor = exponent.anchor = Anchor::Left;
+    c.drawTextPx(left, middle, "10", base);
+    // Raised by 0.55 of the base size: the two boxes share under half a line (not run together).
+    c.drawTextPx(left + wBase + 1.0, middle - 0.55 * style.sizePx, e, exponent);
 }
 
 struct Axis {
@@ -131,12 +143,12 @@ public:
                         const double x = f.x0 + u * (f.x1 - f.x0);
                         c_.drawLine(P(x, f.y0), P(x, f.y1), labelled ? grid : faint);
                         c_.drawLine(P(x, f.y1), P(x, f.y1 + 6), axis);
-                        if (labelled) c_.drawTextPx(x, f.y1 + 9, decadeLabel(k), xtick);
+                        if (labelled) drawDecadeLabel(c_, x, f.y1 + 9, k, xtick, o_.height);
                     } else {
                         const double y = f.y1 - u * (f.y1 - f.y0);
                         c_.drawLine(P(f.x0, y), P(f.x1, y), labelled ? grid : faint);
                         c_.drawLine(P(f.x0 - 6, y), P(f.x0, y), axis);
-                        if (labelled) c_.drawTextPx(f.x0 - 9, y, decadeLabel(k), ytick);
+                        if (labelled) drawDecadeLabel(c_, f.x0 - 9, y, k, ytick, o_.height);
                     }
                 }
             } else {
@@ -263,6 +275,9 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     const double r = total > 2000 ? 3.0 : total > 300 ? 4.5 : 7.0;
     const float alpha = total > 2000 ? 0.55f : 0.9f;
     std::vector<PlotCanvas::LegendEntry> entries;
+    // Each later series' markers a size smaller, so a value two series share shows both, one inside
+    // the other (the review: Johnson's median hidden under the signed volumes' at 0 error).
+    double seriesR = r;
     for (const PlotSeries& s : series) {
         entries.push_back({s.label, s.style, s.line && s.points.size() > 1, s.markers});
         if (!s.points.empty())
@@ -279,11 +294,12 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
         if (!s.markers) continue;
         for (size_t i = 0; i < s.points.size(); ++i) {
             const double x = f.px(s.points[i].first), y = f.py(s.points[i].second);
-            pc.marker(s.style, x, y, r, alpha);
+            pc.marker(s.style, x, y, seriesR, alpha);
             if (i < s.pointLabels.size() && !s.pointLabels[i].empty())
-                c.drawTextPx(x + r + 3, y - r - 1, s.pointLabels[i],
+                c.drawTextPx(x + seriesR + 3, y - seriesR - 1, s.pointLabels[i],
                              TextStyle{12.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
         }
+        seriesR = std::max(0.55 * r, seriesR - 0.15 * r);
     }
     pc.legend(f, entries, false);
     return pc.image();
@@ -329,7 +345,8 @@ render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
         const int style = static_cast<int>(si);
         entries.push_back({series[si].first, style, true, false});
         c.noteSeries(series[si].first, render::categorical(style), pc.P(0.5 * (f.x0 + f.x1), f.y1));
-        // Step outline with a translucent fill, slightly offset per series so equal bins stay visible.
+        // Step outlines only, slightly offset per series so equal bins stay visible: three
+        // translucent fills over one bin mixed into a grey-green no legend names (the review).
         const double dx = 2.0 * si;
         std::vector<Eigen::Vector3d> outline;
         for (int k = k0; k < k1; ++k) {
@@ -337,9 +354,6 @@ render::Image drawDecadeHistogram(render::GlContext& gl, const PlotOptions& o,
             const double y = f.py(frac[si][k - k0]);
             outline.push_back(pc.P(xa, y));
             outline.push_back(pc.P(xb, y));
-            if (frac[si][k - k0] > 0)
-                c.drawPolygon({pc.P(xa, y), pc.P(xb, y), pc.P(xb, f.y1), pc.P(xa, f.y1)},
-                              render::categorical(style).withAlpha(0.18f));
         }
         LineStyle ls;
         ls.widthPx = 2.5f;
