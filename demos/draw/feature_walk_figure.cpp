@@ -332,6 +332,12 @@ Vec3 stepView(const WalkBodies& w, const Vec3& sceneView, const WalkStepFeatures
     return chooseWalkView(w, sceneView, {step}, 180.0);
 }
 
+std::vector<KeyItem> planeKey() {
+    return {{violatedColor(), "violated plane"},
+            {satisfiedColor(), "satisfied plane"},
+            {roleColor(Role::Ink), "tested point to its plane", "- -"}};
+}
+
 Color newFeatureColor(const Color& bodyFeature, std::size_t points) {
     return points > 2 ? bodyFeature : roleColor(Role::Ink).mixed(bodyFeature, 0.5f);
 }

@@ -13,6 +13,7 @@
 #include "app/scene/demo.h"
 #include "app/scene/json_reader.h"
 #include "app/scene/scene_limits.h"
+#include "demos/draw/figure_style.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos::walkfigure {
@@ -113,6 +114,9 @@ void drawUpdateArrow(render::Canvas& canvas, const Vec3& from, const Vec3& to, d
 /// The view of one step's frame: the walk's `sceneView` when it shows the step's new feature from
 /// its front, else chooseWalkView for this step alone (the camera swings round to the feature).
 Vec3 stepView(const WalkBodies& bodies, const Vec3& sceneView, const WalkStepFeatures& step);
+/// The key of the plane tests: violated, satisfied, and the dashed distance from each tested point
+/// to its plane (drawPlaneTest; the review found the dashes unexplained).
+std::vector<KeyItem> planeKey();
 /// The colour of a step's new feature, from its body's feature colour: a face filled in it,
 /// saturated (the step's change stands out: StepFeatureFaded), an edge or a vertex darker, to
 /// stand out from the body's own edges.

@@ -72,10 +72,9 @@ void drawKey(Canvas& canvas, double x, double y, const std::vector<KeyItem>& ite
     const TextStyle text{sizePx, roleColor(Role::Ink), Anchor::TopLeft, true, false};
     for (const KeyItem& item : items) {
         const TextStyle swatch{sizePx * 1.2f, item.color.withAlpha(1.0f), Anchor::TopLeft, false, false};
-        const std::string square = "\u25A0";  // ■
-        canvas.drawTextPx(x, y - 0.15 * sizePx, square, swatch);
+        canvas.drawTextPx(x, y - 0.15 * sizePx, item.swatch, swatch);
         // The swatch is a label of the key too: a space's width to its text (render/legibility.h).
-        x += canvas.measureText(square, swatch).x() + std::max(5.0, render::kMinGapFraction * sizePx);
+        x += canvas.measureText(item.swatch, swatch).x() + std::max(5.0, render::kMinGapFraction * sizePx);
         canvas.drawTextPx(x, y, item.text, text);
         x += canvas.measureText(item.text, text).x() + 16;
     }

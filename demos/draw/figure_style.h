@@ -22,6 +22,7 @@ Frame finishedFrame(render::Canvas& canvas, const std::string& title, const std:
 struct KeyItem {
     render::Color color;
     std::string text;
+    std::string swatch = "\u25A0";  // ■; "- -" for a dashed line
 };
 /// A key in one row from pixel (x, y) (top left): a colour swatch, then its meaning, for each item.
 /// Figures name roles in their text and show the colour here, never a colour word.

@@ -410,7 +410,7 @@ private:
         sub = std::to_string(step.planes.size()) + " applicability test(s), " + std::to_string(violatedCount) +
               " violated";
         if (common_.hasLayer("labels") && shown > 0)
-            drawKey(c, 14, 64, {{violatedColor(), "violated plane"}, {satisfiedColor(), "satisfied plane"}});
+            drawKey(c, 14, 64, planeKey());
         if (int(step.planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
         lines.push_back("Step " + std::to_string(step.step) + " (" + nameOf(step.state) +
                         "): " + featureLabel(step.featureA, 0) + " vs " + featureLabel(step.featureB, 1) +

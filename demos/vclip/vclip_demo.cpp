@@ -442,7 +442,7 @@ private:
         sub = std::to_string(st->planes.size()) + " plane test(s), " + std::to_string(violatedCount) + " violated";
         if (faceSearch) sub = "local minimum: violated = face plane V is farthest above";
         if (labels && shown > 0)
-            drawKey(c, 14, 64, {{violatedColor(), "violated plane"}, {satisfiedColor(), "satisfied plane"}});
+            drawKey(c, 14, 64, planeKey());
         if (int(st->planes.size()) > shown) sub += "; " + std::to_string(shown) + " drawn";
         if (!st->clips.empty()) sub += "; " + std::to_string(st->clips.size()) + " clip(s)";
 
