@@ -520,19 +520,25 @@ private:
         if (separated) {
             const RegionCheck inB = checkInRegion(s_.b, call.poseB, r.featureB, r.pointA);
             const RegionCheck inA = checkInRegion(s_.a, s_.a.pose, r.featureA, r.pointB);
+            // Of each region, the plane with the least margin (the one Theorem 1's minimum comes
+            // from): all of them stacked 8 translucent planes over the closest pair (the review).
+            const auto tightest = [](const RegionCheck& k) {
+                const RegionCheck::Test* best = nullptr;
+                for (const auto& t : k.tests)
+                    if (t.plane >= 0 && (!best || t.distance < best->distance)) best = &t;
+                return best;
+            };
             if (common_.hasLayer("planes")) {
-                for (const auto& t : inB.tests)
-                    if (t.plane >= 0 && inB.tests.size() <= 9)
-                        drawPlaneTest(c, s_.b, call.poseB, t.plane, r.featureB, r.pointA, t.distance,
-                                      call.poseB.rotate(s_.b.regions.plane(t.plane).normal *
-                                                        (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
-                                      t.distance < 0, false, radius_);
-                for (const auto& t : inA.tests)
-                    if (t.plane >= 0 && inA.tests.size() <= 9)
-                        drawPlaneTest(c, s_.a, s_.a.pose, t.plane, r.featureA, r.pointB, t.distance,
-                                      s_.a.pose.rotate(s_.a.regions.plane(t.plane).normal *
-                                                       (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
-                                      t.distance < 0, false, radius_);
+                if (const RegionCheck::Test* t = tightest(inB))
+                    drawPlaneTest(c, s_.b, call.poseB, t->plane, r.featureB, r.pointA, t->distance,
+                                  call.poseB.rotate(s_.b.regions.plane(t->plane).normal *
+                                                    (r.featureB.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
+                                  t->distance < 0, false, radius_);
+                if (const RegionCheck::Test* t = tightest(inA))
+                    drawPlaneTest(c, s_.a, s_.a.pose, t->plane, r.featureA, r.pointB, t->distance,
+                                  s_.a.pose.rotate(s_.a.regions.plane(t->plane).normal *
+                                                   (r.featureA.type == VClipFeatureType::Edge ? 1.0 : -1.0)),
+                                  t->distance < 0, false, radius_);
             }
             auto verdict = [](const RegionCheck& k) {
                 return k.minDistance >= -1e-12 ? " ≥ 0: inside" : " < 0: OUTSIDE";
@@ -547,7 +553,7 @@ private:
         }
         if (common_.hasLayer("closest")) drawClosest(c, r.pointA, r.pointB, true);
         heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
-        sub = separated ? "closest points; green: region planes they satisfy"
+        sub = separated ? "closest points; green: each one's tightest region plane"
                         : std::string("penetration: ") + nameOf(r.penetration);
         lines.push_back(std::string("Result: ") + nameOf(r.status) +
                         (separated ? ", closest features " : ", found at features ") + featureLabel(r.featureA, 0) +
