@@ -177,16 +177,35 @@ bool facesCamera(const Camera& camera, const Vec3& point, const Vec3& normal) {
 
 bool behindBody(const Camera& camera, const Vec3& point, const std::vector<Plane>& faces, double tolerance) {
     if (camera.projection == Camera::Projection::TwoD) return false;
-    const Vec3 toCamera = camera.directionToEye(point);
+    return insideAlong(point, camera.directionToEye(point), faces, tolerance);
+}
+
+bool insideAlong(const Vec3& point, const Vec3& toEye, const std::vector<Plane>& faces, double tolerance) {
+    if (faces.empty()) return false;
     // The ray p + t u (t >= 0) clipped by every face's half-space (Cyrus–Beck).
     double enter = 0.0, leave = INFINITY;
     for (const Plane& f : faces) {
-        const double along = f.normal.dot(toCamera), room = f.offset - f.normal.dot(point);
+        const double along = f.normal.dot(toEye), room = f.offset - f.normal.dot(point);
         if (along > 0) leave = std::min(leave, room / along);
         else if (along < 0) enter = std::max(enter, room / along);
         else if (room < 0) return false;  // parallel to the face and outside it
     }
     return leave - enter > tolerance;
+}
+
+std::vector<Plane> facePlanes(const ConvexDrawable& body) {
+    std::vector<Plane> out;
+    if (body.planar) return out;
+    for (const Eigen::Vector3i& t : body.triangles) {
+        const Vec3 &a = body.vertices[std::size_t(t[0])], &b = body.vertices[std::size_t(t[1])],
+                   &c = body.vertices[std::size_t(t[2])];
+        Vec3 n = (b - a).cross(c - a);
+        if (!(n.norm() > 0)) continue;
+        n.normalize();
+        if (n.dot(a - body.center) < 0) n = -n;  // outward: the body is convex about its centre
+        out.push_back({n, n.dot(a)});
+    }
+    return out;
 }
 
 LineStyle edgeStyleSeen(const Camera& camera, const Vec3& midpoint, const Vec3& n1, const Vec3& n2, LineStyle visible) {

@@ -69,6 +69,11 @@ void drawConvexMeshEdges(render::Canvas& canvas, const std::vector<Vec3>& vertic
 /// for longer than `tolerance` (a point on a face turned towards the camera or on the silhouette is
 /// seen; one on the far side is behind the body).
 bool behindBody(const render::Camera& camera, const Vec3& point, const std::vector<Plane>& faces, double tolerance);
+/// The same along a given direction to the eye (an orthographic view being chosen): whether the
+/// ray from `point` along `toEye` runs inside the body for longer than `tolerance`; no faces, no.
+bool insideAlong(const Vec3& point, const Vec3& toEye, const std::vector<Plane>& faces, double tolerance);
+/// A 3D drawable's face planes (unit outward normals, n · x <= d inside), one per triangle.
+std::vector<Plane> facePlanes(const ConvexDrawable& body);
 
 /// Draws the little "O" origin marker with a cross.
 void drawOrigin(render::Canvas& canvas, double size, bool planar);

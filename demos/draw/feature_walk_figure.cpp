@@ -2,7 +2,6 @@
 // and the Theorem-1 check. Drawing geometry only; the walk's numbers come from core/feature_walk/vclip.h.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include "core/geometry/convex_hull.h"
@@ -186,22 +185,6 @@ namespace {
 // How badly a view shows the steps (chooseWalkView's order): 1000 for bodies apart in space
 // overlapping on the picture, 100 for each new feature not seen from its front, 25 for each current
 // feature edge-on and 10 for each seen from behind, plus the turn from `view0` in degrees.
-// Whether the ray from `point` towards the eye (direction `toEye`) passes through the convex body
-// (its world face planes n · x <= d): the point is seen through it, its colour blended into the
-// body's (StepFeatureFaded, render/legibility.h).
-bool seenThrough(const std::vector<Plane>& body, const Vec3& point, const Vec3& toEye) {
-    double t0 = 0, t1 = std::numeric_limits<double>::infinity();
-    for (const Plane& f : body) {
-        const double along = f.normal.dot(toEye), room = f.offset - f.normal.dot(point);
-        if (along == 0) {
-            if (room < 0) return false;
-        } else if (along > 0) t1 = std::min(t1, room / along);
-        else t0 = std::max(t0, room / along);
-        if (t0 >= t1) return false;
-    }
-    return !body.empty();
-}
-
 std::vector<Plane> worldPlanes(const Body& body, const Transform& pose) {
     std::vector<Plane> out;
     const ConvexPolyhedron& mesh = body.regions.mesh();
@@ -217,6 +200,7 @@ struct ViewScorer {
         std::vector<Vec3> points, normals;
         bool step;
         std::vector<Plane> other{};  // a step's feature: the other body, which must not hide it
+                                 // (StepFeatureFaded: seen through it, its colour blends)
     };
     std::vector<Feature> features;
     std::vector<Vec3> apartA, apartB;
@@ -232,7 +216,7 @@ struct ViewScorer {
         double c = std::acos(std::clamp(v.dot(v0), -1.0, 1.0)) * 180 / M_PI;
         for (const Feature& f : features) {
             if (f.step) {
-                c += (frontOn(f, v) ? 0 : 100) + (seenThrough(f.other, featureCenter(f.points), v) ? 100 : 0);
+                c += (frontOn(f, v) ? 0 : 100) + (insideAlong(featureCenter(f.points), v, f.other, 0.0) ? 100 : 0);
                 continue;
             }
             const render::FeatureView seen = render::featureView(f.points, f.normals, v);
@@ -327,7 +311,7 @@ Vec3 stepView(const WalkBodies& w, const Vec3& sceneView, const WalkStepFeatures
     const ViewScorer s = scorer(w, {{VClipFeature{}, VClipFeature{}, step.updated, step.to}});
     const ViewScorer::Feature& f = s.features.front();
     if (ViewScorer::frontOn(f, sceneView.normalized()) &&
-        !seenThrough(f.other, featureCenter(f.points), sceneView.normalized()))
+        !insideAlong(featureCenter(f.points), sceneView.normalized(), f.other, 0.0))
         return sceneView;
     return chooseWalkView(w, sceneView, {step}, 180.0);
 }

@@ -106,6 +106,12 @@ PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vect
     return d;
 }
 
+void drawSupportPoint(Canvas& canvas, const ConvexDrawable& body, const Vec3& point, float radiusPx) {
+    const bool hidden = behindBody(canvas.camera(), point, facePlanes(body), 1e-3 * body.radius);
+    const auto faded = [&](const Color& c) { return hidden ? c.mixed(roleColor(Role::Background), 0.55f) : c; };
+    canvas.drawPoint(point, radiusPx, faded(roleColor(Role::Support)), true, 1.5f, faded(roleColor(Role::Ink)));
+}
+
 void drawPairBodies(Canvas& world, const PairDrawing& d, float alpha3d, bool colliding, bool labels, bool apart) {
     const float alpha = d.planar ? 0.35f : alpha3d;
     for (const auto& [body, role] : {std::pair{&d.a, Role::ShapeA}, std::pair{&d.b, Role::ShapeB}}) {

@@ -49,6 +49,11 @@ struct PairDrawing {
 PairDrawing makePairDrawing(const PairScene& pair, bool drawMinkowski, std::vector<Vec3> csPoints,
                             std::vector<std::string>& skipped);
 
+/// A support point of `body`, in the support colour; on the body's far side (seen through it from
+/// the camera) faded, as hidden edges are dashed (the review: gjk/box_box's s_B(−d) at B's hidden
+/// corner drawn as a visible dot).
+void drawSupportPoint(render::Canvas& canvas, const ConvexDrawable& body, const Vec3& point, float radiusPx);
+
 /// The two bodies in world space, translucent (`alpha3d` in 3D), named when `labels`; when they
 /// intersect their outlines take Role::Colliding, with a key where outlines are drawn. `apart`: the
 /// trace says the bodies are separated (noted as such: SeparatedBodiesOverlap, render/legibility.h).

@@ -373,8 +373,8 @@ private:
         // Outlined as colliding when they intersect; noted as apart when GJK found them separated.
         drawPairBodies(world, d, 0.4f, penetrating, labels, run.status == EpaStatus::Separated);
         if (s && common_.hasLayer("support")) {
-            world.drawPoint(s->supportA, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
-            world.drawPoint(s->supportB, 7.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+            drawSupportPoint(world, d.a, s->supportA, 7.0f);
+            drawSupportPoint(world, d.b, s->supportB, 7.0f);
             if (labels) {
                 TextStyle ts{16.0f, roleColor(Role::Support).scaled(0.7f), Anchor::Center, true, true};
                 drawLabelAway(world, s->supportA, d.a.center, "s_A(n)", ts);

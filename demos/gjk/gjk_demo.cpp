@@ -188,8 +188,8 @@ private:
             }
         }
         if (s && common_.hasLayer("support")) {
-            world.drawPoint(s->support.a, 6.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
-            world.drawPoint(s->support.b, 6.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+            drawSupportPoint(world, d.a, s->support.a, 6.0f);
+            drawSupportPoint(world, d.b, s->support.b, 6.0f);
             if (labels) {
                 TextStyle ts{16.0f, roleColor(Role::Support).scaled(0.7f), Anchor::Center, true, true};
                 drawLabelAway(world, s->support.a, d.a.center, "s_A(d)", ts);
@@ -283,6 +283,13 @@ private:
         }
         if (s && common_.hasLayer("support")) {
             cs.drawPoint(s->support.w, 10.0f, roleColor(Role::Support), true, 2.0f, roleColor(Role::Ink));
+            // A loop that stops before adding w (converged) leaves it out of the simplex: named here,
+            // as the simplex names it otherwise ("w2 = w"; the review: box_box step 3's unnamed dot).
+            const bool inSimplex = std::any_of(s->simplex, s->simplex + s->simplexCount,
+                                               [&](const GjkVertex& v) { return v.w == s->support.w; });
+            if (labels && !inSimplex)
+                drawLabelAway(cs, s->support.w, d.cCenter, "w", TextStyle{20.0f, roleColor(Role::Ink), Anchor::Center, true, true},
+                              12.0);
         }
         // v: the closest point of the kept simplex (after this iteration's reduction).
         const Vec3 v = s ? s->v : Vec3(r.pointA - r.pointB);
