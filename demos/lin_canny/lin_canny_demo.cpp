@@ -348,7 +348,7 @@ private:
             const int shown = drawStep(c, *st);
             lines = describeStep(c, *st, r, shown, f);
         } else {
-            drawResult(c, r);
+            drawResult(c, r, tr);
             lines = describeResult(c, run, f);
         }
         const Image main = c.readPixels();
@@ -453,9 +453,32 @@ private:
         return lines;
     }
 
-    /// The result in the 3D panel: the final features and closest points.
-    void drawResult(Canvas& c, const LinCannyResult& r) const {
+    /// The result in the 3D panel: the final features and closest points; a cycle's features all,
+    /// with the updates that go round it (the review: only the last pair of a two-pair cycle).
+    void drawResult(Canvas& c, const LinCannyResult& r, const LinCannyTrace& tr) const {
         const bool labels = common_.hasLayer("labels");
+        if (r.status == LinCannyStatus::CycleDetected && r.cycleLength >= 2 &&
+            std::size_t(r.cycleLength) <= tr.steps.size()) {
+            std::vector<std::pair<int, VClipFeature>> drawn;  // (body, feature) once each
+            const auto feature = [&](int body, const VClipFeature& f) {
+                for (const auto& [b, g] : drawn)
+                    if (b == body && g.type == f.type && g.index == f.index) return;
+                drawn.push_back({body, f});
+                const std::vector<Vec3> g = featureGeometry(body == 0 ? s_.a.regions : s_.b.regions, pose(body), f);
+                drawFeature(c, g, featureNormals(body == 0 ? s_.a : s_.b, pose(body), f), featureColor(body),
+                            featureLabel(f, body), centroid(1 - body), labels);
+            };
+            for (std::size_t k = tr.steps.size() - std::size_t(r.cycleLength); k < tr.steps.size(); ++k) {
+                const LinCannyTraceStep& st = tr.steps[k];
+                feature(0, st.featureA);
+                feature(1, st.featureB);
+                if (st.updatedBody < 0) continue;
+                const VClipPolyhedron& regions = st.updatedBody == 0 ? s_.a.regions : s_.b.regions;
+                drawUpdateArrow(c, featureCenter(featureGeometry(regions, pose(st.updatedBody), st.from)),
+                                featureCenter(featureGeometry(regions, pose(st.updatedBody), st.to)), radius_);
+            }
+            return;
+        }
         const std::vector<Vec3> ga = featureGeometry(s_.a.regions, s_.a.pose, r.featureA);
         const std::vector<Vec3> gb = featureGeometry(s_.b.regions, s_.b.pose, r.featureB);
         drawFeature(c, ga, featureNormals(s_.a, s_.a.pose, r.featureA), featureColor(0), featureLabel(r.featureA, 0),
@@ -473,7 +496,7 @@ private:
         std::vector<std::string> lines;
         heading = std::string("Result: ") + nameOf(r.status) + " after " + std::to_string(r.steps) + " update(s)";
         sub = r.status == LinCannyStatus::Separated       ? "closest features and points"
-              : r.status == LinCannyStatus::CycleDetected ? "the pair where the cycle was detected"
+              : r.status == LinCannyStatus::CycleDetected ? "the cycle's features; arrows: its updates"
                                                           : "";
         lines.push_back("Lin–Canny: " + verdict(r) + ", features " + featureLabel(r.featureA, 0) + " and " +
                         featureLabel(r.featureB, 1) + ", " + std::to_string(r.steps) + " update(s)");
