@@ -579,16 +579,23 @@ private:
                                     r.lc.pointB, r.lc.status == LinCannyStatus::Separated,
                                     "Lin–Canny: " + std::to_string(r.lc.steps) + " update(s)", verdict(r.lc));
         const bool lists = common_.hasLayer("list");
+        // The first row where the two walks update differently, marked in both lists and on the
+        // plot (the review: nothing showed where E7 → V2 and E7 → F5 part).
+        const std::vector<ListRow> vRows = vcRows(r.vcTrace), lRows = lcRows(r.lcTrace);
+        int split = -1;
+        for (std::size_t i = 0; split < 0 && i < std::min(vRows.size(), lRows.size()); ++i)
+            if (vRows[i].text != lRows[i].text) split = int(i);
         const Image vcl =
-            lists ? drawWalkList(gl, half, listH, ss, "V-Clip pairs (A·B, distance)", "", vcRows(r.vcTrace), -1)
+            lists ? drawWalkList(gl, half, listH, ss, "V-Clip pairs (A·B, distance)", "", vRows, split)
                   : blank(half, listH);
         const Image lcl =
-            lists ? drawWalkList(gl, W - half, listH, ss, "Lin–Canny pairs (A·B, distance)", "", lcRows(r.lcTrace), -1)
+            lists ? drawWalkList(gl, W - half, listH, ss, "Lin–Canny pairs (A·B, distance)", "", lRows, split)
                   : blank(W - half, listH);
         Image plot = blank(W, plotH);
         if (common_.hasLayer("plot")) {
             PlotInput pin;
-            pin.heading = "Pair distance per update";
+            pin.heading = split < 0 ? "Pair distance per update"
+                                    : "Pair distance per update (dashed, and > in the lists: where the walks part)";
             pin.xLabel = "update";
             PlotSeries v = distanceSeries(r.vcTrace, roleColor(Role::Simplex));
             PlotSeries l = distanceSeries(r.lcTrace, roleColor(Role::Highlight));
@@ -596,6 +603,7 @@ private:
             for (Color& col : l.pointColors) col = roleColor(Role::Highlight);
             pin.series = {v, l};
             pin.legend = {{roleColor(Role::Simplex), "V-Clip"}, {roleColor(Role::Highlight), "Lin–Canny"}};
+            pin.marker = split;
             plot = drawPlot(gl, W, plotH, ss, pin);
         }
         Canvas canvas(gl, canvasOptions(W, H, ss), Camera::twoD(0, 0, 1));
