@@ -210,11 +210,19 @@ private:
         if (common_.hasLayer("regions") || common_.hasLayer("boundaries"))
             diagram = triangleVoronoiRegions({tri, margin(), margin() * 0.6});
         else out.skipped.push_back("region geometry (no 'regions' or 'boundaries' layer)");
-        for (const std::string& view : views_)
-            out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1));
+        // The region names where the overview of the steps' view placed them, in every step frame
+        // too (the review: "region A" moved between frames as the query labels around it changed).
+        std::vector<std::pair<std::string, Eigen::Vector2d>> regionNames;
+        for (const std::string& view : views_) {
+            out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1, {}));
+            if (view != views_.front()) continue;
+            const Image& im = out.frames.back().image;
+            for (const LayoutLabel& l : im.layout.labels)
+                if (l.text.rfind("region ", 0) == 0) regionNames.push_back({l.text, l.box.center() / im.scale});
+        }
         if (common_.steps || ctx.stepsOverride)
             addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()), [&](int i) {
-                return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i);
+                return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i, regionNames);
             }, out);
         else out.skipped.push_back("per-step frames and contact sheet (steps off)");
         return out;
@@ -248,7 +256,8 @@ private:
 
     Frame drawTriangleFrame(GlContext& gl, const RunContext& ctx, const Triangle& tri,
                             const TriangleVoronoiDiagram& diagram, const std::vector<TriangleQuery>& results,
-                            const std::string& view, int focus) const {
+                            const std::string& view, int focus,
+                            const std::vector<std::pair<std::string, Eigen::Vector2d>>& regionNames) const {
         Canvas canvas(gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
         canvas.setCamera(triangleCamera(tri, diagram, view));
         const bool is3d = view == "3d";
@@ -288,8 +297,20 @@ private:
                     if (region.region == TriangleRegion::ABC) at = c;
                     else at = c + (at - c) * 0.85;  // pull labels of unbounded regions inwards, off the frame edge
                     TextStyle ts{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true};
+                    const std::string name = std::string("region ") + nameOf(region.region);
+                    const auto pinned = std::find_if(regionNames.begin(), regionNames.end(),
+                                                     [&](const auto& r) { return r.first == name; });
+                    // Pinned unless the step's query (drawn larger than in the overview) is under it.
+                    Eigen::Vector2d q;
+                    const Eigen::Vector2d half = 0.5 * canvas.measureText(name, ts) + Eigen::Vector2d(16, 16);
+                    if (pinned != regionNames.end() &&
+                        !(focus >= 0 && canvas.project(results[std::size_t(focus)].point, q) &&
+                          std::abs(q.x() - pinned->second.x()) <= half.x() && std::abs(q.y() - pinned->second.y()) <= half.y())) {
+                        canvas.drawTextPx(pinned->second.x(), pinned->second.y(), name, ts);
+                        continue;
+                    }
                     ts.place = true;  // on the region's centre, or beside it when a query point is there
-                    canvas.drawText(at, std::string("region ") + nameOf(region.region), ts);
+                    canvas.drawText(at, name, ts);
                 }
         }
         for (std::size_t i = 0; i < results.size(); ++i) {
