@@ -648,7 +648,15 @@ private:
         std::vector<Vec3> both = rp;
         for (const Vec3& p : facePolygon(inc, tr.incidentFace)) both.push_back(p);
         boundingSphere(both, cc, cr);
-        const Camera cam = framingCamera(cc, cr * 1.15, nr, nr.unitOrthogonal(), false);
+        // Turned as the contact frame's camera is, tipped to look straight down the normal: its
+        // screen up, laid into the face's plane, is up here too (the review: with an arbitrary up
+        // the clip read rotated 180° from the contact frame).
+        const Camera contact = common_.camera ? *common_.camera : framingCamera(cc, cr, view, Vec3::UnitZ());
+        const Vec3 forward = (contact.target - contact.eye).normalized();
+        Vec3 up = contact.up - contact.up.dot(forward) * forward;
+        up -= up.dot(nr) * nr;
+        if (!(up.norm() > 1e-6)) up = nr.unitOrthogonal();
+        const Camera cam = framingCamera(cc, cr * 1.15, nr, up.normalized(), false);
         Canvas c(gl, sceneCanvasOptions(common_, ss), cam);
         c.drawPolygon(rp, roleColor(refRole).withAlpha(0.3f));
         c.drawPolyline(rp, true, lineStyle(Role::Ink, 3.5f, false, true));
