@@ -274,7 +274,7 @@ private:
                     alpha = mine ? 0.55f : 0.15f;
                 }
                 drawBody(c, pieceDrawable(body.pieces[i]), fill, alpha, base.scaled(0.6f), 1.5f);
-                if (labels && !pairsFrame) {
+                if (labels) {  // named in both frames: the pairs frame's text names pieces
                     Vec3 centre = Vec3::Zero();
                     for (const Vec3& v : body.pieces[i]) centre += v;
                     TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
@@ -321,6 +321,18 @@ private:
         else if (focus)
             lines.push_back("apart; the closest pair A" + std::to_string(focus->a + 1) + "–B" + std::to_string(focus->b + 1) +
                             ": distance " + formatNumber(focus->distance) + " — the bodies' distance");
+        // The order the caption teaches, pair by pair (the review: 0.316, 0.6, 1.4, 2.1 not drawn).
+        if (pairsFrame && !run.pairs.empty()) {
+            std::string order = "pairs by box distance:";
+            const std::size_t shown = std::min<std::size_t>(run.pairs.size(), 6);
+            for (std::size_t i = 0; i < shown; ++i) {
+                const PiecePair& p = run.pairs[i];
+                order += std::string(i ? ";  " : "  ") + "A" + std::to_string(p.a + 1) + "–B" + std::to_string(p.b + 1) +
+                         " " + formatNumber(p.boxDistance) + " " + p.action.substr(0, p.action.find(':'));
+            }
+            if (run.pairs.size() > shown) order += ";  … " + std::to_string(run.pairs.size() - shown) + " more";
+            lines.push_back(order);
+        }
         if (common_.hasLayer("numbers")) {
             const TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
             std::vector<std::string> wrapped;
