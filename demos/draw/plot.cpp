@@ -26,8 +26,8 @@ namespace {
 /// (x the centre, y the exponent's top) or Right (x the right end, y the middle). The exponent's size is the
 /// 1.6 % target of the picture's height, at least.
 void drawDecadeLabel(Canvas& c, double x, double y, int k, const TextStyle& style, int pictureHeight) {
-    if (k == 0 || k == 1) {
-        c.drawTextPx(x, y, k == 0 ? "1" : "10", style);
+    if (k == 0 || k == 1) {  // on the baseline of the labels with exponents beside it
+        c.drawTextPx(x, y + (style.anchor == Anchor::Right ? 0.24 : 0.5) * style.sizePx, k == 0 ? "1" : "10", style);
         return;
     }
     TextStyle base = style, exponent = style;
@@ -37,7 +37,8 @@ void drawDecadeLabel(Canvas& c, double x, double y, int k, const TextStyle& styl
     const double width = wBase + 1.0 + wExp;
     const double left = style.anchor == Anchor::Right ? x - width : x - 0.5 * width;
     // Under an x axis the exponent's top, not the base's, is at y (clear of the tick marks above).
-    const double middle = style.anchor == Anchor::Right ? y : y + style.sizePx;
+    // Beside a y axis the base and its raised exponent together are centred on y.
+    const double middle = style.anchor == Anchor::Right ? y + 0.24 * style.sizePx : y + style.sizePx;
     base.anchor = exponent.anchor = Anchor::Left;
     c.drawTextPx(left, middle, "10", base);
     // Raised by 0.55 of the base size: the two boxes share under half a line (not run together).
@@ -181,7 +182,7 @@ public:
         c_.drawPolyline({P(f.x0, f.y0), P(f.x1, f.y0), P(f.x1, f.y1), P(f.x0, f.y1)}, true, axis);
         const TextStyle label{17.0f, roleColor(Role::Ink), Anchor::Top, false, true};
         c_.drawTextPx(0.5 * (f.x0 + f.x1), f.y1 + 36, o_.xLabel, label);
-        c_.drawTextPx(f.x0 - 8, f.y0 - 10, o_.yLabel,
+        c_.drawTextPx(f.x0 + 2, f.y0 - 10, o_.yLabel,  // right of the axis: clear of the top tick's exponent
                       TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
         drawTitleAndCaption(c_, o_.title, o_.subtitle);
     }
@@ -275,9 +276,10 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
     const double r = total > 2000 ? 3.0 : total > 300 ? 4.5 : 7.0;
     const float alpha = total > 2000 ? 0.55f : 0.9f;
     std::vector<PlotCanvas::LegendEntry> entries;
-    // Each later series' markers a size smaller, so a value two series share shows both, one inside
-    // the other (the review: Johnson's median hidden under the signed volumes' at 0 error).
-    double seriesR = r;
+    // A marker on an earlier series' marker is drawn a size smaller, so a value two series share
+    // shows both, one inside the other (the review: Johnson's median hidden under the signed
+    // volumes' at 0 error); a point alone keeps the full size.
+    std::vector<Eigen::Vector3d> drawnMarkers;  // x, y, radius
     for (const PlotSeries& s : series) {
         entries.push_back({s.label, s.style, s.line && s.points.size() > 1, s.markers});
         if (!s.points.empty())
@@ -294,12 +296,16 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
         if (!s.markers) continue;
         for (size_t i = 0; i < s.points.size(); ++i) {
             const double x = f.px(s.points[i].first), y = f.py(s.points[i].second);
-            pc.marker(s.style, x, y, seriesR, alpha);
+            double radius = r;
+            for (const Eigen::Vector3d& m : drawnMarkers)
+                if (std::hypot(m.x() - x, m.y() - y) < 0.5 * r) radius = std::min(radius, m.z() - 0.15 * r);
+            radius = std::max(radius, 0.45 * r);
+            pc.marker(s.style, x, y, radius, alpha);
+            drawnMarkers.emplace_back(x, y, radius);
             if (i < s.pointLabels.size() && !s.pointLabels[i].empty())
-                c.drawTextPx(x + seriesR + 3, y - seriesR - 1, s.pointLabels[i],
+                c.drawTextPx(x + radius + 3, y - radius - 1, s.pointLabels[i],
                              TextStyle{12.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
         }
-        seriesR = std::max(0.55 * r, seriesR - 0.15 * r);
     }
     pc.legend(f, entries, false);
     return pc.image();

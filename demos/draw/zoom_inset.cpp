@@ -84,10 +84,13 @@ Image readPixelsZoomed(GlContext& gl, Canvas& canvas, int scale, const ZoomTarge
     // (tests/fuzz: scenes drawn at a few dozen pixels).
     if (!(0.25 * within.width() >= 60.0 && 0.25 * within.height() >= kZoomHeadingPx + 30.0)) return canvas.readPixels();
     const Vec3 mid = 0.5 * (target.p + target.q);
-    const double radius = 3.0 * length;  // the quantity spans a sixth of the inset's height
     Vec3 right, up;
-    const double worldUnits = unitsPerPx(canvas, mid, 1e-3 * radius, right, up);
+    const double worldUnits = unitsPerPx(canvas, mid, 3e-3 * length, right, up);
     if (!(worldUnits > 0)) return canvas.readPixels();
+    // The quantity as the picture shows it spans a sixth of the inset's height: a segment seen
+    // foreshortened (EPA's gap along n, the view turned towards n) is zoomed further, up to 4×
+    // (the review: the gap hid under the w marker at the zoom of its true length).
+    const double radius = 3.0 * std::max((pp - qq).norm() * worldUnits, 0.25 * length);
     Eigen::Vector2d m;
     canvas.project(mid, m);
     // The source square: what the inset shows (2 radius across), at least 12 px so it is seen.

@@ -83,10 +83,11 @@ TextStyle awayStyle() {
     return ts;
 }
 
-/// Where to name B's pose at t = 1 (a dashed outline under the corrected poses): the point of its
-/// outline (corners and edge midpoints) farthest from every corrected pose's centre, the part a
-/// reader sees (the review: "B at t = 1" floated 40 px from an outline hidden under the MTD bar).
-Vec3 endAnchor(const ResolutionInput& in, const ResolutionRun& run) {
+/// Where to name B's pose at t = 1 (a dashed outline under the frame's other poses): the point of
+/// its outline (corners and edge midpoints) farthest from everything else the frame draws there,
+/// `others` (the other poses' centres, a marked point): the part a reader sees (the review: "B at
+/// t = 1" floated 40 px from an outline hidden under the MTD bar).
+Vec3 endAnchor(const ResolutionInput& in, const ResolutionRun& run, std::initializer_list<Vec3> others) {
     const std::vector<Vec3> outline = outlineAt(in.b, run.end);
     std::vector<Vec3> candidates = outline;
     for (std::size_t i = 0; i < outline.size(); ++i) candidates.push_back(0.5 * (outline[i] + outline[(i + 1) % outline.size()]));
@@ -94,8 +95,7 @@ Vec3 endAnchor(const ResolutionInput& in, const ResolutionRun& run) {
     double bestDistance = -1;
     for (const Vec3& p : candidates) {
         double nearest = std::numeric_limits<double>::infinity();
-        for (const Transform* solid : {&run.mtd, &run.backtrack, &run.advanced})
-            nearest = std::min(nearest, (p - solid->position).norm());
+        for (const Vec3& o : others) nearest = std::min(nearest, (p - o).norm());
         if (nearest > bestDistance) bestDistance = nearest, best = p;
     }
     return best;
@@ -135,7 +135,7 @@ Frame mtdFrame(GlContext& gl, const SceneCommon& scene, int scale, const Resolut
         c.drawArrow(run.pointB, run.pointB + run.depth * run.normal, lineStyle(Role::Result, 4.0f, false, true));
         c.drawPoint(run.pointB, 6.0f, roleColor(Role::Result));
         if (labels) {
-            c.drawText(endAnchor(in, run), "B at t = 1", noteStyle());
+            c.drawText(endAnchor(in, run, {run.mtd.position, run.pointB}), "B at t = 1", noteStyle());
             c.drawText(run.mtd.position, "B + depth·n", noteStyle(19.0f, true));
             TextStyle ts = noteStyle();
             ts.offsetPx = Eigen::Vector2d(0, 28);
@@ -167,7 +167,7 @@ Frame backtrackFrame(GlContext& gl, const SceneCommon& scene, int scale, const R
     drawB(c, in, run.end, roleColor(Role::ShapeB), true);
     c.drawArrow(from.position, run.end.position, lineStyle(Role::Ink, 2.0f, false, true));
     if (labels) {
-        c.drawText(endAnchor(in, run), "B at t = 1", noteStyle());
+        c.drawText(endAnchor(in, run, {run.backtrack.position, in.start.position, run.backtrackPoint}), "B at t = 1", noteStyle());
         c.drawText(from.position, "t = 0, turned as at t = 1", awayStyle());
     }
     std::vector<std::string> lines;
@@ -213,7 +213,7 @@ Frame advanceFrame(GlContext& gl, const SceneCommon& scene, int scale, const Res
                              : frameAbove(framedPoints(in, run), scene.image.width, scene.image.height, int(lines.size())));
     drawA(c, in, labels);
     drawB(c, in, run.end, roleColor(Role::Muted), true);
-    if (labels) c.drawText(endAnchor(in, run), "B at t = 1", noteStyle());
+    if (labels) c.drawText(endAnchor(in, run, {run.advanced.position, in.start.position}), "B at t = 1", noteStyle());
     // Each step's pose, fainter for the early ones, with its closest-point segment and distance.
     for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
         const Transform p = poseAt(in.start, in.motion, steps[i].t);
@@ -250,7 +250,7 @@ Frame compareFrame(GlContext& gl, const SceneCommon& scene, int scale, const Res
     for (int k = 0; k < 3; ++k)
         if (valid[k]) drawB(c, in, *poses[k], colors[k], false);
     drawB(c, in, run.end, roleColor(Role::Muted), true);  // dashed, over the fills
-    if (labels) c.drawText(endAnchor(in, run), "B at t = 1", noteStyle());
+    if (labels) c.drawText(endAnchor(in, run, {run.mtd.position, run.backtrack.position, run.advanced.position}), "B at t = 1", noteStyle());
     const char* names[3] = {"MTD (EPA)", "backtracking (linear cast)", "conservative advancement"};
     std::vector<KeyItem> key;
     for (int k = 0; k < 3; ++k)  // a correction that gave no pose: its swatch greyed, the key says so

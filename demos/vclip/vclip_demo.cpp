@@ -407,6 +407,16 @@ private:
         std::string& sub = text.sub;
         std::vector<std::string>& lines = text.lines;
         const std::vector<Vec3> ga = st->featureAWorld, gb = st->featureBWorld;
+        const bool update = common_.hasLayer("update") && st->kind == VClipStepKind::Update && st->updatedBody >= 0;
+        const Body& ub = body(std::max(st->updatedBody, 0));
+        const Transform& upose = st->updatedBody == 0 ? s_.a.pose : call.poseB;
+        const std::vector<Vec3> gTo = update ? featureGeometry(ub.regions, upose, st->to) : std::vector<Vec3>{};
+        const auto drawNew = [&] {
+            drawFeature(c, gTo, featureNormals(ub, upose, st->to), newFeatureColor(featureColor(st->updatedBody), gTo.size()),
+                        "new " + featureLabel(st->to, st->updatedBody), featureCenter(gTo), false, true);
+        };
+        // A new face first (the current features' strokes over it), a new edge or vertex last.
+        if (update && gTo.size() > 2) drawNew();
         drawFeature(c, ga, featureNormals(s_.a, s_.a.pose, st->featureA), featureColor(0), featureLabel(st->featureA, 0),
                     centroidB(call.poseB), labels);
         drawFeature(c, gb, featureNormals(s_.b, call.poseB, st->featureB), featureColor(1), featureLabel(st->featureB, 1),
@@ -423,14 +433,10 @@ private:
         if (common_.hasLayer("clip"))
             for (const VClipClip& cl : st->clips) drawClip(c, cl, common_.hasLayer("derivative"));
         if (common_.hasLayer("closest")) drawClosest(c, st->closestA, st->closestB, false);
-        if (common_.hasLayer("update") && st->kind == VClipStepKind::Update && st->updatedBody >= 0) {
-            const Body& ub = body(st->updatedBody);
-            const Transform& pose = st->updatedBody == 0 ? s_.a.pose : call.poseB;
-            const std::vector<Vec3> gTo = featureGeometry(ub.regions, pose, st->to);
+        if (update) {
             const Vec3 from = featureCenter(st->updatedBody == 0 ? ga : gb), to = featureCenter(gTo);
             drawUpdateArrow(c, from, to, radius_);
-            drawFeature(c, gTo, featureNormals(ub, pose, st->to), newFeatureColor(featureColor(st->updatedBody), gTo.size()),
-                        "new " + featureLabel(st->to, st->updatedBody), from, false, true);
+            if (gTo.size() <= 2) drawNew();
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
                               TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0,
