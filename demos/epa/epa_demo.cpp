@@ -283,7 +283,7 @@ private:
                 cs.noteFeature({isClosest ? "closest face" : "removed face", pts, {n}, !hidden, isClosest,
                                 isClosest ? closestColor() : roleColor(Role::Support)});
                 if (hidden) {
-                    LineStyle ls = lineStyle(isClosest ? Role::Ink : Role::Support, isClosest ? 3.0f : 2.0f, true, true);
+                    LineStyle ls = lineStyle(isClosest ? Role::Ink : Role::Support, 3.0f, true, true);
                     if (isClosest) ls.color = closestColor().scaled(0.7f);
                     cs.drawPolyline(pts, true, ls);
                     live.push_back(t);  // shaded as the rest of the polytope, seen through it
@@ -302,9 +302,22 @@ private:
             std::vector<Eigen::Vector3i> all;
             for (const auto& f : s.faces) all.emplace_back(f[0], f[1], f[2]);
             drawConvexMeshEdges(cs, s.vertices, all, edge);
+            // A horizon edge on the polytope's far side (both its faces turned away) dashed and
+            // faded, as hidden edges are: drawn solid it crossed the closest face (the review).
             if (showStep && common_.hasLayer("horizon"))
-                for (const auto& e : s.horizonEdges)
-                    cs.drawLine(s.vertices[e[0]], s.vertices[e[1]], lineStyle(Role::Direction, 5.0f, false, true));
+                for (const auto& e : s.horizonEdges) {
+                    std::vector<Vec3> normals;
+                    for (const auto& f : s.faces)
+                        if (std::count(f.begin(), f.end(), e[0]) && std::count(f.begin(), f.end(), e[1])) {
+                            const Vec3 &a = s.vertices[f[0]], &b = s.vertices[f[1]], &c = s.vertices[f[2]];
+                            Vec3 n = (b - a).cross(c - a);
+                            normals.push_back(n.dot(a + b + c) < 0 ? Vec3(-n) : n);  // outward: O is inside
+                        }
+                    const Vec3 p = s.vertices[e[0]], q = s.vertices[e[1]];
+                    const LineStyle solid = lineStyle(Role::Direction, 5.0f, false, true);
+                    cs.drawLine(p, q, normals.size() == 2 ? edgeStyleSeen(cam, 0.5 * (p + q), normals[0], normals[1], solid)
+                                                          : solid);
+                }
         }
         if (showStep && common_.hasLayer("closest")) {
             cs.drawLine(Vec3::Zero(), s.closestPoint, lineStyle(Role::Ink, 2.0f, true, true));
