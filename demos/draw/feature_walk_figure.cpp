@@ -319,7 +319,7 @@ Vec3 stepView(const WalkBodies& w, const Vec3& sceneView, const WalkStepFeatures
 std::vector<KeyItem> planeKey() {
     return {{violatedColor(), "violated plane"},
             {satisfiedColor(), "satisfied plane"},
-            {roleColor(Role::Ink), "tested point to its plane", "- -"}};
+            {roleColor(Role::Ink), "tested point to its plane (in the plane's colour)", "- -"}};
 }
 
 Color newFeatureColor(const Color& bodyFeature, std::size_t points) {
@@ -347,7 +347,7 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<V
         // The step's face saturated (issue 42 §3; StepFeatureFaded judges its colour), others tinted.
         if (filled) canvas.drawPolygon(g, color.withAlpha(step ? 0.9f : 0.55f));
         LineStyle ls = lineStyle(Role::Ink, 3.5f, false, true);
-        ls.color = color;
+        ls.color = step ? color.scaled(0.6f) : color;  // a saturated fill keeps a darker rim
         if (hidden) ls.dashPx = 9.0f;
         canvas.drawPolyline(g, true, ls);
     }

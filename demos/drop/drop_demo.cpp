@@ -369,6 +369,7 @@ private:
     struct ContactMarks {
         int pushing = 0, bounces = 0, hidden = 0;
         double undrawn = 0;  // the largest λ_n of a pushing contact whose arrow is too short to draw
+        int undrawnCount = 0;
     };
 
     // The body at step k, tinted and outlined in the colliding role while a contact pushes, with the
@@ -425,7 +426,7 @@ private:
             const bool seen = length > 0 && c.project(ct.point, from) &&
                               c.project(ct.point + length * s.normal, to) && (to - from).norm() >= 19.0;
             if (push && seen) c.drawArrow(ct.point, ct.point + length * s.normal, arrow);
-            else if (push) marks.undrawn = std::max(marks.undrawn, ct.normalImpulse);
+            else if (push) marks.undrawn = std::max(marks.undrawn, ct.normalImpulse), ++marks.undrawnCount;
             // The one named: the largest seen (a contact behind the body has a faded arrow).
             if (push && !hidden[i] && (!largest || ct.normalImpulse > largest->normalImpulse)) largest = &ct;
         }
@@ -596,7 +597,8 @@ private:
         // a resting contact's λₙ, a few thousandths of the run's longest, draws under a pixel).
         char line1[260], line2[200], undrawn[96] = "";
         if (marks.undrawn > 0)
-            std::snprintf(undrawn, sizeof undrawn, "; λₙ %.2g N·s, too short to draw", marks.undrawn);
+            std::snprintf(undrawn, sizeof undrawn, "; λₙ %s%.2g N·s, too short to draw",
+                          marks.undrawnCount > 1 ? "≤ " : "", marks.undrawn);
         std::snprintf(line1, sizeof line1, "t = %.3f s (step %d): %d contact%s, %d pushing%s%s", s.time, s.step,
                       int(s.contacts.size()), s.contacts.size() == 1 ? "" : "s", marks.pushing,
                       marks.bounces ? (", " + std::to_string(marks.bounces) + " bouncing").c_str() : "", undrawn);
