@@ -530,9 +530,11 @@ private:
             hi = std::max({hi, s.lower, s.upper});
         }
         if (!(hi > lo)) hi = lo + 1e-9 + std::abs(lo) * 1e-6;
-        const double pad = 0.06 * (hi - lo);
-        lo -= pad;
-        hi += pad;
+        // The axis from a round tick below the data to one above, so its base is labelled (the
+        // review: a base of 0.03 unlabelled read as 0).
+        const double step = roundTickStep(hi - lo, 5);
+        lo = std::floor(lo / step) * step;
+        hi = std::ceil(hi / step) * step;
         const int n = int(run.steps.size());
         auto X = [&](double it) { return n > 1 ? x0 + (it - 1) / (n - 1) * (x1 - x0) : 0.5 * (x0 + x1); };
         auto Y = [&](double v) { return y0 + (v - lo) / (hi - lo) * (y1 - y0); };
@@ -548,7 +550,6 @@ private:
         }
         TextStyle ytick{15.0f, roleColor(Role::Ink), Anchor::Right, false, false};
         // Round values (the review: ticks at −0.1522, 0.4556, ... read as data).
-        const double step = roundTickStep(hi - lo, 5);
         for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) {
             if (std::abs(v) < 1e-9 * step) v = 0;
             c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 1.0f, true));
