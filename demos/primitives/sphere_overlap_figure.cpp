@@ -105,6 +105,14 @@ void drawOther(Canvas& c, const PrimitiveShape& o, bool labels) {
         }
     } else {
         drawBody(c, boxDrawable(o.box), color, 0.25f, color.scaled(0.7f), 3.0f);
+        // The box's axes u_x, u_y, u_z from its centre to its faces: the frame's text clamps the
+        // sphere's centre along them (the review: the axes the footer names were not drawn).
+        if (labels)
+            for (int i = 0; i < 3; ++i) {
+                const Vec3 tip = o.box.center + o.box.halfExtents[i] * o.box.axes.col(i);
+                c.drawArrow(o.box.center, tip, lineStyle(Role::Ink, 2.0f, false, true));
+                drawLabelAway(c, tip, o.box.center, std::string("u_") + "xyz"[i], labelStyle(Role::Ink, 17.0f), 6.0);
+            }
     }
 }
 
