@@ -210,15 +210,17 @@ private:
         if (common_.hasLayer("regions") || common_.hasLayer("boundaries"))
             diagram = triangleVoronoiRegions({tri, margin(), margin() * 0.6});
         else out.skipped.push_back("region geometry (no 'regions' or 'boundaries' layer)");
-        // The region names where the overview of the steps' view placed them, in every step frame
-        // too (the review: "region A" moved between frames as the query labels around it changed).
+        // The region names and the vertex letters where the overview of the steps' view placed
+        // them, in every step frame too (the review: "region A" moved between frames as the query
+        // labels around it changed).
         std::vector<std::pair<std::string, Eigen::Vector2d>> regionNames;
         for (const std::string& view : views_) {
             out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1, {}));
             if (view != views_.front()) continue;
             const Image& im = out.frames.back().image;
             for (const LayoutLabel& l : im.layout.labels)
-                if (l.text.rfind("region ", 0) == 0) regionNames.push_back({l.text, l.box.center() / im.scale});
+                if (l.text.rfind("region ", 0) == 0 || l.text == "A" || l.text == "B" || l.text == "C")
+                    regionNames.push_back({l.text, l.box.center() / im.scale});
         }
         if (common_.steps || ctx.stepsOverride)
             addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()), [&](int i) {
@@ -288,8 +290,19 @@ private:
             const Vec3 c = center();
             const char* names[3] = {"A", "B", "C"};
             const Vec3 corners[3] = {tri.a, tri.b, tri.c};
-            for (int i = 0; i < 3; ++i)  // outside the triangle, off the query and closest points
-                drawLabelAway(canvas, corners[i], c, names[i], labelStyle(Role::Ink, 28.0f), 10.0);
+            for (int i = 0; i < 3; ++i) {  // outside the triangle, off the query and closest points
+                // Pinned where the overview put it when that is beside the corner and clear of the
+                // step's query; placed afresh otherwise.
+                const auto pinned = std::find_if(regionNames.begin(), regionNames.end(),
+                                                 [&](const auto& r) { return r.first == names[i]; });
+                Eigen::Vector2d corner, q;
+                const bool clear =
+                    pinned != regionNames.end() && canvas.project(corners[i], corner) &&
+                    (pinned->second - corner).norm() < 45.0 &&
+                    !(focus >= 0 && canvas.project(results[std::size_t(focus)].point, q) && (q - pinned->second).norm() < 40.0);
+                if (clear) canvas.drawTextPx(pinned->second.x(), pinned->second.y(), names[i], labelStyle(Role::Ink, 28.0f));
+                else drawLabelAway(canvas, corners[i], c, names[i], labelStyle(Role::Ink, 28.0f), 10.0);
+            }
             if (diagram.valid && common_.hasLayer("regions") && !is3d)
                 for (const auto& region : diagram.regions) {
                     if (region.vertices.empty()) continue;
