@@ -1,5 +1,6 @@
 #include "app/scene/json_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -338,10 +339,59 @@ static std::string childPath(const std::string& parent, const std::string& key) 
     return plain ? parent + "." + key : parent + "[" + Json(key).dump() + "]";
 }
 
+namespace {
+
+// Keys compared for a "did you mean": at most this long (longer ones are no typo of a scene key)
+// and at most this many of an object's keys looked at (a hostile object may hold millions).
+constexpr std::size_t kSuggestKeyLength = 64;
+constexpr std::size_t kSuggestKeys = 256;
+
+// Levenshtein distance of two short strings (both at most kSuggestKeyLength bytes).
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+// The candidate nearest `word` within a typo's distance (a third of its length, at least 1, at
+// most 3), or "" (test: tests/app/scene/scene_test.cpp, "did you mean").
+template <class Range>
+std::string nearestKey(const std::string& word, const Range& candidates) {
+    if (word.size() > kSuggestKeyLength) return "";
+    const std::size_t allowed = std::clamp<std::size_t>(word.size() / 3, 1, 3);
+    std::string best;
+    std::size_t bestDistance = allowed + 1, looked = 0;
+    for (const std::string& c : candidates) {
+        if (++looked > kSuggestKeys) break;
+        if (c == word || c.size() > kSuggestKeyLength) continue;
+        const std::size_t d = editDistance(word, c);
+        if (d < bestDistance) bestDistance = d, best = c;
+    }
+    return best;
+}
+
+}  // namespace
+
 JsonNode ObjectReader::get(const std::string& key) {
     seen_.insert(key);
     auto it = node_.raw().find(key);
-    if (it == node_.raw().end()) node_.fail("missing required key '" + key + "'");
+    if (it == node_.raw().end()) {
+        // A misspelt key beside it: name it (the user's "half_extent" for "half_extents").
+        std::vector<std::string> present;
+        for (auto m = node_.raw().begin(); m != node_.raw().end() && present.size() < kSuggestKeys; ++m)
+            if (!seen_.count(m.key())) present.push_back(m.key());
+        const std::string near = nearestKey(key, present);
+        node_.fail("missing required key '" + key + "'" + (near.empty() ? "" : " ('" + near + "' is there: a typo?)"));
+    }
     return JsonNode(*it, childPath(node_.path(), key), node_.source());
 }
 
@@ -372,7 +422,9 @@ void ObjectReader::finish() const {
         if (seen_.count(it.key())) continue;
         std::string known;
         for (const auto& k : seen_) known += (known.empty() ? "" : ", ") + k;
-        node_.fail("unknown key '" + it.key() + "'" + (known.empty() ? "" : " (known: " + known + ")"));
+        const std::string near = nearestKey(it.key(), seen_);
+        node_.fail("unknown key '" + it.key() + "'" + (near.empty() ? "" : ", did you mean '" + near + "'?") +
+                   (known.empty() ? "" : " (known: " + known + ")"));
     }
 }
 

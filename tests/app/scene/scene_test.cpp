@@ -51,6 +51,28 @@ TEST_SUITE("scene") {
         CHECK(out.trace["queries"][0]["region"] == "ABC");
     }
 
+    TEST_CASE("a misspelt key: did you mean") {
+        // A required key misspelt: the key that is there is named beside the missing one.
+        const std::string box = loadError(writeTemp(
+            "box_typo.json",
+            R"({"demo":"primitives","test":"sphere_overlap","a":{"sphere":{"center":[1,1,1],"radius":0.5}},)"
+            R"("b":{"obb":{"center":[0,0,0],"half_extent":[1,1,1]}}})"));
+        CHECK(box.find("$.b.obb: missing required key 'half_extents' ('half_extent' is there: a typo?)") !=
+              std::string::npos);
+        // An unknown key near a known one names it; one near none does not guess.
+        const std::string queries = loadError(writeTemp(
+            "queries.json", R"({"demo":"voronoi_triangle","triangle":[[0,0,0],[1,0,0],[0,1,0]],"querys":[[1,1,1]]})"));
+        CHECK(queries.find("$: missing required key 'queries' ('querys' is there: a typo?)") != std::string::npos);
+        const std::string near = loadError(writeTemp(
+            "near.json",
+            R"({"demo":"voronoi_triangle","triangle":[[0,0,0],[1,0,0],[0,1,0]],"queries":[[1,1,1]],"captio":"x"})"));
+        CHECK(near.find("unknown key 'captio', did you mean 'caption'?") != std::string::npos);
+        const std::string far = loadError(writeTemp(
+            "far.json", R"({"demo":"voronoi_triangle","triangle":[[0,0,0],[1,0,0],[0,1,0]],"queries":[[1,1,1]],"zzzzzz":1})"));
+        CHECK(far.find("unknown key 'zzzzzz' (known:") != std::string::npos);
+        CHECK(far.find("did you mean") == std::string::npos);
+    }
+
     TEST_CASE("errors name the file and the JSON path or byte position") {
         std::string missing = loadError("/nonexistent/scene.json");
         CHECK(missing.find("/nonexistent/scene.json: cannot open") == 0);
