@@ -91,8 +91,10 @@ std::string scenePage(const GalleryScene& s, const GalleryScene* prev, const Gal
     const std::string title = m.title.empty() ? s.id() : m.title;
     h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">" << kGenerator << "<title>"
       << htmlEscape(title) << "</title>\n" << kGalleryStyle << "</head><body>\n<nav><a href=\"../index.html\">all figures</a>";
-    if (prev) h << "<a href=\"../" << htmlEscape(prev->id()) << ".html\">&larr; " << htmlEscape(prev->id()) << "</a>";
-    if (next) h << "<a href=\"../" << htmlEscape(next->id()) << ".html\">" << htmlEscape(next->id()) << " &rarr;</a>";
+    // Links apart by whitespace, so a narrow window wraps the line (issue 43: no break between
+    // them, the index's demo line ran off a 1000-px window).
+    if (prev) h << "\n<a href=\"../" << htmlEscape(prev->id()) << ".html\">&larr; " << htmlEscape(prev->id()) << "</a>";
+    if (next) h << "\n<a href=\"../" << htmlEscape(next->id()) << ".html\">" << htmlEscape(next->id()) << " &rarr;</a>";
     h << "</nav>\n<h1>" << htmlEscape(title) << " <small>(" << htmlEscape(s.id()) << ")</small></h1>\n";
     if (!m.caption.empty()) h << "<p>" << htmlEscape(m.caption) << "</p>\n";
     h << "<p>";
@@ -180,7 +182,7 @@ int writeGallery(const std::string& outDir) {
     std::vector<std::string> demos;
     for (const GalleryScene& s : scenes)
         if (demos.empty() || demos.back() != s.demo) demos.push_back(s.demo);
-    for (const std::string& d : demos) h << "<a href=\"#" << htmlEscape(d) << "\">" << htmlEscape(d) << "</a>";
+    for (const std::string& d : demos) h << "\n<a href=\"#" << htmlEscape(d) << "\">" << htmlEscape(d) << "</a>";
     h << "</nav>\n";
     for (const std::string& d : demos) {
         h << "<section id=\"" << htmlEscape(d) << "\"><h2>" << htmlEscape(d) << "</h2><div class=\"grid\">\n";

@@ -27,6 +27,9 @@ TEST_CASE("gallery: the index and a scene page render in headless chromium with 
       "demo": "voronoi_triangle", "title": "gallery check", "caption": "regions in the plane",
       "image": {"width": 320, "height": 320},
       "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[-0.5, -0.5, 0.2]], "views": ["plane"]})";
+    std::ofstream(root / "golden" / "voronoi_triangle" / "gallery2.json") << R"({
+      "demo": "voronoi_triangle", "title": "gallery check 2", "image": {"width": 320, "height": 320},
+      "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]], "queries": [[1, 1, 0.2]], "views": ["plane"]})";
     RunnerOptions o;
     o.goldenDir = (root / "golden").string();
     o.outDir = (root / "out").string();
@@ -44,6 +47,10 @@ TEST_CASE("gallery: the index and a scene page render in headless chromium with 
     CHECK(pageText.find("src=\"gallery/plane.png\"") != std::string::npos);
     CHECK(pageText.find("href=\"gallery/trace.json\"") != std::string::npos);
     CHECK(pageText.find("<script") == std::string::npos);
+    // The navigation links are apart (whitespace between them), so a narrow window wraps them.
+    CHECK(pageText.find("all figures</a>\n<a href=\"../voronoi_triangle/gallery2.html\">") != std::string::npos);
+    CHECK(pageText.find("</a><a") == std::string::npos);
+    CHECK(indexText.find("</a><a") == std::string::npos);
 
     for (const fs::path& html : {index, page}) {
         fs::path shot = root / "shot.png";
