@@ -7,8 +7,6 @@
 
 namespace cdlab::render {
 
-namespace {
-
 using Eigen::Vector2d;
 
 double pointSegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
@@ -17,6 +15,8 @@ double pointSegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d
     const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
     return (a + t * ab - p).norm();
 }
+
+namespace {
 
 // Liang–Barsky: does segment ab enter the box?
 bool segmentHitsBox(const Vector2d& a, const Vector2d& b, const Box& box) {

@@ -52,6 +52,8 @@ struct Placement {
 
 Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& obstacles);
 
+/// Distance from p to segment ab, px.
+double pointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 /// Distance from a segment to a box, px (0 when they meet).
 double segmentBoxDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Box& box);
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/label_placement.h"
+
 namespace cdlab::render {
 
 const char* nameOf(LegibilityKind kind) {
@@ -315,11 +317,8 @@ bool judgeable(const FigureLayout& layout, const LayoutFeature& f, const Eigen::
     for (const LayoutMarker& m : layout.markers)
         if (m.box.contains(p)) return false;
     if (f.dimension == 1) return true;
-    for (const LayoutStroke& k : layout.strokes) {
-        const Eigen::Vector2d d = k.b - k.a;
-        const double t = d.squaredNorm() > 0 ? std::clamp((p - k.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-        if ((k.a + t * d - p).norm() <= 0.5 * k.width + 1.5) return false;
-    }
+    for (const LayoutStroke& k : layout.strokes)
+        if (pointSegmentDistance(p, k.a, k.b) <= 0.5 * k.width + 1.5) return false;
     return true;
 }
 

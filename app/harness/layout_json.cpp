@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace cdlab::demos {
 
@@ -11,6 +12,13 @@ namespace {
 double px(double v) { return std::round(v * 10.0) / 10.0 + 0.0; }
 
 Json boxJson(const render::Box& b) { return Json::array({px(b.x0), px(b.y0), px(b.x1), px(b.y1)}); }
+
+// 0xRRGGBB as "#RRGGBB" (a series', a step feature's colour).
+std::string hexColor(unsigned rgb) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "#%06X", rgb & 0xFFFFFFu);
+    return hex;
+}
 
 }  // namespace
 
@@ -56,23 +64,21 @@ Json layoutJson(const render::Image& image) {
     const auto milli = [](double v) { return std::round(v * 1000.0) / 1000.0 + 0.0; };
     if (!l.features.empty()) {  // only where a frame notes a highlighted feature (Canvas::noteFeature)
         Json features = Json::array();
-        for (const render::LayoutFeature& f : l.features)
-            features.push_back({{"name", f.name},
-                                {"dimension", f.dimension},
-                                {"facing", milli(f.facing)},
-                                {"foreshortening", milli(f.foreshortening)},
-                                {"filled", f.filled},
-                                {"step", f.step},
-                                {"at", Json::array({px(f.at.x()), px(f.at.y())})}});
-        for (std::size_t i = 0; i < l.features.size(); ++i) {
-            const render::LayoutFeature& f = l.features[i];
-            if (f.rgb < 0) continue;
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "#%06X", unsigned(f.rgb) & 0xFFFFFFu);
-            Json samples = Json::array();
-            for (const Eigen::Vector2d& p : f.samples) samples.push_back(Json::array({px(p.x()), px(p.y())}));
-            features[i]["color"] = hex;
-            features[i]["samples"] = std::move(samples);
+        for (const render::LayoutFeature& f : l.features) {
+            Json feature = {{"name", f.name},
+                            {"dimension", f.dimension},
+                            {"facing", milli(f.facing)},
+                            {"foreshortening", milli(f.foreshortening)},
+                            {"filled", f.filled},
+                            {"step", f.step},
+                            {"at", Json::array({px(f.at.x()), px(f.at.y())})}};
+            if (f.rgb >= 0) {  // a step's feature judged by its colour (StepFeatureFaded)
+                Json samples = Json::array();
+                for (const Eigen::Vector2d& p : f.samples) samples.push_back(Json::array({px(p.x()), px(p.y())}));
+                feature["color"] = hexColor(unsigned(f.rgb));
+                feature["samples"] = std::move(samples);
+            }
+            features.push_back(std::move(feature));
         }
         out["features"] = std::move(features);
     }
@@ -86,11 +92,8 @@ Json layoutJson(const render::Image& image) {
     }
     if (!l.series.empty()) {  // plots (Canvas::noteSeries)
         Json series = Json::array();
-        for (const render::LayoutSeries& k : l.series) {
-            char rgb[8];
-            std::snprintf(rgb, sizeof rgb, "#%06X", k.rgb & 0xFFFFFFu);
-            series.push_back({{"name", k.name}, {"color", rgb}, {"at", Json::array({px(k.at.x()), px(k.at.y())})}});
-        }
+        for (const render::LayoutSeries& k : l.series)
+            series.push_back({{"name", k.name}, {"color", hexColor(k.rgb)}, {"at", Json::array({px(k.at.x()), px(k.at.y())})}});
         out["series"] = std::move(series);
     }
     return out;

@@ -182,9 +182,7 @@ double gapAlong(const Vec3& v, const std::vector<Vec3>& a, const std::vector<Vec
 
 namespace {
 
-// How badly a view shows the steps (chooseWalkView's order): 1000 for bodies apart in space
-// overlapping on the picture, 100 for each new feature not seen from its front, 25 for each current
-// feature edge-on and 10 for each seen from behind, plus the turn from `view0` in degrees.
+// A body's face planes in the world (unit outward normals, n · x <= d inside).
 std::vector<Plane> worldPlanes(const Body& body, const Transform& pose) {
     std::vector<Plane> out;
     const ConvexPolyhedron& mesh = body.regions.mesh();
@@ -195,6 +193,10 @@ std::vector<Plane> worldPlanes(const Body& body, const Transform& pose) {
     return out;
 }
 
+// How badly a view shows the steps (chooseWalkView's order): 1000 for bodies apart in space
+// overlapping on the picture, 100 for each new feature not seen from its front and 100 more for
+// one seen through the other body, 25 for each current feature edge-on and 10 for each seen from
+// behind, plus the turn from `view0` in degrees.
 struct ViewScorer {
     struct Feature {
         std::vector<Vec3> points, normals;
@@ -322,10 +324,6 @@ std::vector<KeyItem> planeKey() {
             {roleColor(Role::Ink), "tested point to its plane (in the plane's colour)", "- -"}};
 }
 
-Color newFeatureColor(const Color& bodyFeature, std::size_t points) {
-    return points > 2 ? bodyFeature : roleColor(Role::Ink).mixed(bodyFeature, 0.5f);
-}
-
 void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<Vec3>& normals, const Color& color,
                  const std::string& label, const Vec3& awayFrom, bool labels, bool step) {
     if (g.empty()) return;
@@ -355,6 +353,13 @@ void drawFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<V
         TextStyle ts{18.0f, color.scaled(0.75f), Anchor::Center, true, true};
         drawLabelAway(canvas, centre, awayFrom, label, ts, g.size() == 1 ? 14.0 : 10.0, featureLabelPoints(g));
     }
+}
+
+void drawNewFeature(Canvas& canvas, const std::vector<Vec3>& g, const std::vector<Vec3>& normals,
+                    const Color& bodyFeature, const std::string& label, bool firstPass) {
+    if (g.empty() || (g.size() > 2) != firstPass) return;
+    const Color color = g.size() > 2 ? bodyFeature : roleColor(Role::Ink).mixed(bodyFeature, 0.5f);
+    drawFeature(canvas, g, normals, color, label, featureCenter(g), false, true);
 }
 
 std::vector<Vec3> featureLabelPoints(const std::vector<Vec3>& g) {

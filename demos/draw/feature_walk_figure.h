@@ -117,10 +117,14 @@ Vec3 stepView(const WalkBodies& bodies, const Vec3& sceneView, const WalkStepFea
 /// The key of the plane tests: violated, satisfied, and the dashed distance from each tested point
 /// to its plane (drawPlaneTest; the review found the dashes unexplained).
 std::vector<KeyItem> planeKey();
-/// The colour of a step's new feature, from its body's feature colour: a face filled in it,
-/// saturated (the step's change stands out: StepFeatureFaded), an edge or a vertex darker, to
-/// stand out from the body's own edges.
-render::Color newFeatureColor(const render::Color& bodyFeature, std::size_t points);
+/// A step's new feature (drawFeature with `step`, unnamed: its label goes with the update arrow),
+/// in the pass its kind belongs to. A face in the first pass, before the current features, so their
+/// strokes go over its fill and outline (it holds the current edge, which its outline painted over:
+/// lin_canny/walk step 1); filled in its body's feature colour, saturated (StepFeatureFaded). An edge
+/// or a vertex in the last pass, over the plane patches drawn along it, darker than the body's own
+/// edges. Empty `geometry` (no update): nothing.
+void drawNewFeature(render::Canvas& canvas, const std::vector<Vec3>& geometry, const std::vector<Vec3>& normals,
+                    const render::Color& bodyFeature, const std::string& label, bool firstPass);
 /// A feature highlighted: a vertex as a large dot, an edge as a thick line, a face filled; on the
 /// far side of its body (every face in `normals` turned away from the eye) an edge dashed and a
 /// face hollow with a dashed outline (hidden geometry is never filled). Labelled with `label`

@@ -35,11 +35,11 @@ struct PlotSeries {
     std::vector<std::string> pointLabels;
 };
 
-/// Scatter / line plot on log (or linear) axes with decade ticks, labels and a legend.
 /// A round tick step for a linear axis over `span`: 1, 2 or 5 times a power of ten, the smallest
 /// giving at most `intervals` intervals (the V-Clip distance plot, EPA's bounds plot).
 double roundTickStep(double span, int intervals);
 
+/// Scatter / line plot on log (or linear) axes with decade ticks, labels and a legend.
 render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& options, const std::vector<PlotSeries>& series);
 
 /// Histograms of positive values (errors) in decade bins from options.xFloor to the largest value,

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/gjk_epa/epa.h"
 #include "core/gjk_epa/gjk.h"
@@ -267,6 +268,11 @@ private:
             // polytope's far side they are outlined dashed (hidden geometry is never filled: the view
             // rules HiddenFilled and FeatureFromBehind, render/legibility.h).
             const Camera& cam = cs.camera();
+            const auto outward = [&](const auto& f) {  // a face's normal away from the origin it holds
+                const Vec3 &a = s.vertices[f[0]], &b = s.vertices[f[1]], &c = s.vertices[f[2]];
+                const Vec3 n = (b - a).cross(c - a);
+                return n.dot(a + b + c) < 0 ? Vec3(-n) : n;
+            };
             for (std::size_t k = 0; k < s.faces.size(); ++k) {
                 Eigen::Vector3i t(s.faces[k][0], s.faces[k][1], s.faces[k][2]);
                 const bool isClosest = showStep && int(k) == s.closestFace && common_.hasLayer("closest");
@@ -276,9 +282,7 @@ private:
                     continue;
                 }
                 const std::vector<Vec3> pts{s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]]};
-                const Vec3 centre = (pts[0] + pts[1] + pts[2]) / 3.0;
-                Vec3 n = (pts[1] - pts[0]).cross(pts[2] - pts[0]);
-                if (n.dot(centre) < 0) n = -n;  // outward: the polytope holds the origin
+                const Vec3 centre = (pts[0] + pts[1] + pts[2]) / 3.0, n = outward(s.faces[k]);
                 const bool hidden = !facesCamera(cam, centre, n);
                 cs.noteFeature({isClosest ? "closest face" : "removed face", pts, {n}, !hidden, isClosest,
                                 isClosest ? closestColor() : roleColor(Role::Support)});
@@ -308,11 +312,8 @@ private:
                 for (const auto& e : s.horizonEdges) {
                     std::vector<Vec3> normals;
                     for (const auto& f : s.faces)
-                        if (std::count(f.begin(), f.end(), e[0]) && std::count(f.begin(), f.end(), e[1])) {
-                            const Vec3 &a = s.vertices[f[0]], &b = s.vertices[f[1]], &c = s.vertices[f[2]];
-                            Vec3 n = (b - a).cross(c - a);
-                            normals.push_back(n.dot(a + b + c) < 0 ? Vec3(-n) : n);  // outward: O is inside
-                        }
+                        if (std::count(f.begin(), f.end(), e[0]) && std::count(f.begin(), f.end(), e[1]))
+                            normals.push_back(outward(f));
                     const Vec3 p = s.vertices[e[0]], q = s.vertices[e[1]];
                     const LineStyle solid = lineStyle(Role::Direction, 5.0f, false, true);
                     cs.drawLine(p, q, normals.size() == 2 ? edgeStyleSeen(cam, 0.5 * (p + q), normals[0], normals[1], solid)
@@ -328,11 +329,7 @@ private:
         }
         if (showStep && common_.hasLayer("support")) {
             const double h = s.normal.dot(s.support);
-            // The step's test n·w − d, from the closest face's plane to w: a converged step draws it
-            // a pixel or two long, so the frame zooms on it (QuantityTooSmall; issue 42 §3). A gap
-            // under 1e-4 of A − B is w on the face: no picture shows it, the text prints it.
-            if (h - s.distance > 1e-4 * d.cRadius)
-                cs.noteQuantity(kTestQuantity, s.support - (h - s.distance) * s.normal, s.support);
+            if (const auto gap = testGap(d, s)) cs.noteQuantity(kTestQuantity, gap->from, gap->to);
             const Vec3 tip = s.closestPoint + s.normal * std::max(h - s.distance, 0.25 * d.cRadius);
             // The search normal in ink and named: the horizon has the direction colour (the review:
             // an unlabelled arrow in the horizon's pink).
@@ -366,14 +363,26 @@ private:
         return f;
     }
 
+    // The step's test n·w − d as the segment from the closest face's plane to w (a converged step
+    // draws it a pixel or two long: the frame notes it, QuantityTooSmall, and zooms on it; issue 42
+    // §3); none under 1e-4 of A − B, where w is on the face: no picture shows it, the text prints it.
+    struct TestGap {
+        double length;
+        Vec3 from, to;
+    };
+    static std::optional<TestGap> testGap(const Drawing& d, const PolyStep& s) {
+        const double gap = s.normal.dot(s.support) - s.distance;
+        if (!(gap > 1e-4 * d.cRadius)) return std::nullopt;
+        return TestGap{gap, s.support - gap * s.normal, s.support};
+    }
+
     // The configuration space's picture, with the step's test n·w − d magnified where it is drawn
     // under 12 px (zoom_inset.h): the closest face, w and the gap between them.
     Image configurationPixels(GlContext& gl, Canvas& cs, int scale, const TwoPanelLayout& layout, const Drawing& d,
                               const PolyStep* s) const {
-        if (!s || !common_.hasLayer("support")) return cs.readPixels();
-        const double gap = s->normal.dot(s->support) - s->distance;
-        if (!(gap > 1e-4 * d.cRadius)) return cs.readPixels();
-        const ZoomTarget test{kTestQuantity, "gap " + formatNumber(gap), s->support - gap * s->normal, s->support,
+        const auto gap = s && common_.hasLayer("support") ? testGap(d, *s) : std::nullopt;
+        if (!gap) return cs.readPixels();
+        const ZoomTarget test{kTestQuantity, "gap " + formatNumber(gap->length), gap->from, gap->to,
                               [&](Canvas& c) { drawPolytope(c, d, *s, true, true); }};
         return readPixelsZoomed(gl, cs, scale, test,
                                 Box{14.0, 70.0, layout.panelWidth() - 14.0, layout.panelHeight() - 40.0});

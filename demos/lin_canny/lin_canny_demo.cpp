@@ -374,15 +374,13 @@ private:
         const bool update = common_.hasLayer("update") && step.updatedBody >= 0;
         const std::vector<Vec3> gTo =
             update ? featureGeometry(body(step.updatedBody).regions, pose(step.updatedBody), step.to) : std::vector<Vec3>{};
-        const auto drawNew = [&] {
-            drawFeature(c, gTo, featureNormals(body(step.updatedBody), pose(step.updatedBody), step.to),
-                        newFeatureColor(featureColor(step.updatedBody), gTo.size()),
-                        "new " + featureLabel(step.to, step.updatedBody), featureCenter(gTo), false, true);
+        const auto drawNew = [&](bool firstPass) {  // drawNewFeature: a face now, an edge or vertex last
+            if (update)
+                drawNewFeature(c, gTo, featureNormals(body(step.updatedBody), pose(step.updatedBody), step.to),
+                               featureColor(step.updatedBody), "new " + featureLabel(step.to, step.updatedBody),
+                               firstPass);
         };
-        // A new face first, so the current features' strokes go over its fill and outline (it holds
-        // the current edge, which its outline painted over: the review's walk step 1); a new edge or
-        // vertex last, over the plane patches drawn along it (StepFeatureFaded).
-        if (update && gTo.size() > 2) drawNew();
+        drawNew(true);
         drawFeature(c, step.featureAWorld, featureNormals(s_.a, s_.a.pose, step.featureA), featureColor(0), featureLabel(step.featureA, 0), centroid(1), labels);
         drawFeature(c, step.featureBWorld, featureNormals(s_.b, s_.b.pose, step.featureB), featureColor(1), featureLabel(step.featureB, 1), centroid(0), labels);
         int shown = 0;
@@ -398,7 +396,7 @@ private:
             const Vec3 from = featureCenter(step.updatedBody == 0 ? step.featureAWorld : step.featureBWorld),
                        to = featureCenter(gTo);
             drawUpdateArrow(c, from, to, radius_);
-            if (gTo.size() <= 2) drawNew();
+            drawNew(false);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(step.to, step.updatedBody),
                               TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0,

@@ -411,12 +411,12 @@ private:
         const Body& ub = body(std::max(st->updatedBody, 0));
         const Transform& upose = st->updatedBody == 0 ? s_.a.pose : call.poseB;
         const std::vector<Vec3> gTo = update ? featureGeometry(ub.regions, upose, st->to) : std::vector<Vec3>{};
-        const auto drawNew = [&] {
-            drawFeature(c, gTo, featureNormals(ub, upose, st->to), newFeatureColor(featureColor(st->updatedBody), gTo.size()),
-                        "new " + featureLabel(st->to, st->updatedBody), featureCenter(gTo), false, true);
+        const auto drawNew = [&](bool firstPass) {  // drawNewFeature: a face now, an edge or vertex last
+            if (update)
+                drawNewFeature(c, gTo, featureNormals(ub, upose, st->to), featureColor(st->updatedBody),
+                               "new " + featureLabel(st->to, st->updatedBody), firstPass);
         };
-        // A new face first (the current features' strokes over it), a new edge or vertex last.
-        if (update && gTo.size() > 2) drawNew();
+        drawNew(true);
         drawFeature(c, ga, featureNormals(s_.a, s_.a.pose, st->featureA), featureColor(0), featureLabel(st->featureA, 0),
                     centroidB(call.poseB), labels);
         drawFeature(c, gb, featureNormals(s_.b, call.poseB, st->featureB), featureColor(1), featureLabel(st->featureB, 1),
@@ -436,7 +436,7 @@ private:
         if (update) {
             const Vec3 from = featureCenter(st->updatedBody == 0 ? ga : gb), to = featureCenter(gTo);
             drawUpdateArrow(c, from, to, radius_);
-            if (gTo.size() <= 2) drawNew();
+            drawNew(false);
             if (labels)
                 drawLabelAway(c, to, from, "new " + featureLabel(st->to, st->updatedBody),
                               TextStyle{16.0f, roleColor(Role::Ink), Anchor::Center, true, true}, 12.0,

@@ -13,6 +13,7 @@
 #include "demos/voronoi_triangle/voronoi_triangle_demo.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "core/closest/closest_point.h"
 #include "core/closest/voronoi_regions.h"
@@ -213,18 +214,18 @@ private:
         // The region names and the vertex letters where the overview of the steps' view placed
         // them, in every step frame too (the review: "region A" moved between frames as the query
         // labels around it changed).
-        std::vector<std::pair<std::string, Eigen::Vector2d>> regionNames;
+        std::vector<std::pair<std::string, Eigen::Vector2d>> pinnedLabels;
         for (const std::string& view : views_) {
             out.frames.push_back(drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, view, -1, {}));
             if (view != views_.front()) continue;
             const Image& im = out.frames.back().image;
             for (const LayoutLabel& l : im.layout.labels)
                 if (l.text.rfind("region ", 0) == 0 || l.text == "A" || l.text == "B" || l.text == "C")
-                    regionNames.push_back({l.text, l.box.center() / im.scale});
+                    pinnedLabels.push_back({l.text, l.box.center() / im.scale});
         }
         if (common_.steps || ctx.stepsOverride)
             addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()), [&](int i) {
-                return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i, regionNames);
+                return drawTriangleFrame(*ctx.gl, ctx, tri, diagram, results, views_.front(), i, pinnedLabels);
             }, out);
         else out.skipped.push_back("per-step frames and contact sheet (steps off)");
         return out;
@@ -259,7 +260,7 @@ private:
     Frame drawTriangleFrame(GlContext& gl, const RunContext& ctx, const Triangle& tri,
                             const TriangleVoronoiDiagram& diagram, const std::vector<TriangleQuery>& results,
                             const std::string& view, int focus,
-                            const std::vector<std::pair<std::string, Eigen::Vector2d>>& regionNames) const {
+                            const std::vector<std::pair<std::string, Eigen::Vector2d>>& pinnedLabels) const {
         Canvas canvas(gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
         canvas.setCamera(triangleCamera(tri, diagram, view));
         const bool is3d = view == "3d";
@@ -286,6 +287,12 @@ private:
         canvas.drawPolyline({tri.a, tri.b, tri.c}, true, lineStyle(Role::Ink, 3.5f));
 
         const bool labels = common_.hasLayer("labels");
+        // Where the overview placed a label of this text (step frames keep it there), if it did.
+        const auto pinnedAt = [&](const std::string& text) -> std::optional<Eigen::Vector2d> {
+            for (const auto& [t, at] : pinnedLabels)
+                if (t == text) return at;
+            return std::nullopt;
+        };
         if (labels) {
             const Vec3 c = center();
             const char* names[3] = {"A", "B", "C"};
@@ -293,14 +300,12 @@ private:
             for (int i = 0; i < 3; ++i) {  // outside the triangle, off the query and closest points
                 // Pinned where the overview put it when that is beside the corner and clear of the
                 // step's query; placed afresh otherwise.
-                const auto pinned = std::find_if(regionNames.begin(), regionNames.end(),
-                                                 [&](const auto& r) { return r.first == names[i]; });
+                const std::optional<Eigen::Vector2d> at = pinnedAt(names[i]);
                 Eigen::Vector2d corner, q;
                 const bool clear =
-                    pinned != regionNames.end() && canvas.project(corners[i], corner) &&
-                    (pinned->second - corner).norm() < 45.0 &&
-                    !(focus >= 0 && canvas.project(results[std::size_t(focus)].point, q) && (q - pinned->second).norm() < 40.0);
-                if (clear) canvas.drawTextPx(pinned->second.x(), pinned->second.y(), names[i], labelStyle(Role::Ink, 28.0f));
+                    at && canvas.project(corners[i], corner) && (*at - corner).norm() < 45.0 &&
+                    !(focus >= 0 && canvas.project(results[std::size_t(focus)].point, q) && (q - *at).norm() < 40.0);
+                if (clear) canvas.drawTextPx(at->x(), at->y(), names[i], labelStyle(Role::Ink, 28.0f));
                 else drawLabelAway(canvas, corners[i], c, names[i], labelStyle(Role::Ink, 28.0f), 10.0);
             }
             if (diagram.valid && common_.hasLayer("regions") && !is3d)
@@ -311,15 +316,13 @@ private:
                     else at = c + (at - c) * 0.85;  // pull labels of unbounded regions inwards, off the frame edge
                     TextStyle ts{20.0f, regionColor(int(region.region)).scaled(0.55f), Anchor::Center, true, true};
                     const std::string name = std::string("region ") + nameOf(region.region);
-                    const auto pinned = std::find_if(regionNames.begin(), regionNames.end(),
-                                                     [&](const auto& r) { return r.first == name; });
                     // Pinned unless the step's query (drawn larger than in the overview) is under it.
+                    const std::optional<Eigen::Vector2d> pinned = pinnedAt(name);
                     Eigen::Vector2d q;
                     const Eigen::Vector2d half = 0.5 * canvas.measureText(name, ts) + Eigen::Vector2d(16, 16);
-                    if (pinned != regionNames.end() &&
-                        !(focus >= 0 && canvas.project(results[std::size_t(focus)].point, q) &&
-                          std::abs(q.x() - pinned->second.x()) <= half.x() && std::abs(q.y() - pinned->second.y()) <= half.y())) {
-                        canvas.drawTextPx(pinned->second.x(), pinned->second.y(), name, ts);
+                    if (pinned && !(focus >= 0 && canvas.project(results[std::size_t(focus)].point, q) &&
+                                    std::abs(q.x() - pinned->x()) <= half.x() && std::abs(q.y() - pinned->y()) <= half.y())) {
+                        canvas.drawTextPx(pinned->x(), pinned->y(), name, ts);
                         continue;
                     }
                     ts.place = true;  // on the region's centre, or beside it when a query point is there
