@@ -561,10 +561,12 @@ CheckResult checkOneLine(const std::string& line, std::size_t lineNumber, const 
     try {
         Checker c(q, mine, theirs, tol, a, b, shape);
         c.run(op);
-        r.reasons = c.reasons;
-        // A query cdlab answers with an error (and so do you) has no run to check a trace against.
-        if (trace && r.reasons.empty() && !member(theirs, "error"))
+        // The trace is checked whatever the answer's verdict, its first broken step reported first: a
+        // wrong distance is the symptom, the step the cause (check_test "the broken step of a wrong
+        // answer"). A query cdlab answers with an error has no run to check a trace against.
+        if (trace && !member(theirs, "error"))
             checkTrace(op, q, *trace, tol, a, b, r.reasons, r.traceDivergence, r.traceAlgorithm);
+        r.reasons.insert(r.reasons.end(), c.reasons.begin(), c.reasons.end());
         if (trace) r.trace = *trace;
     } catch (const std::bad_alloc&) {
         throw;

@@ -301,15 +301,31 @@ void drawStep(Canvas& cs, const PairDrawing& d, const StepPicture& s) {
 
 }  // namespace
 
-// The first two reasons, cut to slide-legible caption lines.
-std::vector<std::string> captionOf(const std::vector<std::string>& reasons) {
+namespace {
+
+// The figure's caption: the first two reasons wrapped to the frame's width (never cut mid-number:
+// check_test "the figure wraps its reasons"), at most kMaxCaptionLines lines, and the layout whose
+// caption band holds them.
+struct CheckCaption {
+    TwoPanelLayout layout;
     std::vector<std::string> lines;
-    for (const std::string& r : reasons) {
-        if (lines.size() == 2) break;
-        lines.push_back(r.size() > 110 ? r.substr(0, 107) + "..." : r);
+};
+constexpr std::size_t kMaxCaptionLines = 6;
+CheckCaption checkCaption(render::GlContext& gl, const std::vector<std::string>& reasons) {
+    CheckCaption c{twoPanelLayout(1280, 640, ""), {}};
+    const TextStyle style{17.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false};
+    for (std::size_t i = 0; i < reasons.size() && i < 2; ++i)
+        for (const std::string& line : render::wrapText(gl, reasons[i], style, c.layout.width - 36.0))
+            c.lines.push_back(line);
+    if (c.lines.size() > kMaxCaptionLines) {
+        c.lines.resize(kMaxCaptionLines);
+        c.lines.back() += " ...";
     }
-    return lines;
+    c.layout.captionBand = std::max(c.layout.captionBand, 8 + 25 * static_cast<int>(c.lines.size()) + 4);
+    return c;
 }
+
+}  // namespace
 
 std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Json& cdlab, const Json& yours,
                               const std::string& title, const std::vector<std::string>& reasons,
@@ -331,7 +347,8 @@ std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Js
     // Nearly face-on from the point's side, tilted so the point's height above the plane shows.
     const double side = (p - tri.a).dot(diagram.normal) < 0 ? -1.0 : 1.0;
     const Vec3 view = side * diagram.normal + 0.6 * diagram.axisV;
-    const TwoPanelLayout layout = twoPanelLayout(1280, 640, "");
+    const CheckCaption caption = checkCaption(gl, reasons);
+    const TwoPanelLayout& layout = caption.layout;
     const render::CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), 1);
     const auto panel = [&](const Json& answer, const std::string& heading) {
         Canvas cs(gl, po, panelCamera(false, center, radius, view, layout));
@@ -362,7 +379,7 @@ std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Js
         return cs.readPixels();
     };
     const render::Image left = panel(cdlab, "cdlab's answer"), right = panel(yours, "your answer");
-    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, captionOf(reasons)));
+    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, caption.lines));
     return "";
 }
 
@@ -424,7 +441,8 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     }
     std::vector<std::string> skipped;
     const PairDrawing d = makePairDrawing(pair, true, frame, skipped);
-    const TwoPanelLayout layout = twoPanelLayout(1280, 640, "");
+    const CheckCaption caption = checkCaption(gl, reasons);
+    const TwoPanelLayout& layout = caption.layout;
     const render::CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), 1);
     const auto panel = [&](const std::optional<StepPicture>& s, const std::string& heading) {
         Canvas cs(gl, po, panelCamera(false, d.cCenter, d.cRadius, pair.view, layout));
@@ -439,7 +457,7 @@ std::string writeTraceStepFigure(render::GlContext& gl, const Json& query, const
     const std::string k = std::to_string(step);
     const render::Image left = panel(theirs, "cdlab's step " + k + (spheres ? ", radius in the support" : "")),
                         right = panel(mine, "your step " + k);
-    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, captionOf(reasons)));
+    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, caption.lines));
     return "";
 }
 
@@ -456,7 +474,8 @@ std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Jso
     std::vector<std::string> skipped;
     const PairDrawing d = makePairDrawing(pair, false, {}, skipped);
 
-    const TwoPanelLayout layout = twoPanelLayout(1280, 640, "");
+    const CheckCaption caption = checkCaption(gl, reasons);
+    const TwoPanelLayout& layout = caption.layout;
     const render::CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), 1);
     const bool colliding = cdlab.value("intersect", false) || cdlab.value("colliding", false) ||
                            (op == "penetration" && cdlab.value("depth", 0.0) > 0);
@@ -468,7 +487,7 @@ std::string writeCheckFigure(render::GlContext& gl, const Json& query, const Jso
         return world.readPixels();
     };
     const render::Image left = panel(cdlab, "cdlab's answer"), right = panel(yours, "your answer");
-    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, captionOf(reasons)));
+    render::writePngAtomic(path, composeTwoPanel(gl, layout, 1, title, "", left, right, caption.lines));
     return "";
 }
 

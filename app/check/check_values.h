@@ -71,6 +71,12 @@ public:
     /// Support value h_S(n) = max over S of x·n (a compound: its pieces; a mesh: its vertices);
     /// nothing for unbounded shapes or what cannot be read.
     std::optional<double> support(const Vec3& n) const;
+    /// A point of the shape whose value along n is support(n): a bounded shape's support point, a
+    /// mesh's extreme vertex; nothing for a compound, an unbounded shape or what cannot be read.
+    std::optional<Vec3> supportPointOf(const Vec3& n) const;
+    /// The vertices of a shape that is their hull (polytope, box, triangle, segment, point, mesh);
+    /// nothing for rounded, curved, unbounded or compound shapes.
+    const std::vector<Vec3>* vertices() const;
     /// Distance from a point to the shape by cdlab's own distance op (0 inside); nothing when the
     /// shape cannot be read.
     std::optional<double> distanceTo(const Vec3& p) const;

@@ -1,7 +1,9 @@
 #include "app/check/trace_check.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,6 +52,48 @@ std::optional<GivenSupport> supportPoint(const Json* s) {
     return std::nullopt;
 }
 
+// A point as the verdicts print it: six digits a coordinate, enough to find the vertex in a list.
+std::string pointText(const Vec3& p) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+    return buf;
+}
+
+// A support w given alone and short of h_{A−B}(u): which of s_A(u), s_B(−u) was not extreme. When
+// a = w + s_B(−u) is a point of A (of shapes that are the hull of their vertices: one of them), B's
+// support was right and A's, a, is not A's extreme (the other way round when s_A(u) − w is one of
+// B). Polytopes' interiors hold both points often, so a vertex decides there; both vertex-defined
+// and neither a vertex: both fell short. "" when nothing can be said. check_test "names the
+// support that is not extreme".
+std::string whichSupportShort(const Vec3& w, const Vec3& u, const ShapeModel& shapeA, const ShapeModel& shapeB,
+                              double tol, const std::string& along) {
+    const std::optional<Vec3> sa = shapeA.supportPointOf(u), sb = shapeB.supportPointOf(-u);
+    if (!sa || !sb) return "";
+    const Vec3 a = w + *sb, b = *sa - w;
+    const auto isPointOf = [&](const ShapeModel& shape, const Vec3& p) {
+        if (const std::vector<Vec3>* v = shape.vertices())
+            return std::any_of(v->begin(), v->end(), [&](const Vec3& x) { return length(x - p) <= tol; });
+        const std::optional<double> d = shape.distanceTo(p);
+        return d && *d <= tol;
+    };
+    const bool inA = isPointOf(shapeA, a), inB = isPointOf(shapeB, b);
+    if (inA && !inB)
+        return "s_A is not extreme: your w is a − s_B(−" + along + ") with a = " + pointText(a) + " of A, reaching " +
+               value(a.dot(u)) + " along " + along + ", where A's extreme point " + pointText(*sa) + " reaches " +
+               value(sa->dot(u));
+    if (inB && !inA)
+        return "s_B is not extreme: your w is s_A(" + along + ") − b with b = " + pointText(b) + " of B, reaching " +
+               value(-b.dot(u)) + " along −(" + along + "), where B's extreme point " + pointText(*sb) + " reaches " +
+               value(-sb->dot(u));
+    if (inA && inB)
+        return "s_A or s_B is not extreme (w is a point of A minus B's extreme point " + pointText(*sb) +
+               ", and A's extreme point " + pointText(*sa) + " minus a point of B: give the pair {\"a\", \"b\"} to tell)";
+    if (shapeA.vertices() && shapeB.vertices())
+        return "neither s_A nor s_B is extreme: w is no vertex of A minus B's extreme vertex " + pointText(*sb) +
+               ", nor A's extreme vertex " + pointText(*sa) + " minus a vertex of B";
+    return "";
+}
+
 // Rule 1 of GJK and EPA: the support w is extreme in A − B along the unit direction u, w·u =
 // h_A(u) + h_B(−u) within tol, from both sides: not short of it (another point reaches further) and
 // not beyond it (no point of A − B does). Given the pair {a, b}, each is held to its own shape. ""
@@ -66,11 +110,47 @@ std::string supportRuleBreak(const GivenSupport& given, const Vec3& u, const Sha
         else if (rb > *hb + tol) detail = "your b reaches " + value(rb) + " along −(" + along + "), beyond B's extreme " + value(*hb) + ": not a point of B";
         else if (ra < *ha - tol) detail = "your a is not extreme in A along " + along + ": it reaches " + value(ra) + ", A reaches " + value(*ha);
         else if (rb < *hb - tol) detail = "your b is not extreme in B along −(" + along + "): it reaches " + value(rb) + ", B reaches " + value(*hb);
+    } else if (reach < h - tol) {
+        detail = whichSupportShort(given.w, u, shapeA, shapeB, tol, along);
     }
     if (std::abs(reach - h) <= tol && detail.empty()) return "";
     std::string why = "yours reaches " + value(reach) + " along it, A − B reaches " + value(h);
     if (reach > h + tol) why += " (yours lies beyond A − B)";
     return detail.empty() ? why : why + "; " + detail;
+}
+
+// "w(0), w(2)": simplex points named by the iteration whose support each is.
+std::string names(const std::vector<int>& from) {
+    std::string text;
+    for (std::size_t i = 0; i < from.size(); ++i) text += (i ? ", w(" : "w(") + std::to_string(from[i]) + ")";
+    return text;
+}
+
+// What a simplex reduction should have kept: the smallest subset of the simplex (its points named by
+// iteration) whose hull is as near the origin as the whole simplex's — the feature whose Voronoi
+// region holds the origin — stated as that region and the points to keep. Simplices of more than 6
+// points (a trace giving no simplex for many steps) get the distance alone.
+// check_test "names the region a wrong reduction missed".
+std::string subSimplexAdvice(const std::vector<Vec3>& pool, const std::vector<int>& from, double best, double tol) {
+    const std::string whole = "the simplex " + names(from) + " is " + num(best) + " from the origin";
+    if (pool.size() > 6) return whole;
+    for (std::size_t size = 1; size <= std::min<std::size_t>(pool.size(), 4); ++size)
+        for (unsigned mask = 1; mask < (1u << pool.size()); ++mask) {
+            if (static_cast<std::size_t>(std::popcount(mask)) != size) continue;
+            std::vector<Vec3> subset;
+            std::vector<int> subsetFrom;
+            for (std::size_t i = 0; i < pool.size(); ++i)
+                if (mask & (1u << i)) subset.push_back(pool[i]), subsetFrom.push_back(from[i]);
+            const std::optional<double> d = hullOf(subset).distanceTo(Vec3::Zero());
+            if (!d || !(*d <= best + tol)) continue;
+            if (size == 4)
+                return "the origin is inside the tetrahedron " + names(subsetFrom) + ": keep all four";
+            static const char* const kFeature[] = {"", "vertex", "edge", "face"};
+            return "the simplex " + names(from) + " is nearest the origin on its " + kFeature[size] + " " +
+                   names(subsetFrom) + " (the origin is in that " + kFeature[size] + "'s Voronoi region): keep " +
+                   names(subsetFrom) + ", " + num(best) + " from the origin";
+        }
+    return whole;
 }
 
 // Your GJK trace, step by step, against the rule every step must follow (so ties are not
@@ -89,6 +169,7 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, const Shape
     // "simplex" only append their support (amortised O(1) a step: the check is linear in the
     // steps, tests/app/check/check_test.cpp "step limit").
     std::vector<Vec3> pool;
+    std::vector<int> poolFrom;  // the iteration whose support each pool point is: named w(k) in verdicts
     std::optional<Vec3> closest;
     for (std::size_t k = 0; k < steps->size(); ++k) {
         const Json& s = (*steps)[k];
@@ -112,23 +193,27 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, const Shape
         const std::string why = supportRuleBreak(*given, unit(d), shapeA, shapeB, tol, "d");
         if (!why.empty()) return reasons.push_back(at + "different support point for the same direction: " + why);
         pool.push_back(w);
+        poolFrom.push_back(static_cast<int>(k));
         const Json* simplex = member(s, "simplex");
         if (!simplex) continue;
         if (!simplex->is_array()) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
         if (simplex->empty() || simplex->size() > 4) return reasons.push_back(at + "the simplex kept has 1 to 4 points");
         std::vector<Vec3> next;
+        std::vector<int> nextFrom;
         for (const Json& p : *simplex) {
             if (!isVec(p)) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
             next.push_back(vec(p));
-            if (std::none_of(pool.begin(), pool.end(), [&](const Vec3& y) { return length(y - next.back()) <= tol; }))
-                return reasons.push_back(at + "the simplex keeps a point that was not in it");
+            const auto match = std::find_if(pool.begin(), pool.end(), [&](const Vec3& y) { return length(y - next.back()) <= tol; });
+            if (match == pool.end()) return reasons.push_back(at + "the simplex keeps a point that was not in it");
+            nextFrom.push_back(poolFrom[static_cast<std::size_t>(match - pool.begin())]);
         }
         const ShapeModel kept = hullOf(next);
         const std::optional<double> best = hullOf(pool).distanceTo(Vec3::Zero()), mineD = kept.distanceTo(Vec3::Zero());
         if (best && mineD && !(*mineD <= *best + tol))
-            return reasons.push_back(at + "wrong sub-simplex kept: its nearest point is " + num(*mineD) +
-                                     " from the origin, the simplex's is " + num(*best));
+            return reasons.push_back(at + "wrong sub-simplex kept: " + subSimplexAdvice(pool, poolFrom, *best, tol) +
+                                     "; yours, " + names(nextFrom) + ", is " + num(*mineD) + " from it");
         pool = next;
+        poolFrom = nextFrom;
         // The closest point of the kept simplex, for the next direction: by the distance op's witness.
         closest = next.size() == 1 ? std::optional<Vec3>(next[0]) : kept.closestPointTo(Vec3::Zero());
     }

@@ -4,7 +4,7 @@
 // Scene keys (besides the common ones), by "mode":
 //   "plane" (default): "body" ({"box": {"half_extents"}} | {"tetrahedron"|"icosahedron": {"circumradius"}}
 //            | {"prism": {"sides", "radius", "half_height"}}), "poses": [{"position", "rotation", "label",
-//            "view" (this pose's camera direction, same framing)}]
+//            "view" (this pose's camera direction, same framing), "rest_height" (lowest vertex that high)}]
 //            (1..6, one frame each), "plane": {"normal", "offset"} (default z = 0), "max_points" (4).
 //   "features": "pairs": [{"a": F, "b": F, "label"}] (1..6, one frame each), F = {"vertex": p} |
 //            {"edge": [p, q]} | {"face": [p, ...]} (convex, counter-clockwise seen from outside).
@@ -713,9 +713,11 @@ public:
             const std::vector<JsonNode> items = ps.items();
             if (items.empty() || int(items.size()) > kMaxFrames)
                 ps.fail("1 to " + std::to_string(kMaxFrames) + " poses");
+            std::vector<std::optional<double>> restHeights;  // a pose's "rest_height", applied once the plane is read
             for (const JsonNode& it : items) {
                 ObjectReader pr(it);
                 scene->poses.push_back(readPose(pr));
+                restHeights.push_back(pr.find("rest_height") ? std::optional(sceneCoordinate(pr.get("rest_height"))) : std::nullopt);
                 scene->poseLabels.push_back(pr.stringOr("label", ""));
                 scene->poseViews.emplace_back();
                 if (auto pv = pr.find("view")) {
@@ -731,6 +733,16 @@ public:
                 scene->plane.offset = sceneCoordinate(pr.get("offset"));
                 pr.finish();
                 if (!(scene->plane.normal.norm() > 0)) nn.fail("plane normal must be non-zero");
+            }
+            // "rest_height": h moves the posed body along the plane's normal until its lowest vertex
+            // is h above the plane (h < 0: sunk that deep). polyhedron_plane_test "rest_height".
+            const Vec3 n = scene->plane.normal.normalized();
+            const double d = scene->plane.offset / scene->plane.normal.norm();
+            for (std::size_t i = 0; i < restHeights.size(); ++i) {
+                if (!restHeights[i]) continue;
+                double lowest = INFINITY;
+                for (const Vec3& v : scene->body.mesh.positions()) lowest = std::min(lowest, n.dot(scene->poses[i].apply(v)) - d);
+                scene->poses[i].position += (*restHeights[i] - lowest) * n;
             }
             if (auto m = r.find("max_points")) scene->maxPoints = m->asInt(1, 64);
         } else if (scene->mode == "features") {

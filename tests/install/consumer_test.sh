@@ -22,6 +22,12 @@ cmake --build "$tmp/installed" -j 2 >/dev/null
 "$tmp/installed/consumer" lines > "$tmp/pairs.jsonl"
 "$build/bin/cdlab" query < "$tmp/pairs.jsonl" > "$tmp/answers.jsonl"
 "$tmp/installed/consumer" compare < "$tmp/answers.jsonl"
+# examples/engine, the README's engine example, against the same fresh install: it builds and its
+# three answers (distance, manifold, ray) are the ones its comments state (exit 0).
+cmake -S "$root/examples/engine" -B "$tmp/engine" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
+      -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >/dev/null
+cmake --build "$tmp/engine" -j 2 >/dev/null
+"$tmp/engine/engine_example" >/dev/null || { echo "FAIL examples/engine answered wrong:"; "$tmp/engine/engine_example"; exit 1; }
 # add_subdirectory(core): configure, and compile the consumer's source against the core target's
 # include directory and flags (linking it would rebuild all of core: the installed variant links).
 cmake -S "$root/tests/install/consumer" -B "$tmp/subdir" -DCDLAB_CORE_DIR="$root/core" >/dev/null
@@ -31,4 +37,4 @@ cmake -S "$root" -B "$tmp/core-only" -DCDLAB_BUILD_DEMOS=OFF -DCDLAB_BUILD_TESTS
 if grep -E -i "EGL|GIF|nlohmann|doctest|PNG|OpenGL" "$tmp/core-only.log"; then
     echo "FAIL the core-only configure looked for more than Eigen"; exit 1
 fi
-echo "install: the find_package(cdlab) consumer builds, runs and answers as cdlab query does; add_subdirectory(core) compiles; core-only configure needs Eigen alone"
+echo "install: the find_package(cdlab) consumer builds, runs and answers as cdlab query does; examples/engine builds and answers right; add_subdirectory(core) compiles; core-only configure needs Eigen alone"

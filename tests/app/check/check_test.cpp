@@ -167,6 +167,61 @@ TEST_CASE("check: a GJK trace is checked step by step, a tie is not a divergence
     CHECK(reasons(check(line)).find("iteration 2: different support point for the same direction") != std::string::npos);
 }
 
+TEST_CASE("check: the broken step of a wrong answer is reported first, with the answer's verdict") {
+    // The usual case of a student's bug: the answer is wrong too. The trace is still checked and its
+    // first broken step leads the verdict (the figure draws that step: check_figure_test).
+    Json line = distanceLine({{"intersect", false}, {"distance", 1.5}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    line["trace"] = gjkTrace(true);
+    const CheckResult r = check(line);
+    REQUIRE(r.reasons.size() >= 2);
+    CHECK(r.reasons[0].rfind("trace: iteration 1: wrong sub-simplex kept", 0) == 0);
+    CHECK(reasons(r).find("distance off by 0.5") != std::string::npos);
+    CHECK(r.traceDivergence == 1);
+}
+
+TEST_CASE("check: names the region a wrong reduction missed") {
+    // gjkTrace(true): iteration 1 keeps w(1) = (-1, -1, -1) alone, 1.73 from the origin, where the
+    // segment w(0) w(1) is nearest it at its midpoint (-1, 0, 0), in the edge's Voronoi region.
+    Json line = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    line["trace"] = gjkTrace(true);
+    CHECK(reasons(check(line)).find("iteration 1: wrong sub-simplex kept: the simplex w(0), w(1) is nearest the origin on "
+                                    "its edge w(0), w(1) (the origin is in that edge's Voronoi region): keep w(0), w(1), 1 "
+                                    "from the origin; yours, w(1), is 1.73 from it") != std::string::npos);
+    // A − B = [-3, -1] x [-1, 1]^2. The triangle w(0) = (-3, 1, 1), w(1) = (-1, -1, -1), w(2) = (-1, 1, 1)
+    // is nearest the origin at (-1, 0, 0), inside its edge w(1) w(2); keeping w(0), w(1) fails.
+    Json steps = Json::array();
+    steps.push_back({{"direction", {-1, 0, 0}}, {"support", {-3, 1, 1}}, {"simplex", {{-3, 1, 1}}}});
+    steps.push_back({{"direction", {3, -1, -1}}, {"support", {-1, -1, -1}}, {"simplex", {{-3, 1, 1}, {-1, -1, -1}}}});
+    steps.push_back({{"direction", {4, 2, 2}}, {"support", {-1, 1, 1}}, {"simplex", {{-3, 1, 1}, {-1, -1, -1}}}});
+    line["trace"] = {{"algorithm", "gjk"}, {"steps", steps}};
+    CHECK(reasons(check(line)).find("iteration 2: wrong sub-simplex kept: the simplex w(0), w(1), w(2) is nearest the "
+                                    "origin on its edge w(1), w(2)") != std::string::npos);
+}
+
+TEST_CASE("check: names the support that is not extreme") {
+    // Two tetrahedra 2 apart along x; along the unit d = (0.48, 0.64, 0.6): s_A(d) = (0, 1, 0) (reaching
+    // 0.64), s_B(-d) = (3, 0, 0) (reaching -1.44 along -d), each unique; w = (-3, 1, 0).
+    const Json tetA = {{"polytope", {{"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}}};
+    const Json tetB = {{"polytope", {{"vertices", {{3, 0, 0}, {4, 0, 0}, {3, 1, 0}, {3, 0, 1}}}}}};
+    Json line = {{"op", "distance"}, {"a", tetA}, {"b", tetB},
+                 {"answer", {{"intersect", false}, {"distance", 2.0}, {"point_a", {1, 0, 0}}, {"point_b", {3, 0, 0}}}}};
+    const auto stepWith = [&](const Json& w) {
+        line["trace"] = {{"algorithm", "gjk"}, {"steps", Json::array({{{"direction", {0.48, 0.64, 0.6}}, {"support", w}}})}};
+        return reasons(check(line));
+    };
+    CHECK(stepWith({-3, 1, 0}).find("iteration 0") == std::string::npos);
+    // w = (0, 0, 1) − (3, 0, 0): A's vertex (0, 0, 1) is not A's extreme; (0, 1, 0) − w = (3, 1, −1) is no vertex of B.
+    CHECK(stepWith({-3, 0, 1}).find("s_A is not extreme: your w is a − s_B(−d) with a = (0, 0, 1) of A, reaching 0.6 "
+                                    "along d, where A's extreme point (0, 1, 0) reaches 0.64") != std::string::npos);
+    // w = (0, 1, 0) − (3, 0, 1): B's vertex (3, 0, 1) is not B's extreme along −d.
+    CHECK(stepWith({-3, 1, -1}).find("s_B is not extreme: your w is s_A(d) − b with b = (3, 0, 1) of B, reaching -2.04 "
+                                     "along −(d), where B's extreme point (3, 0, 0) reaches -1.44") != std::string::npos);
+    // w = (0, 0, 1) − (3, 0, 1) = (0, 0, 0) − (3, 0, 0) = (0, 1, 0) − (3, 1, 0): both readings hold; the verdict says so.
+    CHECK(stepWith({-3, 0, 0}).find("s_A or s_B is not extreme") != std::string::npos);
+    // Short of A − B but the difference of no vertex with the other's extreme vertex: both fell short.
+    CHECK(stepWith({-2.5, 0.3, 0.1}).find("neither s_A nor s_B is extreme") != std::string::npos);
+}
+
 TEST_CASE("check: an answer with keys of the wrong type fails that line only") {
     const Json cube = {{"aabb", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}};
     const Json line = {{"op", "raycast"}, {"ray", {{"origin", {-1, 0.5, 0.5}}, {"direction", {1, 0, 0}}}}, {"shape", cube},

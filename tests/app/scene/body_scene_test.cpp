@@ -3,6 +3,7 @@
 // a pose written inside the body; a user's wedge dropped runs with the wedge's closed-form volume.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "core/geometry/mass_properties.h"
@@ -81,4 +82,32 @@ TEST_CASE("body: a user's wedge dropped and a polytope against the plane run") {
     Json plane = {{"demo", "polyhedron_plane"}, {"title", "wedge"}, {"caption", "a wedge"}, {"body", kWedge},
                   {"poses", {{{"label", "resting"}, {"position", {0, 0, 0.1}}}}}};
     CHECK_NOTHROW(loadSceneText(plane.dump(), "wedge_plane.json")->run(RunContext{}));
+}
+
+TEST_CASE("body: rest_height rests a pose's lowest vertex that high above the plane, the recentring undone") {
+    // The wedge's base is at z = 0 in its own file, but it is recentred at its centre of mass: at
+    // position (0, 0, 0) it sinks. rest_height puts its lowest vertex at the height asked, on a
+    // tilted plane too (along that plane's normal), whatever the pose's rotation.
+    const Json tilted = {{"normal", {0, 0.6, 0.8}}, {"offset", 0.5}};
+    for (const Json& plane : {Json(), tilted}) {
+        Json scene = {{"demo", "polyhedron_plane"}, {"title", "wedge"}, {"body", kWedge},
+                      {"poses", {{{"label", "at 0"}, {"position", {0, 0, 0}}},
+                                 {{"label", "resting"}, {"position", {0, 0, 0}}, {"rest_height", 0}},
+                                 {{"label", "sunk"}, {"position", {0.3, 0, 5}}, {"rest_height", -0.05}},
+                                 {{"label", "above"}, {"rotation", {0.9, 0.3, 0.2, 0.1}}, {"rest_height", 0.25}}}}};
+        if (!plane.is_null()) scene["plane"] = plane;
+        const DemoOutput out = loadSceneText(scene.dump(), "wedge_rest.json")->run(RunContext{});
+        const Json& poses = out.trace["frames"];
+        REQUIRE(poses.size() == 4);
+        const auto lowest = [&](int i) {
+            const Json& d = poses[i]["vertex_signed_distances"];
+            return *std::min_element(d.begin(), d.end());
+        };
+        if (plane.is_null()) CHECK(lowest(0).get<double>() < -0.1);  // recentred: sunk at position 0
+        CHECK(lowest(1).get<double>() == doctest::Approx(0).epsilon(1e-12));
+        CHECK(lowest(2).get<double>() == doctest::Approx(-0.05).epsilon(1e-12));
+        CHECK(poses[2]["depth"].get<double>() == doctest::Approx(0.05).epsilon(1e-12));
+        CHECK(lowest(3).get<double>() == doctest::Approx(0.25).epsilon(1e-12));
+        CHECK(poses[3]["status"] == "Separated");
+    }
 }

@@ -10,6 +10,7 @@
 
 #include "app/check/check.h"
 #include "app/query/query.h"
+#include "render/canvas.h"
 #include "render/image.h"
 
 using namespace cdlab;
@@ -206,4 +207,33 @@ TEST_CASE("check --figures: a closest_point_triangle line gets the triangle's re
     REQUIRE(image.width == 1280);
     CHECK(panelDifference(image, 1) > 100);
     std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("check --figures: the figure wraps its reasons, a wrong answer's broken step is the step drawn") {
+    // A wrong distance and a trace whose iteration 1 keeps the wrong sub-simplex: the verdict leads
+    // with the step, the figure draws iteration 1, and every word of both reasons is on it (wrapped,
+    // not cut: cdlab's numbers at the ends of the long reasons included).
+    const std::string line =
+        R"({"op":"distance","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[2,0,0],"max":[3,1,1]}},)"
+        R"("answer":{"intersect":false,"distance":1.7320508,"point_a":[1,1,1],"point_b":[2,0,0]},"trace":{"algorithm":"gjk","steps":[)"
+        R"({"direction":[1,0,0],"support":[-1,1,1],"simplex":[[-1,1,1]]},)"
+        R"({"direction":[1,-1,-1],"support":{"a":[1,0,0],"b":[2,1,1]},"simplex":[[-1,-1,-1]]}]}})";
+    render::drawnTextLog().clear();
+    const FigureRun run = checkWithFigures(line + "\n", "cdlab_check_wrapped_figure_test");
+    CHECK(run.out.find("FAIL: trace: iteration 1: wrong sub-simplex kept") != std::string::npos);
+    CHECK(run.out.find("distance off by") != std::string::npos);
+    CHECK(run.out.find("[figure " + (run.dir / "line_1.png").string() + "]") != std::string::npos);
+    std::string drawn;
+    for (const std::string& s : render::drawnTextLog()) drawn += s + " ";
+    CHECK(drawn.find("GJK iteration 1") != std::string::npos);
+    const std::size_t from = run.out.find("trace: iteration 1"), to = run.out.find(" [figure");
+    REQUIRE(from != std::string::npos);
+    const std::string reasons = run.out.substr(from, to - from);  // "reason; reason"
+    const std::string first = reasons.substr(0, reasons.find("; distance off"));
+    const std::string rest = reasons.substr(first.size() + 2);
+    const std::string second = rest.substr(0, rest.find("; "));  // the figure shows the first two reasons
+    CHECK(first.size() > 150);  // over one line of the 1280-px caption: it must wrap
+    CHECK_MESSAGE(drawn.find(first) != std::string::npos, drawn);
+    CHECK_MESSAGE(drawn.find(second) != std::string::npos, drawn);
+    std::filesystem::remove_all(run.dir);
 }

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# ./cdlab's build is quiet (issue 43 §3): nothing on stderr when nothing compiles, one line when
+# something does, the compiler's message and "build failed" (exit 2) when it fails — run with a
+# stand-in `cmake` that prints what make prints in each case, and a stand-in program.
+# Usage: quiet_build_test.sh REPO_ROOT
+set -eu
+root="$1"
+tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL $*"; echo "--- stderr:"; cat "$tmp/err"; exit 1; }
+mkdir -p "$tmp/path" "$tmp/build/bin"
+touch "$tmp/build/CMakeCache.txt" "$tmp/build/.cdlab-configured"  # configured, after every CMakeLists.txt
+cat > "$tmp/path/cmake" <<'FAKE'
+#!/usr/bin/env bash
+case "$FAKE_BUILD" in
+    uptodate) printf '%s\n' "[ 20%] Built target cdlab_core" "[ 60%] Built target cdlab_app" "[100%] Built target cdlab" ;;
+    compiles) printf '%s\n' "[ 20%] Built target cdlab_core" "[ 40%] Building CXX object app/x.cpp.o" \
+                            "[ 60%] Linking CXX executable ../bin/cdlab" "[100%] Built target cdlab" ;;
+    fails) printf '%s\n' "[ 40%] Building CXX object app/x.cpp.o" "app/x.cpp:3:1: error: expected ';' before '}' token"; exit 2 ;;
+esac
+FAKE
+printf '#!/bin/sh\necho "ran $*"\n' > "$tmp/build/bin/cdlab"
+chmod +x "$tmp/path/cmake" "$tmp/build/bin/cdlab"
+run() { FAKE_BUILD="$1" PATH="$tmp/path:$PATH" CDLAB_BUILD_DIR="$tmp/build" "$root/cdlab" render --template drop > "$tmp/out" 2> "$tmp/err"; }
+
+run uptodate || fail "up to date: exit $?"
+[ ! -s "$tmp/err" ] || fail "up to date: the build printed on stderr"
+grep -qx "ran render --template drop" "$tmp/out" || fail "up to date: the program did not run"
+run compiles || fail "compiles: exit $?"
+[ "$(wc -l < "$tmp/err")" -eq 1 ] || fail "compiles: more than one line on stderr"
+grep -q "^cdlab: building cdlab_programs" "$tmp/err" || fail "compiles: no progress line"
+set +e; run fails; status=$?; set -e
+[ "$status" -eq 2 ] || fail "fails: exit $status, not 2"
+grep -qF "app/x.cpp:3:1: error: expected ';'" "$tmp/err" || fail "fails: the compiler's message is not shown"
+grep -q "build failed" "$tmp/err" || fail "fails: no \"build failed\""
+! grep -q "ran" "$tmp/out" || fail "fails: the program ran after a failed build"
+echo "quiet build: silent when up to date, one line when compiling, the error and exit 2 when failing"
