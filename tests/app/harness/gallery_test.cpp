@@ -77,3 +77,51 @@ TEST_CASE("gallery: the index and a scene page render in headless chromium with 
     }
     fs::remove_all(root);
 }
+
+TEST_CASE("gallery: the index's demo line of 15 demos wraps in a 1000-px and a 1400-px window") {
+    // Measured in headless chromium: a copy of the index beside it, with a script that puts the
+    // page's scroll width and the window's client width in its title (the gallery itself has no script),
+    // read back with --dump-dom. Wider than the window = a horizontal scrollbar (issue 43 §3).
+    const char* chromium = "/usr/bin/chromium";
+    REQUIRE_MESSAGE(fs::exists(chromium), "Debian chromium is needed (./cdlab test installs it)");
+    fs::path root = fs::temp_directory_path() / ("cdlab_gallery_width_test_" + std::to_string(getpid()));
+    fs::remove_all(root);
+    // One scene rendered, its folder copied under the 14 other demos' names: the index is built
+    // from every scene folder in out/, so it lists 15 demos as the real gallery does.
+    fs::create_directories(root / "golden" / "voronoi_triangle");
+    std::ofstream(root / "golden" / "voronoi_triangle" / "s.json") << R"({"demo": "voronoi_triangle", "title": "t",
+      "image": {"width": 160, "height": 160}, "triangle": [[0, 0, 0], [2, 0, 0], [0.5, 1.5, 0]],
+      "queries": [[1, 1, 0.2]], "views": ["plane"]})";
+    RunnerOptions o;
+    o.goldenDir = (root / "golden").string();
+    o.outDir = (root / "out").string();
+    REQUIRE(runFigures(o) == 0);
+    for (const char* demo : {"accuracy", "bounding_volumes", "bvh", "drop", "epa", "gjk", "lin_canny", "mtd_backtracking",
+                             "nonconvex", "polyhedron_plane", "primitives", "space_partition", "sweep_and_prune", "vclip"}) {
+        fs::create_directories(root / "out" / demo);
+        fs::copy(root / "out" / "voronoi_triangle" / "s", root / "out" / demo / "s", fs::copy_options::recursive);
+    }
+    REQUIRE(runFigures(o) == 0);
+    std::ifstream indexIn(root / "out" / "index.html");
+    const std::string indexText((std::istreambuf_iterator<char>(indexIn)), std::istreambuf_iterator<char>());
+    REQUIRE(indexText.find("href=\"#sweep_and_prune\"") != std::string::npos);
+    std::ofstream(root / "out" / "probe.html")
+        << indexText << "<script>const e = document.documentElement; document.title = (e.scrollWidth <= e.clientWidth ? "
+           "'fits ' : 'overflows ') + e.scrollWidth + ' in ' + e.clientWidth</script>\n";
+    for (int width : {1000, 1400}) {
+        const fs::path dom = root / "dom.html";
+        const std::string cmd = std::string("timeout 120 ") + chromium +
+                                " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                                " --disable-background-networking --disable-component-update --disable-sync"
+                                " --user-data-dir=" + (root / "profile").string() + " --window-size=" + std::to_string(width) +
+                                ",700 --dump-dom file://" + (root / "out" / "probe.html").string() + " >" + dom.string() +
+                                " 2>" + (root / "chromium.log").string();
+        REQUIRE_MESSAGE(std::system(cmd.c_str()) == 0, "chromium failed: see " << (root / "chromium.log").string());
+        std::ifstream domIn(dom);
+        const std::string text((std::istreambuf_iterator<char>(domIn)), std::istreambuf_iterator<char>());
+        const std::string want = "<title>fits ";  // the page no wider than the window's client area
+        const std::size_t title = text.find("<title>");
+        CHECK_MESSAGE(text.find(want) != std::string::npos, "window " << width << ": " << text.substr(title, 60));
+    }
+    fs::remove_all(root);
+}
