@@ -1,4 +1,4 @@
-// `cdlab bench`: run time against error for the core queries (see README, "cdlab bench").
+// `cdlab bench`: run time against error for the core queries (BENCHMARKS.md).
 #pragma once
 
 namespace cdlab::demos {

@@ -1,5 +1,5 @@
 // `cdlab check`: your implementation's answers (and, optionally, your GJK trace) against cdlab's,
-// one JSON Lines query at a time (README, "cdlab check").
+// one JSON Lines query at a time (docs/check.md).
 //
 // A line is a `cdlab query` line plus "answer" (your answer, the same keys as cdlab's), optionally
 // "tolerance" (this line's, relative to the shapes' size) and "trace" (yours: an object, not the
@@ -26,7 +26,7 @@ constexpr double kMaxCheckTolerance = 1e-3;
 struct CheckOptions {
     /// Relative to the size of the problem L (the largest extent of the shapes, at least their
     /// coordinates' rounding): numbers may differ by tolerance * L. cdlab itself meets 1e-12 L on
-    /// distances and 1e-10 L on depths (README "cdlab stress"); 1e-9 leaves your double code room.
+    /// distances and 1e-10 L on depths (docs/accuracy.md); 1e-9 leaves your double code room.
     /// In (0, kMaxCheckTolerance]; it caps every line's own "tolerance" (a line may only tighten
     /// it: a larger one fails the line).
     double tolerance = 1e-9;

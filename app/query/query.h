@@ -1,4 +1,4 @@
-// `cdlab query`: JSON Lines in, one JSON answer per line out (format: README, "cdlab query").
+// `cdlab query`: JSON Lines in, one JSON answer per line out (format: docs/query.md).
 #pragma once
 
 #include <cstddef>

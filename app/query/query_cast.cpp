@@ -1,4 +1,4 @@
-// `raycast` and `time_of_impact` (README "cdlab query"): the query's JSON read into core's casts on
+// `raycast` and `time_of_impact` (docs/query.md): the query's JSON read into core's casts on
 // the query's shapes (core/query/cast.h), their answers and traces written back as JSON.
 #include "app/query/query_cast.h"
 

@@ -1,5 +1,5 @@
 // The cast ops of `cdlab query`: "raycast" (a ray against a shape) and "time_of_impact" (two shapes
-// translating over t in [0, 1]). Formats in the README's "cdlab query" section.
+// translating over t in [0, 1]). Formats in docs/query.md.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// Non-convex bodies in the shape-pair ops of `cdlab query` (README, "Compounds and meshes"):
+// Non-convex bodies in the shape-pair ops of `cdlab query` (docs/query.md, "Compounds and meshes"):
 // {"compound":[S, ...]}, a union of convex shapes each with its own pose fields, and
 // {"mesh":{"vertices", "triangles"[, "position", "rotation"]}}, the solid bounded by a closed,
 // consistently oriented triangle mesh.

@@ -1,4 +1,4 @@
-// The "contact" op of `cdlab query` (README "cdlab query"): the query's JSON read into core's
+// The "contact" op of `cdlab query` (docs/query.md): the query's JSON read into core's
 // contact query (core/query/contact.h: polytopes against planes and polytopes, spheres, capsules,
 // cylinders and cones; its file comment states the conventions and the touching rule) and its result,
 // traces and errors written back as JSON. "mass_properties" is answered by app/query/query_mass.h.

@@ -1,4 +1,4 @@
-// The contact-model ops of `cdlab query` (README, "cdlab query"): "contact" (the manifold of two
+// The contact-model ops of `cdlab query` (docs/query.md): "contact" (the manifold of two
 // shapes, computed by core/query/contact.h) and "mass_properties" (volume, centre of mass, inertia
 // tensor).
 #pragma once

@@ -1,5 +1,5 @@
 // The feature-walk methods of `cdlab query` distance/penetration: "vclip" (Mirtich 1998) and
-// "lin_canny" (Lin & Canny 1991), on polyhedral shapes (README, "cdlab query").
+// "lin_canny" (Lin & Canny 1991), on polyhedral shapes (docs/query.md).
 #pragma once
 
 #include <string>

@@ -7,7 +7,7 @@
 
 namespace cdlab::demos {
 
-/// -0 prints as "-0.0": answers print +0 instead (README: no answer prints -0).
+/// -0 prints as "-0.0": answers print +0 instead (docs/query.md: no answer prints -0).
 inline double cleanZero(double x) { return x == 0 ? 0.0 : x; }
 
 /// [x, y, z] with negative zeros cleaned.

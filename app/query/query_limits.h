@@ -1,4 +1,4 @@
-// What one `cdlab query` line may ask for (README, Hardening): every quantity that multiplies the
+// What one `cdlab query` line may ask for (docs/limits.md): every quantity that multiplies the
 // work or memory of an answer has a limit, checked before the work starts, and past it the line
 // answers one error naming the JSON path and the limit (the other lines are still answered).
 #pragma once

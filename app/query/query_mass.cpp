@@ -1,4 +1,4 @@
-// `mass_properties` (README "cdlab query"): the query's JSON read into core's mass properties of a
+// `mass_properties` (docs/query.md): the query's JSON read into core's mass properties of a
 // query shape (core/query/mass.h), the answer and its refusals written back as JSON.
 #include "app/query/query_mass.h"
 

@@ -1,4 +1,4 @@
-// The "mass_properties" op of `cdlab query` (README, "cdlab query"):
+// The "mass_properties" op of `cdlab query` (docs/query.md):
 //   {"op": "mass_properties", "a": {"polytope": {...}}, "density": 1}
 //   -> {"volume": V, "mass": m, "center_of_mass": [x, y, z], "inertia": [[...], [...], [...]]}
 // The solid is the convex hull of the polytope's world-frame vertices (after its position and

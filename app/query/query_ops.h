@@ -1,4 +1,4 @@
-// The shape-pair ops of `cdlab query`: intersect, distance, penetration (README, "cdlab query").
+// The shape-pair ops of `cdlab query`: intersect, distance, penetration (docs/query.md).
 #pragma once
 
 #include <string>

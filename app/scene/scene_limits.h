@@ -1,4 +1,4 @@
-// What a scene file may ask for (README, Hardening; docs/scenes.md names the limit of each key).
+// What a scene file may ask for (docs/limits.md; docs/scenes.md names the limit of each key).
 // Every quantity that multiplies the work or memory of a run has a limit here, checked in the demo's
 // prepare() — before anything is computed, allocated or written — and past it the scene is one
 // error naming the file, the JSON path and the limit.

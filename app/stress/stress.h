@@ -1,5 +1,5 @@
 // `cdlab stress`: families of hard inputs from fixed seeds, each answer checked against an
-// independent oracle (README, "cdlab stress"). Checks need no trust in any one algorithm:
+// independent oracle (docs/accuracy.md). Checks need no trust in any one algorithm:
 //  - gjk_distance = the Minkowski-hull oracle (verification/minkowski_hull_oracle.h), SV and Johnson;
 //  - gjk_intersect and SAT OBB-OBB = the oracle's boolean (so SAT = GJK), outside a rounding band;
 //  - epa_depth = the oracle's depth, and the EPA normal valid: |h_{A-B}(n) - depth| small, with the
@@ -21,7 +21,7 @@
 //    point on its body with pointA - pointB = depth_i n, the distance and closest pair apart, the
 //    features holding the points and supporting the normal;
 //  - no NaN, no hang: every query's iterations are counted, reaching the cap is a failure.
-// Every failure becomes one `cdlab query` line (README "cdlab query", %.17g numbers) that replays it.
+// Every failure becomes one `cdlab query` line (docs/query.md, %.17g numbers) that replays it.
 #pragma once
 
 #include <cstdint>

@@ -4,8 +4,8 @@
 // doubles only (verification/least_overlap_oracle.h, verification/witness_oracle.h; nothing of
 // core's hull, GJK or SAT). L: the pair's size, L_body: one body's, M: the largest coordinate:
 //  - colliding = the oracle's verdict (least overlap D* > 0), exact outside 1e-12 L + 8uM of touching;
-//  - colliding: D* − tol <= depth <= 1.02 D* + band (the face preference, README "cdlab query") and
-//    h_{A−B}(normal) = depth within tol, tol = 1e-10 L + 8uM (the penetration depth's, README's
+//  - colliding: D* − tol <= depth <= 1.02 D* + band (the face preference, docs/query.md) and
+//    h_{A−B}(normal) = depth within tol, tol = 1e-10 L + 8uM (the penetration depth's, docs/accuracy.md's
 //    accuracy table); band = the SAT's touching band, 1e-9 of the larger bounding-box diagonal +
 //    128 u M (core/contact/contact_sat.h's contract). At least one point; every point: point_a on
 //    A and point_b on B within 1e-9 L_body + 8uM_body, point_a − point_b = depth_i · normal within
@@ -159,7 +159,7 @@ void checkColliding(Engine& e, const Judge& j, const ContactResult& r) {
     const double least = static_cast<double>(j.o.leastOverlap());
     const std::string text = "1e-10 L + 8uM";
     contactLength(e, j, "contact depth >= D*", text, r.depth, least, least - r.depth, tol);
-    // The face preference's bound (core/contact/contact_sat.h, step 3; README): 1.02 D* plus the SAT's
+    // The face preference's bound (core/contact/contact_sat.h, step 3; docs/accuracy.md): 1.02 D* plus the SAT's
     // touching band, 1e-9 of the larger bounding-box diagonal + 128 u M: inside that band a face
     // axis is kept over a better edge or face axis.
     const double band = kWitnessTol * std::max(bboxDiagonal(j.c.va), bboxDiagonal(j.c.vb)) + 128 * kU * j.w.M;

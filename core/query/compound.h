@@ -1,6 +1,6 @@
 // Pair queries of non-convex bodies: a union of convex query shapes (a compound) or the solid
 // bounded by a closed, consistently oriented triangle mesh — `cdlab query`'s {"compound": ...} and
-// {"mesh": ...} (README, "Compounds and meshes"), answered with core's one pair query on pieces
+// {"mesh": ...} (docs/query.md, "Compounds and meshes"), answered with core's one pair query on pieces
 // (pairQuery, core/query/pair.h).
 //
 //   intersect: some pair of boundary pieces intersects (touching counts), or one body is a mesh
@@ -90,7 +90,7 @@ std::vector<QueryShape> meshConvexPieces(const CompoundBody& mesh);
 
 enum class CompoundOp { Intersect, Distance, Penetration };
 
-/// The work limits (the defaults are `cdlab query`'s; README, Hardening).
+/// The work limits (the defaults are `cdlab query`'s; docs/limits.md).
 struct CompoundOptions {
     double maxPiecePairs = kMaxCompoundPairs;      ///< pieces of a x pieces of b, checked before each search
     double maxGjkWork = kMaxCompoundGjkPairs;      ///< intersect / distance searches, box-pair work

@@ -1,5 +1,5 @@
 // The contact query of two shapes of core/query/shape.h — the answers `cdlab query`'s "contact" op
-// prints (README "cdlab query"): the contact manifold of a polytope (polytope / aabb / obb) against
+// prints (docs/query.md): the contact manifold of a polytope (polytope / aabb / obb) against
 // a plane (core/contact/contact_plane.h) or another polytope (SAT with face clipping,
 // core/contact/contact_sat.h), of a sphere or capsule against any of them ("Spheres and capsules"
 // below), and of a cylinder or cone against a plane or a polytope (core/query/curved_contact.h);

@@ -6,7 +6,7 @@
 // overlap goes to GJK/EPA, and for distance the piece pairs in order of their boxes' distance until
 // that bound passes the best distance found (branch and bound). The closest pair and the deepest
 // pair are highlighted; the deepest pair's depth is not the union's true depth (a body can be deeper
-// in the union than in any one piece), as the README says for `cdlab query`'s compounds.
+// in the union than in any one piece), as docs/query.md says for `cdlab query`'s compounds.
 //
 // Scene keys (besides the common ones in scene.h):
 //   "a", "b": a body — {"prism": {"outline": [[x, y], ...], "height": h}} (a simple polygon extruded

@@ -11,7 +11,7 @@
 
 namespace cdlab::demos {
 
-/// A shape of the primitives demo, in the words of `cdlab query` (README "cdlab query"): sphere
+/// A shape of the primitives demo, in the words of `cdlab query` (docs/query.md): sphere
 /// {center | position, radius}, aabb {min, max}, obb / box {center | position, half_extents,
 /// rotation}, segment [p, q], triangle [a, b, c], point p, tetrahedron [a, b, c, d]. World frame.
 struct PrimitiveShape {

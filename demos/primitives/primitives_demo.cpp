@@ -1,5 +1,5 @@
 // The primitives demo's scene format and dispatch (docs/scenes.md, "primitives"). Shapes use the
-// words of `cdlab query` (README "cdlab query"), with the scenes' coordinate limits.
+// words of `cdlab query` (docs/query.md), with the scenes' coordinate limits.
 //
 // Scene keys (besides the common ones in scene.h):
 //   "test": "raycast" | "sat" | "point_in_polygon" | "closest_features" | "sphere_overlap" | "moving_2d"

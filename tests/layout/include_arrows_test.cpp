@@ -1,4 +1,4 @@
-// The architecture's arrows, checked on every #include of the tree (README, "Layout"):
+// The architecture's arrows, checked on every #include of the tree (docs/architecture.md):
 //   core/ includes only core/ (and the standard library and Eigen), and a core folder only folders
 //   at or below its layer; render/ includes only render/; production code never includes tests/;
 //   a demo's folder includes only its own folder and the shared ones (scene, draw, measure,

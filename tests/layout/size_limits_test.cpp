@@ -1,4 +1,4 @@
-// Size limits on every source file of the tree (README, "Layout", "Sizes"): a .h or .cpp under core/,
+// Size limits on every source file of the tree (docs/architecture.md, "Sizes"): a .h or .cpp under core/,
 // render/, app/, demos/ or verification/ has at most 800 lines, and a function body at most 120
 // lines (its opening brace's line to its closing brace's line, both counted; lambdas and nested
 // blocks count toward the function around them).

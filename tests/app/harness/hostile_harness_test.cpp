@@ -331,7 +331,7 @@ TEST_SUITE("hostile harness") {
     }
 
     TEST_CASE("stress: an output folder that cannot be written exits 2") {
-        // Reproducer: cdlab stress --out afile/sub (afile a regular file) -> exit 1; README says 2.
+        // Reproducer: cdlab stress --out afile/sub (afile a regular file) -> exit 1; docs/cli.md says 2.
         const fs::path root = tempDir("stress");
         std::ofstream(root / "afile") << "a regular file where a folder should be";
         Result r = run({"stress", "--seconds", "0", "--no-figures", "--out", (root / "afile" / "sub").string()}, root);

@@ -1,7 +1,7 @@
 // Every exactness reproducer of tests/data/exact-2026-11-29/ (its README: query lines an exact-rational
 // oracle answered differently from `cdlab query`, NAME.expected.json the exact answer), answered
 // in-process by the query tool (answerQuery, as `cdlab query` answers a line) and judged field by
-// field with the tolerances of the README's "What each answer meets, per op and field":
+// field with the tolerances of docs/accuracy.md's "What each answer meets":
 //   - against the exact answer of NAME.expected.json where the folder gives one (verdict, depth,
 //     the normals of least overlap, distance, t, the hit point, the entry face's normal);
 //   - against independent oracles in long double for every other field: h_{A−B}(n) by brute force
@@ -761,7 +761,7 @@ void judgeFeatures(Judge& j, const Body& a, const Body& b, const Scale& s, const
         j.le("feature_b (incident) a face of B", excess, s.onB());
         j.ok("feature_b (incident) faces A", normal.dot(nl) < 0, "outward normal . n = " + text(normal.dot(nl)));
     }
-    // Each feature holds its points (README, accuracy table): the closest points when apart, the
+    // Each feature holds its points (docs/accuracy.md, "What each answer meets"): the closest points when apart, the
     // manifold's points when colliding (stress "contact manifolds" 600 s #9758: a touching pair
     // shifted off its normal left point_a 3e-10 inside A, on no feature).
     const std::string what = colliding ? "point" : "closest point";
@@ -790,7 +790,7 @@ void judgeContact(Judge& j, const Body& a, const Body& b, const Json& ans, const
     if (a.kind == Body::Kind::Polytope && b.kind == Body::Kind::Polytope) keys.insert("axis");
     j.keys(ans, keys);
     const double depth = num(ans, "depth"), tol = s.depth();
-    // The face preference's bound (README, core/contact/contact_sat.h): least overlap · 1.02 plus
+    // The face preference's bound (docs/accuracy.md, core/contact/contact_sat.h): least overlap · 1.02 plus
     // the SAT's touching band, 1e-9 of the larger bounding-box diagonal + 128 u M; a manifold point
     // up to that band above the reference face carries its separation as a negative depth.
     const auto diagonal = [](const Body& body) {

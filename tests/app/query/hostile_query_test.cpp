@@ -104,7 +104,7 @@ TEST_SUITE("hostile input") {
     }
 
     TEST_CASE("a 10^5-vertex polytope: the answer is right, time and memory bounded") {
-        // 10^6 vertices take ~15 s and ~370 MB (README, hardening): too slow for a unit test; the
+        // 10^6 vertices take ~15 s and ~370 MB (docs/limits.md): too slow for a unit test; the
         // answer's correctness does not depend on the count, so 10^5 is checked against closed form.
         std::mt19937_64 rng(7);
         std::normal_distribution<double> g;

@@ -1,4 +1,4 @@
-// `cdlab query` ops raycast and time_of_impact: the exact answer formats of the README, closed-form
+// `cdlab query` ops raycast and time_of_impact: the exact answer formats of docs/query.md, closed-form
 // answers for every shape kind, power-of-two scale invariance (1e-200 .. 1e200), agreement with the
 // `intersect` op, and the one-line errors.
 #include <doctest/doctest.h>

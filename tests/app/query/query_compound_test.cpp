@@ -1,4 +1,4 @@
-// `cdlab query` with compounds and meshes (README "Compounds and meshes"): answer formats, a
+// `cdlab query` with compounds and meshes (docs/query.md, "Compounds and meshes"): answer formats, a
 // non-convex mesh whose notch a sphere sits in (its hull would overlap the sphere), bodies inside
 // bodies, and a random sample against an oracle that shares no code with the query (long-double
 // point-triangle distances and a closed-form inside test for spheres against an L-shaped prism;
@@ -173,7 +173,7 @@ TEST_SUITE("query") {
         // Compound against compound: the deeper of two overlapping pairs wins.
         const Json other = {{"compound", {sphere(Vec3(0, 1.8, 0), 1), sphere(Vec3(5, 1.2, 0), 1)}}};
         CHECK(ask(query("penetration", pair, other))["depth"].get<double>() == doctest::Approx(0.8).epsilon(1e-14));
-        // A mesh penetrated by a sphere: depth > 0 and the README's relation point_a - point_b = depth n.
+        // A mesh penetrated by a sphere: depth > 0 and docs/query.md's relation point_a - point_b = depth n.
         const Json m = ask(query("penetration", lMesh(), sphere(Vec3(0.5, 0.5, 1.05), 0.2)));
         CHECK(m["intersect"] == true);
         const double depth = m["depth"].get<double>();
