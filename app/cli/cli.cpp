@@ -12,12 +12,8 @@
 #include <vector>
 
 #include "app/cli/usage_text.h"  // generated from app/cli/usage.txt
-#include "app/bench/bench.h"
 #include "app/catalog/catalog.h"
-#include "app/check/check.h"
 #include "app/harness/scene_runner.h"
-#include "app/query/query.h"
-#include "app/stress/stress.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 
@@ -49,9 +45,7 @@ bool wantsHelp(int argc, char** argv, int first) {
     return false;
 }
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+
 
 // Parses runner options from argv[first..]; positional arguments are collected into `files`.
 RunnerOptions parseRunnerOptions(int argc, char** argv, int first, std::vector<std::string>* files) {
@@ -153,19 +147,19 @@ int withStdoutChecked(const char* program, int status) {
     return 2;
 }
 
-int cdlabCommand(int argc, char** argv);
+int cdlabCommand(int argc, char** argv, const ToolCommands& tools);
 
 }  // namespace
 
-int cdlabMain(int argc, char** argv) {
+int cdlabMain(int argc, char** argv, const ToolCommands& tools) {
     // Commands that write files remove their temp files when interrupted (render/image.h).
     render::removeTempFilesOnSignal();
-    return withStdoutChecked("cdlab", cdlabCommand(argc, argv));
+    return withStdoutChecked("cdlab", cdlabCommand(argc, argv, tools));
 }
 
 namespace {
 
-int cdlabCommand(int argc, char** argv) {
+int cdlabCommand(int argc, char** argv, const ToolCommands& tools) {
     return guarded("cdlab", [&]() -> int {
         if (argc < 2) throw UsageError("missing command");
         std::string cmd = argv[1];
@@ -189,33 +183,10 @@ int cdlabCommand(int argc, char** argv) {
             }
             return runGolden(o);
         }
-        if (cmd == "query") {
-            if (argc > 2) throw UsageError("query takes no arguments: it reads JSON Lines on stdin");
-            return runQueries(std::cin, std::cout);
-        }
-        if (cmd == "check") {
-            CheckOptions co;
-            for (int i = 2; i < argc; ++i) {
-                const std::string a = argv[i];
-                if (a == "--tolerance" && i + 1 < argc) {
-                    char* end = nullptr;
-                    const char* text = argv[++i];
-                    co.tolerance = std::strtod(text, &end);
-                    // Finite and in (0, kMaxCheckTolerance]: "inf", "nan" and 1e300 are refused, never a pass-all.
-                    if (!end || end == text || *end || !(co.tolerance > 0) || !(co.tolerance <= kMaxCheckTolerance)) {
-                        std::ostringstream most;
-                        most << kMaxCheckTolerance;
-                        throw UsageError("--tolerance takes a number above 0 and at most " + most.str() +
-                                         " (relative to the shapes' size), got " + std::string(text));
-                    }
-                } else if (a == "--figures" && i + 1 < argc) {
-                    co.figuresDir = argv[++i];
-                } else throw UsageError("check: unknown argument " + a + " (it reads JSON Lines on stdin)");
-            }
-            return runCheck(std::cin, std::cout, co);
-        }
-        if (cmd == "bench") return runBench(argc - 1, argv + 1);
-        if (cmd == "stress") return runStress(argc - 1, argv + 1);
+        if (const auto tool = tools.find(cmd); tool != tools.end()) return tool->second(argc, argv);
+        if (cmd == "query" || cmd == "check" || cmd == "bench" || cmd == "stress")  // the tools this program lacks
+            throw UsageError("'" + printable(cmd) + "' is not in this program, which renders figures: run ./cdlab " +
+                             printable(cmd) + " or build/bin/cdlab " + printable(cmd));
         if (cmd == "demos") {
             for (const Demo* d : allDemos()) std::cout << d->name() << "\t" << d->description() << "\n";
             return 0;

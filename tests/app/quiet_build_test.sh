@@ -18,8 +18,8 @@ case "$FAKE_BUILD" in
     fails) printf '%s\n' "[ 40%] Building CXX object app/x.cpp.o" "app/x.cpp:3:1: error: expected ';' before '}' token"; exit 2 ;;
 esac
 FAKE
-printf '#!/bin/sh\necho "ran $*"\n' > "$tmp/build/bin/cdlab"
-chmod +x "$tmp/path/cmake" "$tmp/build/bin/cdlab"
+printf '#!/bin/sh\necho "ran $*"\n' > "$tmp/build/bin/cdlab-figures"
+chmod +x "$tmp/path/cmake" "$tmp/build/bin/cdlab-figures"
 run() { FAKE_BUILD="$1" PATH="$tmp/path:$PATH" CDLAB_BUILD_DIR="$tmp/build" "$root/cdlab" render --template drop > "$tmp/out" 2> "$tmp/err"; }
 
 run uptodate || fail "up to date: exit $?"
@@ -27,7 +27,7 @@ run uptodate || fail "up to date: exit $?"
 grep -qx "ran render --template drop" "$tmp/out" || fail "up to date: the program did not run"
 run compiles || fail "compiles: exit $?"
 [ "$(wc -l < "$tmp/err")" -eq 1 ] || fail "compiles: more than one line on stderr"
-grep -q "^cdlab: building cdlab_programs" "$tmp/err" || fail "compiles: no progress line"
+grep -q "^cdlab: building cdlab_figures" "$tmp/err" || fail "compiles: no progress line"
 set +e; run fails; status=$?; set -e
 [ "$status" -eq 2 ] || fail "fails: exit $status, not 2"
 grep -qF "app/x.cpp:3:1: error: expected ';'" "$tmp/err" || fail "fails: the compiler's message is not shown"

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "app/cli/cli.h"
+#include "app/tools/tool_commands.h"
 #include "app/scene/json_reader.h"
 #include "render/image.h"
 #include "tests/app/harness/temp_files.h"
@@ -35,7 +36,7 @@ pid_t startFigures(const fs::path& out) {
         for (auto& a : args) argv.push_back(a.data());
         // No output from the child: the parent's doctest report stays readable.
         if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) _exit(5);
-        _exit(cdlabMain(int(argv.size()), argv.data()));
+        _exit(cdlabMain(int(argv.size()), argv.data(), toolCommands()));
     }
     return pid;
 }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app/cli/cli.h"
+#include "app/tools/tool_commands.h"
 #include "app/harness/gallery.h"
 #include "app/harness/scene_runner.h"
 #include "app/scene/json_reader.h"
@@ -90,7 +91,7 @@ Child start(const std::vector<std::string>& args, const fs::path& logs, const st
         std::vector<char*> argv;
         for (auto& s : a) argv.push_back(s.data());
         const int status =
-            demo.empty() ? cdlabMain(int(argv.size()), argv.data()) : demoMain(demo, int(argv.size()), argv.data());
+            demo.empty() ? cdlabMain(int(argv.size()), argv.data(), toolCommands()) : demoMain(demo, int(argv.size()), argv.data());
         std::fflush(stdout);
         std::fflush(stderr);
         _exit(status);
@@ -560,7 +561,7 @@ Result runToFullDisk(const std::vector<std::string>& args, const fs::path& logs)
         a.insert(a.begin(), "cdlab");
         std::vector<char*> argv;
         for (auto& x : a) argv.push_back(x.data());
-        const int status = cdlabMain(int(argv.size()), argv.data());
+        const int status = cdlabMain(int(argv.size()), argv.data(), toolCommands());
         std::fflush(stderr);
         _exit(status);
     }

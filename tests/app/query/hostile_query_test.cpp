@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "app/cli/cli.h"
+#include "app/tools/tool_commands.h"
 #include "app/catalog/catalog.h"
 #include "app/harness/scene_runner.h"
 #include "app/query/query.h"
@@ -218,7 +219,7 @@ TEST_SUITE("hostile input") {
                                          "--no-render", "--out",   out};
         std::vector<char*> argv;
         for (auto& a : args) argv.push_back(a.data());
-        CHECK(cdlabMain(int(argv.size()), argv.data()) == 2);
+        CHECK(cdlabMain(int(argv.size()), argv.data(), toolCommands()) == 2);
         fs::remove_all(dir);
     }
 
@@ -304,7 +305,7 @@ TEST_SUITE("hostile query") {
             std::vector<std::string> args = {"cdlab", "query"};
             std::vector<char*> argv;
             for (auto& a : args) argv.push_back(a.data());
-            _exit(cdlabMain(int(argv.size()), argv.data()));
+            _exit(cdlabMain(int(argv.size()), argv.data(), toolCommands()));
         }
         close(fds[0]);
         REQUIRE(write(fds[1], input.data(), input.size()) == ssize_t(input.size()));
