@@ -33,6 +33,12 @@ struct CastRun {
     SlabTrace slabs;                 // aabb / obb (in the box's axes)
     RayBoxHit box;
     RayTriangleHit triangle;  // triangle
+    // A triangle missed by a ray not parallel to its plane: where the ray's line meets the plane, at
+    // planeT, with the weights (a, b, c) of that point — one negative, or planeT < 0.
+    // primitives_demo_test "a miss by a negative weight".
+    bool planeCrossing = false;
+    double planeT = 0.0;
+    Vec3 planePoint = Vec3::Zero(), planeWeights = Vec3::Zero();
 };
 
 CastRun runCast(const RaycastInput& in) {
@@ -51,6 +57,15 @@ CastRun runCast(const RaycastInput& in) {
         run.triangle = in.segment ? intersectSegmentTriangle(seg, tri) : intersectRayTriangle(ray, tri);
         run.hit = run.triangle.hit;
         run.t = run.triangle.t;
+        const Vec3 n = (tri.b - tri.a).cross(tri.c - tri.a);
+        if (!run.hit && n.dot(in.direction) != 0) {
+            run.planeCrossing = true;
+            run.planeT = n.dot(tri.a - in.origin) / n.dot(in.direction);
+            run.planePoint = in.origin + run.planeT * in.direction;
+            const Vec3& q = run.planePoint;
+            run.planeWeights = Vec3(n.dot((tri.b - q).cross(tri.c - q)), n.dot((tri.c - q).cross(tri.a - q)),
+                                    n.dot((tri.a - q).cross(tri.b - q))) / n.squaredNorm();
+        }
     } else {
         // An obb's slabs are its own axes: the cast in the box's frame, where it is an aabb (t unchanged).
         const Mat3 Rt = s.box.axes.transpose();
@@ -86,6 +101,8 @@ Json castJson(const RaycastInput& in, const CastRun& run) {
         j["barycentric"] = vec3Json(run.triangle.barycentric);
         j["back_face"] = run.triangle.backFace;
         j["coplanar"] = run.triangle.coplanar;
+        if (run.planeCrossing)
+            j["plane_crossing"] = {{"t", run.planeT}, {"point", vec3Json(run.planePoint)}, {"weights", vec3Json(run.planeWeights)}};
     } else {
         Json slabs = Json::array();
         for (const SlabStep& s : run.slabs.steps)
@@ -260,7 +277,10 @@ Frame triangleFrame(GlContext& gl, const SceneCommon& scene, int scale, const Ra
     double size = 0;
     for (const Vec3& p : v) size = std::max(size, (p - centroid).norm());
     size = std::max({size, (in.origin - centroid).norm() * 0.5, 1e-3});
-    const double tEnd = drawnEnd(in, run.hit ? run.t : (centroid - in.origin).dot(in.direction) / in.direction.squaredNorm(), size);
+    const double tShown = run.hit ? run.t
+                          : run.planeCrossing && run.planeT > 0 ? run.planeT
+                                                                : (centroid - in.origin).dot(in.direction) / in.direction.squaredNorm();
+    const double tEnd = drawnEnd(in, tShown, size);
     const std::vector<Vec3> drawn = {v[0], v[1], v[2], in.origin, in.origin + tEnd * in.direction};
     const Vec3 e1 = (v[1] - v[0]).normalized();
     const Vec3 view = (n + 0.55 * e1 + 0.35 * n.cross(e1)).normalized();
@@ -269,12 +289,15 @@ Frame triangleFrame(GlContext& gl, const SceneCommon& scene, int scale, const Ra
                                   : viewAbove(drawn, view, n.cross(e1), 0.74, scene.image.width, scene.image.height));
     const bool labels = scene.hasLayer("labels");
     const char* names[3] = {"a", "b", "c"};
-    if (run.hit) {
-        // The weight of a vertex is the area of the sub-triangle opposite it over the whole.
-        const Vec3 w = run.triangle.barycentric;
+    if (run.hit || run.planeCrossing) {
+        // The weight of a vertex is the area of the sub-triangle opposite it over the whole (signed:
+        // a miss's plane point outside an edge makes that edge's sub-triangle negative).
+        const Vec3 w = run.hit ? run.triangle.barycentric : run.planeWeights;
+        const Vec3 q = run.hit ? run.point : run.planePoint;
+        if (!run.hit) canvas.drawPolygon({v[0], v[1], v[2]}, roleColor(Role::ShapeA).withAlpha(0.2f));
         for (int k = 0; k < 3; ++k) {
             std::vector<Vec3> sub = {v[0], v[1], v[2]};
-            sub[std::size_t(k)] = run.point;
+            sub[std::size_t(k)] = q;
             canvas.drawPolygon(sub, categorical(2 * k).withAlpha(0.35f));
             if (labels) {
                 TextStyle ts{19.0f, categorical(2 * k).scaled(0.55f), Anchor::Center, true, true};
@@ -296,6 +319,10 @@ Frame triangleFrame(GlContext& gl, const SceneCommon& scene, int scale, const Ra
         canvas.drawText(in.origin, in.segment ? "p (t = 0)" : "o (t = 0)", pointLabel());
     } else {
         drawCast(canvas, in, tEnd, 0.0);
+        if (run.planeCrossing) {
+            canvas.drawPoint(run.planePoint, 6.0f, roleColor(Role::Muted));
+            if (labels) canvas.drawText(run.planePoint, "plane point, t = " + formatNumber(run.planeT), pointLabel());
+        }
     }
     if (labels) drawHit(canvas, run, "t = " + formatNumber(run.t));
     if (scene.hasLayer("numbers")) {
@@ -308,6 +335,15 @@ Frame triangleFrame(GlContext& gl, const SceneCommon& scene, int scale, const Ra
                             " face (n = (b − a) × (c − a))" + (run.triangle.coplanar ? ", lying in its plane" : "") +
                             ";  " + verdict(run));
         } else {
+            if (run.planeCrossing) {
+                const Vec3 w = run.planeWeights;
+                int k = 0;
+                w.minCoeff(&k);
+                const char* edge[3] = {"bc", "ca", "ab"};
+                lines.push_back("the line meets the plane at t = " + formatNumber(run.planeT) + ";  weights (w_a, w_b, w_c) = (" +
+                                formatNumber(w[0]) + ", " + formatNumber(w[1]) + ", " + formatNumber(w[2]) + ")" +
+                                (w[k] < 0 ? std::string(":  w_") + names[k] + " < 0, beyond edge " + edge[k] : std::string()));
+            }
             lines.push_back("the signs of the triple products [d, b − o, c − o], [d, c − o, a − o], [d, a − o, b − o] "
                             "differ from the sign of d·n (or t < 0): no hit");
         }

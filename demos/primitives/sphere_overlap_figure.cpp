@@ -200,8 +200,12 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
             drawBody(on, shapeDrawable(s), fill, alpha, fill.scaled(0.7f), 1.5f);
         }
         on.drawPoint(c0, 6.0f, roleColor(Role::Ink));
-        on.drawLine(c0, run.closest, lineStyle(Role::Result, 3.0f, false, true));
-        on.drawPoint(run.closest, 8.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
+        // Two spheres: the centre line c_a → c_b, the quantity compared with r_a + r_b; else the line
+        // to the other shape's closest point.
+        const Vec3 end = in.other.kind == K::Sphere ? in.other.vertices[0] : run.closest;
+        on.drawLine(c0, end, lineStyle(Role::Result, 3.0f, false, true));
+        if (in.other.kind == K::Sphere) on.drawPoint(end, 6.0f, roleColor(Role::Ink));
+        else on.drawPoint(end, 8.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
     };
     drawGeometry(c, scene.hasLayer("labels"), nullptr);
     // The overlap or the gap the frame names: along the centre line, between the sphere's surface
@@ -217,12 +221,14 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
         TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
         ts.place = true;
         ts.offsetPx = Eigen::Vector2d(0, -24);
-        c.drawText(c0, "c", ts);
+        const bool two = in.other.kind == K::Sphere;
+        c.drawText(c0, two ? "c_a" : "c", ts);
         ts.offsetPx = Eigen::Vector2d(0, 28);
-        c.drawText(run.closest, in.other.kind == K::Sphere ? "c_b" : "closest point", ts);
+        c.drawText(two ? in.other.vertices[0] : run.closest, two ? "c_b" : "closest point", ts);
     }
     drawKey(c, 20, 62,
-            {{roleColor(Role::ShapeA), "the sphere"}, {roleColor(Role::ShapeB), std::string("the ") + nameOf(in.other.kind)},
+            {{roleColor(Role::ShapeA), in.other.kind == K::Sphere ? "sphere a" : "the sphere"},
+             {roleColor(Role::ShapeB), in.other.kind == K::Sphere ? "sphere b" : std::string("the ") + nameOf(in.other.kind)},
              {roleColor(Role::Result), in.other.kind == K::Sphere ? "centre to centre" : "centre to closest point"}},
             17.0f);
     if (scene.hasLayer("numbers")) drawNumberBlock(c, numberLines(in, run), 52);

@@ -125,6 +125,113 @@ TEST_SUITE("primitives_demo") {
         CHECK((vec(s["ray"]["origin"]) + t["t"].get<double>() * vec(s["ray"]["direction"]) - p).norm() < 1e-12);
     }
 
+    TEST_CASE("ray vs sphere: a ray that starts inside hits at 0, a tangent ray has one double root") {
+        {
+            const Json s = sceneJson("ray_sphere_inside"), t = runScene("ray_sphere_inside");
+            const Vec3 c = vec(s["shape"]["sphere"]["center"]), o = vec(s["ray"]["origin"]), d = vec(s["ray"]["direction"]);
+            const double r = s["shape"]["sphere"]["radius"];
+            REQUIRE((o - c).norm() < r);
+            // The chord through o: one crossing behind it, one ahead; the ray is in the sphere at t = 0.
+            const double tc = (c - o).dot(d) / d.squaredNorm(), dist = (o + tc * d - c).norm();
+            const double half = std::sqrt(r * r - dist * dist) / d.norm();
+            CHECK(t["quadratic"]["roots"][0].get<double>() == doctest::Approx(tc - half).epsilon(1e-12));
+            CHECK(t["quadratic"]["roots"][1].get<double>() == doctest::Approx(tc + half).epsilon(1e-12));
+            CHECK(tc - half < 0);
+            CHECK(tc + half > 0);
+            CHECK(t["hit"].get<bool>());
+            CHECK(t["t"].get<double>() == 0);
+            CHECK(t["quadratic"]["c"].get<double>() == doctest::Approx((o - c).squaredNorm() - r * r).epsilon(1e-12));
+        }
+        {
+            const Json s = sceneJson("ray_sphere_tangent"), t = runScene("ray_sphere_tangent");
+            const Vec3 c = vec(s["shape"]["sphere"]["center"]), o = vec(s["ray"]["origin"]), d = vec(s["ray"]["direction"]);
+            const double r = s["shape"]["sphere"]["radius"];
+            // The line's closest approach to the centre is exactly r away: one root, where it touches.
+            const double tc = (c - o).dot(d) / d.squaredNorm();
+            CHECK((o + tc * d - c).norm() == doctest::Approx(r).epsilon(1e-15));
+            CHECK(t["quadratic"]["discriminant"].get<double>() == 0);
+            CHECK(t["quadratic"]["roots"][0].get<double>() == doctest::Approx(tc).epsilon(1e-15));
+            CHECK(t["quadratic"]["roots"][1].get<double>() == doctest::Approx(tc).epsilon(1e-15));
+            CHECK(t["hit"].get<bool>());
+            CHECK((vec(t["point"]) - c).norm() == doctest::Approx(r).epsilon(1e-15));
+        }
+    }
+
+    TEST_CASE("ray vs AABB: a ray parallel to a slab is inside it for every t or never") {
+        const Json s = sceneJson("ray_aabb_parallel"), t = runScene("ray_aabb_parallel");
+        const Vec3 o = vec(s["ray"]["origin"]), d = vec(s["ray"]["direction"]);
+        const Vec3 lo = vec(s["shape"]["aabb"]["min"]), hi = vec(s["shape"]["aabb"]["max"]);
+        double enter = 0, exit = INFINITY;
+        int parallel = 0;
+        for (const Json& slab : t["slabs"]) {
+            const int i = slab["axis"];
+            CHECK(slab["parallel"].get<bool>() == (d[i] == 0));
+            if (d[i] == 0) {
+                ++parallel;
+                CHECK(slab["rejected"].get<bool>() == !(lo[i] <= o[i] && o[i] <= hi[i]));
+                continue;
+            }
+            const double a = (lo[i] - o[i]) / d[i], b = (hi[i] - o[i]) / d[i];
+            CHECK(std::min(a, b) == doctest::Approx(slab["t_near"].get<double>()));
+            CHECK(std::max(a, b) == doctest::Approx(slab["t_far"].get<double>()));
+            enter = std::max(enter, std::min(a, b));
+            exit = std::min(exit, std::max(a, b));
+        }
+        CHECK(parallel == 1);
+        REQUIRE(t["hit"].get<bool>() == (enter <= exit));
+        CHECK(t["t"].get<double>() == doctest::Approx(enter));
+        CHECK(t["t_exit"].get<double>() == doctest::Approx(exit));
+    }
+
+    TEST_CASE("ray vs triangle: a miss by a negative weight at the plane point") {
+        const Json s = sceneJson("ray_triangle_miss"), t = runScene("ray_triangle_miss");
+        const Json& tri = s["shape"]["triangle"];
+        const Vec3 a = vec(tri[0]), b = vec(tri[1]), c = vec(tri[2]);
+        const Vec3 o = vec(s["ray"]["origin"]), d = vec(s["ray"]["direction"]);
+        // o + t·d = a + u·(b − a) + v·(c − a), solved by Cramer's rule: weights (1 − u − v, u, v).
+        Mat3 m;
+        m.col(0) = b - a;
+        m.col(1) = c - a;
+        m.col(2) = -d;
+        const double det = m.determinant();
+        REQUIRE(det != 0);
+        Vec3 x;
+        for (int k = 0; k < 3; ++k) {
+            Mat3 mk = m;
+            mk.col(k) = o - a;
+            x[k] = mk.determinant() / det;
+        }
+        const Vec3 w(1 - x[0] - x[1], x[0], x[1]);
+        CHECK_FALSE(t["hit"].get<bool>());
+        const Json& crossing = t["plane_crossing"];
+        CHECK(crossing["t"].get<double>() == doctest::Approx(x[2]).epsilon(1e-12));
+        for (int k = 0; k < 3; ++k) CHECK(crossing["weights"][k].get<double>() == doctest::Approx(w[k]).epsilon(1e-12));
+        CHECK(w.minCoeff() < 0);  // the miss: one weight negative, the plane point outside
+        CHECK(x[2] > 0);          // ahead of the origin, so the weight alone decides
+        CHECK((vec(crossing["point"]) - (o + x[2] * d)).norm() < 1e-12);
+    }
+
+    TEST_CASE("sphere vs sphere and sphere vs AABB: the distance, Arvo's clamp and the verdict recomputed") {
+        {
+            const Json s = sceneJson("sphere_sphere"), t = runScene("sphere_sphere");
+            const Vec3 ca = vec(s["a"]["sphere"]["center"]), cb = vec(s["b"]["sphere"]["center"]);
+            const double ra = s["a"]["sphere"]["radius"], rb = s["b"]["sphere"]["radius"];
+            CHECK(t["distance"].get<double>() == doctest::Approx((cb - ca).norm()).epsilon(1e-15));
+            CHECK(t["reach"].get<double>() == ra + rb);
+            CHECK(t["hit"].get<bool>() == ((cb - ca).squaredNorm() <= (ra + rb) * (ra + rb)));
+            CHECK(t["hit"].get<bool>());  // the scene shows an overlap
+        }
+        {
+            const Json s = sceneJson("sphere_aabb"), t = runScene("sphere_aabb");
+            const Vec3 c = vec(s["a"]["sphere"]["center"]);
+            const Vec3 lo = vec(s["b"]["aabb"]["min"]), hi = vec(s["b"]["aabb"]["max"]);
+            const Vec3 clamped = c.cwiseMax(lo).cwiseMin(hi);
+            CHECK((vec(t["closest"]) - clamped).norm() < 1e-15);
+            CHECK(t["distance"].get<double>() == doctest::Approx((c - clamped).norm()).epsilon(1e-15));
+            CHECK(t["hit"].get<bool>() == ((c - clamped).norm() <= s["a"]["sphere"]["radius"].get<double>()));
+        }
+    }
+
     TEST_CASE("SAT: every listed interval is the projection of the shape's corners, and the verdict follows") {
         for (const char* name : {"sat_obb_obb", "sat_obb_obb_overlap", "sat_triangle_aabb"}) {
             const Json s = sceneJson(name), t = runScene(name);
