@@ -563,9 +563,17 @@ CheckResult checkOneLine(const std::string& line, std::size_t lineNumber, const 
         c.run(op);
         // The trace is checked whatever the answer's verdict, its first broken step reported first: a
         // wrong distance is the symptom, the step the cause (check_test "the broken step of a wrong
-        // answer"). A query cdlab answers with an error has no run to check a trace against.
-        if (trace && !member(theirs, "error"))
-            checkTrace(op, q, *trace, tol, a, b, r.reasons, r.traceDivergence, r.traceAlgorithm);
+        // answer"). A query cdlab answers with an error has no run to check a trace against. A trace
+        // that cannot be read says so beside the answer's reasons, which stay.
+        if (trace && !member(theirs, "error")) {
+            try {
+                checkTrace(op, q, *trace, tol, a, b, r.reasons, r.traceDivergence, r.traceAlgorithm);
+            } catch (const std::bad_alloc&) {
+                throw;
+            } catch (const std::exception& e) {
+                r.reasons.push_back(std::string("your trace could not be read (a key of the wrong type?): ") + e.what());
+            }
+        }
         r.reasons.insert(r.reasons.end(), c.reasons.begin(), c.reasons.end());
         if (trace) r.trace = *trace;
     } catch (const std::bad_alloc&) {
@@ -629,9 +637,13 @@ bool selfCheckPasses(const std::string& queryLine, std::string* why) {
 namespace {
 
 // --figures: the failing line's figure, or why it has none; the GL context is made on first use.
-std::string figureFor(const CheckResult& r, std::size_t lineNumber, const CheckOptions& options,
+std::string figureFor(const CheckResult& result, std::size_t lineNumber, const CheckOptions& options,
                       std::unique_ptr<render::GlContext>& gl) {
-    if (r.query.is_null()) return "no figure: the line could not be read";
+    if (result.query.is_null()) return "no figure: the line could not be read";
+    // The reasons as the verdict line prints them (printable): what your answer echoes cannot put
+    // lines of its own on the figure either (check_figure_test "escaped on the figure").
+    CheckResult r = result;
+    for (std::string& reason : r.reasons) reason = printable(reason);
     try {
         const bool traceFigure = r.traceDivergence >= 0 && (r.traceAlgorithm == "gjk" || r.traceAlgorithm == "epa") &&
                                  r.query.value("op", "") != "closest_point_triangle";

@@ -14,6 +14,7 @@
 #include "app/query/query.h"
 #include "app/query/query_json.h"
 #include "app/query/query_shapes.h"
+#include "app/scene/json_reader.h"
 #include "app/scene/scene_limits.h"
 #include "render/canvas.h"
 #include "render/image.h"
@@ -373,7 +374,8 @@ std::string writeRegionFigure(render::GlContext& gl, const Json& query, const Js
             cs.drawPoint(q, 7.0f, roleColor(Role::Result), true, 1.5f, roleColor(Role::Ink));
             drawLabelAway(cs, q, p, "closest", TextStyle{17.0f, roleColor(Role::Ink), Anchor::Center, true, true});
         }
-        std::string sub = region.empty() ? "no region" : "region " + region;
+        // Your region name as the verdict line prints it (escaped, cut): it cannot draw lines of its own.
+        std::string sub = region.empty() ? "no region" : "region " + printable(shortText(region));
         if (answer.contains("distance")) sub += ", distance " + number(answer["distance"]);
         drawPanelHeading(cs, heading, sub);
         return cs.readPixels();

@@ -22,6 +22,7 @@ std::string num(double x) {
 
 // A value: enough digits to show where two answers part.
 std::string value(double x) {
+    if (x == 0) x = 0;  // -0 prints as 0
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.12g", x);
     return buf;
@@ -69,7 +70,12 @@ std::optional<Vec3> vecMember(const Json& j, const std::string& key) {
     return vec(*m);
 }
 
-std::string shortText(const std::string& s) { return s.size() <= 60 ? s : s.substr(0, 57) + "..."; }
+std::string shortText(const std::string& s) {
+    if (s.size() <= 60) return s;
+    std::size_t cut = 57;  // never inside a UTF-8 sequence
+    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+    return s.substr(0, cut) + "...";
+}
 
 void Size::add(const Json& j, const std::string& key) {
     if (isVec(j)) {

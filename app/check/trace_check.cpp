@@ -59,39 +59,44 @@ std::string pointText(const Vec3& p) {
     return buf;
 }
 
-// A support w given alone and short of h_{A−B}(u): which of s_A(u), s_B(−u) was not extreme. When
-// a = w + s_B(−u) is a point of A (of shapes that are the hull of their vertices: one of them), B's
-// support was right and A's, a, is not A's extreme (the other way round when s_A(u) − w is one of
-// B). Polytopes' interiors hold both points often, so a vertex decides there; both vertex-defined
-// and neither a vertex: both fell short. "" when nothing can be said. check_test "names the
-// support that is not extreme".
+// A support w given alone and short of h_{A−B}(u): which of s_A(u), s_B(−u) was not extreme, told
+// only where the shapes are the hulls of their vertices (a support function of theirs returns a
+// vertex). Every way of writing w as a vertex of A minus a vertex of B is read, with every extreme
+// vertex (ties included): if all of them have B's vertex extreme and A's not, s_A fell short; the
+// other way round s_B; neither extreme, both; ways of more than one kind: either. No way at all: w
+// is no support of these polytopes. "" for other shapes, or past kMaxSupportPairs vertex pairs.
+// check_test "names the support that is not extreme".
+constexpr double kMaxSupportPairs = 1e6;
 std::string whichSupportShort(const Vec3& w, const Vec3& u, const ShapeModel& shapeA, const ShapeModel& shapeB,
                               double tol, const std::string& along) {
-    const std::optional<Vec3> sa = shapeA.supportPointOf(u), sb = shapeB.supportPointOf(-u);
-    if (!sa || !sb) return "";
-    const Vec3 a = w + *sb, b = *sa - w;
-    const auto isPointOf = [&](const ShapeModel& shape, const Vec3& p) {
-        if (const std::vector<Vec3>* v = shape.vertices())
-            return std::any_of(v->begin(), v->end(), [&](const Vec3& x) { return length(x - p) <= tol; });
-        const std::optional<double> d = shape.distanceTo(p);
-        return d && *d <= tol;
-    };
-    const bool inA = isPointOf(shapeA, a), inB = isPointOf(shapeB, b);
-    if (inA && !inB)
-        return "s_A is not extreme: your w is a − s_B(−" + along + ") with a = " + pointText(a) + " of A, reaching " +
-               value(a.dot(u)) + " along " + along + ", where A's extreme point " + pointText(*sa) + " reaches " +
-               value(sa->dot(u));
-    if (inB && !inA)
-        return "s_B is not extreme: your w is s_A(" + along + ") − b with b = " + pointText(b) + " of B, reaching " +
-               value(-b.dot(u)) + " along −(" + along + "), where B's extreme point " + pointText(*sb) + " reaches " +
-               value(-sb->dot(u));
-    if (inA && inB)
-        return "s_A or s_B is not extreme (w is a point of A minus B's extreme point " + pointText(*sb) +
-               ", and A's extreme point " + pointText(*sa) + " minus a point of B: give the pair {\"a\", \"b\"} to tell)";
-    if (shapeA.vertices() && shapeB.vertices())
-        return "neither s_A nor s_B is extreme: w is no vertex of A minus B's extreme vertex " + pointText(*sb) +
-               ", nor A's extreme vertex " + pointText(*sa) + " minus a vertex of B";
-    return "";
+    const std::vector<Vec3>* va = shapeA.vertices();
+    const std::vector<Vec3>* vb = shapeB.vertices();
+    const std::optional<double> ha = shapeA.support(u), hb = shapeB.support(-u);
+    if (!va || !vb || !ha || !hb || double(va->size()) * double(vb->size()) > kMaxSupportPairs) return "";
+    bool onlyA = false, onlyB = false, both = false;  // the kinds of ways w = a − b
+    Vec3 someA = Vec3::Zero(), someB = Vec3::Zero();
+    for (const Vec3& a : *va)
+        for (const Vec3& b : *vb) {
+            if (!(length(a - b - w) <= tol)) continue;
+            const bool aExtreme = a.dot(u) >= *ha - tol, bExtreme = b.dot(-u) >= *hb - tol;
+            if (aExtreme && bExtreme) continue;  // not reached: then w would be extreme
+            if (!aExtreme && bExtreme) onlyA = true, someA = a;
+            else if (aExtreme && !bExtreme) onlyB = true, someB = b;
+            else both = true;
+        }
+    const int kinds = int(onlyA) + int(onlyB) + int(both);
+    if (kinds == 0)
+        return "w is no vertex of A minus a vertex of B: no support function of these polytopes returns it";
+    if (kinds > 1)
+        return "s_A or s_B is not extreme (w is a vertex of A minus a vertex of B in more than one way: give the "
+               "pair {\"a\", \"b\"} to tell)";
+    if (onlyA)
+        return "s_A is not extreme: your w is a − s_B(−" + along + ") with a = " + pointText(someA) + " of A, reaching " +
+               value(someA.dot(u)) + " along " + along + ", where A reaches " + value(*ha);
+    if (onlyB)
+        return "s_B is not extreme: your w is s_A(" + along + ") − b with b = " + pointText(someB) + " of B, reaching " +
+               value(-someB.dot(u)) + " along −(" + along + "), where B reaches " + value(*hb);
+    return "neither s_A nor s_B is extreme: w is a vertex of A minus a vertex of B, neither of them extreme";
 }
 
 // Rule 1 of GJK and EPA: the support w is extreme in A − B along the unit direction u, w·u =
@@ -122,7 +127,8 @@ std::string supportRuleBreak(const GivenSupport& given, const Vec3& u, const Sha
 // "w(0), w(2)": simplex points named by the iteration whose support each is.
 std::string names(const std::vector<int>& from) {
     std::string text;
-    for (std::size_t i = 0; i < from.size(); ++i) text += (i ? ", w(" : "w(") + std::to_string(from[i]) + ")";
+    for (std::size_t i = 0; i < from.size() && i < 6; ++i) text += (i ? ", w(" : "w(") + std::to_string(from[i]) + ")";
+    if (from.size() > 6) text += " and " + std::to_string(from.size() - 6) + " more";
     return text;
 }
 
@@ -132,7 +138,9 @@ std::string names(const std::vector<int>& from) {
 // points (a trace giving no simplex for many steps) get the distance alone.
 // check_test "names the region a wrong reduction missed".
 std::string subSimplexAdvice(const std::vector<Vec3>& pool, const std::vector<int>& from, double best, double tol) {
-    const std::string whole = "the simplex " + names(from) + " is " + num(best) + " from the origin";
+    const std::string whole = pool.size() > 4 ? "the " + std::to_string(pool.size()) + " points since the last simplex given, " +
+                                                    names(from) + ", are " + num(best) + " from the origin"
+                                              : "the simplex " + names(from) + " is " + num(best) + " from the origin";
     if (pool.size() > 6) return whole;
     for (std::size_t size = 1; size <= std::min<std::size_t>(pool.size(), 4); ++size)
         for (unsigned mask = 1; mask < (1u << pool.size()); ++mask) {
@@ -195,7 +203,10 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, const Shape
         pool.push_back(w);
         poolFrom.push_back(static_cast<int>(k));
         const Json* simplex = member(s, "simplex");
-        if (!simplex) continue;
+        if (!simplex) {  // your reduction is not given: the next direction cannot be checked against it
+            closest.reset();
+            continue;
+        }
         if (!simplex->is_array()) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
         if (simplex->empty() || simplex->size() > 4) return reasons.push_back(at + "the simplex kept has 1 to 4 points");
         std::vector<Vec3> next;
@@ -203,9 +214,10 @@ void checkGjkTrace(const Json& query, const Json& trace, double tol, const Shape
         for (const Json& p : *simplex) {
             if (!isVec(p)) return reasons.push_back(at + "simplex: expected a list of points [x, y, z]");
             next.push_back(vec(p));
-            const auto match = std::find_if(pool.begin(), pool.end(), [&](const Vec3& y) { return length(y - next.back()) <= tol; });
-            if (match == pool.end()) return reasons.push_back(at + "the simplex keeps a point that was not in it");
-            nextFrom.push_back(poolFrom[static_cast<std::size_t>(match - pool.begin())]);
+            // The latest match: a support that reappears is named by its latest iteration.
+            const auto match = std::find_if(pool.rbegin(), pool.rend(), [&](const Vec3& y) { return length(y - next.back()) <= tol; });
+            if (match == pool.rend()) return reasons.push_back(at + "the simplex keeps a point that was not in it");
+            nextFrom.push_back(poolFrom[pool.size() - 1 - static_cast<std::size_t>(match - pool.rbegin())]);
         }
         const ShapeModel kept = hullOf(next);
         const std::optional<double> best = hullOf(pool).distanceTo(Vec3::Zero()), mineD = kept.distanceTo(Vec3::Zero());

@@ -39,6 +39,16 @@ struct PlotSeries {
 /// giving at most `intervals` intervals (the V-Clip distance plot, EPA's bounds plot).
 double roundTickStep(double span, int intervals);
 
+/// Two bounds closing on an answer, per iteration (EPA's depth, GJK's distance): linear axes from a
+/// round tick below the data to one above, the upper bound and the lower bound as lines with
+/// markers, a legend naming each, the demo's title and a caption (every number from the trace).
+struct BoundsPlot {
+    std::vector<int> iterations;
+    std::vector<double> lower, upper;  ///< one each per iteration
+    std::string xLabel, yLabel, upperName, lowerName, title, caption;
+};
+render::Image drawBoundsPlot(render::GlContext& gl, int width, int height, int scale, const BoundsPlot& plot);
+
 /// Scatter / line plot on log (or linear) axes with decade ticks, labels and a legend.
 render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& options, const std::vector<PlotSeries>& series);
 

@@ -528,67 +528,23 @@ private:
         return lines;
     }
 
-    // Lower and upper depth bounds against the iteration, drawn with the 2D canvas in pixel units.
+    // Lower and upper depth bounds against the iteration (demos/draw/plot.h).
     Frame drawPlot(GlContext& gl, int ss, const EpaRun& run) const {
-        const int W = common_.image.width, H = common_.image.height;
-        Canvas c(gl, canvasOptions(W, H, ss), Camera::pixels(W, H));  // world = pixels, y up
-        const double x0 = 110, x1 = W - 60, y0 = 125, y1 = H - 100;
-        double lo = INFINITY, hi = -INFINITY;
+        BoundsPlot plot;
         for (const PolyStep& s : run.steps) {
-            lo = std::min({lo, s.lower, s.upper});
-            hi = std::max({hi, s.lower, s.upper});
+            plot.iterations.push_back(s.iteration);
+            plot.lower.push_back(s.lower);
+            plot.upper.push_back(s.upper);
         }
-        if (!(hi > lo)) hi = lo + 1e-9 + std::abs(lo) * 1e-6;
-        // The axis from a round tick below the data to one above, so its base is labelled (the
-        // review: a base of 0.03 unlabelled read as 0).
-        const double step = roundTickStep(hi - lo, 5);
-        lo = std::floor(lo / step) * step;
-        hi = std::ceil(hi / step) * step;
-        const int n = int(run.steps.size());
-        auto X = [&](double it) { return n > 1 ? x0 + (it - 1) / (n - 1) * (x1 - x0) : 0.5 * (x0 + x1); };
-        auto Y = [&](double v) { return y0 + (v - lo) / (hi - lo) * (y1 - y0); };
-        auto P = [](double x, double y) { return Vec3(x, y, 0); };
-        const LineStyle axis = lineStyle(Role::Ink, 2.0f);
-        c.drawLine(P(x0, y0), P(x1, y0), axis);
-        c.drawLine(P(x0, y0), P(x0, y1), axis);
-        TextStyle tick{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
-        const int xStep = std::max(1, n / 12);
-        for (int i = 1; i <= n; i += xStep) {
-            c.drawLine(P(X(i), y0), P(X(i), y0 - 6), axis);
-            c.drawText(P(X(i), y0 - 10), std::to_string(i), tick);
-        }
-        TextStyle ytick{15.0f, roleColor(Role::Ink), Anchor::Right, false, false};
-        // Round values (the review: ticks at −0.1522, 0.4556, ... read as data).
-        for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) {
-            if (std::abs(v) < 1e-9 * step) v = 0;
-            c.drawLine(P(x0, Y(v)), P(x1, Y(v)), lineStyle(Role::Muted, 1.0f, true));
-            c.drawText(P(x0 - 10, Y(v)), formatNumber(v), ytick);
-        }
-        c.drawText(P(0.5 * (x0 + x1), y0 - 40), "EPA iteration",
-                   TextStyle{17.0f, roleColor(Role::Ink), Anchor::Top, false, true});
-        c.drawText(P(x0, y1 + 14), "penetration depth bounds",
-                   TextStyle{17.0f, roleColor(Role::Ink), Anchor::BottomLeft, false, true});
-        std::vector<Vec3> lower, upper;
-        for (const PolyStep& s : run.steps) {
-            lower.push_back(P(X(s.iteration), Y(s.lower)));
-            upper.push_back(P(X(s.iteration), Y(s.upper)));
-        }
-        c.drawPolyline(upper, false, lineStyle(Role::ShapeB, 3.0f));
-        c.drawPolyline(lower, false, lineStyle(Role::ShapeA, 3.0f));
-        for (const Vec3& p : upper) c.drawPoint(p, 5.0f, roleColor(Role::ShapeB));
-        for (const Vec3& p : lower) c.drawPoint(p, 5.0f, roleColor(Role::ShapeA));
-        // Legend, top right.
-        const double lx = x1 - 330, ly = y1 - 10;
-        c.drawLine(P(lx, ly), P(lx + 40, ly), lineStyle(Role::ShapeB, 3.0f));
-        c.drawText(P(lx + 50, ly), "upper bound min n·s_C(n)",
-                   TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
-        c.drawLine(P(lx, ly - 28), P(lx + 40, ly - 28), lineStyle(Role::ShapeA, 3.0f));
-        c.drawText(P(lx + 50, ly - 28), "lower bound: closest face distance",
-                   TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
-        drawTitleAndCaption(c, common_.title + ": depth bounds per iteration",
-                            "final depth " + formatNumber(run.depth) + " (" + nameOf(run.termination) +
-                                "); the gap closes as the polytope reaches the boundary of A − B");
-        return Frame{"bounds", "depth bounds vs iteration", c.readPixels()};
+        plot.xLabel = "EPA iteration";
+        plot.yLabel = "penetration depth bounds";
+        plot.upperName = "upper bound min n·s_C(n)";
+        plot.lowerName = "lower bound: closest face distance";
+        plot.title = common_.title + ": depth bounds per iteration";
+        plot.caption = "final depth " + formatNumber(run.depth) + " (" + nameOf(run.termination) +
+                       "); the gap closes as the polytope reaches the boundary of A − B";
+        return Frame{"bounds", "depth bounds vs iteration",
+                     drawBoundsPlot(gl, common_.image.width, common_.image.height, ss, plot)};
     }
 };
 

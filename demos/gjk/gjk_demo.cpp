@@ -6,8 +6,8 @@
 // Scene keys (besides the common ones in scene.h and the pair keys of scene/pair_scene.h):
 //   "method": {"solver": "signed_volumes" | "johnson", "tolerance": eps_rel, "max_iterations": n}
 // Layers: "minkowski" (A − B), "simplex", "direction", "support", "witness", "labels".
-// Frames: step_NN (one per traced iteration, at most max_step_frames), "result", and with "steps"
-// a contact sheet; plus animation.gif (files) and the JSON trace.
+// Frames: step_NN (one per traced iteration, at most max_step_frames), "result", "bounds" (runs of 10
+// iterations or more), and with "steps" a contact sheet; plus animation.gif (files) and the JSON trace.
 #include "demos/gjk/gjk_demo.h"
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 
 #include "core/gjk_epa/gjk.h"
 #include "demos/draw/contact_sheet.h"
+#include "demos/draw/plot.h"
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
@@ -89,8 +90,37 @@ public:
             for (int i : framed) out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, i, r));
         else out.skipped.push_back("step frames (\"steps\": false)");
         out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, -1, r));
+        // The long runs (curved shapes: each support only approaches A − B's boundary) get the two
+        // bounds closing on the distance, per iteration (gjk_demo_test "bounds").
+        if (trace.steps.size() >= kBoundsPlotSteps) out.frames.push_back(boundsFrame(*ctx.gl, scale, trace, r));
         addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "GJK", int(trace.steps.size()), framed, out);
         return out;
+    }
+
+    static constexpr std::size_t kBoundsPlotSteps = 10;
+
+    Frame boundsFrame(GlContext& gl, int scale, const GjkTrace& trace, const GjkResult& r) const {
+        BoundsPlot plot;
+        for (const GjkTraceStep& s : trace.steps) {
+            plot.iterations.push_back(s.iteration);
+            plot.lower.push_back(s.lowerBound);
+            plot.upper.push_back(s.upperBound);
+        }
+        plot.xLabel = "GJK iteration";
+        plot.yLabel = "distance bounds";
+        plot.upperName = "upper bound |v| (before the step)";
+        plot.lowerName = "lower bound: max v·w / |v| so far";
+        plot.title = common_.title + ": distance bounds per iteration";
+        // The gap's decay, which the linear axis flattens after the first few iterations.
+        const auto gapAt = [&](std::size_t i) {
+            const GjkTraceStep& s = trace.steps[i];
+            return formatNumber(s.upperBound - s.lowerBound) + " at " + std::to_string(s.iteration);
+        };
+        plot.caption = "gap upper − lower: " + gapAt(0) + ", " + gapAt(trace.steps.size() / 2) + ", " +
+                       gapAt(trace.steps.size() - 1) + ";  distance " + formatNumber(r.distance) + " (" +
+                       nameOf(r.termination) + ")";
+        return Frame{"bounds", "distance bounds vs iteration",
+                     drawBoundsPlot(gl, common_.image.width, common_.image.height, scale, plot)};
     }
 
 private:

@@ -210,16 +210,51 @@ TEST_CASE("check: names the support that is not extreme") {
         return reasons(check(line));
     };
     CHECK(stepWith({-3, 1, 0}).find("iteration 0") == std::string::npos);
-    // w = (0, 0, 1) − (3, 0, 0): A's vertex (0, 0, 1) is not A's extreme; (0, 1, 0) − w = (3, 1, −1) is no vertex of B.
+    // w = (0, 0, 1) − (3, 0, 0), the only way: A's vertex (0, 0, 1) is not A's extreme, B's is.
     CHECK(stepWith({-3, 0, 1}).find("s_A is not extreme: your w is a − s_B(−d) with a = (0, 0, 1) of A, reaching 0.6 "
-                                    "along d, where A's extreme point (0, 1, 0) reaches 0.64") != std::string::npos);
+                                    "along d, where A reaches 0.64") != std::string::npos);
     // w = (0, 1, 0) − (3, 0, 1): B's vertex (3, 0, 1) is not B's extreme along −d.
     CHECK(stepWith({-3, 1, -1}).find("s_B is not extreme: your w is s_A(d) − b with b = (3, 0, 1) of B, reaching -2.04 "
-                                     "along −(d), where B's extreme point (3, 0, 0) reaches -1.44") != std::string::npos);
-    // w = (0, 0, 1) − (3, 0, 1) = (0, 0, 0) − (3, 0, 0) = (0, 1, 0) − (3, 1, 0): both readings hold; the verdict says so.
+                                     "along −(d), where B reaches -1.44") != std::string::npos);
+    // w = (1, 0, 0) − (3, 1, 0), the only way: neither vertex is extreme.
+    CHECK(stepWith({-2, -1, 0}).find("neither s_A nor s_B is extreme") != std::string::npos);
+    // w = (0, 0, 1) − (3, 0, 1) = (0, 0, 0) − (3, 0, 0) = (0, 1, 0) − (3, 1, 0): the ways disagree.
     CHECK(stepWith({-3, 0, 0}).find("s_A or s_B is not extreme") != std::string::npos);
-    // Short of A − B but the difference of no vertex with the other's extreme vertex: both fell short.
-    CHECK(stepWith({-2.5, 0.3, 0.1}).find("neither s_A nor s_B is extreme") != std::string::npos);
+    // Short of A − B but no vertex difference at all.
+    CHECK(stepWith({-2.5, 0.3, 0.1}).find("w is no vertex of A minus a vertex of B") != std::string::npos);
+
+    // Ties (the review's case): boxes along +x have four extreme vertices each. w = (−2, −1, −1) is
+    // (0, 0, 0) − (2, 1, 1) (A's vertex not extreme) and (1, 0, 0) − (3, 1, 1) (B's not): either.
+    Json boxes = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    boxes["trace"] = {{"algorithm", "gjk"}, {"steps", Json::array({{{"direction", {1, 0, 0}}, {"support", {-2, -1, -1}}}})}};
+    CHECK(reasons(check(boxes)).find("s_A or s_B is not extreme") != std::string::npos);
+    // A point's support is always extreme: the blame is B's.
+    Json point = {{"op", "distance"}, {"a", {{"point", {0, 0, 0}}}}, {"b", {{"aabb", {{"min", {3, -1, -1}}, {"max", {4, 1, 1}}}}}},
+                  {"answer", {{"intersect", false}, {"distance", 3.0}, {"point_a", {0, 0, 0}}, {"point_b", {3, 0, 0}}}},
+                  {"trace", {{"algorithm", "gjk"}, {"steps", Json::array({{{"direction", {1, 0, 0}}, {"support", {-4, -1, 1}}}})}}}};
+    CHECK(reasons(check(point)).find("s_B is not extreme") != std::string::npos);
+}
+
+TEST_CASE("check: a trace that cannot be read keeps the answer's reasons") {
+    Json line = {{"op", "closest_point_triangle"}, {"point", {0.2, 0.2, 5}}, {"triangle", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                 {"answer", {{"point", {9, 9, 9}}, {"region", "ABC"}}},
+                 {"trace", {{"algorithm", "ericson_regions"}, {"tests", Json::array({{{"region", 5}, {"accepted", true}}})}}}};
+    const std::string why = reasons(check(line));
+    CHECK(why.find("your trace could not be read") != std::string::npos);
+    CHECK(why.find("point off by") != std::string::npos);
+}
+
+TEST_CASE("check: after a step without a simplex the next direction is not held to an older one") {
+    // Iteration 1 gives no simplex (allowed): iteration 2's direction comes from your reduction, which
+    // the check does not have; it must not be compared with iteration 0's simplex.
+    Json line = distanceLine({{"intersect", false}, {"distance", 1.0}, {"point_a", {1, 0.5, 0.5}}, {"point_b", {2, 0.5, 0.5}}});
+    Json steps = Json::array();
+    steps.push_back({{"direction", {1, 0, 0}}, {"support", {-1, 1, 1}}, {"simplex", {{-1, 1, 1}}}});
+    steps.push_back({{"direction", {1, -1, -1}}, {"support", {-1, -1, -1}}});
+    steps.push_back({{"direction", {1, 0, 0}}, {"support", {-1, 1, -1}}});
+    line["trace"] = {{"algorithm", "gjk"}, {"steps", steps}};
+    const CheckResult r = check(line);
+    CHECK_MESSAGE(r.pass, reasons(r));
 }
 
 TEST_CASE("check: an answer with keys of the wrong type fails that line only") {

@@ -11,6 +11,7 @@
 
 #include "core/gjk_epa/gjk.h"
 #include "core/geometry/shapes.h"
+#include "app/catalog/catalog.h"
 #include "demos/gjk/gjk_demo.h"
 
 using namespace cdlab;
@@ -88,4 +89,27 @@ TEST_CASE("GJK figure: every vector drawn from the origin is the trace quantity 
         }
     }
     CHECK(checked > 400);
+}
+
+TEST_CASE("GJK bounds: the long runs' bounds enclose the distance at every iteration and close monotonically") {
+    // The "bounds" frame (runs of 10 iterations or more) plots lower_bound and upper_bound per step;
+    // each must be a bound on the final distance, the lower one never falling, the upper one never rising.
+    for (const char* name : {"sphere_box", "cylinder_cone"}) {
+        const cdlab::demos::Json t =
+            cdlab::demos::loadScene(std::string(CDLAB_SOURCE_DIR) + "/golden/gjk/" + name + ".json")->run(cdlab::demos::RunContext{}).trace;
+        const cdlab::demos::Json& steps = t["steps"];
+        REQUIRE(steps.size() >= 10);
+        const double distance = t["distance"].get<double>(), slack = 1e-12 * (1 + distance);
+        double lower = -INFINITY, upper = INFINITY;
+        for (const cdlab::demos::Json& s : steps) {
+            const double lo = s["lower_bound"].get<double>(), up = s["upper_bound"].get<double>();
+            CHECK(lo <= distance + slack);
+            CHECK(up >= distance - slack);
+            CHECK(lo >= lower);
+            CHECK(up <= upper + slack);
+            lower = lo;
+            upper = up;
+        }
+        CHECK(upper - lower < 1e-8 * (1 + distance));  // converged: the two meet
+    }
 }

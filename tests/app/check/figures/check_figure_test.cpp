@@ -237,3 +237,22 @@ TEST_CASE("check --figures: the figure wraps its reasons, a wrong answer's broke
     CHECK_MESSAGE(drawn.find(second) != std::string::npos, drawn);
     std::filesystem::remove_all(run.dir);
 }
+
+TEST_CASE("check --figures: reasons are escaped on the figure as on the verdict line") {
+    // A region holding newlines would put lines of its own under the figure: it is drawn as
+    // printed, "\n" and all, on one caption line.
+    const std::string line =
+        R"({"op":"closest_point_triangle","point":[0.2,0.2,1],"triangle":[[0,0,0],[1,0,0],[0,1,0]],)"
+        R"("answer":{"point":[0.2,0.2,0],"region":"X\nforged 0\nforged 1"}})";
+    render::drawnTextLog().clear();
+    const FigureRun run = checkWithFigures(line + "\n", "cdlab_check_escaped_figure_test");
+    REQUIRE(run.out.find("[figure ") != std::string::npos);
+    bool escaped = false;
+    for (const std::string& s : render::drawnTextLog()) {
+        CHECK(s.rfind("forged", 0) != 0);  // no drawn line starts with the forged text
+        CHECK_MESSAGE(s.find('\n') == std::string::npos, s);
+        escaped = escaped || s.find("X\\nforged 0\\nforged 1") != std::string::npos;
+    }
+    CHECK(escaped);
+    std::filesystem::remove_all(run.dir);
+}
