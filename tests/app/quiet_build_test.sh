@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ./cdlab's build is quiet (issue 43 §3): nothing on stderr when nothing compiles, one line when
 # something does, the compiler's message and "build failed" (exit 2) when it fails — run with a
-# stand-in `cmake` that prints what make prints in each case, and a stand-in program.
+# stand-in `cmake` that prints what make prints in each case, and a stand-in program; run under
+# CDLAB_WERROR=1 as well as without (.ci/run sets it, and the script then reconfigures first).
 # Usage: quiet_build_test.sh REPO_ROOT
 set -eu
 root="$1"
@@ -11,6 +12,8 @@ mkdir -p "$tmp/path" "$tmp/build/bin"
 touch "$tmp/build/CMakeCache.txt" "$tmp/build/.cdlab-configured"  # configured, after every CMakeLists.txt
 cat > "$tmp/path/cmake" <<'FAKE'
 #!/usr/bin/env bash
+# A configure (CI's CDLAB_WERROR=1 reconfigures first) talks and succeeds: the script must keep it quiet.
+if [ "${1:-}" != "--build" ]; then echo "-- Configuring done"; exit 0; fi
 case "$FAKE_BUILD" in
     uptodate) printf '%s\n' "[ 20%] Built target cdlab_core" "[ 60%] Built target cdlab_app" "[100%] Built target cdlab" ;;
     compiles) printf '%s\n' "[ 20%] Built target cdlab_core" "[ 40%] Building CXX object app/x.cpp.o" \
@@ -22,6 +25,8 @@ printf '#!/bin/sh\necho "ran $*"\n' > "$tmp/build/bin/cdlab-figures"
 chmod +x "$tmp/path/cmake" "$tmp/build/bin/cdlab-figures"
 run() { FAKE_BUILD="$1" PATH="$tmp/path:$PATH" CDLAB_BUILD_DIR="$tmp/build" "$root/cdlab" render --template drop > "$tmp/out" 2> "$tmp/err"; }
 
+for werror in 0 1; do
+export CDLAB_WERROR=$werror
 run uptodate || fail "up to date: exit $?"
 [ ! -s "$tmp/err" ] || fail "up to date: the build printed on stderr"
 grep -qx "ran render --template drop" "$tmp/out" || fail "up to date: the program did not run"
@@ -33,4 +38,5 @@ set +e; run fails; status=$?; set -e
 grep -qF "app/x.cpp:3:1: error: expected ';'" "$tmp/err" || fail "fails: the compiler's message is not shown"
 grep -q "build failed" "$tmp/err" || fail "fails: no \"build failed\""
 ! grep -q "ran" "$tmp/out" || fail "fails: the program ran after a failed build"
+done
 echo "quiet build: silent when up to date, one line when compiling, the error and exit 2 when failing"
