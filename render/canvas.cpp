@@ -115,38 +115,6 @@ void Canvas::drawTextPx(double x, double y, const std::string& text, const TextS
     impl_->texts.push_back({false, Vector3d::Zero(), Vector2d(x, y), text, style, {}});
 }
 
-std::vector<std::string> wrapText(GlContext& context, const std::string& text, const TextStyle& style,
-                                  double maxWidthPx) {
-    const FontFace& face = context.impl().font(style.bold);
-    const auto width = [&](const std::string& s) { return layoutText(face, s, style.sizePx).width; };
-    std::vector<std::string> lines;
-    std::string line;
-    std::size_t i = 0;
-    while (i < text.size()) {
-        const std::size_t space = text.find(' ', i);
-        const std::string word = text.substr(i, space == std::string::npos ? std::string::npos : space - i);
-        i = space == std::string::npos ? text.size() : space + 1;
-        const std::string joined = line.empty() ? word : line + " " + word;
-        if (width(joined) <= maxWidthPx) {
-            line = joined;
-            continue;
-        }
-        if (!line.empty()) lines.push_back(line);
-        line.clear();
-        // A word too wide alone: cut between UTF-8 characters (never inside one).
-        for (std::size_t c = 0; c < word.size();) {
-            std::size_t n = 1;
-            while (c + n < word.size() && (static_cast<unsigned char>(word[c + n]) & 0xC0) == 0x80) ++n;
-            const std::string piece = word.substr(c, n);
-            if (!line.empty() && width(line + piece) > maxWidthPx) lines.push_back(line), line.clear();
-            line += piece;
-            c += n;
-        }
-    }
-    if (!line.empty() || lines.empty()) lines.push_back(line);
-    return lines;
-}
-
 Eigen::Vector2d Canvas::measureText(const std::string& text, const TextStyle& style) const {
     if (!(style.sizePx > 0)) return {0, 0};
     const FontFace& face = impl_->context.impl().font(style.bold);  // metrics only: no GL

@@ -85,11 +85,6 @@ RenderStats& renderStats();  ///< this thread's (each drawing thread keeps its o
 /// a caller checks in the text of its frames (e.g. that no number printed as "nan" or "inf").
 std::vector<std::string>& drawnTextLog();
 
-/// `text` broken at spaces into lines no wider than maxWidthPx when drawn in `style` at scale 1 (a
-/// word wider than that alone is broken between characters): a caption wraps instead of running
-/// off the frame. Metrics only, no GL call. canvas_test "wrapText".
-std::vector<std::string> wrapText(GlContext& context, const std::string& text, const TextStyle& style, double maxWidthPx);
-
 /// Not thread-safe; a Canvas must not outlive its GlContext. Cheap to create: GL objects
 /// (program, buffers, glyph atlases, framebuffers by size) are cached in the GlContext.
 class Canvas {

@@ -637,13 +637,13 @@ bool selfCheckPasses(const std::string& queryLine, std::string* why) {
 namespace {
 
 // --figures: the failing line's figure, or why it has none; the GL context is made on first use.
-std::string figureFor(const CheckResult& result, std::size_t lineNumber, const CheckOptions& options,
+std::string figureFor(const CheckResult& r, std::size_t lineNumber, const CheckOptions& options,
                       std::unique_ptr<render::GlContext>& gl) {
-    if (result.query.is_null()) return "no figure: the line could not be read";
+    if (r.query.is_null()) return "no figure: the line could not be read";
     // The reasons as the verdict line prints them (printable): what your answer echoes cannot put
     // lines of its own on the figure either (check_figure_test "escaped on the figure").
-    CheckResult r = result;
-    for (std::string& reason : r.reasons) reason = printable(reason);
+    std::vector<std::string> reasons;
+    for (const std::string& reason : r.reasons) reasons.push_back(printable(reason));
     try {
         const bool traceFigure = r.traceDivergence >= 0 && (r.traceAlgorithm == "gjk" || r.traceAlgorithm == "epa") &&
                                  r.query.value("op", "") != "closest_point_triangle";
@@ -657,14 +657,14 @@ std::string figureFor(const CheckResult& result, std::size_t lineNumber, const C
         if (!r.id.is_null()) title += " (id " + printable(idText(r.id)) + ")";
         const std::string why =
             r.query.value("op", "") == "closest_point_triangle"
-                ? writeRegionFigure(*gl, r.query, r.cdlab, r.yours, title + ": closest_point_triangle", r.reasons, path)
+                ? writeRegionFigure(*gl, r.query, r.cdlab, r.yours, title + ": closest_point_triangle", reasons, path)
             : r.traceDivergence >= 0 && (r.traceAlgorithm == "gjk" || r.traceAlgorithm == "epa")
                 ? writeTraceStepFigure(*gl, r.query, r.trace, r.traceAlgorithm, r.traceDivergence,
                                        title + ": " + r.query.value("op", "") + ", " +
                                            (r.traceAlgorithm == "gjk" ? "GJK" : "EPA") + " iteration " +
                                            std::to_string(r.traceDivergence),
-                                       r.reasons, path)
-                : writeCheckFigure(*gl, r.query, r.cdlab, r.yours, title + ": " + r.query.value("op", ""), r.reasons,
+                                       reasons, path)
+                : writeCheckFigure(*gl, r.query, r.cdlab, r.yours, title + ": " + r.query.value("op", ""), reasons,
                                    path);
         return why.empty() ? "figure " + path : why;
     } catch (const std::exception& e) {

@@ -314,9 +314,10 @@ struct CheckCaption {
 constexpr std::size_t kMaxCaptionLines = 6;
 CheckCaption checkCaption(render::GlContext& gl, const std::vector<std::string>& reasons) {
     CheckCaption c{twoPanelLayout(1280, 640, ""), {}};
-    const TextStyle style{17.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false};
+    const TextStyle style{17.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false};  // composeTwoPanel's
+    const Canvas measure(gl, canvasOptions(c.layout.width, c.layout.height, 1));
     for (std::size_t i = 0; i < reasons.size() && i < 2; ++i)
-        for (const std::string& line : render::wrapText(gl, reasons[i], style, c.layout.width - 36.0))
+        for (const std::string& line : wrapAtSeparator(measure, reasons[i], " ", style, c.layout.width - 36.0, true))
             c.lines.push_back(line);
     if (c.lines.size() > kMaxCaptionLines) {
         c.lines.resize(kMaxCaptionLines);

@@ -175,14 +175,6 @@ std::optional<double> ShapeModel::support(const Vec3& n) const {
     return std::nullopt;
 }
 
-std::optional<Vec3> ShapeModel::supportPointOf(const Vec3& n) const {
-    if (form_ == Form::Shape && shape_.bounded()) return supportPoint(shape_, n);
-    if (form_ != Form::Mesh) return std::nullopt;
-    const auto best = std::max_element(meshVertices_.begin(), meshVertices_.end(),
-                                       [&](const Vec3& x, const Vec3& y) { return x.dot(n) < y.dot(n); });
-    return *best;
-}
-
 const std::vector<Vec3>* ShapeModel::vertices() const {
     if (form_ == Form::Mesh) return &meshVertices_;
     if (form_ != Form::Shape || !shape_.bounded() || shape_.isCurved() || shape_.radius != 0) return nullptr;

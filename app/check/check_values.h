@@ -71,9 +71,6 @@ public:
     /// Support value h_S(n) = max over S of x·n (a compound: its pieces; a mesh: its vertices);
     /// nothing for unbounded shapes or what cannot be read.
     std::optional<double> support(const Vec3& n) const;
-    /// A point of the shape whose value along n is support(n): a bounded shape's support point, a
-    /// mesh's extreme vertex; nothing for a compound, an unbounded shape or what cannot be read.
-    std::optional<Vec3> supportPointOf(const Vec3& n) const;
     /// The vertices of a shape that is their hull (polytope, box, triangle, segment, point, mesh);
     /// nothing for rounded, curved, unbounded or compound shapes.
     const std::vector<Vec3>* vertices() const;

@@ -81,16 +81,30 @@ void drawKey(Canvas& canvas, double x, double y, const std::vector<KeyItem>& ite
 }
 
 std::vector<std::string> wrapPieces(const Canvas& measure, const std::vector<std::string>& pieces,
-                                    const std::string& separator, const TextStyle& style, double width) {
+                                    const std::string& separator, const TextStyle& style, double width, bool cutWide) {
+    const auto wider = [&](const std::string& text) { return measure.measureText(text, style).x() > width; };
     std::vector<std::string> lines;
     std::string line;
     for (const std::string& piece : pieces) {
         const std::string longer = line.empty() ? piece : line + separator + piece;
-        if (!line.empty() && measure.measureText(longer, style).x() > width) {
+        if (line.empty() || !wider(longer)) {
+            line = longer;
+            if (!(cutWide && wider(line))) continue;
+        } else {
             lines.push_back(line);
             line = piece;
-        } else {
-            line = longer;
+            if (!(cutWide && wider(line))) continue;
+        }
+        // A piece wider than the line: cut between UTF-8 characters (never inside one).
+        const std::string wide = line;
+        line.clear();
+        for (std::size_t c = 0; c < wide.size();) {
+            std::size_t n = 1;
+            while (c + n < wide.size() && (static_cast<unsigned char>(wide[c + n]) & 0xC0) == 0x80) ++n;
+            const std::string character = wide.substr(c, n);
+            if (!line.empty() && wider(line + character)) lines.push_back(line), line.clear();
+            line += character;
+            c += n;
         }
     }
     if (!line.empty()) lines.push_back(line);
@@ -98,13 +112,13 @@ std::vector<std::string> wrapPieces(const Canvas& measure, const std::vector<std
 }
 
 std::vector<std::string> wrapAtSeparator(const Canvas& measure, const std::string& line, const std::string& separator,
-                                         const TextStyle& style, double width) {
+                                         const TextStyle& style, double width, bool cutWide) {
     std::vector<std::string> pieces;
     std::size_t start = 0;
     for (std::size_t at; (at = line.find(separator, start)) != std::string::npos; start = at + separator.size())
         pieces.push_back(line.substr(start, at - start));
     pieces.push_back(line.substr(start));
-    return wrapPieces(measure, pieces, separator, style, width);
+    return wrapPieces(measure, pieces, separator, style, width, cutWide);
 }
 
 render::Color triangleRegionColor(int regionIndex) {

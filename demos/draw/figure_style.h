@@ -29,13 +29,16 @@ struct KeyItem {
 void drawKey(render::Canvas& canvas, double x, double y, const std::vector<KeyItem>& items, float sizePx = 16.0f);
 
 /// Greedy line filling: `pieces` joined by `separator`, a new line whenever the next piece would
-/// make the line wider than `width` px in `style` (a piece wider than that gets a line of its own).
+/// make the line wider than `width` px in `style` (a piece wider than that gets a line of its own,
+/// or with `cutWide` is cut between UTF-8 characters into lines that fit: text a user wrote, which
+/// may hold no separator at all; figure_style_test "wrapAtSeparator").
 std::vector<std::string> wrapPieces(const render::Canvas& measure, const std::vector<std::string>& pieces,
-                                    const std::string& separator, const render::TextStyle& style, double width);
+                                    const std::string& separator, const render::TextStyle& style, double width,
+                                    bool cutWide = false);
 /// `line` broken only at its `separator`s (a number block's "a = 1;  b = 2"), the pieces joined back
 /// by wrapPieces into lines of at most `width`.
 std::vector<std::string> wrapAtSeparator(const render::Canvas& measure, const std::string& line, const std::string& separator,
-                                         const render::TextStyle& style, double width);
+                                         const render::TextStyle& style, double width, bool cutWide = false);
 
 render::LineStyle lineStyle(render::Role role, float widthPx, bool dashed = false, bool onTop = false);
 render::TextStyle labelStyle(render::Role role, float sizePx = 22.0f, bool bold = true);

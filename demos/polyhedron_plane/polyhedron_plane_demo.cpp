@@ -717,7 +717,8 @@ public:
             for (const JsonNode& it : items) {
                 ObjectReader pr(it);
                 scene->poses.push_back(readPose(pr));
-                restHeights.push_back(pr.find("rest_height") ? std::optional(sceneCoordinate(pr.get("rest_height"))) : std::nullopt);
+                restHeights.emplace_back();
+                if (auto h = pr.find("rest_height")) restHeights.back() = sceneCoordinate(*h);
                 scene->poseLabels.push_back(pr.stringOr("label", ""));
                 scene->poseViews.emplace_back();
                 if (auto pv = pr.find("view")) {

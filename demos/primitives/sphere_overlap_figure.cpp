@@ -168,12 +168,13 @@ std::pair<std::vector<Vec3>, std::vector<Eigen::Vector3i>> sphereCap(const Vec3&
 
 Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const SphereOverlapInput& in, const SphereRun& run) {
     const Vec3 c0 = in.sphere.vertices[0];
+    const bool twoSpheres = in.other.kind == K::Sphere;
     const double r = in.sphere.radius;
     std::vector<Vec3> drawn = in.other.vertices;
     for (int i = 0; i < 3; ++i) {
         drawn.push_back(c0 + r * Vec3::Unit(i));
         drawn.push_back(c0 - r * Vec3::Unit(i));
-        if (in.other.kind == K::Sphere) {
+        if (twoSpheres) {
             drawn.push_back(in.other.vertices[0] + in.other.radius * Vec3::Unit(i));
             drawn.push_back(in.other.vertices[0] - in.other.radius * Vec3::Unit(i));
         }
@@ -202,9 +203,9 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
         on.drawPoint(c0, 6.0f, roleColor(Role::Ink));
         // Two spheres: the centre line c_a → c_b, the quantity compared with r_a + r_b; else the line
         // to the other shape's closest point.
-        const Vec3 end = in.other.kind == K::Sphere ? in.other.vertices[0] : run.closest;
+        const Vec3 end = twoSpheres ? in.other.vertices[0] : run.closest;
         on.drawLine(c0, end, lineStyle(Role::Result, 3.0f, false, true));
-        if (in.other.kind == K::Sphere) on.drawPoint(end, 6.0f, roleColor(Role::Ink));
+        if (twoSpheres) on.drawPoint(end, 6.0f, roleColor(Role::Ink));
         else on.drawPoint(end, 8.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
     };
     drawGeometry(c, scene.hasLayer("labels"), nullptr);
@@ -221,15 +222,14 @@ Frame sphereFrame(GlContext& gl, const SceneCommon& scene, int scale, const Sphe
         TextStyle ts{19.0f, roleColor(Role::Ink), Anchor::Center, true, true};
         ts.place = true;
         ts.offsetPx = Eigen::Vector2d(0, -24);
-        const bool two = in.other.kind == K::Sphere;
-        c.drawText(c0, two ? "c_a" : "c", ts);
+        c.drawText(c0, twoSpheres ? "c_a" : "c", ts);
         ts.offsetPx = Eigen::Vector2d(0, 28);
-        c.drawText(two ? in.other.vertices[0] : run.closest, two ? "c_b" : "closest point", ts);
+        c.drawText(twoSpheres ? in.other.vertices[0] : run.closest, twoSpheres ? "c_b" : "closest point", ts);
     }
     drawKey(c, 20, 62,
-            {{roleColor(Role::ShapeA), in.other.kind == K::Sphere ? "sphere a" : "the sphere"},
-             {roleColor(Role::ShapeB), in.other.kind == K::Sphere ? "sphere b" : std::string("the ") + nameOf(in.other.kind)},
-             {roleColor(Role::Result), in.other.kind == K::Sphere ? "centre to centre" : "centre to closest point"}},
+            {{roleColor(Role::ShapeA), twoSpheres ? "sphere a" : "the sphere"},
+             {roleColor(Role::ShapeB), twoSpheres ? "sphere b" : std::string("the ") + nameOf(in.other.kind)},
+             {roleColor(Role::Result), twoSpheres ? "centre to centre" : "centre to closest point"}},
             17.0f);
     if (scene.hasLayer("numbers")) drawNumberBlock(c, numberLines(in, run), 52);
     drawTitleAndCaption(c, scene.title, scene.caption);

@@ -254,31 +254,6 @@ TEST_SUITE("render/canvas") {
             CHECK(b.layout.labels[i].box.x1 == doctest::Approx(2 * a.layout.labels[i].box.x1));
     }
 
-    TEST_CASE("wrapText: lines within the width, broken at spaces, a long word between characters") {
-        Canvas c(context(), {320, 120, 1, 4});
-        const TextStyle style{17, roleColor(Role::Ink), Anchor::TopLeft, false, false};
-        const std::string text = "yours reaches −1.74 along it, A − B reaches −0.34; your a is not extreme in A";
-        const std::vector<std::string> lines = wrapText(context(), text, style, 200);
-        REQUIRE(lines.size() >= 3);
-        std::string joined;
-        for (const std::string& line : lines) {
-            CHECK(c.measureText(line, style).x() <= 200);
-            joined += (joined.empty() ? "" : " ") + line;
-        }
-        CHECK(joined == text);  // every word kept, none cut
-        CHECK(wrapText(context(), text, style, 1e6) == std::vector<std::string>{text});
-        // A word wider than the line: cut between characters, never inside a UTF-8 sequence.
-        const std::vector<std::string> cut = wrapText(context(), "λλλλλλλλλλλλλλλλλλλλ", style, 60);
-        REQUIRE(cut.size() > 1);
-        std::string whole;
-        for (const std::string& piece : cut) {
-            CHECK(c.measureText(piece, style).x() <= 60);
-            CHECK(piece.size() % 2 == 0);  // whole two-byte characters
-            whole += piece;
-        }
-        CHECK(whole == "λλλλλλλλλλλλλλλλλλλλ");
-    }
-
     TEST_CASE("text: ink inside the measured box, none outside it") {
         Canvas c(context(), {320, 120, 1, 4});
         c.setCamera(Camera::twoD(0, 0, 10));

@@ -16,9 +16,24 @@
 using namespace cdlab::demos;
 namespace fs = std::filesystem;
 
+namespace {
+
+const char* const kChromium = "/usr/bin/chromium";
+
+// Headless chromium on a local page, `width` px wide, doing `what` (--screenshot=FILE, --dump-dom).
+// Flags: no sandbox (root), no GPU, and no background networking (the machine is offline).
+std::string chromiumCommand(const fs::path& root, int width, const std::string& what, const fs::path& html) {
+    return std::string("timeout 120 ") + kChromium +
+           " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+           " --disable-background-networking --disable-component-update --disable-sync --user-data-dir=" +
+           (root / "profile").string() + " --window-size=" + std::to_string(width) + ",700 " + what + " file://" +
+           html.string();
+}
+
+}  // namespace
+
 TEST_CASE("gallery: the index and a scene page render in headless chromium with their images") {
-    const char* chromium = "/usr/bin/chromium";
-    REQUIRE_MESSAGE(fs::exists(chromium), "Debian chromium is needed (./cdlab test installs it)");
+    REQUIRE_MESSAGE(fs::exists(kChromium), "Debian chromium is needed (./cdlab test installs it)");
 
     fs::path root = fs::temp_directory_path() / ("cdlab_gallery_test_" + std::to_string(getpid()));
     fs::remove_all(root);
@@ -55,13 +70,8 @@ TEST_CASE("gallery: the index and a scene page render in headless chromium with 
     for (const fs::path& html : {index, page}) {
         fs::path shot = root / "shot.png";
         fs::remove(shot);
-        // Flags: no sandbox (root), no GPU, and no background networking (the machine is offline).
-        std::string cmd = std::string("timeout 120 ") + chromium +
-                          " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-                          " --disable-background-networking --disable-component-update --disable-sync"
-                          " --user-data-dir=" +
-                          (root / "profile").string() + " --window-size=900,700 --screenshot=" + shot.string() +
-                          " file://" + html.string() + " >" + (root / "chromium.log").string() + " 2>&1";
+        const std::string cmd = chromiumCommand(root, 900, "--screenshot=" + shot.string(), html) + " >" +
+                                (root / "chromium.log").string() + " 2>&1";
         REQUIRE_MESSAGE(std::system(cmd.c_str()) == 0, "chromium failed: see " << (root / "chromium.log").string());
         REQUIRE(fs::exists(shot));
         cdlab::render::Image img = cdlab::render::readPng(shot.string());
@@ -82,8 +92,7 @@ TEST_CASE("gallery: the index's demo line of 15 demos wraps in a 1000-px and a 1
     // Measured in headless chromium: a copy of the index beside it, with a script that puts the
     // page's scroll width and the window's client width in its title (the gallery itself has no script),
     // read back with --dump-dom. Wider than the window = a horizontal scrollbar (issue 43 §3).
-    const char* chromium = "/usr/bin/chromium";
-    REQUIRE_MESSAGE(fs::exists(chromium), "Debian chromium is needed (./cdlab test installs it)");
+    REQUIRE_MESSAGE(fs::exists(kChromium), "Debian chromium is needed (./cdlab test installs it)");
     fs::path root = fs::temp_directory_path() / ("cdlab_gallery_width_test_" + std::to_string(getpid()));
     fs::remove_all(root);
     // One scene rendered, its folder copied under the 14 other demos' names: the index is built
@@ -110,12 +119,8 @@ TEST_CASE("gallery: the index's demo line of 15 demos wraps in a 1000-px and a 1
            "'fits ' : 'overflows ') + e.scrollWidth + ' in ' + e.clientWidth</script>\n";
     for (int width : {1000, 1400}) {
         const fs::path dom = root / "dom.html";
-        const std::string cmd = std::string("timeout 120 ") + chromium +
-                                " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-                                " --disable-background-networking --disable-component-update --disable-sync"
-                                " --user-data-dir=" + (root / "profile").string() + " --window-size=" + std::to_string(width) +
-                                ",700 --dump-dom file://" + (root / "out" / "probe.html").string() + " >" + dom.string() +
-                                " 2>" + (root / "chromium.log").string();
+        const std::string cmd = chromiumCommand(root, width, "--dump-dom", root / "out" / "probe.html") + " >" +
+                                dom.string() + " 2>" + (root / "chromium.log").string();
         REQUIRE_MESSAGE(std::system(cmd.c_str()) == 0, "chromium failed: see " << (root / "chromium.log").string());
         std::ifstream domIn(dom);
         const std::string text((std::istreambuf_iterator<char>(domIn)), std::istreambuf_iterator<char>());
