@@ -291,9 +291,18 @@ SapResult SweepAndPrune::build(const std::vector<Aabb>& boxes, SapTrace* trace) 
     activeAt_.assign(n, -1);
     for (const SapEndpoint& p : endpoints_[0]) {
         const int a = p.object();
+        SapSweepStep* step = nullptr;
+        if (trace) {
+            trace->sweep.emplace_back();
+            step = &trace->sweep.back();
+            step->endpoint = p;
+        }
         if (!p.isMax()) {
-            for (int b : active_)
-                if (overlapOnAxis(1, a, b) && overlapOnAxis(2, a, b)) addPair(a, b, trace, result);
+            for (int b : active_) {
+                const bool y = overlapOnAxis(1, a, b), z = overlapOnAxis(2, a, b);
+                if (step) step->tests.push_back(SapSweepTest{b, y, z});
+                if (y && z) addPair(a, b, trace, result);
+            }
             activeAt_[a] = static_cast<int>(active_.size());
             active_.push_back(a);
         } else {
@@ -302,6 +311,7 @@ SapResult SweepAndPrune::build(const std::vector<Aabb>& boxes, SapTrace* trace) 
             activeAt_[active_[at]] = at;
             active_.pop_back();
         }
+        if (step) step->active = active_;
     }
     return result;
 }

@@ -81,8 +81,24 @@ struct SapSwap {
     int axesOverlapping = 0;  ///< after the swap: on how many axes the two objects' ranks overlap (0..3)
 };
 
+/// build()'s sweep met `other` in the active list: their x intervals overlap; the pair is added
+/// iff their ranks overlap on y and on z too.
+struct SapSweepTest {
+    int other = 0;
+    bool overlapY = false, overlapZ = false;
+};
+
+/// One endpoint of build()'s sweep along x, in sorted order. A min endpoint meets every box in
+/// the active list (tests, in list order) and joins it; a max endpoint leaves it.
+struct SapSweepStep {
+    SapEndpoint endpoint;
+    std::vector<SapSweepTest> tests;  ///< empty for a max endpoint
+    std::vector<int> active;          ///< the active list after this step, in list order
+};
+
 /// Everything one call did, in order (cleared at the start of each call that takes it).
 struct SapTrace {
+    std::vector<SapSweepStep> sweep;  ///< build() only: its sweep along x, one step per x endpoint
     std::vector<SapSwap> swaps;  ///< axis x first, then y, then z
     int swapsPerAxis[3] = {0, 0, 0};
     std::vector<BoxPair> added;  ///< pair events in order; a pair may be added and removed in one update

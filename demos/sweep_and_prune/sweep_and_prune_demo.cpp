@@ -7,13 +7,18 @@
 // Scene keys (besides the common ones in scene.h):
 //   "boxes": [{"min": [x, y, z], "max": [x, y, z], "velocity": [vx, vy, vz]}, ...]  2..7 boxes,
 //            named A, B, C, ...; at frame f a box is its frame-0 box moved by f * velocity
-//   "frames": number of updates after the initial build (1..6, default 3)
+//   "frames": number of updates after the initial build (0..6, default 3; 0: the build alone)
 //   "view": direction from the scene centre towards the 3D camera (default [1.2, -1.6, 1.1], z up)
 // Layers: "view3d" (the boxes, reported pairs highlighted), "intervals" (the three axis panels),
-// "events" (the swap and pair lists). Frames: frame_00 (initial sort and sweep), frame_01, ...
+// "events" (the sweep table of frame 0, the swap and pair lists after). Frames: frame_00 (initial
+// sort and sweep), frame_01, ...
 // trace.json: per frame the endpoint order per axis, every swap (axis, moving and passed
-// endpoint, event, axes overlapping), the pairs, added and removed.
+// endpoint, event, axes overlapping), the pairs, added and removed; frame 0 also the sweep along
+// x (each endpoint, the active boxes a min meets with their y and z overlap, the active list
+// after). Test: tests/demos/sweep_and_prune/sap_demo_test.cpp.
 #include "demos/sweep_and_prune/sweep_and_prune_demo.h"
+
+#include "demos/sweep_and_prune/sap_coherence.h"
 
 #include <algorithm>
 #include <cmath>
@@ -105,6 +110,26 @@ std::vector<FrameData> simulate(const Settings& s) {
     return frames;
 }
 
+/// The sweep's met boxes for one min endpoint, each with what pruned it: "A: z apart   B: PAIR AB";
+/// compact ("A: z  B: PAIR") when the full line does not fit its column.
+std::string sweepTests(const SapSweepStep& step, int self, bool compact, bool& paired) {
+    std::string s;
+    paired = false;
+    for (const SapSweepTest& t : step.tests) {
+        std::string what;
+        if (t.overlapY && t.overlapZ) {
+            what = "PAIR";
+            if (!compact) what += " " + pairName(BoxPair{std::min(self, t.other), std::max(self, t.other)});
+            paired = true;
+        } else {
+            what = std::string(t.overlapY ? "" : "y") + (!t.overlapY && !t.overlapZ ? "," : "") + (t.overlapZ ? "" : "z");
+            if (!compact) what += " apart";
+        }
+        s += (s.empty() ? "" : compact ? "  " : "   ") + boxName(t.other) + ": " + what;
+    }
+    return s.empty() ? "no active box" : s;
+}
+
 /// One line per swap for the events list.
 std::string swapLine(const SapSwap& s) {
     std::string line = std::string(kAxisName[s.axis]) + ": " + endName(s.movingObject, s.movingIsMax) + " jumps over " +
@@ -183,6 +208,20 @@ private:
                 for (const BoxPair& p : ps) a.push_back(pairName(p));
                 return a;
             };
+            if (f == 0) {
+                Json sweep = Json::array();
+                for (const SapSweepStep& st : d.trace.sweep) {
+                    Json meets = Json::array(), active = Json::array();
+                    for (const SapSweepTest& t : st.tests)
+                        meets.push_back({{"box", boxName(t.other)}, {"y", t.overlapY}, {"z", t.overlapZ}});
+                    for (int a : st.active) active.push_back(boxName(a));
+                    sweep.push_back({{"endpoint", endName(st.endpoint.object(), st.endpoint.isMax())},
+                                     {"value", st.endpoint.value},
+                                     {"meets", meets},
+                                     {"active", active}});
+                }
+                j["sweep"] = sweep;
+            }
             j["pairs"] = names(d.pairs);
             j["added"] = names(d.trace.added);
             j["removed"] = names(d.trace.removed);
@@ -273,8 +312,9 @@ private:
             TextStyle head{17.0f, roleColor(Role::Ink), Anchor::Left, false, true};
             TextStyle body{15.0f, roleColor(Role::Ink), Anchor::Left, false, false};
             if (f == 0) {
-                line("Frame 0: initial sort of the 2n endpoints per axis,", head);
-                line("then one sweep along x pairing boxes that overlap on y and z", body, 26);
+                line("Frame 0: initial sort of the 2n endpoints per axis, then one", head);
+                line("sweep along x: a min meets each active box, paired if y and z overlap", body, 24);
+                y = drawSweepTable(c, d, x0, y);
             } else {
                 line("Frame " + std::to_string(f) + ": boxes moved; insertion sort repairs each axis", head);
                 line("swaps: x " + std::to_string(d.result.swapsPerAxis[0]) + ", y " +
@@ -307,7 +347,7 @@ private:
             TextStyle pairsStyle = head;
             pairsStyle.color = roleColor(Role::Highlight);
             line("pairs (overlap on all 3 axes): " + pairList(d.pairs), pairsStyle, 24);
-            line("added: " + pairList(added) + "     removed: " + pairList(removed), body);
+            if (f > 0) line("added: " + pairList(added) + "     removed: " + pairList(removed), body);
         }
 
         // ---- axis panels ----
@@ -340,6 +380,37 @@ private:
                                   std::to_string(added.size()) + " / -" + std::to_string(removed.size()) + " pairs";
         fr.image = std::move(img);
         return fr;
+    }
+
+    /// Frame 0's sweep along x, one row per endpoint in sorted order: the endpoint and its x, what a
+    /// min met in the active list, the active list after. Returns the y below the table.
+    double drawSweepTable(Canvas& c, const FrameData& d, double x0, double y) const {
+        const double rowH = std::min(19.0, 236.0 / std::max<std::size_t>(1, d.trace.sweep.size() + 1));
+        const float size = static_cast<float>(std::min(14.0, rowH - 3));
+        const TextStyle head{size, roleColor(Role::Muted).scaled(0.7f), Anchor::Left, false, false};
+        const double xMeet = x0 + 92, xActive = x0 + 462;
+        c.drawTextPx(x0, y, "x endpoint", head);
+        c.drawTextPx(xMeet, y, "meets in the active list", head);
+        c.drawTextPx(xActive, y, "active after", head);
+        y += rowH;
+        for (const SapSweepStep& st : d.trace.sweep) {
+            const int id = st.endpoint.object();
+            TextStyle t{size, boxColor(id).scaled(0.6f), Anchor::Left, false, true};
+            c.drawTextPx(x0, y, endName(id, st.endpoint.isMax()) + " " + formatNumber(st.endpoint.value), t);
+            t.bold = false;
+            t.color = roleColor(Role::Ink);
+            bool paired = false;
+            std::string met = st.endpoint.isMax() ? "leaves" : sweepTests(st, id, false, paired);
+            if (paired) t.color = roleColor(Role::Highlight), t.bold = true;
+            if (c.measureText(met, t).x() > xActive - xMeet - 12) met = sweepTests(st, id, true, paired);
+            c.drawTextPx(xMeet, y, met, t);
+            std::string active;
+            for (int a : st.active) active += (active.empty() ? "" : " ") + boxName(a);
+            t.color = roleColor(Role::Ink), t.bold = false;
+            c.drawTextPx(xActive, y, active.empty() ? "—" : active, t);
+            y += rowH;
+        }
+        return y + 4;
     }
 
     template <class ToWorld>
@@ -485,6 +556,8 @@ public:
     }
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{kW, kH}, {kW, kH, kW, kH}, "figures"}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
+        if (auto f = r.find("figure"); f && f->asEnum({"frames", "coherence"}) == "coherence")
+            return readCoherenceScene(r, std::move(common));
         Settings s;
         const JsonNode boxes = r.get("boxes");
         if (boxes.size() < 2 || boxes.size() > 7) boxes.fail("expected 2 to 7 boxes (named A..G)");
@@ -498,7 +571,7 @@ public:
             if (checkBox(m.box) != BoxStatus::Ok) b.fail("a box needs finite min <= max on every axis");
             s.boxes.push_back(m);
         }
-        if (auto f = r.find("frames")) s.frames = f->asInt(1, 6);
+        if (auto f = r.find("frames")) s.frames = f->asInt(0, 6);
         if (auto v = r.find("view")) {
             s.view = sceneVec3(*v);
             if (!(s.view.norm() > 0)) v->fail("view direction must be non-zero");
