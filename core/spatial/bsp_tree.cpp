@@ -180,7 +180,7 @@ int BspTree::buildNode(std::vector<int> polys, int depth, int parent, Work& work
     step.node = id;
     step.depth = depth;
     step.polygons = int(polys.size());
-    const int splitter = pickSplitter(polys, work, step);
+    const int splitter = pickSplitter(polys, work, step, trace != nullptr);
     std::vector<int> frontList, backList;
     partition(polys, id, work, step, frontList, backList);
     if (trace) trace->steps.push_back(step);
@@ -203,7 +203,7 @@ int BspTree::buildNode(std::vector<int> polys, int depth, int parent, Work& work
     return id;
 }
 
-int BspTree::pickSplitter(const std::vector<int>& polys, const Work& work, BspSplitStep& step) const {
+int BspTree::pickSplitter(const std::vector<int>& polys, const Work& work, BspSplitStep& step, bool record) const {
     // Score every candidate's plane against the node's polygons; coplanar polygons count as in
     // front, as in Ericson's code.
     const double K = options_.splitWeight;
@@ -229,6 +229,7 @@ int BspTree::pickSplitter(const std::vector<int>& polys, const Work& work, BspSp
             else ++ns;
         }
         const double score = K * ns + (1.0 - K) * std::abs(nf - nb);
+        if (record) step.scores.push_back(BspCandidateScore{s, nf, nb, ns, score});
         if (score < bestScore) {  // strict: the first of equal scores wins (deterministic)
             bestScore = score;
             bestSource = s;

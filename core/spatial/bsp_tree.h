@@ -93,6 +93,14 @@ struct BspNode {
     std::vector<int> fragments;  ///< indices into BspTree::fragments(): the polygons on this plane
 };
 
+/// One candidate splitter scored at a node: its plane against the node's polygons (coplanar ones
+/// counted in front, as in Ericson's code).
+struct BspCandidateScore {
+    int source = -1;  ///< input polygon
+    int front = 0, back = 0, straddling = 0;
+    double score = 0.0;  ///< K * straddling + (1 - K) * |front - back|
+};
+
 /// One plane choice during the build (Ericson §8.3.2), in build order (parent before children).
 struct BspSplitStep {
     int node = -1;
@@ -104,6 +112,8 @@ struct BspSplitStep {
     int coplanar = 0;         ///< stored at the node (same facing)
     int straddling = 0;       ///< split in two
     double score = 0.0;       ///< K * straddling + (1 - K) * |front - back| of the chosen plane
+    /// Every candidate in the order scored; the chosen one is the first of the lowest score.
+    std::vector<BspCandidateScore> scores;
 };
 struct BspTrace {
     std::vector<BspSplitStep> steps;
@@ -150,7 +160,8 @@ private:
     int buildNode(std::vector<int> polys, int depth, int parent, Work& work, BspTrace* trace);
     // Ericson §8.3.2 PickSplittingPlane: the source polygon whose plane scores best; step gets
     // the candidate count and the score.
-    int pickSplitter(const std::vector<int>& polys, const Work& work, BspSplitStep& step) const;
+    // With `record`, step.scores gets every candidate.
+    int pickSplitter(const std::vector<int>& polys, const Work& work, BspSplitStep& step, bool record) const;
     // The node's polygons sorted against the splitter's plane: coplanar ones stored at node id,
     // straddling ones split, the rest into front / back.
     void partition(const std::vector<int>& polys, int id, Work& work, BspSplitStep& step, std::vector<int>& frontList,

@@ -34,17 +34,7 @@ DemoOutput SpaceScene::runBspShape(const RunContext& ctx) const {
     out.trace["depth"] = bs.depth;
     out.trace["splits"] = bs.splits;
     out.trace["fragments"] = bs.fragmentCount;
-    Json steps = Json::array();
-    for (const BspSplitStep& s : trace.steps)
-        steps.push_back({{"node", s.node},
-                         {"depth", s.depth},
-                         {"splitter", s.splitter},
-                         {"front", s.front},
-                         {"back", s.back},
-                         {"coplanar", s.coplanar},
-                         {"straddling", s.straddling},
-                         {"score", s.score}});
-    out.trace["steps"] = steps;
+    out.trace["steps"] = bspStepsJson(trace);
     Json qs = Json::array();
     for (std::size_t i = 0; i < queries.size(); ++i)
         qs.push_back({{"point", vec2Json(queries[i])}, {"class", kClass[int(classes[i])]}});

@@ -104,7 +104,7 @@ public:
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<SpaceScene>(std::move(common));
-        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape"});
+        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape", "bsp_scores"});
         if (auto g = r.find("region")) s->region = readRect(*g);
         // Random boxes / points: {"count", "seed", "size": [min, max]} inside the region.
         unsigned seed = 1;
@@ -191,12 +191,14 @@ public:
             for (const JsonNode& item : polygon.items()) s->polygon.push_back(readPoint2(item));
             if (s->polygon.size() < 3) polygon.fail("expected at least 3 vertices (counter-clockwise)");
             requireSimpleCounterClockwise(polygon, s->polygon);
-            if (auto q = r.find("queries")) {
+            if (s->figure == "bsp_scores") {
+                if (auto f = r.find("frames")) s->scoreFrames = f->asInt(1, 8);
+            } else if (auto q = r.find("queries")) {
                 requireAtMost(*q, double(q->size()), kMaxPartitionItems, "the number of query points",
                               "one drawn point each");
                 for (const JsonNode& item : q->items()) s->queries.push_back(readPoint2(item));
             }
-            if (auto g = r.find("segment")) {
+            if (auto g = s->figure == "bsp_shape" ? r.find("segment") : std::nullopt) {
                 if (g->size() != 2) g->fail("expected [[x, y], [x, y]]");
                 s->segment = {readPoint2(g->at(0)), readPoint2(g->at(1))};
                 s->hasSegment = true;

@@ -30,6 +30,10 @@ namespace cdlab::demos::spacefig {
 
 using namespace render;
 
+/// The BSP build's steps for trace.json: per split its node, splitter, counts and every candidate's
+/// scores (space_partition_bsp_scores_figure.cpp).
+Json bspStepsJson(const BspTrace& trace);
+
 inline Vec3 P(double x, double y) { return Vec3(x, y, 0.0); }
 inline Json vec2Json(const Vec3& v) { return Json::array({v.x(), v.y()}); }
 
@@ -147,10 +151,13 @@ public:
     std::vector<Vec3> queries;
     Segment segment{P(0, 0), P(0, 0)};
     bool hasSegment = false;
+    // bsp_scores
+    int scoreFrames = 4;
 
     DemoOutput execute(const RunContext& ctx) const override {
         if (figure == "panels") return runPanels(ctx);
         if (figure == "kd_query") return runKdQuery(ctx);
+        if (figure == "bsp_scores") return runBspScores(ctx);
         return runBspShape(ctx);
     }
 
@@ -282,6 +289,12 @@ private:
     // bsp_shape (space_partition_bsp_shape_figure.cpp)
 
     DemoOutput runBspShape(const RunContext& ctx) const;
+
+    // bsp_scores (space_partition_bsp_scores_figure.cpp): one frame per split with two or more
+    // candidates, at most scoreFrames.
+
+    DemoOutput runBspScores(const RunContext& ctx) const;
+    Frame drawBspScoreFrame(GlContext& gl, int ss, const BspTree& bt, const BspSplitStep& step) const;
 
     // Tree diagram: leaves evenly spaced left to right (in-order, front child first), inner
     // nodes centred over their children, one row per depth. Inner nodes name their splitter edge.
