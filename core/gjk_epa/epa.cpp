@@ -285,17 +285,32 @@ void faceWeights(const Vec3& n, const Vec3& w0, const Vec3& w1, const Vec3& w2, 
 bool convexWeights(double l1, double l2) { return l1 >= 0.0 && l2 >= 0.0 && l1 + l2 <= 1.0; }
 }  // namespace
 
-void EpaPolytope::witness(int f, double depth, Vec3& pointA, Vec3& pointB) const {
+void EpaPolytope::witness(int f, double depth, Vec3& pointA, Vec3& pointB, EpaWitnessStep* out) const {
     const EpaFace& F = face[f];
     const Vec3 p = depth * F.normal;  // projection of the origin on the face plane
     double l1 = 0.0, l2 = 0.0;
     faceWeights(F.normal, vertex[F.v[0]].w, vertex[F.v[1]].w, vertex[F.v[2]].w, p, l1, l2);
+    if (out) {
+        out->projection = p;
+        describeFace(f, l1, l2, out->nearest);
+        out->covered = !convexWeights(l1, l2);
+        if (!out->covered) out->used = out->nearest;
+    }
     // Weights of a convex combination: pointA lies in conv(a0, a1, a2) ⊂ A, pointB in conv(b_i) ⊂ B,
     // and pointA − pointB = sum l_i w_i = p. Otherwise (NaN included) p lies outside face f: a
     // neighbouring face of A − B is coplanar with it (two faces of a box: golden/epa/box_box put p_B
     // 0.1 off B), and coveringFaceWitness finds the face that holds p.
-    if (convexWeights(l1, l2)) return weightedWitness(f, l1, l2, pointA, pointB);
-    coveringFaceWitness(p, pointA, pointB);
+    if (convexWeights(l1, l2)) weightedWitness(f, l1, l2, pointA, pointB);
+    else coveringFaceWitness(p, pointA, pointB, out ? &out->used : nullptr);
+    if (out) out->pointA = pointA, out->pointB = pointB;
+}
+
+void EpaPolytope::describeFace(int f, double l1, double l2, EpaWitnessFace& out) const {
+    for (int k = 0; k < 3; ++k) {
+        const EpaVertex& v = vertex[face[f].v[k]];
+        out.w[k] = v.w, out.a[k] = v.a, out.b[k] = v.b;
+    }
+    out.weights = {1.0 - l1 - l2, l1, l2};
 }
 
 void EpaPolytope::weightedWitness(int f, double l1, double l2, Vec3& pointA, Vec3& pointB) const {
@@ -314,7 +329,7 @@ void EpaPolytope::weightedWitness(int f, double l1, double l2, Vec3& pointA, Vec
 // weights, clamped to a convex combination, put the witnesses on A and on B whatever the rounding,
 // with pointA − pointB = the point of that face nearest p (= depth · n up to rounding).
 // Test: tests/core/gjk_epa/epa_witness_test.cpp.
-void EpaPolytope::coveringFaceWitness(const Vec3& p, Vec3& pointA, Vec3& pointB) const {
+void EpaPolytope::coveringFaceWitness(const Vec3& p, Vec3& pointA, Vec3& pointB, EpaWitnessFace* used) const {
     int best = -1;
     ClosestPointOnTriangleResult bestPoint;
     bestPoint.distanceSquared = INFINITY;
@@ -341,6 +356,7 @@ void EpaPolytope::coveringFaceWitness(const Vec3& p, Vec3& pointA, Vec3& pointB)
     l1 = std::clamp(l1, 0.0, 1.0);
     l2 = std::clamp(l2, 0.0, 1.0 - l1);
     weightedWitness(best, l1, l2, pointA, pointB);
+    if (used) describeFace(best, l1, l2, *used);
 }
 
 int EpaPolytope::snapshot(EpaTraceStep& step, int f) const {
@@ -400,6 +416,13 @@ void EpaRecorder::blowUp(const Vec3& direction, const Vec3& point) {
     if (!trace_) return;
     trace_->blowUpDirections.push_back(direction);
     trace_->blowUpPoints.push_back(point);
+}
+
+void EpaRecorder::witness(const EpaPolytope& poly, int f) {
+    if (!trace_) return;
+    Vec3 pointA, pointB;
+    poly.witness(f, std::max(poly.face[f].distance, 0.0), pointA, pointB, &trace_->witness);
+    trace_->witness.recorded = true;
 }
 
 EpaTraceStep* EpaRecorder::beginStep(int iteration, const EpaPolytope& poly, int f, const EpaVertex& s, double upper) {

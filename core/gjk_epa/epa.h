@@ -111,12 +111,33 @@ struct EpaTraceStep {
     bool terminated = false;  ///< loop stopped here (no expansion)
 };
 
+/// A face of the final polytope with the weights of the origin's projection p on its plane.
+struct EpaWitnessFace {
+    std::array<Vec3, 3> w{}, a{}, b{};  ///< its vertices w_i = a_i − b_i and their points of A and B
+    std::array<double, 3> weights{};    ///< p = sum weights_i w_i; convex when all are >= 0
+};
+
+/// The barycentric witness step of a traced query: p = depth · n written in the nearest face's
+/// vertices; pointA = sum l_i a_i, pointB = sum l_i b_i. When p lies outside that face (a negative
+/// weight: a coplanar face of A − B holds it, as in golden/epa/box_box), the live face nearest p gives
+/// the weights instead, clamped to a convex combination. Recorded from the face the loop ended on,
+/// before any edge-pair refinement or fallback replaces the answer.
+struct EpaWitnessStep {
+    bool recorded = false;
+    Vec3 projection = Vec3::Zero();
+    EpaWitnessFace nearest;  ///< the face the loop ended on
+    bool covered = false;    ///< nearest's weights are not convex: `used` is the face holding p
+    EpaWitnessFace used;     ///< the weights that gave pointA and pointB
+    Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
+};
+
 /// Every iteration of one traced query (pass an EpaTrace* to epaPenetration / penetration).
 struct EpaTrace {
     std::string start;                   ///< how the first tetrahedron was made
     std::vector<Vec3> blowUpDirections;  ///< directions used to blow up a degenerate simplex
     std::vector<Vec3> blowUpPoints;      ///< the support points they gave
     std::vector<EpaTraceStep> steps;
+    EpaWitnessStep witness;
     EpaTermination termination = EpaTermination::InvalidInput;
 };
 

@@ -67,9 +67,12 @@ public:
     /// when they hold there, else from the coplanar face that holds p (coveringFaceWitness). So
     /// pointA lies on A, pointB on B and pointA − pointB = depth * normal up to rounding
     /// (tests/core/gjk_epa/epa_witness_test.cpp).
-    void witness(int f, double depth, Vec3& pointA, Vec3& pointB) const;
+    /// `out` (traced queries) gets the faces and weights used.
+    void witness(int f, double depth, Vec3& pointA, Vec3& pointB, EpaWitnessStep* out = nullptr) const;
     /// Witnesses from the live face nearest p, with clamped weights (the fallback of witness()).
-    void coveringFaceWitness(const Vec3& p, Vec3& pointA, Vec3& pointB) const;
+    void coveringFaceWitness(const Vec3& p, Vec3& pointA, Vec3& pointB, EpaWitnessFace* used = nullptr) const;
+    /// Face f's points and the given weights, for a trace.
+    void describeFace(int f, double l1, double l2, EpaWitnessFace& out) const;
     /// pointA = sum l_i a_i, pointB = sum l_i b_i over face f's vertices (l0 = 1 - l1 - l2).
     void weightedWitness(int f, double l1, double l2, Vec3& pointA, Vec3& pointB) const;
     /// Record vertices and live faces into a trace step; returns the index of face f in it.
@@ -109,6 +112,8 @@ public:
     /// How the first tetrahedron is made from GJK's n-vertex simplex.
     void start(int n);
     void blowUp(const Vec3& direction, const Vec3& point);
+    /// The witness step of the answer from face f at depth max(distance, 0) (EpaWitnessStep).
+    void witness(const EpaPolytope& poly, int f);
     /// A new iteration: the polytope, its face f nearest the origin and the support point s
     /// along f's normal, with the bounds. Returns the step for the expansion to fill (or null).
     EpaTraceStep* beginStep(int iteration, const EpaPolytope& poly, int f, const EpaVertex& s, double upper);
@@ -495,6 +500,7 @@ EpaResult epaPenetration(const A& shapeA, const B& shapeB, const GjkSimplex& sta
         return stop(EpaTermination::Degenerate);
     }
     detail::epaAnswerFromFace(shapeA, shapeB, options, poly, f, upper, r);
+    record.witness(poly, f);
     r.status = r.depth <= detail::kEpaTouch * scale ? EpaStatus::Touching : EpaStatus::Penetrating;
     // A duplicate support on a rounded polytope (a needle 1e-7 wide and 1e3 long, issue 41) can
     // stop on a face that is no face of A − B: the overlap along its normal is far above its depth.

@@ -5,8 +5,10 @@
 // Scene keys (besides the common ones and the pair keys of scene/pair_scene.h):
 //   "method": {"tolerance": eps_rel (EPA), "max_iterations": n (EPA), "gjk_tolerance": eps_rel}
 // Layers: "minkowski", "polytope", "closest", "support", "horizon", "witness", "labels", "plot".
-// Frames: "gjk" (GJK's final simplex), step_NN (per EPA iteration, at most max_step_frames),
-// "result" (penetration vector), "bounds" (plot), with "steps" a contact sheet; animation.gif.
+// Frames: "gjk" (GJK's final simplex), "blow_up" (3D: a point, segment or triangle from GJK grown
+// toward a tetrahedron), step_NN (per EPA iteration, at most max_step_frames), "witness" (3D: the
+// barycentric witness step), "result" (penetration vector), "bounds" (plot), with "steps" a
+// contact sheet; animation.gif. Test: tests/demos/epa/epa_demo_test.cpp.
 #include "demos/epa/epa_demo.h"
 
 #include <algorithm>
@@ -68,7 +70,33 @@ struct EpaRun {
     int iterations = 0;
     std::string start;
     std::vector<PolyStep> steps;
+    std::vector<Vec3> blowUpDirections, blowUpPoints;  // 3D: EpaTrace's
+    EpaWitnessStep witness;                            // 3D: EpaTrace's
 };
+
+// Frame indices of drawFrame besides the steps (0, 1, ...).
+constexpr int kResultFrame = -1, kGjkFrame = -2, kBlowUpFrame = -3, kWitnessFrame = -4;
+
+/// "a₀ = a₂"-style names of the three points, coincident ones named together, each group once:
+/// (point, name) pairs.
+std::vector<std::pair<Vec3, std::string>> groupedNames(const std::array<Vec3, 3>& p, const std::string& letter) {
+    static const char* kSub[3] = {"₀", "₁", "₂"};
+    std::vector<std::pair<Vec3, std::string>> out;
+    for (int i = 0; i < 3; ++i) {
+        bool seen = false;
+        for (int j = 0; j < i; ++j) seen |= p[j] == p[i];
+        if (seen) continue;
+        std::string name;
+        for (int j = i; j < 3; ++j)
+            if (p[j] == p[i]) name += (name.empty() ? "" : " = ") + letter + kSub[j];
+        out.emplace_back(p[i], name);
+    }
+    return out;
+}
+
+std::string weightList(const std::array<double, 3>& l) {
+    return "(" + formatNumber(l[0]) + ", " + formatNumber(l[1]) + ", " + formatNumber(l[2]) + ")";
+}
 
 std::vector<std::vector<int>> faceList(const std::vector<std::array<int, 3>>& f) {
     std::vector<std::vector<int>> out;
@@ -96,12 +124,15 @@ public:
         const Drawing d = makePairDrawing(pair_, common_.hasLayer("minkowski"), std::move(cpts), out.skipped);
 
         const int ss = figureScale(common_, ctx);
-        out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -2));
+        out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, kGjkFrame));
+        if (!run.blowUpDirections.empty()) out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, kBlowUpFrame));
         const std::vector<int> framed = framedSteps(int(run.steps.size()), pair_.maxStepFrames);
         if (common_.steps || ctx.stepsOverride)  // "steps": false: GJK's simplex, the result, the bounds
             for (int i : framed) out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, i));
         else out.skipped.push_back("step frames (\"steps\": false)");
-        out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, -1));
+        if (run.witness.recorded && common_.hasLayer("witness"))
+            out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, kWitnessFrame));
+        out.frames.push_back(drawFrame(*ctx.gl, ss, d, run, kResultFrame));
         if (common_.hasLayer("plot") && !run.steps.empty()) out.frames.push_back(drawPlot(*ctx.gl, ss, run));
         addAnimationAndSheet(*ctx.gl, common_, ctx, pair_.gif, "EPA", int(run.steps.size()), framed, out);
         return out;
@@ -158,6 +189,9 @@ private:
             EpaTrace t;
             const EpaResult r = epaPenetration(pair_.a, pair_.b, run.gjk.simplex, options_, &t);
             copyOutcome(run, r, t.start);
+            run.blowUpDirections = t.blowUpDirections;
+            run.blowUpPoints = t.blowUpPoints;
+            run.witness = t.witness;
             for (const EpaTraceStep& s : t.steps) {
                 PolyStep p = commonStep(s);
                 p.faces = faceList(s.faces);
@@ -232,6 +266,27 @@ private:
                              {"terminated", s.terminated}});
         }
         t["steps"] = steps;
+        if (!run.blowUpDirections.empty()) {
+            Json blow = Json::array();
+            for (std::size_t k = 0; k < run.blowUpDirections.size(); ++k)
+                blow.push_back({{"direction", vec3Json(run.blowUpDirections[k])},
+                                {"support", vec3Json(run.blowUpPoints[k])},
+                                {"support_value", run.blowUpDirections[k].dot(run.blowUpPoints[k])}});
+            t["blow_up"] = blow;
+        }
+        if (run.witness.recorded) {
+            const auto face = [](const EpaWitnessFace& f) {
+                Json w = Json::array(), a = Json::array(), b = Json::array();
+                for (int k = 0; k < 3; ++k) w.push_back(vec3Json(f.w[k])), a.push_back(vec3Json(f.a[k])), b.push_back(vec3Json(f.b[k]));
+                return Json{{"w", w}, {"a", a}, {"b", b}, {"weights", f.weights}};
+            };
+            t["witness"] = {{"projection", vec3Json(run.witness.projection)},
+                            {"nearest_face", face(run.witness.nearest)},
+                            {"covered", run.witness.covered},
+                            {"used_face", face(run.witness.used)},
+                            {"point_a", vec3Json(run.witness.pointA)},
+                            {"point_b", vec3Json(run.witness.pointB)}};
+        }
         return t;
     }
 
@@ -345,19 +400,25 @@ private:
     Frame drawFrame(GlContext& gl, int ss, const Drawing& d, const EpaRun& run, int index) const {
         const TwoPanelLayout layout = twoPanelLayout(common_.image.width, common_.image.height, common_.caption);
         const CanvasOptions po = canvasOptions(layout.panelWidth(), layout.panelHeight(), ss);
-        const bool isGjk = index == -2, isResult = index == -1;
+        const bool isGjk = index == kGjkFrame, isResult = index == kResultFrame;
         const PolyStep* s = index >= 0 ? &run.steps[index] : nullptr;
         Canvas world(gl, po, panelCamera(d.planar, d.wCenter, d.wRadius, pair_.view, layout));
-        drawWorldPanel(world, d, run, s, isResult);
+        if (index == kWitnessFrame) drawWitnessWorld(world, d, run);
+        else drawWorldPanel(world, d, run, s, isResult);
         // A step's closest face seen from its front, its normal within 49° of the configuration
         // space's view (turned to it where needed; at 60° the labels at its closest point crowd).
         const Vec3 csView = s && !d.planar && common_.hasLayer("closest") ? viewTowards(pair_.view, s->normal, 0.65) : pair_.view;
         Canvas cs(gl, po,
                   common_.camera && !d.planar ? *common_.camera
                                               : panelCamera(d.planar, d.cCenter, d.cRadius, csView, layout));
-        drawConfigurationPanel(cs, d, run, s, isGjk);
         Frame f;
-        const std::vector<std::string> lines = describeFrame(d, run, s, isGjk, f);
+        std::vector<std::string> lines;
+        if (index == kBlowUpFrame) lines = drawBlowUp(cs, d, run, f);
+        else if (index == kWitnessFrame) lines = drawWitnessConfiguration(cs, d, run, f);
+        else {
+            drawConfigurationPanel(cs, d, run, s, isGjk);
+            lines = describeFrame(d, run, s, isGjk, f);
+        }
         f.image = composeTwoPanel(gl, layout, ss, common_.title, common_.caption, world.readPixels(),
                                   configurationPixels(gl, cs, po.scale, layout, d, s), lines);
         return f;
@@ -528,6 +589,124 @@ private:
         return lines;
     }
 
+    // GJK's point, segment or triangle and the supports that blow it up: each direction d from the
+    // origin (orthogonal to the simplex's hull), the support s_C(d) it gave and d · s_C(d), the test:
+    // at 0 the whole of A − B lies behind the plane through the origin orthogonal to d (touching).
+    std::vector<std::string> drawBlowUp(Canvas& cs, const Drawing& d, const EpaRun& run, Frame& f) const {
+        const bool labels = common_.hasLayer("labels");
+        if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), 0.12f, roleColor(Role::Minkowski).scaled(0.75f), 1.0f, false);
+        drawOrigin(cs, 0.06 * d.cRadius, d.planar);
+        std::vector<Vec3> w;
+        for (int i = 0; i < run.gjk.simplex.count; ++i) w.push_back(run.gjk.simplex.vertex[i].w);
+        if (w.size() == 3) cs.drawPolygon(w, roleColor(Role::Simplex).withAlpha(0.35f));
+        for (std::size_t i = 0; i < w.size(); ++i)
+            for (std::size_t j = i + 1; j < w.size(); ++j) cs.drawLine(w[i], w[j], lineStyle(Role::Simplex, 4.0f, false, true));
+        const std::size_t n = run.blowUpDirections.size();
+        std::vector<std::string> lines;
+        std::string tests;
+        for (std::size_t k = 0; k < n; ++k) {
+            const Vec3 dir = run.blowUpDirections[k], p = run.blowUpPoints[k];
+            const double h = dir.dot(p);
+            const Vec3 tip = dir * (0.45 * d.cRadius);
+            cs.drawArrow(Vec3::Zero(), tip, lineStyle(Role::Direction, 3.0f, false, true));
+            cs.drawPoint(p, 10.0f, roleColor(Role::Support), true, 2.0f, roleColor(Role::Ink));
+            const std::string idx = std::to_string(w.size() + k);
+            if (labels) {
+                drawLabelAway(cs, tip, Vec3::Zero(), "d", labelStyle(Role::Ink, 18.0f), 8.0);
+                drawLabelAway(cs, p, d.cCenter, "w" + idx + " = s_C(d)", labelStyle(Role::Ink, 18.0f), 10.0);
+            }
+            tests += (tests.empty() ? "" : "; ") + std::string("d = ") + formatPoint(dir) + ", d · w" + idx + " = " + formatNumber(h);
+        }
+        for (std::size_t i = 0; i < w.size(); ++i)
+            if (labels) drawLabelAway(cs, w[i], d.cCenter, "w" + std::to_string(i), labelStyle(Role::Ink, 18.0f), 12.0);
+        const bool touching = run.termination == EpaTermination::Touching;
+        drawPanelHeading(cs, "Configuration space A − B",
+                         "blow-up of GJK's " + std::to_string(w.size()) + "-vertex simplex: support along its normal d");
+        lines.push_back("EPA needs a tetrahedron around the origin; GJK ended on a " + run.start.substr(0, run.start.find(' ')) +
+                        ". Support along d orthogonal to its hull: " + tests);
+        lines.push_back(touching ? "d · s_C(d) = 0: all of A − B lies behind the plane through the origin orthogonal to d: the "
+                                   "origin is on the boundary: touching, depth 0, normal d"
+                                 : "d · s_C(d) > 0: the new point lies beyond the origin's plane, and the tetrahedron "
+                                   "holds the origin; EPA's loop starts from it");
+        f.name = "blow_up";
+        f.caption = "blow-up: " + run.start + (touching ? ", touching" : "");
+        return lines;
+    }
+
+    // The barycentric witness step (3D): the nearest face of the final polytope, the origin's
+    // projection p = depth · n on it and its weights; the same weights on the faces' points of A and B
+    // give the witness points (world panel, drawWitnessWorld).
+    std::vector<std::string> drawWitnessConfiguration(Canvas& cs, const Drawing& d, const EpaRun& run, Frame& f) const {
+        const bool labels = common_.hasLayer("labels");
+        const EpaWitnessStep& ws = run.witness;
+        if (d.c.valid) drawBody(cs, d.c, roleColor(Role::Minkowski), 0.10f, roleColor(Role::Minkowski).scaled(0.75f), 1.0f, false);
+        drawOrigin(cs, 0.06 * d.cRadius, d.planar);
+        const std::vector<Vec3> nearest(ws.nearest.w.begin(), ws.nearest.w.end());
+        const std::vector<Vec3> used(ws.used.w.begin(), ws.used.w.end());
+        if (ws.covered) {
+            LineStyle dashed = lineStyle(Role::Ink, 2.5f, true, true);
+            dashed.color = closestColor().scaled(0.7f);
+            cs.drawPolyline(nearest, true, dashed);
+        }
+        cs.drawMesh(used, {Eigen::Vector3i(0, 1, 2)}, closestColor(), false);
+        cs.drawPolyline(used, true, lineStyle(Role::Ink, 1.5f, false, true));
+        cs.drawLine(Vec3::Zero(), ws.projection, lineStyle(Role::Ink, 2.0f, true, true));
+        cs.drawPoint(ws.projection, 9.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
+        if (labels) {
+            // The vertices named w₀ w₁ w₂ (their weights are on the caption's second line).
+            for (const auto& [p, name] : groupedNames(ws.used.w, "w"))
+                drawLabelAway(cs, p, ws.projection, name, labelStyle(Role::Ink, 17.0f), 10.0);
+            drawLabelAway(cs, ws.projection, Vec3::Zero(), "p", labelStyle(Role::Ink, 18.0f), 10.0);
+        }
+        drawPanelHeading(cs, "Configuration space A − B",
+                         ws.covered ? "p is outside the nearest face (dashed): the coplanar face holding it gives λ"
+                                    : "p = λ₀w₀ + λ₁w₁ + λ₂w₂ on the nearest face");
+        std::vector<std::string> lines;
+        lines.push_back("p = depth · n = " + formatPoint(ws.projection) + ": weights on the nearest face " +
+                        weightList(ws.nearest.weights) +
+                        (ws.covered ? ", one negative: p is outside it" : ", all ≥ 0: p is on it"));
+        lines.push_back("λ = " + weightList(ws.used.weights) + " at w₀, w₁, w₂:  p_A = λ₀a₀ + λ₁a₁ + λ₂a₂ = " + formatPoint(ws.pointA) +
+                        ",  p_B = λ₀b₀ + λ₁b₁ + λ₂b₂ = " + formatPoint(ws.pointB) +
+                        (run.pointA == ws.pointA && run.pointB == ws.pointB ? "" : " (then refined)"));
+        f.name = "witness";
+        f.caption = "witness: λ = " + weightList(ws.used.weights) + (ws.covered ? " (coplanar face)" : "");
+        return lines;
+    }
+
+    // The witness step in world space: the used face's points of A and B and the witnesses they give.
+    void drawWitnessWorld(Canvas& world, const Drawing& d, const EpaRun& run) const {
+        const bool labels = common_.hasLayer("labels");
+        const EpaWitnessStep& ws = run.witness;
+        drawPairBodies(world, d, 0.3f, true, labels, false);
+        for (const auto* pts : {&ws.used.a, &ws.used.b}) {
+            const std::vector<Vec3> tri(pts->begin(), pts->end());
+            world.drawPolyline(tri, true, lineStyle(Role::Result, 2.0f, true, true));
+            for (const Vec3& p : tri) world.drawPoint(p, 6.0f, roleColor(Role::Support), true, 1.5f, roleColor(Role::Ink));
+        }
+        world.drawPoint(ws.pointA, 9.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
+        world.drawPoint(ws.pointB, 9.0f, roleColor(Role::Result), true, 2.0f, roleColor(Role::Ink));
+        if (labels) {
+            // The face's points named on polytopes; on curved shapes they crowd on the surface, and
+            // the caption's sums name them.
+            // A face point at its witness (a weight of 1, or all three points one) is named by the
+            // witness's label alone (two labels on one point crowded the sliver's slab).
+            const TextStyle small = labelStyle(Role::Ink, 15.0f);
+            const auto points = [&](const std::array<Vec3, 3>& pts, const char* letter, const Vec3& witness,
+                                    const Vec3& centre) {
+                for (const auto& [p, name] : groupedNames(pts, letter))
+                    if (p != witness && d.exact) drawLabelAway(world, p, centre, name, small, 8.0);
+            };
+            points(ws.used.a, "a", ws.pointA, d.a.center);
+            points(ws.used.b, "b", ws.pointB, d.b.center);
+            const TextStyle big{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+            // Each pushed away from the other witness (they are depth apart), else from its body's centre.
+            const bool apart = (ws.pointA - ws.pointB).norm() > 1e-3 * d.wRadius;
+            drawLabelAway(world, ws.pointA, apart ? ws.pointB : d.a.center, "p_A", big, 10.0);
+            drawLabelAway(world, ws.pointB, apart ? ws.pointA : d.b.center, "p_B", big, 10.0);
+        }
+        drawPanelHeading(world, "World space", "the same weights on the face's points of A and of B");
+    }
+
     // Lower and upper depth bounds against the iteration (demos/draw/plot.h).
     Frame drawPlot(GlContext& gl, int ss, const EpaRun& run) const {
         BoundsPlot plot;
@@ -568,7 +747,7 @@ public:
         }
         r.finish();
         // GJK's simplex, the result and the plot; with steps at most max_step_frames steps and the sheet.
-        common.frames = {3, pair.maxStepFrames + 4, 0};
+        common.frames = {3, pair.maxStepFrames + 6, 0};
         return std::make_unique<EpaScene>(std::move(common), std::move(pair), options);
     }
 };
