@@ -73,6 +73,12 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal,
             c.targetVelocity = 0.0;
         }
     }
+    const auto record = [&](double change) {
+        std::vector<double> lambdas;
+        for (const ContactImpulse& c : result.points) lambdas.push_back(c.normalImpulse);
+        result.history.push_back(std::move(lambdas));
+        result.historyChange.push_back(change);
+    };
     const auto apply = [&](const Vec3& impulse, const ContactImpulse& c) {
         body.linearVelocity += body.inverseMass * impulse;
         body.angularVelocity += invI * c.r.cross(impulse);
@@ -112,6 +118,7 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal,
             }
         }
         result.lastIterationChange = change;
+        if (options.recordIterations) record(change);
     }
     // Restitution pass (Newton's law, normal impulses only, after compression and friction; after
     // Box2D v3's b2ApplyRestitution): bouncing points get v_target = −e v_n⁻, every other point keeps
@@ -124,7 +131,8 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal,
     if (e > 0 && anyBounce) {
         for (ContactImpulse& c : result.points)
             if (c.bounce && c.normalImpulse > 0) c.targetVelocity = -e * c.normalVelocityBefore;
-        for (int it = 0; it < options.iterations; ++it)
+        for (int it = 0; it < options.iterations; ++it) {
+            double change = 0.0;
             for (std::size_t i = 0; i < points.size(); ++i) {
                 ContactImpulse& c = result.points[i];
                 const double floor = mu > 0 ? std::hypot(rows[i].lambdaT1, rows[i].lambdaT2) / mu : 0.0;
@@ -134,7 +142,10 @@ ImpulseSolverResult solveContacts(RigidBody& body, const Vec3& normal,
                 c.normalImpulse = lambda;
                 c.restitutionImpulse += d;
                 apply(d * normal, c);
+                change = std::max(change, std::abs(d));
             }
+            if (options.recordIterations) record(change), ++result.historyRestitution;
+        }
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
         ContactImpulse& c = result.points[i];

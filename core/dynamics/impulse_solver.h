@@ -50,6 +50,8 @@ struct ImpulseSolverOptions {
     double restitutionThreshold = 0.25;
     int iterations = 16;            ///< fixed count: deterministic, same work every step
     double timeStep = 1.0 / 240.0;  ///< s, for the speculative target −s / dt
+    /// Record λ_n of every point after each sweep (ImpulseSolverResult::history); for figures.
+    bool recordIterations = false;
 };
 
 /// One contact point of the manifold (input).
@@ -77,6 +79,11 @@ struct ImpulseSolverResult {
     std::vector<ContactImpulse> points;  ///< in input order
     Vec3 linearImpulse = Vec3::Zero();   ///< sum of all impulses applied (N·s)
     double lastIterationChange = 0.0;    ///< max |Δλ| of the final iteration (convergence indicator)
+    /// With options.recordIterations: λ_n per point after each compression sweep, then after each
+    /// restitution sweep (historyRestitution of them, at the end), and each sweep's max |Δλ|.
+    std::vector<std::vector<double>> history;
+    std::vector<double> historyChange;
+    int historyRestitution = 0;
 };
 
 /// Solves the contacts of `body` against a static surface with unit normal `normal` (from the

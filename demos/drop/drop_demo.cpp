@@ -15,6 +15,8 @@
 // looking horizontally on the right), "energy" (plot), with "steps" a contact sheet.
 #include "demos/drop/drop_demo.h"
 
+#include "demos/drop/impulse_figure.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -684,6 +686,8 @@ public:
     }
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{960, 720}, {480, 360}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
+        if (auto f = r.find("figure"); f && f->asEnum({"drop", "impulse"}) == "impulse")
+            return readImpulseScene(r, std::move(common));
         DropInput in;
         std::string bodyName;
         in.shape = readConvexBody(r.get("body"), bodyName);
