@@ -400,13 +400,15 @@ render::Image drawBoundsPlot(render::GlContext& gl, int width, int height, int s
     const LineStyle axis = lineStyle(Role::Ink, 2.0f);
     c.drawLine(P(x0, y0), P(x1, y0), axis);
     c.drawLine(P(x0, y0), P(x0, y1), axis);
-    TextStyle tick{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
+    // Tick labels at 15 px, or the 1.6 % of the height the legibility gate asks of taller frames.
+    const float tickPx = std::max(15.0f, float(std::ceil(0.0165 * H * 10) / 10));
+    TextStyle tick{tickPx, roleColor(Role::Ink), Anchor::Top, false, false};
     const int xStep = std::max(1, n / 12);
     for (int i = 1; i <= n; i += xStep) {
         c.drawLine(P(X(i), y0), P(X(i), y0 - 6), axis);
         c.drawText(P(X(i), y0 - 10), std::to_string(i), tick);
     }
-    TextStyle ytick{15.0f, roleColor(Role::Ink), Anchor::Right, false, false};
+    TextStyle ytick{tickPx, roleColor(Role::Ink), Anchor::Right, false, false};
     // Round values (the review: ticks at −0.1522, 0.4556, ... read as data).
     for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) {
         if (std::abs(v) < 1e-9 * step) v = 0;
@@ -427,9 +429,9 @@ render::Image drawBoundsPlot(render::GlContext& gl, int width, int height, int s
     // Legend, top right.
     const double lx = x1 - 330, ly = y1 - 10;
     c.drawLine(P(lx, ly), P(lx + 40, ly), lineStyle(Role::ShapeB, 3.0f));
-    c.drawText(P(lx + 50, ly), plot.upperName, TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+    c.drawText(P(lx + 50, ly), plot.upperName, TextStyle{std::max(16.0f, tickPx), roleColor(Role::Ink), Anchor::Left, true, false});
     c.drawLine(P(lx, ly - 28), P(lx + 40, ly - 28), lineStyle(Role::ShapeA, 3.0f));
-    c.drawText(P(lx + 50, ly - 28), plot.lowerName, TextStyle{16.0f, roleColor(Role::Ink), Anchor::Left, true, false});
+    c.drawText(P(lx + 50, ly - 28), plot.lowerName, TextStyle{std::max(16.0f, tickPx), roleColor(Role::Ink), Anchor::Left, true, false});
     drawTitleAndCaption(c, plot.title, plot.caption);
     return c.readPixels();
 }

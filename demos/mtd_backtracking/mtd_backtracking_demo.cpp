@@ -14,6 +14,7 @@
 #include "demos/draw/convex_drawable.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/mtd_backtracking/resolution_figures.h"
+#include "demos/mtd_backtracking/toi_3d_figure.h"
 #include "app/scene/scene_limits.h"
 
 namespace cdlab::demos {
@@ -67,6 +68,8 @@ public:
     }
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1280, 960, 1}, {960, 720, 0, 0}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
+        if (auto f = r.find("figure"); f && f->asEnum({"resolution", "toi_3d"}) == "toi_3d")
+            return readToi3dScene(r, std::move(common));
         ResolutionInput in;
         in.a = readPolygon(r.get("a"));
         in.b = readPolygon(r.get("b"));
