@@ -15,6 +15,8 @@
 // "columns", "view". Layers: "shape", "volumes", "cores", "labels".
 #include "demos/bounding_volumes/bounding_volumes_demo.h"
 
+#include "demos/bounding_volumes/sphere_steps_figure.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -446,6 +448,8 @@ public:
     }
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {320, 240}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
+        if (auto f = r.find("figure"); f && f->asEnum({"volumes", "sphere_steps"}) == "sphere_steps")
+            return readSphereStepsScene(r, std::move(common));
         const JsonNode shapeNode = r.get("shape");
         ShapeSpec shape = parseShape(shapeNode);
         if (auto p = r.find("position")) shape.pose.position = sceneVec3(*p);
