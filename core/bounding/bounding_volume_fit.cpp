@@ -150,6 +150,14 @@ Aabb fitAabb(std::span<const Vec3> points) {
     return box;
 }
 
+Aabb transformAabb(const Aabb& box, const Transform& pose) {
+    if (!(box.min.x() <= box.max.x() && box.min.y() <= box.max.y() && box.min.z() <= box.max.z())) return box;
+    const Mat3 R = pose.rotation.toRotationMatrix();
+    const Vec3 c = pose.rotation * (0.5 * (box.min + box.max)) + pose.position;
+    const Vec3 h = R.cwiseAbs() * (0.5 * (box.max - box.min));
+    return Aabb{c - h, c + h};
+}
+
 Aabb fitAabb(std::span<const Triangle> triangles) {
     Aabb box = emptyAabb();
     for (const Triangle& t : triangles) {

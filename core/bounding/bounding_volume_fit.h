@@ -67,6 +67,13 @@ Obb fitObbCovariance(std::span<const Vec3> points, ObbFitTrace* trace = nullptr)
 /// falls back to the point covariance of the vertices, then to identity axes.
 Obb fitObbTriangles(std::span<const Triangle> triangles, ObbFitTrace* trace = nullptr);
 
+/// The AABB of `box` after the rigid motion `pose` (Arvo, "Transforming Axis-Aligned Bounding
+/// Boxes", Graphics Gems 1990; Ericson §4.2.6): centre moved by the pose, half extents |R| h. It
+/// bounds the moved box, hence everything the old box held, without revisiting the points, but is
+/// looser than refitting them (up to √2 in 2D at 45° for a square; the aabb_refit figure). Exact
+/// up to rounding of R c + t and |R| h. An empty box stays empty.
+Aabb transformAabb(const Aabb& box, const Transform& pose);
+
 /// Volume of an AABB (units^3); 0 for a flat or empty box, NaN for NaN input.
 double volume(const Aabb& box);
 

@@ -15,6 +15,7 @@
 // "columns", "view". Layers: "shape", "volumes", "cores", "labels".
 #include "demos/bounding_volumes/bounding_volumes_demo.h"
 
+#include "demos/bounding_volumes/aabb_refit_figure.h"
 #include "demos/bounding_volumes/sphere_steps_figure.h"
 
 #include <algorithm>
@@ -448,8 +449,11 @@ public:
     }
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {320, 240}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
-        if (auto f = r.find("figure"); f && f->asEnum({"volumes", "sphere_steps"}) == "sphere_steps")
-            return readSphereStepsScene(r, std::move(common));
+        if (auto f = r.find("figure")) {
+            const std::string figure = f->asEnum({"volumes", "sphere_steps", "aabb_refit"});
+            if (figure == "sphere_steps") return readSphereStepsScene(r, std::move(common));
+            if (figure == "aabb_refit") return readAabbRefitScene(r, std::move(common));
+        }
         const JsonNode shapeNode = r.get("shape");
         ShapeSpec shape = parseShape(shapeNode);
         if (auto p = r.find("position")) shape.pose.position = sceneVec3(*p);

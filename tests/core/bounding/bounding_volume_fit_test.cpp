@@ -253,3 +253,29 @@ TEST_SUITE("bounding_volume_fit") {
     }
 
 }  // TEST_SUITE
+
+TEST_CASE("transformAabb: the AABB of the box's eight moved corners, holding every moved point") {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    for (int trial = 0; trial < 500; ++trial) {
+        Aabb box{Vec3(u(rng), u(rng), u(rng)), Vec3::Zero()};
+        box.max = box.min + Vec3(std::abs(u(rng)), std::abs(u(rng)), std::abs(u(rng)));
+        const Quat q = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+        const Transform pose{Vec3(u(rng), u(rng), u(rng)), q};
+        const Aabb got = transformAabb(box, pose);
+        Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+        for (int k = 0; k < 8; ++k) {
+            const Vec3 c = pose.apply(Vec3(k & 1 ? box.max.x() : box.min.x(), k & 2 ? box.max.y() : box.min.y(),
+                                           k & 4 ? box.max.z() : box.min.z()));
+            lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+        }
+        CHECK((got.min - lo).norm() <= 1e-12);
+        CHECK((got.max - hi).norm() <= 1e-12);
+        // Any point of the box, moved, lies inside (up to rounding).
+        const Vec3 t(std::abs(u(rng)) / 3, std::abs(u(rng)) / 3, std::abs(u(rng)) / 3);
+        const Vec3 inside = pose.apply(box.min + t.cwiseProduct(box.max - box.min));
+        CHECK(contains(got, inside, 1e-12));
+    }
+    const Aabb empty{Vec3::Constant(INFINITY), Vec3::Constant(-INFINITY)};
+    CHECK(transformAabb(empty, Transform{}).min.x() == INFINITY);
+}
