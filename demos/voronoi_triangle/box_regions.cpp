@@ -74,8 +74,16 @@ public:
         Json qs = Json::array();
         for (std::size_t i = 0; i < queries_.size(); ++i) qs.push_back(queryJson(queries_[i], results[i]));
         out.trace["queries"] = qs;
+        // The 27 regions together: core's answer for the centre of each cell of the slab grid.
+        const std::vector<PartitionCell> cells = partition();
+        Json ps = Json::array();
+        for (const PartitionCell& cell : cells)
+            ps.push_back({{"signs", cell.signs}, {"centre", vec3Json(cell.centre)}, {"region", regionName(cell.region)},
+                          {"dimension", cell.region.dimension}});
+        out.trace["partition"] = ps;
         if (numericOnly(ctx, out)) return out;
         out.frames.push_back(drawFrame(*ctx.gl, ctx, results, -1));
+        out.frames.push_back(drawPartition(*ctx.gl, ctx, cells));
         if (common_.steps || ctx.stepsOverride) {
             addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()),
                                    [&](int i) { return drawFrame(*ctx.gl, ctx, results, i); }, out);
@@ -89,6 +97,73 @@ private:
     Obb box_;
     std::vector<Vec3> queries_;
     double margin_;
+
+    /// One cell of the 3 × 3 × 3 grid the faces' planes cut space into: its side per axis (−1, 0,
+    /// +1), its centre (the outer cells reach the margin) and core's region for that centre.
+    struct PartitionCell {
+        std::array<int, 3> signs{};
+        Vec3 centre = Vec3::Zero();
+        Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  ///< box frame
+        BoxRegionResult region;
+    };
+
+    std::vector<PartitionCell> partition() const {
+        std::vector<PartitionCell> cells;
+        const Vec3 e = box_.halfExtents;
+        const double m = 0.5 * e.maxCoeff();  // how far the outer cells are drawn (they are unbounded)
+        for (int k = 0; k < 27; ++k) {
+            PartitionCell cell;
+            for (int i = 0; i < 3; ++i) {
+                const int side = (k / (i == 0 ? 1 : i == 1 ? 3 : 9)) % 3 - 1;
+                cell.signs[std::size_t(i)] = side;
+                cell.lo[i] = side > 0 ? e[i] : side < 0 ? -e[i] - m : -e[i];
+                cell.hi[i] = side > 0 ? e[i] + m : side < 0 ? -e[i] : e[i];
+            }
+            cell.centre = box_.center + box_.axes * (0.5 * (cell.lo + cell.hi));
+            cell.region = closestPointOnBox(cell.centre, box_);
+            cells.push_back(cell);
+        }
+        return cells;
+    }
+
+    /// Frame "partition": the 27 cells pulled apart from the centre, coloured by core's region of
+    /// each cell's centre (vertex, edge, face, inside), the counts in the key.
+    Frame drawPartition(GlContext& gl, const RunContext& ctx, const std::vector<PartitionCell>& cells) const {
+        Canvas c(gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
+        const double gap = 0.9 * box_.halfExtents.maxCoeff();
+        const Vec3 view = Vec3(1.0, 0.75, 1.6).normalized();
+        c.setCamera(framingCamera(box_.center, (size() + margin() + gap) * 1.05, view, Vec3::UnitY(), true));
+        int count[4] = {0, 0, 0, 0};
+        for (const PartitionCell& cell : cells) {
+            const Vec3 shift(cell.signs[0] * gap, cell.signs[1] * gap, cell.signs[2] * gap);
+            const Obb block{box_.center + box_.axes * (0.5 * (cell.lo + cell.hi) + shift), 0.5 * (cell.hi - cell.lo), box_.axes};
+            const int dim = std::clamp(cell.region.dimension, 0, 3);
+            ++count[dim];
+            drawBody(c, boxDrawable(block), featureDimensionColor(dim), 1.0f, featureDimensionColor(dim).scaled(0.55f), 1.5f,
+                     false);
+        }
+        // One of each kind named by core's region name, on the side the camera sees.
+        if (common_.hasLayer("labels"))
+            for (const PartitionCell& cell : cells) {
+                const std::array<int, 3>& sg = cell.signs;
+                const bool example = sg[2] == 1 && ((sg[0] == 1 && sg[1] == 1) || (sg[0] == 0 && sg[1] == 1) || (sg[0] == 0 && sg[1] == 0));
+                if (!example && !(sg[0] == 0 && sg[1] == 0 && sg[2] == 0)) continue;
+                const Vec3 shift(sg[0] * gap, sg[1] * gap, sg[2] * gap);
+                TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                ts.place = true;
+                c.drawText(cell.centre + box_.axes * shift, regionName(cell.region), ts);
+            }
+        drawKey(c, 20, 62,
+                {{featureDimensionColor(0), std::to_string(count[0]) + " vertex regions"},
+                 {featureDimensionColor(1), std::to_string(count[1]) + " edge regions"},
+                 {featureDimensionColor(2), std::to_string(count[2]) + " face regions"},
+                 {featureDimensionColor(3), std::to_string(count[3]) + " inside"}},
+                17.0f);
+        drawTitleAndCaption(c, common_.title,
+                            "The faces' planes cut space into 3 × 3 × 3 cells, pulled apart here; each cell's colour is "
+                            "the region of its centre");
+        return Frame{"partition", "the 27 regions pulled apart", c.readPixels()};
+    }
 
     double size() const { return box_.halfExtents.norm(); }
     double margin() const { return margin_ > 0 ? margin_ : 0.6 * box_.halfExtents.maxCoeff(); }
