@@ -189,8 +189,26 @@ struct Builder {
         return n.count / 2;
     }
 
+    /// The SAH cost of the median split on the centroids' longest axis, for a traced SAH build's
+    /// comparison (a copy of the range is partitioned; the build's order is untouched).
+    void recordMedianCost(const int* begin, const int* end, const Aabb& cb, double nodeArea, BvhBuildStep& step) {
+        std::vector<int> order(begin, end);
+        int axis = 0;
+        (cb.max - cb.min).maxCoeff(&axis);
+        auto mid = order.begin() + order.size() / 2;
+        std::nth_element(order.begin(), mid, order.end(),
+                         [&](int x, int y) { return centroids[x][axis] < centroids[y][axis]; });
+        Aabb left = emptyAabb(), right = emptyAabb();
+        for (auto it = order.begin(); it != order.end(); ++it)
+            (it < mid ? left : right) = unionOf(it < mid ? left : right, triangleAabb(mesh.triangle(*it)));
+        const double nl = double(mid - order.begin()), nr = double(order.end() - mid);
+        step.medianAxis = axis;
+        step.medianPosition = centroids[*mid][axis];
+        step.medianCost = (area(left) * nl + area(right) * nr) / nodeArea;
+    }
+
     /// Binned SAH split (Wald 2007): returns the count of the left part.
-    int splitSah(const BvhNode& n, BvhBuildStep& step) {
+    int splitSah(const BvhNode& n, BvhBuildStep& step, bool record) {
         int* begin = bvh.triangleOrder.data() + n.first;
         int* end = begin + n.count;
         Aabb cb = emptyAabb();
@@ -243,6 +261,9 @@ struct Builder {
                 c += counts[k];
                 if (c == 0 || rightCount[k] == 0) continue;  // one side empty: not a split
                 const double cost = area(acc) * c + rightArea[k] * rightCount[k];
+                if (record)
+                    step.candidates.push_back({axis, cb.min[axis] + std::ldexp(extent[axis], -areaExponent) * (k + 1) / nb, c,
+                                               rightCount[k], area(acc), rightArea[k], cost});
                 if (cost < bestCost) {
                     bestCost = cost;
                     bestAxis = axis;
@@ -256,6 +277,11 @@ struct Builder {
             step.splitAxis = 0;
             step.splitPosition = cb.min.x();
             return n.count / 2;
+        }
+        if (record && nodeArea > 0.0) {  // (a node of points only has no area to compare with)
+            for (auto& c : step.candidates)  // areas and costs relative to the node's
+                c.leftArea /= nodeArea, c.rightArea /= nodeArea, c.cost /= nodeArea;
+            recordMedianCost(begin, end, cb, nodeArea, step);
         }
         int* mid = std::partition(begin, end, [&](int tri) { return binOf(tri, bestAxis) <= bestSplit; });
         step.splitAxis = bestAxis;
@@ -288,7 +314,7 @@ struct Builder {
             step.count = n.count;
             if (n.count > maxLeaf) {
                 const int leftCount =
-                    options.method == BvhBuildMethod::TopDownSah ? splitSah(n, step) : splitMedian(n, i, step);
+                    options.method == BvhBuildMethod::TopDownSah ? splitSah(n, step, trace != nullptr) : splitMedian(n, i, step);
                 const int left = addChildren(i);
                 bvh.nodes[left].first = n.first;
                 bvh.nodes[left].count = leftCount;

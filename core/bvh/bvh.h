@@ -123,6 +123,19 @@ struct BvhBuildStep {
     /// SAH: the split's cost sum(area_child * count_child) / area_node; bottom-up: the merged
     /// AABB's surface area; 0 otherwise.
     double cost = 0.0;
+    /// Traced SAH builds: every bin plane with both sides non-empty, axis by axis, and the SAH cost
+    /// the median split on the centroids' longest axis would have had (for comparison).
+    struct SahCandidate {
+        int axis = 0;
+        double position = 0.0;  ///< the bin plane's coordinate
+        int leftCount = 0, rightCount = 0;
+        double leftArea = 0.0, rightArea = 0.0;  ///< child AABB surface area / the node's
+        double cost = 0.0;                       ///< leftArea * leftCount + rightArea * rightCount
+    };
+    std::vector<SahCandidate> candidates;
+    double medianCost = 0.0;
+    int medianAxis = -1;
+    double medianPosition = 0.0;
 };
 struct BvhBuildTrace {
     std::vector<BvhBuildStep> steps;

@@ -12,7 +12,7 @@
 // trees", JGT 2(4) 1997 (refitting).
 //
 // Figures ("figure" key): hierarchy_levels, aabb_vs_obb, dual_traversal, refit, build_methods,
-// dynamic_tree (demos/bvh/dynamic_tree_figure.h: core/broadphase/dynamic_tree.h step by step).
+// sah_split, dynamic_tree (demos/bvh/dynamic_tree_figure.h: core/broadphase/dynamic_tree.h step by step).
 // Scene keys: docs/scenes.md, "bvh".
 #include "demos/bvh/bvh_demo.h"
 
@@ -78,7 +78,7 @@ public:
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<BvhScene>(std::move(common));
         const std::string fig = r.get("figure").asEnum(
-            {"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods", "dynamic_tree"});
+            {"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods", "dynamic_tree", "sah_split"});
         if (fig == "dynamic_tree") {
             s->figure = Figure::DynamicTree;
             readDynamicTree(r, s->dynamicTree);
@@ -89,6 +89,7 @@ public:
                     : fig == "aabb_vs_obb"    ? Figure::AabbVsObb
                     : fig == "dual_traversal" ? Figure::DualTraversal
                     : fig == "refit"          ? Figure::Refit
+                    : fig == "sah_split"      ? Figure::SahSplit
                                               : Figure::BuildMethods;
         JsonNode ms = r.get("meshes");
         if (!ms.isArray() || ms.size() < 1 || ms.size() > 2) ms.fail("expected [mesh] or [meshA, meshB]");
@@ -106,6 +107,7 @@ public:
                                                      : BvhBuildMethod::BottomUp;
         }
         if (auto n = r.find("max_leaf_triangles")) s->build.maxLeafTriangles = n->asInt(1, 64);
+        if (auto n = r.find("sah_bins")) s->build.sahBins = n->asInt(2, 64);
         if (auto l = r.find("levels")) {
             s->levels.clear();
             for (const JsonNode& v : l->items()) s->levels.push_back(v.asInt(0, 30));

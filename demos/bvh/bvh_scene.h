@@ -2,8 +2,8 @@
 // BvhScene with its keys and the helpers its figures use (meshes, world boxes, tree cuts and
 // volumes, number formats). bvh_demo.cpp reads a scene and dispatches on its figure; each figure
 // is drawn in its own file: bvh_levels_figure.cpp (hierarchy_levels), bvh_aabb_vs_obb_figure.cpp,
-// bvh_dual_traversal_figure.cpp, bvh_refit_figure.cpp, bvh_build_methods_figure.cpp and
-// dynamic_tree_figure.cpp.
+// bvh_dual_traversal_figure.cpp, bvh_refit_figure.cpp, bvh_build_methods_figure.cpp,
+// bvh_sah_figure.cpp and dynamic_tree_figure.cpp.
 #pragma once
 
 #include <algorithm>
@@ -239,7 +239,7 @@ inline void splitPairs(const std::vector<TrianglePair>& pairs, std::vector<int>&
 
 // ---- the scene
 
-enum class Figure { Levels, AabbVsObb, DualTraversal, Refit, BuildMethods, DynamicTree };
+enum class Figure { Levels, AabbVsObb, DualTraversal, Refit, BuildMethods, DynamicTree, SahSplit };
 
 enum class Deformation { Roll, Twist };
 class BvhScene final : public PreparedScene {
@@ -269,6 +269,7 @@ public:
             case Figure::Refit: runRefit(ctx, out); break;
             case Figure::BuildMethods: runBuildMethods(ctx, out); break;
             case Figure::DynamicTree: runDynamicTree(ctx, out); break;
+            case Figure::SahSplit: runSahSplit(ctx, out); break;
         }
         numericOnly(ctx, out);  // records that nothing was drawn
         return out;
@@ -407,6 +408,9 @@ private:
 
     // build_methods (bvh_build_methods_figure.cpp)
     void runBuildMethods(const RunContext& ctx, DemoOutput& out) const;
+
+    // sah_split (bvh_sah_figure.cpp)
+    void runSahSplit(const RunContext& ctx, DemoOutput& out) const;
 };
 
 }  // namespace cdlab::demos::bvhfig

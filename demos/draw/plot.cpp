@@ -106,6 +106,8 @@ public:
         : o_(o), c_(gl, canvasOptions(o.width, o.height, o.scale), render::Camera::pixels(o.width, o.height)) {}
     // Pixel (x right, y down) to the 2D camera's world (y up).
     Eigen::Vector3d P(double x, double y) const { return {x, o_.height - y, 0}; }
+    /// A text size: `base`, or the 1.6 % of the height the legibility gate asks of taller plots.
+    float textPx(float base) const { return std::max(base, float(std::ceil(0.0165 * o_.height * 10) / 10)); }
     Canvas& canvas() { return c_; }
 
     void marker(int style, double x, double y, double r, float alpha) {
@@ -131,8 +133,8 @@ public:
         LineStyle faint = grid;
         faint.color = roleColor(Role::Muted).withAlpha(0.35f);
         faint.dashPx = 0;
-        const TextStyle xtick{15.0f, roleColor(Role::Ink), Anchor::Top, false, false};
-        const TextStyle ytick{15.0f, roleColor(Role::Ink), Anchor::Right, false, false};
+        const TextStyle xtick{textPx(15.0f), roleColor(Role::Ink), Anchor::Top, false, false};
+        const TextStyle ytick{textPx(15.0f), roleColor(Role::Ink), Anchor::Right, false, false};
         auto ticks = [&](const Axis& a, bool isX) {
             const double span = a.hi - a.lo;
             if (a.log) {
@@ -196,7 +198,7 @@ public:
     };
     void legend(const PlotArea& f, const std::vector<LegendEntry>& entries, bool steps) {
         if (entries.empty()) return;
-        const TextStyle text{15.0f, roleColor(Role::Ink), Anchor::Left, false, false};
+        const TextStyle text{textPx(15.0f), roleColor(Role::Ink), Anchor::Left, false, false};
         double w = 0;
         for (const auto& e : entries) w = std::max(w, c_.measureText(e.label, text).x());
         const double rowH = 24, boxW = std::min(w + 58, o_.width - f.x1 - 24), boxH = rowH * entries.size() + 12;
@@ -304,7 +306,7 @@ render::Image drawLogLogPlot(render::GlContext& gl, const PlotOptions& o, const 
             drawnMarkers.emplace_back(x, y, radius);
             if (i < s.pointLabels.size() && !s.pointLabels[i].empty())
                 c.drawTextPx(x + radius + 3, y - radius - 1, s.pointLabels[i],
-                             TextStyle{12.0f, roleColor(Role::Ink), Anchor::BottomLeft, true, false});
+                             TextStyle{pc.textPx(12.0f), roleColor(Role::Ink), Anchor::BottomLeft, true, false});
         }
     }
     pc.legend(f, entries, false);
