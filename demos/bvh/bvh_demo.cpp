@@ -12,7 +12,7 @@
 // trees", JGT 2(4) 1997 (refitting).
 //
 // Figures ("figure" key): hierarchy_levels, aabb_vs_obb, dual_traversal, refit, build_methods,
-// sah_split, dynamic_tree (demos/bvh/dynamic_tree_figure.h: core/broadphase/dynamic_tree.h step by step).
+// sah_split, ray_query, dynamic_tree (demos/bvh/dynamic_tree_figure.h: core/broadphase/dynamic_tree.h step by step).
 // Scene keys: docs/scenes.md, "bvh".
 #include "demos/bvh/bvh_demo.h"
 
@@ -78,7 +78,8 @@ public:
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<BvhScene>(std::move(common));
         const std::string fig = r.get("figure").asEnum(
-            {"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods", "dynamic_tree", "sah_split"});
+            {"hierarchy_levels", "aabb_vs_obb", "dual_traversal", "refit", "build_methods", "dynamic_tree", "sah_split",
+             "ray_query"});
         if (fig == "dynamic_tree") {
             s->figure = Figure::DynamicTree;
             readDynamicTree(r, s->dynamicTree);
@@ -90,6 +91,7 @@ public:
                     : fig == "dual_traversal" ? Figure::DualTraversal
                     : fig == "refit"          ? Figure::Refit
                     : fig == "sah_split"      ? Figure::SahSplit
+                    : fig == "ray_query"      ? Figure::RayQuery
                                               : Figure::BuildMethods;
         JsonNode ms = r.get("meshes");
         if (!ms.isArray() || ms.size() < 1 || ms.size() > 2) ms.fail("expected [mesh] or [meshA, meshB]");
@@ -108,6 +110,14 @@ public:
         }
         if (auto n = r.find("max_leaf_triangles")) s->build.maxLeafTriangles = n->asInt(1, 64);
         if (auto n = r.find("sah_bins")) s->build.sahBins = n->asInt(2, 64);
+        if (s->figure == Figure::RayQuery) {
+            ObjectReader rr(r.get("ray"));
+            s->ray.origin = sceneVec3(rr.get("origin"));
+            const JsonNode d = rr.get("direction");
+            s->ray.direction = sceneVec3(d);
+            if (!(s->ray.direction.norm() > 0)) d.fail("a ray direction must be non-zero");
+            rr.finish();
+        }
         if (auto l = r.find("levels")) {
             s->levels.clear();
             for (const JsonNode& v : l->items()) s->levels.push_back(v.asInt(0, 30));

@@ -3,7 +3,7 @@
 // volumes, number formats). bvh_demo.cpp reads a scene and dispatches on its figure; each figure
 // is drawn in its own file: bvh_levels_figure.cpp (hierarchy_levels), bvh_aabb_vs_obb_figure.cpp,
 // bvh_dual_traversal_figure.cpp, bvh_refit_figure.cpp, bvh_build_methods_figure.cpp,
-// bvh_sah_figure.cpp and dynamic_tree_figure.cpp.
+// bvh_sah_figure.cpp, bvh_ray_figure.cpp and dynamic_tree_figure.cpp.
 #pragma once
 
 #include <algorithm>
@@ -239,7 +239,7 @@ inline void splitPairs(const std::vector<TrianglePair>& pairs, std::vector<int>&
 
 // ---- the scene
 
-enum class Figure { Levels, AabbVsObb, DualTraversal, Refit, BuildMethods, DynamicTree, SahSplit };
+enum class Figure { Levels, AabbVsObb, DualTraversal, Refit, BuildMethods, DynamicTree, SahSplit, RayQuery };
 
 enum class Deformation { Roll, Twist };
 class BvhScene final : public PreparedScene {
@@ -258,6 +258,7 @@ public:
     double deformAngle = 270.0;  // degrees at t = 1
     std::vector<double> times = {0.33, 0.67, 1.0};
     DynamicTreeSpec dynamicTree;
+    Ray ray{Vec3::Zero(), Vec3::UnitX()};  // ray_query
 
     DemoOutput execute(const RunContext& ctx) const override {
         DemoOutput out;
@@ -270,6 +271,7 @@ public:
             case Figure::BuildMethods: runBuildMethods(ctx, out); break;
             case Figure::DynamicTree: runDynamicTree(ctx, out); break;
             case Figure::SahSplit: runSahSplit(ctx, out); break;
+            case Figure::RayQuery: runRayQuery(ctx, out); break;
         }
         numericOnly(ctx, out);  // records that nothing was drawn
         return out;
@@ -411,6 +413,9 @@ private:
 
     // sah_split (bvh_sah_figure.cpp)
     void runSahSplit(const RunContext& ctx, DemoOutput& out) const;
+
+    // ray_query (bvh_ray_figure.cpp)
+    void runRayQuery(const RunContext& ctx, DemoOutput& out) const;
 };
 
 }  // namespace cdlab::demos::bvhfig
