@@ -10,6 +10,8 @@
 // iterations or more), and with "steps" a contact sheet; plus animation.gif (files) and the JSON trace.
 #include "demos/gjk/gjk_demo.h"
 
+#include "demos/gjk/gjk_regions_frame.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -90,6 +92,12 @@ public:
             for (int i : framed) out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, i, r));
         else out.skipped.push_back("step frames (\"steps\": false)");
         out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, -1, r));
+        // The first reduction that drops a vertex, in the simplex's plane with its Voronoi regions.
+        if (const int k = firstDroppingStep(trace.steps); k >= 0)
+            out.frames.push_back(Frame{"regions", "the Voronoi regions of the simplex at iteration " +
+                                                      std::to_string(trace.steps[std::size_t(k)].iteration),
+                                       drawReductionRegions(*ctx.gl, common_.image.width, common_.image.height, scale,
+                                                            common_.title, trace.steps[std::size_t(k)])});
         // The long runs (curved shapes: each support only approaches A − B's boundary) get the two
         // bounds closing on the distance, per iteration (gjk_demo_test "bounds").
         if (trace.steps.size() >= kBoundsPlotSteps) out.frames.push_back(boundsFrame(*ctx.gl, scale, trace, r));
@@ -167,6 +175,7 @@ private:
                              {"terminated", s.terminated}});
         }
         t["steps"] = steps;
+        if (const int k = firstDroppingStep(trace.steps); k >= 0) t["regions"] = reductionRegionsJson(trace.steps[std::size_t(k)]);
         return t;
     }
 
@@ -439,7 +448,7 @@ public:
         }
         r.finish();
         // The result; with steps at most max_step_frames steps and the contact sheet.
-        common.frames = {1, pair.maxStepFrames + 2, 0};
+        common.frames = {1, pair.maxStepFrames + 3, 0};
         return std::make_unique<GjkScene>(std::move(common), std::move(pair), options);
     }
 };
