@@ -10,6 +10,7 @@
 // iterations or more), and with "steps" a contact sheet; plus animation.gif (files) and the JSON trace.
 #include "demos/gjk/gjk_demo.h"
 
+#include "demos/gjk/gjk_closest_set_frame.h"
 #include "demos/gjk/gjk_regions_frame.h"
 
 #include <algorithm>
@@ -92,6 +93,10 @@ public:
             for (int i : framed) out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, i, r));
         else out.skipped.push_back("step frames (\"steps\": false)");
         out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, -1, r));
+        // Parallel closest features: the whole set of closest pairs beside GJK's one.
+        if (const ClosestSet set = gjkClosestSet(pair_, r); set.onA.size() >= 2)
+            out.frames.push_back(Frame{"closest_set", "the closest pairs are not unique",
+                                       drawClosestSet(*ctx.gl, common_, scale, pair_, d, r, set)});
         // The first reduction that drops a vertex, in the simplex's plane with its Voronoi regions.
         if (const int k = firstDroppingStep(trace.steps); k >= 0)
             out.frames.push_back(Frame{"regions", "the Voronoi regions of the simplex at iteration " +
@@ -176,6 +181,7 @@ private:
         }
         t["steps"] = steps;
         if (const int k = firstDroppingStep(trace.steps); k >= 0) t["regions"] = reductionRegionsJson(trace.steps[std::size_t(k)]);
+        if (const ClosestSet set = gjkClosestSet(pair_, r); set.onA.size() >= 2) t["closest_set"] = closestSetJson(set);
         return t;
     }
 
@@ -448,7 +454,7 @@ public:
         }
         r.finish();
         // The result; with steps at most max_step_frames steps and the contact sheet.
-        common.frames = {1, pair.maxStepFrames + 3, 0};
+        common.frames = {1, pair.maxStepFrames + 4, 0};
         return std::make_unique<GjkScene>(std::move(common), std::move(pair), options);
     }
 };
