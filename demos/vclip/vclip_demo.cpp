@@ -214,7 +214,9 @@ private:
                              {"compound_excluded", c.compoundExcluded},
                              {"excluded_by", featureJson(c.excludedBy)},
                              {"derivative_min", c.derivativeMin},
-                             {"derivative_max", c.derivativeMax}});
+                             {"derivative_max", c.derivativeMax},
+                             {"tail", vec3Json(c.tail)},
+                             {"head", vec3Json(c.head)}});
         Json j = walkStepJson(st);
         j["clips"] = clips;
         return j;
@@ -323,9 +325,13 @@ private:
         c.drawLine(cl.tail, cl.head, dashed);
         const bool labels = common_.hasLayer("labels");
         if (excluded) {
-            if (labels)
-                drawLabelAway(c, 0.5 * (cl.tail + cl.head), center_,
-                              cl.simplyExcluded ? "simply excluded" : "compound excluded",
+            for (int end = 0; cl.compoundExcluded && end < 2; ++end) {  // the crossed ends: λmax before λmin
+                c.drawPoint(end == 0 ? cl.clippedTail : cl.clippedHead, 8.0f, violatedColor(), true, 1.5f, roleColor(Role::Ink));
+                if (labels) drawLabelAway(c, end == 0 ? cl.clippedTail : cl.clippedHead, center_, end == 0 ? "λmin" : "λmax",
+                                          TextStyle{15.0f, violatedColor().scaled(0.8f), Anchor::Center, true, true}, 8.0);
+            }
+            if (labels && cl.simplyExcluded)  // a compound one is named by its λmin, λmax and the caption
+                drawLabelAway(c, 0.5 * (cl.tail + cl.head), center_, "simply excluded",
                               TextStyle{15.0f, violatedColor().scaled(0.8f), Anchor::Center, true, true}, 10.0);
             return;
         }
@@ -460,7 +466,10 @@ private:
             if (!l2.empty()) l2 += ";  ";
             l2 += "clip " + nameOf(cl.edge) + " by VR(" + nameOf(cl.region) + "): ";
             if (cl.simplyExcluded) l2 += "simply excluded by " + nameOf(cl.excludedBy);
-            else if (cl.compoundExcluded) l2 += "compound excluded";
+            else if (cl.compoundExcluded)
+                l2 += "compound excluded: past the plane to " + nameOf(cl.neighborMin) + " until λmin = " +
+                      formatNumber(cl.lambdaMin) + ", past the one to " + nameOf(cl.neighborMax) + " from λmax = " +
+                      formatNumber(cl.lambdaMax) + " < λmin";
             else
                 l2 += "λ ∈ [" + formatNumber(cl.lambdaMin) + ", " + formatNumber(cl.lambdaMax) +
                       "], N = " + nameOf(cl.neighborMin) + ", " + nameOf(cl.neighborMax) + ", D′ signs " +
