@@ -115,6 +115,7 @@ struct Walk {
     std::vector<Vec3> sortedVertices;    // mesh vertices (relative), sorted by x, to snap to
     double eps = 0;
     ConvexDecomposition* out = nullptr;
+    DecompositionTrace* trace = nullptr;
 };
 
 // The mesh vertex within eps of p, if any (else p).
@@ -150,6 +151,22 @@ void emitPiece(Walk& w, const Cell& cell) {
 
 void walk(Walk& w, int nodeId, const Cell& cell) {
     const BspNode& node = w.tree->nodes()[std::size_t(nodeId)];
+    if (w.trace) {
+        DecompositionStep st{nodeId, node.parent, node.depth, node.kind, node.plane, {}, -1, 0.0};
+        double area = 0;
+        volumeAndArea(cell, st.volume, area);
+        for (const Polygon& f : cell)
+            for (const Vec3& v : f)
+                if (std::none_of(st.cell.begin(), st.cell.end(), [&](const Vec3& q) { return (q - (v + w.centre)).norm() <= w.eps; }))
+                    st.cell.push_back(v + w.centre);
+        if (node.kind == BspNodeKind::SolidLeaf) {
+            const std::size_t before = w.out->pieces.size();
+            emitPiece(w, cell);
+            if (w.out->pieces.size() > before) st.piece = int(before);
+        }
+        w.trace->steps.push_back(std::move(st));
+        if (node.kind == BspNodeKind::SolidLeaf) return;
+    }
     if (node.kind == BspNodeKind::SolidLeaf) return emitPiece(w, cell);
     if (node.kind == BspNodeKind::EmptyLeaf) return;
     const Vec3& n = node.plane.normal;
@@ -162,7 +179,8 @@ void walk(Walk& w, int nodeId, const Cell& cell) {
 
 }  // namespace
 
-ConvexDecomposition decomposeIntoConvexPieces(const TriangleMesh& mesh, const BspOptions& options) {
+ConvexDecomposition decomposeIntoConvexPieces(const TriangleMesh& mesh, const BspOptions& options,
+                                              DecompositionTrace* trace) {
     ConvexDecomposition out;
     std::vector<BspPolygon> polygons;
     polygons.reserve(mesh.triangles.size());
@@ -183,6 +201,7 @@ ConvexDecomposition decomposeIntoConvexPieces(const TriangleMesh& mesh, const Bs
     w.centre = 0.5 * (lo + hi);
     w.eps = tree.thickness();
     w.out = &out;
+    w.trace = trace;
     for (const Vec3& v : mesh.vertices) w.sortedVertices.push_back(v - w.centre);
     std::sort(w.sortedVertices.begin(), w.sortedVertices.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
     // The starting cell: the bounds grown by 1 % of their size (and by the thickness), so that no

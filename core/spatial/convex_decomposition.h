@@ -34,7 +34,25 @@ struct ConvexDecomposition {
     int treeNodes = 0;
 };
 
-/// Splits the solid bounded by the mesh into convex pieces whose union is the solid.
-ConvexDecomposition decomposeIntoConvexPieces(const TriangleMesh& mesh, const BspOptions& options = {});
+/// One node of the walk, in walk order (a node before its front, then its back subtree): the cell
+/// the node splits (inner) or keeps (solid leaf: a piece, unless a sliver) or discards (empty leaf).
+struct DecompositionStep {
+    int node = -1;
+    int parent = -1;  ///< the node whose plane made this cell (-1: the root, the starting box)
+    int depth = 0;
+    BspNodeKind kind = BspNodeKind::EmptyLeaf;
+    Plane plane{Vec3::UnitZ(), 0.0};  ///< inner nodes: the splitting plane (mesh frame)
+    std::vector<Vec3> cell;           ///< the cell's corners (mesh frame, not snapped)
+    int piece = -1;                   ///< solid leaves: the index in pieces (-1: dropped as a sliver)
+    double volume = 0.0;              ///< of the cell: a node's is its two children's
+};
+struct DecompositionTrace {
+    std::vector<DecompositionStep> steps;
+};
+
+/// Splits the solid bounded by the mesh into convex pieces whose union is the solid. `trace`, when
+/// given, gets every node the walk visits with its cell.
+ConvexDecomposition decomposeIntoConvexPieces(const TriangleMesh& mesh, const BspOptions& options = {},
+                                              DecompositionTrace* trace = nullptr);
 
 }  // namespace cdlab

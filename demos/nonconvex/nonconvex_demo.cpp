@@ -16,6 +16,8 @@
 // Layers: "labels", "boxes", "numbers".
 #include "demos/nonconvex/nonconvex_demo.h"
 
+#include "demos/nonconvex/decomposition_figure.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -41,6 +43,7 @@ const std::vector<std::string> kLayers = {"labels", "boxes", "numbers"};
 
 struct Body {
     TriangleMesh mesh;                      // world frame, outward-facing
+    DecompositionTrace decomposition;       // world frame cells
     std::vector<std::vector<Vec3>> pieces;  // world frame
     std::vector<Eigen::AlignedBox3d> boxes;
     Eigen::AlignedBox3d box;
@@ -193,7 +196,9 @@ Body readBody(const JsonNode& node) {
     r.finish();
     body.mesh = local;
     for (Vec3& v : body.mesh.vertices) v = pose.apply(v);
-    const ConvexDecomposition d = decomposeIntoConvexPieces(local);
+    const ConvexDecomposition d = decomposeIntoConvexPieces(local, {}, &body.decomposition);
+    for (DecompositionStep& st : body.decomposition.steps)
+        for (Vec3& v : st.cell) v = pose.apply(v);
     if (d.pieces.empty()) node.fail("the body could not be split into convex pieces");
     for (const std::vector<Vec3>& piece : d.pieces) {
         std::vector<Vec3> world;
@@ -237,9 +242,14 @@ public:
         const PairRun run = runPairs(a_, b_);
         DemoOutput out;
         out.trace = pairsJson(a_, b_, run);
+        out.trace["decomposition_a"] = decompositionJson(a_.decomposition);
         if (numericOnly(ctx, out)) return out;
         out.frames.push_back(drawFrame(*ctx.gl, ctx, run, false));
         out.frames.push_back(drawFrame(*ctx.gl, ctx, run, true));
+        out.frames.push_back(Frame{"decomposition", common_.title + " — A's decomposition",
+                                   drawDecomposition(*ctx.gl, common_.image.width, common_.image.height,
+                                                     figureScale(common_, ctx), common_.title, "A", a_.decomposition,
+                                                     a_.mesh, view_)});
         return out;
     }
 
