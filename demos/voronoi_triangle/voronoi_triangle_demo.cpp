@@ -369,6 +369,7 @@ private:
         out.trace["simplex"] = "tetrahedron";
         out.trace["vertices"] = {vec3Json(tet.a), vec3Json(tet.b), vec3Json(tet.c), vec3Json(tet.d)};
         out.trace["queries"] = queriesJson(results);
+        out.trace["slices"] = slicesJson(tet);
         if (numericOnly(ctx, out)) return out;
         // The 15 region geometries are drawn only in step frames (one region each).
         TetrahedronVoronoiDiagram diagram;
@@ -376,10 +377,111 @@ private:
             diagram = tetrahedronVoronoiRegions({tet, margin_ > 0 ? margin_ : 0.5 * size()});
         else out.skipped.push_back("region geometry (not drawn without steps and a 'regions'/'boundaries' layer)");
         out.frames.push_back(drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, -1));
+        out.frames.push_back(drawTetrahedronRegions(*ctx.gl, ctx, tet));
         if (common_.steps || ctx.stepsOverride)
             addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()),
                                    [&](int i) { return drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, i); }, out);
         return out;
+    }
+
+    /// Frame "regions": the 15 regions seen together in four slices parallel to face ABC — below it,
+    /// through the tetrahedron, near D, above D. Each region is the intersection of its half-spaces (core's
+    /// tetrahedronVoronoiRegions); its slice is the plane's window clipped by them (core's
+    /// clipConvexPolygon), coloured by the dimension of its feature and named.
+    struct RegionSlice {
+        double fraction = 0;  ///< of D's height above face ABC
+        Vec3 origin = Vec3::Zero();
+        std::vector<std::pair<TetrahedronRegion, std::vector<Vec3>>> cells;  ///< each region's polygon (world)
+    };
+
+    /// The four slices parallel to face ABC, each a square window of side 3.2 size() about the point
+    /// above ABC's centroid, cut into the regions' polygons (core's half-spaces, clipConvexPolygon).
+    std::vector<RegionSlice> tetrahedronSlices(const Tetrahedron& tet, Vec3& u, Vec3& v, double& half) const {
+        const TetrahedronVoronoiDiagram diagram = tetrahedronVoronoiRegions({tet, size()});
+        Vec3 n = (tet.b - tet.a).cross(tet.c - tet.a).normalized();
+        if (n.dot(tet.d - tet.a) < 0) n = -n;  // towards D
+        const double height = n.dot(tet.d - tet.a);
+        u = (tet.b - tet.a).normalized(), v = n.cross(u);
+        half = 1.6 * size();
+        const Vec3 mid = (tet.a + tet.b + tet.c) / 3.0;
+        std::vector<RegionSlice> out;
+        for (double f : {-0.35, 0.4, 0.85, 1.3}) {
+            RegionSlice sl{f, mid + f * height * n, {}};
+            const std::vector<Vec3> window = {sl.origin + half * (-u - v), sl.origin + half * (u - v),
+                                              sl.origin + half * (u + v), sl.origin + half * (-u + v)};
+            for (int r = 0; r < 15 && diagram.valid; ++r) {
+                std::vector<Vec3> poly = window;
+                for (const HalfSpace& h : diagram.regions[r].halfSpaces) poly = clipConvexPolygon(poly, h);
+                if (poly.size() >= 3) sl.cells.emplace_back(TetrahedronRegion(r), std::move(poly));
+            }
+            out.push_back(std::move(sl));
+        }
+        return out;
+    }
+
+    Json slicesJson(const Tetrahedron& tet) const {
+        Vec3 u, v;
+        double half = 0;
+        Json out = Json::array();
+        for (const RegionSlice& sl : tetrahedronSlices(tet, u, v, half)) {
+            Json cells = Json::array();
+            for (const auto& [region, poly] : sl.cells) {
+                Json pts = Json::array();
+                for (const Vec3& p : poly) pts.push_back(vec3Json(p));
+                cells.push_back({{"region", nameOf(region)}, {"polygon", pts}});
+            }
+            out.push_back({{"fraction", sl.fraction}, {"origin", vec3Json(sl.origin)}, {"half_width", half},
+                           {"u", vec3Json(u)}, {"v", vec3Json(v)}, {"cells", cells}});
+        }
+        return out;
+    }
+
+    Frame drawTetrahedronRegions(GlContext& gl, const RunContext& ctx, const Tetrahedron& tet) const {
+        Vec3 u, v;
+        double half = 0;
+        const std::vector<RegionSlice> slices = tetrahedronSlices(tet, u, v, half);
+        const int W = common_.image.width, H = common_.image.height;
+        Canvas canvas(gl, sceneCanvasOptions(common_, figureScale(common_, ctx)), Camera::pixels(W, H));
+        const double pw = W / 2.0, ph = (H - 120.0) / 2.0, box = std::min(pw - 40, ph - 70);
+        int seen[4] = {0, 0, 0, 0};
+        std::vector<bool> counted(15, false);
+        for (int k = 0; k < 4; ++k) {
+            const Vec3 origin = slices[std::size_t(k)].origin;
+            const double fraction = slices[std::size_t(k)].fraction;
+            const double px0 = (k % 2) * pw, py0 = 56 + (k / 2) * ph;
+            const auto S = [&](const Vec3& p) {
+                const double x = (p - origin).dot(u) / (2 * half), y = (p - origin).dot(v) / (2 * half);
+                return Vec3(px0 + 0.5 * pw + x * box, H - (py0 + 52 + 0.5 * box - y * box), 0);
+            };
+            for (const auto& [region, poly] : slices[std::size_t(k)].cells) {
+                const int r = int(region);
+                if (!counted[std::size_t(r)]) counted[std::size_t(r)] = true, ++seen[tetraFeatureDimension(region)];
+                std::vector<Vec3> px;
+                Vec3 c = Vec3::Zero();
+                for (const Vec3& p : poly) px.push_back(S(p)), c += p;
+                const Color color = tetraRegionColor(region);
+                canvas.drawPolygon(px, color.withAlpha(0.45f));
+                canvas.drawPolyline(px, true, LineStyle{1.2f, color.scaled(0.6f), 0.0f, false});
+                if (common_.hasLayer("labels")) {
+                    TextStyle ts{17.0f, roleColor(Role::Ink), Anchor::Center, true, true};
+                    ts.place = true;
+                    canvas.drawText(S(c / double(poly.size())), nameOf(region), ts);
+                }
+            }
+            const std::string where = fraction < 0     ? "below face ABC"
+                                      : fraction < 0.6 ? "through the tetrahedron"
+                                      : fraction < 1   ? "near D"
+                                                       : "above D";
+            canvas.drawTextPx(px0 + 20, py0 + 4, where, TextStyle{17.0f, roleColor(Role::Ink), Anchor::TopLeft, false, true});
+            canvas.drawTextPx(px0 + 20, py0 + 26, "at " + formatNumber(fraction) + " of D's height above ABC",
+                              TextStyle{17.0f, roleColor(Role::Ink), Anchor::TopLeft, false, false});
+        }
+        drawTitleAndCaption(canvas, common_.title,
+                            "Slices parallel to face ABC; together they show " + std::to_string(seen[0]) + " vertex, " +
+                                std::to_string(seen[1]) + " edge, " + std::to_string(seen[2]) + " face regions and " +
+                                std::to_string(seen[3]) + " inside" +
+                                (seen[0] + seen[1] + seen[2] + seen[3] == 15 ? ": all 15" : " of the 15"));
+        return Frame{"regions", "the 15 regions in four slices", canvas.readPixels()};
     }
 
     Frame drawTetrahedronFrame(GlContext& gl, const RunContext& ctx, const Tetrahedron& tet,
