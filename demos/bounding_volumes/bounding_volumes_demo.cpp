@@ -16,6 +16,7 @@
 #include "demos/bounding_volumes/bounding_volumes_demo.h"
 
 #include "demos/bounding_volumes/aabb_refit_figure.h"
+#include "demos/bounding_volumes/bv_overlap_figure.h"
 #include "demos/bounding_volumes/sphere_steps_figure.h"
 
 #include <algorithm>
@@ -450,7 +451,8 @@ public:
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {320, 240}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         if (auto f = r.find("figure")) {
-            const std::string figure = f->asEnum({"volumes", "sphere_steps", "aabb_refit"});
+            const std::string figure = f->asEnum({"volumes", "sphere_steps", "aabb_refit", "bv_overlap"});
+            if (figure == "bv_overlap") return readBvOverlapScene(r, std::move(common));
             if (figure == "sphere_steps") return readSphereStepsScene(r, std::move(common));
             if (figure == "aabb_refit") return readAabbRefitScene(r, std::move(common));
         }
