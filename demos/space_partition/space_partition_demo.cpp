@@ -104,7 +104,7 @@ public:
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<SpaceScene>(std::move(common));
-        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape", "bsp_scores"});
+        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape", "bsp_scores", "grid_tradeoff"});
         if (auto g = r.find("region")) s->region = readRect(*g);
         // Random boxes / points: {"count", "seed", "size": [min, max]} inside the region.
         unsigned seed = 1;
@@ -147,7 +147,7 @@ public:
             }
             br.finish();
         }
-        if (s->figure == "panels") {
+        if (s->figure == "panels" || s->figure == "grid_tradeoff") {
             if (auto b = r.find("boxes")) {
                 requireAtMost(*b, double(b->size()), kMaxPartitionItems, "the number of boxes", "one drawn box each");
                 for (const JsonNode& item : b->items()) s->boxes.push_back(readRect(item));
@@ -158,7 +158,23 @@ public:
                 const double y = rng.uniform(s->region.min.y(), s->region.max.y() - h);
                 s->boxes.push_back({P(x, y), P(x + w, y + h)});
             }
-            if (s->boxes.empty()) r.node().fail("panels: expected 'boxes' or 'random'");
+            if (s->boxes.empty()) r.node().fail(s->figure + ": expected 'boxes' or 'random'");
+            if (s->figure == "grid_tradeoff") {
+                const JsonNode cs = r.get("cell_sizes");
+                if (cs.size() < 2 || cs.size() > 16) cs.fail("expected 2 to 16 cell sizes");
+                for (const JsonNode& h : cs.items()) {
+                    s->cellSizes.push_back(h.asPositive());
+                    // The grid's entries: every box enters each cell it touches (nothing is drawn per cell).
+                    double entries = 0;
+                    for (const Aabb& b : s->boxes)
+                        entries += (std::floor((b.max.x() - b.min.x()) / s->cellSizes.back()) + 2) *
+                                   (std::floor((b.max.y() - b.min.y()) / s->cellSizes.back()) + 2);
+                    requireAtMost(h, entries, 1e7, "the grid entries the boxes make at this cell size",
+                                  "every box enters each cell it touches");
+                }
+                r.finish();
+                return s;
+            }
             const auto g = r.find("grid_cell");
             if (g) s->gridCell = g->asPositive();
             // The grid panel draws one line per cell row and column over the region and the boxes,

@@ -153,11 +153,14 @@ public:
     bool hasSegment = false;
     // bsp_scores
     int scoreFrames = 4;
+    // grid_tradeoff
+    std::vector<double> cellSizes;
 
     DemoOutput execute(const RunContext& ctx) const override {
         if (figure == "panels") return runPanels(ctx);
         if (figure == "kd_query") return runKdQuery(ctx);
         if (figure == "bsp_scores") return runBspScores(ctx);
+        if (figure == "grid_tradeoff") return runGridTradeoff(ctx);
         return runBspShape(ctx);
     }
 
@@ -294,6 +297,9 @@ private:
     // candidates, at most scoreFrames.
 
     DemoOutput runBspScores(const RunContext& ctx) const;
+
+    // grid_tradeoff (space_partition_grid_figure.cpp): work of the uniform grid per cell size.
+    DemoOutput runGridTradeoff(const RunContext& ctx) const;
     Frame drawBspScoreFrame(GlContext& gl, int ss, const BspTree& bt, const BspSplitStep& step) const;
 
     // Tree diagram: leaves evenly spaced left to right (in-order, front child first), inner
