@@ -27,6 +27,38 @@ std::uint64_t hashCell(const std::array<std::int64_t, 3>& c) {
 
 }  // namespace
 
+std::vector<UniformGrid::RayCell> UniformGrid::cellsAlongSegment(const Vec3& p, const Vec3& q, double h, int maxCells) {
+    std::vector<RayCell> out;
+    if (!(h > 0) || !std::isfinite(h) || !p.allFinite() || !q.allFinite() || maxCells <= 0) return out;
+    std::array<std::int64_t, 3> cell = cellOf(p, h);
+    const std::array<std::int64_t, 3> last = cellOf(q, h);
+    const Vec3 d = q - p;
+    // Per axis: the step direction, the t of the next boundary crossed, the t between crossings.
+    std::array<int, 3> step{};
+    Vec3 tNext, tDelta;
+    for (int k = 0; k < 3; ++k) {
+        step[std::size_t(k)] = d[k] > 0 ? 1 : d[k] < 0 ? -1 : 0;
+        if (step[std::size_t(k)] == 0) {
+            tNext[k] = tDelta[k] = INFINITY;
+            continue;
+        }
+        const double boundary = double(cell[std::size_t(k)] + (step[std::size_t(k)] > 0 ? 1 : 0)) * h;
+        tNext[k] = (boundary - p[k]) / d[k];
+        tDelta[k] = h / std::abs(d[k]);
+    }
+    out.push_back({cell, 0.0});
+    while (cell != last && int(out.size()) < maxCells) {
+        int k = 0;
+        if (tNext[1] < tNext[k]) k = 1;
+        if (tNext[2] < tNext[k]) k = 2;
+        if (!(tNext[k] <= 1.0)) break;  // rounding left the last cell unreached: the segment ends here
+        cell[std::size_t(k)] += step[std::size_t(k)];
+        out.push_back({cell, tNext[k]});
+        tNext[k] += tDelta[k];
+    }
+    return out;
+}
+
 std::array<std::int64_t, 3> UniformGrid::cellOf(const Vec3& p, double h) {
     return {static_cast<std::int64_t>(std::floor(p.x() / h)), static_cast<std::int64_t>(std::floor(p.y() / h)),
             static_cast<std::int64_t>(std::floor(p.z() / h))};

@@ -56,6 +56,18 @@ public:
     /// Integer cell coordinates floor(p / h) of a point (finite p / h below 2^53).
     static std::array<std::int64_t, 3> cellOf(const Vec3& p, double h);
 
+    /// One cell a segment passes through and the parameter t in [0, 1] where it enters it.
+    struct RayCell {
+        std::array<std::int64_t, 3> cell;
+        double tEnter = 0.0;
+    };
+    /// The cells of side h the segment p + t (q − p), t in [0, 1], passes through, in order: the
+    /// 3D DDA of Amanatides and Woo ("A Fast Voxel Traversal Algorithm", Eurographics 1987; Ericson
+    /// §7.4.2), one step per cell boundary crossed (at a crossing of two boundaries at once, one
+    /// axis after the other, so the cell between them is listed with its entry t). At most
+    /// maxCells cells (a longer walk is cut there); non-finite input or h <= 0 gives none.
+    static std::vector<RayCell> cellsAlongSegment(const Vec3& p, const Vec3& q, double h, int maxCells);
+
 private:
     struct Entry {
         std::array<std::int64_t, 3> cell;

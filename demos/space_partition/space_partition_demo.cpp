@@ -104,7 +104,7 @@ public:
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<SpaceScene>(std::move(common));
-        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape", "bsp_scores", "grid_tradeoff"});
+        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape", "bsp_scores", "grid_tradeoff", "grid_walk"});
         if (auto g = r.find("region")) s->region = readRect(*g);
         // Random boxes / points: {"count", "seed", "size": [min, max]} inside the region.
         unsigned seed = 1;
@@ -147,7 +147,7 @@ public:
             }
             br.finish();
         }
-        if (s->figure == "panels" || s->figure == "grid_tradeoff") {
+        if (s->figure == "panels" || s->figure == "grid_tradeoff" || s->figure == "grid_walk") {
             if (auto b = r.find("boxes")) {
                 requireAtMost(*b, double(b->size()), kMaxPartitionItems, "the number of boxes", "one drawn box each");
                 for (const JsonNode& item : b->items()) s->boxes.push_back(readRect(item));
@@ -174,6 +174,12 @@ public:
                 }
                 r.finish();
                 return s;
+            }
+            if (s->figure == "grid_walk") {
+                const JsonNode g = r.get("segment");
+                if (g.size() != 2) g.fail("expected [[x, y], [x, y]]");
+                s->segment = {readPoint2(g.at(0)), readPoint2(g.at(1))};
+                s->hasSegment = true;
             }
             const auto g = r.find("grid_cell");
             if (g) s->gridCell = g->asPositive();

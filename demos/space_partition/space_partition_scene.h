@@ -161,6 +161,7 @@ public:
         if (figure == "kd_query") return runKdQuery(ctx);
         if (figure == "bsp_scores") return runBspScores(ctx);
         if (figure == "grid_tradeoff") return runGridTradeoff(ctx);
+        if (figure == "grid_walk") return runGridWalk(ctx);
         return runBspShape(ctx);
     }
 
@@ -300,6 +301,9 @@ private:
 
     // grid_tradeoff (space_partition_grid_figure.cpp): work of the uniform grid per cell size.
     DemoOutput runGridTradeoff(const RunContext& ctx) const;
+
+    // grid_walk (space_partition_grid_walk_figure.cpp): a segment walking the grid cell by cell.
+    DemoOutput runGridWalk(const RunContext& ctx) const;
     Frame drawBspScoreFrame(GlContext& gl, int ss, const BspTree& bt, const BspSplitStep& step) const;
 
     // Tree diagram: leaves evenly spaced left to right (in-order, front child first), inner

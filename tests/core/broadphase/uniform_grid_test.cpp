@@ -3,7 +3,11 @@
 // at and above the box size, on integer boxes whose faces lie on cell boundaries.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <random>
+#include <vector>
 #include <limits>
 
 #include "core/broadphase/uniform_grid.h"
@@ -102,3 +106,37 @@ TEST_SUITE("uniform_grid") {
     }
 
 }  // TEST_SUITE
+
+TEST_CASE("uniform grid DDA: the cells along a segment are the cubes it crosses, in order of entry") {
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(-7.0, 7.0);
+    for (int trial = 0; trial < 300; ++trial) {
+        const Vec3 p(u(rng), u(rng), u(rng)), q(u(rng), u(rng), u(rng));
+        const double h = 0.5 + std::abs(u(rng)) / 3;
+        const auto walk = UniformGrid::cellsAlongSegment(p, q, h, 100000);
+        // Brute force: every cube of the segment's cell range it crosses with a positive length.
+        std::vector<std::pair<double, std::array<std::int64_t, 3>>> expected;
+        const auto lo = UniformGrid::cellOf(p.cwiseMin(q), h), hi = UniformGrid::cellOf(p.cwiseMax(q), h);
+        for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                for (std::int64_t k = lo[2]; k <= hi[2]; ++k) {
+                    double t0 = 0, t1 = 1;
+                    const std::int64_t c[3] = {i, j, k};
+                    for (int a = 0; a < 3; ++a) {
+                        const double d = q[a] - p[a];
+                        double s0 = (double(c[a]) * h - p[a]) / d, s1 = (double(c[a] + 1) * h - p[a]) / d;
+                        if (s0 > s1) std::swap(s0, s1);
+                        t0 = std::max(t0, s0), t1 = std::min(t1, s1);
+                    }
+                    if (t1 - t0 > 1e-9) expected.push_back({t0, {i, j, k}});
+                }
+        std::sort(expected.begin(), expected.end());
+        REQUIRE(walk.size() == expected.size());
+        for (std::size_t n = 0; n < walk.size(); ++n) {
+            CHECK(walk[n].cell == expected[n].second);
+            CHECK(walk[n].tEnter == doctest::Approx(expected[n].first).epsilon(1e-9));
+        }
+    }
+    CHECK(UniformGrid::cellsAlongSegment(Vec3::Zero(), Vec3::Ones(), 0.0, 10).empty());
+    CHECK(UniformGrid::cellsAlongSegment(Vec3::Zero(), Vec3(1e9, 0, 0), 1.0, 50).size() == 50);  // capped
+}
