@@ -95,6 +95,21 @@ Vec3 readPoint2(const JsonNode& node) {
     return P(sceneCoordinate(node.at(0)), sceneCoordinate(node.at(1)));
 }
 
+/// grid_tradeoff's cell sizes, each bounded by the grid entries the scene's boxes make at it.
+void readCellSizes(const JsonNode& cs, SpaceScene& s) {
+    if (cs.size() < 2 || cs.size() > 16) cs.fail("expected 2 to 16 cell sizes");
+    for (const JsonNode& h : cs.items()) {
+        s.cellSizes.push_back(h.asPositive());
+        // Every box enters each cell it touches (nothing is drawn per cell).
+        double entries = 0;
+        for (const Aabb& b : s.boxes)
+            entries += (std::floor((b.max.x() - b.min.x()) / s.cellSizes.back()) + 2) *
+                       (std::floor((b.max.y() - b.min.y()) / s.cellSizes.back()) + 2);
+        requireAtMost(h, entries, 1e7, "the grid entries the boxes make at this cell size",
+                      "every box enters each cell it touches");
+    }
+}
+
 class SpacePartitionDemo final : public Demo {
 public:
     std::string name() const override { return "space_partition"; }
@@ -160,18 +175,7 @@ public:
             }
             if (s->boxes.empty()) r.node().fail(s->figure + ": expected 'boxes' or 'random'");
             if (s->figure == "grid_tradeoff") {
-                const JsonNode cs = r.get("cell_sizes");
-                if (cs.size() < 2 || cs.size() > 16) cs.fail("expected 2 to 16 cell sizes");
-                for (const JsonNode& h : cs.items()) {
-                    s->cellSizes.push_back(h.asPositive());
-                    // The grid's entries: every box enters each cell it touches (nothing is drawn per cell).
-                    double entries = 0;
-                    for (const Aabb& b : s->boxes)
-                        entries += (std::floor((b.max.x() - b.min.x()) / s->cellSizes.back()) + 2) *
-                                   (std::floor((b.max.y() - b.min.y()) / s->cellSizes.back()) + 2);
-                    requireAtMost(h, entries, 1e7, "the grid entries the boxes make at this cell size",
-                                  "every box enters each cell it touches");
-                }
+                readCellSizes(r.get("cell_sizes"), *s);
                 r.finish();
                 return s;
             }

@@ -35,7 +35,7 @@ std::pair<double, double> clip(const Eigen::Vector2d& p, const Eigen::Vector2d& 
 
 }  // namespace grid_walk_test
 
-TEST_CASE("grid walk: the DDA's cells are the squares the segment crosses, in order; candidates and hits recomputed") {
+TEST_CASE("grid walk: the DDA cells are the squares the segment crosses in order, candidates and hits recomputed") {
     using namespace grid_walk_test;
     const std::string file = std::string(CDLAB_SOURCE_DIR) + "/golden/space_partition/grid_walk.json";
     const Json t = loadScene(file)->run(RunContext{}).trace;
