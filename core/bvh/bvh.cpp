@@ -314,7 +314,8 @@ struct Builder {
             step.count = n.count;
             if (n.count > maxLeaf) {
                 const int leftCount =
-                    options.method == BvhBuildMethod::TopDownSah ? splitSah(n, step, trace != nullptr) : splitMedian(n, i, step);
+                    options.method == BvhBuildMethod::TopDownSah ? splitSah(n, step, trace && n.depth <= trace->candidatesToDepth)
+                                                                 : splitMedian(n, i, step);
                 const int left = addChildren(i);
                 bvh.nodes[left].first = n.first;
                 bvh.nodes[left].count = leftCount;

@@ -123,8 +123,9 @@ struct BvhBuildStep {
     /// SAH: the split's cost sum(area_child * count_child) / area_node; bottom-up: the merged
     /// AABB's surface area; 0 otherwise.
     double cost = 0.0;
-    /// Traced SAH builds: every bin plane with both sides non-empty, axis by axis, and the SAH cost
-    /// the median split on the centroids' longest axis would have had (for comparison).
+    /// Traced SAH builds (nodes to BvhBuildTrace::candidatesToDepth): every bin plane with both
+    /// sides non-empty, axis by axis, and the SAH cost the median split on the centroids' longest
+    /// axis would have had (for comparison).
     struct SahCandidate {
         int axis = 0;
         double position = 0.0;  ///< the bin plane's coordinate
@@ -139,6 +140,9 @@ struct BvhBuildStep {
 };
 struct BvhBuildTrace {
     std::vector<BvhBuildStep> steps;
+    /// SAH candidates are recorded for nodes of depth <= this only (each node has up to 3 (bins − 1);
+    /// a 20000-triangle tree's every node would hold millions).
+    int candidatesToDepth = 3;
 };
 
 /// Builds the hierarchy of options.bvKind over mesh's triangles (body frame) by options.method.

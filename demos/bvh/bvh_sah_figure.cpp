@@ -19,6 +19,7 @@ namespace cdlab::demos::bvhfig {
 void BvhScene::runSahSplit(const RunContext& ctx, DemoOutput& out) const {
     const MeshSpec& m = meshes[0];
     BvhBuildTrace trace;
+    trace.candidatesToDepth = treeDepth - 1;  // the nodes drawn
     const Bvh tree = buildChecked(m.mesh, BvKind::Aabb, BvhBuildMethod::TopDownSah, &trace);
     constexpr int kMaxFrames = 6;
     std::vector<const BvhBuildStep*> shown;

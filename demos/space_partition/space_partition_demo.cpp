@@ -105,7 +105,7 @@ void readCellSizes(const JsonNode& cs, SpaceScene& s) {
         for (const Aabb& b : s.boxes)
             entries += (std::floor((b.max.x() - b.min.x()) / s.cellSizes.back()) + 2) *
                        (std::floor((b.max.y() - b.min.y()) / s.cellSizes.back()) + 2);
-        requireAtMost(h, entries, 1e7, "the grid entries the boxes make at this cell size",
+        requireAtMost(h, entries, 2e6, "the grid entries the boxes make at this cell size",
                       "every box enters each cell it touches");
     }
 }
