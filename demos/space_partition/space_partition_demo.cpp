@@ -119,7 +119,8 @@ public:
     SceneFormat sceneFormat() const override { return {kLayers, ImageSettings{1024, 768}, {}}; }
     std::unique_ptr<PreparedScene> readScene(ObjectReader& r, SceneCommon common) const override {
         auto s = std::make_unique<SpaceScene>(std::move(common));
-        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape", "bsp_scores", "grid_tradeoff", "grid_walk"});
+        s->figure = r.get("figure").asEnum({"panels", "kd_query", "bsp_shape", "bsp_scores", "grid_tradeoff", "grid_walk",
+                                             "octree_loose"});
         if (auto g = r.find("region")) s->region = readRect(*g);
         // Random boxes / points: {"count", "seed", "size": [min, max]} inside the region.
         unsigned seed = 1;
@@ -162,7 +163,8 @@ public:
             }
             br.finish();
         }
-        if (s->figure == "panels" || s->figure == "grid_tradeoff" || s->figure == "grid_walk") {
+        if (s->figure == "panels" || s->figure == "grid_tradeoff" || s->figure == "grid_walk" ||
+            s->figure == "octree_loose") {
             if (auto b = r.find("boxes")) {
                 requireAtMost(*b, double(b->size()), kMaxPartitionItems, "the number of boxes", "one drawn box each");
                 for (const JsonNode& item : b->items()) s->boxes.push_back(readRect(item));

@@ -23,23 +23,27 @@ DemoOutput SpaceScene::runPanels(const RunContext& ctx) const {
     return out;
 }
 
+void SpaceScene::buildOctree(PanelStructures& st, double looseness) const {
+    // Octree, root = the square region x [0, S] in z (boxes touch z = 0 only: a quadtree).
+    const double S = (region.max - region.min).head<2>().maxCoeff();
+    OctreeOptions oo;
+    oo.maxDepth = octree.maxDepth;
+    oo.maxObjectsPerLeaf = octree.leaf;
+    oo.looseness = looseness;
+    oo.useRootBounds = true;
+    oo.rootBounds = {Vec3(region.min.x(), region.min.y(), 0.0), Vec3(region.min.x() + S, region.min.y() + S, S)};
+    st.octree.build(boxes, oo);
+    st.octreePairs = st.octree.overlappingPairs(&st.octreeTests);
+    st.octreeStats = st.octree.stats();
+}
+
 void SpaceScene::buildPanelStructures(PanelStructures& st) const {
     // Uniform grid (Ericson §7.1).
     UniformGrid grid;
     UniformGridOptions go;
     go.cellSize = gridCell;
     st.grid = grid.build(boxes, go);
-    // Octree, root = the square region x [0, S] in z (boxes touch z = 0 only: a quadtree).
-    const double S = (region.max - region.min).head<2>().maxCoeff();
-    OctreeOptions oo;
-    oo.maxDepth = octree.maxDepth;
-    oo.maxObjectsPerLeaf = octree.leaf;
-    oo.looseness = octree.looseness;
-    oo.useRootBounds = true;
-    oo.rootBounds = {Vec3(region.min.x(), region.min.y(), 0.0), Vec3(region.min.x() + S, region.min.y() + S, S)};
-    st.octree.build(boxes, oo);
-    st.octreePairs = st.octree.overlappingPairs(&st.octreeTests);
-    st.octreeStats = st.octree.stats();
+    buildOctree(st, octree.looseness);
     // k-d tree over the box centres.
     for (const Aabb& b : boxes) st.centres.push_back(0.5 * (b.min + b.max));
     st.kdTree.build(st.centres, {kd.rule, kd.leaf});
@@ -149,20 +153,26 @@ void SpaceScene::drawGridPanel(const PanelView& v, const Vec3& at, const PanelSt
                 std::to_string(st.grid.pairs) + " pairs");
 }
 
-void SpaceScene::drawOctreePanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const {
+void SpaceScene::drawOctreePanel(const PanelView& v, const Vec3& at, const PanelStructures& st,
+                                 const std::string& title) const {
     Canvas& canvas = v.canvas;
     const Aabb& frame = v.frame;
     const Octree& ot = st.octree;
     const OctreeStats& os = st.octreeStats;
     if (v.cells)
-        for (const OctreeNode& node : ot.nodes())
+        for (const OctreeNode& node : ot.nodes()) {
             outlineRect(canvas, node.cell, at,
                         LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
+            // A loose octree: the enlarged cell its objects fit in, dashed, where it stores any.
+            if (!node.objects.empty() && !(node.looseCell.min == node.cell.min && node.looseCell.max == node.cell.max))
+                outlineRect(canvas, node.looseCell, at,
+                            LineStyle{1.2f, octreeDepthColor(node.depth).scaled(0.7f), 6.0f, false});
+        }
     drawBoxes(
         v, at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
     outlineRect(canvas, frame, at, lineStyle(Role::Ink, 1.5f));
     heading(canvas, at + P(frame.min.x(), frame.max.y()),
-            "Octree (seen as a quadtree), " + std::to_string(os.nodeCount) + " nodes",
+            (title.empty() ? "Octree (seen as a quadtree), " : title + ", ") + std::to_string(os.nodeCount) + " nodes",
             std::to_string(st.octreeTests) + " tests, " + std::to_string(st.octreePairs.size()) + " pairs; " +
                 std::to_string(os.objectsAtRoot) + " boxes on the root's split lines");
     if (common_.hasLayer("labels")) {
@@ -218,6 +228,47 @@ void SpaceScene::drawBspPanel(const PanelView& v, const Vec3& at, const PanelStr
             std::to_string(bs.innerCount) + " planes, " + std::to_string(bs.splits) + " walls cut in two");
     if (common_.hasLayer("labels"))
         keyBelow(canvas, at + v.frame.min, {{roleColor(Role::Direction), "a wall cut in two"}});
+}
+
+}  // namespace cdlab::demos::spacefig
+
+namespace cdlab::demos::spacefig {
+
+DemoOutput SpaceScene::runOctreeLoose(const RunContext& ctx) const {
+    // The same boxes in a tight octree and a loose one (looseness k: each cell enlarged k times
+    // about its centre; Ulrich, "Loose Octrees", Game Programming Gems 2000; Ericson §7.3.6).
+    const double k = octree.looseness > 1 ? octree.looseness : 2.0;
+    PanelStructures tight, loose;
+    buildOctree(tight, 1.0);
+    buildOctree(loose, k);
+    DemoOutput out;
+    const auto stats = [](const PanelStructures& st) {
+        const OctreeStats& os = st.octreeStats;
+        return Json{{"nodes", os.nodeCount}, {"depth", os.maxDepthReached}, {"objects_at_root", os.objectsAtRoot},
+                    {"objects_per_depth", os.objectsPerDepth}, {"pair_tests", st.octreeTests},
+                    {"pairs", int(st.octreePairs.size())}};
+    };
+    Json depthOf = Json::array();
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        depthOf.push_back({tight.octree.nodes()[std::size_t(tight.octree.nodeOf(int(i)))].depth,
+                           loose.octree.nodes()[std::size_t(loose.octree.nodeOf(int(i)))].depth});
+    Json list = Json::array();
+    for (const Aabb& b : boxes) list.push_back({b.min.x(), b.min.y(), b.max.x(), b.max.y()});
+    out.trace = {{"looseness", k}, {"tight", stats(tight)}, {"loose", stats(loose)}, {"box_depths", depthOf},
+                 {"box_list", list}, {"root_side", (region.max - region.min).head<2>().maxCoeff()}};
+    if (numericOnly(ctx, out)) return out;
+    Canvas canvas(*ctx.gl, sceneCanvasOptions(common_, figureScale(common_, ctx)));
+    const Vec3 size = region.max - region.min;
+    const double W = std::max(size.x(), size.y()), gap = 0.3 * W;
+    const Vec3 middle = region.min + P(0.5 * (2 * W + gap), 0.5 * W);
+    canvas.setCamera(Camera::twoD(middle.x() + 0.05 * W, middle.y() + 0.02 * W, (2 * W + gap) * 0.9));
+    PanelView v{canvas, Aabb{region.min, region.min + P(W, W)}, W, std::vector<bool>(boxes.size(), false),
+                common_.hasLayer("objects"), common_.hasLayer("cells"), common_.hasLayer("splits")};
+    for (const auto& p : tight.octreePairs) v.paired[std::size_t(p.first)] = v.paired[std::size_t(p.second)] = true;
+    drawOctreePanel(v, P(0, 0), tight, "Tight octree");
+    drawOctreePanel(v, P(W + gap, 0), loose, "Loose octree, k = " + formatNumber(k));
+    out.frames.push_back(titledFrame(canvas, "loose"));
+    return out;
 }
 
 }  // namespace cdlab::demos::spacefig

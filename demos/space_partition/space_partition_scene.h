@@ -162,6 +162,7 @@ public:
         if (figure == "bsp_scores") return runBspScores(ctx);
         if (figure == "grid_tradeoff") return runGridTradeoff(ctx);
         if (figure == "grid_walk") return runGridWalk(ctx);
+        if (figure == "octree_loose") return runOctreeLoose(ctx);
         return runBspShape(ctx);
     }
 
@@ -276,7 +277,14 @@ private:
     void drawGridPanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const;
 
     // 2. Octree (quadtree from the top): node cells, boxes coloured by the depth they sit at.
-    void drawOctreePanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const;
+    void drawOctreePanel(const PanelView& v, const Vec3& at, const PanelStructures& st,
+                         const std::string& title = "") const;
+
+    /// The octree of the scene's boxes with looseness k (the panels' octree and octree_loose's two).
+    void buildOctree(PanelStructures& st, double looseness) const;
+
+    // octree_loose (space_partition_panels_figure.cpp): the same boxes in a tight and a loose octree.
+    DemoOutput runOctreeLoose(const RunContext& ctx) const;
 
     // 3. k-d tree over the box centres: split lines clipped to their cells, coloured by depth.
     void drawKdPanel(const PanelView& v, const Vec3& at, const PanelStructures& st) const;
