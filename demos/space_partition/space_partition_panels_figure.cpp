@@ -163,10 +163,13 @@ void SpaceScene::drawOctreePanel(const PanelView& v, const Vec3& at, const Panel
         for (const OctreeNode& node : ot.nodes()) {
             outlineRect(canvas, node.cell, at,
                         LineStyle{depthWidth(node.depth), depthColor(node.depth, os.maxDepthReached)});
-            // A loose octree: the enlarged cell its objects fit in, dashed, where it stores any.
-            if (!node.objects.empty() && !(node.looseCell.min == node.cell.min && node.looseCell.max == node.cell.max))
-                outlineRect(canvas, node.looseCell, at,
-                            LineStyle{1.2f, octreeDepthColor(node.depth).scaled(0.7f), 6.0f, false});
+            // A loose octree: the enlarged cell its objects fit in, dashed, where it stores any; drawn
+            // within the root's square (nothing lies outside it, and beyond it the dashes crossed the
+            // headings).
+            if (!node.objects.empty() && !(node.looseCell.min == node.cell.min && node.looseCell.max == node.cell.max)) {
+                const Aabb shown{node.looseCell.min.cwiseMax(frame.min), node.looseCell.max.cwiseMin(frame.max)};
+                outlineRect(canvas, shown, at, LineStyle{1.2f, octreeDepthColor(node.depth).scaled(0.7f), 6.0f, false});
+            }
         }
     drawBoxes(
         v, at, [&](int i) { return octreeDepthColor(ot.nodes()[std::size_t(ot.nodeOf(i))].depth); }, 0.45f);
@@ -177,8 +180,13 @@ void SpaceScene::drawOctreePanel(const PanelView& v, const Vec3& at, const Panel
                 std::to_string(os.objectsAtRoot) + " boxes on the root's split lines");
     if (common_.hasLayer("labels")) {
         // Legend: box colour = depth of the node that stores it.
+        // Rows 22 px apart whatever the zoom (world units per pixel from the camera).
+        Eigen::Vector2d p0, p1;
+        double rowWorld = 0.045 * v.W;
+        if (canvas.project(at, p0) && canvas.project(at + P(0, 1), p1) && (p1 - p0).norm() > 0)
+            rowWorld = std::max(rowWorld, 22.0 / (p1 - p0).norm());
         for (int d = 0; d <= os.maxDepthReached; ++d) {
-            const Vec3 p = at + P(frame.max.x(), frame.max.y()) + P(0.02 * v.W, -0.045 * v.W * (d + 0.5));
+            const Vec3 p = at + P(frame.max.x(), frame.max.y()) + P(0.02 * v.W, -rowWorld * (d + 0.5));
             canvas.drawPoint(p, 6.0f, octreeDepthColor(d).withAlpha(0.8f));
             canvas.drawText(
                 p,
