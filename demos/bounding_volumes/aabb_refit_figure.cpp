@@ -123,6 +123,13 @@ std::unique_ptr<PreparedScene> readAabbRefitScene(ObjectReader& r, SceneCommon c
     requireAtMost(pts, double(pts.size()), kMaxRefitPoints, "the number of points", "one drawn polygon per panel");
     std::vector<Vec3> points;
     for (const JsonNode& p : pts.items()) points.push_back(sceneVec2(p));
+    double twiceArea = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Vec3& a = points[i];
+        const Vec3& b = points[(i + 1) % points.size()];
+        twiceArea += a.x() * b.y() - b.x() * a.y();
+    }
+    if (!(std::abs(twiceArea) > 0)) pts.fail("the polygon has no area (its boxes would have none to compare)");
     const JsonNode an = r.get("angles");
     if (an.size() < 1) an.fail("expected 1 to 8 angles in degrees");
     requireAtMost(an, double(an.size()), kMaxAngles, "the number of angles", "one panel each");

@@ -187,6 +187,8 @@ std::unique_ptr<PreparedScene> readSphereStepsScene(ObjectReader& r, SceneCommon
     requireAtMost(pts, double(pts.size()), kMaxPoints, "the number of points", "one drawn point per panel each");
     std::vector<Vec3> points;
     for (const JsonNode& p : pts.items()) points.push_back(sceneVec2(p));
+    if (std::all_of(points.begin(), points.end(), [&](const Vec3& p) { return p == points.front(); }))
+        pts.fail("the points all coincide: their circle has radius 0, no step to draw");
     r.finish();
     return std::make_unique<SphereStepsScene>(std::move(common), std::move(points));
 }

@@ -110,6 +110,8 @@ public:
         }
         if (auto n = r.find("max_leaf_triangles")) s->build.maxLeafTriangles = n->asInt(1, 64);
         if (auto n = r.find("sah_bins")) s->build.sahBins = n->asInt(2, 64);
+        if (s->figure == Figure::SahSplit && s->meshes[0].mesh.triangleCount() <= s->build.maxLeafTriangles)
+            ms.at(0).fail("sah_split needs more triangles than max_leaf_triangles: the root would not split");
         if (s->figure == Figure::RayQuery) {
             ObjectReader rr(r.get("ray"));
             s->ray.origin = sceneVec3(rr.get("origin"));

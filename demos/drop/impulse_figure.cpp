@@ -39,6 +39,8 @@ struct ImpulseRun {
     std::vector<double> inverseMassTerm, angularTerm;  ///< per point: 1/m and n·((I⁻¹(r×n))×r)
     std::vector<Vec3> velocityBefore, velocityAfter;   ///< of the body point at each contact
     double closedFormJ = 0;                            ///< Baraff's j at point 0, frictionless
+    bool valid = true;                                 ///< the body built and the solver answered every contact
+    std::string message;
 };
 
 const Vec3 kNormal = Vec3::UnitZ();
@@ -64,9 +66,14 @@ ImpulseRun solve(const ImpulseSettings& s) {
     const double touch = 1e-9 * s.halfExtents.maxCoeff();
     for (const Vec3& c : run.corners)
         if (c.z() <= run.ground + touch) run.contacts.push_back(ContactConstraintPoint{c, c.z() - run.ground});
-    run.before = makeDynamicBody(s.mass, run.inertiaBody, Transform{Vec3::Zero(), s.rotation}, s.velocity,
-                                 s.angularVelocity)
-                     .body;
+    const RigidBodyBuild built = makeDynamicBody(s.mass, run.inertiaBody, Transform{Vec3::Zero(), s.rotation}, s.velocity,
+                                                 s.angularVelocity);
+    if (!built.ok()) {
+        run.valid = false;
+        run.message = built.message;
+        return run;
+    }
+    run.before = built.body;
     const Mat3 invI = run.before.inverseInertiaWorld();
     for (const ContactConstraintPoint& c : run.contacts) {
         const Vec3 rn = c.point.cross(kNormal);  // r = p − x, x = 0
@@ -79,6 +86,11 @@ ImpulseRun solve(const ImpulseSettings& s) {
     ImpulseSolverOptions o = s.solver;
     o.recordIterations = true;
     run.result = solveContacts(run.after, kNormal, run.contacts, o);
+    if (run.result.points.size() != run.contacts.size()) {
+        run.valid = false;
+        run.message = "the solver answered no contact";
+        return run;
+    }
     for (const ContactConstraintPoint& c : run.contacts) run.velocityAfter.push_back(run.after.velocityAt(c.point));
     return run;
 }
@@ -293,6 +305,7 @@ std::unique_ptr<PreparedScene> readImpulseScene(ObjectReader& r, SceneCommon com
     if (auto m = r.find("mass")) {
         s.mass = m->asPositive();
         requireAtMost(*m, s.mass, 1e6, "mass", "the physical range an impulse scene accepts");
+        requireAtLeast(*m, s.mass, 1e-6, "mass", "the impulse solver divides by it");
     }
     if (auto q = r.find("rotation")) s.rotation = q->asQuat();
     if (auto v = r.find("velocity")) s.velocity = sceneVec3(*v);
@@ -314,6 +327,10 @@ std::unique_ptr<PreparedScene> readImpulseScene(ObjectReader& r, SceneCommon com
         if (!(s.view.norm() > 0)) v->fail("view direction must be non-zero");
     }
     r.finish();
+    // A box so thin that its inertia is no valid rigid body (a near-singular inertia) is refused here,
+    // naming the box, not found by the solver (it would answer with no contact at all).
+    const ImpulseRun probe = solve(s);
+    if (!probe.valid) he.fail("this box makes no valid rigid body: " + probe.message);
     return std::make_unique<ImpulseScene>(std::move(common), s);
 }
 

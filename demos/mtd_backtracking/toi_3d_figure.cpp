@@ -152,8 +152,10 @@ private:
             drawBodyName(world, a1.center, "A", Role::ShapeA);
             drawBodyName(world, b1.center, "B", Role::ShapeB);
         }
-        drawPanelHeading(world, "World space", run.toi.hit ? "faint: t = 0;  solid: t = " + formatNumber(run.toi.t) + ", first contact"
-                                                           : "no contact in [0, 1]: solid at t = 1");
+        drawPanelHeading(world, "World space",
+                         run.toi.initiallyOverlapping ? "they overlap already at t = 0"
+                         : run.toi.hit ? "faint: t = 0;  solid: t = " + formatNumber(run.toi.t) + ", first contact"
+                                       : "no contact in [0, 1]: solid at t = 1");
         // Configuration space: B − A and the ray from the origin along motion_A − motion_B.
         const ConvexDrawable c = minkowskiDrawable(s_.b, s_.a);
         const Vec3 dir = s_.motionA - s_.motionB;

@@ -95,11 +95,22 @@ Vec3 readPoint2(const JsonNode& node) {
     return P(sceneCoordinate(node.at(0)), sceneCoordinate(node.at(1)));
 }
 
+/// grid_walk's segment, and its box count bounded (each drawn, the visited cells labelled among them).
+void readWalkSegment(ObjectReader& r, SpaceScene& s) {
+    requireAtMost(r.node(), double(s.boxes.size()), 200, "the number of boxes",
+                  "grid_walk labels each visited cell among them");
+    const JsonNode g = r.get("segment");
+    if (g.size() != 2) g.fail("expected [[x, y], [x, y]]");
+    s.segment = {readPoint2(g.at(0)), readPoint2(g.at(1))};
+    s.hasSegment = true;
+}
+
 /// grid_tradeoff's cell sizes, each bounded by the grid entries the scene's boxes make at it.
 void readCellSizes(const JsonNode& cs, SpaceScene& s) {
     if (cs.size() < 2 || cs.size() > 16) cs.fail("expected 2 to 16 cell sizes");
     for (const JsonNode& h : cs.items()) {
         s.cellSizes.push_back(h.asPositive());
+        requireAtMost(h, s.cellSizes.back(), kMaxSceneCoordinate, "a cell size", "figures are drawn in float32");
         // Every box enters each cell it touches (nothing is drawn per cell).
         double entries = 0;
         for (const Aabb& b : s.boxes)
@@ -181,14 +192,10 @@ public:
                 r.finish();
                 return s;
             }
-            if (s->figure == "grid_walk") {
-                const JsonNode g = r.get("segment");
-                if (g.size() != 2) g.fail("expected [[x, y], [x, y]]");
-                s->segment = {readPoint2(g.at(0)), readPoint2(g.at(1))};
-                s->hasSegment = true;
-            }
+            if (s->figure == "grid_walk") readWalkSegment(r, *s);
             const auto g = r.find("grid_cell");
             if (g) s->gridCell = g->asPositive();
+            if (g) requireAtMost(*g, s->gridCell, kMaxSceneCoordinate, "the cell size", "figures are drawn in float32");
             // The grid panel draws one line per cell row and column over the region and the boxes,
             // and the hashed grid visits every cell a box covers: their cell count is the cost.
             Aabb all = s->region;
@@ -220,6 +227,10 @@ public:
             if (s->polygon.size() < 3) polygon.fail("expected at least 3 vertices (counter-clockwise)");
             requireSimpleCounterClockwise(polygon, s->polygon);
             if (s->figure == "bsp_scores") {
+                // Every candidate is a row of the table, 15 px text at the least: 24 fit (and each of
+                // the frames' nodes scores them all, quadratic in the edges).
+                requireAtMost(polygon, double(polygon.size()), 24, "the number of polygon edges",
+                              "bsp_scores lists every candidate edge in its table");
                 if (auto f = r.find("frames")) s->scoreFrames = f->asInt(1, 8);
             } else if (auto q = r.find("queries")) {
                 requireAtMost(*q, double(q->size()), kMaxPartitionItems, "the number of query points",

@@ -5,6 +5,7 @@
 #include <random>
 #include <string>
 
+#include "app/scene/scene_limits.h"
 #include "core/broadphase/sweep_and_prune.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
@@ -106,7 +107,8 @@ public:
         static constexpr int kStyles[kMaxCoherenceSpeeds] = {1, 2, 0, 5};
         int style = 0;
         for (double speed : s_.speeds) {
-            PlotSeries p{"speed " + formatNumber(speed) + ": slope " + formatNumber(slope(runs, speed)),
+            const double sl = slope(runs, speed);
+            PlotSeries p{"speed " + formatNumber(speed) + (std::isnan(sl) ? ": no slope (0 swaps)" : ": slope " + formatNumber(sl)),
                          kStyles[style++], true, true, {}, {}};
             for (const CoherenceRun& r : runs)
                 if (r.speed == speed) p.points.emplace_back(r.n, std::max(r.swapsPerObject(), po.yFloor));
@@ -130,7 +132,7 @@ private:
     CoherenceSettings s_;
 
     /// The log-log slope of swaps per box between the smallest and the largest n at one speed, to two
-    /// decimals (the legend's "slope"); 0 when a run made no swaps.
+    /// decimals (the legend's "slope"); NaN (trace null, legend "no slope") when an end made no swaps.
     static double slope(const std::vector<CoherenceRun>& runs, double speed) {
         const CoherenceRun* lo = nullptr;
         const CoherenceRun* hi = nullptr;
@@ -139,7 +141,7 @@ private:
                 if (!lo || r.n < lo->n) lo = &r;
                 if (!hi || r.n > hi->n) hi = &r;
             }
-        if (!lo || hi->n == lo->n || !(lo->swapsPerObject() > 0) || !(hi->swapsPerObject() > 0)) return 0;
+        if (!lo || hi->n == lo->n || !(lo->swapsPerObject() > 0) || !(hi->swapsPerObject() > 0)) return NAN;
         return std::round(100 * std::log(hi->swapsPerObject() / lo->swapsPerObject()) / std::log(double(hi->n) / lo->n)) /
                100;
     }
@@ -158,7 +160,7 @@ private:
                           {"swaps_per_axis", r.swapsAxis},
                           {"pairs", r.pairs},
                           {"swaps_per_box", r.swapsPerObject()},
-                          {"slope", slope(runs, r.speed)},
+                          {"slope", std::isnan(slope(runs, r.speed)) ? Json(nullptr) : Json(slope(runs, r.speed))},
                           {"full_resort_per_box", 6 * std::log2(2.0 * r.n)}});
         t["runs"] = rs;
         return t;
@@ -173,7 +175,11 @@ std::unique_ptr<PreparedScene> readCoherenceScene(ObjectReader& r, SceneCommon c
         if (c->size() < 2 || c->size() > static_cast<std::size_t>(kMaxCoherenceCounts))
             c->fail("expected 2 to " + std::to_string(kMaxCoherenceCounts) + " box counts");
         s.counts.clear();
-        for (const JsonNode& n : c->items()) s.counts.push_back(n.asInt(2, kMaxCoherenceBoxes));
+        for (const JsonNode& n : c->items()) {
+            s.counts.push_back(n.asInt(2, kMaxCoherenceBoxes));
+            if (s.counts.size() > 1 && s.counts.back() <= s.counts[s.counts.size() - 2])
+                n.fail("box counts must increase (the slope is taken from the first to the last)");
+        }
     }
     if (auto v = r.find("speeds")) {
         if (v->size() < 1 || v->size() > static_cast<std::size_t>(kMaxCoherenceSpeeds))
@@ -188,9 +194,17 @@ std::unique_ptr<PreparedScene> readCoherenceScene(ObjectReader& r, SceneCommon c
     if (auto u = r.find("updates")) s.updates = u->asInt(1, 10);
     if (auto d = r.find("density")) {
         s.density = d->asPositive();
-        if (s.density > 1) d->fail("density is at most 1 cube per unit volume");
+        if (s.density > 0.5 || s.density < 1e-4)
+            d->fail("density is between 1e-4 and 0.5 cubes per unit volume (a full container cannot move)");
     }
     if (auto sd = r.find("seed")) s.seed = static_cast<unsigned>(sd->asInt(0, 1 << 30));
+    // The swaps, estimated before any work: per update and box about 3 axes × 2 endpoints × speed ×
+    // the endpoint density 2n / side (an upper estimate: the golden scene makes a third of it).
+    double estimate = 0;
+    for (double speed : s.speeds)
+        for (int n : s.counts) estimate += s.updates * 3.0 * 2 * n * speed * (2.0 * n / std::cbrt(n / s.density));
+    requireAtMost(r.node(), estimate, kMaxCoherenceSwapEstimate, "the estimated insertion-sort swaps",
+                  "each is one step of the sort: lower counts, speeds or updates");
     r.finish();
     return std::make_unique<CoherenceScene>(std::move(common), std::move(s));
 }

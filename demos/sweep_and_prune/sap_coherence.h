@@ -27,10 +27,13 @@ struct CoherenceSettings {
 };
 
 /// Limits of a coherence scene, checked when it is read (the work is O(n * updates) plus the swaps,
-/// which grow like speed * n^(5/3): at the limits about 10^8 swaps, under a second).
+/// which grow like speed * n^(5/3): their estimate is bounded by kMaxCoherenceSwapEstimate, about a
+/// second of sorting).
 constexpr int kMaxCoherenceBoxes = 4096;
 constexpr int kMaxCoherenceCounts = 8;
 constexpr int kMaxCoherenceSpeeds = 4;
+/// The estimated swaps of a whole scene (readCoherenceScene's estimate; ~3 × 10⁸ swaps a second).
+constexpr double kMaxCoherenceSwapEstimate = 3e8;
 
 /// n unit cubes in a container cube [0, side]^3 that they bounce off (so the density stays fixed).
 struct CoherenceBoxes {

@@ -377,7 +377,8 @@ private:
             diagram = tetrahedronVoronoiRegions({tet, margin_ > 0 ? margin_ : 0.5 * size()});
         else out.skipped.push_back("region geometry (not drawn without steps and a 'regions'/'boundaries' layer)");
         out.frames.push_back(drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, -1));
-        out.frames.push_back(drawTetrahedronRegions(*ctx.gl, ctx, tet));
+        if (tetrahedronVoronoiRegions({tet, size()}).valid) out.frames.push_back(drawTetrahedronRegions(*ctx.gl, ctx, tet));
+        else out.skipped.push_back("regions frame (a flat tetrahedron has no 3D regions)");
         if (common_.steps || ctx.stepsOverride)
             addQueryFramesAndSheet(*ctx.gl, common_, int(queries_.size()),
                                    [&](int i) { return drawTetrahedronFrame(*ctx.gl, ctx, tet, diagram, results, i); }, out);

@@ -12,6 +12,7 @@
 
 #include "app/catalog/catalog.h"
 #include "app/scene/json_reader.h"
+#include "tests/scene_error.h"
 
 using namespace cdlab;
 using namespace cdlab::demos;
@@ -87,4 +88,12 @@ TEST_CASE("sphere steps: Ritter's pass replayed, Welzl's circle the brute-force 
     }
     for (const Json& i : w["final_support"])
         CHECK((p[i.get<int>()] - c2(w["sphere"])).norm() == doctest::Approx(minR).epsilon(1e-12));
+}
+
+TEST_CASE("bounding volume figures: degenerate point sets are one error naming the points") {
+    const std::string steps = R"({"demo": "bounding_volumes", "figure": "sphere_steps", "title": "t", "points": [[1, 1], [1, 1]]})";
+    CHECK(test::sceneTextError(steps).find("$.points") != std::string::npos);
+    const std::string refit =
+        R"({"demo": "bounding_volumes", "figure": "aabb_refit", "title": "t", "points": [[0, 0], [1, 0], [2, 0]], "angles": [0, 90]})";
+    CHECK(test::sceneTextError(refit).find("$.points") != std::string::npos);
 }

@@ -121,7 +121,9 @@ TEST_CASE("impulse figure: a scene out of range is one error naming its key") {
         {R"("box": {"half_extents": [0.5, 0.3, 0.2]}, "iterations": 65})", "iterations"},
         {R"("box": {"half_extents": [0.5, 0.3, 0.2]}, "velocity": [1e9, 0, 0]})", "velocity"},
         {R"("box": {"half_extents": [0.5, 0.3, 0.2]}, "mass": 0})", "mass"},
-        {R"("box": {"half_extents": [0.5, 0.3, 0.2]}, "body": {}})", "body"}};
+        {R"("box": {"half_extents": [0.5, 0.3, 0.2]}, "body": {}})", "body"},
+        {R"("box": {"half_extents": [100, 1e-5, 1e-5]}})", "box.half_extents"},  // no valid inertia (crashed once)
+        {R"("box": {"half_extents": [0.5, 0.3, 0.2]}, "mass": 1e-300})", "mass"}};
     for (const auto& [keys, what] : bad) {
         CAPTURE(keys);
         const std::string error = test::sceneTextError(base + keys);

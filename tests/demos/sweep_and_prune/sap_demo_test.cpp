@@ -170,11 +170,13 @@ TEST_CASE("sweep and prune coherence: a scene past a limit is one error naming i
         {R"("counts": [16, 5000]})", "counts[1]"}, {R"("counts": [16]})", "counts"},
         {R"("speeds": [0.1, 5]})", "speeds[1]"},   {R"("speeds": [0.1, 0.2, 0.4, 0.8, 1.6]})", "speeds"},
         {R"("updates": 11})", "updates"},          {R"("density": 2})", "density"},
-        {R"("speeds": [0]})", "speeds[0]"},        {R"("counts": [1, 16]})", "counts[0]"}};
+        {R"("speeds": [0]})", "speeds[0]"},        {R"("counts": [1, 16]})", "counts[0]"},
+        {R"("counts": [64, 64]})", "counts[1]"},   {R"("density": 1})", "density"},
+        {R"("counts": [2, 4096], "speeds": [4], "updates": 10, "density": 0.5})", "estimated insertion-sort swaps"}};
     for (const auto& [keys, path] : bad) {
         CAPTURE(keys);
         const std::string error = test::sceneTextError(base + keys);
         CHECK(error.find(path) != std::string::npos);
     }
-    CHECK(test::sceneTextError(base + R"("counts": [2, 4096], "speeds": [4], "updates": 10, "density": 1})") == "");
+    CHECK(test::sceneTextError(base + R"("counts": [2, 2048], "speeds": [4], "updates": 10, "density": 0.5})") == "");
 }
