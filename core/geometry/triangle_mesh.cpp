@@ -200,9 +200,14 @@ bool simplePolygon(const std::vector<Vec2>& p) {
             const Vec2 &a = p[i], &b = p[(i + 1) % n], &c = p[j], &d = p[(j + 1) % n];
             if (!neighbours) {
                 if (segmentsMeet(a, b, c, d)) return false;
-            } else if (orient2d(a, b, d) == 0 && orient2d(c, d, a) == 0 && (b - a).dot(d - c) < 0) {
-                return false;  // neighbours folding back onto each other
+                continue;
             }
+            // Neighbours u → v → w fold back onto each other when collinear and opposite. The pair
+            // (0, n − 1) meets at p[0] (edges p[n−1] → p[0] → p[1]); read as (a, b, c, d) its test was
+            // degenerate and refused every turn sharper than 90° at the first corner
+            // (tests/core/geometry/prism_mesh_test.cpp "a prism outline from any starting corner").
+            const Vec2 &u = j == i + 1 ? a : c, &v = j == i + 1 ? b : a, &w = j == i + 1 ? d : b;
+            if (orient2d(u, v, w) == 0 && (w - v).dot(v - u) < 0) return false;
         }
     return true;
 }

@@ -65,3 +65,28 @@ TEST_CASE("prism meshes: a crossing outline, too few corners, no height") {
     CHECK(prismMesh({{0, 0}, {1, 0}, {0, 1}}, 0.0).triangles.empty());
     CHECK(prismMesh({{0, 0}, {1, 0}, {NAN, 1}}, 1.0).triangles.empty());
 }
+
+TEST_CASE("a prism outline from any starting corner") {
+    // A chevron (a turn sharper than 90° at its first corner) and a notched square: every rotation
+    // of the corner list is the same polygon and must give a closed prism of the same volume.
+    const std::vector<std::vector<Vec2>> outlines = {{{0, 0}, {2, 1}, {4, 0}, {2, 3}},
+                                                     {{0, 0}, {3, 0}, {3, 3}, {1.5, 1}, {0, 3}}};
+    for (const std::vector<Vec2>& base : outlines) {
+        double area = 0;
+        for (std::size_t i = 0; i < base.size(); ++i)
+            area += 0.5 * (base[i].x() * base[(i + 1) % base.size()].y() - base[(i + 1) % base.size()].x() * base[i].y());
+        for (std::size_t r = 0; r < base.size(); ++r) {
+            std::vector<Vec2> o(base.begin() + std::ptrdiff_t(r), base.end());
+            o.insert(o.end(), base.begin(), base.begin() + std::ptrdiff_t(r));
+            CAPTURE(r);
+            const TriangleMesh m = prismMesh(o, 2.0);
+            REQUIRE_FALSE(m.triangles.empty());
+            double volume = 0;
+            for (int t = 0; t < m.triangleCount(); ++t) {
+                const Triangle tr = m.triangle(t);
+                volume += tr.a.dot(tr.b.cross(tr.c)) / 6.0;
+            }
+            CHECK(volume == doctest::Approx(2.0 * std::abs(area)).epsilon(1e-12));
+        }
+    }
+}
