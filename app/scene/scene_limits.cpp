@@ -75,14 +75,26 @@ Vec3 sceneVec2(const JsonNode& node) {
     return Vec3(sceneCoordinate(node.at(0)), sceneCoordinate(node.at(1)), 0.0);
 }
 
-std::vector<Vec3> sceneVec3List(const JsonNode& node, std::size_t minCount, std::size_t maxCount) {
+namespace {
+
+std::vector<Vec3> sceneList(const JsonNode& node, std::size_t minCount, std::size_t maxCount, Vec3 (*read)(const JsonNode&)) {
     const std::size_t n = node.size();
     if (n < minCount) node.fail("expected at least " + std::to_string(minCount) + " points, got " + std::to_string(n));
     requireAtMost(node, double(n), double(maxCount), "the number of points", "the limit of a scene list");
     std::vector<Vec3> out;
     out.reserve(n);
-    for (const JsonNode& item : node.items()) out.push_back(sceneVec3(item));
+    for (const JsonNode& item : node.items()) out.push_back(read(item));
     return out;
+}
+
+}  // namespace
+
+std::vector<Vec3> sceneVec3List(const JsonNode& node, std::size_t minCount, std::size_t maxCount) {
+    return sceneList(node, minCount, maxCount, sceneVec3);
+}
+
+std::vector<Vec3> sceneVec2List(const JsonNode& node, std::size_t minCount, std::size_t maxCount) {
+    return sceneList(node, minCount, maxCount, sceneVec2);
 }
 
 double sceneSize(const JsonNode& node) {

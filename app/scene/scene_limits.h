@@ -86,6 +86,8 @@ Vec3 sceneVec3(const JsonNode& node);
 Vec3 sceneVec2(const JsonNode& node);
 /// A list of [x, y, z] with between minCount and maxCount entries.
 std::vector<Vec3> sceneVec3List(const JsonNode& node, std::size_t minCount, std::size_t maxCount);
+/// A list of [x, y] (z = 0) with between minCount and maxCount entries.
+std::vector<Vec3> sceneVec2List(const JsonNode& node, std::size_t minCount, std::size_t maxCount);
 /// A coordinate-like number: finite, |x| <= kMaxSceneCoordinate.
 double sceneCoordinate(const JsonNode& node);
 /// A size: in [kMinSceneSize, kMaxSceneCoordinate].

@@ -119,10 +119,7 @@ private:
 
 std::unique_ptr<PreparedScene> readAabbRefitScene(ObjectReader& r, SceneCommon common) {
     const JsonNode pts = r.get("points");
-    if (pts.size() < 3) pts.fail("expected at least 3 points [[x, y], ...] (a polygon)");
-    requireAtMost(pts, double(pts.size()), kMaxRefitPoints, "the number of points", "one drawn polygon per panel");
-    std::vector<Vec3> points;
-    for (const JsonNode& p : pts.items()) points.push_back(sceneVec2(p));
+    const std::vector<Vec3> points = sceneVec2List(pts, 3, kMaxRefitPoints);
     double twiceArea = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
         const Vec3& a = points[i];

@@ -173,18 +173,10 @@ private:
     }
 };
 
-std::vector<Vec3> readPoints(const JsonNode& node) {
-    if (node.size() < 3) node.fail("expected at least 3 points [[x, y], ...] (a polygon)");
-    requireAtMost(node, double(node.size()), kMaxOverlapPoints, "the number of points", "one drawn polygon each");
-    std::vector<Vec3> out;
-    for (const JsonNode& p : node.items()) out.push_back(sceneVec2(p));
-    return out;
-}
-
 }  // namespace
 
 std::unique_ptr<PreparedScene> readBvOverlapScene(ObjectReader& r, SceneCommon common) {
-    std::vector<Vec3> a = readPoints(r.get("a")), b = readPoints(r.get("b"));
+    std::vector<Vec3> a = sceneVec2List(r.get("a"), 3, kMaxOverlapPoints), b = sceneVec2List(r.get("b"), 3, kMaxOverlapPoints);
     r.finish();
     return std::make_unique<BvOverlapScene>(std::move(common), std::move(a), std::move(b));
 }

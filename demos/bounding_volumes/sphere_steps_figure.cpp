@@ -183,10 +183,7 @@ private:
 
 std::unique_ptr<PreparedScene> readSphereStepsScene(ObjectReader& r, SceneCommon common) {
     const JsonNode pts = r.get("points");
-    if (pts.size() < 2) pts.fail("expected at least 2 points [[x, y], ...]");
-    requireAtMost(pts, double(pts.size()), kMaxPoints, "the number of points", "one drawn point per panel each");
-    std::vector<Vec3> points;
-    for (const JsonNode& p : pts.items()) points.push_back(sceneVec2(p));
+    const std::vector<Vec3> points = sceneVec2List(pts, 2, kMaxPoints);
     if (std::all_of(points.begin(), points.end(), [&](const Vec3& p) { return p == points.front(); }))
         pts.fail("the points all coincide: their circle has radius 0, no step to draw");
     r.finish();

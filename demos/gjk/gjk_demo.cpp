@@ -75,8 +75,10 @@ public:
     DemoOutput execute(const RunContext& ctx) const override {
         GjkTrace trace;
         const GjkResult r = gjkDistance(pair_.a, pair_.b, options_, &trace);
+        const int dropping = firstDroppingStep(trace.steps);
+        const ClosestSet closestSet = gjkClosestSet(pair_, r);
         DemoOutput out;
-        out.trace = traceJson(r, trace);
+        out.trace = traceJson(r, trace, dropping, closestSet);
         if (numericOnly(ctx, out)) return out;
 
         // Configuration-space framing: A − B (or the simplices, without it) and the origin.
@@ -94,15 +96,15 @@ public:
         else out.skipped.push_back("step frames (\"steps\": false)");
         out.frames.push_back(drawStep(*ctx.gl, scale, d, trace, -1, r));
         // Parallel closest features: the whole set of closest pairs beside GJK's one.
-        if (const ClosestSet set = gjkClosestSet(pair_, r); set.onA.size() >= 2)
+        if (closestSet.onA.size() >= 2)
             out.frames.push_back(Frame{"closest_set", "the closest pairs are not unique",
-                                       drawClosestSet(*ctx.gl, common_, scale, pair_, d, r, set)});
+                                       drawClosestSet(*ctx.gl, common_, scale, pair_, d, r, closestSet)});
         // The first reduction that drops a vertex, in the simplex's plane with its Voronoi regions.
-        if (const int k = firstDroppingStep(trace.steps); k >= 0)
+        if (dropping >= 0)
             out.frames.push_back(Frame{"regions", "the Voronoi regions of the simplex at iteration " +
-                                                      std::to_string(trace.steps[std::size_t(k)].iteration),
+                                                      std::to_string(trace.steps[std::size_t(dropping)].iteration),
                                        drawReductionRegions(*ctx.gl, common_.image.width, common_.image.height, scale,
-                                                            common_.title, trace.steps[std::size_t(k)])});
+                                                            common_.title, trace.steps[std::size_t(dropping)])});
         // The long runs (curved shapes: each support only approaches A − B's boundary) get the two
         // bounds closing on the distance, per iteration (gjk_demo_test "bounds").
         if (trace.steps.size() >= kBoundsPlotSteps) out.frames.push_back(boundsFrame(*ctx.gl, scale, trace, r));
@@ -142,7 +144,8 @@ private:
 
     using Drawing = PairDrawing;
 
-    Json traceJson(const GjkResult& r, const GjkTrace& trace) const {
+    /// `dropping`: firstDroppingStep of the trace; `closestSet`: gjkClosestSet of the answer.
+    Json traceJson(const GjkResult& r, const GjkTrace& trace, int dropping, const ClosestSet& closestSet) const {
         Json t;
         t["dimension"] = pair_.dimension;
         t["shapes"] = {pair_.a.kindName(), pair_.b.kindName()};
@@ -180,8 +183,8 @@ private:
                              {"terminated", s.terminated}});
         }
         t["steps"] = steps;
-        if (const int k = firstDroppingStep(trace.steps); k >= 0) t["regions"] = reductionRegionsJson(trace.steps[std::size_t(k)]);
-        if (const ClosestSet set = gjkClosestSet(pair_, r); set.onA.size() >= 2) t["closest_set"] = closestSetJson(set);
+        if (dropping >= 0) t["regions"] = reductionRegionsJson(trace.steps[std::size_t(dropping)]);
+        if (closestSet.onA.size() >= 2) t["closest_set"] = closestSetJson(closestSet);
         return t;
     }
 
