@@ -18,3 +18,4 @@
 #include "core/query/mass.h"
 #include "core/query/pair.h"
 #include "core/query/shape.h"
+#include "core/world/world.h"

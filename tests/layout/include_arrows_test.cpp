@@ -20,7 +20,7 @@ namespace {
 
 // Core's folders from the bottom up: a folder may include its own and every folder before it.
 const std::vector<std::string> kCoreLayers = {"base",    "geometry", "closest", "overlap", "gjk_epa", "cast", "feature_walk",
-                                              "contact", "bounding", "bvh",     "broadphase", "spatial", "dynamics", "query"};
+                                              "contact", "bounding", "bvh",     "broadphase", "spatial", "dynamics", "query", "world"};
 // Folders a demo may include besides its own.
 const std::vector<std::string> kSharedForDemos = {"demos/draw", "app/scene", "app/measure"};
 
