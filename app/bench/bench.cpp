@@ -33,6 +33,7 @@
 #include "core/overlap/sat_tests.h"
 #include "app/bench/bench_broadphase.h"
 #include "app/bench/bench_tree.h"
+#include "app/bench/bench_world.h"
 #include "app/bench/bench_contact.h"
 #include "app/bench/bench_curved.h"
 #include "app/bench/bench_inputs.h"
@@ -562,7 +563,7 @@ void runQueryRows(const Settings& settings, std::vector<Row>& rows) {
 }
 
 /// The sections of `cdlab bench`, in the order they run (--only picks some).
-constexpr const char* kSections[] = {"queries", "contact", "vclip", "bvh", "broadphase"};
+constexpr const char* kSections[] = {"queries", "contact", "vclip", "bvh", "broadphase", "world"};
 
 int usage() {
     std::cerr << "usage: cdlab bench [--quick] [--out DIR] [--only SECTION[,SECTION...]]\n"
@@ -662,12 +663,16 @@ int runBench(int argc, char** argv) {
         pairMismatch |= runTreeBench(quick, broadphaseTable) != 0;
     }
 
+    std::ostringstream worldTable;  // the many-body world beside Bullet's
+    if (runs("world") && runWorldBench(quick, worldTable) != 0) return 1;
+
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const std::string machine = machineDescription();
     if (!rows.empty()) printTable(rows, std::cout, false);
     if (runs("vclip")) std::cout << "\n" << vclipTable.str();
     if (runs("bvh")) std::cout << "\n" << bvhTable.str();
     if (runs("broadphase")) std::cout << "\n" << broadphaseTable.str();
+    if (runs("world")) std::cout << "\n" << worldTable.str();
     std::cout << "machine: " << machine << "; " << fmt("%.1f", seconds) << " s\n";
 
     std::ostringstream md;
@@ -691,6 +696,7 @@ int runBench(int argc, char** argv) {
     if (runs("broadphase"))
         md << "\n## Broad phase: sweep and prune vs uniform grid vs octrees vs brute force\n\n```\n"
            << broadphaseTable.str() << "```\n";
+    if (runs("world")) md << "\n## Many-body world beside Bullet\n\n```\n" << worldTable.str() << "```\n";
     md << "\nRun time " << fmt("%.1f", seconds) << " s.\n";
     try {
         nlohmann::json json = toJson(rows, machine, quick);

@@ -4,14 +4,20 @@
 //   box – plane      contactBoxPlane
 //   hull – hull/box  contactPolyhedra (core/contact/contact_sat.h: Gauss-map pruned SAT, clipping)
 //   hull – plane     contactPolyhedronPlane (core/contact/contact_plane.h)
-//   sphere or capsule – anything
-//                    contactQuery (core/query/contact.h: GJK, and EPA when the cores overlap; a
-//                    capsule on a face clipped to it, two points)
+//   sphere or capsule – sphere or capsule
+//                    closest points of the cores (a point or a segment); two nearly parallel
+//                    capsules a point at each end of their overlap
+//   sphere or capsule – plane
+//                    each end of the core whose ball reaches the plane
+//   sphere or capsule – box or hull
+//                    GJK distance between the core and the polytope (core/gjk_epa/gjk.h); a core
+//                    inside the polytope EPA (core/gjk_epa/epa.h); a capsule lying along a face
+//                    its segment clipped to the face, two points
 // Speculative contacts (Catto, "Speculative contacts", Box2D blog 2013 / GDC 2014 "Continuous
 // collision"): a pair closer than `margin` is in contact already, each point with its separation
 // s > 0, so the solver lets it approach by s in the step and no more. The polytope generators take
-// `margin` as their touching band; a rounded shape is inflated by `margin` for the query and its
-// points moved back to its surface (s = margin − the inflated depth).
+// `margin` as their touching band; a rounded pair is in contact when its cores are closer than
+// the radii plus `margin`.
 //
 // Point identities (for warm starting, core/world/world.h): each point carries the vertex of A
 // nearest to its point on A and the vertex of B nearest to its point on B, both in the bodies' own
@@ -52,7 +58,18 @@ struct PairManifold {
     /// The features the manifold lies on (SAT axis kind and both features; the plane's body
     /// vertex): a manifold whose key changed is a new configuration, its points are not matched.
     std::uint64_t featureKey = 0;
+    /// The body whose frame the normal turns with while the bodies move (the face's body; 2: the
+    /// line between two rounded shapes' cores, recomputed from them).
+    int normalBody = 0;
+    /// When collideShapes answers false because the shapes are apart: an axis (unit, A → B) along
+    /// which they are separated (the SAT's or GJK's); zero when there is none to report.
+    Vec3 separatingAxis = Vec3::Zero();
 };
+
+/// The gap between a and b along the unit axis d (A → B): min over B of d·x − max over A of d·x,
+/// from the shapes' supports (> 0: d separates them by at least that much). A plane's is −∞.
+double separationAlong(const WorldShape& a, const Transform& ta, const WorldShape& b, const Transform& tb,
+                       const Vec3& d);
 
 /// The manifold of a at pose ta and b at pose tb, points with separation <= margin (world units,
 /// >= 0). Returns false (points empty) when the shapes are farther apart than margin, when both are

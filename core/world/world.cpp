@@ -70,6 +70,7 @@ void rotateBy(Quat& q, const Vec3& theta) {
 std::string checkOptions(const WorldOptions& o) {
     if (!(o.timeStep > 0) || !(o.timeStep <= 1)) return "timeStep must be in (0, 1] s";
     if (o.velocityIterations < 1 || o.velocityIterations > 1000) return "velocityIterations must be in [1, 1000]";
+    if (o.substeps < 1 || o.substeps > 64) return "substeps must be in [1, 64]";
     if (o.positionIterations < 0 || o.positionIterations > 1000) return "positionIterations must be in [0, 1000]";
     if (!finite(o.gravity)) return "gravity must be finite";
     if (!(o.slop >= 0) || !std::isfinite(o.slop)) return "slop must be finite and >= 0";
@@ -228,16 +229,34 @@ void World::narrowPhase(WorldStepStats& stats) {
     stats.narrowTests = static_cast<int>(pairs.size());
     PairManifold pm;
     std::size_t cursor = 0;  // previous_ is sorted by pair: one merge walk finds each pair's old manifold
+    std::size_t axisCursor = 0;  // likewise axes_, the separating axes of the last step's apart pairs
+    std::vector<std::pair<std::uint64_t, Vec3>> nextAxes;
     for (const auto& [a, b] : pairs) {
         const double margin = marginOf(a) + marginOf(b);
-        if (!collideShapes(descs_[a].shape, bodies_[a].transform(), descs_[b].shape, bodies_[b].transform(), margin, pm))
+        const Transform ta = bodies_[a].transform(), tb = bodies_[b].transform();
+        const std::uint64_t pairKey = (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+        // A pair apart last step: its separating axis, tested first, usually still separates it
+        // (the separating-axis cache of Bullet's and Box2D's pair caches).
+        while (axisCursor < axes_.size() && axes_[axisCursor].first < pairKey) ++axisCursor;
+        if (axisCursor < axes_.size() && axes_[axisCursor].first == pairKey &&
+            separationAlong(descs_[a].shape, ta, descs_[b].shape, tb, axes_[axisCursor].second) > margin) {
+            nextAxes.push_back(axes_[axisCursor]);
+            ++stats.cachedAxisSkips;
             continue;
+        }
+        if (!collideShapes(descs_[a].shape, ta, descs_[b].shape, tb, margin, pm)) {
+            if (pm.separatingAxis.squaredNorm() > 0) nextAxes.emplace_back(pairKey, pm.separatingAxis);
+            continue;
+        }
         WorldManifold m;
         m.a = a;
         m.b = b;
         m.method = pm.method;
         m.normal = pm.normal;
-        m.localNormal = bodies_[a].orientation.conjugate() * pm.normal;
+        m.normalBody = pm.normalBody;
+        m.localNormal = bodies_[pm.normalBody == 1 ? b : a].orientation.conjugate() * pm.normal;
+        m.radiusA = descs_[a].shape.rounded() ? descs_[a].shape.radius : 0.0;
+        m.radiusB = descs_[b].shape.rounded() ? descs_[b].shape.radius : 0.0;
         m.featureKey = pm.featureKey;
         m.friction = std::sqrt(descs_[a].friction * descs_[b].friction);
         m.restitution = std::max(descs_[a].restitution, descs_[b].restitution);
@@ -250,6 +269,7 @@ void World::narrowPhase(WorldStepStats& stats) {
         for (const WorldContactPoint& p : pm.points) {
             WorldContact c;
             c.point = p;
+            stats.deepestPenetration = std::max(stats.deepestPenetration, -p.separation);
             if (old && options_.warmStart)
                 for (const WorldContact& o : old->points)
                     if (o.point.id == p.id) {
@@ -269,49 +289,98 @@ void World::narrowPhase(WorldStepStats& stats) {
         manifolds_.push_back(std::move(m));
     }
     stats.manifolds = static_cast<int>(manifolds_.size());
+    axes_ = std::move(nextAxes);
 }
 
 void World::collide() {
-    pending_ = WorldStepStats{};
-    if (!ok()) return;
-    broadPhase(pending_);
-    narrowPhase(pending_);
+    collideBroad();
+    collideNarrow();
 }
 
-void World::prepareContacts(double dt) {
+void World::collideBroad() {
+    pending_ = WorldStepStats{};
+    if (ok()) broadPhase(pending_);
+}
+
+void World::collideNarrow() {
+    if (ok()) narrowPhase(pending_);
+}
+
+void World::anchorContacts() {
+    for (WorldManifold& m : manifolds_) {
+        const RigidBody& A = bodies_[m.a];
+        const RigidBody& B = bodies_[m.b];
+        for (WorldContact& c : m.points) {
+            c.localA = A.orientation.conjugate() * (c.point.pointA - m.radiusA * m.normal - A.position);
+            c.localB = B.orientation.conjugate() * (c.point.pointB + m.radiusB * m.normal - B.position);
+        }
+    }
+}
+
+Vec3 World::normalNow(const WorldManifold& m) const {
+    const RigidBody& A = bodies_[m.a];
+    const RigidBody& B = bodies_[m.b];
+    if (m.normalBody == 1) return B.orientation * m.localNormal;
+    if (m.normalBody == 2 && !m.points.empty()) {
+        const WorldContact& c = m.points.front();
+        const Vec3 d = B.position + B.orientation * c.localB - A.position - A.orientation * c.localA;
+        const double len = d.norm();
+        if (len > 1e-9 * (m.radiusA + m.radiusB)) return d / len;
+    }
+    return A.orientation * m.localNormal;
+}
+
+void World::pointsNow(const WorldManifold& m, const WorldContact& c, const Vec3& n, Vec3& pa, Vec3& pb) const {
+    const RigidBody& A = bodies_[m.a];
+    const RigidBody& B = bodies_[m.b];
+    pa = A.position + A.orientation * c.localA + m.radiusA * n;
+    pb = B.position + B.orientation * c.localB - m.radiusB * n;
+}
+
+void World::prepareContacts(double h, bool first) {
     for (WorldManifold& m : manifolds_) {
         const RigidBody& A = bodies_[m.a];
         const RigidBody& B = bodies_[m.b];
         const Mat3 ia = A.inverseInertiaWorld(), ib = B.inverseInertiaWorld();
+        m.normal = normalNow(m);  // turned with its body since the narrow phase
         const Vec3& n = m.normal;
         for (WorldContact& c : m.points) {
-            c.localA = A.orientation.conjugate() * (c.point.pointA - A.position);
-            c.localB = B.orientation.conjugate() * (c.point.pointB - B.position);
+            Vec3 pa, pb;
+            pointsNow(m, c, n, pa, pb);
             // Both bodies take the impulse at one point, the middle of the two surface points: an
             // impulse and its reaction on one line of action carry no spurious torque (a friction
             // impulse at pointA and its reaction at pointB would turn the pair by λ_t × depth n).
-            const Vec3 mid = 0.5 * (c.point.pointA + c.point.pointB);
+            const Vec3 mid = 0.5 * (pa + pb);
             c.rA = mid - A.position;
             c.rB = mid - B.position;
             tangentBasis(n, c.tangent1, c.tangent2);
             c.normalMass = effectiveMass(A.inverseMass, ia, c.rA, B.inverseMass, ib, c.rB, n);
             c.tangentMass1 = effectiveMass(A.inverseMass, ia, c.rA, B.inverseMass, ib, c.rB, c.tangent1);
             c.tangentMass2 = effectiveMass(A.inverseMass, ia, c.rA, B.inverseMass, ib, c.rB, c.tangent2);
+            c.angularAn = ia * c.rA.cross(n), c.angularBn = ib * c.rB.cross(n);
+            c.angularA1 = ia * c.rA.cross(c.tangent1), c.angularB1 = ib * c.rB.cross(c.tangent1);
+            c.angularA2 = ia * c.rA.cross(c.tangent2), c.angularB2 = ib * c.rB.cross(c.tangent2);
             const double vn = (B.velocityAt(mid) - A.velocityAt(mid)).dot(n);
-            const double s = c.point.separation;
-            c.bias = s > 0 ? -s / dt : 0.0;
-            if (vn < -options_.restitutionThreshold && s + vn * dt <= 0) c.bias = std::max(c.bias, -m.restitution * vn);
+            const double s = (pb - pa).dot(n);  // the separation now, from the anchors
+            c.bias = s > 0 ? -s / h : 0.0;
+            if (first) c.bounce = vn < -options_.restitutionThreshold && s + vn * options_.timeStep <= 0;
+            if (first && c.bounce) c.bias = std::max(c.bias, -m.restitution * vn);
             // The warm-start impulse turned with the normal: its tangent part kept in the tangent plane.
             c.tangentImpulse -= c.tangentImpulse.dot(n) * n;
         }
     }
 }
 
-void World::warmStart() {
+void World::warmStart(bool first) {
     for (WorldManifold& m : manifolds_) {
         RigidBody& A = bodies_[m.a];
         RigidBody& B = bodies_[m.b];
-        for (const WorldContact& c : m.points) {
+        for (WorldContact& c : m.points) {
+            if (!first && (c.point.separation > 0 || c.bounce)) {
+                c.normalImpulse = 0;
+                c.tangentImpulse = Vec3::Zero();
+                continue;
+            }
             const Vec3 p = c.normalImpulse * m.normal + c.tangentImpulse;
             if (p.squaredNorm() == 0) continue;
             if (!A.isStatic()) A.applyImpulse(-p, A.position + c.rA);
@@ -321,38 +390,40 @@ void World::warmStart() {
 }
 
 void World::solveVelocities() {
-    std::vector<Mat3> inverseInertia(bodies_.size());
-    for (std::size_t i = 0; i < bodies_.size(); ++i) inverseInertia[i] = bodies_[i].inverseInertiaWorld();
-    const auto apply = [&](RigidBody& A, const Mat3& ia, RigidBody& B, const Mat3& ib, const WorldContact& c,
-                           const Vec3& p) {
-        A.linearVelocity -= A.inverseMass * p;
-        A.angularVelocity -= ia * c.rA.cross(p);
-        B.linearVelocity += B.inverseMass * p;
-        B.angularVelocity += ib * c.rB.cross(p);
-    };
+    // Per point the angular responses I⁻¹(r × d) for d = n, t1, t2 were computed once in
+    // prepareContacts: an impulse λ d changes ω_A by −λ I_A⁻¹(r_A × d), ω_B by +λ I_B⁻¹(r_B × d).
     const auto solvePoint = [&](WorldManifold& m, WorldContact& c) {
         RigidBody& A = bodies_[m.a];
         RigidBody& B = bodies_[m.b];
-        const Mat3& ia = inverseInertia[m.a];
-        const Mat3& ib = inverseInertia[m.b];
+        const double ma = A.inverseMass, mb = B.inverseMass;
         const Vec3& n = m.normal;
         // Friction first, inside the cone of the current normal impulse (Box2D's order).
-        const Vec3 dv =
-            B.linearVelocity + B.angularVelocity.cross(c.rB) - A.linearVelocity - A.angularVelocity.cross(c.rA);
-        const Vec3 before = c.tangentImpulse;
-        Vec3 lambda = before - c.tangentMass1 * dv.dot(c.tangent1) * c.tangent1 -
-                      c.tangentMass2 * dv.dot(c.tangent2) * c.tangent2;
+        Vec3 dv = B.linearVelocity + B.angularVelocity.cross(c.rB) - A.linearVelocity - A.angularVelocity.cross(c.rA);
+        const double old1 = c.tangentImpulse.dot(c.tangent1), old2 = c.tangentImpulse.dot(c.tangent2);
+        double l1 = old1 - c.tangentMass1 * dv.dot(c.tangent1);
+        double l2 = old2 - c.tangentMass2 * dv.dot(c.tangent2);
         const double limit = m.friction * c.normalImpulse;
-        const double len = lambda.norm();
-        if (len > limit) lambda *= len > 0 ? limit / len : 0.0;
-        c.tangentImpulse = lambda;
-        apply(A, ia, B, ib, c, lambda - before);
+        const double len = std::sqrt(l1 * l1 + l2 * l2);
+        if (len > limit) {
+            const double k = len > 0 ? limit / len : 0.0;
+            l1 *= k, l2 *= k;
+        }
+        const double d1 = l1 - old1, d2 = l2 - old2;
+        c.tangentImpulse = l1 * c.tangent1 + l2 * c.tangent2;
+        const Vec3 pt = d1 * c.tangent1 + d2 * c.tangent2;
+        A.linearVelocity -= ma * pt;
+        A.angularVelocity -= d1 * c.angularA1 + d2 * c.angularA2;
+        B.linearVelocity += mb * pt;
+        B.angularVelocity += d1 * c.angularB1 + d2 * c.angularB2;
         // Then the normal impulse, accumulated and clamped at zero.
-        const double vn =
-            (B.linearVelocity + B.angularVelocity.cross(c.rB) - A.linearVelocity - A.angularVelocity.cross(c.rA)).dot(n);
+        dv = B.linearVelocity + B.angularVelocity.cross(c.rB) - A.linearVelocity - A.angularVelocity.cross(c.rA);
         const double old = c.normalImpulse;
-        c.normalImpulse = std::max(0.0, old + c.normalMass * (c.bias - vn));
-        apply(A, ia, B, ib, c, (c.normalImpulse - old) * n);
+        c.normalImpulse = std::max(0.0, old + c.normalMass * (c.bias - dv.dot(n)));
+        const double dn = c.normalImpulse - old;
+        A.linearVelocity -= (ma * dn) * n;
+        A.angularVelocity -= dn * c.angularAn;
+        B.linearVelocity += (mb * dn) * n;
+        B.angularVelocity += dn * c.angularBn;
     };
     // Symmetric Gauss–Seidel: even sweeps visit the points in order, odd ones in reverse, so no
     // point is always first (a fixed order leans a stack toward its first-solved corner:
@@ -378,9 +449,9 @@ void World::correctPositions() {
             const Mat3& ia = inverseInertia[m.a];
             const Mat3& ib = inverseInertia[m.b];
             for (const WorldContact& c : m.points) {
-                const Vec3 n = A.orientation * m.localNormal;
-                const Vec3 pa = A.position + A.orientation * c.localA;
-                const Vec3 pb = B.position + B.orientation * c.localB;
+                const Vec3 n = normalNow(m);
+                Vec3 pa, pb;
+                pointsNow(m, c, n, pa, pb);
                 const double s = (pb - pa).dot(n);
                 const double C =
                     std::clamp(options_.baumgarte * (s + options_.slop), -options_.maxCorrection, 0.0);
@@ -404,11 +475,11 @@ void World::correctPositions() {
 double World::deepestPenetration() const {
     double deepest = 0.0;
     for (const WorldManifold& m : manifolds_) {
-        const RigidBody& A = bodies_[m.a];
-        const RigidBody& B = bodies_[m.b];
-        const Vec3 n = A.orientation * m.localNormal;
+        const Vec3 n = normalNow(m);
         for (const WorldContact& c : m.points) {
-            const double s = (B.position + B.orientation * c.localB - A.position - A.orientation * c.localA).dot(n);
+            Vec3 pa, pb;
+            pointsNow(m, c, n, pa, pb);
+            const double s = (pb - pa).dot(n);
             deepest = std::max(deepest, -s);
         }
     }
@@ -418,28 +489,34 @@ double World::deepestPenetration() const {
 WorldStepStats World::solve() {
     WorldStepStats stats = pending_;
     if (!ok()) return stats;
-    const double dt = options_.timeStep;
-    for (RigidBody& b : bodies_) integrateVelocity(b, options_.gravity, dt);
-    prepareContacts(dt);
-    if (options_.warmStart) warmStart();
-    else
-        for (WorldManifold& m : manifolds_)
-            for (WorldContact& c : m.points) {
-                c.normalImpulse = 0;
-                c.tangentImpulse = Vec3::Zero();
-            }
-    solveVelocities();
-    for (RigidBody& b : bodies_) integratePosition(b, dt);
-    stats.deepestBeforeCorrection = deepestPenetration();
+    const int substeps = options_.substeps;
+    const double h = options_.timeStep / substeps;
+    anchorContacts();
+    for (int sub = 0; sub < substeps; ++sub) {
+        for (RigidBody& b : bodies_) integrateVelocity(b, options_.gravity, h);
+        prepareContacts(h, sub == 0);
+        if (options_.warmStart) {
+            warmStart(sub == 0);
+        } else {
+            for (WorldManifold& m : manifolds_)
+                for (WorldContact& c : m.points) {
+                    c.normalImpulse = 0;
+                    c.tangentImpulse = Vec3::Zero();
+                }
+        }
+        solveVelocities();
+        for (RigidBody& b : bodies_) integratePosition(b, h);
+    }
+    stats.estimateBeforeCorrection = deepestPenetration();
     correctPositions();
-    stats.deepestPenetration = deepestPenetration();
+    stats.estimateAfterCorrection = deepestPenetration();
     for (const RigidBody& b : bodies_) {
         stats.kinetic += b.kineticEnergy();
         stats.potential += b.potentialEnergy(options_.gravity);
     }
     ++steps_;
     stats.step = steps_;
-    stats.time = steps_ * dt;
+    stats.time = steps_ * options_.timeStep;
     return stats;
 }
 

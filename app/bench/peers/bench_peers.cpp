@@ -3,6 +3,7 @@
 #include "app/bench/peers/bench_peers.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #if CDLAB_HAVE_CCD
@@ -26,6 +27,13 @@
 #include <BulletCollision/NarrowPhaseCollision/btPolyhedralContactClipping.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+#include <time.h>
 #endif
 
 namespace cdlab::demos {
@@ -321,6 +329,121 @@ std::vector<PeerRunner> makePlanePeerRunners(const std::vector<PlanePeerCase>& c
 #endif
     (void)cases;
     return runners;
+}
+
+#if CDLAB_HAVE_BULLET
+namespace {
+
+double threadMs() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+// The world with its collision detection timed: btDiscreteDynamicsWorld::internalSingleStepSimulation
+// calls this virtual once per step (AABB update, broad phase, narrow phase).
+class TimedWorld : public btDiscreteDynamicsWorld {
+public:
+    using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+    double collideMs = 0.0;
+    void performDiscreteCollisionDetection() override {
+        const double t0 = threadMs();
+        btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
+        collideMs += threadMs() - t0;
+    }
+};
+
+}  // namespace
+#endif
+
+std::unique_ptr<PeerWorld> makeBulletWorld(const std::vector<PeerWorldBody>& bodies, double timeStep, int iterations,
+                                           const Vec3& gravity) {
+#if CDLAB_HAVE_BULLET
+    struct State {
+        btDefaultCollisionConfiguration configuration;
+        btCollisionDispatcher dispatcher{&configuration};
+        btDbvtBroadphase broadphase;
+        btSequentialImpulseConstraintSolver solver;
+        TimedWorld world{&dispatcher, &broadphase, &solver, &configuration};
+        std::vector<std::unique_ptr<btCollisionShape>> shapes;
+        std::vector<std::unique_ptr<btRigidBody>> bodies;
+        ~State() {
+            for (auto& b : bodies) world.removeRigidBody(b.get());
+        }
+    };
+    auto state = std::make_shared<State>();
+    const auto v = [](const Vec3& x) { return btVector3(x.x(), x.y(), x.z()); };
+    state->world.setGravity(v(gravity));
+    state->world.getSolverInfo().m_numIterations = iterations;
+    for (const PeerWorldBody& b : bodies) {
+        std::unique_ptr<btCollisionShape> shape;
+        switch (b.kind) {
+            case PeerWorldBody::Kind::Box: {
+                auto box = std::make_unique<btBoxShape>(v(b.half));
+                box->initializePolyhedralFeatures();
+                shape = std::move(box);
+                break;
+            }
+            case PeerWorldBody::Kind::Hull: {
+                auto hull = std::make_unique<btConvexHullShape>();
+                for (const Vec3& p : *b.hull) hull->addPoint(v(p), false);
+                hull->recalcLocalAabb();
+                hull->setMargin(0.001);
+                hull->initializePolyhedralFeatures();
+                shape = std::move(hull);
+                break;
+            }
+            case PeerWorldBody::Kind::Sphere: shape = std::make_unique<btSphereShape>(b.radius); break;
+            case PeerWorldBody::Kind::Capsule: shape = std::make_unique<btCapsuleShape>(b.radius, 2 * b.halfHeight); break;
+            case PeerWorldBody::Kind::Plane:
+                shape = std::make_unique<btStaticPlaneShape>(v(b.planeNormal), b.planeOffset);
+                break;
+        }
+        btTransform t;
+        t.setOrigin(v(b.pose.position));
+        t.setRotation(btQuaternion(b.pose.rotation.x(), b.pose.rotation.y(), b.pose.rotation.z(), b.pose.rotation.w()));
+        const double mass = b.isStatic ? 0.0 : b.mass;
+        btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape.get(),
+                                                      b.isStatic ? btVector3(0, 0, 0) : v(b.inertiaDiagonal));
+        info.m_startWorldTransform = t;
+        info.m_friction = std::sqrt(b.friction);
+        info.m_restitution = b.restitution;
+        auto body = std::make_unique<btRigidBody>(info);
+        body->setActivationState(DISABLE_DEACTIVATION);
+        state->world.addRigidBody(body.get());
+        state->shapes.push_back(std::move(shape));
+        state->bodies.push_back(std::move(body));
+    }
+    auto peer = std::make_unique<PeerWorld>();
+    peer->method = "Bullet btDiscreteDynamicsWorld";
+    peer->step = [state, timeStep](double& collideMs) {
+        state->world.collideMs = 0.0;
+        const double t0 = threadMs();
+        state->world.stepSimulation(timeStep, 0, timeStep);
+        const double total = threadMs() - t0;
+        collideMs = state->world.collideMs;
+        return total;
+    };
+    peer->contactPoints = [state] {
+        int n = 0;
+        for (int i = 0; i < state->dispatcher.getNumManifolds(); ++i)
+            n += state->dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
+        return n;
+    };
+    peer->pairs = [state] { return state->broadphase.getOverlappingPairCache()->getNumOverlappingPairs(); };
+    peer->deepest = [state] {
+        double d = 0.0;
+        for (int i = 0; i < state->dispatcher.getNumManifolds(); ++i) {
+            const btPersistentManifold* m = state->dispatcher.getManifoldByIndexInternal(i);
+            for (int k = 0; k < m->getNumContacts(); ++k) d = std::max(d, -double(m->getContactPoint(k).getDistance()));
+        }
+        return d;
+    };
+    return peer;
+#else
+    (void)bodies, (void)timeStep, (void)iterations, (void)gravity;
+    return nullptr;
+#endif
 }
 
 std::unique_ptr<PeerBroadPhase> makeBulletDbvtBroadPhase() {

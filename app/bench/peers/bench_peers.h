@@ -90,6 +90,45 @@ struct PeerBroadPhase {
     std::function<std::int64_t(const std::vector<Aabb>&)> frame;
 };
 
+/// One body of the many-body world rows (app/bench/bench_world.cpp), as cdlab's world holds it:
+/// body frame at the centre of mass, principal-axis-free inertia reduced to its diagonal (Bullet
+/// takes principal moments only).
+struct PeerWorldBody {
+    enum class Kind { Box, Hull, Sphere, Capsule, Plane };
+    Kind kind = Kind::Box;
+    Vec3 half = Vec3::Zero();                 ///< Box
+    const std::vector<Vec3>* hull = nullptr;  ///< Hull: vertices in the body frame
+    double radius = 0.0, halfHeight = 0.0;    ///< Sphere, Capsule (segment along the body's y)
+    Vec3 planeNormal = Vec3::UnitZ();         ///< Plane: n · x <= offset solid
+    double planeOffset = 0.0;
+    bool isStatic = false;
+    double mass = 0.0;
+    Vec3 inertiaDiagonal = Vec3::Zero();
+    Transform pose;
+    double friction = 0.5, restitution = 0.0;  ///< cdlab's per-body values (see makeBulletWorld)
+};
+
+/// A peer world kept across steps: step() advances it by one fixed step and returns the thread-CPU
+/// milliseconds of the whole step; collideMs receives those of its collision detection (broad +
+/// narrow phase); contactPoints() and pairs() count what the last step held, deepest() its deepest point.
+struct PeerWorld {
+    std::string method;
+    std::function<double(double& collideMs)> step;
+    std::function<int()> contactPoints;
+    std::function<int()> pairs;
+    std::function<double()> deepest;  ///< the deepest penetration among the last step's points (>= 0)
+};
+
+/// Bullet's btDiscreteDynamicsWorld (btDbvtBroadphase, btCollisionDispatcher with the default
+/// configuration, btSequentialImpulseConstraintSolver) with the same bodies, time step, gravity and
+/// velocity iterations, sleeping off. Shapes: btBoxShape, btSphereShape, btCapsuleShape (y axis),
+/// btConvexHullShape with margin 0.001 and polyhedral features (so hull pairs go through its SAT
+/// clipping, as cdlab's do), btStaticPlaneShape. Bullet multiplies two bodies' friction and
+/// restitution where cdlab takes √(μ_a μ_b) and max(e_a, e_b): each body gets √μ (the products
+/// then equal cdlab's friction) and its e. Nothing when Bullet is not installed.
+std::unique_ptr<PeerWorld> makeBulletWorld(const std::vector<PeerWorldBody>& bodies, double timeStep, int iterations,
+                                           const Vec3& gravity);
+
 /// Bullet's btDbvtBroadphase (two dynamic AABB trees with fattened boxes, incremental
 /// re-optimisation, a hashed pair cache), or nothing when Bullet is not installed.
 std::unique_ptr<PeerBroadPhase> makeBulletDbvtBroadPhase();
