@@ -1,6 +1,6 @@
 // cdlab's world beside Bullet's (see bench_world.h).
 //
-// Scene: n bodies — boxes, 12-point hulls, spheres, capsules in turn, sizes 0.3..0.8 (mass ratios
+// Scene: n bodies — boxes, 12-point hulls, spheres, capsules in turn, sizes 0.3..0.66 (mass ratios
 // within ~20:1: see core/world/world.h on mass ratios), random
 // orientations, seed 45 — on a k × k lattice 1.2 apart (k = ⌈1.5 ∛n⌉), layer over layer from
 // z = 1, dropped into a bin: the ground plane z = 0 and four static wall boxes around the lattice.
@@ -54,7 +54,7 @@ Pile pileOf(int n) {
         const Vec3 p(-half + spacing * (cell % k + 0.5), -half + spacing * (cell / k + 0.5), 1.0 + spacing * layer);
         const Vec3 axis(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
         const Quat q(Eigen::AngleAxisd(3.0 * u(rng), axis.norm() > 1e-3 ? Vec3(axis.normalized()) : Vec3::UnitZ()));
-        const auto size = [&] { return 0.15 + 0.25 * u(rng); };
+        const auto size = [&] { return 0.15 + 0.18 * u(rng); };  // the largest box's corner (0.57) within half the spacing
         WorldShapeBuild shape;
         switch (i % 4) {
             case 0: shape = worldBox(Vec3(size(), size(), size())); break;

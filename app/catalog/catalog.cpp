@@ -15,6 +15,7 @@
 #include "demos/sweep_and_prune/sweep_and_prune_demo.h"
 #include "demos/vclip/vclip_demo.h"
 #include "demos/voronoi_triangle/voronoi_triangle_demo.h"
+#include "demos/world/world_demo.h"
 
 namespace cdlab::demos {
 
@@ -33,7 +34,8 @@ const std::vector<const Demo*>& allDemos() {
                                                    &sweepAndPruneDemo(),
                                                    &primitivesDemo(),
                                                    &mtdBacktrackingDemo(),
-                                                   &nonconvexDemo()};
+                                                   &nonconvexDemo(),
+                                                   &worldDemo()};
     return demos;
 }
 

@@ -305,8 +305,8 @@ bool roundedPlane(const WorldShape& a, const Transform& ta, const WorldShape& pl
     const RoundedCore c = coreOf(a, ta);
     const Vec3& n = plane.plane.normal;
     out.normal = -n;
-    for (const Vec3& p : {c.a, c.b}) {
-        if (!c.segment && &p != &c.a) break;
+    for (int end = 0; end < (c.segment ? 2 : 1); ++end) {
+        const Vec3& p = end == 0 ? c.a : c.b;
         const Vec3 surface = p - c.radius * n;
         const double s = n.dot(surface) - plane.plane.offset;
         if (s > margin) continue;

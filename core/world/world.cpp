@@ -513,6 +513,7 @@ WorldStepStats World::solve() {
     for (const RigidBody& b : bodies_) {
         stats.kinetic += b.kineticEnergy();
         stats.potential += b.potentialEnergy(options_.gravity);
+        if (!b.isStatic()) stats.momentum += b.linearVelocity / b.inverseMass;
     }
     ++steps_;
     stats.step = steps_;

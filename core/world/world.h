@@ -151,6 +151,7 @@ struct WorldStepStats {
     int contactPoints = 0;
     int warmStartedPoints = 0;      ///< points matched to the previous step
     double kinetic = 0.0, potential = 0.0;  ///< J, potential −m g · x summed over dynamic bodies
+    Vec3 momentum = Vec3::Zero();           ///< Σ m v over dynamic bodies (N·s)
     /// max(0, −s) over the points the narrow phase found at this step's start: the exact depth of
     /// the poses the previous step left (what the figures plot against the slop).
     double deepestPenetration = 0.0;
