@@ -44,7 +44,7 @@ struct VClipOutcome {
     Vec3 point = Vec3::Zero();
 };
 
-VClipOutcome update(int body, VClipFeature to, const char* rule, bool localMin = false) {
+inline VClipOutcome update(int body, VClipFeature to, const char* rule, bool localMin = false) {
     VClipOutcome o;
     o.kind = VClipStepKind::Update;
     o.body = body;
@@ -54,7 +54,7 @@ VClipOutcome update(int body, VClipFeature to, const char* rule, bool localMin =
     return o;
 }
 
-VClipOutcome penetration(VClipPenetration how, int body, const Vec3& point, const char* rule) {
+inline VClipOutcome penetration(VClipPenetration how, int body, const Vec3& point, const char* rule) {
     VClipOutcome o;
     o.kind = VClipStepKind::Penetration;
     o.penetration = how;
@@ -64,7 +64,7 @@ VClipOutcome penetration(VClipPenetration how, int body, const Vec3& point, cons
     return o;
 }
 
-VClipOutcome done(const char* rule) {
+inline VClipOutcome done(const char* rule) {
     VClipOutcome o;
     o.rule = rule;
     return o;

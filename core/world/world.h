@@ -21,8 +21,10 @@
 //      the corner solved first); warm started with the matched impulses. Both bodies take a point's
 //      impulse at the middle of its two surface points. Each point's normal velocity target (v_n >= bias):
 //        speculative  s > 0: bias = −s / dt (it may close the gap in this step, not more);
-//        bounce       v_n < −restitutionThreshold before the solve and s + v_n dt <= 0:
-//                     bias = −e v_n (Newton's law; e = max of the two bodies', μ = √(μ_a μ_b));
+//        bounce       s <= speculativeDistance, approaching faster than restitutionThreshold and
+//                     reaching contact in the step (s + v dt <= 0): bias = −e v (Newton's law;
+//                     e = max of the two bodies', μ = √(μ_a μ_b)), v the approach speed now or,
+//                     if the point closed a wider gap last step, then (a wider gap only closes);
 //        otherwise 0. No Baumgarte term: penetration is not a velocity, so it adds no energy.
 //   6. Positions: x += v dt, q = exp(ω dt / 2) q (core/dynamics/rigid_body.h).
 //   7. Position correction by non-linear Gauss–Seidel (Box2D v2.4 b2ContactSolver::
@@ -82,6 +84,10 @@ struct WorldOptions {
     bool warmStart = true;
     BroadPhaseKind broadPhase = BroadPhaseKind::SweepAndPrune;
     double gridCellSize = 0.0;  ///< Grid: cell edge (world units); <= 0: twice the median body diameter
+    /// The most pairs a step's narrow phase may test: the work and the manifolds' memory grow with
+    /// them (2000 spheres on one point make 2·10⁶). Past it the world stops with TooManyPairs
+    /// before the narrow phase. A settled pile has ~2.5 a body.
+    std::int64_t maxPairs = 10'000'000;
 };
 
 /// One body as the world is given it.
@@ -114,6 +120,9 @@ struct WorldContact {
     Vec3 tangent1 = Vec3::Zero(), tangent2 = Vec3::Zero();
     double normalMass = 0.0, tangentMass1 = 0.0, tangentMass2 = 0.0, bias = 0.0;
     bool bounce = false;  ///< restitution applies (decided at the first substep)
+    /// The normal velocity (< 0: approaching) restitution uses: the point's before this step's solve,
+    /// or, lower, the one it had the step before when it was speculative and pushed (matched by id).
+    double approach = 0.0;
     /// I⁻¹(r × d) of each body for d = n, t1, t2: the angular velocity a unit impulse along d gives.
     Vec3 angularAn = Vec3::Zero(), angularBn = Vec3::Zero(), angularA1 = Vec3::Zero(), angularB1 = Vec3::Zero(),
          angularA2 = Vec3::Zero(), angularB2 = Vec3::Zero();
@@ -162,7 +171,13 @@ struct WorldStepStats {
 };
 
 /// Why a world refuses its input (message names the body).
-enum class WorldStatus { Ok, InvalidOptions, InvalidBody, TooManyBodies };
+enum class WorldStatus {
+    Ok,
+    InvalidOptions,
+    InvalidBody,
+    TooManyBodies,
+    TooManyPairs,  ///< a step's broad phase found more than options.maxPairs pairs: the world stops there
+};
 
 class World {
 public:

@@ -22,12 +22,13 @@
 //   "frame_every" (steps between frames, at most 12 frames), "pipeline_step" (the step drawn as
 //   the pipeline; 0 or absent: none).
 // Layers: "ground", "contacts", "impulses", "labels", "plot", "pipeline".
-// Limits (checked before any work): at most 2000 bodies, 20000 steps and 1.2e6 body-steps (a
-// 1000-body pile runs 300 steps in ~2 s on this machine: the largest scene stays under ~10 s).
+// Limits: docs/scenes.md, "world" (bodies, steps, body-steps at the default sweeps, sizes, the
+// solver's regime checked before any work; pairs a step checked while it runs).
 #include "demos/world/world_demo.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -45,8 +46,14 @@ namespace {
 
 const std::vector<std::string> kWorldLayers = {"ground", "contacts", "impulses", "labels", "plot", "pipeline"};
 constexpr int kMaxWorldBodies = 2000;
-constexpr double kMaxBodySteps = 1.2e6;
+// The work a scene may ask for, in body-steps at the default 8 + 6 sweeps (each substep and sweep
+// past them counts in proportion): the golden 1000-body pile is 2.4e5; 1005 bodies for 1194 steps
+// (1.2e6) took 18 s with the machine's other core busy, 6e5 takes ~9 s.
+constexpr double kMaxBodySteps = 6e5;
 constexpr int kMaxWorldFrames = 12;
+// Pairs a step may test, per body: a settled pile has ~2.5; 2000 spheres heaped on one point made
+// 2e6 and one step took 41 s and 1.7 GB (the hostile review).
+constexpr std::int64_t kPairsPerBody = 20;
 
 WorldShapeBuild readShape(ObjectReader& r) {
     const char* kinds[] = {"box", "sphere", "capsule", "hull"};
@@ -121,8 +128,12 @@ void readLattice(const JsonNode& node, std::vector<WorldBodyDesc>& bodies) {
     ObjectReader r(node);
     const JsonNode countNode = r.get("count");
     const int count = countNode.asInt(1, kMaxWorldBodies);
+    if (bodies.size() + std::size_t(count) > std::size_t(kMaxWorldBodies))
+        countNode.fail("at most 2000 bodies in a world scene (" + std::to_string(bodies.size()) + " before the lattice)");
     const int columns = r.get("columns").asInt(1, 200);
-    const double spacing = r.get("spacing").asPositive();
+    const JsonNode spacingNode = r.get("spacing");
+    const double spacing = spacingNode.asPositive();
+    if (spacing > 200) spacingNode.fail("spacing must be at most 200 (world units)");
     const Vec3 origin = sceneVec3(r.get("origin"));
     std::vector<std::string> kinds;
     for (const JsonNode& k : r.get("shapes").items()) kinds.push_back(k.asEnum({"box", "sphere", "capsule", "hull"}));
@@ -130,15 +141,11 @@ void readLattice(const JsonNode& node, std::vector<WorldBodyDesc>& bodies) {
     const JsonNode sizeNode = r.get("size");
     if (sizeNode.size() != 2) sizeNode.fail("size is [smallest, largest]");
     const double lo = sizeNode.at(0).asPositive(), hi = sizeNode.at(1).asPositive();
-    if (!(lo <= hi)) sizeNode.fail("size needs smallest <= largest");
-    // No two bodies may start overlapping: the farthest point of the largest body of each kind
-    // (a box's corner √3 hi, a capsule's end 1.8 hi) within half the spacing.
-    for (const std::string& k : kinds) {
-        const double reach = (k == "box" ? std::sqrt(3.0) : k == "capsule" ? 1.8 : 1.0) * hi;
-        if (reach > 0.5 * spacing)
-            sizeNode.fail("the largest " + k + " reaches " + formatNumber(reach) + " from its centre, more than spacing / 2 (" +
-                          formatNumber(0.5 * spacing) + "): lattice bodies would start overlapping");
-    }
+    if (!(lo <= hi) || lo < kMinSceneSize || hi > 100) sizeNode.fail("size needs 1e-5 <= smallest <= largest <= 100");
+    // The lattice's farthest point within the scene's coordinates.
+    const double layers = std::ceil(double(count) / (double(columns) * columns));
+    if (origin.cwiseAbs().maxCoeff() + spacing * std::max<double>(columns, layers) > kMaxSceneCoordinate)
+        r.node().fail("the lattice reaches past 1e5 from the origin");
     const std::uint64_t seed = std::uint64_t(r.get("seed").asInt(0, 1 << 30));
     WorldBodyDesc material;
     readMaterial(r, material);
@@ -167,6 +174,14 @@ void readLattice(const JsonNode& node, std::vector<WorldBodyDesc>& bodies) {
             for (int j = 0; j < 12; ++j) pts.push_back(rr * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized());
             shape = worldHull(pts);
             if (!shape.ok()) shape = worldBox(Vec3::Constant(0.6 * rr));  // a flat random draw: never with small seeds
+        }
+        // No two bodies may start overlapping: each body's farthest point from its centre of mass
+        // (where the lattice puts it) within half the spacing.
+        if (shape.shape.boundingRadius > 0.5 * spacing) {
+            char why[200];
+            std::snprintf(why, sizeof why, "a %s reaches %.6g from its centre, more than spacing / 2 = %.6g: lattice bodies would start overlapping",
+                          kind.c_str(), shape.shape.boundingRadius, 0.5 * spacing);
+            sizeNode.fail(why);
         }
         WorldBodyDesc d = worldBody(shape, Transform{p, q});
         d.density = material.density, d.friction = material.friction, d.restitution = material.restitution;
@@ -237,7 +252,9 @@ public:
           pipelineStep_(pipelineStep) {}
 
     DemoOutput execute(const RunContext& ctx) const override {
-        World world(bodies_, options_);
+        WorldOptions options = options_;
+        options.maxPairs = kPairsPerBody * std::int64_t(std::max<std::size_t>(bodies_.size(), 50));
+        World world(bodies_, options);
         WorldRun run;
         run.options = world.options();
         for (int i = 0; i < world.bodyCount(); ++i) {
@@ -253,6 +270,7 @@ public:
             StepSnapshot snap;
             if (frame || pipeline) snap = snapshotBefore(world, k, pipeline);
             const WorldStepStats st = world.solve();
+            if (!world.ok()) throw InputError(common_.file + ": " + world.message());
             run.stats.push_back(st);
             steps.push_back({{"step", st.step},
                              {"time", st.time},
@@ -365,16 +383,30 @@ public:
                 if (bodies.size() >= std::size_t(kMaxWorldBodies)) n.fail("at most 2000 bodies in a world scene");
                 bodies.push_back(readBody(n));
             }
-        if (auto l = r.find("lattice")) {
-            if (bodies.size() + std::size_t(l->raw().value("count", 0)) > std::size_t(kMaxWorldBodies))
-                l->fail("at most 2000 bodies in a world scene");
-            readLattice(*l, bodies);
-        }
+        if (auto l = r.find("lattice")) readLattice(*l, bodies);
         int steps = 0;
-        const WorldOptions options = readSimulation(r, steps);
-        if (double(bodies.size()) * steps > kMaxBodySteps)
-            r.node().fail(std::to_string(bodies.size()) + " bodies for " + std::to_string(steps) +
-                          " steps is over the 1.2e6 body-steps a world scene may run");
+        WorldOptions options = readSimulation(r, steps);
+        options.speculativeDistance = 4.0 * options.slop;  // Box2D's ratio: contacts this close are kept before they touch
+        // The solver's regime: the slop (allowed penetration) below every body's size, and gravity
+        // moving a resting body much less than the smallest one in a step (a 1e-5 box at 1000 m/s²
+        // walked 9 m and gained energy 28 000-fold: the hostile review).
+        double smallest = INFINITY;
+        for (const WorldBodyDesc& b : bodies)
+            if (b.shape.kind != WorldShape::Kind::Plane) smallest = std::min(smallest, b.shape.boundingRadius);
+        const JsonNode& at = r.has("simulation") ? r.get("simulation") : r.node();
+        if (smallest < options.slop)
+            at.fail("the smallest body (radius " + formatNumber(smallest) + ") is smaller than the slop " +
+                    formatNumber(options.slop) + ": set a smaller slop");
+        const double fall = options.gravity.norm() * options.timeStep * options.timeStep;
+        if (fall > 0.25 * smallest)
+            at.fail("gravity moves a body g dt² = " + formatNumber(fall) + " a step, more than a quarter of the smallest body (" +
+                    formatNumber(smallest) + "): set a smaller time_step");
+        const double sweeps = options.substeps * double(options.velocityIterations + options.positionIterations);
+        const double work = double(bodies.size()) * steps * std::max(1.0, sweeps / 14.0);
+        if (work > kMaxBodySteps)
+            r.node().fail(std::to_string(bodies.size()) + " bodies for " + std::to_string(steps) + " steps" +
+                          (sweeps > 14 ? " at " + formatNumber(sweeps) + " sweeps a step (14 by default)" : std::string()) +
+                          " is over the 6e5 body-steps a world scene may run");
         int frameEvery = std::max(1, steps / 6);
         if (auto k = r.find("frame_every")) frameEvery = k->asInt(1, 20000);
         if ((steps - 1) / frameEvery + 1 > kMaxWorldFrames)

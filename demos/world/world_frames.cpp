@@ -21,7 +21,7 @@ namespace {
 
 using namespace render;
 
-constexpr double kHeadroomPx = 175;
+constexpr double kHeadroomPx = 185;
 constexpr std::size_t kMaxContactDots = 600;  // more would cover the bodies
 // Bodies drawn with their edges and outlines up to this many: a 1000-body pile's strokes (~30 a
 // body) made each frame's layout record 2.5 MB; past it the shading and the contact tint show them.
@@ -36,16 +36,21 @@ struct Extent {
     }
 };
 
-// A snapshot's own extent (each frame is framed on its bodies: a pile's first frame, its lattice in
-// the air, is several times the height of the settled pile).
-Extent extentOf(const WorldRun& run, const StepSnapshot& s) {
+// The extent of every bounded body over every snapshot drawn: one camera for all frames, so a
+// body's motion reads from frame to frame (framed on each snapshot, a row moving 0.7 m looked the
+// same in every frame: the hostile review).
+Extent extentOf(const WorldRun& run) {
     Extent e;
-    for (std::size_t i = 0; i < s.poses.size(); ++i)
-        if (run.shapes[i].kind != WorldShape::Kind::Plane) {
-            const Aabb b = worldBounds(run.shapes[i], s.poses[i]);
-            e.add(b.min, 0.0);
-            e.add(b.max, 0.0);
-        }
+    const auto addAll = [&](const StepSnapshot& s) {
+        for (std::size_t i = 0; i < s.poses.size(); ++i)
+            if (run.shapes[i].kind != WorldShape::Kind::Plane) {
+                const Aabb b = worldBounds(run.shapes[i], s.poses[i]);
+                e.add(b.min, 0.0);
+                e.add(b.max, 0.0);
+            }
+    };
+    for (const StepSnapshot& s : run.frames) addAll(s);
+    if (run.hasPipeline) addAll(run.pipeline);
     e.lo.z() = std::min(e.lo.z(), 0.0);
     if (!(e.hi.x() > e.lo.x())) e.lo = Vec3::Constant(-1), e.hi = Vec3::Constant(1);
     return e;
@@ -183,7 +188,7 @@ Image sideBySide(const std::vector<Image>& panels, int scale) {
     return frame;
 }
 
-const TextStyle kStatus{18.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
+const TextStyle kStatus{17.0f, roleColor(Role::Ink), Anchor::TopLeft, true, false};
 const TextStyle kHeading{20.0f, roleColor(Role::Ink), Anchor::TopLeft, true, true};
 
 }  // namespace
@@ -191,7 +196,7 @@ const TextStyle kHeading{20.0f, roleColor(Role::Ink), Anchor::TopLeft, true, tru
 Frame drawWorldFrame(GlContext& gl, int scale, const SceneCommon& common, const WorldRun& run, const StepSnapshot& s,
                      int index) {
     const int W = common.image.width / 2, H = common.image.height;
-    const Extent e = extentOf(run, s);
+    const Extent e = extentOf(run);
     const Camera side = orthoCamera(e, -Vec3::UnitY(), Vec3::UnitZ(), W, H);
     const Camera top = orthoCamera(e, Vec3::UnitZ(), Vec3::UnitY(), W, H);
     const bool contacts = common.hasLayer("contacts"), arrows = common.hasLayer("impulses");
@@ -200,24 +205,30 @@ Frame drawWorldFrame(GlContext& gl, int scale, const SceneCommon& common, const 
     const double arrowLength = 1.5 * typicalRadius(run);
     int pushing = 0;
     for (const ContactSnapshot& c : s.contacts) pushing += c.impulse > 0;
-    char line1[200], line2[200], line3[200];
-    std::snprintf(line1, sizeof line1, "t = %.2f s (step %d): %d pairs tested, %d manifolds", s.time, s.step,
+    char line1[200], line2[200], line3[200], line4[200];
+    std::snprintf(line1, sizeof line1, "t = %.2f s, step %d: %d pairs tested, %d manifolds", s.time, s.step,
                   s.stats.narrowTests, s.stats.manifolds);
-    std::snprintf(line2, sizeof line2, "%d contact points, %d pushing; deepest %.2g (slop %.2g)", s.stats.contactPoints,
+    std::snprintf(line2, sizeof line2, "%d contact points, %d pushing; deepest %.3g (slop %.3g)", s.stats.contactPoints,
                   pushing, s.stats.deepestPenetration, run.options.slop);
-    std::snprintf(line3, sizeof line3, "E = %.4g J (KE %.3g + PE %.4g); momentum (%.4g, %.4g, %.4g) N·s",
-                  s.stats.kinetic + s.stats.potential, s.stats.kinetic, s.stats.potential, s.stats.momentum.x() + 0.0,
+    std::snprintf(line3, sizeof line3, "after the step: E = %.4g J (KE %.3g + PE %.4g)", s.stats.kinetic + s.stats.potential,
+                  s.stats.kinetic, s.stats.potential);
+    std::snprintf(line4, sizeof line4, "momentum (%.4g, %.4g, %.4g) N·s", s.stats.momentum.x() + 0.0,
                   s.stats.momentum.y() + 0.0, s.stats.momentum.z() + 0.0);
+    bool drawsArrows = false, hasStatic = false;
+    for (const ContactSnapshot& c : s.contacts) drawsArrows |= arrows && c.impulse > 0.02 * run.maxImpulse;
+    for (std::size_t i = 0; i < run.shapes.size(); ++i)
+        hasStatic |= run.isStatic[i] && run.shapes[i].kind != WorldShape::Kind::Plane;
     const Image left = panel(gl, scale, W, H, side, [&](Canvas& c) {
         if (ground) drawGround(c, e);
         drawBodies(c, run, s, side.viewDirection(), contacts, 0.0f, false);
         if (contacts) drawContacts(c, run, s, arrows, arrowLength);
         drawTitleAndCaption(c, common.title, "");
         if (labels) {
-            c.drawTextPx(18, 56, line1, kStatus);
-            c.drawTextPx(18, 80, line2, kStatus);
-            c.drawTextPx(18, 104, line3, kStatus);
-            c.drawTextPx(18, 134, "Side view (looking along +y)", kHeading);
+            c.drawTextPx(18, 54, line1, kStatus);
+            c.drawTextPx(18, 76, line2, kStatus);
+            c.drawTextPx(18, 98, line3, kStatus);
+            c.drawTextPx(18, 120, line4, kStatus);
+            c.drawTextPx(18, 146, "Side view (looking along +y)", kHeading);
         }
     });
     const Image right = panel(gl, scale, W, H, top, [&](Canvas& c) {
@@ -244,8 +255,10 @@ Frame drawWorldFrame(GlContext& gl, int scale, const SceneCommon& common, const 
                 item("contact points not drawn: " + std::to_string(s.contacts.size()) + " (over " +
                          std::to_string(kMaxContactDots) + ")", Role::Result);
         }
-        if (arrows) item("arrow (side view): λₙ n, longest " + formatNumber(run.maxImpulse) + " N·s", Role::Direction);
-        item("grey: static walls (side view: their edges)", Role::Muted);
+        if (drawsArrows)
+            item("arrow (side view): λₙ n, one scale for all frames (longest " + formatNumber(run.maxImpulse) + " N·s)",
+                 Role::Direction);
+        if (hasStatic) item("grey: static walls (side view: their edges)", Role::Muted);
     });
     char name[32], cap[160];
     std::snprintf(name, sizeof name, "frame_%02d", index);
@@ -257,7 +270,7 @@ Frame drawWorldFrame(GlContext& gl, int scale, const SceneCommon& common, const 
 Frame drawPipelineFrame(GlContext& gl, int scale, const SceneCommon& common, const WorldRun& run) {
     const StepSnapshot& s = run.pipeline;
     const int W = common.image.width / 3, H = common.image.height;
-    const Extent e = extentOf(run, s);
+    const Extent e = extentOf(run);
     const Camera side = orthoCamera(e, -Vec3::UnitY(), Vec3::UnitZ(), W, H);
     const Vec3 back = side.viewDirection();
     const double arrowLength = 1.5 * typicalRadius(run);
@@ -294,7 +307,7 @@ Frame drawPipelineFrame(GlContext& gl, int scale, const SceneCommon& common, con
             }
             if (p == 0) drawTitleAndCaption(c, common.title + ": one step", "");
             c.drawTextPx(18, 60, head[p], kHeading);
-            const std::string note[3] = {"dashed: each body's box grown by its margin; line: a pair",
+            const std::string note[3] = {"dashed: a body's grown box; line: a pair",
                                          "dot: contact point; line: its normal n (A → B)",
                                          "arrow: λₙ n on B; longest " + formatNumber(run.maxImpulse) + " N·s"};
             c.drawTextPx(18, 90, note[p], kStatus);

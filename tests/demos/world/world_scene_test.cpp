@@ -98,7 +98,7 @@ TEST_CASE("world scenes: hostile input is one error naming its key") {
          "shapes[0]"},
         {R"("lattice": {"count": 1900, "columns": 20, "spacing": 1, "origin": [0,0,1], "shapes": ["box"], "size": [0.1, 0.2], "seed": 1},
              "simulation": {"duration": 20}})",
-         "1.2e6 body-steps"},
+         "6e5 body-steps"},
         {R"("simulation": {"broad_phase": "octree"}})", "broad_phase"},
         {R"("simulation": {"time_step": 0.5}})", "time_step"},
         {R"("simulation": {"substeps": 0}})", "substeps"},
@@ -106,7 +106,22 @@ TEST_CASE("world scenes: hostile input is one error naming its key") {
         {R"("simulation": {"gravity": 1e9}})", "gravity"},
         {R"("frame_every": 1})", "frame_every"},
         {R"("pipeline_step": 100000})", "pipeline_step"},
-        {R"("bin": {"half_extents": [1], "height": 1}})", "half_extents"}};
+        {R"("bin": {"half_extents": [1], "height": 1}})", "half_extents"},
+        // The hostile review's: count not a number, a lattice past the coordinates, bodies below the
+        // slop, gravity moving a body past a quarter of it in a step, sweeps multiplying the work.
+        {R"("lattice": {"count": "abc", "columns": 3, "spacing": 1, "origin": [0,0,1], "shapes": ["box"], "size": [0.1, 0.2], "seed": 1}})",
+         "lattice.count"},
+        {R"("lattice": {"count": 10, "columns": 3, "spacing": 1e300, "origin": [0,0,1], "shapes": ["box"], "size": [0.1, 0.2], "seed": 1}})",
+         "lattice.spacing"},
+        {R"("lattice": {"count": 10, "columns": 3, "spacing": 1, "origin": [0,0,1], "shapes": ["box"], "size": [1e-9, 1e-9], "seed": 1}})",
+         "lattice.size"},
+        {R"("lattice": {"count": 10, "columns": 3, "spacing": 0.2, "origin": [0,0,1], "shapes": ["hull"], "size": [0.1, 0.1], "seed": 1}})",
+         "lattice.size"},  // a recentred hull reaches past its radius
+        {R"("bodies": [{"box": {"half_extents": [1e-4, 1e-4, 1e-4]}}]})", "smaller than the slop"},
+        {R"("bodies": [{"box": {"half_extents": [0.01, 0.01, 0.01]}}], "simulation": {"time_step": 0.1}})", "time_step"},
+        {R"("lattice": {"count": 1000, "columns": 10, "spacing": 1, "origin": [0,0,1], "shapes": ["box"], "size": [0.1, 0.2], "seed": 1},
+             "simulation": {"duration": 2, "substeps": 16, "velocity_iterations": 100}})",
+         "sweeps a step"}};
     for (const auto& [keys, what] : bad) {
         const std::string input(keys);
         CAPTURE(input);
@@ -115,4 +130,19 @@ TEST_CASE("world scenes: hostile input is one error naming its key") {
         CHECK(error.find('\n') == std::string::npos);
     }
     CHECK(test::sceneTextError(base + R"("bodies": [{"sphere": {"radius": 0.5}, "position": [0, 0, 1]}]})") == "");
+}
+
+TEST_CASE("world scenes: bodies heaped on one point stop the run at the pair limit, one error line") {
+    std::string bodies;
+    for (int i = 0; i < 300; ++i) bodies += std::string(i ? ", " : "") + R"({"sphere": {"radius": 1}, "position": [0, 0, 5]})";
+    const std::string text = R"({"demo": "world", "title": "heap", "bodies": [)" + bodies + R"(], "simulation": {"duration": 0.1}})";
+    std::string error;
+    try {
+        loadSceneText(text, "heap.json")->run(RunContext{});
+    } catch (const InputError& e) {
+        error = e.what();
+    }
+    CHECK(error.find("heap.json") == 0);
+    CHECK(error.find("44850 pairs") != std::string::npos);  // 300 · 299 / 2, over 20 a body
+    CHECK(error.find('\n') == std::string::npos);
 }
