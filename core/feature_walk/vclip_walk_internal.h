@@ -28,7 +28,7 @@ using FT = VClipFeatureType;
 // so both regions read the same double and can never both claim or both reject a point.
 constexpr double kRound = 16.0 * kMachineEpsilon;
 
-int signAbove(double x, double floor) { return x > floor ? 1 : (x < -floor ? -1 : 0); }
+inline int signAbove(double x, double floor) { return x > floor ? 1 : (x < -floor ? -1 : 0); }
 using feature_walk::finitePose;
 using feature_walk::maxAbs;
 using feature_walk::validFeature;
