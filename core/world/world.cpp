@@ -168,6 +168,7 @@ World::World(std::vector<WorldBodyDesc> bodies, const WorldOptions& options)
         }
     }
     boxes_.assign(bodies_.size(), Aabb{Vec3::Constant(INFINITY), Vec3::Constant(-INFINITY)});
+    margins_.assign(bodies_.size(), 0.5 * options_.speculativeDistance);  // planes keep this one
 }
 
 double World::marginOf(int i) const {
@@ -185,7 +186,8 @@ void World::broadPhase(WorldStepStats& stats) {
     for (std::size_t k = 0; k < bp.bounded.size(); ++k) {
         const int i = bp.bounded[k];
         Aabb box = worldBounds(descs_[i].shape, bodies_[i].transform());
-        const Vec3 m = Vec3::Constant(marginOf(i));
+        margins_[i] = marginOf(i);
+        const Vec3 m = Vec3::Constant(margins_[i]);
         box.min -= m;
         box.max += m;
         bp.boxes[k] = box;
@@ -262,14 +264,17 @@ void World::narrowPhase(WorldStepStats& stats) {
                    " pairs with the planes counted, more than " + std::to_string(options_.maxPairs);
         return;
     }
-    std::sort(pairs.begin(), pairs.end());
+    // The broad phase's pairs are sorted; the plane pairs, appended after them, are merged in.
+    const auto planeStart = pairs.begin() + std::ptrdiff_t(broadPairs_.size());
+    std::sort(planeStart, pairs.end());
+    std::inplace_merge(pairs.begin(), planeStart, pairs.end());
     stats.narrowTests = static_cast<int>(pairs.size());
     PairManifold pm;
     std::size_t cursor = 0;  // previous_ is sorted by pair: one merge walk finds each pair's old manifold
     std::size_t axisCursor = 0;  // likewise axes_, the separating axes of the last step's apart pairs
     std::vector<std::pair<std::uint64_t, Vec3>> nextAxes;
     for (const auto& [a, b] : pairs) {
-        const double margin = marginOf(a) + marginOf(b);
+        const double margin = margins_[a] + margins_[b];  // this step's, from the broad phase
         const Transform ta = bodies_[a].transform(), tb = bodies_[b].transform();
         const std::uint64_t pairKey = (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
         // A pair apart last step: its separating axis, tested first, usually still separates it

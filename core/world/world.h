@@ -239,6 +239,7 @@ private:
     std::vector<RigidBody> bodies_;
     std::vector<int> planes_;  ///< indices of the plane bodies
     std::vector<Aabb> boxes_;
+    std::vector<double> margins_;  ///< marginOf each body at this step's broad phase
     std::vector<std::pair<int, int>> broadPairs_;
     std::vector<WorldManifold> manifolds_, previous_;
     std::vector<std::pair<std::uint64_t, Vec3>> axes_;  ///< apart pairs' separating axes (world), by pair key
