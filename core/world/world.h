@@ -15,7 +15,8 @@
 //      Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005, §6).
 //   4. Velocities: v += g dt.
 //   5. Sequential impulses (Catto GDC 2005; Box2D v2.4 b2ContactSolver, whose 2D rules these are
-//      in 3D): per point the normal impulse then two friction impulses, ACCUMULATED impulses
+//      in 3D): per point two friction impulses (inside the cone of its current normal impulse)
+//      then the normal impulse, ACCUMULATED impulses
 //      clamped (λ_n >= 0, |λ_t| <= μ λ_n as a disc), velocityIterations sweeps, even ones in
 //      order and odd ones in reverse (symmetric Gauss–Seidel: a fixed order leans a stack toward
 //      the corner solved first); warm started with the matched impulses. Both bodies take a point's
@@ -36,11 +37,11 @@
 //      both bodies directly. Velocities are untouched (no energy from it but the lift m g Δh).
 //
 // Steps 4–6 may run in substeps (options.substeps). Mass ratios: sequential impulses converge
-// slowly when a heavy body rests on a light one (Catto, GDC 2005 §7): a 0.51 kg box on a 0.023 kg
+// slowly when a heavy body rests on a light one (Catto, GDC 2005): a 0.51 kg box on a 0.023 kg
 // capsule sinks it 5 cm into the ground with 8 sweeps (30 sweeps: 6 mm); keep ratios within ~10:1,
 // as the scenes do.
 // Conservative advancement of fast bodies is not done: a body faster than its size per step is
-// caught by its speculative margin (it grows with |v| dt), as Box2D v3 does for non-bullets.
+// caught by its speculative margin, which grows with |v| dt (tests: "fast bodies").
 // Deterministic: fixed iteration counts, sorted pairs, no threads, no unordered containers, no
 // clock: the same input gives bit-identical states (tests/core/world/world_test.cpp).
 #pragma once
