@@ -159,11 +159,7 @@ ConvexPolyhedron kdopPolytope(const Kdop<K>& dop) {
             }
     const HullResult hull = convexHull(corners);
     if (hull.status != HullStatus::Ok) return {};
-    std::vector<Vec3> positions = hull.polyhedron.positions();
-    for (Vec3& p : positions) p += ref;
-    std::vector<std::vector<int>> faces;
-    for (int f = 0; f < hull.polyhedron.faceCount(); ++f) faces.push_back(hull.polyhedron.faceVertices(f));
-    PolyhedronBuild build = ConvexPolyhedron::fromFaces(std::move(positions), faces);
+    PolyhedronBuild build = hull.polyhedron.translated(ref);
     return build.ok() ? build.polyhedron : ConvexPolyhedron{};
 }
 

@@ -97,14 +97,10 @@ SimulationResult simulateDrop(const DropInput& input, const SimulationOptions& o
         return fail(SimulationStatus::InvalidShape, std::string(nameOf(res.mass.status)) + ": " + res.mass.message);
 
     // Recentre: body frame origin at the centre of mass (the inertia about it is unchanged).
-    std::vector<Vec3> positions = input.shape.positions();
-    for (Vec3& p : positions) p -= res.mass.centerOfMass;
-    std::vector<std::vector<int>> faces;
-    for (int f = 0; f < input.shape.faceCount(); ++f) faces.push_back(input.shape.faceVertices(f));
-    PolyhedronBuild recentred = ConvexPolyhedron::fromFaces(positions, faces);
+    PolyhedronBuild recentred = input.shape.translated(-res.mass.centerOfMass);
     if (!recentred.ok()) return fail(SimulationStatus::InvalidShape, recentred.check.message);
     res.shape = std::move(recentred.polyhedron);
-    for (const Vec3& p : positions) res.boundingRadius = std::max(res.boundingRadius, p.norm());
+    for (const Vec3& p : res.shape.positions()) res.boundingRadius = std::max(res.boundingRadius, p.norm());
 
     const Transform comPose{input.pose.apply(res.mass.centerOfMass), input.pose.rotation};
     RigidBodyBuild built =

@@ -68,6 +68,15 @@ const char* nameOf(PolyhedronDefect defect) {
     return "Unknown";
 }
 
+PolyhedronBuild ConvexPolyhedron::translated(const Vec3& offset) const {
+    std::vector<Vec3> moved = positions();
+    for (Vec3& p : moved) p += offset;
+    std::vector<std::vector<int>> faces;
+    faces.reserve(faces_.size());
+    for (int f = 0; f < faceCount(); ++f) faces.push_back(faceVertices(f));
+    return fromFaces(std::move(moved), faces);
+}
+
 PolyhedronBuild ConvexPolyhedron::fromFaces(std::vector<Vec3> positions, const std::vector<std::vector<int>>& faces) {
     PolyhedronBuild out;
     const int vertexCount = static_cast<int>(positions.size());

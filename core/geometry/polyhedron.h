@@ -98,6 +98,9 @@ public:
     /// the face's fan) normalized, offsets taken at the vertex mean. Call validate() for convexity. On failure the
     /// returned polyhedron is empty.
     static PolyhedronBuild fromFaces(std::vector<Vec3> positions, const std::vector<std::vector<int>>& faces);
+    /// The same faces with every vertex moved by `offset` (rebuilt by fromFaces: normals and offsets
+    /// recomputed at the new place), e.g. a body recentred at its centre of mass.
+    PolyhedronBuild translated(const Vec3& offset) const;
 
     int vertexCount() const { return static_cast<int>(vertices_.size()); }
     int halfEdgeCount() const { return static_cast<int>(halfEdges_.size()); }

@@ -322,13 +322,7 @@ bool roundedPlane(const WorldShape& a, const Transform& ta, const WorldShape& pl
 bool capsuleOnFace(const RoundedCore& c, const WorldShape& a, const Transform& ta, const WorldShape& b,
                    const Transform& tb, const Vec3& normal, double margin, PairManifold& out) {
     const ConvexPolyhedron& hull = b.hull;
-    const Vec3 local = tb.rotation.conjugate() * (-normal);
-    int face = 0;
-    double best = -INFINITY;
-    for (int f = 0; f < hull.faceCount(); ++f) {
-        const double x = hull.face(f).normal.dot(local);
-        if (x > best) best = x, face = f;
-    }
+    const int face = faceAlong(hull, tb, -normal);
     const Vec3 nf = hull.face(face).normal;
     const Vec3 la = tb.applyInverse(c.a), lb = tb.applyInverse(c.b);
     const Vec3 u = lb - la;

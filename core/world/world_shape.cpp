@@ -65,11 +65,7 @@ WorldShapeBuild worldHull(const std::vector<Vec3>& points) {
     if (!hull.ok()) return refused("convex hull failed: " + hull.message);
     const MassProperties mass = computeMassProperties(hull.polyhedron);
     if (!mass.ok()) return refused("mass properties failed: " + mass.message);
-    std::vector<Vec3> positions = hull.polyhedron.positions();
-    for (Vec3& p : positions) p -= mass.centerOfMass;
-    std::vector<std::vector<int>> faces;
-    for (int f = 0; f < hull.polyhedron.faceCount(); ++f) faces.push_back(hull.polyhedron.faceVertices(f));
-    PolyhedronBuild recentred = ConvexPolyhedron::fromFaces(positions, faces);
+    PolyhedronBuild recentred = hull.polyhedron.translated(-mass.centerOfMass);
     if (!recentred.ok()) return refused("recentred hull failed: " + recentred.check.message);
     WorldShapeBuild b;
     b.shape.kind = WorldShape::Kind::Hull;

@@ -209,12 +209,8 @@ public:
         DemoOutput out;
         out.trace = traceJson(sw);
         if (numericOnly(ctx, out)) return out;
-        PlotOptions po;
-        po.title = common_.title;
+        PlotOptions po = scenePlotOptions(common_, figureScale(common_, ctx));
         po.subtitle = common_.caption;
-        po.width = common_.image.width;
-        po.height = common_.image.height;
-        po.scale = figureScale(common_, ctx);
         po.legendWidth = 250;
         po.xFloor = po.yFloor = kErrorFloor;
         Frame f;

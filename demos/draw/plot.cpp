@@ -4,11 +4,21 @@
 #include <cmath>
 #include <map>
 
+#include "app/scene/scene.h"
 #include "demos/draw/figure_canvas.h"
 #include "demos/draw/figure_style.h"
 #include "render/canvas.h"
 
 namespace cdlab::demos {
+
+PlotOptions scenePlotOptions(const SceneCommon& scene, int scale) {
+    PlotOptions o;
+    o.title = scene.title;
+    o.width = scene.image.width;
+    o.height = scene.image.height;
+    o.scale = scale;
+    return o;
+}
 
 using render::Anchor;
 using render::Canvas;

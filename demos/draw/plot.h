@@ -25,6 +25,12 @@ struct PlotOptions {
     std::vector<std::pair<double, std::string>> hLines;
 };
 
+struct SceneCommon;  // app/scene/scene.h
+
+/// Options of a plot as large as the scene's image, at print scale `scale`, titled with the scene's
+/// title (the figures' plots: the grid trade-off, the accuracy sweep, the impulse sweeps...).
+PlotOptions scenePlotOptions(const SceneCommon& scene, int scale);
+
 struct PlotSeries {
     std::string label;
     int style = 0;      ///< colour and marker: categorical colour `style`, marker shape style % 4

@@ -267,11 +267,8 @@ private:
     }
 
     Frame drawIterations(GlContext& gl, int ss, const ImpulseRun& run) const {
-        PlotOptions po;
-        po.title = common_.title + ": sequential impulses";
-        po.width = common_.image.width;
-        po.height = common_.image.height;
-        po.scale = ss;
+        PlotOptions po = scenePlotOptions(common_, ss);
+        po.title += ": sequential impulses";
         po.logX = po.logY = false;
         po.legendWidth = 190;
         po.xLabel = "sweep (" + std::to_string(s_.solver.iterations) + " compression" +

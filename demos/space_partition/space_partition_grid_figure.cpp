@@ -42,12 +42,8 @@ DemoOutput SpaceScene::runGridTradeoff(const RunContext& ctx) const {
     out.trace["brute_force_tests"] = n * (n - 1) / 2;
     out.trace["rows"] = rows;
     if (numericOnly(ctx, out)) return out;
-    PlotOptions po;
-    po.title = common_.title;
+    PlotOptions po = scenePlotOptions(common_, figureScale(common_, ctx));
     po.subtitle = common_.caption;
-    po.width = common_.image.width;
-    po.height = common_.image.height;
-    po.scale = figureScale(common_, ctx);
     po.legendWidth = 280;
     po.xLabel = "cell size h (mean box side " + formatNumber(meanSide) + ")";
     po.yLabel = "count per build";

@@ -92,11 +92,7 @@ public:
         DemoOutput out;
         out.trace = traceJson(runs);
         if (numericOnly(ctx, out)) return out;
-        PlotOptions po;
-        po.title = common_.title;
-        po.width = common_.image.width;
-        po.height = common_.image.height;
-        po.scale = figureScale(common_, ctx);
+        PlotOptions po = scenePlotOptions(common_, figureScale(common_, ctx));
         po.legendWidth = 270;
         po.xLabel = "boxes n (unit cubes, density " + formatNumber(s_.density) + " per unit volume)";
         po.yLabel = "insertion-sort swaps per box per update (speed: box sides per update)";

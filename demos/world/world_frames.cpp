@@ -329,10 +329,7 @@ std::vector<Frame> drawWorldPlots(GlContext& gl, int scale, const SceneCommon& c
         for (const WorldStepStats& st : run.stats) s.points.emplace_back(st.time, value(st));
         return s;
     };
-    PlotOptions o;
-    o.width = common.image.width;
-    o.height = common.image.height;
-    o.scale = scale;
+    PlotOptions o = scenePlotOptions(common, scale);
     o.logX = false;
     o.xLabel = "time (s)";
     o.logY = false;
