@@ -9,6 +9,7 @@
 #include "core/base/tolerances.h"
 #include "core/closest/closest_point.h"
 #include "core/contact/contact_stages.h"
+#include "core/contact/contact_tolerances.h"
 
 namespace cdlab {
 
@@ -55,18 +56,34 @@ std::array<Vec3, 8> boxCorners(const Vec3& h, const Mat3& r, const Vec3& center)
     return x;
 }
 
-// A box in world orientation, positions relative to a common origin.
+// A box in world orientation, positions relative to a common origin. Corners are built on demand
+// (cornerAt: the same additions in the same order as boxCorners, so the same bits): a face contact
+// needs the incident face's four, an edge contact the two edges' four.
 struct PosedBox {
     std::array<Vec3, 3> axis;  // unit axes (the rotation's columns)
+    std::array<Vec3, 3> e;     // h_i axis_i
     Vec3 h;                    // half extents
     Vec3 center;
-    std::array<Vec3, 8> corner;
 
     PosedBox(const Vec3& halfExtents, const Transform& t, const Vec3& origin) : h(halfExtents) {
         const Mat3 r = t.rotation.toRotationMatrix();
         center = t.position - origin;  // exact when t.position == origin
-        for (int i = 0; i < 3; ++i) axis[i] = r.col(i);
-        corner = boxCorners(h, r, center);
+        for (int i = 0; i < 3; ++i) axis[i] = r.col(i), e[i] = h[i] * axis[i];
+    }
+    Vec3 cornerAt(int k) const {
+        const Vec3 a = (k & 1) ? Vec3(center + e[0]) : Vec3(center - e[0]);
+        const Vec3 b = (k & 2) ? Vec3(a + e[1]) : Vec3(a - e[1]);
+        return (k & 4) ? Vec3(b + e[2]) : Vec3(b - e[2]);
+    }
+    std::array<Vec3, 8> corners() const {
+        std::array<Vec3, 8> x;
+        for (int k = 0; k < 8; ++k) x[k] = cornerAt(k);
+        return x;
+    }
+    // max_k |corner_k| over every coordinate, bounded as |c| + Σ |e_i| (an upper bound, within
+    // rounding: it only sizes the tolerance's rounding term).
+    double maxCoord() const {
+        return (center.cwiseAbs() + e[0].cwiseAbs() + e[1].cwiseAbs() + e[2].cwiseAbs()).maxCoeff();
     }
     Vec3 faceNormal(int f) const { return (f & 1) ? Vec3(-axis[f / 2]) : axis[f / 2]; }
     // The corner with bit i set where u · axis_i >= 0 (extreme along u), bit `free` cleared.
@@ -82,7 +99,7 @@ struct PosedBox {
         return edgeOf(k, k | (1 << i));
     }
     void facePolygon(int f, std::array<Vec3, 4>& p) const {
-        for (int j = 0; j < 4; ++j) p[j] = corner[kFaceCorners[f][j]];
+        for (int j = 0; j < 4; ++j) p[j] = cornerAt(kFaceCorners[f][j]);
     }
 };
 
@@ -155,6 +172,152 @@ detail::SatBestAxes queryBoxAxes(const PosedBox& A, const PosedBox& B) {
     return best;
 }
 
+// reduceContactPolygon's rules (core/contact/contact_manifold.cpp, file comment of
+// contact_manifold.h) for maxPoints 1 to 4 on at most 12 points given by their in-plane
+// coordinates xy and depths: rule 0 (rim points dropped), then the deepest, the farthest from it,
+// the largest triangle, the point adding the most area, each rule taking submerged points before
+// surface ones and breaking ties to kManifoldTieRelative by input order. The general reduction
+// projects onto the plane in 3D; here the plane's own coordinates are given, so the decisions are
+// the same up to rounding (tests/core/contact/contact_box_test.cpp compares the manifolds).
+ContactIndices reduceFacePoints(const double (*xy)[2], const double* depth, int n, int maxPoints) {
+    const auto greater = [](double score, double best) { return score > best + kManifoldTieRelative * std::abs(best); };
+    const auto dist2 = [&](int i, int j) {
+        const double dx = xy[i][0] - xy[j][0], dy = xy[i][1] - xy[j][1];
+        return dx * dx + dy * dy;
+    };
+    const auto cross = [&](int o, int a, int b) {  // twice the signed area of (o, a, b)
+        return (xy[a][0] - xy[o][0]) * (xy[b][1] - xy[o][1]) - (xy[a][1] - xy[o][1]) * (xy[b][0] - xy[o][0]);
+    };
+    double deepest = 0.0;
+    for (int i = 0; i < n; ++i) deepest = std::max(deepest, depth[i]);
+    const double surface = kSurfaceBandRelative * deepest, reach = deepest * deepest;
+    int kept[12] = {}, count = 0;
+    for (int i = 0; i < n; ++i) {
+        bool rim = false;
+        if (depth[i] <= surface)
+            for (int k = 0; k < n && !rim; ++k) rim = depth[k] > surface && dist2(i, k) <= reach;
+        if (!rim) kept[count++] = i;
+    }
+    ContactIndices keep;
+    int best = kept[0];
+    for (int k = 1; k < count; ++k)
+        if (greater(depth[kept[k]], depth[best])) best = kept[k];
+    keep.push_back(best);
+    if (maxPoints >= count) {  // every point left, the deepest first, then input order
+        for (int k = 0; k < count; ++k)
+            if (kept[k] != best) keep.push_back(kept[k]);
+        return keep;
+    }
+    bool taken[12] = {};
+    taken[best] = true;
+    const auto pick = [&](const auto& score) {
+        for (bool tier : {true, false}) {
+            int chosen = -1;
+            double bestScore = 0.0;
+            for (int k = 0; k < count; ++k) {
+                const int i = kept[k];
+                if (taken[i] || (depth[i] > surface) != tier) continue;
+                const double sc = score(i);
+                if (greater(sc, bestScore)) chosen = i, bestScore = sc;
+            }
+            if (chosen >= 0) return chosen;
+        }
+        return -1;
+    };
+    const auto take = [&](int i) {
+        if (i < 0) return false;
+        keep.push_back(i);
+        taken[i] = true;
+        return static_cast<int>(keep.size()) < maxPoints;
+    };
+    const int p0 = keep[0];
+    if (maxPoints == 1 || !take(pick([&](int i) { return dist2(i, p0); }))) return keep;
+    const int p1 = keep[1];
+    if (!take(pick([&](int i) { return std::abs(cross(p0, p1, i)); }))) return keep;
+    // The triangle counter-clockwise; a point outside edge (a, b) adds the area -cross(a, b, q).
+    int t[3] = {p0, p1, keep[2]};
+    if (cross(p0, p1, keep[2]) < 0) std::swap(t[1], t[2]);
+    take(pick([&](int i) {
+        double added = 0.0;
+        for (int e = 0; e < 3; ++e) added = std::max(added, -cross(t[e], t[(e + 1) % 3], i));
+        return added;
+    }));
+    return keep;
+}
+
+// The incident face of I clipped to the reference face rf of R, in R's frame: the side planes are
+// |q_u| <= h_u and |q_v| <= h_v (u, v the face's two other axes), so each clip is one coordinate
+// against a constant (Bullet's btBoxBoxDetector clips the same rectangle, intersectRectQuad2), in
+// the order of the reference face's edges as clipIncidentFace takes them. A point keeps its R-frame
+// coordinates q and its world position, both interpolated at the crossing. Kept: points with
+// s = σ q_a - h_a <= tol (σ q_a the height over R's centre along the face normal), as
+// clipIncidentFace keeps them; reduced by reduceFacePoints in (q_u, q_v) when maxPoints is 1 to 4.
+// Returns false when nothing is kept: the caller then takes clipIncidentFace, whose fallbacks handle
+// it (tests/core/contact/contact_box_test.cpp compares the manifolds with the general SAT's).
+bool clipBoxFaces(const PosedBox& R, int rf, const PosedBox& I, int inc, bool refOnA, const Vec3& origin, double tol,
+                  const SatContactOptions& options, SatContactResult& r) {
+    struct Point {
+        double q[3];
+        Vec3 p;
+    };
+    const int a = rf / 2, u = (a + 1) % 3, v = (a + 2) % 3;
+    const double sigma = (rf & 1) ? -1.0 : 1.0;
+    Point buf[2][12];
+    int count = 4;
+    for (int j = 0; j < 4; ++j) {
+        const Vec3 p = I.cornerAt(kFaceCorners[inc][j]);
+        const Vec3 rel = p - R.center;
+        buf[0][j] = {{R.axis[0].dot(rel), R.axis[1].dot(rel), R.axis[2].dot(rel)}, p};
+    }
+    // Four clips, one per edge of the reference face: edge k runs along axis m (its corners differ
+    // in bit m), so its side plane bounds the third axis c at the corners' side of it. A quad gains
+    // at most one point a clip: 8 points at most (12 slots).
+    int cur = 0;
+    for (int k = 0; k < 4 && count > 0; ++k) {
+        const int c0 = kFaceCorners[rf][k], c1 = kFaceCorners[rf][(k + 1) % 4];
+        const int c = 3 - a - std::countr_zero(static_cast<unsigned>(c0 ^ c1));
+        const double sign = (c0 >> c) & 1 ? 1.0 : -1.0, limit = R.h[c];
+        const Point* in = buf[cur];
+        Point* out = buf[cur ^ 1];
+        int n = 0;
+        double sp = sign * in[0].q[c] - limit;
+        const double s0 = sp;
+        for (int i = 0; i < count; ++i) {
+            const Point& P = in[i];
+            const Point& Q = in[i + 1 == count ? 0 : i + 1];
+            const double sq = i + 1 == count ? s0 : sign * Q.q[c] - limit;
+            if (sp <= 0.0) out[n++] = P;
+            if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0)) {
+                const double t = sp / (sp - sq);
+                Point& X = out[n++];
+                for (int m = 0; m < 3; ++m) X.q[m] = P.q[m] + t * (Q.q[m] - P.q[m]);
+                X.p = P.p + t * (Q.p - P.p);
+            }
+            sp = sq;
+        }
+        count = n;
+        cur ^= 1;
+    }
+    const Vec3 nr = R.faceNormal(rf);
+    FixedCapacityVector<ContactPoint, 12> kept;
+    double xy[12][2], depth[12];
+    for (int i = 0; i < count; ++i) {
+        const Point& P = buf[cur][i];
+        const double s = sigma * P.q[a] - R.h[a];
+        if (s > tol) continue;
+        const Vec3 onRef = P.p - s * nr;
+        xy[kept.size()][0] = P.q[u], xy[kept.size()][1] = P.q[v], depth[kept.size()] = -s;
+        kept.push_back(refOnA ? ContactPoint{onRef + origin, P.p + origin, -s} : ContactPoint{P.p + origin, onRef + origin, -s});
+    }
+    if (kept.empty()) return false;
+    const int maxPoints = options.maxPoints;
+    const ContactIndices chosen = maxPoints >= 1 && maxPoints <= 4
+                                      ? reduceFacePoints(xy, depth, static_cast<int>(kept.size()), maxPoints)
+                                      : reduceContactPolygon(kept, nr, maxPoints);
+    for (int i : chosen) r.manifold.push_back(kept[i]);
+    return true;
+}
+
 // ---- Box–plane stages ----
 
 // The box's plane contact candidates, in contactPolyhedronPlane's order (submerged corners, then the
@@ -224,9 +387,7 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
     }
     const Vec3 origin = ta.position;
     const PosedBox A(ha, ta, origin), B(hb, tb, origin);
-    double maxCoord = 0.0;
-    for (const Vec3& p : B.corner) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
-    maxCoord += origin.cwiseAbs().maxCoeff();
+    const double maxCoord = B.maxCoord() + origin.cwiseAbs().maxCoeff();
     r.tolerance = detail::satTolerance(options, 2.0 * std::max(ha.norm(), hb.norm()), maxCoord);
     const double tol = r.tolerance;
 
@@ -242,8 +403,8 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
         r.featureA = {FeatureType::Edge, best.indexA};
         r.featureB = {FeatureType::Edge, best.indexB};
         if (r.status == SatContactStatus::Separated) return r;
-        const Segment ea{A.corner[kEdgeCorners[best.indexA][0]], A.corner[kEdgeCorners[best.indexA][1]]};
-        const Segment eb{B.corner[kEdgeCorners[best.indexB][0]], B.corner[kEdgeCorners[best.indexB][1]]};
+        const Segment ea{A.cornerAt(kEdgeCorners[best.indexA][0]), A.cornerAt(kEdgeCorners[best.indexA][1])};
+        const Segment eb{B.cornerAt(kEdgeCorners[best.indexB][0]), B.cornerAt(kEdgeCorners[best.indexB][1])};
         const SegmentSegmentResult cp = closestPointsSegmentSegment(ea, eb);
         r.manifold.push_back({cp.pointOnFirst + origin, cp.pointOnSecond + origin, r.depth});
         return r;
@@ -260,6 +421,9 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
     int inc = 0;  // the incident face: the most anti-parallel to nr (first of ties, as contactPolyhedra)
     for (int f = 1; f < 6; ++f)
         if (I.faceNormal(f).dot(nr) < I.faceNormal(inc).dot(nr)) inc = f;
+    r.featureA = {FeatureType::Face, refOnA ? rf : inc};
+    r.featureB = {FeatureType::Face, refOnA ? inc : rf};
+    if (clipBoxFaces(R, rf, I, inc, refOnA, origin, tol, options, r)) return r;
     std::array<Vec3, 4> refPoly, incPoly;
     R.facePolygon(rf, refPoly);
     I.facePolygon(inc, incPoly);
@@ -273,7 +437,7 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
         sides[k] = Plane{sn, sn.dot(refPoly[k])};
     }
     // Quads clip to at most 8 points: the inline buffers of clipIncidentFace, never the resource.
-    detail::clipIncidentFace(refPoly, nr, nr.dot(R.center) + R.h[rf / 2], incPoly, I.corner, R.corner, refOnA, origin, tol,
+    detail::clipIncidentFace(refPoly, nr, nr.dot(R.center) + R.h[rf / 2], incPoly, I.corners(), R.corners(), refOnA, origin, tol,
                              options, r, nullptr, std::pmr::null_memory_resource(), sides);
     r.featureA = {FeatureType::Face, refOnA ? rf : inc};
     r.featureB = {FeatureType::Face, refOnA ? inc : rf};
