@@ -72,6 +72,13 @@ const char* poseProblem(const Transform& pose) {
 }
 
 const char* unitPlane(const Plane& plane, Vec3& n, double& d) {
+    // A normal already unit to rounding (|n|² within 4 ulps of 1, false for NaN and inf) is taken
+    // as given: its normalisation would move it by an ulp at most.
+    if (std::abs(plane.normal.squaredNorm() - 1.0) <= 4.0 * kMachineEpsilon && std::isfinite(plane.offset)) {
+        n = plane.normal;
+        d = plane.offset;
+        return "";
+    }
     const double m = plane.normal.cwiseAbs().maxCoeff();
     if (!std::isfinite(m) || !std::isfinite(plane.offset)) return "plane normal or offset is not finite";
     if (!(m > 0.0)) return "plane normal is zero";
