@@ -76,6 +76,13 @@ struct SatContactOptions {
     double faceBiasRelative = 0.02;
     double faceBiasAbsolute = 0.0;  ///< world units; < 0 not allowed (treated as 0)
     int maxPoints = 4;              ///< manifold size (<= 0: every clipped point, up to kMaxContactPoints)
+    /// Untraced query: skip the edges of A whose every edge pair is bounded below the face axes'
+    /// best by more than the preference and the tolerance (an edge pair on the arc of A's edge e
+    /// separates by at most max_u u · (c_B − e) − r_B over the arc, c_B B's vertex mean and r_B
+    /// the radius of the ball about it inside B): the same answer, fewer pairs tested (axesTested
+    /// counts the pairs tested). false: every crossing pair is tested (tests compare the walk's pairs
+    /// with the traced query's).
+    bool pruneEdgeArcs = true;
 };
 
 struct SatContactResult {

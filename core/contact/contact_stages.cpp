@@ -169,7 +169,7 @@ bool clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
               double dRef, std::span<const Vec3> incident, std::span<const Vec3> incidentVertices,
               std::span<const Vec3> referenceVertices, bool referenceOnA,
               const Vec3& origin, double tol, const SatContactOptions& options, SatContactResult& r,
-              SatContactTrace* trace, std::span<const Plane> sidePlanes) {
+              SatContactTrace* trace, std::span<const Plane> sidePlanes, bool touchingFallback) {
     if (trace) {
         trace->referenceOnA = referenceOnA;
         for (const Vec3& p : reference) trace->referencePolygon.push_back(p + origin);
@@ -210,6 +210,7 @@ bool clipWith(Polygon& poly, Polygon& next, Points& pts, std::span<const Vec3> r
     }
     if (pts.empty()) {
         r.clipKeptNothing = true;
+        if (!touchingFallback) return true;
         // Nothing survived the clip (the face axis kept by preference where the bodies meet beside
         // the reference face): the touching pair of the bodies, else the deepest incident vertex.
         Vec3 pr, pi;
@@ -263,7 +264,7 @@ void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dR
                       std::span<const Vec3> incidentVertices, std::span<const Vec3> referenceVertices,
                       bool referenceOnA, const Vec3& origin, double tol,
                       const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
-                      std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes) {
+                      std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes, bool touchingFallback) {
     // Clipping by k side planes adds one point per plane in exact arithmetic; the inline buffers
     // leave room for rounding to add more, and a polygon that still overflows them (nothing is
     // written to r before the end) is clipped again in growing buffers. Traced runs take those
@@ -274,7 +275,7 @@ void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dR
         FixedCapacityVector<Vec3, kInline> poly, next;
         FixedCapacityVector<ContactPoint, kInline> pts;
         if (clipWith(poly, next, pts, reference, nr, dRef, incident, incidentVertices, referenceVertices, referenceOnA, origin, tol,
-                     options, r, trace, sidePlanes))
+                     options, r, trace, sidePlanes, touchingFallback))
             return;
     }
     std::pmr::vector<Vec3> poly(memory), next(memory);
@@ -283,7 +284,7 @@ void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dR
     next.reserve(capacity);
     pts.reserve(capacity);
     clipWith(poly, next, pts, reference, nr, dRef, incident, incidentVertices, referenceVertices, referenceOnA, origin, tol, options, r,
-             trace, sidePlanes);
+             trace, sidePlanes, touchingFallback);
 }
 
 }  // namespace cdlab::detail

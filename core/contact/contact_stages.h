@@ -59,10 +59,14 @@ void recordChosenAxis(const SatChosenAxis& c, double tol, SatContactResult& r);
 /// reference / incident polygons, clip steps, clipped points and reduction in the trace.
 /// sidePlanes: the side plane of each reference edge (unit normal e_i x nr / |e_i x nr|, offset
 /// through r_i) when the caller knows them cheaply (a box face); empty: computed here.
+/// touchingFallback = false: a clip that keeps nothing only sets r.clipKeptNothing (no stand-in
+/// point), for a caller that answers on another axis then (contactPolyhedra's least-overlap retry:
+/// the exact touching pair costs a hull of |reference| x |incident| points).
 void clipIncidentFace(std::span<const Vec3> reference, const Vec3& nr, double dRef, std::span<const Vec3> incident,
                       std::span<const Vec3> incidentVertices, std::span<const Vec3> referenceVertices,
                       bool referenceOnA, const Vec3& origin, double tol,
                       const SatContactOptions& options, SatContactResult& r, SatContactTrace* trace,
-                      std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes = {});
+                      std::pmr::memory_resource* memory, std::span<const Plane> sidePlanes = {},
+                      bool touchingFallback = true);
 
 }  // namespace cdlab::detail

@@ -150,7 +150,9 @@ TEST_SUITE("contact_sat") {
     }
 
     // The untraced call finds its supports by descent and its edge pairs by walking each arc of A
-    // over B's Gauss map; the traced call tests every vertex and every edge pair in index order.
+    // over B's Gauss map, skipping the arcs whose pairs are bounded below what the axis choice can
+    // use (SatContactOptions::pruneEdgeArcs); the traced call tests every vertex and every edge pair
+    // in index order.
     // Generic poses: the same axis, separation, features and manifold, bit for bit. Degenerate
     // poses (parallel faces and edges, B at A's pose: axes tied in exact arithmetic, their rounded
     // values apart by ulps): the same status and separation and depth to rounding, whichever of
@@ -161,12 +163,15 @@ TEST_SUITE("contact_sat") {
                                                 presets::tetrahedron(0.7), presets::octahedron(0.6),
                                                 presets::prism(5, 0.5, 0.3), presets::prism(24, 0.5, 0.2)};
         for (int n : {8, 16, 64, 200}) bodies.push_back(presets::randomHull(n, 100 + n));
-        int generic = 0, degenerate = 0, edgeAxes = 0, faceAxes = 0;
+        int generic = 0, degenerate = 0, edgeAxes = 0, faceAxes = 0, pruned = 0;
         const auto compare = [&](const ConvexPolyhedron& a, const Transform& ta, const ConvexPolyhedron& b,
                                  const Transform& tb, bool isGeneric) {
             SatContactTrace tr;
             const SatContactResult all = contactPolyhedra(a, ta, b, tb, {}, &tr);
-            const SatContactResult walk = contactPolyhedra(a, ta, b, tb);
+            const SatContactResult walk = contactPolyhedra(a, ta, b, tb);  // edges pruned by the bound
+            SatContactOptions unpruned;
+            unpruned.pruneEdgeArcs = false;
+            const SatContactResult walkAll = contactPolyhedra(a, ta, b, tb, unpruned);
             REQUIRE(walk.status == all.status);
             if (!isGeneric) {
                 ++degenerate;
@@ -176,9 +181,12 @@ TEST_SUITE("contact_sat") {
                 return;
             }
             ++generic;
-            // The same pairs tested: a walk that missed crossings tests fewer, one that fell back
-            // to the all-pairs test for an edge tests its pairs twice.
-            CHECK(walk.axesTested == all.axesTested);
+            // The same pairs tested without the pruning: a walk that missed crossings tests fewer,
+            // one that fell back to the all-pairs test for an edge tests its pairs twice. With it,
+            // fewer pairs and (below) the same answer bit for bit.
+            CHECK(walkAll.axesTested == all.axesTested);
+            CHECK(walk.axesTested <= all.axesTested);
+            pruned += walk.axesTested < all.axesTested;
             CHECK(walk.separation == all.separation);
             CHECK(walk.depth == all.depth);
             REQUIRE(walk.axisKind == all.axisKind);
@@ -217,6 +225,7 @@ TEST_SUITE("contact_sat") {
         CHECK(generic == 5 * int(bodies.size() * bodies.size()) + 40);
         CHECK(degenerate == 7 * int(bodies.size() * bodies.size()));
         CHECK(edgeAxes > 50);  // both kinds of contact are compared, not only faces
+        CHECK(pruned > generic / 4);  // the bound skips edges on a good share of the poses
         CHECK(faceAxes > 200);
     }
 
