@@ -122,7 +122,12 @@ render::Image makeContactSheet(render::GlContext& gl, const std::vector<const Fr
                          " x " + std::to_string(height) + " pixels, above the limit of " + std::to_string(kMaxImageSide) +
                          " per side (fewer step frames, or no steps)");
 
-    Canvas canvas(gl, canvasOptions(width, height, scale), Camera::twoD(0, 0, 1));
+    // Text only (the cells are blitted after): glyph quads have transparent borders and coverage
+    // from the atlas, so multisampling changes no pixel; without it the sheet needs no
+    // multisampled target of its size (a new one per sheet size: ~100 MB cleared for a large sheet).
+    render::CanvasOptions sheetOptions = canvasOptions(width, height, scale);
+    sheetOptions.msaaSamples = 1;
+    Canvas canvas(gl, sheetOptions, Camera::twoD(0, 0, 1));
     TextStyle caption{captionPx, roleColor(Role::Ink), Anchor::Top, false, false};
     if (!o.title.empty())
         canvas.drawTextPx(width / 2.0, pad, o.title, TextStyle{titlePx, roleColor(Role::Ink), Anchor::Top, false, true});
