@@ -80,8 +80,9 @@ struct SatContactOptions {
     /// best by more than the preference and the tolerance (an edge pair on the arc of A's edge e
     /// separates by at most max_u u · (c_B − e) − r_B over the arc, c_B B's vertex mean and r_B
     /// the radius of the ball about it inside B): the same answer, fewer pairs tested (axesTested
-    /// counts the pairs tested). false: every crossing pair is tested (tests compare the walk's pairs
-    /// with the traced query's).
+    /// counts the pairs tested, nearlyParallelEdgePairs those met). false, or faceBiasRelative < 0:
+    /// every crossing pair is tested (tests compare the walk's pairs with the traced query's;
+    /// core/query/contact.cpp needs every nearly parallel pair counted).
     bool pruneEdgeArcs = true;
 };
 

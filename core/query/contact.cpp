@@ -290,6 +290,9 @@ ContactResult bodyBodyContact(const ContactHull& a, const ContactHull& b, int ma
     }
     SatContactOptions opt;
     opt.maxPoints = maxPoints;
+    // Every edge pair tested, as the traced query does: nearlyParallel (the re-run on exact
+    // vertices) counts the nearly parallel pairs met, which the pruning could skip.
+    opt.pruneEdgeArcs = false;
     SatContactResult r = contactPolyhedra(a.mesh, Transform{}, b.mesh, Transform{}, opt, trace);
     if (r.status == SatContactStatus::InvalidInput) {
         out.status = ContactStatus::ContactFailed;

@@ -197,4 +197,30 @@ TEST_SUITE("contact_exactness") {
                                                 QueryShape::polytope(b));
         CHECK(flat.status == ContactStatus::HullFailed);
     }
+
+    // The query's re-run on the input's exact vertices hinges on the nearly parallel pairs the SAT
+    // met, so it tests every pair (no edge pruning), traced or not: the untraced answer is the
+    // traced one (a reviewer's far pair, 1e5 from the origin, where the pruned SAT skipped the pairs
+    // and so the re-run, and the two answers parted).
+    TEST_CASE("a far pair with nearly parallel edges: untraced query = traced query") {
+        const std::vector<Vec3> a = {
+            {-0x1.218716d031fddp+10, 0x1.58d1afa410076p+16, 0x1.b917d8778dc94p+15}, {-0x1.21c2e7d21fdfp+10, 0x1.58d1ed452235bp+16, 0x1.b91b59587147dp+15},
+            {-0x1.21b2e32b619a9p+10, 0x1.58d376bbe2942p+16, 0x1.b916a06e33759p+15}, {-0x1.21eeb42d4f7bcp+10, 0x1.58d3b45cf4c28p+16, 0x1.b91a214f16f43p+15},
+            {-0x1.218716d70898ap+10, 0x1.58d1afa40131cp+16, 0x1.b917d87774acbp+15}, {-0x1.21c2e7d8f679dp+10, 0x1.58d1ed4513602p+16, 0x1.b91b5958582b5p+15},
+            {-0x1.21b2e33238356p+10, 0x1.58d376bbd3be9p+16, 0x1.b916a06e1a591p+15}, {-0x1.21eeb43426169p+10, 0x1.58d3b45ce5ecep+16, 0x1.b91a214efdd7ap+15}};
+        const std::vector<Vec3> b = {
+            {-0x1.21ac881b11757p+10, 0x1.58d31b0808cf1p+16, 0x1.b9189294db6a4p+15}, {-0x1.21ca709bedf9fp+10, 0x1.58d339d891813p+16, 0x1.b91a53054db62p+15},
+            {-0x1.21b9abd019a01p+10, 0x1.58d3a38f2e568p+16, 0x1.b91834f873fdbp+15}, {-0x1.21d79450f6249p+10, 0x1.58d3c25fb708ap+16, 0x1.b919f568e6499p+15},
+            {-0x1.21c16686fae0fp+10, 0x1.58d2edc2b4faep+16, 0x1.b91845f29fa2fp+15}, {-0x1.21df4f07d7657p+10, 0x1.58d30c933dadp+16, 0x1.b91a066311eedp+15},
+            {-0x1.21ce8a3c030b9p+10, 0x1.58d37649da825p+16, 0x1.b917e85638366p+15}, {-0x1.21ec72bcdf901p+10, 0x1.58d3951a63347p+16, 0x1.b919a8c6aa824p+15}};
+        ContactOptions options;
+        options.maxPoints = 3;
+        ContactTrace trace;
+        const ContactResult untraced = contactQuery(QueryShape::polytope(a), QueryShape::polytope(b), options);
+        const ContactResult traced = contactQuery(QueryShape::polytope(a), QueryShape::polytope(b), options, &trace);
+        CHECK(untraced.status == traced.status);
+        CHECK(untraced.depth == traced.depth);
+        CHECK(untraced.axis == traced.axis);
+        CHECK(untraced.points.size() == traced.points.size());
+    }
 }

@@ -229,6 +229,33 @@ TEST_SUITE("contact_sat") {
         CHECK(faceAxes > 200);
     }
 
+    // A negative faceBiasRelative lets an edge axis win below the face axes' best, where the edge
+    // pruning's bound would skip it: the pruning is off then (a reviewer's pose, where it picked
+    // face A at depth 0.027 instead of the edge pair at 0.051).
+    TEST_CASE("negative face bias: the pruned walk answers as the unpruned one") {
+        const ConvexPolyhedron a = presets::randomHull(20, 10, presets::RandomHullKind::InBall);
+        const ConvexPolyhedron b = presets::octahedron(0.6);
+        const Quat q(0x1.1843c16f2e8c1p-3, -0x1.c912c94f0356fp-1, 0x1.1e91dbed9c44cp-2, 0x1.4d652e6d22e75p-2);
+        const Transform ta{Vec3(-0x1.29a021e73b885p+0, -0x1.52f17b850a0fp-2, -0x1.307152a396a73p-3), q};
+        const Transform tb{Vec3(-0x1.d1d15a743debp+0, -0x1.95531242ee908p-2, -0x1.5acfd43724a9cp-1), q};
+        for (const double bias : {-0.5, -0.02, 0.0, 0.02}) {
+            SatContactOptions pruned, unpruned;
+            pruned.faceBiasRelative = unpruned.faceBiasRelative = bias;
+            pruned.maxPoints = unpruned.maxPoints = 1;
+            unpruned.pruneEdgeArcs = false;
+            const SatContactResult p = contactPolyhedra(a, ta, b, tb, pruned), u = contactPolyhedra(a, ta, b, tb, unpruned);
+            CAPTURE(bias);
+            CHECK(p.axisKind == u.axisKind);
+            CHECK(p.depth == u.depth);
+            CHECK(p.normal == u.normal);
+            CHECK(p.featureA.index == u.featureA.index);
+            CHECK(p.featureB.index == u.featureB.index);
+        }
+        SatContactOptions negative;
+        negative.faceBiasRelative = -0.5;
+        CHECK(contactPolyhedra(a, ta, b, tb, negative).axisKind == SatAxisKind::EdgeEdge);  // the pose still tests it
+    }
+
     // A body without volume (a square as two faces back to back) is accepted by fromFaces; its
     // folded edges have no Gauss arc to walk, so both queries test every pair and agree.
     TEST_CASE("flat body: untraced = traced") {
