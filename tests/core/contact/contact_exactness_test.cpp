@@ -198,11 +198,13 @@ TEST_SUITE("contact_exactness") {
         CHECK(flat.status == ContactStatus::HullFailed);
     }
 
-    // The query's re-run on the input's exact vertices hinges on the nearly parallel pairs the SAT
-    // met, so it tests every pair (no edge pruning), traced or not: the untraced answer is the
-    // traced one (a reviewer's far pair, 1e5 from the origin, where the pruned SAT skipped the pairs
-    // and so the re-run, and the two answers parted).
-    TEST_CASE("a far pair with nearly parallel edges: untraced query = traced query") {
+    // A 2 x 2 x 2e-6 plate and a box 1e5 from the origin (a reviewer's pair). The query's re-run
+    // on the input's exact vertices hinges on the nearly parallel pairs the SAT met, so it tests
+    // every pair (no edge pruning), traced or not: the untraced answer is the traced one. There an
+    // edge pair of the plate that the rounded Gauss arcs admitted claimed a separation of +0.18;
+    // checked against the support gap along its axis it no longer hides the overlap: the depth is
+    // the long-double brute force's 0.113343570973659.
+    TEST_CASE("a far pair with nearly parallel edges: untraced query = traced query = the brute-force depth") {
         const std::vector<Vec3> a = {
             {-0x1.218716d031fddp+10, 0x1.58d1afa410076p+16, 0x1.b917d8778dc94p+15}, {-0x1.21c2e7d21fdfp+10, 0x1.58d1ed452235bp+16, 0x1.b91b59587147dp+15},
             {-0x1.21b2e32b619a9p+10, 0x1.58d376bbe2942p+16, 0x1.b916a06e33759p+15}, {-0x1.21eeb42d4f7bcp+10, 0x1.58d3b45cf4c28p+16, 0x1.b91a214f16f43p+15},
@@ -222,5 +224,7 @@ TEST_SUITE("contact_exactness") {
         CHECK(untraced.depth == traced.depth);
         CHECK(untraced.axis == traced.axis);
         CHECK(untraced.points.size() == traced.points.size());
+        CHECK(untraced.colliding);
+        CHECK(untraced.depth == doctest::Approx(0.113343570973659).epsilon(1e-9));
     }
 }
