@@ -1,6 +1,7 @@
 #include "core/contact/contact_box.h"
 
 #include <algorithm>
+#include <cassert>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -163,13 +164,14 @@ struct PosedBox {
 }
 
 // reduceContactPolygon's rules (core/contact/contact_manifold.cpp, file comment of
-// contact_manifold.h) for maxPoints 1 to 4 on at most 14 points given by their in-plane
-// coordinates xy and depths (at most 14 points): rule 0 (rim points dropped), then the deepest, the farthest from it,
-// the largest triangle, the point adding the most area, each rule taking submerged points before
-// surface ones and breaking ties to kManifoldTieRelative by input order. The general reduction
+// contact_manifold.h) for maxPoints 1 to 4 on n <= 14 points given by their in-plane coordinates xy
+// and depths: rule 0 (rim points dropped), then the deepest, the farthest from it, the largest
+// triangle, the point adding the most area, each rule taking submerged points before surface ones
+// and breaking ties to kManifoldTieRelative by input order. The general reduction
 // projects onto the plane in 3D; here the plane's own coordinates are given, so the decisions are
 // the same up to rounding (tests/core/contact/contact_box_test.cpp compares the manifolds).
 ContactIndices reduceFacePoints(const double (*xy)[2], const double* depth, int n, int maxPoints) {
+    assert(n >= 1 && n <= 14 && maxPoints >= 1 && maxPoints <= 4);
     const auto greater = [](double score, double best) { return score > best + kManifoldTieRelative * std::abs(best); };
     const auto dist2 = [&](int i, int j) {
         const double dx = xy[i][0] - xy[j][0], dy = xy[i][1] - xy[j][1];
@@ -438,8 +440,6 @@ SatContactResult contactBoxBox(const Vec3& ha, const Transform& ta, const Vec3& 
     // Quads clip to at most 8 points: the inline buffers of clipIncidentFace, never the resource.
     detail::clipIncidentFace(refPoly, nr, nr.dot(R.center) + R.h[rf / 2], incPoly, I.corners(), R.corners(), refOnA, origin, tol,
                              options, r, nullptr, std::pmr::null_memory_resource(), sides);
-    r.featureA = {FeatureType::Face, refOnA ? rf : inc};
-    r.featureB = {FeatureType::Face, refOnA ? inc : rf};
     return r;
 }
 

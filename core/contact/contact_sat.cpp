@@ -154,7 +154,6 @@ struct SatQuery {
     detail::SatBestAxes best;
     int pruned = 0, parallel = 0;
     int nearlyParallel = 0;  // pairs whose axis was computed in long double
-    int prunedByBound = 0;   // edges of A skipped by queryEdgeAxesByWalk's bound
     double gapSlack = 0.0;   // considerEdgePair: how far a pair's value may exceed its axis's gap (tol)
     void count(const SatAxisRecord& rec) {
         if (axes) axes->push_back(rec);
@@ -375,10 +374,8 @@ void queryEdgeAxesByWalk(Posed& A, Posed& B, const std::pmr::vector<int>& suppor
             // min_B u · x is at most u · c_B - r_B, and at most u · x_s for B's supports x_s along
             // -a and -b (exact at the arc's ends: there the bound is the face axis's separation).
             if (reach(B.x[supportOfB[edgeA.f1]] - xe) < pruneBelow || reach(B.x[supportOfB[edgeA.f2]] - xe) < pruneBelow ||
-                reach(B.center - xe) - rB < pruneBelow) {
-                ++q.prunedByBound;
+                reach(B.center - xe) - rB < pruneBelow)
                 continue;
-            }
         }
         // Both ends in one vertex region of B (one vertex s lowest along a and along b): then
         // (w - s) · m(t) >= 0 for every neighbour w and every m(t) = a + t (b - a), 0 <= t <= 1,
