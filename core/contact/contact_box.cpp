@@ -506,12 +506,7 @@ BoxPlaneContact contactBoxPlane(const Vec3& h, const Transform& pose, const Plan
         return r;
     }
     if (count <= maxPoints) {  // every candidate: the deepest first (first of ties), then input order
-        int deepest = 0;
-        for (int i = 1; i < count; ++i)
-            if (cand[i].depth > cand[deepest].depth + kManifoldTieRelative * cand[deepest].depth) deepest = i;
-        r.manifold.push_back(cand[deepest]);
-        for (int i = 0; i < count; ++i)
-            if (i != deepest) r.manifold.push_back(cand[i]);
+        for (int i : deepestFirst(cand)) r.manifold.push_back(cand[i]);
         return r;
     }
     // The rules on the plane's coordinates (any orthonormal basis of it: the scores are lengths and

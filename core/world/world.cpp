@@ -159,10 +159,11 @@ World::World(std::vector<WorldBodyDesc> bodies, const WorldOptions& options)
             const Aabb b = worldBounds(descs_[i].shape, descs_[i].pose);
             const Vec3 e = (b.max - b.min).array() + 2.0 * descs_[i].shape.boundingRadius + 2.0 * options_.speculativeDistance;
             const double cells = (std::floor(e.x() / h) + 2) * (std::floor(e.y() / h) + 2) * (std::floor(e.z() / h) + 2);
-            if (!(cells <= double(UniformGridOptions{}.maxCellsPerBox))) {
+            const auto limit = UniformGridOptions{}.maxCellsPerBox;
+            if (!(cells <= double(limit))) {
                 fail(WorldStatus::InvalidOptions, "body " + std::to_string(i) + " would cover " + std::to_string(cells) +
-                                                      " grid cells of " + std::to_string(h) +
-                                                      " (at most 65536): a larger gridCellSize, or sweep and prune");
+                                                      " grid cells of " + std::to_string(h) + " (at most " +
+                                                      std::to_string(limit) + "): a larger gridCellSize, or sweep and prune");
                 return;
             }
         }
