@@ -57,7 +57,7 @@ struct Posed {
     double sign = 1.0;
     Vec3 center = Vec3::Zero();  // vertex mean (inside: convex)
     // The edge vectors w - v of the vertex adjacency (ConvexPolyhedron::neighbors(), same slots) in
-    // world orientation, for the descents and the arc walks of the untraced query. They are rotated
+    // world orientation, for the arc walks of the untraced query over B's graph. They are rotated
     // body-frame differences, free of the rounding of B's offset from A (the arc tests of the
     // traced query use normals only, so neither depends on where the bodies are).
     Mat3 rotation = Mat3::Identity();
@@ -186,27 +186,70 @@ void queryFaceAxes(const Posed& A, const Posed& B, SatQuery& q, std::pmr::vector
     for (int f = 0; f < B.mesh->faceCount(); ++f) considerFaceAxis(B, A, false, f, A.minVertex(B.n[f]), q);
 }
 
+// Q's supports along -n_f for the faces f of P (the vertex realising face f's separation), found
+// by descent; where the face pruning skipped a face, only the vertex its descent would start from
+// is kept, and the support is found when the edge walk asks for it (of()).
+struct FaceSupports {
+    std::pmr::vector<int> vertex;  // the support, -1 where not found yet
+    std::pmr::vector<int> start;   // where its descent starts
+    FaceSupports(int faces, std::pmr::memory_resource* memory) : vertex(faces, -1, memory), start(faces, -1, memory) {}
+    int of(const Posed& P, const Posed& Q, int f) {
+        if (vertex[f] < 0) vertex[f] = Q.descend(P.n[f], start[f]);
+        return vertex[f];
+    }
+};
+
+// The radius of a ball about Q's vertex mean inside Q (its least distance to a face plane; 0 on a
+// flat body, whose rounding can put the mean a hair outside).
+double inradiusAboutCenter(const Posed& Q) {
+    double r = INFINITY;
+    for (size_t f = 0; f < Q.n.size(); ++f) r = std::min(r, Q.d[f] - Q.n[f].dot(Q.center));
+    return std::max(r, 0.0);
+}
+
 // 1, untraced: the same supports found by descent over the other body's vertex graph, faces
 // visited breadth first across their edges and each descent started at the support of the face it
 // was reached from (adjacent normals have nearby supports: a step or two of ~6 neighbours instead
 // of every vertex). A linear function's local minimum over a convex polytope's vertex graph is its
 // minimum, so the supports are the loop's (up to ties within rounding).
-void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery& q, std::pmr::vector<int>& supportOfQ,
-                            std::pmr::memory_resource* memory) {
+// With `prune`, the visit starts at the face of largest bound and skips the descent of a face whose
+// separation is bounded below its family's best so far: min_Q n_f · x <= n_f · c_Q − r_Q (the ball
+// of radius r_Q about Q's vertex mean c_Q lies in Q), with a margin of tol + 1e-12 of the terms for
+// the rounding; such a face cannot be the family's best (the larger separation wins), so the
+// family's best is the unpruned one's (tests/core/contact/contact_sat_test.cpp, untraced = traced).
+void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery& q, FaceSupports& supportOfQ,
+                            bool prune, double tol, std::pmr::memory_resource* memory) {
     const ConvexPolyhedron& mp = *P.mesh;
-    std::fill(supportOfQ.begin(), supportOfQ.end(), -1);
+    const int faces = mp.faceCount();
+    std::pmr::vector<double> bound(memory);
+    int first = 0;
+    if (prune) {
+        const double rQ = inradiusAboutCenter(Q);
+        bound.resize(faces);
+        for (int f = 0; f < faces; ++f) {
+            const double c = P.n[f].dot(Q.center);
+            bound[f] = c - rQ - P.d[f] + tol + 1e-12 * (std::abs(c) + rQ + std::abs(P.d[f]));
+            if (bound[f] > bound[first]) first = f;
+        }
+    }
+    const SatAxisRecord& best = pIsA ? q.best.faceA : q.best.faceB;
     std::pmr::vector<int> queue(memory);
-    queue.reserve(mp.faceCount());
-    supportOfQ[0] = Q.minVertex(P.n[0]);
-    queue.push_back(0);
+    queue.reserve(faces);
+    supportOfQ.vertex[first] = Q.minVertex(P.n[first]);
+    queue.push_back(first);
+    std::pmr::vector<char> reached(faces, 0, memory);
+    reached[first] = 1;
     for (size_t head = 0; head < queue.size(); ++head) {
         const int f = queue[head];
-        const int s = supportOfQ[f];
-        considerFaceAxis(P, Q, pIsA, f, s, q);
+        if (supportOfQ.vertex[f] < 0 && !(prune && bound[f] < best.separation))
+            supportOfQ.vertex[f] = Q.descend(P.n[f], supportOfQ.start[f]);
+        const int s = supportOfQ.vertex[f];
+        if (s >= 0) considerFaceAxis(P, Q, pIsA, f, s, q);
         for (int k = mp.faceVertexStart()[f]; k < mp.faceVertexStart()[f + 1]; ++k) {
             const int g = mp.faceAcross()[k];
-            if (supportOfQ[g] >= 0) continue;
-            supportOfQ[g] = Q.descend(P.n[g], s);
+            if (reached[g]) continue;
+            reached[g] = 1;
+            supportOfQ.start[g] = s >= 0 ? s : supportOfQ.start[f];
             queue.push_back(g);
         }
     }
@@ -348,12 +391,10 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
 // |w_p| (w projected on the arc's plane) where w_p's direction lies inside the arc, else
 // max(a · w, b · w). Computed with a margin of tol + 1e-12 |w|_1 for its rounding. The same with w
 // from x_e to B's supports along -a and -b (min_B u · x <= u · x_s for any point x_s of B).
-void queryEdgeAxesByWalk(Posed& A, Posed& B, const std::pmr::vector<int>& supportOfB, double endTol, double pruneBelow,
-                         double tol, SatQuery& q) {
+void queryEdgeAxesByWalk(Posed& A, Posed& B, FaceSupports& supportOfB, double endTol, double pruneBelow, double tol,
+                         SatQuery& q) {
     std::pmr::vector<double> side(B.n.get_allocator().resource());
-    double rB = INFINITY;  // the inradius about B's vertex mean
-    for (size_t f = 0; f < B.n.size(); ++f) rB = std::min(rB, B.d[f] - B.n[f].dot(B.center));
-    rB = std::max(rB, 0.0);  // rounding on a flat body: c_B itself is in B
+    const double rB = inradiusAboutCenter(B);
     for (int ea = 0; ea < static_cast<int>(A.edges->size()); ++ea) {
         const ConvexPolyhedron::EdgeEnds& edgeA = (*A.edges)[ea];
         if (pruneBelow > -INFINITY) {
@@ -373,8 +414,8 @@ void queryEdgeAxesByWalk(Posed& A, Posed& B, const std::pmr::vector<int>& suppor
             };
             // min_B u · x is at most u · c_B - r_B, and at most u · x_s for B's supports x_s along
             // -a and -b (exact at the arc's ends: there the bound is the face axis's separation).
-            if (reach(B.x[supportOfB[edgeA.f1]] - xe) < pruneBelow || reach(B.x[supportOfB[edgeA.f2]] - xe) < pruneBelow ||
-                reach(B.center - xe) - rB < pruneBelow)
+            if (reach(B.center - xe) - rB < pruneBelow || reach(B.x[supportOfB.of(A, B, edgeA.f1)] - xe) < pruneBelow ||
+                reach(B.x[supportOfB.of(A, B, edgeA.f2)] - xe) < pruneBelow)
                 continue;
         }
         // Both ends in one vertex region of B (one vertex s lowest along a and along b): then
@@ -384,8 +425,9 @@ void queryEdgeAxesByWalk(Posed& A, Posed& B, const std::pmr::vector<int>& suppor
         // take a spurious crossing just below t = 1 and test a pair whose arcs do not cross, a few
         // ulps from the face axis's separation (a reviewer's 24,000 pairs: 1,162 degenerate poses
         // differ by up to 1.6e-14 in separation, 26 separated ones in the reported axis).
-        if (supportOfB[edgeA.f1] == supportOfB[edgeA.f2]) continue;
-        if (walkEdgeArc(A, B, ea, supportOfB[edgeA.f1], supportOfB[edgeA.f2], endTol, q)) continue;
+        const int s1 = supportOfB.of(A, B, edgeA.f1), s2 = supportOfB.of(A, B, edgeA.f2);
+        if (s1 == s2) continue;
+        if (walkEdgeArc(A, B, ea, s1, s2, endTol, q)) continue;
         // Every pair of ea (a pair the walk already took is taken again: no change to the best).
         A.buildArcs();
         B.buildArcs();
@@ -526,19 +568,18 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
 
     SatQuery q;
     q.gapSlack = tol;
-    std::pmr::vector<int> supportOfB(ma.faceCount(), -1, arena.resource()), supportOfA(mb.faceCount(), -1, arena.resource());
+    FaceSupports supportOfB(ma.faceCount(), arena.resource()), supportOfA(mb.faceCount(), arena.resource());
     // A body without volume has edges whose Gauss arcs are half circles with opposite ends: no arc
     // to walk (every region of the other body ties halfway), while the all-pairs test drops them.
     if (trace || A.flat || B.flat) {
         // Traced: every face axis and every edge pair in index order, the pruning counted.
         if (trace) q.axes = &trace->axes;
-        queryFaceAxes(A, B, q, supportOfB);
+        queryFaceAxes(A, B, q, supportOfB.vertex);
         queryEdgeAxes(A, B, q);
     } else {
-        A.buildAdjacency();
-        B.buildAdjacency();
-        queryFaceAxesByDescent(A, B, true, q, supportOfB, arena.resource());
-        queryFaceAxesByDescent(B, A, false, q, supportOfA, arena.resource());
+        B.buildAdjacency();  // the walk steps over B's vertex graph (A's steps are not read)
+        queryFaceAxesByDescent(A, B, true, q, supportOfB, options.pruneFaceAxes, tol, arena.resource());
+        queryFaceAxesByDescent(B, A, false, q, supportOfA, options.pruneFaceAxes, tol, arena.resource());
         // Edges bounded below what the choice of axis can use (chooseSatAxis, edgeAxisForEmptyClip:
         // an edge pair matters only at or above the face axes' best less the preference and tol).
         const double faceBest = std::max(q.best.faceA.separation, q.best.faceB.separation);

@@ -84,6 +84,11 @@ struct SatContactOptions {
     /// every crossing pair is tested (tests compare the walk's pairs with the traced query's;
     /// core/query/contact.cpp needs every nearly parallel pair counted).
     bool pruneEdgeArcs = true;
+    /// Untraced query: skip the support descent of a face whose separation is bounded below its
+    /// family's best so far (min_B n_f · x <= n_f · c_B − r_B, B's vertex mean and inradius about
+    /// it), visiting the face of largest bound first: the same answer, fewer faces tested
+    /// (axesTested counts the faces whose support was found). false: every face tested.
+    bool pruneFaceAxes = true;
 };
 
 struct SatContactResult {
@@ -97,8 +102,9 @@ struct SatContactResult {
     ContactManifold manifold;            ///< colliding: <= maxPoints points, deepest first
     double tolerance = 0.0;
     /// Axes whose separation was computed: every face normal of both bodies and every edge pair
-    /// that forms a face of A − B (their Gauss arcs cross, edges not parallel). The untraced and the
-    /// traced query test the same pairs, found by walking the arcs or by testing all of them.
+    /// that forms a face of A − B (their Gauss arcs cross, edges not parallel). Without the pruning
+    /// (pruneEdgeArcs, pruneFaceAxes) the untraced and the traced query test the same axes, found by
+    /// walking the arcs or by testing all of them; with it, the untraced query tests fewer.
     int axesTested = 0;
     /// Edge pairs tested whose sine is below kPreciseEdgeSine (their axis computed in long double):
     /// their axis is only as good as the vertices, so a caller whose vertices were rounded (a

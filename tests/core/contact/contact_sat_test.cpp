@@ -151,8 +151,8 @@ TEST_SUITE("contact_sat") {
 
     // The untraced call finds its supports by descent and its edge pairs by walking each arc of A
     // over B's Gauss map, skipping the arcs whose pairs are bounded below what the axis choice can
-    // use (SatContactOptions::pruneEdgeArcs); the traced call tests every vertex and every edge pair
-    // in index order.
+    // use (SatContactOptions::pruneEdgeArcs) and the faces bounded below their family's best
+    // (pruneFaceAxes); the traced call tests every vertex and every edge pair in index order.
     // Generic poses: the same axis, separation, features and manifold, bit for bit. Degenerate
     // poses (parallel faces and edges, B at A's pose: axes tied in exact arithmetic, their rounded
     // values apart by ulps): the same status and separation and depth to rounding, whichever of
@@ -163,15 +163,18 @@ TEST_SUITE("contact_sat") {
                                                 presets::tetrahedron(0.7), presets::octahedron(0.6),
                                                 presets::prism(5, 0.5, 0.3), presets::prism(24, 0.5, 0.2)};
         for (int n : {8, 16, 64, 200}) bodies.push_back(presets::randomHull(n, 100 + n));
-        int generic = 0, degenerate = 0, edgeAxes = 0, faceAxes = 0, pruned = 0;
+        int generic = 0, degenerate = 0, edgeAxes = 0, faceAxes = 0, pruned = 0, facesPruned = 0;
         const auto compare = [&](const ConvexPolyhedron& a, const Transform& ta, const ConvexPolyhedron& b,
                                  const Transform& tb, bool isGeneric) {
             SatContactTrace tr;
             const SatContactResult all = contactPolyhedra(a, ta, b, tb, {}, &tr);
             const SatContactResult walk = contactPolyhedra(a, ta, b, tb);  // edges pruned by the bound
             SatContactOptions unpruned;
-            unpruned.pruneEdgeArcs = false;
+            unpruned.pruneEdgeArcs = unpruned.pruneFaceAxes = false;
             const SatContactResult walkAll = contactPolyhedra(a, ta, b, tb, unpruned);
+            SatContactOptions facesOnly;  // face axes pruned, every crossing edge pair tested
+            facesOnly.pruneEdgeArcs = false;
+            const SatContactResult walkFaces = contactPolyhedra(a, ta, b, tb, facesOnly);
             REQUIRE(walk.status == all.status);
             if (!isGeneric) {
                 ++degenerate;
@@ -187,6 +190,13 @@ TEST_SUITE("contact_sat") {
             CHECK(walkAll.axesTested == all.axesTested);
             CHECK(walk.axesTested <= all.axesTested);
             pruned += walk.axesTested < all.axesTested;
+            CHECK(walkFaces.axesTested <= all.axesTested);
+            facesPruned += walkFaces.axesTested < all.axesTested;
+            CHECK(walkFaces.separation == all.separation);
+            CHECK(walkFaces.depth == all.depth);
+            CHECK(walkFaces.normal == all.normal);
+            CHECK(walkFaces.featureA.index == all.featureA.index);
+            CHECK(walkFaces.featureB.index == all.featureB.index);
             CHECK(walk.separation == all.separation);
             CHECK(walk.depth == all.depth);
             REQUIRE(walk.axisKind == all.axisKind);
@@ -226,6 +236,7 @@ TEST_SUITE("contact_sat") {
         CHECK(degenerate == 7 * int(bodies.size() * bodies.size()));
         CHECK(edgeAxes > 50);  // both kinds of contact are compared, not only faces
         CHECK(pruned > generic / 4);  // the bound skips edges on a good share of the poses
+        CHECK(facesPruned > generic / 2);  // and faces on most
         CHECK(faceAxes > 200);
     }
 
