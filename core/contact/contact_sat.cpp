@@ -214,11 +214,12 @@ double inradiusAboutCenter(const Posed& Q) {
 // minimum, so the supports are the loop's (up to ties within rounding).
 // With `prune`, the visit starts at the face of largest bound and skips the descent of a face whose
 // separation is bounded below its family's best so far: min_Q n_f · x <= n_f · c_Q − r_Q (the ball
-// of radius r_Q about Q's vertex mean c_Q lies in Q), with a margin of tol + 1e-12 of the terms for
-// the rounding; such a face cannot be the family's best (the larger separation wins), so the
-// family's best is the unpruned one's (tests/core/contact/contact_sat_test.cpp, untraced = traced).
+// of radius r_Q about Q's vertex mean c_Q lies in Q), plus `margin` (pruneMargin in contactPolyhedra)
+// and 1e-12 of the terms for the rounding; such a face cannot be the family's best (the larger
+// separation wins), so the family's best is the unpruned one's (tests/core/contact/
+// contact_sat_test.cpp, untraced = traced).
 void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery& q, FaceSupports& supportOfQ,
-                            bool prune, double tol, std::pmr::memory_resource* memory) {
+                            bool prune, double margin, std::pmr::memory_resource* memory) {
     const ConvexPolyhedron& mp = *P.mesh;
     const int faces = mp.faceCount();
     std::pmr::vector<double> bound(memory);
@@ -228,7 +229,7 @@ void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery&
         bound.resize(faces);
         for (int f = 0; f < faces; ++f) {
             const double c = P.n[f].dot(Q.center);
-            bound[f] = c - rQ - P.d[f] + tol + 1e-12 * (std::abs(c) + rQ + std::abs(P.d[f]));
+            bound[f] = c - rQ - P.d[f] + margin + 1e-12 * (std::abs(c) + rQ + std::abs(P.d[f]));
             if (bound[f] > bound[first]) first = f;
         }
     }
@@ -389,9 +390,10 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
 // the pair's separation min_B u · x − u · x_e (x_e on ea, A's support along u) is at most
 // u · w − r_B with w = c_B − x_e (the ball of radius r_B about c_B lies in B), and u · w is at most
 // |w_p| (w projected on the arc's plane) where w_p's direction lies inside the arc, else
-// max(a · w, b · w). Computed with a margin of tol + 1e-12 |w|_1 for its rounding. The same with w
+// max(a · w, b · w). Computed with a margin (pruneMargin in contactPolyhedra) + 1e-12 |w|_1 for
+// its rounding and the faces' planarity. The same with w
 // from x_e to B's supports along -a and -b (min_B u · x <= u · x_s for any point x_s of B).
-void queryEdgeAxesByWalk(Posed& A, Posed& B, FaceSupports& supportOfB, double endTol, double pruneBelow, double tol,
+void queryEdgeAxesByWalk(Posed& A, Posed& B, FaceSupports& supportOfB, double endTol, double pruneBelow, double margin,
                          SatQuery& q) {
     std::pmr::vector<double> side(B.n.get_allocator().resource());
     const double rB = inradiusAboutCenter(B);
@@ -410,7 +412,7 @@ void queryEdgeAxesByWalk(Posed& A, Posed& B, FaceSupports& supportOfB, double en
                     const double s2 = 1.0 - c * c;
                     m = s2 > 1e-12 ? std::sqrt(std::max(0.0, (aw * aw + bw * bw - 2.0 * c * aw * bw) / s2)) : w.norm();
                 }
-                return m + tol + 1e-12 * w.lpNorm<1>();
+                return m + margin + 1e-12 * w.lpNorm<1>();
             };
             // min_B u · x is at most u · c_B - r_B, and at most u · x_s for B's supports x_s along
             // -a and -b (exact at the arc's ends: there the bound is the face axis's separation).
@@ -578,8 +580,12 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         queryEdgeAxes(A, B, q);
     } else {
         B.buildAdjacency();  // the walk steps over B's vertex graph (A's steps are not read)
-        queryFaceAxesByDescent(A, B, true, q, supportOfB, options.pruneFaceAxes, tol, arena.resource());
-        queryFaceAxesByDescent(B, A, false, q, supportOfA, options.pruneFaceAxes, tol, arena.resource());
+        // The prunings' bounds take the ball about a body's vertex mean inside its face planes, and
+        // the faces are planar only within the mesh's scale tolerance (65536 ulps of its coordinates
+        // and diagonal, core/geometry/polyhedron.h): twice that, and tol, on top of their rounding.
+        const double pruneMargin = tol + ulps(131072.0, maxCoord + size);
+        queryFaceAxesByDescent(A, B, true, q, supportOfB, options.pruneFaceAxes, pruneMargin, arena.resource());
+        queryFaceAxesByDescent(B, A, false, q, supportOfA, options.pruneFaceAxes, pruneMargin, arena.resource());
         // Edges bounded below what the choice of axis can use (chooseSatAxis, edgeAxisForEmptyClip:
         // an edge pair matters only at or above the face axes' best less the preference and tol).
         const double faceBest = std::max(q.best.faceA.separation, q.best.faceB.separation);
@@ -590,7 +596,7 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
                                             std::max(0.0, options.faceBiasAbsolute) - tol
                                       : -INFINITY;
         queryEdgeAxesByWalk(A, B, supportOfB, detail::satTolerance(SatContactOptions{}, size, maxCoord),
-                            std::isnan(pruneBelow) ? -INFINITY : pruneBelow, tol, q);
+                            std::isnan(pruneBelow) ? -INFINITY : pruneBelow, pruneMargin, q);
     }
     r.axesTested = q.tested;
     r.nearlyParallelEdgePairs = q.nearlyParallel;
