@@ -581,9 +581,12 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     } else {
         B.buildAdjacency();  // the walk steps over B's vertex graph (A's steps are not read)
         // The prunings' bounds take the ball about a body's vertex mean inside its face planes, and
-        // the faces are planar only within the mesh's scale tolerance (65536 ulps of its coordinates
-        // and diagonal, core/geometry/polyhedron.h): twice that, and tol, on top of their rounding.
-        const double pruneMargin = tol + ulps(131072.0, maxCoord + size);
+        // a valid mesh's faces are planar only within its scale tolerance (65536 ulps of its own
+        // body-frame coordinates and diagonal, core/geometry/polyhedron.h: a mesh stored 1e6 from its
+        // body origin may be posed near the world's): twice the larger, tol, and the rounding of the
+        // posed coordinates (tests/core/contact/contact_sat_test.cpp, "a ridge far from its body origin").
+        const double pruneMargin = tol + 2.0 * std::max(ma.scaleTolerance(), mb.scaleTolerance()) +
+                                   ulps(131072.0, maxCoord + size);
         queryFaceAxesByDescent(A, B, true, q, supportOfB, options.pruneFaceAxes, pruneMargin, arena.resource());
         queryFaceAxesByDescent(B, A, false, q, supportOfA, options.pruneFaceAxes, pruneMargin, arena.resource());
         // Edges bounded below what the choice of axis can use (chooseSatAxis, edgeAxisForEmptyClip:

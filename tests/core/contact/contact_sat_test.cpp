@@ -240,6 +240,50 @@ TEST_SUITE("contact_sat") {
         CHECK(faceAxes > 200);
     }
 
+    // The prunings bound a face's separation by the ball about the other body's vertex mean inside
+    // its face planes; a valid mesh's faces are planar only within its scale tolerance, relative to
+    // its own body-frame coordinates. A reviewer's body: a box whose roof is two faces sloped by 1e-4,
+    // their vertices 0.8 of that tolerance off plane, the mesh 2^20 from its body origin and posed near
+    // the world's. With a margin measured in the posed coordinates the pruned query chose face A 0 at
+    // depth 0.20010206 where the unpruned and traced ones choose face A 5 at 0.20010007.
+    TEST_CASE("a ridge far from its body origin: pruned = unpruned = traced") {
+        const Vec3 o = Vec3::Constant(1048576.0);
+        const double slope = 1e-4, offPlane = 0x1.99999ap-17;
+        const double xs[5] = {-1, -0.5, 0, 0.5, 1};
+        const double zs[5] = {1, 1 + slope / 2 + offPlane, 1 + slope, 1 + slope / 2 + offPlane, 1};
+        std::vector<Vec3> p = {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)};
+        for (int side = 0; side < 2; ++side)
+            for (int i = 0; i < 5; ++i) p.push_back(Vec3(xs[i], side ? 1 : -1, zs[i]));
+        for (Vec3& x : p) x += o;
+        const std::vector<std::vector<int>> faces = {{0, 3, 2, 1},          {4, 5, 6, 11, 10, 9},
+                                                     {6, 7, 8, 13, 12, 11}, {0, 1, 8, 7, 6, 5, 4},
+                                                     {3, 9, 10, 11, 12, 13, 2}, {0, 4, 9, 3},
+                                                     {1, 2, 13, 8}};
+        const auto built = ConvexPolyhedron::fromFaces(p, faces);
+        REQUIRE(built.ok());
+        const ConvexPolyhedron& b = built.polyhedron;
+        REQUIRE(b.validate().ok());
+        const ConvexPolyhedron a = presets::box(Vec3(1, 1, 1));
+        const Transform tb{-o, Quat::Identity()};
+        const Transform ta{Vec3(-0x1.ccc61d853c5c2p+0, -0x1.31e83898695ep-4, 0x1.ccccccccccccdp+0),
+                           Quat(0x1.ffffffffffff5p-1, 0x1.75c1df2c02536p-25, -0x1.570d5c0aa9152p-29,
+                                -0x1.a50398739de82p-26)};
+        SatContactOptions unprunedOptions;
+        unprunedOptions.pruneFaceAxes = unprunedOptions.pruneEdgeArcs = false;
+        SatContactTrace trace;
+        const SatContactResult pruned = contactPolyhedra(a, ta, b, tb);
+        const SatContactResult unpruned = contactPolyhedra(a, ta, b, tb, unprunedOptions);
+        const SatContactResult traced = contactPolyhedra(a, ta, b, tb, {}, &trace);
+        for (const SatContactResult* r : {&pruned, &traced}) {
+            CHECK(r->featureA.index == unpruned.featureA.index);
+            CHECK(r->featureB.index == unpruned.featureB.index);
+            CHECK(r->depth == unpruned.depth);
+            CHECK(r->normal == unpruned.normal);
+        }
+        CHECK(unpruned.featureA.index == 5);  // the face the traced query tests every axis to find
+        CHECK(unpruned.depth == doctest::Approx(0.20010007155414211).epsilon(1e-12));
+    }
+
     // A negative faceBiasRelative lets an edge axis win below the face axes' best, where the edge
     // pruning's bound would skip it: the pruning is off then (a reviewer's pose, where it picked
     // face A at depth 0.027 instead of the edge pair at 0.051).
