@@ -194,7 +194,7 @@ struct FaceSupports {
     std::pmr::vector<int> start;   // where its descent starts
     FaceSupports(int faces, std::pmr::memory_resource* memory) : vertex(faces, -1, memory), start(faces, -1, memory) {}
     int of(const Posed& P, const Posed& Q, int f) {
-        if (vertex[f] < 0) vertex[f] = Q.descend(P.n[f], start[f]);
+        if (vertex[f] < 0) vertex[f] = start[f] >= 0 ? Q.descend(P.n[f], start[f]) : Q.minVertex(P.n[f]);
         return vertex[f];
     }
 };

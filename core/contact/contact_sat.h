@@ -86,8 +86,8 @@ struct SatContactOptions {
     bool pruneEdgeArcs = true;
     /// Untraced query: skip the support descent of a face whose separation is bounded below its
     /// family's best so far (min_B n_f · x <= n_f · c_B − r_B, B's vertex mean and inradius about
-    /// it), visiting the face of largest bound first: the same answer, fewer faces tested
-    /// (axesTested counts the faces whose support was found). false: every face tested.
+    /// it), visiting the face of largest bound first: the same answer, fewer faces tested (and
+    /// counted in axesTested). false: every face tested.
     bool pruneFaceAxes = true;
 };
 
