@@ -82,11 +82,12 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
     // px from a candidate (on one axis) is farther than r from it, whatever the rounding of the
     // exact distance (segmentBoxDistance), so skipping it changes no decision. A dense drawing (a
     // tessellated disk: ~1000 strokes, ~500 candidates a label) spent most of its time there.
+    const auto segmentBox = [](const Vector2d& a, const Vector2d& b) {
+        return Box{std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()), std::max(a.y(), b.y())};
+    };
     std::vector<Box> lineBoxes;
     lineBoxes.reserve(obstacles.lines.size());
-    for (const PlacementObstacles::Line& l : obstacles.lines)
-        lineBoxes.push_back({std::min(l.a.x(), l.b.x()), std::min(l.a.y(), l.b.y()), std::max(l.a.x(), l.b.x()),
-                             std::max(l.a.y(), l.b.y())});
+    for (const PlacementObstacles::Line& l : obstacles.lines) lineBoxes.push_back(segmentBox(l.a, l.b));
     const auto apart = [](const Box& p, const Box& q, double r) {
         return std::max({p.x0 - q.x1, q.x0 - p.x1, p.y0 - q.y1, q.y0 - p.y1}) >= r + 1e-6;
     };
@@ -131,8 +132,7 @@ Placement placeLabel(const PlacementRequest& request, const PlacementObstacles& 
         // The leader's box grown by the largest reach tested below (5 px from an end, halfWidth + 4
         // along a stroke): a stroke whose box is beyond it adds nothing but a crossing, which needs
         // the boxes to overlap.
-        const Box leaderBox{std::min(request.anchor.x(), near.x()), std::min(request.anchor.y(), near.y()),
-                            std::max(request.anchor.x(), near.x()), std::max(request.anchor.y(), near.y())};
+        const Box leaderBox = segmentBox(request.anchor, near);
         for (size_t i = 0; i < obstacles.lines.size(); ++i) {
             const PlacementObstacles::Line& l = obstacles.lines[i];
             if (apart(lineBoxes[i], leaderBox, std::max(5.0, l.halfWidth + 4.0))) continue;

@@ -238,8 +238,8 @@ void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery&
     queue.reserve(faces);
     supportOfQ.vertex[first] = Q.minVertex(P.n[first]);
     queue.push_back(first);
-    std::pmr::vector<char> reached(faces, 0, memory);
-    reached[first] = 1;
+    // A face is reached once it has a support or a descent start (every reached face but the first
+    // gets a start >= 0: its parent's support, or the parent's own start).
     for (size_t head = 0; head < queue.size(); ++head) {
         const int f = queue[head];
         if (supportOfQ.vertex[f] < 0 && !(prune && bound[f] < best.separation))
@@ -248,8 +248,7 @@ void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery&
         if (s >= 0) considerFaceAxis(P, Q, pIsA, f, s, q);
         for (int k = mp.faceVertexStart()[f]; k < mp.faceVertexStart()[f + 1]; ++k) {
             const int g = mp.faceAcross()[k];
-            if (reached[g]) continue;
-            reached[g] = 1;
+            if (supportOfQ.vertex[g] >= 0 || supportOfQ.start[g] >= 0) continue;
             supportOfQ.start[g] = s >= 0 ? s : supportOfQ.start[f];
             queue.push_back(g);
         }
@@ -564,7 +563,8 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
     double maxCoord = 0.0;
     for (const Vec3& p : B.x) maxCoord = std::max(maxCoord, p.cwiseAbs().maxCoeff());
     maxCoord += origin.cwiseAbs().maxCoeff();
-    const double size = std::max((ma.boundsMax() - ma.boundsMin()).norm(), (mb.boundsMax() - mb.boundsMin()).norm());
+    const Vec3 loA = ma.boundsMin(), hiA = ma.boundsMax(), loB = mb.boundsMin(), hiB = mb.boundsMax();
+    const double size = std::max((hiA - loA).norm(), (hiB - loB).norm());
     r.tolerance = detail::satTolerance(options, size, maxCoord);
     const double tol = r.tolerance;
 
@@ -585,8 +585,8 @@ SatContactResult contactPolyhedra(const ConvexPolyhedron& ma, const Transform& t
         // body-frame coordinates and diagonal, core/geometry/polyhedron.h: a mesh stored 1e6 from its
         // body origin may be posed near the world's): twice the larger, tol, and the rounding of the
         // posed coordinates (tests/core/contact/contact_sat_test.cpp, "a ridge far from its body origin").
-        const double pruneMargin = tol + 2.0 * std::max(ma.scaleTolerance(), mb.scaleTolerance()) +
-                                   ulps(131072.0, maxCoord + size);
+        const double planarity = std::max(ConvexPolyhedron::scaleTolerance(loA, hiA), ConvexPolyhedron::scaleTolerance(loB, hiB));
+        const double pruneMargin = tol + 2.0 * planarity + ulps(131072.0, maxCoord + size);
         queryFaceAxesByDescent(A, B, true, q, supportOfB, options.pruneFaceAxes, pruneMargin, arena.resource());
         queryFaceAxesByDescent(B, A, false, q, supportOfA, options.pruneFaceAxes, pruneMargin, arena.resource());
         // Edges bounded below what the choice of axis can use (chooseSatAxis, edgeAxisForEmptyClip:

@@ -338,8 +338,9 @@ Vec3 ConvexPolyhedron::boundsMax() const {
     return m;
 }
 
-double ConvexPolyhedron::scaleTolerance() const {
-    const Vec3 lo = boundsMin(), hi = boundsMax();
+double ConvexPolyhedron::scaleTolerance() const { return scaleTolerance(boundsMin(), boundsMax()); }
+
+double ConvexPolyhedron::scaleTolerance(const Vec3& lo, const Vec3& hi) {
     const double maxAbs = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
     return ulps(65536.0, maxAbs + (hi - lo).norm());
 }

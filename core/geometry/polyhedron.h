@@ -208,6 +208,8 @@ public:
     /// diagonal), ~1.5e-11 of the scale. Well above what convexHull() leaves (faces planar within
     /// ~2 x its merge tolerance of 16384 * DBL_EPSILON * scale) and far below any modelled feature.
     double scaleTolerance() const;
+    /// The same from bounds already at hand (boundsMin(), boundsMax()): no pass over the vertices.
+    static double scaleTolerance(const Vec3& boundsMin, const Vec3& boundsMax);
 
     /// Full check: links (twin/next/prev/face/edge), closed 2-manifold with single vertex fans,
     /// Euler V - E + F = 2, finite unit normals, every face planar and convex within tolerance,
