@@ -7,7 +7,7 @@ set -u
 root="$1"; program="$2"
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 mkdir "$tmp/bin"
-for tool in apt-get cmake sudo dpkg-query ctest make; do
+for tool in apt-get cmake sudo dpkg-query ctest make ninja; do
     printf '#!/bin/sh\necho "%s was called" >&2\nexit 99\n' "$tool" > "$tmp/bin/$tool"; chmod +x "$tmp/bin/$tool"
 done
 fail=0
