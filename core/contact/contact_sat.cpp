@@ -56,6 +56,9 @@ struct Posed {
     std::pmr::vector<Arc> arcs;
     double sign = 1.0;
     Vec3 center = Vec3::Zero();  // vertex mean (inside: convex)
+    // The radius of a ball about `center` inside the body (its least distance to a face plane; 0 on
+    // a flat body, whose rounding can put the mean a hair outside): the prunings' bounds.
+    double inradius = INFINITY;
     // The edge vectors w - v of the vertex adjacency (ConvexPolyhedron::neighbors(), same slots) in
     // world orientation, for the arc walks of the untraced query over B's graph. They are rotated
     // body-frame differences, free of the rounding of B's offset from A (the arc tests of the
@@ -87,7 +90,9 @@ struct Posed {
             Vec3 c = Vec3::Zero();
             for (int k = begin; k < end; ++k) c += x[m.faceVertexIds()[k]];
             d.push_back(n.back().dot(c / double(end - begin)));
+            inradius = std::min(inradius, d.back() - n.back().dot(center));
         }
+        inradius = std::max(inradius, 0.0);
         // Unit normals within kFoldedEdgeSine of opposite: a fold of a flat body, not a dihedral edge.
         // (Equal normals, two coplanar faces of a triangulated mesh, are fine: a point arc.)
         for (const ConvexPolyhedron::EdgeEnds& e : *edges)
@@ -199,14 +204,6 @@ struct FaceSupports {
     }
 };
 
-// The radius of a ball about Q's vertex mean inside Q (its least distance to a face plane; 0 on a
-// flat body, whose rounding can put the mean a hair outside).
-double inradiusAboutCenter(const Posed& Q) {
-    double r = INFINITY;
-    for (size_t f = 0; f < Q.n.size(); ++f) r = std::min(r, Q.d[f] - Q.n[f].dot(Q.center));
-    return std::max(r, 0.0);
-}
-
 // 1, untraced: the same supports found by descent over the other body's vertex graph, faces
 // visited breadth first across their edges and each descent started at the support of the face it
 // was reached from (adjacent normals have nearby supports: a step or two of ~6 neighbours instead
@@ -225,7 +222,7 @@ void queryFaceAxesByDescent(const Posed& P, const Posed& Q, bool pIsA, SatQuery&
     std::pmr::vector<double> bound(memory);
     int first = 0;
     if (prune) {
-        const double rQ = inradiusAboutCenter(Q);
+        const double rQ = Q.inradius;
         bound.resize(faces);
         for (int f = 0; f < faces; ++f) {
             const double c = P.n[f].dot(Q.center);
@@ -395,7 +392,7 @@ bool walkEdgeArc(const Posed& A, const Posed& B, int ea, int start, int end, dou
 void queryEdgeAxesByWalk(Posed& A, Posed& B, FaceSupports& supportOfB, double endTol, double pruneBelow, double margin,
                          SatQuery& q) {
     std::pmr::vector<double> side(B.n.get_allocator().resource());
-    const double rB = inradiusAboutCenter(B);
+    const double rB = B.inradius;
     for (int ea = 0; ea < static_cast<int>(A.edges->size()); ++ea) {
         const ConvexPolyhedron::EdgeEnds& edgeA = (*A.edges)[ea];
         if (pruneBelow > -INFINITY) {
